@@ -1,0 +1,127 @@
+"""Catalogs of standard parts and named constants, read from plain CSV.
+
+Every catalog is one CSV file in ``catalogs/`` (shipped inside the wheel as
+``synth/catalogs``). The first column is the key (a designation such as
+``6006`` or ``M8x1.25``), units are in the column names (``d_mm``,
+``C_n``), and every row has a ``source`` column.
+
+A user's own folder overrides the built-in data: set it with
+:func:`set_user_dirs` or the ``SYNTH_CATALOGS`` environment variable
+(``os.pathsep``-separated). A user CSV with the same file name is merged on
+the key column: its rows replace built-in rows with the same key and new keys
+are appended, so a user can add a part or change one cost without copying the
+whole table.
+
+Named constants (friction coefficients, wear constants, tolerances...) live in
+``catalogs/constants.csv`` with value, unit and source; read them with
+:func:`constant`.
+
+>>> bearings = load("ball_bearings")
+>>> float(row("ball_bearings", "6006")["D_mm"])
+55.0
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+from pathlib import Path
+
+import pandas as pd
+
+from synth.errors import CatalogError, Problem
+
+__all__ = ["builtin_dir", "set_user_dirs", "names", "load", "row", "keys", "constant", "constant_row"]
+
+_USER_DIRS: list[Path] = []
+
+
+def builtin_dir() -> Path:
+    """Folder of the built-in catalogs (inside the wheel, or the source tree)."""
+    here = Path(__file__).resolve().parent
+    for candidate in (here / "catalogs", here.parent / "catalogs"):
+        if candidate.is_dir():
+            return candidate
+    raise CatalogError(Problem("catalogs", str(here), "a synth installation with its catalogs/ folder"))
+
+
+def set_user_dirs(*dirs: str | os.PathLike) -> None:
+    """Use the given folders (first wins) to override built-in catalogs."""
+    _USER_DIRS[:] = [Path(d) for d in dirs]
+    load.cache_clear()
+
+
+def _user_dirs() -> list[Path]:
+    env = os.environ.get("SYNTH_CATALOGS", "")
+    return _USER_DIRS + [Path(p) for p in env.split(os.pathsep) if p]
+
+
+def names() -> list[str]:
+    """Names of the built-in catalogs (file names without ``.csv``)."""
+    return sorted(p.stem for p in builtin_dir().glob("*.csv"))
+
+
+def _read(path: Path) -> pd.DataFrame:
+    df = pd.read_csv(path, comment="#", skipinitialspace=True, dtype={0: str})
+    df.columns = [c.strip() for c in df.columns]
+    key = df.columns[0]
+    df[key] = df[key].astype(str).str.strip()
+    return df
+
+
+@functools.lru_cache(maxsize=None)
+def _load_cached(name: str, user_dirs: tuple[Path, ...]) -> pd.DataFrame:
+    path = builtin_dir() / f"{name}.csv"
+    if not path.is_file():
+        raise CatalogError(Problem("catalog", name, "one of " + ", ".join(names())))
+    df = _read(path)
+    key = df.columns[0]
+    for d in reversed(user_dirs):
+        upath = d / f"{name}.csv"
+        if upath.is_file():
+            udf = _read(upath)
+            if udf.columns[0] != key:
+                raise CatalogError(Problem(f"{upath} (key column)", udf.columns[0], f"'{key}' as in the built-in catalog"))
+            df = pd.concat([df[~df[key].isin(udf[key])], udf], ignore_index=True)
+    return df
+
+
+def load(name: str) -> pd.DataFrame:
+    """Return catalog ``name`` as a DataFrame (a copy: safe to modify)."""
+    return _load_cached(name, tuple(_user_dirs())).copy()
+
+
+load.cache_clear = _load_cached.cache_clear  # type: ignore[attr-defined]
+
+
+def keys(name: str) -> list[str]:
+    """The designations (first-column values) of catalog ``name``."""
+    df = load(name)
+    return df[df.columns[0]].tolist()
+
+
+def row(name: str, key: str, field: str | None = None) -> pd.Series:
+    """One catalog row by designation; an unknown key lists the valid ones.
+
+    ``field`` names the input field that asked for it, for the error message.
+    """
+    df = load(name)
+    col = df.columns[0]
+    hit = df[df[col] == str(key).strip()]
+    if hit.empty:
+        raise CatalogError(Problem(field or f"{name}.{col}", key, "one of " + ", ".join(df[col])))
+    return hit.iloc[0]
+
+
+def constant_row(name: str) -> pd.Series:
+    """The row of ``constants.csv`` for constant ``name`` (value, unit, source)."""
+    return row("constants", name, field="constant")
+
+
+def constant(name: str) -> float:
+    """The value of a named constant from ``catalogs/constants.csv``.
+
+    >>> constant("pulley_width_margin_mm")
+    4.0
+    """
+    return float(constant_row(name)["value"])

@@ -1,0 +1,36 @@
+"""Errors that reach the user as messages, never as tracebacks."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["Problem", "InputError", "CatalogError"]
+
+
+@dataclass(frozen=True)
+class Problem:
+    """One problem with one input field: what is wrong and what is accepted."""
+
+    field: str
+    value: object
+    accepted: str
+
+    def __str__(self) -> str:
+        return f"{self.field}: got {self.value!r}; accepted: {self.accepted}"
+
+
+class InputError(ValueError):
+    """Bad input: carries one :class:`Problem` per offending field.
+
+    The CLI prints each problem on its own line and exits with code 2.
+    """
+
+    def __init__(self, problems: list[Problem] | Problem):
+        if isinstance(problems, Problem):
+            problems = [problems]
+        self.problems = list(problems)
+        super().__init__("\n".join(str(p) for p in self.problems))
+
+
+class CatalogError(InputError):
+    """An unknown catalog, part or constant; the message lists valid choices."""

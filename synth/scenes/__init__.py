@@ -1,0 +1,1 @@
+"""User-facing scenes (use cases): each one a sub-command of ``synth``."""
