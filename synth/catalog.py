@@ -113,9 +113,23 @@ def row(name: str, key: str, field: str | None = None) -> pd.Series:
     return hit.iloc[0]
 
 
+def _constants() -> pd.DataFrame:
+    frames = [load(n) for n in names() if n == "constants" or n.startswith("constants_")]
+    return pd.concat(frames, ignore_index=True)
+
+
 def constant_row(name: str) -> pd.Series:
-    """The row of ``constants.csv`` for constant ``name`` (value, unit, source)."""
-    return row("constants", name, field="constant")
+    """The row for constant ``name`` (value, unit, source).
+
+    Constants live in ``constants.csv`` and the topic files ``constants_*.csv``
+    (one per flowchart step or model), all with columns
+    ``name,value,unit,source,note``.
+    """
+    df = _constants()
+    hit = df[df["name"] == name]
+    if hit.empty:
+        raise CatalogError(Problem("constant", name, "one of " + ", ".join(sorted(df["name"]))))
+    return hit.iloc[0]
 
 
 def constant(name: str) -> float:
