@@ -16,6 +16,8 @@ class Problem:
     accepted: str
 
     def __str__(self) -> str:
+        if self.value is None:
+            return f"{self.field}: missing; expected {self.accepted}"
         return f"{self.field}: got {self.value!r}; accepted: {self.accepted}"
 
 

@@ -1,0 +1,140 @@
+"""Step 0: tensioner execution selection (thesis eq. (17)-(27)).
+
+Layout (standard or reverse) from the belt offset, pulley width from the belt,
+lock-up pin position checks and the axial displacement check. All functions
+are vectorised; angles in degrees, lengths in millimetres.
+
+>>> bool(is_standard_layout(29.5, 42.0))
+True
+>>> float(pulley_width_mm(16.0))
+20.0
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from synth.catalog import constant
+from synth.checks import margin_lower, margin_upper
+
+__all__ = [
+    "is_standard_layout", "pulley_width_mm", "hubload_angle_from_ehr_deg", "wrap_limits_deg",
+    "pin_within_pulley_margin", "pin_angular_zone", "pin_clearance_margin", "axial_displacement_margin",
+]
+
+
+def is_standard_layout(middle_plane_belt_height_mm, max_height_mm):
+    """Standard layout if ``h_mid >= h_max / 2`` (eq. (17)), else reverse (eq. (18)).
+
+    ``max_height_mm`` is the maximum axial height available for the pulley
+    (the input ``max_axial_displacement_mm``; see docs/model.md).
+
+    >>> is_standard_layout([29.5, 10.0], 42.0).tolist()
+    [True, False]
+    """
+    return np.asarray(middle_plane_belt_height_mm, float) >= np.asarray(max_height_mm, float) / 2.0
+
+
+def pulley_width_mm(belt_width_mm):
+    """Pulley width = belt width + margin (constant ``pulley_width_margin_mm``, 4 mm).
+
+    The thesis prints the width without its rule; belt 16 -> pulley 20 (case 1)
+    and belt 26 -> pulley 30 (case 3) give a 4 mm margin (2 mm a side).
+
+    >>> float(pulley_width_mm(26.0))
+    30.0
+    """
+    return np.asarray(belt_width_mm, float) + constant("pulley_width_margin_mm")
+
+
+def hubload_angle_from_ehr_deg(differential_angle_deg, nominal_arm_angle_deg):
+    """Angle between the hubload and the engine horizontal reference, eq. (19).
+
+    ``HL_EHR = 360 - (alpha + gamma)``, wrapped to [0, 360).
+
+    >>> round(float(hubload_angle_from_ehr_deg(85.0, 136.7)), 1)
+    138.3
+    """
+    a = np.asarray(differential_angle_deg, float) + np.asarray(nominal_arm_angle_deg, float)
+    return np.mod(360.0 - a, 360.0)
+
+
+def wrap_limits_deg(hubload_angle_deg, wrap_angle_deg):
+    """Upper and lower belt-pulley contact limits, eq. (20)-(21): ``HL_EHR +/- wrap/2``.
+
+    >>> [round(float(x), 1) for x in wrap_limits_deg(138.3, 69.2)]
+    [172.9, 103.7]
+    """
+    hl = np.asarray(hubload_angle_deg, float)
+    beta = np.asarray(wrap_angle_deg, float) / 2.0
+    return hl + beta, hl - beta
+
+
+def pin_within_pulley_margin(pin_radius_mm, pin_diameter_mm, pulley_diameter_mm):
+    """Eq. (22) as printed: ``R_pin - d_pin/2 <= D_pulley/2`` (normalised margin).
+
+    >>> round(float(pin_within_pulley_margin(33.0, 4.0, 66.0)), 4)
+    0.0606
+    """
+    inner = np.asarray(pin_radius_mm, float) - np.asarray(pin_diameter_mm, float) / 2.0
+    return margin_upper(inner, np.asarray(pulley_diameter_mm, float) / 2.0)
+
+
+def pin_angular_zone(pin_angle_deg, theta_plus_deg, theta_minus_deg):
+    """Where the pin lies relative to the wrap: +1 beyond theta+, -1 before theta-, 0 within.
+
+    Angles are compared on the circle (the offset from the arc centre wrapped
+    to (-180, 180]).
+
+    >>> pin_angular_zone([127.0, 180.0, 90.0], 172.9, 103.7).tolist()
+    [0, 1, -1]
+    """
+    tp, tm = np.asarray(theta_plus_deg, float), np.asarray(theta_minus_deg, float)
+    centre, half = (tp + tm) / 2.0, (tp - tm) / 2.0
+    off = np.mod(np.asarray(pin_angle_deg, float) - centre + 180.0, 360.0) - 180.0
+    return np.where(off > half, 1, np.where(off < -half, -1, 0))
+
+
+def pin_clearance_margin(pin_radius_mm, pin_angle_deg, pin_diameter_mm, pulley_diameter_mm,
+                         theta_plus_deg, theta_minus_deg):
+    """Lock-up pin clearance to the pulley and belt, eq. (23)-(25), as a normalised margin.
+
+    * within the wrap (eq. (23)): ``R_pin - d_pin/2 >= D_pulley/2 + c_pulley`` (5 mm);
+    * beyond theta+ or before theta- (eq. (24)-(25)): the pin keeps ``c_belt`` (2 mm)
+      from the belt span, the line tangent to the pulley at the contact limit.
+      The distance from the pin centre to that line, on the pulley side, is
+      ``R - R_pin cos(phi - theta_lim)``; it must be at least ``d_pin/2 + c_belt``.
+
+    The margin is normalised by the required clearance (mm over mm).
+
+    >>> round(float(pin_clearance_margin(45.0, 138.3, 4.0, 66.0, 172.9, 103.7)), 3)
+    0.132
+    """
+    r_pin = np.asarray(pin_radius_mm, float)
+    phi = np.asarray(pin_angle_deg, float)
+    d_pin = np.asarray(pin_diameter_mm, float)
+    r = np.asarray(pulley_diameter_mm, float) / 2.0
+    c_pulley = constant("lockup_pin_pulley_clearance_mm")
+    c_belt = constant("lockup_pin_belt_clearance_mm")
+    zone = pin_angular_zone(phi, theta_plus_deg, theta_minus_deg)
+    inside = margin_lower(r_pin - d_pin / 2.0, r + c_pulley)
+    theta_lim = np.where(zone > 0, theta_plus_deg, theta_minus_deg)
+    dist = r - r_pin * np.cos(np.radians(phi - theta_lim))
+    outside = margin_lower(dist, d_pin / 2.0 + c_belt)
+    return np.where(zone == 0, inside, outside)
+
+
+def axial_displacement_margin(middle_plane_belt_height_mm, pulley_width_mm_, max_height_mm, standard_layout):
+    """Axial space of the pulley, eq. (26) (standard) and eq. (27) (reverse).
+
+    Standard: ``h_mid + w/2 <= h_max``; reverse: ``h_mid - w/2 >= clearance_min``
+    (constant ``reverse_layout_min_crankcase_clearance_mm``).
+
+    >>> round(float(axial_displacement_margin(29.5, 20.0, 42.0, True)), 4)
+    0.0595
+    """
+    h = np.asarray(middle_plane_belt_height_mm, float)
+    w = np.asarray(pulley_width_mm_, float)
+    std = margin_upper(h + w / 2.0, max_height_mm)
+    rev = margin_lower(h - w / 2.0, constant("reverse_layout_min_crankcase_clearance_mm"))
+    return np.where(np.asarray(standard_layout, bool), std, rev)
