@@ -1,0 +1,618 @@
+"""Step 8 of the thesis flowchart: the cone (disc) spring of the axial damping.
+
+The cone spring presses the axial stack (damper pad, arm, endcap spacer) so
+that the plastic elements rub on the arm: the axial damping is
+:math:`D_{ax} = F_{ax}\\,\\mu_{plastic}\\,(R_{m,dp} + R_{m,es})` (thesis eq. (9)).
+This module gives
+
+* the disc-spring characteristic and stresses of Almen and Laszlo as
+  standardised in DIN EN 16984:2017 (formerly DIN 2092:2006), thesis
+  eq. (55)-(63): :func:`disc_spring_force_n`, :func:`disc_spring_rate_n_per_mm`,
+  :func:`disc_spring_stresses_mpa`, with ``fidelity="screening"`` for the
+  cheap linear (secant) characteristic and ``"full"`` for Almen-Laszlo;
+* the axial force required by the damping split of step 3 (eq. (9) inverted),
+  the force tolerance band the spring supplier must meet (thesis Fig. 68),
+  the geometric limits (thesis Table 8 and step 8 text) and the checks of the
+  supplier's optimal ranges (thesis Table 7);
+* :func:`cone_spring`, the vectorised step: sizes a spring inside the limits
+  and returns every value and normalised margin.
+
+Units: lengths in mm, forces in N, torques in N m, stresses in MPa. The
+elastic constants come from ``catalogs/constants_cone_spring.csv``.
+
+>>> round(float(disc_spring_force_n(0.15, 8.0, 4.2, 0.4, 0.2)), 0)   # DIN 2093 A 8: 210 N
+210.0
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from synth import catalog
+from synth.checks import Check, margin_lower, margin_upper
+from synth.errors import InputError, Problem
+
+__all__ = [
+    "FIDELITIES",
+    "disc_spring_factors",
+    "disc_spring_k4",
+    "disc_spring_force_n",
+    "disc_spring_rate_n_per_mm",
+    "disc_spring_stresses_mpa",
+    "disc_spring_thickness_for_force_mm",
+    "axial_damping_nm",
+    "required_axial_force_n",
+    "axial_force_tolerance_band",
+    "gap_force_shifts_n",
+    "cone_spring_min_internal_diameter_mm",
+    "cone_spring_max_external_diameter_mm",
+    "table7_margins",
+    "cone_spring",
+    "cone_spring_checks",
+]
+
+#: ``screening``: linear (secant) characteristic; ``full``: Almen-Laszlo.
+FIDELITIES = ("screening", "full")
+
+_TINY = np.finfo(float).tiny
+
+
+def _f(x):
+    return np.asarray(x, dtype=float)
+
+
+def _check_fidelity(fidelity: str) -> None:
+    if fidelity not in FIDELITIES:
+        raise InputError(Problem("fidelity", fidelity, " or ".join(FIDELITIES)))
+
+
+def _elastic(youngs_modulus_mpa=None, poisson_ratio=None):
+    e = catalog.constant("cone_spring_youngs_modulus_mpa") if youngs_modulus_mpa is None else youngs_modulus_mpa
+    nu = catalog.constant("cone_spring_poisson_ratio") if poisson_ratio is None else poisson_ratio
+    return _f(e), _f(nu)
+
+
+def _require(cond, field, value, accepted):
+    if not np.all(cond):
+        bad = np.asarray(value)[~np.broadcast_to(cond, np.shape(value))] if np.ndim(value) else value
+        raise InputError(Problem(field, np.ravel(bad)[:3].tolist() if np.ndim(bad) else float(bad), accepted))
+
+
+def _validate_geometry(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm):
+    de, di, t, h0 = _f(outer_diameter_mm), _f(inner_diameter_mm), _f(thickness_mm), _f(cone_height_mm)
+    _require(di > 0, "inner_diameter_mm", di, "> 0")
+    _require(de > di, "outer_diameter_mm", de, "> inner_diameter_mm (a disc spring is an annulus)")
+    _require(t > 0, "thickness_mm", t, "> 0")
+    _require(h0 >= 0, "cone_height_mm", h0, ">= 0")
+    return de, di, t, h0
+
+
+def disc_spring_factors(outer_diameter_mm, inner_diameter_mm) -> dict:
+    """Factors K1, K2, K3 of a disc spring, thesis eq. (60), DIN EN 16984:2017 clause 5.
+
+    .. math::
+        \\delta = D_e/D_i,\\quad
+        K_1 = \\frac{1}{\\pi}\\frac{((\\delta-1)/\\delta)^2}{(\\delta+1)/(\\delta-1) - 2/\\ln\\delta},\\quad
+        K_2 = \\frac{6}{\\pi}\\frac{(\\delta-1)/\\ln\\delta - 1}{\\ln\\delta},\\quad
+        K_3 = \\frac{3}{\\pi}\\frac{\\delta-1}{\\ln\\delta}
+
+    Diameters in mm (``De > Di > 0``, else :class:`InputError`). Returns a dict
+    ``delta``, ``k1``, ``k2``, ``k3`` (dimensionless) and ``d0_mm``, the
+    diameter of the rotation centre, thesis eq. (58):
+    :math:`D_0 = (D_e - D_i)/\\ln\\delta`.
+
+    >>> k = disc_spring_factors(40.0, 20.4)
+    >>> round(float(k["k1"]), 4), round(float(k["k2"]), 4), round(float(k["k3"]), 4)
+    (0.6861, 1.2108, 1.3626)
+    """
+    de, di, _, _ = _validate_geometry(outer_diameter_mm, inner_diameter_mm, 1.0, 0.0)
+    d = de / di
+    ln = np.log(d)
+    k1 = ((d - 1.0) / d) ** 2 / ((d + 1.0) / (d - 1.0) - 2.0 / ln) / np.pi
+    k2 = 6.0 / np.pi * ((d - 1.0) / ln - 1.0) / ln
+    k3 = 3.0 / np.pi * (d - 1.0) / ln
+    return {"delta": d, "k1": k1, "k2": k2, "k3": k3, "d0_mm": (de - di) / ln}
+
+
+def disc_spring_k4(thickness_mm, free_height_mm, reduced_thickness_mm=None):
+    """Factor K4 of a disc spring with contact flats, thesis eq. (61)-(63), DIN EN 16984:2017.
+
+    .. math::
+        C_1 = \\frac{(t'/t)^2}{(\\tfrac14 l_0/t - t'/t + \\tfrac34)(\\tfrac58 l_0/t - t'/t + \\tfrac38)},\\quad
+        C_2 = \\frac{C_1}{(t'/t)^3}\\left[\\tfrac{5}{32}(l_0/t - 1)^2 + 1\\right],\\quad
+        K_4 = \\sqrt{-C_1/2 + \\sqrt{(C_1/2)^2 + C_2}}
+
+    ``thickness_mm`` t, ``free_height_mm`` l0 and ``reduced_thickness_mm`` t'
+    (contact-flat springs of DIN group 3; ``None`` or ``t' = t``: no flats,
+    K4 = 1 exactly). A flat disc (``l0 = t``) without flats also gives 1.
+
+    >>> float(disc_spring_k4(2.25, 3.15)), round(float(disc_spring_k4(8.0, 10.6, 7.5)), 4)
+    (1.0, 1.0834)
+    """
+    t, l0 = _f(thickness_mm), _f(free_height_mm)
+    if reduced_thickness_mm is None:
+        return np.ones(np.broadcast(t, l0).shape)
+    tr = _f(reduced_thickness_mm) / t
+    r = l0 / t
+    c1 = tr ** 2 / ((0.25 * r - tr + 0.75) * (0.625 * r - tr + 0.375))
+    c2 = c1 / tr ** 3 * (5.0 / 32.0 * (r - 1.0) ** 2 + 1.0)
+    return np.sqrt(-c1 / 2.0 + np.sqrt((c1 / 2.0) ** 2 + c2))
+
+
+def _prep(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm, reduced_thickness_mm,
+          youngs_modulus_mpa, poisson_ratio):
+    """Effective t, h0, K4 and the stiffness scale 4E/(1-nu^2)/(K1 De^2) [MPa/mm^2]."""
+    de, di, t, h0 = _validate_geometry(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm)
+    k = disc_spring_factors(de, di)
+    e, nu = _elastic(youngs_modulus_mpa, poisson_ratio)
+    k4 = disc_spring_k4(t, h0 + t, reduced_thickness_mm)
+    if reduced_thickness_mm is not None:  # DIN EN 16984: t -> t', h0 -> h0' = l0 - t'
+        tr = _f(reduced_thickness_mm)
+        h0 = h0 + t - tr
+        t = tr
+    scale = 4.0 * e / (1.0 - nu ** 2) / (k["k1"] * de ** 2)
+    return t, h0, k4, scale, k
+
+
+def disc_spring_force_n(deflection_mm, outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm,
+                        *, fidelity: str = "full", reduced_thickness_mm=None,
+                        youngs_modulus_mpa=None, poisson_ratio=None):
+    """Force of a single disc spring at deflection s [N], DIN EN 16984:2017 (Almen-Laszlo).
+
+    ``full`` (Almen-Laszlo, DIN EN 16984 eq. for F):
+
+    .. math::
+        F = \\frac{4E}{1-\\mu^2}\\frac{t^4}{K_1 D_e^2}K_4^2\\frac{s}{t}
+            \\left[K_4^2\\left(\\frac{h_0}{t}-\\frac{s}{t}\\right)\\left(\\frac{h_0}{t}-\\frac{s}{2t}\\right)+1\\right]
+
+    ``screening``: the linear secant through the origin and the flat point
+    :math:`F_c = F(s=h_0) = \\frac{4E}{1-\\mu^2}\\frac{t^3 h_0}{K_1 D_e^2}K_4^2`
+    (thesis Fig. 53-54: the characteristics compared at equal :math:`F_c`), i.e.
+    :math:`F = \\frac{4E}{1-\\mu^2}\\frac{t^3}{K_1 D_e^2}K_4^2\\, s`; exact for
+    :math:`h_0/t \\to 0` and at s = 0 and s = h0.
+
+    Lengths in mm, E in MPa (default from the catalog, 206 GPa; Poisson 0.3).
+    The deflection is clipped to ``[0, h0]``: below 0 the spring has lifted off
+    (F = 0), beyond h0 it is flat and bottomed (the force of the flat disc is
+    returned; :func:`cone_spring` flags a stack that flattens it). Finite for
+    every admissible geometry, including h0/t = sqrt(2) where the curve reaches
+    s = h0 with a horizontal tangent.
+
+    >>> round(float(disc_spring_force_n(0.675, 40.0, 20.4, 2.25, 0.9)), -1)   # DIN 2093 A 40: 6.5 kN
+    6500.0
+    >>> round(float(disc_spring_force_n(0.675, 40.0, 20.4, 2.25, 0.9, fidelity="screening")), -1)
+    6340.0
+    """
+    _check_fidelity(fidelity)
+    t, h0, k4, scale, _ = _prep(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm,
+                                reduced_thickness_mm, youngs_modulus_mpa, poisson_ratio)
+    s = np.clip(_f(deflection_mm), 0.0, h0)
+    if fidelity == "screening":
+        return scale * t ** 3 * k4 ** 2 * s
+    x, z = s / t, h0 / t
+    return scale * t ** 4 * k4 ** 2 * x * (k4 ** 2 * (z - x) * (z - 0.5 * x) + 1.0)
+
+
+def disc_spring_rate_n_per_mm(deflection_mm, outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm,
+                              *, fidelity: str = "full", reduced_thickness_mm=None,
+                              youngs_modulus_mpa=None, poisson_ratio=None):
+    """Spring rate dF/ds of a single disc spring [N/mm], DIN EN 16984:2017.
+
+    .. math::
+        R = \\frac{4E}{1-\\mu^2}\\frac{t^3}{K_1 D_e^2}K_4^2
+            \\left[K_4^2\\left(\\left(\\frac{h_0}{t}\\right)^2 - 3\\frac{h_0}{t}\\frac{s}{t}
+            + \\frac32\\left(\\frac{s}{t}\\right)^2\\right) + 1\\right]
+
+    (``screening``: the constant secant rate). Zero at s = h0 when
+    h0/t = sqrt(2) (thesis step 8: horizontal tangent), negative beyond the force
+    maximum of springs with h0/t > sqrt(2). Deflection clipped to [0, h0].
+
+    >>> round(float(disc_spring_rate_n_per_mm(0.0, 30.0, 16.2, 1.0, 2 ** 0.5)), 1)   # 3 x the linear rate at s = 0
+    4573.3
+    >>> round(float(disc_spring_rate_n_per_mm(2 ** 0.5, 30.0, 16.2, 1.0, 2 ** 0.5)), 9)
+    0.0
+    """
+    _check_fidelity(fidelity)
+    t, h0, k4, scale, _ = _prep(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm,
+                                reduced_thickness_mm, youngs_modulus_mpa, poisson_ratio)
+    base = scale * t ** 3 * k4 ** 2
+    if fidelity == "screening":
+        return base * np.ones_like(_f(deflection_mm) * h0)
+    s = np.clip(_f(deflection_mm), 0.0, h0)
+    x, z = s / t, h0 / t
+    return base * (k4 ** 2 * (z * z - 3.0 * z * x + 1.5 * x * x) + 1.0)
+
+
+def disc_spring_stresses_mpa(deflection_mm, outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm,
+                             *, reduced_thickness_mm=None, youngs_modulus_mpa=None, poisson_ratio=None) -> dict:
+    """Stresses of a disc spring at deflection s [MPa], thesis eq. (59), DIN EN 16984:2017.
+
+    With :math:`A = \\frac{4E}{1-\\mu^2}\\frac{t^2}{K_1 D_e^2}K_4\\frac{s}{t}` and
+    :math:`B = K_4 (h_0/t - s/(2t))`:
+
+    * :math:`\\sigma_{OM} = -A\\,3/\\pi` (top, at the rotation diameter D0; eq. (59))
+    * :math:`\\sigma_{I} = -A\\,(K_2 B + K_3)`, :math:`\\sigma_{II} = -A\\,(K_2 B - K_3)` (inner edge)
+    * :math:`\\sigma_{III} = -\\frac{A}{\\delta}((K_2-2K_3)B - K_3)`,
+      :math:`\\sigma_{IV} = -\\frac{A}{\\delta}((K_2-2K_3)B + K_3)` (outer edge)
+
+    Negative is compression. Returns ``sigma_om_mpa``, ``sigma_i_mpa`` ...
+    ``sigma_iv_mpa``. Deflection clipped to [0, h0].
+
+    >>> st = disc_spring_stresses_mpa(0.15, 8.0, 4.2, 0.4, 0.2)   # DIN 2093 A 8
+    >>> [int(round(float(st[k]), -1)) for k in ("sigma_om_mpa", "sigma_ii_mpa", "sigma_iii_mpa")]
+    [-1200, 1220, 1190]
+    """
+    t, h0, k4, scale, k = _prep(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm,
+                                reduced_thickness_mm, youngs_modulus_mpa, poisson_ratio)
+    s = np.clip(_f(deflection_mm), 0.0, h0)
+    a = scale * t ** 2 * k4 * s / t
+    b = k4 * (h0 / t - 0.5 * s / t)
+    k2, k3, d = k["k2"], k["k3"], k["delta"]
+    return {
+        "sigma_om_mpa": -a * 3.0 / np.pi,
+        "sigma_i_mpa": -a * (k2 * b + k3),
+        "sigma_ii_mpa": -a * (k2 * b - k3),
+        "sigma_iii_mpa": -a / d * ((k2 - 2.0 * k3) * b - k3),
+        "sigma_iv_mpa": -a / d * ((k2 - 2.0 * k3) * b + k3),
+    }
+
+
+def disc_spring_thickness_for_force_mm(force_n, outer_diameter_mm, inner_diameter_mm, aspect_ratio,
+                                       deflection_ratio, *, fidelity: str = "full",
+                                       youngs_modulus_mpa=None, poisson_ratio=None):
+    """Thickness t giving force F at deflection s = phi*h0 with h0 = zeta*t [mm] (DIN EN 16984 inverted).
+
+    With :math:`\\zeta = h_0/t` and :math:`\\varphi = s/h_0` fixed, the force law
+    is :math:`F = \\frac{4E}{1-\\mu^2}\\frac{t^4}{K_1 D_e^2}\\,g` with
+    :math:`g = \\varphi\\zeta[(\\zeta - \\varphi\\zeta)(\\zeta - \\varphi\\zeta/2) + 1]`
+    (``screening``: :math:`g = \\varphi\\zeta`), so
+    :math:`t = (F K_1 D_e^2 (1-\\mu^2) / (4 E g))^{1/4}`: a closed form, no
+    iteration. ``force_n`` <= 0 gives t = 0 (no spring needed); a zero
+    ``aspect_ratio`` or ``deflection_ratio`` raises :class:`InputError` (no
+    force can be produced).
+
+    >>> round(float(disc_spring_thickness_for_force_mm(6500.2, 40.0, 20.4, 0.4, 0.75)), 4)
+    2.25
+    """
+    _check_fidelity(fidelity)
+    zeta, phi = _f(aspect_ratio), _f(deflection_ratio)
+    _require(zeta > 0, "aspect_ratio", zeta, "> 0 (h0/t)")
+    _require((phi > 0) & (phi <= 1), "deflection_ratio", phi, "in (0, 1] (s/h0)")
+    k = disc_spring_factors(outer_diameter_mm, inner_diameter_mm)
+    e, nu = _elastic(youngs_modulus_mpa, poisson_ratio)
+    x = phi * zeta
+    g = x if fidelity == "screening" else x * ((zeta - x) * (zeta - 0.5 * x) + 1.0)
+    scale = 4.0 * e / (1.0 - nu ** 2) / (k["k1"] * _f(outer_diameter_mm) ** 2)
+    return (np.maximum(_f(force_n), 0.0) / (scale * g)) ** 0.25
+
+
+def axial_damping_nm(axial_force_n, plastic_friction_coefficient, damper_pad_mean_radius_mm,
+                     endcap_spacer_mean_radius_mm):
+    """Axial damping torque, thesis eq. (9): :math:`D_{ax} = F_{ax}\\,\\mu\\,(R_{m,dp} + R_{m,es})` [N m].
+
+    Radii in mm (converted to m). Negative forces (a lifted spring) give 0.
+
+    >>> round(float(axial_damping_nm(508.95, 0.1294, 12.5, 13.5)), 3)
+    1.712
+    """
+    f = np.maximum(_f(axial_force_n), 0.0)
+    r_m = (_f(damper_pad_mean_radius_mm) + _f(endcap_spacer_mean_radius_mm)) * 1e-3
+    return f * _f(plastic_friction_coefficient) * r_m
+
+
+def required_axial_force_n(axial_damping_nm_, plastic_friction_coefficient, damper_pad_mean_radius_mm,
+                           endcap_spacer_mean_radius_mm):
+    """Cone-spring axial force that produces the axial damping, thesis eq. (9) inverted [N].
+
+    :math:`F_{ax} = D_{ax} / (\\mu (R_{m,dp} + R_{m,es}))`; radii in mm, damping
+    in N m. No axial damping (``D_ax <= 0``) needs no force (0). A friction
+    coefficient or radius sum <= 0 raises :class:`InputError`.
+
+    >>> round(float(required_axial_force_n(1.71, 0.13, 12.5, 13.5)), 1)
+    505.9
+    """
+    mu = _f(plastic_friction_coefficient)
+    r = _f(damper_pad_mean_radius_mm) + _f(endcap_spacer_mean_radius_mm)
+    _require(mu > 0, "plastic_friction_coefficient", mu, "> 0")
+    _require(r > 0, "damper_pad_mean_radius_mm + endcap_spacer_mean_radius_mm", r, "> 0")
+    return np.maximum(_f(axial_damping_nm_), 0.0) / (mu * r * 1e-3)
+
+
+def gap_force_shifts_n(nominal_deflection_mm, gap_tolerance_mm, outer_diameter_mm, inner_diameter_mm,
+                       thickness_mm, cone_height_mm, *, fidelity: str = "full", **kw) -> dict:
+    """Force change of the spring when the gap is at its tolerance limits [N] (thesis step 8, Fig. 68).
+
+    A gap smaller by the tolerance (maximum material) deflects the spring by
+    ``s_n + dh``, a larger gap by ``s_n - dh``. ``full``: the exact differences
+    along the Almen-Laszlo curve (asymmetric for a regressive spring);
+    ``screening``: ``+/- rate * dh`` with the secant rate.
+
+    Returns ``force_shift_min_gap_n`` = F(s_n + dh) - F(s_n) and
+    ``force_shift_max_gap_n`` = F(s_n - dh) - F(s_n), plus
+    ``deflection_max_mm`` = s_n + dh (must stay <= h0: the spring must not
+    bottom).
+
+    >>> r = gap_force_shifts_n(0.5, 0.2, 30.0, 16.2, 1.0, 0.5, fidelity="screening")
+    >>> round(float(r["force_shift_min_gap_n"]), 1), round(float(r["force_shift_max_gap_n"]), 1)
+    (304.9, -304.9)
+    """
+    s, dh = _f(nominal_deflection_mm), _f(gap_tolerance_mm)
+    geo = (outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm)
+    if fidelity == "screening":
+        rate = disc_spring_rate_n_per_mm(s, *geo, fidelity="screening", **kw)
+        up, down = rate * dh, -rate * dh
+    else:
+        f0 = disc_spring_force_n(s, *geo, fidelity=fidelity, **kw)
+        up = disc_spring_force_n(s + dh, *geo, fidelity=fidelity, **kw) - f0
+        down = disc_spring_force_n(s - dh, *geo, fidelity=fidelity, **kw) - f0
+    return {"force_shift_min_gap_n": up, "force_shift_max_gap_n": down, "deflection_max_mm": s + dh}
+
+
+def axial_force_tolerance_band(damping_target_nm, damping_tolerance_nm, radial_damping_nm,
+                               plastic_friction_coefficient, damper_pad_mean_radius_mm,
+                               endcap_spacer_mean_radius_mm, force_shift_min_gap_n, force_shift_max_gap_n) -> dict:
+    """Cone-spring force tolerance at the nominal gap (thesis step 8, Fig. 68) [N].
+
+    The damping must stay within ``target +/- tolerance`` for every gap height
+    in the stack-up band (thesis step 8: the upper damping limit at maximum
+    material, the lower at minimum material). The radial damping is fixed
+    (step 3), so by eq. (9) the axial force must stay within
+
+    .. math::
+        F_{up} = \\frac{D_t + \\Delta D - D_{rad}}{\\mu (R_{dp} + R_{es})},\\quad
+        F_{lo} = \\frac{\\max(D_t - \\Delta D - D_{rad}, 0)}{\\mu (R_{dp} + R_{es})}
+
+    and, with :math:`\\Delta F_\\pm` the force shifts at the gap limits
+    (:func:`gap_force_shifts_n`), the supplier's tolerance at the nominal gap is
+
+    .. math::
+        F_{max,tol} = F_{up} - \\max(\\Delta F_+, \\Delta F_-, 0),\\quad
+        F_{min,tol} = F_{lo} - \\min(\\Delta F_+, \\Delta F_-, 0)
+
+    Returns ``cone_spring_fax_max_tolerance_n``, ``cone_spring_fax_min_tolerance_n``,
+    ``cone_spring_fax_nominal_n`` (from the nominal axial damping
+    ``D_t - D_rad``), ``fax_damping_upper_n`` / ``fax_damping_lower_n``
+    (:math:`F_{up}, F_{lo}`) and ``margin_force_band``: the share of the
+    damping-derived band left to the supplier after the gap effect,
+    ``(F_max,tol - F_min,tol)/(F_up - F_lo)`` (>= 0 passes).
+
+    Thesis case 1 (D 2.00 +/- 0.30 N m, D_rad 0.2871 N m, R 12.5 + 13.5 mm,
+    mu 0.1294, a spring rate of 95.2 N/mm over the worst-case 0.22 mm):
+
+    >>> r = axial_force_tolerance_band(2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 95.2 * 0.22, -95.2 * 0.22)
+    >>> round(float(r["cone_spring_fax_max_tolerance_n"]), 1), round(float(r["cone_spring_fax_min_tolerance_n"]), 1)
+    (577.3, 440.9)
+    """
+    mu_r = _f(plastic_friction_coefficient) * (_f(damper_pad_mean_radius_mm) + _f(endcap_spacer_mean_radius_mm)) * 1e-3
+    _require(mu_r > 0, "plastic_friction_coefficient * (R_dp + R_es)", mu_r, "> 0")
+    target, tol, rad = _f(damping_target_nm), _f(damping_tolerance_nm), _f(radial_damping_nm)
+    f_up = np.maximum(target + tol - rad, 0.0) / mu_r
+    f_lo = np.maximum(target - tol - rad, 0.0) / mu_r
+    f_nom = np.maximum(target - rad, 0.0) / mu_r
+    up, down = _f(force_shift_min_gap_n), _f(force_shift_max_gap_n)
+    f_max = f_up - np.maximum(np.maximum(up, down), 0.0)
+    f_min = f_lo - np.minimum(np.minimum(up, down), 0.0)
+    return {
+        "cone_spring_fax_max_tolerance_n": f_max,
+        "cone_spring_fax_min_tolerance_n": f_min,
+        "cone_spring_fax_nominal_n": f_nom,
+        "fax_damping_upper_n": f_up,
+        "fax_damping_lower_n": f_lo,
+        "margin_force_band": (f_max - f_min) / np.maximum(f_up - f_lo, _TINY),
+    }
+
+
+def cone_spring_min_internal_diameter_mm(pivot_diameter_mm) -> dict:
+    """Smallest cone-spring inner diameter on the pivot guide, thesis Table 8 [mm].
+
+    :math:`D_{i,min} = d_{pivot} + c(D_i)` with the diametral clearance ``c``
+    of the class the resulting ``Di`` falls in (0.2 mm below 18 mm, 0.3 mm in
+    [18, 22), 0.4 mm in [22, 28)). Table 8 ends at 28 mm: beyond it the last
+    clearance is used and ``margin_table8_range`` (``(28 - Di)/28``) goes
+    negative, so the design is flagged instead of extrapolated.
+
+    Returns ``cone_spring_min_internal_diameter_mm``, ``pivot_clearance_mm`` and
+    ``margin_table8_range``.
+
+    >>> r = cone_spring_min_internal_diameter_mm([16.0, 17.75, 17.9, 21.7, 30.0])
+    >>> r["cone_spring_min_internal_diameter_mm"].round(2).tolist()
+    [16.2, 17.95, 18.2, 22.1, 30.4]
+    """
+    d = _f(pivot_diameter_mm)
+    _require(d > 0, "pivot_diameter_mm", d, "> 0")
+    tab = catalog.load("cone_spring_clearances").sort_values("di_min_mm")
+    lo, hi, c = (tab[k].to_numpy(float) for k in ("di_min_mm", "di_max_mm", "clearance_mm"))
+    clearance = np.full(d.shape, c[-1])
+    chosen = np.zeros(d.shape, dtype=bool)
+    for lo_i, hi_i, c_i in zip(lo, hi, c):  # loop over the 3 table rows, not over designs
+        cand = d + c_i
+        hit = ~chosen & (cand >= lo_i) & (cand < hi_i)
+        clearance = np.where(hit, c_i, clearance)
+        chosen |= hit
+    di = d + clearance
+    return {"cone_spring_min_internal_diameter_mm": di, "pivot_clearance_mm": clearance,
+            "margin_table8_range": margin_upper(di, hi[-1])}
+
+
+def cone_spring_max_external_diameter_mm(damper_pad_outer_diameter_mm):
+    """Largest cone-spring outer diameter bearing on the damper pad (thesis step 8 text) [mm].
+
+    :math:`D_{e,max} = \\lfloor (D_{dp,out} - m) / g \\rfloor g`: 1 mm less than
+    the damper-pad outer diameter (the text: the spring edge must bear on the
+    pad even when flat), rounded down to the grid ``g`` = 1 mm, which is what
+    thesis case 1 prints (pad 31.5 mm -> 30.0 mm). Both from
+    ``constants_cone_spring.csv``.
+
+    >>> cone_spring_max_external_diameter_mm([31.5, 34.5, 27.5]).tolist()
+    [30.0, 33.0, 26.0]
+    """
+    m = catalog.constant("cone_spring_od_margin_mm")
+    g = catalog.constant("cone_spring_od_round_down_mm")
+    raw = _f(damper_pad_outer_diameter_mm) - m
+    # a small relative guard so that e.g. 30.0 / 1.0 is not floored to 29 by rounding
+    return np.floor(raw / g + 1e-9) * g
+
+
+def table7_margins(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm) -> dict:
+    """Normalised margins of the supplier's optimal ranges, thesis Table 7 and eq. (55)-(57).
+
+    ``delta = De/Di`` (eq. (55)), ``zeta = h0/t`` (eq. (56)), ``De/t`` (eq. (57)),
+    each against ``[min_ratio, max_ratio]`` of ``catalogs/cone_spring_ranges.csv``;
+    the margin of a range is the smaller of its lower and upper margins.
+
+    Returns ``diameter_ratio``, ``aspect_ratio``, ``thinness`` and
+    ``margin_diameter_ratio``, ``margin_aspect_ratio``, ``margin_thinness``.
+
+    >>> r = table7_margins(30.0, 16.2, 0.75, 0.9)
+    >>> round(float(r["margin_diameter_ratio"]), 4), round(float(r["margin_thinness"]), 4)
+    (0.0288, 0.0476)
+    """
+    de, di, t, h0 = _validate_geometry(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm)
+    ranges = catalog.load("cone_spring_ranges").set_index("parameter")
+    out = {"diameter_ratio": de / di, "aspect_ratio": h0 / t, "thinness": de / t}
+    for name in ("diameter_ratio", "aspect_ratio", "thinness"):
+        lo, hi = float(ranges.loc[name, "min_ratio"]), float(ranges.loc[name, "max_ratio"])
+        out[f"margin_{name}"] = np.minimum(margin_lower(out[name], lo), margin_upper(out[name], hi))
+    return out
+
+
+def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radial_damping_nm,
+                plastic_friction_coefficient, damper_pad_mean_radius_mm, endcap_spacer_mean_radius_mm,
+                damper_pad_outer_diameter_mm, pivot_diameter_mm, gap_tolerance_mm, *,
+                aspect_ratio=None, deflection_ratio=None, fidelity: str = "full") -> dict:
+    """Step 8: size the cone spring and its force tolerance band (thesis eq. (9), (55)-(63), Tables 7-8, Fig. 68).
+
+    1. nominal axial force from the axial damping of step 3 (eq. (9) inverted);
+    2. geometric limits: ``Di`` from the pivot and Table 8, ``De`` from the
+       damper pad (:func:`cone_spring_max_external_diameter_mm`); the spring
+       takes the whole annulus (largest lever, thinnest disc);
+    3. thickness in closed form for the nominal force at ``s = phi*h0`` with
+       ``h0 = zeta*t`` (``aspect_ratio`` zeta and ``deflection_ratio`` phi
+       default to the catalog constants 1.2 and 0.75: Table 7 upper limit,
+       DIN 2093 reference deflection);
+    4. the force shifts over the stack-up gap tolerance of step 6 along the
+       characteristic (``fidelity``) and the tolerance band;
+    5. stresses at the maximum-material deflection and the checks.
+
+    Inputs broadcast (one call, many designs). Forces N, lengths mm, torques N m.
+    Designs without axial damping (``axial_damping_nm_ <= 0``) get zero force
+    and thickness and their margins are set to +inf (nothing to check).
+
+    Returns the ``thesis_tool`` keys ``cone_spring_fax_max_tolerance_n``,
+    ``cone_spring_fax_min_tolerance_n``, ``cone_spring_min_internal_diameter_mm``,
+    ``cone_spring_max_external_diameter_mm``, plus ``cone_spring_fax_nominal_n``,
+    ``cone_spring_thickness_mm``, ``cone_spring_cone_height_mm``,
+    ``cone_spring_free_height_mm``, ``cone_spring_nominal_deflection_mm``,
+    ``cone_spring_max_deflection_mm`` (at maximum material),
+    ``cone_spring_rate_n_per_mm`` (at the nominal deflection), the five stresses
+    ``sigma_*_mpa`` at the maximum deflection, ``diameter_ratio``,
+    ``aspect_ratio``, ``thinness`` and a ``margins`` dict (each >= 0 passes):
+    ``force_band``, ``diameter_ratio``, ``aspect_ratio``, ``thinness``,
+    ``not_flattened`` (``(h0 - s_max)/h0``), ``sigma_om``, ``table8_range``.
+
+    >>> r = cone_spring(1.7129, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 31.5, 16.0, 0.22)
+    >>> float(r["cone_spring_min_internal_diameter_mm"]), float(r["cone_spring_max_external_diameter_mm"])
+    (16.2, 30.0)
+    >>> round(float(r["cone_spring_fax_nominal_n"]), 1), round(float(r["cone_spring_thickness_mm"]), 3)
+    (509.1, 0.742)
+    """
+    _check_fidelity(fidelity)
+    zeta = catalog.constant("cone_spring_default_aspect_ratio") if aspect_ratio is None else aspect_ratio
+    phi = catalog.constant("cone_spring_nominal_deflection_ratio") if deflection_ratio is None else deflection_ratio
+    zeta, phi = _f(zeta), _f(phi)
+    f_nom = required_axial_force_n(axial_damping_nm_, plastic_friction_coefficient,
+                                   damper_pad_mean_radius_mm, endcap_spacer_mean_radius_mm)
+    di_r = cone_spring_min_internal_diameter_mm(pivot_diameter_mm)
+    di = di_r["cone_spring_min_internal_diameter_mm"]
+    de = cone_spring_max_external_diameter_mm(damper_pad_outer_diameter_mm)
+    _require(de > di, "damper_pad_outer_diameter_mm", _f(damper_pad_outer_diameter_mm),
+             "large enough that the cone spring OD (pad OD - margin) exceeds its ID (pivot + clearance)")
+    active = f_nom > 0
+    t = disc_spring_thickness_for_force_mm(f_nom, de, di, zeta, phi, fidelity=fidelity)
+    # inactive designs: a placeholder disc of unit thickness keeps the formulas finite; outputs zeroed below
+    t_calc = np.where(active, t, 1.0)
+    h0 = zeta * t_calc
+    s_n = phi * h0
+    dh = _f(gap_tolerance_mm)
+    geo = (de, di, t_calc, h0)
+    shifts = gap_force_shifts_n(s_n, dh, *geo, fidelity=fidelity)
+    band = axial_force_tolerance_band(damping_target_nm, damping_tolerance_nm, radial_damping_nm,
+                                      plastic_friction_coefficient, damper_pad_mean_radius_mm,
+                                      endcap_spacer_mean_radius_mm, np.where(active, shifts["force_shift_min_gap_n"], 0.0),
+                                      np.where(active, shifts["force_shift_max_gap_n"], 0.0))
+    rate = disc_spring_rate_n_per_mm(s_n, *geo, fidelity=fidelity)
+    s_max = s_n + dh
+    stresses = disc_spring_stresses_mpa(np.minimum(s_max, h0), *geo)
+    t7 = table7_margins(*geo)
+    sig_lim = catalog.constant("cone_spring_sigma_om_max_mpa")
+
+    def gate(m):
+        return np.where(active, m, np.inf)
+
+    margins = {
+        "force_band": gate(band["margin_force_band"]),
+        "diameter_ratio": gate(t7["margin_diameter_ratio"]),
+        "aspect_ratio": gate(t7["margin_aspect_ratio"]),
+        "thinness": gate(t7["margin_thinness"]),
+        "not_flattened": gate((h0 - s_max) / h0),
+        "sigma_om": gate(margin_upper(np.abs(stresses["sigma_om_mpa"]), sig_lim)),
+        "table8_range": gate(di_r["margin_table8_range"]),
+    }
+    z = np.where(active, 1.0, 0.0)
+    out = {
+        "cone_spring_fax_max_tolerance_n": band["cone_spring_fax_max_tolerance_n"],
+        "cone_spring_fax_min_tolerance_n": band["cone_spring_fax_min_tolerance_n"],
+        "cone_spring_fax_nominal_n": f_nom,
+        "cone_spring_min_internal_diameter_mm": di,
+        "cone_spring_max_external_diameter_mm": de,
+        "cone_spring_thickness_mm": t * z,
+        "cone_spring_cone_height_mm": h0 * z,
+        "cone_spring_free_height_mm": (h0 + t_calc) * z,
+        "cone_spring_nominal_deflection_mm": s_n * z,
+        "cone_spring_max_deflection_mm": s_max * z,
+        "cone_spring_rate_n_per_mm": rate * z,
+        "diameter_ratio": t7["diameter_ratio"],
+        "aspect_ratio": t7["aspect_ratio"] * z,
+        "thinness": t7["thinness"] * z,
+        "margins": margins,
+    }
+    out.update({k: v * z for k, v in stresses.items()})
+    return out
+
+
+def cone_spring_checks(result: dict, index=()) -> list[Check]:
+    """:class:`synth.checks.Check` records of one design of :func:`cone_spring` (step 8).
+
+    ``index`` selects the design in vectorised results. The checks carry the
+    physical values and limits (their verdicts agree with the normalised
+    ``result["margins"]``); a design without axial damping gets one
+    ``not verified`` record.
+
+    >>> r = cone_spring(1.7129, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 31.5, 16.0, 0.22)
+    >>> [(c.name, c.verdict) for c in cone_spring_checks(r)][:2]
+    [('cone spring force band after gap tolerance', 'pass'), ('cone spring De/Di >= Table 7 min', 'pass')]
+    """
+    def v(key):
+        return float(np.asarray(result[key])[index])
+
+    if v("cone_spring_fax_nominal_n") <= 0:
+        return [Check.skipped("cone spring", 8, "axial damping (none required)")]
+    ranges = catalog.load("cone_spring_ranges").set_index("parameter")
+    out = [Check("cone spring force band after gap tolerance", 8, v("cone_spring_fax_max_tolerance_n"),
+                 v("cone_spring_fax_min_tolerance_n"), ">=", "N", "thesis step 8, Fig. 68; eq. (9); Table 6",
+                 note="Fax max tolerance must exceed Fax min tolerance")]
+    for key, eq in (("diameter_ratio", "eq. (55)"), ("aspect_ratio", "eq. (56)"), ("thinness", "eq. (57)")):
+        label = {"diameter_ratio": "De/Di", "aspect_ratio": "h0/t", "thinness": "De/t"}[key]
+        out.append(Check(f"cone spring {label} >= Table 7 min", 8, v(key), float(ranges.loc[key, "min_ratio"]),
+                         ">=", "-", f"{eq}, Table 7"))
+        out.append(Check(f"cone spring {label} <= Table 7 max", 8, v(key), float(ranges.loc[key, "max_ratio"]),
+                         "<=", "-", f"{eq}, Table 7"))
+    out.append(Check("cone spring deflection at maximum material <= h0", 8, v("cone_spring_max_deflection_mm"),
+                     v("cone_spring_cone_height_mm"), "<=", "mm", "DIN EN 16984; thesis Table 6",
+                     note="a flat spring bottoms: the force is no longer set by the characteristic"))
+    out.append(Check("cone spring |sigma_OM| at maximum deflection", 8, abs(v("sigma_om_mpa")),
+                     catalog.constant("cone_spring_sigma_om_max_mpa"), "<=", "MPa", "eq. (59), DIN EN 16984"))
+    tab = catalog.load("cone_spring_clearances")
+    out.append(Check("cone spring ID within Table 8", 8, v("cone_spring_min_internal_diameter_mm"),
+                     float(tab["di_max_mm"].max()), "<=", "mm", "Table 8"))
+    return out
