@@ -24,16 +24,26 @@ __all__ = ["margin_upper", "margin_lower", "Check", "PASS", "FAIL", "NOT_VERIFIE
 PASS, FAIL, NOT_VERIFIED = "pass", "fail", "not verified"
 
 
+def _scale(limit):
+    """``|limit|``, or 1 where the limit is zero (the margin is then absolute)."""
+    a = np.abs(limit)
+    return np.where(a > 0, a, 1.0)
+
+
 def margin_upper(value, limit):
-    """Normalised margin of ``value <= limit`` (positive passes)."""
+    """Normalised margin of ``value <= limit`` (positive passes; absolute if the limit is 0)."""
     value, limit = np.asarray(value, dtype=float), np.asarray(limit, dtype=float)
-    return (limit - value) / np.abs(limit)
+    return (limit - value) / _scale(limit)
 
 
 def margin_lower(value, limit):
-    """Normalised margin of ``value >= limit`` (positive passes)."""
+    """Normalised margin of ``value >= limit`` (positive passes; absolute if the limit is 0).
+
+    >>> float(margin_lower(3.0, 0.0))
+    3.0
+    """
     value, limit = np.asarray(value, dtype=float), np.asarray(limit, dtype=float)
-    return (value - limit) / np.abs(limit)
+    return (value - limit) / _scale(limit)
 
 
 @dataclass

@@ -51,6 +51,9 @@ def main(argv: list[str] | None = None) -> int:
             from synth import catalog
             catalog.set_user_dirs(*args.catalogs)
         return int(args.func(args) or 0)
+    except BrokenPipeError:  # output piped into head & co.
+        sys.stderr.close()
+        return 0
     except InputError as exc:
         print("synth: invalid input", file=sys.stderr)
         for problem in exc.problems:

@@ -18,7 +18,7 @@ from synth.catalog import constant
 from synth.checks import margin_lower, margin_upper
 
 __all__ = [
-    "is_standard_layout", "pulley_width_mm", "hubload_angle_from_ehr_deg", "wrap_limits_deg",
+    "is_standard_layout", "pulley_width_mm", "hubload_angle_from_ehr_deg", "belt_contact_centre_deg", "wrap_limits_deg",
     "pin_within_pulley_margin", "pin_angular_zone", "pin_clearance_margin", "axial_displacement_margin",
 ]
 
@@ -59,15 +59,32 @@ def hubload_angle_from_ehr_deg(differential_angle_deg, nominal_arm_angle_deg):
     return np.mod(360.0 - a, 360.0)
 
 
+def belt_contact_centre_deg(hubload_angle_deg):
+    """Direction of the middle of the belt-pulley contact arc: opposite the hubload.
+
+    The hubload of eq. (19) is the force of the belt on the pulley; it points
+    from the contact arc through the pulley centre, so the arc is centred at
+    ``HL_EHR + 180``. (Eq. (20)-(21) print the arc centred on ``HL_EHR``; with
+    that reading case 1's production lock-up pin would sit in the middle of
+    the belt wrap. See docs/model.md.)
+
+    >>> round(float(belt_contact_centre_deg(138.3)), 1)
+    318.3
+    """
+    return np.mod(np.asarray(hubload_angle_deg, float) + 180.0, 360.0)
+
+
 def wrap_limits_deg(hubload_angle_deg, wrap_angle_deg):
-    """Upper and lower belt-pulley contact limits, eq. (20)-(21): ``HL_EHR +/- wrap/2``.
+    """Upper and lower belt-pulley contact limits, eq. (20)-(21): ``centre +/- wrap/2``.
+
+    ``centre`` is :func:`belt_contact_centre_deg` of the hubload angle.
 
     >>> [round(float(x), 1) for x in wrap_limits_deg(138.3, 69.2)]
-    [172.9, 103.7]
+    [352.9, 283.7]
     """
-    hl = np.asarray(hubload_angle_deg, float)
+    centre = belt_contact_centre_deg(hubload_angle_deg)
     beta = np.asarray(wrap_angle_deg, float) / 2.0
-    return hl + beta, hl - beta
+    return centre + beta, centre - beta
 
 
 def pin_within_pulley_margin(pin_radius_mm, pin_diameter_mm, pulley_diameter_mm):

@@ -1,0 +1,292 @@
+"""The thesis design flowchart (steps 0-10), run in the thesis's order.
+
+:func:`run` walks the steps with the thesis's iterations (lengthen the
+bushing, enlarge the damper-pad class, escalate bolt format and class, search
+the spring catalog in automatic mode). Each step reads the physics functions of
+:mod:`synth.physics` (the same ones the optimisers use) and adds
+
+* values to ``result.values`` (flat dict; the keys of the case files'
+  ``thesis_tool:`` block, same names and units, plus more);
+* :class:`~synth.checks.Check` records to ``result.checks`` (verdict, margin,
+  suggested correction, or "not verified: <field> missing");
+* notes (decisions, skipped steps) to ``result.notes``.
+
+Steps a case does not need are not run (no axial damping: no cone spring, no
+plastic wear, no stack-up).
+
+>>> from synth.scenes.demo import default_input
+>>> r = run(default_input())
+>>> r.values["architecture"], r.values["ball_bearing"]
+('rotary_standard', '6006')
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+import numpy as np
+
+from synth import catalog
+from synth.checks import FAIL, NOT_VERIFIED, PASS, Check
+from synth.friction import mu as friction_mu
+from synth.physics import step00_execution as s0, step01_bearing as s1, step02_pivot as s2, step03_damping as s3
+
+__all__ = ["Settings", "FlowchartResult", "run", "STEP_NAMES"]
+
+STEP_NAMES = {
+    0: "Execution selection", 1: "Ball bearing", 2: "Pivot diameter", 3: "Damping", 4: "Pivot bushing",
+    5: "Plastic element wear", 6: "Axial stack-up", 7: "Packaging", 8: "Cone spring", 9: "Main spring",
+    10: "Tilting, sliding and bolt",
+}
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Model settings (speed against accuracy, and conventions).
+
+    * ``fidelity``: ``"full"`` (time-integrated wear, Almen-Laszlo cone spring)
+      or ``"screening"`` (closed-form wear, linear cone spring).
+    * ``friction_circle``: radial friction on ``r_p sin(atan(mu))`` (physics,
+      default) or on ``r_p mu`` (the thesis tool's tables).
+    """
+
+    fidelity: str = "full"
+    friction_circle: bool = True
+
+    def __post_init__(self):
+        if self.fidelity not in ("full", "screening"):
+            from synth.errors import InputError, Problem
+            raise InputError(Problem("fidelity", self.fidelity, "one of full, screening"))
+
+
+@dataclass
+class FlowchartResult:
+    """Outcome of one flowchart run."""
+
+    inputs: Any
+    settings: Settings
+    values: dict = field(default_factory=dict)
+    checks: list = field(default_factory=list)
+    notes: list = field(default_factory=list)
+    steps_run: list = field(default_factory=list)
+    curves: dict = field(default_factory=dict)
+
+    @property
+    def verdict(self) -> str:
+        """``fail`` if any check fails, else ``pass`` (not-verified checks are listed, not failed)."""
+        return FAIL if any(c.verdict == FAIL for c in self.checks) else PASS
+
+    def failed(self) -> list:
+        return [c for c in self.checks if c.verdict == FAIL]
+
+    def not_verified(self) -> list:
+        return [c for c in self.checks if c.verdict == NOT_VERIFIED]
+
+    def check(self, name: str) -> Check:
+        for c in self.checks:
+            if c.name == name:
+                return c
+        raise KeyError(name)
+
+    def to_dict(self) -> dict:
+        return {
+            **{k: _plain(v) for k, v in self.values.items()},
+            "verdict": self.verdict,
+            "checks": [{k: _plain(v) for k, v in c.as_dict().items()} for c in self.checks],
+            "notes": list(self.notes),
+            "steps_run": list(self.steps_run),
+            "settings": {"fidelity": self.settings.fidelity, "friction_circle": self.settings.friction_circle},
+        }
+
+
+def _plain(v):
+    """JSON-friendly scalars: numpy to Python, non-finite floats to None."""
+    if isinstance(v, np.ndarray):
+        v = v.tolist() if v.ndim else v.item()
+    if isinstance(v, (np.generic,)):
+        v = v.item()
+    if isinstance(v, list):
+        return [_plain(x) for x in v]
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    return v
+
+
+class _Ctx:
+    """Mutable state of one run: the input, settings, and the growing result."""
+
+    def __init__(self, d, settings: Settings):
+        self.d, self.s = d, settings
+        self.r = FlowchartResult(d, settings)
+        self.v = self.r.values
+
+    def check(self, name, step, value, limit, kind="<=", unit="", equation="", correction="", note=""):
+        c = Check(name, step, None if value is None else float(value), None if limit is None else float(limit),
+                  kind=kind, unit=unit, equation=equation, correction=correction, note=note)
+        self.r.checks.append(c)
+        return c
+
+    def skip(self, name, step, missing, equation=""):
+        self.r.checks.append(Check.skipped(name, step, missing, equation=equation))
+
+    def note(self, text):
+        self.r.notes.append(text)
+
+
+def _f(x) -> float:
+    return float(np.asarray(x, float).reshape(-1)[0])
+
+
+# --- step 0 -------------------------------------------------------------------------------------
+
+def _step0(c: _Ctx):
+    d, v = c.d, c.v
+    h_max = d.max_axial_displacement_mm
+    standard = bool(s0.is_standard_layout(d.middle_plane_belt_height_mm, h_max))
+    v["architecture"] = "rotary_standard" if standard else "rotary_reverse"
+    v["pulley_type"] = d.pulley_shell_type
+    v["pulley_width_mm"] = _f(s0.pulley_width_mm(d.belt_width_mm))
+    w = v["pulley_width_mm"]
+    if standard:
+        c.check("pulley top within max axial displacement", 0, d.middle_plane_belt_height_mm + w / 2, h_max, "<=",
+                "mm", "eq. (26)", correction=f"max_axial_displacement_mm >= {d.middle_plane_belt_height_mm + w / 2:.1f}")
+    else:
+        from synth.catalog import constant
+        clr = constant("reverse_layout_min_crankcase_clearance_mm")
+        c.check("pulley clear of crankcase (reverse)", 0, d.middle_plane_belt_height_mm - w / 2, clr, ">=", "mm",
+                "eq. (27)", correction=f"middle_plane_belt_height_mm >= {clr + w / 2:.1f}")
+    pin = ("lockup_pin_position_radius_mm", "lockup_pin_angular_position_deg", "lockup_pin_diameter_mm")
+    missing = d.missing(*pin)
+    if missing:
+        c.skip("lock-up pin within pulley outline", 0, missing[0], "eq. (22)")
+        c.skip("lock-up pin clearance to pulley and belt", 0, missing[0], "eq. (23)-(25)")
+        return
+    r_pin, phi, d_pin = (getattr(d, n) for n in pin)
+    inner = r_pin - d_pin / 2
+    c.check("lock-up pin within pulley outline", 0, inner, d.pulley_diameter_mm / 2, "<=", "mm", "eq. (22)")
+    geo = d.missing("wrap_angle_deg", "nominal_arm_angle_from_EHR_deg")
+    if geo:
+        c.skip("lock-up pin clearance to pulley and belt", 0, geo[0], "eq. (23)-(25)")
+        return
+    hl_ehr = _f(s0.hubload_angle_from_ehr_deg(d.differential_angle_deg, d.nominal_arm_angle_from_EHR_deg))
+    tp, tm = (_f(x) for x in s0.wrap_limits_deg(hl_ehr, d.wrap_angle_deg))
+    v["hubload_angle_from_EHR_deg"], v["wrap_upper_limit_deg"], v["wrap_lower_limit_deg"] = hl_ehr, tp, tm
+    zone = int(s0.pin_angular_zone(phi, tp, tm)[()])
+    margin = _f(s0.pin_clearance_margin(r_pin, phi, d_pin, d.pulley_diameter_mm, tp, tm))
+    from synth.catalog import constant
+    if zone == 0:
+        need = d.pulley_diameter_mm / 2 + constant("lockup_pin_pulley_clearance_mm")
+        c.check("lock-up pin clearance to pulley and belt", 0, inner, need, ">=", "mm", "eq. (23)",
+                correction=f"move the pin outside the wrap ({tm:.1f}..{tp:.1f} deg) or to a radius >= {need + d_pin / 2:.1f} mm",
+                note="pin within the belt wrap angle")
+    else:
+        need = d_pin / 2 + constant("lockup_pin_belt_clearance_mm")
+        c.check("lock-up pin clearance to pulley and belt", 0, need * (1 + margin), need, ">=", "mm",
+                "eq. (24)" if zone > 0 else "eq. (25)", note="distance from the belt span")
+
+
+# --- step 1 -------------------------------------------------------------------------------------
+
+def _step1(c: _Ctx):
+    d, v = c.d, c.v
+    v["hubload_nominal_n"] = _f(s3.hubload_nominal_n(d.calculated_torque_target_nm, d.working_arm_mm,
+                                                     d.differential_angle_deg))
+    v["ball_bearing"] = str(s1.select_bearing(v["hubload_nominal_n"], d.engine_fuel)[0])
+    v["bearing_inner_diameter_mm"] = _f(s1.bearing_inner_diameter_mm(v["ball_bearing"]))
+    b = catalog.row("ball_bearings", v["ball_bearing"])
+    v["bearing_outer_diameter_mm"], v["bearing_width_mm"] = float(b["D_mm"]), float(b["B_mm"])
+
+
+# --- step 2 -------------------------------------------------------------------------------------
+
+def _default_bushing_thickness_mm() -> float:
+    df = catalog.load("pivot_bushings")
+    return float(df["radial_thickness_mm"].astype(float).max())
+
+
+def _step2(c: _Ctx):
+    d, v = c.d, c.v
+    bearing = v["ball_bearing"]
+    std_class, max_la = s2.standard_pivot_class(bearing, d.working_arm_mm)
+    v["pivot_class_standard_mm"], v["loading_arm_max_mm"] = std_class, max_la
+    if d.pivot_class_diameter_mm is None:
+        pivot_class = std_class
+        c.note(f"pivot class: Table 2 standard {std_class:g} mm (bearing {bearing}, working arm {d.working_arm_mm:g} mm)")
+    else:
+        pivot_class = d.pivot_class_diameter_mm
+        if pivot_class > std_class:
+            c.note(f"pivot class {pivot_class:g} mm is custom and above Table 2's standard {std_class:g} mm; "
+                   "the arm-wall check decides")
+    v["pivot_class_diameter_mm"] = pivot_class
+    if d.belt_loading_type == "single_eccentric":
+        loading_arm = 0.0
+    else:
+        loading_arm = max_la if d.loading_arm_mm is None else d.loading_arm_mm
+        c.check("loading arm within Table 2", 2, loading_arm, max_la, "<=", "mm", "Table 2",
+                correction=f"loading_arm_mm <= {max_la:g}")
+    v["loading_arm_mm"] = loading_arm
+    t_b = d.pivot_bushing_radial_thickness_mm
+    if t_b is None:
+        t_b = _default_bushing_thickness_mm()
+        c.note(f"pivot bushing radial thickness not given: {t_b:g} mm assumed")
+    v["pivot_bushing_radial_thickness_mm"] = t_b
+    v["pivot_diameter_mm"] = _f(s2.pivot_diameter_mm(pivot_class, t_b))
+    wall = _f(s2.arm_wall_mm(v["bearing_inner_diameter_mm"], d.working_arm_mm, pivot_class))
+    from synth.catalog import constant
+    c.check("arm wall on the eccentric side", 2, wall, constant("arm_min_wall_mm"), ">=", "mm", "step 2",
+            correction=f"pivot_class_diameter_mm <= {_f(s2.max_pivot_class_for_wall_mm(v['bearing_inner_diameter_mm'], d.working_arm_mm)):g}")
+
+
+# --- step 3 -------------------------------------------------------------------------------------
+
+def _step3(c: _Ctx):
+    d, v, s = c.d, c.v, c.s
+    mu_pb = friction_mu("pivot_bushing", d.application_type)
+    v["mu_pivot_bushing"] = mu_pb
+    rho = _f(s3.lever_ratio(v["pivot_diameter_mm"], mu_pb, d.working_arm_mm, d.differential_angle_deg,
+                            s.friction_circle))
+    v["lever_ratio"] = rho
+    lock = c.check("arm free to move (no self-locking)", 3, rho, 1.0, "<=", "-", "eq. (12)",
+                   correction="a smaller pivot, a larger working arm, or a differential angle nearer 90 deg")
+    if lock.verdict == FAIL:
+        c.note("the arm self-locks: the friction circle exceeds the lever; later steps are not run")
+        return False
+    target = d.damping_target_nm if d.damping_target_nm is not None else 0.0
+    axial_allowed = d.damping_typology != "only_radial"
+    split = s3.damping_split(d.calculated_torque_target_nm, target, rho, axial_allowed)
+    for k in ("radial_damping_nm", "axial_damping_nm", "spring_torque_nominal_nm", "damping_nm"):
+        v[k] = _f(split[k])
+    v["axial_damping_present"] = bool(np.asarray(split["axial_damping_present"]).reshape(-1)[0])
+    if not v["axial_damping_present"]:
+        v["axial_damping_nm"] = None
+    if d.damping_target_nm is not None and d.damping_tolerance_nm is not None:
+        tol = d.damping_tolerance_nm
+        c.check("damping within upper tolerance", 3, v["damping_nm"], d.damping_target_nm + tol, "<=", "Nm",
+                "eq. (10)-(11)", correction="a smaller pivot diameter or a lower-friction bushing (radial damping above target)")
+        c.check("damping within lower tolerance", 3, v["damping_nm"], d.damping_target_nm - tol, ">=", "Nm",
+                "eq. (9)-(11)", correction="damping_typology radial_and_axial (add the axial damping group)")
+    elif d.damping_tolerance_nm is None:
+        c.skip("damping within tolerance", 3, "damping_tolerance_nm", "eq. (11)")
+    c.check("spring torque positive", 3, v["spring_torque_nominal_nm"], 0.0, ">=", "Nm", "eq. (12)-(13)")
+    ch = s3.characterisation(v["spring_torque_nominal_nm"], d.spring_stiffness_nm_per_deg, v["axial_damping_nm"] or 0.0,
+                             d.working_arm_mm, d.differential_angle_deg, v["pivot_diameter_mm"], mu_pb,
+                             np.array([0.0]), s.friction_circle)
+    v["hubload_loading_n"] = _f(ch["hubload_loading_n"])
+    v["hubload_unloading_n"] = _f(ch["hubload_unloading_n"])
+    v["asymmetry_ratio"] = _f(ch["asymmetry_ratio"])
+    return True
+
+
+STEPS: dict[int, Callable[[_Ctx], Any]] = {0: _step0, 1: _step1, 2: _step2, 3: _step3}
+
+
+def run(design_input, settings: Settings | None = None) -> FlowchartResult:
+    """Run the flowchart on a validated :class:`~synth.schema.DesignInput`."""
+    c = _Ctx(design_input, settings or Settings())
+    for n in sorted(STEPS):
+        c.r.steps_run.append(n)
+        if STEPS[n](c) is False:
+            break
+    return c.r
