@@ -78,7 +78,7 @@ def k_extrapolated(penetration_depth_um):
     """
     _, _, lo, hi = k_fit()
     h = np.asarray(penetration_depth_um, dtype=float)
-    return (h < lo - 1e-9) | (h > hi + 1e-9)
+    return (h < lo - 1e-3) | (h > hi + 1e-3)  # points are given to 0.001 um
 
 
 def mu_elastic(k, komalov, pressure_mpa, hardness_hb):

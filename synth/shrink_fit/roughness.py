@@ -80,11 +80,11 @@ def komalov_parameter(rv_um, r_um, b, v):
     return rv / (r * b ** (1.0 / v))
 
 
-def surface(ra_um, rz_um, sm_um=None, rp_um=None, rv_um=None, t_m=None, rp_rv_from_rz=False):
+def surface(ra_um, rz_um, sm_um=None, rp_um=None, rv_um=None, t_m=None, rp_rv_from_rz=False, sm_over_ra=None):
     """Derived parameters of one surface (paper eq. 3-6).
 
-    Missing ``sm_um`` is estimated as ``Sm/Ra`` (constant
-    ``shrink_fit_sm_over_ra``) times Ra, missing ``rp_um`` as 0.5 Rz and
+    Missing ``sm_um`` is estimated as ``sm_over_ra`` (default: constant
+    ``shrink_fit_sm_over_ra``, 1000) times Ra, missing ``rp_um`` as 0.5 Rz and
     ``rv_um`` as 1.2 Rp (sec. 3.4); ``rp_rv_from_rz=True`` uses the estimates
     even when Rp and Rv are given (what the paper's Table 1 did).
 
@@ -97,7 +97,8 @@ def surface(ra_um, rz_um, sm_um=None, rp_um=None, rv_um=None, t_m=None, rp_rv_fr
     """
     ra, rz = np.asarray(ra_um, dtype=float), np.asarray(rz_um, dtype=float)
     t = constant("shrink_fit_t_m") if t_m is None else t_m
-    sm = ra * constant("shrink_fit_sm_over_ra") if sm_um is None else np.asarray(sm_um, dtype=float)
+    ratio = constant("shrink_fit_sm_over_ra") if sm_over_ra is None else sm_over_ra
+    sm = ra * ratio if sm_um is None else np.asarray(sm_um, dtype=float)
     if rp_rv_from_rz or rp_um is None:
         rp = rz * constant("shrink_fit_rp_over_rz")
     else:
