@@ -1,0 +1,416 @@
+"""Step 10 (tilting, sliding, fixation bolt): thesis cases, hand calculations, properties.
+
+Sources: thesis Tables 9-10 (case 1, as run: cases/case1_as_run.yaml) and
+Tables 13-14 (case 3), cases/NOTES.md; ISO 724, ISO 898-1, VDI 2230-1.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from synth import catalog
+from synth.errors import CatalogError, InputError
+from synth.physics import step10_fixation as s10
+
+CASES = Path("/work/shared/cases")
+CASE_KEYS = [
+    "bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_mpa", "bolt_tau_mpa", "bolt_sigma_eqv_mpa",
+    "bolt_under_head_stress_mpa", "bolt_thread_stress_mpa", "pivot_base_contact_surface_mm2",
+    "average_contact_pressure_mpa", "tilting_safety_factor", "sliding_safety_factor",
+]
+# the tool's hubload implied by case 3's own outputs: sliding SF 3.00 = 0.10 * 14500 / HL
+CASE3_TOOL_HUBLOAD_N = 0.10 * 14500.0 / 3.0
+
+
+def _case(name):
+    return yaml.safe_load((CASES / f"{name}.yaml").read_text())
+
+
+def _run(inputs, hubload_n=None, **kw):
+    i = inputs
+    hl = s10.nominal_hubload_n(i["calculated_torque_target_nm"], i["working_arm_mm"], i["differential_angle_deg"]) \
+        if hubload_n is None else hubload_n
+    return s10.fixation(
+        hl, i["middle_plane_belt_height_mm"], i["middle_plane_belt_height_increment_worst_mm"],
+        i["tilting_safety_factor"], i["sliding_safety_factor"], i["engine_support_internal_diameter_mm"],
+        i["engine_support_external_diameter_mm"], i["contact_angle_deg"], i["support_yield_strength_compression_mpa"],
+        i["support_yield_strength_traction_mpa"], number_of_active_threads=i["number_of_active_threads"],
+        application_type=i["application_type"],
+        bolt_head_contact_external_diameter_mm=i["bolt_head_contact_external_diameter_mm"], **kw)
+
+
+def _base(**over):
+    """Case 3 geometry as keyword inputs for the property tests."""
+    kw = dict(hubload_n=462.5, h=20.0, dh=2.0, sft=3.0, sfs=3.0, dint=8.2, dext=28.0, theta=360.0,
+              scomp=400.0, strac=400.0)
+    kw.update(over)
+    return kw
+
+
+def _fix(kw, **opts):
+    opts.setdefault("number_of_active_threads", 2.6)
+    opts.setdefault("bolt_head_contact_external_diameter_mm", 11.0)
+    return s10.fixation(kw["hubload_n"], kw["h"], kw["dh"], kw["sft"], kw["sfs"], kw["dint"], kw["dext"],
+                        kw["theta"], kw["scomp"], kw["strac"], **opts)
+
+
+# ----------------------------------------------------------------------------------------------
+# catalogs
+# ----------------------------------------------------------------------------------------------
+
+def test_bolt_catalog_follows_iso_724_and_898_1():
+    df = catalog.load("bolts")
+    d, p = df["d_mm"].astype(float), df["pitch_mm"].astype(float)
+    # ISO 724 basic dimensions
+    np.testing.assert_allclose(df["d2_mm"], d - 0.649519 * p, atol=1.5e-3)
+    np.testing.assert_allclose(df["d3_mm"], d - 1.226869 * p, atol=1.5e-3)
+    np.testing.assert_allclose(df["D1_mm"], d - 1.082532 * p, atol=1.5e-3)
+    # ISO 898-1 stress area pi/4 ((d2+d3)/2)^2, tabulated to 3 significant figures
+    a_s = np.pi / 4 * ((df["d2_mm"] + df["d3_mm"]) / 2) ** 2
+    np.testing.assert_allclose(df["stress_area_mm2"], a_s, rtol=3e-3)
+    assert float(catalog.row("bolts", "M8x1.25")["stress_area_mm2"]) == 36.6
+    assert {"M6x1", "M8x1.25", "M8x1", "M10x1.5", "M10x1.25", "M12x1.5", "M12x1.75"} <= set(df["designation"])
+    assert (df["dw_min_hex_mm"] > df["d_mm"]).all() and (df["dw_min_flange_mm"] > df["dw_min_hex_mm"]).all()
+    assert df["source"].str.len().min() > 10
+
+
+def test_property_classes_iso_898_1():
+    c = catalog.row("bolt_property_classes", "8.8")
+    assert (float(c["rm_min_mpa"]), float(c["rp02_min_mpa"])) == (800.0, 640.0)
+    assert (float(c["rm_min_d_gt16_mpa"]), float(c["rp02_min_d_gt16_mpa"])) == (830.0, 660.0)
+    assert float(catalog.row("bolt_property_classes", "10.9")["rp02_min_mpa"]) == 940.0
+    assert float(catalog.row("bolt_property_classes", "12.9")["rp02_min_mpa"]) == 1100.0
+
+
+def test_friction_lookup_and_errors():
+    assert s10.friction_coefficient("pivot_bushing", "belt_in_oil") == 0.055
+    assert s10.friction_coefficient("pivot_bushing", "dry") == 0.15
+    assert s10.friction_coefficient("thread", "dry") == 0.14
+    with pytest.raises(CatalogError, match="application_type.*belt_in_oil, dry"):
+        s10.friction_coefficient("thread", "wet")
+    with pytest.raises(CatalogError, match="friction interface.*pivot_base_crankcase"):
+        s10.friction_coefficient("washer", "dry")
+
+
+# ----------------------------------------------------------------------------------------------
+# thesis case studies
+# ----------------------------------------------------------------------------------------------
+
+def test_case1_as_run_reproduces_table_10():
+    """Case 1 with the as-run inputs: every bolt output within 1 % of Table 10.
+
+    Our preload 16312 N = 652.48 * 2.5 / 0.10 (sliding governs); Table 10 needs
+    16254 N (its hubload ~650.2 N, -0.35 %), so the force-proportional outputs
+    are +0.36 %; the tightening torque 19.64 N*m matches with mu_K = 0.08 in oil.
+    """
+    c = _case("case1_as_run")
+    r = _run(c["inputs"])
+    tool = c["thesis_tool"]
+    for key in CASE_KEYS:
+        assert float(r[key]) == pytest.approx(tool[key], rel=0.01), key
+    assert str(r["bolt_format"]) == "M8x1.25" and str(r["bolt_property_class"]) == "8.8"
+    assert float(r["bolt_tightening_torque_nm"]) == pytest.approx(19.64, rel=1e-3)
+
+
+def test_case1_as_printed_fails_sliding_within_targets():
+    """Table 9 as printed (targets 3.5/3.5, support 25 mm, head 11 mm) needs more preload than the as-run."""
+    c = _case("case1")
+    r = _run(c["inputs"])
+    # sliding governs: 652.48 * 3.5 / 0.1 = 22837 N
+    assert float(r["bolt_axial_force_n"]) == pytest.approx(652.48 * 3.5 / 0.1, rel=1e-4)
+    assert float(r["sliding_safety_factor"]) == pytest.approx(3.5, rel=1e-9)
+
+
+def test_case3_with_tool_hubload_reproduces_table_14():
+    """Case 3 with the hubload implied by Table 14 (483.3 N): all outputs within 1 %."""
+    c = _case("case3")
+    r = _run(c["inputs"], hubload_n=CASE3_TOOL_HUBLOAD_N)
+    tool = c["thesis_tool"]
+    for key in CASE_KEYS:
+        assert float(r[key]) == pytest.approx(tool[key], rel=0.01), key
+    assert str(r["bolt_format"]) == "M8x1.25" and str(r["bolt_property_class"]) == "8.8"
+
+
+def test_case3_with_model_hubload_is_4_percent_low():
+    """With HL = 1.85/(0.004 sin 90) = 462.5 N the preload is 13875 N, 4.3 % under the tool's 14500 N.
+
+    The safety factors do not depend on the hubload scale (sliding governs) and
+    still match; every force-proportional output is 462.5/483.33 = 0.957 of
+    the table (documented in docs/sections/step10_fixation.md).
+    """
+    c = _case("case3")
+    r = _run(c["inputs"])
+    tool = c["thesis_tool"]
+    assert float(r["bolt_axial_force_n"]) == pytest.approx(462.5 * 3.0 / 0.10, rel=1e-12)
+    ratio = 462.5 / CASE3_TOOL_HUBLOAD_N
+    for key in ("bolt_axial_force_n", "bolt_under_head_stress_mpa", "bolt_thread_stress_mpa",
+                "average_contact_pressure_mpa"):
+        assert float(r[key]) / tool[key] == pytest.approx(ratio, rel=1e-3), key
+    for key in ("tilting_safety_factor", "sliding_safety_factor", "pivot_base_contact_surface_mm2"):
+        assert float(r[key]) == pytest.approx(tool[key], rel=0.01), key
+
+
+# ----------------------------------------------------------------------------------------------
+# hand calculations
+# ----------------------------------------------------------------------------------------------
+
+def test_hand_calculation_case3_bolt():
+    # F = 14500 N on M8x1.25 (P 1.25, d2 7.188, d3 6.466, As 36.6), mu_G 0.14, mu_K 0.16, dw 11, hole 8.2
+    # thread torque = 7250 * (1.25/pi + 0.14*7.188/cos30) = 7250 * (0.39789 + 1.16201) = 11309.3 N*mm
+    # head torque   = 14500 * 0.16 * (11+8.2)/2 / 2 = 11136.0 N*mm  -> 22.445 N*m
+    t = s10.tightening_torque_nm(14500.0, 1.25, 7.188, 0.14, 11.0, 8.2, 0.16)
+    assert float(t) == pytest.approx(22.4453, abs=2e-3)
+    # tau = 16 * 11309.3 / (pi * 6.466^3) = 213.05 MPa ; sigma = 14500/36.6 = 396.17 MPa
+    tau = s10.bolt_torsion_stress_mpa(s10.thread_torque_nmm(14500.0, 1.25, 7.188, 0.14), 6.466)
+    assert float(tau) == pytest.approx(213.05, abs=0.05)
+    assert float(s10.bolt_normal_stress_mpa(14500.0, 36.6)) == pytest.approx(396.175, abs=1e-2)
+    # von Mises sqrt(396.17^2 + 3*213.05^2) = 541.40
+    assert float(s10.von_mises_stress_mpa(396.17, 213.05)) == pytest.approx(541.40, abs=0.02)
+    # thread area pi*7.188*1.25*cos30 = 24.445 mm^2; stress 14500/(24.445*2.6) = 228.14 MPa
+    a = s10.thread_area_mm2(8.0, 1.25, 7.188, 6.466, 6.647)
+    assert float(a) == pytest.approx(24.4454, abs=1e-3)
+    assert float(s10.thread_bearing_stress_mpa(14500.0, a, 2.6)) == pytest.approx(228.14, abs=0.02)
+    # alternatives: engagement H1 = (8-6.647)/2 = 0.6765 -> pi*7.188*0.6765 = 15.277; printed pi/4 (64-41.809) = 17.429
+    assert float(s10.thread_area_mm2(8.0, 1.25, 7.188, 6.466, 6.647, model="engagement")) == pytest.approx(15.277, abs=1e-3)
+    assert float(s10.thread_area_mm2(8.0, 1.25, 7.188, 6.466, 6.647, model="printed")) == pytest.approx(17.429, abs=1e-3)
+
+
+def test_helix_torque_exceeds_linearised_by_about_one_percent():
+    # exact: 14500*7.188/2*tan(atan(1.25/(pi*7.188)) + atan(0.14/cos30))
+    #      = 52113 * tan(0.055299 + 0.160272) = 52113 * 0.218966 = 11411 N*mm (linearised: 11309)
+    t = s10.thread_torque_nmm(14500.0, 1.25, 7.188, 0.14, model="helix")
+    assert float(t) == pytest.approx(11411.0, rel=2e-4)
+    assert 1.0 < float(t) / float(s10.thread_torque_nmm(14500.0, 1.25, 7.188, 0.14)) < 1.02
+
+
+def test_hand_calculation_tilting_case1():
+    # I = pi (22.9^4 - 8.2^4)/64 = pi*270484.9/64 = 13277.3 mm^4; k = 11.45/I = 8.6237e-4 /mm^3
+    k = s10.pivot_base_bending_factor_per_mm3(22.9, 8.2)
+    assert float(k) == pytest.approx(11.45 / (np.pi * (22.9**4 - 8.2**4) / 64), rel=1e-12)
+    # F_tilt = 652.48 * 2.5 * 31.5 * k * 359.06 = 15909 N  (< sliding 16312 N)
+    f = s10.bolt_force_tilting_n(652.48, 2.5, 31.5, 22.9, 8.2)
+    assert float(f) == pytest.approx(652.48 * 2.5 * 31.5 * 8.62369e-4 * 359.060, rel=1e-4)
+
+
+def test_sector_geometry_against_numerical_integration():
+    """Sector model (contact 120 and 250 deg): area, worst-fibre factor vs a polar-grid integration."""
+    ro, ri = 14.0, 4.1
+    for theta in (120.0, 250.0):
+        a = np.radians(theta) / 2
+        r = np.linspace(ri, ro, 801)
+        ph = np.linspace(-a, a, 1601)
+        R, PH = np.meshgrid((r[1:] + r[:-1]) / 2, (ph[1:] + ph[:-1]) / 2, indexing="ij")
+        dA = R * np.diff(r)[:, None] * np.diff(ph)[None, :]
+        x, y = R * np.cos(PH), R * np.sin(PH)
+        area = dA.sum()
+        xc = (x * dA).sum() / area
+        ixx = (y**2 * dA).sum()
+        iyy = ((x - xc) ** 2 * dA).sum()
+        assert float(s10.pivot_base_contact_area_mm2(28.0, 8.2, theta)) == pytest.approx(area, rel=1e-5)
+        # worst fibre over all hubload directions, on the outer arc and inner corners
+        bx = np.concatenate([ro * np.cos(ph), ri * np.cos([-a, a])]) - xc
+        by = np.concatenate([ro * np.sin(ph), ri * np.sin([-a, a])])
+        k_num = np.sqrt((by / ixx) ** 2 + (bx / iyy) ** 2).max()
+        assert float(s10.pivot_base_bending_factor_per_mm3(28.0, 8.2, theta)) == pytest.approx(k_num, rel=1e-3)
+
+
+def test_pressure_field_balances_force_and_moment():
+    """The Fig. 74 pressure field integrates to the bolt force and to the tilting moment."""
+    ro, ri, theta, f, m, psi = 14.0, 4.1, 200.0, 12000.0, 9000.0, 30.0
+    a = np.radians(theta) / 2
+    r = np.linspace(ri, ro, 401)
+    ph = np.linspace(-a, a, 2001)
+    rm, pm = (r[1:] + r[:-1]) / 2, (ph[1:] + ph[:-1]) / 2
+    dA = rm[:, None] * np.diff(r)[:, None] * np.diff(ph)[None, :]
+    p_ro = s10.pivot_base_pressure_mpa(np.degrees(pm), f, m, 28.0, 8.2, theta, psi)
+    p_avg = f / float(s10.pivot_base_contact_area_mm2(28.0, 8.2, theta))
+    X, Y = rm[:, None] * np.cos(pm)[None, :], rm[:, None] * np.sin(pm)[None, :]
+    area = dA.sum()
+    xc = (X * dA).sum() / area
+    ixx, iyy = (Y**2 * dA).sum(), ((X - xc) ** 2 * dA).sum()
+    field = p_avg + m * ((X - xc) * np.cos(np.radians(psi)) / iyy + Y * np.sin(np.radians(psi)) / ixx)
+    assert (field * dA).sum() == pytest.approx(f, rel=1e-4)
+    u = np.array([np.cos(np.radians(psi)), np.sin(np.radians(psi))])
+    moment = (field * ((X - xc) * u[0] + Y * u[1]) * dA).sum()
+    assert moment == pytest.approx(m, rel=1e-3)
+    # the function returns the same (closed-form) field on the outer edge
+    edge = p_avg + m * ((ro * np.cos(pm) - xc) * np.cos(np.radians(psi)) / iyy
+                        + ro * np.sin(pm) * np.sin(np.radians(psi)) / ixx)
+    np.testing.assert_allclose(p_ro, edge, rtol=1e-3)
+
+
+def test_full_annulus_pressure_is_the_thesis_sinusoid():
+    # case 3: p_avg 25.757, amplitude M k = 462.5*22*4.6745e-4 = 4.7563 MPa
+    ang = np.linspace(0.0, 360.0, 13)
+    p = s10.pivot_base_pressure_mpa(ang, 14500.0, 462.5 * 22.0, 28.0, 8.2)
+    amp = 462.5 * 22.0 * 32 * 28.0 / (np.pi * (28.0**4 - 8.2**4))
+    np.testing.assert_allclose(p, 14500.0 / 562.9418 + amp * np.cos(np.radians(ang)), rtol=1e-6)
+    # outside a partial contact there is no pressure
+    assert float(s10.pivot_base_pressure_mpa(170.0, 14500.0, 1000.0, 28.0, 8.2, 180.0)) == 0.0
+
+
+def test_thesis_partial_contact_option_keeps_force_independent_of_angle():
+    # eq. (96) with 360/theta and eq. (97) with theta/360: F_tilt is the full-annulus value
+    f360 = s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, 360.0)
+    f120 = s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, 120.0, model="thesis")
+    assert float(f120) == pytest.approx(float(f360), rel=1e-12)
+    # the physical sector model needs far more preload on a 120 deg sector
+    assert float(s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, 120.0)) > 2 * float(f360)
+
+
+def test_column_g_corrections_are_exact_inverses():
+    f, dint = 20000.0, 8.2
+    dw = s10.min_head_contact_diameter_mm(f, dint, 400.0)
+    assert float(s10.under_head_stress_mpa(f, dw, dint)) == pytest.approx(400.0, rel=1e-12)
+    n = s10.min_active_threads(f, 24.445, 400.0)
+    assert float(s10.thread_bearing_stress_mpa(f, 24.445, n)) == pytest.approx(400.0, rel=1e-12)
+
+
+# ----------------------------------------------------------------------------------------------
+# escalation, manual mode, checks
+# ----------------------------------------------------------------------------------------------
+
+def test_escalation_order_class_then_format():
+    # M8x1.25 8.8 yields when sqrt((F/36.6)^2 + 3 (16 F/2 (0.39789+1.16201)/(pi 6.466^3))^2) > 640:
+    # sigma = F*0.027322, tau = F*0.014694 -> eqv = F*0.037338 -> F_max = 17140 N
+    # limits on M8x1.25: 9.8 19282 N, 10.9 25174 N, 12.9 29459 N.
+    # M10x1.5: eqv = F*sqrt((1/58)^2 + 3 (16*0.96831/(pi 8.16^3))^2) = 0.023333 F -> 9.8 30857 N, 10.9 40286 N
+    # M12x1.75: eqv = 0.015952 F -> 10.9 58926 N, 12.9 68957 N (the largest candidate)
+    hl = np.array([500.0, 580.0, 650.0, 950.0, 1200.0, 2000.0, 1e5])  # sliding SF 3 -> F = 30 HL
+    r = _fix(_base(hubload_n=hl), bolt_head_contact_external_diameter_mm=None)
+    assert r["bolt_format"].tolist() == ["M8x1.25", "M8x1.25", "M8x1.25", "M8x1.25", "M10x1.5", "M12x1.75",
+                                         "M12x1.75"]
+    assert r["bolt_property_class"].tolist() == ["8.8", "9.8", "10.9", "12.9", "10.9", "12.9", "12.9"]
+    m = r["margin_bolt_yield"]
+    assert (m[:-1] >= 0).all() and m[-1] < 0
+    # the M10 needs a 10.2 mm bore: the 8.2 mm support fails and column G says so
+    assert r["pivot_bore_min_mm"][4] == 10.2 and r["margin_pivot_bore"][4] < 0
+    # default head contact diameter is the ISO 4017 dw min of the chosen format
+    assert r["bolt_under_head_stress_mpa"][0] == pytest.approx(15000.0 / (np.pi / 4 * (11.63**2 - 8.2**2)))
+
+
+def test_escalation_threshold_by_hand():
+    # F = 17100 N stays on 8.8, F = 17200 N needs 9.8 (threshold 17140 N from the hand calculation above)
+    r = _fix(_base(hubload_n=np.array([17100.0, 17200.0]) / 30.0))
+    assert r["bolt_property_class"].tolist() == ["8.8", "9.8"]
+
+
+def test_manual_bolt_is_verified_not_escalated():
+    r = _fix(_base(hubload_n=1200.0), bolt_format="M8x1.25", bolt_property_class="8.8")
+    assert str(r["bolt_format"]) == "M8x1.25" and float(r["margin_bolt_yield"]) < 0
+    checks = s10.fixation_checks(r, tilting_safety_factor_target=3.0, sliding_safety_factor_target=3.0,
+                                 engine_support_internal_diameter_mm=8.2, support_yield_strength_compression_mpa=400.0,
+                                 support_yield_strength_traction_mpa=400.0)
+    by = {c.name: c for c in checks}
+    assert by["bolt von Mises stress"].verdict == "fail"
+    # under head: 36000 N on pi/4 (11^2 - 8.2^2) = 42.22 mm^2 -> 853 MPa > 400;
+    # dw >= sqrt(4*36000/(pi*400) + 8.2^2) = sqrt(114.59 + 67.24) = 13.48 mm
+    assert by["under-head stress"].verdict == "fail"
+    assert by["under-head stress"].correction == "bolt-head contact diameter >= 13.5 mm"
+    # threads: 36000/(24.445*2.6) = 566 MPa > 400; n >= 36000/(24.445*400) = 3.68
+    assert by["thread bearing stress"].correction == "at least 3.7 active threads"
+    with pytest.raises(CatalogError, match="bolt_format.*M10x1.5"):
+        _fix(_base(), bolt_format="M9")
+    with pytest.raises(CatalogError, match="bolt_property_class.*10.9"):
+        _fix(_base(), bolt_property_class="11.9")
+
+
+def test_vectorised_equals_scalar():
+    rng = np.random.default_rng(1)
+    n = 2000
+    kw = _base(hubload_n=rng.uniform(200, 900, n), h=rng.uniform(10, 40, n), dext=rng.uniform(20, 35, n),
+               theta=rng.uniform(90, 360, n), sft=rng.uniform(1.5, 4, n))
+    r = _fix(kw, application_type="belt_in_oil")
+    for j in (0, 7, 1999):
+        one = _fix({k: (v[j] if np.ndim(v) else v) for k, v in kw.items()}, application_type="belt_in_oil")
+        for key in CASE_KEYS + ["margin_tilting", "margin_bolt_yield"]:
+            assert float(one[key]) == pytest.approx(float(r[key][j]), rel=1e-9), key
+        assert str(one["bolt_format"]) == r["bolt_format"][j]
+
+
+@pytest.mark.parametrize("over, match", [
+    (dict(theta=0.0), "contact_angle_deg"),
+    (dict(theta=361.0), "contact_angle_deg.*360"),
+    (dict(hubload_n=-1.0), "hubload_n"),
+    (dict(dext=8.0), "engine_support_external_diameter_mm.*internal diameter"),
+    (dict(scomp=0.0), "support_yield_strength_compression_mpa"),
+])
+def test_invalid_inputs_raise_clear_errors(over, match):
+    with pytest.raises(InputError, match=match):
+        _fix(_base(**over))
+
+
+def test_invalid_options_and_angles():
+    with pytest.raises(InputError, match="application_type"):
+        _fix(_base(), application_type="wet")
+    with pytest.raises(InputError, match="model.*sector"):
+        s10.pivot_base_bending_factor_per_mm3(28.0, 8.2, model="exact")
+    with pytest.raises(InputError, match="differential_angle_deg"):
+        s10.nominal_hubload_n(3.25, 5.0, 180.0)
+    with pytest.raises(InputError, match="bolt_head_contact_external_diameter_mm"):
+        s10.under_head_stress_mpa(14500.0, 8.0, 8.2)
+    with pytest.raises(InputError, match="number_of_active_threads"):
+        _fix(_base(), number_of_active_threads=0.0)
+
+
+# ----------------------------------------------------------------------------------------------
+# properties
+# ----------------------------------------------------------------------------------------------
+
+finite_pos = st.floats(min_value=1e-3, max_value=1e4, allow_nan=False)
+
+
+@settings(max_examples=60, deadline=None)
+@given(hl=st.floats(1.0, 5000.0), factor=st.floats(1.001, 3.0))
+def test_monotonic_in_preload(hl, factor):
+    """More hubload -> more preload -> more torque and stress, same bolt (manual)."""
+    a = _fix(_base(hubload_n=hl), bolt_format="M10x1.5", bolt_property_class="10.9")
+    b = _fix(_base(hubload_n=hl * factor), bolt_format="M10x1.5", bolt_property_class="10.9")
+    for key in ("bolt_axial_force_n", "bolt_tightening_torque_nm", "bolt_sigma_eqv_mpa", "bolt_under_head_stress_mpa",
+                "bolt_thread_stress_mpa", "average_contact_pressure_mpa"):
+        assert float(b[key]) > float(a[key]), key
+    # safety factors reached equal the governing target and do not depend on the hubload scale
+    assert float(b["sliding_safety_factor"]) == pytest.approx(float(a["sliding_safety_factor"]), rel=1e-9)
+
+
+@settings(max_examples=60, deadline=None)
+@given(mu=st.floats(1e-3, 1e3), mu_t=st.floats(0.0, 1e3))
+def test_extreme_friction_is_finite(mu, mu_t):
+    r = _fix(_base(), mu_crankcase=mu, mu_thread=mu_t, mu_head=mu_t)
+    for key, v in r.items():
+        if np.asarray(v).dtype.kind == "f":
+            assert np.all(np.isfinite(v)), key
+    assert float(r["sliding_safety_factor"]) >= 3.0 * (1 - 1e-12)
+    assert float(r["tilting_safety_factor"]) >= 3.0 * (1 - 1e-12)
+
+
+@settings(max_examples=80, deadline=None)
+@given(theta=st.floats(min_value=1e-300, max_value=360.0, exclude_min=False))
+def test_contact_angle_extremes_are_finite(theta):
+    r = _fix(_base(theta=theta))
+    for key in CASE_KEYS:
+        assert np.isfinite(float(r[key])), key
+    assert float(r["margin_tilting"]) >= -1e-9 and float(r["margin_sliding"]) >= -1e-9
+    assert float(r["pivot_base_contact_surface_mm2"]) > 0
+
+
+@settings(max_examples=60, deadline=None)
+@given(t1=st.floats(1e-3, 360.0), t2=st.floats(1e-3, 360.0))
+def test_more_contact_needs_less_tilting_preload(t1, t2):
+    lo, hi = sorted((t1, t2))
+    f_lo = s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, lo)
+    f_hi = s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, hi)
+    assert float(f_hi) <= float(f_lo) * (1 + 1e-6)
+
+
+def test_zero_hubload_gives_infinite_safety_not_nan():
+    r = _fix(_base(hubload_n=0.0))
+    assert float(r["bolt_axial_force_n"]) == 0.0
+    assert np.isinf(float(r["tilting_safety_factor"])) and np.isinf(float(r["sliding_safety_factor"]))
+    assert float(r["bolt_tightening_torque_nm"]) == 0.0
