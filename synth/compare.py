@@ -22,10 +22,10 @@ __all__ = ["compare_case", "relative_error"]
 def relative_error(ours, ref):
     """``(ours - ref) / |ref|`` for numbers (lists: the largest by magnitude); ``None`` if not comparable.
 
-    >>> relative_error(3.07, 3.0)
-    0.02333333333333326
-    >>> relative_error([2.3, 2.3], [2.3, 2.4])
-    -0.04166666666666652
+    >>> round(relative_error(3.07, 3.0), 6)
+    0.023333
+    >>> round(relative_error([2.3, 2.3], [2.3, 2.4]), 6)
+    -0.041667
     """
     if isinstance(ours, bool) or isinstance(ref, bool) or ours is None or ref is None:
         return None
