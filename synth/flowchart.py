@@ -32,6 +32,7 @@ from synth import catalog
 from synth.checks import FAIL, NOT_VERIFIED, PASS, Check
 from synth.friction import mu as friction_mu
 from synth.physics import step00_execution as s0, step01_bearing as s1, step02_pivot as s2, step03_damping as s3
+from synth.physics import step04_pivot_bushing as s4, step07_packaging as s7
 
 __all__ = ["Settings", "FlowchartResult", "run", "STEP_NAMES"]
 
@@ -50,10 +51,19 @@ class Settings:
       or ``"screening"`` (closed-form wear, linear cone spring).
     * ``friction_circle``: radial friction on ``r_p sin(atan(mu))`` (physics,
       default) or on ``r_p mu`` (the thesis tool's tables).
+    * ``bushing_length_scheme``: ``"thesis"`` (the thesis tool's trial lengths,
+      multiples of half the pivot diameter, then the next catalog length is
+      reported as the part to buy) or ``"catalog"`` (the shortest catalog
+      length that passes).
+    * ``bushing_running_in``: integrate the running-in of the pivot clearance
+      in the bushing wear (an extension with illustrative constants; off by
+      default, the thesis's closed-form wear eq. (32) is used).
     """
 
     fidelity: str = "full"
     friction_circle: bool = True
+    bushing_length_scheme: str = "thesis"
+    bushing_running_in: bool = False
 
     def __post_init__(self):
         if self.fidelity not in ("full", "screening"):
@@ -279,7 +289,83 @@ def _step3(c: _Ctx):
     return True
 
 
-STEPS: dict[int, Callable[[_Ctx], Any]] = {0: _step0, 1: _step1, 2: _step2, 3: _step3}
+# --- durability test (defined or assumed) -----------------------------------------------------
+
+def _durability(c: _Ctx):
+    """``(theta_pp_deg, frequency_hz, duration_h)`` or None (then the wear checks are not verified)."""
+    d = c.d
+    if d.durability_test == "assumed":
+        row = catalog.row("durability_tests", d.engine_type, field="engine_type")
+        out = (float(row["theta_peak_to_peak_deg"]), float(row["frequency_hz"]), float(row["duration_h"]))
+        c.note(f"durability test assumed for engine type {d.engine_type}: {out[0]:g} deg p-p, {out[1]:g} Hz, "
+               f"{out[2]:g} h ({row['source']})")
+        return out
+    names = ("durability_theta_peak_to_peak_deg", "durability_frequency_hz", "durability_duration_h")
+    missing = d.missing(*names)
+    if missing:
+        return missing[0]
+    return tuple(float(getattr(d, n)) for n in names)
+
+
+# --- step 4 -------------------------------------------------------------------------------------
+
+def _step4(c: _Ctx):
+    d, v, s = c.d, c.v, c.s
+    dur = _durability(c)
+    c.durability = dur
+    if isinstance(dur, str):
+        for name in ("pivot bushing pressure", "pivot bushing p*v", "pivot bushing p*v*t",
+                     "pivot bushing wear (most loaded end) vs sliding layer", "pulley parallelism at end of life"):
+            c.skip(name, 4, dur, "eq. (28)-(42)")
+        c.note(f"step 4 not run: {dur} missing (the bushing length needs the durability test)")
+        return
+    supplier = s4.supplier_for_thickness(v["pivot_bushing_radial_thickness_mm"])
+    par_max = d.pulley_max_parallelism_eol_mm
+    r = s4.select_bushing_length(
+        v["hubload_nominal_n"], v["pivot_diameter_mm"], *dur, supplier=supplier, environment=d.application_type,
+        belt_plane_height_mm=d.middle_plane_belt_height_mm, max_pivot_height_mm=d.max_pivot_height_mm,
+        axial_damping=v["axial_damping_present"], pulley_diameter_mm=d.pulley_diameter_mm,
+        parallelism_max_mm=par_max if par_max is not None else 1e9, scheme=s.bushing_length_scheme,
+        fidelity="full" if s.bushing_running_in else "screening")
+    v["pivot_bushing_supplier"] = supplier
+    v["pivot_bushing_length_mm"] = _f(r["length_mm"])
+    v["pivot_bushing_length_catalog_mm"] = _f(r["length_catalog_mm"])
+    for k in ("p_mpa", "v_m_per_s", "pv_mpa_m_per_s", "pvt_mpa_m_per_s_h", "wear_max_mm", "parallelism_mm"):
+        v[f"pivot_bushing_{k}"] = _f(r[k])
+    checks = s4.bushing_checks({**r, "length_mm": r["length_mm"]}, supplier=supplier, environment=d.application_type,
+                               parallelism_max_mm=par_max if par_max is not None else 1e9)
+    for ch in checks:
+        if ch.name.startswith("pulley parallelism") and par_max is None:
+            c.skip(ch.name, 4, "pulley_max_parallelism_eol_mm", ch.equation)
+        else:
+            c.r.checks.append(ch)
+    if not bool(np.asarray(r["found"]).reshape(-1)[0]):
+        c.note("no bushing length passes every step 4 check: the thesis's next move is a larger pivot diameter")
+    if v["pivot_bushing_length_catalog_mm"] != v["pivot_bushing_length_mm"]:
+        c.note(f"pivot bushing: {v['pivot_bushing_length_mm']:g} mm required; the next catalog length of supplier "
+               f"{supplier} is {v['pivot_bushing_length_catalog_mm']:g} mm")
+
+
+# --- step 7 -------------------------------------------------------------------------------------
+
+def _step7(c: _Ctx):
+    d, v = c.d, c.v
+    layout = "standard" if v["architecture"] == "rotary_standard" else "reverse"
+    r = s7.packaging(d.middle_plane_belt_height_mm, d.max_pivot_height_mm, d.max_axial_displacement_mm,
+                     v["bearing_width_mm"], v["bearing_outer_diameter_mm"], d.working_arm_mm, v["pulley_width_mm"],
+                     layout=layout, axial_damping=v["axial_damping_present"],
+                     endcap_spacer_height_mm=v.get("endcap_spacer_axial_height_mm") or 0.0,
+                     damper_pad_height_mm=v.get("damper_pad_axial_height_mm") or 0.0)
+    v["spring_housing_height_mm"] = _f(r["spring_housing_height_mm"])
+    v["spring_housing_outer_diameter_mm"] = _f(r["spring_housing_outer_diameter_mm"])
+    for ch in s7.packaging_checks(r, max_axial_displacement_mm=d.max_axial_displacement_mm,
+                                  belt_plane_height_mm=d.middle_plane_belt_height_mm, layout=layout):
+        if ch.name.startswith("pulley top"):  # eq. (26) is checked once, in step 0
+            continue
+        c.r.checks.append(ch)
+
+
+STEPS: dict[int, Callable[[_Ctx], Any]] = {0: _step0, 1: _step1, 2: _step2, 3: _step3, 4: _step4, 7: _step7}
 
 
 def run(design_input, settings: Settings | None = None) -> FlowchartResult:
