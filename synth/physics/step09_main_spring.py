@@ -8,8 +8,9 @@ leaves the outer fibre in compression) or unwinding. This module gives
   (eq. 66-71), bending stresses with the curvature correction
   (eq. 72-77), coils and mean diameter in each condition (eq. 78-80),
   radial contact with the housing (eq. 81-88), coil gap (eq. 89-93),
-  the Smith-Goodman safety factor (figure 71), the spring-housing height
-  (eq. 52, corrected) and the angle between the hooks;
+  the Smith-Goodman safety factor (figure 71) and the angle between the
+  hooks (the spring-housing height of eq. 52 and diameter of eq. 54 are step
+  7's, re-exported here from :mod:`synth.physics.step07_packaging`);
 * :func:`main_spring_design`, the whole step for arrays of designs, and
   :func:`main_spring_from_catalog` / :func:`search_main_spring` (automatic mode:
   every material x wire x mean diameter of the catalogs at once).
@@ -36,6 +37,7 @@ import pandas as pd
 from synth import catalog
 from synth.checks import Check, margin_lower, margin_upper
 from synth.errors import InputError, Problem
+from synth.physics.step07_packaging import spring_housing_height_mm, spring_housing_outer_diameter_mm  # noqa: F401  (re-exported: eq. 52, 54 live in step 7)
 
 __all__ = [
     "second_moment_mm4", "section_modulus_mm3", "equivalent_diameter_mm", "spring_index",
@@ -328,37 +330,6 @@ def goodman_safety_factor(sigma_max_mpa, sigma_min_mpa, Rm_mpa, sigma_A0_mpa, si
         peak = np.maximum(np.abs(smax), np.abs(smin))
         sf_y = np.where(peak > 0, _f(sigma_y_mpa) / np.where(peak > 0, peak, 1.0), np.inf)
     return np.minimum(sf_g, sf_y)
-
-
-# --------------------------------------------------------------------------- housing (eq. 52, 54)
-
-
-def spring_housing_height_mm(middle_plane_belt_height_mm, ball_bearing_width_mm, damper_pad_height_mm=0.0,
-                             stack_mm=None):
-    """Spring-housing (cavity) height of the standard layout, eq. (52) corrected [mm].
-
-    ``h_spring = mpbh - w_bb/2 - (t_arm + t_supp_plate + t_spring_bush + gap) - h_damper_pad``.
-    Eq. (52) omits the damper-pad height when axial damping is present
-    (NOTES.md); the thickness stack defaults to ``spring_housing_stack_mm``
-    (4.7 mm, inferred from cases 1 and 3).
-
-    Case 1: ``29.5 - 13/2 - 4.7 - 3.5 = 14.8``; case 3: ``20 - 6.5 - 4.7 = 8.8``.
-
-    >>> round(float(spring_housing_height_mm(29.5, 13, 3.5)), 2), round(float(spring_housing_height_mm(20, 13)), 2)
-    (14.8, 8.8)
-    """
-    stack = catalog.constant("spring_housing_stack_mm") if stack_mm is None else stack_mm
-    return (_f(middle_plane_belt_height_mm) - _f(ball_bearing_width_mm) / 2.0 - _f(stack)
-            - _f(damper_pad_height_mm))
-
-
-def spring_housing_outer_diameter_mm(ball_bearing_outer_diameter_mm, working_arm_mm):
-    """Spring-housing outer diameter, eq. (54): ``D_bb,ext - 2 l_arm`` [mm].
-
-    >>> float(spring_housing_outer_diameter_mm(55, 5.0))
-    45.0
-    """
-    return _f(ball_bearing_outer_diameter_mm) - 2.0 * _f(working_arm_mm)
 
 
 # --------------------------------------------------------------------------- catalogs
