@@ -32,7 +32,7 @@ from scipy.integrate import solve_ivp
 from synth import catalog
 from synth.checks import Check, margin_lower, margin_upper
 from synth.errors import InputError, Problem
-from synth.physics.step08_cone_spring import (axial_damping_nm, disc_spring_force_n,
+from synth.physics.step08_cone_spring import (_broadcast_all, axial_damping_nm, disc_spring_force_n,
                                               disc_spring_rate_n_per_mm)
 
 __all__ = [
@@ -291,6 +291,7 @@ def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, th
             "endcap_spacer_wear": margin_upper(w_es, frac * h_es),
         },
     }
+    out = _broadcast_all(out)
     if n_t > 0:
         out["history"] = {
             "time_h": tau.reshape((-1,) + (1,) * len(shape)) * t_end_h,

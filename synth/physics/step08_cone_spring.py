@@ -577,7 +577,18 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
         "margins": margins,
     }
     out.update({k: v * z for k, v in stresses.items()})
-    return out
+    return _broadcast_all(out)
+
+
+def _broadcast_all(out: dict) -> dict:
+    """Broadcast every array of a result (and of its ``margins``) to the common design shape."""
+    arrays = [v for v in out.values() if not isinstance(v, dict)] + list(out.get("margins", {}).values())
+    shape = np.broadcast_shapes(*(np.shape(a) for a in arrays))
+
+    def b(v):
+        return {k: b(x) for k, x in v.items()} if isinstance(v, dict) else np.broadcast_to(_f(v), shape).copy()
+
+    return {k: b(v) for k, v in out.items()}
 
 
 def cone_spring_checks(result: dict, index=()) -> list[Check]:
