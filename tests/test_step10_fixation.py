@@ -401,12 +401,21 @@ def test_contact_angle_extremes_are_finite(theta):
 
 
 @settings(max_examples=60, deadline=None)
-@given(t1=st.floats(1e-3, 360.0), t2=st.floats(1e-3, 360.0))
-def test_more_contact_needs_less_tilting_preload(t1, t2):
+@given(t1=st.floats(90.0, 360.0), t2=st.floats(90.0, 360.0), t0=st.floats(1e-3, 360.0))
+def test_more_contact_needs_less_tilting_preload(t1, t2, t0):
+    """Above 90 deg more contact needs less preload; the full annulus is the best of all angles.
+
+    Below ~85 deg the requirement is not monotonic: when the inner corners of a
+    narrow sector become the worst fibre, widening the sector raises the
+    preload by up to ~1 % (57-84 deg for a 8.2/28 mm base; checked against a
+    200001-point brute-force search while developing).
+    """
     lo, hi = sorted((t1, t2))
     f_lo = s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, lo)
     f_hi = s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, hi)
-    assert float(f_hi) <= float(f_lo) * (1 + 1e-6)
+    assert float(f_hi) <= float(f_lo) * (1 + 1e-9)
+    f_full = s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, 360.0)
+    assert float(s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, t0)) >= float(f_full) * (1 - 1e-9)
 
 
 def test_zero_hubload_gives_infinite_safety_not_nan():

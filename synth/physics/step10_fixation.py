@@ -170,6 +170,26 @@ def _one_minus_sinc_term(t):
     return np.where(small, series, t - np.sin(t))
 
 
+def _sector(D, d, th):
+    """Annular sector of angle ``th`` [deg] symmetric about +x: radii, half angle [rad], area,
+    centroid ``x_c`` and principal centroidal second moments ``I_xx`` (of y), ``I_yy`` (of x - x_c).
+
+    ``A = a (ro^2 - ri^2)``, ``x_c = 2/3 sin(a)/a (ro^3 - ri^3)/(ro^2 - ri^2)``,
+    ``I_xx = (ro^4 - ri^4)/8 (t - sin t)``, ``I_yy = (ro^4 - ri^4)/8 (t + sin t) - A x_c^2`` (t = 2a).
+    """
+    ro, ri = D / 2.0, d / 2.0
+    t = np.radians(th)
+    a = t / 2.0
+    area = a * (ro**2 - ri**2)
+    xc = 2.0 / 3.0 * np.sinc(a / np.pi) * (ro**3 - ri**3) / (ro**2 - ri**2)  # sinc = sin(a)/a
+    xc = np.where(np.isclose(th, 360.0), 0.0, xc)
+    i4 = (ro**4 - ri**4) / 8.0
+    ixx = i4 * _one_minus_sinc_term(t)
+    # Iyy about the centroid stays positive (inertia of a radial line); guard round-off only
+    iyy = np.maximum(i4 * (t + np.sin(t)) - area * xc**2, i4 * t * 1e-12)
+    return ro, ri, a, area, xc, ixx, iyy
+
+
 def pivot_base_bending_factor_per_mm3(d_ext_mm, d_int_mm, contact_angle_deg=360.0, *, model="sector"):
     """Worst-fibre bending stress per unit tilting moment of the pivot base [1/mm^3].
 
@@ -180,8 +200,8 @@ def pivot_base_bending_factor_per_mm3(d_ext_mm, d_int_mm, contact_angle_deg=360.
     sector of angle ``theta``; with a linear (rigid-body) pressure field about
     its principal centroidal axes and the hubload in the worst direction,
     ``k = max over the sector of sqrt((y/I_xx)^2 + ((x - x_c)/I_yy)^2)``
-    (closed-form A, centroid and I of the sector; the maximum is searched on
-    the outer arc and the inner corners). ``model="thesis"``: eq. (96) as
+    (closed-form A, centroid and I of the sector; the maximum lies on the
+    outer arc, where it is found in closed form, or at the inner corners). ``model="thesis"``: eq. (96) as
     printed, the full-annulus value scaled by ``360/theta`` (read from the
     scrambled fraction; equal to the sector model at 360 deg).
 
@@ -203,26 +223,21 @@ def pivot_base_bending_factor_per_mm3(d_ext_mm, d_int_mm, contact_angle_deg=360.
         return full * 360.0 / th
     if model != "sector":
         raise InputError(Problem("model", model, "'sector' or 'thesis'"))
-    ro, ri = D / 2.0, d / 2.0
-    t = np.radians(th)
-    a = t / 2.0
-    area = a * (ro**2 - ri**2)
-    xc = 2.0 / 3.0 * np.sinc(a / np.pi) * (ro**3 - ri**3) / (ro**2 - ri**2)  # sinc = sin(a)/a
-    xc = np.where(np.isclose(th, 360.0), 0.0, xc)
-    i4 = (ro**4 - ri**4) / 8.0
-    ixx = i4 * _one_minus_sinc_term(t)
-    iyy = i4 * (t + np.sin(t)) - area * xc**2
-    # Iyy about the centroid stays positive (radial-line inertia); guard round-off only
-    iyy = np.maximum(iyy, i4 * t * 1e-12)
-    n = int(constant("pivot_base_sector_samples"))
-    phi = np.linspace(-1.0, 1.0, n)  # fraction of the half angle
-    ang = a[..., None] * phi
-    pts_r = np.concatenate([np.broadcast_to(ro[..., None], ang.shape),
-                            np.broadcast_to(ri[..., None], ang[..., [0, -1]].shape)], axis=-1)
-    pts_a = np.concatenate([ang, ang[..., [0, -1]]], axis=-1)
-    x = pts_r * np.cos(pts_a) - xc[..., None]
-    y = pts_r * np.sin(pts_a)
-    k = np.sqrt((y / ixx[..., None]) ** 2 + (x / iyy[..., None]) ** 2).max(axis=-1)
+    ro, ri, a, area, xc, ixx, iyy = _sector(D, d, th)
+    # on the outer arc g = (r sin(phi)/Ixx)^2 + ((r cos(phi) - xc)/Iyy)^2 is a quadratic in
+    # c = cos(phi) on [cos(a), 1]: its maximum is at an end or at the vertex (closed form)
+    q2 = ro**2 * (1.0 / iyy**2 - 1.0 / ixx**2)
+    q1 = -2.0 * ro * xc / iyy**2
+    q0 = ro**2 / ixx**2 + xc**2 / iyy**2
+
+    def g(c):
+        return q0 + q1 * c + q2 * c**2
+
+    lo_c = np.cos(a)
+    vertex = np.clip(-q1 / (2.0 * np.where(q2 < 0, q2, -1.0)), lo_c, 1.0)
+    outer = np.maximum(np.maximum(g(lo_c), g(np.ones_like(lo_c))), np.where(q2 < 0, g(vertex), 0.0))
+    corner = (ri * np.sin(a) / ixx) ** 2 + ((ri * np.cos(a) - xc) / iyy) ** 2
+    k = np.sqrt(np.maximum(outer, corner))
     return np.where(np.isclose(th, 360.0), full, k)
 
 
@@ -330,15 +345,8 @@ def pivot_base_pressure_mpa(angle_deg, bolt_force_n, tilting_moment_nmm, d_ext_m
     m = _arr(tilting_moment_nmm)
     psi = np.radians(_arr(hubload_direction_deg))
     ang = np.radians(_arr(angle_deg))
-    ro, ri = D / 2.0, d / 2.0
-    t = np.radians(th)
-    a = t / 2.0
-    area = pivot_base_contact_area_mm2(D, d, th)
+    ro, ri, a, area, xc, ixx, iyy = _sector(D, d, th)
     full = np.isclose(th, 360.0)
-    xc = np.where(full, 0.0, 2.0 / 3.0 * np.sinc(a / np.pi) * (ro**3 - ri**3) / (ro**2 - ri**2))
-    i4 = (ro**4 - ri**4) / 8.0
-    ixx = i4 * _one_minus_sinc_term(t)
-    iyy = np.maximum(i4 * (t + np.sin(t)) - area * xc**2, i4 * t * 1e-12)
     x = ro * np.cos(ang) - xc
     y = ro * np.sin(ang)
     p = f / area + m * (x * np.cos(psi) / iyy + y * np.sin(psi) / ixx)
