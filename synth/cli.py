@@ -21,6 +21,8 @@ SCENES = [
     "synth.scenes.compare",
     "synth.scenes.demo",
     "synth.scenes.shrink_fit",
+    "synth.scenes.template",
+    "synth.scenes.report",
 ]
 
 

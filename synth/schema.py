@@ -358,10 +358,13 @@ def validate(data: dict, partial: bool = False) -> "DesignInput":
 
 
 def read_mapping(path: str | Path) -> dict:
-    """Read a YAML, TOML or JSON file into a dict (the ``inputs:`` block if any)."""
+    """Read a YAML, TOML, JSON or Excel (.xlsx template) file into a dict (the ``inputs:`` block if any)."""
     p = Path(path)
+    if p.suffix.lower() in (".xlsx", ".xlsm"):  # the Excel input template (synth template)
+        from synth.excel.reader import read_workbook
+        return read_workbook(p)
     if not p.is_file():
-        raise InputError(Problem("input file", str(p), "an existing .yaml, .yml, .toml or .json file"))
+        raise InputError(Problem("input file", str(p), "an existing .yaml, .yml, .toml, .json or .xlsx file"))
     text = p.read_text(encoding="utf-8")
     suffix = p.suffix.lower()
     try:

@@ -1,0 +1,293 @@
+"""The design-input Excel template, in the shape of the thesis's input table (Fig. 22-26).
+
+The workbook is built from :data:`synth.schema.FIELDS` (one row per field, in
+the schema's sections, which are the thesis's themes by rows), so a new field
+in the schema appears in the template without touching this module.
+
+Sheet ``Input``, columns (the thesis: selector C, values D/E, data read F):
+
+====  =====================  ==================================================
+col   header                 content
+====  =====================  ==================================================
+A     Parameter              the field's label; section titles on their own rows
+B     Field                  the machine key (as in the YAML ``inputs:`` block)
+C     Unit                   unit of the value
+D     Selector               drop-down: standard/custom (``pivot_class_diameter_mm``,
+                             ``loading_arm_mm``), defined/assumed, automatic/manual
+                             and every other field with choices (its value is the
+                             choice); otherwise the information "Custom only" or
+                             "Standard only" (a catalog designation)
+E     Value                  the value (numbers, catalog drop-downs, wire size
+                             ``2.3 x 2.3``); ignored when D says ``standard``
+F     Required               ``required`` / ``optional``
+G     Data read              echo of the value synth read (results workbook)
+H     Suggested correction   filled by synth in the results workbook
+====  =====================  ==================================================
+
+A hidden sheet ``Lists`` holds the drop-down lists (catalog designations from
+:func:`synth.catalog.keys`, so user catalogs show up). The colour legend
+(Fig. 24) sits to the right of the table. Example values are those of thesis
+case study 1 (Table 9, ``example_case1.yaml``).
+
+>>> [c.header for c in COLUMNS][:5]
+['Parameter', 'Field', 'Unit', 'Selector', 'Value']
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+import yaml
+
+from synth import catalog, schema
+from synth.schema import Field
+
+__all__ = ["COLUMNS", "COL", "STANDARD_CUSTOM", "FILLS", "LEGEND", "SHEET", "LIST_SHEET", "selector_kind",
+           "value_column", "example_values", "format_cell_value", "build_workbook", "write_template"]
+
+SHEET = "Input"
+LIST_SHEET = "Lists"
+
+
+@dataclass(frozen=True)
+class Column:
+    letter: str
+    header: str
+    width: float
+
+
+COLUMNS: tuple[Column, ...] = (
+    Column("A", "Parameter", 58), Column("B", "Field", 44), Column("C", "Unit", 8), Column("D", "Selector", 22),
+    Column("E", "Value", 16), Column("F", "Required", 10), Column("G", "Data read", 16),
+    Column("H", "Suggested correction", 60),
+)
+#: Column letter by role.
+COL = {"label": "A", "field": "B", "unit": "C", "selector": "D", "value": "E", "required": "F", "read": "G",
+       "correction": "H"}
+
+#: Fields with a standard/custom selector: empty (``null``) takes the thesis Table 2 standard
+#: (see the :mod:`synth.schema` docstring).
+STANDARD_CUSTOM = ("pivot_class_diameter_mm", "loading_arm_mm")
+
+#: Cell colours (ARGB hex without alpha), after the thesis's legend (Fig. 24-25).
+FILLS = {
+    "title": "1F4E78",
+    "section": "BDD7EE",
+    "header": "D9D9D9",
+    "required": "DDEBF7",
+    "optional": "F2F2F2",
+    "selector": "FFF2CC",
+    "info": "E7E6E6",
+    "pass": "C6EFCE",
+    "fail": "FFC7CE",
+    "not verified": "FFD966",
+}
+
+#: The colour legend (Fig. 24): (fill key, meaning).
+LEGEND = (
+    ("required", "mandatory input: give a value"),
+    ("optional", "optional input: may be left empty (checks that need it are 'not verified')"),
+    ("selector", "selector or catalog choice: pick from the drop-down"),
+    ("info", "information only (not read)"),
+    ("pass", "data read / verified (green)"),
+    ("not verified", "not verified: data missing (orange)"),
+    ("fail", "problem: invalid data or failed check (red)"),
+)
+
+
+def selector_kind(f: Field) -> str:
+    """What column D holds for field ``f``: ``standard/custom``, ``choice`` or ``info``.
+
+    >>> selector_kind(schema.field_by_name("pivot_class_diameter_mm")), selector_kind(schema.field_by_name("bolt_mode"))
+    ('standard/custom', 'choice')
+    """
+    if f.name in STANDARD_CUSTOM:
+        return "standard/custom"
+    if f.choices:
+        return "choice"
+    return "info"
+
+
+def value_column(f: Field) -> str:
+    """Column letter where the value of field ``f`` is read (D for choices, E otherwise).
+
+    >>> value_column(schema.field_by_name("durability_test")), value_column(schema.field_by_name("working_arm_mm"))
+    ('D', 'E')
+    """
+    return COL["selector"] if selector_kind(f) == "choice" else COL["value"]
+
+
+def example_values() -> dict:
+    """The example inputs written into the template: thesis case study 1 (Table 9)."""
+    text = resources.files("synth.excel").joinpath("example_case1.yaml").read_text(encoding="utf-8")
+    return dict(yaml.safe_load(text)["inputs"])
+
+
+def format_cell_value(f: Field, value):
+    """A field value as written into a cell (lists as ``2.3 x 2.3``; None as empty).
+
+    >>> format_cell_value(schema.field_by_name("main_spring_wire_size_mm"), [2.3, 2.3])
+    '2.3 x 2.3'
+    """
+    if value is None:
+        return None
+    if f.kind == "list":
+        items = value if isinstance(value, (list, tuple)) else [value]
+        return " x ".join(f"{float(v):g}" for v in items)
+    if f.choices or f.catalog or f.kind == "str":
+        return str(value)
+    return value
+
+
+def _fill(key):
+    from openpyxl.styles import PatternFill
+    return PatternFill("solid", start_color=FILLS[key], end_color=FILLS[key])
+
+
+def _list_ranges(wb) -> dict[str, str]:
+    """Write the drop-down lists to the hidden ``Lists`` sheet; return ``{name: range formula}``."""
+    from openpyxl.utils import get_column_letter
+    ws = wb.create_sheet(LIST_SHEET)
+    lists: dict[str, list[str]] = {"standard/custom": ["standard", "custom"]}
+    for f in schema.FIELDS:
+        if f.choices:
+            lists[f.name] = list(f.choices)
+        elif f.catalog:
+            lists[f.name] = [str(k) for k in catalog.keys(f.catalog)]
+    out = {}
+    for j, (name, items) in enumerate(lists.items(), start=1):
+        letter = get_column_letter(j)
+        ws.cell(row=1, column=j, value=name)
+        for i, item in enumerate(items, start=2):
+            ws.cell(row=i, column=j, value=item)
+        out[name] = f"={LIST_SHEET}!${letter}$2:${letter}${len(items) + 1}"
+    ws.sheet_state = "hidden"
+    return out
+
+
+def _number_validation(f: Field):
+    """A decimal/whole-number validation with the field's finite bounds (None if unbounded)."""
+    from openpyxl.worksheet.datavalidation import DataValidation
+    import math
+    lo, hi = (f.lo if math.isfinite(f.lo) else None), (f.hi if math.isfinite(f.hi) else None)
+    kind = "whole" if f.kind == "int" else "decimal"
+    if lo is not None and hi is not None:
+        dv = DataValidation(type=kind, operator="between", formula1=f"{lo:g}", formula2=f"{hi:g}")
+    elif lo is not None:
+        dv = DataValidation(type=kind, operator="greaterThanOrEqual", formula1=f"{lo:g}")
+    elif hi is not None:
+        dv = DataValidation(type=kind, operator="lessThanOrEqual", formula1=f"{hi:g}")
+    else:
+        return None
+    dv.allow_blank = True
+    dv.errorStyle = "warning"
+    dv.error, dv.errorTitle = f"{f.name}: accepted {f.accepted()}"[:255], "synth: value out of range"
+    return dv
+
+
+def build_workbook(values: dict | None = None, *, title: str = "synth design input"):
+    """The template as an :class:`openpyxl.Workbook`, filled with ``values`` (default: case 1).
+
+    Returns ``(workbook, cells)`` with ``cells[field] = "E14"`` (the cell read
+    for each field).
+    """
+    from openpyxl import Workbook
+    from openpyxl.styles import Alignment, Font
+    from openpyxl.worksheet.datavalidation import DataValidation
+
+    values = example_values() if values is None else dict(values)
+    wb = Workbook()
+    ws = wb.active
+    ws.title = SHEET
+    lists = _list_ranges(wb)
+    for c in COLUMNS:
+        ws.column_dimensions[c.letter].width = c.width
+    ws["A1"] = title + " (thesis Fig. 22-23)"
+    ws["A1"].font = Font(bold=True, size=14, color="FFFFFF")
+    for c in COLUMNS:
+        ws[f"{c.letter}1"].fill = _fill("title")
+    ws["A2"] = ("Fill column E (values) and the drop-downs of column D; leave optional cells empty when unknown. "
+                "Run: synth flowchart THIS.xlsx   or   synth report THIS.xlsx --out DIR")
+    ws["A2"].alignment = Alignment(wrap_text=False)
+    header_row = 4
+    for c in COLUMNS:
+        cell = ws[f"{c.letter}{header_row}"]
+        cell.value = c.header
+        cell.font = Font(bold=True)
+        cell.fill = _fill("header")
+    ws.freeze_panes = f"A{header_row + 1}"
+    row = header_row + 1
+    cells: dict[str, str] = {}
+    validations: dict[str, DataValidation] = {}
+
+    def list_dv(key: str) -> DataValidation:
+        if key not in validations:
+            dv = DataValidation(type="list", formula1=lists[key], allow_blank=True)
+            dv.errorStyle = "stop"
+            dv.errorTitle, dv.error = "synth: not in the list", f"pick one of the drop-down entries ({key})"
+            validations[key] = dv
+            ws.add_data_validation(dv)
+        return validations[key]
+
+    for section in schema.SECTIONS:
+        ws[f"A{row}"] = section
+        ws[f"A{row}"].font = Font(bold=True)
+        for c in COLUMNS:
+            ws[f"{c.letter}{row}"].fill = _fill("section")
+        row += 1
+        for f in (f for f in schema.FIELDS if f.section == section):
+            need = "required" if f.required else "optional"
+            ws[f"A{row}"] = f.label or f.name
+            ws[f"B{row}"] = f.name
+            ws[f"B{row}"].font = Font(color="595959")
+            ws[f"C{row}"] = f.unit
+            ws[f"F{row}"] = need
+            kind = selector_kind(f)
+            sel, val = ws[f"D{row}"], ws[f"E{row}"]
+            value = values.get(f.name, f.default)
+            if kind == "choice":
+                sel.value = format_cell_value(f, value)
+                sel.fill = _fill("selector")
+                list_dv(f.name).add(sel.coordinate)
+                val.fill = _fill("info")
+            else:
+                if kind == "standard/custom":
+                    sel.value = "standard" if value is None else "custom"
+                    sel.fill = _fill("selector")
+                    list_dv("standard/custom").add(sel.coordinate)
+                else:
+                    sel.value = "Standard only" if f.catalog else "Custom only"
+                    sel.fill = _fill("info")
+                    sel.font = Font(italic=True, color="595959")
+                val.value = format_cell_value(f, value)
+                if f.catalog:
+                    val.fill = _fill("selector")
+                    list_dv(f.name).add(val.coordinate)
+                else:
+                    val.fill = _fill(need)
+                    dv = _number_validation(f) if f.kind in ("float", "int") else None
+                    if dv is not None:
+                        dv.add(val.coordinate)
+                        ws.add_data_validation(dv)
+            cells[f.name] = f"{value_column(f)}{row}"
+            row += 1
+    # colour legend (Fig. 24), right of the table
+    ws.column_dimensions["J"].width = 4
+    ws.column_dimensions["K"].width = 70
+    ws[f"J{header_row}"] = "Legend"
+    ws[f"J{header_row}"].font = Font(bold=True)
+    for i, (key, meaning) in enumerate(LEGEND, start=header_row + 1):
+        ws[f"J{i}"].fill = _fill(key)
+        ws[f"K{i}"] = meaning
+    return wb, cells
+
+
+def write_template(path: str | Path, values: dict | None = None) -> Path:
+    """Write the input template to ``path`` (.xlsx); example values of case 1 unless ``values``."""
+    p = Path(path)
+    wb, _ = build_workbook(values)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    wb.save(p)
+    return p
