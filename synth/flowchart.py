@@ -32,7 +32,7 @@ from synth import catalog
 from synth.checks import FAIL, NOT_VERIFIED, PASS, Check
 from synth.friction import mu as friction_mu
 from synth.physics import step00_execution as s0, step01_bearing as s1, step02_pivot as s2, step03_damping as s3
-from synth.physics import step04_pivot_bushing as s4, step07_packaging as s7
+from synth.physics import step04_pivot_bushing as s4, step07_packaging as s7, step10_fixation as s10
 
 __all__ = ["Settings", "FlowchartResult", "run", "STEP_NAMES"]
 
@@ -365,7 +365,62 @@ def _step7(c: _Ctx):
         c.r.checks.append(ch)
 
 
-STEPS: dict[int, Callable[[_Ctx], Any]] = {0: _step0, 1: _step1, 2: _step2, 3: _step3, 4: _step4, 7: _step7}
+# --- step 10 ------------------------------------------------------------------------------------
+
+_FIXATION_INPUTS = ("tilting_safety_factor", "sliding_safety_factor", "engine_support_internal_diameter_mm",
+                    "engine_support_external_diameter_mm", "support_yield_strength_compression_mpa",
+                    "support_yield_strength_traction_mpa", "number_of_active_threads")
+
+
+def _step10(c: _Ctx):
+    d, v = c.d, c.v
+    missing = d.missing(*_FIXATION_INPUTS)
+    if missing:
+        for name in ("tilting safety factor", "sliding safety factor", "bolt equivalent stress vs yield",
+                     "under-head pressure vs support", "thread bearing stress vs support"):
+            c.skip(name, 10, missing[0], "eq. (94)-(111)")
+        c.note(f"step 10 not run: {missing[0]} missing")
+        return
+    manual = d.bolt_mode == "manual"
+    r = s10.fixation(
+        v["hubload_nominal_n"], d.middle_plane_belt_height_mm, d.middle_plane_belt_height_increment_worst_mm or 0.0,
+        d.tilting_safety_factor, d.sliding_safety_factor, d.engine_support_internal_diameter_mm,
+        d.engine_support_external_diameter_mm, d.contact_angle_deg or 360.0,
+        d.support_yield_strength_compression_mpa, d.support_yield_strength_traction_mpa,
+        number_of_active_threads=d.number_of_active_threads, application_type=d.application_type,
+        bolt_head_contact_external_diameter_mm=d.bolt_head_contact_external_diameter_mm,
+        bolt_format=d.bolt_format if manual else None, bolt_property_class=d.bolt_property_class if manual else None)
+    if d.middle_plane_belt_height_increment_worst_mm is None:
+        c.note("middle_plane_belt_height_increment_worst_mm missing: tilting lever without the worst-case increment")
+    if d.contact_angle_deg is None:
+        c.note("contact_angle_deg missing: full 360 deg contact of the pivot base assumed")
+    for k in ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_mpa", "bolt_tau_mpa",
+              "bolt_sigma_eqv_mpa", "bolt_under_head_stress_mpa", "bolt_thread_stress_mpa",
+              "pivot_base_contact_surface_mm2", "average_contact_pressure_mpa", "tilting_safety_factor",
+              "sliding_safety_factor", "pivot_base_max_pressure_mpa", "bolt_utilisation", "min_head_contact_diameter_mm",
+              "min_active_threads", "pivot_bore_min_mm"):
+        v[k] = _f(r[k])
+    v["bolt_format"] = str(np.asarray(r["bolt_format"]).reshape(-1)[0])
+    v["bolt_property_class"] = str(np.asarray(r["bolt_property_class"]).reshape(-1)[0])
+    c.r.checks.extend(s10.fixation_checks(
+        r, tilting_safety_factor_target=d.tilting_safety_factor, sliding_safety_factor_target=d.sliding_safety_factor,
+        engine_support_internal_diameter_mm=d.engine_support_internal_diameter_mm,
+        support_yield_strength_compression_mpa=d.support_yield_strength_compression_mpa,
+        support_yield_strength_traction_mpa=d.support_yield_strength_traction_mpa))
+    # step 2's bolt hole, now that the bolt is known: the pivot wall around the eccentric hole
+    bolt = catalog.row("bolts", v["bolt_format"])
+    hole = _f(s2.bolt_hole_diameter_mm(float(bolt["d_mm"])))
+    v["pivot_bolt_hole_diameter_mm"] = hole
+    from synth.catalog import constant
+    wall_min = constant("pivot_min_wall_mm")
+    need = 2 * (v["loading_arm_mm"] + hole / 2 + wall_min)
+    c.check("pivot wall around the bolt hole", 2, _f(s2.pivot_wall_mm(v["pivot_diameter_mm"], v["loading_arm_mm"], hole)),
+            wall_min, ">=", "mm", "step 2", correction=f"a pivot diameter >= {need:.1f} mm for the {hole:g} mm bolt hole "
+            f"({v['bolt_format']}), or a shorter loading arm")
+
+
+STEPS: dict[int, Callable[[_Ctx], Any]] = {0: _step0, 1: _step1, 2: _step2, 3: _step3, 4: _step4, 7: _step7,
+                                           10: _step10}
 
 
 def run(design_input, settings: Settings | None = None) -> FlowchartResult:
