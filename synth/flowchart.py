@@ -32,7 +32,9 @@ from synth import catalog
 from synth.checks import FAIL, NOT_VERIFIED, PASS, Check
 from synth.friction import mu as friction_mu
 from synth.physics import step00_execution as s0, step01_bearing as s1, step02_pivot as s2, step03_damping as s3
-from synth.physics import step04_pivot_bushing as s4, step07_packaging as s7, step10_fixation as s10
+from synth.physics import step04_pivot_bushing as s4, step05_plastic_wear as s5, step06_stackup as s6
+from synth.physics import step07_packaging as s7, step08_cone_spring as s8, step09_main_spring as s9
+from synth.physics import step10_fixation as s10
 
 __all__ = ["Settings", "FlowchartResult", "run", "STEP_NAMES"]
 
@@ -346,6 +348,82 @@ def _step4(c: _Ctx):
                f"{supplier} is {v['pivot_bushing_length_catalog_mm']:g} mm")
 
 
+# --- steps 5, 6, 8: the axial damping group ---------------------------------------------------
+
+def _step5(c: _Ctx):
+    """Steps 6 (gap tolerance), 8 (cone spring) and 5 (plastic wear), iterating on the pad class.
+
+    The damper pad and endcap spacer classes start from the damping each
+    element carries (half the axial damping: each friction face gives
+    ``F mu R_i``); if the end-of-life damping fails, both move to the next
+    class (larger contact surfaces), as the thesis's step 5 loop does.
+    """
+    d, v, s = c.d, c.v, c.s
+    if not v["axial_damping_present"]:
+        c.note("no axial damping: steps 5 (plastic wear), 6 (stack-up) and 8 (cone spring) are not needed")
+        return
+    pads, spacers = catalog.load("damper_pads"), catalog.load("endcap_spacers")
+    share = v["axial_damping_nm"] / 2.0
+    start = int(np.searchsorted(pads["max_axial_damping_nm"].astype(float).to_numpy(), share, side="left"))
+    if start >= len(pads):
+        c.check("axial damping within the plastic-element classes", 5, share, float(pads["max_axial_damping_nm"].max()),
+                "<=", "Nm", "Tables 3-4", correction="a larger pivot (more radial damping) or a lower damping target")
+        return
+    mu_pl = s5.plastic_material(application_type=d.application_type)["plastic_friction_coefficient"]
+    v["mu_plastic"] = float(mu_pl)
+    gap_tol = float(s6.gap_tolerance_mm("worst_case"))
+    v["cone_spring_gap_tolerance_mm"] = gap_tol
+    c.r.steps_run.append(6)
+    dur = getattr(c, "durability", None)
+    tol = d.damping_tolerance_nm if d.damping_tolerance_nm is not None else 0.0
+    if d.damping_tolerance_nm is None:
+        c.note("damping_tolerance_nm missing: cone-spring force band computed for a zero damping tolerance")
+    for i in range(start, len(pads)):
+        pad, sp = pads.iloc[i], spacers.iloc[i]
+        cone = s8.cone_spring(v["axial_damping_nm"], d.damping_target_nm, tol, v["radial_damping_nm"], mu_pl,
+                              float(pad["mean_radius_mm"]), float(sp["mean_radius_mm"]), float(pad["outer_diameter_mm"]),
+                              v["pivot_diameter_mm"], gap_tol, fidelity=s.fidelity)
+        wear = None
+        if dur is not None and not isinstance(dur, str) and d.damping_eol_limit_nm is not None:
+            wear = s5.plastic_wear(
+                cone["cone_spring_nominal_deflection_mm"], cone["cone_spring_max_external_diameter_mm"],
+                cone["cone_spring_min_internal_diameter_mm"], cone["cone_spring_thickness_mm"],
+                cone["cone_spring_cone_height_mm"], float(pad["contact_area_mm2"]), float(pad["mean_radius_mm"]),
+                float(pad["axial_height_mm"]), float(sp["contact_area_mm2"]), float(sp["mean_radius_mm"]),
+                float(sp["axial_height_mm"]), *dur, v["radial_damping_nm"], d.damping_eol_limit_nm,
+                application_type=d.application_type, fidelity=s.fidelity, time_points=60)
+            if float(np.asarray(wear["margins"]["damping_eol"]).reshape(-1)[0]) < 0 and i + 1 < len(pads):
+                c.note(f"plastic elements {pad['class']}/{sp['class']}: end-of-life damping "
+                       f"{_f(wear['damping_eol_nm']):.3f} Nm below the limit; next class")
+                continue
+        break
+    v["damper_pad_class"], v["endcap_spacer_class"] = str(pad["class"]), str(sp["class"])
+    for key, col in (("contact_area_mm2", "contact_area_mm2"), ("mean_radius_mm", "mean_radius_mm"),
+                     ("axial_height_mm", "axial_height_mm")):
+        v[f"damper_pad_{key}"] = float(pad[col])
+        v[f"endcap_spacer_{key}"] = float(sp[col])
+    v["damper_pad_outer_diameter_mm"] = float(pad["outer_diameter_mm"])
+    for k in ("cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n", "cone_spring_fax_nominal_n",
+              "cone_spring_min_internal_diameter_mm", "cone_spring_max_external_diameter_mm",
+              "cone_spring_thickness_mm", "cone_spring_cone_height_mm", "cone_spring_nominal_deflection_mm",
+              "cone_spring_rate_n_per_mm"):
+        v[k] = _f(cone[k])
+    v["cone_spring_sigma_om_mpa"] = _f(cone["sigma_om_mpa"])
+    c.r.steps_run.append(8)
+    c.r.checks.extend(s8.cone_spring_checks(cone))
+    if wear is None:
+        missing = dur if isinstance(dur, str) else "damping_eol_limit_nm"
+        c.skip("end-of-life damping", 5, missing, "eq. (43)-(49)")
+        return
+    for k in ("damping_eol_nm", "axial_damping_eol_nm", "cone_spring_force_eol_n", "damper_pad_wear_mm",
+              "endcap_spacer_wear_mm", "plastic_wear_total_mm"):
+        v[k] = _f(wear[k])
+    c.r.curves["plastic_wear"] = {k: np.asarray(val).reshape(-1).tolist() for k, val in wear["history"].items()} \
+        if isinstance(wear.get("history"), dict) else {}
+    c.r.checks.extend(s5.plastic_wear_checks(wear, d.damping_eol_limit_nm, float(pad["axial_height_mm"]),
+                                             float(sp["axial_height_mm"])))
+
+
 # --- step 7 -------------------------------------------------------------------------------------
 
 def _step7(c: _Ctx):
@@ -419,8 +497,82 @@ def _step10(c: _Ctx):
             f"({v['bolt_format']}), or a shorter loading arm")
 
 
-STEPS: dict[int, Callable[[_Ctx], Any]] = {0: _step0, 1: _step1, 2: _step2, 3: _step3, 4: _step4, 7: _step7,
-                                           10: _step10}
+# --- step 9 -------------------------------------------------------------------------------------
+
+def _spring_inputs(c: _Ctx) -> dict:
+    d, v = c.d, c.v
+    from synth.catalog import constant
+    if d.arm_travel_nominal_to_installation_deg is None:
+        c.note(f"arm_travel_nominal_to_installation_deg missing: {constant('main_spring_dtheta_inst_nom_deg'):g} deg "
+               "assumed (constant main_spring_dtheta_inst_nom_deg) for the installation stress")
+    return dict(stiffness_nm_per_deg=d.spring_stiffness_nm_per_deg, spring_torque_nominal_nm=v["spring_torque_nominal_nm"],
+                torque_tolerance_pct=d.spring_torque_tolerance_pct or 0.0,
+                theta_pp_deg=c.durability[0] if isinstance(getattr(c, "durability", None), tuple) else 0.0,
+                housing_height_mm=v["spring_housing_height_mm"],
+                dtheta_inst_nom_deg=d.arm_travel_nominal_to_installation_deg,
+                dtheta_nom_free_arm_deg=d.arm_travel_nominal_to_free_deg)
+
+
+def _wire_designation(section: str, size_mm: list) -> str:
+    """The ``spring_wires.csv`` designation of a section and size; an unknown size lists the catalog's."""
+    from synth.errors import InputError, Problem
+    df = catalog.load("spring_wires")
+    df = df[df["section"].str.strip() == section]
+    b, h = (size_mm[0], size_mm[0]) if section == "round" else (size_mm[0], size_mm[1])
+    hit = df[(abs(df["b_mm"].astype(float) - b) < 1e-6) & (abs(df["h_mm"].astype(float) - h) < 1e-6)]
+    if hit.empty:
+        sizes = ", ".join(f"[{r.b_mm:g}]" if section == "round" else f"[{r.b_mm:g}, {r.h_mm:g}]" for r in df.itertuples())
+        raise InputError(Problem("main_spring_wire_size_mm", size_mm, f"a {section} wire of catalogs/spring_wires.csv: {sizes}"))
+    return str(hit.iloc[0]["designation"])
+
+
+def _step9(c: _Ctx):
+    d, v = c.d, c.v
+    from synth.catalog import constant
+    if d.spring_torque_tolerance_pct is None:
+        c.note("spring_torque_tolerance_pct missing: spring stresses at the nominal torque without tolerance")
+    if not isinstance(getattr(c, "durability", None), tuple):
+        c.note("durability test missing: spring stresses without the working oscillation")
+    kw = _spring_inputs(c)
+    d_out = v["spring_housing_outer_diameter_mm"]
+    d_in = v["bearing_inner_diameter_mm"] + 2.0 * constant("spring_bushing_wall_mm")
+    v["spring_support_inner_diameter_mm"] = d_in
+    if d.main_spring_mode == "manual":
+        size = d.main_spring_wire_size_mm
+        wire = _wire_designation(d.main_spring_wire_section, size)
+        r = s9.main_spring_from_catalog(d.main_spring_material, wire, d.main_spring_mean_body_diameter_mm,
+                                        housing_outer_diameter_mm=d_out, housing_inner_diameter_mm=d_in, **kw)
+        picked = {k: (val if np.ndim(val) == 0 else np.asarray(val).reshape(-1)[0]) for k, val in r.items()}
+    else:
+        table = s9.search_main_spring(housing_outer_diameter_mm=d_out, housing_inner_diameter_mm=d_in,
+                                      only_feasible=False, **kw)
+        n_ok = int(table["feasible"].sum())
+        if not n_ok:  # nearest design: the largest smallest margin
+            margins = table[[k for k in table.columns if k.startswith("margin_")]].min(axis=1)
+            table = table.iloc[np.argsort(-margins.to_numpy(), kind="stable")]
+        picked = table.iloc[0].to_dict()
+        c.note(f"main spring (automatic): {n_ok} feasible of {len(table)} catalog springs; "
+               f"the cheapest feasible is chosen" if n_ok else
+               f"main spring (automatic): none of {len(table)} catalog springs passes; the one with the largest "
+               "smallest margin is reported")
+        r = s9.main_spring_from_catalog(picked["main_spring_material"], picked["main_spring_wire"],
+                                        picked["main_spring_mean_body_diameter_mm"],
+                                        housing_outer_diameter_mm=d_out, housing_inner_diameter_mm=d_in, **kw)
+    for k in ("main_spring_safety_factor", "main_spring_sigma_a_max_mpa", "main_spring_sigma_a_min_mpa",
+              "main_spring_sigma_inst_mpa", "main_spring_active_coils_free", "main_spring_mean_body_diameter_mm",
+              "hooks_angle_free_state_deg", "hooks_angle_nominal_deg"):
+        v[k] = _f(r[k])
+    v["main_spring_material"] = str(r["main_spring_material"])
+    v["main_spring_working_condition"] = "winding"
+    v["main_spring_wire_section"] = str(r["main_spring_wire_section"])
+    w = s9.wire_properties(str(r["main_spring_wire"]))
+    v["main_spring_wire_size_mm"] = [float(w["h_mm"])] if w["round_wire"] else [float(w["b_mm"]), float(w["h_mm"])]
+    v["main_spring_cost_eur"] = _f(r["cost_eur"])
+    c.r.checks.extend(s9.main_spring_checks(r))
+
+
+STEPS: dict[int, Callable[[_Ctx], Any]] = {0: _step0, 1: _step1, 2: _step2, 3: _step3, 4: _step4, 5: _step5,
+                                           7: _step7, 9: _step9, 10: _step10}
 
 
 def run(design_input, settings: Settings | None = None) -> FlowchartResult:

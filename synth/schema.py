@@ -147,6 +147,10 @@ FIELDS: tuple[Field, ...] = (
     # Main spring
     _f("spring_stiffness_nm_per_deg", "Main spring", "Nm/deg", **POS, hi=10, label="Spring stiffness"),
     _f("spring_torque_tolerance_pct", "Main spring", "%", required=False, **NONNEG, hi=50, label="Spring torque tolerance"),
+    _f("arm_travel_nominal_to_installation_deg", "Main spring", "deg", required=False, **NONNEG, hi=180,
+       label="Arm travel nominal -> installation (hot stop); empty: constant main_spring_dtheta_inst_nom_deg"),
+    _f("arm_travel_nominal_to_free_deg", "Main spring", "deg", required=False, **NONNEG, hi=180,
+       label="Arm travel nominal -> free arm (cold stop); empty: constant main_spring_dtheta_nom_free_arm_deg"),
     _f("main_spring_mode", "Main spring", kind="str", required=False, choices=("automatic", "manual"),
        default="automatic", label="Main spring (automatic: search the catalog / manual: verify)"),
     _f("main_spring_material", "Main spring", kind="str", required=False, catalog="spring_materials",

@@ -320,7 +320,8 @@ def plastic_wear_checks(result: dict, damping_eol_limit_nm, damper_pad_axial_hei
     frac = catalog.constant("plastic_max_wear_fraction")
     return [
         Check("end-of-life damping", 5, v("damping_eol_nm"), s(damping_eol_limit_nm), ">=", "N m",
-              "eq. (9), (11), (43)-(49)", correction="eq. (45), (48): pressure = force / area",
+              "eq. (9), (11), (43)-(49)",
+              correction="the next damper pad / endcap spacer class (larger contact surfaces, Tables 3-4)",
               note=f"axial {v('axial_damping_eol_nm'):.3g} N m at EOL"),
         Check("damper pad wear", 5, v("damper_pad_wear_mm"), frac * s(damper_pad_axial_height_mm), "<=", "mm",
               "eq. (44)-(46)", note=f"limit = {frac:g} x axial height (illustrative)"),
