@@ -50,6 +50,8 @@ def relative_error(ours, ref):
 def _same(ours, ref) -> bool | None:
     if ours is None or ref is None:
         return None
+    if isinstance(ref, bool) or isinstance(ours, bool):
+        return bool(ours) == bool(ref)
     return str(ours).strip().lower() == str(ref).strip().lower()
 
 
@@ -70,7 +72,7 @@ def compare_case(path: str | Path, settings: flowchart.Settings | None = None) -
         ours = ours_all.get(key)
         row = {"key": key, "ours": ours, "thesis_tool": ref, "real": real.get(key),
                "err_thesis": relative_error(ours, ref), "err_real": relative_error(ours, real.get(key))}
-        if row["err_thesis"] is None and not isinstance(ref, (int, float)) or isinstance(ref, bool):
+        if isinstance(ref, (str, bool)):
             row["match"] = _same(ours, ref)
         rows.append(row)
     return {"name": raw.get("name", p.stem), "result": result, "rows": rows}

@@ -221,7 +221,17 @@ def _default_bushing_thickness_mm() -> float:
 def _step2(c: _Ctx):
     d, v = c.d, c.v
     bearing = v["ball_bearing"]
-    std_class, max_la = s2.standard_pivot_class(bearing, d.working_arm_mm)
+    from synth.errors import InputError
+    try:
+        std_class, max_la = s2.standard_pivot_class(bearing, d.working_arm_mm)
+    except InputError as exc:
+        arms = catalog.load("pivot_classes")
+        arm_max = float(arms[arms["bearing"].astype(str) == bearing]["working_arm_mm"].max())
+        c.check(f"working arm within Table 2 for bearing {bearing}", 2, d.working_arm_mm, arm_max, "<=", "mm", "Table 2",
+                correction=f"working_arm_mm <= {arm_max:g}, or a lower hubload (bearing chosen by Table 1)",
+                note=str(exc.problems[0]))
+        c.note("step 2 has no pivot class for this bearing and working arm; later steps are not run")
+        return False
     v["pivot_class_standard_mm"], v["loading_arm_max_mm"] = std_class, max_la
     if d.pivot_class_diameter_mm is None:
         pivot_class = std_class
@@ -361,7 +371,7 @@ def _step5(c: _Ctx):
     d, v, s = c.d, c.v, c.s
     if not v["axial_damping_present"]:
         c.note("no axial damping: steps 5 (plastic wear), 6 (stack-up) and 8 (cone spring) are not needed")
-        return
+        return "skipped"
     pads, spacers = catalog.load("damper_pads"), catalog.load("endcap_spacers")
     share = v["axial_damping_nm"] / 2.0
     start = int(np.searchsorted(pads["max_axial_damping_nm"].astype(float).to_numpy(), share, side="left"))
@@ -542,7 +552,6 @@ def _step9(c: _Ctx):
         wire = _wire_designation(d.main_spring_wire_section, size)
         r = s9.main_spring_from_catalog(d.main_spring_material, wire, d.main_spring_mean_body_diameter_mm,
                                         housing_outer_diameter_mm=d_out, housing_inner_diameter_mm=d_in, **kw)
-        picked = {k: (val if np.ndim(val) == 0 else np.asarray(val).reshape(-1)[0]) for k, val in r.items()}
     else:
         table = s9.search_main_spring(housing_outer_diameter_mm=d_out, housing_inner_diameter_mm=d_in,
                                       only_feasible=False, **kw)
@@ -580,6 +589,9 @@ def run(design_input, settings: Settings | None = None) -> FlowchartResult:
     c = _Ctx(design_input, settings or Settings())
     for n in sorted(STEPS):
         c.r.steps_run.append(n)
-        if STEPS[n](c) is False:
+        outcome = STEPS[n](c)
+        if outcome == "skipped":
+            c.r.steps_run.remove(n)
+        if outcome is False:
             break
     return c.r

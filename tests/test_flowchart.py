@@ -1,0 +1,147 @@
+"""The thesis flowchart end to end: case reproduction, JSON keys, verdicts, extremes."""
+
+import json
+
+import numpy as np
+import pytest
+
+from synth import flowchart, schema
+from synth.checks import FAIL, NOT_VERIFIED
+from synth.cli import main
+from synth.compare import compare_case
+from tests.conftest import CASES, load_case
+
+# Outputs the equations determine and that synth reproduces within 3 % (default settings).
+# Anything not listed is explained in docs/model.md (case 3's 483 N bolt hubload, the spring
+# catalog search, the cone-spring band constants, case 1's spring stresses).
+REPRODUCED = {
+    "case1_as_run": ["pulley_width_mm", "pivot_diameter_mm", "pivot_bushing_length_mm", "axial_damping_nm",
+                     "radial_damping_nm", "spring_torque_nominal_nm", "damper_pad_contact_area_mm2",
+                     "damper_pad_mean_radius_mm", "damper_pad_axial_height_mm", "damper_pad_outer_diameter_mm",
+                     "endcap_spacer_contact_area_mm2", "endcap_spacer_mean_radius_mm", "endcap_spacer_axial_height_mm",
+                     "cone_spring_min_internal_diameter_mm", "cone_spring_max_external_diameter_mm",
+                     "spring_housing_height_mm", "bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_mpa",
+                     "bolt_tau_mpa", "bolt_sigma_eqv_mpa", "bolt_under_head_stress_mpa", "bolt_thread_stress_mpa",
+                     "pivot_base_contact_surface_mm2", "average_contact_pressure_mpa", "tilting_safety_factor",
+                     "sliding_safety_factor"],
+    "case3": ["pulley_width_mm", "pivot_diameter_mm", "pivot_bushing_length_mm", "spring_torque_nominal_nm",
+              "spring_housing_height_mm", "pivot_base_contact_surface_mm2", "tilting_safety_factor",
+              "sliding_safety_factor"],
+}
+SAME = ["architecture", "ball_bearing", "axial_damping_present", "bolt_format", "bolt_property_class",
+        "main_spring_working_condition", "main_spring_wire_section"]
+
+
+@pytest.mark.parametrize("name", sorted(REPRODUCED))
+def test_reproduces_thesis_tool_within_3_percent(name):
+    rows = {r["key"]: r for r in compare_case(CASES / f"{name}.yaml")["rows"]}
+    for key in REPRODUCED[name]:
+        assert rows[key]["err_thesis"] is not None, key
+        assert abs(rows[key]["err_thesis"]) <= 0.03, (key, rows[key])
+    for key in SAME:
+        assert rows[key]["match"] is True, (key, rows[key])
+
+
+@pytest.mark.parametrize("name", ["case1_as_run", "case3"])
+def test_json_prints_every_thesis_tool_key(name, capsys):
+    main(["flowchart", str(CASES / f"{name}.yaml"), "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert set(load_case(name)["thesis_tool"]) <= set(out)
+    assert out["verdict"] in ("pass", "fail") and out["checks"]
+
+
+def test_case1_values_pinned():
+    r = flowchart.run(schema.load_input(CASES / "case1_as_run.yaml"))
+    v = r.values
+    # hand: rho = 8 sin(atan .055)/(5 sin 85) = 0.08822; D_rad = 3.25 rho; M_s = 3.25 - 2 rho
+    rho = 8 * np.sin(np.arctan(0.055)) / (5 * np.sin(np.radians(85)))
+    assert v["radial_damping_nm"] == pytest.approx(3.25 * rho, rel=1e-9)
+    assert v["spring_torque_nominal_nm"] == pytest.approx(3.25 - 2 * rho, rel=1e-9)
+    assert (v["damper_pad_class"], v["endcap_spacer_class"]) == ("DP2", "ES2")
+    assert {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10} <= set(r.steps_run)
+
+
+def test_case3_runs_radial_only_and_flags_its_damping():
+    r = flowchart.run(schema.load_input(CASES / "case3.yaml"))
+    assert 5 not in r.steps_run and 8 not in r.steps_run  # no axial group: no wear, no cone spring
+    c = r.check("damping within upper tolerance")
+    assert c.verdict == FAIL and c.value == pytest.approx(0.7204, rel=1e-3)  # thesis prints the 0.45 target
+    assert "lock-up pin" in " ".join(ch.name for ch in r.not_verified())
+    assert all("lockup_pin" in ch.note for ch in r.not_verified() if "lock-up" in ch.name)
+
+
+def test_linear_friction_option_reproduces_the_tool_convention():
+    d = schema.load_input(CASES / "case3.yaml")
+    r = flowchart.run(d, flowchart.Settings(friction_circle=False))
+    assert r.values["radial_damping_nm"] == pytest.approx(1.85 * 10.5 * 0.15 / 4.0, rel=1e-9)  # 0.728
+
+
+def _case(name="case1_as_run", **changes):
+    raw = dict(load_case(name)["inputs"], **changes)
+    return schema.validate(raw)
+
+
+def test_zero_length_durability_test_gives_finite_results():
+    r = flowchart.run(_case(durability_duration_h=0.0))
+    assert r.values["plastic_wear_total_mm"] == 0.0
+    assert r.values["damping_eol_nm"] == pytest.approx(r.values["damping_nm"], rel=0.06)  # relaxation only
+    for k, val in r.values.items():
+        if isinstance(val, float):
+            assert np.isfinite(val), k
+
+
+def test_missing_optional_data_is_reported_not_verified():
+    raw = dict(load_case("case1_as_run")["inputs"])
+    for k in ("durability_duration_h", "tilting_safety_factor", "pulley_max_parallelism_eol_mm"):
+        raw.pop(k)
+    r = flowchart.run(schema.validate(raw))
+    notes = [c.note for c in r.checks if c.verdict == NOT_VERIFIED]
+    assert any("durability_duration_h missing" in n for n in notes)
+    assert any("tilting_safety_factor missing" in n for n in notes)
+
+
+def test_self_locking_arm_stops_with_a_clear_failed_check():
+    # a huge pivot bushing friction cannot be set from the input: use a tiny working arm instead
+    # lever 0.3 sin(85) = 0.299 mm < friction circle 8 sin(atan .055) = 0.439 mm
+    r = flowchart.run(_case(working_arm_mm=0.3, loading_arm_mm=0.5, pivot_class_diameter_mm=16))
+    c = r.check("arm free to move (no self-locking)")
+    assert c.verdict == FAIL and c.value > 1
+    assert max(r.steps_run) == 3
+
+
+@pytest.mark.parametrize("alpha", [0.5, 179.5])
+def test_differential_angle_near_0_and_180(alpha):
+    r = flowchart.run(_case(differential_angle_deg=alpha))
+    assert r.verdict == FAIL  # the lever vanishes: huge hubload, something must fail, nothing may crash
+    for k, val in r.values.items():
+        if isinstance(val, float):
+            assert not np.isnan(val), k
+
+
+def test_manual_spring_verifies_the_given_part():
+    r = flowchart.run(_case("case3", main_spring_mode="manual", main_spring_material="VDSiCr",
+                            main_spring_wire_section="round", main_spring_wire_size_mm=[3.0],
+                            main_spring_mean_body_diameter_mm=44.0))
+    assert r.values["main_spring_wire_size_mm"] == [3.0]
+    assert r.values["main_spring_mean_body_diameter_mm"] == 44.0
+    # NOTES.md: the printed 3.0 mm wire fails the coil-gap check in the 8.8 mm housing
+    assert any("coil" in c.name and c.verdict == FAIL for c in r.checks)
+
+
+def test_manual_bolt_is_verified_not_escalated():
+    r = flowchart.run(_case(bolt_mode="manual", bolt_format="M8x1.25", bolt_property_class="8.8"))
+    assert r.values["bolt_format"] == "M8x1.25"
+
+
+def test_screening_eol_damping_is_optimistic_by_a_bounded_amount():
+    # screening = linear cone spring (flatter force drop) + closed-form wear: it overstates the
+    # end-of-life damping; on case 1 by ~11 % (benchmarks/bench_flowchart.py reports the number)
+    d = schema.load_input(CASES / "case1_as_run.yaml")
+    full = flowchart.run(d, flowchart.Settings(fidelity="full")).values["damping_eol_nm"]
+    fast = flowchart.run(d, flowchart.Settings(fidelity="screening")).values["damping_eol_nm"]
+    assert full < fast < 1.15 * full
+
+
+def test_demo_runs(capsys):
+    assert main(["demo"]) == 0
+    assert "Verdict" in capsys.readouterr().out
