@@ -1,0 +1,45 @@
+"""Time of one full flowchart run at each fidelity, and what the cheap form costs in accuracy.
+
+Run: ``.venv/bin/python benchmarks/bench_flowchart.py`` (prints a markdown table).
+
+* ``full``: Almen-Laszlo cone spring, plastic wear integrated with scipy's solve_ivp
+  as the cone force falls with the growing gap;
+* ``screening``: linear cone spring, closed-form wear.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+from synth import flowchart, schema
+
+CASES = Path(__file__).resolve().parents[2] / "shared" / "cases"
+
+
+def time_run(d, settings, repeat=5):
+    best = float("inf")
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        r = flowchart.run(d, settings)
+        best = min(best, time.perf_counter() - t0)
+    return best, r
+
+
+def main(cases=("case1_as_run", "case3")) -> None:
+    print("| case | fidelity | time per run [ms] | EOL damping [Nm] | difference to full | verdict |")
+    print("|---|---|---|---|---|---|")
+    for name in cases:
+        d = schema.load_input(CASES / f"{name}.yaml")
+        ref = None
+        for fid in ("full", "screening"):
+            t, r = time_run(d, flowchart.Settings(fidelity=fid))
+            eol = r.values.get("damping_eol_nm")
+            ref = eol if fid == "full" else ref
+            diff = "-" if eol is None or ref is None or fid == "full" else f"{100 * (eol - ref) / ref:+.1f} %"
+            print(f"| {name} | {fid} | {1000 * t:.1f} | {'-' if eol is None else f'{eol:.3f}'} | {diff} | {r.verdict} |")
+
+
+if __name__ == "__main__":
+    main(tuple(sys.argv[1:]) or ("case1_as_run", "case3"))
