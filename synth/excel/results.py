@@ -1,0 +1,257 @@
+"""The results workbook: the output table (thesis Tables 10/14) with verdict colours, and more.
+
+Sheets:
+
+* ``Output``: the rows of :data:`synth.output_table.ROWS` (section, parameter,
+  unit, value) with the verdict of the flowchart step that produced the row,
+  coloured as in the thesis (green verified, red failed, orange not verified
+  because data is missing), and the suggested corrections of the failed checks;
+* ``Checks``: every check with value, limit, margin, verdict, equation and
+  suggested correction;
+* ``Input``: the echo of the data read (thesis column F), with the cell it was
+  read from when the input is a workbook, and the suggested correction of
+  each field (thesis column G);
+* ``Notes``; and one sheet per other scene result given (``Optimum``,
+  ``Pareto``, ``Solvers``...: tables of rows).
+
+Row verdicts (:func:`row_verdict`): a row whose value is missing is ``not
+verified`` (``not applicable`` for the axial-damping rows of a design without
+axial damping); otherwise ``fail`` if a check of its step fails, ``not
+verified`` if every check of its step is not verified, else ``pass``.
+
+>>> row_verdict({"pulley_width_mm": 20.0}, [], "pulley_width_mm", "Pulley")
+'pass'
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+from synth import schema
+from synth.checks import FAIL, NOT_VERIFIED, PASS
+from synth.excel.template import FILLS
+from synth.output_table import ROWS, format_value
+
+__all__ = ["SECTION_STEPS", "NOT_APPLICABLE", "row_verdict", "field_corrections", "build_results", "write_results"]
+
+NOT_APPLICABLE = "not applicable"
+
+#: Flowchart steps whose checks decide the verdict of each output-table section.
+SECTION_STEPS: dict[str, tuple[int, ...]] = {
+    "Tensioner architecture": (0,),
+    "Pulley": (0,),
+    "Ball bearing": (1,),
+    "Pivot": (2, 4),
+    "Tensioner characterization": (3,),
+    "Plastic friction elements": (5, 6, 7),
+    "Cone spring": (8,),
+    "Main spring": (9,),
+    "Bolt": (10,),
+    "Tilting and sliding": (10,),
+}
+_AXIAL_SECTIONS = ("Plastic friction elements", "Cone spring")
+_AXIAL_KEYS = ("axial_damping_nm",)
+
+
+def _missing(v) -> bool:
+    return v is None or (isinstance(v, float) and not math.isfinite(v))
+
+
+def row_verdict(values: dict, checks: list, key: str, section: str) -> str:
+    """Verdict of one output-table row (see the module docstring)."""
+    v = values.get(key)
+    if _missing(v):
+        if values.get("axial_damping_present") is False and (section in _AXIAL_SECTIONS or key in _AXIAL_KEYS):
+            return NOT_APPLICABLE
+        return NOT_VERIFIED
+    steps = SECTION_STEPS.get(section, ())
+    mine = [c for c in checks if c.step in steps]
+    if any(c.verdict == FAIL for c in mine):
+        return FAIL
+    if mine and all(c.verdict == NOT_VERIFIED for c in mine):
+        return NOT_VERIFIED
+    return PASS
+
+
+def _section_corrections(checks: list, section: str) -> str:
+    steps = SECTION_STEPS.get(section, ())
+    return "; ".join(c.correction for c in checks if c.step in steps and c.verdict == FAIL and c.correction)
+
+
+def field_corrections(checks: list) -> dict[str, str]:
+    """Suggested correction per input field (thesis column G).
+
+    A failed check whose correction names a field (``max_axial_displacement_mm
+    >= 32``) suggests it for that field; a not-verified check suggests giving
+    its missing field.
+
+    >>> from synth.checks import Check
+    >>> field_corrections([Check("pin", 0, 5.0, 4.0, correction="lockup_pin_diameter_mm <= 3"),
+    ...                    Check.skipped("wrap", 0, "wrap_angle_deg")])
+    {'lockup_pin_diameter_mm': 'lockup_pin_diameter_mm <= 3 (pin)', 'wrap_angle_deg': 'give a value to verify: wrap'}
+    """
+    names = sorted((f.name for f in schema.FIELDS), key=len, reverse=True)
+    out: dict[str, list[str]] = {}
+    for c in checks:
+        if c.verdict == FAIL and c.correction:
+            for n in names:
+                if re.search(rf"\b{re.escape(n)}\b", c.correction):
+                    out.setdefault(n, []).append(f"{c.correction} ({c.name})")
+                    break
+        elif c.verdict == NOT_VERIFIED:
+            m = re.match(r"not verified: (\w+) missing", c.note or "")
+            if m and m.group(1) in names:
+                out.setdefault(m.group(1), []).append(f"give a value to verify: {c.name}")
+    return {k: "; ".join(dict.fromkeys(v)) for k, v in out.items()}
+
+
+def _fill(key):
+    from openpyxl.styles import PatternFill
+    colour = FILLS.get(key)
+    return PatternFill("solid", start_color=colour, end_color=colour) if colour else PatternFill()
+
+
+def _cell_value(v):
+    """A value as a cell can hold it (numbers stay numbers; lists and booleans formatted)."""
+    if _missing(v):
+        return None
+    if isinstance(v, bool) or isinstance(v, (list, tuple)):
+        return format_value(v)
+    if hasattr(v, "item"):
+        v = v.item()
+    if isinstance(v, (int, float, str)):
+        return v
+    return str(v)
+
+
+def _header(ws, row: int, headers: list[str], widths: list[float]) -> None:
+    from openpyxl.styles import Font
+    from openpyxl.utils import get_column_letter
+    for j, (h, w) in enumerate(zip(headers, widths), start=1):
+        cell = ws.cell(row=row, column=j, value=h)
+        cell.font = Font(bold=True)
+        cell.fill = _fill("header")
+        ws.column_dimensions[get_column_letter(j)].width = w
+    ws.freeze_panes = ws.cell(row=row + 1, column=1)
+
+
+def _title(ws, text: str, verdict: str | None = None) -> None:
+    from openpyxl.styles import Font
+    ws["A1"] = text
+    ws["A1"].font = Font(bold=True, size=13)
+    if verdict:
+        ws["A2"] = f"Verdict: {verdict.upper()}"
+        ws["A2"].font = Font(bold=True)
+        ws["A2"].fill = _fill(verdict)
+
+
+def _output_sheet(ws, result) -> None:
+    _title(ws, "Output table (thesis Tables 10/14)", result.verdict)
+    _header(ws, 4, ["Section", "Parameter", "Unit", "Value", "Verdict", "Suggested correction"], [28, 36, 8, 16, 14, 70])
+    r = 5
+    for section, label, key, unit in ROWS:
+        v = result.values.get(key)
+        verdict = row_verdict(result.values, result.checks, key, section)
+        for j, val in enumerate([section, label, unit, _cell_value(v), verdict,
+                                 _section_corrections(result.checks, section) if verdict == FAIL else None], start=1):
+            ws.cell(row=r, column=j, value=val)
+        for j in (4, 5):
+            ws.cell(row=r, column=j).fill = _fill(verdict)
+        r += 1
+
+
+def _checks_sheet(ws, result) -> None:
+    from synth.flowchart import STEP_NAMES
+    _title(ws, "Checks (every verdict with its margin)", result.verdict)
+    _header(ws, 4, ["Step", "Step name", "Check", "Value", "Relation", "Limit", "Unit", "Margin [%]", "Verdict",
+                    "Equation", "Suggested correction", "Note"], [6, 22, 44, 12, 8, 12, 8, 11, 13, 14, 60, 50])
+    for r, c in enumerate(result.checks, start=5):
+        margin = None if c.margin is None else round(100.0 * c.margin, 2)
+        row = [c.step, STEP_NAMES.get(c.step, ""), c.name, _cell_value(c.value), c.kind if c.value is not None else None,
+               _cell_value(c.limit), c.unit, margin, c.verdict, c.equation,
+               c.correction if c.verdict == FAIL else None, c.note or None]
+        for j, val in enumerate(row, start=1):
+            ws.cell(row=r, column=j, value=val)
+        for j in (8, 9):
+            ws.cell(row=r, column=j).fill = _fill(c.verdict)
+
+
+def _input_sheet(ws, design_input, checks, cells: dict | None, source: str | None) -> None:
+    _title(ws, "Data read (echo of the design input)" + (f": {source}" if source else ""))
+    _header(ws, 4, ["Parameter", "Field", "Unit", "Required", "Data read", "Read from cell", "Suggested correction"],
+            [58, 44, 8, 10, 16, 14, 70])
+    corr = field_corrections(checks)
+    values = design_input.as_dict() if design_input is not None else {}
+    r = 5
+    for section in schema.SECTIONS:
+        ws.cell(row=r, column=1, value=section).fill = _fill("section")
+        r += 1
+        for f in (f for f in schema.FIELDS if f.section == section):
+            v = values.get(f.name)
+            row = [f.label or f.name, f.name, f.unit, "required" if f.required else "optional", _cell_value(v),
+                   (cells or {}).get(f.name), corr.get(f.name)]
+            for j, val in enumerate(row, start=1):
+                ws.cell(row=r, column=j, value=val)
+            status = "fail" if f.name in corr and not _missing(v) else ("pass" if not _missing(v) else
+                                                                       ("not verified" if f.name in corr else None))
+            if status:
+                ws.cell(row=r, column=5).fill = _fill(status)
+            r += 1
+
+
+def _table_sheet(ws, title: str, rows) -> None:
+    """A scene result as a plain table: a DataFrame, a list of dicts, or a dict (one row)."""
+    if hasattr(rows, "to_dict"):
+        rows = rows.to_dict(orient="records")
+    if isinstance(rows, dict):
+        rows = [rows]
+    rows = list(rows or [])
+    _title(ws, title)
+    headers = list(dict.fromkeys(k for row in rows for k in row))
+    _header(ws, 3, headers, [max(12, min(40, len(h) + 2)) for h in headers])
+    for r, row in enumerate(rows, start=4):
+        for j, h in enumerate(headers, start=1):
+            v = row.get(h)
+            ws.cell(row=r, column=j, value=_cell_value(v))
+            if h == "verdict" and v in FILLS:
+                ws.cell(row=r, column=j).fill = _fill(v)
+
+
+def build_results(result=None, *, cells: dict | None = None, source: str | None = None, scenes: dict | None = None):
+    """The results :class:`openpyxl.Workbook` of a flowchart result and other scene results.
+
+    ``result``: a :class:`synth.flowchart.FlowchartResult` (Output, Checks,
+    Input, Notes sheets); ``cells``: ``{field: "E14"}`` when the input was a
+    workbook; ``scenes``: ``{"Optimum": rows, "Pareto": rows, "Solvers":
+    rows}`` (each a DataFrame, list of dicts or one dict), one sheet each.
+    """
+    from openpyxl import Workbook
+    wb = Workbook()
+    first = wb.active
+    if result is not None:
+        first.title = "Output"
+        _output_sheet(first, result)
+        _checks_sheet(wb.create_sheet("Checks"), result)
+        _input_sheet(wb.create_sheet("Input"), result.inputs, result.checks, cells, source)
+        notes = wb.create_sheet("Notes")
+        _title(notes, "Notes")
+        for r, n in enumerate(result.notes, start=3):
+            notes.cell(row=r, column=1, value=n)
+        notes.column_dimensions["A"].width = 120
+    for name, rows in (scenes or {}).items():
+        if rows is None:
+            continue
+        ws = first if result is None and first.max_row == 1 and first["A1"].value is None else wb.create_sheet()
+        ws.title = str(name)[:31]
+        _table_sheet(ws, str(name), rows)
+    return wb
+
+
+def write_results(path: str | Path, result=None, **kw) -> Path:
+    """Write :func:`build_results` to ``path`` (.xlsx) and return the path."""
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    build_results(result, **kw).save(p)
+    return p
