@@ -162,7 +162,8 @@ def _list_ranges(wb) -> dict[str, str]:
         ws.cell(row=1, column=j, value=name)
         for i, item in enumerate(items, start=2):
             ws.cell(row=i, column=j, value=item)
-        out[name] = f"={LIST_SHEET}!${letter}$2:${letter}${len(items) + 1}"
+        # stored as Excel stores it in <formula1>: no leading "="
+        out[name] = f"{LIST_SHEET}!${letter}$2:${letter}${len(items) + 1}"
     ws.sheet_state = "hidden"
     return out
 
@@ -181,7 +182,7 @@ def _number_validation(f: Field):
         dv = DataValidation(type=kind, operator="lessThanOrEqual", formula1=f"{hi:g}")
     else:
         return None
-    dv.allow_blank = True
+    dv.allow_blank, dv.showErrorMessage = True, True
     dv.errorStyle = "warning"
     dv.error, dv.errorTitle = f"{f.name}: accepted {f.accepted()}"[:255], "synth: value out of range"
     return dv
@@ -224,7 +225,7 @@ def build_workbook(values: dict | None = None, *, title: str = "synth design inp
 
     def list_dv(key: str) -> DataValidation:
         if key not in validations:
-            dv = DataValidation(type="list", formula1=lists[key], allow_blank=True)
+            dv = DataValidation(type="list", formula1=lists[key], allow_blank=True, showErrorMessage=True)
             dv.errorStyle = "stop"
             dv.errorTitle, dv.error = "synth: not in the list", f"pick one of the drop-down entries ({key})"
             validations[key] = dv
