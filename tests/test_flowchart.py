@@ -145,3 +145,25 @@ def test_screening_eol_damping_is_optimistic_by_a_bounded_amount():
 def test_demo_runs(capsys):
     assert main(["demo"]) == 0
     assert "Verdict" in capsys.readouterr().out
+
+
+from hypothesis import HealthCheck, given, settings, strategies as st  # noqa: E402
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(alpha=st.floats(1.0, 179.0), arm=st.floats(2.5, 5.0), torque=st.floats(0.5, 6.0),
+       damping=st.floats(0.1, 3.0), env=st.sampled_from(["dry", "belt_in_oil"]),
+       hours=st.floats(0.0, 3000.0), stiffness=st.floats(0.005, 0.05))
+def test_any_valid_input_gives_a_verdict_never_nan(alpha, arm, torque, damping, env, hours, stiffness):
+    raw = dict(load_case("case1_as_run")["inputs"], differential_angle_deg=alpha, working_arm_mm=arm,
+               calculated_torque_target_nm=torque, damping_target_nm=damping, damping_tolerance_nm=damping / 4,
+               damping_eol_limit_nm=damping * 0.75, application_type=env, durability_duration_h=hours,
+               spring_stiffness_nm_per_deg=stiffness, pivot_class_diameter_mm=None, loading_arm_mm=None,
+               pivot_bushing_radial_thickness_mm=1.0)
+    r = flowchart.run(schema.validate(raw), flowchart.Settings(fidelity="screening"))
+    assert r.verdict in ("pass", "fail")
+    for k, val in r.values.items():
+        if isinstance(val, float):
+            assert not np.isnan(val), k
+    for c in r.checks:
+        assert c.margin is None or not np.isnan(c.margin), c.name
