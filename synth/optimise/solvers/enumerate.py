@@ -165,14 +165,14 @@ def solve_space(sp: DesignSpace, objective: Objective, ev: Evaluation | None = N
 
 
 def solve(d, objective="standard", *, fidelity: str = "screening", pin_inputs: bool = False,
-          friction_circle: bool = True) -> DesignResult:
+          friction_circle: bool = True, relax: bool = True) -> DesignResult:
     """Exhaustive optimum of input ``d`` for ``objective`` (name, :class:`Objective` or spec string)."""
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     sp = build_space(d, fidelity=fidelity, friction_circle=friction_circle, pin_inputs=pin_inputs)
     core, options, stats = solve_space(sp, obj)
     if core is None:
         from synth.optimise.diagnose import diagnose
-        return diagnose(d, sp, solver="enumerate", objective=obj, stats=stats)
+        return diagnose(d, sp, solver="enumerate", objective=obj, stats=stats, relax=relax)
     return build_result(sp, core, options, status="optimal", solver="enumerate", objective=_name(obj), stats=stats)
 
 

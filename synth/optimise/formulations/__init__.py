@@ -1,0 +1,1 @@
+"""Model builders (Pyomo, cvxpy): functions of precomputed data returning models."""
