@@ -23,6 +23,8 @@ SCENES = [
     "synth.scenes.shrink_fit",
     "synth.scenes.template",
     "synth.scenes.report",
+    "synth.scenes.design",
+    "synth.scenes.pareto",
 ]
 
 

@@ -140,7 +140,7 @@ def diagnose(d, sp=None, *, solver: str = "enumerate", objective=None, stats: di
     sp = sp or build_space(d)
     core, options, m0 = nearest_design(sp)
     res = build_result(sp, core, options, status="infeasible", solver=solver,
-                       objective=str(getattr(objective, "order", objective)), stats=stats or {})
+                       objective=_objname(objective), stats=stats or {})
     violated = {k: m for k, m in res.margins.items() if m < -FEAS_TOL}
     res.binding = [{"constraint": k, "label": CONSTRAINTS[k][1], "step": CONSTRAINTS[k][0],
                     "equation": CONSTRAINTS[k][2], "margin": m} for k, m in sorted(violated.items(), key=lambda kv: kv[1])]
@@ -151,3 +151,11 @@ def diagnose(d, sp=None, *, solver: str = "enumerate", objective=None, stats: di
     }
     res.stats["diagnosis_time_s"] = time.perf_counter() - t0
     return res
+
+
+def _objname(objective) -> str:
+    if objective is None:
+        return "standard,cost"
+    if getattr(objective, "weights", None):
+        return ",".join(f"{k}={v:g}" for k, v in objective.weights.items())
+    return ",".join(getattr(objective, "order", (str(objective),)))
