@@ -423,6 +423,13 @@ def evaluate(sp: DesignSpace, *, prune: bool = True, keep_values: bool = False) 
     ``Evaluation.core_rows`` maps them back (see ``core_values["row"]``).
     ``keep_values`` also keeps the derived values (for one chosen design).
     """
+    # placeholder pairs and degenerate designs may overflow inside the physics; every NaN is turned into
+    # -inf (infeasible) by _clean, every inf is a real "unbounded" margin
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        return _evaluate(sp, prune, keep_values)
+
+
+def _evaluate(sp: DesignSpace, prune: bool, keep_values: bool) -> Evaluation:
     names, arr, avail, cv = _core(sp)
     notes = list(sp.notes)
     if "cone_spring_annulus" in names:

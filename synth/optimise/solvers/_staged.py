@@ -70,3 +70,15 @@ def solve_with(d, objective, run_factory, *, solver: str, fidelity: str = "scree
     options = {s: int(md.opts[s][opts[s]]) for s in SUBSYSTEMS}
     from synth.optimise.solvers.enumerate import _name
     return build_result(sp, core, options, status="optimal", solver=solver, objective=_name(obj), stats=stats)
+
+
+def solve_evaluated(sp, ev, objective, run_factory, *, presolve: bool = True):
+    """``(core, options)`` (indices into ``sp``) of the staged model solver on an existing evaluation, or None."""
+    obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
+    md = model_data(ev, obj.weights or obj.additive_weights(), obj.uses_margin(), presolve=presolve)
+    if md.n_cores == 0:
+        return None
+    ans, _ = staged(md, obj, run_factory(md))
+    if ans is None:
+        return None
+    return int(md.cores[ans[0]]), {s: int(md.opts[s][ans[1][s]]) for s in SUBSYSTEMS}

@@ -25,7 +25,7 @@ from synth.optimise.objectives import Objective
 from synth.optimise.result import build_result, design_margin
 from synth.optimise.space import SUBSYSTEMS, DesignSpace, build_space
 
-__all__ = ["solve", "evaluate_one"]
+__all__ = ["solve", "front", "evaluate_one"]
 
 
 def _pick(sp: DesignSpace, core: int, options: dict) -> DesignSpace:
@@ -55,11 +55,8 @@ def solve(d, objective="standard", *, n_trials: int = 200, fidelity: str = "full
     t0 = time.perf_counter()
     sp = build_space(d, fidelity=fidelity, friction_circle=friction_circle)
     names = obj.order if not obj.weights else tuple(obj.weights)
-    multi = obj.weights is None and len(names) > 1 and False
+    multi = False  # one scalar objective (lexicographic orders are scalarised); see front() for NSGA-II
     cache = {}
-
-    def constraints(trial):
-        return trial.user_attrs["constraints"]
 
     def objective_fn(trial):
         core = trial.suggest_int("core", 0, sp.n_cores - 1)
@@ -72,6 +69,7 @@ def solve(d, objective="standard", *, n_trials: int = 200, fidelity: str = "full
         margins = {k: v for k, v in m.items() if not k.startswith("_")}
         worst = min(min(margins.values()), m.get("_available", 0.0))
         trial.set_user_attr("constraints", [float(np.clip(-worst, -1e6, 1e6))])
+        trial.set_constraint("worst_margin", float(np.clip(-worst, -1e6, 1e6)))  # feasible when <= 0
         cost = float(sp.cores["cost_eur"].iloc[core]) + sum(float(sp.subsystems[s]["cost_eur"].iloc[opts[s]]) for s in SUBSYSTEMS)
         std = float(sp.cores["nonstandard"].iloc[core]) + sum(float(sp.subsystems[s]["nonstandard"].iloc[opts[s]]) for s in SUBSYSTEMS)
         marg = design_margin(margins, ax)
@@ -79,8 +77,7 @@ def solve(d, objective="standard", *, n_trials: int = 200, fidelity: str = "full
         trial.set_user_attr("values", vals)
         return obj.score(vals) if not obj.uses_margin() or obj.weights else -vals["margin"] * 1e4 + vals["cost"]
 
-    sampler = optuna.samplers.TPESampler(seed=seed, constraints_func=constraints) if not multi else \
-        optuna.samplers.NSGAIISampler(seed=seed, constraints_func=constraints)
+    sampler = optuna.samplers.TPESampler(seed=seed) if not multi else optuna.samplers.NSGAIISampler(seed=seed)
     study = optuna.create_study(direction="minimize", sampler=sampler)
     try:  # start from the thesis flowchart's greedy design: the search is then never worse than it
         from synth.optimise.solvers import flowchart
@@ -128,3 +125,37 @@ def _row_of(sp: DesignSpace, parts: dict):
             return None
         out[s] = int(np.flatnonzero(h)[0])
     return out
+
+
+def front(d, *, n_trials: int = 300, fidelity: str = "full", seed: int = 0, population: int = 30) -> list:
+    """Cost-against-margin front by NSGA-II (two objectives): the non-dominated feasible trials.
+
+    Returns ``[{"cost_eur", "margin", "parts"}]`` by increasing cost (anytime, no proof; the exact
+    front is :func:`synth.optimise.pareto.pareto_front`).
+    """
+    import optuna
+    optuna.logging.set_verbosity(optuna.logging.WARNING)
+    sp = build_space(d, fidelity=fidelity)
+
+    def fn(trial):
+        core = trial.suggest_int("core", 0, sp.n_cores - 1)
+        opts = {s: trial.suggest_int(s, 0, len(sp.subsystems[s]) - 1) for s in SUBSYSTEMS}
+        m = evaluate_one(sp, core, opts)
+        ax = bool(m.pop("_axial"))
+        avail = m.pop("_available")
+        worst = min(min(m.values()), avail)
+        trial.set_constraint("worst_margin", float(np.clip(-worst, -1e6, 1e6)))
+        cost = float(sp.cores["cost_eur"].iloc[core]) + sum(float(sp.subsystems[s]["cost_eur"].iloc[opts[s]]) for s in SUBSYSTEMS)
+        return cost, float(np.clip(design_margin(m, ax), -1e6, 1e6))
+
+    study = optuna.create_study(directions=["minimize", "maximize"],
+                                sampler=optuna.samplers.NSGAIISampler(seed=seed, population_size=population))
+    study.optimize(fn, n_trials=n_trials)
+    from synth.optimise.result import parts_of
+    pts = []
+    for t in study.best_trials:
+        if t.system_attrs.get("constraints", [0])[0] > 0:
+            continue
+        pts.append({"cost_eur": t.values[0], "margin": t.values[1],
+                    "parts": parts_of(sp, t.params["core"], {s: t.params[s] for s in SUBSYSTEMS})})
+    return sorted(pts, key=lambda p: p["cost_eur"])

@@ -11,8 +11,8 @@ orders with the margin, weighted sums with the margin, and the Pareto front.
 No Python loop runs over candidates: the loops are over the four
 subsystems, the (few) cores and the margin thresholds.
 
->>> from synth.schema import load_input
->>> r = solve(load_input("/work/shared/cases/case3.yaml"), "cost")
+>>> from synth.data.generated_applications import generate
+>>> r = solve(generate(2, seed=0)[1], "cost")
 >>> r.status, r.parts["damper_pad"], r.objectives["cost"] > 0
 ('optimal', 'none', True)
 """
