@@ -226,7 +226,9 @@ def _core(sp: DesignSpace):
     has_dp = col["damper_pad"] != NONE
     available = has_dp == present
     if f["axial_allowed"] and has_dp.any():
-        m["damper_pad_capacity"] = np.where(has_dp, margin_upper(split["axial_damping_nm"], np.where(has_dp, col["dp_max_axial_damping_nm"], 1.0)), np.inf)
+        # each element carries half the axial damping (two friction faces, F mu R_i), as the flowchart's step 5
+        share = np.asarray(split["axial_damping_nm"]) / 2.0
+        m["damper_pad_capacity"] = np.where(has_dp, margin_upper(share, np.where(has_dp, col["dp_max_axial_damping_nm"], 1.0)), np.inf)
         de = s8.cone_spring_max_external_diameter_mm(col["dp_outer_diameter_mm"])
         di = s8.cone_spring_min_internal_diameter_mm(col["pivot_diameter_mm"])["cone_spring_min_internal_diameter_mm"]
         m["cone_spring_annulus"] = np.where(has_dp, margin_lower(de, di), np.inf)
@@ -312,10 +314,10 @@ def _axial(sp: DesignSpace, cv: dict, rows: np.ndarray, keep_values: bool) -> Su
         mat = s5.plastic_material("PPA_CF10_AR10_PTFE", d.application_type)
         mu_pl = float(mat["plastic_friction_coefficient"])
         tol = d.damping_tolerance_nm
-        m["endcap_spacer_capacity"] = np.where(real, margin_upper(d_ax, np.where(real, t["es_max_axial_damping_nm"].to_numpy()[None, :], 1.0)), np.inf)
+        m["endcap_spacer_capacity"] = np.where(real, margin_upper(d_ax / 2.0, np.where(real, t["es_max_axial_damping_nm"].to_numpy()[None, :], 1.0)), np.inf)
         cs = s8.cone_spring(d_ax, f["damping_target_nm"], 0.0 if tol is None else tol, d_rad, mu_pl,
                             dp["dp_mean_radius_mm"], es["es_mean_radius_mm"], dp["dp_outer_diameter_mm"], piv,
-                            s6.gap_tolerance_mm(), aspect_ratio=es["cone_aspect_ratio"], fidelity=sp.fidelity)
+                            s6.gap_tolerance_mm(), aspect_ratio=es["cone_aspect_ratio"], fidelity="full")
         for k, name in _CONE_KEYS.items():
             if k == "force_band" and tol is None:
                 continue
