@@ -545,7 +545,7 @@ def _step9(c: _Ctx):
         c.note("durability test missing: spring stresses without the working oscillation")
     kw = _spring_inputs(c)
     d_out = v["spring_housing_outer_diameter_mm"]
-    d_in = v["pivot_class_diameter_mm"] + 2.0 * constant("spring_bushing_wall_mm")
+    d_in = _f(s7.spring_housing_inner_diameter_mm(v["pivot_class_diameter_mm"]))
     v["spring_support_inner_diameter_mm"] = d_in
     if d.main_spring_mode == "manual":
         size = d.main_spring_wire_size_mm

@@ -240,7 +240,7 @@ def _core(sp: DesignSpace):
     m["spring_cavity"] = pk["margin_spring_cavity"]
     v["spring_housing_height_mm"] = np.asarray(pk["spring_housing_height_mm"], float)
     v["spring_housing_outer_diameter_mm"] = np.asarray(pk["spring_housing_outer_diameter_mm"], float)
-    v["spring_housing_inner_diameter_mm"] = col["pivot_diameter_mm"] + 2 * catalog.constant("spring_support_radial_wall_mm")
+    v["spring_housing_inner_diameter_mm"] = np.asarray(s7.spring_housing_inner_diameter_mm(col["pivot_class_mm"]), float)
     v["hubload_nominal_n"] = np.full(n, f["hubload_nominal_n"])
     names, arr = _stack(m, (n,))
     return names, arr, available, v

@@ -224,8 +224,7 @@ def _spring_table(d, cores: pd.DataFrame, pin: bool) -> pd.DataFrame:
     if pin and d.main_spring_mode == "manual" and d.main_spring_material is not None:
         mats = mats[mats["material"].astype(str) == d.main_spring_material]
     step = catalog.constant("optimise_mbd_step_mm")
-    wall = catalog.constant("spring_support_radial_wall_mm")
-    d_in = float(np.min(cores["pivot_diameter_mm"])) + 2 * wall
+    d_in = float(np.min(s7.spring_housing_inner_diameter_mm(cores["pivot_class_mm"].to_numpy())))
     d_out = float(np.max(s7.spring_housing_outer_diameter_mm(cores["bearing_D_mm"].to_numpy(), d.working_arm_mm)))
     mbd = np.arange(np.ceil(d_in / step) * step, np.floor(d_out / step) * step + step / 2, step)
     if pin and d.main_spring_mode == "manual" and d.main_spring_mean_body_diameter_mm is not None:

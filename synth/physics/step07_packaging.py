@@ -36,6 +36,7 @@ from synth.checks import Check, margin_lower, margin_upper
 from synth.errors import InputError, Problem
 
 __all__ = ["LAYOUTS", "max_belt_plane_height_mm", "min_belt_plane_height_mm", "spring_housing_height_mm",
+           "spring_housing_inner_diameter_mm",
            "spring_housing_outer_diameter_mm", "packaging", "packaging_checks"]
 
 LAYOUTS = ("standard", "reverse")
@@ -110,6 +111,20 @@ def spring_housing_outer_diameter_mm(bearing_outer_diameter_mm, working_arm_mm):
     45.0
     """
     return np.asarray(bearing_outer_diameter_mm, dtype=float) - 2.0 * np.asarray(working_arm_mm, dtype=float)
+
+
+def spring_housing_inner_diameter_mm(pivot_class_diameter_mm):
+    """Inner support of the main spring: pivot class envelope + 2 x spring-bushing wall [mm].
+
+    The thesis gives no spring-bushing dimension; the wall is the illustrative
+    constant ``spring_bushing_wall_mm`` (3 mm: case 1's production spring,
+    Dm 36.8 mm, 2.3 x 2.3 wire, winds without touching). Flowchart and
+    optimiser both read this one function.
+
+    >>> float(spring_housing_inner_diameter_mm(16.0))
+    22.0
+    """
+    return np.asarray(pivot_class_diameter_mm, dtype=float) + 2.0 * catalog.constant("spring_bushing_wall_mm")
 
 
 def packaging(belt_plane_height_mm, max_pivot_height_mm, max_axial_displacement_mm, bearing_width_mm,
