@@ -116,7 +116,8 @@ def nominal_hubload_n(calculated_torque_nm, working_arm_mm, differential_angle_d
                  accepted="an angle in (0, 180) deg")
     if np.any(a >= 180.0):
         raise InputError(Problem("differential_angle_deg", 180.0, "an angle in (0, 180) deg"))
-    return 1000.0 * t / (l * np.sin(np.radians(a)))
+    from synth.physics.step03_damping import hubload_nominal_n  # one implementation of eq. (7)
+    return hubload_nominal_n(t, l, a)
 
 
 # ----------------------------------------------------------------------------------------------
