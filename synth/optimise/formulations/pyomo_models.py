@@ -33,6 +33,19 @@ def _common(m, md, weights, margin_weight):
     m.margin_weight = margin_weight
 
 
+def _bounds_and_objective(m, weights, margin_weight, with_margin):
+    """Margin floor, additive ceiling (lexicographic stages) and the objective, shared by both models."""
+    m.floor = pyo.Constraint(rule=lambda m: m.t >= m.t_lb)
+    m.ceiling = pyo.Constraint(rule=lambda m: m.additive <= m.add_ub)
+
+    def objective_rule(m):
+        if with_margin and not weights:
+            return -m.t
+        return m.additive - margin_weight * m.t
+    m.obj = pyo.Objective(rule=objective_rule, sense=pyo.minimize)
+    return m
+
+
 def milp_model(md, weights: dict, margin_weight: float = 0.0, with_margin: bool = False) -> pyo.ConcreteModel:
     """Linearised selection MILP (combination binaries on feasible pairs)."""
     m = pyo.ConcreteModel("tensioner_milp")
@@ -68,15 +81,7 @@ def milp_model(md, weights: dict, margin_weight: float = 0.0, with_margin: bool 
         return m.t <= sum(float(md.margin[s][c, k]) * m.w[s, c, k] for (s2, c, k) in m.P if s2 == s)
     m.sub_margin = pyo.Constraint(list(SUBSYSTEMS), rule=sub_margin_rule)
 
-    m.floor = pyo.Constraint(rule=lambda m: m.t >= m.t_lb)
-    m.ceiling = pyo.Constraint(rule=lambda m: m.additive <= m.add_ub)
-
-    def objective_rule(m):
-        if with_margin and not weights:
-            return -m.t
-        return m.additive - margin_weight * m.t
-    m.obj = pyo.Objective(rule=objective_rule, sense=pyo.minimize)
-    return m
+    return _bounds_and_objective(m, weights, margin_weight, with_margin)
 
 
 def minlp_model(md, weights: dict, margin_weight: float = 0.0, with_margin: bool = False) -> pyo.ConcreteModel:
@@ -112,12 +117,4 @@ def minlp_model(md, weights: dict, margin_weight: float = 0.0, with_margin: bool
         return m.t <= sum(float(md.margin[s][c, k]) * m.x[int(c)] * m.z[s, int(k)] for c, k in zip(c_idx, k_idx))
     m.sub_margin = pyo.Constraint(list(SUBSYSTEMS), rule=sub_margin_rule)
 
-    m.floor = pyo.Constraint(rule=lambda m: m.t >= m.t_lb)
-    m.ceiling = pyo.Constraint(rule=lambda m: m.additive <= m.add_ub)
-
-    def objective_rule(m):
-        if with_margin and not weights:
-            return -m.t
-        return m.additive - margin_weight * m.t
-    m.obj = pyo.Objective(rule=objective_rule, sense=pyo.minimize)
-    return m
+    return _bounds_and_objective(m, weights, margin_weight, with_margin)
