@@ -25,6 +25,9 @@ SCENES = [
     "synth.scenes.report",
     "synth.scenes.design",
     "synth.scenes.pareto",
+    "synth.scenes.cad",
+    "synth.scenes.bulk",
+    "synth.scenes.portfolio_sample",
 ]
 
 
