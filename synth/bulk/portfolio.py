@@ -1,0 +1,218 @@
+"""Portfolio tables: one application per row, design-input fields as columns.
+
+A portfolio is a CSV, Excel (``.xlsx``) or Parquet file whose column names
+are the field names (or aliases) of :data:`synth.schema.FIELDS`; other
+columns (an application id, a customer...) are carried through untouched.
+Cells are cleaned before validation: empty cells and NaN are ``None`` (the
+field is not given), text is stripped, and the list-valued field
+``main_spring_wire_size_mm`` is parsed from ``"2.3"``, ``"2.3x4.0"``,
+``"2.3; 4.0"`` or ``"[2.3, 4.0]"`` as the Excel template reader does.
+
+Every row is validated on its own with :func:`synth.schema.validate`; an
+:class:`~synth.errors.InputError` becomes the row's ``error`` text (one
+``field: got value; accepted: ...`` per problem, ``' | '``-joined) and never
+stops the other rows.
+
+>>> import pandas as pd
+>>> from synth.data.generated_applications import generate
+>>> table = to_table(generate(2, seed=0))
+>>> table.loc[1, "working_arm_mm"] = "abc"
+>>> apps, errors = validate_rows(table)
+>>> apps[0] is not None, apps[1] is None, errors[1].startswith("working_arm_mm: got 'abc'")
+(True, True, True)
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from synth import schema
+from synth.errors import InputError, Problem
+
+__all__ = ["FORMATS", "read_portfolio", "write_table", "to_table", "clean_cell", "row_record", "records",
+           "validate_record", "validate_rows", "field_columns", "column_warnings", "format_problems"]
+
+#: file suffix -> format name
+FORMATS = {".csv": "csv", ".xlsx": "excel", ".xlsm": "excel", ".parquet": "parquet", ".pq": "parquet"}
+
+_NAMES = {f.name for f in schema.FIELDS}
+_ALIASES = {a: f.name for f in schema.FIELDS for a in f.aliases}
+_LIST_FIELDS = {f.name for f in schema.FIELDS if f.kind == "list"}
+_ACCEPTED = "an existing portfolio table: " + ", ".join(sorted(FORMATS)) + " (one application per row)"
+
+
+def _format(path: Path, what: str) -> str:
+    fmt = FORMATS.get(path.suffix.lower())
+    if fmt is None:
+        raise InputError(Problem(what, str(path), "a file ending in " + ", ".join(sorted(FORMATS))))
+    return fmt
+
+
+def read_portfolio(path) -> pd.DataFrame:
+    """Read a portfolio table (CSV, Excel or Parquet, by extension) as it is in the file.
+
+    CSV cells are read as text (the validator converts them, so ``"3,5"`` or
+    ``"abc"`` reach it and are reported, not turned into NaN by pandas);
+    Excel and Parquet keep their cell types. The index is reset to 0..n-1.
+    Raises :class:`~synth.errors.InputError` (exit code 2 in the CLI) for a
+    missing, unreadable or empty file or one without any design-input column.
+    """
+    p = Path(path)
+    fmt = _format(p, "portfolio")
+    if not p.is_file():
+        raise InputError(Problem("portfolio", str(p), _ACCEPTED))
+    try:
+        if fmt == "csv":
+            df = pd.read_csv(p, dtype=str, skipinitialspace=True)
+        elif fmt == "excel":
+            df = pd.read_excel(p, dtype=object)
+        else:
+            df = pd.read_parquet(p)
+    except Exception as exc:  # parser errors: keep the parser's message
+        raise InputError(Problem("portfolio", str(p), f"a readable {fmt} table ({type(exc).__name__}: {exc})")) from None
+    df.columns = [str(c).strip() for c in df.columns]
+    if not field_columns(df):
+        raise InputError(Problem("portfolio", str(p), "a table whose columns are design-input field names "
+                                 "(e.g. " + ", ".join(f.name for f in schema.FIELDS[:3]) + ")"))
+    return df.reset_index(drop=True)
+
+
+def field_columns(df: pd.DataFrame) -> list[str]:
+    """The columns of ``df`` that are design-input fields (by name or alias)."""
+    return [c for c in df.columns if c in _NAMES or c in _ALIASES]
+
+
+def column_warnings(df: pd.DataFrame) -> list[str]:
+    """Warnings about columns that look like misspelt field names (they are carried through, not used).
+
+    >>> column_warnings(pd.DataFrame(columns=["working_arm_mm", "wroking_arm", "application_id"]))
+    ["column 'wroking_arm' is not a design-input field and is not used (did you mean working_arm_mm?)"]
+    """
+    used = set(field_columns(df))
+    out = []
+    for c in df.columns:
+        if c in used:
+            continue
+        near = difflib.get_close_matches(c, sorted(_NAMES - used), n=1, cutoff=0.75)
+        if near:
+            out.append(f"column {c!r} is not a design-input field and is not used (did you mean {near[0]}?)")
+    return out
+
+
+def _parse_list(value):
+    """A wire-size cell as a list of numbers; text that does not parse is kept (the validator reports it)."""
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [float(v) if isinstance(v, (int, float, np.number)) else v for v in value]
+    if isinstance(value, (int, float, np.number)):
+        return [float(value)]
+    parts = [p for p in re.split(r"[x×X;,\s\[\]]+", str(value)) if p]
+    try:
+        return [float(p) for p in parts]
+    except ValueError:
+        return value
+
+
+def clean_cell(value, name: str | None = None):
+    """One cell as the validator expects it: empty/NaN -> None, text stripped, numpy scalars as Python.
+
+    >>> clean_cell("  "), clean_cell(float("nan")), clean_cell(" dry "), clean_cell("2.3x4.0", "main_spring_wire_size_mm")
+    (None, None, 'dry', [2.3, 4.0])
+    """
+    if value is None or value is pd.NA or value is pd.NaT:
+        return None
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and math.isnan(value):
+        return None
+    if isinstance(value, str):
+        value = value.strip()
+        if not value:
+            return None
+    if name is not None and _ALIASES.get(name, name) in _LIST_FIELDS:
+        return _parse_list(value)
+    return value
+
+
+def row_record(row: dict) -> dict:
+    """The design-input mapping of one table row (only field columns, cells cleaned, empty cells left out)."""
+    out = {}
+    for k, v in row.items():
+        if k in _NAMES or k in _ALIASES:
+            v = clean_cell(v, k)
+            if v is not None:
+                out[k] = v
+    return out
+
+
+def records(df: pd.DataFrame) -> list[dict]:
+    """:func:`row_record` of every row of ``df``, in order."""
+    cols = field_columns(df)
+    return [row_record(r) for r in df[cols].to_dict(orient="records")]
+
+
+def format_problems(exc: InputError) -> str:
+    """``field: got 'x'; accepted: ...`` for every problem of ``exc``, joined with ``' | '``."""
+    return " | ".join(str(p) for p in exc.problems)
+
+
+def validate_record(rec: dict):
+    """``(DesignInput, "")`` for a valid record, ``(None, error text)`` otherwise (never raises for bad data)."""
+    try:
+        return schema.validate(rec), ""
+    except InputError as exc:
+        return None, format_problems(exc)
+
+
+def validate_rows(df: pd.DataFrame) -> tuple[list, list[str]]:
+    """Validate every row of ``df``: ``(apps, errors)``, ``apps[i]`` None where ``errors[i]`` says why."""
+    out = [validate_record(r) for r in records(df)]
+    return [a for a, _ in out], [e for _, e in out]
+
+
+def _list_text(v) -> str:
+    return "x".join(f"{float(x):g}" for x in v)
+
+
+def to_table(apps) -> pd.DataFrame:
+    """A portfolio table of validated inputs: one column per field (all fields, in :data:`FIELDS` order).
+
+    List values are written as ``"2.3x4"`` so that every format (CSV, Excel, Parquet) stores them.
+    """
+    rows = []
+    for a in apps:
+        d = a.as_dict() if hasattr(a, "as_dict") else dict(a)
+        rows.append({f.name: (_list_text(d[f.name]) if f.name in _LIST_FIELDS and d.get(f.name) is not None
+                              else d.get(f.name)) for f in schema.FIELDS})
+    return pd.DataFrame(rows, columns=[f.name for f in schema.FIELDS])
+
+
+def arrow_safe(df: pd.DataFrame) -> pd.DataFrame:
+    """A copy Parquet can store: object columns mixing types (numbers and text) become text, None kept."""
+    out = df.copy()
+    for c in out.columns:
+        if out[c].dtype != object:
+            continue
+        kinds = {type(v) for v in out[c] if v is not None and not (isinstance(v, float) and math.isnan(v))}
+        if len(kinds) > 1 and not kinds <= {int, float, np.float64, np.int64}:
+            out[c] = [None if v is None or (isinstance(v, float) and math.isnan(v)) else str(v) for v in out[c]]
+    return out
+
+
+def write_table(df: pd.DataFrame, path) -> Path:
+    """Write ``df`` as CSV, Excel or Parquet by the extension of ``path`` (folders created)."""
+    p = Path(path)
+    fmt = _format(p, "output")
+    p.parent.mkdir(parents=True, exist_ok=True)
+    if fmt == "csv":
+        df.to_csv(p, index=False)
+    elif fmt == "excel":
+        df.to_excel(p, index=False)
+    else:
+        arrow_safe(df).to_parquet(p, index=False)
+    return p

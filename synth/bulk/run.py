@@ -1,0 +1,463 @@
+"""Run a portfolio through the bulk engine: chunks, resume, progress, in-process or on Dask.
+
+:func:`run_portfolio` reads the portfolio, cuts its rows into chunks of
+``chunk_size`` (by input position, so a chunk is the same rows on every
+run), and evaluates each chunk with :func:`compute_chunk`: the rows are
+validated one by one (a bad row gets its error text and status ``error``),
+the valid ones go to :func:`synth.bulk.engine.screen_applications` in one
+vectorised call.
+
+Every finished chunk is written at once to ``<RESULT>.chunks/chunk_NNNNN.parquet``
+(a temporary name, then :func:`os.replace`, so a chunk file is complete or
+absent) next to ``manifest.json`` (portfolio hash, objective, fidelity, chunk
+size, diagnosis, synth version, catalog hash). ``resume=True`` checks the
+manifest against the current settings (a difference is an
+:class:`~synth.errors.InputError` naming the setting) and computes only the
+chunks without a file. The final RESULT (CSV, Excel or Parquet by extension)
+is the input table, in input order, plus the engine's result columns and
+``error``; it is assembled from the chunk files, so a fresh and a resumed run
+give the same table.
+
+``engine="dask"`` submits one task per chunk to a ``dask.distributed``
+cluster (a :class:`~distributed.LocalCluster` of ``workers`` one-thread
+processes, or the scheduler at ``scheduler``) and writes each chunk as it
+arrives; the table is the same as in-process.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import json
+import logging
+import math
+import os
+import time
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+import pandas as pd
+
+from synth import __version__, catalog
+from synth.bulk.portfolio import (arrow_safe, column_warnings, field_columns, read_portfolio, records,
+                                  validate_record, write_table)
+from synth.errors import InputError, Problem
+from synth.report.progress import Progress
+
+__all__ = ["ENGINES", "FIDELITIES", "DEFAULT_CHUNK_SIZE", "RunReport", "result_columns", "compute_chunk",
+           "run_portfolio", "sidecar", "manifest_of", "chunk_ranges"]
+
+ENGINES = ("inprocess", "dask")
+FIDELITIES = ("screening", "full")
+#: applications per chunk: a few hundred keeps the engine's applications x candidates arrays in memory
+DEFAULT_CHUNK_SIZE = 250
+MANIFEST = "manifest.json"
+_MANIFEST_KEYS = ("portfolio_sha256", "n_rows", "objective", "fidelity", "chunk_size", "diagnose",
+                  "synth_version", "catalogs_sha256")
+
+
+def result_columns() -> list[str]:
+    """The engine's result columns (:func:`synth.bulk.engine.columns`) followed by ``error``."""
+    from synth.bulk.engine import columns
+    return list(columns()) + ["error"]
+
+
+def _kind(col: str) -> str:
+    """How a result column is typed: bool, float, part (object) or text."""
+    if col == "feasible":
+        return "bool"
+    if col.startswith("part_"):
+        return "part"
+    if col.startswith(("margin_", "objective_")) or col == "binding_margin":
+        return "float"
+    return "text"
+
+
+def _error_row(cols: list[str], message: str) -> dict:
+    row = {}
+    for c in cols:
+        k = _kind(c)
+        row[c] = False if k == "bool" else (math.nan if k == "float" else (None if k == "part" else ""))
+    row["status"], row["error"] = "error", message
+    row["notes"] = "not evaluated: input error"
+    return row
+
+
+def _screen_default():
+    from synth.bulk.engine import screen_applications
+    return screen_applications
+
+
+def _call_engine(screen, apps, objective, fidelity, diagnose) -> pd.DataFrame:
+    df = screen(apps, objective=objective, fidelity=fidelity, diagnose=diagnose)
+    if len(df) != len(apps):
+        raise RuntimeError(f"engine returned {len(df)} rows for {len(apps)} applications")
+    return df.reset_index(drop=True)
+
+
+def compute_chunk(recs: list[dict], *, objective: str = "standard", fidelity: str = "screening",
+                  diagnose: bool = True, screen: Callable | None = None,
+                  catalog_dirs: tuple[str, ...] | None = None) -> pd.DataFrame:
+    """Validate and evaluate one chunk of design-input records: one result row per record, in order.
+
+    Valid records go to the engine in one call; a record that fails
+    validation gets ``status = "error"`` and its problems in ``error``. If the
+    engine raises on the chunk, the chunk is evaluated one application at a
+    time and only the failing ones get ``error = "engine: ..."``: one bad
+    row never stops a portfolio. ``catalog_dirs`` are the user catalog
+    folders to use (re-applied in a Dask worker process).
+    """
+    if catalog_dirs is not None and [str(p) for p in catalog._user_dirs()] != list(catalog_dirs):
+        catalog.set_user_dirs(*catalog_dirs)
+    screen = screen or _screen_default()
+    cols = result_columns()
+    checked = [validate_record(r) for r in recs]
+    valid = [i for i, (a, _) in enumerate(checked) if a is not None]
+    apps = [checked[i][0] for i in valid]
+    rows: list[dict] = [_error_row(cols, e) if a is None else {} for a, e in checked]
+    try:
+        res = _call_engine(screen, apps, objective, fidelity, diagnose).to_dict(orient="records")
+        for i, r in zip(valid, res):
+            rows[i] = {**r, "error": ""}
+    except InputError:
+        raise  # a bad setting (objective...): the same for every row, reported once
+    except Exception:
+        for i, a in zip(valid, apps):
+            try:
+                r = _call_engine(screen, [a], objective, fidelity, diagnose).to_dict(orient="records")[0]
+                rows[i] = {**r, "error": ""}
+            except Exception as exc:  # noqa: BLE001 - reported in the row, never swallowed
+                rows[i] = _error_row(cols, f"engine: {type(exc).__name__}: {exc}")
+    return _typed(pd.DataFrame(rows, columns=cols))
+
+
+def _typed(df: pd.DataFrame) -> pd.DataFrame:
+    """Result columns with fixed types whatever the chunking: bool, float, object parts (None), text."""
+    out = df.copy()
+    for c in out.columns:
+        k = _kind(c)
+        if k == "bool":
+            out[c] = out[c].fillna(False).astype(bool)
+        elif k == "float":
+            out[c] = pd.to_numeric(out[c], errors="coerce").astype(float)
+        elif k == "part":
+            out[c] = pd.Series([_plain(v) for v in out[c]], index=out.index, dtype=object)
+        else:
+            out[c] = pd.Series(["" if _plain(v) is None else str(v) for v in out[c]], index=out.index, dtype=object)
+    return out
+
+
+def _plain(v):
+    if isinstance(v, np.generic):
+        v = v.item()
+    if v is None or v is pd.NA or (isinstance(v, float) and math.isnan(v)):
+        return None
+    return v
+
+
+def chunk_ranges(n: int, chunk_size: int) -> list[tuple[int, int]]:
+    """``[(start, stop)]`` of the chunks of ``n`` rows.
+
+    >>> chunk_ranges(5, 2)
+    [(0, 2), (2, 4), (4, 5)]
+    """
+    return [(s, min(s + chunk_size, n)) for s in range(0, n, chunk_size)]
+
+
+def sidecar(out) -> Path:
+    """The folder of chunk files and manifest of result ``out``: ``<out>.chunks``."""
+    p = Path(out)
+    return p.with_name(p.name + ".chunks")
+
+
+def _chunk_path(folder: Path, i: int) -> Path:
+    return folder / f"chunk_{i:05d}.parquet"
+
+
+def _sha256_file(path: Path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _sha256_frame(df: pd.DataFrame) -> str:
+    h = hashlib.sha256("\x1f".join(map(str, df.columns)).encode())
+    h.update(pd.util.hash_pandas_object(df.astype(str), index=True).values.tobytes())
+    return h.hexdigest()
+
+
+def _catalogs_sha256() -> str:
+    """Hash of every catalog CSV in use (built-in and user folders): a changed catalog invalidates a resume."""
+    h = hashlib.sha256()
+    for d in [catalog.builtin_dir()] + list(catalog._user_dirs()):
+        for p in sorted(Path(d).glob("*.csv")):
+            h.update(str(p.name).encode())
+            h.update(p.read_bytes())
+    return h.hexdigest()
+
+
+def manifest_of(portfolio_hash: str, n_rows: int, *, objective: str, fidelity: str, chunk_size: int,
+                diagnose: bool) -> dict:
+    """The manifest of a run: what must not change between an interrupted run and its resume."""
+    return {"portfolio_sha256": portfolio_hash, "n_rows": int(n_rows), "objective": str(objective),
+            "fidelity": str(fidelity), "chunk_size": int(chunk_size), "diagnose": bool(diagnose),
+            "synth_version": __version__, "catalogs_sha256": _catalogs_sha256()}
+
+
+def _check_manifest(old: dict, new: dict, folder: Path) -> None:
+    labels = {"portfolio_sha256": "the portfolio file (its content changed)", "n_rows": "the number of rows",
+              "objective": "--objective", "fidelity": "--fidelity", "chunk_size": "--chunk-size",
+              "diagnose": "--no-diagnose", "synth_version": "the synth version",
+              "catalogs_sha256": "the catalogs (a CSV or --catalogs folder changed)"}
+    problems = []
+    for k in _MANIFEST_KEYS:
+        if old.get(k) != new[k]:
+            shown_old = old.get(k) if not k.endswith("sha256") else str(old.get(k))[:12]
+            shown_new = new[k] if not k.endswith("sha256") else new[k][:12]
+            problems.append(Problem(f"--resume: {labels[k]}", shown_new,
+                                    f"{shown_old!r} as in the interrupted run ({folder / MANIFEST}); "
+                                    "rerun without --resume to start again"))
+    if problems:
+        raise InputError(problems)
+
+
+def _write_atomic_json(path: Path, data: dict) -> None:
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_text(json.dumps(data, indent=2), encoding="utf-8")
+    os.replace(tmp, path)
+
+
+def _write_chunk(folder: Path, i: int, start: int, df: pd.DataFrame) -> None:
+    df = df.copy()
+    df.insert(0, "row", np.arange(start, start + len(df), dtype=np.int64))
+    final = _chunk_path(folder, i)
+    tmp = final.with_name(f".{final.name}.{os.getpid()}.tmp")
+    arrow_safe(df).to_parquet(tmp, index=False)
+    os.replace(tmp, final)
+
+
+def _chunk_done(folder: Path, i: int, start: int, stop: int) -> bool:
+    p = _chunk_path(folder, i)
+    if not p.is_file():
+        return False
+    try:
+        rows = pd.read_parquet(p, columns=["row"])["row"].to_numpy()
+    except Exception:  # a damaged file (should not happen with os.replace): recompute it
+        return False
+    return len(rows) == stop - start and bool((rows == np.arange(start, stop)).all())
+
+
+def _clear(folder: Path) -> None:
+    """Remove this module's files (chunks, temporaries, manifest) from ``folder``, nothing else."""
+    for p in list(folder.glob("chunk_*.parquet")) + list(folder.glob(".chunk_*.tmp")) + [folder / MANIFEST]:
+        with contextlib.suppress(FileNotFoundError):
+            p.unlink()
+
+
+@dataclass
+class RunReport:
+    """What a run did: the result table (None while incomplete), chunk counts and timing."""
+
+    out: Path
+    table: pd.DataFrame | None
+    n_rows: int
+    n_chunks: int
+    computed: int
+    reused: int
+    seconds: float
+    engine: str
+    complete: bool
+    warnings: list = field(default_factory=list)
+    rows_computed: int = 0
+    total_seconds: float = 0.0
+
+    @property
+    def n_errors(self) -> int:
+        return 0 if self.table is None else int((self.table["status"] == "error").sum())
+
+    @property
+    def apps_per_s(self) -> float:
+        """Applications per second over the chunks computed in this run (reused chunks not counted)."""
+        return self.rows_computed / self.seconds if self.seconds > 0 else math.inf
+
+    def message(self) -> str:
+        state = "complete" if self.complete else "interrupted"
+        return (f"{self.n_rows} applications in {self.n_chunks} chunks: {self.computed} computed, "
+                f"{self.reused} reused ({state}, {self.engine}, {self.seconds:.1f} s)")
+
+
+def _validate_settings(objective, fidelity, chunk_size, engine, workers) -> None:
+    from synth.optimise.objectives import Objective
+    Objective.parse(objective)
+    if fidelity not in FIDELITIES:
+        raise InputError(Problem("--fidelity", fidelity, "one of " + ", ".join(FIDELITIES)))
+    if engine not in ENGINES:
+        raise InputError(Problem("--engine", engine, "one of " + ", ".join(ENGINES)))
+    if not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
+        raise InputError(Problem("--chunk-size", chunk_size, "an integer >= 1"))
+    if workers is not None and (not isinstance(workers, (int, np.integer)) or workers < 1):
+        raise InputError(Problem("--workers", workers, "an integer >= 1"))
+
+
+def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str = "screening",
+                  chunk_size: int = DEFAULT_CHUNK_SIZE, resume: bool = False, engine: str = "inprocess",
+                  scheduler: str | None = None, workers: int | None = None, diagnose: bool = True,
+                  stop_after_chunks: int | None = None, screen: Callable | None = None,
+                  stream=None) -> RunReport:
+    """Evaluate every application of ``portfolio`` (a path or a DataFrame) and write ``out``.
+
+    ``stop_after_chunks=k`` stops after ``k`` chunks computed in this run (a
+    test hook simulating an interruption: the report has ``complete=False``
+    and no RESULT is written). ``screen`` replaces the engine function (same
+    signature as :func:`synth.bulk.engine.screen_applications`; on Dask it
+    must be picklable). Progress is drawn on ``stream`` (default stderr) when
+    it is a terminal.
+    """
+    _validate_settings(objective, fidelity, chunk_size, engine, workers)
+    t0 = time.monotonic()
+    if isinstance(portfolio, pd.DataFrame):
+        table = portfolio.reset_index(drop=True)
+        if not field_columns(table):
+            raise InputError(Problem("portfolio", "DataFrame", "a table whose columns are design-input field names"))
+        p_hash = _sha256_frame(table)
+    else:
+        table = read_portfolio(portfolio)
+        p_hash = _sha256_file(Path(portfolio))
+    out = Path(out)
+    write_check = out.suffix.lower()
+    from synth.bulk.portfolio import FORMATS
+    if write_check not in FORMATS:
+        raise InputError(Problem("--out", str(out), "a file ending in " + ", ".join(sorted(FORMATS))))
+    notes = column_warnings(table)
+    rcols = result_columns()
+    clash = [c for c in table.columns if c in rcols or c == "row"]
+    if clash:
+        notes.append("input columns replaced by result columns: " + ", ".join(clash))
+        table = table.drop(columns=clash)
+    n = len(table)
+    ranges = chunk_ranges(n, int(chunk_size))
+    folder = sidecar(out)
+    manifest = manifest_of(p_hash, n, objective=objective, fidelity=fidelity, chunk_size=int(chunk_size),
+                           diagnose=diagnose)
+    if resume and (folder / MANIFEST).is_file():
+        try:
+            old = json.loads((folder / MANIFEST).read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            raise InputError(Problem("--resume", str(folder / MANIFEST), "a readable manifest; rerun without --resume")) from None
+        _check_manifest(old, manifest, folder)
+    else:
+        if resume:
+            notes.append(f"nothing to resume in {folder}: starting from the first chunk")
+        folder.mkdir(parents=True, exist_ok=True)
+        _clear(folder)
+        _write_atomic_json(folder / MANIFEST, manifest)
+    recs = records(table)
+    done = [i for i, (a, b) in enumerate(ranges) if resume and _chunk_done(folder, i, a, b)]
+    todo = [i for i in range(len(ranges)) if i not in set(done)]
+    todo_set = set(todo)
+    kw = dict(objective=objective, fidelity=fidelity, diagnose=diagnose, screen=screen,
+              catalog_dirs=tuple(str(p) for p in catalog._user_dirs()))
+    computed = 0
+
+    def rows_computed() -> int:  # rows of the chunks computed in this run (written files not reused)
+        return sum(b - a for i, (a, b) in enumerate(ranges) if i in todo_set and _chunk_path(folder, i).is_file())
+
+    t_compute = time.monotonic()
+    with Progress(total=n, desc=f"synth bulk ({engine})", stream=stream) as bar:
+        bar.update(sum(ranges[i][1] - ranges[i][0] for i in done), note="reused")
+        if engine == "inprocess":
+            for i in todo:
+                if stop_after_chunks is not None and computed >= stop_after_chunks:
+                    break
+                a, b = ranges[i]
+                _write_chunk(folder, i, a, compute_chunk(recs[a:b], **kw))
+                computed += 1
+                bar.update(b - a)
+        else:
+            computed = _run_dask(recs, ranges, todo, folder, kw, scheduler, workers, stop_after_chunks, bar)
+    seconds = time.monotonic() - t_compute
+    complete = all(_chunk_path(folder, i).is_file() for i in range(len(ranges)))
+    result = None
+    if complete:
+        result = assemble(table, folder, len(ranges))
+        write_table(result, out)
+    rep = RunReport(out=out, table=result, n_rows=n, n_chunks=len(ranges), computed=computed, reused=len(done),
+                    seconds=seconds, engine=engine, complete=complete, warnings=notes,
+                    rows_computed=rows_computed(), total_seconds=time.monotonic() - t0)
+    return rep
+
+
+def assemble(table: pd.DataFrame, folder: Path, n_chunks: int) -> pd.DataFrame:
+    """The input ``table`` plus the result columns read back from the ``n_chunks`` chunk files, in input order."""
+    parts = [pd.read_parquet(_chunk_path(folder, i)) for i in range(n_chunks)]
+    cols = result_columns()
+    res = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=["row"] + cols)
+    res = res.sort_values("row").reset_index(drop=True)
+    if len(res) != len(table) or not (res["row"].to_numpy() == np.arange(len(table))).all():
+        raise RuntimeError(f"chunk files in {folder} do not cover rows 0..{len(table) - 1}")
+    res = _typed(res.reindex(columns=cols))
+    return pd.concat([table.reset_index(drop=True), res], axis=1)
+
+
+def _run_dask(recs, ranges, todo, folder, kw, scheduler, workers, stop_after_chunks, bar) -> int:
+    """Compute chunks ``todo`` on Dask, writing each as it completes; returns how many were written."""
+    try:
+        from dask.distributed import Client, LocalCluster, as_completed
+    except ImportError:  # pragma: no cover - dask[distributed] is a dependency
+        raise InputError(Problem("--engine", "dask", "an installation with dask[distributed] (pip install 'dask[distributed]')")) from None
+    if not todo:
+        return 0
+    computed = 0
+    with _quiet_dask(), contextlib.ExitStack() as stack:
+        if scheduler:
+            try:
+                client = stack.enter_context(Client(scheduler, timeout="20s"))
+            except (OSError, TimeoutError) as exc:
+                raise InputError(Problem("--scheduler", scheduler, f"the address of a running Dask scheduler ({exc})")) from None
+        else:
+            cluster = stack.enter_context(LocalCluster(n_workers=int(workers or 2), threads_per_worker=1,
+                                                       processes=True, dashboard_address=None,
+                                                       silence_logs=logging.ERROR))
+            client = stack.enter_context(Client(cluster))
+        futures = {}
+        for i in todo:
+            a, b = ranges[i]
+            fut = client.submit(compute_chunk, recs[a:b], pure=False, **kw)
+            futures[fut] = i
+        try:
+            for fut in as_completed(list(futures)):
+                i = futures[fut]
+                a, b = ranges[i]
+                _write_chunk(folder, i, a, fut.result())
+                computed += 1
+                bar.update(b - a)
+                if stop_after_chunks is not None and computed >= stop_after_chunks:
+                    break
+        finally:
+            for fut in futures:
+                if not fut.done():
+                    fut.cancel()
+    return computed
+
+
+@contextlib.contextmanager
+def _quiet_dask():
+    """Silence distributed's shutdown chatter (log lines, resource warnings) for the span of a run."""
+    loggers = [logging.getLogger(n) for n in ("distributed", "distributed.nanny", "distributed.worker",
+                                              "distributed.scheduler", "distributed.core", "tornado")]
+    levels = [lg.level for lg in loggers]
+    for lg in loggers:
+        lg.setLevel(logging.CRITICAL)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ResourceWarning)
+            warnings.simplefilter("ignore", DeprecationWarning)
+            yield
+    finally:
+        for lg, lv in zip(loggers, levels):
+            lg.setLevel(lv)
