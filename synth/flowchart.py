@@ -93,6 +93,33 @@ class FlowchartResult:
     def failed(self) -> list:
         return [c for c in self.checks if c.verdict == FAIL]
 
+    @property
+    def parts(self) -> dict | None:
+        """The catalog choices of this run as the optimiser names them (:data:`PART_KEYS`), or None.
+
+        None when the flowchart stopped before choosing every part (self-locking,
+        no Table 2 class, a step not run). ``run(d, parts=result.parts)``
+        re-verifies the same design.
+        """
+        v = self.values
+        need = ("ball_bearing", "pivot_class_diameter_mm", "pivot_bushing_supplier", "pivot_bushing_length_mm",
+                "main_spring_material", "main_spring_wire_section", "main_spring_mean_body_diameter_mm",
+                "bolt_format", "bolt_property_class")
+        if any(v.get(k) is None for k in need):
+            return None
+        axial = bool(v.get("axial_damping_present"))
+        if axial and v.get("damper_pad_class") is None:
+            return None
+        return {"bearing": v["ball_bearing"], "pivot_class_mm": float(v["pivot_class_diameter_mm"]),
+                "supplier": v["pivot_bushing_supplier"], "damper_pad": v["damper_pad_class"] if axial else "none",
+                "bushing_length_mm": float(v["pivot_bushing_length_mm"]),
+                "endcap_spacer": v["endcap_spacer_class"] if axial else "none",
+                "cone_aspect_ratio": float(v.get("cone_aspect_ratio", 0.0)) if axial else 0.0,
+                "spring_material": v["main_spring_material"],
+                "spring_wire": _wire_designation(v["main_spring_wire_section"], v["main_spring_wire_size_mm"]),
+                "spring_mbd_mm": float(v["main_spring_mean_body_diameter_mm"]),
+                "bolt_format": v["bolt_format"], "bolt_property_class": v["bolt_property_class"]}
+
     def not_verified(self) -> list:
         return [c for c in self.checks if c.verdict == NOT_VERIFIED]
 
@@ -133,6 +160,7 @@ class _Ctx:
         self.d, self.s = d, settings
         self.r = FlowchartResult(d, settings)
         self.v = self.r.values
+        self.parts = None
 
     def check(self, name, step, value, limit, kind="<=", unit="", equation="", correction="", note=""):
         c = Check(name, step, None if value is None else float(value), None if limit is None else float(limit),
@@ -205,7 +233,14 @@ def _step1(c: _Ctx):
     d, v = c.d, c.v
     v["hubload_nominal_n"] = _f(s3.hubload_nominal_n(d.calculated_torque_target_nm, d.working_arm_mm,
                                                      d.differential_angle_deg))
-    v["ball_bearing"] = str(s1.select_bearing(v["hubload_nominal_n"], d.engine_fuel)[0])
+    if c.parts:
+        v["ball_bearing"] = str(c.parts["bearing"])
+        limit = s1.max_hubload_n(v["ball_bearing"], d.engine_fuel)
+        if limit is not None:
+            c.check("hubload within the bearing's Table 1 range", 1, v["hubload_nominal_n"], limit, "<=", "N", "Table 1",
+                    correction="a larger bearing")
+    else:
+        v["ball_bearing"] = str(s1.select_bearing(v["hubload_nominal_n"], d.engine_fuel)[0])
     v["bearing_inner_diameter_mm"] = _f(s1.bearing_inner_diameter_mm(v["ball_bearing"]))
     b = catalog.row("ball_bearings", v["ball_bearing"])
     v["bearing_outer_diameter_mm"], v["bearing_width_mm"] = float(b["D_mm"]), float(b["B_mm"])
@@ -331,14 +366,25 @@ def _step4(c: _Ctx):
             c.skip(name, 4, dur, "eq. (28)-(42)")
         c.note(f"step 4 not run: {dur} missing (the bushing length needs the durability test)")
         return
-    supplier = s4.supplier_for_thickness(v["pivot_bushing_radial_thickness_mm"])
     par_max = d.pulley_max_parallelism_eol_mm
-    r = s4.select_bushing_length(
-        v["hubload_nominal_n"], v["pivot_diameter_mm"], *dur, supplier=supplier, environment=d.application_type,
-        belt_plane_height_mm=d.middle_plane_belt_height_mm, max_pivot_height_mm=d.max_pivot_height_mm,
-        axial_damping=v["axial_damping_present"], pulley_diameter_mm=d.pulley_diameter_mm,
-        parallelism_max_mm=par_max if par_max is not None else 1e9, scheme=s.bushing_length_scheme,
-        fidelity="full" if s.bushing_running_in else "screening")
+    if c.parts:
+        supplier = str(c.parts["supplier"])
+        r = dict(s4.evaluate_bushing(
+            v["hubload_nominal_n"], v["pivot_diameter_mm"], float(c.parts["bushing_length_mm"]), *dur, supplier=supplier,
+            environment=d.application_type, belt_plane_height_mm=d.middle_plane_belt_height_mm,
+            max_pivot_height_mm=d.max_pivot_height_mm, axial_damping=v["axial_damping_present"],
+            pulley_diameter_mm=d.pulley_diameter_mm, parallelism_max_mm=par_max if par_max is not None else 1e9,
+            fidelity="full" if s.bushing_running_in else "screening"))
+        r.update(length_mm=float(c.parts["bushing_length_mm"]), length_catalog_mm=float(c.parts["bushing_length_mm"]),
+                 found=r["passes"])
+    else:
+        supplier = s4.supplier_for_thickness(v["pivot_bushing_radial_thickness_mm"])
+        r = s4.select_bushing_length(
+            v["hubload_nominal_n"], v["pivot_diameter_mm"], *dur, supplier=supplier, environment=d.application_type,
+            belt_plane_height_mm=d.middle_plane_belt_height_mm, max_pivot_height_mm=d.max_pivot_height_mm,
+            axial_damping=v["axial_damping_present"], pulley_diameter_mm=d.pulley_diameter_mm,
+            parallelism_max_mm=par_max if par_max is not None else 1e9, scheme=s.bushing_length_scheme,
+            fidelity="full" if s.bushing_running_in else "screening")
     v["pivot_bushing_supplier"] = supplier
     v["pivot_bushing_length_mm"] = _f(r["length_mm"])
     v["pivot_bushing_length_catalog_mm"] = _f(r["length_catalog_mm"])
@@ -375,6 +421,20 @@ def _step5(c: _Ctx):
     pads, spacers = catalog.load("damper_pads"), catalog.load("endcap_spacers")
     share = v["axial_damping_nm"] / 2.0
     start = int(np.searchsorted(pads["max_axial_damping_nm"].astype(float).to_numpy(), share, side="left"))
+    aspect = None
+    if c.parts:  # fixed parts: one pad/spacer pair, the given cone-spring aspect ratio, no class loop
+        if str(c.parts.get("damper_pad")) == "none" or str(c.parts.get("endcap_spacer")) == "none":
+            c.check("axial damping group in the parts", 3, 0.0, 1.0, ">=", "-", "eq. (9)-(11)",
+                    correction="choose a damper pad and an endcap spacer class (the damping split needs axial damping)")
+            return
+        pads = pads[pads["class"].astype(str) == str(c.parts["damper_pad"])].reset_index(drop=True)
+        sp_row = spacers[spacers["class"].astype(str) == str(c.parts["endcap_spacer"])]
+        spacers = sp_row.reset_index(drop=True)
+        aspect = float(c.parts["cone_aspect_ratio"])
+        for name, row, cls in (("damper pad", pads, "damper_pad"), ("endcap spacer", spacers, "endcap_spacer")):
+            c.check(f"{name} class carries the axial damping", 3, share, float(row["max_axial_damping_nm"].iloc[0]),
+                    "<=", "Nm", "Tables 3-4", correction=f"a larger {name} class")
+        start = 0
     if start >= len(pads):
         c.check("axial damping within the plastic-element classes", 5, share, float(pads["max_axial_damping_nm"].max()),
                 "<=", "Nm", "Tables 3-4", correction="a larger pivot (more radial damping) or a lower damping target")
@@ -392,7 +452,7 @@ def _step5(c: _Ctx):
         pad, sp = pads.iloc[i], spacers.iloc[i]
         cone = s8.cone_spring(v["axial_damping_nm"], d.damping_target_nm, tol, v["radial_damping_nm"], mu_pl,
                               float(pad["mean_radius_mm"]), float(sp["mean_radius_mm"]), float(pad["outer_diameter_mm"]),
-                              v["pivot_diameter_mm"], gap_tol, fidelity=s.fidelity)
+                              v["pivot_diameter_mm"], gap_tol, aspect_ratio=aspect, fidelity=s.fidelity)
         wear = None
         if dur is not None and not isinstance(dur, str) and d.damping_eol_limit_nm is not None:
             wear = s5.plastic_wear(
@@ -419,6 +479,7 @@ def _step5(c: _Ctx):
               "cone_spring_rate_n_per_mm"):
         v[k] = _f(cone[k])
     v["cone_spring_sigma_om_mpa"] = _f(cone["sigma_om_mpa"])
+    v["cone_aspect_ratio"] = float(catalog.constant("cone_spring_default_aspect_ratio") if aspect is None else aspect)
     c.r.steps_run.append(8)
     c.r.checks.extend(s8.cone_spring_checks(cone))
     if wear is None:
@@ -584,9 +645,55 @@ STEPS: dict[int, Callable[[_Ctx], Any]] = {0: _step0, 1: _step1, 2: _step2, 3: _
                                            7: _step7, 9: _step9, 10: _step10}
 
 
-def run(design_input, settings: Settings | None = None) -> FlowchartResult:
-    """Run the flowchart on a validated :class:`~synth.schema.DesignInput`."""
+def _with_parts(d, parts: dict):
+    """The input ``d`` with the catalog choices of ``parts`` written into its own fields.
+
+    Pivot class and bushing wall (from the supplier), main spring and bolt
+    (manual modes) are input fields already; the bearing, bushing length,
+    damper pad, endcap spacer and cone-spring aspect ratio are read from
+    ``parts`` by the steps themselves.
+    """
+    from synth.errors import InputError, Problem
+    from synth.schema import validate
+    missing = [k for k in PART_KEYS if k not in parts]
+    if missing:
+        raise InputError(Problem("parts", sorted(parts), "a dict with the keys " + ", ".join(PART_KEYS)))
+    sup = catalog.load("pivot_bushings")
+    row = sup[sup["supplier"].astype(str) == str(parts["supplier"])]
+    if row.empty:
+        raise InputError(Problem("parts.supplier", parts["supplier"], "a supplier of catalogs/pivot_bushings.csv"))
+    w = s9.wire_properties(str(parts["spring_wire"]))
+    data = {k: val for k, val in vars(d).items()}
+    data.update(pivot_class_diameter_mm=float(parts["pivot_class_mm"]),
+                pivot_bushing_radial_thickness_mm=float(row["radial_thickness_mm"].iloc[0]),
+                main_spring_mode="manual", main_spring_material=str(parts["spring_material"]),
+                main_spring_wire_section="round" if w["round_wire"] else "rectangular",
+                main_spring_wire_size_mm=[float(w["h_mm"])] if w["round_wire"] else [float(w["b_mm"]), float(w["h_mm"])],
+                main_spring_mean_body_diameter_mm=float(parts["spring_mbd_mm"]),
+                bolt_mode="manual", bolt_format=str(parts["bolt_format"]),
+                bolt_property_class=str(parts["bolt_property_class"]))
+    return validate(data)
+
+
+#: the part keys of a fixed-parts run (the optimiser's :data:`synth.optimise.result.PART_KEYS`)
+PART_KEYS = ("bearing", "pivot_class_mm", "supplier", "damper_pad", "bushing_length_mm", "endcap_spacer",
+             "cone_aspect_ratio", "spring_material", "spring_wire", "spring_mbd_mm", "bolt_format", "bolt_property_class")
+
+
+def run(design_input, settings: Settings | None = None, parts: dict | None = None) -> FlowchartResult:
+    """Run the flowchart on a validated :class:`~synth.schema.DesignInput`.
+
+    ``parts`` (optional) fixes every catalog choice (the keys of
+    :data:`PART_KEYS`, as an optimiser's result reports them): the flowchart
+    then verifies that design instead of selecting one, with the same steps,
+    checks and report values (no class loops, no escalation, no search).
+    """
+    if parts:
+        design_input = _with_parts(design_input, parts)
     c = _Ctx(design_input, settings or Settings())
+    c.parts = dict(parts) if parts else None
+    if parts:
+        c.note("fixed-parts verification: every catalog choice is given; the flowchart checks it and selects nothing")
     for n in sorted(STEPS):
         c.r.steps_run.append(n)
         outcome = STEPS[n](c)

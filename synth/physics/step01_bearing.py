@@ -17,7 +17,7 @@ import numpy as np
 from synth import catalog
 from synth.errors import InputError, Problem
 
-__all__ = ["select_bearing", "bearing_inner_diameter_mm", "basic_rating_life_h"]
+__all__ = ["select_bearing", "max_hubload_n", "bearing_inner_diameter_mm", "basic_rating_life_h"]
 
 
 def select_bearing(hubload_nominal_n, engine_fuel: str):
@@ -35,6 +35,23 @@ def select_bearing(hubload_nominal_n, engine_fuel: str):
     names = rules["designation"].astype(str).to_numpy()
     idx = np.searchsorted(limits, hl, side="right")  # limits ascending: first limit > hl
     return names[np.clip(idx, 0, len(names) - 1)]
+
+
+def max_hubload_n(designation: str, engine_fuel: str):
+    """The Table 1 upper hubload limit (N) of bearing ``designation``, or None where it has none.
+
+    A bearing outside the engine fuel's Table 1 rows, and the last row (no
+    upper bound), return None: there is no hubload limit to check.
+
+    >>> max_hubload_n("6006", "gasoline"), max_hubload_n("6007", "gasoline")
+    (1000.0, None)
+    """
+    rules = catalog.load("bearing_selection")
+    hit = rules[(rules["engine_fuel"] == engine_fuel) & (rules["designation"].astype(str) == str(designation))]
+    if hit.empty:
+        return None
+    lim = float(hit["max_hubload_nominal_n"].astype(float).iloc[0])
+    return lim if np.isfinite(lim) else None
 
 
 def bearing_inner_diameter_mm(designation):
