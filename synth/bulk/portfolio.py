@@ -15,7 +15,7 @@ stops the other rows.
 
 >>> import pandas as pd
 >>> from synth.data.generated_applications import generate
->>> table = to_table(generate(2, seed=0))
+>>> table = to_table(generate(2, seed=0)).astype(object)
 >>> table.loc[1, "working_arm_mm"] = "abc"
 >>> apps, errors = validate_rows(table)
 >>> apps[0] is not None, apps[1] is None, errors[1].startswith("working_arm_mm: got 'abc'")
@@ -44,6 +44,9 @@ FORMATS = {".csv": "csv", ".xlsx": "excel", ".xlsm": "excel", ".parquet": "parqu
 _NAMES = {f.name for f in schema.FIELDS}
 _ALIASES = {a: f.name for f in schema.FIELDS for a in f.aliases}
 _LIST_FIELDS = {f.name for f in schema.FIELDS if f.kind == "list"}
+#: usual identification columns, carried through without a "did you mean" warning
+PASSTHROUGH = ("application_id", "id", "name", "application_name", "project", "customer", "engine", "comment",
+               "comments", "note", "notes", "row")
 _ACCEPTED = "an existing portfolio table: " + ", ".join(sorted(FORMATS)) + " (one application per row)"
 
 
@@ -97,9 +100,9 @@ def column_warnings(df: pd.DataFrame) -> list[str]:
     used = set(field_columns(df))
     out = []
     for c in df.columns:
-        if c in used:
+        if c in used or c.lower() in PASSTHROUGH:
             continue
-        near = difflib.get_close_matches(c, sorted(_NAMES - used), n=1, cutoff=0.75)
+        near = difflib.get_close_matches(c, sorted(_NAMES), n=1, cutoff=0.75)
         if near:
             out.append(f"column {c!r} is not a design-input field and is not used (did you mean {near[0]}?)")
     return out
