@@ -87,7 +87,37 @@ def verify(d, parts: dict, *, fidelity: str = "screening", friction_circle: bool
         margins.update({n: float(sub.margins[0, 0, j]) for j, n in enumerate(sub.names)})
         values.update({k: _plain(np.asarray(v)[0, 0] if np.ndim(v) >= 2 else np.asarray(v)) for k, v in sub.values.items()})
     values["main_spring_active_coils_free"] = _plain(sp.subsystems["spring"].iloc[0]["active_coils"])
+    values.update(_geometry(sp))
     return Verification(dict(parts), margins, values, available, fidelity)
+
+
+def _geometry(sp: DesignSpace) -> dict:
+    """Dimensions of the chosen parts under the flowchart's value names (for reports and the CAD export).
+
+    Copied from the catalog rows of the (single-design) space ``sp``; nothing is computed.
+    """
+    c, f = sp.cores.iloc[0], sp.fixed
+    bush, ax, spr, bolt = (sp.subsystems[s].iloc[0] for s in ("bushing", "axial", "spring", "bolt"))
+    rnd = bool(spr["round_wire"])
+    g = {"architecture": "rotary_standard" if f["layout"] == "standard" else "rotary_reverse",
+         "pulley_type": sp.inputs.pulley_shell_type, "pulley_width_mm": f["pulley_width_mm"],
+         "ball_bearing": c["bearing"], "bearing_inner_diameter_mm": c["bearing_d_mm"],
+         "bearing_outer_diameter_mm": c["bearing_D_mm"], "bearing_width_mm": c["bearing_B_mm"],
+         "pivot_class_diameter_mm": c["pivot_class_mm"], "pivot_bushing_radial_thickness_mm": c["bushing_thickness_mm"],
+         "pivot_bushing_length_mm": bush["bushing_length_mm"],
+         "main_spring_material": spr["spring_material"], "main_spring_wire_section": "round" if rnd else "rectangular",
+         "main_spring_wire_size_mm": [float(spr["b_mm"])] if rnd else [float(spr["b_mm"]), float(spr["h_mm"])],
+         "main_spring_mean_body_diameter_mm": spr["spring_mbd_mm"],
+         "bolt_format": bolt["bolt_format"], "pivot_bolt_hole_diameter_mm": bolt["pivot_bore_min_mm"]}
+    if c["damper_pad"] != "none":
+        g.update({"damper_pad_class": c["damper_pad"], "damper_pad_outer_diameter_mm": c["dp_outer_diameter_mm"],
+                  "damper_pad_axial_height_mm": c["dp_height_mm"], "damper_pad_mean_radius_mm": c["dp_mean_radius_mm"],
+                  "damper_pad_contact_area_mm2": c["dp_contact_area_mm2"]})
+    if ax["endcap_spacer"] != "none":
+        g.update({"endcap_spacer_class": ax["endcap_spacer"], "endcap_spacer_axial_height_mm": ax["es_height_mm"],
+                  "endcap_spacer_mean_radius_mm": ax["es_mean_radius_mm"],
+                  "endcap_spacer_contact_area_mm2": ax["es_contact_area_mm2"]})
+    return {k: v if isinstance(v, list) else _plain(v) for k, v in g.items()}
 
 
 def objective_values(sp: DesignSpace, core: int, options: dict, margin: float) -> dict:
@@ -124,6 +154,7 @@ class DesignResult:
     stats: dict = field(default_factory=dict)
     diagnosis: dict | None = None
     notes: list = field(default_factory=list)
+    inputs: dict | None = None  # the DesignInput as plain values, so a saved result is self-contained
 
     @property
     def feasible(self) -> bool:
@@ -140,6 +171,7 @@ class DesignResult:
             "derived": {k: _plain(v) for k, v in self.derived.items()},
             "stats": {k: _plain(v) for k, v in self.stats.items()},
             "diagnosis": self.diagnosis, "notes": list(self.notes),
+            "inputs": self.inputs,
         }
 
     def binding_table(self, n: int = 8) -> str:
@@ -164,6 +196,14 @@ def binding_of(margins: dict, axial_present: bool) -> list:
     return out
 
 
+def _inputs_of(d) -> dict | None:
+    """The design input as a dict of plain values (``None`` if it is not a dataclass)."""
+    import dataclasses
+    if not dataclasses.is_dataclass(d):
+        return None
+    return {k: _plain(v) for k, v in dataclasses.asdict(d).items()}
+
+
 def build_result(sp: DesignSpace, core: int, options: dict, *, status: str, solver: str, objective: str,
                  stats: dict, notes: list | None = None) -> DesignResult:
     """Verify the design of row indices ``core``/``options`` and wrap it in a :class:`DesignResult`."""
@@ -174,7 +214,7 @@ def build_result(sp: DesignSpace, core: int, options: dict, *, status: str, solv
     res = DesignResult(status=status, solver=solver, objective=objective, parts=parts, derived=v.values,
                        margins=v.margins, binding=binding_of(v.margins, ax),
                        objectives=objective_values(sp, core, options, margin), stats=dict(stats),
-                       notes=list(notes or []) + list(sp.notes))
+                       notes=list(notes or []) + list(sp.notes), inputs=_inputs_of(sp.inputs))
     if not v.passes and status != "baseline":
         res.notes.append("verification failed: " + ", ".join(f"{k} {m:+.3g}" for k, m in v.failed().items()))
     return res
