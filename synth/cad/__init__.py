@@ -1,0 +1,52 @@
+"""CAD export of a synthesised tensioner (thesis step 11, Fig. 75-76) with CadQuery.
+
+``dimensions`` (result -> :class:`TensionerGeometry`), ``parts`` (one function
+per part), ``assembly`` (named, coloured parts), ``verify`` (geometric checks as
+:class:`synth.checks.Check` records), ``export`` (STEP, STL, pictures).
+:func:`export_result` chains them; :func:`summary_lines` is what the scenes print.
+"""
+
+from __future__ import annotations
+
+from synth.cad.dimensions import TensionerGeometry, geometry_from
+
+__all__ = ["TensionerGeometry", "geometry_from", "export_result", "summary_lines"]
+
+
+def export_result(result, out_dir, inputs=None, *, stl: bool = True, pictures: bool = True, interference: bool = True):
+    """Build, verify and export ``result`` into ``out_dir``; returns ``(model, checks, info)``.
+
+    ``info`` is ``{"files": [...], "timings_s": {...}}`` (build, verification, step, stl, pictures).
+    """
+    import time
+
+    from synth.cad.assembly import build
+    from synth.cad.export import export_model
+    from synth.cad.verify import verify_model
+
+    g = geometry_from(result, inputs)
+    model = build(g)
+    t = time.perf_counter()
+    checks = verify_model(model, interference=interference)
+    t_verify = time.perf_counter() - t
+    info = export_model(model, out_dir, checks=checks, stl=stl, pictures=pictures)
+    info["timings_s"]["verification"] = t_verify
+    return model, checks, info
+
+
+def summary_lines(model, checks, info) -> list[str]:
+    """Human-readable summary: status, parts, checks, files, timings."""
+    from synth.checks import FAIL
+    g = model.geometry
+    lines = [f"CAD model: {g.layout} layout, {g.pulley_type} pulley, "
+             f"{'with' if g.axial_damping else 'without'} axial damping, {g.wire_section} wire, {g.eccentric} pivot",
+             f"result status: {g.status}" + ("" if g.feasible else "  (INFEASIBLE: the nearest design is exported)"),
+             f"parts ({len(model.parts)}): " + ", ".join(model.parts), "geometric checks (step 11):"]
+    for c in checks:
+        mark = "FAIL" if c.verdict == FAIL else "PASS"
+        lines.append(f"  [{mark}] {c.name}: {c.value:.4g} {c.kind} {c.limit:.4g} {c.unit}"
+                     + (f"  -> {c.correction}" if c.verdict == FAIL and c.correction else ""))
+    lines.append("files: " + ", ".join(str(f) for f in info["files"] if "stl" not in str(f.parent.name))
+                 + f" (+ {sum(1 for f in info['files'] if f.parent.name == 'stl')} STL)")
+    lines.append("times [s]: " + ", ".join(f"{k} {v:.2f}" for k, v in info["timings_s"].items()))
+    return lines

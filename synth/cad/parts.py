@@ -241,12 +241,12 @@ def pulley(g: TensionerGeometry) -> cq.Shape:
     the bearing outer ring; ``toothed``: simple rectangular grooves (tips on the pulley diameter)."""
     s = stack(g)
     e, rp = g.working_arm_mm, 0.5 * g.pulley_diameter_mm
-    rim_in = rp - _c("cad_pulley_rim_thickness_mm")
+    rb = 0.5 * g.bearing_outer_diameter_mm
+    rim_in = max(rp - _c("cad_pulley_rim_thickness_mm"), rb)  # a pulley barely larger than the bearing is a shell
     u0, u1 = s.bearing_u
     w = g.pulley_width_mm
-    body = _ring(0.5 * g.bearing_outer_diameter_mm, rim_in, u0, u1, x=e)
     rim = _ring(rim_in, rp, s.bearing_centre_u - w / 2, s.bearing_centre_u + w / 2, x=e)
-    shape = body.fuse(rim)
+    shape = rim.fuse(_ring(rb, rim_in, u0, u1, x=e)) if rim_in > rb + _EPS else rim
     if g.pulley_type == "toothed":
         pitch, depth = _c("cad_pulley_tooth_pitch_mm"), _c("cad_pulley_tooth_depth_mm")
         n = max(4, 4 * round(math.pi * g.pulley_diameter_mm / pitch / 4))

@@ -20,10 +20,18 @@ def default_input():
 
 def register(sub) -> None:
     p = sub.add_parser("demo", help="run the flowchart on the embedded default case (thesis case 1)")
+    p.add_argument("--cad", metavar="DIR", default=None,
+                   help="also export the 3D model (STEP assembly, STL, exploded and section pictures) into DIR")
     p.set_defaults(func=_main)
 
 
 def _main(args) -> int:
     print("synth demo: thesis case study 1 (inputs as the thesis tool ran them)\n")
-    print(render_text(flowchart.run(default_input())))
+    r = flowchart.run(default_input())
+    print(render_text(r))
+    if getattr(args, "cad", None):
+        from synth.cad import export_result, summary_lines
+        model, checks, info = export_result(r, args.cad)
+        print(f"\n3D model (thesis step 11) written to {args.cad}")
+        print("\n".join(summary_lines(model, checks, info)))
     return 0

@@ -25,6 +25,8 @@ def register(sub) -> None:
     p.add_argument("--pin-inputs", action="store_true", help="keep the part choices the input names")
     p.add_argument("--trials", type=int, default=200, help="blackbox: number of trials")
     p.add_argument("--json", action="store_true")
+    p.add_argument("--cad", metavar="DIR", default=None,
+                   help="also export the 3D model of the design (STEP, STL, pictures, geometric checks) into DIR")
     p.set_defaults(func=_main)
 
 
@@ -38,6 +40,9 @@ def _main(args) -> int:
     r = solve(d, args.objective, args.solver, **kw)
     if args.json:
         print(json.dumps(r.to_dict(), indent=2, default=str))
+        if args.cad:
+            import sys
+            print("\n".join(_export_cad(r, d, args.cad)), file=sys.stderr)
         return 0
     print(f"synth design: {args.input} | objective {r.objective} | solver {r.solver} | status {r.status}\n")
     print("parts:")
@@ -59,4 +64,13 @@ def _main(args) -> int:
             print("  no input relaxation within the searched ranges makes it feasible (see the violated constraints)")
     stats = {k: v for k, v in r.stats.items() if isinstance(v, (int, float))}
     print("\nsolver: " + ", ".join(f"{k} {v:.4g}" for k, v in stats.items()))
+    if args.cad:
+        print("\n" + "\n".join(_export_cad(r, d, args.cad)))
     return 0 if r.status != "infeasible" else 1
+
+
+def _export_cad(r, d, out_dir) -> list[str]:
+    """Export the design's 3D model (thesis step 11) and return the summary lines."""
+    from synth.cad import export_result, summary_lines
+    model, checks, info = export_result(r, out_dir, d)
+    return [f"3D model written to {out_dir}"] + summary_lines(model, checks, info)

@@ -1,0 +1,38 @@
+"""``synth cad RESULT.json --out DIR``: the simplified 3D model of a saved result (thesis step 11).
+
+Accepts the JSON of ``synth design --json`` (carries its inputs) and of
+``synth flowchart --json`` (pass ``--input`` with the design input, the flowchart
+JSON does not carry it). Writes the STEP assembly, one STL per part, the
+exploded and section pictures and ``cad_report.json``; prints the geometric
+checks. Exit code 1 if a geometric check fails, else 0.
+"""
+
+from __future__ import annotations
+
+from synth.checks import FAIL
+
+__all__ = ["register", "add_cad_options"]
+
+
+def add_cad_options(p) -> None:
+    p.add_argument("--no-stl", action="store_true", help="skip the STL files")
+    p.add_argument("--no-pictures", action="store_true", help="skip the exploded and section pictures")
+
+
+def register(sub) -> None:
+    p = sub.add_parser("cad", help="export the 3D model (STEP, STL, pictures) of a saved design/flowchart result")
+    p.add_argument("result", help="JSON of synth design --json or synth flowchart --json")
+    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--input", default=None, help="design input (needed for a flowchart JSON, which lacks it)")
+    add_cad_options(p)
+    p.set_defaults(func=_main)
+
+
+def _main(args) -> int:
+    from synth.cad import export_result, summary_lines
+    from synth.cad.dimensions import load_result
+    model, checks, info = export_result(load_result(args.result), args.out, args.input,
+                                        stl=not args.no_stl, pictures=not args.no_pictures)
+    print(f"synth cad: {args.result} -> {args.out}")
+    print("\n".join(summary_lines(model, checks, info)))
+    return 1 if any(c.verdict == FAIL for c in checks) else 0
