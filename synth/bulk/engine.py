@@ -137,16 +137,40 @@ def row_from_result(res, d, diagnose: bool = True) -> dict:
     return row
 
 
+def error_row(exc: Exception) -> dict:
+    """The row of an application the design space cannot be built for (e.g. a working arm beyond Table 2)."""
+    row = {c: math.nan for c in columns()}
+    row.update({"feasible": False, "status": "infeasible", "binding_constraint": "", "violated": "", "relaxation": "",
+                "notes": f"no design space: {exc}".replace("\n", "; ")})
+    row.update({f"part_{k}": None for k in PART_KEYS})
+    return row
+
+
 def screen_applications_reference(apps: Sequence, *, objective: str = "standard", fidelity: str = "screening",
                                   diagnose: bool = True) -> pd.DataFrame:
     """Reference engine: ``solve(d, objective, "enumerate", fidelity=...)`` per application.
 
     Slow (0.3-5 s per application) but the definition of the right answer.
     """
+    from synth.errors import InputError
     from synth.optimise import solve
-    rows = [row_from_result(solve(d, objective, "enumerate", fidelity=fidelity, relax=diagnose), d, diagnose)
-            for d in apps]
-    return pd.DataFrame(rows, columns=columns()) if rows else _empty()
+    rows = []
+    for d in apps:
+        try:
+            rows.append(row_from_result(solve(d, objective, "enumerate", fidelity=fidelity, relax=diagnose), d, diagnose))
+        except InputError as exc:
+            rows.append(error_row(exc))
+    return frame(rows)
+
+
+def frame(rows: list) -> pd.DataFrame:
+    """The result DataFrame of ``rows`` (dicts of :func:`columns`), index 0..n-1, fixed dtypes."""
+    df = pd.DataFrame(rows, columns=columns()) if rows else _empty()
+    df["feasible"] = df["feasible"].astype(bool)
+    for c in df.columns:
+        if c.startswith(("objective_", "margin_")) or c == "binding_margin":
+            df[c] = df[c].astype(float)
+    return df.reset_index(drop=True)
 
 
 def _empty() -> pd.DataFrame:
@@ -160,11 +184,13 @@ def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity
     ``objective`` as :func:`synth.optimise.solve` accepts it; ``fidelity``
     ``screening`` (closed-form plastic wear) or ``full`` (time-integrated);
     ``diagnose=False`` skips the relaxation search of infeasible applications.
-    Columns: :func:`columns`.
+    Columns: :func:`columns`. The same answer as
+    :func:`screen_applications_reference`, faster (see ``engine_fast``).
 
     >>> from synth.data.generated_applications import generate
     >>> df = screen_applications(generate(2, seed=0), objective="cost")
     >>> list(df.index), df.loc[1, "status"]
     ([0, 1], 'optimal')
     """
-    return screen_applications_reference(apps, objective=objective, fidelity=fidelity, diagnose=diagnose)
+    from synth.bulk.engine_fast import screen_fast
+    return screen_fast(apps, objective=objective, fidelity=fidelity, diagnose=diagnose)

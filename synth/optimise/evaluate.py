@@ -23,6 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+import pandas as pd
 
 from synth import catalog
 from synth.checks import margin_lower, margin_upper
@@ -32,7 +33,7 @@ from synth.physics import step07_packaging as s7, step08_cone_spring as s8, step
 from synth.physics import step10_fixation as s10
 from synth.optimise.space import NONE, SUBSYSTEMS, DesignSpace
 
-__all__ = ["CONSTRAINTS", "SubEval", "Evaluation", "evaluate", "FEAS_TOL"]
+__all__ = ["CONSTRAINTS", "SubEval", "Evaluation", "evaluate", "FEAS_TOL", "spring_keys", "spring_margins", "bolt_fixation"]
 
 FEAS_TOL = 1e-9
 
@@ -348,22 +349,32 @@ def _axial(sp: DesignSpace, cv: dict, rows: np.ndarray, keep_values: bool) -> Su
     return SubEval(names, arr, avail, values)
 
 
-def _spring(sp: DesignSpace, cv: dict, rows: np.ndarray, keep_values: bool) -> SubEval:
+def spring_keys(cv: dict, rows: np.ndarray) -> np.ndarray:
+    """``(n, 4)`` array of what a main spring sees of each core of ``rows``: spring torque, housing height,
+    housing outer and inner diameter (springs are evaluated once per distinct key)."""
+    return np.stack([cv["spring_torque_nominal_nm"][rows], cv["spring_housing_height_mm"][rows],
+                     cv["spring_housing_outer_diameter_mm"][rows], cv["spring_housing_inner_diameter_mm"][rows]], axis=1)
+
+
+def spring_margins(sp: DesignSpace, uniq: np.ndarray, options: np.ndarray | None = None, keep_values: bool = False):
+    """Margins ``(n_keys, n_options, n_constraints)`` of the main springs ``options`` (row indices of the
+    spring table, all by default) for the spring keys ``uniq`` (:func:`spring_keys`), and their values."""
     d, f = sp.inputs, sp.fixed
     t = sp.subsystems["spring"]
-    keys = np.stack([cv["spring_torque_nominal_nm"][rows], cv["spring_housing_height_mm"][rows],
-                     cv["spring_housing_outer_diameter_mm"][rows], cv["spring_housing_inner_diameter_mm"][rows]], axis=1)
-    uniq, inv = np.unique(keys, axis=0, return_inverse=True)  # springs see the core only through these four values
-    inv = np.asarray(inv).reshape(-1)
-    nu, nk = len(uniq), len(t)
+    cols = {k: t[k].to_numpy() for k in ("spring_material", "b_mm", "h_mm", "round_wire", "b_tol_mm", "h_tol_mm",
+                                         "spring_mbd_mm")}
+    if options is not None:
+        cols = {k: v[options] for k, v in cols.items()}
+    nu, nk = len(uniq), len(cols["b_mm"])
     theta_pp = f["durability"][0] if f["durability"] else 0.0
     tol_pct = d.spring_torque_tolerance_pct or 0.0
     names = list(_SPRING_KEYS.values())
     out = np.full((nu, nk, len(names)), -np.inf)
     values: dict = {}
-    for mat in t["spring_material"].unique():
-        ki = np.flatnonzero(t["spring_material"].to_numpy() == mat)
-        w = {k: t[k].to_numpy()[ki][None, :] for k in ("b_mm", "h_mm", "round_wire", "b_tol_mm", "h_tol_mm", "spring_mbd_mm")}
+    mats = cols["spring_material"]
+    for mat in pd.unique(mats):
+        ki = np.flatnonzero(mats == mat)
+        w = {k: cols[k][ki][None, :] for k in ("b_mm", "h_mm", "round_wire", "b_tol_mm", "h_tol_mm", "spring_mbd_mm")}
         p = s9.material_properties(mat, w["b_mm"], w["h_mm"], w["round_wire"])
         r = s9.main_spring_design(E_mpa=p["E_mpa"], Rm_mpa=p["Rm_mpa"], sigma_y_mpa=p["sigma_y_mpa"],
                                   sigma_A0_mpa=p["sigma_A0_mpa"], b_mm=w["b_mm"], h_mm=w["h_mm"],
@@ -379,8 +390,43 @@ def _spring(sp: DesignSpace, cv: dict, rows: np.ndarray, keep_values: bool) -> S
                       "main_spring_sigma_inst_mpa", "main_spring_safety_factor", "hooks_angle_free_state_deg",
                       "hooks_angle_nominal_deg", "coil_gap_min_mm", "outer_diameter_max_mm", "inner_diameter_min_mm"):
                 values.setdefault(k, np.full((nu, nk), np.nan))[:, ki] = r[k]
-    avail = np.ones((len(rows), nk), bool)
+    return names, out, values
+
+
+def _spring(sp: DesignSpace, cv: dict, rows: np.ndarray, keep_values: bool) -> SubEval:
+    uniq, inv = np.unique(spring_keys(cv, rows), axis=0, return_inverse=True)  # springs see the core only through these
+    inv = np.asarray(inv).reshape(-1)
+    names, out, values = spring_margins(sp, uniq, None, keep_values)
+    avail = np.ones((len(rows), len(sp.subsystems["spring"])), bool)
     return SubEval(names, out[inv], avail, {k: v[inv] for k, v in values.items()})
+
+
+_BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_eqv_mpa", "bolt_under_head_stress_mpa",
+                "bolt_thread_stress_mpa", "tilting_safety_factor", "sliding_safety_factor",
+                "average_contact_pressure_mpa", "pivot_base_contact_surface_mm2")
+
+
+def bolt_fixation(d, hubload_n, bolt_format: str, bolt_property_class: str) -> dict:
+    """Step 10 (:func:`synth.physics.step10_fixation.fixation`) for one bolt row: ``{key: value}`` of the bolt
+    margins and values the optimiser keeps. ``d``'s numeric fields and ``hubload_n`` may be arrays over
+    applications (then every value is an array, element by element the same as one call per application).
+
+    Precomputed results can be passed to :func:`evaluate` in ``space.fixed["bolt_fixation"]`` as
+    ``{(format, class): this dict}``.
+    """
+    inc = d.middle_plane_belt_height_increment_worst_mm
+    r = s10.fixation(hubload_n, d.middle_plane_belt_height_mm, 0.0 if inc is None else inc, d.tilting_safety_factor,
+                     d.sliding_safety_factor, d.engine_support_internal_diameter_mm,
+                     d.engine_support_external_diameter_mm, d.contact_angle_deg,
+                     d.support_yield_strength_compression_mpa, d.support_yield_strength_traction_mpa,
+                     number_of_active_threads=d.number_of_active_threads, application_type=d.application_type,
+                     bolt_head_contact_external_diameter_mm=d.bolt_head_contact_external_diameter_mm,
+                     bolt_format=bolt_format, bolt_property_class=bolt_property_class)
+    out = {}
+    for k in tuple(_BOLT_KEYS) + _BOLT_VALUES:
+        v = np.asarray(r[k], dtype=float)
+        out[k] = float(v.reshape(-1)[0]) if v.size == 1 else v
+    return out
 
 
 def _bolt(sp: DesignSpace, cv: dict, rows: np.ndarray, keep_values: bool) -> SubEval:
@@ -391,23 +437,14 @@ def _bolt(sp: DesignSpace, cv: dict, rows: np.ndarray, keep_values: bool) -> Sub
                                             s2.bolt_hole_diameter_mm(t["d_mm"].to_numpy())[None, :])}
     values: dict = {}
     if not d.missing(*_FIX_FIELDS):
-        per = []
-        for fmt, cls in zip(t["bolt_format"], t["bolt_property_class"]):  # catalog rows (<= 32), not designs
-            per.append(s10.fixation(f["hubload_nominal_n"], d.middle_plane_belt_height_mm,
-                                    d.middle_plane_belt_height_increment_worst_mm or 0.0, d.tilting_safety_factor,
-                                    d.sliding_safety_factor, d.engine_support_internal_diameter_mm,
-                                    d.engine_support_external_diameter_mm, d.contact_angle_deg,
-                                    d.support_yield_strength_compression_mpa, d.support_yield_strength_traction_mpa,
-                                    number_of_active_threads=d.number_of_active_threads, application_type=d.application_type,
-                                    bolt_head_contact_external_diameter_mm=d.bolt_head_contact_external_diameter_mm,
-                                    bolt_format=fmt, bolt_property_class=cls))
+        pre = f.get("bolt_fixation") or {}
+        per = [pre.get((fmt, cls)) or bolt_fixation(d, f["hubload_nominal_n"], fmt, cls)
+               for fmt, cls in zip(t["bolt_format"], t["bolt_property_class"])]  # catalog rows (<= 32), not designs
         for k, name in _BOLT_KEYS.items():
-            m[name] = np.array([float(np.asarray(r[k]).reshape(-1)[0]) for r in per])[None, :]
+            m[name] = np.array([r[k] for r in per])[None, :]
         if keep_values:
-            for k in ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_eqv_mpa", "bolt_under_head_stress_mpa",
-                      "bolt_thread_stress_mpa", "tilting_safety_factor", "sliding_safety_factor",
-                      "average_contact_pressure_mpa", "pivot_base_contact_surface_mm2"):
-                values[k] = np.broadcast_to(np.array([float(np.asarray(r[k]).reshape(-1)[0]) for r in per])[None, :], (nc, nk))
+            for k in _BOLT_VALUES:
+                values[k] = np.broadcast_to(np.array([r[k] for r in per])[None, :], (nc, nk))
     names, arr = _stack(m, (nc, nk))
     return SubEval(names, arr, np.ones((nc, nk), bool), values)
 

@@ -217,18 +217,32 @@ def _axial_table(d) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def _spring_table(d, cores: pd.DataFrame, pin: bool) -> pd.DataFrame:
+def _spring_table(d, cores: pd.DataFrame, pin: bool, cache: "_Cache | None" = None) -> pd.DataFrame:
     from synth.physics import step07_packaging as s7
-    mats = catalog.load("spring_materials")
-    wires = catalog.load("spring_wires")
-    if pin and d.main_spring_mode == "manual" and d.main_spring_material is not None:
-        mats = mats[mats["material"].astype(str) == d.main_spring_material]
     step = catalog.constant("optimise_mbd_step_mm")
     d_in = float(np.min(s7.spring_housing_inner_diameter_mm(cores["pivot_class_mm"].to_numpy())))
     d_out = float(np.max(s7.spring_housing_outer_diameter_mm(cores["bearing_D_mm"].to_numpy(), d.working_arm_mm)))
     mbd = np.arange(np.ceil(d_in / step) * step, np.floor(d_out / step) * step + step / 2, step)
-    if pin and d.main_spring_mode == "manual" and d.main_spring_mean_body_diameter_mm is not None:
+    manual = pin and d.main_spring_mode == "manual"
+    if manual and d.main_spring_mean_body_diameter_mm is not None:
         mbd = np.array([float(d.main_spring_mean_body_diameter_mm)])
+    key = ("spring", tuple(mbd.tolist())) + ((d.main_spring_material, _hashable(d.main_spring_wire_size_mm), d.main_spring_wire_section)
+                                             if manual else (None, None, None))
+    base, inertia = (cache or _Cache(None)).get(key, lambda: _spring_product(d, mbd, manual))
+    t = base.copy()
+    t["active_coils"] = s9.active_coils(t["E_mpa"].to_numpy(), inertia, t["spring_mbd_mm"].to_numpy(),
+                                        d.spring_stiffness_nm_per_deg)
+    t["cost_eur"] = spring_cost_eur(t["spring_mbd_mm"], t["active_coils"], t["round_wire"], t["b_mm"], t["h_mm"],
+                                    t["wire_cost_eur_per_m"], t["density_kg_m3"], t["material_cost_eur_per_kg"])
+    return t
+
+
+def _spring_product(d, mbd: np.ndarray, manual: bool):
+    """Material x wire x mean body diameter table of the main springs and the wires' second moments."""
+    mats = catalog.load("spring_materials")
+    wires = catalog.load("spring_wires")
+    if manual and d.main_spring_material is not None:
+        mats = mats[mats["material"].astype(str) == d.main_spring_material]
     m = pd.DataFrame({"spring_material": mats["material"].astype(str), "E_mpa": mats["E_mpa"].astype(float),
                       "density_kg_m3": mats["density_kg_m3"].astype(float),
                       "material_cost_eur_per_kg": mats["unit_cost_eur"].astype(float), "material_standard": mats["standard"].map(_b)})
@@ -236,7 +250,7 @@ def _spring_table(d, cores: pd.DataFrame, pin: bool) -> pd.DataFrame:
                       "b_mm": wires["b_mm"].astype(float), "h_mm": wires["h_mm"].astype(float),
                       "b_tol_mm": wires["b_tol_mm"].astype(float), "h_tol_mm": wires["h_tol_mm"].astype(float),
                       "wire_cost_eur_per_m": wires["unit_cost_eur"].astype(float), "wire_standard": wires["standard"].map(_b)})
-    if pin and d.main_spring_mode == "manual" and d.main_spring_wire_size_mm is not None:
+    if manual and d.main_spring_wire_size_mm is not None:
         size = list(d.main_spring_wire_size_mm) * (2 if len(d.main_spring_wire_size_mm) == 1 else 1)
         sel = np.isclose(w["b_mm"], size[0]) & np.isclose(w["h_mm"], size[1])
         if d.main_spring_wire_section is not None:
@@ -244,12 +258,8 @@ def _spring_table(d, cores: pd.DataFrame, pin: bool) -> pd.DataFrame:
         w = w[sel]
     t = m.merge(w, how="cross").merge(pd.DataFrame({"spring_mbd_mm": mbd}), how="cross")
     t["nonstandard"] = (_w("spring_material") * ~t["material_standard"] + _w("spring_wire") * ~t["wire_standard"]).astype(float)
-    inertia = s9.second_moment_mm4(t["b_mm"].to_numpy(), t["h_mm"].to_numpy(), t["round_wire"].to_numpy())
-    t["active_coils"] = s9.active_coils(t["E_mpa"].to_numpy(), inertia, t["spring_mbd_mm"].to_numpy(),
-                                        d.spring_stiffness_nm_per_deg)
-    t["cost_eur"] = spring_cost_eur(t["spring_mbd_mm"], t["active_coils"], t["round_wire"], t["b_mm"], t["h_mm"],
-                                    t["wire_cost_eur_per_m"], t["density_kg_m3"], t["material_cost_eur_per_kg"])
-    return t.reset_index(drop=True)
+    t = t.reset_index(drop=True)
+    return t, s9.second_moment_mm4(t["b_mm"].to_numpy(), t["h_mm"].to_numpy(), t["round_wire"].to_numpy())
 
 
 def _bolt_table(d, pin: bool) -> pd.DataFrame:
@@ -271,13 +281,43 @@ def _bolt_table(d, pin: bool) -> pd.DataFrame:
     return t.reset_index(drop=True)
 
 
-def build_space(d, *, fidelity: str = "screening", friction_circle: bool = True, pin_inputs: bool = False) -> DesignSpace:
+class _Cache:
+    """Memo of tables shared by the spaces of one bulk chunk (no-op without a dict)."""
+
+    def __init__(self, store: dict | None):
+        self.store = store
+
+    def get(self, key, make):
+        if self.store is None:
+            return make()
+        if key not in self.store:
+            self.store[key] = make()
+        return self.store[key]
+
+
+def _hashable(x):
+    return tuple(x) if isinstance(x, (list, tuple)) else x
+
+
+def _with_notes(fn, d, pin):
+    notes: list = []
+    return fn(d, pin, notes), notes
+
+
+def build_space(d, *, fidelity: str = "screening", friction_circle: bool = True, pin_inputs: bool = False,
+                cache: dict | None = None) -> DesignSpace:
     """The design space of the validated input ``d`` (a :class:`~synth.schema.DesignInput`).
 
     ``pin_inputs=True`` keeps the part choices the input names (pivot class,
     bushing thickness, manual main spring and bolt) instead of searching
     them. ``fidelity`` (``screening``/``full``) is the cone-spring and
     plastic-wear model used when the space is evaluated.
+
+    ``cache``: a dict the caller keeps while the catalogs do not change (one
+    bulk chunk); the tables that depend on few inputs (core table by working
+    arm, fuel, typology and pinned parts; bushing, axial and bolt tables;
+    the material x wire product of the springs) are built once and shared
+    (read-only) by the spaces built with the same dict.
     """
     if fidelity not in ("screening", "full"):
         raise InputError(Problem("fidelity", fidelity, "screening or full"))
@@ -297,9 +337,15 @@ def build_space(d, *, fidelity: str = "screening", friction_circle: bool = True,
         "damping_target_nm": 0.0 if d.damping_target_nm is None else float(d.damping_target_nm),
         "loading_arm_input_mm": d.loading_arm_mm,
     }
-    cores = _core_table(d, pin_inputs, notes)
-    subs = {"bushing": _bushing_table(d, pin_inputs), "axial": _axial_table(d),
-            "spring": _spring_table(d, cores, pin_inputs), "bolt": _bolt_table(d, pin_inputs)}
+    c = _Cache(cache)
+    pin = pin_inputs
+    core_key = ("core", d.working_arm_mm, d.engine_fuel, d.pivot_class_diameter_mm, d.damping_typology, pin,
+                d.pivot_bushing_radial_thickness_mm if pin else None)
+    cores, core_notes = c.get(core_key, lambda: _with_notes(_core_table, d, pin))
+    notes += core_notes
+    bolt_key = ("bolt",) + ((d.bolt_format, d.bolt_property_class) if (pin and d.bolt_mode == "manual") else (None, None))
+    subs = {"bushing": c.get(("bushing",), lambda: _bushing_table(d, pin)), "axial": c.get(("axial",), lambda: _axial_table(d)),
+            "spring": _spring_table(d, cores, pin, c), "bolt": c.get(bolt_key, lambda: _bolt_table(d, pin))}
     if dur is None:
         subs["bushing"] = subs["bushing"].drop_duplicates("supplier").assign(bushing_length_mm=np.nan, cost_eur=0.0)
     return DesignSpace(d, fidelity, friction_circle, fixed, cores, subs, notes)
