@@ -27,6 +27,7 @@ arrives; the table is the same as in-process.
 from __future__ import annotations
 
 import contextlib
+import gc
 import hashlib
 import json
 import logging
@@ -308,7 +309,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
                   chunk_size: int = DEFAULT_CHUNK_SIZE, resume: bool = False, engine: str = "inprocess",
                   scheduler: str | None = None, workers: int | None = None, diagnose: bool = True,
                   stop_after_chunks: int | None = None, screen: Callable | None = None,
-                  stream=None) -> RunReport:
+                  stream=None, connect_timeout_s: float = 20.0) -> RunReport:
     """Evaluate every application of ``portfolio`` (a path or a DataFrame) and write ``out``.
 
     ``stop_after_chunks=k`` stops after ``k`` chunks computed in this run (a
@@ -316,7 +317,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
     and no RESULT is written). ``screen`` replaces the engine function (same
     signature as :func:`synth.bulk.engine.screen_applications`; on Dask it
     must be picklable). Progress is drawn on ``stream`` (default stderr) when
-    it is a terminal.
+    it is a terminal. ``connect_timeout_s`` bounds the wait for a ``scheduler``.
     """
     _validate_settings(objective, fidelity, chunk_size, engine, workers)
     t0 = time.monotonic()
@@ -379,7 +380,8 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
                 computed += 1
                 bar.update(b - a)
         else:
-            computed = _run_dask(recs, ranges, todo, folder, kw, scheduler, workers, stop_after_chunks, bar)
+            computed = _run_dask(recs, ranges, todo, folder, kw, scheduler, workers, stop_after_chunks, bar,
+                                 connect_timeout_s)
     seconds = time.monotonic() - t_compute
     complete = all(_chunk_path(folder, i).is_file() for i in range(len(ranges)))
     result = None
@@ -404,7 +406,8 @@ def assemble(table: pd.DataFrame, folder: Path, n_chunks: int) -> pd.DataFrame:
     return pd.concat([table.reset_index(drop=True), res], axis=1)
 
 
-def _run_dask(recs, ranges, todo, folder, kw, scheduler, workers, stop_after_chunks, bar) -> int:
+def _run_dask(recs, ranges, todo, folder, kw, scheduler, workers, stop_after_chunks, bar,
+              connect_timeout_s: float = 20.0) -> int:
     """Compute chunks ``todo`` on Dask, writing each as it completes; returns how many were written."""
     try:
         from dask.distributed import Client, LocalCluster, as_completed
@@ -416,7 +419,7 @@ def _run_dask(recs, ranges, todo, folder, kw, scheduler, workers, stop_after_chu
     with _quiet_dask(), contextlib.ExitStack() as stack:
         if scheduler:
             try:
-                client = stack.enter_context(Client(scheduler, timeout="20s"))
+                client = stack.enter_context(Client(scheduler, timeout=f"{connect_timeout_s}s"))
             except (OSError, TimeoutError) as exc:
                 raise InputError(Problem("--scheduler", scheduler, f"the address of a running Dask scheduler ({exc})")) from None
         else:
@@ -457,7 +460,13 @@ def _quiet_dask():
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ResourceWarning)
             warnings.simplefilter("ignore", DeprecationWarning)
-            yield
+            try:
+                yield
+            finally:
+                # a failed connection leaves never-awaited coroutines: collect them now, while their
+                # RuntimeWarning is silenced, not later in the middle of unrelated code
+                warnings.simplefilter("ignore", RuntimeWarning)
+                gc.collect()
     finally:
         for lg, lv in zip(loggers, levels):
             lg.setLevel(lv)
