@@ -9,6 +9,13 @@
   plane through the pivot and bearing axes, seen square to the cut), drawn
   with matplotlib from the tessellation (no screen needed, ~50-150 kB);
 * ``cad_report.json``: result status, geometry, checks and timings.
+
+>>> from synth.cad.assembly import build
+>>> from synth.cad.dimensions import geometry_from, _example_values, _example_inputs
+>>> m = build(geometry_from(_example_values(), inputs=_example_inputs()))
+>>> ex = exploded_parts(m)
+>>> round(ex["endcap"].BoundingBox().zmin - m.parts["endcap"].BoundingBox().zmin, 1)   # level 10 x 9 mm
+90.0
 """
 
 from __future__ import annotations

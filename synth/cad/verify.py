@@ -21,6 +21,15 @@ failed check is reported like any other failed constraint:
   the housing cavity;
 * ``spring-bushing collar height`` (step 6 stack): the room left between the
   housing floor and the cone spring / arm hub is not negative.
+
+>>> from synth.cad.assembly import build
+>>> from synth.cad.dimensions import geometry_from, _example_values, _example_inputs
+>>> g = geometry_from(_example_values(), inputs=_example_inputs())     # case 1 with the thesis's 41 mm spring
+>>> [c.verdict for c in verify_model(build(g), interference=False)][:2]
+['pass', 'pass']
+>>> c = verify_model(build(g.replace(spring_mean_diameter_mm=46.0)), interference=False)[4]
+>>> c.name, c.verdict, round(c.value, 2)     # 46 + 2.3 mm wire in a 45 mm housing
+('main spring within housing diameter', 'fail', 48.3)
 """
 
 from __future__ import annotations
