@@ -388,3 +388,12 @@ def test_constants_have_sources():
     assert df["source"].str.len().min() > 5 and set(df.columns) == {"name", "value", "unit", "source", "note"}
     cols = catalog.load("cad_colours")
     assert set(cols["part"]) == ALL_PARTS
+
+
+def test_cli_design_cad(tmp_path, capsys):
+    rc = main(["design", f"{CASES}/case3.yaml", "--solver", "flowchart", "--cad", str(tmp_path / "d")])
+    out = capsys.readouterr().out
+    assert rc == 1  # infeasible nearest design: still exported, and said so
+    assert "3D model written to" in out and "INFEASIBLE" in out
+    report = json.loads((tmp_path / "d" / "cad_report.json").read_text())
+    assert report["status"] == "infeasible" and len(report["parts"]) == 10
