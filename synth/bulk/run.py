@@ -48,16 +48,31 @@ from synth.bulk.portfolio import (arrow_safe, column_warnings, field_columns, re
 from synth.errors import InputError, Problem
 from synth.report.progress import Progress
 
-__all__ = ["ENGINES", "FIDELITIES", "DEFAULT_CHUNK_SIZE", "RunReport", "result_columns", "compute_chunk",
+__all__ = ["ENGINES", "FIDELITIES", "DEFAULT_CHUNK_SIZE", "default_chunk_size", "RunReport", "result_columns", "compute_chunk",
            "run_portfolio", "sidecar", "manifest_of", "chunk_ranges"]
 
 ENGINES = ("inprocess", "dask")
 FIDELITIES = ("screening", "full")
-#: applications per chunk: a few hundred keeps the engine's applications x candidates arrays in memory
+#: applications per chunk when the engine's memory constants are absent (see :func:`default_chunk_size`)
 DEFAULT_CHUNK_SIZE = 250
 MANIFEST = "manifest.json"
 _MANIFEST_KEYS = ("portfolio_sha256", "n_rows", "objective", "fidelity", "chunk_size", "diagnose",
                   "synth_version", "catalogs_sha256")
+
+
+def default_chunk_size() -> int:
+    """Applications per chunk: the engine's memory budget over its peak memory per application.
+
+    Both are constants of ``catalogs/constants_bulk.csv`` (``bulk_memory_budget_mb``,
+    ``bulk_memory_per_application_mb``); :data:`DEFAULT_CHUNK_SIZE` if they are absent.
+
+    >>> default_chunk_size() >= 1
+    True
+    """
+    try:
+        return max(1, int(catalog.constant("bulk_memory_budget_mb") / catalog.constant("bulk_memory_per_application_mb")))
+    except InputError:
+        return DEFAULT_CHUNK_SIZE
 
 
 def result_columns() -> list[str]:
@@ -306,7 +321,7 @@ def _validate_settings(objective, fidelity, chunk_size, engine, workers) -> None
 
 
 def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str = "screening",
-                  chunk_size: int = DEFAULT_CHUNK_SIZE, resume: bool = False, engine: str = "inprocess",
+                  chunk_size: int | None = None, resume: bool = False, engine: str = "inprocess",
                   scheduler: str | None = None, workers: int | None = None, diagnose: bool = True,
                   stop_after_chunks: int | None = None, screen: Callable | None = None,
                   stream=None, connect_timeout_s: float = 20.0) -> RunReport:
@@ -319,6 +334,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
     must be picklable). Progress is drawn on ``stream`` (default stderr) when
     it is a terminal. ``connect_timeout_s`` bounds the wait for a ``scheduler``.
     """
+    chunk_size = default_chunk_size() if chunk_size is None else chunk_size
     _validate_settings(objective, fidelity, chunk_size, engine, workers)
     t0 = time.monotonic()
     if isinstance(portfolio, pd.DataFrame):

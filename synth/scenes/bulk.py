@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import sys
 
-from synth.bulk.run import DEFAULT_CHUNK_SIZE, ENGINES, FIDELITIES, run_portfolio, sidecar
+from synth.bulk.run import ENGINES, FIDELITIES, run_portfolio, sidecar
 
 __all__ = ["register"]
 
@@ -42,8 +42,9 @@ def register(sub) -> None:
                    help="standard | cost | margin, a lexicographic list 'a,b' or weights 'cost=1,margin=5'")
     p.add_argument("--fidelity", default="screening", choices=FIDELITIES,
                    help="screening: closed-form models; full: time-integrated wear")
-    p.add_argument("--chunk-size", type=_positive_int, default=DEFAULT_CHUNK_SIZE, metavar="N",
-                   help=f"applications per chunk (default {DEFAULT_CHUNK_SIZE})")
+    p.add_argument("--chunk-size", type=_positive_int, default=None, metavar="N",
+                   help="applications per chunk (default: the engine's memory budget over its memory per application, "
+                        "catalogs/constants_bulk.csv)")
     p.add_argument("--resume", action="store_true", help="continue an interrupted run, reusing its finished chunks")
     p.add_argument("--engine", default="inprocess", choices=ENGINES, help="run the chunks in this process or on Dask")
     p.add_argument("--scheduler", metavar="ADDRESS", help="Dask scheduler address (default: a local cluster)")
