@@ -274,12 +274,30 @@ def test_dask_equals_inprocess(tmp_path):
         path = write_table(sample_portfolio(60, seed=6, broken=3), tmp_path / "p.parquet")
         a = run_portfolio(path, tmp_path / "a.parquet", chunk_size=20, screen=fake_screen)
         b = run_portfolio(path, tmp_path / "b.parquet", chunk_size=20, screen=fake_screen, engine="dask", workers=2)
+        # an interrupted Dask run resumes in-process (the engine is not part of the manifest)
+        c1 = run_portfolio(path, tmp_path / "c.parquet", chunk_size=20, screen=fake_screen, engine="dask",
+                           workers=1, stop_after_chunks=1)
+        c2 = run_portfolio(path, tmp_path / "c.parquet", chunk_size=20, screen=fake_screen, resume=True)
     finally:
         cloudpickle.unregister_pickle_by_value(sys.modules[__name__])
     assert (b.computed, b.engine, b.complete) == (3, "dask", True)
     pd.testing.assert_frame_equal(a.table, b.table)
     pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "a.parquet"), pd.read_parquet(tmp_path / "b.parquet"))
     assert a.n_errors == 3 and 0 < a.table["feasible"].sum() < 57
+    assert (c1.computed, c1.complete) == (1, False) and (c2.computed, c2.reused) == (2, 1)
+    pd.testing.assert_frame_equal(a.table, c2.table)
+
+
+def test_progress_drawn_on_a_terminal_only(tmp_path, fake_engine, monkeypatch):
+    import io
+    path = write_table(sample_portfolio(4), tmp_path / "p.csv")
+    quiet = io.StringIO()
+    run_portfolio(path, tmp_path / "r.csv", chunk_size=2, stream=quiet)
+    assert quiet.getvalue() == ""  # not a TTY
+    monkeypatch.setenv("SYNTH_PROGRESS", "1")
+    drawn = io.StringIO()
+    run_portfolio(path, tmp_path / "r.csv", chunk_size=2, stream=drawn)
+    assert "synth bulk (inprocess): [" in drawn.getvalue() and "4/4" in drawn.getvalue()
 
 
 def test_dask_bad_scheduler_is_an_input_error(tmp_path, fake_engine):

@@ -443,20 +443,29 @@ def _run_dask(recs, ranges, todo, folder, kw, scheduler, workers, stop_after_chu
                                                        processes=True, dashboard_address=None,
                                                        silence_logs=logging.ERROR))
             client = stack.enter_context(Client(cluster))
-        futures = {}
-        for i in todo:
-            a, b = ranges[i]
-            fut = client.submit(compute_chunk, recs[a:b], pure=False, **kw)
-            futures[fut] = i
+        # a bounded number of chunks in flight: the records of a huge portfolio are not all shipped at once
+        nthreads = sum(client.nthreads().values()) or 1
+        in_flight = max(2 * nthreads, 2)
+        pending = list(todo)
+        futures: dict = {}
+
+        def submit(k: int):
+            fut = client.submit(compute_chunk, recs[ranges[k][0]:ranges[k][1]], pure=False, **kw)
+            futures[fut] = k
+            return fut
+
+        queue = as_completed([submit(pending.pop(0)) for _ in range(min(in_flight, len(pending)))])
         try:
-            for fut in as_completed(list(futures)):
-                i = futures[fut]
+            for fut in queue:
+                i = futures.pop(fut)
                 a, b = ranges[i]
                 _write_chunk(folder, i, a, fut.result())
                 computed += 1
                 bar.update(b - a)
                 if stop_after_chunks is not None and computed >= stop_after_chunks:
                     break
+                if pending:
+                    queue.add(submit(pending.pop(0)))
         finally:
             for fut in futures:
                 if not fut.done():
