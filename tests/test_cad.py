@@ -397,3 +397,18 @@ def test_cli_design_cad(tmp_path, capsys):
     assert "3D model written to" in out and "INFEASIBLE" in out
     report = json.loads((tmp_path / "d" / "cad_report.json").read_text())
     assert report["status"] == "infeasible" and len(report["parts"]) == 10
+
+
+@settings(max_examples=6, deadline=None)
+@given(h=st.floats(-5.0, 30.0), coils=st.floats(0.0, 10.0), blen=st.floats(5.0, 60.0),
+       reverse=st.booleans(), axial=st.booleans())
+def test_extreme_geometries_give_verdicts_not_exceptions(h, coils, blen, reverse, axial):
+    """A result far outside the packaging (negative housing, huge bushing) still builds valid solids and every
+    check has a finite value and a verdict: the failures are reported like any failed constraint."""
+    g = geometry_from(_example_values(), inputs=_example_inputs()).replace(
+        spring_housing_height_mm=h, spring_active_coils=coils, pivot_bushing_length_mm=blen,
+        layout="reverse" if reverse else "standard", axial_damping=axial)
+    m = build(g)
+    assert all(s.isValid() for s in m.parts.values())
+    checks = verify_model(m, interference=False)  # interference of odd geometries: test_spring_wider_than_...
+    assert all(c.verdict in (PASS, FAIL) and math.isfinite(c.value) for c in checks)
