@@ -412,3 +412,12 @@ def test_extreme_geometries_give_verdicts_not_exceptions(h, coils, blen, reverse
     assert all(s.isValid() for s in m.parts.values())
     checks = verify_model(m, interference=False)  # interference of odd geometries: test_spring_wider_than_...
     assert all(c.verdict in (PASS, FAIL) and math.isfinite(c.value) for c in checks)
+
+
+def test_cli_flowchart_json_is_self_contained(tmp_path, capsys):
+    assert main(["flowchart", f"{CASES}/case3.yaml", "--json"]) in (0, 1)
+    path = tmp_path / "flow.json"
+    path.write_text(capsys.readouterr().out)
+    assert json.loads(path.read_text())["inputs"]["pulley_diameter_mm"] == 65.5
+    assert main(["cad", str(path), "--out", str(tmp_path / "c"), "--no-stl", "--no-pictures"]) == 1
+    assert "main spring within housing diameter" in capsys.readouterr().out

@@ -1,8 +1,8 @@
 """``synth cad RESULT.json --out DIR``: the simplified 3D model of a saved result (thesis step 11).
 
-Accepts the JSON of ``synth design --json`` (carries its inputs) and of
-``synth flowchart --json`` (pass ``--input`` with the design input, the flowchart
-JSON does not carry it). Writes the STEP assembly, one STL per part, the
+Accepts the JSON of ``synth design --json`` and of ``synth flowchart --json``
+(both carry their ``inputs``); a JSON without inputs (``FlowchartResult.to_dict()``
+saved by a script) needs ``--input`` with the design input. Writes the STEP assembly, one STL per part, the
 exploded and section pictures and ``cad_report.json``; prints the geometric
 checks. Exit code 1 if a geometric check fails, else 0.
 """

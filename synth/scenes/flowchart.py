@@ -64,7 +64,10 @@ def _main(args) -> int:
     d = schema.load_input(args.input)
     r = flowchart.run(d, settings_from_args(args))
     if args.json:
-        print(json.dumps(r.to_dict(), indent=2))
+        import dataclasses
+        out = r.to_dict()
+        out["inputs"] = dataclasses.asdict(d)  # the saved JSON is self-contained (synth cad RESULT.json reads it)
+        print(json.dumps(out, indent=2, default=str))
     else:
         print(render_text(r))
     return 0 if r.verdict != FAIL else 1
