@@ -91,7 +91,22 @@ def load(name: str) -> pd.DataFrame:
     return _load_cached(name, tuple(_user_dirs())).copy()
 
 
-load.cache_clear = _load_cached.cache_clear  # type: ignore[attr-defined]
+@functools.lru_cache(maxsize=None)
+def _index_cached(name: str, user_dirs: tuple[Path, ...]) -> dict:
+    """``{key: row position}`` of catalog ``name`` (first occurrence wins, as :func:`row` always did)."""
+    df = _load_cached(name, user_dirs)
+    out: dict = {}
+    for i, k in enumerate(df[df.columns[0]]):
+        out.setdefault(k, i)
+    return out
+
+
+def _clear_caches() -> None:
+    for f in (_load_cached, _index_cached, _constants_cached, _constant_values):
+        f.cache_clear()
+
+
+load.cache_clear = _clear_caches  # type: ignore[attr-defined]
 
 
 def keys(name: str) -> list[str]:
@@ -105,17 +120,28 @@ def row(name: str, key: str, field: str | None = None) -> pd.Series:
 
     ``field`` names the input field that asked for it, for the error message.
     """
-    df = load(name)
-    col = df.columns[0]
-    hit = df[df[col] == str(key).strip()]
-    if hit.empty:
+    dirs = tuple(_user_dirs())
+    df = _load_cached(name, dirs)
+    i = _index_cached(name, dirs).get(str(key).strip())
+    if i is None:
+        col = df.columns[0]
         raise CatalogError(Problem(field or f"{name}.{col}", key, "one of " + ", ".join(df[col])))
-    return hit.iloc[0]
+    return df.iloc[i].copy()
+
+
+@functools.lru_cache(maxsize=None)
+def _constants_cached(user_dirs: tuple[Path, ...]) -> tuple[pd.DataFrame, dict]:
+    """Every ``constants*.csv`` merged, and ``{name: row position}`` (first occurrence wins)."""
+    frames = [_load_cached(n, user_dirs) for n in names() if n == "constants" or n.startswith("constants_")]
+    df = pd.concat(frames, ignore_index=True)
+    index: dict = {}
+    for i, n in enumerate(df["name"]):
+        index.setdefault(n, i)
+    return df, index
 
 
 def _constants() -> pd.DataFrame:
-    frames = [load(n) for n in names() if n == "constants" or n.startswith("constants_")]
-    return pd.concat(frames, ignore_index=True)
+    return _constants_cached(tuple(_user_dirs()))[0].copy()
 
 
 def constant_row(name: str) -> pd.Series:
@@ -125,11 +151,11 @@ def constant_row(name: str) -> pd.Series:
     (one per flowchart step or model), all with columns
     ``name,value,unit,source,note``.
     """
-    df = _constants()
-    hit = df[df["name"] == name]
-    if hit.empty:
+    df, index = _constants_cached(tuple(_user_dirs()))
+    i = index.get(name)
+    if i is None:
         raise CatalogError(Problem("constant", name, "one of " + ", ".join(sorted(df["name"]))))
-    return hit.iloc[0]
+    return df.iloc[i].copy()
 
 
 def constant(name: str) -> float:
@@ -137,5 +163,17 @@ def constant(name: str) -> float:
 
     >>> constant("pulley_width_margin_mm")
     4.0
+
+    Lookups are cached per user-folder setting (:func:`set_user_dirs` clears
+    the cache): a constant costs a dict lookup, not a CSV merge.
     """
-    return float(constant_row(name)["value"])
+    values = _constant_values(tuple(_user_dirs()))
+    if name in values:
+        return float(values[name])
+    return float(constant_row(name)["value"])  # unknown name: raises, listing the known ones
+
+
+@functools.lru_cache(maxsize=None)
+def _constant_values(user_dirs: tuple[Path, ...]) -> dict:
+    df, index = _constants_cached(user_dirs)
+    return {n: df["value"].iloc[i] for n, i in index.items()}
