@@ -136,3 +136,24 @@ def test_stopped_flowchart_has_no_parts():
     assert r.check("arm free to move (no self-locking)").verdict == FAIL
     assert r.parts is None
     assert not math.isnan(r.values["lever_ratio"])
+
+
+def test_cli_verifies_a_saved_design(tmp_path, capsys):
+    """``synth design --json`` then ``synth flowchart --parts``: the flowchart checks the optimiser's design."""
+    import json
+
+    from synth.cli import main
+    case = "/work/shared/cases/case3.yaml"
+    if not __import__("os").path.exists(case):
+        pytest.skip("case file not available")
+    main(["design", case, "--json"])
+    saved = tmp_path / "design.json"
+    saved.write_text(capsys.readouterr().out)
+    parts = json.loads(saved.read_text())["parts"]
+    code = main(["flowchart", case, "--parts", str(saved), "--json", "--fidelity", "screening"])
+    out = json.loads(capsys.readouterr().out)
+    assert out["ball_bearing"] == parts["bearing"] and out["main_spring_mean_body_diameter_mm"] == parts["spring_mbd_mm"]
+    assert out["bolt_format"] == parts["bolt_format"] and out["pivot_bushing_length_mm"] == parts["bushing_length_mm"]
+    assert code == (0 if out["verdict"] == "pass" else 1)
+    assert main(["flowchart", case, "--parts", str(tmp_path / "missing.json")]) == 2
+    assert "--parts" in capsys.readouterr().err

@@ -26,8 +26,29 @@ def register(sub) -> None:
     p = sub.add_parser("flowchart", help="run the thesis design flowchart (steps 0-10) on a design input")
     p.add_argument("input", help="design input (.yaml, .toml, .json; a case file works)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--parts", metavar="RESULT.json",
+                   help="verify a given design instead of selecting one: the JSON of 'synth design --json' "
+                        "(its 'parts') or of 'synth flowchart --json'")
     add_model_options(p)
     p.set_defaults(func=_main)
+
+
+def parts_from_json(path: str) -> dict:
+    """The part choices saved in a ``synth design --json`` or ``synth flowchart --json`` file."""
+    from pathlib import Path
+
+    from synth.errors import InputError, Problem
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise InputError(Problem("--parts", path, f"a readable JSON result file ({exc})")) from None
+    if isinstance(data.get("parts"), dict):
+        return data["parts"]
+    if "ball_bearing" in data:  # a flowchart result: its own choices
+        r = flowchart.FlowchartResult(None, flowchart.Settings(), values=data)
+        if r.parts is not None:
+            return r.parts
+    raise InputError(Problem("--parts", path, "the JSON of 'synth design --json' or of a complete 'synth flowchart --json' run"))
 
 
 def render_text(r: flowchart.FlowchartResult) -> str:
@@ -62,7 +83,7 @@ def render_text(r: flowchart.FlowchartResult) -> str:
 
 def _main(args) -> int:
     d = schema.load_input(args.input)
-    r = flowchart.run(d, settings_from_args(args))
+    r = flowchart.run(d, settings_from_args(args), parts=parts_from_json(args.parts) if args.parts else None)
     if args.json:
         import dataclasses
         out = r.to_dict()
