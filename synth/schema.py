@@ -32,6 +32,7 @@ from __future__ import annotations
 import difflib
 import json
 import math
+import re
 from dataclasses import dataclass, field, fields as dc_fields, make_dataclass
 from pathlib import Path
 from typing import Any
@@ -39,7 +40,8 @@ from typing import Any
 from synth import catalog
 from synth.errors import InputError, Problem
 
-__all__ = ["Field", "FIELDS", "SECTIONS", "DesignInput", "validate", "load_input", "read_mapping", "field_by_name"]
+__all__ = ["Field", "FIELDS", "SECTIONS", "DesignInput", "validate", "load_input", "read_mapping", "field_by_name",
+           "parse_number_list"]
 
 INF = math.inf
 
@@ -396,3 +398,24 @@ def read_mapping(path: str | Path) -> dict:
 def load_input(path: str | Path) -> "DesignInput":
     """Read and validate a design-input file (YAML, TOML or JSON; a case file works)."""
     return validate(read_mapping(path))
+
+
+def parse_number_list(value):
+    """A list-valued cell (a wire size: ``2.3 x 2.3``, ``2.3; 2.3``, ``[2.3, 2.3]``, a number) as a list of floats.
+
+    Text that does not parse is returned as it is, for :func:`validate` to
+    report with the field's name. Used by the Excel and portfolio readers.
+
+    >>> parse_number_list("2.3 x 2.3"), parse_number_list("3"), parse_number_list(2.5), parse_number_list("abc")
+    ([2.3, 2.3], [3.0], [2.5], 'abc')
+    """
+    import numpy as np
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [float(v) if isinstance(v, (int, float, np.number)) else v for v in value]
+    if isinstance(value, (int, float, np.number)):
+        return [float(value)]
+    parts = [p for p in re.split(r"[x×X;,\s\[\]]+", str(value)) if p]
+    try:
+        return [float(p) for p in parts]
+    except ValueError:
+        return value

@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import difflib
 import math
-import re
 from pathlib import Path
 
 import numpy as np
@@ -108,17 +107,7 @@ def column_warnings(df: pd.DataFrame) -> list[str]:
     return out
 
 
-def _parse_list(value):
-    """A wire-size cell as a list of numbers; text that does not parse is kept (the validator reports it)."""
-    if isinstance(value, (list, tuple, np.ndarray)):
-        return [float(v) if isinstance(v, (int, float, np.number)) else v for v in value]
-    if isinstance(value, (int, float, np.number)):
-        return [float(value)]
-    parts = [p for p in re.split(r"[x×X;,\s\[\]]+", str(value)) if p]
-    try:
-        return [float(p) for p in parts]
-    except ValueError:
-        return value
+_parse_list = schema.parse_number_list
 
 
 def clean_cell(value, name: str | None = None):

@@ -14,7 +14,6 @@ cell, e.g. ``differential_angle_deg (sheet Input, cell E14)``.
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 from synth import schema
@@ -27,15 +26,7 @@ _ALIASES = {a: f.name for f in schema.FIELDS for a in f.aliases}
 _NAMES = {f.name for f in schema.FIELDS}
 
 
-def _parse_list(value):
-    """A wire-size cell (``2.3 x 2.3``, ``2.3; 2.3``, ``[2.3, 2.3]`` or a number) as a list; text kept as is."""
-    if isinstance(value, (int, float)):
-        return [float(value)]
-    parts = [p for p in re.split(r"[x×X;,\s\[\]]+", str(value)) if p]
-    try:
-        return [float(p) for p in parts]
-    except ValueError:
-        return value
+_parse_list = schema.parse_number_list
 
 
 def _clean(value):
