@@ -658,14 +658,11 @@ def _with_parts(d, parts: dict):
     missing = [k for k in PART_KEYS if k not in parts]
     if missing:
         raise InputError(Problem("parts", sorted(parts), "a dict with the keys " + ", ".join(PART_KEYS)))
-    sup = catalog.load("pivot_bushings")
-    row = sup[sup["supplier"].astype(str) == str(parts["supplier"])]
-    if row.empty:
-        raise InputError(Problem("parts.supplier", parts["supplier"], "a supplier of catalogs/pivot_bushings.csv"))
+    thickness = float(catalog.row("pivot_bushings", parts["supplier"], field="parts.supplier")["radial_thickness_mm"])
     w = s9.wire_properties(str(parts["spring_wire"]))
     data = {k: val for k, val in vars(d).items()}
     data.update(pivot_class_diameter_mm=float(parts["pivot_class_mm"]),
-                pivot_bushing_radial_thickness_mm=float(row["radial_thickness_mm"].iloc[0]),
+                pivot_bushing_radial_thickness_mm=thickness,
                 main_spring_mode="manual", main_spring_material=str(parts["spring_material"]),
                 main_spring_wire_section="round" if w["round_wire"] else "rectangular",
                 main_spring_wire_size_mm=[float(w["h_mm"])] if w["round_wire"] else [float(w["b_mm"]), float(w["h_mm"])],

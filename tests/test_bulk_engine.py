@@ -11,10 +11,8 @@ import pandas as pd
 import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
-from synth import catalog
 from synth.bulk import screen_applications
 from synth.bulk.engine import columns, screen_applications_reference
-from synth.bulk.engine_fast import constants_memo
 from synth.data.generated_applications import generate
 from synth.optimise import solve
 from synth.optimise.evaluate import CONSTRAINTS
@@ -143,14 +141,6 @@ def test_bad_working_arm_is_a_row_not_an_exception():
     df = screen_applications([d, generate(2, seed=0)[1]], diagnose=False)
     assert not df.loc[0, "feasible"] and df.loc[0, "notes"].startswith("no design space")
     assert df.loc[1, "status"] == "optimal"
-
-
-def test_constants_memo_restores_catalog():
-    orig = catalog.constant_row
-    with constants_memo():
-        assert catalog.constant_row is not orig
-        assert catalog.constant("pulley_width_margin_mm") == 4.0
-    assert catalog.constant_row is orig
 
 
 def _nan_outside_margins(df: pd.DataFrame) -> list:

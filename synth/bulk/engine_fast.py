@@ -33,10 +33,9 @@ evaluated and how often the application-independent work is repeated.
 5. **Feasibility probes** of the relaxation bisection stop at the first
    complete feasible design and evaluate the springs only for cores whose
    other subsystems can be completed.
-6. **Catalog constants** are memoised for the duration of a call
-   (:func:`constants_memo`; ``catalog.constant`` re-reads and concatenates
-   every constants CSV on each call, 2.3 ms, and is called hundreds of times
-   per application).
+6. **Catalog constants** are a dict lookup (``synth.catalog`` caches the
+   merged constants files; before that cache one lookup cost 2.3 ms and an
+   application needs hundreds).
 
 At ``full`` fidelity the plastic-wear ODE integrates a whole batch with shared
 adaptive steps, so the axial subsystem is always evaluated on exactly the
@@ -47,9 +46,7 @@ the nearest design) and the chosen design is re-evaluated alone, as
 
 from __future__ import annotations
 
-import contextlib
 import dataclasses
-import threading
 import types
 
 import numpy as np
@@ -63,56 +60,7 @@ from synth.optimise.objectives import Objective
 from synth.optimise.result import DesignResult, binding_of, design_margin, objective_values, parts_of
 from synth.optimise.space import build_space
 
-__all__ = ["screen_fast", "solve_fast", "constants_memo", "bolt_fixations"]
-
-_LOCK = threading.Lock()
-_STATE = {"depth": 0, "orig": None}
-
-
-@contextlib.contextmanager
-def constants_memo():
-    """Memoise :func:`synth.catalog.constant_row` and :func:`synth.catalog.row` (by name, key and user
-    catalog folders) while inside.
-
-    Re-entrant and thread-safe; the original function is restored when the
-    last user leaves. Values are the same: the catalogs are cached by
-    :func:`synth.catalog.load` already; only the per-call concatenation of the
-    constants files is saved.
-
-    >>> with constants_memo():
-    ...     catalog.constant("pulley_width_margin_mm")
-    4.0
-    """
-    with _LOCK:
-        if _STATE["depth"] == 0:
-            orig_const, orig_row = catalog.constant_row, catalog.row
-            memo: dict = {}
-
-            def constant_row(name: str):
-                key = ("constant", name, tuple(catalog._user_dirs()))
-                hit = memo.get(key)
-                if hit is None:
-                    hit = memo[key] = orig_const(name)
-                return hit
-
-            def row(name: str, key: str, field: str | None = None):
-                k = ("row", name, str(key), tuple(catalog._user_dirs()))
-                hit = memo.get(k)
-                if hit is None:
-                    hit = memo[k] = orig_row(name, key, field)  # an unknown key raises, and is not memoised
-                return hit.copy()
-
-            _STATE["orig"] = (orig_const, orig_row)
-            catalog.constant_row, catalog.row = constant_row, row
-        _STATE["depth"] += 1
-    try:
-        yield
-    finally:
-        with _LOCK:
-            _STATE["depth"] -= 1
-            if _STATE["depth"] == 0:
-                catalog.constant_row, catalog.row = _STATE["orig"]
-
+__all__ = ["screen_fast", "solve_fast", "bolt_fixations"]
 
 _FIX_ARRAYS = ("middle_plane_belt_height_mm", "tilting_safety_factor", "sliding_safety_factor",
                "engine_support_internal_diameter_mm", "engine_support_external_diameter_mm", "contact_angle_deg",
@@ -394,29 +342,28 @@ def screen_fast(apps, *, objective: str = "standard", fidelity: str = "screening
     """The bulk result of ``apps`` (see :func:`synth.bulk.engine.screen_applications`)."""
     from synth.bulk.engine import error_row, frame, row_from_result
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
-    with constants_memo():
-        cache: dict = {}
-        spaces = []
-        for d in apps:
-            try:
-                spaces.append(build_space(d, fidelity=fidelity, cache=cache))
-            except InputError as exc:
-                spaces.append(exc)
-        ok = [i for i, sp in enumerate(spaces) if not isinstance(sp, Exception)]
-        bolts: list = [None] * len(apps)
-        if ok:
-            t = spaces[ok[0]].subsystems["bolt"]
-            pre = bolt_fixations([apps[i] for i in ok], [spaces[i].fixed["hubload_nominal_n"] for i in ok],
-                                 list(zip(t["bolt_format"], t["bolt_property_class"])))
-            for i, b in zip(ok, pre):
-                bolts[i] = b
-        rows = []
-        for i, (d, sp) in enumerate(zip(apps, spaces)):
-            if isinstance(sp, Exception):
-                rows.append(error_row(sp))
-                continue
-            if bolts[i] is not None:
-                sp.fixed["bolt_fixation"] = bolts[i]
-            res = solve_fast(d, sp, obj, relax=diagnose, probe_cache=cache, bolt=bolts[i])
-            rows.append(row_from_result(res, d, diagnose))
+    cache: dict = {}
+    spaces = []
+    for d in apps:
+        try:
+            spaces.append(build_space(d, fidelity=fidelity, cache=cache))
+        except InputError as exc:
+            spaces.append(exc)
+    ok = [i for i, sp in enumerate(spaces) if not isinstance(sp, Exception)]
+    bolts: list = [None] * len(apps)
+    if ok:
+        t = spaces[ok[0]].subsystems["bolt"]
+        pre = bolt_fixations([apps[i] for i in ok], [spaces[i].fixed["hubload_nominal_n"] for i in ok],
+                             list(zip(t["bolt_format"], t["bolt_property_class"])))
+        for i, b in zip(ok, pre):
+            bolts[i] = b
+    rows = []
+    for i, (d, sp) in enumerate(zip(apps, spaces)):
+        if isinstance(sp, Exception):
+            rows.append(error_row(sp))
+            continue
+        if bolts[i] is not None:
+            sp.fixed["bolt_fixation"] = bolts[i]
+        res = solve_fast(d, sp, obj, relax=diagnose, probe_cache=cache, bolt=bolts[i])
+        rows.append(row_from_result(res, d, diagnose))
     return frame(rows)

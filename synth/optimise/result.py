@@ -15,14 +15,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from synth import catalog
+from synth.flowchart import PART_KEYS  # one list of part keys: the flowchart's fixed-parts mode and every solver
 from synth.optimise.evaluate import CONSTRAINTS, FEAS_TOL, evaluate
 from synth.optimise.space import PART_COLUMNS, SUBSYSTEMS, DesignSpace, build_space
 
 __all__ = ["DesignResult", "Verification", "verify", "parts_of", "objective_values"]
-
-PART_KEYS = ("bearing", "pivot_class_mm", "supplier", "damper_pad", "bushing_length_mm", "endcap_spacer",
-             "cone_aspect_ratio", "spring_material", "spring_wire", "spring_mbd_mm", "bolt_format", "bolt_property_class")
-
 
 def _plain(v):
     if isinstance(v, np.ndarray):

@@ -142,8 +142,6 @@ def _pivot_classes(d) -> np.ndarray:
 
 def _core_table(d, pin: bool, notes: list) -> pd.DataFrame:
     bearings = catalog.load("ball_bearings")
-    rules = catalog.load("bearing_selection")
-    rules = rules[rules["engine_fuel"] == d.engine_fuel]
     rows = []
     for _, b in bearings.iterrows():
         key = str(b["designation"])
@@ -152,11 +150,11 @@ def _core_table(d, pin: bool, notes: list) -> pd.DataFrame:
         except InputError:
             notes.append(f"bearing {key}: working arm {d.working_arm_mm:g} mm beyond its Table 2 columns; not a choice")
             continue
-        lim = rules[rules["designation"] == key]["max_hubload_nominal_n"].astype(float)
+        lim = s1.max_hubload_n(key, d.engine_fuel)
         rows.append({"bearing": key, "bearing_d_mm": float(b["d_mm"]), "bearing_D_mm": float(b["D_mm"]),
                      "bearing_B_mm": float(b["B_mm"]), "bearing_cost_eur": float(b["unit_cost_eur"]),
                      "bearing_standard": _b(b["standard"]),
-                     "bearing_max_hubload_n": float(lim.iloc[0]) if len(lim) else np.inf,
+                     "bearing_max_hubload_n": np.inf if lim is None else lim,
                      "table2_class_mm": std_class, "table2_max_loading_arm_mm": max_la})
     if not rows:
         raise InputError(Problem("working_arm_mm", d.working_arm_mm, "a working arm within thesis Table 2 for some bearing"))
