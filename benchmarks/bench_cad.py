@@ -20,7 +20,7 @@ from synth.cad.assembly import build
 from synth.cad.export import export_model
 from synth.cad.verify import failed, verify_model
 
-CASES = Path(__file__).resolve().parents[2] / "shared" / "cases"
+from synth.data import CASES_DIR as CASES
 
 
 def families():

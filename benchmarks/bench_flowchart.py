@@ -15,7 +15,7 @@ from pathlib import Path
 
 from synth import flowchart, schema
 
-CASES = Path(__file__).resolve().parents[2] / "shared" / "cases"
+from synth.data import CASES_DIR as CASES
 
 
 def time_run(d, settings, repeat=5):

@@ -20,6 +20,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from synth.data.generated_applications import generate  # noqa: E402
 from synth.optimise import solve  # noqa: E402
+from synth.data import case_path
 from synth.schema import load_input  # noqa: E402
 
 SOLVERS = ["enumerate", "milp-highs", "minlp", "milp-cvxpy", "blackbox", "flowchart"]
@@ -95,8 +96,8 @@ def main(argv=None):
     p.add_argument("--trials", type=int, default=60)
     a = p.parse_args(argv)
     warnings.simplefilter("ignore")
-    apps = [("thesis case 1", load_input("/work/shared/cases/case1.yaml")),
-            ("thesis case 3", load_input("/work/shared/cases/case3.yaml"))]
+    apps = [("thesis case 1", load_input(case_path("case1"))),
+            ("thesis case 3", load_input(case_path("case3")))]
     apps += [(f"generated {i}", d) for i, d in enumerate(generate(a.apps, seed=0))]
     t0 = time.perf_counter()
     rows, loss = run(apps, a.blackbox_apps, a.trials)

@@ -1,18 +1,16 @@
-"""Shared fixtures: the thesis case files from ../shared/cases."""
+"""Shared fixtures: the thesis case files shipped in synth/data/cases."""
 
 from pathlib import Path
 
 import pytest
 import yaml
 
-CASES = Path(__file__).resolve().parents[2] / "shared" / "cases"
+from synth.data import CASES_DIR as CASES
 
 
 def load_case(name: str) -> dict:
     """The whole case file ``name`` (``inputs``, ``thesis_tool``, ``real_tensioner``)."""
     path = CASES / f"{name}.yaml"
-    if not path.is_file():
-        pytest.skip(f"case file {path} not available")
     return yaml.safe_load(path.read_text())
 
 

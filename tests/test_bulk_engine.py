@@ -17,6 +17,7 @@ from synth.data.generated_applications import generate
 from synth.optimise import solve
 from synth.optimise.evaluate import CONSTRAINTS
 from synth.optimise.result import PART_KEYS
+from synth.data import case_path
 from synth.schema import load_input
 
 
@@ -111,7 +112,7 @@ def test_feasible_rows_have_no_violation(ref_standard):
 def test_only_radial_application():
     """Case 3 (dry, radial damping) declared only_radial: no damper pad, the axial-group margins not evaluated
     and said so; the verdict and relaxation of the optimisation section (case 3: stiffness 0.0164 -> 0.0192)."""
-    d = dataclasses.replace(load_input("/work/shared/cases/case3.yaml"), damping_typology="only_radial")
+    d = dataclasses.replace(load_input(case_path("case3")), damping_typology="only_radial")
     fast = screen_applications([d])
     _assert_same(fast, screen_applications_reference([d]))
     row = fast.iloc[0]

@@ -28,7 +28,9 @@ from synth.cli import main
 from synth.errors import InputError
 from synth.schema import load_input
 
-CASES = "/work/shared/cases"
+from synth.data import CASES_DIR
+
+CASES = str(CASES_DIR)
 TOL = 0.01  # mm, the acceptance tolerance
 ALL_PARTS = {"support_plate", "pivot", "spring_bushing", "main_spring", "cone_spring", "damper_pad", "pivot_bushing",
              "arm", "ball_bearing", "pulley", "endcap_spacer", "endcap", "fixation_bolt"}

@@ -14,6 +14,7 @@ import math
 import pytest
 
 from synth.checks import FAIL
+from synth.data import case_path
 from synth.data.generated_applications import generate
 from synth.errors import InputError
 from synth.flowchart import PART_KEYS, Settings, run
@@ -143,9 +144,7 @@ def test_cli_verifies_a_saved_design(tmp_path, capsys):
     import json
 
     from synth.cli import main
-    case = "/work/shared/cases/case3.yaml"
-    if not __import__("os").path.exists(case):
-        pytest.skip("case file not available")
+    case = str(case_path("case3"))
     main(["design", case, "--json"])
     saved = tmp_path / "design.json"
     saved.write_text(capsys.readouterr().out)

@@ -9,6 +9,7 @@ import json
 import numpy as np
 import pytest
 import yaml
+from synth.data import case_path
 from hypothesis import given, settings, strategies as st
 
 from synth.cli import main
@@ -24,8 +25,8 @@ from synth.optimise.space import SUBSYSTEMS, build_space
 from synth.physics import step04_pivot_bushing as s4
 from synth.schema import load_input
 
-CASE1 = "/work/shared/cases/case1.yaml"
-CASE3 = "/work/shared/cases/case3.yaml"
+CASE1 = str(case_path("case1"))
+CASE3 = str(case_path("case3"))
 APP = generate(2, seed=0)[1]  # a feasible generated application (dry, radial damping)
 
 

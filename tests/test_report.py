@@ -33,8 +33,6 @@ AXIAL_GRAPHS = ("sensitivity_mu_plastic", "damping_decay", "cone_spring_characte
 @pytest.fixture(scope="module")
 def case1(tmp_path_factory):
     path = CASES / "case1.yaml"
-    if not path.is_file():
-        pytest.skip("case files not available")
     out = tmp_path_factory.mktemp("report1")
     pareto = [{"cost_eur": 3.1, "mass_g": 250.0}, {"cost_eur": 2.8, "mass_g": 270.0}, {"cost_eur": 2.5, "mass_g": 300.0}]
     solvers = [{"solver": "SLSQP", "cost_eur": 2.9, "time_s": 0.4}, {"solver": "NSGA-II", "cost_eur": 2.8, "time_s": 9.0}]
@@ -48,8 +46,6 @@ def case1(tmp_path_factory):
 @pytest.fixture(scope="module")
 def case3(tmp_path_factory):
     path = CASES / "case3.yaml"
-    if not path.is_file():
-        pytest.skip("case files not available")
     r = make_report(path, tmp_path_factory.mktemp("report3"), show_progress=False)
     r["text"] = r["html"].read_text(encoding="utf-8")
     return r

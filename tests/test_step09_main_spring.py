@@ -1,6 +1,6 @@
 """Step 9, main torsion spring: hand calculations, thesis cases 1 and 3, properties.
 
-Sources: thesis eq. (64)-(93), Tables 9-10 (case 1) and 13-14 (case 3), /work/shared/cases/NOTES.md.
+Sources: thesis eq. (64)-(93), Tables 9-10 (case 1) and 13-14 (case 3), synth/data/cases/NOTES.md.
 """
 
 import math

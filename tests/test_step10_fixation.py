@@ -18,7 +18,7 @@ from synth import catalog
 from synth.errors import CatalogError, InputError
 from synth.physics import step10_fixation as s10
 
-CASES = Path("/work/shared/cases")
+from synth.data import CASES_DIR as CASES
 CASE_KEYS = [
     "bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_mpa", "bolt_tau_mpa", "bolt_sigma_eqv_mpa",
     "bolt_under_head_stress_mpa", "bolt_thread_stress_mpa", "pivot_base_contact_surface_mm2",

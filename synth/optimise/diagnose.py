@@ -12,7 +12,9 @@
   cannot make the design feasible within its range.
 
 >>> from synth.schema import load_input
->>> r = diagnose(load_input("/work/shared/cases/case1.yaml"), relax=False)
+
+>>> from synth.data import case_path
+>>> r = diagnose(load_input(case_path("case1")), relax=False)
 >>> r.status, len(r.diagnosis["violated"]) > 0
 ('infeasible', True)
 """

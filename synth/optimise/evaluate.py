@@ -12,8 +12,10 @@ damping means no cone spring, plastic wear or Table 3/4 capacity; a missing
 durability test skips step 4 and step 5; missing fixation data skip step 10.
 
 >>> from synth.schema import load_input
+
+>>> from synth.data import case_path
 >>> from synth.optimise.space import build_space
->>> ev = evaluate(build_space(load_input("/work/shared/cases/case1.yaml")))
+>>> ev = evaluate(build_space(load_input(case_path("case1"))))
 >>> "self_locking" in ev.core_margins, ev.subs["spring"].margins.shape[2] >= 5
 (True, True)
 """

@@ -63,7 +63,9 @@ def verify(d, parts: dict, *, fidelity: str = "screening", friction_circle: bool
     """Evaluate the design ``parts`` of input ``d`` alone: every constraint, its derived values.
 
     >>> from synth.schema import load_input
-    >>> v = verify(load_input("/work/shared/cases/case3.yaml"), {"bearing": "6006", "pivot_class_mm": 19.0,
+
+    >>> from synth.data import case_path
+    >>> v = verify(load_input(case_path("case3")), {"bearing": "6006", "pivot_class_mm": 19.0,
     ...     "supplier": "B", "damper_pad": "none", "bushing_length_mm": 20.0, "endcap_spacer": "none",
     ...     "cone_aspect_ratio": 0.0, "spring_material": "VDSiCr", "spring_wire": "R2.30",
     ...     "spring_mbd_mm": 44.0, "bolt_format": "M8x1.25", "bolt_property_class": "8.8"})

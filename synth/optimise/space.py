@@ -31,7 +31,8 @@ option of each subsystem, and the max-min margin combines by the minimum.
 
 >>> from synth.optimise.space import build_space
 >>> from synth.schema import load_input
->>> sp = build_space(load_input("/work/shared/cases/case1.yaml"))
+>>> from synth.data import case_path
+>>> sp = build_space(load_input(case_path("case1")))
 >>> sp.n_cores > 0, sorted(sp.subsystems)
 (True, ['axial', 'bolt', 'bushing', 'spring'])
 """

@@ -23,7 +23,7 @@ __all__ = ["register"]
 
 
 def _common(p) -> None:
-    p.add_argument("input", metavar="INPUT", help="case file (YAML, JSON or TOML), as shared/cases/shrink_fit_kia_ceed.yaml")
+    p.add_argument("input", metavar="INPUT", help="case file (YAML, JSON or TOML), as synth/data/cases/shrink_fit_kia_ceed.yaml")
     p.add_argument("--json", action="store_true", help="machine-readable JSON on stdout")
     p.add_argument("--paper", action="store_true",
                    help="the paper's modelling choices (eq. 17 as applied, eq. 2 adhesion term on the harder hub, "

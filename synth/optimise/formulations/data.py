@@ -13,9 +13,11 @@ data are presolved:
   of springs to a few dozen.
 
 >>> from synth.schema import load_input
+
+>>> from synth.data import case_path
 >>> from synth.optimise.space import build_space
 >>> from synth.optimise.evaluate import evaluate
->>> md = model_data(evaluate(build_space(load_input("/work/shared/cases/case3.yaml"))), {"cost": 1.0}, False)
+>>> md = model_data(evaluate(build_space(load_input(case_path("case3")))), {"cost": 1.0}, False)
 >>> md.n_cores >= 0
 True
 """
