@@ -10,8 +10,8 @@ import csv
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-ORDER = ["00_overview", "step00_03", "step04_pivot_bushing", "step05_plastic_wear", "step06_stackup",
-         "step07_packaging", "step08_cone_spring", "step09_main_spring", "step10_fixation", "cad",
+ORDER = ["00_overview", "step00_03", "plain_bushing", "friction_wear", "stackup",
+         "packaging", "disc_spring", "torsion_spring", "bolted_joint", "cad",
          "optimisation", "bulk_engine", "bulk", "reports", "shrink_fit"]
 
 

@@ -3,7 +3,7 @@
 :func:`run` walks the steps with the thesis's iterations (lengthen the
 bushing, enlarge the damper-pad class, escalate bolt format and class, search
 the spring catalog in automatic mode). Each step reads the physics functions of
-:mod:`synth.physics` (the same ones the optimisers use) and adds
+:mod:`synth.model` (the same ones the optimisers use) and adds
 
 * values to ``result.values`` (flat dict; the keys of the case files'
   ``thesis_tool:`` block, same names and units, plus more);
@@ -31,10 +31,10 @@ import numpy as np
 from synth import catalog
 from synth.checks import FAIL, NOT_VERIFIED, PASS, Check
 from synth.friction import mu as friction_mu
-from synth.physics import step00_execution as s0, step01_bearing as s1, step02_pivot as s2, step03_damping as s3
-from synth.physics import step04_pivot_bushing as s4, step05_plastic_wear as s5, step06_stackup as s6
-from synth.physics import step07_packaging as s7, step08_cone_spring as s8, step09_main_spring as s9
-from synth.physics import step10_fixation as s10
+from synth.model import layout as s0, ball_bearing as s1, pivot as s2, damping as s3
+from synth.model import plain_bushing as s4, friction_wear as s5, stackup as s6
+from synth.model import packaging as s7, disc_spring as s8, torsion_spring as s9
+from synth.model import bolted_joint as s10
 
 __all__ = ["Settings", "FlowchartResult", "run", "STEP_NAMES"]
 

@@ -22,7 +22,7 @@ from synth.optimise.objectives import Objective
 from synth.optimise.result import verify
 from synth.optimise.solvers.enumerate import solve_space, tables
 from synth.optimise.space import SUBSYSTEMS, build_space
-from synth.physics import step04_pivot_bushing as s4
+from synth.model import plain_bushing as s4
 from synth.schema import load_input
 
 CASE1 = str(case_path("case1"))

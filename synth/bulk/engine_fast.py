@@ -1,7 +1,7 @@
 """The fast bulk engine: ``solve(d, objective, "enumerate")`` per application, same answer, far less work.
 
 Exactness first: every margin comes from the same calls of
-:mod:`synth.optimise.evaluate` (hence :mod:`synth.physics`) on the same
+:mod:`synth.optimise.evaluate` (hence :mod:`synth.model`) on the same
 arrays as the reference; what changes is how much of the catalog product is
 evaluated and how often the application-independent work is repeated.
 

@@ -1,6 +1,6 @@
 """Vectorised evaluation of a design space: normalised margins of every constraint.
 
-Every margin comes from the same :mod:`synth.physics` functions the flowchart
+Every margin comes from the same :mod:`synth.model` functions the flowchart
 uses (one source of truth); this module only arranges their inputs on arrays
 of shape ``(n_cores,)`` (core constraints) or ``(n_cores, n_options)``
 (subsystem constraints) and never re-implements a formula.
@@ -29,10 +29,10 @@ import pandas as pd
 
 from synth import catalog
 from synth.checks import margin_lower, margin_upper
-from synth.physics import step00_execution as s0, step02_pivot as s2, step03_damping as s3
-from synth.physics import step04_pivot_bushing as s4, step05_plastic_wear as s5, step06_stackup as s6
-from synth.physics import step07_packaging as s7, step08_cone_spring as s8, step09_main_spring as s9
-from synth.physics import step10_fixation as s10
+from synth.model import layout as s0, pivot as s2, damping as s3
+from synth.model import plain_bushing as s4, friction_wear as s5, stackup as s6
+from synth.model import packaging as s7, disc_spring as s8, torsion_spring as s9
+from synth.model import bolted_joint as s10
 from synth.optimise.space import NONE, SUBSYSTEMS, DesignSpace
 
 __all__ = ["CONSTRAINTS", "SubEval", "Evaluation", "evaluate", "FEAS_TOL", "spring_keys", "spring_margins", "bolt_fixation"]
@@ -409,7 +409,7 @@ _BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_e
 
 
 def bolt_fixation(d, hubload_n, bolt_format: str, bolt_property_class: str) -> dict:
-    """Step 10 (:func:`synth.physics.step10_fixation.fixation`) for one bolt row: ``{key: value}`` of the bolt
+    """Step 10 (:func:`synth.model.bolted_joint.fixation`) for one bolt row: ``{key: value}`` of the bolt
     margins and values the optimiser keeps. ``d``'s numeric fields and ``hubload_n`` may be arrays over
     applications (then every value is an array, element by element the same as one call per application).
 

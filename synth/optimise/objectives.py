@@ -116,7 +116,7 @@ def spring_cost_eur(mbd_mm, active_coils, round_wire, b_mm, h_mm, wire_cost_eur_
     """Cost of a main spring [EUR]: wire length x cost per metre + mass x material cost per kg.
 
     Wire length of the active coils ``pi D n_a`` (the legs are not counted,
-    as in :func:`synth.physics.step09_main_spring.main_spring_from_catalog`).
+    as in :func:`synth.model.torsion_spring.main_spring_from_catalog`).
 
     >>> round(float(spring_cost_eur(41.0, 3.616, False, 2.3, 2.3, 0.078, 7850, 3.2)), 4)
     0.0982

@@ -6,7 +6,7 @@ from the Table 7 design ranges for a chosen aspect ratio), main-spring
 material, wire and mean body diameter, bolt format and property class.
 Continuous quantities (damping split, active coils, cone-spring thickness and
 force, bolt preload and tightening torque) follow in closed form from the
-physics of :mod:`synth.physics` and are derived, not searched.
+physics of :mod:`synth.model` and are derived, not searched.
 
 Decomposition. The choices that set the damping split (bearing, pivot class,
 bushing supplier, whose wall thickness sets the pivot diameter) and the
@@ -47,8 +47,8 @@ import pandas as pd
 from synth import catalog
 from synth.errors import InputError, Problem
 from synth.friction import mu as friction_mu
-from synth.physics import step00_execution as s0, step01_bearing as s1, step02_pivot as s2, step03_damping as s3
-from synth.physics import step04_pivot_bushing as s4, step09_main_spring as s9, step10_fixation as s10
+from synth.model import layout as s0, ball_bearing as s1, pivot as s2, damping as s3
+from synth.model import plain_bushing as s4, torsion_spring as s9, bolted_joint as s10
 from synth.optimise.objectives import spring_cost_eur
 
 __all__ = ["DesignSpace", "build_space", "SUBSYSTEMS", "durability_of"]
@@ -217,7 +217,7 @@ def _axial_table(d) -> pd.DataFrame:
 
 
 def _spring_table(d, cores: pd.DataFrame, pin: bool, cache: "_Cache | None" = None) -> pd.DataFrame:
-    from synth.physics import step07_packaging as s7
+    from synth.model import packaging as s7
     step = catalog.constant("optimise_mbd_step_mm")
     d_in = float(np.min(s7.spring_housing_inner_diameter_mm(cores["pivot_class_mm"].to_numpy())))
     d_out = float(np.max(s7.spring_housing_outer_diameter_mm(cores["bearing_D_mm"].to_numpy(), d.working_arm_mm)))

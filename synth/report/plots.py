@@ -2,7 +2,7 @@
 
 Each graph is computed from the flowchart result: from ``result.curves`` when
 the flowchart stored the curve under the graph's id, else from the physics
-functions of :mod:`synth.physics` with the values of ``result.values`` (and,
+functions of :mod:`synth.model` with the values of ``result.values`` (and,
 where a step's values are not in the result, the same physics the flowchart
 would call). A graph that cannot be drawn (a step that does not apply, data
 missing) is listed with the reason, never drawn empty.
@@ -141,7 +141,7 @@ class _Data:
         if "group" in self._cache:
             return self._cache["group"]
         from synth import catalog
-        from synth.physics import step03_damping as s3
+        from synth.model import damping as s3
         g = {}
         for part, table in (("damper_pad", "damper_pads"), ("endcap_spacer", "endcap_spacers")):
             keys = [f"{part}_contact_area_mm2", f"{part}_mean_radius_mm", f"{part}_axial_height_mm"]
@@ -162,7 +162,7 @@ class _Data:
         val = self.v.get("plastic_friction_coefficient") or self.v.get("mu_plastic")
         if val is not None:
             return float(val)
-        from synth.physics import step05_plastic_wear as s5
+        from synth.model import friction_wear as s5
         return float(s5.plastic_material(application_type=self.d.application_type)["plastic_friction_coefficient"])
 
     def cone(self) -> dict:
@@ -170,7 +170,7 @@ class _Data:
         if "cone" in self._cache:
             return self._cache["cone"]
         self.axial()
-        from synth.physics import step06_stackup as s6, step08_cone_spring as s8
+        from synth.model import stackup as s6, disc_spring as s8
         geo_keys = ("cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm",
                     "cone_spring_thickness_mm", "cone_spring_cone_height_mm", "cone_spring_nominal_deflection_mm",
                     "cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n")
@@ -190,7 +190,7 @@ class _Data:
         return c
 
     def plastic_history(self) -> dict:
-        """Step 5 time histories (result curves, else :func:`step05_plastic_wear.plastic_wear`)."""
+        """Step 5 time histories (result curves, else :func:`friction_wear.plastic_wear`)."""
         if "plastic" in self._cache:
             return self._cache["plastic"]
         self.axial()
@@ -209,7 +209,7 @@ class _Data:
         return self._cache["plastic"]
 
     def _plastic_physics(self) -> dict:
-        from synth.physics import step05_plastic_wear as s5
+        from synth.model import friction_wear as s5
         c, g = self.cone(), self.axial_group()
         th, f, t = self.durability()
         eol = self.get("damping_eol_limit_nm", 0.0)
@@ -261,7 +261,7 @@ def _check_verdict(result, *names) -> str | None:
 
 # ------------------------------------------------------------------------------------------ graphs
 def _characterisation(dt: _Data):
-    from synth.physics import step03_damping as s3
+    from synth.model import damping as s3
     try:
         half = dt.durability()[0] / 2.0 or 10.0
     except _Skip:
@@ -296,7 +296,7 @@ def g_hysteresis_torque(dt: _Data, ax):
 
 
 def _sensitivity(dt: _Data, ax, parameter, values, xlabel):
-    from synth.physics import step03_damping as s3
+    from synth.model import damping as s3
     kw = dict(spring_torque_nominal_nm=dt.need("spring_torque_nominal_nm"),
               axial_damping_nm=dt.get("axial_damping_nm", 0.0) or 0.0, working_arm_mm=dt.need("working_arm_mm"),
               differential_angle_deg=dt.need("differential_angle_deg"), pivot_diameter_mm=dt.need("pivot_diameter_mm"),
@@ -337,7 +337,7 @@ def g_sensitivity_mu_plastic(dt: _Data, ax):
 def _bushing(dt: _Data):
     if "bushing" in dt._cache:
         return dt._cache["bushing"]
-    from synth.physics import step04_pivot_bushing as s4
+    from synth.model import plain_bushing as s4
     th, f, t_end = dt.durability()
     supplier = dt.v.get("pivot_bushing_supplier") or s4.supplier_for_thickness(dt.need("pivot_bushing_radial_thickness_mm"))
     length = dt.need("pivot_bushing_length_mm")
@@ -404,7 +404,7 @@ def g_damping_decay(dt: _Data, ax):
 
 
 def _characteristic(dt: _Data):
-    from synth.physics import step08_cone_spring as s8
+    from synth.model import disc_spring as s8
     c = dt.cone()
     geo = (c["cone_spring_max_external_diameter_mm"], c["cone_spring_min_internal_diameter_mm"],
            c["cone_spring_thickness_mm"], c["cone_spring_cone_height_mm"])
@@ -471,7 +471,7 @@ def g_goodman(dt: _Data, ax):
     c = dt.curve("goodman")
     if c:
         return _generic(ax, c, "mean stress [MPa]", "stress [MPa]"), None
-    from synth.physics import step09_main_spring as s9
+    from synth.model import torsion_spring as s9
     smax, smin = (float(x) for x in dt.need("main_spring_sigma_a_max_mpa", "main_spring_sigma_a_min_mpa"))
     material = dt.need("main_spring_material")
     size = dt.need("main_spring_wire_size_mm")
@@ -499,7 +499,7 @@ def g_goodman(dt: _Data, ax):
 
 
 def g_pivot_base_pressure(dt: _Data, ax):
-    from synth.physics import step10_fixation as s10
+    from synth.model import bolted_joint as s10
     force = float(dt.need("bolt_axial_force_n"))
     hl = float(dt.need("hubload_nominal_n"))
     h = float(dt.need("middle_plane_belt_height_mm"))

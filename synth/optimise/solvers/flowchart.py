@@ -25,7 +25,7 @@ from synth import catalog
 from synth.optimise.evaluate import evaluate
 from synth.optimise.result import build_result
 from synth.optimise.space import NONE, SUBSYSTEMS, build_space
-from synth.physics import step01_bearing as s1, step02_pivot as s2, step04_pivot_bushing as s4, step10_fixation as s10
+from synth.model import ball_bearing as s1, pivot as s2, plain_bushing as s4, bolted_joint as s10
 
 __all__ = ["solve"]
 

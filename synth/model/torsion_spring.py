@@ -10,7 +10,7 @@ leaves the outer fibre in compression) or unwinding. This module gives
   radial contact with the housing (eq. 81-88), coil gap (eq. 89-93),
   the Smith-Goodman safety factor (figure 71) and the angle between the
   hooks (the spring-housing height of eq. 52 and diameter of eq. 54 are step
-  7's, re-exported here from :mod:`synth.physics.step07_packaging`);
+  7's, re-exported here from :mod:`synth.model.packaging`);
 * :func:`main_spring_design`, the whole step for arrays of designs, and
   :func:`main_spring_from_catalog` / :func:`search_main_spring` (automatic mode:
   every material x wire x mean diameter of the catalogs at once).
@@ -20,7 +20,7 @@ angles in degrees. A wire is described by ``b_mm`` (side parallel to the
 spring axis), ``h_mm`` (radial side) and ``round_wire`` (True: ``b = h = d``).
 
 Corrections to the printed equations are listed in
-``docs/sections/step09_main_spring.md``.
+``docs/sections/torsion_spring.md``.
 
 >>> r = main_spring_from_catalog("VDSiCr", "R2.30", 44.0, stiffness_nm_per_deg=0.0164,
 ...     spring_torque_nominal_nm=1.56, torque_tolerance_pct=8, theta_pp_deg=16,
@@ -37,7 +37,7 @@ import pandas as pd
 from synth import catalog
 from synth.checks import Check, margin_lower, margin_upper
 from synth.errors import InputError, Problem
-from synth.physics.step07_packaging import spring_housing_height_mm, spring_housing_outer_diameter_mm  # noqa: F401  (re-exported: eq. 52, 54 live in step 7)
+from synth.model.packaging import spring_housing_height_mm, spring_housing_outer_diameter_mm  # noqa: F401  (re-exported: eq. 52, 54 live in step 7)
 
 __all__ = [
     "second_moment_mm4", "section_modulus_mm3", "equivalent_diameter_mm", "spring_index",

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from synth.errors import InputError
-from synth.physics.step06_stackup import component_tolerances_mm, gap_stackup, gap_tolerance_mm
+from synth.model.stackup import component_tolerances_mm, gap_stackup, gap_tolerance_mm
 
 
 def test_table6_worst_case_is_the_printed_overall():

@@ -12,7 +12,7 @@ public outputs (``_nm``), stresses in MPa (= N/mm^2), angles in degrees.
 
 Where the printed thesis equations are wrong or ambiguous the physically
 correct form is implemented and the thesis tool's convention is offered as a
-keyword option; see ``docs/sections/step10_fixation.md``.
+keyword option; see ``docs/sections/bolted_joint.md``.
 
 >>> hl = nominal_hubload_n(3.25, 5.0, 85.0)
 >>> round(float(hl), 1)
@@ -116,7 +116,7 @@ def nominal_hubload_n(calculated_torque_nm, working_arm_mm, differential_angle_d
                  accepted="an angle in (0, 180) deg")
     if np.any(a >= 180.0):
         raise InputError(Problem("differential_angle_deg", 180.0, "an angle in (0, 180) deg"))
-    from synth.physics.step03_damping import hubload_nominal_n  # one implementation of eq. (7)
+    from synth.model.damping import hubload_nominal_n  # one implementation of eq. (7)
     return hubload_nominal_n(t, l, a)
 
 

@@ -10,7 +10,7 @@ from scipy.integrate import quad
 from synth import catalog
 from synth.checks import FAIL, PASS
 from synth.errors import InputError
-from synth.physics import step04_pivot_bushing as s4
+from synth.model import plain_bushing as s4
 
 from conftest import load_case
 

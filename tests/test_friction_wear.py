@@ -7,8 +7,8 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from synth.errors import CatalogError, InputError
-from synth.physics import step05_plastic_wear as pw
-from synth.physics import step08_cone_spring as cs
+from synth.model import friction_wear as pw
+from synth.model import disc_spring as cs
 
 # thesis case 1: durability 16 deg peak-to-peak, 50 Hz, 1200 h; damper pad 460 mm2 / R 12.5 / h 3.5;
 # endcap spacer 490 mm2 / R 13.5 / h 1.5; radial damping 0.287 N m; EOL limit 1.50 N m

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from synth.errors import InputError
-from synth.physics import step08_cone_spring as cs
+from synth.model import disc_spring as cs
 
 SQRT2 = math.sqrt(2.0)
 

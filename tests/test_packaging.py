@@ -7,7 +7,7 @@ from hypothesis import given, settings, strategies as st
 from synth import catalog
 from synth.checks import FAIL, PASS
 from synth.errors import InputError
-from synth.physics import step07_packaging as s7
+from synth.model import packaging as s7
 
 from conftest import load_case
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from hypothesis import given, strategies as st
 
-from synth.physics import step00_execution as s0, step01_bearing as s1, step02_pivot as s2, step03_damping as s3
+from synth.model import layout as s0, ball_bearing as s1, pivot as s2, damping as s3
 
 
 # --- step 0 -------------------------------------------------------------------------------------

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 from synth import catalog
 from synth.errors import CatalogError, InputError
-from synth.physics import step10_fixation as s10
+from synth.model import bolted_joint as s10
 
 from synth.data import CASES_DIR as CASES
 CASE_KEYS = [
@@ -142,7 +142,7 @@ def test_case3_with_model_hubload_is_4_percent_low():
 
     The safety factors do not depend on the hubload scale (sliding governs) and
     still match; every force-proportional output is 462.5/483.33 = 0.957 of
-    the table (documented in docs/sections/step10_fixation.md).
+    the table (documented in docs/sections/bolted_joint.md).
     """
     c = _case("case3")
     r = _run(c["inputs"])

@@ -14,7 +14,7 @@ and the axial damping (thesis eq. (43)-(49), Fig. 41-46).
   force only (wear computed at the unrelaxed force: an upper bound).
 * ``fidelity="full"``: ``scipy.integrate.solve_ivp`` of the two wear depths of
   every design at once along the Almen-Laszlo characteristic
-  (:func:`synth.physics.step08_cone_spring.disc_spring_force_n`), with the
+  (:func:`synth.model.disc_spring.disc_spring_force_n`), with the
   relaxation acting on the force during the test.
 
 Units: lengths mm, areas mm^2, forces N, torques N m, pressures MPa, speeds
@@ -32,7 +32,7 @@ from scipy.integrate import solve_ivp
 from synth import catalog
 from synth.checks import Check, margin_lower, margin_upper
 from synth.errors import InputError, Problem
-from synth.physics.step08_cone_spring import (_broadcast_all, axial_damping_nm, disc_spring_force_n,
+from synth.model.disc_spring import (_broadcast_all, axial_damping_nm, disc_spring_force_n,
                                               disc_spring_rate_n_per_mm)
 
 __all__ = [

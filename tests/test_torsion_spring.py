@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 from synth import catalog
 from synth.errors import InputError
-from synth.physics import step09_main_spring as ms
+from synth.model import torsion_spring as ms
 from tests.conftest import load_case
 
 E = 206000.0  # MPa, EN 13906-1 / thesis tool (NOTES.md)
