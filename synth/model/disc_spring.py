@@ -29,7 +29,6 @@ from __future__ import annotations
 import numpy as np
 
 from synth import catalog
-from synth.checks import Check, margin_lower, margin_upper
 from synth.errors import InputError, Problem
 
 __all__ = [
@@ -46,9 +45,8 @@ __all__ = [
     "gap_force_shifts_n",
     "cone_spring_min_internal_diameter_mm",
     "cone_spring_max_external_diameter_mm",
-    "table7_margins",
+    "table7_ratios",
     "cone_spring",
-    "cone_spring_checks",
 ]
 
 #: ``screening``: linear (secant) characteristic; ``full``: Almen-Laszlo.
@@ -352,8 +350,9 @@ def gap_force_shifts_n(nominal_deflection_mm, gap_tolerance_mm, outer_diameter_m
 
 def axial_force_tolerance_band(damping_target_nm, damping_tolerance_nm, radial_damping_nm,
                                plastic_friction_coefficient, damper_pad_mean_radius_mm,
-                               endcap_spacer_mean_radius_mm, force_shift_min_gap_n, force_shift_max_gap_n) -> dict:
-    """Cone-spring force tolerance at the nominal gap (thesis step 8, Fig. 68) [N].
+                               endcap_spacer_mean_radius_mm, force_shift_min_gap_n, force_shift_max_gap_n,
+                               force_tolerance_plus=0.0, force_tolerance_minus=0.0) -> dict:
+    """Cone-spring force tolerance at the nominal gap (thesis step 8, Fig. 68) and the room left in it [N].
 
     The damping must stay within ``target +/- tolerance`` for every gap height
     in the stack-up band (thesis step 8: the upper damping limit at maximum
@@ -365,18 +364,21 @@ def axial_force_tolerance_band(damping_target_nm, damping_tolerance_nm, radial_d
         F_{lo} = \\frac{\\max(D_t - \\Delta D - D_{rad}, 0)}{\\mu (R_{dp} + R_{es})}
 
     and, with :math:`\\Delta F_\\pm` the force shifts at the gap limits
-    (:func:`gap_force_shifts_n`), the supplier's tolerance at the nominal gap is
+    (:func:`gap_force_shifts_n`), the force at the nominal gap must lie in
 
     .. math::
         F_{max,tol} = F_{up} - \\max(\\Delta F_+, \\Delta F_-, 0),\\quad
         F_{min,tol} = F_{lo} - \\min(\\Delta F_+, \\Delta F_-, 0)
 
+    A spring ordered at the nominal force :math:`F_n` (from the nominal axial
+    damping ``D_t - D_rad``) is delivered within ``F_n (1 - d-) .. F_n (1 + d+)``
+    (manufacturing tolerance, EN 16983 / DIN 2093); the room left is
+    :math:`\\min(F_{max,tol} - F_n(1+d_+),\\ F_n(1-d_-) - F_{min,tol})`, >= 0 when every
+    delivered spring keeps the damping in its band at every gap.
+
     Returns ``cone_spring_fax_max_tolerance_n``, ``cone_spring_fax_min_tolerance_n``,
-    ``cone_spring_fax_nominal_n`` (from the nominal axial damping
-    ``D_t - D_rad``), ``fax_damping_upper_n`` / ``fax_damping_lower_n``
-    (:math:`F_{up}, F_{lo}`) and ``margin_force_band``: the share of the
-    damping-derived band left to the supplier after the gap effect,
-    ``(F_max,tol - F_min,tol)/(F_up - F_lo)`` (>= 0 passes).
+    ``cone_spring_fax_nominal_n``, ``fax_damping_upper_n`` / ``fax_damping_lower_n``
+    (:math:`F_{up}, F_{lo}`), ``band_n`` (:math:`F_{up} - F_{lo}`) and ``band_room_n``.
 
     Thesis case 1 (D 2.00 +/- 0.30 N m, D_rad 0.2871 N m, R 12.5 + 13.5 mm,
     mu 0.1294, a spring rate of 95.2 N/mm over the worst-case 0.22 mm):
@@ -384,6 +386,8 @@ def axial_force_tolerance_band(damping_target_nm, damping_tolerance_nm, radial_d
     >>> r = axial_force_tolerance_band(2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 95.2 * 0.22, -95.2 * 0.22)
     >>> round(float(r["cone_spring_fax_max_tolerance_n"]), 1), round(float(r["cone_spring_fax_min_tolerance_n"]), 1)
     (577.3, 440.9)
+    >>> round(float(r["band_room_n"]), 1)
+    68.2
     """
     mu_r = _f(plastic_friction_coefficient) * (_f(damper_pad_mean_radius_mm) + _f(endcap_spacer_mean_radius_mm)) * 1e-3
     _require(mu_r > 0, "plastic_friction_coefficient * (R_dp + R_es)", mu_r, "> 0")
@@ -394,13 +398,15 @@ def axial_force_tolerance_band(damping_target_nm, damping_tolerance_nm, radial_d
     up, down = _f(force_shift_min_gap_n), _f(force_shift_max_gap_n)
     f_max = f_up - np.maximum(np.maximum(up, down), 0.0)
     f_min = f_lo - np.minimum(np.minimum(up, down), 0.0)
+    room = np.minimum(f_max - f_nom * (1.0 + _f(force_tolerance_plus)), f_nom * (1.0 - _f(force_tolerance_minus)) - f_min)
     return {
         "cone_spring_fax_max_tolerance_n": f_max,
         "cone_spring_fax_min_tolerance_n": f_min,
         "cone_spring_fax_nominal_n": f_nom,
         "fax_damping_upper_n": f_up,
         "fax_damping_lower_n": f_lo,
-        "margin_force_band": (f_max - f_min) / np.maximum(f_up - f_lo, _TINY),
+        "band_n": f_up - f_lo,
+        "band_room_n": room,
     }
 
 
@@ -409,19 +415,17 @@ def cone_spring_min_internal_diameter_mm(pivot_diameter_mm) -> dict:
 
     :math:`D_{i,min} = d_{pivot} + c(D_i)` with the diametral clearance ``c``
     of the class the resulting ``Di`` falls in (0.2 mm below 18 mm, 0.3 mm in
-    [18, 22), 0.4 mm in [22, 28)). Table 8 ends at 28 mm: beyond it the last
-    clearance is used and ``margin_table8_range`` (``(28 - Di)/28``) goes
-    negative, so the design is flagged instead of extrapolated.
+    [18, 22), 0.4 mm in [22, 28)). Table 8 ends at 28 mm (``table8_max_mm``):
+    beyond it the last clearance is used and the design is flagged by the
+    Table 8 constraint instead of extrapolated.
 
-    Returns ``cone_spring_min_internal_diameter_mm``, ``pivot_clearance_mm`` and
-    ``margin_table8_range``.
+    Returns ``cone_spring_min_internal_diameter_mm``, ``pivot_clearance_mm`` and ``table8_max_mm``.
 
     >>> r = cone_spring_min_internal_diameter_mm([16.0, 17.75, 17.9, 21.7, 30.0])
-    >>> r["cone_spring_min_internal_diameter_mm"].round(2).tolist()
-    [16.2, 17.95, 18.2, 22.1, 30.4]
+    >>> r["cone_spring_min_internal_diameter_mm"].round(2).tolist(), float(r["table8_max_mm"])
+    ([16.2, 17.95, 18.2, 22.1, 30.4], 28.0)
     """
     d = _f(pivot_diameter_mm)
-    _require(d > 0, "pivot_diameter_mm", d, "> 0")
     tab = catalog.load("cone_spring_clearances").sort_values("di_min_mm")
     lo, hi, c = (tab[k].to_numpy(float) for k in ("di_min_mm", "di_max_mm", "clearance_mm"))
     clearance = np.full(d.shape, c[-1])
@@ -431,9 +435,8 @@ def cone_spring_min_internal_diameter_mm(pivot_diameter_mm) -> dict:
         hit = ~chosen & (cand >= lo_i) & (cand < hi_i)
         clearance = np.where(hit, c_i, clearance)
         chosen |= hit
-    di = d + clearance
-    return {"cone_spring_min_internal_diameter_mm": di, "pivot_clearance_mm": clearance,
-            "margin_table8_range": margin_upper(di, hi[-1])}
+    return {"cone_spring_min_internal_diameter_mm": d + clearance, "pivot_clearance_mm": clearance,
+            "table8_max_mm": float(hi[-1])}
 
 
 def cone_spring_max_external_diameter_mm(damper_pad_outer_diameter_mm):
@@ -455,50 +458,41 @@ def cone_spring_max_external_diameter_mm(damper_pad_outer_diameter_mm):
     return np.floor(raw / g + 1e-9) * g
 
 
-def table7_margins(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm) -> dict:
-    """Normalised margins of the supplier's optimal ranges, thesis Table 7 and eq. (55)-(57).
+def table7_ratios(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm) -> dict:
+    """The ratios of the supplier's optimal ranges, thesis Table 7 and eq. (55)-(57).
 
-    ``delta = De/Di`` (eq. (55)), ``zeta = h0/t`` (eq. (56)), ``De/t`` (eq. (57)),
-    each against ``[min_ratio, max_ratio]`` of ``catalogs/cone_spring_ranges.csv``;
-    the margin of a range is the smaller of its lower and upper margins.
+    ``diameter_ratio = De/Di`` (eq. (55)), ``aspect_ratio = h0/t`` (eq. (56)),
+    ``thinness = De/t`` (eq. (57)); the ranges are in ``catalogs/cone_spring_ranges.csv``
+    (advisory constraints of :mod:`synth.design.constraints`).
 
-    Returns ``diameter_ratio``, ``aspect_ratio``, ``thinness`` and
-    ``margin_diameter_ratio``, ``margin_aspect_ratio``, ``margin_thinness``.
-
-    >>> r = table7_margins(30.0, 16.2, 0.75, 0.9)
-    >>> round(float(r["margin_diameter_ratio"]), 4), round(float(r["margin_thinness"]), 4)
-    (0.0288, 0.0476)
+    >>> r = table7_ratios(30.0, 16.2, 0.75, 0.9)
+    >>> round(float(r["diameter_ratio"]), 4), float(r["aspect_ratio"]), float(r["thinness"])
+    (1.8519, 1.2, 40.0)
     """
-    de, di, t, h0 = _validate_geometry(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm)
-    ranges = catalog.load("cone_spring_ranges").set_index("parameter")
-    out = {"diameter_ratio": de / di, "aspect_ratio": h0 / t, "thinness": de / t}
-    for name in ("diameter_ratio", "aspect_ratio", "thinness"):
-        lo, hi = float(ranges.loc[name, "min_ratio"]), float(ranges.loc[name, "max_ratio"])
-        out[f"margin_{name}"] = np.minimum(margin_lower(out[name], lo), margin_upper(out[name], hi))
-    return out
+    de, di, t, h0 = _f(outer_diameter_mm), _f(inner_diameter_mm), _f(thickness_mm), _f(cone_height_mm)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return {"diameter_ratio": de / di, "aspect_ratio": h0 / t, "thinness": de / t}
 
 
 def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radial_damping_nm,
                 plastic_friction_coefficient, damper_pad_mean_radius_mm, endcap_spacer_mean_radius_mm,
-                damper_pad_outer_diameter_mm, pivot_diameter_mm, gap_tolerance_mm, *,
-                aspect_ratio=None, deflection_ratio=None, fidelity: str = "full") -> dict:
-    """Step 8: size the cone spring and its force tolerance band (thesis eq. (9), (55)-(63), Tables 7-8, Fig. 68).
+                outer_diameter_mm, inner_diameter_mm, gap_tolerance_mm, *, aspect_ratio, deflection_ratio,
+                force_tolerance_plus=0.0, force_tolerance_minus=0.0, fidelity: str = "full") -> dict:
+    """Step 8: size the cone spring of one variant and its force tolerance band (thesis eq. (9), (55)-(63), Fig. 68).
 
     1. nominal axial force from the axial damping of step 3 (eq. (9) inverted);
-    2. geometric limits: ``Di`` from the pivot and Table 8, ``De`` from the
-       damper pad (:func:`cone_spring_max_external_diameter_mm`); the spring
-       takes the whole annulus (largest lever, thinnest disc);
-    3. thickness in closed form for the nominal force at ``s = phi*h0`` with
-       ``h0 = zeta*t`` (``aspect_ratio`` zeta and ``deflection_ratio`` phi
-       default to the catalog constants 1.2 and 0.75: Table 7 upper limit,
-       DIN 2093 reference deflection);
+    2. the variant: outer and inner diameter (``De`` on the damper pad, ``Di``
+       on the pivot, Table 8), ``aspect_ratio`` zeta = h0/t and
+       ``deflection_ratio`` phi = s/h0 at the nominal gap;
+    3. thickness in closed form for the nominal force at ``s = phi*h0``
+       (:func:`disc_spring_thickness_for_force_mm`);
     4. the force shifts over the stack-up gap tolerance of step 6 along the
-       characteristic (``fidelity``) and the tolerance band;
-    5. stresses at the maximum-material deflection and the checks.
+       characteristic (``fidelity``), the tolerance band and the room left in it
+       for the manufacturing tolerance ``force_tolerance_plus/minus`` (fractions);
+    5. stresses at the maximum-material deflection.
 
-    Inputs broadcast (one call, many designs). Forces N, lengths mm, torques N m.
-    Designs without axial damping (``axial_damping_nm_ <= 0``) get zero force
-    and thickness and their margins are set to +inf (nothing to check).
+    Inputs broadcast (one call, many designs; valid geometry: ``De > Di > 0``,
+    ``zeta > 0``, ``0 < phi <= 1``, a positive nominal force). Forces N, lengths mm, torques N m.
 
     Returns the ``thesis_tool`` keys ``cone_spring_fax_max_tolerance_n``,
     ``cone_spring_fax_min_tolerance_n``, ``cone_spring_min_internal_diameter_mm``,
@@ -507,125 +501,48 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
     ``cone_spring_free_height_mm``, ``cone_spring_nominal_deflection_mm``,
     ``cone_spring_max_deflection_mm`` (at maximum material),
     ``cone_spring_rate_n_per_mm`` (at the nominal deflection), the five stresses
-    ``sigma_*_mpa`` at the maximum deflection, ``diameter_ratio``,
-    ``aspect_ratio``, ``thinness`` and a ``margins`` dict (each >= 0 passes):
-    ``force_band``, ``diameter_ratio``, ``aspect_ratio``, ``thinness``,
-    ``not_flattened`` (``(h0 - s_max)/h0``), ``sigma_om``, ``table8_range``.
+    ``sigma_*_mpa`` at the maximum deflection (clipped at the flat position),
+    ``cone_spring_fax_band_n``, ``cone_spring_force_band_room_n`` and the
+    Table 7 ratios ``cone_spring_diameter_ratio``, ``cone_spring_aspect_ratio``,
+    ``cone_spring_thinness``.
 
-    >>> r = cone_spring(1.7129, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 31.5, 16.0, 0.22)
-    >>> float(r["cone_spring_min_internal_diameter_mm"]), float(r["cone_spring_max_external_diameter_mm"])
-    (16.2, 30.0)
+    >>> r = cone_spring(1.7129, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 30.0, 16.2, 0.22,
+    ...                 aspect_ratio=1.2, deflection_ratio=0.75)
     >>> round(float(r["cone_spring_fax_nominal_n"]), 1), round(float(r["cone_spring_thickness_mm"]), 3)
     (509.1, 0.742)
     """
     _check_fidelity(fidelity)
-    zeta = catalog.constant("cone_spring_default_aspect_ratio") if aspect_ratio is None else aspect_ratio
-    phi = catalog.constant("cone_spring_nominal_deflection_ratio") if deflection_ratio is None else deflection_ratio
-    zeta, phi = _f(zeta), _f(phi)
+    zeta, phi = _f(aspect_ratio), _f(deflection_ratio)
     f_nom = required_axial_force_n(axial_damping_nm_, plastic_friction_coefficient,
                                    damper_pad_mean_radius_mm, endcap_spacer_mean_radius_mm)
-    di_r = cone_spring_min_internal_diameter_mm(pivot_diameter_mm)
-    di = di_r["cone_spring_min_internal_diameter_mm"]
-    de = cone_spring_max_external_diameter_mm(damper_pad_outer_diameter_mm)
-    _require(de > di, "damper_pad_outer_diameter_mm", _f(damper_pad_outer_diameter_mm),
-             "large enough that the cone spring OD (pad OD - margin) exceeds its ID (pivot + clearance)")
-    active = f_nom > 0
+    de, di = _f(outer_diameter_mm), _f(inner_diameter_mm)
     t = disc_spring_thickness_for_force_mm(f_nom, de, di, zeta, phi, fidelity=fidelity)
-    # inactive designs: a placeholder disc of unit thickness keeps the formulas finite; outputs zeroed below
-    t_calc = np.where(active, t, 1.0)
-    h0 = zeta * t_calc
+    h0 = zeta * t
     s_n = phi * h0
     dh = _f(gap_tolerance_mm)
-    geo = (de, di, t_calc, h0)
+    geo = (de, di, t, h0)
     shifts = gap_force_shifts_n(s_n, dh, *geo, fidelity=fidelity)
     band = axial_force_tolerance_band(damping_target_nm, damping_tolerance_nm, radial_damping_nm,
                                       plastic_friction_coefficient, damper_pad_mean_radius_mm,
-                                      endcap_spacer_mean_radius_mm, np.where(active, shifts["force_shift_min_gap_n"], 0.0),
-                                      np.where(active, shifts["force_shift_max_gap_n"], 0.0))
-    rate = disc_spring_rate_n_per_mm(s_n, *geo, fidelity=fidelity)
+                                      endcap_spacer_mean_radius_mm, shifts["force_shift_min_gap_n"],
+                                      shifts["force_shift_max_gap_n"], force_tolerance_plus, force_tolerance_minus)
     s_max = s_n + dh
-    stresses = disc_spring_stresses_mpa(np.minimum(s_max, h0), *geo)
-    t7 = table7_margins(*geo)
-    sig_lim = catalog.constant("cone_spring_sigma_om_max_mpa")
-
-    def gate(m):
-        return np.where(active, m, np.inf)
-
-    margins = {
-        "force_band": gate(band["margin_force_band"]),
-        "diameter_ratio": gate(t7["margin_diameter_ratio"]),
-        "aspect_ratio": gate(t7["margin_aspect_ratio"]),
-        "thinness": gate(t7["margin_thinness"]),
-        "not_flattened": gate((h0 - s_max) / h0),
-        "sigma_om": gate(margin_upper(np.abs(stresses["sigma_om_mpa"]), sig_lim)),
-        "table8_range": gate(di_r["margin_table8_range"]),
-    }
-    z = np.where(active, 1.0, 0.0)
     out = {
         "cone_spring_fax_max_tolerance_n": band["cone_spring_fax_max_tolerance_n"],
         "cone_spring_fax_min_tolerance_n": band["cone_spring_fax_min_tolerance_n"],
         "cone_spring_fax_nominal_n": f_nom,
+        "cone_spring_fax_band_n": band["band_n"],
+        "cone_spring_force_band_room_n": band["band_room_n"],
         "cone_spring_min_internal_diameter_mm": di,
         "cone_spring_max_external_diameter_mm": de,
-        "cone_spring_thickness_mm": t * z,
-        "cone_spring_cone_height_mm": h0 * z,
-        "cone_spring_free_height_mm": (h0 + t_calc) * z,
-        "cone_spring_nominal_deflection_mm": s_n * z,
-        "cone_spring_max_deflection_mm": s_max * z,
-        "cone_spring_rate_n_per_mm": rate * z,
-        "diameter_ratio": t7["diameter_ratio"],
-        "aspect_ratio": t7["aspect_ratio"] * z,
-        "thinness": t7["thinness"] * z,
-        "margins": margins,
+        "cone_spring_thickness_mm": t,
+        "cone_spring_cone_height_mm": h0,
+        "cone_spring_free_height_mm": h0 + t,
+        "cone_spring_nominal_deflection_mm": s_n,
+        "cone_spring_max_deflection_mm": s_max,
+        "cone_spring_rate_n_per_mm": disc_spring_rate_n_per_mm(s_n, *geo, fidelity=fidelity),
     }
-    out.update({k: v * z for k, v in stresses.items()})
-    return _broadcast_all(out)
-
-
-def _broadcast_all(out: dict) -> dict:
-    """Broadcast every array of a result (and of its ``margins``) to the common design shape."""
-    arrays = [v for v in out.values() if not isinstance(v, dict)] + list(out.get("margins", {}).values())
-    shape = np.broadcast_shapes(*(np.shape(a) for a in arrays))
-
-    def b(v):
-        return {k: b(x) for k, x in v.items()} if isinstance(v, dict) else np.broadcast_to(_f(v), shape).copy()
-
-    return {k: b(v) for k, v in out.items()}
-
-
-def cone_spring_checks(result: dict, index=()) -> list[Check]:
-    """:class:`synth.checks.Check` records of one design of :func:`cone_spring` (step 8).
-
-    ``index`` selects the design in vectorised results. The checks carry the
-    physical values and limits (their verdicts agree with the normalised
-    ``result["margins"]``); a design without axial damping gets one
-    ``not verified`` record.
-
-    >>> r = cone_spring(1.7129, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 31.5, 16.0, 0.22)
-    >>> [(c.name, c.verdict) for c in cone_spring_checks(r)][:2]
-    [('cone spring force band after gap tolerance', 'pass'), ('cone spring De/Di >= Table 7 min', 'pass')]
-    """
-    def v(key):
-        return float(np.asarray(result[key])[index])
-
-    if v("cone_spring_fax_nominal_n") <= 0:
-        return [Check.skipped("cone spring", 8, "axial damping (none required)")]
-    ranges = catalog.load("cone_spring_ranges").set_index("parameter")
-    out = [Check("cone spring force band after gap tolerance", 8, v("cone_spring_fax_max_tolerance_n"),
-                 v("cone_spring_fax_min_tolerance_n"), ">=", "N", "thesis step 8, Fig. 68; eq. (9); Table 6",
-                 note="Fax max tolerance must exceed Fax min tolerance")]
-    for key, eq in (("diameter_ratio", "eq. (55)"), ("aspect_ratio", "eq. (56)"), ("thinness", "eq. (57)")):
-        label = {"diameter_ratio": "De/Di", "aspect_ratio": "h0/t", "thinness": "De/t"}[key]
-        out.append(Check(f"cone spring {label} >= Table 7 min", 8, v(key), float(ranges.loc[key, "min_ratio"]),
-                         ">=", "-", f"{eq}, Table 7"))
-        out.append(Check(f"cone spring {label} <= Table 7 max", 8, v(key), float(ranges.loc[key, "max_ratio"]),
-                         "<=", "-", f"{eq}, Table 7"))
-    out.append(Check("cone spring deflection at maximum material <= h0", 8, v("cone_spring_max_deflection_mm"),
-                     v("cone_spring_cone_height_mm"), "<=", "mm", "DIN EN 16984; thesis Table 6",
-                     note="a flat spring bottoms: the force is no longer set by the characteristic"))
-    out.append(Check("cone spring |sigma_OM| at maximum deflection", 8, abs(v("sigma_om_mpa")),
-                     catalog.constant("cone_spring_sigma_om_max_mpa"), "<=", "MPa", "eq. (59), DIN EN 16984"))
-    tab = catalog.load("cone_spring_clearances")
-    out.append(Check("cone spring ID within Table 8", 8, v("cone_spring_min_internal_diameter_mm"),
-                     float(tab["di_max_mm"].max()), "<=", "mm", "Table 8"))
-    return out
+    out.update(disc_spring_stresses_mpa(np.minimum(s_max, h0), *geo))
+    out.update({f"cone_spring_{k}": v for k, v in table7_ratios(*geo).items()})
+    shape = np.broadcast_shapes(*(np.shape(v) for v in out.values()))
+    return {k: np.broadcast_to(_f(v), shape) for k, v in out.items()}

@@ -12,10 +12,15 @@ and the axial damping (thesis eq. (43)-(49), Fig. 41-46).
   deflection (tangent) and solved in closed form,
   :math:`w(t) = F_0/R\\,(1 - e^{-aRt})`; relaxation applied to the end-of-life
   force only (wear computed at the unrelaxed force: an upper bound).
-* ``fidelity="full"``: ``scipy.integrate.solve_ivp`` of the two wear depths of
-  every design at once along the Almen-Laszlo characteristic
-  (:func:`synth.model.disc_spring.disc_spring_force_n`), with the
-  relaxation acting on the force during the test.
+* ``fidelity="full"``: the exact solution along the Almen-Laszlo
+  characteristic (:func:`synth.model.disc_spring.disc_spring_force_n`) with
+  the relaxation acting on the force during the test. The wear law
+  :math:`dw/dt = c\\,\\rho(t)\\,F(s_0 - w)` separates:
+  :math:`\\int_{s}^{s_0} du/F(u) = c \\int_0^t \\rho`, and for a disc without
+  contact flats :math:`F(u) = u\\,q(u)` with a quadratic ``q``, so the left side
+  has a closed form (:func:`wear_integral`); the deflection ``s`` at any time
+  is its root (``scipy.optimize.elementwise.find_root``, element by element:
+  each design's result does not depend on the others evaluated with it).
 
 Units: lengths mm, areas mm^2, forces N, torques N m, pressures MPa, speeds
 m/s, times h, wear constants mm^3/(N m).
@@ -27,13 +32,11 @@ m/s, times h, wear constants mm^3/(N m).
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from synth import catalog
-from synth.checks import Check, margin_lower, margin_upper
 from synth.errors import InputError, Problem
-from synth.model.disc_spring import (_broadcast_all, axial_damping_nm, disc_spring_force_n,
-                                              disc_spring_rate_n_per_mm)
+from synth.model.disc_spring import (_elastic, _f as _arr, axial_damping_nm, disc_spring_factors,
+                                     disc_spring_force_n, disc_spring_rate_n_per_mm)
 
 __all__ = [
     "FIDELITIES",
@@ -42,8 +45,9 @@ __all__ = [
     "sliding_speed_m_per_s",
     "contact_pressure_mpa",
     "relaxation_factor",
+    "relaxation_integral_h",
+    "wear_integral",
     "plastic_wear",
-    "plastic_wear_checks",
 ]
 
 FIDELITIES = ("screening", "full")
@@ -127,11 +131,89 @@ def relaxation_factor(time_h, relaxation_pct=None, relaxation_time_h=None):
     return 1.0 - x / 100.0 * frac
 
 
+def relaxation_integral_h(time_h, relaxation_pct=None, relaxation_time_h=None):
+    """Time integral of :func:`relaxation_factor` from 0 to ``time_h`` [h].
+
+    :math:`R(t) = t - \\frac{x}{100}\\,(t^2/(2y))` for ``t <= y``, else
+    :math:`t - \\frac{x}{100}(t - y/2)`; ``y = 0``: :math:`t (1 - x/100)`.
+
+    >>> relaxation_integral_h([0.0, 100.0, 1200.0]).round(3).tolist()
+    [0.0, 97.5, 1142.5]
+    """
+    x = catalog.constant("cone_spring_relaxation_pct") if relaxation_pct is None else relaxation_pct
+    y = catalog.constant("cone_spring_relaxation_time_h") if relaxation_time_h is None else relaxation_time_h
+    t, x, y = np.maximum(_f(time_h), 0.0), _f(x) / 100.0, _f(y)
+    y_safe = np.where(y > 0, y, 1.0)
+    lost = np.where(y > 0, np.where(t <= y, t * t / (2.0 * y_safe), t - y / 2.0), t)
+    return t - x * lost
+
+
+def wear_integral(deflection_mm, outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm,
+                  youngs_modulus_mpa=None, poisson_ratio=None):
+    """Antiderivative :math:`\\Phi(u) = \\int du / F(u)` of the Almen-Laszlo force (no contact flats) [mm/N].
+
+    :math:`F(u) = u\\,q(u)`, :math:`q = \\alpha + \\beta u + \\gamma u^2` with
+    :math:`\\alpha = S t^3 (z^2+1)`, :math:`\\beta = -\\tfrac32 S t^2 z`, :math:`\\gamma = \\tfrac12 S t`,
+    :math:`z = h_0/t`, :math:`S = 4E/((1-\\mu^2) K_1 D_e^2)` (DIN EN 16984), so
+
+    .. math::
+        \\Phi(u) = \\frac{\\ln u}{\\alpha} - \\frac{\\ln q(u)}{2\\alpha}
+                 - \\frac{\\beta}{\\alpha\\sqrt{\\Delta}}\\arctan\\frac{2\\gamma u + \\beta}{\\sqrt{\\Delta}},
+        \\quad \\Delta = 4\\alpha\\gamma - \\beta^2 = S^2 t^4 (2 - z^2/4) > 0 \\ (z < 2\\sqrt 2).
+
+    ``deflection_mm`` may be given as ``(log_mm,)`` -- see :func:`plastic_wear`.
+    Check against a numerical quadrature of 1/F between 0.2 and 0.6 mm:
+
+    >>> from scipy.integrate import quad
+    >>> geo = (30.0, 16.2, 0.742, 0.890)
+    >>> ref = quad(lambda u: 1.0 / float(disc_spring_force_n(u, *geo)), 0.2, 0.6)[0]
+    >>> bool(abs(float(wear_integral(0.6, *geo) - wear_integral(0.2, *geo)) / ref - 1.0) < 1e-10)
+    True
+    """
+    return _wear_phi(np.log(_f(deflection_mm)), _f(deflection_mm), *_wear_coefficients(
+        outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm, youngs_modulus_mpa, poisson_ratio))
+
+
+def _wear_coefficients(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm, e=None, nu=None):
+    e, nu = _elastic(e, nu)
+    k1 = disc_spring_factors(outer_diameter_mm, inner_diameter_mm)["k1"]
+    t, z = _arr(thickness_mm), _arr(cone_height_mm) / _arr(thickness_mm)
+    s = 4.0 * e / (1.0 - nu ** 2) / (k1 * _arr(outer_diameter_mm) ** 2)
+    alpha, beta, gamma = s * t ** 3 * (z * z + 1.0), -1.5 * s * t * t * z, 0.5 * s * t
+    return alpha, beta, gamma, np.sqrt(4.0 * alpha * gamma - beta * beta)
+
+
+def _wear_phi(log_u, u, alpha, beta, gamma, root):
+    q = alpha + beta * u + gamma * u * u
+    return log_u / alpha - np.log(q) / (2.0 * alpha) - beta / (alpha * root) * np.arctan((2.0 * gamma * u + beta) / root)
+
+
+def _deflection_after(s0, target, coef):
+    """Deflection ``s`` with ``Phi(s0) - Phi(s) = target`` (>= 0), solved for ``v = ln(s0/s)`` in a proven bracket.
+
+    ``1/(u q(u)) >= 1/(u q_max)`` on ``(0, s0]`` (``q`` convex: its maximum is at an end), so
+    ``v = target * q_max`` already reaches the target: the root lies in ``[0, target * q_max]``.
+    """
+    from scipy.optimize.elementwise import find_root
+    alpha, beta, gamma, root = coef
+    q_max = np.maximum(alpha, alpha + beta * s0 + gamma * s0 * s0)
+    phi0 = _wear_phi(np.log(s0), s0, *coef)
+
+    def f(v, s0_, phi0_, target_, a, b, g, r):
+        u = s0_ * np.exp(-v)
+        return phi0_ - _wear_phi(np.log(s0_) - v, u, a, b, g, r) - target_
+
+    hi = np.maximum(target * q_max, 0.0) * (1.0 + 1e-9) + 1e-300
+    res = find_root(f, (np.zeros_like(hi), hi), args=(s0, phi0, target, alpha, beta, gamma, root),
+                    tolerances={"xatol": 0.0, "xrtol": 4 * np.finfo(float).eps})
+    return np.where(target > 0, s0 * np.exp(-res.x), s0)
+
+
 def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm,
                  damper_pad_contact_area_mm2, damper_pad_mean_radius_mm, damper_pad_axial_height_mm,
                  endcap_spacer_contact_area_mm2, endcap_spacer_mean_radius_mm, endcap_spacer_axial_height_mm,
                  durability_theta_peak_to_peak_deg, durability_frequency_hz, durability_duration_h,
-                 radial_damping_nm, damping_eol_limit_nm, *,
+                 radial_damping_nm, *,
                  material: str = "PPA_CF10_AR10_PTFE", application_type: str = "belt_in_oil",
                  k_wear_mm3_per_n_m=None, plastic_friction_coefficient=None,
                  relaxation_pct=None, relaxation_time_h=None,
@@ -156,7 +238,7 @@ def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, th
     ``cone_height_mm``: step 8's outputs) and its deflection at new;
     the plastic elements (Tables 3-4: contact area, mean radius, axial height);
     the durability test (peak-to-peak angle, frequency, duration);
-    ``radial_damping_nm`` (step 3) and ``damping_eol_limit_nm`` (input).
+    ``radial_damping_nm`` (step 3).
     ``material``/``application_type`` select ``k_wear`` and ``mu`` from
     ``catalogs/plastic_wear.csv`` unless given explicitly. A zero duration gives
     zero wear.
@@ -167,17 +249,20 @@ def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, th
     ``damper_pad_pressure_initial_mpa``, ``endcap_spacer_pressure_initial_mpa``,
     ``damper_pad_sliding_speed_m_per_s``, ``endcap_spacer_sliding_speed_m_per_s``,
     ``axial_damping_initial_nm``, ``axial_damping_eol_nm``, ``damping_initial_nm``,
-    ``damping_eol_nm``, and ``margins``: ``damping_eol`` (EOL damping >= limit),
-    ``damper_pad_wear`` and ``endcap_spacer_wear`` (wear <= allowed fraction
-    of the element height, ``plastic_max_wear_fraction``). With
+    ``damping_eol_nm``, and the wear limits ``damper_pad_wear_max_mm`` and
+    ``endcap_spacer_wear_max_mm`` (the allowed fraction of the element height,
+    ``plastic_max_wear_fraction``). With
     ``time_points > 0`` also ``history``: ``time_h``, ``plastic_wear_total_mm``,
     ``cone_spring_force_n``, ``damping_nm`` arrays of shape ``(time_points,) +
     design shape`` (thesis Fig. 42-45).
 
     >>> r = plastic_wear(0.668, 30.0, 16.2, 0.742, 0.890, 460, 12.5, 3.5, 490, 13.5, 1.5,
-    ...                  16, 50, 1200, 0.287, 1.5, fidelity="screening")
+    ...                  16, 50, 1200, 0.287, fidelity="screening")
     >>> round(float(r["plastic_wear_total_mm"]), 3), round(float(r["damping_eol_nm"]), 2)
     (0.294, 1.52)
+    >>> f = plastic_wear(0.668, 30.0, 16.2, 0.742, 0.890, 460, 12.5, 3.5, 490, 13.5, 1.5, 16, 50, 1200, 0.287)
+    >>> round(float(f["plastic_wear_total_mm"]), 3), round(float(f["damping_eol_nm"]), 3)
+    (0.287, 1.533)
     """
     if fidelity not in FIDELITIES:
         raise InputError(Problem("fidelity", fidelity, " or ".join(FIDELITIES)))
@@ -203,7 +288,7 @@ def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, th
     c_dp, c_es = kw * v_dp / a_dp, kw * v_es / a_es
     s0 = _f(initial_deflection_mm)
     f0 = disc_spring_force_n(s0, *geo, **kwg)
-    shape = np.broadcast(s0, f0, c_dp, c_es, duration, _f(radial_damping_nm), _f(damping_eol_limit_nm),
+    shape = np.broadcast(s0, f0, c_dp, c_es, duration, _f(radial_damping_nm),
                          *(np.asarray(g) for g in geo)).shape
     s0, f0, c_dp, c_es, t_end_h = (np.broadcast_to(x, shape).astype(float) for x in (s0, f0, c_dp, c_es, duration))
     geo_b = tuple(np.broadcast_to(_f(g), shape) for g in geo)
@@ -234,32 +319,23 @@ def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, th
             w_hist = wear_total(t_s, rate)
             f_hist = relaxation_factor(t_s / 3600.0, relaxation_pct, relaxation_time_h) * np.maximum(f0 - rate * w_hist, 0.0)
     else:
-        n = int(np.prod(shape)) if shape else 1
-        flat = [np.ravel(x) for x in (s0, c_dp, c_es, t_end_s)]
-        s0_f, cdp_f, ces_f, te_f = flat
-        geo_f = tuple(np.ravel(g) for g in geo_b)
-
-        def force(tau_, w_tot):
-            rho = relaxation_factor(tau_ * te_f / 3600.0, relaxation_pct, relaxation_time_h)
-            return rho * disc_spring_force_n(s0_f - w_tot, *geo_f, **kwg)
-
-        def rhs(tau_, y):
-            f = force(tau_, y[:n] + y[n:])
-            return np.concatenate((te_f * cdp_f * f, te_f * ces_f * f))
-
-        sol = solve_ivp(rhs, (0.0, 1.0), np.zeros(2 * n), method="RK45", t_eval=tau if n_t > 0 else [1.0],
-                        rtol=catalog.constant("plastic_wear_ode_rtol"),
-                        atol=catalog.constant("plastic_wear_ode_atol_mm"))
-        if not sol.success:  # pragma: no cover - RK45 on a bounded, Lipschitz right-hand side
-            raise RuntimeError(f"plastic wear integration failed: {sol.message}")
-        y_end = sol.y[:, -1]
-        w_dp_f, w_es_f = y_end[:n], y_end[n:]
-        w = (w_dp_f + w_es_f).reshape(shape)
-        split_dp = w_dp_f.reshape(shape)
-        f_eol = force(1.0, w_dp_f + w_es_f).reshape(shape)
+        coef = _wear_coefficients(*geo_b, e, nu)
+        rate_c = c_dp + c_es  # mm/(N s): dw/dt = rate_c rho(t) F(s0 - w)
+        target_end = rate_c * 3600.0 * relaxation_integral_h(t_end_h, relaxation_pct, relaxation_time_h)
+        live = s0 > 0
+        s0_safe = np.where(live, s0, 1.0)
+        s_end = np.where(live, _deflection_after(s0_safe, np.where(live, target_end, 0.0), coef), 0.0)
+        w = s0 - s_end
+        split_dp = np.where(rate_c > 0, c_dp / np.where(rate_c > 0, rate_c, 1.0), 0.5) * w
+        f_eol = rho_end * disc_spring_force_n(s_end, *geo_b, **kwg)
         if n_t > 0:
-            w_hist = (sol.y[:n] + sol.y[n:]).T.reshape((n_t,) + shape)
-            f_hist = np.stack([force(tt, sol.y[:n, i] + sol.y[n:, i]) for i, tt in enumerate(sol.t)]).reshape((n_t,) + shape)
+            t_h = tau.reshape((-1,) + (1,) * len(shape)) * t_end_h
+            target_t = rate_c * 3600.0 * relaxation_integral_h(t_h, relaxation_pct, relaxation_time_h)
+            s_t = np.where(live, _deflection_after(np.broadcast_to(s0_safe, target_t.shape),
+                                                   np.where(live, target_t, 0.0),
+                                                   tuple(np.broadcast_to(c, target_t.shape) for c in coef)), 0.0)
+            w_hist = s0 - s_t
+            f_hist = relaxation_factor(t_h, relaxation_pct, relaxation_time_h) * disc_spring_force_n(s_t, *geo_b, **kwg)
 
     share_dp = np.where(c_dp + c_es > 0, c_dp / np.where(c_dp + c_es > 0, c_dp + c_es, 1.0), 0.5)
     w_dp = share_dp * w if fidelity == "screening" else split_dp
@@ -285,13 +361,11 @@ def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, th
         "axial_damping_eol_nm": dax_eol,
         "damping_initial_nm": dax0 + d_rad,
         "damping_eol_nm": dax_eol + d_rad,
-        "margins": {
-            "damping_eol": margin_lower(dax_eol + d_rad, damping_eol_limit_nm),
-            "damper_pad_wear": margin_upper(w_dp, frac * h_dp),
-            "endcap_spacer_wear": margin_upper(w_es, frac * h_es),
-        },
+        "damper_pad_wear_max_mm": frac * h_dp,
+        "endcap_spacer_wear_max_mm": frac * h_es,
     }
-    out = _broadcast_all(out)
+    shape_all = np.broadcast_shapes(*(np.shape(v) for v in out.values()))
+    out = {k: np.broadcast_to(_f(v), shape_all).copy() for k, v in out.items()}
     if n_t > 0:
         out["history"] = {
             "time_h": tau.reshape((-1,) + (1,) * len(shape)) * t_end_h,
@@ -300,31 +374,3 @@ def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, th
             "damping_nm": axial_damping_nm(f_hist, mu, r_dp, r_es) + d_rad,
         }
     return out
-
-
-def plastic_wear_checks(result: dict, damping_eol_limit_nm, damper_pad_axial_height_mm,
-                        endcap_spacer_axial_height_mm, index=()) -> list[Check]:
-    """:class:`synth.checks.Check` records of one design of :func:`plastic_wear` (step 5).
-
-    >>> r = plastic_wear(0.668, 30.0, 16.2, 0.742, 0.890, 460, 12.5, 3.5, 490, 13.5, 1.5,
-    ...                  16, 50, 1200, 0.287, 1.5, fidelity="screening")
-    >>> [c.verdict for c in plastic_wear_checks(r, 1.5, 3.5, 1.5)]
-    ['pass', 'pass', 'pass']
-    """
-    def v(key):
-        return float(np.asarray(result[key])[index])
-
-    def s(x):
-        return float(np.broadcast_to(np.asarray(x, dtype=float), np.shape(result["plastic_wear_total_mm"]))[index])
-
-    frac = catalog.constant("plastic_max_wear_fraction")
-    return [
-        Check("end-of-life damping", 5, v("damping_eol_nm"), s(damping_eol_limit_nm), ">=", "N m",
-              "eq. (9), (11), (43)-(49)",
-              correction="the next damper pad / endcap spacer class (larger contact surfaces, Tables 3-4)",
-              note=f"axial {v('axial_damping_eol_nm'):.3g} N m at EOL"),
-        Check("damper pad wear", 5, v("damper_pad_wear_mm"), frac * s(damper_pad_axial_height_mm), "<=", "mm",
-              "eq. (44)-(46)", note=f"limit = {frac:g} x axial height (illustrative)"),
-        Check("endcap spacer wear", 5, v("endcap_spacer_wear_mm"), frac * s(endcap_spacer_axial_height_mm), "<=", "mm",
-              "eq. (47)-(49)", note=f"limit = {frac:g} x axial height (illustrative)"),
-    ]

@@ -15,11 +15,10 @@ from __future__ import annotations
 import numpy as np
 
 from synth.catalog import constant
-from synth.checks import margin_lower, margin_upper
 
 __all__ = [
     "is_standard_layout", "pulley_width_mm", "hubload_angle_from_ehr_deg", "belt_contact_centre_deg", "wrap_limits_deg",
-    "pin_within_pulley_margin", "pin_angular_zone", "pin_clearance_margin", "axial_displacement_margin",
+    "pin_angular_zone", "pin_clearance_mm",
 ]
 
 
@@ -87,16 +86,6 @@ def wrap_limits_deg(hubload_angle_deg, wrap_angle_deg):
     return centre + beta, centre - beta
 
 
-def pin_within_pulley_margin(pin_radius_mm, pin_diameter_mm, pulley_diameter_mm):
-    """Eq. (22) as printed: ``R_pin - d_pin/2 <= D_pulley/2`` (normalised margin).
-
-    >>> round(float(pin_within_pulley_margin(33.0, 4.0, 66.0)), 4)
-    0.0606
-    """
-    inner = np.asarray(pin_radius_mm, float) - np.asarray(pin_diameter_mm, float) / 2.0
-    return margin_upper(inner, np.asarray(pulley_diameter_mm, float) / 2.0)
-
-
 def pin_angular_zone(pin_angle_deg, theta_plus_deg, theta_minus_deg):
     """Where the pin lies relative to the wrap: +1 beyond theta+, -1 before theta-, 0 within.
 
@@ -112,46 +101,31 @@ def pin_angular_zone(pin_angle_deg, theta_plus_deg, theta_minus_deg):
     return np.where(off > half, 1, np.where(off < -half, -1, 0))
 
 
-def pin_clearance_margin(pin_radius_mm, pin_angle_deg, pin_diameter_mm, pulley_diameter_mm,
-                         theta_plus_deg, theta_minus_deg):
-    """Lock-up pin clearance to the pulley and belt, eq. (23)-(25), as a normalised margin.
+def pin_clearance_mm(pin_radius_mm, pin_angle_deg, pin_diameter_mm, pulley_diameter_mm,
+                     theta_plus_deg, theta_minus_deg):
+    """Lock-up pin clearance to the pulley and belt and what it must reach, eq. (23)-(25) [mm].
 
-    * within the wrap (eq. (23)): ``R_pin - d_pin/2 >= D_pulley/2 + c_pulley`` (5 mm);
+    * within the wrap (eq. (23)): the pin's inner edge ``R_pin - d_pin/2`` must reach
+      ``D_pulley/2 + c_pulley`` (5 mm);
     * beyond theta+ or before theta- (eq. (24)-(25)): the pin keeps ``c_belt`` (2 mm)
       from the belt span, the line tangent to the pulley at the contact limit.
       The distance from the pin centre to that line, on the pulley side, is
       ``R - R_pin cos(phi - theta_lim)``; it must be at least ``d_pin/2 + c_belt``.
 
-    The margin is normalised by the required clearance (mm over mm).
+    Returns ``(clearance_mm, required_mm)``.
 
-    >>> round(float(pin_clearance_margin(45.0, 138.3, 4.0, 66.0, 172.9, 103.7)), 3)
-    0.132
+    >>> c, r = pin_clearance_mm(45.0, 138.3, 4.0, 66.0, 172.9, 103.7)
+    >>> round(float(c), 3), float(r), round(float((c - r) / r), 3)
+    (43.0, 38.0, 0.132)
     """
     r_pin = np.asarray(pin_radius_mm, float)
     phi = np.asarray(pin_angle_deg, float)
     d_pin = np.asarray(pin_diameter_mm, float)
     r = np.asarray(pulley_diameter_mm, float) / 2.0
-    c_pulley = constant("lockup_pin_pulley_clearance_mm")
-    c_belt = constant("lockup_pin_belt_clearance_mm")
     zone = pin_angular_zone(phi, theta_plus_deg, theta_minus_deg)
-    inside = margin_lower(r_pin - d_pin / 2.0, r + c_pulley)
     theta_lim = np.where(zone > 0, theta_plus_deg, theta_minus_deg)
     dist = r - r_pin * np.cos(np.radians(phi - theta_lim))
-    outside = margin_lower(dist, d_pin / 2.0 + c_belt)
-    return np.where(zone == 0, inside, outside)
-
-
-def axial_displacement_margin(middle_plane_belt_height_mm, pulley_width_mm_, max_height_mm, standard_layout):
-    """Axial space of the pulley, eq. (26) (standard) and eq. (27) (reverse).
-
-    Standard: ``h_mid + w/2 <= h_max``; reverse: ``h_mid - w/2 >= clearance_min``
-    (constant ``reverse_layout_min_crankcase_clearance_mm``).
-
-    >>> round(float(axial_displacement_margin(29.5, 20.0, 42.0, True)), 4)
-    0.0595
-    """
-    h = np.asarray(middle_plane_belt_height_mm, float)
-    w = np.asarray(pulley_width_mm_, float)
-    std = margin_upper(h + w / 2.0, max_height_mm)
-    rev = margin_lower(h - w / 2.0, constant("reverse_layout_min_crankcase_clearance_mm"))
-    return np.where(np.asarray(standard_layout, bool), std, rev)
+    clearance = np.where(zone == 0, r_pin - d_pin / 2.0, dist)
+    required = np.where(zone == 0, r + constant("lockup_pin_pulley_clearance_mm"),
+                        d_pin / 2.0 + constant("lockup_pin_belt_clearance_mm"))
+    return clearance, required

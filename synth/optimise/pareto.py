@@ -9,25 +9,28 @@ binding constraint.
 >>> from synth.data.generated_applications import generate
 >>> front = pareto_front(generate(2, seed=0)[1], n_points=8)
 >>> len(front) >= 1, sorted(front[0])[:3]
-(True, ['binding', 'cost_eur', 'margin'])
+(True, ['binding', 'cost_eur', 'inputs'])
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from synth.design.evaluate import Settings
 from synth.optimise.evaluate import evaluate
 from synth.optimise.result import build_result
 from synth.optimise.solvers.enumerate import _thresholds, best_additive, tables
-from synth.optimise.space import build_space
 
 __all__ = ["pareto_front", "plot_front"]
 
 
-def pareto_front(d, *, n_points: int = 40, fidelity: str = "screening") -> list:
-    """Points ``{cost_eur, margin, standard, binding, parts}`` of the front, by increasing cost."""
-    sp = build_space(d, fidelity=fidelity)
-    ev = evaluate(sp)
+def pareto_front(d, *, n_points: int = 40, settings: Settings = Settings()) -> list:
+    """Points ``{cost_eur, margin, standard, binding, parts}`` of the front, by increasing cost.
+
+    The margin is the design margin (input-only constraints, which no design changes, are not in it: their
+    margins are in each point's ``inputs`` and the caller reports them apart).
+    """
+    ev = evaluate(d, settings)
     t = tables(ev, {"cost": 1.0})
     pts, seen = [], set()
     for tau in _thresholds(t, n_points):
@@ -38,9 +41,12 @@ def pareto_front(d, *, n_points: int = 40, fidelity: str = "screening") -> list:
         if key in seen:
             continue
         seen.add(key)
-        r = build_result(sp, core, opts, status="optimal", solver="enumerate", objective="cost|margin>=tau", stats={})
+        r = build_result(ev, core, opts, status="optimal", solver="enumerate", objective="cost|margin>=tau", stats={},
+                         detail=False)
+        b = r.binding(1)
         pts.append({"cost_eur": r.objectives["cost"], "margin": r.objectives["margin"], "standard": r.objectives["standard"],
-                    "binding": r.binding[0]["constraint"] if r.binding else "", "parts": r.parts})
+                    "binding": b[0].id if b else "", "parts": r.parts,
+                    "inputs": {c.id: c.margin for c in r.checks if not c.constraint.design and c.margin is not None}})
     pts.sort(key=lambda p: (p["cost_eur"], -p["margin"]))
     front, best = [], -np.inf
     for p in pts:

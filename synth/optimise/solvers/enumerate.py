@@ -13,7 +13,7 @@ subsystems, the (few) cores and the margin thresholds.
 
 >>> from synth.data.generated_applications import generate
 >>> r = solve(generate(2, seed=0)[1], "cost")
->>> r.status, r.parts["damper_pad"], r.objectives["cost"] > 0
+>>> r.status, r.parts["damper_pad_class"], r.objectives["cost"] > 0
 ('optimal', 'none', True)
 """
 
@@ -24,10 +24,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from synth.design.evaluate import Settings
+from synth.design.result import Result
+from synth.design.space import SUBSYSTEMS
 from synth.optimise.evaluate import Evaluation, evaluate
 from synth.optimise.objectives import Objective
-from synth.optimise.result import DesignResult, build_result
-from synth.optimise.space import SUBSYSTEMS, DesignSpace, build_space
+from synth.optimise.result import build_result
 
 __all__ = ["Tables", "tables", "best_additive", "additive_curve", "max_margin", "solve", "solve_space"]
 
@@ -39,7 +41,7 @@ class Tables:
     """Per-core and per-option arrays the combination works on (cores: the evaluated rows only)."""
 
     ev: Evaluation
-    rows: np.ndarray            # core indices into space.cores
+    rows: np.ndarray            # core positions (into ev.cores) whose subsystems were evaluated
     core_score: np.ndarray      # (nR,)
     core_margin: np.ndarray     # (nR,) objective margin
     score: dict                 # s -> (nk,)
@@ -47,30 +49,28 @@ class Tables:
     margin: dict                # s -> (nR, nk) objective margin
 
     def candidates(self) -> int:
-        """Number of whole-tensioner designs covered (product of the option counts per evaluated core)."""
-        n = np.ones(len(self.rows))
-        for s in SUBSYSTEMS:
-            n *= self.feas[s].shape[1]
-        return int(n.sum()) + int(len(self.ev.space.cores) - len(self.rows)) * int(
-            np.prod([len(self.ev.space.subsystems[s]) for s in SUBSYSTEMS]))
+        """Number of whole-tensioner designs covered: every core times every option of each subsystem."""
+        return int(len(self.ev.cores)) * int(np.prod([self.ev.space.n(s) for s in SUBSYSTEMS]))
 
 
-def _weights_vec(table, weights: dict) -> np.ndarray:
-    out = np.zeros(len(table))
+def weights_vec(scores: dict, weights: dict) -> np.ndarray:
+    """``sum_k w_k score_k`` over ``standard``/``cost`` of a score dict (one array per name)."""
+    out = np.zeros(len(scores["cost"]))
     for k, w in weights.items():
-        out += w * table["nonstandard" if k == "standard" else "cost_eur"].to_numpy(float)
+        if k != "margin":
+            out = out + w * scores[k]
     return out
 
 
 def tables(ev: Evaluation, weights: dict) -> Tables:
     """Score vectors (``weights`` over ``standard``/``cost``), feasibility and margin tables of ``ev``."""
-    sp = ev.space
     rows = ev.rows
     ok_core = ev.core_feasible()[rows]
-    score = {s: _weights_vec(sp.subsystems[s], weights) for s in SUBSYSTEMS}
-    feas = {s: ev.subs[s].feasible() & ok_core[:, None] for s in SUBSYSTEMS}
-    marg = {s: ev.subs[s].objective_margin() for s in SUBSYSTEMS}
-    return Tables(ev, rows, _weights_vec(sp.cores, weights)[rows], ev.core_objective_margin()[rows], score, feas, marg)
+    score = {s: weights_vec(ev.score[s], weights) for s in SUBSYSTEMS}
+    feas = {s: ev.subs[s].feasible & ok_core[:, None] for s in SUBSYSTEMS}
+    marg = {s: ev.subs[s].margin for s in SUBSYSTEMS}
+    core_score = np.where(ok_core, weights_vec(ev.score_core, weights)[rows], np.inf)
+    return Tables(ev, rows, core_score, ev.core_margin()[rows], score, feas, marg)
 
 
 def best_additive(t: Tables, tau: float = -np.inf):
@@ -94,7 +94,7 @@ def best_additive(t: Tables, tau: float = -np.inf):
 
 def max_margin(t: Tables):
     """The largest achievable objective margin over feasible designs (``-inf`` when none)."""
-    m = np.where(np.isfinite(t.core_score) | True, t.core_margin, -np.inf)
+    m = np.where(np.isfinite(t.core_score), t.core_margin, -np.inf)
     for s in SUBSYSTEMS:
         best = np.max(np.where(t.feas[s], t.margin[s], -np.inf), axis=1) if t.feas[s].shape[1] else np.full(len(m), -np.inf)
         m = np.minimum(m, best)
@@ -130,12 +130,9 @@ def _thresholds(t: Tables, n: int | None = None) -> np.ndarray:
     return v
 
 
-def solve_space(sp: DesignSpace, objective: Objective, ev: Evaluation | None = None, *,
-                solver_name: str = "enumerate") -> tuple:
-    """Optimum over ``sp``: ``(core, options, stats)`` or ``(None, None, stats)`` when infeasible."""
+def solve_space(ev: Evaluation, objective: Objective) -> tuple:
+    """Optimum over the evaluated space ``ev``: ``(core position, options, stats)`` or ``(None, None, stats)``."""
     t0 = time.perf_counter()
-    ev = ev or evaluate(sp)
-    t_eval = time.perf_counter() - t0
     w = objective.additive_weights()
     t = tables(ev, w if w else {"cost": 1.0})
     if objective.weights and "margin" in objective.weights:
@@ -159,24 +156,21 @@ def solve_space(sp: DesignSpace, objective: Objective, ev: Evaluation | None = N
     value, core, options = best_additive(t, tau) if np.isfinite(tau) or tau == -np.inf else (np.inf, None, None)
     elapsed = time.perf_counter() - t0
     n = t.candidates()
-    stats = {"time_s": elapsed, "evaluation_time_s": t_eval, "candidates": n,
-             "physics_evaluations": ev.evaluations, "candidates_per_s": n / max(elapsed, 1e-9)}
+    stats = {"combination_time_s": elapsed, "candidates": n, "physics_evaluations": ev.evaluations}
     return core, options, stats
 
 
-def solve(d, objective="standard", *, fidelity: str = "screening", pin_inputs: bool = False,
-          friction_circle: bool = True, relax: bool = True) -> DesignResult:
+def solve(d, objective="standard", *, settings: Settings = Settings(), pin_inputs: bool = False,
+          relax: bool = True, **_) -> Result:
     """Exhaustive optimum of input ``d`` for ``objective`` (name, :class:`Objective` or spec string)."""
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
-    sp = build_space(d, fidelity=fidelity, friction_circle=friction_circle, pin_inputs=pin_inputs)
-    core, options, stats = solve_space(sp, obj)
+    t0 = time.perf_counter()
+    ev = evaluate(d, settings, pin_inputs=pin_inputs)
+    t_eval = time.perf_counter() - t0
+    core, options, stats = solve_space(ev, obj)
+    stats.update(evaluation_time_s=t_eval, time_s=time.perf_counter() - t0)
+    stats["candidates_per_s"] = stats["candidates"] / max(stats["time_s"], 1e-9)
     if core is None:
         from synth.optimise.diagnose import diagnose
-        return diagnose(d, sp, solver="enumerate", objective=obj, stats=stats, relax=relax)
-    return build_result(sp, core, options, status="optimal", solver="enumerate", objective=_name(obj), stats=stats)
-
-
-def _name(obj: Objective) -> str:
-    if obj.weights:
-        return ",".join(f"{k}={v:g}" for k, v in obj.weights.items())
-    return ",".join(obj.order)
+        return diagnose(d, solver="enumerate", objective=obj, stats=stats, relax=relax, settings=settings)
+    return build_result(ev, core, options, status="optimal", solver="enumerate", objective=obj, stats=stats)

@@ -10,9 +10,9 @@ from __future__ import annotations
 import cvxpy as cp
 import numpy as np
 
-from synth.optimise.formulations.cvxpy_models import milp_problem
+from formulations.selection import milp_problem
+from synth.design.space import SUBSYSTEMS
 from synth.optimise.solvers._staged import solve_with
-from synth.optimise.space import SUBSYSTEMS
 
 __all__ = ["solve"]
 

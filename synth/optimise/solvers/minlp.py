@@ -1,7 +1,7 @@
 """Pyomo solvers: the bilinear MINLP solved globally by SCIP, and the linearised MILP solved by HiGHS.
 
 Both read precomputed, presolved per-choice coefficients
-(:mod:`synth.optimise.formulations.data`); SCIP is called through Pyomo's
+(:mod:`synth.optimise.model_data`, models in :mod:`formulations.selection`); SCIP is called through Pyomo's
 ``scip_direct`` interface (PySCIPOpt), HiGHS through ``appsi_highs`` (highspy).
 
 >>> from synth.schema import load_input
@@ -16,9 +16,9 @@ from __future__ import annotations
 import numpy as np
 import pyomo.environ as pyo
 
-from synth.optimise.formulations.pyomo_models import milp_model, minlp_model
+from formulations.selection import milp_model, minlp_model
+from synth.design.space import SUBSYSTEMS
 from synth.optimise.solvers._staged import solve_with
-from synth.optimise.space import SUBSYSTEMS
 
 __all__ = ["solve", "VARIANTS"]
 
@@ -44,7 +44,7 @@ def _runner(md, variant):
         m.solutions.load_from(res)
         c = int(np.argmax([pyo.value(m.x[i]) for i in m.C]))
         if variant == "minlp":
-            opts = {s: int(np.argmax([pyo.value(m.z[s, k]) for k in range(len(md.opts[s]))])) for s in SUBSYSTEMS}
+            opts = {s: int(np.argmax([pyo.value(m.z[s, k]) for k in range(md.n_options(s))])) for s in SUBSYSTEMS}
         else:
             opts = {}
             for s in SUBSYSTEMS:

@@ -1,0 +1,500 @@
+"""The one evaluator: every derived value and every margin of the registry, on arrays.
+
+Each evaluation group of :data:`synth.design.constraints.GROUPS` has one
+function here that computes, for aligned arrays of rows (an application, a
+core, an option of the group), the values its constraints compare, by calling
+the physics of :mod:`synth.model`; :func:`finish` then turns values into the
+registry's margins, with "not applicable" and "not verified" derived from the
+registry. Every consumer calls these functions:
+
+* the flowchart with the one design its sequential procedure builds (and with
+  the candidates of its selection loops);
+* the optimiser with the catalog product of one application (cores x options);
+* the bulk engine with the rows of many applications at once.
+
+Rows are flat: row ``i`` of a group is application ``a[i]``, core row
+``r[i]`` of the core group, option ``i`` of the option attributes given
+(gathered from :class:`synth.design.space.Space` tables, or built for any part
+with its ``*_attributes`` functions). Physics functions never see invalid
+placeholders: rows that cannot be evaluated get NaN values, and a NaN margin is
+``-inf`` (infeasible), never silently kept.
+
+>>> from synth.data import case_path
+>>> from synth.schema import load_input
+>>> from synth.design.applications import Applications
+>>> from synth.design.space import space
+>>> apps, sp = Applications.of([load_input(case_path("case3"))]), space()
+>>> g = core(apps, np.zeros(sp.n("core"), int), sp.rows("core", np.arange(sp.n("core"))))
+>>> sorted(g.margins)[:3], round(float(g.values["hubload_nominal_n"][0]), 1)
+(['arm_wall', 'axial_group_matches_split', 'axial_group_not_superfluous'], 462.5)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from synth import catalog
+from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin
+from synth.model import bolted_joint as s10, damping as s3, disc_spring as s8, friction_wear as s5
+from synth.model import layout as s0, packaging as s7, pivot as s2, plain_bushing as s4, stackup as s6
+from synth.model import torsion_spring as s9
+
+__all__ = ["Settings", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
+           "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES"]
+
+EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
+FIDELITIES = ("full", "screening")
+_CONSTANT_LIMITS = {"zero": 0.0, "one": 1.0}
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Model settings: speed against accuracy, and conventions (one set for every consumer).
+
+    * ``fidelity``: ``"full"`` (Almen-Laszlo cone spring, exact plastic wear
+      along it) or ``"screening"`` (linear cone spring, closed-form wear);
+    * ``friction_circle``: radial friction on ``r_p sin(atan(mu))`` (physics,
+      default) or on ``r_p mu`` (the thesis tool's tables);
+    * ``bushing_running_in``: integrate the running-in of the pivot clearance in
+      the bushing wear (an extension with illustrative constants; off: the
+      thesis's closed-form eq. (32));
+    * ``bushing_length_scheme`` (the flowchart's selection only): ``"thesis"``
+      (the thesis tool's trial lengths, multiples of half the pivot diameter,
+      then the next catalog length is the part) or ``"catalog"`` (the shortest
+      catalog length that passes).
+    """
+
+    fidelity: str = "full"
+    friction_circle: bool = True
+    bushing_running_in: bool = False
+    bushing_length_scheme: str = "thesis"
+
+    def __post_init__(self):
+        from synth.errors import InputError, Problem
+        if self.fidelity not in FIDELITIES:
+            raise InputError(Problem("fidelity", self.fidelity, "one of " + ", ".join(FIDELITIES)))
+        if self.bushing_length_scheme not in ("thesis", "catalog"):
+            raise InputError(Problem("bushing_length_scheme", self.bushing_length_scheme, "thesis or catalog"))
+
+
+@dataclass
+class Group:
+    """Values and registry margins of one group's rows (``(n,)`` arrays).
+
+    ``margins[id]`` is ``+inf`` where the constraint does not apply or is not
+    verified (``state`` says which), ``-inf`` where its value is NaN.
+    """
+
+    name: str
+    values: dict
+    margins: dict = field(default_factory=dict)
+    state: dict = field(default_factory=dict)
+
+    def __len__(self) -> int:
+        return len(next(iter(self.values.values()))) if self.values else 0
+
+    def ok(self) -> np.ndarray:
+        """``(n,)`` bool: every (non-advisory) constraint of the group passes."""
+        out = np.ones(len(self), dtype=bool)
+        for cid, m in self.margins.items():
+            if not REGISTRY[cid].advisory:
+                out &= m >= -FEAS_TOL
+        return out
+
+    def min_margin(self, objective_only: bool = True) -> np.ndarray:
+        """``(n,)`` smallest margin of the constraints counted in the margin objective (or all non-advisory)."""
+        out = np.full(len(self), np.inf)
+        for cid, m in self.margins.items():
+            c = REGISTRY[cid]
+            if c.advisory or (objective_only and not c.objective):
+                continue
+            if objective_only and c.objective_unless is not None:
+                m = np.where(np.asarray(self.values[c.objective_unless], dtype=float) > 0, np.inf, m)
+            out = np.minimum(out, m)
+        return out
+
+    def take(self, idx) -> "Group":
+        """The rows ``idx`` as a new group."""
+        return Group(self.name, {k: v[idx] for k, v in self.values.items()},
+                     {k: v[idx] for k, v in self.margins.items()}, {k: v[idx] for k, v in self.state.items()})
+
+
+def finish(name: str, values: dict, apps, a) -> Group:
+    """The registry margins of group ``name`` from its ``values`` for rows of applications ``a``."""
+    n = len(a)
+    margins, state = {}, {}
+    met = {}
+    for c in by_group(name):
+        lim = _CONSTANT_LIMITS[c.limit] if c.limit in _CONSTANT_LIMITS else values[c.limit]
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            m = margin(c, values[c.value], lim, None if c.scale is None else values[c.scale])
+        m = np.broadcast_to(np.where(np.isnan(m), -np.inf, m), (n,))
+        st = np.zeros(n, dtype=np.int8)
+        if c.applies is not None:
+            st[~np.asarray(values[c.applies], dtype=bool)] = NOT_APPLICABLE
+        for req in c.needs:
+            if req not in met:
+                met[req] = apps.met(req)[a]
+            st[(st == EVALUATED) & ~met[req]] = NOT_VERIFIED
+        margins[c.id] = np.where(st == EVALUATED, m, np.inf)
+        state[c.id] = st
+    return Group(name, values, margins, state)
+
+
+def _const(name: str) -> float:
+    return catalog.constant(name)
+
+
+# --------------------------------------------------------------------------- step 0: inputs only
+def inputs(apps, a) -> Group:
+    """Group ``input``: layout, pulley axial space, lock-up pin (eq. (17)-(27)) for applications ``a``."""
+    f = {k: v[a] for k, v in apps.f.items()}
+    v = {"layout_standard": apps.layout_standard[a], "layout_reverse": apps.layout_reverse[a]}
+    w = apps.pulley_width_mm[a]
+    mpbh = f["middle_plane_belt_height_mm"]
+    v.update(pulley_width_mm=w, pulley_top_mm=mpbh + w / 2.0, pulley_bottom_mm=mpbh - w / 2.0,
+             max_axial_displacement_mm=f["max_axial_displacement_mm"],
+             min_belt_crankcase_clearance_mm=f["min_belt_crankcase_clearance_mm"],
+             pulley_radius_mm=f["pulley_diameter_mm"] / 2.0,
+             pin_inner_radius_mm=f["lockup_pin_position_radius_mm"] - f["lockup_pin_diameter_mm"] / 2.0)
+    hl = s0.hubload_angle_from_ehr_deg(f["differential_angle_deg"], f["nominal_arm_angle_from_EHR_deg"])
+    tp, tm = s0.wrap_limits_deg(hl, f["wrap_angle_deg"])
+    with np.errstate(invalid="ignore"):
+        c, req = s0.pin_clearance_mm(f["lockup_pin_position_radius_mm"], f["lockup_pin_angular_position_deg"],
+                                     f["lockup_pin_diameter_mm"], f["pulley_diameter_mm"], tp, tm)
+    v.update(hubload_angle_from_EHR_deg=hl, wrap_upper_limit_deg=tp, wrap_lower_limit_deg=tm, pin_clearance_mm=c,
+             pin_clearance_required_mm=req)
+    return finish("input", v, apps, a)
+
+
+# --------------------------------------------------------------------------- steps 1-3, 7: the core
+def _table2(p, bearing, working_arm_mm):
+    """Thesis Table 2 per row: standard pivot class, max loading arm and the largest working arm of the bearing.
+
+    A working arm between two columns takes the next larger arm's column (the smaller, conservative class);
+    beyond the last column the last one is used and the Table 2 constraint fails.
+    """
+    n = len(bearing)
+    cls, la, arm_max = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.nan)
+    for b in np.unique(bearing):
+        sel = bearing == b
+        arms, classes, max_la = p.table2[int(b)]
+        if not len(arms):
+            continue
+        i = np.minimum(np.searchsorted(arms, working_arm_mm[sel] - 1e-9), len(arms) - 1)
+        cls[sel], la[sel], arm_max[sel] = classes[i], max_la[i], arms[-1]
+    return cls, la, arm_max
+
+
+def core(apps, a, c: dict, settings: Settings = Settings(), detail: bool = False) -> Group:
+    """Group ``core`` (steps 1-3, 7 and the cone-spring annulus of step 8) for applications ``a`` and core rows ``c``.
+
+    ``c`` holds the core table's columns for the rows (:meth:`synth.design.space.Space.rows`).
+    ``detail`` adds the characterisation at nominal (hubloads in loading and unloading, asymmetry).
+    """
+    from synth import parts as P
+    p = P.arrays()
+    f = {k: v[a] for k, v in apps.f.items()}
+    n = len(a)
+    wa, alpha = f["working_arm_mm"], f["differential_angle_deg"]
+    b = c["bearing_code"]
+    v = {"app": np.asarray(a), "layout_standard": apps.layout_standard[a], "layout_reverse": apps.layout_reverse[a]}
+    v["hubload_nominal_n"] = apps.hubload_nominal_n[a]
+    lim = p.bearing_max_hubload_n[b, apps.fuel[a]]
+    v["bearing_max_hubload_n"] = lim
+    std_class, la_max, arm_max = _table2(p, b, wa)
+    v.update(working_arm_mm=wa, working_arm_max_table2_mm=arm_max, pivot_class_standard_mm=std_class)
+    single = apps.single_eccentric[a]
+    la_in = f["loading_arm_mm"]
+    v["loading_arm_mm"] = np.where(single, 0.0, np.where(np.isnan(la_in), la_max, la_in))
+    v["loading_arm_max_mm"] = la_max
+    v["has_loading_arm"] = ~single
+    v["loading_arm_defaulted"] = np.isnan(la_in)  # the Table 2 limit itself: met by construction
+    for k in ("pivot_class_diameter_mm", "pivot_diameter_mm", "pivot_bushing_radial_thickness_mm",
+              "bearing_inner_diameter_mm", "bearing_outer_diameter_mm", "bearing_width_mm",
+              "spring_housing_inner_diameter_mm", "damper_pad_max_axial_damping_nm", "damper_pad_contact_area_mm2",
+              "damper_pad_mean_radius_mm", "damper_pad_outer_diameter_mm", "damper_pad_axial_height_mm",
+              "supplier_code"):
+        v[k] = c[k]
+    v["arm_wall_mm"] = s2.arm_wall_mm(c["bearing_inner_diameter_mm"], wa, c["pivot_class_diameter_mm"])
+    v["arm_min_wall_mm"] = np.full(n, _const("arm_min_wall_mm"))
+    mu = apps.mu_pivot_bushing[a]
+    v["mu_pivot_bushing"] = mu
+    rho = s3.lever_ratio(c["pivot_diameter_mm"], mu, wa, alpha, settings.friction_circle)
+    v["lever_ratio"], v["lever_ratio_max"] = rho, np.ones(n)
+    target = apps.damping_target_or_zero_nm[a]
+    split = s3.damping_split(f["calculated_torque_target_nm"], target, np.minimum(rho, 0.999), apps.axial_allowed[a])
+    v.update({k: np.asarray(val, dtype=float) for k, val in split.items()})
+    v["damping_upper_nm"] = f["damping_target_nm"] + f["damping_tolerance_nm"]
+    v["damping_lower_nm"] = f["damping_target_nm"] - f["damping_tolerance_nm"]
+    pad = np.asarray(c["axial_group_present"], dtype=bool)
+    v["axial_group_present"] = pad.astype(float)
+    v["axial_damping_share_nm"] = v["axial_damping_nm"] / 2.0  # each element carries half (two friction faces)
+    v["cone_spring_max_external_diameter_mm"] = np.where(
+        pad, s8.cone_spring_max_external_diameter_mm(c["damper_pad_outer_diameter_mm"]), np.nan)
+    di = s8.cone_spring_min_internal_diameter_mm(c["pivot_diameter_mm"])
+    v["cone_spring_min_internal_diameter_mm"] = di["cone_spring_min_internal_diameter_mm"]
+    v["cone_spring_table8_max_mm"] = np.full(n, di["table8_max_mm"])
+    mpbh, hmax_p = f["middle_plane_belt_height_mm"], f["max_pivot_height_mm"]
+    kw = dict(axial_damping=pad, damper_pad_height_mm=c["damper_pad_axial_height_mm"])
+    h_std = s7.spring_housing_height_mm(mpbh, c["bearing_width_mm"], layout="standard", **kw)
+    h_rev = s7.spring_housing_height_mm(mpbh, c["bearing_width_mm"], layout="reverse", max_pivot_height_mm=hmax_p, **kw)
+    v["spring_housing_height_mm"] = np.where(apps.layout_standard[a], h_std, h_rev)
+    v["spring_housing_outer_diameter_mm"] = s7.spring_housing_outer_diameter_mm(c["bearing_outer_diameter_mm"], wa)
+    v["spring_cavity_min_height_mm"] = np.full(n, _const("spring_cavity_min_height_mm"))
+    if detail:
+        ch = s3.characterisation(v["spring_torque_nominal_nm"], f["spring_stiffness_nm_per_deg"],
+                                 np.where(v["axial_damping_present"] > 0, v["axial_damping_nm"], 0.0), wa, alpha,
+                                 c["pivot_diameter_mm"], mu, np.zeros(n), settings.friction_circle)
+        for k in ("hubload_loading_n", "hubload_unloading_n", "asymmetry_ratio"):
+            v[k] = np.asarray(ch[k], dtype=float)
+    return finish("core", v, apps, a)
+
+
+# --------------------------------------------------------------------------- step 4: the pivot bushing
+def bushing(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Group:
+    """Group ``bushing`` (step 4) for core rows ``r`` of core group ``cg`` and bushing options ``o``.
+
+    ``o``: ``supplier_code`` and ``pivot_bushing_length_mm`` per row (any length); the option's supplier
+    must be the core's (the pivot diameter depends on its wall).
+    """
+    from synth import parts as P
+    p = P.arrays()
+    a = cg.values["app"][r]
+    f = {k: v[a] for k, v in apps.f.items()}
+    sup, env = np.asarray(o["supplier_code"]), apps.env[a]
+    lim = {k: p.bushing_limits[k][sup, env] for k in p.bushing_limits}
+    rated = np.isfinite(lim["pvt_max_mpa_m_per_s_h"]) & np.isfinite(lim["k_w_mm3_per_n_m"])
+    pad = cg.values["axial_group_present"][r] > 0
+    res = s4.evaluate_bushing(cg.values["hubload_nominal_n"][r], cg.values["pivot_diameter_mm"][r],
+                              o["pivot_bushing_length_mm"], apps.theta_pp_deg[a], apps.frequency_hz[a],
+                              apps.duration_h[a], k_w_mm3_per_n_m=np.where(rated, lim["k_w_mm3_per_n_m"], 0.0),
+                              radial_clearance_mm=p.bushing.radial_clearance_mm[sup],
+                              belt_plane_height_mm=f["middle_plane_belt_height_mm"],
+                              max_pivot_height_mm=f["max_pivot_height_mm"], axial_damping=pad,
+                              pulley_diameter_mm=f["pulley_diameter_mm"],
+                              fidelity="full" if settings.bushing_running_in else "screening")
+    v = {f"pivot_bushing_{k}": np.asarray(val, dtype=float) for k, val in res.items() if k != "length_max_mm"}
+    v.update(app=a, bushing_rated=rated.astype(float), pivot_bushing_length_mm=np.asarray(o["pivot_bushing_length_mm"],
+                                                                                         dtype=float),
+             pivot_bushing_length_max_mm=np.asarray(res["length_max_mm"], dtype=float),
+             pivot_bushing_p_max_mpa=lim["p_max_mpa"], pivot_bushing_pv_max_mpa_m_per_s=lim["pv_max_mpa_m_per_s"],
+             pivot_bushing_pvt_max_mpa_m_per_s_h=lim["pvt_max_mpa_m_per_s_h"],
+             pivot_bushing_sliding_layer_mm=p.bushing.sliding_layer_depth_mm[sup],
+             pulley_max_parallelism_eol_mm=f["pulley_max_parallelism_eol_mm"])
+    return finish("bushing", v, apps, a)
+
+
+# --------------------------------------------------------------------------- steps 5-8: the axial damping group
+def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_points: int = 0) -> Group:
+    """Group ``axial`` (Table 4, belt plane, cone spring, plastic wear) for core rows ``r`` and axial options ``o``.
+
+    ``o``: the axial table's columns (spacer, cone-spring variant). Rows pair a core with a damper pad with
+    a real option, or a core without one with the ``none`` option. ``time_points`` keeps the wear history.
+    """
+    from synth import parts as P
+    p = P.arrays()
+    a = cg.values["app"][r]
+    f = {k: v[a] for k, v in apps.f.items()}
+    n = len(a)
+    cv = {k: cg.values[k][r] for k in ("axial_damping_nm", "radial_damping_nm", "axial_damping_share_nm",
+                                        "cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm",
+                                        "cone_spring_table8_max_mm", "damper_pad_mean_radius_mm",
+                                        "damper_pad_contact_area_mm2", "damper_pad_axial_height_mm",
+                                        "bearing_width_mm")}
+    real = np.asarray(o["axial_group_present"], dtype=bool)
+    std = apps.layout_standard[a]
+    es_h = np.asarray(o["endcap_spacer_axial_height_mm"], dtype=float)
+    pad = cg.values["axial_group_present"][r] > 0
+    v = {"app": a, "layout_standard": std, "layout_reverse": ~std, "axial_group_present": real.astype(float),
+         "axial_group_mismatch": (real != pad).astype(float),
+         "middle_plane_belt_height_mm": f["middle_plane_belt_height_mm"],
+         "belt_plane_limit_mm": np.where(std, s7.max_belt_plane_height_mm(f["max_pivot_height_mm"],
+                                                                          cv["bearing_width_mm"], es_h),
+                                         s7.min_belt_plane_height_mm(cv["bearing_width_mm"], es_h)),
+         "endcap_spacer_max_axial_damping_nm": np.asarray(o["endcap_spacer_max_axial_damping_nm"], dtype=float),
+         "axial_damping_share_nm": cv["axial_damping_share_nm"],
+         "cone_spring_min_internal_diameter_mm": cv["cone_spring_min_internal_diameter_mm"],
+         "cone_spring_table8_max_mm": cv["cone_spring_table8_max_mm"]}
+    de = cv["cone_spring_max_external_diameter_mm"] - np.asarray(o["cone_spring_de_reduction_mm"], dtype=float)
+    di = cv["cone_spring_min_internal_diameter_mm"]
+    zeta = np.asarray(o["cone_spring_aspect_ratio"], dtype=float)
+    phi = np.asarray(o["cone_spring_deflection_ratio"], dtype=float)
+    act = real & pad & (cv["axial_damping_nm"] > 0) & (de > di) & (zeta > 0) & (phi > 0) & (phi <= 1)
+    v["cone_spring_sized"] = act
+    keys = ("cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n", "cone_spring_fax_nominal_n",
+            "cone_spring_fax_band_n", "cone_spring_force_band_room_n", "cone_spring_thickness_mm",
+            "cone_spring_cone_height_mm", "cone_spring_free_height_mm", "cone_spring_nominal_deflection_mm",
+            "cone_spring_max_deflection_mm", "cone_spring_rate_n_per_mm", "sigma_om_mpa", "sigma_i_mpa",
+            "sigma_ii_mpa", "sigma_iii_mpa", "sigma_iv_mpa", "cone_spring_diameter_ratio", "cone_spring_aspect_ratio",
+            "cone_spring_thinness")
+    for k in keys:
+        v[k] = np.full(n, np.nan)
+    v["cone_spring_max_external_diameter_mm"] = np.where(real, de, np.nan)
+    i = np.flatnonzero(act)
+    tol = f["damping_tolerance_nm"]
+    mu_pl = apps.mu_plastic[a]
+    plus, minus = _const("cone_spring_force_tolerance_plus_pct") / 100.0, _const("cone_spring_force_tolerance_minus_pct") / 100.0
+    gap = s6.gap_tolerance_mm("worst_case")
+    if len(i):
+        cs = s8.cone_spring(cv["axial_damping_nm"][i], apps.damping_target_or_zero_nm[a][i],
+                            np.nan_to_num(tol[i], nan=0.0), cv["radial_damping_nm"][i], mu_pl[i],
+                            cv["damper_pad_mean_radius_mm"][i], np.asarray(o["endcap_spacer_mean_radius_mm"])[i],
+                            de[i], di[i], gap, aspect_ratio=zeta[i], deflection_ratio=phi[i],
+                            force_tolerance_plus=plus, force_tolerance_minus=minus, fidelity=settings.fidelity)
+        for k in keys:
+            v[k][i] = cs[k]
+    v["cone_spring_gap_tolerance_mm"] = np.full(n, gap)
+    v["cone_spring_sigma_om_abs_mpa"] = np.abs(v["sigma_om_mpa"])
+    v["cone_spring_sigma_om_max_mpa"] = np.full(n, _const("cone_spring_sigma_om_max_mpa"))
+    for key, rng in (("diameter_ratio", "diameter_ratio"), ("aspect_ratio", "aspect_ratio"), ("thinness", "thinness")):
+        lo, hi = p.cone_ranges[rng]
+        v[f"cone_spring_{key}_min"], v[f"cone_spring_{key}_max"] = np.full(n, lo), np.full(n, hi)
+    v["damping_eol_limit_nm"] = f["damping_eol_limit_nm"]
+    for k in ("damping_eol_nm", "axial_damping_eol_nm", "damper_pad_wear_mm", "endcap_spacer_wear_mm",
+              "plastic_wear_total_mm", "cone_spring_force_eol_n", "damper_pad_wear_max_mm", "endcap_spacer_wear_max_mm"):
+        v[k] = np.full(n, np.nan)
+    w = i[apps.durability_given[a][i]]
+    history = None
+    if len(w):
+        pw = s5.plastic_wear(v["cone_spring_nominal_deflection_mm"][w], de[w], di[w], v["cone_spring_thickness_mm"][w],
+                             v["cone_spring_cone_height_mm"][w], cv["damper_pad_contact_area_mm2"][w],
+                             cv["damper_pad_mean_radius_mm"][w], cv["damper_pad_axial_height_mm"][w],
+                             np.asarray(o["endcap_spacer_contact_area_mm2"])[w],
+                             np.asarray(o["endcap_spacer_mean_radius_mm"])[w], es_h[w], apps.theta_pp_deg[a][w],
+                             apps.frequency_hz[a][w], apps.duration_h[a][w], cv["radial_damping_nm"][w],
+                             k_wear_mm3_per_n_m=apps.k_wear_plastic_mm3_per_n_m[a][w],
+                             plastic_friction_coefficient=mu_pl[w], fidelity=settings.fidelity,
+                             time_points=time_points)
+        for k in ("damping_eol_nm", "axial_damping_eol_nm", "damper_pad_wear_mm", "endcap_spacer_wear_mm",
+                  "plastic_wear_total_mm", "cone_spring_force_eol_n", "damper_pad_wear_max_mm",
+                  "endcap_spacer_wear_max_mm"):
+            v[k][w] = pw[k]
+        history = pw.get("history")
+    g = finish("axial", v, apps, a)
+    if history is not None:
+        g.values["_history_rows"] = w
+        g.values["_history"] = history
+    return g
+
+
+# --------------------------------------------------------------------------- step 9: the main spring
+def spring_keys(cg: Group, r) -> dict:
+    """What a main spring sees of core rows ``r``: application, spring torque, housing height and diameters."""
+    return {"app": cg.values["app"][r],
+            **{k: cg.values[k][r] for k in ("spring_torque_nominal_nm", "spring_housing_height_mm",
+                                            "spring_housing_outer_diameter_mm", "spring_housing_inner_diameter_mm")}}
+
+
+def spring(apps, keys: dict, k, o: dict, settings: Settings = Settings()) -> Group:
+    """Group ``spring`` (step 9) for rows pairing key ``k[i]`` of ``keys`` (:func:`spring_keys`) with option ``o``."""
+    a = keys["app"][k]
+    f = {name: apps.f[name][a] for name in ("spring_stiffness_nm_per_deg", "spring_torque_tolerance_pct",
+                                            "arm_travel_nominal_to_installation_deg", "arm_travel_nominal_to_free_deg")}
+    theta_pp = np.nan_to_num(apps.theta_pp_deg[a], nan=0.0)  # no durability test: no oscillation (fatigue not verified)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        r = s9.main_spring_design(
+            E_mpa=o["E_mpa"], Rm_mpa=o["Rm_mpa"], sigma_y_mpa=o["sigma_y_mpa"], sigma_A0_mpa=o["sigma_A0_mpa"],
+            b_mm=o["b_mm"], h_mm=o["h_mm"], round_wire=o["round_wire"], mbd_mm=o["main_spring_mean_body_diameter_mm"],
+            stiffness_nm_per_deg=f["spring_stiffness_nm_per_deg"],
+            spring_torque_nominal_nm=np.maximum(keys["spring_torque_nominal_nm"][k], 1e-6),
+            torque_tolerance_pct=f["spring_torque_tolerance_pct"], theta_pp_deg=theta_pp,
+            housing_height_mm=keys["spring_housing_height_mm"][k],
+            housing_outer_diameter_mm=keys["spring_housing_outer_diameter_mm"][k],
+            housing_inner_diameter_mm=keys["spring_housing_inner_diameter_mm"][k],
+            b_tol_mm=o["b_tol_mm"], h_tol_mm=o["h_tol_mm"],
+            dtheta_inst_nom_deg=f["arm_travel_nominal_to_installation_deg"],
+            dtheta_nom_free_arm_deg=f["arm_travel_nominal_to_free_deg"])
+    n = len(a)
+    v = {"app": a}
+    for key in ("main_spring_active_coils_free", "main_spring_sigma_a_max_mpa", "main_spring_sigma_a_min_mpa",
+                "main_spring_sigma_inst_mpa", "main_spring_safety_factor", "hooks_angle_free_state_deg",
+                "hooks_angle_nominal_deg", "spring_index", "curvature_factor", "theta_nom_deg", "theta_inst_deg",
+                "theta_free_arm_deg", "torque_inst_nm", "block_length_max_mm"):
+        v[key] = np.broadcast_to(np.asarray(r[key], dtype=float), (n,))
+    v["main_spring_index"] = v.pop("spring_index")
+    v.update(main_spring_sigma_permissible_mpa=np.broadcast_to(np.asarray(r["sigma_y_limit_mpa"], float), (n,)),
+             main_spring_min_safety_factor=np.full(n, _const("main_spring_min_safety_factor")),
+             main_spring_outer_diameter_max_mm=np.asarray(r["outer_diameter_max_mm"], dtype=float),
+             spring_housing_outer_diameter_min_mm=np.asarray(r["housing_outer_diameter_min_mm"], dtype=float),
+             main_spring_inner_diameter_min_mm=np.asarray(r["inner_diameter_min_mm"], dtype=float),
+             spring_housing_inner_diameter_max_mm=np.asarray(r["housing_inner_diameter_max_mm"], dtype=float),
+             main_spring_coil_gap_min_mm=np.asarray(r["coil_gap_min_mm"], dtype=float),
+             main_spring_min_coil_gap_mm=np.full(n, _const("main_spring_min_coil_gap_mm")),
+             main_spring_wire_b_mm=np.asarray(o["b_mm"], dtype=float),
+             main_spring_index_min=np.full(n, _const("main_spring_index_min")),
+             main_spring_index_max=np.full(n, _const("main_spring_index_max")),
+             main_spring_mean_body_diameter_mm=np.asarray(o["main_spring_mean_body_diameter_mm"], dtype=float))
+    length_m = np.pi * v["main_spring_mean_body_diameter_mm"] * v["main_spring_active_coils_free"] / 1000.0
+    v["main_spring_wire_length_m"] = length_m
+    return finish("spring", v, apps, a)
+
+
+# --------------------------------------------------------------------------- step 10 and the pivot wall
+_BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_mpa", "bolt_tau_mpa",
+                "bolt_sigma_eqv_mpa", "bolt_under_head_stress_mpa", "bolt_thread_stress_mpa",
+                "pivot_base_contact_surface_mm2", "average_contact_pressure_mpa", "tilting_safety_factor",
+                "sliding_safety_factor", "pivot_base_max_pressure_mpa", "bolt_rp02_mpa",
+                "min_head_contact_diameter_mm", "min_active_threads", "bolt_force_tilting_n", "bolt_force_sliding_n")
+
+
+def fixation_values(apps, a, o: dict) -> dict:
+    """Step 10 (:func:`synth.model.bolted_joint.fixation`) for rows of applications ``a`` and bolts ``o``.
+
+    One vectorised call per bolt option over its applications (grouped by environment and whether the
+    head contact diameter is given); NaN for applications without their fixation data.
+    """
+    n = len(a)
+    out = {k: np.full(n, np.nan) for k in _BOLT_VALUES}
+    has = apps.met("fixation")[a]
+    if not has.any():
+        return out
+    fmt, cls = np.asarray(o["bolt_format"], dtype=object), np.asarray(o["bolt_property_class"], dtype=object)
+    head_given = apps.given["bolt_head_contact_external_diameter_mm"][a]
+    f = apps.f
+    rows = np.flatnonzero(has)
+    keys = np.array([f"{fmt[i]}|{cls[i]}|{apps.env[a[i]]}|{head_given[i]}" for i in rows])
+    for key in np.unique(keys):
+        sel = rows[keys == key]
+        aa = a[sel]
+        env = apps.inputs[aa[0]].application_type
+        r = s10.fixation(
+            apps.hubload_nominal_n[aa], f["middle_plane_belt_height_mm"][aa],
+            f["middle_plane_belt_height_increment_worst_mm"][aa], f["tilting_safety_factor"][aa],
+            f["sliding_safety_factor"][aa], f["engine_support_internal_diameter_mm"][aa],
+            f["engine_support_external_diameter_mm"][aa], f["contact_angle_deg"][aa],
+            f["support_yield_strength_compression_mpa"][aa], f["support_yield_strength_traction_mpa"][aa],
+            number_of_active_threads=f["number_of_active_threads"][aa], application_type=env,
+            bolt_head_contact_external_diameter_mm=f["bolt_head_contact_external_diameter_mm"][aa]
+            if head_given[sel[0]] else None,
+            bolt_format=str(fmt[sel[0]]), bolt_property_class=str(cls[sel[0]]))
+        for k in _BOLT_VALUES:
+            out[k][sel] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(sel),))
+    return out
+
+
+def bolt(apps, cg: Group, r, o: dict, settings: Settings = Settings(), fixation: dict | None = None) -> Group:
+    """Group ``bolt`` (step 10 and the pivot wall of step 2) for core rows ``r`` and bolt options ``o``.
+
+    ``fixation`` (optional): the :func:`fixation_values` of the rows, when the caller computed them once per
+    application and bolt (they do not depend on the core).
+    """
+    a = cg.values["app"][r]
+    f = {k: v[a] for k, v in apps.f.items()}
+    n = len(a)
+    fix = fixation if fixation is not None else fixation_values(apps, a, o)
+    v = {"app": a, **fix}
+    v["pivot_bolt_hole_diameter_mm"] = s2.bolt_hole_diameter_mm(o["bolt_d_mm"])
+    v["pivot_wall_mm"] = s2.pivot_wall_mm(cg.values["pivot_diameter_mm"][r], cg.values["loading_arm_mm"][r],
+                                          v["pivot_bolt_hole_diameter_mm"])
+    v["pivot_min_wall_mm"] = np.full(n, _const("pivot_min_wall_mm"))
+    v["bolt_sigma_permissible_mpa"] = _const("bolt_yield_utilisation_max") * np.asarray(o["rp02_mpa"], dtype=float)
+    v["pivot_bore_min_mm"] = np.asarray(o["pivot_bore_min_mm"], dtype=float)
+    for k in ("tilting_safety_factor", "sliding_safety_factor"):
+        v[f"{k}_target"] = f[k]
+    for k in ("engine_support_internal_diameter_mm", "support_yield_strength_compression_mpa",
+              "support_yield_strength_traction_mpa"):
+        v[k] = f[k]
+    return finish("bolt", v, apps, a)

@@ -1,0 +1,228 @@
+"""One result type for every scene: the design, its values, one check per registry constraint, the verdict.
+
+:class:`Result` is what the flowchart, every solver, the bulk engine (per
+row), the report, the workbooks and the CAD export read and write: the part
+keys (:data:`synth.design.space.PART_KEYS`), the derived values, a
+:class:`Check` per constraint of :data:`synth.design.constraints.REGISTRY`,
+notes, the inputs and settings (so a saved JSON is self-contained), and the
+solver's status, objectives and statistics when a solver made it.
+
+Verdicts (:attr:`Result.verdict`, exit codes of :attr:`Result.exit_code`):
+
+* ``pass`` (exit 0): every constraint was checked with the data given, and passes;
+* ``incomplete`` (exit 3): nothing fails, but some checks were not verified
+  (missing optional data) or used a documented default for a missing input;
+* ``fail`` (exit 1): a check fails.
+
+Advisory constraints (the thesis's Table 7 ranges) never fail a design; a
+value outside them is a warning.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from synth.design.constraints import FEAS_TOL, REGISTRY
+
+__all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain"]
+
+PASS, FAIL, INCOMPLETE = "pass", "fail", "incomplete"
+NOT_VERIFIED, NOT_APPLICABLE, WARNING = "not verified", "not applicable", "warning"
+EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 3}
+
+
+def plain(v):
+    """JSON-friendly scalars: numpy to Python; NaN and infinities to None (valid JSON, never ``-Infinity``)."""
+    if isinstance(v, np.ndarray):
+        v = v.tolist() if v.ndim else v.item()
+    if isinstance(v, np.generic):
+        v = v.item()
+    if isinstance(v, (list, tuple)):
+        return [plain(x) for x in v]
+    if isinstance(v, dict):
+        return {str(k): plain(x) for k, x in v.items()}
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    return v
+
+
+@dataclass
+class Check:
+    """One registry constraint evaluated for one design.
+
+    ``verdict``: ``pass``, ``fail``, ``warning`` (an advisory constraint
+    outside its range), ``not verified`` (data missing: ``note`` says which)
+    or ``not applicable``. ``assumed`` lists the documented defaults it used.
+    """
+
+    id: str
+    value: float | None
+    limit: float | None
+    margin: float | None
+    verdict: str
+    note: str = ""
+    assumed: list = field(default_factory=list)
+
+    @property
+    def constraint(self):
+        return REGISTRY[self.id]
+
+    @property
+    def label(self) -> str:
+        return self.constraint.label
+
+    @property
+    def step(self) -> int:
+        return self.constraint.step
+
+    def as_dict(self) -> dict:
+        c = self.constraint
+        return {"id": self.id, "label": c.label, "step": c.step, "equation": c.equation, "unit": c.unit,
+                "sense": c.sense, "value": plain(self.value), "limit": plain(self.limit),
+                "margin": plain(self.margin), "verdict": self.verdict, "advisory": c.advisory,
+                "correction": c.correction if self.verdict == FAIL else "", "note": self.note,
+                "assumed": list(self.assumed)}
+
+
+@dataclass
+class Result:
+    """The one result of synth (see the module docstring).
+
+    ``status``: ``verified`` (a given design checked), ``baseline`` (the thesis
+    flowchart's own design), ``optimal`` (proved by a solver), ``feasible``
+    (an anytime solver's best), ``infeasible`` (then ``diagnosis`` says what
+    binds, by how much, and the smallest input change that fixes it).
+    """
+
+    status: str
+    solver: str = "flowchart"
+    objective: str = ""
+    parts: dict = field(default_factory=dict)
+    values: dict = field(default_factory=dict)
+    checks: list = field(default_factory=list)
+    notes: list = field(default_factory=list)
+    objectives: dict = field(default_factory=dict)
+    stats: dict = field(default_factory=dict)
+    diagnosis: dict | None = None
+    inputs: dict | None = None
+    settings: dict = field(default_factory=dict)
+    steps_run: list = field(default_factory=list)
+    curves: dict = field(default_factory=dict)
+
+    # --- verdicts ------------------------------------------------------------------------------------------
+    def failed(self) -> list:
+        return [c for c in self.checks if c.verdict == FAIL]
+
+    def not_verified(self) -> list:
+        return [c for c in self.checks if c.verdict == NOT_VERIFIED]
+
+    def warnings(self) -> list:
+        return [c for c in self.checks if c.verdict == WARNING]
+
+    def assumptions(self) -> list:
+        """The documented defaults used by evaluated checks, once each."""
+        return list(dict.fromkeys(a for c in self.checks if c.verdict in (PASS, FAIL, WARNING) for a in c.assumed))
+
+    @property
+    def verdict(self) -> str:
+        if self.failed():
+            return FAIL
+        if self.not_verified() or self.assumptions():
+            return INCOMPLETE
+        return PASS
+
+    @property
+    def exit_code(self) -> int:
+        return EXIT_CODES[self.verdict]
+
+    @property
+    def feasible(self) -> bool:
+        """Every checked constraint passes (advisory ones aside)."""
+        return not self.failed()
+
+    @property
+    def margins(self) -> dict:
+        """``{constraint id: margin}`` of the evaluated (non-advisory) checks."""
+        return {c.id: c.margin for c in self.checks
+                if c.verdict in (PASS, FAIL) and c.margin is not None}
+
+    def check(self, cid: str) -> Check:
+        for c in self.checks:
+            if c.id == cid:
+                return c
+        raise KeyError(cid)
+
+    def get(self, key: str, default=None):
+        """A part or a value by its key (one vocabulary for both)."""
+        if key in self.parts:
+            return self.parts[key]
+        return self.values.get(key, default)
+
+    def binding(self, n: int = 8) -> list:
+        """The ``n`` smallest margins of the checks counted in the margin objective (what binds)."""
+        rows = [c for c in self.checks if c.verdict in (PASS, FAIL) and c.constraint.objective]
+        return sorted(rows, key=lambda c: c.margin)[:n]
+
+    # --- serialisation ---------------------------------------------------------------------------------------
+    def to_dict(self) -> dict:
+        return {
+            "kind": "synth.result", "status": self.status, "verdict": self.verdict, "solver": self.solver,
+            "objective": self.objective, "parts": plain(self.parts), "values": plain(self.values),
+            "checks": [c.as_dict() for c in self.checks], "notes": list(self.notes),
+            "objectives": plain(self.objectives), "stats": plain(self.stats), "diagnosis": plain(self.diagnosis),
+            "inputs": plain(self.inputs), "settings": plain(self.settings), "steps_run": list(self.steps_run),
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict, source: str = "result") -> "Result":
+        """A result from :meth:`to_dict`'s output (a saved ``--json``); wrong shapes name the key."""
+        from synth.errors import InputError, Problem
+        if not isinstance(data, dict):
+            raise InputError(Problem(source, type(data).__name__, "a JSON object written by synth (--json)"))
+        for key, kind in (("parts", dict), ("values", dict), ("checks", list)):
+            if not isinstance(data.get(key), kind):
+                raise InputError(Problem(f"{source}: {key}", type(data.get(key)).__name__,
+                                         f"a JSON {'object' if kind is dict else 'list'} (a result written by synth)"))
+        checks = []
+        for i, c in enumerate(data["checks"]):
+            if not isinstance(c, dict) or c.get("id") not in REGISTRY:
+                raise InputError(Problem(f"{source}: checks[{i}].id", c.get("id") if isinstance(c, dict) else c,
+                                         "a constraint id of synth's registry"))
+            checks.append(Check(c["id"], c.get("value"), c.get("limit"), c.get("margin"), c.get("verdict", ""),
+                                c.get("note", ""), list(c.get("assumed") or [])))
+        return cls(status=str(data.get("status", "verified")), solver=str(data.get("solver", "")),
+                   objective=str(data.get("objective", "")), parts=dict(data["parts"]), values=dict(data["values"]),
+                   checks=checks, notes=list(data.get("notes") or []), objectives=dict(data.get("objectives") or {}),
+                   stats=dict(data.get("stats") or {}), diagnosis=data.get("diagnosis"),
+                   inputs=data.get("inputs"), settings=dict(data.get("settings") or {}),
+                   steps_run=list(data.get("steps_run") or []))
+
+
+def checks_of(groups: dict, apps, row: int = 0) -> list:
+    """The :class:`Check` records of one design: row ``row`` of each evaluated group (registry order)."""
+    from synth.design.applications import DEFAULTS
+    from synth.design import evaluate as E
+    out = []
+    for cid, c in REGISTRY.items():
+        g = groups.get(c.group)
+        if g is None:
+            continue
+        st = int(g.state[cid][row])
+        a = int(g.values["app"][row]) if "app" in g.values else 0
+        if st == E.NOT_APPLICABLE:
+            out.append(Check(cid, None, None, None, NOT_APPLICABLE))
+            continue
+        if st != E.EVALUATED:
+            missing = [r for r in c.needs if not apps.met(r)[a]]
+            out.append(Check(cid, None, None, None, NOT_VERIFIED, apps.missing_note(missing[0]) if missing else ""))
+            continue
+        value = float(g.values[c.value][row])
+        limit = E._CONSTANT_LIMITS[c.limit] if c.limit in E._CONSTANT_LIMITS else float(g.values[c.limit][row])
+        m = float(g.margins[cid][row])
+        verdict = (PASS if m >= -FEAS_TOL else (WARNING if c.advisory else FAIL))
+        assumed = [apps.assumed_note(x, a) for x in c.assumes if x in DEFAULTS and apps.assumed(x)[a]]
+        out.append(Check(cid, value, limit, m, verdict, assumed=assumed))
+    return out

@@ -1,0 +1,373 @@
+"""The catalog design space of a tensioner, as arrays, and its decomposition.
+
+A design is one choice per part family: ball bearing, pivot class, bushing
+supplier and length, damper pad and endcap spacer classes, cone spring
+variant, main-spring material, wire and mean body diameter, bolt format and
+property class. Continuous quantities (damping split, active coils,
+cone-spring thickness and force, bolt preload and tightening torque) follow
+in closed form from the physics of :mod:`synth.model` and are derived, not
+searched.
+
+Decomposition. The choices that set the damping split (bearing, pivot class,
+bushing supplier, whose wall thickness sets the pivot diameter) and the
+damper pad (it sets the spring-housing height and the cone-spring outer
+diameter) form the **core**; every other family is a **subsystem** whose
+constraints involve only the application, the core and its own choice:
+
+========== ============================================ ==========================================
+subsystem  options                                      constraints (thesis step)
+========== ============================================ ==========================================
+bushing    supplier x catalog length (core's supplier)  Table 5 rating, p, pv, pvt, wear, parallelism,
+                                                        length (4)
+axial      endcap spacer x cone spring variant          Table 4 capacity, belt plane (7), cone spring (8),
+           (h0/t, s/h0, De below its maximum)           plastic wear and EOL damping (5)
+spring     material x wire x mean body diameter         yield, Goodman SF, contacts, coil gap, index (9)
+bolt       format x property class                      tilting, sliding, bolt, under-head, thread, bore,
+                                                        pivot base (10), pivot wall (2)
+========== ============================================ ==========================================
+
+Given the core, subsystems share no constraint, so the optimum of an additive
+objective (cost, standardisation) is the core's own value plus the best
+option of each subsystem, and the max-min margin combines by the minimum.
+The main spring sees the core only through a **key** (spring torque, housing
+height and diameters), so springs are evaluated once per distinct key.
+
+:class:`Space` holds the application-independent tables of one catalog
+setting (each built once and cached); which rows an application may use
+(only radial damping, pinned parts, the mean-diameter range of its housing)
+is decided per application by :func:`core_rows` and :func:`spring_range`.
+
+>>> s = space()
+>>> sorted(SUBSYSTEMS), s.n("core") > 100, s.n("spring") > 1000
+(['axial', 'bolt', 'bushing', 'spring'], True, True)
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from synth import catalog, parts as P
+from synth.errors import InputError, Problem
+from synth.model import packaging as s7, pivot as s2, torsion_spring as s9
+
+__all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "NONE", "Space", "space", "core_rows", "spring_range"]
+
+SUBSYSTEMS = ("bushing", "axial", "spring", "bolt")
+TABLES = ("core",) + SUBSYSTEMS
+NONE = "none"
+
+#: the part keys of a design (one vocabulary: input file, results, JSON, Excel, report, CAD), by table
+PART_KEYS_BY_TABLE = {
+    "core": ("ball_bearing", "pivot_class_diameter_mm", "pivot_bushing_supplier", "damper_pad_class"),
+    "bushing": ("pivot_bushing_length_mm",),
+    "axial": ("endcap_spacer_class", "cone_spring_aspect_ratio", "cone_spring_deflection_ratio",
+              "cone_spring_external_diameter_mm"),
+    "spring": ("main_spring_material", "main_spring_wire", "main_spring_mean_body_diameter_mm"),
+    "bolt": ("bolt_format", "bolt_property_class"),
+}
+PART_KEYS = tuple(k for t in TABLES for k in PART_KEYS_BY_TABLE[t])
+
+
+@dataclass
+class Space:
+    """The option tables (dicts of equal-length arrays) of one catalog setting; see the module docstring.
+
+    Every table has ``cost_eur`` and ``nonstandard`` (weighted count of
+    non-standard parts) columns, except the spring table whose cost depends on
+    the application's stiffness (:meth:`spring_cost_eur`).
+    """
+
+    tables: dict
+    parts: P.Parts
+    notes: list = field(default_factory=list)
+
+    def n(self, table: str) -> int:
+        return len(next(iter(self.tables[table].values())))
+
+    def col(self, table: str, name: str) -> np.ndarray:
+        return self.tables[table][name]
+
+    def spring_cost_eur(self, stiffness_nm_per_deg, options=None) -> np.ndarray:
+        """Main-spring cost [EUR] of ``options`` for a stiffness (broadcast: (n,1) stiffness x options).
+
+        Wire length ``pi Dm n_a = pi E I / (180 k)`` (eq. 64-65) does not depend
+        on the mean diameter, so the cost is ``cost_per_unit_compliance / k``
+        and the cost order of the springs is the same for every application.
+        """
+        c = self.tables["spring"]["cost_eur_times_stiffness"]
+        c = c if options is None else c[options]
+        return c / np.maximum(np.asarray(stiffness_nm_per_deg, float), 1e-12)
+
+    def rows(self, table: str, idx) -> dict:
+        """The columns of ``table`` at rows ``idx`` (gathered arrays)."""
+        return {k: v[idx] for k, v in self.tables[table].items()}
+
+    def design_attributes(self, parts: dict, field_prefix: str = "parts") -> dict:
+        """One-row attribute dicts, per table, of the design ``parts`` (its part keys; any pivot class, length,
+        cone variant or mean diameter, not only the searched grids). Unknown keys name the part key.
+
+        The cone spring's outer diameter is given absolutely (``cone_spring_external_diameter_mm``) and
+        stored as the reduction below the largest one the damper pad allows.
+        """
+        from synth.model import disc_spring as s8
+        p = self.parts
+
+        def need(k):
+            if parts.get(k) is None:
+                raise InputError(Problem(f"{field_prefix}.{k}", None, "a value (every part key of a design)"))
+            return parts[k]
+
+        def num(k):
+            try:
+                return float(need(k))
+            except (TypeError, ValueError):
+                raise InputError(Problem(f"{field_prefix}.{k}", parts[k], "a number")) from None
+
+        def code(table: P.Table, k, none_ok=False):
+            v = str(need(k)).strip()
+            if none_ok and v == NONE:
+                return -1
+            return table.code(v, f"{field_prefix}.{k}")
+
+        pad = code(p.damper_pad, "damper_pad_class", True)
+        out = {"core": core_attributes(p, [code(p.bearing, "ball_bearing")], [num("pivot_class_diameter_mm")],
+                                       [code(p.bushing, "pivot_bushing_supplier")], [pad])}
+        out["bushing"] = bushing_attributes(p, out["core"]["supplier_code"], [num("pivot_bushing_length_mm")])
+        spacer = code(p.endcap_spacer, "endcap_spacer_class", True)
+        if spacer >= 0:
+            de_max = float(s8.cone_spring_max_external_diameter_mm(out["core"]["damper_pad_outer_diameter_mm"])[0])
+            red = de_max - num("cone_spring_external_diameter_mm") if pad >= 0 else 0.0
+            out["axial"] = axial_attributes(p, [spacer], [num("cone_spring_aspect_ratio")],
+                                            [num("cone_spring_deflection_ratio")], [red])
+        else:
+            out["axial"] = axial_attributes(p, [-1], [0.0], [0.0], [0.0])
+        out["spring"] = spring_attributes(p, [code(p.spring_material, "main_spring_material")],
+                                          [code(p.spring_wire, "main_spring_wire")],
+                                          [num("main_spring_mean_body_diameter_mm")])
+        out["bolt"] = bolt_attributes(p, [code(p.bolt, "bolt_format")], [code(p.bolt_class, "bolt_property_class")])
+        if not out["bolt"]["class_defined"][0]:
+            raise InputError(Problem(f"{field_prefix}.bolt_property_class", parts["bolt_property_class"],
+                                     f"a class ISO 898-1 defines for {parts['bolt_format']} (9.8 only up to 16 mm)"))
+        return out
+
+
+def _w(name: str) -> float:
+    return catalog.constant(f"nonstandard_weight_{name}")
+
+
+def _grid(lo: float, hi: float, count: int) -> np.ndarray:
+    return np.round(np.linspace(lo, hi, int(count)), 6) if count > 1 else np.array([round(lo, 6)])
+
+
+def _pivot_classes(p: P.Parts) -> np.ndarray:
+    lo, hi, step = (catalog.constant(f"optimise_pivot_class_{k}") for k in ("min_mm", "max_mm", "step_mm"))
+    classes = set(np.round(np.arange(lo, hi + step / 2, step), 6).tolist())
+    for _, cls, _ in p.table2.values():
+        classes |= set(cls.tolist())
+    return np.array(sorted(classes))
+
+
+def core_attributes(p: P.Parts, bearing, pivot_class_mm, supplier, pad) -> dict:
+    """The core table's columns for codes (bearing, supplier, pad: -1 = none) and pivot classes (arrays)."""
+    b, s, dpad = (np.asarray(x, dtype=np.int64) for x in (bearing, supplier, pad))
+    cls = np.asarray(pivot_class_mm, dtype=float)
+    has = dpad >= 0
+    pc = np.where(has, dpad, 0)
+
+    def padcol(name, none=0.0):
+        return np.where(has, p.damper_pad.cols[name][pc], none)
+
+    thick = p.bushing.radial_thickness_mm[s]
+    t = {
+        "ball_bearing": p.bearing.key[b], "bearing_code": b,
+        "pivot_class_diameter_mm": cls,
+        "pivot_bushing_supplier": p.bushing.key[s], "supplier_code": s,
+        "damper_pad_class": np.where(has, p.damper_pad.key[pc], NONE).astype(object), "pad_code": dpad,
+        "axial_group_present": has,
+        "bearing_inner_diameter_mm": p.bearing.d_mm[b], "bearing_outer_diameter_mm": p.bearing.D_mm[b],
+        "bearing_width_mm": p.bearing.B_mm[b],
+        "pivot_bushing_radial_thickness_mm": thick,
+        "pivot_diameter_mm": s2.pivot_diameter_mm(cls, thick),
+        "spring_housing_inner_diameter_mm": s7.spring_housing_inner_diameter_mm(cls),
+        "damper_pad_max_axial_damping_nm": padcol("max_axial_damping_nm", np.inf),
+        "damper_pad_contact_area_mm2": padcol("contact_area_mm2"),
+        "damper_pad_mean_radius_mm": padcol("mean_radius_mm"),
+        "damper_pad_outer_diameter_mm": padcol("outer_diameter_mm"),
+        "damper_pad_axial_height_mm": padcol("axial_height_mm"),
+        "cost_eur": p.bearing.unit_cost_eur[b] + padcol("unit_cost_eur"),
+        # Table 2's standard class depends on the working arm: the pivot-class part of the score is per application
+        "nonstandard": (_w("bearing") * ~p.bearing.standard[b] + _w("bushing") * ~p.bushing.standard[s]
+                        + _w("damper_pad") * np.where(has, ~p.damper_pad.standard[pc], False)).astype(float),
+    }
+    return t
+
+
+def _core(p: P.Parts) -> dict:
+    classes = _pivot_classes(p)
+    b, c, s, dpad = (a.ravel() for a in np.meshgrid(np.arange(len(p.bearing)), np.arange(len(classes)),
+                                                     np.arange(len(p.bushing)), np.arange(len(p.damper_pad) + 1) - 1,
+                                                     indexing="ij"))
+    return core_attributes(p, b, classes[c], s, dpad)
+
+
+def bushing_attributes(p: P.Parts, supplier, length_mm) -> dict:
+    """The bushing table's columns for supplier codes and lengths (any length: the flowchart's trial lengths)."""
+    sup = np.asarray(supplier, dtype=np.int64)
+    length = np.asarray(length_mm, dtype=float)
+    return {"supplier_code": sup, "pivot_bushing_supplier": p.bushing.key[sup], "pivot_bushing_length_mm": length,
+            "cost_eur": p.bushing.unit_cost_eur[sup] + p.bushing.cost_eur_per_mm[sup] * length,
+            "nonstandard": np.zeros(length.shape)}
+
+
+def _bushing(p: P.Parts) -> dict:
+    sup = np.concatenate([np.full(len(l), i) for i, l in enumerate(p.bushing_lengths)]).astype(np.int64)
+    return bushing_attributes(p, sup, np.concatenate(p.bushing_lengths))
+
+
+def cone_variants() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The cone-spring variants searched: ``(h0/t, s/h0, De reduction [mm])`` grids (constants_optimise.csv)."""
+    c = catalog.constant
+    zeta = _grid(c("optimise_cone_aspect_ratio_min"), c("optimise_cone_aspect_ratio_max"),
+                 c("optimise_cone_aspect_ratio_count"))
+    phi = _grid(c("optimise_cone_deflection_ratio_min"), c("optimise_cone_deflection_ratio_max"),
+                c("optimise_cone_deflection_ratio_count"))
+    red = np.arange(int(c("optimise_cone_de_reduction_count"))) * c("cone_spring_od_round_down_mm")
+    return zeta, phi, red
+
+
+def axial_attributes(p: P.Parts, spacer, aspect_ratio, deflection_ratio, de_reduction_mm) -> dict:
+    """The axial table's columns for spacer codes (-1 = none) and cone-spring variants (arrays)."""
+    e = np.asarray(spacer, dtype=np.int64)
+    has = e >= 0
+    ec = np.where(has, e, 0)
+    es = p.endcap_spacer
+
+    def col(name, none=0.0):
+        return np.where(has, es.cols[name][ec], none)
+
+    cone_cost = catalog.constant("cone_spring_unit_cost_eur")
+    cone_ns = _w("cone_spring") * (1.0 - catalog.constant("cone_spring_design_standard"))
+    return {
+        "spacer_code": e, "axial_group_present": has,
+        "endcap_spacer_class": np.where(has, es.key[ec], NONE).astype(object),
+        "cone_spring_aspect_ratio": np.where(has, aspect_ratio, 0.0),
+        "cone_spring_deflection_ratio": np.where(has, deflection_ratio, 0.0),
+        "cone_spring_de_reduction_mm": np.where(has, de_reduction_mm, 0.0),
+        "endcap_spacer_max_axial_damping_nm": col("max_axial_damping_nm", np.inf),
+        "endcap_spacer_contact_area_mm2": col("contact_area_mm2"),
+        "endcap_spacer_mean_radius_mm": col("mean_radius_mm"),
+        "endcap_spacer_axial_height_mm": col("axial_height_mm"),
+        "cost_eur": np.where(has, col("unit_cost_eur") + cone_cost, 0.0),
+        "nonstandard": np.where(has, _w("endcap_spacer") * ~es.standard[ec] + cone_ns, 0.0),
+    }
+
+
+def _axial(p: P.Parts) -> dict:
+    zeta, phi, red = cone_variants()
+    e, z, f, r = (a.ravel() for a in np.meshgrid(np.arange(len(p.endcap_spacer)), zeta, phi, red, indexing="ij"))
+    return axial_attributes(p, np.concatenate([[-1], e]), np.concatenate([[0.0], z]), np.concatenate([[0.0], f]),
+                            np.concatenate([[0.0], r]))
+
+
+def mbd_grid(p: P.Parts) -> np.ndarray:
+    """Main-spring mean body diameters searched [mm]: the step grid spanning every housing of the catalogs."""
+    step = catalog.constant("optimise_mbd_step_mm")
+    lo = float(s7.spring_housing_inner_diameter_mm(catalog.constant("optimise_pivot_class_min_mm")))
+    hi = float(np.max(p.bearing.D_mm))
+    return np.arange(math.ceil(lo / step) * step, math.floor(hi / step) * step + step / 2, step)
+
+
+def spring_attributes(p: P.Parts, material, wire, mbd_mm) -> dict:
+    """The spring table's columns for material and wire codes and mean body diameters (any diameter)."""
+    m, w = np.asarray(material, dtype=np.int64), np.asarray(wire, dtype=np.int64)
+    d = np.asarray(mbd_mm, dtype=float)
+    wire_t, mat = p.spring_wire, p.spring_material
+    rnd = wire_t.round_wire[w]
+    rm = np.empty(m.shape)
+    dia = s9.rm_lookup_diameter_mm(wire_t.b_mm[w], wire_t.h_mm[w], rnd)
+    for i in np.unique(m):  # a handful of materials, each with its own strength table (EN 10270)
+        sel = m == i
+        grid_d, grid_rm = p.spring_strength[int(i)]
+        rm[sel] = np.interp(dia[sel], grid_d, grid_rm)
+    inertia = s9.second_moment_mm4(wire_t.b_mm[w], wire_t.h_mm[w], rnd)
+    area = np.where(rnd, np.pi * wire_t.h_mm[w] ** 2 / 4.0, wire_t.b_mm[w] * wire_t.h_mm[w])
+    # wire length x k = pi E I / 180 (eq. 64-65): cost = (per metre + per kg) x length, divided by k per application
+    length_times_k_m = np.pi * mat.E_mpa[m] * inertia / (180.0 * 1000.0) / 1000.0
+    cost_k = length_times_k_m * (wire_t.unit_cost_eur[w] + area * 1e-6 * mat.density_kg_m3[m] * mat.unit_cost_eur[m])
+    return {
+        "material_code": m, "wire_code": w,
+        "main_spring_material": mat.key[m], "main_spring_wire": wire_t.key[w], "main_spring_mean_body_diameter_mm": d,
+        "E_mpa": mat.E_mpa[m], "Rm_mpa": rm, "sigma_y_mpa": mat.sigma_y_bend_fraction[m] * rm,
+        "sigma_A0_mpa": mat.sigma_A0_fraction[m] * rm,
+        "b_mm": wire_t.b_mm[w], "h_mm": wire_t.h_mm[w], "round_wire": rnd, "b_tol_mm": wire_t.b_tol_mm[w],
+        "h_tol_mm": wire_t.h_tol_mm[w], "second_moment_mm4": inertia, "wire_section_area_mm2": area,
+        "density_kg_m3": mat.density_kg_m3[m],
+        "cost_eur_times_stiffness": cost_k,
+        "nonstandard": (_w("spring_material") * ~mat.standard[m] + _w("spring_wire") * ~wire_t.standard[w]).astype(float),
+    }
+
+
+def _spring(p: P.Parts) -> dict:
+    m, w, d = (a.ravel() for a in np.meshgrid(np.arange(len(p.spring_material)), np.arange(len(p.spring_wire)),
+                                              mbd_grid(p), indexing="ij"))
+    return spring_attributes(p, m, w, d)
+
+
+def bolt_attributes(p: P.Parts, bolt, property_class) -> dict:
+    """The bolt table's columns for format and property-class codes."""
+    b, c = np.asarray(bolt, dtype=np.int64), np.asarray(property_class, dtype=np.int64)
+    bo, cl = p.bolt, p.bolt_class
+    big = bo.d_mm[b] > 16.0
+    rank_b = np.where(np.isfinite(bo.escalation_rank[b]), bo.escalation_rank[b], np.inf)
+    return {
+        "bolt_code": b, "class_code": c, "bolt_format": bo.key[b], "bolt_property_class": cl.key[c],
+        "bolt_d_mm": bo.d_mm[b], "pivot_bore_min_mm": bo.pivot_bore_min_mm[b],
+        "rp02_mpa": np.where(big, cl.rp02_min_d_gt16_mpa[c], cl.rp02_min_mpa[c]),
+        "escalation_order": rank_b * 100 + cl.escalation_rank[c],
+        "class_defined": ~(np.isfinite(cl.d_max_mm[c]) & (bo.d_mm[b] > cl.d_max_mm[c])),  # ISO 898-1: 9.8 to 16 mm
+        "cost_eur": bo.unit_cost_eur[b] * cl.unit_cost_factor[c],
+        "nonstandard": (_w("bolt") * ~bo.standard[b] + _w("bolt") * ~cl.standard[c]).astype(float),
+    }
+
+
+def _bolt(p: P.Parts) -> dict:
+    b, c = (a.ravel() for a in np.meshgrid(np.arange(len(p.bolt)), np.arange(len(p.bolt_class)), indexing="ij"))
+    t = bolt_attributes(p, b, c)
+    keep = t["class_defined"]
+    return {k: v[keep] for k, v in t.items()}
+
+
+@functools.lru_cache(maxsize=8)
+def _space_cached(user_dirs: tuple) -> Space:
+    p = P.arrays()
+    return Space({"core": _core(p), "bushing": _bushing(p), "axial": _axial(p), "spring": _spring(p),
+                  "bolt": _bolt(p)}, p)
+
+
+def space() -> Space:
+    """The design space of the current catalog setting (cached; do not modify its arrays)."""
+    return _space_cached(tuple(catalog._user_dirs()))
+
+
+def core_rows(sp: Space, d, *, pin_inputs: bool = False) -> np.ndarray:
+    """The core rows application ``d`` may use: only radial damping excludes pads; ``pin_inputs`` keeps the
+    pivot class, bushing thickness and (manual) parts the input names."""
+    t = sp.tables["core"]
+    ok = np.ones(sp.n("core"), dtype=bool)
+    if d.damping_typology == "only_radial":
+        ok &= ~t["axial_group_present"]
+    if pin_inputs:
+        if d.pivot_class_diameter_mm is not None:
+            ok &= np.isclose(t["pivot_class_diameter_mm"], float(d.pivot_class_diameter_mm))
+        if d.pivot_bushing_radial_thickness_mm is not None:
+            ok &= np.isclose(t["pivot_bushing_radial_thickness_mm"], float(d.pivot_bushing_radial_thickness_mm))
+    return np.flatnonzero(ok)
+
+
+def spring_range(housing_inner_mm, housing_outer_mm, mbd: np.ndarray) -> np.ndarray:
+    """Mask of the mean diameters between a housing's inner and outer diameter (the searched springs)."""
+    return (mbd >= np.floor(np.min(housing_inner_mm)) - 1e-9) & (mbd <= np.ceil(np.max(housing_outer_mm)) + 1e-9)

@@ -1,0 +1,123 @@
+"""Verify one given design of one application through the one evaluator.
+
+:func:`evaluate_design` evaluates every group for the design's parts (any
+part: pivot class, bushing length, cone variant and mean diameter need not lie
+on the optimiser's grids) and :func:`verify` wraps it in a
+:class:`~synth.design.result.Result`. The flowchart's fixed-parts mode, every
+solver's answer and the bulk engine's chosen designs are verified here.
+
+>>> from synth.data import case_path
+>>> from synth.schema import load_input
+>>> r = verify(load_input(case_path("case3")), {"ball_bearing": "6006", "pivot_class_diameter_mm": 19.0,
+...     "pivot_bushing_supplier": "B", "damper_pad_class": "none", "pivot_bushing_length_mm": 20.0,
+...     "endcap_spacer_class": "none", "cone_spring_aspect_ratio": 0.0, "cone_spring_deflection_ratio": 0.0,
+...     "cone_spring_external_diameter_mm": 0.0, "main_spring_material": "VDSiCr", "main_spring_wire": "R2.30",
+...     "main_spring_mean_body_diameter_mm": 44.0, "bolt_format": "M8x1.25", "bolt_property_class": "8.8"})
+>>> round(r.values["pivot_diameter_mm"], 1), r.check("bearing_load").verdict
+(20.0, 'pass')
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from synth.design import evaluate as E
+from synth.design.applications import Applications
+from synth.design.result import Result, checks_of, plain
+from synth.design.space import NONE, PART_KEYS, space
+
+__all__ = ["evaluate_design", "verify", "values_of", "inputs_of", "wire_size_mm"]
+
+_ONE = np.zeros(1, dtype=np.int64)
+
+
+def evaluate_design(apps: Applications, attrs: dict, settings: E.Settings = E.Settings(), *, detail: bool = True,
+                    time_points: int = 0) -> dict:
+    """Every group of one design (``attrs``: one-row attribute dicts per table) for application 0 of ``apps``."""
+    groups = {"input": E.inputs(apps, _ONE)}
+    cg = E.core(apps, _ONE, attrs["core"], settings, detail=detail)
+    groups["core"] = cg
+    groups["bushing"] = E.bushing(apps, cg, _ONE, attrs["bushing"], settings)
+    groups["axial"] = E.axial(apps, cg, _ONE, attrs["axial"], settings, time_points=time_points)
+    groups["spring"] = E.spring(apps, E.spring_keys(cg, _ONE), _ONE, attrs["spring"], settings)
+    groups["bolt"] = E.bolt(apps, cg, _ONE, attrs["bolt"], settings)
+    return groups
+
+
+def wire_size_mm(round_wire: bool, b_mm: float, h_mm: float) -> list:
+    """The input schema's wire size: ``[d]`` for a round wire, ``[b, h]`` for a rectangular one."""
+    return [float(h_mm)] if round_wire else [float(b_mm), float(h_mm)]
+
+
+def values_of(groups: dict, attrs: dict) -> dict:
+    """The derived values of one design: every group's values (row 0) and the chosen parts' dimensions."""
+    out: dict = {}
+    for g in groups.values():
+        for k, v in g.values.items():
+            if k.startswith("_") or k == "app" or k in out:
+                continue
+            arr = np.asarray(v)
+            out[k] = plain(arr[0]) if arr.ndim else plain(arr)
+    for k in ("layout_standard", "layout_reverse", "axial_group_present", "axial_damping_present", "has_loading_arm",
+              "cone_spring_sized", "bushing_rated", "axial_group_mismatch"):
+        if k in out and out[k] is not None:
+            out[k] = bool(out[k])
+    out["architecture"] = "rotary_standard" if out.get("layout_standard") else "rotary_reverse"
+    sp = attrs["spring"]
+    rnd = bool(sp["round_wire"][0])
+    out["main_spring_wire_section"] = "round" if rnd else "rectangular"
+    out["main_spring_wire_size_mm"] = wire_size_mm(rnd, sp["b_mm"][0], sp["h_mm"][0])
+    out["main_spring_working_condition"] = "winding"
+    ax = attrs["axial"]
+    if bool(ax["axial_group_present"][0]):
+        for k in ("endcap_spacer_contact_area_mm2", "endcap_spacer_mean_radius_mm", "endcap_spacer_axial_height_mm"):
+            out[k] = plain(ax[k][0])
+    for k in ("damper_pad_contact_area_mm2", "damper_pad_mean_radius_mm", "damper_pad_outer_diameter_mm",
+              "damper_pad_axial_height_mm"):
+        if not out.get("axial_group_present"):
+            out.pop(k, None)
+    out["bolt_d_mm"] = plain(attrs["bolt"]["bolt_d_mm"][0])
+    if not out.get("axial_damping_present"):
+        out["axial_damping_nm"] = None
+    return out
+
+
+def inputs_of(d) -> dict | None:
+    """The design input as a dict of plain values (``None`` if it is not a dataclass)."""
+    if not dataclasses.is_dataclass(d):
+        return None
+    return {k: plain(v) for k, v in dataclasses.asdict(d).items()}
+
+
+def parts_of_attributes(attrs: dict, groups: dict) -> dict:
+    """The part keys of a design from its one-row attributes (the cone spring's outer diameter made absolute)."""
+    de_max = float(groups["core"].values["cone_spring_max_external_diameter_mm"][0])
+    out = {}
+    for table in ("core", "bushing", "axial", "spring", "bolt"):
+        for k, v in attrs[table].items():
+            if k in PART_KEYS:
+                out[k] = plain(np.asarray(v)[0])
+    if out.get("endcap_spacer_class", NONE) != NONE and np.isfinite(de_max):
+        out["cone_spring_external_diameter_mm"] = plain(de_max - float(attrs["axial"]["cone_spring_de_reduction_mm"][0]))
+    else:
+        out["cone_spring_external_diameter_mm"] = 0.0
+    out["pivot_bushing_supplier"] = plain(attrs["core"]["pivot_bushing_supplier"][0])
+    return {k: out.get(k) for k in PART_KEYS}
+
+
+def verify(d, parts: dict, settings: E.Settings = E.Settings(), *, status: str = "verified", solver: str = "",
+           detail: bool = True, time_points: int = 0, notes: list | None = None) -> Result:
+    """The :class:`~synth.design.result.Result` of design ``parts`` (the keys of PART_KEYS) for input ``d``."""
+    apps = Applications.of([d])
+    attrs = space().design_attributes(parts)
+    groups = evaluate_design(apps, attrs, settings, detail=detail, time_points=time_points)
+    values = values_of(groups, attrs)
+    res = Result(status=status, solver=solver, parts=parts_of_attributes(attrs, groups),
+                 values=values, checks=checks_of(groups, apps), notes=list(notes or []), inputs=inputs_of(d),
+                 settings=dataclasses.asdict(settings))
+    if time_points and "_history" in groups["axial"].values:
+        res.curves["plastic_wear"] = {k: np.asarray(v).reshape(-1).tolist()
+                                      for k, v in groups["axial"].values["_history"].items()}
+    return res

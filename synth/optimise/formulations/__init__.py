@@ -1,1 +1,0 @@
-"""Model builders (Pyomo, cvxpy): functions of precomputed data returning models."""
