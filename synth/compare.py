@@ -50,6 +50,8 @@ def relative_error(ours, ref):
 def _same(ours, ref) -> bool | None:
     if ours is None or ref is None:
         return None
+    if isinstance(ref, str) and isinstance(ours, str):
+        return ours.strip().lower() == ref.strip().lower()
     if isinstance(ref, bool) or isinstance(ours, bool):
         return bool(ours) == bool(ref)
     return str(ours).strip().lower() == str(ref).strip().lower()
@@ -65,14 +67,15 @@ def compare_case(path: str | Path, settings: flowchart.Settings | None = None) -
     if not isinstance(raw, dict) or "thesis_tool" not in raw:
         raise InputError(Problem("case file", str(p), "a case YAML with inputs: and thesis_tool: blocks"))
     result = flowchart.run(schema.validate(raw.get("inputs") or {}), settings)
-    ours_all = result.to_dict()
     real = raw.get("real_tensioner") or {}
     rows = []
     for key, ref in (raw["thesis_tool"] or {}).items():
-        ours = ours_all.get(key)
+        ours = result.get(key)
+        categorical = isinstance(ref, (str, bool))  # a designation ("8.8", "6006") is a name, not a number
         row = {"key": key, "ours": ours, "thesis_tool": ref, "real": real.get(key),
-               "err_thesis": relative_error(ours, ref), "err_real": relative_error(ours, real.get(key))}
-        if isinstance(ref, (str, bool)):
+               "err_thesis": None if categorical else relative_error(ours, ref),
+               "err_real": None if categorical else relative_error(ours, real.get(key))}
+        if categorical:
             row["match"] = _same(ours, ref)
         rows.append(row)
     return {"name": raw.get("name", p.stem), "result": result, "rows": rows}

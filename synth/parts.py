@@ -114,7 +114,7 @@ class Parts:
     damper_pad: Table
     endcap_spacer: Table
     spring_material: Table
-    spring_strength: list                   # per material: (d_mm, Rm_min_mpa) sorted by d
+    spring_strength: list                   # per material: (d_mm, Rm_min_mpa, Rm_max_mpa) sorted by d
     spring_wire: Table
     bolt: Table
     bolt_class: Table
@@ -164,7 +164,7 @@ def _arrays_cached(user_dirs: tuple) -> Parts:
         if rows.empty:
             raise CatalogError(Problem("spring_material_strength.csv", key, "tensile strength rows for every material "
                                        "of spring_materials.csv"))
-        strength.append((_num(rows, "d_mm"), _num(rows, "Rm_min_mpa")))
+        strength.append((_num(rows, "d_mm"), _num(rows, "Rm_min_mpa"), _num(rows, "Rm_max_mpa")))
     wires = load("spring_wires")
     w = _table("spring_wires", wires, ("b_mm", "h_mm", "b_tol_mm", "h_tol_mm", "unit_cost_eur"), strings=("section",))
     w.cols["round_wire"] = np.array([s == "round" for s in w.section], dtype=bool)

@@ -1,8 +1,8 @@
 """CAD export of a synthesised tensioner (thesis step 11, Fig. 75-76) with CadQuery.
 
 ``dimensions`` (result -> :class:`TensionerGeometry`), ``parts`` (one function
-per part), ``assembly`` (named, coloured parts), ``verify`` (geometric checks as
-:class:`synth.checks.Check` records), ``export`` (STEP, STL, pictures).
+per part), ``assembly`` (named, coloured parts), ``verify`` (the registry's
+step-11 geometric checks), ``export`` (STEP, STL, pictures).
 :func:`export_result` chains them; :func:`summary_lines` is what the scenes print.
 """
 
@@ -36,16 +36,21 @@ def export_result(result, out_dir, inputs=None, *, stl: bool = True, pictures: b
 
 def summary_lines(model, checks, info) -> list[str]:
     """Human-readable summary: status, parts, checks, files, timings."""
-    from synth.checks import FAIL
+    from synth.design.result import FAIL
     g = model.geometry
     lines = [f"CAD model: {g.layout} layout, {g.pulley_type} pulley, "
              f"{'with' if g.axial_damping else 'without'} axial damping, {g.wire_section} wire, {g.eccentric} pivot",
              f"result status: {g.status}" + ("" if g.feasible else "  (INFEASIBLE: the nearest design is exported)"),
              f"parts ({len(model.parts)}): " + ", ".join(model.parts), "geometric checks (step 11):"]
     for c in checks:
+        con = c.constraint
+        if c.value is None:
+            lines.append(f"  [N/V ] {c.label}: {c.note}")
+            continue
         mark = "FAIL" if c.verdict == FAIL else "PASS"
-        lines.append(f"  [{mark}] {c.name}: {c.value:.4g} {c.kind} {c.limit:.4g} {c.unit}"
-                     + (f"  -> {c.correction}" if c.verdict == FAIL and c.correction else ""))
+        lines.append(f"  [{mark}] {c.label}: {c.value:.4g} {con.sense} {c.limit:.4g} {con.unit}"
+                     + (f"  -> {con.correction}" if c.verdict == FAIL and con.correction else "")
+                     + (f"  ({c.note})" if c.note and c.verdict == FAIL else ""))
     lines.append("files: " + ", ".join(str(f) for f in info["files"] if "stl" not in str(f.parent.name))
                  + f" (+ {sum(1 for f in info['files'] if f.parent.name == 'stl')} STL)")
     lines.append("times [s]: " + ", ".join(f"{k} {v:.2f}" for k, v in info["timings_s"].items()))

@@ -1,8 +1,8 @@
 """One adapter from a synthesis result to the plain dimensions the CAD model needs.
 
-:func:`geometry_from` accepts a :class:`synth.flowchart.FlowchartResult`, a
-:class:`synth.optimise.result.DesignResult`, or the JSON of either
-(``synth flowchart --json`` / ``synth design --json``), and returns a frozen
+:func:`geometry_from` accepts a :class:`synth.design.result.Result` (of any
+scene) or its JSON (``--json`` of ``synth flowchart`` or ``synth design``),
+and returns a frozen
 :class:`TensionerGeometry` of plain floats and strings, units in the names.
 Every dimension is *read* from the result (or from the catalog row the result
 names, or from the step-7 stack constants the physics itself reads); nothing
@@ -55,7 +55,7 @@ class TensionerGeometry:
     # inputs (application)
     belt_plane_height_mm: float
     max_pivot_height_mm: float
-    max_axial_displacement_mm: float
+    max_axial_displacement_mm: float | None
     pulley_diameter_mm: float
     working_arm_mm: float
     # result
@@ -114,37 +114,29 @@ _STACK = {"crankcase_gap_mm": "crankcase_support_plate_gap_mm", "support_plate_t
           "endcap_height_mm": "endcap_height_mm", "calking_height_mm": "calking_height_mm",
           "pivot_base_height_mm": "pivot_base_height_mm"}
 
-_INPUT_KEYS = ("middle_plane_belt_height_mm", "max_pivot_height_mm", "max_axial_displacement_mm",
-               "pulley_diameter_mm", "working_arm_mm", "belt_loading_type", "pulley_shell_type")
+_INPUT_KEYS = ("middle_plane_belt_height_mm", "max_pivot_height_mm", "pulley_diameter_mm", "working_arm_mm",
+               "belt_loading_type", "pulley_shell_type")
 
 
 def load_result(path: str | Path) -> dict:
-    """Read a saved result (``synth design --json`` or ``synth flowchart --json``)."""
+    """Read a saved result (the ``--json`` of ``synth design`` or ``synth flowchart``)."""
     try:
         return json.loads(Path(path).read_text(encoding="utf-8"))
-    except (OSError, json.JSONDecodeError) as exc:
+    except (OSError, json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise InputError(Problem("result", str(path), f"a JSON file written by synth design/flowchart --json ({exc})"))
 
 
 def _split(result) -> tuple[dict, dict | None, str, bool, str]:
-    """``(values, inputs, status, feasible, name)`` of any supported result."""
+    """``(parts and values, inputs, status, feasible, name)`` of a result, its JSON dict or its JSON path."""
+    from synth.design.result import Result
     if isinstance(result, (str, Path)):
         result = load_result(result)
-    if hasattr(result, "derived") and hasattr(result, "parts"):  # DesignResult
-        values = {**dict(result.derived)}
-        return values, result.inputs, result.status, bool(result.feasible), f"design-{result.solver}"
-    if hasattr(result, "values") and hasattr(result, "checks"):  # FlowchartResult
-        ins = dataclasses.asdict(result.inputs) if dataclasses.is_dataclass(result.inputs) else result.inputs
-        return dict(result.values), ins, result.verdict, result.verdict != "fail", "flowchart"
-    if isinstance(result, dict) and "derived" in result:  # design JSON
-        ok = result.get("status") in ("optimal", "feasible", "baseline") and all(
-            (m is None or isinstance(m, str) or m >= -1e-9) for m in result.get("margins", {}).values())
-        return dict(result["derived"]), result.get("inputs"), str(result.get("status")), ok, f"design-{result.get('solver')}"
-    if isinstance(result, dict) and "pulley_width_mm" in result:  # flowchart JSON (flat values)
-        verdict = str(result.get("verdict", "unknown"))
-        return dict(result), result.get("inputs"), verdict, verdict != "fail", "flowchart"
-    raise InputError(Problem("result", type(result).__name__,
-                             "a FlowchartResult, a DesignResult, or the JSON of synth flowchart/design --json"))
+    if isinstance(result, dict):
+        result = Result.from_dict(result)
+    if not isinstance(result, Result):
+        raise InputError(Problem("result", type(result).__name__, "a synth result or the JSON of --json"))
+    values = {**result.values, **result.parts}
+    return values, result.inputs, result.status, result.feasible, f"{result.solver or 'design'}-{result.status}"
 
 
 def _inputs_dict(inputs) -> dict | None:
@@ -222,7 +214,8 @@ def geometry_from(result, inputs=None, *, name: str | None = None) -> TensionerG
         axial_damping=axial, wire_section=section, eccentric=str(ins["belt_loading_type"]),
         belt_plane_height_mm=float(ins["middle_plane_belt_height_mm"]),
         max_pivot_height_mm=float(ins["max_pivot_height_mm"]),
-        max_axial_displacement_mm=float(ins["max_axial_displacement_mm"]),
+        max_axial_displacement_mm=None if ins.get("max_axial_displacement_mm") is None
+        else float(ins["max_axial_displacement_mm"]),
         pulley_diameter_mm=float(ins["pulley_diameter_mm"]), working_arm_mm=float(ins["working_arm_mm"]),
         pulley_width_mm=_num(v, "pulley_width_mm", miss),
         loading_arm_mm=_num(v, "loading_arm_mm", miss, default=0.0),
@@ -245,7 +238,7 @@ def geometry_from(result, inputs=None, *, name: str | None = None) -> TensionerG
     )
     # bushing length: the catalog part when the flowchart names one, else the length searched by the optimiser;
     # with no durability test the result has none, and the bushing spans the bearing seat (arm plate + bearing)
-    blen = v.get("pivot_bushing_length_catalog_mm") or v.get("pivot_bushing_length_mm")
+    blen = v.get("pivot_bushing_length_mm")
     kw["pivot_bushing_length_mm"] = float(blen) if blen else kw["bearing_width_mm"] + catalog.constant(
         "arm_bearing_support_thickness_mm")
     if axial:

@@ -43,10 +43,12 @@ __all__ = ["Constraint", "REGISTRY", "GROUPS", "REQUIREMENTS", "margin", "by_gro
 FEAS_TOL = 1e-9
 
 #: evaluation groups, in the thesis's order of the decomposition (see :mod:`synth.design.space`)
-GROUPS = ("input", "core", "bushing", "axial", "spring", "bolt")
+GROUPS = ("input", "core", "bushing", "axial", "spring", "bolt", "cad")
 
 #: named requirements: name -> (the input fields, readable description). A requirement is met when every
 #: field is given, except ``durability`` (also met by ``durability_test: assumed`` with an ``engine_type``).
+# logical constraints (a part present or not, a supplier rated or not) have margin 0 or -1: they decide
+# feasibility but do not count in the margin objective (objective=False)
 REQUIREMENTS = {
     "lockup_pin": (("lockup_pin_position_radius_mm", "lockup_pin_angular_position_deg", "lockup_pin_diameter_mm"),
                    "lock-up pin data"),
@@ -160,10 +162,10 @@ _ENTRIES = (
        "spring_torque_nominal_nm", "zero", ">=", correction="a lower damping target or a smaller pivot"),
     _c("axial_group_matches_split", "axial damping group present exactly when the damping split needs it", 3,
        "eq. (9)-(11)", "-", "core", "axial_group_present", "axial_damping_present", ">=",
-       correction="add a damper pad and endcap spacer (the split needs axial damping), or remove them"),
+       objective=False, correction="add a damper pad and endcap spacer (the split needs axial damping), or remove them"),
     _c("axial_group_not_superfluous", "no axial damping group where the damping split has none", 3,
        "eq. (9)-(11)", "-", "core", "axial_group_present", "axial_damping_present", "<=",
-       correction="remove the damper pad and endcap spacer: the radial damping meets the target"),
+       objective=False, correction="remove the damper pad and endcap spacer: the radial damping meets the target"),
     _c("damper_pad_capacity", "damper pad class carries its share of the axial damping", 3, "Table 3", "Nm", "core",
        "axial_damping_share_nm", "damper_pad_max_axial_damping_nm", "<=", applies="axial_group_present",
        correction="a larger damper pad class"),
@@ -175,7 +177,7 @@ _ENTRIES = (
        correction="a higher maximum pivot height or a lower belt plane"),
     # --- bushing (step 4) ----------------------------------------------------------------------------------
     _c("bushing_rated", "bushing supplier rated for the application type", 4, "Table 5", "-", "bushing",
-       "bushing_rated", "one", ">=", correction="a supplier rated for the application type (Table 5)"),
+       "bushing_rated", "one", ">=", objective=False, correction="a supplier rated for the application type (Table 5)"),
     _c("bushing_p", "pivot bushing pressure", 4, "eq. (28), Table 5", "MPa", "bushing",
        "pivot_bushing_p_mpa", "pivot_bushing_p_max_mpa", "<=", needs=("durability",), applies="bushing_rated",
        correction=_LENGTHEN),
@@ -197,7 +199,7 @@ _ENTRIES = (
        correction="a shorter bushing, a higher maximum pivot height or a larger pivot diameter"),
     # --- axial damping group (steps 5, 6, 7, 8) ------------------------------------------------------------
     _c("axial_group_complete", "damper pad and endcap spacer both present or both absent", 3, "Tables 3-4", "-",
-       "axial", "axial_group_mismatch", "zero", "<=", correction="choose a damper pad and an endcap spacer together"),
+       "axial", "axial_group_mismatch", "zero", "<=", objective=False, correction="choose a damper pad and an endcap spacer together"),
     _c("endcap_spacer_capacity", "endcap spacer class carries its share of the axial damping", 3, "Table 4", "Nm",
        "axial", "axial_damping_share_nm", "endcap_spacer_max_axial_damping_nm", "<=", applies="axial_group_present",
        correction="a larger endcap spacer class"),
@@ -292,9 +294,34 @@ _ENTRIES = (
        "smaller bolt"),
 )
 
+_CAD = (
+    # --- step 11: the 3D model, measured on the built solids (synth.cad.verify) ----------------------------
+    _c("cad_interference", "no interference between parts (3D model)", 11, "step 11 (Fig. 75-76)", "mm3", "cad",
+       "cad_interference_mm3", "cad_interference_tolerance_mm3", "<=", scale="one", objective=False,
+       correction="resize the two parts named in the note"),
+    _c("cad_pivot_height", "pivot top within the maximum pivot height (3D model)", 11, "eq. (50), (53)", "mm", "cad",
+       "cad_pivot_top_mm", "max_pivot_height_mm", "<=", objective=False),
+    _c("cad_axial_space", "assembly within the maximum axial displacement (3D model)", 11, "eq. (26)", "mm", "cad",
+       "cad_assembly_top_mm", "max_axial_displacement_mm", "<=", needs=("max_axial_displacement_mm",),
+       objective=False),
+    _c("cad_crankcase_face", "parts above the crankcase face (3D model)", 11, "eq. (27)", "mm", "cad",
+       "cad_lowest_part_mm", "zero", ">=", objective=False),
+    _c("cad_belt_plane", "pulley mid-plane on the belt plane (3D model)", 11, "eq. (50)-(53)", "mm", "cad",
+       "cad_pulley_offset_mm", "cad_dimension_tolerance_mm", "<=", scale="one", objective=False),
+    _c("cad_spring_diameter", "main spring within the housing diameter (3D model)", 11, "eq. (54), (81)-(82)", "mm",
+       "cad", "cad_spring_diameter_mm", "spring_housing_outer_diameter_mm", "<=", objective=False,
+       correction="a smaller mean body diameter or wire, or a larger housing"),
+    _c("cad_spring_height", "main spring within the housing height (3D model)", 11, "eq. (52)-(53), (89)-(93)", "mm",
+       "cad", "cad_spring_height_mm", "spring_housing_height_mm", "<=", objective=False,
+       correction="fewer coils or a thinner wire, or a taller housing"),
+    _c("cad_collar", "spring-bushing collar height not negative (3D model)", 11, "step 6 stack", "mm", "cad",
+       "cad_collar_height_mm", "zero", ">=", objective=False,
+       correction="a shorter pivot bushing or a taller spring housing"),
+)
+
 #: id -> :class:`Constraint`, in the thesis's step order within each group
 REGISTRY: dict[str, Constraint] = {}
-for _e in _ENTRIES:
+for _e in _ENTRIES + _CAD:
     if _e.id in REGISTRY:  # pragma: no cover - caught by the registry tests
         raise ValueError(f"constraint {_e.id} declared twice")
     REGISTRY[_e.id] = _e

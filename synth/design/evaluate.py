@@ -46,7 +46,7 @@ __all__ = ["Settings", "Group", "finish", "inputs", "core", "bushing", "axial", 
 
 EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
 FIDELITIES = ("full", "screening")
-_CONSTANT_LIMITS = {"zero": 0.0, "one": 1.0}
+_CONSTANT_LIMITS = {"zero": 0.0, "one": 1.0}  # limits (and scales) that are plain numbers
 
 
 @dataclass(frozen=True)
@@ -122,22 +122,32 @@ class Group:
 
 
 def finish(name: str, values: dict, apps, a) -> Group:
-    """The registry margins of group ``name`` from its ``values`` for rows of applications ``a``."""
+    """The registry margins of group ``name`` from its ``values`` for rows of applications ``a``.
+
+    ``apps`` may be None (a group measured on a built model, the CAD checks): a constraint that needs an input
+    is then not verified where its limit is NaN.
+    """
     n = len(a)
     margins, state = {}, {}
     met = {}
     for c in by_group(name):
         lim = _CONSTANT_LIMITS[c.limit] if c.limit in _CONSTANT_LIMITS else values[c.limit]
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            m = margin(c, values[c.value], lim, None if c.scale is None else values[c.scale])
+            scale = None if c.scale is None else (_CONSTANT_LIMITS[c.scale] if c.scale in _CONSTANT_LIMITS
+                                                  else values[c.scale])
+            m = margin(c, values[c.value], lim, scale)
         m = np.broadcast_to(np.where(np.isnan(m), -np.inf, m), (n,))
         st = np.zeros(n, dtype=np.int8)
         if c.applies is not None:
             st[~np.asarray(values[c.applies], dtype=bool)] = NOT_APPLICABLE
-        for req in c.needs:
-            if req not in met:
-                met[req] = apps.met(req)[a]
-            st[(st == EVALUATED) & ~met[req]] = NOT_VERIFIED
+        if apps is None:
+            if c.needs:
+                st[(st == EVALUATED) & np.isnan(np.broadcast_to(np.asarray(lim, dtype=float), (n,)))] = NOT_VERIFIED
+        else:
+            for req in c.needs:
+                if req not in met:
+                    met[req] = apps.met(req)[a]
+                st[(st == EVALUATED) & ~met[req]] = NOT_VERIFIED
         margins[c.id] = np.where(st == EVALUATED, m, np.inf)
         state[c.id] = st
     return Group(name, values, margins, state)

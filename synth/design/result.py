@@ -27,7 +27,8 @@ import numpy as np
 
 from synth.design.constraints import FEAS_TOL, REGISTRY
 
-__all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain"]
+__all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain",
+           "checks_of", "row_verdict", "field_corrections"]
 
 PASS, FAIL, INCOMPLETE = "pass", "fail", "incomplete"
 NOT_VERIFIED, NOT_APPLICABLE, WARNING = "not verified", "not applicable", "warning"
@@ -216,6 +217,9 @@ def checks_of(groups: dict, apps, row: int = 0) -> list:
             out.append(Check(cid, None, None, None, NOT_APPLICABLE))
             continue
         if st != E.EVALUATED:
+            if apps is None:
+                out.append(Check(cid, None, None, None, NOT_VERIFIED, f"not verified: {c.limit} not given"))
+                continue
             missing = [r for r in c.needs if not apps.met(r)[a]]
             out.append(Check(cid, None, None, None, NOT_VERIFIED, apps.missing_note(missing[0]) if missing else ""))
             continue
@@ -223,6 +227,52 @@ def checks_of(groups: dict, apps, row: int = 0) -> list:
         limit = E._CONSTANT_LIMITS[c.limit] if c.limit in E._CONSTANT_LIMITS else float(g.values[c.limit][row])
         m = float(g.margins[cid][row])
         verdict = (PASS if m >= -FEAS_TOL else (WARNING if c.advisory else FAIL))
-        assumed = [apps.assumed_note(x, a) for x in c.assumes if x in DEFAULTS and apps.assumed(x)[a]]
+        assumed = [] if apps is None else [apps.assumed_note(x, a) for x in c.assumes
+                                           if x in DEFAULTS and apps.assumed(x)[a]]
         out.append(Check(cid, value, limit, m, verdict, assumed=assumed))
     return out
+
+
+def row_verdict(result: Result, key: str) -> str | None:
+    """The verdict of an output-table row: the worst of the checks that compare this value (registry ``value``
+    or ``limit`` keys), ``not verified`` if the value is missing, or None when no check reads it.
+
+    >>> r = Result("verified", values={"main_spring_sigma_inst_mpa": 1500.0},
+    ...            checks=[Check("spring_yield", 1500.0, 1400.0, -0.07, FAIL)])
+    >>> row_verdict(r, "main_spring_sigma_inst_mpa"), row_verdict(r, "pulley_width_mm")
+    ('fail', 'not verified')
+    """
+    v = result.get(key)
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return NOT_VERIFIED
+    mine = [c.verdict for c in result.checks if key in (c.constraint.value, c.constraint.limit)
+            and c.verdict != NOT_APPLICABLE]
+    for verdict in (FAIL, WARNING, NOT_VERIFIED, PASS):
+        if verdict in mine:
+            return verdict
+    return None
+
+
+def field_corrections(result: Result) -> dict:
+    """Suggested correction per input field (thesis column G), from the registry.
+
+    A failed check suggests its correction for the input fields its value or limit is (or the smallest
+    relaxation of the diagnosis names); a not-verified check asks for the fields it needs.
+    """
+    from synth.schema import FIELDS
+    names = {f.name for f in FIELDS}
+    out: dict = {}
+    for c in result.checks:
+        con = c.constraint
+        if c.verdict == FAIL:
+            for k in (con.value, con.limit):
+                if k in names:
+                    out.setdefault(k, []).append(f"{con.correction} ({con.label})" if con.correction else con.label)
+        elif c.verdict == NOT_VERIFIED and c.note.startswith("not verified"):
+            for k in con.requirement_fields():
+                if (result.inputs or {}).get(k) is None:
+                    out.setdefault(k, []).append(f"give a value to verify: {con.label}")
+    for rel in (result.diagnosis or {}).get("relaxations", [])[:3]:
+        for k, ch in rel["inputs"].items():
+            out.setdefault(k, []).append(f"{ch['from']:g} -> {ch['to']:g} makes a design feasible")
+    return {k: "; ".join(dict.fromkeys(v)) for k, v in out.items()}

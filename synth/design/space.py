@@ -291,8 +291,7 @@ def spring_attributes(p: P.Parts, material, wire, mbd_mm) -> dict:
     dia = s9.rm_lookup_diameter_mm(wire_t.b_mm[w], wire_t.h_mm[w], rnd)
     for i in np.unique(m):  # a handful of materials, each with its own strength table (EN 10270)
         sel = m == i
-        grid_d, grid_rm = p.spring_strength[int(i)]
-        rm[sel] = np.interp(dia[sel], grid_d, grid_rm)
+        rm[sel] = s9.material_strength_mpa(mat.key[int(i)], dia[sel])
     inertia = s9.second_moment_mm4(wire_t.b_mm[w], wire_t.h_mm[w], rnd)
     area = np.where(rnd, np.pi * wire_t.h_mm[w] ** 2 / 4.0, wire_t.b_mm[w] * wire_t.h_mm[w])
     # wire length x k = pi E I / 180 (eq. 64-65): cost = (per metre + per kg) x length, divided by k per application

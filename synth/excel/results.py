@@ -14,13 +14,13 @@ Sheets:
 * ``Notes``; and one sheet per other scene result given (``Optimum``,
   ``Pareto``, ``Solvers``...: tables of rows).
 
-Row verdicts (:func:`row_verdict`): a row whose value is missing is ``not
-verified`` (``not applicable`` for the axial-damping rows of a design without
-axial damping); otherwise ``fail`` if a check of its step fails, ``not
-verified`` if every check of its step is not verified, else ``pass``.
+Row verdicts (:func:`synth.design.result.row_verdict`): the worst verdict of
+the checks that compare the row's value (the registry says which); no colour
+when no check reads it.
 
->>> row_verdict({"pulley_width_mm": 20.0}, [], "pulley_width_mm", "Pulley")
-'pass'
+>>> from synth.design.result import Result
+>>> _row_fill_key(Result("verified", values={"pulley_width_mm": 20.0}), "pulley_width_mm") is None
+True
 """
 
 from __future__ import annotations
@@ -30,81 +30,18 @@ import re
 from pathlib import Path
 
 from synth import schema
-from synth.checks import FAIL, NOT_VERIFIED, PASS
+from synth.design.result import FAIL, field_corrections, row_verdict
 from synth.excel.template import FILLS
 from synth.output_table import ROWS, format_value
 
-__all__ = ["SECTION_STEPS", "NOT_APPLICABLE", "row_verdict", "field_corrections", "build_results", "write_results"]
-
-NOT_APPLICABLE = "not applicable"
-
-#: Flowchart steps whose checks decide the verdict of each output-table section.
-SECTION_STEPS: dict[str, tuple[int, ...]] = {
-    "Tensioner architecture": (0,),
-    "Pulley": (0,),
-    "Ball bearing": (1,),
-    "Pivot": (2, 4),
-    "Tensioner characterization": (3,),
-    "Plastic friction elements": (5, 6, 7),
-    "Cone spring": (8,),
-    "Main spring": (9,),
-    "Bolt": (10,),
-    "Tilting and sliding": (10,),
-}
-_AXIAL_SECTIONS = ("Plastic friction elements", "Cone spring")
-_AXIAL_KEYS = ("axial_damping_nm",)
-
+__all__ = ["build_results", "write_results"]
 
 def _missing(v) -> bool:
     return v is None or (isinstance(v, float) and not math.isfinite(v))
 
 
-def row_verdict(values: dict, checks: list, key: str, section: str) -> str:
-    """Verdict of one output-table row (see the module docstring)."""
-    v = values.get(key)
-    if _missing(v):
-        if values.get("axial_damping_present") is False and (section in _AXIAL_SECTIONS or key in _AXIAL_KEYS):
-            return NOT_APPLICABLE
-        return NOT_VERIFIED
-    steps = SECTION_STEPS.get(section, ())
-    mine = [c for c in checks if c.step in steps]
-    if any(c.verdict == FAIL for c in mine):
-        return FAIL
-    if mine and all(c.verdict == NOT_VERIFIED for c in mine):
-        return NOT_VERIFIED
-    return PASS
-
-
-def _section_corrections(checks: list, section: str) -> str:
-    steps = SECTION_STEPS.get(section, ())
-    return "; ".join(c.correction for c in checks if c.step in steps and c.verdict == FAIL and c.correction)
-
-
-def field_corrections(checks: list) -> dict[str, str]:
-    """Suggested correction per input field (thesis column G).
-
-    A failed check whose correction names a field (``max_axial_displacement_mm
-    >= 32``) suggests it for that field; a not-verified check suggests giving
-    its missing field.
-
-    >>> from synth.checks import Check
-    >>> field_corrections([Check("pin", 0, 5.0, 4.0, correction="lockup_pin_diameter_mm <= 3"),
-    ...                    Check.skipped("wrap", 0, "wrap_angle_deg")])
-    {'lockup_pin_diameter_mm': 'lockup_pin_diameter_mm <= 3 (pin)', 'wrap_angle_deg': 'give a value to verify: wrap'}
-    """
-    names = sorted((f.name for f in schema.FIELDS), key=len, reverse=True)
-    out: dict[str, list[str]] = {}
-    for c in checks:
-        if c.verdict == FAIL and c.correction:
-            for n in names:
-                if re.search(rf"\b{re.escape(n)}\b", c.correction):
-                    out.setdefault(n, []).append(f"{c.correction} ({c.name})")
-                    break
-        elif c.verdict == NOT_VERIFIED:
-            m = re.match(r"not verified: (\w+) missing", c.note or "")
-            if m and m.group(1) in names:
-                out.setdefault(m.group(1), []).append(f"give a value to verify: {c.name}")
-    return {k: "; ".join(dict.fromkeys(v)) for k, v in out.items()}
+def _row_fill_key(result, key):
+    return row_verdict(result, key)
 
 
 def _fill(key):
@@ -152,13 +89,15 @@ def _output_sheet(ws, result) -> None:
     _header(ws, 4, ["Section", "Parameter", "Unit", "Value", "Verdict", "Suggested correction"], [28, 36, 8, 16, 14, 70])
     r = 5
     for section, label, key, unit in ROWS:
-        v = result.values.get(key)
-        verdict = row_verdict(result.values, result.checks, key, section)
-        for j, val in enumerate([section, label, unit, _cell_value(v), verdict,
-                                 _section_corrections(result.checks, section) if verdict == FAIL else None], start=1):
+        v = result.get(key)
+        verdict = row_verdict(result, key)
+        corr = "; ".join(c.constraint.correction for c in result.failed()
+                         if key in (c.constraint.value, c.constraint.limit) and c.constraint.correction)
+        for j, val in enumerate([section, label, unit, _cell_value(v), verdict, corr or None], start=1):
             ws.cell(row=r, column=j, value=val)
-        for j in (4, 5):
-            ws.cell(row=r, column=j).fill = _fill(verdict)
+        if verdict:
+            for j in (4, 5):
+                ws.cell(row=r, column=j).fill = _fill(verdict)
         r += 1
 
 
@@ -167,23 +106,26 @@ def _checks_sheet(ws, result) -> None:
     _title(ws, "Checks (every verdict with its margin)", result.verdict)
     _header(ws, 4, ["Step", "Step name", "Check", "Value", "Relation", "Limit", "Unit", "Margin [%]", "Verdict",
                     "Equation", "Suggested correction", "Note"], [6, 22, 44, 12, 8, 12, 8, 11, 13, 14, 60, 50])
-    for r, c in enumerate(result.checks, start=5):
+    rows = [c for c in result.checks if c.verdict != "not applicable"]
+    for r, c in enumerate(rows, start=5):
+        con = c.constraint
         margin = None if c.margin is None else round(100.0 * c.margin, 2)
-        row = [c.step, STEP_NAMES.get(c.step, ""), c.name, _cell_value(c.value), c.kind if c.value is not None else None,
-               _cell_value(c.limit), c.unit, margin, c.verdict, c.equation,
-               c.correction if c.verdict == FAIL else None, c.note or None]
+        note = "; ".join([c.note] + c.assumed) if (c.note or c.assumed) else None
+        row = [con.step, STEP_NAMES.get(con.step, ""), con.label, _cell_value(c.value),
+               con.sense if c.value is not None else None, _cell_value(c.limit), con.unit, margin, c.verdict,
+               con.equation, con.correction if c.verdict == FAIL else None, note]
         for j, val in enumerate(row, start=1):
             ws.cell(row=r, column=j, value=val)
         for j in (8, 9):
             ws.cell(row=r, column=j).fill = _fill(c.verdict)
 
 
-def _input_sheet(ws, design_input, checks, cells: dict | None, source: str | None) -> None:
+def _input_sheet(ws, result, cells: dict | None, source: str | None) -> None:
     _title(ws, "Data read (echo of the design input)" + (f": {source}" if source else ""))
     _header(ws, 4, ["Parameter", "Field", "Unit", "Required", "Data read", "Read from cell", "Suggested correction"],
             [58, 44, 8, 10, 16, 14, 70])
-    corr = field_corrections(checks)
-    values = design_input.as_dict() if design_input is not None else {}
+    corr = field_corrections(result)
+    values = result.inputs or {}
     r = 5
     for section in schema.SECTIONS:
         ws.cell(row=r, column=1, value=section).fill = _fill("section")
@@ -222,7 +164,7 @@ def _table_sheet(ws, title: str, rows) -> None:
 def build_results(result=None, *, cells: dict | None = None, source: str | None = None, scenes: dict | None = None):
     """The results :class:`openpyxl.Workbook` of a flowchart result and other scene results.
 
-    ``result``: a :class:`synth.flowchart.FlowchartResult` (Output, Checks,
+    ``result``: a :class:`synth.design.result.Result` (Output, Checks,
     Input, Notes sheets); ``cells``: ``{field: "E14"}`` when the input was a
     workbook; ``scenes``: ``{"Optimum": rows, "Pareto": rows, "Solvers":
     rows}`` (each a DataFrame, list of dicts or one dict), one sheet each.
@@ -234,7 +176,7 @@ def build_results(result=None, *, cells: dict | None = None, source: str | None 
         first.title = "Output"
         _output_sheet(first, result)
         _checks_sheet(wb.create_sheet("Checks"), result)
-        _input_sheet(wb.create_sheet("Input"), result.inputs, result.checks, cells, source)
+        _input_sheet(wb.create_sheet("Input"), result, cells, source)
         notes = wb.create_sheet("Notes")
         _title(notes, "Notes")
         for r, n in enumerate(result.notes, start=3):

@@ -17,7 +17,7 @@ tool (NOTES.md): ``D_rad = T_c rho``, ``D_ax = D - T_c rho``,
 ``M_s = T_c - D rho`` (with axial damping) or ``T_c (1 - rho^2)`` (without).
 
 ``rho >= 1`` means the arm self-locks: the friction circle is larger than the
-lever. The margin :func:`self_locking_margin` reports it.
+lever (the registry's ``self_locking`` constraint).
 
 Lengths in mm, torques in Nm, forces in N, angles in degrees.
 
@@ -33,10 +33,9 @@ from __future__ import annotations
 import numpy as np
 
 from synth import catalog
-from synth.checks import margin_upper
 
 __all__ = [
-    "friction_circle_factor", "lever_mm", "hubload_nominal_n", "lever_ratio", "self_locking_margin",
+    "friction_circle_factor", "lever_mm", "hubload_nominal_n", "lever_ratio",
     "damping_split", "hubload_loading_n", "hubload_unloading_n", "asymmetry_ratio", "characterisation",
     "sensitivity", "axial_damping_nm", "axial_force_required_n", "select_axial_group_class",
 ]
@@ -89,15 +88,6 @@ def lever_ratio(pivot_diameter_mm, mu_pivot_bushing, working_arm_mm, differentia
                                                                                         differential_angle_deg)
 
 
-def self_locking_margin(rho):
-    """Normalised margin of ``rho <= 1`` (the arm can move; 1 - rho).
-
-    >>> float(self_locking_margin(0.25))
-    0.75
-    """
-    return margin_upper(rho, 1.0)
-
-
 def damping_split(calculated_torque_target_nm, damping_target_nm, rho, axial_allowed=True):
     """Split the damping target into radial and axial parts (eq. (9)-(13), step 3).
 
@@ -135,7 +125,7 @@ def hubload_loading_n(spring_torque_nm, axial_damping_nm, working_arm_mm, differ
     """Hubload in loading, eq. (12) corrected: ``(M_s + D_ax) / (e_w sin(alpha) - r_p sin(atan(mu)))`` [N].
 
     Where the denominator is not positive the arm self-locks: the result is
-    ``inf`` (see :func:`self_locking_margin`).
+    ``inf``.
 
     >>> round(float(hubload_loading_n(1.563, 0.0, 4.0, 90.0, 21.0, 0.15, False)), 1)
     644.5

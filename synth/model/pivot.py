@@ -20,12 +20,11 @@ import numpy as np
 
 from synth import catalog
 from synth.catalog import constant
-from synth.checks import margin_lower
 from synth.errors import InputError, Problem
 
 __all__ = [
     "standard_pivot_class", "pivot_diameter_mm", "bolt_hole_diameter_mm", "arm_wall_mm", "pivot_wall_mm",
-    "arm_wall_margin", "pivot_wall_margin", "max_pivot_class_for_wall_mm",
+    "max_pivot_class_for_wall_mm",
 ]
 
 
@@ -86,16 +85,6 @@ def arm_wall_mm(bearing_inner_diameter_mm, working_arm_mm, pivot_class_diameter_
         - np.asarray(working_arm_mm, float)
 
 
-def arm_wall_margin(bearing_inner_diameter_mm, working_arm_mm, pivot_class_diameter_mm):
-    """Normalised margin of ``arm wall >= arm_min_wall_mm`` (1 mm).
-
-    >>> float(arm_wall_margin(30.0, 4.0, 20.0))
-    0.0
-    """
-    return margin_lower(arm_wall_mm(bearing_inner_diameter_mm, working_arm_mm, pivot_class_diameter_mm),
-                        constant("arm_min_wall_mm"))
-
-
 def max_pivot_class_for_wall_mm(bearing_inner_diameter_mm, working_arm_mm):
     """Largest pivot class that keeps the minimum arm wall: ``d_b - 2 (e_w + wall_min)``.
 
@@ -114,13 +103,3 @@ def pivot_wall_mm(pivot_diameter_mm_, loading_arm_mm, bolt_hole_diameter_mm_):
     """
     return np.asarray(pivot_diameter_mm_, float) / 2.0 - np.asarray(loading_arm_mm, float) \
         - np.asarray(bolt_hole_diameter_mm_, float) / 2.0
-
-
-def pivot_wall_margin(pivot_diameter_mm_, loading_arm_mm, bolt_hole_diameter_mm_):
-    """Normalised margin of ``pivot wall >= pivot_min_wall_mm`` (synth's 1 mm assumption).
-
-    >>> round(float(pivot_wall_margin(16.0, 2.5, 8.2)), 2)
-    0.4
-    """
-    return margin_lower(pivot_wall_mm(pivot_diameter_mm_, loading_arm_mm, bolt_hole_diameter_mm_),
-                        constant("pivot_min_wall_mm"))

@@ -11,9 +11,8 @@ leaves the outer fibre in compression) or unwinding. This module gives
   the Smith-Goodman safety factor (figure 71) and the angle between the
   hooks (the spring-housing height of eq. 52 and diameter of eq. 54 are step
   7's, re-exported here from :mod:`synth.model.packaging`);
-* :func:`main_spring_design`, the whole step for arrays of designs, and
-  :func:`main_spring_from_catalog` / :func:`search_main_spring` (automatic mode:
-  every material x wire x mean diameter of the catalogs at once).
+* :func:`main_spring_design`, the whole step for arrays of designs (the
+  design space evaluates every material x wire x mean diameter at once).
 
 Units: lengths in mm, torques in N m, stiffness in N m/deg, stresses in MPa,
 angles in degrees. A wire is described by ``b_mm`` (side parallel to the
@@ -22,9 +21,12 @@ spring axis), ``h_mm`` (radial side) and ``round_wire`` (True: ``b = h = d``).
 Corrections to the printed equations are listed in
 ``docs/sections/torsion_spring.md``.
 
->>> r = main_spring_from_catalog("VDSiCr", "R2.30", 44.0, stiffness_nm_per_deg=0.0164,
-...     spring_torque_nominal_nm=1.56, torque_tolerance_pct=8, theta_pp_deg=16,
-...     housing_height_mm=8.8, torque_tolerance_side=-1, dtheta_inst_nom_deg=28.6)
+>>> p = material_properties("VDSiCr", 2.3, 2.3, True)
+>>> r = main_spring_design(E_mpa=p["E_mpa"], Rm_mpa=p["Rm_mpa"], sigma_y_mpa=p["sigma_y_mpa"],
+...     sigma_A0_mpa=p["sigma_A0_mpa"], b_mm=2.3, h_mm=2.3, round_wire=True, mbd_mm=44.0,
+...     stiffness_nm_per_deg=0.0164, spring_torque_nominal_nm=1.56, torque_tolerance_pct=8, theta_pp_deg=16,
+...     housing_height_mm=8.8, housing_outer_diameter_mm=46.0, housing_inner_diameter_mm=28.0,
+...     torque_tolerance_side=-1, dtheta_inst_nom_deg=28.6)
 >>> round(float(r["main_spring_active_coils_free"]), 2), round(float(r["hooks_angle_free_state_deg"]), 1)
 (2.18, 295.7)
 """
@@ -32,10 +34,8 @@ Corrections to the printed equations are listed in
 from __future__ import annotations
 
 import numpy as np
-import pandas as pd
 
 from synth import catalog
-from synth.checks import Check, margin_lower, margin_upper
 from synth.errors import InputError, Problem
 from synth.model.packaging import spring_housing_height_mm, spring_housing_outer_diameter_mm  # noqa: F401  (re-exported: eq. 52, 54 live in step 7)
 
@@ -46,16 +46,8 @@ __all__ = [
     "inner_diameter_min_mm", "coil_gap_mm", "block_length_mm", "hooks_angle_deg",
     "goodman_safety_factor", "spring_housing_height_mm", "spring_housing_outer_diameter_mm",
     "rm_lookup_diameter_mm", "material_strength_mpa", "material_properties", "wire_properties",
-    "main_spring_design", "main_spring_from_catalog", "search_main_spring", "main_spring_checks",
-    "MARGIN_KEYS",
+    "main_spring_design",
 ]
-
-MARGIN_KEYS = (
-    "margin_main_spring_yield", "margin_main_spring_fatigue", "margin_main_spring_outer_contact",
-    "margin_main_spring_inner_contact", "margin_main_spring_coil_gap",
-    "margin_main_spring_index_min", "margin_main_spring_index_max",
-)
-
 
 def _f(x):
     return np.asarray(x, dtype=float)
@@ -359,15 +351,12 @@ def material_strength_mpa(material, d_mm, which="min"):
     >>> float(material_strength_mpa("VDSiCr", 2.3))
     2004.0
     """
+    from synth import parts
     if which not in ("min", "max"):
         raise InputError(Problem("which", which, "'min' or 'max'"))
-    df = catalog.load("spring_material_strength")
-    sub = df[df["material"] == str(material)].sort_values("d_mm")
-    if sub.empty:
-        raise InputError(Problem("main_spring_material", material,
-                                 "one of " + ", ".join(sorted(df["material"].unique()))))
-    col = "Rm_min_mpa" if which == "min" else "Rm_max_mpa"
-    return np.interp(_f(d_mm), sub["d_mm"].to_numpy(float), sub[col].to_numpy(float))
+    p = parts.arrays()
+    d, rm_min, rm_max = p.spring_strength[p.spring_material.code(material, "main_spring_material")]
+    return np.interp(_f(d_mm), d, rm_min if which == "min" else rm_max)
 
 
 def material_properties(material, b_mm, h_mm, round_wire):
@@ -382,16 +371,18 @@ def material_properties(material, b_mm, h_mm, round_wire):
     >>> float(p["E_mpa"]), float(p["Rm_mpa"]), round(float(p["sigma_y_mpa"]), 1)
     (206000.0, 2004.0, 1763.5)
     """
-    r = catalog.row("spring_materials", material, field="main_spring_material")
+    from synth import parts
+    mat = parts.arrays().spring_material
+    i = mat.code(material, "main_spring_material")
     rm = material_strength_mpa(material, rm_lookup_diameter_mm(b_mm, h_mm, round_wire))
     return {
-        "E_mpa": np.full_like(rm, float(r["E_mpa"])),
-        "G_mpa": np.full_like(rm, float(r["G_mpa"])),
-        "density_kg_m3": np.full_like(rm, float(r["density_kg_m3"])),
+        "E_mpa": np.full_like(rm, mat.E_mpa[i]),
+        "G_mpa": np.full_like(rm, mat.G_mpa[i]),
+        "density_kg_m3": np.full_like(rm, mat.density_kg_m3[i]),
         "Rm_mpa": rm,
-        "sigma_y_mpa": float(r["sigma_y_bend_fraction"]) * rm,
-        "sigma_A0_mpa": float(r["sigma_A0_fraction"]) * rm,
-        "unit_cost_eur_per_kg": np.full_like(rm, float(r["unit_cost_eur"])),
+        "sigma_y_mpa": mat.sigma_y_bend_fraction[i] * rm,
+        "sigma_A0_mpa": mat.sigma_A0_fraction[i] * rm,
+        "unit_cost_eur_per_kg": np.full_like(rm, mat.unit_cost_eur[i]),
     }
 
 
@@ -413,11 +404,11 @@ def wire_properties(wire):
 
 def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, round_wire, mbd_mm,
                        stiffness_nm_per_deg, spring_torque_nominal_nm, torque_tolerance_pct, theta_pp_deg,
-                       housing_height_mm, housing_outer_diameter_mm=None, housing_inner_diameter_mm=None,
+                       housing_height_mm, housing_outer_diameter_mm, housing_inner_diameter_mm,
                        b_tol_mm=0.0, h_tol_mm=0.0, dtheta_inst_nom_deg=None, dtheta_nom_free_arm_deg=None,
                        winding=True, torque_tolerance_side=1.0, fibre="inner", mbd_tol_mm=None,
-                       housing_outer_tol_mm=None, housing_inner_tol_mm=None, min_safety_factor=None):
-    """Step 9 for arrays of designs (all arguments broadcast): stiffness to stresses to checks.
+                       housing_outer_tol_mm=None, housing_inner_tol_mm=None):
+    """Step 9 for arrays of designs (all arguments broadcast): stiffness to stresses, diameters and coil gap.
 
     Inputs from upstream steps: ``spring_torque_nominal_nm`` (step 3),
     ``stiffness_nm_per_deg``, ``torque_tolerance_pct``, ``theta_pp_deg`` (design
@@ -425,8 +416,7 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
     ``housing_outer_diameter_mm`` (eq. 54), ``housing_inner_diameter_mm`` (spring
     bushing upper outer diameter), ``dtheta_inst_nom_deg`` /
     ``dtheta_nom_free_arm_deg`` (tensioner working range; defaults from
-    ``constants_main_spring.csv``). A missing housing diameter leaves its
-    check out of the dict and names it in ``not_verified``.
+    ``constants_main_spring.csv``).
 
     Returns a dict of arrays: the case keys ``main_spring_active_coils_free``,
     ``main_spring_mean_body_diameter_mm``, ``main_spring_sigma_a_max_mpa``,
@@ -436,13 +426,15 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
     ``theta_*_deg``, torques ``torque_*_nm``, coils ``coils_*``, diameters
     ``mbd_*_mm``, ``outer_diameter_max_mm``, ``inner_diameter_min_mm``,
     ``coil_gap_min_mm``, ``block_length_max_mm``, ``spring_index``,
-    ``curvature_factor``; the normalised margins of :data:`MARGIN_KEYS`
-    (>= 0 passes), ``feasible`` (all margins pass) and ``not_verified``.
+    ``curvature_factor``, and the limits they are checked against
+    (:mod:`synth.design.constraints`): ``sigma_y_limit_mpa`` (installation),
+    ``housing_outer_diameter_min_mm`` (eq. 82) and ``housing_inner_diameter_max_mm`` (eq. 86).
 
     >>> r = main_spring_design(E_mpa=206000, Rm_mpa=2004, sigma_y_mpa=1763.5, sigma_A0_mpa=701.4,
     ...     b_mm=2.3, h_mm=2.3, round_wire=True, mbd_mm=44, stiffness_nm_per_deg=0.0164,
     ...     spring_torque_nominal_nm=1.56, torque_tolerance_pct=8, theta_pp_deg=16,
-    ...     housing_height_mm=8.8, dtheta_inst_nom_deg=28.6, torque_tolerance_side=-1)
+    ...     housing_height_mm=8.8, housing_outer_diameter_mm=46.0, housing_inner_diameter_mm=28.0,
+    ...     dtheta_inst_nom_deg=28.6, torque_tolerance_side=-1)
     >>> round(float(r["main_spring_sigma_a_max_mpa"])), round(float(r["main_spring_sigma_inst_mpa"]))
     (1365, 1659)
     """
@@ -453,7 +445,6 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
     if dtheta_nom_free_arm_deg is None:
         dtheta_nom_free_arm_deg = catalog.constant("main_spring_dtheta_nom_free_arm_deg")
     mbd_tol = catalog.constant("main_spring_mbd_tol_mm") if mbd_tol_mm is None else mbd_tol_mm
-    sf_min = catalog.constant("main_spring_min_safety_factor") if min_safety_factor is None else min_safety_factor
     winding = np.asarray(winding, dtype=bool)
 
     inertia = second_moment_mm4(b_mm, h_mm, round_wire)
@@ -502,162 +493,10 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
         "block_length_max_mm": block_length_mm(b_mm, n_worst, b_tol_mm),
         "stiffness_nm_per_deg": k + 0.0 * n_a,
         "sigma_y_limit_mpa": _f(sigma_y_mpa) + 0.0 * n_a,
-        "margin_main_spring_yield": margin_upper(sig["inst"], sigma_y_mpa),                     # eq. 72
-        "margin_main_spring_fatigue": margin_lower(sf, sf_min),                                # fig. 71
-        "margin_main_spring_coil_gap": (gap - catalog.constant("main_spring_min_coil_gap_mm"))
-        / np.maximum(_f(b_mm), 1e-9),                                                        # eq. 89, per wire size
-        "margin_main_spring_index_min": margin_lower(c, catalog.constant("main_spring_index_min")),
-        "margin_main_spring_index_max": margin_upper(c, catalog.constant("main_spring_index_max")),
     })
-    not_verified = []
-    if housing_outer_diameter_mm is None:
-        not_verified.append("housing_outer_diameter_mm")
-    else:
-        tol = catalog.constant("spring_housing_outer_tol_mm") if housing_outer_tol_mm is None else housing_outer_tol_mm
-        out["housing_outer_diameter_min_mm"] = _f(housing_outer_diameter_mm) - _f(tol)          # eq. 82
-        out["margin_main_spring_outer_contact"] = margin_upper(d_out, out["housing_outer_diameter_min_mm"])  # eq. 81
-    if housing_inner_diameter_mm is None:
-        not_verified.append("housing_inner_diameter_mm")
-    else:
-        tol = catalog.constant("spring_housing_inner_tol_mm") if housing_inner_tol_mm is None else housing_inner_tol_mm
-        out["housing_inner_diameter_max_mm"] = _f(housing_inner_diameter_mm) + _f(tol)          # eq. 86
-        # eq. 85 corrected: the spring's inner diameter must stay ABOVE the support's
-        out["margin_main_spring_inner_contact"] = margin_lower(d_in, out["housing_inner_diameter_max_mm"])
-    feasible = np.ones(np.shape(n_a), dtype=bool)
-    for key in MARGIN_KEYS:
-        if key in out:
-            feasible = feasible & (out[key] >= 0)
-    out["feasible"] = feasible
-    out["not_verified"] = not_verified
+    tol_out = catalog.constant("spring_housing_outer_tol_mm") if housing_outer_tol_mm is None else housing_outer_tol_mm
+    tol_in = catalog.constant("spring_housing_inner_tol_mm") if housing_inner_tol_mm is None else housing_inner_tol_mm
+    out["housing_outer_diameter_min_mm"] = _f(housing_outer_diameter_mm) - _f(tol_out)          # eq. 82
+    # eq. 85 corrected: the spring's inner diameter must stay ABOVE the support's (eq. 86 limit)
+    out["housing_inner_diameter_max_mm"] = _f(housing_inner_diameter_mm) + _f(tol_in)
     return out
-
-
-def main_spring_from_catalog(material, wire, mbd_mm, **kw):
-    """:func:`main_spring_design` for one catalog material and wire (mean diameters may be an array).
-
-    ``material`` is a key of ``spring_materials.csv`` (e.g. ``"VDSiCr"``),
-    ``wire`` a key of ``spring_wires.csv`` (e.g. ``"F2.30x2.30"``, ``"R2.30"``);
-    other keywords as in :func:`main_spring_design`. Adds ``wire_length_m``,
-    ``mass_kg`` and ``cost_eur`` (illustrative catalog costs).
-
-    >>> r = main_spring_from_catalog("VDSiCr", "F2.30x2.30", 41.0, stiffness_nm_per_deg=0.018,
-    ...     spring_torque_nominal_nm=3.07, torque_tolerance_pct=4, theta_pp_deg=16, housing_height_mm=14.8)
-    >>> round(float(r["main_spring_active_coils_free"]), 3)
-    3.616
-    """
-    w = wire_properties(wire)
-    m = material_properties(material, w["b_mm"], w["h_mm"], w["round_wire"])
-    out = main_spring_design(E_mpa=m["E_mpa"], Rm_mpa=m["Rm_mpa"], sigma_y_mpa=m["sigma_y_mpa"],
-                             sigma_A0_mpa=m["sigma_A0_mpa"], b_mm=w["b_mm"], h_mm=w["h_mm"],
-                             round_wire=w["round_wire"], b_tol_mm=w["b_tol_mm"], h_tol_mm=w["h_tol_mm"],
-                             mbd_mm=mbd_mm, **kw)
-    area = float(np.pi * w["h_mm"] ** 2 / 4 if w["round_wire"] else w["b_mm"] * w["h_mm"])
-    length_m = np.pi * _f(mbd_mm) * out["main_spring_active_coils_free"] / 1000.0
-    out["wire_length_m"] = length_m
-    out["mass_kg"] = length_m * area * 1e-6 * m["density_kg_m3"]
-    out["cost_eur"] = length_m * w["unit_cost_eur_per_m"] + out["mass_kg"] * m["unit_cost_eur_per_kg"]
-    out.update(main_spring_material=material, main_spring_wire=wire,
-               main_spring_wire_section="round" if w["round_wire"] else "rectangular",
-               Rm_mpa=m["Rm_mpa"], sigma_y_mpa=m["sigma_y_mpa"], sigma_A0_mpa=m["sigma_A0_mpa"])
-    return out
-
-
-def search_main_spring(*, housing_outer_diameter_mm, housing_inner_diameter_mm, materials=None, wires=None,
-                       mbd_candidates_mm=None, only_feasible=True, **kw):
-    """Automatic mode: evaluate every material x wire x mean diameter and rank the feasible springs.
-
-    The candidate mean diameters default to a grid (``main_spring_mbd_step_mm``)
-    from the smallest diameter that clears the inner support at installation
-    to the largest that fits the housing in the free state. All designs are
-    evaluated in one vectorised call per material (materials carry different
-    strength tables). Returns a DataFrame, one row per design, sorted by
-    ``feasible`` (first), ``cost_eur`` and then decreasing
-    ``main_spring_safety_factor``; columns: ``main_spring_material``,
-    ``main_spring_wire``, ``main_spring_wire_section``, ``b_mm``, ``h_mm``, the
-    case keys of :func:`main_spring_design`, the margins, ``cost_eur``.
-
-    Raises :class:`synth.errors.InputError` when a housing diameter is not
-    positive or the outer one is not larger than the inner one.
-    """
-    d_out_h, d_in_h = float(housing_outer_diameter_mm), float(housing_inner_diameter_mm)
-    if not d_out_h > 0 or not d_in_h > 0 or d_out_h <= d_in_h:
-        raise InputError(Problem("housing_outer_diameter_mm/housing_inner_diameter_mm", (d_out_h, d_in_h),
-                                 "positive diameters with outer > inner"))
-    mats = catalog.load("spring_materials")["material"].tolist() if materials is None else list(materials)
-    wdf = catalog.load("spring_wires")
-    if wires is not None:
-        wdf = wdf[wdf["designation"].isin([str(w) for w in wires])]
-    step = catalog.constant("main_spring_mbd_step_mm")
-    if mbd_candidates_mm is None:
-        lo = np.ceil(d_in_h / step) * step
-        hi = np.floor(d_out_h / step) * step
-        mbd_candidates_mm = np.arange(lo, hi + step / 2, step)
-    mbd_c = _f(mbd_candidates_mm).ravel()
-    b = np.repeat(wdf["b_mm"].to_numpy(float), mbd_c.size)
-    h = np.repeat(wdf["h_mm"].to_numpy(float), mbd_c.size)
-    rnd = np.repeat((wdf["section"].str.strip() == "round").to_numpy(), mbd_c.size)
-    btol = np.repeat(wdf["b_tol_mm"].to_numpy(float), mbd_c.size)
-    htol = np.repeat(wdf["h_tol_mm"].to_numpy(float), mbd_c.size)
-    wcost = np.repeat(wdf["unit_cost_eur"].to_numpy(float), mbd_c.size)
-    names = np.repeat(wdf["designation"].to_numpy(), mbd_c.size)
-    mbd = np.tile(mbd_c, len(wdf))
-    frames = []
-    for mat in mats:  # a handful of catalog materials; designs are vectorised inside
-        m = material_properties(mat, b, h, rnd)
-        r = main_spring_design(E_mpa=m["E_mpa"], Rm_mpa=m["Rm_mpa"], sigma_y_mpa=m["sigma_y_mpa"],
-                               sigma_A0_mpa=m["sigma_A0_mpa"], b_mm=b, h_mm=h, round_wire=rnd, b_tol_mm=btol,
-                               h_tol_mm=htol, mbd_mm=mbd, housing_outer_diameter_mm=d_out_h,
-                               housing_inner_diameter_mm=d_in_h, **kw)
-        length_m = np.pi * mbd * r["main_spring_active_coils_free"] / 1000.0
-        area = np.where(rnd, np.pi * h**2 / 4, b * h)
-        cost = length_m * wcost + length_m * area * 1e-6 * m["density_kg_m3"] * m["unit_cost_eur_per_kg"]
-        cols = {"main_spring_material": mat, "main_spring_wire": names,
-                "main_spring_wire_section": np.where(rnd, "round", "rectangular"), "b_mm": b, "h_mm": h,
-                "cost_eur": cost}
-        for key, val in r.items():
-            if key != "not_verified" and np.ndim(val) > 0:
-                cols[key] = np.broadcast_to(val, mbd.shape)
-        frames.append(pd.DataFrame(cols))
-    df = pd.concat(frames, ignore_index=True)
-    if only_feasible:
-        df = df[df["feasible"]]
-    return df.sort_values(["feasible", "cost_eur", "main_spring_safety_factor"],
-                          ascending=[False, True, False]).reset_index(drop=True)
-
-
-def main_spring_checks(result: dict, index=()) -> list[Check]:
-    """The step-9 checks of one design of a :func:`main_spring_design` result, as report records.
-
-    ``index`` selects the design when the result holds arrays.
-    """
-    def v(key):
-        return float(np.asarray(result[key])[index])
-
-    checks = [
-        Check("main spring yield at installation", 9, v("main_spring_sigma_inst_mpa"),
-              v("sigma_y_limit_mpa"),
-              "<=", "MPa", "eq. (72)-(77)", "eq. (77) with pi"),
-        Check("main spring Smith-Goodman safety factor", 9, v("main_spring_safety_factor"),
-              catalog.constant("main_spring_min_safety_factor"), ">=", "-", "figure 71"),
-        Check("main spring coil gap (worst condition)", 9, v("coil_gap_min_mm"),
-              catalog.constant("main_spring_min_coil_gap_mm"), ">=", "mm", "eq. (89)-(93)",
-              "axial side b instead of h in eq. (91)/(93)"),
-        Check("main spring index >= min", 9, v("spring_index"), catalog.constant("main_spring_index_min"), ">=", "-",
-              "EN 13906-3"),
-        Check("main spring index <= max", 9, v("spring_index"), catalog.constant("main_spring_index_max"), "<=", "-",
-              "EN 13906-3"),
-    ]
-    if "margin_main_spring_outer_contact" in result:
-        checks.append(Check("main spring outer contact with housing", 9, v("outer_diameter_max_mm"),
-                            v("housing_outer_diameter_min_mm"), "<=", "mm", "eq. (81)-(84)"))
-    else:
-        checks.append(Check.skipped("main spring outer contact with housing", 9, "housing_outer_diameter_mm",
-                                    equation="eq. (81)-(84)"))
-    if "margin_main_spring_inner_contact" in result:
-        checks.append(Check("main spring inner contact with support", 9, v("inner_diameter_min_mm"),
-                            v("housing_inner_diameter_max_mm"), ">=", "mm", "eq. (85)-(88)",
-                            "eq. (85) direction: spring inner diameter must exceed the support's"))
-    else:
-        checks.append(Check.skipped("main spring inner contact with support", 9, "housing_inner_diameter_mm",
-                                    equation="eq. (85)-(88)"))
-    return checks

@@ -33,7 +33,8 @@ from synth.design import evaluate as E
 from synth.design.applications import Applications
 from synth.design.space import SUBSYSTEMS, Space, core_rows, space
 
-__all__ = ["SubTable", "Evaluation", "evaluate", "SPRING_BLOCK_PAIRS", "design_scores", "evaluate_choice"]
+__all__ = ["SubTable", "Evaluation", "evaluate", "SPRING_BLOCK_PAIRS", "design_scores", "evaluate_choice",
+           "core_scores", "option_scores"]
 
 #: (key, option) pairs of main springs evaluated per block (bounds the memory of one evaluation)
 SPRING_BLOCK_PAIRS = 200_000
@@ -96,9 +97,22 @@ class Evaluation:
         return {"standard": float(std), "cost": round(float(cost), 6), "margin": margin}
 
 
-def _scores(sp: Space, table: str) -> dict:
+def core_scores(sp: Space, cores, core_values: dict) -> dict:
+    """``{"standard", "cost"}`` of core rows ``cores`` (a pivot class other than Table 2's is non-standard)."""
+    t = sp.tables["core"]
+    std = core_values["pivot_class_standard_mm"]
+    flag = ~np.isclose(core_values["pivot_class_diameter_mm"], np.nan_to_num(std, nan=-1.0))
+    return {"standard": t["nonstandard"][cores] + catalog.constant("nonstandard_weight_pivot_class") * flag,
+            "cost": t["cost_eur"][cores].astype(float)}
+
+
+def option_scores(sp: Space, table: str, stiffness_nm_per_deg=None, options=None) -> dict:
+    """``{"standard", "cost"}`` of the options of a subsystem (the spring's cost needs the stiffness)."""
     t = sp.tables[table]
-    return {"standard": t["nonstandard"].astype(float), "cost": t["cost_eur"].astype(float)}
+    idx = slice(None) if options is None else options
+    if table == "spring":
+        return {"standard": t["nonstandard"][idx].astype(float), "cost": sp.spring_cost_eur(stiffness_nm_per_deg, options)}
+    return {"standard": t["nonstandard"][idx].astype(float), "cost": t["cost_eur"][idx].astype(float)}
 
 
 def _bushing(apps, sp, cg, pos, settings) -> SubTable:
@@ -191,13 +205,8 @@ def evaluate(d, settings: E.Settings = E.Settings(fidelity="full"), *, pin_input
     for s in ("bushing", "axial", "bolt"):
         if s in subs:
             counter[0] += int(subs[s].available.sum())
-    score_core = {k: v[cores] for k, v in _scores(sp, "core").items()}
-    std = cg.values["pivot_class_standard_mm"]
-    score_core["standard"] = score_core["standard"] + catalog.constant("nonstandard_weight_pivot_class") * \
-        ~np.isclose(cg.values["pivot_class_diameter_mm"], np.nan_to_num(std, nan=-1.0))
-    score = {s: _scores(sp, s) for s in ("bushing", "axial", "bolt")}
-    score["spring"] = {"standard": sp.tables["spring"]["nonstandard"].astype(float),
-                       "cost": sp.spring_cost_eur(float(apps.spring_stiffness_nm_per_deg[0]))}
+    score_core = core_scores(sp, cores, cg.values)
+    score = {s: option_scores(sp, s, float(apps.spring_stiffness_nm_per_deg[0])) for s in SUBSYSTEMS}
     notes = []
     if not apps.met("durability")[0]:
         notes.append("durability test not given: bushing, plastic wear and spring fatigue checks are not verified")

@@ -32,7 +32,7 @@ import numpy as np
 
 from synth.errors import InputError, Problem
 
-__all__ = ["OBJECTIVES", "Objective", "spring_cost_eur"]
+__all__ = ["OBJECTIVES", "Objective"]
 
 OBJECTIVES = ("standard", "cost", "margin")
 _TIEBREAK = {"standard": ("standard", "cost"), "cost": ("cost", "standard"), "margin": ("margin", "cost")}
@@ -109,18 +109,3 @@ class Objective:
         if self.weights:
             return (self.score(values),)
         return tuple(-values[k] if k == "margin" else values[k] for k in self.order)
-
-
-def spring_cost_eur(mbd_mm, active_coils, round_wire, b_mm, h_mm, wire_cost_eur_per_m, density_kg_m3,
-                    material_cost_eur_per_kg):
-    """Cost of a main spring [EUR]: wire length x cost per metre + mass x material cost per kg.
-
-    Wire length of the active coils ``pi D n_a`` (the legs are not counted,
-    as in :func:`synth.model.torsion_spring.main_spring_from_catalog`).
-
-    >>> round(float(spring_cost_eur(41.0, 3.616, False, 2.3, 2.3, 0.078, 7850, 3.2)), 4)
-    0.0982
-    """
-    length_m = np.pi * np.asarray(mbd_mm, float) * np.asarray(active_coils, float) / 1000.0
-    area = np.where(np.asarray(round_wire, bool), np.pi * np.asarray(h_mm, float) ** 2 / 4, np.asarray(b_mm) * np.asarray(h_mm))
-    return length_m * wire_cost_eur_per_m + length_m * area * 1e-6 * density_kg_m3 * material_cost_eur_per_kg

@@ -22,8 +22,7 @@ import html
 from pathlib import Path
 
 from synth import schema
-from synth.checks import FAIL, NOT_VERIFIED, PASS
-from synth.excel.results import NOT_APPLICABLE, field_corrections, row_verdict
+from synth.design.result import FAIL, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, field_corrections, row_verdict
 from synth.output_table import ROWS, format_value
 
 __all__ = ["render_html", "write_html"]
@@ -43,7 +42,8 @@ figure img{width:100%} figcaption{font-size:.85em}
 .small{font-size:.85em;color:#555}
 """
 
-_CLS = {PASS: "pass", FAIL: "fail", NOT_VERIFIED: "nv", NOT_APPLICABLE: "na"}
+_CLS = {PASS: "pass", FAIL: "fail", NOT_VERIFIED: "nv", NOT_APPLICABLE: "na", WARNING: "nv", None: "",
+        "incomplete": "nv"}
 
 
 def _esc(x) -> str:
@@ -59,7 +59,7 @@ def _num(v, digits: int = 4) -> str:
 
 
 def _summary(result, source: str | None) -> str:
-    v = result.values
+    v = {**result.values, **result.parts}
     failed, nv = result.failed(), result.not_verified()
     cls = _CLS[result.verdict]
     items = [("Input", source or "-"), ("Architecture", v.get("architecture", "-")),
@@ -69,15 +69,17 @@ def _summary(result, source: str | None) -> str:
              ("Bolt", f"{v.get('bolt_format', '-')} class {v.get('bolt_property_class', '-')}"),
              ("Checks", f"{len(result.checks)} ({len(failed)} failed, {len(nv)} not verified)"),
              ("Steps run", ", ".join(str(s) for s in result.steps_run)),
-             ("Model", f"fidelity {result.settings.fidelity}; friction circle {result.settings.friction_circle}")]
+             ("Model", f"fidelity {result.settings.get('fidelity')}; radial friction "
+                       + ("on the friction circle r_p sin(atan mu)" if result.settings.get("friction_circle", True)
+                          else "on r_p mu (the thesis tool's tables)"))]
     rows = "".join(f"<tr><th>{_esc(k)}</th><td>{_esc(val)}</td></tr>" for k, val in items)
     return (f'<p><span class="banner {cls}">Verdict: {_esc(result.verdict.upper())}</span></p>'
             f"<table>{rows}</table>")
 
 
 def _inputs(result) -> str:
-    d = result.inputs.as_dict()
-    corr = field_corrections(result.checks)
+    d = result.inputs or {}
+    corr = field_corrections(result)
     out = ["<table><tr><th>Parameter</th><th>Field</th><th>Unit</th><th>Data read</th><th>Suggested correction</th></tr>"]
     for section in schema.SECTIONS:
         out.append(f'<tr class="section"><td colspan="5">{_esc(section)}</td></tr>')
@@ -95,10 +97,11 @@ def _inputs(result) -> str:
 def _output(result) -> str:
     out = ["<table><tr><th>Section</th><th>Parameter</th><th>Unit</th><th>Value</th><th>Verdict</th></tr>"]
     for section, label, key, unit in ROWS:
-        verdict = row_verdict(result.values, result.checks, key, section)
-        out.append(f"<tr><td>{_esc(section)}</td><td>{_esc(label)}</td><td>{_esc(unit)}</td>"
-                   f"<td class='num {_CLS[verdict]}'>{_esc(_num(result.values.get(key)))}</td>"
-                   f"<td class='{_CLS[verdict]}'>{_esc(verdict)}</td></tr>")
+        verdict = row_verdict(result, key)
+        out.append(f"<tr data-key='{_esc(key)}' data-verdict='{_esc(verdict or '')}'><td>{_esc(section)}</td>"
+                   f"<td>{_esc(label)}</td><td>{_esc(unit)}</td>"
+                   f"<td class='num {_CLS[verdict]}'>{_esc(_num(result.get(key)))}</td>"
+                   f"<td class='{_CLS[verdict]}'>{_esc(verdict or '')}</td></tr>")
     out.append("</table>")
     return "".join(out)
 
@@ -107,15 +110,17 @@ def _checks(result) -> str:
     from synth.flowchart import STEP_NAMES
     out = ["<table><tr><th>Step</th><th>Check</th><th>Value</th><th></th><th>Limit</th><th>Unit</th>"
            "<th>Margin</th><th>Verdict</th><th>Equation</th><th>Suggested correction / note</th></tr>"]
-    for c in sorted(result.checks, key=lambda c: c.step):
+    for c in sorted((c for c in result.checks if c.verdict != NOT_APPLICABLE), key=lambda c: c.step):
+        con = c.constraint
         cls = _CLS[c.verdict]
         margin = "-" if c.margin is None else f"{100 * c.margin:+.1f} %"
-        extra = c.correction if c.verdict == FAIL and c.correction else c.note
-        out.append(f"<tr><td>{c.step} {_esc(STEP_NAMES.get(c.step, ''))}</td><td>{_esc(c.name)}</td>"
-                   f"<td class='num'>{_esc(_num(c.value))}</td><td>{_esc(c.kind if c.value is not None else '')}</td>"
-                   f"<td class='num'>{_esc(_num(c.limit))}</td><td>{_esc(c.unit)}</td>"
+        extra = con.correction if c.verdict == FAIL and con.correction else "; ".join([c.note] + c.assumed).strip("; ")
+        out.append(f"<tr data-check='{_esc(c.id)}' data-verdict='{_esc(c.verdict)}'>"
+                   f"<td>{c.step} {_esc(STEP_NAMES.get(c.step, ''))}</td><td>{_esc(con.label)}</td>"
+                   f"<td class='num'>{_esc(_num(c.value))}</td><td>{_esc(con.sense if c.value is not None else '')}</td>"
+                   f"<td class='num'>{_esc(_num(c.limit))}</td><td>{_esc(con.unit)}</td>"
                    f"<td class='num {cls}'>{margin}</td><td class='{cls}'>{_esc(c.verdict)}</td>"
-                   f"<td>{_esc(c.equation)}</td><td>{_esc(extra or '')}</td></tr>")
+                   f"<td>{_esc(con.equation)}</td><td>{_esc(extra or '')}</td></tr>")
     out.append("</table>")
     return "".join(out)
 

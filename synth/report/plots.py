@@ -86,10 +86,12 @@ class _Data:
     """Values of the result with lazily computed fallbacks of the steps the result lacks."""
 
     def __init__(self, result, extra: dict | None):
-        self.r, self.d, self.v = result, result.inputs, result.values
+        from synth.schema import validate
+        self.r, self.v = result, {**result.values, **result.parts}
+        self.d = validate(result.inputs) if isinstance(result.inputs, dict) else result.inputs
         self.extra = extra or {}
-        self.fidelity = getattr(result.settings, "fidelity", "full")
-        self.friction_circle = getattr(result.settings, "friction_circle", True)
+        self.fidelity = result.settings.get("fidelity", "full")
+        self.friction_circle = result.settings.get("friction_circle", True)
         self._cache: dict = {}
 
     def need(self, *keys):
@@ -175,16 +177,9 @@ class _Data:
                     "cone_spring_thickness_mm", "cone_spring_cone_height_mm", "cone_spring_nominal_deflection_mm",
                     "cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n")
         gap = self.v.get("gap_tolerance_mm") or self.v.get("cone_spring_gap_tolerance_mm") or s6.gap_tolerance_mm()
-        if all(self.v.get(k) is not None for k in geo_keys):
-            c = {k: float(self.v[k]) for k in geo_keys}
-        else:
-            g = self.axial_group()
-            target, tol = self.need("damping_target_nm", "damping_tolerance_nm")
-            r = s8.cone_spring(self.need("axial_damping_nm"), target, tol, self.need("radial_damping_nm"),
-                               self.mu_plastic(), g["damper_pad_mean_radius_mm"], g["endcap_spacer_mean_radius_mm"],
-                               g["damper_pad_outer_diameter_mm"], self.need("pivot_diameter_mm"), gap,
-                               fidelity=self.fidelity)
-            c = {k: float(np.asarray(r[k]).reshape(-1)[0]) for k in geo_keys}
+        if not all(self.v.get(k) is not None for k in geo_keys):
+            raise _Skip("the design has no sized cone spring")
+        c = {k: float(self.v[k]) for k in geo_keys}
         c["gap_tolerance_mm"] = float(gap)
         self._cache["cone"] = c
         return c
@@ -212,13 +207,12 @@ class _Data:
         from synth.model import friction_wear as s5
         c, g = self.cone(), self.axial_group()
         th, f, t = self.durability()
-        eol = self.get("damping_eol_limit_nm", 0.0)
         r = s5.plastic_wear(c["cone_spring_nominal_deflection_mm"], c["cone_spring_max_external_diameter_mm"],
                             c["cone_spring_min_internal_diameter_mm"], c["cone_spring_thickness_mm"],
                             c["cone_spring_cone_height_mm"], g["damper_pad_contact_area_mm2"],
                             g["damper_pad_mean_radius_mm"], g["damper_pad_axial_height_mm"],
                             g["endcap_spacer_contact_area_mm2"], g["endcap_spacer_mean_radius_mm"],
-                            g["endcap_spacer_axial_height_mm"], th, f, t, self.need("radial_damping_nm"), eol,
+                            g["endcap_spacer_axial_height_mm"], th, f, t, self.need("radial_damping_nm"),
                             application_type=self.d.application_type, fidelity=self.fidelity, time_points=_N,
                             plastic_friction_coefficient=self.mu_plastic())
         h = {k: np.asarray(v, float).reshape(-1) for k, v in r["history"].items()}
@@ -251,9 +245,9 @@ def _verdict(ok) -> str:
     return PASS if bool(ok) else FAIL
 
 
-def _check_verdict(result, *names) -> str | None:
-    """The worst verdict of the result's checks whose name contains any of ``names``."""
-    hits = [c.verdict for c in result.checks if any(n in c.name for n in names)]
+def _check_verdict(result, *ids) -> str | None:
+    """The worst verdict of the result's checks ``ids`` (registry ids)."""
+    hits = [c.verdict for c in result.checks if c.id in ids]
     if FAIL in hits:
         return FAIL
     return PASS if PASS in hits else None
@@ -337,21 +331,24 @@ def g_sensitivity_mu_plastic(dt: _Data, ax):
 def _bushing(dt: _Data):
     if "bushing" in dt._cache:
         return dt._cache["bushing"]
+    from synth import parts as P
     from synth.model import plain_bushing as s4
     th, f, t_end = dt.durability()
-    supplier = dt.v.get("pivot_bushing_supplier") or s4.supplier_for_thickness(dt.need("pivot_bushing_radial_thickness_mm"))
+    p = P.arrays()
+    sup = p.bushing.code(dt.need("pivot_bushing_supplier"))
+    env = P.env_code(dt.d.application_type)[0]
     length = dt.need("pivot_bushing_length_mm")
     par_max = dt.get("pulley_max_parallelism_eol_mm")
     t = np.linspace(0.0, float(t_end), _N)
     r = s4.evaluate_bushing(dt.need("hubload_nominal_n"), dt.need("pivot_diameter_mm"), length, th, f, t,
-                            supplier=supplier, environment=dt.d.application_type,
+                            k_w_mm3_per_n_m=p.bushing_limits["k_w_mm3_per_n_m"][sup, env],
+                            radial_clearance_mm=p.bushing.radial_clearance_mm[sup],
                             belt_plane_height_mm=dt.need("middle_plane_belt_height_mm"),
                             max_pivot_height_mm=dt.need("max_pivot_height_mm"),
-                            axial_damping=bool(dt.v.get("axial_damping_present")),
+                            axial_damping=bool(dt.v.get("axial_group_present")),
                             pulley_diameter_mm=dt.need("pulley_diameter_mm"),
-                            parallelism_max_mm=par_max if par_max else 1.0,
-                            fidelity="full" if getattr(dt.r.settings, "bushing_running_in", False) else "screening")
-    lim = s4.supplier_limits(supplier, dt.d.application_type)
+                            fidelity="full" if dt.r.settings.get("bushing_running_in") else "screening")
+    lim = {"sliding_layer_depth_mm": p.bushing.sliding_layer_depth_mm[sup]}
     dt._cache["bushing"] = (t, r, lim, par_max)
     return dt._cache["bushing"]
 
@@ -363,7 +360,7 @@ def g_bushing_wear(dt: _Data, ax):
     t, r, lim, _ = _bushing(dt)
     depth = float(lim["sliding_layer_depth_mm"])
     w_max = np.abs(np.asarray(r["wear_max_mm"], float))
-    verdict = _check_verdict(dt.r, "pivot bushing wear") or _verdict(w_max[-1] <= depth)
+    verdict = _check_verdict(dt.r, "bushing_wear") or _verdict(w_max[-1] <= depth)
     ax.plot(t, np.abs(r["wear_a_mm"]), color=COLOURS["other"], label="lower end (A)")
     ax.plot(t, np.abs(r["wear_b_mm"]), color=COLOURS["nominal"], label="upper end (B)")
     ax.plot(t, w_max, color=COLOURS[verdict], lw=2, label="most loaded end")
@@ -379,7 +376,7 @@ def g_pulley_parallelism(dt: _Data, ax):
         return _generic(ax, c, "time [h]", "parallelism [mm]"), None
     t, r, _, par_max = _bushing(dt)
     par = np.asarray(r["parallelism_mm"], float)
-    verdict = (_check_verdict(dt.r, "pulley parallelism") or _verdict(par[-1] <= par_max)) if par_max else None
+    verdict = (_check_verdict(dt.r, "bushing_parallelism") or _verdict(par[-1] <= par_max)) if par_max else None
     ax.plot(t, par, color=COLOURS[verdict] if verdict else COLOURS["nominal"], lw=2, label="pulley parallelism")
     series = {"time_h": t, "parallelism_mm": par}
     if par_max:
@@ -393,7 +390,7 @@ def g_damping_decay(dt: _Data, ax):
     h = dt.plastic_history()
     t, dmp = h["time_h"], h["damping_nm"]
     eol = dt.get("damping_eol_limit_nm")
-    verdict = (_check_verdict(dt.r, "end-of-life damping") or _verdict(dmp[-1] >= eol)) if eol is not None else None
+    verdict = (_check_verdict(dt.r, "damping_eol") or _verdict(dmp[-1] >= eol)) if eol is not None else None
     ax.plot(t, dmp, color=COLOURS[verdict] if verdict else COLOURS["nominal"], lw=2, label="damping")
     series = {"time_h": t, "damping_nm": dmp}
     if eol is not None:
@@ -432,7 +429,7 @@ def g_plastic_wear(dt: _Data, ax):
     t, w = h["time_h"], h["plastic_wear_total_mm"]
     total = h["damper_pad_wear_eol_mm"] + h["endcap_spacer_wear_eol_mm"]
     share = h["damper_pad_wear_eol_mm"] / total if total > 0 else 0.5
-    verdict = _check_verdict(dt.r, "damper pad wear", "endcap spacer wear")
+    verdict = _check_verdict(dt.r, "damper_pad_wear", "endcap_spacer_wear")
     ax.plot(t, w, color=COLOURS[verdict] if verdict else COLOURS["nominal"], lw=2, label="stack-up (total)")
     ax.plot(t, share * w, color=COLOURS["other"], label="damper pad")
     ax.plot(t, (1 - share) * w, ":", color=COLOURS["other"], label="endcap spacer")
@@ -444,7 +441,7 @@ def g_plastic_wear(dt: _Data, ax):
 def g_cone_spring_force_time(dt: _Data, ax):
     h = dt.plastic_history()
     t, f = h["time_h"], h["cone_spring_force_n"]
-    verdict = _check_verdict(dt.r, "end-of-life damping")
+    verdict = _check_verdict(dt.r, "damping_eol")
     ax.plot(t, f, color=COLOURS[verdict] if verdict else COLOURS["nominal"], lw=2,
             label="axial force (wear and relaxation)")
     ax.set(xlabel="time [h]", ylabel="cone spring axial force [N]")
@@ -455,7 +452,7 @@ def g_cone_spring_tolerance_band(dt: _Data, ax):
     c, geo, s, f, s_n, f_n = _characteristic(dt)
     lo, hi = c["cone_spring_fax_min_tolerance_n"], c["cone_spring_fax_max_tolerance_n"]
     dh = c["gap_tolerance_mm"]
-    verdict = _check_verdict(dt.r, "cone spring force band") or _verdict(lo <= f_n <= hi)
+    verdict = _check_verdict(dt.r, "cone_force_band") or _verdict(lo <= f_n <= hi)
     ax.plot(s, f, color=COLOURS["nominal"], label="characteristic")
     ax.axhspan(lo, hi, color=COLOURS[verdict], alpha=0.15, label="force tolerance at nominal gap")
     ax.axhline(lo, color=COLOURS[verdict], lw=1)
@@ -485,7 +482,7 @@ def g_goodman(dt: _Data, ax):
     lower = 2.0 * sm - upper
     sf = float(s9.goodman_safety_factor(smax, smin, rm, sa0, sy))
     target = dt.get("main_spring_safety_factor_min")
-    verdict = _check_verdict(dt.r, "Smith-Goodman") or _verdict(sf >= float(target or 1.0))
+    verdict = _check_verdict(dt.r, "spring_fatigue") or _verdict(sf >= float(target or 1.0))
     work_m = (smax + smin) / 2.0
     ax.plot(sm, upper, color=COLOURS["nominal"], lw=2, label="upper limit (Goodman, yield)")
     ax.plot(sm, lower, color=COLOURS["nominal"], lw=1)
@@ -509,7 +506,7 @@ def g_pivot_base_pressure(dt: _Data, ax):
     ang = np.linspace(-180.0, 180.0, 2 * _N + 1) if theta >= 360.0 else np.linspace(-theta / 2, theta / 2, _N)
     nominal = s10.pivot_base_pressure_mpa(ang, force, hl * float(s10.tilting_lever_mm(h, 0.0)), d_ext, d_int, theta)
     worst = s10.pivot_base_pressure_mpa(ang, force, hl * float(s10.tilting_lever_mm(h, inc)), d_ext, d_int, theta)
-    verdict = _check_verdict(dt.r, "tilting safety factor") or _verdict(np.min(worst) > 0.0)
+    verdict = _check_verdict(dt.r, "tilting") or _verdict(np.min(worst) > 0.0)
     ax.plot(ang, nominal, color=COLOURS["nominal"], label="nominal")
     ax.plot(ang, worst, color=COLOURS[verdict], lw=2, label="worst condition")
     ax.axhline(0.0, ls="--", color=COLOURS["limit"], label="lift-off (tilting)")

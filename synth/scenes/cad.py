@@ -1,15 +1,14 @@
 """``synth cad RESULT.json --out DIR``: the simplified 3D model of a saved result (thesis step 11).
 
-Accepts the JSON of ``synth design --json`` and of ``synth flowchart --json``
-(both carry their ``inputs``); a JSON without inputs (``FlowchartResult.to_dict()``
-saved by a script) needs ``--input`` with the design input. Writes the STEP assembly, one STL per part, the
+Accepts the ``--json`` of any scene (it carries its ``inputs``); a result
+without inputs needs ``--input`` with the design input. Writes the STEP assembly, one STL per part, the
 exploded and section pictures and ``cad_report.json``; prints the geometric
 checks. Exit code 1 if a geometric check fails, else 0.
 """
 
 from __future__ import annotations
 
-from synth.checks import FAIL
+from synth.design.result import FAIL
 
 __all__ = ["register", "add_cad_options"]
 
@@ -30,8 +29,8 @@ def register(sub) -> None:
 
 def _main(args) -> int:
     from synth.cad import export_result, summary_lines
-    from synth.cad.dimensions import load_result
-    model, checks, info = export_result(load_result(args.result), args.out, args.input,
+    from synth.scenes._options import load_saved_result
+    model, checks, info = export_result(load_saved_result(args.result), args.out, args.input,
                                         stl=not args.no_stl, pictures=not args.no_pictures)
     print(f"synth cad: {args.result} -> {args.out}")
     print("\n".join(summary_lines(model, checks, info)))

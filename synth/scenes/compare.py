@@ -6,7 +6,7 @@ import json
 
 from synth.compare import compare_case
 from synth.output_table import format_value
-from synth.scenes.flowchart import add_model_options, settings_from_args
+from synth.scenes._options import add_model_options, settings_from_args
 
 __all__ = ["register"]
 

@@ -1,13 +1,13 @@
-"""``synth demo``: the flowchart on the embedded default case (thesis case study 1 as run)."""
+"""``synth demo``: the synthesis on the embedded default application, its 3D model and its report."""
 
 from __future__ import annotations
 
 from importlib import resources
+from pathlib import Path
 
 import yaml
 
-from synth import flowchart, schema
-from synth.scenes.flowchart import render_text
+from synth import schema
 
 __all__ = ["register", "default_input"]
 
@@ -19,19 +19,32 @@ def default_input():
 
 
 def register(sub) -> None:
-    p = sub.add_parser("demo", help="run the flowchart on the embedded default case (thesis case 1)")
-    p.add_argument("--cad", metavar="DIR", default=None,
-                   help="also export the 3D model (STEP assembly, STL, exploded and section pictures) into DIR")
+    p = sub.add_parser("demo", help="synthesise the most standardised tensioner for the embedded default application")
+    p.add_argument("--out", metavar="DIR", default="out",
+                   help="folder for the 3D model (tensioner.step, STL, pictures) and the report (default: out)")
+    p.add_argument("--no-cad", action="store_true", help="skip the 3D model")
+    p.add_argument("--no-report", action="store_true", help="skip the report")
+    p.add_argument("--cad", metavar="DIR", default=None, help=argparse_suppress())
     p.set_defaults(func=_main)
 
 
+def argparse_suppress():
+    import argparse
+    return argparse.SUPPRESS
+
+
 def _main(args) -> int:
-    print("synth demo: thesis case study 1 (inputs as the thesis tool ran them)\n")
-    r = flowchart.run(default_input())
-    print(render_text(r))
-    if getattr(args, "cad", None):
-        from synth.cad import export_result, summary_lines
-        model, checks, info = export_result(r, args.cad)
-        print(f"\n3D model (thesis step 11) written to {args.cad}")
-        print("\n".join(summary_lines(model, checks, info)))
-    return 0
+    from synth.optimise import solve
+    from synth.report.text import render
+    out = Path(args.cad or args.out)
+    d = default_input()
+    r = solve(d, "standard", "enumerate")
+    print(render(r, title="synth demo: the most standardised tensioner for the embedded default application"))
+    if not args.no_cad:
+        from synth.scenes.design import export_cad
+        print("\n" + "\n".join(export_cad(r, out)))
+    if not args.no_report:
+        from synth.scenes.report import make_report
+        rep = make_report(r, out, show_progress=False)
+        print(f"\nreport: {rep['html']} and {rep['xlsx']}")
+    return r.exit_code

@@ -20,11 +20,19 @@ def register(sub) -> None:
 
 
 def _main(args) -> int:
+    from synth.errors import InputError, Problem
+    if not 1 <= args.points <= 10_000:
+        raise InputError(Problem("--points", args.points, "an integer from 1 to 10000"))
     front = pareto_front(load_input(args.input), n_points=args.points)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     lines = ["| cost [EUR] | margin | non-standard | binding constraint |", "|---|---|---|---|"]
     lines += [f"| {p['cost_eur']:.4f} | {p['margin']:+.4f} | {p['standard']:g} | {p['binding']} |" for p in front]
+    inputs = front[0]["inputs"] if front else {}
+    if inputs:
+        lines += ["", "Input-only constraints (no design changes them; not in the margin above):"]
+        from synth.design.constraints import REGISTRY
+        lines += [f"- {REGISTRY[k].label}: margin {v:+.4f}" for k, v in inputs.items()]
     table = "\n".join(lines)
     (out / "front.md").write_text(table + "\n")
     (out / "front.json").write_text(json.dumps(front, indent=2, default=str))

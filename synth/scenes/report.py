@@ -1,11 +1,12 @@
-"""``synth report INPUT --out DIR``: the design report (HTML) and the results workbook (.xlsx).
+"""``synth report INPUT|RESULT.json --out DIR``: the design report (HTML) and the results workbook (.xlsx).
 
-Runs the flowchart on INPUT (.yaml, .toml, .json or the Excel template) and
-writes ``DIR/report.html`` (self-contained: summary, output table, every
-verdict with its margin, the thesis's graphs) and ``DIR/results.xlsx``
-(output table with verdict colours, checks, echo of the data read,
-suggested corrections, and one sheet per other scene result given with
-``--optimum``, ``--pareto``, ``--solvers``).
+The report shows the same design ``synth design INPUT`` finds, at the same
+fidelity (the default synthesis of :mod:`synth.scenes._options`), or the
+design of a saved result (the ``--json`` of any scene, re-verified through
+the evaluator so its curves can be drawn), or with ``--flowchart`` the thesis
+procedure's own design. Writes ``DIR/report.html`` (self-contained) and
+``DIR/results.xlsx``; the 3D model's section and exploded pictures are
+embedded unless ``--no-cad``.
 """
 
 from __future__ import annotations
@@ -14,23 +15,24 @@ import json
 import sys
 from pathlib import Path
 
-from synth import flowchart, schema
-from synth.checks import FAIL
+from synth import schema
 from synth.errors import InputError, Problem
-from synth.scenes.flowchart import add_model_options, settings_from_args
+from synth.scenes._options import add_design_options, load_saved_result, synthesise
 
 __all__ = ["register", "make_report", "read_table"]
 
 
 def register(sub) -> None:
     p = sub.add_parser("report", help="write the design report (report.html) and results workbook (results.xlsx)")
-    p.add_argument("input", help="design input (.yaml, .toml, .json, or the .xlsx template)")
+    p.add_argument("input", help="design input (.yaml, .toml, .json, .xlsx) or a saved result (--json of any scene)")
     p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--flowchart", action="store_true", help="report the thesis procedure's design, not the synthesis")
+    p.add_argument("--no-cad", action="store_true", help="do not build the 3D model pictures")
     p.add_argument("--optimum", metavar="FILE", help="an optimum (JSON/YAML mapping or CSV) to add as a sheet")
     p.add_argument("--pareto", metavar="FILE", help="a Pareto front (CSV/JSON rows, numeric objective columns)")
     p.add_argument("--solvers", metavar="FILE", help="a solver comparison (CSV/JSON rows: solver, numbers)")
     p.add_argument("--cad", metavar="PNG", action="append", default=[], help="a CAD picture to include (repeatable)")
-    add_model_options(p)
+    add_design_options(p)
     p.set_defaults(func=_main)
 
 
@@ -63,30 +65,85 @@ def read_table(path: str | Path):
     raise InputError(Problem("scene result file", str(p), "a list of mappings (rows) or one mapping"))
 
 
-def make_report(input_path, out_dir, settings: flowchart.Settings | None = None, *, scenes: dict | None = None,
-                cad: list | None = None, show_progress: bool = True) -> dict:
-    """Run the flowchart on ``input_path`` and write ``report.html`` and ``results.xlsx`` into ``out_dir``.
+def _is_result_file(path: Path) -> bool:
+    if path.suffix.lower() != ".json" or not path.is_file():
+        return False
+    try:
+        return isinstance(json.loads(path.read_text(encoding="utf-8")), dict) and \
+            json.loads(path.read_text(encoding="utf-8")).get("kind") == "synth.result"
+    except (OSError, ValueError, UnicodeDecodeError):
+        return False
 
-    Returns ``{"html": Path, "xlsx": Path, "result": FlowchartResult, "graphs": [...], "skipped": [...]}``.
+
+def result_for_report(source, args=None):
+    """``(result, cells, source name)`` of an input file, a saved result file or a :class:`Result`."""
+    from synth.design.result import Result
+    from synth.design.verify import verify
+    from synth.design.evaluate import Settings
+    if isinstance(source, Result):
+        res, cells, name = source, None, "result"
+    else:
+        src = Path(source)
+        cells = None
+        if _is_result_file(src):
+            res, name = load_saved_result(src), str(src)
+        else:
+            data = schema.read_mapping(src)
+            if src.suffix.lower() in (".xlsx", ".xlsm"):
+                from synth.excel.reader import read_cells
+                cells = read_cells(src)[1]
+            d = schema.validate(data)
+            name = str(src)
+            if args is not None and getattr(args, "flowchart", False):
+                from synth import flowchart
+                from synth.scenes._options import settings_from_args
+                return flowchart.run(d, settings_from_args(args)), cells, name
+            res = synthesise(d, args or _defaults())
+    if res.inputs is None:
+        raise InputError(Problem("result", name, "a result that carries its inputs (--json of synth 0.2 or later)"))
+    if not res.curves and res.parts and res.solver != "flowchart":  # re-verify for the curves of the graphs
+        fields = {k for k in Settings.__dataclass_fields__}
+        settings = Settings(**{k: v for k, v in (res.settings or {}).items() if k in fields})
+        again = verify(schema.validate({k: v for k, v in res.inputs.items() if v is not None}), res.parts, settings,
+                       status=res.status, solver=res.solver, time_points=60, notes=res.notes)
+        again.objective, again.objectives, again.stats, again.diagnosis = res.objective, res.objectives, res.stats, \
+            res.diagnosis
+        res = again
+    return res, cells, name
+
+
+def _defaults():
+    import argparse
+    p = argparse.ArgumentParser()
+    add_design_options(p)
+    return p.parse_args([])
+
+
+def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: list | None = None,
+                show_progress: bool = True, cad_pictures: bool = True) -> dict:
+    """Write ``report.html`` and ``results.xlsx`` of ``source`` (input file, saved result or Result) into ``out_dir``.
+
+    Returns ``{"html": Path, "xlsx": Path, "result": Result, "graphs": [...], "skipped": [...]}``.
     """
     from synth.excel.results import write_results
     from synth.report.html import write_html
     from synth.report.plots import build_graphs
-
-    src = Path(input_path)
-    data = schema.read_mapping(src)
-    cells = None
-    if src.suffix.lower() in (".xlsx", ".xlsm"):
-        from synth.excel.reader import read_cells
-        cells = read_cells(src)[1]
-    result = flowchart.run(schema.validate(data), settings or flowchart.Settings())
-    scenes = {k: v for k, v in (scenes or {}).items() if v is not None}
-    extra = {"pareto": scenes.get("Pareto"), "solvers": scenes.get("Solvers"), "cad": list(cad or [])}
-    graphs, skipped = build_graphs(result, extra, show_progress=show_progress)
+    result, cells, name = result_for_report(source, args)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    html_path = write_html(out / "report.html", result, graphs, skipped, source=str(src), scenes=scenes)
-    xlsx_path = write_results(out / "results.xlsx", result, cells=cells, source=str(src), scenes=scenes)
+    pictures = list(cad or [])
+    if cad_pictures and not pictures and result.parts:
+        try:
+            from synth.cad import export_result
+            _, _, info = export_result(result, out / "cad", stl=False, pictures=True, interference=False)
+            pictures = [str(f) for f in info["files"] if str(f).endswith(".png")]
+        except InputError as exc:  # a design the CAD model cannot draw: the report says so
+            result.notes.append(f"3D model not drawn: {exc}")
+    scenes = {k: v for k, v in (scenes or {}).items() if v is not None}
+    extra = {"pareto": scenes.get("Pareto"), "solvers": scenes.get("Solvers"), "cad": pictures}
+    graphs, skipped = build_graphs(result, extra, show_progress=show_progress)
+    html_path = write_html(out / "report.html", result, graphs, skipped, source=name, scenes=scenes)
+    xlsx_path = write_results(out / "results.xlsx", result, cells=cells, source=name, scenes=scenes)
     return {"html": html_path, "xlsx": xlsx_path, "result": result, "graphs": graphs, "skipped": skipped}
 
 
@@ -96,8 +153,8 @@ def _main(args) -> int:
     for png in args.cad:
         if not Path(png).is_file():
             raise InputError(Problem("--cad", png, "an existing PNG file"))
-    r = make_report(args.input, args.out, settings_from_args(args), scenes=scenes, cad=args.cad)
+    r = make_report(args.input, args.out, args, scenes=scenes, cad=args.cad, cad_pictures=not args.no_cad)
     print(f"wrote {r['html']} ({len(r['graphs'])} graphs) and {r['xlsx']}")
     for s in r["skipped"]:
         print(f"  graph not drawn: {s.title}: {s.reason}", file=sys.stderr)
-    return 1 if r["result"].verdict == FAIL else 0
+    return r["result"].exit_code

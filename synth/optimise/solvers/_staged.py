@@ -58,7 +58,7 @@ def solve_evaluated(ev, objective, run_factory, *, presolve: bool = True):
 
 
 def solve_with(d, objective, run_factory, *, solver: str, settings: Settings = Settings(), pin_inputs: bool = False,
-               presolve: bool = True, relax: bool = True, **_):
+               presolve: bool = True, relax: bool = True, run_status: dict | None = None, **_):
     """Evaluate, presolve, then run the staged model solver made by ``run_factory(md)``."""
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     t0 = time.perf_counter()
@@ -79,4 +79,8 @@ def solve_with(d, objective, run_factory, *, solver: str, settings: Settings = S
         return diagnose(d, solver=solver, objective=obj, stats=stats, relax=relax, settings=settings)
     core = int(cores[ans[0]])
     options = {s: int(opts[s][ans[1][s]]) for s in SUBSYSTEMS}
-    return build_result(ev, core, options, status="optimal", solver=solver, objective=obj, stats=stats)
+    proved = (run_status or {}).get("proved", True)
+    if not proved:
+        stats["note"] = "time limit reached: the best design found so far, optimality not proved"
+    return build_result(ev, core, options, status="optimal" if proved else "feasible", solver=solver, objective=obj,
+                        stats=stats)

@@ -40,8 +40,8 @@ def _values(ev: Evaluation, core: int, opts: dict, margin: float) -> dict:
 
 
 def solve(d, objective="standard", *, n_trials: int = 200, settings: Settings = Settings(), seed: int = 0,
-          timeout_s: float | None = None, **_):
-    """Best feasible design found by optuna in ``n_trials`` trials (or ``timeout_s``)."""
+          time_limit_s: float | None = None, **_):
+    """Best feasible design found by optuna in ``n_trials`` trials (or ``time_limit_s`` seconds, at least one trial)."""
     import optuna
     optuna.logging.set_verbosity(optuna.logging.WARNING)
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
@@ -74,7 +74,9 @@ def solve(d, objective="standard", *, n_trials: int = 200, settings: Settings = 
             study.enqueue_trial(row)
     except Exception:  # the baseline is a hint only
         pass
-    study.optimize(objective_fn, n_trials=n_trials, timeout=timeout_s)
+    study.optimize(objective_fn, n_trials=max(int(n_trials), 1), timeout=time_limit_s)
+    if not any(t.value is not None for t in study.trials):  # nothing completed (a time limit below one trial)
+        study.optimize(objective_fn, n_trials=1)
     feas = [t for t in study.trials if t.value is not None and t.user_attrs.get("constraints", [1])[0] <= 0]
     stats = {"time_s": time.perf_counter() - t0, "trials": len(study.trials), "feasible_trials": len(feas),
              "designs_evaluated": len(cache)}

@@ -17,12 +17,20 @@ from synth.optimise.solvers._staged import solve_with
 __all__ = ["solve"]
 
 
-def _runner(md, backend):
+def _runner(md, backend, time_limit_s=None, status: dict | None = None):
+    status = {} if status is None else status
+
     def run(weights, margin_weight, with_margin, t_lb, add_ub):
         prob, x, ws, t, additive, pairs = milp_problem(md, weights, margin_weight, with_margin, t_lb, add_ub)
-        prob.solve(solver=backend)
+        kw = {}
+        if time_limit_s is not None:
+            kw = {"time_limit": float(time_limit_s)} if backend == "HIGHS" else \
+                {"scip_params": {"limits/time": float(time_limit_s)}}
+        prob.solve(solver=backend, **kw)
         if prob.status not in (cp.OPTIMAL, cp.OPTIMAL_INACCURATE):
-            return None
+            if x.value is None:
+                return None
+            status["proved"] = False
         c = int(np.argmax(x.value))
         opts = {}
         for s in SUBSYSTEMS:
@@ -33,6 +41,8 @@ def _runner(md, backend):
     return run
 
 
-def solve(d, objective="standard", *, backend: str = "HIGHS", **kw):
-    """Optimum by the cvxpy MILP (``backend``: ``HIGHS`` or ``SCIP``)."""
-    return solve_with(d, objective, lambda md: _runner(md, backend), solver="milp-cvxpy", **kw)
+def solve(d, objective="standard", *, backend: str = "HIGHS", time_limit_s: float | None = None, **kw):
+    """Optimum by the cvxpy MILP (``backend``: ``HIGHS`` or ``SCIP``); ``time_limit_s`` per stage."""
+    status: dict = {}
+    return solve_with(d, objective, lambda md: _runner(md, backend, time_limit_s, status), solver="milp-cvxpy",
+                      run_status=status, **kw)

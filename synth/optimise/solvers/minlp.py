@@ -25,8 +25,10 @@ __all__ = ["solve", "VARIANTS"]
 VARIANTS = {"minlp": ("scip_direct", minlp_model), "milp-highs": ("appsi_highs", milp_model)}
 
 
-def _runner(md, variant):
+def _runner(md, variant, time_limit_s=None, status: dict | None = None):
+    """The stage runner of ``variant``; ``status["proved"]`` turns False when a time limit stops a stage."""
     solver_name, builder = VARIANTS[variant]
+    status = {} if status is None else status
 
     def run(weights, margin_weight, with_margin, t_lb, add_ub):
         m = builder(md, weights, margin_weight, with_margin)
@@ -34,13 +36,21 @@ def _runner(md, variant):
         m.add_ub = add_ub
         opt = pyo.SolverFactory(solver_name)
         if solver_name == "scip_direct":
-            res = opt.solve(m, options={"limits/gap": 0.0}, load_solutions=False)
+            options = {"limits/gap": 0.0}
+            if time_limit_s is not None:
+                options["limits/time"] = float(time_limit_s)
+            res = opt.solve(m, options=options, load_solutions=False)
         else:
             opt.config.mip_gap = 0.0
+            if time_limit_s is not None:
+                opt.config.time_limit = float(time_limit_s)
+            opt.config.load_solution = False
             res = opt.solve(m, load_solutions=False)
         tc = str(res.solver.termination_condition).split(".")[-1]
         if tc not in ("optimal", "globallyOptimal", "locallyOptimal"):
-            return None
+            if "time" not in tc.lower() or not len(res.solution):
+                return None
+            status["proved"] = False  # the incumbent at the time limit
         m.solutions.load_from(res)
         c = int(np.argmax([pyo.value(m.x[i]) for i in m.C]))
         if variant == "minlp":
@@ -54,6 +64,8 @@ def _runner(md, variant):
     return run
 
 
-def solve(d, objective="standard", *, variant: str = "minlp", **kw):
-    """Optimum by the Pyomo ``variant`` (``minlp``: SCIP; ``milp-highs``: HiGHS)."""
-    return solve_with(d, objective, lambda md: _runner(md, variant), solver=variant, **kw)
+def solve(d, objective="standard", *, variant: str = "minlp", time_limit_s: float | None = None, **kw):
+    """Optimum by the Pyomo ``variant`` (``minlp``: SCIP; ``milp-highs``: HiGHS); ``time_limit_s`` per stage."""
+    status: dict = {}
+    return solve_with(d, objective, lambda md: _runner(md, variant, time_limit_s, status), solver=variant,
+                      run_status=status, **kw)
