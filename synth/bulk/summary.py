@@ -38,7 +38,7 @@ import numpy as np
 import pandas as pd
 
 from synth import schema
-from synth.optimise.result import PART_KEYS
+from synth.design.space import PART_KEYS
 
 __all__ = ["Summary", "summarise", "write_summary", "text", "markdown_table", "fidelity_agreement", "GROUPS"]
 

@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from synth.checks import FAIL, PASS
+from synth.design.result import FAIL, PASS
 
 __all__ = ["Graph", "Skipped", "CATALOG", "build_graphs", "graph_png", "COLOURS"]
 
