@@ -631,10 +631,10 @@ def elastic_permissible_preload_n(pitch_mm, d2_mm, d3_mm, stress_area, rp02_mpa,
     ``d = d3`` (``torsion_diameter="minor"``, eq. (105)) or ``(d2+d3)/2``
     (``"stress"``). It is the thesis-form counterpart of
     :func:`permissible_assembly_preload_n` (elastic torsion on d3 instead of
-    plastic torsion on d0): M8x1.25 8.8, mu 0.14, nu 0.9: 15.4 kN vs 18.1 kN.
+    plastic torsion on d0): M8x1.25 8.8, mu 0.14, nu 0.9: 15.43 kN vs 18.13 kN.
 
     >>> round(float(elastic_permissible_preload_n(1.25, 7.188, 6.466, 36.6, 640.0, 0.14)) / 1e3, 2)
-    15.42
+    15.43
     """
     if torsion_diameter not in ("minor", "stress"):
         raise InputError(Problem("torsion_diameter", torsion_diameter, "'minor' or 'stress'"))
