@@ -197,7 +197,7 @@ def geometry_from(result, inputs=None, *, name: str | None = None) -> TensionerG
     bolt = str(v.get("bolt_format") or "")
     try:
         bolt_row = catalog.row("bolts", bolt, "bolt_format")
-        bolt_d, head_cat = float(bolt_row["d_mm"]), float(bolt_row["dw_min_hex_mm"])
+        bolt_d, head_cat = float(bolt_row["d_mm"]), float(catalog.row("bolt_heads", f"{bolt} hex")["dw_min_mm"])
     except InputError:
         miss.append("bolt_format")
         bolt_d, head_cat = float("nan"), float("nan")

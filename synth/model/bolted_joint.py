@@ -14,6 +14,15 @@ Where the printed thesis equations are wrong or ambiguous the physically
 correct form is implemented and the thesis tool's convention is offered as a
 keyword option; see ``docs/sections/bolted_joint.md``.
 
+Two paths choose the bolt (:func:`fixation` ``method``): ``"thesis"``
+(default; the thesis tool's elastic stress check at the required clamp force,
+reproduces the thesis cases) and ``"vdi2230"`` (VDI 2230 Part 1 (2015):
+permissible assembly preload with plastic torsion, tightening factor and
+embedding loss, so that the smallest residual clamp force meets the tilting
+and sliding targets). Thread data: ``catalogs/bolts.csv`` (ISO 261/262/724,
+ISO 898-1 A_s), head forms ``catalogs/bolt_heads.csv`` (hex, flange,
+socket), classes ``catalogs/bolt_property_classes.csv`` (ISO 898-1).
+
 >>> hl = nominal_hubload_n(3.25, 5.0, 85.0)
 >>> round(float(hl), 1)
 652.5
@@ -41,7 +50,10 @@ __all__ = [
     "bolt_normal_stress_mpa", "bolt_torsion_stress_mpa", "von_mises_stress_mpa",
     "under_head_stress_mpa", "thread_area_mm2", "thread_bearing_stress_mpa",
     "min_head_contact_diameter_mm", "min_active_threads",
-    "bolt_candidates", "fixation", "fixation_checks",
+    "iso724_diameters_mm", "stress_area_mm2", "permissible_assembly_preload_n", "elastic_permissible_preload_n",
+    "assembly_torque_nm", "head_mean_diameter_mm", "tightening_factor_from_scatter", "tightening_factor",
+    "embedding_um", "bolt_resilience_mm_per_n", "clamped_parts_resilience_mm_per_n", "embedding_preload_loss_n",
+    "HEAD_TYPES", "METHODS", "bolt_head", "bolt_candidates", "fixation", "fixation_checks",
 ]
 
 STEP = 10
@@ -539,25 +551,376 @@ def min_active_threads(bolt_force_n, area_per_thread_mm2, allowable_stress_mpa):
 
 
 # ----------------------------------------------------------------------------------------------
-# catalogs: bolt formats and property classes, escalation order
+# ISO thread geometry and the VDI 2230 Part 1 assembly path (R1, R4-R7, R13; section 5.1)
 # ----------------------------------------------------------------------------------------------
 
-def bolt_candidates(bolt_format: str | None = None, property_class: str | None = None):
-    """The (format, property class) pairs in the flowchart's escalation order.
+def iso724_diameters_mm(d_mm, pitch_mm):
+    """Basic pitch, minor and nut-minor diameters of an ISO metric thread, ISO 724 [mm].
+
+    From the ISO 68-1 basic profile (fundamental triangle height
+    ``H = sqrt(3)/2 P``): ``d2 = d - 3/4 H = d - 0.649519 P``,
+    ``d3 = d - 17/12 H = d - 1.226869 P`` (minor diameter of the bolt thread
+    with the root radius of ISO 898-1), ``D1 = d - 5/4 H = d - 1.082532 P``.
+    Valid for any d > 0, P > 0 (ISO 261 pairs P with d).
+
+    >>> [round(float(v), 3) for v in iso724_diameters_mm(8.0, 1.25)]
+    [7.188, 6.466, 6.647]
+    """
+    d = _require("d_mm", d_mm)
+    p = _require("pitch_mm", pitch_mm)
+    h = np.sqrt(3.0) / 2.0 * p
+    return d - 0.75 * h, d - 17.0 / 12.0 * h, d - 1.25 * h
+
+
+def stress_area_mm2(d2_mm, d3_mm):
+    """Nominal stress area of a bolt thread, ISO 898-1: ``A_s = pi/4 ((d2 + d3)/2)^2`` [mm^2].
+
+    ISO 898-1:2013 tabulates it to three significant figures (M8: 36.6 mm^2).
+
+    >>> round(float(stress_area_mm2(7.188, 6.466)), 2)
+    36.61
+    """
+    return np.pi / 4.0 * ((_arr(d2_mm) + _arr(d3_mm)) / 2.0) ** 2
+
+
+def _utilisation(utilisation):
+    return constant("vdi_utilisation_nu") if utilisation is None else _require(
+        "utilisation", utilisation, high=1.0, accepted="a yield utilisation in (0, 1]")
+
+
+def permissible_assembly_preload_n(pitch_mm, d2_mm, d3_mm, rp02_mpa, mu_thread, *, utilisation=None, d0_mm=None):
+    """Permissible assembly preload ``F_M,zul``, VDI 2230 Part 1 (2015) step R7, eq. (R7/2) [N].
+
+    ``F_M,zul = A0 nu Rp0.2min / sqrt(1 + 3 [3/2 d2/d0 (P/(pi d2) + 1.155 mu_G,min)]^2)``:
+    the preload at which the von Mises stress of tension plus thread-torque
+    torsion reaches ``nu Rp0.2``, with the torsion taken on a *plastic*
+    section (``W_p = pi d0^3/12``, factor 3/2 instead of the elastic 2).
+    ``d0``: diameter of the smallest cross-section, ``d_S = (d2 + d3)/2`` for
+    shank bolts with a full thread or a shank of at least d (the default),
+    ``A0 = pi/4 d0^2`` (= ISO 898-1 ``A_s``); pass ``d0_mm`` for a reduced
+    shank. ``nu`` defaults to the constant ``vdi_utilisation_nu`` (0.9, the
+    basis of VDI 2230 Tables A1-A4); ``1.155 = 1/cos 30``. Units: N, mm, MPa.
+    Valid for ISO metric threads, mu_G >= 0, 0 < nu <= 1.
+
+    VDI 2230 Table A2 (as reprinted by Bossard/Mastik, see
+    tests/validation): M8x1, 8.8, mu_G 0.10: 20.7 kN.
+
+    >>> round(float(permissible_assembly_preload_n(1.0, 7.350, 6.773, 640.0, 0.10)) / 1e3, 1)
+    20.7
+    """
+    p = _require("pitch_mm", pitch_mm)
+    d2 = _require("d2_mm", d2_mm)
+    d3 = _require("d3_mm", d3_mm)
+    rp = _require("rp02_mpa", rp02_mpa)
+    mu = _require("thread friction coefficient", mu_thread, inclusive=True)
+    nu = _utilisation(utilisation)
+    d0 = (d2 + d3) / 2.0 if d0_mm is None else _require("d0_mm", d0_mm)
+    a0 = np.pi / 4.0 * d0**2
+    k = 1.5 * d2 / d0 * (p / (np.pi * d2) + mu / np.cos(np.radians(constant("thread_flank_half_angle_deg"))))
+    return a0 * nu * rp / np.sqrt(1.0 + 3.0 * k**2)
+
+
+def elastic_permissible_preload_n(pitch_mm, d2_mm, d3_mm, stress_area, rp02_mpa, mu_thread, *, utilisation=None,
+                                  torsion_diameter="minor"):
+    """The preload at which the thesis's elastic stress form reaches ``nu Rp0.2`` [N].
+
+    Eq. (103)-(107) solved for the force: ``sigma = F/A_s``,
+    ``tau = 16 T_G/(pi d^3)`` with ``T_G = F/2 (P/pi + mu d2/cos 30)``
+    (:func:`thread_torque_nmm`), ``sqrt(sigma^2 + 3 tau^2) = nu Rp0.2``, so
+    ``F = nu Rp0.2 / sqrt(1/A_s^2 + 3 c^2)``, ``c = 8 (P/pi + mu d2/cos 30)/(pi d^3)``.
+    ``d = d3`` (``torsion_diameter="minor"``, eq. (105)) or ``(d2+d3)/2``
+    (``"stress"``). It is the thesis-form counterpart of
+    :func:`permissible_assembly_preload_n` (elastic torsion on d3 instead of
+    plastic torsion on d0): M8x1.25 8.8, mu 0.14, nu 0.9: 15.43 kN vs 18.13 kN.
+
+    >>> round(float(elastic_permissible_preload_n(1.25, 7.188, 6.466, 36.6, 640.0, 0.14)) / 1e3, 2)
+    15.43
+    """
+    if torsion_diameter not in ("minor", "stress"):
+        raise InputError(Problem("torsion_diameter", torsion_diameter, "'minor' or 'stress'"))
+    p, d2, d3 = _arr(pitch_mm), _arr(d2_mm), _arr(d3_mm)
+    a_s = _require("bolt stress area [mm2]", stress_area)
+    rp = _require("rp02_mpa", rp02_mpa)
+    mu = _require("thread friction coefficient", mu_thread, inclusive=True)
+    d = d3 if torsion_diameter == "minor" else (d2 + d3) / 2.0
+    cb = np.cos(np.radians(constant("thread_flank_half_angle_deg")))
+    c = 8.0 * (p / np.pi + mu * d2 / cb) / (np.pi * d**3)
+    return _utilisation(utilisation) * rp / np.sqrt(1.0 / a_s**2 + 3.0 * c**2)
+
+
+def assembly_torque_nm(preload_n, pitch_mm, d2_mm, mu_thread, head_mean_diameter_mm, mu_head):
+    """Tightening torque, VDI 2230 Part 1 (2015) eq. (R13/1) as printed [N*m].
+
+    ``M_A = F_M (0.16 P + 0.58 d2 mu_G + D_Km/2 mu_K)`` with the rounded
+    coefficients of the guideline (``0.16 ~ 1/(2 pi)``, ``0.58 ~ 1/(2 cos 30)``;
+    :func:`tightening_torque_nm` is the unrounded form, 0.3 % different).
+    ``D_Km`` is the mean friction diameter under the head,
+    ``(d_w + d_h)/2`` (:func:`head_mean_diameter_mm`). VDI 2230 Table A2 (via
+    Bossard): M8x1, 8.8, mu 0.10, F 20.7 kN, D_Km (11.63 + 9)/2: 22.8 N*m.
+
+    >>> round(float(assembly_torque_nm(20.7e3, 1.0, 7.350, 0.10, head_mean_diameter_mm(11.63, 9.0), 0.10)), 1)
+    22.8
+    """
+    f = _arr(preload_n)
+    p, d2 = _arr(pitch_mm), _arr(d2_mm)
+    mu_g = _require("thread friction coefficient", mu_thread, inclusive=True)
+    mu_k = _require("under-head friction coefficient", mu_head, inclusive=True)
+    return f * (0.16 * p + 0.58 * d2 * mu_g + _arr(head_mean_diameter_mm) / 2.0 * mu_k) / 1000.0
+
+
+def head_mean_diameter_mm(head_contact_diameter_mm, hole_diameter_mm):
+    """Mean friction diameter under the bolt head ``D_Km = (d_w + d_h)/2`` (VDI 2230 Part 1, R13) [mm].
+
+    >>> float(head_mean_diameter_mm(11.63, 9.0))
+    10.315
+    """
+    return (_arr(head_contact_diameter_mm) + _arr(hole_diameter_mm)) / 2.0
+
+
+def tightening_factor_from_scatter(scatter):
+    """Tightening factor ``alpha_A = F_M,max/F_M,min = (1 + s)/(1 - s)`` for a preload scatter ``+/- s`` (VDI 2230, R1) [-].
+
+    ``s`` is the relative scatter about the mean preload (0.23 for +/-23 %).
+
+    >>> round(float(tightening_factor_from_scatter(0.23)), 2)
+    1.6
+    """
+    s = _require("preload scatter", scatter, inclusive=True, high=0.99, accepted="a relative scatter in [0, 0.99]")
+    return (1.0 + s) / (1.0 - s)
+
+
+DEFAULT_TIGHTENING_METHOD = "torque_wrench_tested"  # engine assembly: torque set by tests on the real joint
+DEFAULT_EMBEDDING_ROUGHNESS = "rz_10_40"            # machined faces, 10 <= Rz < 40 um
+DEFAULT_EMBEDDING_LOADING = "transverse"             # the hubload loads the joint in shear
+JOINT_TYPES = ("tapped", "through")                  # VDI ESV (tapped thread) / DSV (through bolt and nut)
+
+
+def tightening_factor(method: str = DEFAULT_TIGHTENING_METHOD, bound: str = "max") -> float:
+    """Tightening factor ``alpha_A`` of a tightening method, from ``catalogs/tightening_factors.csv`` [-].
+
+    The file gives the preload scatter range of each method (VDI 2230
+    guide values); ``bound="max"`` (default, the conservative end) or
+    ``"min"`` converts its end with :func:`tightening_factor_from_scatter`.
+    Default method: torque-controlled tightening with the torque found by
+    tests on the original joint (+/-17..23 %, alpha_A 1.41-1.60), as on an
+    engine assembly line.
+
+    >>> round(tightening_factor(), 2), round(tightening_factor("torque_wrench_tested", "min"), 2)
+    (1.6, 1.41)
+    """
+    df = load("tightening_factors")
+    hit = df[df["tightening_method"] == str(method).strip()]
+    if hit.empty:
+        raise InputError(Problem("tightening_method", method, "one of " + ", ".join(df["tightening_method"])))
+    if bound not in ("min", "max"):
+        raise InputError(Problem("bound", bound, "'min' or 'max'"))
+    s = float(hit.iloc[0]["scatter_max_pct" if bound == "max" else "scatter_min_pct"]) / 100.0
+    return float(tightening_factor_from_scatter(s))
+
+
+def embedding_um(roughness_class: str = DEFAULT_EMBEDDING_ROUGHNESS, loading: str = DEFAULT_EMBEDDING_LOADING, *,
+                 interfaces=None, joint_type: str = "tapped"):
+    """Total amount of embedding ``f_Z`` of a joint, VDI 2230 Part 1 Table 5.4/1 guide values [um].
+
+    ``f_Z = f_thread + f_head + (f_nut if through bolt) + n_interfaces f_interface``
+    with the per-surface values of ``catalogs/embedding_amounts.csv`` for the
+    surface roughness class (``rz_lt_10``, ``rz_10_40``, ``rz_40_160``) and the
+    loading (``axial`` or ``transverse``). ``interfaces`` counts the inner
+    interfaces of the clamped stack (default: constant ``vdi_clamped_interfaces``,
+    the pivot base on the crankcase); a tapped joint (``joint_type="tapped"``,
+    VDI "ESV") has one thread and one head face, a through bolt one more (nut) face.
+
+    >>> float(embedding_um("rz_10_40", "transverse", interfaces=1))
+    10.0
+    """
+    if joint_type not in JOINT_TYPES:
+        raise InputError(Problem("joint_type", joint_type, "one of " + ", ".join(JOINT_TYPES)))
+    df = load("embedding_amounts")
+    hit = df[(df["roughness_class"] == str(roughness_class).strip()) & (df["loading"] == str(loading).strip())]
+    if hit.empty:
+        if str(roughness_class).strip() not in set(df["roughness_class"]):
+            raise InputError(Problem("embedding roughness class", roughness_class,
+                                     "one of " + ", ".join(sorted(set(df["roughness_class"])))))
+        raise InputError(Problem("embedding loading", loading, "one of " + ", ".join(sorted(set(df["loading"])))))
+    r = hit.iloc[0]
+    n = constant("vdi_clamped_interfaces") if interfaces is None else _require(
+        "clamped_interfaces", interfaces, inclusive=True, accepted="a number of inner interfaces >= 0")
+    faces = 2.0 if joint_type == "through" else 1.0
+    return float(r["thread_um"]) + faces * float(r["head_or_nut_um"]) + n * float(r["interface_um"])
+
+
+def bolt_resilience_mm_per_n(d_mm, d3_mm, clamp_length_mm, *, head_type="hex", joint_type="tapped",
+                             free_thread_length_mm=0.0, modulus_mpa=None, internal_thread_modulus_mpa=None):
+    """Axial elastic resilience of the bolt ``delta_S``, VDI 2230 Part 1 section 5.1.1.1 [mm/N].
+
+    ``delta_S = delta_SK + delta_shank + delta_Gew + delta_G + delta_M``,
+    eq. (5.1/3): head ``l_SK/(E_S A_N)`` with ``l_SK = 0.5 d`` (hexagon and
+    flange heads, 5.1/14) or ``0.4 d`` (socket heads, 5.1/15); plain shank of
+    diameter d over ``l_K - l_Gew``; free loaded thread ``l_Gew/(E_S A_d3)``
+    (5.1/12); engaged thread ``0.5 d/(E_S A_d3)`` (5.1/5-6); nut
+    ``0.4 d/(E_S A_N)`` (through bolt, 5.1/10) or tapped region
+    ``0.33 d/(E_BI A_N)`` (tapped joint, 5.1/11). ``A_N = pi d^2/4``,
+    ``A_d3 = pi d3^2/4``. Default: the clamped length is spanned by the plain
+    shank (``free_thread_length_mm=0``; the stiffer bolt, so the larger
+    embedding loss); moduli default to the constants ``bolt_modulus_mpa`` and
+    ``clamped_parts_modulus_mpa`` (the crankcase thread). Valid for
+    ``l_K >= l_Gew >= 0``.
+
+    M8, d3 6.466, l_K 40 mm, hex head, tapped in aluminium (E 70000),
+    steel bolt (E 210000): (4 + 40)/(E 50.27) + 4/(E 32.84) +
+    2.64/(70000 50.27) = 4.168e-6 + 0.580e-6 + 0.750e-6 = 5.498e-6 mm/N.
+
+    >>> round(float(bolt_resilience_mm_per_n(8.0, 6.466, 40.0, modulus_mpa=210000.0,
+    ...                                      internal_thread_modulus_mpa=70000.0)) * 1e6, 3)
+    5.498
+    """
+    if head_type not in HEAD_TYPES:
+        raise InputError(Problem("head_type", head_type, "one of " + ", ".join(HEAD_TYPES)))
+    if joint_type not in JOINT_TYPES:
+        raise InputError(Problem("joint_type", joint_type, "one of " + ", ".join(JOINT_TYPES)))
+    d = _require("d_mm", d_mm)
+    d3 = _require("d3_mm", d3_mm)
+    lk = _require("clamp_length_mm", clamp_length_mm, accepted="a clamped length > 0 mm")
+    lgew = _require("free_thread_length_mm", free_thread_length_mm, inclusive=True)
+    if np.any(lgew > lk):
+        raise InputError(Problem("free_thread_length_mm", float(np.max(lgew)), "a length <= the clamped length"))
+    e_s = constant("bolt_modulus_mpa") if modulus_mpa is None else _require("bolt modulus [MPa]", modulus_mpa)
+    if joint_type == "through":
+        e_m, l_m = e_s, 0.4 * d
+    else:
+        e_m = constant("clamped_parts_modulus_mpa") if internal_thread_modulus_mpa is None else _require(
+            "internal thread modulus [MPa]", internal_thread_modulus_mpa)
+        l_m = 0.33 * d
+    a_n = np.pi / 4.0 * d**2
+    a_d3 = np.pi / 4.0 * d3**2
+    l_sk = (0.4 if head_type == "socket" else 0.5) * d
+    return (l_sk + (lk - lgew)) / (e_s * a_n) + (lgew + 0.5 * d) / (e_s * a_d3) + l_m / (e_m * a_n)
+
+
+def clamped_parts_resilience_mm_per_n(head_contact_diameter_mm, hole_diameter_mm, outer_diameter_mm, clamp_length_mm,
+                                      *, modulus_mpa=None, joint_type="tapped"):
+    """Elastic resilience of concentrically clamped parts ``delta_P``, VDI 2230 Part 1 section 5.1.2.1 [mm/N].
+
+    Substitute deformation cone from the head bearing diameter ``d_W`` with
+    ``tan(phi) = 0.348 + 0.013 ln(beta_L) + 0.193 ln(y)`` (tapped joint, ESV,
+    5.1/26) or ``0.362 + 0.032 ln(beta_L/2) + 0.153 ln(y)`` (through bolt,
+    DSV, 5.1/27), ``beta_L = l_K/d_W``, ``y = D_A/d_W``; limiting diameter
+    ``D_A,Gr = d_W + w l_K tan(phi)`` (5.1/23, w = 2 tapped, 1 through).
+    ``D_A >= D_A,Gr``: cone only (5.1/24)
+    ``delta_P = 2 ln[(d_W + d_h)(D_A,Gr - d_h)/((d_W - d_h)(D_A,Gr + d_h))]/(w E_P pi d_h tan(phi))``;
+    ``d_W < D_A < D_A,Gr``: cone plus sleeve (5.1/25); ``D_A <= d_W``: a
+    sleeve ``l_K/(E_P pi/4 (D_A^2 - d_h^2))``. ``d_h``: hole diameter
+    (here the engine-support internal diameter), ``D_A``: outer diameter
+    of the clamped part (the support external diameter). E_P defaults to
+    the constant ``clamped_parts_modulus_mpa``. Valid for
+    ``d_W > d_h``, ``D_A > d_h``, ``l_K > 0``.
+
+    Case 1 support (d_W 13, d_h 8.2, D_A 22.9, l_K 40, aluminium 70000 MPa),
+    tapped: tan(phi) = 0.348 + 0.013 ln(3.077) + 0.193 ln(1.762) = 0.4719,
+    D_A,Gr = 50.75 > D_A, so cone plus sleeve: (0.1902 + 0.2582)/(70000 pi)
+    = 2.039e-6 mm/N (a 40 mm aluminium sleeve of 359 mm^2 alone gives 1.59e-6).
+
+    >>> round(float(clamped_parts_resilience_mm_per_n(13.0, 8.2, 22.9, 40.0, modulus_mpa=70000.0)) * 1e6, 3)
+    2.039
+    """
+    if joint_type not in JOINT_TYPES:
+        raise InputError(Problem("joint_type", joint_type, "one of " + ", ".join(JOINT_TYPES)))
+    dw = _require("bolt_head_contact_external_diameter_mm", head_contact_diameter_mm)
+    dh = _require("engine_support_internal_diameter_mm", hole_diameter_mm)
+    da = _require("engine_support_external_diameter_mm", outer_diameter_mm)
+    lk = _require("clamp_length_mm", clamp_length_mm, accepted="a clamped length > 0 mm")
+    ep = constant("clamped_parts_modulus_mpa") if modulus_mpa is None else _require("clamped parts modulus [MPa]",
+                                                                                     modulus_mpa)
+    dw, dh, da, lk, ep = np.broadcast_arrays(dw, dh, da, lk, ep)
+    if np.any(dw <= dh):
+        raise InputError(Problem("bolt_head_contact_external_diameter_mm", float(np.ravel(dw[dw <= dh])[0]),
+                                 "a diameter > the support internal diameter"))
+    if np.any(da <= dh):
+        raise InputError(Problem("engine_support_external_diameter_mm", float(np.ravel(da[da <= dh])[0]),
+                                 "a diameter > the support internal diameter"))
+    w = 2.0 if joint_type == "tapped" else 1.0
+    beta, y = lk / dw, np.maximum(da, dw) / dw
+    tan_phi = (0.348 + 0.013 * np.log(beta) + 0.193 * np.log(y)) if joint_type == "tapped" else \
+        (0.362 + 0.032 * np.log(beta / 2.0) + 0.153 * np.log(y))
+    tan_phi = np.maximum(tan_phi, 1e-3)  # the fits stay > 0.1 for any real joint; guard absurd l_K/d_W only
+    da_gr = dw + w * lk * tan_phi
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cone = 2.0 * np.log((dw + dh) * (da_gr - dh) / ((dw - dh) * (da_gr + dh))) / (w * ep * np.pi * dh * tan_phi)
+        da_c = np.clip(da, dw * (1 + 1e-12), None)
+        cone_sleeve = (2.0 / (w * dh * tan_phi) * np.log((dw + dh) * (da_c - dh) / ((dw - dh) * (da_c + dh)))
+                       + 4.0 / (da_c**2 - dh**2) * (lk - (da_c - dw) / (w * tan_phi))) / (ep * np.pi)
+    sleeve = lk / (ep * np.pi / 4.0 * (da**2 - dh**2))
+    return np.where(da >= da_gr, cone, np.where(da > dw, cone_sleeve, sleeve))
+
+
+def embedding_preload_loss_n(embedding_um_, bolt_resilience, clamped_resilience):
+    """Preload lost to embedding ``F_Z = f_Z/(delta_S + delta_P)``, VDI 2230 Part 1 eq. (R4/1) [N].
+
+    ``f_Z`` in um (converted to mm), resiliences in mm/N.
+
+    >>> round(float(embedding_preload_loss_n(10.0, 5.498e-6, 2.039e-6)))
+    1327
+    """
+    fz = _require("embedding [um]", embedding_um_, inclusive=True)
+    return fz * 1e-3 / (_require("bolt resilience", bolt_resilience) + _require("clamped parts resilience",
+                                                                                clamped_resilience))
+
+
+# ----------------------------------------------------------------------------------------------
+# catalogs: bolt formats, head forms and property classes, escalation order
+# ----------------------------------------------------------------------------------------------
+
+HEAD_TYPES = ("hex", "flange", "socket")
+METHODS = ("thesis", "vdi2230")
+
+
+def bolt_head(bolt_format: str, head_type: str = "hex"):
+    """The ``catalogs/bolt_heads.csv`` row of a thread format in a head form (a pandas Series).
+
+    Head forms: ``hex`` (ISO 4017, fine pitch ISO 8676), ``flange`` (ISO 4162 /
+    ISO 15071), ``socket`` (ISO 4762 / ISO 12474). Columns ``dw_min_mm``
+    (bearing-face diameter), ``head_outer_mm`` (s, dc or dk), ``head_height_mm``,
+    ``product_standard``, ``cost_factor``.
+
+    >>> float(bolt_head("M8x1.25", "flange")["dw_min_mm"]), str(bolt_head("M8x1", "socket")["product_standard"])
+    (14.9, 'ISO 12474')
+    """
+    if head_type not in HEAD_TYPES:
+        raise InputError(Problem("head_type", head_type, "one of " + ", ".join(HEAD_TYPES)))
+    heads = load("bolt_heads")
+    hit = heads[(heads["bolt_format"] == str(bolt_format).strip()) & (heads["head_type"] == head_type)]
+    if hit.empty:
+        raise CatalogError(Problem("bolt_format", bolt_format, f"a format with a {head_type} head: "
+                                   + ", ".join(heads.loc[heads["head_type"] == head_type, "bolt_format"])))
+    return hit.iloc[0].copy()
+
+
+_NUMERIC_BOLT_COLUMNS = ("d_mm", "pitch_mm", "d2_mm", "d3_mm", "D1_mm", "stress_area_mm2", "pivot_bore_min_mm")
+
+
+def bolt_candidates(bolt_format: str | None = None, property_class: str | None = None, head_type: str = "hex"):
+    """The (format, property class) pairs in the flowchart's escalation order, in one head form.
 
     Automatic mode (``None``): formats with an ``escalation_rank`` in
     ``bolts.csv`` (M8x1.25, M10x1.5, M12x1.75), and for each format the
     classes 8.8, 9.8, 10.9, 12.9 in rank order (thesis section 10: the class
     is raised first, the format when the strongest class yields). Classes not
     defined for the format's diameter (9.8 above 16 mm) are skipped. Naming a
-    format or class restricts the list (manual verification). Returns a list
-    of dicts with the bolt geometry and ``rp02_mpa``, ``rm_mpa``.
+    format or class restricts the list (manual verification). ``head_type``
+    (``hex``, ``flange``, ``socket``) picks the head row of
+    ``bolt_heads.csv``. Returns a list of dicts with the thread geometry, the
+    head (``head_type``, ``dw_min_mm``, ``head_outer_mm``, ``head_height_mm``,
+    ``head_product_standard``), ``rp02_mpa``, ``rm_mpa``, ``unit_cost_eur``
+    (the format's cost times the head's ``cost_factor``) and
+    ``unit_cost_factor`` (the class's).
 
     >>> [(c["bolt_format"], c["bolt_property_class"]) for c in bolt_candidates()][:3]
     [('M8x1.25', '8.8'), ('M8x1.25', '9.8'), ('M8x1.25', '10.9')]
-    >>> len(bolt_candidates("M10x1.25", "10.9"))
-    1
+    >>> len(bolt_candidates("M10x1.25", "10.9")), bolt_candidates("M8x1.25", "8.8", "socket")[0]["dw_min_mm"]
+    (1, 12.33)
     """
+    if head_type not in HEAD_TYPES:
+        raise InputError(Problem("head_type", head_type, "one of " + ", ".join(HEAD_TYPES)))
     bolts = load("bolts")
     classes = load("bolt_property_classes")
     key_b, key_c = bolts.columns[0], classes.columns[0]
@@ -579,6 +942,7 @@ def bolt_candidates(bolt_format: str | None = None, property_class: str | None =
     out = []
     for _, b in bolts.iterrows():
         big = float(b["d_mm"]) > 16.0
+        head = bolt_head(str(b[key_b]), head_type)
         for _, c in classes.iterrows():
             if not np.isnan(float(c["d_max_mm"])) and float(b["d_mm"]) > float(c["d_max_mm"]):
                 continue
@@ -586,9 +950,11 @@ def bolt_candidates(bolt_format: str | None = None, property_class: str | None =
             rm = float(c["rm_min_d_gt16_mpa"] if big else c["rm_min_mpa"])
             out.append({
                 "bolt_format": str(b[key_b]), "bolt_property_class": str(c[key_c]),
-                **{k: float(b[k]) for k in ("d_mm", "pitch_mm", "d2_mm", "d3_mm", "D1_mm", "stress_area_mm2",
-                                            "dw_min_hex_mm", "dw_min_flange_mm", "pivot_bore_min_mm",
-                                            "unit_cost_eur")},
+                **{k: float(b[k]) for k in _NUMERIC_BOLT_COLUMNS},
+                "head_type": head_type, "dw_min_mm": float(head["dw_min_mm"]),
+                "head_outer_mm": float(head["head_outer_mm"]), "head_height_mm": float(head["head_height_mm"]),
+                "head_product_standard": str(head["product_standard"]),
+                "unit_cost_eur": float(b["unit_cost_eur"]) * float(head["cost_factor"]),
                 "rp02_mpa": rp, "rm_mpa": rm, "unit_cost_factor": float(c["unit_cost_factor"]),
             })
     if not out:
@@ -610,26 +976,58 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
              bolt_format=None, bolt_property_class=None,
              mu_crankcase=None, mu_thread=None, mu_head=None,
              contact_model="sector", torque_model="vdi", normal_stress_area="stress",
-             torsion_diameter="minor", thread_area_model="triangle"):
+             torsion_diameter="minor", thread_area_model="triangle",
+             method="thesis", clamp_length_mm=None, tightening_method=DEFAULT_TIGHTENING_METHOD, alpha_a=None,
+             embedding_roughness=DEFAULT_EMBEDDING_ROUGHNESS, embedding_loading=DEFAULT_EMBEDDING_LOADING,
+             clamped_interfaces=None, joint_type="tapped", clamped_parts_modulus_mpa=None,
+             free_thread_length_mm=0.0, utilisation=None, tighten_to="permissible"):
     """Step 10 of the flowchart: bolt preload, bolt choice and all checks (eq. (94)-(111)).
 
-    Vectorised over designs: every numeric argument broadcasts. The bolt force
-    is ``max(F_tilting, F_sliding)`` for the safety targets (eq. (100)); the
-    bolt is the first (format, class) of :func:`bolt_candidates` whose von
-    Mises stress stays within ``bolt_yield_utilisation_max * Rp0.2``
-    (the largest if none does; its margin is then negative).
+    Vectorised over designs: every numeric argument broadcasts. The clamp
+    force the joint needs is ``max(F_tilting, F_sliding)`` for the safety
+    targets (eq. (100)). Two paths choose and check the bolt (``method``):
+
+    ``"thesis"`` (default): the bolt is tightened to exactly that force; the
+    bolt is the first (format, class) of :func:`bolt_candidates` whose
+    elastic von Mises stress (eq. (103)-(107)) stays within
+    ``bolt_yield_utilisation_max * Rp0.2`` (the largest if none does; its
+    margin is then negative). This is the thesis tool: it reproduces the
+    thesis cases (case 1 as run: M8x1.25 8.8, 19.64 N*m).
+
+    ``"vdi2230"``: VDI 2230 Part 1 (2015) steps R1-R7, R10, R12, R13. The
+    required force is the minimum residual clamp force ``F_Kerf``; embedding
+    ``F_Z`` (:func:`embedding_preload_loss_n`, needs ``clamp_length_mm``) and
+    the tightening factor ``alpha_A`` (:func:`tightening_factor` of
+    ``tightening_method``, or ``alpha_a``) give ``F_M,min = F_Kerf + F_Z`` and
+    ``F_M,max = alpha_A F_M,min``; the bolt is the first candidate with
+    ``F_M,max <= F_M,zul`` (:func:`permissible_assembly_preload_n`, plastic
+    torsion, ``nu = utilisation`` or 0.9). It is tightened to ``F_M,zul`` at
+    the lowest friction (torque eq. (R13/1); ``tighten_to="required"``
+    tightens to ``F_M,max`` instead, the least torque that still guarantees
+    ``F_M,min``); the reported ``bolt_axial_force_n`` is that assembly
+    preload ``F_M``, the stresses are those of R7 at ``F_M`` (``tau`` on the
+    plastic section ``pi d0^3/12``), head and thread pressures use it (R10),
+    and the safety factors are those of the smallest residual clamp force
+    ``F_M/alpha_A - F_Z`` (R12).
 
     Friction coefficients default to ``friction_coefficients.csv`` for the
-    ``application_type`` (``dry`` or ``belt_in_oil``). The bolt-head contact
-    diameter defaults to the catalog ``dw_min`` of the chosen format
-    (``head_type`` ``hex`` ISO 4017 or ``flange`` ISO 4162).
+    ``application_type`` (``dry`` or ``belt_in_oil``; in the VDI path they
+    are read as the lowest values, mu_min). The bolt-head contact diameter
+    defaults to the catalog ``dw_min`` of the chosen format in ``head_type``
+    (``hex`` ISO 4017/8676, ``flange`` ISO 4162/15071, ``socket`` ISO 4762/12474).
 
     Options (thesis-tool conventions vs defaults): ``contact_model``
     (``sector``/``thesis``, see :func:`pivot_base_bending_factor_per_mm3`),
     ``torque_model`` (``vdi``/``helix``), ``normal_stress_area``
     (``stress`` = ISO 898-1 A_s / ``core`` = printed eq. (103)-(104)),
     ``torsion_diameter`` (``minor`` = eq. (105) / ``stress`` = VDI 2230),
-    ``thread_area_model`` (see :func:`thread_area_mm2`).
+    ``thread_area_model`` (see :func:`thread_area_mm2`); these five apply to
+    the thesis path. VDI-path options: ``clamp_length_mm`` (the clamped
+    length l_K, e.g. the pivot height), ``embedding_roughness``
+    (``rz_lt_10``/``rz_10_40``/``rz_40_160``), ``embedding_loading``
+    (``axial``/``transverse``), ``clamped_interfaces``, ``joint_type``
+    (``tapped``/``through``), ``clamped_parts_modulus_mpa``,
+    ``free_thread_length_mm`` (loaded free thread inside l_K, default 0).
 
     Returns a dict of arrays with the case keys ``bolt_tightening_torque_nm``,
     ``bolt_axial_force_n``, ``bolt_sigma_mpa``, ``bolt_tau_mpa``,
@@ -637,27 +1035,44 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     ``bolt_thread_stress_mpa``, ``bolt_format``, ``bolt_property_class``,
     ``pivot_base_contact_surface_mm2``, ``average_contact_pressure_mpa``,
     ``tilting_safety_factor``, ``sliding_safety_factor``; intermediates
-    (``bolt_force_tilting_n``, ``bolt_force_sliding_n``, ``tilting_moment_nmm``,
-    ``pivot_base_max_pressure_mpa``, ``pivot_base_min_pressure_mpa``,
-    ``bolt_utilisation``, ``bolt_rp02_mpa``); column-G corrections
-    (``min_head_contact_diameter_mm``, ``min_active_threads``,
-    ``pivot_bore_min_mm``); and margins (>= 0 passes) ``margin_tilting``,
+    (``bolt_force_tilting_n``, ``bolt_force_sliding_n``, ``bolt_clamp_force_required_n``,
+    ``tilting_moment_nmm``, ``pivot_base_max_pressure_mpa``,
+    ``pivot_base_min_pressure_mpa``, ``bolt_utilisation``, ``bolt_rp02_mpa``,
+    ``bolt_head_contact_diameter_mm``, ``bolt_unit_cost_eur``); column-G
+    corrections (``min_head_contact_diameter_mm``, ``min_active_threads``,
+    ``pivot_bore_min_mm``); margins (>= 0 passes) ``margin_tilting``,
     ``margin_sliding``, ``margin_bolt_yield``, ``margin_under_head``,
-    ``margin_thread``, ``margin_pivot_bore``, ``margin_pivot_base_pressure``.
+    ``margin_thread``, ``margin_pivot_bore``, ``margin_pivot_base_pressure``;
+    and for ``"vdi2230"`` also ``bolt_permissible_preload_n`` (F_M,zul),
+    ``bolt_required_preload_min_n`` (F_M,min), ``bolt_required_preload_max_n``
+    (F_M,max), ``bolt_embedding_um`` (f_Z), ``bolt_embedding_loss_n`` (F_Z),
+    ``bolt_resilience_mm_per_n``, ``clamped_parts_resilience_mm_per_n``,
+    ``bolt_residual_clamp_force_n`` (F_KR,min) and ``tightening_factor``.
 
     >>> r = fixation(462.5, 20.0, 2.0, 3.0, 3.0, 8.2, 28.0, 360.0, 400.0, 400.0,
     ...              number_of_active_threads=2.6, bolt_head_contact_external_diameter_mm=11.0)
     >>> round(float(r["bolt_axial_force_n"])), round(float(r["tilting_safety_factor"]), 2)
     (13875, 5.18)
+    >>> v = fixation(462.5, 20.0, 2.0, 3.0, 3.0, 8.2, 28.0, 360.0, 400.0, 400.0, method="vdi2230",
+    ...              clamp_length_mm=34.0, number_of_active_threads=2.6, bolt_head_contact_external_diameter_mm=11.0)
+    >>> str(v["bolt_format"]), str(v["bolt_property_class"]), bool(v["sliding_safety_factor"] >= 3.0)
+    ('M8x1.25', '10.9', True)
     """
+    if method not in METHODS:
+        raise InputError(Problem("method", method, "one of " + ", ".join(METHODS)))
     if application_type not in ENVIRONMENTS:
         raise InputError(Problem("application_type", application_type, "one of " + ", ".join(ENVIRONMENTS)))
-    if head_type not in ("hex", "flange"):
-        raise InputError(Problem("head_type", head_type, "'hex' or 'flange'"))
+    if head_type not in HEAD_TYPES:
+        raise InputError(Problem("head_type", head_type, "one of " + ", ".join(HEAD_TYPES)))
     if normal_stress_area not in ("stress", "core"):
         raise InputError(Problem("normal_stress_area", normal_stress_area, "'stress' or 'core'"))
     if torsion_diameter not in ("minor", "stress"):
         raise InputError(Problem("torsion_diameter", torsion_diameter, "'minor' or 'stress'"))
+    if tighten_to not in ("permissible", "required"):
+        raise InputError(Problem("tighten_to", tighten_to, "'permissible' (F_M,zul) or 'required' (F_M,max)"))
+    if method == "vdi2230" and clamp_length_mm is None:
+        raise InputError(Problem("clamp_length_mm", None, "a clamped length > 0 mm (e.g. the pivot height) for the "
+                                 "VDI 2230 embedding loss"))
     mu_cc = friction_coefficient("pivot_base_crankcase", application_type) if mu_crankcase is None else mu_crankcase
     mu_g = friction_coefficient("thread", application_type) if mu_thread is None else mu_thread
     mu_k = friction_coefficient("under_head", application_type) if mu_head is None else mu_head
@@ -677,47 +1092,81 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     area = pivot_base_contact_area_mm2(d_ext, d_int, contact_angle_deg)
     k = pivot_base_bending_factor_per_mm3(d_ext, d_int, contact_angle_deg, model=contact_model)
     moment = hl * lever
-    p_avg = force / area
-    sf_t = tilting_safety_factor(force, hl, lever, d_ext, d_int, contact_angle_deg, model=contact_model)
-    sf_s = sliding_safety_factor(force, hl, mu_cc)
 
     # --- bolt escalation: candidates on a trailing axis --------------------------------------
-    cands = bolt_candidates(bolt_format, bolt_property_class)
-    col = {key: np.array([c[key] for c in cands]) for key in cands[0] if key not in ("bolt_format", "bolt_property_class")}
+    cands = bolt_candidates(bolt_format, bolt_property_class, head_type)
+    col = {key: np.array([c[key] for c in cands], dtype=float) for key, v in cands[0].items() if isinstance(v, float)}
     names_f = np.array([c["bolt_format"] for c in cands])
     names_c = np.array([c["bolt_property_class"] for c in cands])
     fk = force[..., None]
-    t_thread = thread_torque_nmm(fk, col["pitch_mm"], col["d2_mm"], _arr(mu_g)[..., None], model=torque_model)
-    a_norm = col["stress_area_mm2"] if normal_stress_area == "stress" else np.pi / 4.0 * col["d3_mm"] ** 2
-    d_tors = col["d3_mm"] if torsion_diameter == "minor" else (col["d2_mm"] + col["d3_mm"]) / 2.0
-    sigma = bolt_normal_stress_mpa(fk, a_norm)
-    tau = bolt_torsion_stress_mpa(t_thread, d_tors)
-    eqv = von_mises_stress_mpa(sigma, tau)
-    limit = constant("bolt_yield_utilisation_max") * col["rp02_mpa"]
-    passes = eqv <= limit
+    mu_gk = _arr(mu_g)[..., None]
+    dw_c = col["dw_min_mm"] if bolt_head_contact_external_diameter_mm is None else \
+        _arr(bolt_head_contact_external_diameter_mm)[..., None]
+    per = {}  # per-candidate arrays to pick from
+    if method == "thesis":
+        per["t_thread"] = thread_torque_nmm(fk, col["pitch_mm"], col["d2_mm"], mu_gk, model=torque_model)
+        a_norm = col["stress_area_mm2"] if normal_stress_area == "stress" else np.pi / 4.0 * col["d3_mm"] ** 2
+        d_tors = col["d3_mm"] if torsion_diameter == "minor" else (col["d2_mm"] + col["d3_mm"]) / 2.0
+        per["sigma"] = bolt_normal_stress_mpa(fk, a_norm)
+        per["tau"] = bolt_torsion_stress_mpa(per["t_thread"], d_tors)
+        per["eqv"] = von_mises_stress_mpa(per["sigma"], per["tau"])
+        passes = per["eqv"] <= constant("bolt_yield_utilisation_max") * col["rp02_mpa"]
+    else:
+        alpha = tightening_factor(tightening_method) if alpha_a is None else _require(
+            "alpha_a", alpha_a, low=1.0, inclusive=True, accepted="a tightening factor >= 1")
+        fz_um = embedding_um(embedding_roughness, embedding_loading, interfaces=clamped_interfaces,
+                             joint_type=joint_type)
+        lk = _arr(clamp_length_mm)[..., None]
+        per["d_s"] = bolt_resilience_mm_per_n(col["d_mm"], col["d3_mm"], lk, head_type=head_type, joint_type=joint_type,
+                                              free_thread_length_mm=_arr(free_thread_length_mm)[..., None],
+                                              internal_thread_modulus_mpa=clamped_parts_modulus_mpa)
+        per["d_p"] = clamped_parts_resilience_mm_per_n(dw_c, d_int[..., None], d_ext[..., None], lk,
+                                                       modulus_mpa=clamped_parts_modulus_mpa, joint_type=joint_type)
+        per["f_z"] = embedding_preload_loss_n(fz_um, per["d_s"], per["d_p"])
+        per["f_min"] = fk + per["f_z"]
+        per["f_max"] = alpha * per["f_min"]
+        per["f_zul"] = permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"], col["rp02_mpa"],
+                                                      mu_gk, utilisation=utilisation)
+        passes = per["f_max"] <= per["f_zul"]
     idx = np.where(passes.any(axis=-1), passes.argmax(axis=-1), len(cands) - 1)
 
     def pick(a):
-        a = np.broadcast_to(a, eqv.shape)
+        a = np.broadcast_to(a, passes.shape)
         return np.take_along_axis(a, idx[..., None], axis=-1)[..., 0]
 
     sel = {key: col[key][idx] for key in col}
-    sigma_s, tau_s, eqv_s, t_thread_s = pick(sigma), pick(tau), pick(eqv), pick(t_thread)
-    if bolt_head_contact_external_diameter_mm is None:
-        dw = sel["dw_min_hex_mm"] if head_type == "hex" else sel["dw_min_flange_mm"]
+    dw = pick(dw_c)
+    if method == "thesis":
+        f_bolt = force
+        sigma_s, tau_s, eqv_s = pick(per["sigma"]), pick(per["tau"]), pick(per["eqv"])
+        torque = (pick(per["t_thread"]) + under_head_torque_nmm(force, dw, d_int, mu_k)) / 1000.0
+        residual = force
+        margin_yield = margin_upper(eqv_s, constant("bolt_yield_utilisation_max") * sel["rp02_mpa"])
     else:
-        dw = _arr(bolt_head_contact_external_diameter_mm)
-    t_head = under_head_torque_nmm(force, dw, d_int, mu_k)
-    torque = (t_thread_s + t_head) / 1000.0
-    s_head = under_head_stress_mpa(force, dw, d_int)
+        f_zul, f_z, f_max = pick(per["f_zul"]), pick(per["f_z"]), pick(per["f_max"])
+        f_bolt = f_zul if tighten_to == "permissible" else np.minimum(f_max, f_zul)
+        d0 = (sel["d2_mm"] + sel["d3_mm"]) / 2.0
+        thread_moment = f_bolt / 2.0 * (sel["pitch_mm"] / np.pi + mu_g * sel["d2_mm"] /
+                                        np.cos(np.radians(constant("thread_flank_half_angle_deg"))))
+        sigma_s = f_bolt / (np.pi / 4.0 * d0**2)
+        tau_s = 12.0 * thread_moment / (np.pi * d0**3)  # plastic torsion section pi d0^3/12 (VDI R7)
+        eqv_s = von_mises_stress_mpa(sigma_s, tau_s)
+        torque = assembly_torque_nm(f_bolt, sel["pitch_mm"], sel["d2_mm"], mu_g, head_mean_diameter_mm(dw, d_int), mu_k)
+        residual = f_bolt / alpha - f_z
+        margin_yield = margin_upper(f_max, f_zul)
+    sf_t = tilting_safety_factor(np.maximum(residual, 0.0), hl, lever, d_ext, d_int, contact_angle_deg,
+                                 model=contact_model)
+    sf_s = sliding_safety_factor(np.maximum(residual, 0.0), hl, mu_cc)
+    p_avg = f_bolt / area
+    s_head = under_head_stress_mpa(f_bolt, dw, d_int)
     a_thr = thread_area_mm2(sel["d_mm"], sel["pitch_mm"], sel["d2_mm"], sel["d3_mm"], sel["D1_mm"],
                             model=thread_area_model)
-    s_thr = thread_bearing_stress_mpa(force, a_thr, n_thr)
+    s_thr = thread_bearing_stress_mpa(f_bolt, a_thr, n_thr)
     p_max = p_avg + moment * k
 
     out = {
         "bolt_tightening_torque_nm": torque,
-        "bolt_axial_force_n": force,
+        "bolt_axial_force_n": f_bolt,
         "bolt_sigma_mpa": sigma_s,
         "bolt_tau_mpa": tau_s,
         "bolt_sigma_eqv_mpa": eqv_s,
@@ -731,23 +1180,37 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         "sliding_safety_factor": sf_s,
         "bolt_force_tilting_n": f_tilt,
         "bolt_force_sliding_n": f_slide,
+        "bolt_clamp_force_required_n": force,
         "tilting_moment_nmm": moment,
         "pivot_base_max_pressure_mpa": p_max,
-        "pivot_base_min_pressure_mpa": p_avg - moment * k,
+        "pivot_base_min_pressure_mpa": residual / area - moment * k,
         "bolt_rp02_mpa": sel["rp02_mpa"],
         "bolt_utilisation": eqv_s / sel["rp02_mpa"],
+        "bolt_head_contact_diameter_mm": dw,
         "bolt_unit_cost_eur": sel["unit_cost_eur"] * sel["unit_cost_factor"],
-        "min_head_contact_diameter_mm": min_head_contact_diameter_mm(force, d_int, s_comp),
-        "min_active_threads": min_active_threads(force, a_thr, s_trac),
+        "min_head_contact_diameter_mm": min_head_contact_diameter_mm(f_bolt, d_int, s_comp),
+        "min_active_threads": min_active_threads(f_bolt, a_thr, s_trac),
         "pivot_bore_min_mm": sel["pivot_bore_min_mm"],
         "margin_tilting": margin_lower(sf_t, tilting_safety_factor_target),
         "margin_sliding": margin_lower(sf_s, sliding_safety_factor_target),
-        "margin_bolt_yield": margin_upper(eqv_s, constant("bolt_yield_utilisation_max") * sel["rp02_mpa"]),
+        "margin_bolt_yield": margin_yield,
         "margin_under_head": margin_upper(s_head, s_comp),
         "margin_thread": margin_upper(s_thr, s_trac),
         "margin_pivot_bore": margin_lower(d_int, sel["pivot_bore_min_mm"]),
         "margin_pivot_base_pressure": margin_upper(p_max, s_comp),
     }
+    if method == "vdi2230":
+        out.update({
+            "bolt_permissible_preload_n": f_zul,
+            "bolt_required_preload_min_n": pick(per["f_min"]),
+            "bolt_required_preload_max_n": f_max,
+            "bolt_embedding_um": np.full_like(f_bolt, fz_um),
+            "bolt_embedding_loss_n": f_z,
+            "bolt_resilience_mm_per_n": pick(per["d_s"]),
+            "clamped_parts_resilience_mm_per_n": pick(per["d_p"]),
+            "bolt_residual_clamp_force_n": residual,
+            "tightening_factor": np.full_like(f_bolt, alpha),
+        })
     return out
 
 
@@ -763,6 +1226,8 @@ _CHECKS = [
      "pivot_bore_min_mm"),
     ("pivot base max contact pressure", "pivot_base_max_pressure_mpa", "s_comp", "<=", "MPa", "eq. (96), Fig. 74", None),
 ]
+_VDI_YIELD_CHECK = ("bolt max assembly preload vs permissible", "bolt_required_preload_max_n",
+                    "bolt_permissible_preload_n", "<=", "N", "VDI 2230-1 R5-R7", None)
 
 
 def fixation_checks(result: dict, *, tilting_safety_factor_target, sliding_safety_factor_target,
@@ -772,6 +1237,8 @@ def fixation_checks(result: dict, *, tilting_safety_factor_target, sliding_safet
 
     ``index`` selects the design in vectorised results (``()`` for scalars).
     Failing checks carry the thesis's column-G correction in ``correction``.
+    A ``method="vdi2230"`` result checks the bolt by ``F_M,max <= F_M,zul``
+    (VDI 2230-1 R7) instead of the elastic von Mises stress.
 
     >>> r = fixation(462.5, 20.0, 2.0, 3.0, 3.0, 8.2, 28.0, 360.0, 400.0, 400.0,
     ...              number_of_active_threads=2.6, bolt_head_contact_external_diameter_mm=11.0)
@@ -793,7 +1260,9 @@ def fixation_checks(result: dict, *, tilting_safety_factor_target, sliding_safet
     fmt = str(np.asarray(result["bolt_format"])[index])
     cls = str(np.asarray(result["bolt_property_class"])[index])
     checks = []
-    for name, vkey, lkey, kind, unit, eq, corr in _CHECKS:
+    rows = _CHECKS if "bolt_permissible_preload_n" not in result else \
+        [_VDI_YIELD_CHECK if r[0] == "bolt von Mises stress" else r for r in _CHECKS]
+    for name, vkey, lkey, kind, unit, eq, corr in rows:
         value = extra[vkey] if vkey in extra else get(vkey)
         limit = extra[lkey] if lkey in extra else get(lkey)
         c = Check(name, STEP, value, limit, kind=kind, unit=unit, equation=eq)
@@ -803,7 +1272,7 @@ def fixation_checks(result: dict, *, tilting_safety_factor_target, sliding_safet
                 "min_active_threads": f"at least {get(corr):.1f} active threads",
                 "pivot_bore_min_mm": f"{fmt} needs a pivot/support bore of at least {get(corr):.1f} mm",
             }[corr]
-        if name == "bolt von Mises stress":
+        if name in ("bolt von Mises stress", _VDI_YIELD_CHECK[0]):
             c.note = f"{fmt} class {cls}"
             if c.verdict == "fail":
                 c.correction = "no catalog format/class passes: larger format or lower preload"
