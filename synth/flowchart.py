@@ -231,7 +231,8 @@ class _Walk:
         d, p = self.d, self.p
         self.steps.append(10)
         if d.bolt_mode == "manual":
-            return bolt_attributes(p, [p.bolt.code(d.bolt_format, "bolt_format")],
+            p.bolt.code(d.bolt_format, "bolt_format")
+            return bolt_attributes(p, [p.bolt_head.code(f"{d.bolt_format} hex", "bolt_format")],
                                    [p.bolt_class.code(d.bolt_property_class, "bolt_property_class")])
         t = space().tables["bolt"]
         rows = np.flatnonzero(np.isfinite(t["escalation_order"]))

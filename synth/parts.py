@@ -117,6 +117,7 @@ class Parts:
     spring_strength: list                   # per material: (d_mm, Rm_min_mpa, Rm_max_mpa) sorted by d
     spring_wire: Table
     bolt: Table
+    bolt_head: Table                        # format x head type ("M8x1.25 hex"): dw, head size, cost factor
     bolt_class: Table
     plastic: dict                           # (k_wear, mu) per environment of the standard plastic material
     durability: Table
@@ -171,6 +172,10 @@ def _arrays_cached(user_dirs: tuple) -> Parts:
     bolts = load("bolts")
     bo = _table("bolts", bolts, ("d_mm", "pitch_mm", "d2_mm", "d3_mm", "D1_mm", "stress_area_mm2", "pivot_bore_min_mm",
                                  "escalation_rank", "unit_cost_eur"))
+    heads = load("bolt_heads")
+    bh = _table("bolt_heads", heads, ("dw_min_mm", "head_outer_mm", "head_height_mm", "cost_factor"),
+                strings=("bolt_format", "head_type"))
+    bh.cols["bolt_code"] = np.array([bo.code(f, "bolt_heads.bolt_format") for f in bh.bolt_format], dtype=np.int64)
     cls = _table("bolt_property_classes", load("bolt_property_classes"),
                  ("rm_min_mpa", "rp02_min_mpa", "rm_min_d_gt16_mpa", "rp02_min_d_gt16_mpa", "d_max_mm",
                   "escalation_rank", "unit_cost_factor"))
@@ -189,7 +194,7 @@ def _arrays_cached(user_dirs: tuple) -> Parts:
         rows = fr[fr["interface"].astype(str).str.strip() == iface]
         envs = {str(e).strip(): float(m) for e, m in zip(rows["environment"], rows["mu"])}
         friction[iface] = np.array([envs.get(e, envs.get("any", np.nan)) for e in ENVIRONMENTS])
-    return Parts(b, hub, t2, bt, limits, lengths, dp, es, mat, strength, w, bo, cls, plastic, dur, cone_ranges,
+    return Parts(b, hub, t2, bt, limits, lengths, dp, es, mat, strength, w, bo, bh, cls, plastic, dur, cone_ranges,
                  tuple(_num(clr, c) for c in ("di_min_mm", "di_max_mm", "clearance_mm")), friction)
 
 

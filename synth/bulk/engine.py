@@ -228,7 +228,7 @@ def _solve_chunk(inputs: list, weights: dict, settings: E.Settings) -> list:
         nb = sp.n("bolt")
         ua = np.unique(a_r)
         fa, fb = (x.ravel() for x in np.meshgrid(ua, np.arange(nb), indexing="ij"))
-        fix = E.fixation_values(apps, fa, sp.rows("bolt", fb))
+        fix = E.fixation_values(apps, fa, sp.rows("bolt", fb), settings)
         slot = {int(x): i for i, x in enumerate(ua)}
         sc = weights_vec(option_scores(sp, "bolt"), weights)
         order = np.argsort(sc, kind="stable")

@@ -63,18 +63,27 @@ class Settings:
     * ``bushing_length_scheme`` (the flowchart's selection only): ``"thesis"``
       (the thesis tool's trial lengths, multiples of half the pivot diameter,
       then the next catalog length is the part) or ``"catalog"`` (the shortest
-      catalog length that passes).
+      catalog length that passes);
+    * ``bolt_method``: ``"thesis"`` (the elastic von Mises check of the nominal
+      preload, eq. (103)-(107): the default, it reproduces the thesis tool and
+      its safety targets already hold the preload scatter) or ``"vdi2230"``
+      (permissible assembly preload with the plastic torsion factor, tightening
+      factor and embedding loss, VDI 2230-1; the clamped length is taken as the
+      maximum pivot height).
     """
 
     fidelity: str = "full"
     friction_circle: bool = True
     bushing_running_in: bool = False
     bushing_length_scheme: str = "thesis"
+    bolt_method: str = "thesis"
 
     def __post_init__(self):
         from synth.errors import InputError, Problem
         if self.fidelity not in FIDELITIES:
             raise InputError(Problem("fidelity", self.fidelity, "one of " + ", ".join(FIDELITIES)))
+        if self.bolt_method not in ("thesis", "vdi2230"):
+            raise InputError(Problem("bolt_method", self.bolt_method, "thesis or vdi2230"))
         if self.bushing_length_scheme not in ("thesis", "catalog"):
             raise InputError(Problem("bushing_length_scheme", self.bushing_length_scheme, "thesis or catalog"))
 
@@ -447,10 +456,12 @@ _BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_m
                 "bolt_sigma_eqv_mpa", "bolt_under_head_stress_mpa", "bolt_thread_stress_mpa",
                 "pivot_base_contact_surface_mm2", "average_contact_pressure_mpa", "tilting_safety_factor",
                 "sliding_safety_factor", "pivot_base_max_pressure_mpa", "bolt_rp02_mpa",
-                "min_head_contact_diameter_mm", "min_active_threads", "bolt_force_tilting_n", "bolt_force_sliding_n")
+                "min_head_contact_diameter_mm", "min_active_threads", "bolt_force_tilting_n", "bolt_force_sliding_n",
+                "bolt_head_contact_diameter_mm", "bolt_clamp_force_required_n", "bolt_permissible_preload_n",
+                "bolt_required_preload_max_n", "bolt_residual_clamp_force_n", "bolt_embedding_loss_n")
 
 
-def fixation_values(apps, a, o: dict) -> dict:
+def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
     """Step 10 (:func:`synth.model.bolted_joint.fixation`) for rows of applications ``a`` and bolts ``o``.
 
     One vectorised call per bolt option over its applications (grouped by environment and whether the
@@ -462,10 +473,11 @@ def fixation_values(apps, a, o: dict) -> dict:
     if not has.any():
         return out
     fmt, cls = np.asarray(o["bolt_format"], dtype=object), np.asarray(o["bolt_property_class"], dtype=object)
+    head = np.asarray(o["bolt_head_type"], dtype=object)
     head_given = apps.given["bolt_head_contact_external_diameter_mm"][a]
     f = apps.f
     rows = np.flatnonzero(has)
-    keys = np.array([f"{fmt[i]}|{cls[i]}|{apps.env[a[i]]}|{head_given[i]}" for i in rows])
+    keys = np.array([f"{fmt[i]}|{cls[i]}|{head[i]}|{apps.env[a[i]]}|{head_given[i]}" for i in rows])
     for key in np.unique(keys):
         sel = rows[keys == key]
         aa = a[sel]
@@ -479,9 +491,12 @@ def fixation_values(apps, a, o: dict) -> dict:
             number_of_active_threads=f["number_of_active_threads"][aa], application_type=env,
             bolt_head_contact_external_diameter_mm=f["bolt_head_contact_external_diameter_mm"][aa]
             if head_given[sel[0]] else None,
-            bolt_format=str(fmt[sel[0]]), bolt_property_class=str(cls[sel[0]]))
+            bolt_format=str(fmt[sel[0]]), bolt_property_class=str(cls[sel[0]]), head_type=str(head[sel[0]]),
+            method=settings.bolt_method,
+            clamp_length_mm=f["max_pivot_height_mm"][aa] if settings.bolt_method == "vdi2230" else None)
         for k in _BOLT_VALUES:
-            out[k][sel] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(sel),))
+            if k in r:
+                out[k][sel] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(sel),))
     return out
 
 
@@ -494,8 +509,10 @@ def bolt(apps, cg: Group, r, o: dict, settings: Settings = Settings(), fixation:
     a = cg.values["app"][r]
     f = {k: v[a] for k, v in apps.f.items()}
     n = len(a)
-    fix = fixation if fixation is not None else fixation_values(apps, a, o)
+    fix = fixation if fixation is not None else fixation_values(apps, a, o, settings)
     v = {"app": a, **fix}
+    v["bolt_method_thesis"] = np.full(n, settings.bolt_method == "thesis")
+    v["bolt_method_vdi"] = ~v["bolt_method_thesis"]
     v["pivot_bolt_hole_diameter_mm"] = s2.bolt_hole_diameter_mm(o["bolt_d_mm"])
     v["pivot_wall_mm"] = s2.pivot_wall_mm(cg.values["pivot_diameter_mm"][r], cg.values["loading_arm_mm"][r],
                                           v["pivot_bolt_hole_diameter_mm"])

@@ -22,7 +22,7 @@ bushing    supplier x catalog length (core's supplier)  Table 5 rating, p, pv, p
 axial      endcap spacer x cone spring variant          Table 4 capacity, belt plane (7), cone spring (8),
            (h0/t, s/h0, De below its maximum)           plastic wear and EOL damping (5)
 spring     material x wire x mean body diameter         yield, Goodman SF, contacts, coil gap, index (9)
-bolt       format x property class                      tilting, sliding, bolt, under-head, thread, bore,
+bolt       format x head form x property class          tilting, sliding, bolt, under-head, thread, bore,
                                                         pivot base (10), pivot wall (2)
 ========== ============================================ ==========================================
 
@@ -67,7 +67,7 @@ PART_KEYS_BY_TABLE = {
     "axial": ("endcap_spacer_class", "cone_spring_aspect_ratio", "cone_spring_deflection_ratio",
               "cone_spring_external_diameter_mm"),
     "spring": ("main_spring_material", "main_spring_wire", "main_spring_mean_body_diameter_mm"),
-    "bolt": ("bolt_format", "bolt_property_class"),
+    "bolt": ("bolt_format", "bolt_head_type", "bolt_property_class"),
 }
 PART_KEYS = tuple(k for t in TABLES for k in PART_KEYS_BY_TABLE[t])
 
@@ -148,7 +148,11 @@ class Space:
         out["spring"] = spring_attributes(p, [code(p.spring_material, "main_spring_material")],
                                           [code(p.spring_wire, "main_spring_wire")],
                                           [num("main_spring_mean_body_diameter_mm")])
-        out["bolt"] = bolt_attributes(p, [code(p.bolt, "bolt_format")], [code(p.bolt_class, "bolt_property_class")])
+        head = parts.get("bolt_head_type") or "hex"
+        p.bolt.code(str(need("bolt_format")).strip(), f"{field_prefix}.bolt_format")
+        out["bolt"] = bolt_attributes(p, [p.bolt_head.code(f"{str(parts['bolt_format']).strip()} {head}",
+                                                           f"{field_prefix}.bolt_head_type")],
+                                      [code(p.bolt_class, "bolt_property_class")])
         if not out["bolt"]["class_defined"][0]:
             raise InputError(Problem(f"{field_prefix}.bolt_property_class", parts["bolt_property_class"],
                                      f"a class ISO 898-1 defines for {parts['bolt_format']} (9.8 only up to 16 mm)"))
@@ -316,26 +320,30 @@ def _spring(p: P.Parts) -> dict:
     return spring_attributes(p, m, w, d)
 
 
-def bolt_attributes(p: P.Parts, bolt, property_class) -> dict:
-    """The bolt table's columns for format and property-class codes."""
-    b, c = np.asarray(bolt, dtype=np.int64), np.asarray(property_class, dtype=np.int64)
-    bo, cl = p.bolt, p.bolt_class
+def bolt_attributes(p: P.Parts, head, property_class) -> dict:
+    """The bolt table's columns for head codes (``bolt_heads.csv``: a format in a head form) and property classes."""
+    hd, c = np.asarray(head, dtype=np.int64), np.asarray(property_class, dtype=np.int64)
+    bh, bo, cl = p.bolt_head, p.bolt, p.bolt_class
+    b = bh.bolt_code[hd]
     big = bo.d_mm[b] > 16.0
-    rank_b = np.where(np.isfinite(bo.escalation_rank[b]), bo.escalation_rank[b], np.inf)
+    rank_b = np.where(np.isfinite(bo.escalation_rank[b]) & (bh.head_type[hd] == "hex"), bo.escalation_rank[b], np.inf)
     return {
-        "bolt_code": b, "class_code": c, "bolt_format": bo.key[b], "bolt_property_class": cl.key[c],
-        "bolt_d_mm": bo.d_mm[b], "pivot_bore_min_mm": bo.pivot_bore_min_mm[b],
+        "head_code": hd, "bolt_code": b, "class_code": c, "bolt_format": bo.key[b], "bolt_head_type": bh.head_type[hd],
+        "bolt_property_class": cl.key[c], "bolt_d_mm": bo.d_mm[b], "pivot_bore_min_mm": bo.pivot_bore_min_mm[b],
+        "bolt_head_dw_min_mm": bh.dw_min_mm[hd], "bolt_head_outer_mm": bh.head_outer_mm[hd],
+        "bolt_head_height_mm": bh.head_height_mm[hd],
         "rp02_mpa": np.where(big, cl.rp02_min_d_gt16_mpa[c], cl.rp02_min_mpa[c]),
-        "escalation_order": rank_b * 100 + cl.escalation_rank[c],
+        "escalation_order": rank_b * 100 + cl.escalation_rank[c],  # the thesis escalates hex-head bolts
         "class_defined": ~(np.isfinite(cl.d_max_mm[c]) & (bo.d_mm[b] > cl.d_max_mm[c])),  # ISO 898-1: 9.8 to 16 mm
-        "cost_eur": bo.unit_cost_eur[b] * cl.unit_cost_factor[c],
-        "nonstandard": (_w("bolt") * ~bo.standard[b] + _w("bolt") * ~cl.standard[c]).astype(float),
+        "cost_eur": bo.unit_cost_eur[b] * bh.cost_factor[hd] * cl.unit_cost_factor[c],
+        "nonstandard": (_w("bolt") * ~bo.standard[b] + _w("bolt") * ~bh.standard[hd]
+                        + _w("bolt") * ~cl.standard[c]).astype(float),
     }
 
 
 def _bolt(p: P.Parts) -> dict:
-    b, c = (a.ravel() for a in np.meshgrid(np.arange(len(p.bolt)), np.arange(len(p.bolt_class)), indexing="ij"))
-    t = bolt_attributes(p, b, c)
+    h, c = (a.ravel() for a in np.meshgrid(np.arange(len(p.bolt_head)), np.arange(len(p.bolt_class)), indexing="ij"))
+    t = bolt_attributes(p, h, c)
     keep = t["class_defined"]
     return {k: v[keep] for k, v in t.items()}
 

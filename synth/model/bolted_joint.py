@@ -38,7 +38,6 @@ from __future__ import annotations
 import numpy as np
 
 from synth.catalog import constant, load
-from synth.checks import Check, margin_lower, margin_upper
 from synth.errors import CatalogError, InputError, Problem
 
 __all__ = [
@@ -53,7 +52,7 @@ __all__ = [
     "iso724_diameters_mm", "stress_area_mm2", "permissible_assembly_preload_n", "elastic_permissible_preload_n",
     "assembly_torque_nm", "head_mean_diameter_mm", "tightening_factor_from_scatter", "tightening_factor",
     "embedding_um", "bolt_resilience_mm_per_n", "clamped_parts_resilience_mm_per_n", "embedding_preload_loss_n",
-    "HEAD_TYPES", "METHODS", "bolt_head", "bolt_candidates", "fixation", "fixation_checks",
+    "HEAD_TYPES", "METHODS", "bolt_head", "bolt_candidates", "fixation",
 ]
 
 STEP = 10
@@ -100,14 +99,8 @@ def friction_coefficient(interface: str, environment: str) -> float:
     >>> friction_coefficient("under_head", "belt_in_oil")
     0.08
     """
-    df = load("friction_coefficients")
-    hit = df[(df["interface"] == str(interface).strip()) & (df["environment"] == str(environment).strip())]
-    if hit.empty:
-        if str(interface).strip() not in set(df["interface"]):
-            raise CatalogError(Problem("friction interface", interface, "one of " + ", ".join(sorted(set(df["interface"])))))
-        envs = df.loc[df["interface"] == str(interface).strip(), "environment"]
-        raise CatalogError(Problem("application_type", environment, "one of " + ", ".join(sorted(set(envs)))))
-    return float(hit.iloc[0]["mu"])
+    from synth import parts
+    return parts.mu(str(interface).strip(), str(environment).strip())
 
 
 def nominal_hubload_n(calculated_torque_nm, working_arm_mm, differential_angle_deg):
@@ -1040,10 +1033,8 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     ``pivot_base_min_pressure_mpa``, ``bolt_utilisation``, ``bolt_rp02_mpa``,
     ``bolt_head_contact_diameter_mm``, ``bolt_unit_cost_eur``); column-G
     corrections (``min_head_contact_diameter_mm``, ``min_active_threads``,
-    ``pivot_bore_min_mm``); margins (>= 0 passes) ``margin_tilting``,
-    ``margin_sliding``, ``margin_bolt_yield``, ``margin_under_head``,
-    ``margin_thread``, ``margin_pivot_bore``, ``margin_pivot_base_pressure``;
-    and for ``"vdi2230"`` also ``bolt_permissible_preload_n`` (F_M,zul),
+    ``pivot_bore_min_mm``) -- the limits and verdicts are the registry's
+    (:mod:`synth.design.constraints`); and for ``"vdi2230"`` also ``bolt_permissible_preload_n`` (F_M,zul),
     ``bolt_required_preload_min_n`` (F_M,min), ``bolt_required_preload_max_n``
     (F_M,max), ``bolt_embedding_um`` (f_Z), ``bolt_embedding_loss_n`` (F_Z),
     ``bolt_resilience_mm_per_n``, ``clamped_parts_resilience_mm_per_n``,
@@ -1141,7 +1132,6 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         sigma_s, tau_s, eqv_s = pick(per["sigma"]), pick(per["tau"]), pick(per["eqv"])
         torque = (pick(per["t_thread"]) + under_head_torque_nmm(force, dw, d_int, mu_k)) / 1000.0
         residual = force
-        margin_yield = margin_upper(eqv_s, constant("bolt_yield_utilisation_max") * sel["rp02_mpa"])
     else:
         f_zul, f_z, f_max = pick(per["f_zul"]), pick(per["f_z"]), pick(per["f_max"])
         f_bolt = f_zul if tighten_to == "permissible" else np.minimum(f_max, f_zul)
@@ -1153,7 +1143,6 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         eqv_s = von_mises_stress_mpa(sigma_s, tau_s)
         torque = assembly_torque_nm(f_bolt, sel["pitch_mm"], sel["d2_mm"], mu_g, head_mean_diameter_mm(dw, d_int), mu_k)
         residual = f_bolt / alpha - f_z
-        margin_yield = margin_upper(f_max, f_zul)
     sf_t = tilting_safety_factor(np.maximum(residual, 0.0), hl, lever, d_ext, d_int, contact_angle_deg,
                                  model=contact_model)
     sf_s = sliding_safety_factor(np.maximum(residual, 0.0), hl, mu_cc)
@@ -1191,13 +1180,6 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         "min_head_contact_diameter_mm": min_head_contact_diameter_mm(f_bolt, d_int, s_comp),
         "min_active_threads": min_active_threads(f_bolt, a_thr, s_trac),
         "pivot_bore_min_mm": sel["pivot_bore_min_mm"],
-        "margin_tilting": margin_lower(sf_t, tilting_safety_factor_target),
-        "margin_sliding": margin_lower(sf_s, sliding_safety_factor_target),
-        "margin_bolt_yield": margin_yield,
-        "margin_under_head": margin_upper(s_head, s_comp),
-        "margin_thread": margin_upper(s_thr, s_trac),
-        "margin_pivot_bore": margin_lower(d_int, sel["pivot_bore_min_mm"]),
-        "margin_pivot_base_pressure": margin_upper(p_max, s_comp),
     }
     if method == "vdi2230":
         out.update({
@@ -1212,69 +1194,3 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
             "tightening_factor": np.full_like(f_bolt, alpha),
         })
     return out
-
-
-_CHECKS = [
-    # name, value key, limit key or input, kind, unit, equation, correction key
-    ("tilting safety factor", "tilting_safety_factor", "tilting_target", ">=", "-", "eq. (94)-(97)", None),
-    ("sliding safety factor", "sliding_safety_factor", "sliding_target", ">=", "-", "eq. (98)-(99)", None),
-    ("bolt von Mises stress", "bolt_sigma_eqv_mpa", "bolt_limit", "<=", "MPa", "eq. (103)-(107)", None),
-    ("under-head stress", "bolt_under_head_stress_mpa", "s_comp", "<=", "MPa", "eq. (108)-(109)",
-     "min_head_contact_diameter_mm"),
-    ("thread bearing stress", "bolt_thread_stress_mpa", "s_trac", "<=", "MPa", "eq. (110)-(111)", "min_active_threads"),
-    ("pivot bore for the bolt", "support_bore", "pivot_bore_min_mm", ">=", "mm", "thesis step 2 / section 10",
-     "pivot_bore_min_mm"),
-    ("pivot base max contact pressure", "pivot_base_max_pressure_mpa", "s_comp", "<=", "MPa", "eq. (96), Fig. 74", None),
-]
-_VDI_YIELD_CHECK = ("bolt max assembly preload vs permissible", "bolt_required_preload_max_n",
-                    "bolt_permissible_preload_n", "<=", "N", "VDI 2230-1 R5-R7", None)
-
-
-def fixation_checks(result: dict, *, tilting_safety_factor_target, sliding_safety_factor_target,
-                    engine_support_internal_diameter_mm, support_yield_strength_compression_mpa,
-                    support_yield_strength_traction_mpa, index=()) -> list[Check]:
-    """Report records (:class:`synth.checks.Check`) of one design of a :func:`fixation` result.
-
-    ``index`` selects the design in vectorised results (``()`` for scalars).
-    Failing checks carry the thesis's column-G correction in ``correction``.
-    A ``method="vdi2230"`` result checks the bolt by ``F_M,max <= F_M,zul``
-    (VDI 2230-1 R7) instead of the elastic von Mises stress.
-
-    >>> r = fixation(462.5, 20.0, 2.0, 3.0, 3.0, 8.2, 28.0, 360.0, 400.0, 400.0,
-    ...              number_of_active_threads=2.6, bolt_head_contact_external_diameter_mm=11.0)
-    >>> [c.verdict for c in fixation_checks(r, tilting_safety_factor_target=3.0, sliding_safety_factor_target=3.0,
-    ...   engine_support_internal_diameter_mm=8.2, support_yield_strength_compression_mpa=400.0,
-    ...   support_yield_strength_traction_mpa=400.0)]
-    ['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass']
-    """
-    def get(key):
-        return float(np.asarray(result[key])[index])
-    extra = {
-        "tilting_target": float(np.asarray(tilting_safety_factor_target, float)[index] if np.ndim(tilting_safety_factor_target) else tilting_safety_factor_target),
-        "sliding_target": float(np.asarray(sliding_safety_factor_target, float)[index] if np.ndim(sliding_safety_factor_target) else sliding_safety_factor_target),
-        "s_comp": float(np.broadcast_to(support_yield_strength_compression_mpa, np.shape(result["bolt_axial_force_n"]))[index]),
-        "s_trac": float(np.broadcast_to(support_yield_strength_traction_mpa, np.shape(result["bolt_axial_force_n"]))[index]),
-        "support_bore": float(np.broadcast_to(engine_support_internal_diameter_mm, np.shape(result["bolt_axial_force_n"]))[index]),
-        "bolt_limit": constant("bolt_yield_utilisation_max") * get("bolt_rp02_mpa"),
-    }
-    fmt = str(np.asarray(result["bolt_format"])[index])
-    cls = str(np.asarray(result["bolt_property_class"])[index])
-    checks = []
-    rows = _CHECKS if "bolt_permissible_preload_n" not in result else \
-        [_VDI_YIELD_CHECK if r[0] == "bolt von Mises stress" else r for r in _CHECKS]
-    for name, vkey, lkey, kind, unit, eq, corr in rows:
-        value = extra[vkey] if vkey in extra else get(vkey)
-        limit = extra[lkey] if lkey in extra else get(lkey)
-        c = Check(name, STEP, value, limit, kind=kind, unit=unit, equation=eq)
-        if c.verdict == "fail" and corr is not None:
-            c.correction = {
-                "min_head_contact_diameter_mm": f"bolt-head contact diameter >= {get(corr):.1f} mm",
-                "min_active_threads": f"at least {get(corr):.1f} active threads",
-                "pivot_bore_min_mm": f"{fmt} needs a pivot/support bore of at least {get(corr):.1f} mm",
-            }[corr]
-        if name in ("bolt von Mises stress", _VDI_YIELD_CHECK[0]):
-            c.note = f"{fmt} class {cls}"
-            if c.verdict == "fail":
-                c.correction = "no catalog format/class passes: larger format or lower preload"
-        checks.append(c)
-    return checks

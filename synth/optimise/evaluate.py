@@ -134,7 +134,7 @@ def _axial(apps, sp, cg, pos, settings) -> SubTable:
 def _bolt(apps, sp, cg, pos, settings) -> SubTable:
     nk = sp.n("bolt")
     opts = sp.rows("bolt", np.arange(nk))
-    fix = E.fixation_values(apps, np.zeros(nk, dtype=np.int64), opts)  # per bolt row: no core dependence
+    fix = E.fixation_values(apps, np.zeros(nk, dtype=np.int64), opts, settings)  # per bolt row: no core dependence
     i, k = (x.ravel() for x in np.meshgrid(np.arange(len(pos)), np.arange(nk), indexing="ij"))
     g = E.bolt(apps, cg, pos[i], sp.rows("bolt", k), settings, fixation={key: v[k] for key, v in fix.items()})
     return _scatter(np.ones((len(pos), nk), dtype=bool), i, k, g)
@@ -147,6 +147,9 @@ def _spring(apps, sp, cg, pos, settings, counter) -> SubTable:
                                          "spring_housing_outer_diameter_mm", "spring_housing_inner_diameter_mm")], axis=1)
     uniq, inv = np.unique(stack, axis=0, return_inverse=True)
     inv = np.asarray(inv).reshape(-1)
+    if not len(uniq):
+        empty = np.zeros((0, nk), dtype=bool)
+        return SubTable(empty, empty, np.zeros((0, nk)), np.zeros((0, nk)))
     mbd = sp.tables["spring"]["main_spring_mean_body_diameter_mm"]
     ukeys = {"app": np.zeros(len(uniq), dtype=np.int64), "spring_torque_nominal_nm": uniq[:, 0],
              "spring_housing_height_mm": uniq[:, 1], "spring_housing_outer_diameter_mm": uniq[:, 2],
