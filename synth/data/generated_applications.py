@@ -51,8 +51,57 @@ def _u(rng, name):
     return float(rng.uniform(lo, hi))
 
 
-def generate(n: int = 50, seed: int = 0) -> list:
-    """``n`` generated design inputs (validated), alternating the oil/axial and dry/radial families."""
+#: optional inputs :func:`generate` may leave out (``vary=True``), each with probability ``DROP``
+OPTIONAL = ("pulley_max_parallelism_eol_mm", "loading_arm_mm", "middle_plane_belt_height_increment_worst_mm",
+            "damping_tolerance_nm", "damping_eol_limit_nm", "spring_torque_tolerance_pct",
+            "arm_travel_nominal_to_installation_deg", "arm_travel_nominal_to_free_deg",
+            "contact_angle_deg", "bolt_head_contact_external_diameter_mm", "number_of_active_threads",
+            "wrap_angle_deg", "lockup_pin")
+DROP = 0.3
+
+
+def _vary(raw: dict, rng) -> dict:
+    """A variant of ``raw`` across the schema's choices: optional inputs left out, the travels, the lock-up pin,
+    single eccentric, only radial damping, an assumed durability test, wide ranges."""
+    raw = dict(raw)
+    raw["arm_travel_nominal_to_installation_deg"] = float(rng.uniform(15.0, 70.0))
+    raw["arm_travel_nominal_to_free_deg"] = float(rng.uniform(10.0, 45.0))
+    raw.update(wrap_angle_deg=float(rng.uniform(40.0, 160.0)), nominal_arm_angle_from_EHR_deg=float(rng.uniform(-180, 180)),
+               lockup_pin_position_radius_mm=float(rng.uniform(25.0, 50.0)),
+               lockup_pin_angular_position_deg=float(rng.uniform(-180, 180)), lockup_pin_diameter_mm=4.0)
+    for name in OPTIONAL:
+        if rng.uniform() < DROP:
+            if name == "lockup_pin":
+                for k in ("lockup_pin_position_radius_mm", "lockup_pin_angular_position_deg", "lockup_pin_diameter_mm"):
+                    raw.pop(k, None)
+            elif name == "damping_eol_limit_nm" or name == "damping_tolerance_nm":
+                raw.pop(name, None)
+            else:
+                raw.pop(name, None)
+    r = rng.uniform()
+    if r < 0.1:
+        raw.update(belt_loading_type="single_eccentric")
+        raw.pop("loading_arm_mm", None)
+    if rng.uniform() < 0.15:
+        raw["damping_typology"] = "only_radial"
+    if rng.uniform() < 0.15:
+        for k in ("durability_theta_peak_to_peak_deg", "durability_frequency_hz", "durability_duration_h"):
+            raw.pop(k, None)
+        if rng.uniform() < 0.5:
+            raw.update(durability_test="assumed", engine_type=str(rng.choice(["gasoline", "diesel"])))
+    if rng.uniform() < 0.1:
+        raw["working_arm_mm"] = round(float(rng.uniform(2.0, 7.5)), 1)
+    if rng.uniform() < 0.1:
+        raw["differential_angle_deg"] = float(rng.uniform(20.0, 160.0))
+    return raw
+
+
+def generate(n: int = 50, seed: int = 0, *, vary: bool = False) -> list:
+    """``n`` generated design inputs (validated), alternating the oil/axial and dry/radial families.
+
+    ``vary=True`` also spreads the choices and leaves optional inputs out (:func:`_vary`): every optional
+    input present and absent, for the tests that compare every path of the evaluator.
+    """
     rng = np.random.default_rng(seed)
     out = []
     for i in range(n):
@@ -96,5 +145,9 @@ def generate(n: int = 50, seed: int = 0) -> list:
             "support_yield_strength_compression_mpa": 400.0,
             "support_yield_strength_traction_mpa": 400.0,
         }
+        if vary:
+            raw = _vary(raw, rng)
+            if raw.get("damping_eol_limit_nm") is not None and raw.get("damping_target_nm") is not None:
+                raw["damping_eol_limit_nm"] = min(raw["damping_eol_limit_nm"], raw["damping_target_nm"])
         out.append(validate(raw))
     return out
