@@ -45,7 +45,7 @@ __all__ = [
     "bending_stress_mpa", "coils_at_angle", "mean_diameter_at_coils_mm", "outer_diameter_max_mm",
     "inner_diameter_min_mm", "coil_gap_mm", "block_length_mm", "hooks_angle_deg",
     "goodman_safety_factor", "spring_housing_height_mm", "spring_housing_outer_diameter_mm",
-    "rm_lookup_diameter_mm", "material_strength_mpa", "material_properties", "wire_properties",
+    "rm_lookup_diameter_mm", "material_strength_mpa", "permissible_static_bending_stress_mpa", "material_properties", "wire_properties",
     "main_spring_design", "main_spring_from_catalog", "search_main_spring", "main_spring_checks",
     "MARGIN_KEYS",
 ]
@@ -338,9 +338,14 @@ def goodman_safety_factor(sigma_max_mpa, sigma_min_mpa, Rm_mpa, sigma_A0_mpa, si
 def rm_lookup_diameter_mm(b_mm, h_mm, round_wire):
     """Wire diameter used to read the tensile strength table [mm].
 
-    Round: ``d``. Rectangular: the round wire of equal area ``sqrt(4 b h / pi)``
-    (flat wire is rolled from it; Rm falls with diameter, so this is the
-    conservative choice).
+    Round: ``d``. Rectangular (flat or square): the round wire of equal area
+    ``sqrt(4 b h / pi)``. EN 10270-1/-2/-3 specify round wire only (EN 10270-1:
+    "wire of circular cross-section"; EN 13906-3 covers springs "made from
+    round wire and bar"), so no standard gives Rm for profiled wire; flat wire
+    is cold-rolled from a round wire of (about) the same area and suppliers
+    quote it by their own sheets. Reading the table at the equal-area
+    diameter is synth's rule (a larger diameter than the thickness ``h``, so a
+    lower Rm: on the safe side of the rolled wire's work hardening).
 
     >>> round(float(rm_lookup_diameter_mm(2.3, 2.3, False)), 3)
     2.595
@@ -352,12 +357,21 @@ def rm_lookup_diameter_mm(b_mm, h_mm, round_wire):
 def material_strength_mpa(material, d_mm, which="min"):
     """Tensile strength Rm of ``material`` at wire diameter ``d_mm`` [MPa].
 
-    Linear interpolation in ``catalogs/spring_material_strength.csv`` (EN
-    10270-1/-2/-3 ranges), clamped to the table's diameter range. ``which``:
-    ``"min"`` (design value) or ``"max"``.
+    A step lookup in ``catalogs/spring_material_strength.csv``: every row
+    holds the range ``d_over_mm < d <= d_mm`` of the standard's table (EN
+    10270-1 Table 3: a size between two listed sizes takes the next larger
+    size's values; EN 10270-2 Table 3 and EN 10270-3 list ranges) or of a
+    supplier sheet. A diameter below the first row takes the first row (wire
+    strength falls with diameter, so this is on the safe side); above the
+    last row it takes the last row. ``which``: ``"min"`` (design value) or
+    ``"max"``.
 
-    >>> float(material_strength_mpa("VDSiCr", 2.3))
-    2004.0
+    EN 10270-2 Table 3, VDSiCr, 2.0 < d <= 2.5 mm: 1960-2060 MPa.
+
+    >>> float(material_strength_mpa("VDSiCr", 2.3)), float(material_strength_mpa("VDSiCr", 2.3, "max"))
+    (1960.0, 2060.0)
+    >>> material_strength_mpa("VDSiCr", [2.0, 2.0001, 2.595]).tolist()
+    [2010.0, 1960.0, 1910.0]
     """
     if which not in ("min", "max"):
         raise InputError(Problem("which", which, "'min' or 'max'"))
@@ -367,7 +381,36 @@ def material_strength_mpa(material, d_mm, which="min"):
         raise InputError(Problem("main_spring_material", material,
                                  "one of " + ", ".join(sorted(df["material"].unique()))))
     col = "Rm_min_mpa" if which == "min" else "Rm_max_mpa"
-    return np.interp(_f(d_mm), sub["d_mm"].to_numpy(float), sub[col].to_numpy(float))
+    upper = sub["d_mm"].to_numpy(float)
+    values = sub[col].to_numpy(float)
+    d = _f(d_mm)
+    # first row whose upper bound is >= d (d_over < d <= d_mm); gaps between rows take the next row
+    idx = np.clip(np.searchsorted(upper, d - 1e-9, side="left"), 0, len(upper) - 1)
+    return values[idx]
+
+
+def permissible_static_bending_stress_mpa(Rm_mpa, fraction, winding=True, unwinding_factor=None):
+    """Permissible bending stress of a statically loaded torsion spring [MPa].
+
+    .. math:: \\sigma_{zul} = f\\, R_m \\quad (\\times\\, k_{unw} \\text{ when loaded unwinding})
+
+    to be compared with the bending stress *without* the curvature factor
+    (static springs are checked without stress correction: Autodesk Inventor's
+    EN 13906-3 torsion spring generator, "for springs under static load no
+    correction is made"). ``fraction`` f = 0.75 for cold-formed spring wire and
+    k_unw = 0.8 ("20 % lower when the spring is loaded in the opening sense"):
+    aabag.de, permissible bending stresses of statically or rarely loaded leg
+    springs. The values are the materials' ``sigma_perm_static_fraction``
+    (``spring_materials.csv``) and ``main_spring_unwinding_static_factor``
+    (``constants_main_spring.csv``).
+
+    >>> float(permissible_static_bending_stress_mpa(1960.0, 0.75))
+    1470.0
+    >>> float(permissible_static_bending_stress_mpa(1960.0, 0.75, winding=False))
+    1176.0
+    """
+    k = catalog.constant("main_spring_unwinding_static_factor") if unwinding_factor is None else unwinding_factor
+    return _f(fraction) * _f(Rm_mpa) * np.where(np.asarray(winding, dtype=bool), 1.0, _f(k))
 
 
 def material_properties(material, b_mm, h_mm, round_wire):
@@ -375,12 +418,16 @@ def material_properties(material, b_mm, h_mm, round_wire):
 
     Returns a dict: ``E_mpa``, ``G_mpa``, ``density_kg_m3``, ``Rm_mpa`` (minimum
     of the standard at :func:`rm_lookup_diameter_mm`), ``sigma_y_mpa``
-    (``sigma_y_bend_fraction * Rm``) and ``sigma_A0_mpa``
-    (``sigma_A0_fraction * Rm``), ``unit_cost_eur_per_kg``.
+    (``sigma_y_bend_fraction * Rm``, the limit of the curvature-corrected
+    installation stress, illustrative), ``sigma_A0_mpa``
+    (``sigma_A0_fraction * Rm``, illustrative), ``sigma_perm_static_mpa``
+    (``sigma_perm_static_fraction * Rm``, the static permissible stress of
+    :func:`permissible_static_bending_stress_mpa` for winding) and
+    ``unit_cost_eur_per_kg``.
 
     >>> p = material_properties("VDSiCr", 2.3, 2.3, True)
-    >>> float(p["E_mpa"]), float(p["Rm_mpa"]), round(float(p["sigma_y_mpa"]), 1)
-    (206000.0, 2004.0, 1763.5)
+    >>> float(p["E_mpa"]), float(p["Rm_mpa"]), round(float(p["sigma_y_mpa"]), 1), float(p["sigma_perm_static_mpa"])
+    (206000.0, 1960.0, 1724.8, 1470.0)
     """
     r = catalog.row("spring_materials", material, field="main_spring_material")
     rm = material_strength_mpa(material, rm_lookup_diameter_mm(b_mm, h_mm, round_wire))
@@ -391,6 +438,7 @@ def material_properties(material, b_mm, h_mm, round_wire):
         "Rm_mpa": rm,
         "sigma_y_mpa": float(r["sigma_y_bend_fraction"]) * rm,
         "sigma_A0_mpa": float(r["sigma_A0_fraction"]) * rm,
+        "sigma_perm_static_mpa": float(r["sigma_perm_static_fraction"]) * rm,
         "unit_cost_eur_per_kg": np.full_like(rm, float(r["unit_cost_eur"])),
     }
 
@@ -416,7 +464,8 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
                        housing_height_mm, housing_outer_diameter_mm=None, housing_inner_diameter_mm=None,
                        b_tol_mm=0.0, h_tol_mm=0.0, dtheta_inst_nom_deg=None, dtheta_nom_free_arm_deg=None,
                        winding=True, torque_tolerance_side=1.0, fibre="inner", mbd_tol_mm=None,
-                       housing_outer_tol_mm=None, housing_inner_tol_mm=None, min_safety_factor=None):
+                       housing_outer_tol_mm=None, housing_inner_tol_mm=None, min_safety_factor=None,
+                       sigma_perm_static_mpa=None):
     """Step 9 for arrays of designs (all arguments broadcast): stiffness to stresses to checks.
 
     Inputs from upstream steps: ``spring_torque_nominal_nm`` (step 3),
@@ -438,6 +487,15 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
     ``coil_gap_min_mm``, ``block_length_max_mm``, ``spring_index``,
     ``curvature_factor``; the normalised margins of :data:`MARGIN_KEYS`
     (>= 0 passes), ``feasible`` (all margins pass) and ``not_verified``.
+
+    With ``sigma_perm_static_mpa`` (the material's static permissible stress
+    for winding, :func:`material_properties`) the result also carries the
+    static check in the form spring makers apply it (informative, not in
+    :data:`MARGIN_KEYS`, so it does not change ``feasible``):
+    ``main_spring_sigma_inst_uncorrected_mpa`` (installation stress without
+    the curvature factor), ``sigma_perm_static_limit_mpa`` (x 0.8 when
+    unwinding) and ``margin_main_spring_static_permissible``; see
+    :func:`permissible_static_bending_stress_mpa`.
 
     >>> r = main_spring_design(E_mpa=206000, Rm_mpa=2004, sigma_y_mpa=1763.5, sigma_A0_mpa=701.4,
     ...     b_mm=2.3, h_mm=2.3, round_wire=True, mbd_mm=44, stiffness_nm_per_deg=0.0164,
@@ -529,6 +587,12 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
             feasible = feasible & (out[key] >= 0)
     out["feasible"] = feasible
     out["not_verified"] = not_verified
+    if sigma_perm_static_mpa is not None:
+        sig_plain = sig["inst"] / out["curvature_factor"]
+        lim = permissible_static_bending_stress_mpa(sigma_perm_static_mpa, 1.0, winding)
+        out["main_spring_sigma_inst_uncorrected_mpa"] = sig_plain
+        out["sigma_perm_static_limit_mpa"] = lim + 0.0 * n_a
+        out["margin_main_spring_static_permissible"] = margin_upper(sig_plain, lim)
     return out
 
 
@@ -550,7 +614,7 @@ def main_spring_from_catalog(material, wire, mbd_mm, **kw):
     out = main_spring_design(E_mpa=m["E_mpa"], Rm_mpa=m["Rm_mpa"], sigma_y_mpa=m["sigma_y_mpa"],
                              sigma_A0_mpa=m["sigma_A0_mpa"], b_mm=w["b_mm"], h_mm=w["h_mm"],
                              round_wire=w["round_wire"], b_tol_mm=w["b_tol_mm"], h_tol_mm=w["h_tol_mm"],
-                             mbd_mm=mbd_mm, **kw)
+                             mbd_mm=mbd_mm, sigma_perm_static_mpa=m["sigma_perm_static_mpa"], **kw)
     area = float(np.pi * w["h_mm"] ** 2 / 4 if w["round_wire"] else w["b_mm"] * w["h_mm"])
     length_m = np.pi * _f(mbd_mm) * out["main_spring_active_coils_free"] / 1000.0
     out["wire_length_m"] = length_m
@@ -607,7 +671,7 @@ def search_main_spring(*, housing_outer_diameter_mm, housing_inner_diameter_mm, 
         r = main_spring_design(E_mpa=m["E_mpa"], Rm_mpa=m["Rm_mpa"], sigma_y_mpa=m["sigma_y_mpa"],
                                sigma_A0_mpa=m["sigma_A0_mpa"], b_mm=b, h_mm=h, round_wire=rnd, b_tol_mm=btol,
                                h_tol_mm=htol, mbd_mm=mbd, housing_outer_diameter_mm=d_out_h,
-                               housing_inner_diameter_mm=d_in_h, **kw)
+                               housing_inner_diameter_mm=d_in_h, sigma_perm_static_mpa=m["sigma_perm_static_mpa"], **kw)
         length_m = np.pi * mbd * r["main_spring_active_coils_free"] / 1000.0
         area = np.where(rnd, np.pi * h**2 / 4, b * h)
         cost = length_m * wcost + length_m * area * 1e-6 * m["density_kg_m3"] * m["unit_cost_eur_per_kg"]
