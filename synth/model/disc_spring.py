@@ -40,6 +40,9 @@ __all__ = [
     "disc_spring_rate_n_per_mm",
     "disc_spring_stresses_mpa",
     "disc_spring_thickness_for_force_mm",
+    "disc_spring_group",
+    "force_tolerance_band_n",
+    "preload_deflection_margin",
     "axial_damping_nm",
     "required_axial_force_n",
     "axial_force_tolerance_band",
@@ -284,6 +287,95 @@ def disc_spring_thickness_for_force_mm(force_n, outer_diameter_mm, inner_diamete
     g = x if fidelity == "screening" else x * ((zeta - x) * (zeta - 0.5 * x) + 1.0)
     scale = 4.0 * e / (1.0 - nu ** 2) / (k["k1"] * _f(outer_diameter_mm) ** 2)
     return (np.maximum(_f(force_n), 0.0) / (scale * g)) ** 0.25
+
+
+def _tolerance_rows():
+    tab = catalog.load("disc_spring_force_tolerances")
+    truth = {"true": True, "false": False}
+    lo, hi = tab["t_from_mm"].to_numpy(float), tab["t_to_mm"].to_numpy(float)
+    inc_lo = tab["includes_t_from"].astype(str).str.strip().str.lower().map(truth).to_numpy(bool)
+    inc_hi = tab["includes_t_to"].astype(str).str.strip().str.lower().map(truth).to_numpy(bool)
+    return tab, lo, hi, inc_lo, inc_hi
+
+
+def _tolerance_row_index(thickness_mm):
+    """Row of ``disc_spring_force_tolerances.csv`` for each thickness; -1 outside every row."""
+    t = _f(thickness_mm)
+    _, lo, hi, inc_lo, inc_hi = _tolerance_rows()
+    idx = np.full(t.shape, -1)
+    for i in range(len(lo)):  # four rows of the standard, not a loop over designs
+        above = np.where(inc_lo[i], t >= lo[i], t > lo[i])
+        below = np.where(inc_hi[i], t <= hi[i], t < hi[i])
+        idx = np.where((idx < 0) & above & below, i, idx)
+    return idx
+
+
+def disc_spring_group(thickness_mm):
+    """DIN EN 16983 (DIN 2093) group of a disc spring of thickness t [mm]: 1, 2 or 3.
+
+    Group 1: t < 1.25 mm; group 2: 1.25 <= t <= 6 mm; group 3 (contact flats):
+    6 < t <= 16 mm (``catalogs/disc_spring_force_tolerances.csv``). A thickness
+    outside every group (t <= 0 or t > 16 mm) raises :class:`InputError`.
+
+    >>> disc_spring_group([0.4, 1.25, 3.0, 6.0, 8.0]).tolist()
+    [1, 2, 2, 2, 3]
+    """
+    t = _f(thickness_mm)
+    idx = _tolerance_row_index(t)
+    _require(idx >= 0, "thickness_mm", t, "0 < t <= 16 mm (DIN EN 16983 groups 1-3)")
+    _require(t > 0, "thickness_mm", t, "> 0")
+    tab = _tolerance_rows()[0]
+    return tab["group"].to_numpy(int)[idx]
+
+
+def force_tolerance_band_n(force_n, thickness_mm) -> dict:
+    """Manufacturing tolerance of a disc spring's force, DIN EN 16983 (DIN 2093) [N].
+
+    The force at the test length :math:`l_0 - 0.75 h_0` may deviate from the
+    nominal F by :math:`+\\delta_+ / -\\delta_-` of F, by thickness:
+    +25/-7.5 % for t < 1.25 mm (group 1), +15/-7.5 % for 1.25 <= t <= 3 mm,
+    +10/-5 % for 3 < t <= 6 mm (group 2), +/-5 % above 6 mm (group 3)
+    (``catalogs/disc_spring_force_tolerances.csv``). The tolerance is specified
+    at the test deflection; applying it at another deflection (as the cone
+    spring's nominal gap) is synth's reading.
+
+    Returns ``force_min_n`` = F (1 - delta-), ``force_max_n`` = F (1 + delta+),
+    ``tol_plus_pct``, ``tol_minus_pct`` and ``group``.
+
+    DIN 2093 A 8 (t = 0.4 mm, F = 210 N, group 1) and A 40 (t = 2.25 mm, 6500 N):
+
+    >>> r = force_tolerance_band_n([210.0, 6500.0], [0.4, 2.25])
+    >>> r["force_min_n"].round(2).tolist(), r["force_max_n"].round(2).tolist()
+    ([194.25, 6012.5], [262.5, 7475.0])
+    """
+    f = _f(force_n)
+    grp = disc_spring_group(thickness_mm)
+    idx = _tolerance_row_index(thickness_mm)
+    tab = _tolerance_rows()[0]
+    plus = tab["force_tol_plus_pct"].to_numpy(float)[idx]
+    minus = tab["force_tol_minus_pct"].to_numpy(float)[idx]
+    return {"force_min_n": f * (1.0 - minus / 100.0), "force_max_n": f * (1.0 + plus / 100.0),
+            "tol_plus_pct": plus, "tol_minus_pct": minus, "group": grp}
+
+
+def preload_deflection_margin(deflection_mm, cone_height_mm, min_ratio=None):
+    """Normalised margin of the smallest deflection against DIN 2093's crack-avoiding preload [-].
+
+    .. math:: m = \\frac{s/h_0 - (s/h_0)_{min}}{(s/h_0)_{min}}
+
+    After setting, the top inner edge (point I) carries residual tensile
+    stress that turns compressive only beyond about 15 % of h0; springs held
+    at smaller deflections crack there (DIN 2093, minimum initial deflection
+    to avoid cracking; ``cone_spring_min_preload_deflection_ratio``).
+    ``deflection_mm`` is the smallest working deflection (the largest gap).
+
+    >>> preload_deflection_margin([0.09, 0.12, 0.6], 0.8).round(4).tolist()
+    [-0.25, 0.0, 4.0]
+    """
+    ratio = catalog.constant("cone_spring_min_preload_deflection_ratio") if min_ratio is None else min_ratio
+    h0 = _f(cone_height_mm)
+    _require(h0 > 0, "cone_height_mm", h0, "> 0")
+    return margin_lower(_f(deflection_mm) / h0, ratio)
 
 
 def axial_damping_nm(axial_force_n, plastic_friction_coefficient, damper_pad_mean_radius_mm,
