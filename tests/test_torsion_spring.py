@@ -273,8 +273,20 @@ def test_search_whole_catalog_is_vectorised_and_fast():
                                stiffness_nm_per_deg=0.018, spring_torque_nominal_nm=3.07, torque_tolerance_pct=4,
                                theta_pp_deg=16, housing_height_mm=14.8)
     n_mbd = len(np.arange(28.0, 45.0 + 0.25, 0.5))
-    assert len(df) == len(catalog.load("spring_materials")) * len(catalog.load("spring_wires")) * n_mbd
+    mats, wires = catalog.load("spring_materials"), catalog.load("spring_wires")
+    n_round = int((wires["section"] == "round").sum())
+    # every material with every wire section it is supplied in (rectangular: the Si-Cr oil-tempered grades)
+    pairs = sum(len(wires) if "rectangular" in str(s).split() else n_round for s in mats["wire_sections"])
+    assert len(df) == pairs * n_mbd
+    assert set(df[df["main_spring_wire_section"] == "rectangular"]["main_spring_material"]) == {
+        "VDSiCr", "TDSiCr", "VDSiCrV", "OTEVA91SC"}
     assert not df.select_dtypes("number").isna().any().any()
+
+
+def test_material_supplied_only_in_its_sections():
+    with pytest.raises(InputError, match="not supplied as rectangular wire"):
+        ms.main_spring_from_catalog("DH", "F2.30x2.30", 41.0, stiffness_nm_per_deg=0.018, spring_torque_nominal_nm=3.07,
+                                    torque_tolerance_pct=4, theta_pp_deg=16, housing_height_mm=14.8)
 
 
 def test_search_rejects_bad_housing():

@@ -45,7 +45,8 @@ __all__ = [
     "bending_stress_mpa", "coils_at_angle", "mean_diameter_at_coils_mm", "outer_diameter_max_mm",
     "inner_diameter_min_mm", "coil_gap_mm", "block_length_mm", "hooks_angle_deg",
     "goodman_safety_factor", "spring_housing_height_mm", "spring_housing_outer_diameter_mm",
-    "rm_lookup_diameter_mm", "material_strength_mpa", "permissible_static_bending_stress_mpa", "material_properties", "wire_properties",
+    "rm_lookup_diameter_mm", "material_strength_mpa", "permissible_static_bending_stress_mpa", "material_properties",
+    "material_wire_sections", "wire_properties",
     "main_spring_design", "main_spring_from_catalog", "search_main_spring", "main_spring_checks",
     "MARGIN_KEYS",
 ]
@@ -456,6 +457,20 @@ def wire_properties(wire):
             "h_tol_mm": float(r["h_tol_mm"]), "unit_cost_eur_per_m": float(r["unit_cost_eur"])}
 
 
+def material_wire_sections(material) -> set:
+    """Wire sections a spring material is supplied in (``wire_sections`` of ``spring_materials.csv``).
+
+    EN 10270-1/-2/-3 specify round wire; the catalog's flat/square wires are
+    cold-rolled oil-tempered Si-Cr wire, so only the Si-Cr oil-tempered grades
+    pair with them.
+
+    >>> sorted(material_wire_sections("VDSiCr")), sorted(material_wire_sections("DH"))
+    (['rectangular', 'round'], ['round'])
+    """
+    r = catalog.row("spring_materials", material, field="main_spring_material")
+    return set(str(r["wire_sections"]).split())
+
+
 # --------------------------------------------------------------------------- the step
 
 
@@ -610,6 +625,11 @@ def main_spring_from_catalog(material, wire, mbd_mm, **kw):
     3.616
     """
     w = wire_properties(wire)
+    section = "round" if w["round_wire"] else "rectangular"
+    if section not in material_wire_sections(material):
+        raise InputError(Problem("main_spring_wire", wire,
+                                 f"a {' or '.join(sorted(material_wire_sections(material)))} wire "
+                                 f"(material {material} is not supplied as {section} wire)"))
     m = material_properties(material, w["b_mm"], w["h_mm"], w["round_wire"])
     out = main_spring_design(E_mpa=m["E_mpa"], Rm_mpa=m["Rm_mpa"], sigma_y_mpa=m["sigma_y_mpa"],
                              sigma_A0_mpa=m["sigma_A0_mpa"], b_mm=w["b_mm"], h_mm=w["h_mm"],
@@ -634,7 +654,8 @@ def search_main_spring(*, housing_outer_diameter_mm, housing_inner_diameter_mm, 
     from the smallest diameter that clears the inner support at installation
     to the largest that fits the housing in the free state. All designs are
     evaluated in one vectorised call per material (materials carry different
-    strength tables). Returns a DataFrame, one row per design, sorted by
+    strength tables); a material only pairs with the wire sections it is
+    supplied in (:func:`material_wire_sections`). Returns a DataFrame, one row per design, sorted by
     ``feasible`` (first), ``cost_eur`` and then decreasing
     ``main_spring_safety_factor``; columns: ``main_spring_material``,
     ``main_spring_wire``, ``main_spring_wire_section``, ``b_mm``, ``h_mm``, the
@@ -681,7 +702,8 @@ def search_main_spring(*, housing_outer_diameter_mm, housing_inner_diameter_mm, 
         for key, val in r.items():
             if key != "not_verified" and np.ndim(val) > 0:
                 cols[key] = np.broadcast_to(val, mbd.shape)
-        frames.append(pd.DataFrame(cols))
+        supplied = rnd | ("rectangular" in material_wire_sections(mat))
+        frames.append(pd.DataFrame(cols)[supplied])
     df = pd.concat(frames, ignore_index=True)
     if only_feasible:
         df = df[df["feasible"]]
