@@ -284,9 +284,11 @@ def test_search_whole_catalog_is_vectorised_and_fast():
 
 
 def test_material_supplied_only_in_its_sections():
-    with pytest.raises(InputError, match="not supplied as rectangular wire"):
-        ms.main_spring_from_catalog("DH", "F2.30x2.30", 41.0, stiffness_nm_per_deg=0.018, spring_torque_nominal_nm=3.07,
-                                    torque_tolerance_pct=4, theta_pp_deg=16, housing_height_mm=14.8)
+    kw = dict(stiffness_nm_per_deg=0.018, spring_torque_nominal_nm=3.07, torque_tolerance_pct=4, theta_pp_deg=16,
+              housing_height_mm=14.8)
+    assert ms.main_spring_from_catalog("DH", "F2.30x2.30", 41.0, **kw)["material_supplied_in_section"] is False
+    assert ms.main_spring_from_catalog("VDSiCr", "F2.30x2.30", 41.0, **kw)["material_supplied_in_section"] is True
+    assert ms.main_spring_from_catalog("DH", "R2.30", 41.0, **kw)["material_supplied_in_section"] is True
 
 
 def test_search_rejects_bad_housing():

@@ -617,7 +617,10 @@ def main_spring_from_catalog(material, wire, mbd_mm, **kw):
     ``material`` is a key of ``spring_materials.csv`` (e.g. ``"VDSiCr"``),
     ``wire`` a key of ``spring_wires.csv`` (e.g. ``"F2.30x2.30"``, ``"R2.30"``);
     other keywords as in :func:`main_spring_design`. Adds ``wire_length_m``,
-    ``mass_kg`` and ``cost_eur`` (illustrative catalog costs).
+    ``mass_kg`` and ``cost_eur`` (illustrative catalog costs), and
+    ``material_supplied_in_section`` (False when the material is not supplied
+    in the wire's section, :func:`material_wire_sections`; reported, not
+    gating: callers decide).
 
     >>> r = main_spring_from_catalog("VDSiCr", "F2.30x2.30", 41.0, stiffness_nm_per_deg=0.018,
     ...     spring_torque_nominal_nm=3.07, torque_tolerance_pct=4, theta_pp_deg=16, housing_height_mm=14.8)
@@ -626,10 +629,6 @@ def main_spring_from_catalog(material, wire, mbd_mm, **kw):
     """
     w = wire_properties(wire)
     section = "round" if w["round_wire"] else "rectangular"
-    if section not in material_wire_sections(material):
-        raise InputError(Problem("main_spring_wire", wire,
-                                 f"a {' or '.join(sorted(material_wire_sections(material)))} wire "
-                                 f"(material {material} is not supplied as {section} wire)"))
     m = material_properties(material, w["b_mm"], w["h_mm"], w["round_wire"])
     out = main_spring_design(E_mpa=m["E_mpa"], Rm_mpa=m["Rm_mpa"], sigma_y_mpa=m["sigma_y_mpa"],
                              sigma_A0_mpa=m["sigma_A0_mpa"], b_mm=w["b_mm"], h_mm=w["h_mm"],
@@ -640,6 +639,7 @@ def main_spring_from_catalog(material, wire, mbd_mm, **kw):
     out["wire_length_m"] = length_m
     out["mass_kg"] = length_m * area * 1e-6 * m["density_kg_m3"]
     out["cost_eur"] = length_m * w["unit_cost_eur_per_m"] + out["mass_kg"] * m["unit_cost_eur_per_kg"]
+    out["material_supplied_in_section"] = section in material_wire_sections(material)
     out.update(main_spring_material=material, main_spring_wire=wire,
                main_spring_wire_section="round" if w["round_wire"] else "rectangular",
                Rm_mpa=m["Rm_mpa"], sigma_y_mpa=m["sigma_y_mpa"], sigma_A0_mpa=m["sigma_A0_mpa"])
