@@ -10,7 +10,7 @@ import csv
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-ORDER = ["00_overview", "architecture", "step00_03", "plain_bushing", "friction_wear", "stackup",
+ORDER = ["00_overview", "architecture", "data_sources", "step00_03", "plain_bushing", "friction_wear", "stackup",
          "packaging", "disc_spring", "torsion_spring", "bolted_joint", "cad",
          "optimisation", "bulk_engine", "bulk", "reports", "shrink_fit"]
 

@@ -157,7 +157,8 @@ def _arrays_cached(user_dirs: tuple) -> Parts:
                                                            "axial_height_mm", "unit_cost_eur"))
     mat = _table("spring_materials", load("spring_materials"), ("E_mpa", "G_mpa", "density_kg_m3",
                                                                "sigma_y_bend_fraction", "sigma_A0_fraction",
-                                                               "unit_cost_eur"))
+                                                               "sigma_perm_static_fraction", "unit_cost_eur"),
+                 strings=("wire_sections",))
     strength_df = load("spring_material_strength")
     strength = []
     for key in mat.key:

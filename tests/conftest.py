@@ -17,3 +17,24 @@ def load_case(name: str) -> dict:
 @pytest.fixture(params=["case1_as_run", "case3"])
 def case(request):
     return load_case(request.param)
+
+
+def shrink_fit_case(model="paper", initial_rz=4.8, **overrides):
+    """The shrink-fit case of the paper (``shrink_fit_kia_ceed``) with its modelling choices (``model: paper``).
+
+    ``initial_rz``: the initial journal roughness Rz [um] of the paper's sec. 3.3 (None: the measured one).
+    """
+    from synth.shrink_fit.inputs import case_from_dict
+
+    data = load_case("shrink_fit_kia_ceed")
+    inputs = dict(data["inputs"])
+    inputs["roughness"] = dict(inputs["roughness"])
+    if initial_rz is not None:
+        inputs["roughness"]["journal_initial"] = {"Rz": initial_rz}
+    inputs.update(overrides)
+    return case_from_dict({"name": data["name"], "inputs": inputs, "model": model})
+
+
+def shrink_fit_row(table, state, level):
+    """The row of a shrink-fit result table for ``state`` (new/worn) and ``level`` (min/max interference)."""
+    return next(r for r in table if r["state"] == state and r["interference"] == level)

@@ -185,7 +185,8 @@ def test_pictures_written_small(exported, case):
 
 @pytest.mark.parametrize("case", ["case1", "case3"])
 def test_case_checks_agree_with_the_flowchart(exported, case):
-    """The flowchart's nearest springs (case 1: Dm 45 + 2.5 wire in a 45 mm housing; case 3: Dm 47 + 2.4 in 47)
+    """The flowchart's nearest springs (case 1: Dm 45 + 2.5 wire in a 45 mm housing; case 3: Dm 47 + 2.2 in 47,
+    the 2.2 x 2.2 flat TDSiCr wire since the EN 10270-2 strength table)
     stick out of the housing: the CAD sees it as interference with the support-plate cup, as the physics does
     (spring outer contact, eq. 81-82). Everything else fits."""
     checks = exported[case][2]
@@ -193,7 +194,7 @@ def test_case_checks_agree_with_the_flowchart(exported, case):
     assert bad == {"no interference between parts", "interference support_plate/main_spring",
                    "main spring within housing diameter"}
     assert _by_name(checks, "main spring within housing diameter").value == pytest.approx(
-        {"case1": 47.5, "case3": 49.4}[case], abs=TOL)
+        {"case1": 47.5, "case3": 49.2}[case], abs=TOL)
     for name in ("pivot top within max pivot height", "assembly within max axial displacement",
                  "pulley mid-plane on the belt plane", "main spring within housing height"):
         assert _by_name(checks, name).verdict == PASS

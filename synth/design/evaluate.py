@@ -348,21 +348,19 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
             "cone_spring_cone_height_mm", "cone_spring_free_height_mm", "cone_spring_nominal_deflection_mm",
             "cone_spring_max_deflection_mm", "cone_spring_rate_n_per_mm", "sigma_om_mpa", "sigma_i_mpa",
             "sigma_ii_mpa", "sigma_iii_mpa", "sigma_iv_mpa", "cone_spring_diameter_ratio", "cone_spring_aspect_ratio",
-            "cone_spring_thinness")
+            "cone_spring_thinness", "cone_spring_force_tolerance_plus", "cone_spring_force_tolerance_minus")
     for k in keys:
         v[k] = np.full(n, np.nan)
     v["cone_spring_max_external_diameter_mm"] = np.where(real, de, np.nan)
     i = np.flatnonzero(act)
     tol = f["damping_tolerance_nm"]
     mu_pl = apps.mu_plastic[a]
-    plus, minus = _const("cone_spring_force_tolerance_plus_pct") / 100.0, _const("cone_spring_force_tolerance_minus_pct") / 100.0
     gap = s6.gap_tolerance_mm("worst_case")
     if len(i):
         cs = s8.cone_spring(cv["axial_damping_nm"][i], apps.damping_target_or_zero_nm[a][i],
                             np.nan_to_num(tol[i], nan=0.0), cv["radial_damping_nm"][i], mu_pl[i],
                             cv["damper_pad_mean_radius_mm"][i], np.asarray(o["endcap_spacer_mean_radius_mm"])[i],
-                            de[i], di[i], gap, aspect_ratio=zeta[i], deflection_ratio=phi[i],
-                            force_tolerance_plus=plus, force_tolerance_minus=minus, fidelity=settings.fidelity)
+                            de[i], di[i], gap, aspect_ratio=zeta[i], deflection_ratio=phi[i], fidelity=settings.fidelity)
         for k in keys:
             v[k][i] = cs[k]
     v["cone_spring_gap_tolerance_mm"] = np.full(n, gap)
@@ -425,13 +423,14 @@ def spring(apps, keys: dict, k, o: dict, settings: Settings = Settings()) -> Gro
             housing_inner_diameter_mm=keys["spring_housing_inner_diameter_mm"][k],
             b_tol_mm=o["b_tol_mm"], h_tol_mm=o["h_tol_mm"],
             dtheta_inst_nom_deg=f["arm_travel_nominal_to_installation_deg"],
-            dtheta_nom_free_arm_deg=f["arm_travel_nominal_to_free_deg"])
+            dtheta_nom_free_arm_deg=f["arm_travel_nominal_to_free_deg"], sigma_perm_static_mpa=o["sigma_perm_static_mpa"])
     n = len(a)
     v = {"app": a}
     for key in ("main_spring_active_coils_free", "main_spring_sigma_a_max_mpa", "main_spring_sigma_a_min_mpa",
                 "main_spring_sigma_inst_mpa", "main_spring_safety_factor", "hooks_angle_free_state_deg",
                 "hooks_angle_nominal_deg", "spring_index", "curvature_factor", "theta_nom_deg", "theta_inst_deg",
-                "theta_free_arm_deg", "torque_inst_nm", "block_length_max_mm"):
+                "theta_free_arm_deg", "torque_inst_nm", "block_length_max_mm", "main_spring_sigma_inst_uncorrected_mpa",
+                "sigma_perm_static_limit_mpa"):
         v[key] = np.broadcast_to(np.asarray(r[key], dtype=float), (n,))
     v["main_spring_index"] = v.pop("spring_index")
     v.update(main_spring_sigma_permissible_mpa=np.broadcast_to(np.asarray(r["sigma_y_limit_mpa"], float), (n,)),
@@ -446,6 +445,7 @@ def spring(apps, keys: dict, k, o: dict, settings: Settings = Settings()) -> Gro
              main_spring_index_min=np.full(n, _const("main_spring_index_min")),
              main_spring_index_max=np.full(n, _const("main_spring_index_max")),
              main_spring_mean_body_diameter_mm=np.asarray(o["main_spring_mean_body_diameter_mm"], dtype=float))
+    v["main_spring_supplied_in_section"] = np.asarray(o["supplied_in_section"], dtype=float)
     length_m = np.pi * v["main_spring_mean_body_diameter_mm"] * v["main_spring_active_coils_free"] / 1000.0
     v["main_spring_wire_length_m"] = length_m
     return finish("spring", v, apps, a)

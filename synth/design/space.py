@@ -210,9 +210,21 @@ def core_attributes(p: P.Parts, bearing, pivot_class_mm, supplier, pad) -> dict:
     return t
 
 
+def selectable_bearings(p: P.Parts) -> np.ndarray:
+    """Codes of the bearings the thesis method can size: those with thesis Table 1 rows (both fuels) and Table 2
+    rows. The catalog holds more (ISO 15, supplier ratings); no rule reproduces Tables 1-2 from their data
+    (``tests/validation/test_thesis_tables_1_2.py``), so they wait for Table 1-2 rows (a user catalog can add
+    them: ``bearing_selection.csv``, ``pivot_classes.csv``)."""
+    ok = np.isfinite(p.bearing_max_hubload_n).all(axis=1) | np.isinf(p.bearing_max_hubload_n).all(axis=1)
+    ok &= ~np.isnan(p.bearing_max_hubload_n).any(axis=1)
+    ok &= np.array([len(p.table2[i][0]) > 0 for i in range(len(p.bearing))])
+    return np.flatnonzero(ok)
+
+
 def _core(p: P.Parts) -> dict:
     classes = _pivot_classes(p)
-    b, c, s, dpad = (a.ravel() for a in np.meshgrid(np.arange(len(p.bearing)), np.arange(len(classes)),
+    bearings = selectable_bearings(p)
+    b, c, s, dpad = (a.ravel() for a in np.meshgrid(bearings, np.arange(len(classes)),
                                                      np.arange(len(p.bushing)), np.arange(len(p.damper_pad) + 1) - 1,
                                                      indexing="ij"))
     return core_attributes(p, b, classes[c], s, dpad)
@@ -305,7 +317,9 @@ def spring_attributes(p: P.Parts, material, wire, mbd_mm) -> dict:
         "material_code": m, "wire_code": w,
         "main_spring_material": mat.key[m], "main_spring_wire": wire_t.key[w], "main_spring_mean_body_diameter_mm": d,
         "E_mpa": mat.E_mpa[m], "Rm_mpa": rm, "sigma_y_mpa": mat.sigma_y_bend_fraction[m] * rm,
-        "sigma_A0_mpa": mat.sigma_A0_fraction[m] * rm,
+        "sigma_A0_mpa": mat.sigma_A0_fraction[m] * rm, "sigma_perm_static_mpa": mat.sigma_perm_static_fraction[m] * rm,
+        "supplied_in_section": np.array([wire_t.section[wi] in mat.wire_sections[mi].split()
+                                         for mi, wi in zip(np.atleast_1d(m), np.atleast_1d(w))], dtype=bool),
         "b_mm": wire_t.b_mm[w], "h_mm": wire_t.h_mm[w], "round_wire": rnd, "b_tol_mm": wire_t.b_tol_mm[w],
         "h_tol_mm": wire_t.h_tol_mm[w], "second_moment_mm4": inertia, "wire_section_area_mm2": area,
         "density_kg_m3": mat.density_kg_m3[m],
@@ -317,7 +331,10 @@ def spring_attributes(p: P.Parts, material, wire, mbd_mm) -> dict:
 def _spring(p: P.Parts) -> dict:
     m, w, d = (a.ravel() for a in np.meshgrid(np.arange(len(p.spring_material)), np.arange(len(p.spring_wire)),
                                               mbd_grid(p), indexing="ij"))
-    return spring_attributes(p, m, w, d)
+    # a material pairs only with the wire sections it is supplied in (spring_materials.csv wire_sections)
+    supplied = np.array([p.spring_wire.section[wi] in p.spring_material.wire_sections[mi].split()
+                         for mi, wi in zip(m, w)], dtype=bool)
+    return spring_attributes(p, m[supplied], w[supplied], d[supplied])
 
 
 def bolt_attributes(p: P.Parts, head, property_class) -> dict:

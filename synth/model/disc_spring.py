@@ -39,6 +39,9 @@ __all__ = [
     "disc_spring_rate_n_per_mm",
     "disc_spring_stresses_mpa",
     "disc_spring_thickness_for_force_mm",
+    "disc_spring_group",
+    "force_tolerance_band_n",
+    
     "axial_damping_nm",
     "required_axial_force_n",
     "axial_force_tolerance_band",
@@ -284,6 +287,75 @@ def disc_spring_thickness_for_force_mm(force_n, outer_diameter_mm, inner_diamete
     return (np.maximum(_f(force_n), 0.0) / (scale * g)) ** 0.25
 
 
+def _tolerance_rows():
+    tab = catalog.load("disc_spring_force_tolerances")
+    truth = {"true": True, "false": False}
+    lo, hi = tab["t_from_mm"].to_numpy(float), tab["t_to_mm"].to_numpy(float)
+    inc_lo = tab["includes_t_from"].astype(str).str.strip().str.lower().map(truth).to_numpy(bool)
+    inc_hi = tab["includes_t_to"].astype(str).str.strip().str.lower().map(truth).to_numpy(bool)
+    return tab, lo, hi, inc_lo, inc_hi
+
+
+def _tolerance_row_index(thickness_mm):
+    """Row of ``disc_spring_force_tolerances.csv`` for each thickness; -1 outside every row."""
+    t = _f(thickness_mm)
+    _, lo, hi, inc_lo, inc_hi = _tolerance_rows()
+    idx = np.full(t.shape, -1)
+    for i in range(len(lo)):  # four rows of the standard, not a loop over designs
+        above = np.where(inc_lo[i], t >= lo[i], t > lo[i])
+        below = np.where(inc_hi[i], t <= hi[i], t < hi[i])
+        idx = np.where((idx < 0) & above & below, i, idx)
+    return idx
+
+
+def disc_spring_group(thickness_mm):
+    """DIN EN 16983 (DIN 2093) group of a disc spring of thickness t [mm]: 1, 2 or 3.
+
+    Group 1: t < 1.25 mm; group 2: 1.25 <= t <= 6 mm; group 3 (contact flats):
+    6 < t <= 16 mm (``catalogs/disc_spring_force_tolerances.csv``). A thickness
+    outside every group (t <= 0 or t > 16 mm) raises :class:`InputError`.
+
+    >>> disc_spring_group([0.4, 1.25, 3.0, 6.0, 8.0]).tolist()
+    [1, 2, 2, 2, 3]
+    """
+    t = _f(thickness_mm)
+    idx = _tolerance_row_index(t)
+    _require(idx >= 0, "thickness_mm", t, "0 < t <= 16 mm (DIN EN 16983 groups 1-3)")
+    _require(t > 0, "thickness_mm", t, "> 0")
+    tab = _tolerance_rows()[0]
+    return tab["group"].to_numpy(int)[idx]
+
+
+def force_tolerance_band_n(force_n, thickness_mm) -> dict:
+    """Manufacturing tolerance of a disc spring's force, DIN EN 16983 (DIN 2093) [N].
+
+    The force at the test length :math:`l_0 - 0.75 h_0` may deviate from the
+    nominal F by :math:`+\\delta_+ / -\\delta_-` of F, by thickness:
+    +25/-7.5 % for t < 1.25 mm (group 1), +15/-7.5 % for 1.25 <= t <= 3 mm,
+    +10/-5 % for 3 < t <= 6 mm (group 2), +/-5 % above 6 mm (group 3)
+    (``catalogs/disc_spring_force_tolerances.csv``). The tolerance is specified
+    at the test deflection; applying it at another deflection (as the cone
+    spring's nominal gap) is synth's reading.
+
+    Returns ``force_min_n`` = F (1 - delta-), ``force_max_n`` = F (1 + delta+),
+    ``tol_plus_pct``, ``tol_minus_pct`` and ``group``.
+
+    DIN 2093 A 8 (t = 0.4 mm, F = 210 N, group 1) and A 40 (t = 2.25 mm, 6500 N):
+
+    >>> r = force_tolerance_band_n([210.0, 6500.0], [0.4, 2.25])
+    >>> r["force_min_n"].round(2).tolist(), r["force_max_n"].round(2).tolist()
+    ([194.25, 6012.5], [262.5, 7475.0])
+    """
+    f = _f(force_n)
+    grp = disc_spring_group(thickness_mm)
+    idx = _tolerance_row_index(thickness_mm)
+    tab = _tolerance_rows()[0]
+    plus = tab["force_tol_plus_pct"].to_numpy(float)[idx]
+    minus = tab["force_tol_minus_pct"].to_numpy(float)[idx]
+    return {"force_min_n": f * (1.0 - minus / 100.0), "force_max_n": f * (1.0 + plus / 100.0),
+            "tol_plus_pct": plus, "tol_minus_pct": minus, "group": grp}
+
+
 def axial_damping_nm(axial_force_n, plastic_friction_coefficient, damper_pad_mean_radius_mm,
                      endcap_spacer_mean_radius_mm):
     """Axial damping torque, thesis eq. (9): :math:`D_{ax} = F_{ax}\\,\\mu\\,(R_{m,dp} + R_{m,es})` [N m].
@@ -477,7 +549,7 @@ def table7_ratios(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_heigh
 def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radial_damping_nm,
                 plastic_friction_coefficient, damper_pad_mean_radius_mm, endcap_spacer_mean_radius_mm,
                 outer_diameter_mm, inner_diameter_mm, gap_tolerance_mm, *, aspect_ratio, deflection_ratio,
-                force_tolerance_plus=0.0, force_tolerance_minus=0.0, fidelity: str = "full") -> dict:
+                force_tolerance_plus=None, force_tolerance_minus=None, fidelity: str = "full") -> dict:
     """Step 8: size the cone spring of one variant and its force tolerance band (thesis eq. (9), (55)-(63), Fig. 68).
 
     1. nominal axial force from the axial damping of step 3 (eq. (9) inverted);
@@ -488,7 +560,9 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
        (:func:`disc_spring_thickness_for_force_mm`);
     4. the force shifts over the stack-up gap tolerance of step 6 along the
        characteristic (``fidelity``), the tolerance band and the room left in it
-       for the manufacturing tolerance ``force_tolerance_plus/minus`` (fractions);
+       for the manufacturing tolerance (``force_tolerance_plus/minus`` as
+       fractions; by default DIN EN 16983's for the spring's thickness,
+       :func:`force_tolerance_band_n`; NaN beyond its thickness groups);
     5. stresses at the maximum-material deflection.
 
     Inputs broadcast (one call, many designs; valid geometry: ``De > Di > 0``,
@@ -521,6 +595,13 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
     s_n = phi * h0
     dh = _f(gap_tolerance_mm)
     geo = (de, di, t, h0)
+    if force_tolerance_plus is None or force_tolerance_minus is None:
+        row = _tolerance_row_index(t)
+        tab = _tolerance_rows()[0]
+        plus_pct = np.append(tab["force_tol_plus_pct"].to_numpy(float), np.nan)[row]
+        minus_pct = np.append(tab["force_tol_minus_pct"].to_numpy(float), np.nan)[row]
+        force_tolerance_plus = plus_pct / 100.0 if force_tolerance_plus is None else force_tolerance_plus
+        force_tolerance_minus = minus_pct / 100.0 if force_tolerance_minus is None else force_tolerance_minus
     shifts = gap_force_shifts_n(s_n, dh, *geo, fidelity=fidelity)
     band = axial_force_tolerance_band(damping_target_nm, damping_tolerance_nm, radial_damping_nm,
                                       plastic_friction_coefficient, damper_pad_mean_radius_mm,
@@ -541,6 +622,8 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
         "cone_spring_nominal_deflection_mm": s_n,
         "cone_spring_max_deflection_mm": s_max,
         "cone_spring_rate_n_per_mm": disc_spring_rate_n_per_mm(s_n, *geo, fidelity=fidelity),
+        "cone_spring_force_tolerance_plus": _f(force_tolerance_plus) + 0.0 * t,
+        "cone_spring_force_tolerance_minus": _f(force_tolerance_minus) + 0.0 * t,
     }
     out.update(disc_spring_stresses_mpa(np.minimum(s_max, h0), *geo))
     out.update({f"cone_spring_{k}": v for k, v in table7_ratios(*geo).items()})

@@ -45,8 +45,8 @@ __all__ = [
     "bending_stress_mpa", "coils_at_angle", "mean_diameter_at_coils_mm", "outer_diameter_max_mm",
     "inner_diameter_min_mm", "coil_gap_mm", "block_length_mm", "hooks_angle_deg",
     "goodman_safety_factor", "spring_housing_height_mm", "spring_housing_outer_diameter_mm",
-    "rm_lookup_diameter_mm", "material_strength_mpa", "material_properties", "wire_properties",
-    "main_spring_design",
+    "rm_lookup_diameter_mm", "material_strength_mpa", "permissible_static_bending_stress_mpa", "material_properties",
+    "material_wire_sections", "wire_properties", "main_spring_design",
 ]
 
 def _f(x):
@@ -330,9 +330,14 @@ def goodman_safety_factor(sigma_max_mpa, sigma_min_mpa, Rm_mpa, sigma_A0_mpa, si
 def rm_lookup_diameter_mm(b_mm, h_mm, round_wire):
     """Wire diameter used to read the tensile strength table [mm].
 
-    Round: ``d``. Rectangular: the round wire of equal area ``sqrt(4 b h / pi)``
-    (flat wire is rolled from it; Rm falls with diameter, so this is the
-    conservative choice).
+    Round: ``d``. Rectangular (flat or square): the round wire of equal area
+    ``sqrt(4 b h / pi)``. EN 10270-1/-2/-3 specify round wire only (EN 10270-1:
+    "wire of circular cross-section"; EN 13906-3 covers springs "made from
+    round wire and bar"), so no standard gives Rm for profiled wire; flat wire
+    is cold-rolled from a round wire of (about) the same area and suppliers
+    quote it by their own sheets. Reading the table at the equal-area
+    diameter is synth's rule (a larger diameter than the thickness ``h``, so a
+    lower Rm: on the safe side of the rolled wire's work hardening).
 
     >>> round(float(rm_lookup_diameter_mm(2.3, 2.3, False)), 3)
     2.595
@@ -344,19 +349,56 @@ def rm_lookup_diameter_mm(b_mm, h_mm, round_wire):
 def material_strength_mpa(material, d_mm, which="min"):
     """Tensile strength Rm of ``material`` at wire diameter ``d_mm`` [MPa].
 
-    Linear interpolation in ``catalogs/spring_material_strength.csv`` (EN
-    10270-1/-2/-3 ranges), clamped to the table's diameter range. ``which``:
-    ``"min"`` (design value) or ``"max"``.
+    A step lookup in ``catalogs/spring_material_strength.csv``: every row
+    holds the range ``d_over_mm < d <= d_mm`` of the standard's table (EN
+    10270-1 Table 3: a size between two listed sizes takes the next larger
+    size's values; EN 10270-2 Table 3 and EN 10270-3 list ranges) or of a
+    supplier sheet. A diameter below the first row takes the first row (wire
+    strength falls with diameter, so this is on the safe side); above the
+    last row it takes the last row. ``which``: ``"min"`` (design value) or
+    ``"max"``.
 
-    >>> float(material_strength_mpa("VDSiCr", 2.3))
-    2004.0
+    EN 10270-2 Table 3, VDSiCr, 2.0 < d <= 2.5 mm: 1960-2060 MPa.
+
+    >>> float(material_strength_mpa("VDSiCr", 2.3)), float(material_strength_mpa("VDSiCr", 2.3, "max"))
+    (1960.0, 2060.0)
+    >>> material_strength_mpa("VDSiCr", [2.0, 2.0001, 2.595]).tolist()
+    [2010.0, 1960.0, 1910.0]
     """
     from synth import parts
     if which not in ("min", "max"):
         raise InputError(Problem("which", which, "'min' or 'max'"))
     p = parts.arrays()
-    d, rm_min, rm_max = p.spring_strength[p.spring_material.code(material, "main_spring_material")]
-    return np.interp(_f(d_mm), d, rm_min if which == "min" else rm_max)
+    upper, rm_min, rm_max = p.spring_strength[p.spring_material.code(material, "main_spring_material")]
+    values = rm_min if which == "min" else rm_max
+    d = _f(d_mm)
+    # first row whose upper bound is >= d (d_over < d <= d_mm, the standard's table rows); gaps take the next row
+    idx = np.clip(np.searchsorted(upper, d - 1e-9, side="left"), 0, len(upper) - 1)
+    return values[idx]
+
+
+def permissible_static_bending_stress_mpa(Rm_mpa, fraction, winding=True, unwinding_factor=None):
+    """Permissible bending stress of a statically loaded torsion spring [MPa].
+
+    .. math:: \\sigma_{zul} = f\\, R_m \\quad (\\times\\, k_{unw} \\text{ when loaded unwinding})
+
+    to be compared with the bending stress *without* the curvature factor
+    (static springs are checked without stress correction: Autodesk Inventor's
+    EN 13906-3 torsion spring generator, "for springs under static load no
+    correction is made"). ``fraction`` f = 0.75 for cold-formed spring wire and
+    k_unw = 0.8 ("20 % lower when the spring is loaded in the opening sense"):
+    aabag.de, permissible bending stresses of statically or rarely loaded leg
+    springs. The values are the materials' ``sigma_perm_static_fraction``
+    (``spring_materials.csv``) and ``main_spring_unwinding_static_factor``
+    (``constants_main_spring.csv``).
+
+    >>> float(permissible_static_bending_stress_mpa(1960.0, 0.75))
+    1470.0
+    >>> float(permissible_static_bending_stress_mpa(1960.0, 0.75, winding=False))
+    1176.0
+    """
+    k = catalog.constant("main_spring_unwinding_static_factor") if unwinding_factor is None else unwinding_factor
+    return _f(fraction) * _f(Rm_mpa) * np.where(np.asarray(winding, dtype=bool), 1.0, _f(k))
 
 
 def material_properties(material, b_mm, h_mm, round_wire):
@@ -364,12 +406,16 @@ def material_properties(material, b_mm, h_mm, round_wire):
 
     Returns a dict: ``E_mpa``, ``G_mpa``, ``density_kg_m3``, ``Rm_mpa`` (minimum
     of the standard at :func:`rm_lookup_diameter_mm`), ``sigma_y_mpa``
-    (``sigma_y_bend_fraction * Rm``) and ``sigma_A0_mpa``
-    (``sigma_A0_fraction * Rm``), ``unit_cost_eur_per_kg``.
+    (``sigma_y_bend_fraction * Rm``, the limit of the curvature-corrected
+    installation stress, illustrative), ``sigma_A0_mpa``
+    (``sigma_A0_fraction * Rm``, illustrative), ``sigma_perm_static_mpa``
+    (``sigma_perm_static_fraction * Rm``, the static permissible stress of
+    :func:`permissible_static_bending_stress_mpa` for winding) and
+    ``unit_cost_eur_per_kg``.
 
     >>> p = material_properties("VDSiCr", 2.3, 2.3, True)
-    >>> float(p["E_mpa"]), float(p["Rm_mpa"]), round(float(p["sigma_y_mpa"]), 1)
-    (206000.0, 2004.0, 1763.5)
+    >>> float(p["E_mpa"]), float(p["Rm_mpa"]), round(float(p["sigma_y_mpa"]), 1), float(p["sigma_perm_static_mpa"])
+    (206000.0, 1960.0, 1724.8, 1470.0)
     """
     from synth import parts
     mat = parts.arrays().spring_material
@@ -382,6 +428,7 @@ def material_properties(material, b_mm, h_mm, round_wire):
         "Rm_mpa": rm,
         "sigma_y_mpa": mat.sigma_y_bend_fraction[i] * rm,
         "sigma_A0_mpa": mat.sigma_A0_fraction[i] * rm,
+        "sigma_perm_static_mpa": mat.sigma_perm_static_fraction[i] * rm,
         "unit_cost_eur_per_kg": np.full_like(rm, mat.unit_cost_eur[i]),
     }
 
@@ -399,6 +446,20 @@ def wire_properties(wire):
             "h_tol_mm": float(r["h_tol_mm"]), "unit_cost_eur_per_m": float(r["unit_cost_eur"])}
 
 
+def material_wire_sections(material) -> set:
+    """Wire sections a spring material is supplied in (``wire_sections`` of ``spring_materials.csv``).
+
+    EN 10270-1/-2/-3 specify round wire; the catalog's flat/square wires are
+    cold-rolled oil-tempered Si-Cr wire, so only the Si-Cr oil-tempered grades
+    pair with them.
+
+    >>> sorted(material_wire_sections("VDSiCr")), sorted(material_wire_sections("DH"))
+    (['rectangular', 'round'], ['round'])
+    """
+    r = catalog.row("spring_materials", material, field="main_spring_material")
+    return set(str(r["wire_sections"]).split())
+
+
 # --------------------------------------------------------------------------- the step
 
 
@@ -407,7 +468,7 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
                        housing_height_mm, housing_outer_diameter_mm, housing_inner_diameter_mm,
                        b_tol_mm=0.0, h_tol_mm=0.0, dtheta_inst_nom_deg=None, dtheta_nom_free_arm_deg=None,
                        winding=True, torque_tolerance_side=1.0, fibre="inner", mbd_tol_mm=None,
-                       housing_outer_tol_mm=None, housing_inner_tol_mm=None):
+                       housing_outer_tol_mm=None, housing_inner_tol_mm=None, sigma_perm_static_mpa=None):
     """Step 9 for arrays of designs (all arguments broadcast): stiffness to stresses, diameters and coil gap.
 
     Inputs from upstream steps: ``spring_torque_nominal_nm`` (step 3),
@@ -429,6 +490,14 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
     ``curvature_factor``, and the limits they are checked against
     (:mod:`synth.design.constraints`): ``sigma_y_limit_mpa`` (installation),
     ``housing_outer_diameter_min_mm`` (eq. 82) and ``housing_inner_diameter_max_mm`` (eq. 86).
+
+    With ``sigma_perm_static_mpa`` (the material's static permissible stress
+    for winding, :func:`material_properties`) the result also carries the
+    static check in the form spring makers apply it (an advisory constraint of
+    the registry, ``spring_static_permissible``):
+    ``main_spring_sigma_inst_uncorrected_mpa`` (installation stress without
+    the curvature factor) and ``sigma_perm_static_limit_mpa`` (x 0.8 when
+    unwinding); see :func:`permissible_static_bending_stress_mpa`.
 
     >>> r = main_spring_design(E_mpa=206000, Rm_mpa=2004, sigma_y_mpa=1763.5, sigma_A0_mpa=701.4,
     ...     b_mm=2.3, h_mm=2.3, round_wire=True, mbd_mm=44, stiffness_nm_per_deg=0.0164,
@@ -499,4 +568,8 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
     out["housing_outer_diameter_min_mm"] = _f(housing_outer_diameter_mm) - _f(tol_out)          # eq. 82
     # eq. 85 corrected: the spring's inner diameter must stay ABOVE the support's (eq. 86 limit)
     out["housing_inner_diameter_max_mm"] = _f(housing_inner_diameter_mm) + _f(tol_in)
+    if sigma_perm_static_mpa is not None:  # the spring makers' static rule (EN 13906-3 practice), see below
+        out["main_spring_sigma_inst_uncorrected_mpa"] = sig["inst"] / out["curvature_factor"]
+        out["sigma_perm_static_limit_mpa"] = permissible_static_bending_stress_mpa(sigma_perm_static_mpa, 1.0,
+                                                                                  winding) + 0.0 * n_a
     return out
