@@ -42,7 +42,7 @@ import numpy as np
 from synth.errors import InputError, Problem
 
 __all__ = ["FAMILIES", "CORE_FAMILIES", "SUBSYSTEM_FAMILIES", "SUBSYSTEMS", "NO_PART",
-           "AppFeasibility", "PortfolioFeasibility", "validate"]
+           "AppFeasibility", "PortfolioFeasibility", "validate", "default_weights", "default_fixed_costs"]
 
 #: core part families
 CORE_FAMILIES = ("ball_bearing", "pivot_class_diameter_mm", "damper_pad_class")
@@ -126,6 +126,18 @@ class PortfolioFeasibility:
     def option_parts(self, s: str, k: int) -> dict:
         """``{family: part key}`` of option ``k`` of subsystem ``s``."""
         return {f: self.part_key(f, int(self.options[s][f][k])) for f in SUBSYSTEM_FAMILIES[s]}
+
+
+def default_weights() -> dict:
+    """``{family: weight}`` of one distinct part in the variants objective (``catalogs/constants_platform.csv``)."""
+    from synth import catalog
+    return {f: catalog.constant(f"platform_weight_{f}") for f in FAMILIES}
+
+
+def default_fixed_costs(parts: dict) -> dict:
+    """``{family: (n_f,) per-variant fixed cost [EUR]}`` from ``catalogs/constants_platform.csv`` (one value per family)."""
+    from synth import catalog
+    return {f: np.full(len(parts[f]), catalog.constant(f"platform_fixed_cost_eur_{f}")) for f in FAMILIES}
 
 
 def _shape_problem(where: str, got, want) -> Problem:

@@ -1,0 +1,1 @@
+"""Mathematical programs as functions of plain data (no ``synth`` import): ``formulations.platform``."""
