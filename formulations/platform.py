@@ -265,6 +265,9 @@ def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = 
     if solver not in SOLVERS:
         raise ValueError(f"solver must be one of {sorted(SOLVERS)}, got {solver!r}")
     t0 = time.perf_counter()
+    if inst.n_apps == 0:                       # nothing to serve: the empty platform
+        return PlatformSolution("optimal", np.zeros(inst.n_parts, bool), 0.0, 0.0, 0.0, 0.0, 0.0,
+                                {"variables": 0, "binaries": 0, "constraints": 0, "nonzeros": 0}, solver)
     m = model if model is not None else build_model(inst, objective, max_variants=max_variants, budget=budget,
                                                     allow_unserved=allow_unserved)
     build_s = time.perf_counter() - t0
