@@ -14,7 +14,7 @@ Two independent evaluations of a platform:
 >>> pf = synthetic_portfolio(3, seed=0)
 >>> rows = assign(pf, full_platform(pf))
 >>> [(r["app_id"], r["feasible"]) for r in rows]
-[('APP-0000', False), ('APP-0001', False), ('APP-0002', True)]
+[('APP-0000', False), ('APP-0001', True), ('APP-0002', True)]
 """
 
 from __future__ import annotations
