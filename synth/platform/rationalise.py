@@ -156,9 +156,9 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
              weights: dict | None = None) -> list:
     """Platform size against worst margin (``kind="margin"``) or against total cost (``"cost"``).
 
-    ``margin``: for margin floors from 0 up to the median of the applications' best
-    margins, the smallest platform (variants objective) serving every application that
-    can meet the floor (``served`` falls as the floor rises). ``cost``: for part budgets from
+    ``margin``: for margin floors from 0 up to the lower quartile of the applications' best
+    margins, the smallest platform (variants objective), over the applications that can
+    meet the highest floor (the same applications at every floor, so the curve rises). ``cost``: for part budgets from
     the smallest platform up to the size of the cost-optimal one, the cheapest platform
     (unit cost x volume + per-variant fixed cost) within the budget (an epsilon constraint).
     Returns rows ``{"parts", "cost_eur", "worst_margin", "served", "status", ...}``.
@@ -190,8 +190,12 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
                     m = np.minimum(m, gm[np.asarray(a.group[s])])
                 m = np.minimum(m, a.core_margin)
                 if np.isfinite(m).any() and m.max() >= 0:
-                    best.append(float(m.max()))
-        top = float(np.median(best)) if best else 0.0
+                    best.append((float(m.max()), a))
+        top = float(np.quantile([b for b, _ in best], 0.25)) if best else 0.0
+        import dataclasses
+        pf = dataclasses.replace(pf, apps=[a for b, a in best if b >= top])   # one set of applications for every floor
+        base = rationalise(pf, "variants", time_limit=time_limit, weights=weights)
+        n_served = len(pf.apps)
         for tau in np.linspace(0.0, top, points):
             r = base if tau == 0.0 else rationalise(pf, "variants", time_limit=time_limit, weights=weights,
                                                     min_margin=float(tau))
