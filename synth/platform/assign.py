@@ -1,0 +1,177 @@
+"""Which design each application gets from a platform, and what a platform costs.
+
+Two independent evaluations of a platform:
+
+* :func:`serve` works on the compiled arrays (:class:`formulations.platform.PlatformInstance`),
+  fully vectorised; the greedy heuristic calls it many times.
+* :func:`assign` works on the raw feasibility data (:class:`~synth.platform.data.PortfolioFeasibility`)
+  application by application: for each, the cheapest design whose core and options use
+  only platform parts (subsystems are independent given the core, so the best design
+  of a core is the core plus the cheapest platform option of each of its groups). It
+  is what the outputs report and what the tests check the MILP's platform with.
+
+>>> from synth.platform.synthetic import synthetic_portfolio
+>>> pf = synthetic_portfolio(3, seed=0)
+>>> rows = assign(pf, full_platform(pf))
+>>> [(r["app_id"], r["feasible"]) for r in rows]
+[('APP-0000', False), ('APP-0001', True), ('APP-0002', True)]
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from formulations.platform import PlatformInstance
+from synth.platform.compile import app_option_cost
+from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility
+
+__all__ = ["serve", "objective_value", "assign", "full_platform", "platform_from_y", "platform_parts_used"]
+
+
+def _pattern_ok(inst: PlatformInstance, y: np.ndarray) -> np.ndarray:
+    pid = np.repeat(np.arange(inst.n_patterns), inst.pattern_len())
+    have = np.bincount(pid, weights=y[inst.pattern_parts].astype(float), minlength=inst.n_patterns)
+    return have >= inst.pattern_len() - 0.5
+
+
+def serve(inst: PlatformInstance, y: np.ndarray, objective: str = "cost"):
+    """``(served, cost, core)`` per application of ``inst`` under the platform ``y`` (bool per part).
+
+    ``cost``: the volume-weighted unit cost of the cheapest design (``inf`` when not
+    served); ``core``: its core index in ``inst`` (``-1``).
+    """
+    ok = _pattern_ok(inst, np.asarray(y, bool))
+    C, R = len(inst.core_app), len(inst.row_app)
+    val = np.where(ok[inst.row_opt_pattern], inst.row_opt_cost, np.inf)
+    nonempty = np.diff(inst.row_opt_ptr) > 0
+    row_best = np.full(R, np.inf)
+    if val.size:
+        row_best[nonempty] = np.minimum.reduceat(val, inst.row_opt_ptr[:-1][nonempty])
+    core_val = np.where(ok[inst.core_pattern], inst.core_cost, np.inf)
+    r_of = np.repeat(np.arange(R), np.diff(inst.row_core_ptr))
+    np.add.at(core_val, inst.row_core, row_best[r_of])
+    served = np.zeros(inst.n_apps, bool)
+    cost = np.full(inst.n_apps, np.inf)
+    core = np.full(inst.n_apps, -1)
+    if C:
+        start = np.searchsorted(inst.core_app, np.arange(inst.n_apps))
+        has = np.bincount(inst.core_app, minlength=inst.n_apps) > 0
+        cost[has] = np.minimum.reduceat(core_val, start[has])
+        served = np.isfinite(cost)
+        order = np.lexsort((core_val, inst.core_app))
+        first = np.r_[True, inst.core_app[order][1:] != inst.core_app[order][:-1]]
+        core[inst.core_app[order][first]] = order[first]
+        core[~served] = -1
+    return served, cost, core
+
+
+def objective_value(inst: PlatformInstance, y: np.ndarray, objective: str) -> float:
+    """The MILP objective of platform ``y`` (``inf`` when an application is not served)."""
+    served, cost, _ = serve(inst, y)
+    if not served.all():
+        return np.inf
+    y = np.asarray(y, bool)
+    if objective == "variants":
+        return float(np.sum(inst.part_weight[y]))
+    return float(np.sum(inst.part_fixed_cost[y]) + np.sum(cost))
+
+
+def full_platform(pf: PortfolioFeasibility) -> dict:
+    """Every part of every family: ``{family: set of codes}`` (each application's own optimum)."""
+    return {f: set(range(len(pf.parts[f]))) for f in FAMILIES}
+
+
+def platform_from_y(work, y: np.ndarray) -> dict:
+    """``{family: set of codes}`` of the bool per global part ``y`` of a compiled ``work``."""
+    out = {f: set() for f in FAMILIES}
+    for j in np.flatnonzero(y):
+        f, code = work.part_of(int(j))
+        out[f].add(code)
+    return out
+
+
+def _in(platform: dict, f: str, codes: np.ndarray) -> np.ndarray:
+    codes = np.asarray(codes)
+    allowed = np.array(sorted(platform.get(f, ())), dtype=np.int64)
+    return (codes < 0) | np.isin(codes, allowed)
+
+
+def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None = None) -> list:
+    """One record per application of ``pf``: its cheapest design built only from ``platform`` parts.
+
+    Record keys: ``app_id``, ``feasible``, ``core`` (index into the application's cores or
+    None), ``options`` (``{subsystem: option index}``), ``parts`` (``{family: part key}``),
+    ``codes`` (``{family: part code}``, ``-1`` none), ``unit_cost_eur``, ``margin`` (the smallest of the core's and the options' margins),
+    ``binding`` (the constraint with that margin, when the data name it), ``reason`` (why
+    not feasible). ``min_margin`` ignores cores and options with a smaller margin.
+    """
+    tau = -np.inf if min_margin is None else float(min_margin)
+    opt_ok = {s: np.all([_in(platform, f, pf.options[s][f]) for f in fams], axis=0)
+              for s, fams in SUBSYSTEM_FAMILIES.items()}
+    out = []
+    for a in pf.apps:
+        rec = {"app_id": a.app_id, "feasible": False, "core": None, "options": {}, "parts": {}, "codes": {},
+               "unit_cost_eur": np.nan, "margin": np.nan, "binding": "", "reason": ""}
+        out.append(rec)
+        if a.n_cores == 0:
+            rec["reason"] = a.note or "no feasible core"
+            continue
+        ok = np.asarray(a.core_margin, float) >= tau
+        for f in CORE_FAMILIES:
+            ok &= _in(platform, f, a.core_parts[f])
+        total = np.asarray(a.core_cost_eur, float).copy()
+        best_opt = {}
+        missing = {}
+        for s in SUBSYSTEMS:
+            cost = app_option_cost(pf, a, s)
+            choice = []
+            gbest = np.full(len(a.feasible[s]), np.inf)
+            for gi, (idx, mar) in enumerate(zip(a.feasible[s], a.option_margin[s])):
+                idx = np.asarray(idx, np.int64)
+                sel = idx[opt_ok[s][idx] & (np.asarray(mar, float) >= tau)]
+                if len(sel):
+                    k = sel[np.argmin(cost[sel])]
+                    gbest[gi] = cost[k]
+                    choice.append(int(k))
+                else:
+                    choice.append(-1)
+            g = np.asarray(a.group[s], np.int64)
+            missing[s] = int(np.sum(ok & ~np.isfinite(gbest[g])))
+            total += gbest[g]
+            best_opt[s] = choice
+        total[~ok] = np.inf
+        if not np.isfinite(total).any():
+            if not ok.any():
+                rec["reason"] = "no core built from platform parts" + ("" if tau == -np.inf else f" with margin >= {tau:g}")
+            else:
+                miss = ", ".join(f"{s} ({n} cores)" for s, n in sorted(missing.items(), key=lambda t: -t[1]) if n)
+                rec["reason"] = f"no platform option for every subsystem of a platform core; missing: {miss}"
+            continue
+        c = int(np.argmin(total))
+        rec.update(feasible=True, core=c, unit_cost_eur=float(total[c]))
+        rec["codes"] = {f: int(a.core_parts[f][c]) for f in CORE_FAMILIES}
+        margins = [(float(a.core_margin[c]), "" if a.core_binding is None else str(a.core_binding[c]))]
+        for s in SUBSYSTEMS:
+            gi = int(a.group[s][c])
+            k = best_opt[s][gi]
+            rec["options"][s] = k
+            rec["codes"].update({f: int(pf.options[s][f][k]) for f in SUBSYSTEM_FAMILIES[s]})
+            pos = int(np.flatnonzero(np.asarray(a.feasible[s][gi]) == k)[0])
+            b = "" if a.option_binding is None else str(a.option_binding[s][gi][pos])
+            margins.append((float(a.option_margin[s][gi][pos]), b))
+        rec["parts"] = {f: pf.part_key(f, rec["codes"][f]) for f in FAMILIES}
+        m, b = min(margins, key=lambda t: t[0])
+        rec["margin"], rec["binding"] = m, b
+    return out
+
+
+def platform_parts_used(pf: PortfolioFeasibility, records: list) -> dict:
+    """``{family: {part key: number of applications using it}}`` of the assigned designs."""
+    use = {f: {} for f in FAMILIES}
+    for r in records:
+        if r["feasible"]:
+            for f, code in r["codes"].items():
+                if code >= 0:
+                    key = pf.part_key(f, code)
+                    use[f][key] = use[f].get(key, 0) + 1
+    return use

@@ -1,0 +1,151 @@
+"""Files of a platform result: ``platform.csv``, ``assignment.csv``, ``summary.md``,
+``tradeoff.csv`` and ``tradeoff.png``.
+
+* ``platform.csv``: family, part, applications using it (one row per platform part).
+* ``assignment.csv``: one row per application: id, feasible, the part key of every family
+  (``none``: no part of that family), unit cost, smallest margin and its binding
+  constraint, and for an application no platform serves, the reason.
+* ``summary.md``: the price of standardisation (platform parts and cost against the
+  per-application optima), the solve (status, gap, size, times), the reductions.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from synth.platform.assign import platform_parts_used
+from synth.platform.data import FAMILIES
+
+__all__ = ["platform_table", "assignment_table", "price_of_standardisation", "summary_markdown", "tradeoff_table",
+           "plot_tradeoff", "write_all"]
+
+
+def platform_table(pf, result) -> pd.DataFrame:
+    use = platform_parts_used(pf, result.records)
+    rows = [{"family": f, "part": pf.part_key(f, c), "applications": use[f].get(pf.part_key(f, c), 0)}
+            for f in FAMILIES for c in sorted(result.platform[f])]
+    return pd.DataFrame(rows, columns=["family", "part", "applications"])
+
+
+def assignment_table(result) -> pd.DataFrame:
+    rows = []
+    for r in result.records:
+        row = {"application_id": r["app_id"], "feasible": r["feasible"]}
+        row.update({f: r["parts"].get(f, "") for f in FAMILIES})
+        row.update({"unit_cost_eur": r["unit_cost_eur"], "margin": r["margin"], "binding_constraint": r["binding"],
+                    "reason": r["reason"]})
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def price_of_standardisation(pf, result) -> dict:
+    """Parts and cost of the platform against each application's own optimum (cheapest design on the full catalog)."""
+    vol = {a.app_id: a.volume for a in pf.apps}
+    both = [(r, o) for r, o in zip(result.records, result.per_app_optima) if r["feasible"] and o["feasible"]]
+    cost_p = sum(r["unit_cost_eur"] * vol[r["app_id"]] for r, _ in both)
+    cost_o = sum(o["unit_cost_eur"] * vol[o["app_id"]] for _, o in both)
+    union = {f: set() for f in FAMILIES}
+    for _, o in both:
+        for f, c in o["codes"].items():
+            if c >= 0:
+                union[f].add(c)
+    fixed = lambda plat: sum(float(pf.part_cost_eur[f][c]) for f, cs in plat.items() for c in cs)  # noqa: E731
+    return {"applications_served": len(both),
+            "parts_platform": result.n_parts, "parts_union_of_optima": sum(len(v) for v in union.values()),
+            "parts_by_family": {f: (len(result.platform[f]), len(union[f])) for f in FAMILIES},
+            "unit_cost_volume_platform_eur": cost_p, "unit_cost_volume_optima_eur": cost_o,
+            "fixed_cost_platform_eur": fixed(result.platform), "fixed_cost_union_of_optima_eur": fixed(union),
+            "unit_cost_increase": (cost_p - cost_o) / cost_o if cost_o else 0.0}
+
+
+def summary_markdown(pf, result) -> str:
+    p = price_of_standardisation(pf, result)
+    n_bad = sum(not r["feasible"] for r in result.records)
+    t = result.times
+    lines = [f"# Platform ({result.objective} objective)", "",
+             f"{p['applications_served']} of {len(result.records)} applications served; {n_bad} not "
+             "(`assignment.csv` says why).", "",
+             "## Price of standardisation", "",
+             "| | platform | per-application optima | |", "|---|---|---|---|",
+             f"| distinct parts | {p['parts_platform']} | {p['parts_union_of_optima']} (union) | |",
+             f"| unit cost x volume [EUR] | {p['unit_cost_volume_platform_eur']:,.0f} | "
+             f"{p['unit_cost_volume_optima_eur']:,.0f} | {p['unit_cost_increase']:+.2%} |",
+             f"| per-variant fixed cost [EUR] | {p['fixed_cost_platform_eur']:,.0f} | "
+             f"{p['fixed_cost_union_of_optima_eur']:,.0f} | |", "",
+             "| family | platform | union of optima |", "|---|---|---|"]
+    lines += [f"| {f} | {a} | {b} |" for f, (a, b) in p["parts_by_family"].items()]
+    s = result.size
+    lines += ["", "## Solve", "",
+              f"- MILP: {result.status}, objective {result.objective_value:,.6g}, bound {result.bound:,.6g}, "
+              f"gap {result.gap:.3%}",
+              f"- greedy baseline: {result.greedy_value:,.6g} ({result.greedy_gap:+.2%} against the MILP)",
+              f"- size: {s.get('variables', 0):,} variables ({s.get('binaries', 0)} binary), "
+              f"{s.get('constraints', 0):,} constraints, {s.get('nonzeros', 0):,} non-zeros",
+              f"- times [s]: compile {t['compile_s']:.2f}, reductions {t['prune_s']:.2f}, greedy {t['greedy_s']:.2f}, "
+              f"model build {t['build_s']:.2f}, solve {t['solve_s']:.2f}, total {t['total_s']:.2f}",
+              f"- weights: " + ", ".join(f"{f} {w:g}" for f, w in result.weights.items())]
+    if result.max_variants:
+        lines.append("- max variants: " + ", ".join(f"{f} {n}" for f, n in result.max_variants.items()))
+    lines += ["", "## Reductions (R1-R5, `docs/model.md`)", "",
+              "| round | " + " | ".join(k for k in result.prune_log[-1] if k != "round") + " |",
+              "|---" * len(result.prune_log[-1]) + "|"]
+    keys = list(result.prune_log[-1])
+    for row in result.prune_log:
+        lines.append("| " + " | ".join(str(row.get(k, "")) for k in keys) + " |")
+    lines += ["", *[f"- {n}" for n in result.notes]]
+    return "\n".join(lines) + "\n"
+
+
+def tradeoff_table(rows: list) -> str:
+    if not rows:
+        return ""
+    keys = [k for k in ("margin_floor", "budget", "parts", "weighted_parts", "cost_eur", "worst_margin", "served",
+                        "status") if k in rows[0]]
+    out = ["| " + " | ".join(keys) + " |", "|---" * len(keys) + "|"]
+    fmt = lambda v: f"{v:,.4g}" if isinstance(v, (float, np.floating)) else str(v)  # noqa: E731
+    out += ["| " + " | ".join(fmt(r[k]) for k in keys) + " |" for r in rows]
+    return "\n".join(out) + "\n"
+
+
+def plot_tradeoff(rows: list, path, kind: str) -> Path:
+    """Platform size against worst margin or total cost (matplotlib, Agg)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6, 4))
+    x = [r["parts"] for r in rows]
+    if kind == "margin":
+        ax.plot([r["margin_floor"] for r in rows], x, "o-")
+        ax.set_xlabel("margin floor (every design's smallest margin) [-]")
+        ax.set_ylabel("distinct parts in the platform")
+        ax.set_title("Platform size against the worst margin")
+    else:
+        ax.plot(x, [r["cost_eur"] / 1e6 for r in rows], "o-")
+        ax.set_xlabel("distinct parts in the platform (weighted)")
+        ax.set_ylabel("total cost [MEUR] (unit x volume + per-variant)")
+        ax.set_title("What each extra variant buys")
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    path = Path(path)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def write_all(pf, result, out, tradeoff_rows: list | None = None, kind: str = "margin") -> list:
+    """Write every output file into ``out``; returns the paths."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = [out / "platform.csv", out / "assignment.csv", out / "summary.md"]
+    platform_table(pf, result).to_csv(paths[0], index=False)
+    assignment_table(result).to_csv(paths[1], index=False)
+    text = summary_markdown(pf, result)
+    if tradeoff_rows:
+        text += f"\n## Trade-off ({kind})\n\n" + tradeoff_table(tradeoff_rows)
+        pd.DataFrame(tradeoff_rows).to_csv(out / "tradeoff.csv", index=False)
+        paths += [out / "tradeoff.csv", plot_tradeoff(tradeoff_rows, out / "tradeoff.png", kind)]
+    paths[2].write_text(text, encoding="utf-8")
+    return paths

@@ -1,0 +1,308 @@
+"""Provable reductions of the platform problem: every optimum of the reduced problem is an
+optimum of the full one (same objective value; a platform of the reduced problem serves
+every application of the full one).
+
+Notation as in :mod:`formulations.platform`: a platform ``P`` is a set of parts; pattern
+``k`` (a set of parts) is *usable* when ``k`` is a subset of ``P``; application ``a`` is
+served through core ``c`` when ``c``'s pattern is usable and every row of ``c`` (one per
+subsystem) holds a usable option. The reductions, each with its proof:
+
+R1 **Dominated option in a row.** Option ``o`` of row ``r`` goes when another option ``o'``
+   of ``r`` has ``parts(o') <= parts(o)`` (subset) and, for the cost objective, a unit
+   cost no higher (ties: the first stays). *Proof*: whenever ``o`` is usable, so is ``o'``
+   (its parts are among ``o``'s), at no higher cost; swapping changes no part of ``P``.
+   The "no axial group" option is the empty pattern: it dominates every option of its
+   row in the variants objective, and the row (always covered) is dropped; in the cost
+   objective its cost folds into the row's cores.
+
+R2 **Dominated spring (bolt, bushing) variant across the portfolio.** For one-part
+   patterns whose part occurs in no other pattern: ``p`` goes when another such pattern
+   ``q`` of the same subsystem and family is in every row ``p`` is in (coverage
+   ``rows(p) <= rows(q)``), with weight and per-variant fixed cost no higher and, for the
+   cost objective, a unit cost no higher in every one of those rows (ties between equal
+   patterns: the lower index stays). *Proof*: in a solution using ``p``, replace part ``p``
+   by part ``q``: every row covered by ``p`` is covered by ``q``; nothing else used ``p``;
+   the objective does not increase and no family gains a variant (``max_variants`` and
+   the part-count budget stay met). The relation (weakly better in every respect, ties
+   broken by index) is a strict partial order, so removing every dominated pattern at
+   once leaves, for each, a kept dominator.
+
+R3 **Dominated core of an application.** Core ``c`` goes when another core ``c'`` of the
+   same application has ``parts(c') <= parts(c)``, for every subsystem a row whose
+   option set contains ``c``'s row's set (a dropped row counts as containing everything:
+   it is always covered) and, for the cost objective, a core cost no higher. *Proof*:
+   whenever ``c`` serves the application, ``c'`` does, at no higher cost (option costs
+   are per application, the same in every row). Same order argument as R2.
+
+R4 **Identical rows** of one application and subsystem merge (also done when compiling).
+   *Proof*: the application uses one core, so both rows are covered or neither.
+
+R5 **Implied row** (variants objective, every application must be served). If the
+   only row of an application and subsystem (all its cores are in it: the row is
+   unconditional) has option set ``S``, any row ``r`` of the same subsystem, of any
+   application, whose set contains ``S`` is dropped (of two equal unconditional rows the
+   first stays). *Proof*: ``S`` must hold a usable option in every feasible platform,
+   which then covers ``r`` too.
+
+The reductions run in rounds until none removes anything (each can enable the others).
+The tests compare the optimum with and without them on small portfolios.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from synth.platform.compile import Work
+from synth.platform.data import SUBSYSTEMS
+
+__all__ = ["prune", "dominated_options", "dominated_variants", "dominated_cores", "implied_rows", "merge_rows"]
+
+_AX = SUBSYSTEMS.index("axial")
+
+
+def _live_rows(w: Work, si: int | None = None) -> list:
+    return [i for i, a in enumerate(w.row_alive) if a and (si is None or w.row_sub[i] == si)]
+
+
+def _subset_matrix(w: Work, pats: np.ndarray) -> np.ndarray:
+    """``S[i, j]``: pattern ``pats[i]`` is a subset of pattern ``pats[j]``."""
+    n = len(pats)
+    if n == 0:
+        return np.zeros((0, 0), bool)
+    lens = np.array([len(w.patterns[k]) for k in pats])
+    rows = np.repeat(np.arange(n), lens)
+    cols = np.concatenate([w.patterns[k] for k in pats]) if lens.sum() else np.zeros(0, int)
+    M = sp.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, w.n_parts))
+    inter = (M @ M.T).toarray()
+    return inter >= lens[:, None] - 0.5
+
+
+def dominated_options(w: Work) -> int:
+    """R1 (and the empty-pattern rows). Returns the number of (row, option) entries removed."""
+    removed = 0
+    cost_obj = w.objective == "cost"
+    multi = {si for si in range(len(SUBSYSTEMS))
+             if any(len(w.patterns[k]) != 1 for k in np.unique(np.concatenate(
+                 [w.row_pats[i] for i in _live_rows(w, si)] or [np.zeros(0, int)])))}
+    for i in _live_rows(w):
+        if w.row_sub[i] not in multi:
+            continue
+        p, c = w.row_pats[i], w.row_cost[i]
+        if len(p) < 2:
+            continue
+        S = _subset_matrix(w, p)                       # S[a, b]: p[a] subset of p[b]
+        better = S & ((c[:, None] <= c[None, :] + 1e-9) if cost_obj else True)
+        np.fill_diagonal(better, False)
+        mutual = better & better.T
+        idx = np.arange(len(p))
+        dom = (better & ~mutual).any(axis=0) | (mutual & (idx[:, None] < idx[None, :])).any(axis=0)
+        if dom.any():
+            removed += int(dom.sum())
+            w.row_pats[i], w.row_cost[i] = p[~dom], c[~dom]
+    # rows whose only option is the empty pattern: always covered
+    for i in _live_rows(w):
+        p = w.row_pats[i]
+        if len(p) and len(w.patterns[p[0]]) == 0 and (w.objective == "variants" or len(p) == 1):
+            if w.objective == "cost":
+                w.core_cost[w.row_cores[i]] += w.row_cost[i][0]
+            w.row_alive[i] = False
+            removed += len(p)
+    return removed
+
+
+def _row_matrix(w: Work, rows: list, pats: np.ndarray) -> sp.csr_matrix:
+    """Boolean rows x patterns (columns: positions in ``pats``)."""
+    col = np.full(len(w.patterns), -1)
+    col[pats] = np.arange(len(pats))
+    lens = [len(w.row_pats[i]) for i in rows]
+    r = np.repeat(np.arange(len(rows)), lens)
+    c = col[np.concatenate([w.row_pats[i] for i in rows])] if rows else np.zeros(0, int)
+    return sp.csr_matrix((np.ones(len(r), np.float32), (r, c)), shape=(len(rows), len(pats)))
+
+
+def dominated_variants(w: Work) -> int:
+    """R2. Returns the number of patterns removed."""
+    removed = 0
+    n_occ = np.bincount(np.concatenate(w.patterns) if w.patterns else np.zeros(0, int), minlength=w.n_parts)
+    cost_obj = w.objective == "cost"
+    for si in range(len(SUBSYSTEMS)):
+        rows = _live_rows(w, si)
+        if not rows:
+            continue
+        pats = np.unique(np.concatenate([w.row_pats[i] for i in rows]))
+        one = np.array([len(w.patterns[k]) == 1 and n_occ[w.patterns[k][0]] == 1 for k in pats], bool)
+        pats = pats[one]
+        if len(pats) < 2:
+            continue
+        part = np.array([w.patterns[k][0] for k in pats])
+        fam = w.part_family[part]
+        M = _row_matrix(w, rows, pats)                 # rows x pats
+        cnt = np.asarray(M.sum(axis=0)).ravel()
+        G = (M.T @ M).tocsr()                          # G[p, q] = |rows(p) & rows(q)|
+        G.eliminate_zeros()
+        gp = np.repeat(np.arange(len(pats)), np.diff(G.indptr))
+        gq = G.indices
+        sel = (gp != gq) & (G.data >= cnt[gp] - 0.5) & (fam[gp] == fam[gq]) \
+            & (w.part_weight[part[gq]] <= w.part_weight[part[gp]]) \
+            & (w.part_fixed_cost[part[gq]] <= w.part_fixed_cost[part[gp]])
+        p_i, q_i = gp[sel], gq[sel]
+        if cost_obj and len(p_i):
+            # unit cost of q no higher wherever p is feasible: per (application, pattern) the highest cost of q
+            # against the lowest of p over the application's rows (rows of one application share option costs,
+            # so this is exact; otherwise it only prunes less)
+            app_of = np.array([w.row_app[i] for i in rows])
+            col = np.full(len(w.patterns), -1)
+            col[pats] = np.arange(len(pats))
+            r_idx = np.repeat(np.arange(len(rows)), [len(w.row_pats[i]) for i in rows])
+            c_idx = col[np.concatenate([w.row_pats[i] for i in rows])]
+            vals = np.concatenate([w.row_cost[i] for i in rows])
+            r_idx, vals, c_idx = r_idx[c_idx >= 0], vals[c_idx >= 0], c_idx[c_idx >= 0]
+            na = int(app_of.max()) + 1
+            cmax = np.full((na, len(pats)), -np.inf)
+            cmin = np.full((na, len(pats)), np.inf)
+            np.maximum.at(cmax, (app_of[r_idx], c_idx), vals)
+            np.minimum.at(cmin, (app_of[r_idx], c_idx), vals)
+            Mc = M.tocsc()
+            ok = np.ones(len(p_i), bool)
+            for p in np.unique(p_i):
+                apps_p = np.unique(app_of[Mc.indices[Mc.indptr[p]:Mc.indptr[p + 1]]])
+                n = np.flatnonzero(p_i == p)
+                ok[n] = np.all(cmax[np.ix_(apps_p, q_i[n])] <= cmin[apps_p, p][:, None] + 1e-9, axis=0)
+            p_i, q_i = p_i[ok], q_i[ok]
+        if not len(p_i):
+            continue
+        # strict order with index tie-break: q dominates p unless p also dominates q and p < q
+        pairs = set(zip(p_i.tolist(), q_i.tolist()))
+        dom = np.zeros(len(pats), bool)
+        for p, q in pairs:
+            if (q, p) in pairs and p < q:
+                continue
+            dom[p] = True
+        gone = set(pats[dom].tolist())
+        for i in rows:
+            keep = np.array([k not in gone for k in w.row_pats[i].tolist()], bool)
+            if not keep.all():
+                w.row_pats[i], w.row_cost[i] = w.row_pats[i][keep], w.row_cost[i][keep]
+        removed += int(dom.sum())
+    return removed
+
+
+def _core_rows(w: Work) -> np.ndarray:
+    """``(C, n_subsystems)`` live row of each core (-1: none, the core's row was dropped as covered)."""
+    out = np.full((len(w.core_alive), len(SUBSYSTEMS)), -1, np.int64)
+    for i in _live_rows(w):
+        out[w.row_cores[i], w.row_sub[i]] = i
+    return out
+
+
+def dominated_cores(w: Work) -> int:
+    """R3. Returns the number of cores removed."""
+    cr = _core_rows(w)
+    cost_obj = w.objective == "cost"
+    alive = np.flatnonzero(w.core_alive)
+    if not len(alive):
+        return 0
+    bounds = np.flatnonzero(np.r_[True, np.diff(w.core_app[alive]) != 0, True])
+    removed = 0
+    for b0, b1 in zip(bounds[:-1], bounds[1:]):
+        cs = alive[b0:b1]
+        if len(cs) < 2:
+            continue
+        upat, inv = np.unique(w.core_pattern[cs], return_inverse=True)
+        better = _subset_matrix(w, upat)[np.ix_(inv, inv)]      # better[a, b]: parts(a) <= parts(b)
+        for si in range(len(SUBSYSTEMS)):
+            r = cr[cs, si]
+            ur, rinv = np.unique(r, return_inverse=True)
+            live = ur[ur >= 0]
+            sup = np.ones((len(ur), len(ur)), bool)            # sup[a, b]: row a holds row b's options
+            if len(live):
+                M = _row_matrix(w, live.tolist(), np.unique(np.concatenate([w.row_pats[i] for i in live])))
+                inter = (M @ M.T).toarray()
+                lens = np.asarray(M.sum(axis=1)).ravel()
+                off = len(ur) - len(live)                      # -1 sorts first
+                sup[off:, off:] = inter >= lens[None, :] - 0.5
+                if off:
+                    sup[off:, 0] = False                       # a real row does not hold "everything"
+            better &= sup[np.ix_(rinv.ravel(), rinv.ravel())]
+        if cost_obj:
+            cc = w.core_cost[cs]
+            better &= cc[:, None] <= cc[None, :] + 1e-9
+        np.fill_diagonal(better, False)
+        mutual = better & better.T
+        idx = np.arange(len(cs))
+        dom = (better & ~mutual).any(axis=0) | (mutual & (idx[:, None] < idx[None, :])).any(axis=0)
+        if dom.any():
+            w.core_alive[cs[dom]] = False
+            removed += int(dom.sum())
+    if removed:
+        for i in _live_rows(w):
+            if not w.core_alive[w.row_cores[i]].any():
+                w.row_alive[i] = False
+    return removed
+
+
+def merge_rows(w: Work) -> int:
+    """R4. Returns the number of rows merged away."""
+    removed = 0
+    seen: dict = {}
+    for i in _live_rows(w):
+        cores = w.row_cores[i][w.core_alive[w.row_cores[i]]]
+        if not len(cores):
+            w.row_alive[i] = False
+            continue
+        w.row_cores[i] = cores
+        key = (w.row_app[i], w.row_sub[i], w.row_pats[i].tobytes())
+        if key in seen:
+            j = seen[key]
+            w.row_cores[j] = np.concatenate([w.row_cores[j], cores])
+            w.row_alive[i] = False
+            removed += 1
+        else:
+            seen[key] = i
+    return removed
+
+
+def implied_rows(w: Work) -> int:
+    """R5 (variants objective only). Returns the number of rows dropped."""
+    if w.objective != "variants":
+        return 0
+    n_app_cores = np.bincount(w.core_app[w.core_alive], minlength=len(w.app_index))
+    removed = 0
+    for si in range(len(SUBSYSTEMS)):
+        rows = _live_rows(w, si)
+        if not rows:
+            continue
+        ncore = np.array([int(w.core_alive[w.row_cores[i]].sum()) for i in rows])
+        uncond = np.array([ncore[n] == n_app_cores[w.row_app[i]] for n, i in enumerate(rows)], bool)
+        if not uncond.any():
+            continue
+        pats = np.unique(np.concatenate([w.row_pats[i] for i in rows]))
+        M = _row_matrix(w, rows, pats)
+        U = M[np.flatnonzero(uncond)]
+        lens_u = np.asarray(U.sum(axis=1)).ravel()
+        lens = np.asarray(M.sum(axis=1)).ravel()
+        G = (U @ M.T).tocoo()                          # G[u, r] = |S_u & S_r|
+        ui = np.flatnonzero(uncond)[G.row]
+        sub = (G.data >= lens_u[G.row] - 0.5) & (ui != G.col)
+        equal = sub & (lens[G.col] <= lens_u[G.row] + 0.5)
+        drop = sub & ~(equal & (G.col < ui) & uncond[G.col])   # of two equal unconditional rows the first stays
+        for n in np.unique(G.col[drop]):
+            w.row_alive[rows[n]] = False
+            removed += 1
+    return removed
+
+
+def prune(w: Work, *, allow_unserved: bool = False, max_rounds: int = 6) -> Work:
+    """Apply R1-R5 in rounds until nothing changes (R5 only when every application must be served).
+
+    ``w.log`` records what each round removed. Returns ``w`` (edited in place).
+    """
+    w.log.append({"round": 0, **w.sizes()})
+    for rnd in range(1, max_rounds + 1):
+        n = {"R1_options": dominated_options(w), "R2_variants": dominated_variants(w), "R3_cores": dominated_cores(w),
+             "R4_merged_rows": merge_rows(w), "R5_implied_rows": 0 if allow_unserved else implied_rows(w)}
+        w.log.append({"round": rnd, **n, **w.sizes()})
+        if not any(n.values()):
+            break
+    return w

@@ -1,0 +1,214 @@
+"""Choose a platform for a portfolio: compile, prune, greedy warm start, MILP, assignment.
+
+:func:`rationalise` runs the whole chain on feasibility data and returns a
+:class:`PlatformResult`; :func:`tradeoff` sweeps it (platform size against total cost,
+or against the worst margin).
+
+>>> from synth.platform.synthetic import synthetic_portfolio
+>>> r = rationalise(synthetic_portfolio(12, seed=4), "variants", time_limit=30)
+>>> r.status, r.n_parts <= r.n_parts_union_optima, r.greedy_value >= r.objective_value - 1e-9
+('optimal', True, True)
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from formulations.platform import solve as solve_milp
+from synth.errors import InputError, Problem
+from synth.platform.assign import assign, full_platform, objective_value, platform_from_y
+from synth.platform.compile import compile_portfolio
+from synth.platform.data import FAMILIES, PortfolioFeasibility, default_weights
+from synth.platform.greedy import greedy
+from synth.platform.prune import prune as prune_work
+
+__all__ = ["PlatformResult", "rationalise", "tradeoff", "OBJECTIVES"]
+
+OBJECTIVES = ("variants", "cost")
+
+
+@dataclass
+class PlatformResult:
+    """A chosen platform, each application's design, and how the choice was made."""
+
+    objective: str
+    status: str                   # optimal | time_limit | greedy (MILP found nothing better in time) | ...
+    platform: dict                # family -> set of part codes
+    records: list                 # synth.platform.assign.assign records, one per application
+    objective_value: float        # MILP objective of the platform (weighted part count or total cost)
+    bound: float
+    gap: float
+    greedy_value: float
+    greedy_gap: float             # (greedy - MILP) / MILP
+    size: dict
+    sizes_before_prune: dict
+    prune_log: list
+    times: dict
+    per_app_optima: list          # assign records on the full catalog (each application's own optimum)
+    weights: dict
+    max_variants: dict = field(default_factory=dict)
+    notes: list = field(default_factory=list)
+
+    @property
+    def n_parts(self) -> int:
+        return sum(len(v) for v in self.platform.values())
+
+    @property
+    def n_parts_union_optima(self) -> int:
+        union = {f: set() for f in FAMILIES}
+        for r in self.per_app_optima:
+            if r["feasible"]:
+                for f, code in r["codes"].items():
+                    if code >= 0:
+                        union[f].add(code)
+        return sum(len(v) for v in union.values())
+
+
+def _check(objective, max_variants, time_limit, weights):
+    probs = []
+    if objective not in OBJECTIVES:
+        probs.append(Problem("objective", objective, " or ".join(OBJECTIVES)))
+    for f, n in (max_variants or {}).items():
+        if f not in FAMILIES:
+            probs.append(Problem("--max-variants family", f, ", ".join(FAMILIES)))
+        elif not (isinstance(n, (int, np.integer)) and n >= 1):
+            probs.append(Problem(f"--max-variants {f}", n, "a whole number >= 1"))
+    if not (np.isfinite(time_limit) and time_limit > 0):
+        probs.append(Problem("--time-limit", time_limit, "a number of seconds > 0"))
+    for f, w in (weights or {}).items():
+        if f not in FAMILIES:
+            probs.append(Problem("weight family", f, ", ".join(FAMILIES)))
+        elif not (np.isfinite(w) and w >= 0):
+            probs.append(Problem(f"weight {f}", w, "a number >= 0"))
+    if probs:
+        raise InputError(probs)
+
+
+def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_variants: dict | None = None,
+                time_limit: float = 60.0, weights: dict | None = None, solver: str = "highs", prune: bool = True,
+                min_margin: float | None = None, budget: float | None = None) -> PlatformResult:
+    """The platform of ``pf`` minimising ``objective`` (``variants``: weighted count of distinct
+    parts; ``cost``: unit cost x volume plus per-variant fixed cost).
+
+    ``max_variants``: ``{family: N}`` caps (applications no capped platform serves are
+    reported, not an error); ``min_margin``: only cores and options with at least this
+    margin; ``budget``: a ceiling on the weighted part count (the trade-off sweep).
+    """
+    _check(objective, max_variants, time_limit, weights)
+    w_all = {**default_weights(), **(weights or {})}
+    t0 = time.perf_counter()
+    work = compile_portfolio(pf, objective, min_margin=min_margin, weights=w_all)
+    before = work.sizes()
+    t1 = time.perf_counter()
+    capped = bool(max_variants) or budget is not None
+    if prune:
+        prune_work(work, allow_unserved=capped)
+    inst = work.instance()
+    t2 = time.perf_counter()
+    y_g = greedy(inst, objective)
+    g_val = objective_value(inst, y_g, objective)
+    t3 = time.perf_counter()
+    warm = y_g if not capped else None   # the uncapped greedy platform may break a cap
+    sol = solve_milp(inst, objective, solver=solver, time_limit=time_limit, max_variants=max_variants,
+                     budget=budget, allow_unserved=capped, warm_start=warm)
+    t4 = time.perf_counter()
+    notes = list(pf.notes)
+    if sol.y is not None:
+        y, status = sol.y, sol.status
+    elif not capped:
+        y, status = y_g, "greedy"
+        notes.append(f"MILP {sol.status} after {sol.time_s:.1f} s: the greedy platform is reported")
+    else:
+        y, status = np.zeros(inst.n_parts, bool), sol.status
+    platform = platform_from_y(work, y)
+    records = assign(pf, platform, min_margin=min_margin)
+    reasons = dict(work.unservable)
+    for i, r in enumerate(records):
+        if not r["feasible"] and i in reasons:
+            r["reason"] = reasons[i]
+        elif not r["feasible"] and capped:
+            r["reason"] = "not served within --max-variants: " + r["reason"]
+    # drop platform parts no assigned design uses (a solver may keep an unused part at zero weight)
+    used = {f: set() for f in FAMILIES}
+    for r in records:
+        if r["feasible"]:
+            for f, code in r["codes"].items():
+                if code >= 0:
+                    used[f].add(code)
+    platform = {f: platform[f] & used[f] for f in FAMILIES}
+    per_app = assign(pf, full_platform(pf), min_margin=min_margin)
+    t5 = time.perf_counter()
+    obj = sol.objective if sol.y is not None else g_val
+    return PlatformResult(
+        objective=objective, status=status, platform=platform, records=records, objective_value=float(obj),
+        bound=float(sol.bound), gap=float(sol.gap), greedy_value=float(g_val),
+        greedy_gap=float((g_val - obj) / max(abs(obj), 1e-9)) if np.isfinite(g_val) and np.isfinite(obj) else np.nan,
+        size=dict(sol.size), sizes_before_prune=before, prune_log=list(work.log),
+        times={"compile_s": t1 - t0, "prune_s": t2 - t1, "greedy_s": t3 - t2, "build_s": sol.build_s,
+               "solve_s": sol.time_s, "milp_s": t4 - t3, "assign_s": t5 - t4, "total_s": t5 - t0},
+        per_app_optima=per_app, weights=w_all, max_variants=dict(max_variants or {}), notes=notes)
+
+
+def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6, time_limit: float = 30.0,
+             weights: dict | None = None) -> list:
+    """Platform size against worst margin (``kind="margin"``) or against total cost (``"cost"``).
+
+    ``margin``: for margin floors from 0 up to the lower quartile of the applications' best
+    margins, the smallest platform (variants objective), over the applications that can
+    meet the highest floor (the same applications at every floor, so the curve rises). ``cost``: for part budgets from
+    the smallest platform up to the size of the cost-optimal one, the cheapest platform
+    (unit cost x volume + per-variant fixed cost) within the budget (an epsilon constraint).
+    Returns rows ``{"parts", "cost_eur", "worst_margin", "served", "status", ...}``.
+    """
+    if kind not in ("margin", "cost"):
+        raise InputError(Problem("trade-off", kind, "margin or cost"))
+    rows = []
+
+    def row(r: PlatformResult, **extra):
+        ok = [x for x in r.records if x["feasible"]]
+        vol = {a.app_id: a.volume for a in pf.apps}
+        cost = sum(x["unit_cost_eur"] * vol[x["app_id"]] for x in ok)
+        fixed = sum(float(pf.part_cost_eur[f][c]) for f, cs in r.platform.items() for c in cs)
+        return {"parts": r.n_parts, "weighted_parts": sum(r.weights[f] * len(cs) for f, cs in r.platform.items()),
+                "cost_eur": cost + fixed, "unit_cost_volume_eur": cost, "fixed_cost_eur": fixed,
+                "worst_margin": min((x["margin"] for x in ok), default=np.nan), "served": len(ok),
+                "status": r.status, **extra}
+
+    if kind == "margin":
+        base = rationalise(pf, "variants", time_limit=time_limit, weights=weights)
+        n_served = sum(r["feasible"] for r in base.per_app_optima)
+        # the largest floor every servable application can meet: the smallest per-application best margin
+        best = []
+        for a in pf.apps:
+            if a.n_cores:
+                m = np.full(a.n_cores, np.inf)
+                for s in a.feasible:
+                    gm = np.array([np.max(x) if len(x) else -np.inf for x in a.option_margin[s]])
+                    m = np.minimum(m, gm[np.asarray(a.group[s])])
+                m = np.minimum(m, a.core_margin)
+                if np.isfinite(m).any() and m.max() >= 0:
+                    best.append((float(m.max()), a))
+        top = float(np.quantile([b for b, _ in best], 0.25)) if best else 0.0
+        import dataclasses
+        pf = dataclasses.replace(pf, apps=[a for b, a in best if b >= top])   # one set of applications for every floor
+        base = rationalise(pf, "variants", time_limit=time_limit, weights=weights)
+        n_served = len(pf.apps)
+        for tau in np.linspace(0.0, top, points):
+            r = base if tau == 0.0 else rationalise(pf, "variants", time_limit=time_limit, weights=weights,
+                                                    min_margin=float(tau))
+            rows.append(row(r, margin_floor=float(tau)))
+            if rows[-1]["served"] < n_served:
+                rows[-1]["status"] += " (fewer served)"
+        return rows
+    small = rationalise(pf, "variants", time_limit=time_limit, weights=weights)
+    cheap = rationalise(pf, "cost", time_limit=time_limit, weights=weights)
+    lo, hi = sum(small.weights[f] * len(c) for f, c in small.platform.items()), \
+        sum(cheap.weights[f] * len(c) for f, c in cheap.platform.items())
+    budgets = np.unique(np.round(np.linspace(lo, max(hi, lo), points), 6))
+    for b in budgets:
+        r = cheap if b >= hi else rationalise(pf, "cost", time_limit=time_limit, weights=weights, budget=float(b))
+        rows.append(row(r, budget=float(b)))
+    return rows

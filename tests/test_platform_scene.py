@@ -1,0 +1,55 @@
+"""``synth rationalise``: the files it writes and the errors it names."""
+
+import argparse
+
+import pandas as pd
+import pytest
+
+from synth.errors import InputError
+from synth.platform.data import FAMILIES
+from synth.scenes import rationalise as scene
+
+
+def _run(argv):
+    p = argparse.ArgumentParser()
+    scene.register(p.add_subparsers())
+    args = p.parse_args(argv)
+    return args.func(args)
+
+
+def test_rationalise_writes_platform_assignment_summary_and_tradeoff(tmp_path, capsys):
+    out = tmp_path / "plat"
+    assert _run(["rationalise", "synthetic:30:2", "--out", str(out), "--points", "3", "--time-limit", "30"]) == 0
+    plat = pd.read_csv(out / "platform.csv")
+    assign = pd.read_csv(out / "assignment.csv", keep_default_na=False)
+    assert list(plat.columns) == ["family", "part", "applications"]
+    assert set(plat["family"]) <= set(FAMILIES)
+    assert len(assign) == 30 and list(assign.columns[:2]) == ["application_id", "feasible"]
+    ok = assign[assign["feasible"].astype(str) == "True"]
+    # every assigned part is a platform part, and the counts of platform.csv are the assignment's
+    for f in FAMILIES:
+        used = ok[f][ok[f] != "none"].astype(str)
+        assert set(used) <= set(plat.loc[plat["family"] == f, "part"].astype(str))
+        counts = used.value_counts()
+        for _, row in plat[plat["family"] == f].iterrows():
+            assert counts.get(str(row["part"]), 0) == row["applications"]
+    assert (assign.loc[assign["feasible"].astype(str) == "False", "reason"] != "").all()
+    trade = pd.read_csv(out / "tradeoff.csv")
+    assert len(trade) == 3 and (out / "tradeoff.png").stat().st_size > 1000
+    assert trade["parts"].is_monotonic_increasing or trade["served"].iloc[-1] < trade["served"].iloc[0]
+    assert "Price of standardisation" in (out / "summary.md").read_text()
+    assert "distinct parts" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["--max-variants", "bearing=2"], r"--max-variants: got 'bearing=2'"),
+    (["--max-variants", "ball_bearing=0"], r"N a whole number >= 1"),
+])
+def test_bad_arguments_are_named(tmp_path, argv, match):
+    with pytest.raises(InputError, match=match):
+        _run(["rationalise", "synthetic:3", "--out", str(tmp_path)] + argv)
+
+
+def test_a_table_without_the_producer_says_so(tmp_path):
+    with pytest.raises(InputError, match="producer is not wired yet"):
+        _run(["rationalise", str(tmp_path / "portfolio.csv"), "--out", str(tmp_path)])
