@@ -344,7 +344,8 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     act = real & pad & (cv["axial_damping_nm"] > 0) & (de > di) & (zeta > 0) & (phi > 0) & (phi <= 1)
     v["cone_spring_sized"] = act
     keys = ("cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n", "cone_spring_fax_nominal_n",
-            "cone_spring_fax_band_n", "cone_spring_force_band_room_n", "cone_spring_thickness_mm",
+            "cone_spring_fax_band_n", "cone_spring_force_band_room_n", "cone_spring_gap_band_room_n",
+            "cone_spring_thickness_mm",
             "cone_spring_cone_height_mm", "cone_spring_free_height_mm", "cone_spring_nominal_deflection_mm",
             "cone_spring_max_deflection_mm", "cone_spring_rate_n_per_mm", "sigma_om_mpa", "sigma_i_mpa",
             "sigma_ii_mpa", "sigma_iii_mpa", "sigma_iv_mpa", "cone_spring_diameter_ratio", "cone_spring_aspect_ratio",

@@ -450,7 +450,8 @@ def axial_force_tolerance_band(damping_target_nm, damping_tolerance_nm, radial_d
 
     Returns ``cone_spring_fax_max_tolerance_n``, ``cone_spring_fax_min_tolerance_n``,
     ``cone_spring_fax_nominal_n``, ``fax_damping_upper_n`` / ``fax_damping_lower_n``
-    (:math:`F_{up}, F_{lo}`), ``band_n`` (:math:`F_{up} - F_{lo}`) and ``band_room_n``.
+    (:math:`F_{up}, F_{lo}`), ``band_n`` (:math:`F_{up} - F_{lo}`), ``band_room_n`` and ``gap_room_n``
+    (the room for an exact spring, the gap tolerance alone).
 
     Thesis case 1 (D 2.00 +/- 0.30 N m, D_rad 0.2871 N m, R 12.5 + 13.5 mm,
     mu 0.1294, a spring rate of 95.2 N/mm over the worst-case 0.22 mm):
@@ -471,6 +472,7 @@ def axial_force_tolerance_band(damping_target_nm, damping_tolerance_nm, radial_d
     f_max = f_up - np.maximum(np.maximum(up, down), 0.0)
     f_min = f_lo - np.minimum(np.minimum(up, down), 0.0)
     room = np.minimum(f_max - f_nom * (1.0 + _f(force_tolerance_plus)), f_nom * (1.0 - _f(force_tolerance_minus)) - f_min)
+    gap_room = np.minimum(f_max - f_nom, f_nom - f_min)
     return {
         "cone_spring_fax_max_tolerance_n": f_max,
         "cone_spring_fax_min_tolerance_n": f_min,
@@ -479,6 +481,7 @@ def axial_force_tolerance_band(damping_target_nm, damping_tolerance_nm, radial_d
         "fax_damping_lower_n": f_lo,
         "band_n": f_up - f_lo,
         "band_room_n": room,
+        "gap_room_n": gap_room,
     }
 
 
@@ -614,6 +617,7 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
         "cone_spring_fax_nominal_n": f_nom,
         "cone_spring_fax_band_n": band["band_n"],
         "cone_spring_force_band_room_n": band["band_room_n"],
+        "cone_spring_gap_band_room_n": band["gap_room_n"],
         "cone_spring_min_internal_diameter_mm": di,
         "cone_spring_max_external_diameter_mm": de,
         "cone_spring_thickness_mm": t,
