@@ -86,12 +86,17 @@ def section_parts(model: TensionerModel) -> dict:
 
 @dataclass(frozen=True)
 class Dimension:
-    """A dimension line in the section plane (x, z in mm): from ``a`` to ``b``, its value and what it measures."""
+    """A dimension line in the section plane (x, z in mm): from ``a`` to ``b``, its value and what it measures.
+
+    ``feature`` is where the extension lines run to: the x of the measured edge for a vertical
+    dimension, its z for a horizontal one.
+    """
 
     label: str
     value_mm: float
     a: tuple
     b: tuple
+    feature: float
     diameter: bool = False
 
     @property
@@ -123,13 +128,17 @@ def section_dimensions(model: TensionerModel) -> list[Dimension]:
     housing = s.z_span(s.flange_top_u, s.cavity_top_u)
     rh = 0.5 * g.spring_housing_outer_diameter_mm
     low = min(whole.zmin, 0.0) - 0.5 * gap
+    r_pivot = 0.5 * g.pivot_diameter_mm
     return [
-        Dimension("pulley", g.pulley_diameter_mm, (e - r_pulley, pulley_top + gap), (e + r_pulley, pulley_top + gap), True),
-        Dimension("belt plane", g.belt_plane_height_mm, (right, 0.0), (right, g.belt_plane_height_mm)),
-        Dimension("pivot height", pivot_top, (left, 0.0), (left, pivot_top)),
-        Dimension("pivot bushing", g.pivot_bushing_length_mm, (left - gap, bush[0]), (left - gap, bush[1])),
-        Dimension("spring housing", g.spring_housing_outer_diameter_mm, (-rh, low), (rh, low), True),
-        Dimension("housing height", housing[1] - housing[0], (left - 2 * gap, housing[0]), (left - 2 * gap, housing[1])),
+        Dimension("pulley", g.pulley_diameter_mm, (e - r_pulley, pulley_top + gap), (e + r_pulley, pulley_top + gap),
+                  pulley_top, True),
+        Dimension("belt plane", g.belt_plane_height_mm, (right, 0.0), (right, g.belt_plane_height_mm), e + r_pulley),
+        Dimension("pivot height", pivot_top, (left, 0.0), (left, pivot_top), -r_pivot),
+        Dimension("pivot bushing", g.pivot_bushing_length_mm, (left - gap, bush[0]), (left - gap, bush[1]),
+                  -r_pivot - g.pivot_bushing_radial_thickness_mm),
+        Dimension("spring housing", g.spring_housing_outer_diameter_mm, (-rh, low), (rh, low), 0.0, True),
+        Dimension("housing height", housing[1] - housing[0], (left - 2 * gap, housing[0]), (left - 2 * gap, housing[1]),
+                  -rh),
     ]
 
 
@@ -306,6 +315,9 @@ def _dimension(ax, d: Dimension) -> None:
     ax.annotate("", xy=(x0, y0), xytext=(x1, y1), zorder=6,
                 arrowprops=dict(arrowstyle="<|-|>", lw=0.6, color="0.1", mutation_scale=6, shrinkA=0, shrinkB=0))
     vertical = abs(x1 - x0) < abs(y1 - y0)
+    for x, y in d.a, d.b:  # extension lines to the measured edge
+        ax.plot([x, d.feature] if vertical else [x, x], [y, y] if vertical else [y, d.feature],
+                color="0.35", lw=0.35, zorder=5)
     kw = dict(fontsize=6.5, zorder=7, color="0.1",
               bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.85))
     if vertical:
