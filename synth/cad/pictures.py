@@ -107,7 +107,7 @@ class Dimension:
 def section_dimensions(model: TensionerModel) -> list[Dimension]:
     """The key dimensions of the section view, measured on the built parts (their bounding boxes) in mm.
 
-    Pulley diameter (above the pulley), belt-plane height above the crankcase face (right of the
+    Pulley diameter (above everything), belt-plane height above the crankcase face (right of the
     pulley), pivot height and pivot bushing length (left of the housing), spring housing outer
     diameter (under the crankcase face) and housing height (between the bushing flange and the arm).
     Values are the geometry's (the stack-up of :func:`synth.cad.parts.stack`), positions the parts' boxes.
@@ -130,8 +130,8 @@ def section_dimensions(model: TensionerModel) -> list[Dimension]:
     low = min(whole.zmin, 0.0) - 0.5 * gap
     r_pivot = 0.5 * g.pivot_diameter_mm
     return [
-        Dimension("pulley", g.pulley_diameter_mm, (e - r_pulley, pulley_top + gap), (e + r_pulley, pulley_top + gap),
-                  pulley_top, True),
+        Dimension("pulley", g.pulley_diameter_mm, (e - r_pulley, whole.zmax + 0.5 * gap),
+                  (e + r_pulley, whole.zmax + 0.5 * gap), pulley_top, True),
         Dimension("belt plane", g.belt_plane_height_mm, (right, 0.0), (right, g.belt_plane_height_mm), e + r_pulley),
         Dimension("pivot height", pivot_top, (left, 0.0), (left, pivot_top), -r_pivot),
         Dimension("pivot bushing", g.pivot_bushing_length_mm, (left - gap, bush[0]), (left - gap, bush[1]),
