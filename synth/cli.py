@@ -1,71 +1,222 @@
-"""The ``synth`` command line: one sub-command per scene.
+"""The ``synth`` command line (also ``python -m synth``): one sub-command per scene.
 
-Each scene module in :data:`SCENES` exposes ``register(subparsers)`` that adds
-its sub-command and sets ``func`` to a handler ``func(args) -> int``.
-Input errors (:class:`synth.errors.InputError`) are printed one problem per
-line on stderr with exit code 2, never as a traceback.
+Scenes are registered in :data:`SCENES` by name, module and one-line help,
+without importing their modules: ``synth --help`` and ``synth --version``
+import neither pandas, scipy, matplotlib, cadquery, pyomo, dask nor numba.
+The chosen scene's module is imported only when it runs (or when its own
+``--help`` is asked); it exposes ``register(sub)``, which calls
+``sub.add_parser(name, help=...)`` and sets ``func`` to a handler
+``func(args) -> int`` on the parser it gets.
+
+Each scene parses its own arguments with its own parser (``prog`` ``synth
+NAME``), so a bad flag prints that scene's usage; a misspelt scene gets
+"did you mean". Every ``--json`` flag gets :data:`JSON_HELP` unless the scene
+gives its own help.
+
+Exit codes (:data:`EXIT_CODES`): 0 pass, 1 a check fails, 2 invalid input
+(:class:`synth.errors.InputError`: one problem per line on stderr, never a
+traceback; also a bad command line), 3 passed what was checked but some
+checks were not verified, 70 internal error (any other exception: one line on
+stderr, ``SYNTH_DEBUG=1`` re-raises it for the traceback), 130 interrupted.
+
+>>> _split(["--catalogs", "my", "flowchart", "case.yaml", "--json"])
+(['--catalogs', 'my'], 'flowchart', ['case.yaml', '--json'])
+>>> _did_you_mean("flowchat")
+"unknown command 'flowchat'; did you mean 'flowchart'? (synth --help lists the commands)"
 """
 
 from __future__ import annotations
 
 import argparse
+import difflib
 import importlib
+import os
 import sys
+from dataclasses import dataclass
 
-from synth.errors import InputError
+__all__ = ["main", "SCENES", "Scene", "EXIT_CODES", "JSON_HELP", "EX_SOFTWARE", "scene_parser", "version_text"]
 
-__all__ = ["main", "SCENES"]
+#: EX_SOFTWARE of BSD ``sysexits.h``: an internal software error.
+EX_SOFTWARE = 70
 
-SCENES = [
-    "synth.scenes.flowchart",
-    "synth.scenes.compare",
-    "synth.scenes.demo",
-    "synth.scenes.shrink_fit",
-    "synth.scenes.template",
-    "synth.scenes.report",
-    "synth.scenes.design",
-    "synth.scenes.pareto",
-    "synth.scenes.cad",
-    "synth.scenes.bulk",
-    "synth.scenes.portfolio_sample",
-]
+#: Exit codes of every scene (README, "Exit codes").
+EXIT_CODES = {
+    0: "pass: every check passed",
+    1: "fail: the design fails a check (or has no feasible design)",
+    2: "invalid input or command line: one line per problem (field, value, what is accepted)",
+    3: "passed what was checked, but some checks were not verified (data missing)",
+    EX_SOFTWARE: "internal error: a bug in synth; one line on stderr (SYNTH_DEBUG=1 shows the traceback)",
+    130: "interrupted (Ctrl-C)",
+}
+
+#: Help of a ``--json`` flag whose scene gives none.
+JSON_HELP = "print one JSON object on stdout instead of the text report"
 
 
-def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="synth", description="Timing-belt tensioner design synthesiser.")
-    parser.add_argument("--catalogs", metavar="DIR", action="append", default=[],
-                        help="a folder of user catalogs overriding the built-in CSVs (repeatable)")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
-    for name in SCENES:
-        try:
-            module = importlib.import_module(name)
-        except ModuleNotFoundError as exc:  # a scene not built yet
-            if exc.name == name:
-                continue
-            raise
-        module.register(sub)
-    return parser
+@dataclass(frozen=True)
+class Scene:
+    """A sub-command: the module that registers it and its one-line help."""
+
+    module: str
+    help: str
+
+
+#: name -> scene, in the order ``synth --help`` lists them. The module is imported only to run the scene.
+SCENES: dict[str, Scene] = {
+    "demo": Scene("synth.scenes.demo", "run the flowchart on the embedded default case (thesis case 1)"),
+    "flowchart": Scene("synth.scenes.flowchart", "run the thesis design flowchart (steps 0-10) on a design input"),
+    "design": Scene("synth.scenes.design", "optimal tensioner from the catalogs (standardisation, cost or margin)"),
+    "pareto": Scene("synth.scenes.pareto", "cost against margin: the Pareto front of the catalog designs"),
+    "compare": Scene("synth.scenes.compare", "compare the flowchart with a case file's thesis-tool and real values"),
+    "report": Scene("synth.scenes.report",
+                    "write the design report (report.html) and results workbook (results.xlsx)"),
+    "cad": Scene("synth.scenes.cad", "export the 3D model (STEP, STL, pictures) of a saved design/flowchart result"),
+    "template": Scene("synth.scenes.template", "write the design-input Excel template (example values: thesis case 1)"),
+    "bulk": Scene("synth.scenes.bulk", "feasibility of a portfolio of applications (CSV, Excel or Parquet table)"),
+    "portfolio-sample": Scene("synth.scenes.portfolio_sample",
+                              "write a synthetic portfolio of N applications (for synth bulk)"),
+    "shrink-fit": Scene("synth.scenes.shrink_fit", "crankshaft toothed-pulley shrink fit (paper Tables 1-4 and verdict)"),
+    "shrink-fit-select": Scene("synth.scenes.shrink_fit",
+                               "best ISO 286 fit of the crank pulley after planned re-assemblies"),
+}
+
+
+def version_text(catalog_dirs=()) -> str:
+    """``synth 0.1.0 (catalogs sha256 1a2b3c4d5e6f)``: the package version and a hash of the catalog CSVs in use.
+
+    The hash covers the built-in ``catalogs/*.csv`` and the CSVs of every user folder
+    (``--catalogs``, ``SYNTH_CATALOGS``), file names and bytes: two runs with the same hash read the same data.
+    """
+    import hashlib
+    from pathlib import Path
+
+    from synth import __version__
+    here = Path(__file__).resolve().parent
+    builtin = next((d for d in (here / "catalogs", here.parent / "catalogs") if d.is_dir()), None)
+    user = [Path(d) for d in catalog_dirs] + [Path(p) for p in os.environ.get("SYNTH_CATALOGS", "").split(os.pathsep) if p]
+    h = hashlib.sha256()
+    for d in ([builtin] if builtin else []) + user:
+        for f in sorted(d.glob("*.csv")) if d.is_dir() else []:
+            h.update(f.name.encode() + b"\0" + f.read_bytes() + b"\0")
+    extra = f"; user catalogs: {', '.join(str(d) for d in user)}" if user else ""
+    return f"synth {__version__} (catalogs sha256 {h.hexdigest()[:12]}{extra})"
+
+
+class _VersionAction(argparse.Action):
+    def __init__(self, option_strings, dest, **kw):
+        super().__init__(option_strings, dest, nargs=0, help="print the synth version and the catalog hash, and exit")
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(version_text(getattr(namespace, "catalogs", None) or ()))
+        parser.exit(0)
+
+
+def _top_parser() -> argparse.ArgumentParser:
+    width = max(len(n) for n in SCENES) + 2
+    commands = "\n".join(f"  {name:<{width}}{s.help}" for name, s in SCENES.items())
+    codes = "\n".join(f"  {code:<4}{text}" for code, text in EXIT_CODES.items())
+    p = argparse.ArgumentParser(
+        prog="synth", usage="synth [--catalogs DIR] [--version] COMMAND [ARGS ...]", allow_abbrev=False,
+        description="Timing-belt tensioner design synthesiser.",
+        epilog=f"commands (synth COMMAND --help for the options of one):\n{commands}\n\nexit codes:\n{codes}",
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--catalogs", metavar="DIR", action="append", default=[],
+                   help="a folder of user catalogs overriding the built-in CSVs (repeatable)")
+    p.add_argument("--version", action=_VersionAction)
+    return p
+
+
+class _SceneParser(argparse.ArgumentParser):
+    """A scene's own parser: ``--json`` gets :data:`JSON_HELP` when the scene gives no help."""
+
+    def add_argument(self, *names, **kw):
+        if "--json" in names and not kw.get("help"):
+            kw["help"] = JSON_HELP
+        return super().add_argument(*names, **kw)
+
+
+class _Registry:
+    """What a scene's ``register(sub)`` is handed: ``add_parser`` builds a stand-alone parser per scene."""
+
+    def __init__(self):
+        self.parsers: dict[str, argparse.ArgumentParser] = {}
+
+    def add_parser(self, name: str, *, help: str | None = None, **kw) -> argparse.ArgumentParser:  # noqa: A002
+        kw.setdefault("description", help)
+        p = _SceneParser(prog=f"synth {name}", **kw)
+        self.parsers[name] = p
+        return p
+
+
+def scene_parser(name: str) -> argparse.ArgumentParser:
+    """The parser of scene ``name`` (imports its module)."""
+    registry = _Registry()
+    importlib.import_module(SCENES[name].module).register(registry)
+    return registry.parsers[name]
+
+
+def _did_you_mean(word: str) -> str:
+    close = difflib.get_close_matches(word, list(SCENES), n=1, cutoff=0.6)
+    hint = f"; did you mean '{close[0]}'?" if close else ";"
+    return f"unknown command '{word}'{hint} (synth --help lists the commands)"
+
+
+def _split(argv: list[str]) -> tuple[list[str], str | None, list[str]]:
+    """``(top-level options, scene name, scene arguments)``: the scene is the first word that is not an option."""
+    i = 0
+    while i < len(argv):
+        a = argv[i]
+        if a == "--catalogs":
+            i += 2
+        elif a.startswith("-"):
+            i += 1
+        else:
+            return argv[:i], a, argv[i + 1:]
+    return argv, None, []
+
+
+def _print_input_error(exc) -> None:
+    print("synth: invalid input", file=sys.stderr)
+    for problem in exc.problems:
+        print(f"  - {problem}", file=sys.stderr)
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    if not getattr(args, "func", None):
-        parser.print_help()
+    """Run ``synth ARGV``; returns the exit code (:data:`EXIT_CODES`)."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    head, name, rest = _split(argv)
+    top = _top_parser()
+    top_args = top.parse_args(head)
+    if name is None:
+        top.print_help()
         return 2
+    if name not in SCENES:
+        top.print_usage(sys.stderr)
+        print(f"synth: error: {_did_you_mean(name)}", file=sys.stderr)
+        return 2
+    from synth.errors import InputError
     try:
-        if args.catalogs:
+        args = scene_parser(name).parse_args(rest)
+        if top_args.catalogs:
             from synth import catalog
-            catalog.set_user_dirs(*args.catalogs)
+            catalog.set_user_dirs(*top_args.catalogs)
         return int(args.func(args) or 0)
     except BrokenPipeError:  # output piped into head & co.
         sys.stderr.close()
         return 0
     except InputError as exc:
-        print("synth: invalid input", file=sys.stderr)
-        for problem in exc.problems:
-            print(f"  - {problem}", file=sys.stderr)
+        _print_input_error(exc)
         return 2
+    except KeyboardInterrupt:
+        print(f"synth {name}: interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:  # the one place where any error becomes a line, not a traceback
+        if os.environ.get("SYNTH_DEBUG", "") not in ("", "0"):
+            raise
+        message = " ".join(str(exc).split())[:500]
+        print(f"synth: internal error in {name}: {type(exc).__name__}: {message}; please report "
+              "(SYNTH_DEBUG=1 shows the traceback)", file=sys.stderr)
+        return EX_SOFTWARE
 
 
 if __name__ == "__main__":  # pragma: no cover

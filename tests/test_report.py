@@ -16,7 +16,6 @@ from conftest import CASES
 from synth import cli
 from synth.checks import FAIL, NOT_VERIFIED, PASS, Check
 from synth.excel.results import NOT_APPLICABLE, row_verdict
-from synth.excel.template import FILLS
 from synth.output_table import ROWS
 from synth.report import plots, progress
 from synth.scenes.report import make_report
@@ -166,15 +165,9 @@ def test_results_workbook_output_table_with_verdict_colours(case1):
         assert ws[f"B{i}"].value == label and ws[f"C{i}"].value == unit
         verdict = ws[f"E{i}"].value
         assert verdict == row_verdict(result.values, result.checks, key, section)
-        if verdict in FILLS:
-            assert ws[f"E{i}"].fill.start_color.rgb[-6:] == FILLS[verdict]
-        seen.add(verdict)
+        seen.add(verdict)  # its colour: a conditional format (tests/test_workbooks.py, evaluated by LibreOffice)
     assert PASS in seen
     assert ws["D6"].value == pytest.approx(20.0)          # pulley width, case 1 Table 10
-    checks = wb["Checks"]
-    fills = {checks[f"I{r}"].value: checks[f"I{r}"].fill.start_color.rgb[-6:] for r in range(5, checks.max_row + 1)}
-    for verdict, colour in fills.items():
-        assert colour == FILLS[verdict]
     # the echo of the data read
     inp = wb["Input"]
     echo = {inp[f"B{r}"].value: inp[f"E{r}"].value for r in range(5, inp.max_row + 1)}
@@ -189,7 +182,7 @@ def test_failed_check_gets_red_and_its_correction(case1):
     ws = wb["Checks"]
     rows = {ws[f"C{r}"].value: r for r in range(5, ws.max_row + 1)}
     r = rows[failed[0].name]
-    assert ws[f"I{r}"].value == FAIL and ws[f"I{r}"].fill.start_color.rgb[-6:] == FILLS[FAIL]
+    assert ws[f"I{r}"].value == FAIL  # red by conditional format: tests/test_workbooks.py
 
 
 def test_case3_skips_the_axial_graphs_with_the_reason(case3):

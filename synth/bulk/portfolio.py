@@ -1,6 +1,6 @@
 """Portfolio tables: one application per row, design-input fields as columns.
 
-A portfolio is a CSV, Excel (``.xlsx``) or Parquet file whose column names
+A portfolio is a CSV, Excel (``.xlsx``), OpenDocument (``.ods``) or Parquet file whose column names
 are the field names (or aliases) of :data:`synth.schema.FIELDS`; other
 columns (an application id, a customer...) are carried through untouched.
 Cells are cleaned before validation: empty cells and NaN are ``None`` (the
@@ -38,7 +38,7 @@ __all__ = ["FORMATS", "read_portfolio", "write_table", "to_table", "clean_cell",
            "validate_record", "validate_rows", "field_columns", "column_warnings", "format_problems"]
 
 #: file suffix -> format name
-FORMATS = {".csv": "csv", ".xlsx": "excel", ".xlsm": "excel", ".parquet": "parquet", ".pq": "parquet"}
+FORMATS = {".csv": "csv", ".xlsx": "excel", ".xlsm": "excel", ".ods": "excel", ".parquet": "parquet", ".pq": "parquet"}
 
 _NAMES = {f.name for f in schema.FIELDS}
 _ALIASES = {a: f.name for f in schema.FIELDS for a in f.aliases}
@@ -203,8 +203,11 @@ def write_table(df: pd.DataFrame, path) -> Path:
     p.parent.mkdir(parents=True, exist_ok=True)
     if fmt == "csv":
         df.to_csv(p, index=False)
-    elif fmt == "excel":
-        df.to_excel(p, index=False)
+    elif p.suffix.lower() == ".ods":  # OpenDocument (odfpy): strings are string cells, never formulas
+        df.to_excel(p, index=False, engine="odf")
+    elif fmt == "excel":  # text as text, significant figures, print setup (synth.excel.cells)
+        from synth.excel.cells import write_frame
+        write_frame(df, p, sheet="portfolio")
     else:
         arrow_safe(df).to_parquet(p, index=False)
     return p

@@ -13,10 +13,13 @@ from synth.cad.dimensions import TensionerGeometry, geometry_from
 __all__ = ["TensionerGeometry", "geometry_from", "export_result", "summary_lines"]
 
 
-def export_result(result, out_dir, inputs=None, *, stl: bool = True, pictures: bool = True, interference: bool = True):
+def export_result(result, out_dir, inputs=None, *, stl: bool = True, pictures: bool = True, interference: bool = True,
+                  application: str | None = None):
     """Build, verify and export ``result`` into ``out_dir``; returns ``(model, checks, info)``.
 
     ``info`` is ``{"files": [...], "timings_s": {...}}`` (build, verification, step, stl, pictures).
+    ``application`` names the STEP product ``synth tensioner <application>``; by default the stem of the
+    input or result file when one is given as a path, else the application type and fuel of the inputs.
     """
     import time
 
@@ -29,9 +32,27 @@ def export_result(result, out_dir, inputs=None, *, stl: bool = True, pictures: b
     t = time.perf_counter()
     checks = verify_model(model, interference=interference)
     t_verify = time.perf_counter() - t
-    info = export_model(model, out_dir, checks=checks, stl=stl, pictures=pictures)
+    info = export_model(model, out_dir, checks=checks, stl=stl, pictures=pictures,
+                        application=application or _application_name(result, inputs), result=result)
     info["timings_s"]["verification"] = t_verify
     return model, checks, info
+
+
+def _application_name(result, inputs) -> str | None:
+    """The stem of the input (or result) file, else ``<application_type> <engine_fuel>`` of the inputs."""
+    import dataclasses
+    from pathlib import Path
+    for src in (inputs, result):
+        if isinstance(src, (str, Path)):
+            return Path(src).stem
+    ins = inputs if inputs is not None else getattr(result, "inputs", None)
+    if ins is None and isinstance(result, dict):
+        ins = result.get("inputs")
+    if dataclasses.is_dataclass(ins):
+        ins = dataclasses.asdict(ins)
+    if isinstance(ins, dict) and ins.get("application_type"):
+        return " ".join(str(ins[k]) for k in ("application_type", "engine_fuel") if ins.get(k))
+    return None
 
 
 def summary_lines(model, checks, info) -> list[str]:

@@ -48,9 +48,9 @@ class TensionerModel:
     build_s: float = 0.0
     timings: dict = field(default_factory=dict)
 
-    def assembly(self) -> cq.Assembly:
-        """A ``cadquery.Assembly`` named after the design, one named, coloured child per part."""
-        a = cq.Assembly(name=f"tensioner_{self.geometry.layout}")
+    def assembly(self, name: str | None = None) -> cq.Assembly:
+        """A ``cadquery.Assembly`` (``name``, default ``tensioner_<layout>``), one named, coloured child per part."""
+        a = cq.Assembly(name=name or f"tensioner_{self.geometry.layout}")
         for name, shape in self.parts.items():
             a.add(shape, name=name, color=cq.Color(*colour_of(name)))
         return a

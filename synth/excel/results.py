@@ -30,7 +30,8 @@ import re
 from pathlib import Path
 
 from synth import schema
-from synth.design.result import FAIL, field_corrections, row_verdict
+from synth.design.result import FAIL, NOT_VERIFIED, PASS, field_corrections, row_verdict
+from synth.excel.cells import page_setup, put, wrap
 from synth.excel.template import FILLS
 from synth.output_table import ROWS, format_value
 
@@ -67,7 +68,7 @@ def _header(ws, row: int, headers: list[str], widths: list[float]) -> None:
     from openpyxl.styles import Font
     from openpyxl.utils import get_column_letter
     for j, (h, w) in enumerate(zip(headers, widths), start=1):
-        cell = ws.cell(row=row, column=j, value=h)
+        cell = put(ws, row, j, h)
         cell.font = Font(bold=True)
         cell.fill = _fill("header")
         ws.column_dimensions[get_column_letter(j)].width = w
@@ -76,89 +77,128 @@ def _header(ws, row: int, headers: list[str], widths: list[float]) -> None:
 
 def _title(ws, text: str, verdict: str | None = None) -> None:
     from openpyxl.styles import Font
-    ws["A1"] = text
-    ws["A1"].font = Font(bold=True, size=13)
+    put(ws, 1, 1, text).font = Font(bold=True, size=13)
     if verdict:
-        ws["A2"] = f"Verdict: {verdict.upper()}"
-        ws["A2"].font = Font(bold=True)
-        ws["A2"].fill = _fill(verdict)
+        put(ws, 2, 1, f"Verdict: {verdict.upper()}").font = Font(bold=True)
+        _verdict_colours(ws, "A2", "$A$2", contains=True)
+
+
+def _rule(formula: str, key: str):
+    from openpyxl.formatting.rule import FormulaRule
+    from openpyxl.styles import PatternFill
+    colour = FILLS[key]
+    return FormulaRule(formula=[formula], fill=PatternFill("solid", start_color=colour, end_color=colour,
+                                                           bgColor=colour), stopIfTrue=True)
+
+
+def _verdict_colours(ws, cells: str, ref: str, *, contains: bool = False) -> None:
+    """Colour ``cells`` by the verdict text in ``ref`` (a conditional format: editing the verdict recolours).
+
+    ``ref`` is the first row's verdict cell (``$E5``: relative row); ``contains``
+    matches ``Verdict: FAIL``-style text.
+    """
+    for key in (FAIL, NOT_VERIFIED, PASS):
+        word = key.upper() if contains else key
+        formula = f'ISNUMBER(SEARCH("{word}",{ref}))' if contains else f'{ref}="{word}"'
+        ws.conditional_formatting.add(cells, _rule(formula, key))
 
 
 def _output_sheet(ws, result) -> None:
     _title(ws, "Output table (thesis Tables 10/14)", result.verdict)
-    _header(ws, 4, ["Section", "Parameter", "Unit", "Value", "Verdict", "Suggested correction"], [28, 36, 8, 16, 14, 70])
+    _header(ws, 4, ["Section", "Parameter", "Unit", "Value", "Verdict", "Suggested correction"], [24, 36, 8, 14, 13, 70])
     r = 5
     for section, label, key, unit in ROWS:
         v = result.get(key)
         verdict = row_verdict(result, key)
         corr = "; ".join(c.constraint.correction for c in result.failed()
                          if key in (c.constraint.value, c.constraint.limit) and c.constraint.correction)
-        for j, val in enumerate([section, label, unit, _cell_value(v), verdict, corr or None], start=1):
-            ws.cell(row=r, column=j, value=val)
-        if verdict:
-            for j in (4, 5):
-                ws.cell(row=r, column=j).fill = _fill(verdict)
+        for j, val in enumerate([section, label, unit, _cell_value(v), verdict or "", corr or None], start=1):
+            put(ws, r, j, val)
         r += 1
+    _verdict_colours(ws, f"D5:E{max(r - 1, 5)}", "$E5")
+    wrap(ws, "F", 5, r - 1)
+    page_setup(ws, "synth results: output table", header_rows="4:4", subtitle=_subtitle(result))
 
 
 def _checks_sheet(ws, result) -> None:
     from synth.flowchart import STEP_NAMES
     _title(ws, "Checks (every verdict with its margin)", result.verdict)
     _header(ws, 4, ["Step", "Step name", "Check", "Value", "Relation", "Limit", "Unit", "Margin [%]", "Verdict",
-                    "Equation", "Suggested correction", "Note"], [6, 22, 44, 12, 8, 12, 8, 11, 13, 14, 60, 50])
+                    "Equation", "Suggested correction", "Note"], [6, 20, 40, 11, 8, 11, 8, 10, 12, 13, 50, 40])
+    r = 4
     rows = [c for c in result.checks if c.verdict != "not applicable"]
     for r, c in enumerate(rows, start=5):
         con = c.constraint
-        margin = None if c.margin is None else round(100.0 * c.margin, 2)
-        note = "; ".join([c.note] + c.assumed) if (c.note or c.assumed) else None
+        margin = None if c.margin is None else 100.0 * c.margin
+        note = "; ".join([c.note] + c.assumed).strip("; ") if (c.note or c.assumed) else None
         row = [con.step, STEP_NAMES.get(con.step, ""), con.label, _cell_value(c.value),
                con.sense if c.value is not None else None, _cell_value(c.limit), con.unit, margin, c.verdict,
                con.equation, con.correction if c.verdict == FAIL else None, note]
         for j, val in enumerate(row, start=1):
-            ws.cell(row=r, column=j, value=val)
-        for j in (8, 9):
-            ws.cell(row=r, column=j).fill = _fill(c.verdict)
+            put(ws, r, j, val)
+    last = max(r, 5)
+    # the colour follows value against limit (editing a value recolours), the verdict text for "not verified";
+    # pass as in synth.checks: margin >= -1e-12 of |limit| (of 1 for a zero limit)
+    over = "($D5-$F5)" + '*IF($E5="<=",1,-1)'
+    tol = "1E-12*IF($F5=0,1,ABS($F5))"
+    numbers = "ISNUMBER($D5),ISNUMBER($F5)"
+    cells = f"D5:D{last} H5:I{last}"
+    ws.conditional_formatting.add(cells, _rule('$I5="not verified"', NOT_VERIFIED))
+    ws.conditional_formatting.add(cells, _rule(f"AND({numbers},{over}>{tol})", FAIL))
+    ws.conditional_formatting.add(cells, _rule(f"AND({numbers},{over}<={tol})", PASS))
+    wrap(ws, "K", 5, last)
+    wrap(ws, "L", 5, last)
+    page_setup(ws, "synth results: checks", header_rows="4:4", subtitle=_subtitle(result))
 
 
 def _input_sheet(ws, result, cells: dict | None, source: str | None) -> None:
     _title(ws, "Data read (echo of the design input)" + (f": {source}" if source else ""))
     _header(ws, 4, ["Parameter", "Field", "Unit", "Required", "Data read", "Read from cell", "Suggested correction"],
-            [58, 44, 8, 10, 16, 14, 70])
+            [50, 40, 8, 10, 14, 12, 60])
     corr = field_corrections(result)
     values = result.inputs or {}
     r = 5
     for section in schema.SECTIONS:
-        ws.cell(row=r, column=1, value=section).fill = _fill("section")
+        put(ws, r, 1, section).fill = _fill("section")
         r += 1
         for f in (f for f in schema.FIELDS if f.section == section):
             v = values.get(f.name)
             row = [f.label or f.name, f.name, f.unit, "required" if f.required else "optional", _cell_value(v),
                    (cells or {}).get(f.name), corr.get(f.name)]
             for j, val in enumerate(row, start=1):
-                ws.cell(row=r, column=j, value=val)
+                put(ws, r, j, val)
             status = "fail" if f.name in corr and not _missing(v) else ("pass" if not _missing(v) else
                                                                        ("not verified" if f.name in corr else None))
             if status:
                 ws.cell(row=r, column=5).fill = _fill(status)
             r += 1
+    wrap(ws, "G", 5, r - 1)
+    page_setup(ws, "synth results: data read", header_rows="4:4", subtitle=source or "")
 
 
 def _table_sheet(ws, title: str, rows) -> None:
     """A scene result as a plain table: a DataFrame, a list of dicts, or a dict (one row)."""
+    from openpyxl.utils import get_column_letter
     if hasattr(rows, "to_dict"):
         rows = rows.to_dict(orient="records")
     if isinstance(rows, dict):
         rows = [rows]
     rows = list(rows or [])
     _title(ws, title)
-    headers = list(dict.fromkeys(k for row in rows for k in row))
+    headers = list(dict.fromkeys(str(k) for row in rows for k in row))
     _header(ws, 3, headers, [max(12, min(40, len(h) + 2)) for h in headers])
     for r, row in enumerate(rows, start=4):
+        row = {str(k): v for k, v in row.items()}
         for j, h in enumerate(headers, start=1):
-            v = row.get(h)
-            ws.cell(row=r, column=j, value=_cell_value(v))
-            if h == "verdict" and v in FILLS:
-                ws.cell(row=r, column=j).fill = _fill(v)
+            put(ws, r, j, _cell_value(row.get(h)))
+    if "verdict" in headers and rows:
+        col = get_column_letter(headers.index("verdict") + 1)
+        _verdict_colours(ws, f"{col}4:{col}{len(rows) + 3}", f"${col}4")
+    page_setup(ws, f"synth results: {title}", header_rows="3:3")
+
+
+def _subtitle(result) -> str:
+    return f"verdict {result.verdict.upper()}"
 
 
 def build_results(result=None, *, cells: dict | None = None, source: str | None = None, scenes: dict | None = None):
@@ -180,8 +220,10 @@ def build_results(result=None, *, cells: dict | None = None, source: str | None 
         notes = wb.create_sheet("Notes")
         _title(notes, "Notes")
         for r, n in enumerate(result.notes, start=3):
-            notes.cell(row=r, column=1, value=n)
+            put(notes, r, 1, n)
         notes.column_dimensions["A"].width = 120
+        wrap(notes, "A", 3, len(result.notes) + 2)
+        page_setup(notes, "synth results: notes", subtitle=_subtitle(result))
     for name, rows in (scenes or {}).items():
         if rows is None:
             continue

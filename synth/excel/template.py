@@ -42,6 +42,7 @@ from pathlib import Path
 import yaml
 
 from synth import catalog, schema
+from synth.excel.cells import page_setup, put, wrap
 from synth.schema import Field
 
 __all__ = ["COLUMNS", "COL", "STANDARD_CUSTOM", "FILLS", "LEGEND", "SHEET", "LIST_SHEET", "selector_kind",
@@ -59,9 +60,9 @@ class Column:
 
 
 COLUMNS: tuple[Column, ...] = (
-    Column("A", "Parameter", 58), Column("B", "Field", 44), Column("C", "Unit", 8), Column("D", "Selector", 22),
-    Column("E", "Value", 16), Column("F", "Required", 10), Column("G", "Data read", 16),
-    Column("H", "Suggested correction", 60),
+    Column("A", "Parameter", 44), Column("B", "Field", 36), Column("C", "Unit", 7), Column("D", "Selector", 16),
+    Column("E", "Value", 14), Column("F", "Required", 10), Column("G", "Data read", 12),
+    Column("H", "Suggested correction", 36),
 )
 #: Column letter by role.
 COL = {"label": "A", "field": "B", "unit": "C", "selector": "D", "value": "E", "required": "F", "read": "G",
@@ -159,9 +160,9 @@ def _list_ranges(wb) -> dict[str, str]:
     out = {}
     for j, (name, items) in enumerate(lists.items(), start=1):
         letter = get_column_letter(j)
-        ws.cell(row=1, column=j, value=name)
+        put(ws, 1, j, name)
         for i, item in enumerate(items, start=2):
-            ws.cell(row=i, column=j, value=item)
+            put(ws, i, j, item)
         # stored as Excel stores it in <formula1>: no leading "="
         out[name] = f"{LIST_SHEET}!${letter}$2:${letter}${len(items) + 1}"
     ws.sheet_state = "hidden"
@@ -205,17 +206,14 @@ def build_workbook(values: dict | None = None, *, title: str = "synth design inp
     lists = _list_ranges(wb)
     for c in COLUMNS:
         ws.column_dimensions[c.letter].width = c.width
-    ws["A1"] = title + " (thesis Fig. 22-23)"
-    ws["A1"].font = Font(bold=True, size=14, color="FFFFFF")
+    put(ws, 1, 1, title + " (thesis Fig. 22-23)").font = Font(bold=True, size=14, color="FFFFFF")
     for c in COLUMNS:
         ws[f"{c.letter}1"].fill = _fill("title")
-    ws["A2"] = ("Fill column E (values) and the drop-downs of column D; leave optional cells empty when unknown. "
-                "Run: synth flowchart THIS.xlsx   or   synth report THIS.xlsx --out DIR")
-    ws["A2"].alignment = Alignment(wrap_text=False)
+    put(ws, 2, 1, "Fill column E (values) and the drop-downs of column D; leave optional cells empty when unknown. "
+        "Run: synth flowchart THIS.xlsx   or   synth report THIS.xlsx --out DIR").alignment = Alignment(wrap_text=False)
     header_row = 4
     for c in COLUMNS:
-        cell = ws[f"{c.letter}{header_row}"]
-        cell.value = c.header
+        cell = put(ws, header_row, ord(c.letter) - 64, c.header)
         cell.font = Font(bold=True)
         cell.fill = _fill("header")
     ws.freeze_panes = f"A{header_row + 1}"
@@ -233,36 +231,34 @@ def build_workbook(values: dict | None = None, *, title: str = "synth design inp
         return validations[key]
 
     for section in schema.SECTIONS:
-        ws[f"A{row}"] = section
-        ws[f"A{row}"].font = Font(bold=True)
+        put(ws, row, 1, section).font = Font(bold=True)
         for c in COLUMNS:
             ws[f"{c.letter}{row}"].fill = _fill("section")
         row += 1
         for f in (f for f in schema.FIELDS if f.section == section):
             need = "required" if f.required else "optional"
-            ws[f"A{row}"] = f.label or f.name
-            ws[f"B{row}"] = f.name
-            ws[f"B{row}"].font = Font(color="595959")
-            ws[f"C{row}"] = f.unit
-            ws[f"F{row}"] = need
+            put(ws, row, 1, f.label or f.name)
+            put(ws, row, 2, f.name).font = Font(color="595959")
+            put(ws, row, 3, f.unit)
+            put(ws, row, 6, need)
             kind = selector_kind(f)
             sel, val = ws[f"D{row}"], ws[f"E{row}"]
             value = values.get(f.name, f.default)
             if kind == "choice":
-                sel.value = format_cell_value(f, value)
+                put(ws, sel.row, sel.column, format_cell_value(f, value))
                 sel.fill = _fill("selector")
                 list_dv(f.name).add(sel.coordinate)
                 val.fill = _fill("info")
             else:
                 if kind == "standard/custom":
-                    sel.value = "standard" if value is None else "custom"
+                    put(ws, sel.row, sel.column, "standard" if value is None else "custom")
                     sel.fill = _fill("selector")
                     list_dv("standard/custom").add(sel.coordinate)
                 else:
-                    sel.value = "Standard only" if f.catalog else "Custom only"
+                    put(ws, sel.row, sel.column, "Standard only" if f.catalog else "Custom only")
                     sel.fill = _fill("info")
                     sel.font = Font(italic=True, color="595959")
-                val.value = format_cell_value(f, value)
+                put(ws, val.row, val.column, format_cell_value(f, value), number_format="General")  # as typed
                 if f.catalog:
                     val.fill = _fill("selector")
                     list_dv(f.name).add(val.coordinate)
@@ -277,11 +273,13 @@ def build_workbook(values: dict | None = None, *, title: str = "synth design inp
     # colour legend (Fig. 24), right of the table
     ws.column_dimensions["J"].width = 4
     ws.column_dimensions["K"].width = 70
-    ws[f"J{header_row}"] = "Legend"
-    ws[f"J{header_row}"].font = Font(bold=True)
+    put(ws, header_row, 10, "Legend").font = Font(bold=True)
     for i, (key, meaning) in enumerate(LEGEND, start=header_row + 1):
         ws[f"J{i}"].fill = _fill(key)
-        ws[f"K{i}"] = meaning
+        put(ws, i, 11, meaning)
+    wrap(ws, "A", header_row + 1, row - 1)
+    page_setup(ws, title, header_rows=f"{header_row}:{header_row}", subtitle="fill columns D and E")
+    ws.print_area = [f"A1:H{row - 1}", f"J{header_row}:K{header_row + len(LEGEND)}"]  # the table, then the legend
     return wb, cells
 
 
