@@ -63,7 +63,7 @@ class Scene:
 
 #: name -> scene, in the order ``synth --help`` lists them. The module is imported only to run the scene.
 SCENES: dict[str, Scene] = {
-    "demo": Scene("synth.scenes.demo", "run the flowchart on the embedded default case (thesis case 1)"),
+    "demo": Scene("synth.scenes.demo", "synthesise the most standardised tensioner for the embedded default application"),
     "flowchart": Scene("synth.scenes.flowchart", "run the thesis design flowchart (steps 0-10) on a design input"),
     "design": Scene("synth.scenes.design", "optimal tensioner from the catalogs (standardisation, cost or margin)"),
     "pareto": Scene("synth.scenes.pareto", "cost against margin: the Pareto front of the catalog designs"),
@@ -75,6 +75,8 @@ SCENES: dict[str, Scene] = {
     "bulk": Scene("synth.scenes.bulk", "feasibility of a portfolio of applications (CSV, Excel or Parquet table)"),
     "portfolio-sample": Scene("synth.scenes.portfolio_sample",
                               "write a synthetic portfolio of N applications (for synth bulk)"),
+    "rationalise": Scene("synth.scenes.rationalise",
+                         "the fewest standard parts that serve a whole portfolio (platform rationalisation)"),
     "shrink-fit": Scene("synth.scenes.shrink_fit", "crankshaft toothed-pulley shrink fit (paper Tables 1-4 and verdict)"),
     "shrink-fit-select": Scene("synth.scenes.shrink_fit",
                                "best ISO 286 fit of the crank pulley after planned re-assemblies"),

@@ -28,11 +28,6 @@ __all__ = ["DESIGN_KEYS", "design_values", "step_header", "export_step", "read_s
 DESIGN_KEYS = ("ball_bearing", "pivot_class_diameter_mm", "pivot_diameter_mm", "pivot_bushing_supplier",
                "pivot_bushing_length_mm", "damper_pad_class", "endcap_spacer_class", "main_spring_material", "main_spring_wire",
                "main_spring_mean_body_diameter_mm", "bolt_format", "bolt_property_class")
-_PART_ALIASES = {"bearing": "ball_bearing", "pivot_class_mm": "pivot_class_diameter_mm",
-                 "supplier": "pivot_bushing_supplier", "damper_pad": "damper_pad_class",
-                 "endcap_spacer": "endcap_spacer_class", "spring_material": "main_spring_material"}
-
-
 def design_values(model: TensionerModel, result=None) -> dict:
     """The key design values of ``model`` (:data:`DESIGN_KEYS`): from the geometry, completed from ``result``.
 
@@ -49,13 +44,12 @@ def design_values(model: TensionerModel, result=None) -> dict:
     found: dict = {}
     if result is not None:
         if isinstance(result, dict):
-            sources = [result.get("parts") or {}, result.get("derived") or {}, result]
+            sources = [result.get("parts") or {}, result.get("values") or {}]
         else:
-            sources = [getattr(result, "parts", None) or {}, getattr(result, "derived", None) or {},
-                       getattr(result, "values", None) or {}]
+            sources = [getattr(result, "parts", None) or {}, getattr(result, "values", None) or {}]
         for src in sources:
             for k, v in dict(src).items():
-                key = _PART_ALIASES.get(k, k)
+                key = k
                 if key in DESIGN_KEYS and key not in found and v is not None and str(v) not in ("", "none", "nan"):
                     found[key] = v
     for k in ("pivot_class_diameter_mm", "pivot_bushing_supplier", "damper_pad_class", "endcap_spacer_class",

@@ -40,7 +40,7 @@ def parse_max_variants(items: list) -> dict:
 
 
 def register(sub) -> None:
-    p = sub.add_parser("rationalise", help="the fewest standard parts that serve a whole portfolio (platform)")
+    p = sub.add_parser("rationalise", help="the fewest standard parts that serve a whole portfolio (platform rationalisation)")
     p.add_argument("portfolio", metavar="PORTFOLIO",
                    help="portfolio table, or synthetic:N[:SEED] for synthetic feasibility data")
     p.add_argument("--out", required=True, metavar="DIR", help="folder for platform.csv, assignment.csv, summary.md")
