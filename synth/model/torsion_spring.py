@@ -47,7 +47,7 @@ __all__ = [
     "goodman_safety_factor", "spring_housing_height_mm", "spring_housing_outer_diameter_mm",
     "rm_lookup_diameter_mm", "material_strength_mpa", "material_properties", "wire_properties",
     "main_spring_design", "main_spring_from_catalog", "search_main_spring", "main_spring_checks",
-    "MARGIN_KEYS",
+    "MARGIN_KEYS", "MAIN_SPRING_CONSTANTS", "main_spring_constants",
 ]
 
 MARGIN_KEYS = (
@@ -55,6 +55,27 @@ MARGIN_KEYS = (
     "margin_main_spring_inner_contact", "margin_main_spring_coil_gap",
     "margin_main_spring_index_min", "margin_main_spring_index_max",
 )
+
+
+#: the named constants (``catalogs/constants_main_spring.csv``) step 9 reads, by the role they play
+MAIN_SPRING_CONSTANTS = (
+    "main_spring_index_floor", "main_spring_dtheta_inst_nom_deg", "main_spring_dtheta_nom_free_arm_deg",
+    "main_spring_mbd_tol_mm", "main_spring_min_safety_factor", "main_spring_min_coil_gap_mm",
+    "main_spring_index_min", "main_spring_index_max", "spring_housing_outer_tol_mm", "spring_housing_inner_tol_mm",
+)
+
+
+def main_spring_constants() -> dict:
+    """The catalog constants :func:`main_spring_design` reads, ``{name: value}`` (one read of each).
+
+    Compiled callers (:mod:`synth.kernels.torsion_spring`) read them here once
+    and pass them in as scalars, so both paths use the same values.
+
+    >>> c = main_spring_constants()
+    >>> c["main_spring_index_min"], c["main_spring_index_max"], c["main_spring_min_safety_factor"]
+    (4.0, 20.0, 1.2)
+    """
+    return {name: catalog.constant(name) for name in MAIN_SPRING_CONSTANTS}
 
 
 def _f(x):
@@ -448,12 +469,13 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
     """
     k = _f(stiffness_nm_per_deg)
     mbd = _f(mbd_mm)
+    cst = main_spring_constants()
     if dtheta_inst_nom_deg is None:
-        dtheta_inst_nom_deg = catalog.constant("main_spring_dtheta_inst_nom_deg")
+        dtheta_inst_nom_deg = cst["main_spring_dtheta_inst_nom_deg"]
     if dtheta_nom_free_arm_deg is None:
-        dtheta_nom_free_arm_deg = catalog.constant("main_spring_dtheta_nom_free_arm_deg")
-    mbd_tol = catalog.constant("main_spring_mbd_tol_mm") if mbd_tol_mm is None else mbd_tol_mm
-    sf_min = catalog.constant("main_spring_min_safety_factor") if min_safety_factor is None else min_safety_factor
+        dtheta_nom_free_arm_deg = cst["main_spring_dtheta_nom_free_arm_deg"]
+    mbd_tol = cst["main_spring_mbd_tol_mm"] if mbd_tol_mm is None else mbd_tol_mm
+    sf_min = cst["main_spring_min_safety_factor"] if min_safety_factor is None else min_safety_factor
     winding = np.asarray(winding, dtype=bool)
 
     inertia = second_moment_mm4(b_mm, h_mm, round_wire)
@@ -504,22 +526,22 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
         "sigma_y_limit_mpa": _f(sigma_y_mpa) + 0.0 * n_a,
         "margin_main_spring_yield": margin_upper(sig["inst"], sigma_y_mpa),                     # eq. 72
         "margin_main_spring_fatigue": margin_lower(sf, sf_min),                                # fig. 71
-        "margin_main_spring_coil_gap": (gap - catalog.constant("main_spring_min_coil_gap_mm"))
+        "margin_main_spring_coil_gap": (gap - cst["main_spring_min_coil_gap_mm"])
         / np.maximum(_f(b_mm), 1e-9),                                                        # eq. 89, per wire size
-        "margin_main_spring_index_min": margin_lower(c, catalog.constant("main_spring_index_min")),
-        "margin_main_spring_index_max": margin_upper(c, catalog.constant("main_spring_index_max")),
+        "margin_main_spring_index_min": margin_lower(c, cst["main_spring_index_min"]),
+        "margin_main_spring_index_max": margin_upper(c, cst["main_spring_index_max"]),
     })
     not_verified = []
     if housing_outer_diameter_mm is None:
         not_verified.append("housing_outer_diameter_mm")
     else:
-        tol = catalog.constant("spring_housing_outer_tol_mm") if housing_outer_tol_mm is None else housing_outer_tol_mm
+        tol = cst["spring_housing_outer_tol_mm"] if housing_outer_tol_mm is None else housing_outer_tol_mm
         out["housing_outer_diameter_min_mm"] = _f(housing_outer_diameter_mm) - _f(tol)          # eq. 82
         out["margin_main_spring_outer_contact"] = margin_upper(d_out, out["housing_outer_diameter_min_mm"])  # eq. 81
     if housing_inner_diameter_mm is None:
         not_verified.append("housing_inner_diameter_mm")
     else:
-        tol = catalog.constant("spring_housing_inner_tol_mm") if housing_inner_tol_mm is None else housing_inner_tol_mm
+        tol = cst["spring_housing_inner_tol_mm"] if housing_inner_tol_mm is None else housing_inner_tol_mm
         out["housing_inner_diameter_max_mm"] = _f(housing_inner_diameter_mm) + _f(tol)          # eq. 86
         # eq. 85 corrected: the spring's inner diameter must stay ABOVE the support's
         out["margin_main_spring_inner_contact"] = margin_lower(d_in, out["housing_inner_diameter_max_mm"])
