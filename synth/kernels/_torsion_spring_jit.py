@@ -1,0 +1,255 @@
+"""numba kernels of the main-spring margins (thesis step 9); imported only by :mod:`synth.kernels.torsion_spring`.
+
+This module imports numba at import time, so nothing imports it except the
+lazy loader of :mod:`synth.kernels.torsion_spring` (the one-application path
+never pays for numba). Every arithmetic line repeats one line of
+:func:`synth.model.torsion_spring.main_spring_design`, in the same order of
+operations, so the margins are the reference's to the last bit in practice;
+the quantities that depend on the option alone (second moment, section
+modulus, curvature factor, index margins) or on the key alone (working
+angles, torques, coil increments, housing limits) are computed beforehand by
+the reference functions themselves and arrive here as the columns of two
+tables (``opts[j, O_*]``, ``keys[i, K_*]``).
+
+Kernels (loops over keys x options, no allocation per pair):
+
+* :func:`margins_table` -- every margin, ``out[i, j, m]``;
+* :func:`first_feasible_scan` -- per key, the first feasible option of its
+  group's list (score order), with early exit and a score limit;
+* :func:`max_min_scan` -- per key, the option of its group's list with the
+  largest smallest margin, scanning in decreasing order of the option-only
+  upper bound (index margins) and stopping when that bound, or the key's cap,
+  says no later option can win.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+#: columns of the option table (``spring_options`` computes them by name; the kernels read them by number)
+OPTION_COLUMNS = ("ei", "mbd", "kf", "z", "rm", "sa0", "sy", "sy_scale", "h", "h_tol", "bb", "b_scale", "idx_min",
+                  "idx_max")
+#: columns of the key table (``spring_keys``)
+KEY_COLUMNS = ("k180", "t_plus", "t_minus", "t_inst", "inc_inst", "inc_free_arm", "inc_nom", "height", "outer_min",
+               "outer_scale", "inner_max", "inner_scale", "winding")
+#: the scalar constants
+CONST_NAMES = ("mbd_tol", "sf_min", "sf_scale", "min_gap")
+(O_EI, O_MBD, O_KF, O_Z, O_RM, O_SA0, O_SY, O_SY_SCALE, O_H, O_H_TOL, O_BB, O_B_SCALE, O_IDX_MIN,
+ O_IDX_MAX) = range(len(OPTION_COLUMNS))
+(K_K180, K_T_PLUS, K_T_MINUS, K_T_INST, K_INC_INST, K_INC_FREE_ARM, K_INC_NOM, K_HEIGHT, K_OUTER_MIN, K_OUTER_SCALE,
+ K_INNER_MAX, K_INNER_SCALE, K_WINDING) = range(len(KEY_COLUMNS))
+C_MBD_TOL, C_SF_MIN, C_SF_SCALE, C_MIN_GAP = range(len(CONST_NAMES))
+#: margins of ``margins_table``, in the order of ``synth.model.torsion_spring.MARGIN_KEYS``
+M_YIELD, M_FATIGUE, M_OUTER, M_INNER, M_GAP, M_IDX_MIN, M_IDX_MAX = range(7)
+N_MARGINS = 7
+
+
+@njit(cache=True, error_model="numpy")
+def _maximum(a, b):
+    """``numpy.maximum`` of two floats (a NaN propagates)."""
+    if a > b or a != a:
+        return a
+    return b
+
+
+@njit(cache=True, error_model="numpy")
+def _minimum(a, b):
+    """``numpy.minimum`` of two floats (a NaN propagates)."""
+    if a < b or a != a:
+        return a
+    return b
+
+
+@njit(cache=True, error_model="numpy")
+def _yield_margin(keys, i, opts, j):
+    """eq. (72)-(77): ``(sigma_y - k_f T_inst 1000 / Z) / |sigma_y|``."""
+    s_inst = opts[j, O_KF] * keys[i, K_T_INST] * 1000.0 / opts[j, O_Z]
+    return (opts[j, O_SY] - s_inst) / opts[j, O_SY_SCALE]
+
+
+@njit(cache=True, error_model="numpy")
+def _fatigue_margin(keys, i, opts, j, cst):
+    """Figure 71: Smith-Goodman safety factor of the +-theta_pp/2 swing against its minimum."""
+    kf, z = opts[j, O_KF], opts[j, O_Z]
+    smax = kf * keys[i, K_T_PLUS] * 1000.0 / z
+    smin = kf * keys[i, K_T_MINUS] * 1000.0 / z
+    sa = abs(smax - smin) / 2.0
+    sm = (smax + smin) / 2.0
+    denom = sa / opts[j, O_SA0] + _maximum(sm, 0.0) / opts[j, O_RM]
+    sf_g = 1.0 / denom if denom > 0 else np.inf
+    peak = _maximum(abs(smax), abs(smin))
+    sf_y = opts[j, O_SY] / peak if peak > 0 else np.inf
+    sf = _minimum(sf_g, sf_y)
+    return (sf - cst[C_SF_MIN]) / cst[C_SF_SCALE]
+
+
+@njit(cache=True, error_model="numpy")
+def _geometry_margins(keys, i, opts, j, cst):
+    """eq. (78)-(93): outer contact, inner contact and coil-gap margins."""
+    mbd = opts[j, O_MBD]
+    n_a = opts[j, O_EI] / (keys[i, K_K180] * mbd)                                   # eq. 64-65
+    c_free = _maximum(n_a, 1e-6)                                                     # eq. 78-79
+    c_inst = _maximum(n_a + keys[i, K_INC_INST], 1e-6)
+    c_free_arm = _maximum(n_a + keys[i, K_INC_FREE_ARM], 1e-6)
+    c_nom = _maximum(n_a + keys[i, K_INC_NOM], 1e-6)
+    d_free = mbd * n_a / _maximum(c_free, 1e-9)                                     # eq. 80
+    d_inst = mbd * n_a / _maximum(c_inst, 1e-9)
+    if keys[i, K_WINDING] != 0.0:
+        big, small = d_free, d_inst
+    else:
+        big, small = d_inst, d_free
+    mbd_tol = cst[C_MBD_TOL]
+    d_out = big + mbd_tol + opts[j, O_H] + opts[j, O_H_TOL]                          # eq. 83-84
+    d_in = small - mbd_tol - opts[j, O_H] - opts[j, O_H_TOL]                         # eq. 87-88
+    m_out = (keys[i, K_OUTER_MIN] - d_out) / keys[i, K_OUTER_SCALE]                   # eq. 81
+    m_in = (d_in - keys[i, K_INNER_MAX]) / keys[i, K_INNER_SCALE]                     # eq. 85 (corrected)
+    n_worst = _maximum(_maximum(c_inst, c_free_arm), c_nom)
+    bb = opts[j, O_BB]
+    gap = (keys[i, K_HEIGHT] - bb) / _maximum(n_worst, 1e-9) - bb                    # eq. 90-93
+    m_gap = (gap - cst[C_MIN_GAP]) / opts[j, O_B_SCALE]                               # eq. 89
+    return m_out, m_in, m_gap
+
+
+@njit(cache=True, error_model="numpy")
+def _pair_feasible(keys, i, opts, j, cst, tol):
+    """Whether every margin of key ``i`` x option ``j`` is ``>= -tol`` (cheapest first, early exit; NaN fails)."""
+    if not (opts[j, O_IDX_MIN] >= -tol and opts[j, O_IDX_MAX] >= -tol):
+        return False
+    if not (_yield_margin(keys, i, opts, j) >= -tol):
+        return False
+    if not (_fatigue_margin(keys, i, opts, j, cst) >= -tol):
+        return False
+    m_out, m_in, m_gap = _geometry_margins(keys, i, opts, j, cst)
+    return m_out >= -tol and m_in >= -tol and m_gap >= -tol
+
+
+@njit(cache=True, error_model="numpy")
+def _clean_min(a, b):
+    """``min(a, b)`` with NaN read as -inf (as the optimiser's ``_clean``)."""
+    if b != b:
+        return -np.inf
+    return b if b < a else a
+
+
+@njit(cache=True, error_model="numpy")
+def _pair_min_margin(keys, i, opts, j, cst, best):
+    """Smallest margin of key ``i`` x option ``j`` (NaN as -inf); returns early once it is below ``best``."""
+    m = _clean_min(np.inf, opts[j, O_IDX_MIN])
+    m = _clean_min(m, opts[j, O_IDX_MAX])
+    if m < best:
+        return m
+    m = _clean_min(m, _yield_margin(keys, i, opts, j))
+    if m < best:
+        return m
+    m = _clean_min(m, _fatigue_margin(keys, i, opts, j, cst))
+    if m < best:
+        return m
+    m_out, m_in, m_gap = _geometry_margins(keys, i, opts, j, cst)
+    return _clean_min(_clean_min(_clean_min(m, m_out), m_in), m_gap)
+
+
+@njit(cache=True, error_model="numpy")
+def _margins_row(keys, i, opts, cst, out):
+    for j in range(opts.shape[0]):
+        out[i, j, M_YIELD] = _yield_margin(keys, i, opts, j)
+        out[i, j, M_FATIGUE] = _fatigue_margin(keys, i, opts, j, cst)
+        m_out, m_in, m_gap = _geometry_margins(keys, i, opts, j, cst)
+        out[i, j, M_OUTER] = m_out
+        out[i, j, M_INNER] = m_in
+        out[i, j, M_GAP] = m_gap
+        out[i, j, M_IDX_MIN] = opts[j, O_IDX_MIN]
+        out[i, j, M_IDX_MAX] = opts[j, O_IDX_MAX]
+
+
+@njit(cache=True, error_model="numpy")
+def _first_feasible_key(keys, i, opts, cst, tol, ptr, idx, key_group, score, score_limit, pick, visited):
+    g = key_group[i]
+    found = -1
+    n = 0
+    lim = score_limit[i]
+    for p in range(ptr[g], ptr[g + 1]):
+        j = idx[p]
+        if score[j] > lim:
+            break
+        n += 1
+        if _pair_feasible(keys, i, opts, j, cst, tol):
+            found = j
+            break
+    pick[i] = found
+    visited[i] = n
+
+
+@njit(cache=True, error_model="numpy")
+def _max_min_key(keys, i, opts, cst, ptr, idx, ub, rank, key_group, cap, pick, value, visited):
+    g = key_group[i]
+    best = -np.inf
+    best_rank = np.iinfo(np.int64).max
+    best_j = -1
+    n = 0
+    for p in range(ptr[g], ptr[g + 1]):
+        if ub[p] < best or best >= cap[i]:
+            break
+        j = idx[p]
+        n += 1
+        v = _pair_min_margin(keys, i, opts, j, cst, best)
+        if v > best or (v == best and rank[p] < best_rank):
+            best, best_rank, best_j = v, rank[p], j
+    pick[i] = best_j
+    value[i] = best
+    visited[i] = n
+
+
+# ---- the kernels: one loop over keys each, serial (range) and threaded (prange, parallel=True); the two
+# ---- variants are separate functions because numba's cache keys a function by its name and bytecode
+
+
+@njit(cache=True, error_model="numpy")
+def margins_table(keys, opts, cst, out):
+    """(a) ``out[i, j, :]`` = the seven margins of key ``i`` x option ``j`` (order of ``MARGIN_KEYS``)."""
+    for i in range(keys.shape[0]):
+        _margins_row(keys, i, opts, cst, out)
+
+
+@njit(cache=True, error_model="numpy", parallel=True)
+def margins_table_parallel(keys, opts, cst, out):
+    """:func:`margins_table` with the keys shared among numba's threads."""
+    for i in prange(keys.shape[0]):
+        _margins_row(keys, i, opts, cst, out)
+
+
+@njit(cache=True, error_model="numpy")
+def first_feasible_scan(keys, opts, cst, tol, ptr, idx, key_group, score, score_limit, pick, visited):
+    """(b)/(d) per key ``i``: the first option of ``idx[ptr[g]:ptr[g+1]]`` (``g = key_group[i]``) whose margins
+    are all ``>= -tol``, or -1; the scan stops at an option with ``score > score_limit[i]``.
+    ``visited[i]`` counts the options examined."""
+    for i in range(keys.shape[0]):
+        _first_feasible_key(keys, i, opts, cst, tol, ptr, idx, key_group, score, score_limit, pick, visited)
+
+
+@njit(cache=True, error_model="numpy", parallel=True)
+def first_feasible_scan_parallel(keys, opts, cst, tol, ptr, idx, key_group, score, score_limit, pick, visited):
+    """:func:`first_feasible_scan` with the keys shared among numba's threads."""
+    for i in prange(keys.shape[0]):
+        _first_feasible_key(keys, i, opts, cst, tol, ptr, idx, key_group, score, score_limit, pick, visited)
+
+
+@njit(cache=True, error_model="numpy")
+def max_min_scan(keys, opts, cst, ptr, idx, ub, rank, key_group, cap, pick, value, visited):
+    """(c) per key ``i``: the option of its group with the largest smallest margin (ties: smallest ``rank``).
+
+    The group's list is sorted by decreasing ``ub`` (an upper bound of the
+    option's smallest margin that holds for every key); the scan stops when
+    ``ub < best`` (no later option can reach it) or ``best >= cap[i]`` (the
+    caller needs no more), and an option's margins stop being computed once
+    their minimum falls below ``best``.
+    """
+    for i in range(keys.shape[0]):
+        _max_min_key(keys, i, opts, cst, ptr, idx, ub, rank, key_group, cap, pick, value, visited)
+
+
+@njit(cache=True, error_model="numpy", parallel=True)
+def max_min_scan_parallel(keys, opts, cst, ptr, idx, ub, rank, key_group, cap, pick, value, visited):
+    """:func:`max_min_scan` with the keys shared among numba's threads."""
+    for i in prange(keys.shape[0]):
+        _max_min_key(keys, i, opts, cst, ptr, idx, ub, rank, key_group, cap, pick, value, visited)
