@@ -40,11 +40,21 @@ last bit in practice (tested to 1e-9 relative) and the verdicts are the same.
 the one-application path (``synth design``) never imports it. A process
 that calls a kernel pays ``import numba`` once and, the first time ever, the
 compilation (then cached on disk, ``cache=True``, beside the module); see
-``docs/sections/kernels.md`` for the measured figures.
+``docs/sections/kernels.md`` for the measured figures. ``parallel=True``
+shares the keys among numba's threads (``prange``); it is off by default
+because the bulk engine scales out over processes and numba's OpenMP layer
+is not fork-safe.
 
 Validity: the ranges of ``main_spring_design`` (positive stiffness and wire
 sizes, finite inputs); the housing diameters must be given (the bulk path
 always has them; a missing one is the reference's ``not_verified`` case).
+
+Thesis case 3 (VDSiCr, round 2.3 mm wire, mean diameter 44 mm, 0.0164 N m/deg,
+1.56 N m, 8 % on the lower side, theta_pp 16 deg, installation travel 28.6 deg,
+housing 8.8 mm high; the housing diameters 48/30 mm are illustrative, the case
+does not print them). The yield margin gives back the reference's installation
+stress, ``1763.5 (1 - m) = 1659 MPa`` (the thesis tool prints 1626 MPa,
+``docs/sections/torsion_spring.md``):
 
 >>> import numpy as np
 >>> opts = spring_options(E_mpa=206000, Rm_mpa=2004, sigma_y_mpa=1763.5, sigma_A0_mpa=701.4, b_mm=2.3, h_mm=2.3,
@@ -52,8 +62,13 @@ always has them; a missing one is the reference's ``not_verified`` case).
 >>> keys = spring_keys(spring_torque_nominal_nm=1.56, housing_height_mm=8.8, housing_outer_diameter_mm=48.0,
 ...                    housing_inner_diameter_mm=30.0, stiffness_nm_per_deg=0.0164, torque_tolerance_pct=8,
 ...                    theta_pp_deg=16, dtheta_inst_nom_deg=28.6, torque_tolerance_side=-1)
->>> np.round(margins(keys, opts, engine="numpy")[0, 1], 3).tolist()   # case 3: mbd 44 mm (numba gives the same)
-[0.059, 0.046, 0.061, 0.056, 0.016, 3.783, 0.043]
+>>> m = margins(keys, opts)
+>>> np.round(m[0, 1], 3).tolist()
+[0.059, 0.059, 0.025, 0.183, 0.115, 3.783, 0.043]
+>>> round(1763.5 * (1 - float(m[0, 1, 0]))), bool((m == margins(keys, opts, engine="numpy")).all())
+(1659, True)
+>>> first_feasible(keys, opts, order=[1, 0]).index.tolist()
+[1]
 """
 
 from __future__ import annotations
