@@ -163,7 +163,28 @@ def test_margins_equal_reference_at_the_extremes(catalog_springs, keys, seed, mb
     opts = catalog_springs.take(rng.choice(len(catalog_springs), size=40, replace=False))
     odd = K.spring_options(**{k: v[:3] for k, v in opts.raw.items() if k != "mbd_mm"}, mbd_mm=mbd)  # extreme diameter
     for o in (opts, odd):
-        _assert_close(K.margins(keys, o), K.reference_margins(keys, o))
+        ref = K.reference_margins(keys, o)
+        _assert_close(K.margins(keys, o), ref)
+        ok, mins = _brute(ref, 0.0)
+        first = np.where(ok.any(axis=1), np.argmax(ok, axis=1), -1)
+        assert np.array_equal(K.first_feasible(keys, o).index, first)
+        assert np.array_equal(K.max_min_margin(keys, o).index, np.argmax(mins, axis=1))
+
+
+@pytest.mark.parametrize("tol", [0.0, FEAS_TOL])
+def test_yield_threshold_decides_the_yield_check_exactly(realistic_keys, catalog_springs, tol):
+    # the scan of (b) replaces the yield check by T_inst <= threshold: same verdict as the reference on every pair
+    keys = realistic_keys.take(np.arange(0, 600, 6))
+    t_max = K.yield_thresholds(catalog_springs, tol)
+    ref = K.reference_margins(keys, catalog_springs)[:, :, 0]
+    by_threshold = keys.derived["t_inst"][:, None] <= t_max[None, :]
+    assert np.array_equal(by_threshold, ref >= -tol)
+    assert 0.05 < by_threshold.mean() < 0.95
+    # and it is the largest such torque: one double more fails
+    d = catalog_springs.derived
+    up = np.nextafter(t_max, np.inf)
+    assert ((d["sy"] - d["kf"] * t_max * 1000.0 / d["z"]) / d["sy_scale"] >= -tol).all()
+    assert not ((d["sy"] - d["kf"] * up * 1000.0 / d["z"]) / d["sy_scale"] >= -tol).any()
 
 
 # ------------------------------------------------------------------ (b)-(d) against brute force

@@ -15,7 +15,10 @@ Kernels (loops over keys x options, no allocation per pair):
 
 * :func:`margins_table` -- every margin, ``out[i, j, m]``;
 * :func:`first_feasible_scan` -- per key, the first feasible option of its
-  group's list (score order), with early exit and a score limit;
+  group's list (score order), with early exit and a score limit; the keys of
+  a list walk it together, and an exact threshold of the installation torque
+  per option (``t_max``, computed by the caller) settles the yield check
+  for all of them at once;
 * :func:`max_min_scan` -- per key, the option of its group's list with the
   largest smallest margin, scanning in decreasing order of the option-only
   upper bound (index margins) and stopping when that bound, or the key's cap,
@@ -131,14 +134,10 @@ def _geometry_margins(keys, i, opts, j, cst):
 
 
 @njit(cache=True, error_model="numpy")
-def _pair_feasible(keys, i, opts, j, cst, tol):
-    """Whether every margin of key ``i`` x option ``j`` is ``>= -tol`` (most selective first, early exit; NaN
-    fails). In the generated portfolios the yield check rejects about 60 % of the options that pass the index
-    range, and the coil gap about 90 % of those passing yield."""
-    if not (opts[j, O_IDX_MIN] >= -tol and opts[j, O_IDX_MAX] >= -tol):
-        return False
-    if not (_yield_margin(keys, i, opts, j) >= -tol):
-        return False
+def _pair_feasible_past_yield(keys, i, opts, j, cst, tol):
+    """Whether the coil-gap, fatigue and contact margins of a pair that passes the index and yield checks are
+    all ``>= -tol`` (most selective first, early exit; NaN fails). In the generated portfolios the yield check
+    rejects about 60 % of the options within the index range, and the coil gap about 90 % of the rest."""
     n_a, c_inst, c_free_arm, c_nom = _coils(keys, i, opts, j)
     if not (_gap_margin(keys, i, opts, j, cst, c_inst, c_free_arm, c_nom) >= -tol):
         return False
@@ -192,21 +191,59 @@ def _margins_row(keys, i, opts, cst, out):
 
 
 @njit(cache=True, error_model="numpy")
-def _first_feasible_key(keys, i, opts, cst, tol, ptr, idx, key_group, score, score_limit, pick, visited):
-    g = key_group[i]
-    found = -1
-    n = 0
-    lim = score_limit[i]
-    for p in range(ptr[g], ptr[g + 1]):
+def _first_feasible_chunk(c, keys, opts, cst, tol, t_max, ptr, idx, chunk_list, kptr, kperm, score, score_limit,
+                          pick, visited, work):
+    """(b) for the keys ``kperm[kptr[c]:kptr[c+1]]`` (sorted by installation torque), which share the candidate
+    list ``chunk_list[c]``: the list is walked once, option by option, for all keys still looking.
+
+    For an option ``j`` only the keys with ``T_inst <= t_max[j]`` pass the yield check (the margin is monotone
+    in ``T_inst``, ``t_max`` is its exact threshold), and they are a prefix of the sorted keys; the other checks
+    run for them alone. A key leaves when it finds its option or passes its score limit. Same answer as
+    scanning each key's list on its own.
+    """
+    g = chunk_list[c]
+    lo, hi = kptr[c], kptr[c + 1]
+    p0, p1 = ptr[g], ptr[g + 1]
+    n_act = 0
+    for a in range(lo, hi):
+        i = kperm[a]
+        pick[i] = -1
+        stop = p1
+        lim = score_limit[i]
+        if lim < np.inf:
+            for p in range(p0, p1):
+                if score[idx[p]] > lim:
+                    stop = p
+                    break
+        visited[i] = stop - p0  # the options the key examines if it finds none
+        if stop > p0:
+            work[lo + n_act] = i
+            n_act += 1
+    for p in range(p0, p1):
+        if n_act == 0:
+            break
         j = idx[p]
-        if score[j] > lim:
-            break
-        n += 1
-        if _pair_feasible(keys, i, opts, j, cst, tol):
-            found = j
-            break
-    pick[i] = found
-    visited[i] = n
+        if not (opts[j, O_IDX_MIN] >= -tol and opts[j, O_IDX_MAX] >= -tol):
+            continue
+        t_j = t_max[j]
+        a = 0
+        while a < n_act:
+            i = work[lo + a]
+            if not (keys[i, K_T_INST] <= t_j):
+                break  # this key and every later one (larger T_inst) fail the yield check
+            done = False
+            if p - p0 >= visited[i]:
+                done = True  # past the key's score limit
+            elif _pair_feasible_past_yield(keys, i, opts, j, cst, tol):
+                pick[i] = j
+                visited[i] = p - p0 + 1
+                done = True
+            if done:
+                n_act -= 1
+                for b in range(a, n_act):
+                    work[lo + b] = work[lo + b + 1]
+            else:
+                a += 1
 
 
 @njit(cache=True, error_model="numpy")
@@ -248,19 +285,24 @@ def margins_table_parallel(keys, opts, cst, out):
 
 
 @njit(cache=True, error_model="numpy")
-def first_feasible_scan(keys, opts, cst, tol, ptr, idx, key_group, score, score_limit, pick, visited):
-    """(b)/(d) per key ``i``: the first option of ``idx[ptr[g]:ptr[g+1]]`` (``g = key_group[i]``) whose margins
-    are all ``>= -tol``, or -1; the scan stops at an option with ``score > score_limit[i]``.
-    ``visited[i]`` counts the options examined."""
-    for i in range(keys.shape[0]):
-        _first_feasible_key(keys, i, opts, cst, tol, ptr, idx, key_group, score, score_limit, pick, visited)
+def first_feasible_scan(keys, opts, cst, tol, t_max, ptr, idx, chunk_list, kptr, kperm, score, score_limit, pick,
+                        visited, work):
+    """(b)/(d) per key ``i``: the first option of its candidate list whose margins are all ``>= -tol``, or -1;
+    a key's scan stops at an option with ``score > score_limit[i]``; ``visited[i]`` counts the options the key
+    examined (up to and including its hit). Keys come in chunks sharing a list (:func:`_first_feasible_chunk`);
+    ``work`` is scratch of one int per key."""
+    for c in range(len(kptr) - 1):
+        _first_feasible_chunk(c, keys, opts, cst, tol, t_max, ptr, idx, chunk_list, kptr, kperm, score, score_limit,
+                              pick, visited, work)
 
 
 @njit(cache=True, error_model="numpy", parallel=True)
-def first_feasible_scan_parallel(keys, opts, cst, tol, ptr, idx, key_group, score, score_limit, pick, visited):
-    """:func:`first_feasible_scan` with the keys shared among numba's threads."""
-    for i in prange(keys.shape[0]):
-        _first_feasible_key(keys, i, opts, cst, tol, ptr, idx, key_group, score, score_limit, pick, visited)
+def first_feasible_scan_parallel(keys, opts, cst, tol, t_max, ptr, idx, chunk_list, kptr, kperm, score, score_limit,
+                                 pick, visited, work):
+    """:func:`first_feasible_scan` with the chunks of keys shared among numba's threads."""
+    for c in prange(len(kptr) - 1):
+        _first_feasible_chunk(c, keys, opts, cst, tol, t_max, ptr, idx, chunk_list, kptr, kperm, score, score_limit,
+                              pick, visited, work)
 
 
 @njit(cache=True, error_model="numpy")

@@ -83,7 +83,7 @@ from synth.errors import InputError, Problem
 from synth.model import torsion_spring as s9
 
 __all__ = ["MARGIN_NAMES", "SpringOptions", "SpringKeys", "spring_options", "options_from_table", "spring_keys",
-           "margins", "reference_margins", "first_feasible", "max_min_margin", "any_feasible", "FirstFeasible", "MaxMin",
+           "margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin", "any_feasible", "FirstFeasible", "MaxMin",
            "numba_loaded", "load_kernels"]
 
 #: the margins of (a), in this order (``synth.model.torsion_spring.MARGIN_KEYS``)
@@ -421,11 +421,71 @@ def first_feasible(keys: SpringKeys, options: SpringOptions, order=None, *, key_
     lim = _per_key(score_limit, n, "score_limit", np.inf)
     if engine == "numba":
         jit, kt, ot, c = _tables(keys, options)
-        pick, visited = np.empty(n, np.int64), np.empty(n, np.int64)
+        kperm, kptr, chunk_list = _chunks(kg, keys.derived["t_inst"])
+        pick, visited, work = np.empty(n, np.int64), np.empty(n, np.int64), np.empty(n, np.int64)
         scan = jit.first_feasible_scan_parallel if parallel else jit.first_feasible_scan
-        scan(kt, ot, c, float(tol), ptr, idx, kg, sc, lim, pick, visited)
+        scan(kt, ot, c, float(tol), yield_thresholds(options, tol), ptr, idx, chunk_list, kptr, kperm, sc, lim, pick,
+             visited, work)
         return FirstFeasible((pick, visited))
     return FirstFeasible(_first_feasible_numpy(keys, options, ptr, idx, kg, sc, lim, float(tol)))
+
+
+#: keys per chunk of the score-order scan: the keys of one candidate list walk it together, up to this many
+#: (numerics, not physics: any value gives the same answer; chunks are the unit of ``parallel=True``)
+CHUNK_KEYS = 128
+
+
+def _chunks(key_group, t_inst):
+    """Keys sorted by candidate list, then installation torque; chunks of at most :data:`CHUNK_KEYS` keys of one
+    list: ``(kperm, kptr, chunk_list)``."""
+    n = len(key_group)
+    kperm = np.lexsort((t_inst, key_group)).astype(np.int64)
+    g = key_group[kperm]
+    first = np.ones(n, bool)
+    first[1:] = g[1:] != g[:-1]
+    start = np.maximum.accumulate(np.where(first, np.arange(n), 0))
+    head = np.flatnonzero((np.arange(n) - start) % CHUNK_KEYS == 0)
+    kptr = np.append(head, n).astype(np.int64)
+    return kperm, kptr, g[head].astype(np.int64)
+
+
+def _ordinal(x):
+    """Doubles as integers in the same order (-0.0 and 0.0 both 0)."""
+    u = np.asarray(x, dtype=float).view(np.int64)
+    return np.where(u >= 0, u, -(u & np.int64(0x7FFFFFFFFFFFFFFF)))
+
+
+def _from_ordinal(k):
+    return np.where(k >= 0, k, (-k) | np.int64(-0x8000000000000000)).view(np.float64)
+
+
+def yield_thresholds(options: SpringOptions, tol: float = 0.0) -> np.ndarray:
+    """Per option, the largest installation torque ``T_inst`` [N m] whose yield margin (eq. 72-77) is ``>= -tol``.
+
+    The margin ``(sigma_y - k_f T 1000 / Z) / |sigma_y|`` is computed by a chain
+    of operations each monotone in ``T`` (IEEE rounding keeps monotonicity),
+    so the check passes exactly for ``T_inst <= threshold``; the threshold is
+    found by bisection on the ordered doubles (64 steps), evaluating the very
+    expression of the kernels and the reference. Memoised per ``tol``.
+    """
+    memo = options._table.setdefault("t_max", {})
+    if tol not in memo:
+        d = options.derived
+        kf, z, sy, sc = d["kf"], d["z"], d["sy"], d["sy_scale"]
+        a = _ordinal(np.full(len(options), -np.inf))  # passes at -inf, fails at +inf (finite option data)
+        b = _ordinal(np.full(len(options), np.inf))
+        while True:
+            mid = (a >> 1) + (b >> 1) + (a & b & 1)  # floor((a + b) / 2) without overflow
+            todo = mid > a
+            if not todo.any():
+                break
+            t = _from_ordinal(mid)
+            with np.errstate(over="ignore", invalid="ignore"):
+                ok = (sy - kf * t * 1000.0 / z) / sc >= -tol
+            a = np.where(todo & ok, mid, a)
+            b = np.where(todo & ~ok, mid, b)
+        memo[tol] = np.ascontiguousarray(_from_ordinal(a))
+    return memo[tol]
 
 
 def _blocks(length):
