@@ -22,7 +22,9 @@ Kernels (loops over keys x options, no allocation per pair):
 * :func:`max_min_scan` -- per key, the option of its group's list with the
   largest smallest margin, scanning in decreasing order of the option-only
   upper bound (index margins) and stopping when that bound, or the key's cap,
-  says no later option can win.
+  says no later option can win; the keys of a list walk it together in
+  increasing installation torque, so one yield margin below the smallest
+  best value settles an option for the rest of them.
 """
 
 from __future__ import annotations
@@ -156,16 +158,9 @@ def _clean_min(a, b):
 
 
 @njit(cache=True, error_model="numpy")
-def _pair_min_margin(keys, i, opts, j, cst, best):
-    """Smallest margin of key ``i`` x option ``j`` (NaN as -inf), in the order of :func:`_pair_feasible`;
-    returns early once it is below ``best`` (the caller then only needs to know it cannot win)."""
-    m = _clean_min(np.inf, opts[j, O_IDX_MIN])
-    m = _clean_min(m, opts[j, O_IDX_MAX])
-    if m < best:
-        return m
-    m = _clean_min(m, _yield_margin(keys, i, opts, j))
-    if m < best:
-        return m
+def _min_margin_past_yield(keys, i, opts, j, cst, best, m):
+    """Smallest margin of key ``i`` x option ``j`` (NaN as -inf) given ``m``, the minimum of its index and
+    yield margins; returns early once it is below ``best`` (the caller then only needs to know it cannot win)."""
     n_a, c_inst, c_free_arm, c_nom = _coils(keys, i, opts, j)
     m = _clean_min(m, _gap_margin(keys, i, opts, j, cst, c_inst, c_free_arm, c_nom))
     if m < best:
@@ -247,23 +242,62 @@ def _first_feasible_chunk(c, keys, opts, cst, tol, t_max, ptr, idx, chunk_list, 
 
 
 @njit(cache=True, error_model="numpy")
-def _max_min_key(keys, i, opts, cst, ptr, idx, ub, rank, key_group, cap, pick, value, visited):
-    g = key_group[i]
-    best = -np.inf
-    best_rank = np.iinfo(np.int64).max
-    best_j = -1
-    n = 0
-    for p in range(ptr[g], ptr[g + 1]):
-        if ub[p] < best or best >= cap[i]:
+def _max_min_chunk(c, keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kperm, cap, pick, value, visited,
+                   best_rank, work):
+    """(c) for the keys ``kperm[kptr[c]:kptr[c+1]]`` (sorted by installation torque), which share the candidate
+    list ``chunk_list[c]`` (sorted by decreasing ``ub``, the option-only bound of the smallest margin).
+
+    The list is walked once for all keys. A key stops when ``ub`` falls below its best value or its best
+    reaches its cap. For an option, the keys are visited in increasing ``T_inst``: their yield margins
+    decrease, so once one is below the smallest best of the keys still looking, no later key can win or tie
+    with this option. Same answer (value and tie-break) as scanning each key's list on its own.
+    """
+    g = chunk_list[c]
+    lo, hi = kptr[c], kptr[c + 1]
+    p0, p1 = ptr[g], ptr[g + 1]
+    n_act = 0
+    for a in range(lo, hi):
+        i = kperm[a]
+        pick[i] = -1
+        value[i] = -np.inf
+        best_rank[i] = np.iinfo(np.int64).max
+        visited[i] = 0
+        if not (-np.inf >= cap[i]):
+            work[lo + n_act] = i
+            n_act += 1
+    floor = -np.inf  # smallest best value of the keys still looking
+    for p in range(p0, p1):
+        if n_act == 0 or ub[p] < floor:
             break
         j = idx[p]
-        n += 1
-        v = _pair_min_margin(keys, i, opts, j, cst, best)
-        if v > best or (v == best and rank[p] < best_rank):
-            best, best_rank, best_j = v, rank[p], j
-    pick[i] = best_j
-    value[i] = best
-    visited[i] = n
+        changed = False
+        a = 0
+        while a < n_act:
+            i = work[lo + a]
+            best = value[i]
+            if ub[p] < best or best >= cap[i]:
+                n_act -= 1  # this key is done
+                for b in range(a, n_act):
+                    work[lo + b] = work[lo + b + 1]
+                changed = True
+                continue
+            y = _clean_min(np.inf, _yield_margin(keys, i, opts, j))
+            if y < floor:
+                break  # later keys: larger T_inst, yield margin <= y < floor <= their best
+            visited[i] += 1
+            m = _clean_min(ub[p], y)
+            if m >= best:
+                v = _min_margin_past_yield(keys, i, opts, j, cst, best, m)
+                if v > best or (v == best and rank[p] < best_rank[i]):
+                    value[i], best_rank[i], pick[i] = v, rank[p], j
+                    changed = True
+            a += 1
+        if changed:
+            floor = np.inf
+            for b in range(n_act):
+                floor = min(floor, value[work[lo + b]])
+            if n_act == 0:
+                floor = -np.inf
 
 
 # ---- the kernels: one loop over keys each, serial (range) and threaded (prange, parallel=True); the two
@@ -306,21 +340,21 @@ def first_feasible_scan_parallel(keys, opts, cst, tol, t_max, ptr, idx, chunk_li
 
 
 @njit(cache=True, error_model="numpy")
-def max_min_scan(keys, opts, cst, ptr, idx, ub, rank, key_group, cap, pick, value, visited):
-    """(c) per key ``i``: the option of its group with the largest smallest margin (ties: smallest ``rank``).
-
-    The group's list is sorted by decreasing ``ub`` (an upper bound of the
-    option's smallest margin that holds for every key); the scan stops when
-    ``ub < best`` (no later option can reach it) or ``best >= cap[i]`` (the
-    caller needs no more), and an option's margins stop being computed once
-    their minimum falls below ``best``.
-    """
-    for i in range(keys.shape[0]):
-        _max_min_key(keys, i, opts, cst, ptr, idx, ub, rank, key_group, cap, pick, value, visited)
+def max_min_scan(keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kperm, cap, pick, value, visited, best_rank,
+                 work):
+    """(c) per key: the option of its candidate list with the largest smallest margin (ties: smallest ``rank``,
+    the position in the caller's list), its value, and ``visited``: the options whose margins were evaluated
+    for it. The lists come sorted by decreasing ``ub``; keys in chunks sharing a list (:func:`_max_min_chunk`);
+    ``best_rank`` and ``work`` are scratch of one int per key."""
+    for c in range(len(kptr) - 1):
+        _max_min_chunk(c, keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kperm, cap, pick, value, visited,
+                       best_rank, work)
 
 
 @njit(cache=True, error_model="numpy", parallel=True)
-def max_min_scan_parallel(keys, opts, cst, ptr, idx, ub, rank, key_group, cap, pick, value, visited):
-    """:func:`max_min_scan` with the keys shared among numba's threads."""
-    for i in prange(keys.shape[0]):
-        _max_min_key(keys, i, opts, cst, ptr, idx, ub, rank, key_group, cap, pick, value, visited)
+def max_min_scan_parallel(keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kperm, cap, pick, value, visited,
+                          best_rank, work):
+    """:func:`max_min_scan` with the chunks of keys shared among numba's threads."""
+    for c in prange(len(kptr) - 1):
+        _max_min_chunk(c, keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kperm, cap, pick, value, visited,
+                       best_rank, work)

@@ -569,9 +569,11 @@ def max_min_margin(keys: SpringKeys, options: SpringOptions, candidates=None, *,
     cp = _per_key(cap, n, "cap", np.inf)
     if engine == "numba":
         jit, kt, ot, c = _tables(keys, options)
+        kperm, kptr, chunk_list = _chunks(kg, keys.derived["t_inst"])
         pick, value, visited = np.empty(n, np.int64), np.empty(n), np.empty(n, np.int64)
+        best_rank, work = np.empty(n, np.int64), np.empty(n, np.int64)
         scan = jit.max_min_scan_parallel if parallel else jit.max_min_scan
-        scan(kt, ot, c, ptr, idx_s, ub_s, rank_s, kg, cp, pick, value, visited)
+        scan(kt, ot, c, ptr, idx_s, ub_s, rank_s, chunk_list, kptr, kperm, cp, pick, value, visited, best_rank, work)
         return MaxMin((pick, value, visited))
     return MaxMin(_max_min_numpy(keys, options, ptr, idx_s, ub_s, rank_s, kg, cp))
 
