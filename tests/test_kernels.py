@@ -285,8 +285,10 @@ def test_any_feasible_matches_brute_force(scan_case, engine):
 
 
 def test_parallel_kernels_give_the_serial_answers(scan_case):
-    keys, opts, lists, kg, _ = scan_case
-    assert np.array_equal(K.margins(keys, opts, parallel=True), K.margins(keys, opts))
+    keys, opts, lists, kg, ref = scan_case
+    buf = np.full(ref.shape, np.nan)
+    assert K.margins(keys, opts, parallel=True, out=buf) is buf
+    assert np.array_equal(buf, K.margins(keys, opts))
     for fn in (K.first_feasible, K.max_min_margin, K.any_feasible):
         a, b = fn(keys, opts, lists, key_group=kg, parallel=True), fn(keys, opts, lists, key_group=kg)
         for x, y in zip(a, b):
@@ -314,6 +316,8 @@ def test_bad_inputs_name_the_field():
         K.max_min_margin(keys, opts, [np.array([0]), np.array([1])])
     with pytest.raises(InputError, match="engine"):
         K.margins(keys, opts, engine="cuda")
+    with pytest.raises(InputError, match="out"):
+        K.margins(keys, opts, out=np.empty((1, 2, 6)))
     with pytest.raises(InputError, match="round_wire"):
         K.spring_options(E_mpa=206000, Rm_mpa=2000, sigma_y_mpa=1760, sigma_A0_mpa=700, b_mm=2.3, h_mm=2.3,
                          round_wire="yes", mbd_mm=44.0)

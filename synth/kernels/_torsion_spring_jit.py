@@ -186,6 +186,14 @@ def _margins_row(keys, i, opts, cst, out):
 
 
 @njit(cache=True, error_model="numpy")
+def _remove_at(work, lo, a, n_act):
+    """Remove entry ``a`` of the active keys ``work[lo:lo + n_act]``, keeping their order; the new count."""
+    for b in range(a, n_act - 1):
+        work[lo + b] = work[lo + b + 1]
+    return n_act - 1
+
+
+@njit(cache=True, error_model="numpy")
 def _first_feasible_chunk(c, keys, opts, cst, tol, t_max, ptr, idx, chunk_list, kptr, kperm, score, score_limit,
                           pick, visited, work):
     """(b) for the keys ``kperm[kptr[c]:kptr[c+1]]`` (sorted by installation torque), which share the candidate
@@ -234,9 +242,7 @@ def _first_feasible_chunk(c, keys, opts, cst, tol, t_max, ptr, idx, chunk_list, 
                 visited[i] = p - p0 + 1
                 done = True
             if done:
-                n_act -= 1
-                for b in range(a, n_act):
-                    work[lo + b] = work[lo + b + 1]
+                n_act = _remove_at(work, lo, a, n_act)
             else:
                 a += 1
 
@@ -276,9 +282,7 @@ def _max_min_chunk(c, keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kpe
             i = work[lo + a]
             best = value[i]
             if ub[p] < best or best >= cap[i]:
-                n_act -= 1  # this key is done
-                for b in range(a, n_act):
-                    work[lo + b] = work[lo + b + 1]
+                n_act = _remove_at(work, lo, a, n_act)  # this key is done
                 changed = True
                 continue
             y = _clean_min(np.inf, _yield_margin(keys, i, opts, j))

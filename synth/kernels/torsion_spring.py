@@ -315,18 +315,25 @@ def reference_margins(keys: SpringKeys, options: SpringOptions, key_idx=None, op
         return np.stack([np.broadcast_to(r[m], shape) for m in MARGIN_NAMES], axis=-1)
 
 
-def margins(keys: SpringKeys, options: SpringOptions, *, engine: str = "numba", parallel: bool = False) -> np.ndarray:
+def margins(keys: SpringKeys, options: SpringOptions, *, engine: str = "numba", parallel: bool = False,
+            out: np.ndarray | None = None) -> np.ndarray:
     """(a) Every margin, ``out[i, j, m]`` for key ``i``, option ``j`` and margin ``MARGIN_NAMES[m]`` (>= 0 passes).
 
     ``engine="numpy"`` is :func:`reference_margins` itself. The array holds
-    ``7 * 8`` bytes per pair: call it on chunks of keys for large tables.
+    ``7 * 8`` bytes per pair: call it on chunks of keys for large tables, and
+    pass ``out`` (float64, C order, ``(n_keys, n_options, 7)``) to reuse one
+    buffer (numba engine).
     """
     _check_engine(engine)
     _same_constants(keys)
     if engine == "numpy":
         return reference_margins(keys, options)
     jit, kt, ot, c = _tables(keys, options)
-    out = np.empty((len(keys), len(options), jit.N_MARGINS))
+    shape = (len(keys), len(options), jit.N_MARGINS)
+    if out is None:
+        out = np.empty(shape)
+    elif out.shape != shape or out.dtype != np.float64 or not out.flags.c_contiguous:
+        raise InputError(Problem("out", f"{out.dtype} array of shape {out.shape}", f"a C-ordered float64 array {shape}"))
     (jit.margins_table_parallel if parallel else jit.margins_table)(kt, ot, c, out)
     return out
 
