@@ -329,3 +329,15 @@ def test_importing_the_kernels_and_the_model_does_not_import_numba():
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
+
+
+def test_keys_built_before_a_catalog_change_are_refused(monkeypatch):
+    keys = K.spring_keys(spring_torque_nominal_nm=1.0, housing_height_mm=9.0, housing_outer_diameter_mm=50.0,
+                         housing_inner_diameter_mm=30.0, stiffness_nm_per_deg=0.02, torque_tolerance_pct=5,
+                         theta_pp_deg=16)
+    opts = K.spring_options(E_mpa=206000, Rm_mpa=2000, sigma_y_mpa=1760, sigma_A0_mpa=700, b_mm=2.3, h_mm=2.3,
+                            round_wire=True, mbd_mm=44.0)
+    changed = {**s9.main_spring_constants(), "main_spring_index_max": 18.0}  # e.g. a user catalog folder
+    monkeypatch.setattr(s9, "main_spring_constants", lambda: changed)
+    with pytest.raises(InputError, match="main_spring_index_max"):
+        K.margins(keys, opts)

@@ -49,12 +49,13 @@ Validity: the ranges of ``main_spring_design`` (positive stiffness and wire
 sizes, finite inputs); the housing diameters must be given (the bulk path
 always has them; a missing one is the reference's ``not_verified`` case).
 
-Thesis case 3 (VDSiCr, round 2.3 mm wire, mean diameter 44 mm, 0.0164 N m/deg,
+Thesis case 3 (Tables 13-14: VDSiCr, mean diameter 44 mm, 0.0164 N m/deg,
 1.56 N m, 8 % on the lower side, theta_pp 16 deg, installation travel 28.6 deg,
-housing 8.8 mm high; the housing diameters 48/30 mm are illustrative, the case
-does not print them). The yield margin gives back the reference's installation
-stress, ``1763.5 (1 - m) = 1659 MPa`` (the thesis tool prints 1626 MPa,
-``docs/sections/torsion_spring.md``):
+housing 8.8 mm high), with the round 2.3 mm wire that reproduces its printed
+2.18 coils (it prints 3.0 mm, ``docs/sections/torsion_spring.md``); the housing
+diameters 48/30 mm are illustrative (the case does not print them). The
+yield margin gives back the reference's installation stress,
+``1763.5 (1 - m) = 1659 MPa`` (the thesis tool prints 1626 MPa, +2 %):
 
 >>> import numpy as np
 >>> opts = spring_options(E_mpa=206000, Rm_mpa=2004, sigma_y_mpa=1763.5, sigma_A0_mpa=701.4, b_mm=2.3, h_mm=2.3,
@@ -83,8 +84,8 @@ from synth.errors import InputError, Problem
 from synth.model import torsion_spring as s9
 
 __all__ = ["MARGIN_NAMES", "SpringOptions", "SpringKeys", "spring_options", "options_from_table", "spring_keys",
-           "margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin", "any_feasible", "FirstFeasible", "MaxMin",
-           "numba_loaded", "load_kernels"]
+           "margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin", "any_feasible",
+           "FirstFeasible", "MaxMin", "CHUNK_KEYS", "numba_loaded", "load_kernels"]
 
 #: the margins of (a), in this order (``synth.model.torsion_spring.MARGIN_KEYS``)
 MARGIN_NAMES = s9.MARGIN_KEYS
@@ -150,6 +151,7 @@ class SpringOptions:
     derived: dict      # the columns of _torsion_spring_jit.OPTION_COLUMNS, by name
     upper_bound: np.ndarray  # smallest index margin (NaN as -inf): bounds the option's smallest margin for any key
     fibre: str
+    constants: dict    # main_spring_constants() when built
     _table: dict = field(default_factory=dict, repr=False)
 
     def __len__(self) -> int:
@@ -158,7 +160,7 @@ class SpringOptions:
     def take(self, idx) -> "SpringOptions":
         """The options ``idx`` (indices or a boolean mask), as a new :class:`SpringOptions`."""
         return SpringOptions({k: v[idx] for k, v in self.raw.items()}, {k: v[idx] for k, v in self.derived.items()},
-                             self.upper_bound[idx], self.fibre)
+                             self.upper_bound[idx], self.fibre, self.constants)
 
 
 def spring_options(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, round_wire, mbd_mm, b_tol_mm=0.0,
@@ -189,7 +191,7 @@ def spring_options(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, roun
         "idx_max": margin_upper(c, cst["main_spring_index_max"]),
     }
     ub = np.minimum(d["idx_min"], d["idx_max"])
-    return SpringOptions(raw, d, np.where(np.isnan(ub), -np.inf, ub), fibre)
+    return SpringOptions(raw, d, np.where(np.isnan(ub), -np.inf, ub), fibre, cst)
 
 
 def options_from_table(table, fibre="inner") -> SpringOptions:
@@ -217,6 +219,7 @@ class SpringKeys:
     raw: dict
     derived: dict      # the columns of _torsion_spring_jit.KEY_COLUMNS, by name
     consts: dict       # the scalars of _torsion_spring_jit.CONST_NAMES
+    constants: dict    # main_spring_constants() when built
     _table: dict = field(default_factory=dict, repr=False)
 
     def __len__(self) -> int:
@@ -225,7 +228,7 @@ class SpringKeys:
     def take(self, idx) -> "SpringKeys":
         """The keys ``idx`` (indices or a boolean mask), as a new :class:`SpringKeys`."""
         return SpringKeys({k: v[idx] for k, v in self.raw.items()}, {k: v[idx] for k, v in self.derived.items()},
-                          self.consts)
+                          self.consts, self.constants)
 
 
 def spring_keys(*, spring_torque_nominal_nm, housing_height_mm, housing_outer_diameter_mm, housing_inner_diameter_mm,
@@ -270,7 +273,7 @@ def spring_keys(*, spring_torque_nominal_nm, housing_height_mm, housing_outer_di
     sf_min = cst["main_spring_min_safety_factor"]
     consts = {"mbd_tol": cst["main_spring_mbd_tol_mm"], "sf_min": sf_min, "sf_scale": float(_scale(sf_min)),
               "min_gap": cst["main_spring_min_coil_gap_mm"]}
-    return SpringKeys(raw, d, consts)
+    return SpringKeys(raw, d, consts, cst)
 
 
 def _tables(keys: SpringKeys, options: SpringOptions):
@@ -289,10 +292,14 @@ def _check_engine(engine):
         raise InputError(Problem("engine", engine, " or ".join(ENGINES)))
 
 
-def _same_constants(keys: SpringKeys):
+def _same_constants(keys: SpringKeys, options: SpringOptions):
+    """Keys and options must carry the catalog constants the reference reads now (a user catalog may change them)."""
     cst = s9.main_spring_constants()
-    if keys.consts["mbd_tol"] != cst["main_spring_mbd_tol_mm"] or keys.consts["sf_min"] != cst["main_spring_min_safety_factor"]:
-        raise InputError(Problem("keys", "built with other catalog constants", "keys built after the last catalog change"))
+    for name, obj in (("keys", keys), ("options", options)):
+        if obj.constants != cst:
+            changed = sorted(k for k in cst if obj.constants.get(k) != cst[k])
+            raise InputError(Problem(name, f"built with other values of {', '.join(changed)}",
+                                     "keys and options built after the last change of the catalog constants"))
 
 
 def reference_margins(keys: SpringKeys, options: SpringOptions, key_idx=None, option_idx=None) -> np.ndarray:
@@ -325,7 +332,7 @@ def margins(keys: SpringKeys, options: SpringOptions, *, engine: str = "numba", 
     buffer (numba engine).
     """
     _check_engine(engine)
-    _same_constants(keys)
+    _same_constants(keys, options)
     if engine == "numpy":
         return reference_margins(keys, options)
     jit, kt, ot, c = _tables(keys, options)
@@ -430,7 +437,7 @@ def first_feasible(keys: SpringKeys, options: SpringOptions, order=None, *, key_
 
 def _first_feasible(keys, options, ptr, idx, kg, sc, lim, tol, engine, parallel) -> FirstFeasible:
     """:func:`first_feasible` on checked candidate lists (CSR ``ptr``, ``idx``; ``kg`` per key)."""
-    _same_constants(keys)
+    _same_constants(keys, options)
     n = len(keys)
     if engine == "numba":
         jit, kt, ot, c = _tables(keys, options)
@@ -584,7 +591,7 @@ def max_min_margin(keys: SpringKeys, options: SpringOptions, candidates=None, *,
     key with no candidate.
     """
     _check_engine(engine)
-    _same_constants(keys)
+    _same_constants(keys, options)
     n = len(keys)
     ptr, idx, kg = _groups(n, len(options), candidates, key_group)
     idx_s, ub_s, rank_s = _by_upper_bound(options, ptr, idx)
