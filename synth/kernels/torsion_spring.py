@@ -585,10 +585,14 @@ def max_min_margin(keys: SpringKeys, options: SpringOptions, candidates=None, *,
     being evaluated once their minimum is below it. ``cap`` (per key): the
     scan also stops once the best value reaches it (the caller needs no more,
     e.g. the core's own margin in a nearest-design search); then only
-    ``min(value, cap)`` is defined.
+    ``min(value, cap)`` is defined. The keys of one list walk it together in
+    increasing installation torque (numba): once a key's yield margin for an
+    option is below the smallest best value of the keys still looking, the
+    option is settled for the keys after it too.
 
     Returns :class:`MaxMin` ``(index, value, visited)``; ``index = -1`` for a
-    key with no candidate.
+    key with no candidate; ``visited``: the pairs whose margins were
+    evaluated (at least the yield margin; numpy: whole blocks).
     """
     _check_engine(engine)
     _same_constants(keys, options)
