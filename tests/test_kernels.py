@@ -323,8 +323,9 @@ def test_bad_inputs_name_the_field():
                          round_wire="yes", mbd_mm=44.0)
 
 
-def test_importing_the_kernels_and_the_model_does_not_import_numba():
-    code = ("import sys, synth.kernels, synth.model.torsion_spring, synth.kernels.torsion_spring as k\n"
+def test_importing_the_kernels_the_model_and_the_cli_does_not_import_numba():
+    # the one-application path (synth design) must not pay for numba: only a kernel call loads it
+    code = ("import sys, synth.kernels, synth.model.torsion_spring, synth.cli, synth.kernels.torsion_spring as k\n"
             "assert 'numba' not in sys.modules and not k.numba_loaded(), 'numba imported'\n")
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
