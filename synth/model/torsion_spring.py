@@ -46,8 +46,29 @@ __all__ = [
     "inner_diameter_min_mm", "coil_gap_mm", "block_length_mm", "hooks_angle_deg",
     "goodman_safety_factor", "spring_housing_height_mm", "spring_housing_outer_diameter_mm",
     "rm_lookup_diameter_mm", "material_strength_mpa", "permissible_static_bending_stress_mpa", "material_properties",
-    "material_wire_sections", "wire_properties", "main_spring_design",
+    "material_wire_sections", "wire_properties", "main_spring_design", "MAIN_SPRING_CONSTANTS", "main_spring_constants",
 ]
+
+#: the named constants (``catalogs/constants_main_spring.csv``) step 9 reads, by the role they play
+MAIN_SPRING_CONSTANTS = (
+    "main_spring_index_floor", "main_spring_dtheta_inst_nom_deg", "main_spring_dtheta_nom_free_arm_deg",
+    "main_spring_mbd_tol_mm", "main_spring_min_safety_factor", "main_spring_min_coil_gap_mm",
+    "main_spring_index_min", "main_spring_index_max", "spring_housing_outer_tol_mm", "spring_housing_inner_tol_mm",
+)
+
+
+def main_spring_constants() -> dict:
+    """The catalog constants :func:`main_spring_design` reads, ``{name: value}`` (one read of each).
+
+    Compiled callers (:mod:`synth.kernels.torsion_spring`) read them here once
+    and pass them in as scalars, so both paths use the same values.
+
+    >>> c = main_spring_constants()
+    >>> c["main_spring_index_min"], c["main_spring_index_max"], c["main_spring_min_safety_factor"]
+    (4.0, 20.0, 1.2)
+    """
+    return {name: catalog.constant(name) for name in MAIN_SPRING_CONSTANTS}
+
 
 def _f(x):
     return np.asarray(x, dtype=float)
@@ -509,11 +530,12 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
     """
     k = _f(stiffness_nm_per_deg)
     mbd = _f(mbd_mm)
+    cst = main_spring_constants()
     if dtheta_inst_nom_deg is None:
-        dtheta_inst_nom_deg = catalog.constant("main_spring_dtheta_inst_nom_deg")
+        dtheta_inst_nom_deg = cst["main_spring_dtheta_inst_nom_deg"]
     if dtheta_nom_free_arm_deg is None:
-        dtheta_nom_free_arm_deg = catalog.constant("main_spring_dtheta_nom_free_arm_deg")
-    mbd_tol = catalog.constant("main_spring_mbd_tol_mm") if mbd_tol_mm is None else mbd_tol_mm
+        dtheta_nom_free_arm_deg = cst["main_spring_dtheta_nom_free_arm_deg"]
+    mbd_tol = cst["main_spring_mbd_tol_mm"] if mbd_tol_mm is None else mbd_tol_mm
     winding = np.asarray(winding, dtype=bool)
 
     inertia = second_moment_mm4(b_mm, h_mm, round_wire)
@@ -563,8 +585,8 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
         "stiffness_nm_per_deg": k + 0.0 * n_a,
         "sigma_y_limit_mpa": _f(sigma_y_mpa) + 0.0 * n_a,
     })
-    tol_out = catalog.constant("spring_housing_outer_tol_mm") if housing_outer_tol_mm is None else housing_outer_tol_mm
-    tol_in = catalog.constant("spring_housing_inner_tol_mm") if housing_inner_tol_mm is None else housing_inner_tol_mm
+    tol_out = cst["spring_housing_outer_tol_mm"] if housing_outer_tol_mm is None else housing_outer_tol_mm
+    tol_in = cst["spring_housing_inner_tol_mm"] if housing_inner_tol_mm is None else housing_inner_tol_mm
     out["housing_outer_diameter_min_mm"] = _f(housing_outer_diameter_mm) - _f(tol_out)          # eq. 82
     # eq. 85 corrected: the spring's inner diameter must stay ABOVE the support's (eq. 86 limit)
     out["housing_inner_diameter_max_mm"] = _f(housing_inner_diameter_mm) + _f(tol_in)

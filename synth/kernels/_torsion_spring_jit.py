@@ -1,0 +1,364 @@
+"""numba kernels of the main-spring margins (thesis step 9); imported only by :mod:`synth.kernels.torsion_spring`.
+
+This module imports numba at import time, so nothing imports it except the
+lazy loader of :mod:`synth.kernels.torsion_spring` (the one-application path
+never pays for numba). Every arithmetic line repeats one line of
+:func:`synth.model.torsion_spring.main_spring_design`, in the same order of
+operations, so the margins are the reference's to the last bit in practice;
+the quantities that depend on the option alone (second moment, section
+modulus, curvature factor, index margins) or on the key alone (working
+angles, torques, coil increments, housing limits) are computed beforehand by
+the reference functions themselves and arrive here as the columns of two
+tables (``opts[j, O_*]``, ``keys[i, K_*]``).
+
+Kernels (loops over keys x options, no allocation per pair):
+
+* :func:`margins_table` -- every margin, ``out[i, j, m]``;
+* :func:`first_feasible_scan` -- per key, the first feasible option of its
+  group's list (score order), with early exit and a score limit; the keys of
+  a list walk it together, and an exact threshold of the installation torque
+  per option (``t_max``, computed by the caller) settles the yield check
+  for all of them at once;
+* :func:`max_min_scan` -- per key, the option of its group's list with the
+  largest smallest margin, scanning in decreasing order of the option-only
+  upper bound (index margins) and stopping when that bound, or the key's cap,
+  says no later option can win; the keys of a list walk it together in
+  increasing installation torque, so one yield margin below the smallest
+  best value settles an option for the rest of them.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+#: columns of the option table (``spring_options`` computes them by name; the kernels read them by number)
+OPTION_COLUMNS = ("ei", "mbd", "kf", "z", "rm", "sa0", "sy", "sy_scale", "h", "h_tol", "bb", "b_scale", "idx_min",
+                  "idx_max")
+#: columns of the key table (``spring_keys``)
+KEY_COLUMNS = ("k180", "t_plus", "t_minus", "t_inst", "inc_inst", "inc_free_arm", "inc_nom", "height", "outer_min",
+               "outer_scale", "inner_max", "inner_scale", "winding")
+#: the scalar constants
+CONST_NAMES = ("mbd_tol", "sf_min", "sf_scale", "min_gap")
+(O_EI, O_MBD, O_KF, O_Z, O_RM, O_SA0, O_SY, O_SY_SCALE, O_H, O_H_TOL, O_BB, O_B_SCALE, O_IDX_MIN,
+ O_IDX_MAX) = range(len(OPTION_COLUMNS))
+(K_K180, K_T_PLUS, K_T_MINUS, K_T_INST, K_INC_INST, K_INC_FREE_ARM, K_INC_NOM, K_HEIGHT, K_OUTER_MIN, K_OUTER_SCALE,
+ K_INNER_MAX, K_INNER_SCALE, K_WINDING) = range(len(KEY_COLUMNS))
+C_MBD_TOL, C_SF_MIN, C_SF_SCALE, C_MIN_GAP = range(len(CONST_NAMES))
+#: margins of ``margins_table``, in the order of ``synth.model.torsion_spring.MARGIN_KEYS``
+M_YIELD, M_FATIGUE, M_OUTER, M_INNER, M_GAP, M_IDX_MIN, M_IDX_MAX = range(7)
+N_MARGINS = 7
+
+
+@njit(cache=True, error_model="numpy")
+def _maximum(a, b):
+    """``numpy.maximum`` of two floats (a NaN propagates)."""
+    if a > b or a != a:
+        return a
+    return b
+
+
+@njit(cache=True, error_model="numpy")
+def _minimum(a, b):
+    """``numpy.minimum`` of two floats (a NaN propagates)."""
+    if a < b or a != a:
+        return a
+    return b
+
+
+@njit(cache=True, error_model="numpy")
+def _yield_margin(keys, i, opts, j):
+    """eq. (72)-(77): ``(sigma_y - k_f T_inst 1000 / Z) / |sigma_y|``."""
+    s_inst = opts[j, O_KF] * keys[i, K_T_INST] * 1000.0 / opts[j, O_Z]
+    return (opts[j, O_SY] - s_inst) / opts[j, O_SY_SCALE]
+
+
+@njit(cache=True, error_model="numpy")
+def _fatigue_margin(keys, i, opts, j, cst):
+    """Figure 71: Smith-Goodman safety factor of the +-theta_pp/2 swing against its minimum."""
+    kf, z = opts[j, O_KF], opts[j, O_Z]
+    smax = kf * keys[i, K_T_PLUS] * 1000.0 / z
+    smin = kf * keys[i, K_T_MINUS] * 1000.0 / z
+    sa = abs(smax - smin) / 2.0
+    sm = (smax + smin) / 2.0
+    denom = sa / opts[j, O_SA0] + _maximum(sm, 0.0) / opts[j, O_RM]
+    sf_g = 1.0 / denom if denom > 0 else np.inf
+    peak = _maximum(abs(smax), abs(smin))
+    sf_y = opts[j, O_SY] / peak if peak > 0 else np.inf
+    sf = _minimum(sf_g, sf_y)
+    return (sf - cst[C_SF_MIN]) / cst[C_SF_SCALE]
+
+
+@njit(cache=True, error_model="numpy")
+def _coils(keys, i, opts, j):
+    """eq. (64)-(65), (78)-(79): active coils in the free state and with the hooks at installation, free arm and
+    nominal (winding adds theta/360, unwinding removes it; at least 1e-6)."""
+    n_a = opts[j, O_EI] / (keys[i, K_K180] * opts[j, O_MBD])
+    c_inst = _maximum(n_a + keys[i, K_INC_INST], 1e-6)
+    c_free_arm = _maximum(n_a + keys[i, K_INC_FREE_ARM], 1e-6)
+    c_nom = _maximum(n_a + keys[i, K_INC_NOM], 1e-6)
+    return n_a, c_inst, c_free_arm, c_nom
+
+
+@njit(cache=True, error_model="numpy")
+def _gap_margin(keys, i, opts, j, cst, c_inst, c_free_arm, c_nom):
+    """eq. (89)-(93): coil gap in the worst condition (most coils), per axial wire size."""
+    n_worst = _maximum(_maximum(c_inst, c_free_arm), c_nom)
+    bb = opts[j, O_BB]
+    gap = (keys[i, K_HEIGHT] - bb) / _maximum(n_worst, 1e-9) - bb
+    return (gap - cst[C_MIN_GAP]) / opts[j, O_B_SCALE]
+
+
+@njit(cache=True, error_model="numpy")
+def _contact_margins(keys, i, opts, j, cst, n_a, c_inst):
+    """eq. (80)-(88): outer contact (largest diameter) and inner contact (smallest diameter) with the housing."""
+    mbd = opts[j, O_MBD]
+    d_free = mbd * n_a / _maximum(_maximum(n_a, 1e-6), 1e-9)                        # eq. 80, free state
+    d_inst = mbd * n_a / _maximum(c_inst, 1e-9)
+    if keys[i, K_WINDING] != 0.0:
+        big, small = d_free, d_inst
+    else:
+        big, small = d_inst, d_free
+    mbd_tol = cst[C_MBD_TOL]
+    d_out = big + mbd_tol + opts[j, O_H] + opts[j, O_H_TOL]                          # eq. 83-84
+    d_in = small - mbd_tol - opts[j, O_H] - opts[j, O_H_TOL]                         # eq. 87-88
+    m_out = (keys[i, K_OUTER_MIN] - d_out) / keys[i, K_OUTER_SCALE]                   # eq. 81
+    m_in = (d_in - keys[i, K_INNER_MAX]) / keys[i, K_INNER_SCALE]                     # eq. 85 (corrected)
+    return m_out, m_in
+
+
+@njit(cache=True, error_model="numpy")
+def _geometry_margins(keys, i, opts, j, cst):
+    """Outer contact, inner contact and coil-gap margins of key ``i`` x option ``j``."""
+    n_a, c_inst, c_free_arm, c_nom = _coils(keys, i, opts, j)
+    m_out, m_in = _contact_margins(keys, i, opts, j, cst, n_a, c_inst)
+    return m_out, m_in, _gap_margin(keys, i, opts, j, cst, c_inst, c_free_arm, c_nom)
+
+
+@njit(cache=True, error_model="numpy")
+def _pair_feasible_past_yield(keys, i, opts, j, cst, tol):
+    """Whether the coil-gap, fatigue and contact margins of a pair that passes the index and yield checks are
+    all ``>= -tol`` (most selective first, early exit; NaN fails). In the generated portfolios the yield check
+    rejects about 60 % of the options within the index range, and the coil gap about 90 % of the rest."""
+    n_a, c_inst, c_free_arm, c_nom = _coils(keys, i, opts, j)
+    if not (_gap_margin(keys, i, opts, j, cst, c_inst, c_free_arm, c_nom) >= -tol):
+        return False
+    if not (_fatigue_margin(keys, i, opts, j, cst) >= -tol):
+        return False
+    m_out, m_in = _contact_margins(keys, i, opts, j, cst, n_a, c_inst)
+    return m_out >= -tol and m_in >= -tol
+
+
+@njit(cache=True, error_model="numpy")
+def _clean_min(a, b):
+    """``min(a, b)`` with NaN read as -inf (as the optimiser's ``_clean``)."""
+    if b != b:
+        return -np.inf
+    return b if b < a else a
+
+
+@njit(cache=True, error_model="numpy")
+def _min_margin_past_yield(keys, i, opts, j, cst, best, m):
+    """Smallest margin of key ``i`` x option ``j`` (NaN as -inf) given ``m``, the minimum of its index and
+    yield margins; returns early once it is below ``best`` (the caller then only needs to know it cannot win)."""
+    n_a, c_inst, c_free_arm, c_nom = _coils(keys, i, opts, j)
+    m = _clean_min(m, _gap_margin(keys, i, opts, j, cst, c_inst, c_free_arm, c_nom))
+    if m < best:
+        return m
+    m = _clean_min(m, _fatigue_margin(keys, i, opts, j, cst))
+    if m < best:
+        return m
+    m_out, m_in = _contact_margins(keys, i, opts, j, cst, n_a, c_inst)
+    return _clean_min(_clean_min(m, m_out), m_in)
+
+
+@njit(cache=True, error_model="numpy")
+def _margins_row(keys, i, opts, cst, out):
+    for j in range(opts.shape[0]):
+        out[i, j, M_YIELD] = _yield_margin(keys, i, opts, j)
+        out[i, j, M_FATIGUE] = _fatigue_margin(keys, i, opts, j, cst)
+        m_out, m_in, m_gap = _geometry_margins(keys, i, opts, j, cst)
+        out[i, j, M_OUTER] = m_out
+        out[i, j, M_INNER] = m_in
+        out[i, j, M_GAP] = m_gap
+        out[i, j, M_IDX_MIN] = opts[j, O_IDX_MIN]
+        out[i, j, M_IDX_MAX] = opts[j, O_IDX_MAX]
+
+
+@njit(cache=True, error_model="numpy")
+def _remove_at(work, lo, a, n_act):
+    """Remove entry ``a`` of the active keys ``work[lo:lo + n_act]``, keeping their order; the new count."""
+    for b in range(a, n_act - 1):
+        work[lo + b] = work[lo + b + 1]
+    return n_act - 1
+
+
+@njit(cache=True, error_model="numpy")
+def _first_feasible_chunk(c, keys, opts, cst, tol, t_max, ptr, idx, chunk_list, kptr, kperm, score, score_limit,
+                          pick, visited, work):
+    """(b) for the keys ``kperm[kptr[c]:kptr[c+1]]`` (sorted by installation torque), which share the candidate
+    list ``chunk_list[c]``: the list is walked once, option by option, for all keys still looking.
+
+    For an option ``j`` only the keys with ``T_inst <= t_max[j]`` pass the yield check (the margin is monotone
+    in ``T_inst``, ``t_max`` is its exact threshold), and they are a prefix of the sorted keys; the other checks
+    run for them alone. A key leaves when it finds its option or passes its score limit. Same answer as
+    scanning each key's list on its own.
+    """
+    g = chunk_list[c]
+    lo, hi = kptr[c], kptr[c + 1]
+    p0, p1 = ptr[g], ptr[g + 1]
+    n_act = 0
+    for a in range(lo, hi):
+        i = kperm[a]
+        pick[i] = -1
+        stop = p1
+        lim = score_limit[i]
+        if lim < np.inf:
+            for p in range(p0, p1):
+                if score[idx[p]] > lim:
+                    stop = p
+                    break
+        visited[i] = stop - p0  # the options the key examines if it finds none
+        if stop > p0:
+            work[lo + n_act] = i
+            n_act += 1
+    for p in range(p0, p1):
+        if n_act == 0:
+            break
+        j = idx[p]
+        if not (opts[j, O_IDX_MIN] >= -tol and opts[j, O_IDX_MAX] >= -tol):
+            continue
+        t_j = t_max[j]
+        a = 0
+        while a < n_act:
+            i = work[lo + a]
+            if not (keys[i, K_T_INST] <= t_j):
+                break  # this key and every later one (larger T_inst) fail the yield check
+            done = False
+            if p - p0 >= visited[i]:
+                done = True  # past the key's score limit
+            elif _pair_feasible_past_yield(keys, i, opts, j, cst, tol):
+                pick[i] = j
+                visited[i] = p - p0 + 1
+                done = True
+            if done:
+                n_act = _remove_at(work, lo, a, n_act)
+            else:
+                a += 1
+
+
+@njit(cache=True, error_model="numpy")
+def _max_min_chunk(c, keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kperm, cap, pick, value, visited,
+                   best_rank, work):
+    """(c) for the keys ``kperm[kptr[c]:kptr[c+1]]`` (sorted by installation torque), which share the candidate
+    list ``chunk_list[c]`` (sorted by decreasing ``ub``, the option-only bound of the smallest margin).
+
+    The list is walked once for all keys. A key stops when ``ub`` falls below its best value or its best
+    reaches its cap. For an option, the keys are visited in increasing ``T_inst``: their yield margins
+    decrease, so once one is below the smallest best of the keys still looking, no later key can win or tie
+    with this option. Same answer (value and tie-break) as scanning each key's list on its own.
+    """
+    g = chunk_list[c]
+    lo, hi = kptr[c], kptr[c + 1]
+    p0, p1 = ptr[g], ptr[g + 1]
+    n_act = 0
+    for a in range(lo, hi):
+        i = kperm[a]
+        pick[i] = -1
+        value[i] = -np.inf
+        best_rank[i] = np.iinfo(np.int64).max
+        visited[i] = 0
+        if not (-np.inf >= cap[i]):
+            work[lo + n_act] = i
+            n_act += 1
+    floor = -np.inf  # smallest best value of the keys still looking
+    for p in range(p0, p1):
+        if n_act == 0 or ub[p] < floor:
+            break
+        j = idx[p]
+        changed = False
+        a = 0
+        while a < n_act:
+            i = work[lo + a]
+            best = value[i]
+            if ub[p] < best or best >= cap[i]:
+                n_act = _remove_at(work, lo, a, n_act)  # this key is done
+                changed = True
+                continue
+            y = _clean_min(np.inf, _yield_margin(keys, i, opts, j))
+            if y < floor:
+                break  # later keys: larger T_inst, yield margin <= y < floor <= their best
+            visited[i] += 1
+            m = _clean_min(ub[p], y)
+            if m >= best:
+                v = _min_margin_past_yield(keys, i, opts, j, cst, best, m)
+                if v > best or (v == best and rank[p] < best_rank[i]):
+                    value[i], best_rank[i], pick[i] = v, rank[p], j
+                    changed = True
+            a += 1
+        if changed:
+            floor = np.inf
+            for b in range(n_act):
+                floor = min(floor, value[work[lo + b]])
+            if n_act == 0:
+                floor = -np.inf
+
+
+# ---- the kernels: one loop over keys each, serial (range) and threaded (prange, parallel=True); the two
+# ---- variants are separate functions because numba's cache keys a function by its name and bytecode
+
+
+@njit(cache=True, error_model="numpy")
+def margins_table(keys, opts, cst, out):
+    """(a) ``out[i, j, :]`` = the seven margins of key ``i`` x option ``j`` (order of ``MARGIN_KEYS``)."""
+    for i in range(keys.shape[0]):
+        _margins_row(keys, i, opts, cst, out)
+
+
+@njit(cache=True, error_model="numpy", parallel=True)
+def margins_table_parallel(keys, opts, cst, out):
+    """:func:`margins_table` with the keys shared among numba's threads."""
+    for i in prange(keys.shape[0]):
+        _margins_row(keys, i, opts, cst, out)
+
+
+@njit(cache=True, error_model="numpy")
+def first_feasible_scan(keys, opts, cst, tol, t_max, ptr, idx, chunk_list, kptr, kperm, score, score_limit, pick,
+                        visited, work):
+    """(b)/(d) per key ``i``: the first option of its candidate list whose margins are all ``>= -tol``, or -1;
+    a key's scan stops at an option with ``score > score_limit[i]``; ``visited[i]`` counts the options the key
+    examined (up to and including its hit). Keys come in chunks sharing a list (:func:`_first_feasible_chunk`);
+    ``work`` is scratch of one int per key."""
+    for c in range(len(kptr) - 1):
+        _first_feasible_chunk(c, keys, opts, cst, tol, t_max, ptr, idx, chunk_list, kptr, kperm, score, score_limit,
+                              pick, visited, work)
+
+
+@njit(cache=True, error_model="numpy", parallel=True)
+def first_feasible_scan_parallel(keys, opts, cst, tol, t_max, ptr, idx, chunk_list, kptr, kperm, score, score_limit,
+                                 pick, visited, work):
+    """:func:`first_feasible_scan` with the chunks of keys shared among numba's threads."""
+    for c in prange(len(kptr) - 1):
+        _first_feasible_chunk(c, keys, opts, cst, tol, t_max, ptr, idx, chunk_list, kptr, kperm, score, score_limit,
+                              pick, visited, work)
+
+
+@njit(cache=True, error_model="numpy")
+def max_min_scan(keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kperm, cap, pick, value, visited, best_rank,
+                 work):
+    """(c) per key: the option of its candidate list with the largest smallest margin (ties: smallest ``rank``,
+    the position in the caller's list), its value, and ``visited``: the options whose margins were evaluated
+    for it. The lists come sorted by decreasing ``ub``; keys in chunks sharing a list (:func:`_max_min_chunk`);
+    ``best_rank`` and ``work`` are scratch of one int per key."""
+    for c in range(len(kptr) - 1):
+        _max_min_chunk(c, keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kperm, cap, pick, value, visited,
+                       best_rank, work)
+
+
+@njit(cache=True, error_model="numpy", parallel=True)
+def max_min_scan_parallel(keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kperm, cap, pick, value, visited,
+                          best_rank, work):
+    """:func:`max_min_scan` with the chunks of keys shared among numba's threads."""
+    for c in prange(len(kptr) - 1):
+        _max_min_chunk(c, keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kperm, cap, pick, value, visited,
+                       best_rank, work)

@@ -1,0 +1,638 @@
+"""Main-spring margins for many keys x many options: compiled kernels and their numpy twins (bulk screening).
+
+In a design space a main-spring option is (material, wire, mean body
+diameter); it sees the rest of the design only through a **key**: the spring
+torque at nominal, the spring-housing height, outer and inner diameter, and
+the application's own inputs (stiffness, torque tolerance, theta_pp, the
+installation and free-arm travels, winding direction and tolerance side).
+Bulk screening needs, for many keys (across many applications) x thousands
+of options, the step-9 margins of :func:`synth.model.torsion_spring.main_spring_design`
+(yield at installation, Smith-Goodman safety factor, outer and inner contact,
+coil gap, index min/max; thesis eq. (64)-(93), figure 71):
+
+(a) :func:`margins` -- every margin, ``(n_keys, n_options, 7)``;
+(b) :func:`first_feasible` -- per key, the first feasible option of a list
+    in score order (options sorted by the objective), early exit, and how
+    many options were examined;
+(c) :func:`max_min_margin` -- per key, the option with the largest smallest
+    margin (the nearest design when none is feasible), skipping options an
+    upper bound rules out;
+(d) :func:`any_feasible` -- per key, whether some option is feasible.
+
+Each takes ``engine="numba"`` (compiled loops over keys x options, no
+allocation per pair; :mod:`synth.kernels._torsion_spring_jit`) or
+``engine="numpy"`` (the reference function on blocks of keys x options, the
+same early exits block by block): the benchmark compares both in one run
+and the tests hold them equal to the reference. Units as in
+:mod:`synth.model.torsion_spring` (mm, N m, N m/deg, MPa, deg).
+
+**Exactness.** The quantities that depend on the option alone (second
+moment, section modulus, index, curvature factor, index margins,
+:func:`spring_options`) or on the key alone (working angles, torques, coil
+increments, housing limits, :func:`spring_keys`) are computed once by the
+reference functions themselves; the kernel repeats only the per-pair lines
+of ``main_spring_design`` in the same order of operations, with the same
+constants (:func:`synth.model.torsion_spring.main_spring_constants`, read
+once and passed in as scalars). Margins then agree with the reference to the
+last bit in practice (tested to 1e-9 relative) and the verdicts are the same.
+
+**Cost.** numba is imported on the first kernel call, not with this module:
+the one-application path (``synth design``) never imports it. A process
+that calls a kernel pays ``import numba`` once and, the first time ever, the
+compilation (then cached on disk, ``cache=True``, beside the module); see
+``docs/sections/kernels.md`` for the measured figures. ``parallel=True``
+shares the keys among numba's threads (``prange``); it is off by default
+because the bulk engine scales out over processes and numba's OpenMP layer
+is not fork-safe.
+
+Validity: the ranges of ``main_spring_design`` (positive stiffness and wire
+sizes, finite inputs); the housing diameters must be given (the bulk path
+always has them; a missing one is the reference's ``not_verified`` case).
+
+Thesis case 3 (Tables 13-14: VDSiCr, mean diameter 44 mm, 0.0164 N m/deg,
+1.56 N m, 8 % on the lower side, theta_pp 16 deg, installation travel 28.6 deg,
+housing 8.8 mm high), with the round 2.3 mm wire that reproduces its printed
+2.18 coils (it prints 3.0 mm, ``docs/sections/torsion_spring.md``); the housing
+diameters 48/30 mm are illustrative (the case does not print them). The
+yield margin gives back the reference's installation stress,
+``1763.5 (1 - m) = 1659 MPa`` (the thesis tool prints 1626 MPa, +2 %):
+
+>>> import numpy as np
+>>> opts = spring_options(E_mpa=206000, Rm_mpa=2004, sigma_y_mpa=1763.5, sigma_A0_mpa=701.4, b_mm=2.3, h_mm=2.3,
+...                       round_wire=True, b_tol_mm=0.025, h_tol_mm=0.025, mbd_mm=[40.0, 44.0])
+>>> keys = spring_keys(spring_torque_nominal_nm=1.56, housing_height_mm=8.8, housing_outer_diameter_mm=48.0,
+...                    housing_inner_diameter_mm=30.0, stiffness_nm_per_deg=0.0164, torque_tolerance_pct=8,
+...                    theta_pp_deg=16, dtheta_inst_nom_deg=28.6, torque_tolerance_side=-1)
+>>> m = margins(keys, opts)
+>>> np.round(m[0, 1], 3).tolist()
+[0.059, 0.059, 0.025, 0.183, 0.115, 3.783, 0.043]
+>>> round(1763.5 * (1 - float(m[0, 1, 0]))), bool((m == margins(keys, opts, engine="numpy")).all())
+(1659, True)
+>>> first_feasible(keys, opts, order=[1, 0]).index.tolist()
+[1]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from synth import catalog
+from synth.checks import margin_lower, margin_upper
+from synth.errors import InputError, Problem
+from synth.model import torsion_spring as s9
+
+__all__ = ["MARGIN_NAMES", "SpringOptions", "SpringKeys", "spring_options", "options_from_table", "spring_keys",
+           "margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin", "any_feasible",
+           "FirstFeasible", "MaxMin", "CHUNK_KEYS", "numba_loaded", "load_kernels"]
+
+#: the margins of (a), in this order (``synth.model.torsion_spring.MARGIN_KEYS``)
+MARGIN_NAMES = s9.MARGIN_KEYS
+ENGINES = ("numba", "numpy")
+
+_JIT = None
+
+
+def load_kernels():
+    """The compiled kernels module (imports numba on the first call; later calls are a global lookup)."""
+    global _JIT
+    if _JIT is None:
+        from synth.kernels import _torsion_spring_jit
+        _JIT = _torsion_spring_jit
+    return _JIT
+
+
+def numba_loaded() -> bool:
+    """Whether this process has loaded the compiled kernels (and so imported numba) yet."""
+    return _JIT is not None
+
+
+# --------------------------------------------------------------------------------------- inputs
+
+
+def _arr(name, x, n, positive=False):
+    a = np.asarray(x, dtype=float).reshape(-1)
+    if a.size == 1:
+        a = np.full(n, a[0])
+    bad = ~np.isfinite(a) | (a <= 0) if positive else ~np.isfinite(a)
+    if bad.any():
+        raise InputError(Problem(name, float(a[np.flatnonzero(bad)[0]]), "a finite number" + (" > 0" if positive else "")))
+    return a
+
+
+def _bools(name, x, n, accepted):
+    a = np.asarray(x).reshape(-1)
+    if a.dtype != bool:
+        raise InputError(Problem(name, a[:1].tolist(), accepted))
+    return np.full(n, a[0]) if a.size == 1 else a
+
+
+def _length(fields: dict) -> int:
+    sizes = {k: int(np.size(v)) for k, v in fields.items()}
+    n = max(sizes.values())
+    for k, size in sizes.items():
+        if size not in (1, n):
+            raise InputError(Problem(k, f"{size} values", f"1 or {n} values (one per row)"))
+    return n
+
+
+def _scale(limit):
+    """``|limit|``, or 1 where it is zero: the denominator of :func:`synth.checks.margin_upper`/``margin_lower``."""
+    a = np.abs(np.asarray(limit, dtype=float))
+    return np.where(a > 0, a, 1.0)
+
+
+@dataclass(frozen=True, eq=False)
+class SpringOptions:
+    """Main-spring options: the raw per-option arrays and the option-only quantities the kernels read."""
+
+    raw: dict          # E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, round_wire, b_tol_mm, h_tol_mm, mbd_mm
+    derived: dict      # the columns of _torsion_spring_jit.OPTION_COLUMNS, by name
+    upper_bound: np.ndarray  # smallest index margin (NaN as -inf): bounds the option's smallest margin for any key
+    fibre: str
+    constants: dict    # main_spring_constants() when built
+    _table: dict = field(default_factory=dict, repr=False)
+
+    def __len__(self) -> int:
+        return len(self.upper_bound)
+
+    def take(self, idx) -> "SpringOptions":
+        """The options ``idx`` (indices or a boolean mask), as a new :class:`SpringOptions`."""
+        return SpringOptions({k: v[idx] for k, v in self.raw.items()}, {k: v[idx] for k, v in self.derived.items()},
+                             self.upper_bound[idx], self.fibre, self.constants)
+
+
+def spring_options(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, round_wire, mbd_mm, b_tol_mm=0.0,
+                   h_tol_mm=0.0, fibre="inner") -> SpringOptions:
+    """The main-spring options (arguments as in ``main_spring_design``, broadcast to one length).
+
+    Computes with the reference functions what depends on the option alone:
+    ``E I`` (eq. 64-65), the section modulus (eq. 73/76), the curvature
+    factor (eq. 74) at the index (eq. 75/77), the index margins (EN 13906-3
+    range of ``constants_main_spring.csv``), ``b + b_tol`` and the scales of
+    the normalised margins.
+    """
+    fields = dict(E_mpa=E_mpa, Rm_mpa=Rm_mpa, sigma_y_mpa=sigma_y_mpa, sigma_A0_mpa=sigma_A0_mpa, b_mm=b_mm,
+                  h_mm=h_mm, round_wire=round_wire, b_tol_mm=b_tol_mm, h_tol_mm=h_tol_mm, mbd_mm=mbd_mm)
+    n = _length(fields)
+    raw = {k: _arr(k, v, n, positive=not k.endswith("_tol_mm")) for k, v in fields.items() if k != "round_wire"}
+    raw["round_wire"] = _bools("round_wire", round_wire, n, "True (round) or False (rectangular) per option")
+    if fibre not in ("inner", "outer"):
+        raise InputError(Problem("fibre", fibre, "'inner' or 'outer'"))
+    cst = s9.main_spring_constants()
+    b, h, rnd, mbd, sy = raw["b_mm"], raw["h_mm"], raw["round_wire"], raw["mbd_mm"], raw["sigma_y_mpa"]
+    c = s9.spring_index(mbd, b, h, rnd)
+    d = {
+        "ei": raw["E_mpa"] * s9.second_moment_mm4(b, h, rnd), "mbd": mbd, "kf": s9.curvature_factor(c, fibre),
+        "z": s9.section_modulus_mm3(b, h, rnd), "rm": raw["Rm_mpa"], "sa0": raw["sigma_A0_mpa"], "sy": sy,
+        "sy_scale": _scale(sy), "h": h, "h_tol": raw["h_tol_mm"], "bb": b + raw["b_tol_mm"],
+        "b_scale": np.maximum(b, 1e-9), "idx_min": margin_lower(c, cst["main_spring_index_min"]),
+        "idx_max": margin_upper(c, cst["main_spring_index_max"]),
+    }
+    ub = np.minimum(d["idx_min"], d["idx_max"])
+    return SpringOptions(raw, d, np.where(np.isnan(ub), -np.inf, ub), fibre, cst)
+
+
+def options_from_table(table, fibre="inner") -> SpringOptions:
+    """:func:`spring_options` of an optimiser spring table (:mod:`synth.optimise.space`: ``spring_material``,
+    ``b_mm``, ``h_mm``, ``round_wire``, ``b_tol_mm``, ``h_tol_mm``, ``spring_mbd_mm``), the material data from
+    :func:`synth.model.torsion_spring.material_properties` as the optimiser reads them."""
+    mats = table["spring_material"].to_numpy().astype(str)
+    b, h = table["b_mm"].to_numpy(float), table["h_mm"].to_numpy(float)
+    rnd = table["round_wire"].to_numpy(bool)
+    props = {k: np.empty(len(table)) for k in ("E_mpa", "Rm_mpa", "sigma_y_mpa", "sigma_A0_mpa")}
+    for mat in dict.fromkeys(mats):
+        sel = mats == mat
+        p = s9.material_properties(mat, b[sel], h[sel], rnd[sel])
+        for k in props:
+            props[k][sel] = p[k]
+    return spring_options(**props, b_mm=b, h_mm=h, round_wire=rnd, b_tol_mm=table["b_tol_mm"].to_numpy(float),
+                          h_tol_mm=table["h_tol_mm"].to_numpy(float), mbd_mm=table["spring_mbd_mm"].to_numpy(float),
+                          fibre=fibre)
+
+
+@dataclass(frozen=True, eq=False)
+class SpringKeys:
+    """Spring keys: the raw per-key arrays and the key-only quantities the kernels read."""
+
+    raw: dict
+    derived: dict      # the columns of _torsion_spring_jit.KEY_COLUMNS, by name
+    consts: dict       # the scalars of _torsion_spring_jit.CONST_NAMES
+    constants: dict    # main_spring_constants() when built
+    _table: dict = field(default_factory=dict, repr=False)
+
+    def __len__(self) -> int:
+        return len(self.derived["k180"])
+
+    def take(self, idx) -> "SpringKeys":
+        """The keys ``idx`` (indices or a boolean mask), as a new :class:`SpringKeys`."""
+        return SpringKeys({k: v[idx] for k, v in self.raw.items()}, {k: v[idx] for k, v in self.derived.items()},
+                          self.consts, self.constants)
+
+
+def spring_keys(*, spring_torque_nominal_nm, housing_height_mm, housing_outer_diameter_mm, housing_inner_diameter_mm,
+                stiffness_nm_per_deg, torque_tolerance_pct, theta_pp_deg, dtheta_inst_nom_deg=None,
+                dtheta_nom_free_arm_deg=None, torque_tolerance_side=1.0, winding=True) -> SpringKeys:
+    """The spring keys (arguments as in ``main_spring_design``, broadcast to one length).
+
+    Computes with the reference functions what depends on the key alone: the
+    working angles (eq. 66-70), the torques at theta+, theta- and
+    installation (eq. 71), the coil increments ``+-theta/360`` (eq. 78-79),
+    ``180 k_t`` (eq. 64-65) and the housing limits with their tolerances
+    (eq. 82, 86). Missing travels take the catalog defaults, as the reference.
+    """
+    cst = s9.main_spring_constants()
+    if dtheta_inst_nom_deg is None:
+        dtheta_inst_nom_deg = cst["main_spring_dtheta_inst_nom_deg"]
+    if dtheta_nom_free_arm_deg is None:
+        dtheta_nom_free_arm_deg = cst["main_spring_dtheta_nom_free_arm_deg"]
+    fields = dict(spring_torque_nominal_nm=spring_torque_nominal_nm, housing_height_mm=housing_height_mm,
+                  housing_outer_diameter_mm=housing_outer_diameter_mm,
+                  housing_inner_diameter_mm=housing_inner_diameter_mm, stiffness_nm_per_deg=stiffness_nm_per_deg,
+                  torque_tolerance_pct=torque_tolerance_pct, theta_pp_deg=theta_pp_deg,
+                  dtheta_inst_nom_deg=dtheta_inst_nom_deg, dtheta_nom_free_arm_deg=dtheta_nom_free_arm_deg,
+                  torque_tolerance_side=torque_tolerance_side, winding=winding)
+    n = _length(fields)
+    raw = {k: _arr(k, v, n, positive=k == "stiffness_nm_per_deg") for k, v in fields.items() if k != "winding"}
+    raw["winding"] = _bools("winding", winding, n, "True (winding) or False (unwinding) per key")
+    k = raw["stiffness_nm_per_deg"]
+    ang = s9.working_angles_deg(raw["spring_torque_nominal_nm"], raw["torque_tolerance_pct"], k, raw["theta_pp_deg"],
+                                raw["dtheta_inst_nom_deg"], raw["dtheta_nom_free_arm_deg"], raw["torque_tolerance_side"])
+    sign = np.where(raw["winding"], 1.0, -1.0)
+    outer_min = raw["housing_outer_diameter_mm"] - cst["spring_housing_outer_tol_mm"]
+    inner_max = raw["housing_inner_diameter_mm"] + cst["spring_housing_inner_tol_mm"]
+    d = {
+        "k180": 180.0 * np.maximum(k * 1000.0, 1e-12), "t_plus": s9.torque_nm(ang["theta_plus"], k),
+        "t_minus": s9.torque_nm(ang["theta_minus"], k), "t_inst": s9.torque_nm(ang["theta_inst"], k),
+        "inc_inst": sign * ang["theta_inst"] / 360.0, "inc_free_arm": sign * ang["theta_free_arm"] / 360.0,
+        "inc_nom": sign * ang["theta_nom"] / 360.0, "height": raw["housing_height_mm"],
+        "outer_min": outer_min, "outer_scale": _scale(outer_min), "inner_max": inner_max,
+        "inner_scale": _scale(inner_max), "winding": raw["winding"].astype(float),
+    }
+    sf_min = cst["main_spring_min_safety_factor"]
+    consts = {"mbd_tol": cst["main_spring_mbd_tol_mm"], "sf_min": sf_min, "sf_scale": float(_scale(sf_min)),
+              "min_gap": cst["main_spring_min_coil_gap_mm"]}
+    return SpringKeys(raw, d, consts, cst)
+
+
+def _tables(keys: SpringKeys, options: SpringOptions):
+    """The kernels' C-ordered tables of ``keys`` and ``options`` (column order of the compiled module; memoised)."""
+    jit = load_kernels()
+    if "t" not in options._table:
+        options._table["t"] = np.ascontiguousarray(np.stack([options.derived[c] for c in jit.OPTION_COLUMNS], axis=1))
+    if "t" not in keys._table:
+        keys._table["t"] = np.ascontiguousarray(np.stack([keys.derived[c] for c in jit.KEY_COLUMNS], axis=1))
+        keys._table["c"] = np.array([keys.consts[c] for c in jit.CONST_NAMES], dtype=float)
+    return jit, keys._table["t"], options._table["t"], keys._table["c"]
+
+
+def _check_engine(engine):
+    if engine not in ENGINES:
+        raise InputError(Problem("engine", engine, " or ".join(ENGINES)))
+
+
+def _same_constants(keys: SpringKeys, options: SpringOptions):
+    """Keys and options must carry the catalog constants the reference reads now (a user catalog may change them)."""
+    cst = s9.main_spring_constants()
+    for name, obj in (("keys", keys), ("options", options)):
+        if obj.constants != cst:
+            changed = sorted(k for k in cst if obj.constants.get(k) != cst[k])
+            raise InputError(Problem(name, f"built with other values of {', '.join(changed)}",
+                                     "keys and options built after the last change of the catalog constants"))
+
+
+def reference_margins(keys: SpringKeys, options: SpringOptions, key_idx=None, option_idx=None) -> np.ndarray:
+    """Margins ``(n_keys, n_options, 7)`` by the reference :func:`~synth.model.torsion_spring.main_spring_design`
+    (one call on keys x options broadcast), optionally for the keys ``key_idx`` and options ``option_idx``."""
+    rk = {k: (v if key_idx is None else v[key_idx])[:, None] for k, v in keys.raw.items()}
+    ro = {k: (v if option_idx is None else v[option_idx])[None, :] for k, v in options.raw.items()}
+    shape = (rk["housing_height_mm"].shape[0], ro["mbd_mm"].shape[1])
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # extremes overflow as in the optimiser
+        r = s9.main_spring_design(
+            E_mpa=ro["E_mpa"], Rm_mpa=ro["Rm_mpa"], sigma_y_mpa=ro["sigma_y_mpa"], sigma_A0_mpa=ro["sigma_A0_mpa"],
+            b_mm=ro["b_mm"], h_mm=ro["h_mm"], round_wire=ro["round_wire"], mbd_mm=ro["mbd_mm"],
+            b_tol_mm=ro["b_tol_mm"], h_tol_mm=ro["h_tol_mm"], stiffness_nm_per_deg=rk["stiffness_nm_per_deg"],
+            spring_torque_nominal_nm=rk["spring_torque_nominal_nm"], torque_tolerance_pct=rk["torque_tolerance_pct"],
+            theta_pp_deg=rk["theta_pp_deg"], housing_height_mm=rk["housing_height_mm"],
+            housing_outer_diameter_mm=rk["housing_outer_diameter_mm"],
+            housing_inner_diameter_mm=rk["housing_inner_diameter_mm"], dtheta_inst_nom_deg=rk["dtheta_inst_nom_deg"],
+            dtheta_nom_free_arm_deg=rk["dtheta_nom_free_arm_deg"], torque_tolerance_side=rk["torque_tolerance_side"],
+            winding=rk["winding"], fibre=options.fibre)
+        return np.stack([np.broadcast_to(r[m], shape) for m in MARGIN_NAMES], axis=-1)
+
+
+def margins(keys: SpringKeys, options: SpringOptions, *, engine: str = "numba", parallel: bool = False,
+            out: np.ndarray | None = None) -> np.ndarray:
+    """(a) Every margin, ``out[i, j, m]`` for key ``i``, option ``j`` and margin ``MARGIN_NAMES[m]`` (>= 0 passes).
+
+    ``engine="numpy"`` is :func:`reference_margins` itself. The array holds
+    ``7 * 8`` bytes per pair: call it on chunks of keys for large tables, and
+    pass ``out`` (float64, C order, ``(n_keys, n_options, 7)``) to reuse one
+    buffer (numba engine).
+    """
+    _check_engine(engine)
+    _same_constants(keys, options)
+    if engine == "numpy":
+        return reference_margins(keys, options)
+    jit, kt, ot, c = _tables(keys, options)
+    shape = (len(keys), len(options), jit.N_MARGINS)
+    if out is None:
+        out = np.empty(shape)
+    elif out.shape != shape or out.dtype != np.float64 or not out.flags.c_contiguous:
+        raise InputError(Problem("out", f"{out.dtype} array of shape {out.shape}", f"a C-ordered float64 array {shape}"))
+    (jit.margins_table_parallel if parallel else jit.margins_table)(kt, ot, c, out)
+    return out
+
+
+# --------------------------------------------------------------------------------------- candidate lists
+
+
+def _groups(n_keys: int, n_opt: int, candidates, key_group):
+    """``(ptr, idx, key_group)``: each key's candidate options as a ragged list (CSR), int64."""
+    if candidates is None:
+        candidates = np.arange(n_opt)
+    if isinstance(candidates, np.ndarray) or (len(candidates) and np.ndim(candidates[0]) == 0):
+        lists = [np.asarray(candidates)]
+    else:
+        lists = [np.asarray(c) for c in candidates]
+    for g, lst in enumerate(lists):
+        if lst.size and (lst.dtype.kind not in "iu" or lst.ndim != 1 or lst.min() < 0 or lst.max() >= n_opt):
+            raise InputError(Problem(f"candidates[{g}]", lst[:5].tolist(), f"a 1-D list of option indices in [0, {n_opt})"))
+    ptr = np.zeros(len(lists) + 1, np.int64)
+    ptr[1:] = np.cumsum([lst.size for lst in lists])
+    idx = np.concatenate([lst.astype(np.int64) for lst in lists]) if lists else np.zeros(0, np.int64)
+    if key_group is None:
+        if len(lists) != 1:
+            raise InputError(Problem("key_group", None, f"the candidate list (0..{len(lists) - 1}) of each key"))
+        kg = np.zeros(n_keys, np.int64)
+    else:
+        kg = np.asarray(key_group).reshape(-1)
+        if kg.size != n_keys or kg.dtype.kind not in "iu" or (n_keys and (kg.min() < 0 or kg.max() >= len(lists))):
+            raise InputError(Problem("key_group", kg[:5].tolist(),
+                                     f"{n_keys} integers in [0, {len(lists)}) (the candidate list of each key)"))
+        kg = kg.astype(np.int64)
+    return ptr, idx, kg
+
+
+def _by_upper_bound(options: SpringOptions, ptr, idx):
+    """Each group's candidates sorted by decreasing option upper bound (ties: list order); and their ranks."""
+    grp = np.repeat(np.arange(len(ptr) - 1), np.diff(ptr))
+    rank = np.arange(len(idx)) - ptr[grp]
+    ub = options.upper_bound[idx]
+    o = np.lexsort((rank, -ub, grp))
+    return idx[o], ub[o], rank[o].astype(np.int64)
+
+
+def _per_key(x, n, name, default):
+    if x is None:
+        return np.full(n, default, float)
+    a = np.asarray(x, dtype=float).reshape(-1)
+    if a.size == 1:
+        a = np.full(n, a[0])
+    if a.size != n or np.isnan(a).any():
+        raise InputError(Problem(name, a[:5].tolist(), f"one number per key ({n})"))
+    return a
+
+
+class FirstFeasible(tuple):
+    """``(index, visited)``: per key the chosen option (-1: none) and the options examined."""
+
+    index = property(lambda self: self[0])
+    visited = property(lambda self: self[1])
+
+
+class MaxMin(tuple):
+    """``(index, value, visited)``: per key the option with the largest smallest margin, that margin, the
+    options examined."""
+
+    index = property(lambda self: self[0])
+    value = property(lambda self: self[1])
+    visited = property(lambda self: self[2])
+
+
+# --------------------------------------------------------------------------------------- (b) and (d)
+
+
+def first_feasible(keys: SpringKeys, options: SpringOptions, order=None, *, key_group=None, score=None,
+                   score_limit=None, tol: float = 0.0, engine: str = "numba", parallel: bool = False) -> FirstFeasible:
+    """(b) Per key, the first option of ``order`` whose margins are all ``>= -tol`` (early exit).
+
+    ``order``: option indices in score order (e.g. ``np.argsort(cost, kind="stable")``), one list for every
+    key, or a list of such lists with ``key_group[i]`` naming key ``i``'s (one list per application).
+    Default: every option in index order. With ``score`` (per option) and ``score_limit`` (per key) a key's
+    scan stops at the first option whose score exceeds its limit (the branch and bound of the bulk engine).
+    ``tol=0`` is the reference's verdict; the optimiser uses ``FEAS_TOL``. A NaN margin fails.
+
+    Returns :class:`FirstFeasible` ``(index, visited)``: ``index[i] = -1`` when no option qualifies;
+    ``visited`` counts the options the kernel examined (numpy: the pairs evaluated, whole blocks).
+    """
+    _check_engine(engine)
+    n = len(keys)
+    ptr, idx, kg = _groups(n, len(options), order, key_group)
+    sc = np.zeros(len(options)) if score is None else _per_key(score, len(options), "score", 0.0)
+    lim = _per_key(score_limit, n, "score_limit", np.inf)
+    return _first_feasible(keys, options, ptr, idx, kg, sc, lim, float(tol), engine, parallel)
+
+
+def _first_feasible(keys, options, ptr, idx, kg, sc, lim, tol, engine, parallel) -> FirstFeasible:
+    """:func:`first_feasible` on checked candidate lists (CSR ``ptr``, ``idx``; ``kg`` per key)."""
+    _same_constants(keys, options)
+    n = len(keys)
+    if engine == "numba":
+        jit, kt, ot, c = _tables(keys, options)
+        kperm, kptr, chunk_list = _chunks(kg, keys.derived["t_inst"])
+        pick, visited, work = np.empty(n, np.int64), np.empty(n, np.int64), np.empty(n, np.int64)
+        scan = jit.first_feasible_scan_parallel if parallel else jit.first_feasible_scan
+        scan(kt, ot, c, float(tol), yield_thresholds(options, tol), ptr, idx, chunk_list, kptr, kperm, sc, lim, pick,
+             visited, work)
+        return FirstFeasible((pick, visited))
+    return FirstFeasible(_first_feasible_numpy(keys, options, ptr, idx, kg, sc, lim, tol))
+
+
+#: keys per chunk of the score-order scan: the keys of one candidate list walk it together, up to this many
+#: (numerics, not physics: any value gives the same answer; chunks are the unit of ``parallel=True``)
+CHUNK_KEYS = 128
+
+
+def _chunks(key_group, t_inst):
+    """Keys sorted by candidate list, then installation torque; chunks of at most :data:`CHUNK_KEYS` keys of one
+    list: ``(kperm, kptr, chunk_list)``."""
+    n = len(key_group)
+    kperm = np.lexsort((t_inst, key_group)).astype(np.int64)
+    g = key_group[kperm]
+    first = np.ones(n, bool)
+    first[1:] = g[1:] != g[:-1]
+    start = np.maximum.accumulate(np.where(first, np.arange(n), 0))
+    head = np.flatnonzero((np.arange(n) - start) % CHUNK_KEYS == 0)
+    kptr = np.append(head, n).astype(np.int64)
+    return kperm, kptr, g[head].astype(np.int64)
+
+
+def _ordinal(x):
+    """Doubles as integers in the same order (-0.0 and 0.0 both 0)."""
+    u = np.asarray(x, dtype=float).view(np.int64)
+    return np.where(u >= 0, u, -(u & np.int64(0x7FFFFFFFFFFFFFFF)))
+
+
+def _from_ordinal(k):
+    return np.where(k >= 0, k, (-k) | np.int64(-0x8000000000000000)).view(np.float64)
+
+
+def yield_thresholds(options: SpringOptions, tol: float = 0.0) -> np.ndarray:
+    """Per option, the largest installation torque ``T_inst`` [N m] whose yield margin (eq. 72-77) is ``>= -tol``.
+
+    The margin ``(sigma_y - k_f T 1000 / Z) / |sigma_y|`` is computed by a chain
+    of operations each monotone in ``T`` (IEEE rounding keeps monotonicity),
+    so the check passes exactly for ``T_inst <= threshold``; the threshold is
+    found by bisection on the ordered doubles (64 steps), evaluating the very
+    expression of the kernels and the reference. Memoised per ``tol``.
+    """
+    memo = options._table.setdefault("t_max", {})
+    if tol not in memo:
+        d = options.derived
+        kf, z, sy, sc = d["kf"], d["z"], d["sy"], d["sy_scale"]
+        a = _ordinal(np.full(len(options), -np.inf))  # passes at -inf, fails at +inf (finite option data)
+        b = _ordinal(np.full(len(options), np.inf))
+        while True:
+            mid = (a >> 1) + (b >> 1) + (a & b & 1)  # floor((a + b) / 2) without overflow
+            todo = mid > a
+            if not todo.any():
+                break
+            t = _from_ordinal(mid)
+            with np.errstate(over="ignore", invalid="ignore"):
+                ok = (sy - kf * t * 1000.0 / z) / sc >= -tol
+            a = np.where(todo & ok, mid, a)
+            b = np.where(todo & ~ok, mid, b)
+        memo[tol] = np.ascontiguousarray(_from_ordinal(a))
+    return memo[tol]
+
+
+def _blocks(length):
+    """Block boundaries of the numpy scans: ``bulk_spring_first_block`` growing by ``bulk_spring_block_growth``."""
+    pos, block = 0, int(catalog.constant("bulk_spring_first_block"))
+    growth = max(int(catalog.constant("bulk_spring_block_growth")), 1)
+    while pos < length:
+        yield pos, min(pos + block, length)
+        pos += block
+        block *= growth
+
+
+def _keys_by_group(kg, n_groups):
+    """The keys of each group, in key order (one sort, not one scan of every key per group)."""
+    order = np.argsort(kg, kind="stable")
+    return np.split(order, np.cumsum(np.bincount(kg, minlength=n_groups))[:-1])
+
+
+def _first_feasible_numpy(keys, options, ptr, idx, kg, score, limit, tol):
+    pick, visited = np.full(len(keys), -1, np.int64), np.zeros(len(keys), np.int64)
+    for g, kk in enumerate(_keys_by_group(kg, len(ptr) - 1)):
+        lst = idx[ptr[g]:ptr[g + 1]]
+        if not len(kk) or not len(lst):
+            continue
+        over = score[lst][None, :] > limit[kk][:, None]
+        stop = np.where(over.any(axis=1), np.argmax(over, axis=1), len(lst))  # scan length of each key
+        active = stop > 0
+        for lo, hi in _blocks(len(lst)):
+            a = np.flatnonzero(active)
+            if not len(a):
+                break
+            m = reference_margins(keys, options, kk[a], lst[lo:hi])
+            ok = np.all(m >= -tol, axis=2) & (np.arange(lo, hi)[None, :] < stop[a][:, None])
+            visited[kk[a]] += np.minimum(hi, stop[a]) - lo
+            has = ok.any(axis=1)
+            pick[kk[a[has]]] = lst[lo + np.argmax(ok[has], axis=1)]
+            active[a[has]] = False
+            active &= stop > hi
+    return pick, visited
+
+
+def any_feasible(keys: SpringKeys, options: SpringOptions, candidates=None, *, key_group=None, tol: float = 0.0,
+                 engine: str = "numba", parallel: bool = False) -> FirstFeasible:
+    """(d) Per key, whether some option of ``candidates`` (lists as in :func:`first_feasible`) is feasible.
+
+    Options whose index margins fail cannot be feasible for any key and are
+    not scanned; the others are scanned in the order given (the answer does
+    not depend on it) and a key stops at its first feasible option. The cost
+    order of the bulk engine is a good order: cheap springs come first and
+    the yield threshold settles them for most keys at once (2.5x faster than
+    decreasing index margins on the generated portfolio). Returns
+    :class:`FirstFeasible` ``(found, visited)`` with ``found`` boolean.
+    """
+    _check_engine(engine)
+    ptr, idx, kg = _groups(len(keys), len(options), candidates, key_group)
+    keep = options.upper_bound[idx] >= -tol
+    grp = np.repeat(np.arange(len(ptr) - 1), np.diff(ptr))[keep]
+    ptr_k = np.zeros_like(ptr)
+    ptr_k[1:] = np.cumsum(np.bincount(grp, minlength=len(ptr) - 1))
+    r = _first_feasible(keys, options, ptr_k, idx[keep], kg, np.zeros(len(options)), np.full(len(keys), np.inf),
+                        float(tol), engine, parallel)
+    return FirstFeasible((r.index >= 0, r.visited))
+
+
+# --------------------------------------------------------------------------------------- (c)
+
+
+def max_min_margin(keys: SpringKeys, options: SpringOptions, candidates=None, *, key_group=None, cap=None,
+                   engine: str = "numba", parallel: bool = False) -> MaxMin:
+    """(c) Per key, the option of ``candidates`` with the largest smallest margin (NaN read as -inf).
+
+    Ties go to the option listed first (lists as in :func:`first_feasible`;
+    default every option, so the lowest index, as ``numpy.argmax``). The
+    options are scanned in decreasing order of their index margins, a bound
+    of the smallest margin that holds for every key: the scan stops when the
+    bound falls below the best value found, and an option's margins stop
+    being evaluated once their minimum is below it. ``cap`` (per key): the
+    scan also stops once the best value reaches it (the caller needs no more,
+    e.g. the core's own margin in a nearest-design search); then only
+    ``min(value, cap)`` is defined. The keys of one list walk it together in
+    increasing installation torque (numba): once a key's yield margin for an
+    option is below the smallest best value of the keys still looking, the
+    option is settled for the keys after it too.
+
+    Returns :class:`MaxMin` ``(index, value, visited)``; ``index = -1`` for a
+    key with no candidate; ``visited``: the pairs whose margins were
+    evaluated (at least the yield margin; numpy: whole blocks).
+    """
+    _check_engine(engine)
+    _same_constants(keys, options)
+    n = len(keys)
+    ptr, idx, kg = _groups(n, len(options), candidates, key_group)
+    idx_s, ub_s, rank_s = _by_upper_bound(options, ptr, idx)
+    cp = _per_key(cap, n, "cap", np.inf)
+    if engine == "numba":
+        jit, kt, ot, c = _tables(keys, options)
+        kperm, kptr, chunk_list = _chunks(kg, keys.derived["t_inst"])
+        pick, value, visited = np.empty(n, np.int64), np.empty(n), np.empty(n, np.int64)
+        best_rank, work = np.empty(n, np.int64), np.empty(n, np.int64)
+        scan = jit.max_min_scan_parallel if parallel else jit.max_min_scan
+        scan(kt, ot, c, ptr, idx_s, ub_s, rank_s, chunk_list, kptr, kperm, cp, pick, value, visited, best_rank, work)
+        return MaxMin((pick, value, visited))
+    return MaxMin(_max_min_numpy(keys, options, ptr, idx_s, ub_s, rank_s, kg, cp))
+
+
+def _max_min_numpy(keys, options, ptr, idx, ub, rank, kg, cap):
+    n = len(keys)
+    pick, value, visited = np.full(n, -1, np.int64), np.full(n, -np.inf), np.zeros(n, np.int64)
+    best_rank = np.full(n, np.iinfo(np.int64).max)
+    for g, kk in enumerate(_keys_by_group(kg, len(ptr) - 1)):
+        lo_g, hi_g = ptr[g], ptr[g + 1]
+        active = np.ones(len(kk), bool)
+        for lo, hi in _blocks(hi_g - lo_g):
+            a = np.flatnonzero(active)
+            if not len(a):
+                break
+            ka, pos = kk[a], np.arange(lo_g + lo, lo_g + hi)
+            m = reference_margins(keys, options, ka, idx[pos])
+            v = np.min(np.where(np.isnan(m), -np.inf, m), axis=2)
+            visited[ka] += hi - lo
+            vmax = v.max(axis=1)
+            rb = np.where(v == vmax[:, None], rank[pos][None, :], np.iinfo(np.int64).max).min(axis=1)
+            upd = (vmax > value[ka]) | ((vmax == value[ka]) & (rb < best_rank[ka]))
+            ku = ka[upd]
+            value[ku], best_rank[ku] = vmax[upd], rb[upd]
+            pick[ku] = idx[pos[np.argmax(rank[pos][None, :] == rb[upd][:, None], axis=1)]]  # ranks are unique in a list
+            active[a] = ~(value[ka] >= cap[ka])
+            if lo_g + hi < hi_g:
+                active[a] &= ~(ub[lo_g + hi] < value[ka])
+    return pick, value, visited
