@@ -255,8 +255,8 @@ def geometry_from(result, inputs=None, *, name: str | None = None) -> TensionerG
                   endcap_spacer_outer_diameter_mm=2.0 * rm_es + width_es,
                   endcap_spacer_inner_diameter_mm=2.0 * rm_es - width_es,
                   endcap_spacer_axial_height_mm=_num(v, "endcap_spacer_axial_height_mm", miss),
-                  cone_spring_outer_diameter_mm=_num(v, "cone_spring_max_external_diameter_mm", miss),
-                  cone_spring_inner_diameter_mm=_num(v, "cone_spring_min_internal_diameter_mm", miss),
+                  cone_spring_outer_diameter_mm=_num(v, "cone_spring_external_diameter_mm", miss),
+                  cone_spring_inner_diameter_mm=_num(v, "cone_spring_internal_diameter_mm", miss),
                   cone_spring_thickness_mm=t_cs, cone_spring_installed_height_mm=t_cs + max(h_cs - s_nom, 0.0))
     if miss:
         raise InputError([Problem(f"result.{k}", None, "a value in the result (needed by the CAD model)") for k in miss])
@@ -265,20 +265,22 @@ def geometry_from(result, inputs=None, *, name: str | None = None) -> TensionerG
 
 
 def _example_values() -> dict:
-    """Case-1-like flowchart values (for the doctests)."""
-    return {"architecture": "rotary_standard", "pulley_type": "toothed", "pulley_width_mm": 20.0, "loading_arm_mm": 2.5,
-            "ball_bearing": "6006", "bearing_inner_diameter_mm": 30.0, "bearing_outer_diameter_mm": 55.0,
-            "bearing_width_mm": 13.0, "pivot_diameter_mm": 16.0, "pivot_bushing_radial_thickness_mm": 1.0,
-            "pivot_bushing_length_mm": 16.0, "axial_damping_present": True, "damper_pad_outer_diameter_mm": 31.5,
-            "damper_pad_mean_radius_mm": 12.5, "damper_pad_axial_height_mm": 3.5, "endcap_spacer_mean_radius_mm": 13.5,
-            "endcap_spacer_contact_area_mm2": 490.0, "endcap_spacer_axial_height_mm": 1.5,
-            "cone_spring_max_external_diameter_mm": 30.0, "cone_spring_min_internal_diameter_mm": 16.2,
-            "cone_spring_thickness_mm": 0.7425, "cone_spring_cone_height_mm": 0.891,
-            "cone_spring_nominal_deflection_mm": 0.6685, "spring_housing_height_mm": 14.8,
-            "spring_housing_outer_diameter_mm": 45.0, "spring_support_inner_diameter_mm": 22.0,
-            "main_spring_wire_section": "rectangular", "main_spring_wire_size_mm": [2.3, 2.3],
-            "main_spring_mean_body_diameter_mm": 41.0, "main_spring_active_coils_free": 4.09,
-            "bolt_format": "M8x1.25", "pivot_bolt_hole_diameter_mm": 8.2, "verdict": "pass"}
+    """A case-1-like result, as ``--json`` writes it (for the doctests)."""
+    parts = {"ball_bearing": "6006", "pivot_class_diameter_mm": 16.0, "pivot_bushing_length_mm": 16.0,
+             "main_spring_mean_body_diameter_mm": 41.0, "bolt_format": "M8x1.25"}
+    values = {"architecture": "rotary_standard", "pulley_type": "toothed", "pulley_width_mm": 20.0,
+              "loading_arm_mm": 2.5, "bearing_inner_diameter_mm": 30.0, "bearing_outer_diameter_mm": 55.0,
+              "bearing_width_mm": 13.0, "pivot_diameter_mm": 16.0, "pivot_bushing_radial_thickness_mm": 1.0,
+              "axial_damping_present": True, "damper_pad_outer_diameter_mm": 31.5,
+              "damper_pad_mean_radius_mm": 12.5, "damper_pad_axial_height_mm": 3.5, "endcap_spacer_mean_radius_mm": 13.5,
+              "endcap_spacer_contact_area_mm2": 490.0, "endcap_spacer_axial_height_mm": 1.5,
+              "cone_spring_external_diameter_mm": 30.0, "cone_spring_internal_diameter_mm": 16.2,
+              "cone_spring_thickness_mm": 0.7425, "cone_spring_cone_height_mm": 0.891,
+              "cone_spring_nominal_deflection_mm": 0.6685, "spring_housing_height_mm": 14.8,
+              "spring_housing_outer_diameter_mm": 45.0, "spring_housing_inner_diameter_mm": 22.0,
+              "main_spring_wire_section": "rectangular", "main_spring_wire_size_mm": [2.3, 2.3],
+              "main_spring_active_coils_free": 4.09, "pivot_bolt_hole_diameter_mm": 8.2}
+    return {"kind": "synth.result", "status": "verified", "parts": parts, "values": values, "checks": []}
 
 
 def _example_inputs() -> dict:

@@ -338,7 +338,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
          "cone_spring_min_internal_diameter_mm": cv["cone_spring_min_internal_diameter_mm"],
          "cone_spring_table8_max_mm": cv["cone_spring_table8_max_mm"]}
     de = cv["cone_spring_max_external_diameter_mm"] - np.asarray(o["cone_spring_de_reduction_mm"], dtype=float)
-    di = cv["cone_spring_min_internal_diameter_mm"]
+    di = cv["cone_spring_min_internal_diameter_mm"] + np.asarray(o["cone_spring_di_increase_mm"], dtype=float)
     zeta = np.asarray(o["cone_spring_aspect_ratio"], dtype=float)
     phi = np.asarray(o["cone_spring_deflection_ratio"], dtype=float)
     act = real & pad & (cv["axial_damping_nm"] > 0) & (de > di) & (zeta > 0) & (phi > 0) & (phi <= 1)
@@ -352,7 +352,9 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
             "cone_spring_thinness", "cone_spring_force_tolerance_plus", "cone_spring_force_tolerance_minus")
     for k in keys:
         v[k] = np.full(n, np.nan)
-    v["cone_spring_max_external_diameter_mm"] = np.where(real, de, np.nan)
+    v["cone_spring_max_external_diameter_mm"] = np.where(real, cv["cone_spring_max_external_diameter_mm"], np.nan)
+    v["cone_spring_external_diameter_mm"] = np.where(real, de, np.nan)
+    v["cone_spring_internal_diameter_mm"] = np.where(real, di, np.nan)
     i = np.flatnonzero(act)
     tol = f["damping_tolerance_nm"]
     mu_pl = apps.mu_plastic[a]

@@ -65,7 +65,7 @@ PART_KEYS_BY_TABLE = {
     "core": ("ball_bearing", "pivot_class_diameter_mm", "pivot_bushing_supplier", "damper_pad_class"),
     "bushing": ("pivot_bushing_length_mm",),
     "axial": ("endcap_spacer_class", "cone_spring_aspect_ratio", "cone_spring_deflection_ratio",
-              "cone_spring_external_diameter_mm"),
+              "cone_spring_external_diameter_mm", "cone_spring_internal_diameter_mm"),
     "spring": ("main_spring_material", "main_spring_wire", "main_spring_mean_body_diameter_mm"),
     "bolt": ("bolt_format", "bolt_head_type", "bolt_property_class"),
 }
@@ -140,9 +140,13 @@ class Space:
         spacer = code(p.endcap_spacer, "endcap_spacer_class", True)
         if spacer >= 0:
             de_max = float(s8.cone_spring_max_external_diameter_mm(out["core"]["damper_pad_outer_diameter_mm"])[0])
+            di_min = float(s8.cone_spring_min_internal_diameter_mm(out["core"]["pivot_diameter_mm"])[
+                "cone_spring_min_internal_diameter_mm"][0])
             red = de_max - num("cone_spring_external_diameter_mm") if pad >= 0 else 0.0
+            di = parts.get("cone_spring_internal_diameter_mm")  # absent in older results: the Table 8 minimum
+            inc = (num("cone_spring_internal_diameter_mm") - di_min) if di not in (None, 0, 0.0) else 0.0
             out["axial"] = axial_attributes(p, [spacer], [num("cone_spring_aspect_ratio")],
-                                            [num("cone_spring_deflection_ratio")], [red])
+                                            [num("cone_spring_deflection_ratio")], [red], [inc])
         else:
             out["axial"] = axial_attributes(p, [-1], [0.0], [0.0], [0.0])
         out["spring"] = spring_attributes(p, [code(p.spring_material, "main_spring_material")],
@@ -255,8 +259,12 @@ def cone_variants() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return zeta, phi, red
 
 
-def axial_attributes(p: P.Parts, spacer, aspect_ratio, deflection_ratio, de_reduction_mm) -> dict:
-    """The axial table's columns for spacer codes (-1 = none) and cone-spring variants (arrays)."""
+def axial_attributes(p: P.Parts, spacer, aspect_ratio, deflection_ratio, de_reduction_mm, di_increase_mm=0.0) -> dict:
+    """The axial table's columns for spacer codes (-1 = none) and cone-spring variants (arrays).
+
+    The cone spring's outer diameter is ``de_reduction_mm`` below the largest the damper pad carries, its inner
+    diameter ``di_increase_mm`` above the smallest the pivot allows (Table 8); the searched grid keeps the
+    smallest (0), a given design may have any."""
     e = np.asarray(spacer, dtype=np.int64)
     has = e >= 0
     ec = np.where(has, e, 0)
@@ -273,6 +281,7 @@ def axial_attributes(p: P.Parts, spacer, aspect_ratio, deflection_ratio, de_redu
         "cone_spring_aspect_ratio": np.where(has, aspect_ratio, 0.0),
         "cone_spring_deflection_ratio": np.where(has, deflection_ratio, 0.0),
         "cone_spring_de_reduction_mm": np.where(has, de_reduction_mm, 0.0),
+        "cone_spring_di_increase_mm": np.where(has, di_increase_mm, 0.0),
         "endcap_spacer_max_axial_damping_nm": col("max_axial_damping_nm", np.inf),
         "endcap_spacer_contact_area_mm2": col("contact_area_mm2"),
         "endcap_spacer_mean_radius_mm": col("mean_radius_mm"),

@@ -94,6 +94,8 @@ def inputs_of(d) -> dict | None:
 def parts_of_attributes(attrs: dict, groups: dict) -> dict:
     """The part keys of a design from its one-row attributes (the cone spring's outer diameter made absolute)."""
     de_max = float(groups["core"].values["cone_spring_max_external_diameter_mm"][0])
+    di_min = float(groups["core"].values["cone_spring_min_internal_diameter_mm"][0]) \
+        if "cone_spring_min_internal_diameter_mm" in groups["core"].values else np.nan
     out = {}
     for table in ("core", "bushing", "axial", "spring", "bolt"):
         for k, v in attrs[table].items():
@@ -101,8 +103,10 @@ def parts_of_attributes(attrs: dict, groups: dict) -> dict:
                 out[k] = plain(np.asarray(v)[0])
     if out.get("endcap_spacer_class", NONE) != NONE and np.isfinite(de_max):
         out["cone_spring_external_diameter_mm"] = plain(de_max - float(attrs["axial"]["cone_spring_de_reduction_mm"][0]))
+        out["cone_spring_internal_diameter_mm"] = plain(di_min + float(attrs["axial"]["cone_spring_di_increase_mm"][0]))
     else:
         out["cone_spring_external_diameter_mm"] = 0.0
+        out["cone_spring_internal_diameter_mm"] = 0.0
     out["pivot_bushing_supplier"] = plain(attrs["core"]["pivot_bushing_supplier"][0])
     return {k: out.get(k) for k in PART_KEYS}
 

@@ -572,8 +572,8 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
     ``zeta > 0``, ``0 < phi <= 1``, a positive nominal force). Forces N, lengths mm, torques N m.
 
     Returns the ``thesis_tool`` keys ``cone_spring_fax_max_tolerance_n``,
-    ``cone_spring_fax_min_tolerance_n``, ``cone_spring_min_internal_diameter_mm``,
-    ``cone_spring_max_external_diameter_mm``, plus ``cone_spring_fax_nominal_n``,
+    ``cone_spring_fax_min_tolerance_n``, the spring's ``cone_spring_internal_diameter_mm`` and
+    ``cone_spring_external_diameter_mm``, plus ``cone_spring_fax_nominal_n``,
     ``cone_spring_thickness_mm``, ``cone_spring_cone_height_mm``,
     ``cone_spring_free_height_mm``, ``cone_spring_nominal_deflection_mm``,
     ``cone_spring_max_deflection_mm`` (at maximum material),
@@ -618,8 +618,8 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
         "cone_spring_fax_band_n": band["band_n"],
         "cone_spring_force_band_room_n": band["band_room_n"],
         "cone_spring_gap_band_room_n": band["gap_room_n"],
-        "cone_spring_min_internal_diameter_mm": di,
-        "cone_spring_max_external_diameter_mm": de,
+        "cone_spring_internal_diameter_mm": di,
+        "cone_spring_external_diameter_mm": de,
         "cone_spring_thickness_mm": t,
         "cone_spring_cone_height_mm": h0,
         "cone_spring_free_height_mm": h0 + t,

@@ -86,8 +86,8 @@ class Evaluation:
         sp = self.space
         attrs = {"core": sp.rows("core", [self.cores[pos]])}
         attrs.update({s: sp.rows(s, [options[s]]) for s in SUBSYSTEMS})
-        de = {"core": E.Group("core", {"cone_spring_max_external_diameter_mm":
-                                       self.core.values["cone_spring_max_external_diameter_mm"][[pos]]})}
+        de = {"core": E.Group("core", {k: self.core.values[k][[pos]] for k in (
+            "cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm")})}
         return parts_of_attributes(attrs, de)
 
     def objective_values(self, pos: int, options: dict, margin: float) -> dict:

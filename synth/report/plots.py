@@ -173,7 +173,7 @@ class _Data:
             return self._cache["cone"]
         self.axial()
         from synth.model import stackup as s6, disc_spring as s8
-        geo_keys = ("cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm",
+        geo_keys = ("cone_spring_external_diameter_mm", "cone_spring_internal_diameter_mm",
                     "cone_spring_thickness_mm", "cone_spring_cone_height_mm", "cone_spring_nominal_deflection_mm",
                     "cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n")
         gap = self.v.get("gap_tolerance_mm") or self.v.get("cone_spring_gap_tolerance_mm") or s6.gap_tolerance_mm()
@@ -207,8 +207,8 @@ class _Data:
         from synth.model import friction_wear as s5
         c, g = self.cone(), self.axial_group()
         th, f, t = self.durability()
-        r = s5.plastic_wear(c["cone_spring_nominal_deflection_mm"], c["cone_spring_max_external_diameter_mm"],
-                            c["cone_spring_min_internal_diameter_mm"], c["cone_spring_thickness_mm"],
+        r = s5.plastic_wear(c["cone_spring_nominal_deflection_mm"], c["cone_spring_external_diameter_mm"],
+                            c["cone_spring_internal_diameter_mm"], c["cone_spring_thickness_mm"],
                             c["cone_spring_cone_height_mm"], g["damper_pad_contact_area_mm2"],
                             g["damper_pad_mean_radius_mm"], g["damper_pad_axial_height_mm"],
                             g["endcap_spacer_contact_area_mm2"], g["endcap_spacer_mean_radius_mm"],
@@ -403,7 +403,7 @@ def g_damping_decay(dt: _Data, ax):
 def _characteristic(dt: _Data):
     from synth.model import disc_spring as s8
     c = dt.cone()
-    geo = (c["cone_spring_max_external_diameter_mm"], c["cone_spring_min_internal_diameter_mm"],
+    geo = (c["cone_spring_external_diameter_mm"], c["cone_spring_internal_diameter_mm"],
            c["cone_spring_thickness_mm"], c["cone_spring_cone_height_mm"])
     s = np.linspace(0.0, geo[3], _N)
     f = s8.disc_spring_force_n(s, *geo, fidelity=dt.fidelity)

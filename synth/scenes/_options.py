@@ -23,11 +23,15 @@ def add_model_options(p) -> None:
                    help="full: Almen-Laszlo cone spring and its exact wear (default); screening: linear, closed forms")
     p.add_argument("--linear-friction", action="store_true",
                    help="radial friction on r_p*mu as the thesis tool did (default: friction circle r_p*sin(atan(mu)))")
+    p.add_argument("--bolt-method", choices=("thesis", "vdi2230"), default="thesis",
+                   help="fixation bolt: the thesis's elastic check of the nominal preload (default) or VDI 2230-1 "
+                        "(permissible assembly preload, tightening factor, embedding)")
 
 
 def settings_from_args(args):
     from synth.design.evaluate import Settings
-    return Settings(fidelity=args.fidelity, friction_circle=not args.linear_friction)
+    return Settings(fidelity=args.fidelity, friction_circle=not args.linear_friction,
+                    bolt_method=getattr(args, "bolt_method", "thesis"))
 
 
 def add_design_options(p) -> None:
