@@ -232,7 +232,7 @@ _ENTRIES = (
        "axial", "cone_spring_internal_diameter_mm", "cone_spring_min_internal_diameter_mm", ">=",
        applies="axial_group_present", correction="a larger cone-spring inner diameter"),
     _c("cone_outer_on_pad", "cone spring outer diameter bears on the damper pad", 8, "step 8", "mm", "axial",
-       "cone_spring_external_diameter_mm", "cone_spring_max_external_diameter_mm", "<=",
+       "cone_spring_external_diameter_mm", "damper_pad_outer_diameter_mm", "<=",
        applies="axial_group_present", correction="a smaller cone-spring outer diameter or a larger damper pad"),
     *(_c(f"cone_{key}_{side}", f"cone spring {sym} {'at least' if side == 'min' else 'at most'} the Table 7 "
          f"{side}imum (supplier experience, advisory)", 8, f"{eq}, Table 7", "-", "axial", f"cone_spring_{key}",

@@ -319,6 +319,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     f = {k: v[a] for k, v in apps.f.items()}
     n = len(a)
     cv = {k: cg.values[k][r] for k in ("axial_damping_nm", "radial_damping_nm", "axial_damping_share_nm",
+                                        "damper_pad_outer_diameter_mm",
                                         "cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm",
                                         "cone_spring_table8_max_mm", "damper_pad_mean_radius_mm",
                                         "damper_pad_contact_area_mm2", "damper_pad_axial_height_mm",
@@ -336,7 +337,8 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
          "endcap_spacer_max_axial_damping_nm": np.asarray(o["endcap_spacer_max_axial_damping_nm"], dtype=float),
          "axial_damping_share_nm": cv["axial_damping_share_nm"],
          "cone_spring_min_internal_diameter_mm": cv["cone_spring_min_internal_diameter_mm"],
-         "cone_spring_table8_max_mm": cv["cone_spring_table8_max_mm"]}
+         "cone_spring_table8_max_mm": cv["cone_spring_table8_max_mm"],
+         "damper_pad_outer_diameter_mm": cv["damper_pad_outer_diameter_mm"]}
     de = cv["cone_spring_max_external_diameter_mm"] - np.asarray(o["cone_spring_de_reduction_mm"], dtype=float)
     di = cv["cone_spring_min_internal_diameter_mm"] + np.asarray(o["cone_spring_di_increase_mm"], dtype=float)
     zeta = np.asarray(o["cone_spring_aspect_ratio"], dtype=float)
