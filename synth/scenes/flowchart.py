@@ -34,21 +34,15 @@ def register(sub) -> None:
 
 
 def parts_from_json(path: str) -> dict:
-    """The part choices saved in a ``synth design --json`` or ``synth flowchart --json`` file."""
+    """The part choices saved in a ``synth design --json`` or ``synth flowchart --json`` file.
+
+    Read through the input gate (:func:`synth.io.results.load_result`: size,
+    encoding, shape, carried inputs); a problem names ``--parts`` and the file.
+    """
     from pathlib import Path
 
-    from synth.errors import InputError, Problem
-    try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-    except (OSError, ValueError) as exc:
-        raise InputError(Problem("--parts", path, f"a readable JSON result file ({exc})")) from None
-    if isinstance(data.get("parts"), dict):
-        return data["parts"]
-    if "ball_bearing" in data:  # a flowchart result: its own choices
-        r = flowchart.FlowchartResult(None, flowchart.Settings(), values=data)
-        if r.parts is not None:
-            return r.parts
-    raise InputError(Problem("--parts", path, "the JSON of 'synth design --json' or of a complete 'synth flowchart --json' run"))
+    from synth.io.results import load_result, parts_of
+    return parts_of(load_result(path, "--parts"), Path(path).name, "--parts")
 
 
 def render_text(r: flowchart.FlowchartResult) -> str:
