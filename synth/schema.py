@@ -77,8 +77,9 @@ class Field:
 
     def accepted(self) -> str:
         if self.choices:
+            words = [w for w, c in self.words if _norm_word(w) != c]  # "Belt In Oil" is belt_in_oil: not listed
             return "one of " + ", ".join(self.choices) + (
-                " (or the thesis's words: " + ", ".join(w for w, _ in self.words) + ")" if self.words else "")
+                " (or the thesis's words: " + ", ".join(words) + ")" if words else "")
         if self.catalog:
             return "one of " + ", ".join(catalog.keys(self.catalog)) + f" (catalogs/{self.catalog}.csv)"
         if self.kind == "list":

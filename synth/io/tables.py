@@ -122,7 +122,7 @@ def read_table(path, what: str = "portfolio"):
         except InputError:
             raise
         except Exception as exc:
-            raise InputError(Problem(what, str(p), f"a readable Parquet file ({type(exc).__name__}: "
+            raise InputError(Problem(what, str(p), f"a readable parquet table ({type(exc).__name__}: "
                                                    f"{' '.join(str(exc).split())[:200]})")) from None
     if len(df) > rows:
         raise InputError(Problem(what, str(p), f"a table of at most {rows} rows"))
