@@ -17,3 +17,6 @@ def load_case(name: str) -> dict:
 @pytest.fixture(params=["case1_as_run", "case3"])
 def case(request):
     return load_case(request.param)
+
+# the corpus generator is a script, not a test module (it rewrites tests/bad_inputs/files when run)
+collect_ignore = ["bad_inputs/make_corpus.py"]

@@ -160,7 +160,7 @@ def read_workbook(path: str | Path, *, validate: bool = True) -> dict:
         except InputError as exc:
             for prob in exc.problems:
                 name = _ALIASES.get(prob.field, prob.field)
-                if any(prob.field.startswith(q.field.split(" ")[0] + " ") for q in problems):
+                if any(q.field.split(" ")[0] in (prob.field, name) for q in problems):
                     continue  # already reported with its cell
                 problems.append(Problem(f"{prob.field} {cell_label(sheet, cells.get(name))}", prob.value,
                                         prob.accepted))

@@ -66,8 +66,9 @@ def read_catalog_text(text: str, path: Path):
     """Parse catalog CSV text (comments ``#``, key column as text, spaces stripped); raise a Problem on error."""
     import pandas as pd
 
-    from synth.io.tables import _parser_problem
+    from synth.io.tables import _parser_problem, check_field_counts
 
+    check_field_counts(text, path, "catalog", comment="#")
     try:
         df = pd.read_csv(io.StringIO(text), comment="#", skipinitialspace=True, dtype=str, keep_default_na=False,
                          nrows=LIMITS.catalog_rows + 1)

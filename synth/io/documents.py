@@ -38,7 +38,7 @@ def read_document(path, what: str, *, accepted: str = "an existing .yaml, .yml, 
     if fmt is None:
         raise InputError(Problem(what, str(path), accepted + " (by its extension)"))
     text = read_text(path, what, accepted=accepted)
-    return parse(text, fmt, Path(path).name, allow_nonfinite=allow_nonfinite)
+    return parse(text, fmt, Path(path).name, allow_nonfinite=allow_nonfinite, what=what)
 
 
 def read_design_mapping(path, what: str = "input file") -> dict:

@@ -41,16 +41,20 @@ __all__ = ["parse", "check_values", "FORMAT_OF_SUFFIX"]
 FORMAT_OF_SUFFIX = {".yaml": "yaml", ".yml": "yaml", ".toml": "toml", ".json": "json"}
 
 
-def parse(text: str, fmt: str, where: str, *, limits: Limits = LIMITS, allow_nonfinite: bool = False) -> Any:
+def parse(text: str, fmt: str, where: str, *, limits: Limits = LIMITS, allow_nonfinite: bool = False,
+          what: str = "") -> Any:
     """The data of document ``text`` in format ``fmt`` (``yaml``, ``toml``, ``json``).
 
-    ``where`` names the file in messages. Raises :class:`InputError` for a
+    ``where`` names the file in messages, ``what`` the option or role of the
+    file (``--parts``, ``input file``): a problem with the whole document is
+    reported as ``what (where)``. Raises :class:`InputError` for a
     syntax error (with the parser's line and column), a document beyond the
     limits, or a bad value (see :func:`check_values`).
     """
+    doc = f"{what} ({where})" if what else where
     try:
         if fmt == "yaml":
-            data = _yaml(text, where, limits)
+            data = _yaml(text, doc, limits)
         elif fmt == "toml":
             import tomllib
             data = tomllib.loads(text)
@@ -61,12 +65,12 @@ def parse(text: str, fmt: str, where: str, *, limits: Limits = LIMITS, allow_non
     except InputError:
         raise
     except RecursionError:
-        raise InputError(Problem(where, "nesting", f"a document nested at most {limits.depth} levels deep")) from None
+        raise InputError(Problem(doc, "nesting", f"a document nested at most {limits.depth} levels deep")) from None
     except ValueError as exc:  # json.JSONDecodeError, tomllib.TOMLDecodeError, int() digit limit
-        raise InputError(Problem(where, f"not valid {fmt.upper()}", _reason(exc))) from None
+        raise InputError(Problem(doc, f"not valid {fmt.upper()}", _reason(exc))) from None
     except Exception as exc:  # yaml.YAMLError and its marks (line, column)
-        raise InputError(Problem(where, f"not valid {fmt.upper()}", _reason(exc))) from None
-    check_values(data, where, limits=limits, allow_nonfinite=allow_nonfinite)
+        raise InputError(Problem(doc, f"not valid {fmt.upper()}", _reason(exc))) from None
+    check_values(data, where, limits=limits, allow_nonfinite=allow_nonfinite, doc=doc)
     return data
 
 
@@ -146,7 +150,7 @@ def _yaml_children(node, yaml) -> list:
 
 
 def check_values(data: Any, where: str, *, limits: Limits = LIMITS, allow_nonfinite: bool = False,
-                 prefix: str = "") -> None:
+                 prefix: str = "", doc: str | None = None) -> None:
     """Walk ``data`` once; raise one :class:`InputError` listing every value beyond the limits.
 
     Each problem names the value's path in the document (``inputs.working_arm_mm``,
@@ -154,14 +158,15 @@ def check_values(data: Any, where: str, *, limits: Limits = LIMITS, allow_nonfin
     """
     problems: list[Problem] = []
     count = 0
+    doc = doc or where
     stack: list[tuple[Any, str, int]] = [(data, prefix, 0)]
     while stack:
         value, path, depth = stack.pop()
         count += 1
         if count > limits.nodes:
-            raise InputError(Problem(where, "size", f"a document of at most {limits.nodes} values"))
+            raise InputError(Problem(doc, "size", f"a document of at most {limits.nodes} values"))
         if depth > limits.depth:
-            raise InputError(Problem(f"{path or 'document'} ({where})", "nesting",
+            raise InputError(Problem(f"{path} ({where})" if path else doc, "nesting",
                                      f"a document nested at most {limits.depth} levels deep"))
         label = f"{path or 'document'} ({where})"
         if isinstance(value, dict):

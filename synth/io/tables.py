@@ -25,7 +25,7 @@ from synth.errors import InputError, Problem
 from synth.io.files import check_size, check_zip, existing_file, read_text, suffix_of
 from synth.io.limits import LIMITS
 
-__all__ = ["TABLE_FORMATS", "read_csv_text", "read_table", "duplicate_columns"]
+__all__ = ["TABLE_FORMATS", "read_csv_text", "read_table", "duplicate_columns", "check_field_counts"]
 
 #: file suffix -> table format
 TABLE_FORMATS = {".csv": "csv", ".xlsx": "excel", ".xlsm": "excel", ".ods": "ods", ".parquet": "parquet",
@@ -43,6 +43,26 @@ def _parser_problem(exc: Exception, p: Path, what: str) -> Problem:
     return Problem(what, str(p), f"a readable CSV file ({type(exc).__name__}: {text[:200]})")
 
 
+def check_field_counts(text: str, p: Path, what: str, comment: str | None = None) -> None:
+    """Every record of CSV ``text`` has as many fields as its header (pandas would take extra ones as an index)."""
+    import csv
+
+    lines = (line for line in io.StringIO(text) if not (comment and line.lstrip().startswith(comment)))
+    reader = csv.reader(lines, skipinitialspace=True)
+    n = None
+    try:
+        for rec in reader:
+            if not rec or (len(rec) == 1 and not rec[0].strip()):
+                continue
+            if n is None:
+                n = len(rec)
+            elif len(rec) != n:
+                raise InputError(Problem(f"{what} ({p.name}, line {reader.line_num})", f"{len(rec)} fields",
+                                         f"{n} fields as in the header line (a value with a comma needs \"quotes\")"))
+    except csv.Error as exc:
+        raise InputError(Problem(f"{what} ({p.name}, line {reader.line_num})", "not valid CSV", str(exc))) from None
+
+
 def read_csv_text(path, what: str, *, limit: int | None = None, max_rows: int | None = None, typed: bool = False,
                   comment: str | None = None):
     """A CSV file as a DataFrame: UTF-8, at most ``limit`` bytes and ``max_rows`` rows.
@@ -56,6 +76,7 @@ def read_csv_text(path, what: str, *, limit: int | None = None, max_rows: int | 
     text = read_text(p, what, limit=LIMITS.portfolio_bytes if limit is None else limit,
                      accepted="a UTF-8 CSV file")
     max_rows = LIMITS.portfolio_rows if max_rows is None else max_rows
+    check_field_counts(text, p, what, comment)
     try:
         df = pd.read_csv(io.StringIO(text), dtype=None if typed else str, skipinitialspace=True, comment=comment,
                          nrows=max_rows + 1)

@@ -136,7 +136,7 @@ def _read_ods(p: Path, prefer: str, skip: tuple[str, ...]) -> Sheet | None:
     from odf import teletype
     from odf.namespaces import OFFICENS, TABLENS
     from odf.opendocument import load
-    from odf.table import Table, TableCell, TableRow
+    from odf.table import Table, TableRow
 
     doc = load(str(p))
     tables = doc.spreadsheet.getElementsByType(Table)
@@ -159,8 +159,7 @@ def _read_ods(p: Path, prefer: str, skip: tuple[str, ...]) -> Sheet | None:
             if cell.qname[1] not in ("table-cell", "covered-table-cell"):
                 continue
             n = min(int(cell.getAttrNS(TABLENS, "number-columns-repeated") or 1), LIMITS.sheet_columns - c)
-            content = _ods_value(cell, teletype, OFFICENS, TABLENS) if isinstance(cell, TableCell) or \
-                cell.qname[1] == "table-cell" else Cell()
+            content = _ods_value(cell, teletype, OFFICENS, TABLENS) if cell.qname[1] == "table-cell" else Cell()
             for _ in range(n):
                 c += 1
                 if content.value is not None or content.formula is not None:
