@@ -56,9 +56,12 @@ class Limits:
       (a durability duration in hours); a number of more than 30 digits is a
       typing error, and one of 400 digits would overflow a float.
     * ``portfolio_bytes`` / ``portfolio_rows``: a portfolio of 200,000
-      applications (a whole product line's history; about 18 h of screening at
-      the measured 3-15 applications/s) of 60 fields; the largest accepted table
-      read as text stays under 1 GB.
+      applications (a whole product line's history; about 4-18 h of screening
+      at the measured 3-15 applications/s) of 54 fields is a 94 MB CSV, read in
+      3 s with a peak of 0.86 GB (measured); 128 MB keeps the peak about 1.2 GB.
+      An .xlsx portfolio is read streaming (openpyxl read-only) up to 256 MB
+      unpacked; an .ods one is parsed whole by odfpy (a DOM about 10-20 times
+      the XML), so it is limited to 32 MB unpacked (about 20,000 rows).
     * ``catalog_bytes`` / ``catalog_rows``: a user catalog replaces a
       built-in one of at most a few hundred rows.
     """
@@ -72,8 +75,9 @@ class Limits:
     depth: int = 32
     string_chars: int = 10_000
     integer_digits: int = 30
-    portfolio_bytes: int = 256 * MB
-    portfolio_unpacked_bytes: int = 512 * MB
+    portfolio_bytes: int = 128 * MB
+    portfolio_unpacked_bytes: int = 256 * MB
+    portfolio_ods_unpacked_bytes: int = 32 * MB
     portfolio_rows: int = 200_000
     portfolio_columns: int = 500
     catalog_bytes: int = 4 * MB

@@ -121,7 +121,8 @@ def read_table(path, what: str = "portfolio"):
     elif fmt in ("excel", "ods"):
         check_size(p, what, LIMITS.portfolio_bytes, "workbook")
         kind = ".ods workbook (LibreOffice)" if fmt == "ods" else ".xlsx workbook"
-        check_zip(p, what, LIMITS.portfolio_unpacked_bytes, kind)
+        check_zip(p, what, LIMITS.portfolio_ods_unpacked_bytes if fmt == "ods" else LIMITS.portfolio_unpacked_bytes,
+                  kind)
         try:
             df = pd.read_excel(p, dtype=object, nrows=rows + 1, engine="odf" if fmt == "ods" else "openpyxl")
         except ImportError:  # pragma: no cover - odfpy is a dependency
