@@ -70,9 +70,25 @@ def set_user_dirs(*dirs: str | os.PathLike) -> None:
     load.cache_clear()
 
 
+_ENV_CHECKED: dict[str, list[Path]] = {}
+
+
 def _user_dirs() -> list[Path]:
     env = os.environ.get("SYNTH_CATALOGS", "")
-    return _USER_DIRS + [Path(p) for p in env.split(os.pathsep) if p]
+    dirs = _ENV_CHECKED.get(env)
+    if dirs is None:  # checked once per value of the variable, like --catalogs (see set_user_dirs)
+        from synth.io.catalogs import check_user_dir
+        dirs = [Path(p) for p in env.split(os.pathsep) if p]
+        problems = []
+        for d in dirs:
+            try:
+                check_user_dir(d, names(), lambda n: _load_cached(n, ()), option="SYNTH_CATALOGS")
+            except InputError as exc:
+                problems.extend(exc.problems)
+        if problems:
+            raise InputError(problems)
+        _ENV_CHECKED[env] = dirs
+    return _USER_DIRS + dirs
 
 
 def names() -> list[str]:

@@ -373,3 +373,10 @@ def test_count_bounds_documented():
             check_count(c.option, c.hi + 1)
         with pytest.raises(InputError):
             check_count(c.option, "1.5")
+
+
+def test_synth_catalogs_variable_is_checked_like_the_option(tmp_path, monkeypatch, capsys):
+    monkeypatch.setenv("SYNTH_CATALOGS", str(tmp_path / "no_such_folder"))
+    assert main(["template", str(tmp_path / "t.xlsx"), "--from", str(CASES_DIR / "case3.yaml")]) == 2
+    err = capsys.readouterr().err
+    assert "SYNTH_CATALOGS" in err and "no such folder" in err and "Traceback" not in err
