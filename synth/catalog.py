@@ -29,7 +29,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from synth.errors import CatalogError, Problem
+from synth.errors import CatalogError, InputError, Problem
 
 __all__ = ["builtin_dir", "set_user_dirs", "names", "load", "row", "keys", "constant", "constant_row"]
 
@@ -46,14 +46,49 @@ def builtin_dir() -> Path:
 
 
 def set_user_dirs(*dirs: str | os.PathLike) -> None:
-    """Use the given folders (first wins) to override built-in catalogs."""
+    """Use the given folders (first wins) to override built-in catalogs.
+
+    Each folder is checked at once through the input gate
+    (:func:`synth.io.catalogs.check_user_dir`): a folder that does not exist,
+    a CSV not named like a built-in catalog, a malformed or empty CSV, text
+    in a number column, a missing ``source`` column are each an
+    :class:`~synth.errors.InputError` naming the file, row and column.
+    """
+    from synth.io.catalogs import check_user_dir
+
+    _USER_DIRS[:] = []
+    load.cache_clear()
+    problems = []
+    for d in dirs:
+        try:
+            check_user_dir(d, names(), lambda n: _load_cached(n, ()))
+        except InputError as exc:
+            problems.extend(exc.problems)
+    if problems:
+        raise InputError(problems)
     _USER_DIRS[:] = [Path(d) for d in dirs]
     load.cache_clear()
 
 
+_ENV_CHECKED: dict[str, list[Path]] = {}
+
+
 def _user_dirs() -> list[Path]:
     env = os.environ.get("SYNTH_CATALOGS", "")
-    return _USER_DIRS + [Path(p) for p in env.split(os.pathsep) if p]
+    dirs = _ENV_CHECKED.get(env)
+    if dirs is None:  # checked once per value of the variable, like --catalogs (see set_user_dirs)
+        from synth.io.catalogs import check_user_dir
+        dirs = [Path(p) for p in env.split(os.pathsep) if p]
+        problems = []
+        for d in dirs:
+            try:
+                check_user_dir(d, names(), lambda n: _load_cached(n, ()), option="SYNTH_CATALOGS")
+            except InputError as exc:
+                problems.extend(exc.problems)
+        if problems:
+            raise InputError(problems)
+        _ENV_CHECKED[env] = dirs
+    return _USER_DIRS + dirs
 
 
 def names() -> list[str]:
@@ -79,9 +114,8 @@ def _load_cached(name: str, user_dirs: tuple[Path, ...]) -> pd.DataFrame:
     for d in reversed(user_dirs):
         upath = d / f"{name}.csv"
         if upath.is_file():
-            udf = _read(upath)
-            if udf.columns[0] != key:
-                raise CatalogError(Problem(f"{upath} (key column)", udf.columns[0], f"'{key}' as in the built-in catalog"))
+            from synth.io.catalogs import read_user_catalog
+            udf = read_user_catalog(upath, df if not user_dirs else _load_cached(name, ()))
             df = pd.concat([df[~df[key].isin(udf[key])], udf], ignore_index=True)
     return df
 

@@ -30,7 +30,6 @@ per field (name, value, what is accepted), in an :class:`~synth.errors.InputErro
 from __future__ import annotations
 
 import difflib
-import json
 import math
 import re
 from dataclasses import dataclass, field, fields as dc_fields, make_dataclass
@@ -39,6 +38,9 @@ from typing import Any
 
 from synth import catalog
 from synth.errors import InputError, Problem
+from synth.io.limits import short
+from synth.io.numbers import is_not_given, number_from_text
+from synth.io.numbers import parse_number_list as _parse_number_list
 
 __all__ = ["Field", "FIELDS", "SECTIONS", "DesignInput", "validate", "load_input", "read_mapping", "field_by_name",
            "parse_number_list"]
@@ -68,10 +70,16 @@ class Field:
     default: Any = None
     label: str = ""
     aliases: tuple[str, ...] = ()
+    #: the thesis's own words for the choices (Tables 9 and 13, Fig. 22-23, chapter "typologies"): word -> choice
+    words: tuple[tuple[str, str], ...] = ()
+    #: why the bounds are what they are (shown in docs/sections/input_gate.md)
+    basis: str = ""
 
     def accepted(self) -> str:
         if self.choices:
-            return "one of " + ", ".join(self.choices)
+            words = [w for w, c in self.words if _norm_word(w) != c]  # "Belt In Oil" is belt_in_oil: not listed
+            return "one of " + ", ".join(self.choices) + (
+                " (or the thesis's words: " + ", ".join(words) + ")" if words else "")
         if self.catalog:
             return "one of " + ", ".join(catalog.keys(self.catalog)) + f" (catalogs/{self.catalog}.csv)"
         if self.kind == "list":
@@ -92,15 +100,22 @@ NONNEG = dict(lo=0.0)
 FIELDS: tuple[Field, ...] = (
     # Application
     _f("application_type", "Application", choices=("dry", "belt_in_oil"), label="Application type (Dry / Belt In Oil)",
-       aliases=("application",)),
-    _f("engine_fuel", "Application", kind="str", choices=("gasoline", "diesel"), label="Engine fuel"),
+       aliases=("application",), words=(("Belt In Oil", "belt_in_oil"), ("BIO", "belt_in_oil"),
+                                        ("lubricated", "belt_in_oil"), ("Dry", "dry"))),
+    _f("engine_fuel", "Application", kind="str", choices=("gasoline", "diesel"), label="Engine fuel",
+       words=(("Gasoline", "gasoline"), ("petrol", "gasoline"), ("Diesel", "diesel"))),
     # Pulley
-    _f("pulley_shell_type", "Pulley", kind="str", choices=("flat", "toothed"), label="Pulley shell type"),
+    _f("pulley_shell_type", "Pulley", kind="str", choices=("flat", "toothed"), label="Pulley shell type",
+       words=(("Flat", "flat"), ("cylindrical", "flat"), ("Toothed", "toothed"))),
     _f("pulley_diameter_mm", "Pulley", "mm", **POS, hi=200, label="Pulley diameter"),
     _f("pulley_max_parallelism_eol_mm", "Pulley", "mm", required=False, **POS, hi=5, label="Pulley max parallelism at EOL"),
     # Tensioner geometrical data
     _f("belt_loading_type", "Tensioner geometrical data", kind="str",
-       choices=("single_eccentric", "double_eccentric", "double_eccentric_crank_rod"), label="Belt loading type"),
+       choices=("single_eccentric", "double_eccentric", "double_eccentric_crank_rod"), label="Belt loading type",
+       words=(("Autosetting", "single_eccentric"), ("Single eccentric autosetting", "single_eccentric"),
+              ("Single eccentric", "single_eccentric"), ("Double eccentric", "double_eccentric"),
+              ("Double eccentric with crank/rod loading system", "double_eccentric_crank_rod"),
+              ("Double eccentric crank/rod", "double_eccentric_crank_rod"), ("crank/rod", "double_eccentric_crank_rod"))),
     _f("working_arm_mm", "Tensioner geometrical data", "mm", **POS, hi=20, label="Working arm length"),
     _f("loading_arm_mm", "Tensioner geometrical data", "mm", required=False, **NONNEG, hi=20,
        label="Loading arm length (empty: Table 2 standard)"),
@@ -122,14 +137,25 @@ FIELDS: tuple[Field, ...] = (
     _f("lockup_pin_diameter_mm", "Lock-up pin", "mm", required=False, **POS, hi=20, label="Lock-up pin diameter"),
     # Space constraints
     _f("max_pivot_height_mm", "Space constraints", "mm", **POS, hi=300, label="Max pivot height"),
-    _f("max_axial_displacement_mm", "Space constraints", "mm", **POS, hi=300, label="Max axial displacement"),
+    _f("max_axial_displacement_mm", "Space constraints", "mm", required=False, **POS, hi=300,
+       label="Max axial displacement (N/A: reverse layout, eq. (18))"),
+    _f("min_belt_crankcase_clearance_mm", "Space constraints", "mm", required=False, **NONNEG, hi=50,
+       label="Min belt-crankcase clearance, eq. (27); empty: constant reverse_layout_min_crankcase_clearance_mm",
+       basis="eq. (27)'s clearance_min; 50 mm is more than any pulley offset of the thesis's cases (belt plane "
+             "20-29.5 mm above the crankcase)"),
     # Pivot
-    _f("pivot_class_diameter_mm", "Pivot", "mm", required=False, **POS, hi=60,
-       label="Pivot class diameter (empty: Table 2 standard)"),
+    _f("pivot_class_diameter_mm", "Pivot", "mm", required=False, lo=8.0, hi=60,
+       label="Pivot class diameter (empty: Table 2 standard)",
+       basis="physical minimum: the pivot is a tube around the fixation bolt; the smallest catalog bolt (M6) needs "
+             "a 6.2 mm hole and the pivot wall at least 1 mm a side (catalogs/constants_execution.csv "
+             "bolt_hole_clearance_mm, pivot_min_wall_mm): 8.2 mm, rounded down to 8. Thesis Table 2 classes are "
+             "17-22 mm and its cases use 16 and 20. A 1e-6 mm pivot made the flowchart's bushing-length search "
+             "allocate 24 GB (candidates = max pivot height / pivot diameter)"),
     _f("pivot_bushing_radial_thickness_mm", "Pivot", "mm", required=False, **POS, hi=5,
        label="Pivot bushing radial thickness (supplier)"),
     # Durability test
     _f("durability_test", "Durability test", kind="str", required=False, choices=("defined", "assumed"),
+       words=(("Defined", "defined"), ("Assumed", "assumed")),
        default="defined", label="Durability test (defined / assumed from engine type)"),
     _f("engine_type", "Durability test", kind="str", required=False, catalog="durability_tests",
        label="Engine type (when the durability test is assumed)"),
@@ -141,6 +167,8 @@ FIELDS: tuple[Field, ...] = (
     _f("calculated_torque_target_nm", "Tensioner specifications", "Nm", **POS, hi=100, label="Calculated torque target"),
     _f("damping_typology", "Tensioner specifications", kind="str", required=False,
        choices=("defined", "only_radial", "radial_and_axial"), default="defined",
+       words=(("Defined", "defined"), ("Only radial", "only_radial"), ("Radial and Axial", "radial_and_axial"),
+              ("Radial + Axial", "radial_and_axial")),
        label="Damping typology (defined: give the target; assumed: only radial / radial and axial)"),
     _f("damping_target_nm", "Tensioner specifications", "Nm", required=False, **NONNEG, hi=100, label="Damping target"),
     _f("damping_tolerance_nm", "Tensioner specifications", "Nm", required=False, **NONNEG, hi=100, label="Damping tolerance"),
@@ -154,11 +182,13 @@ FIELDS: tuple[Field, ...] = (
     _f("arm_travel_nominal_to_free_deg", "Main spring", "deg", required=False, **NONNEG, hi=180,
        label="Arm travel nominal -> free arm (cold stop); empty: constant main_spring_dtheta_nom_free_arm_deg"),
     _f("main_spring_mode", "Main spring", kind="str", required=False, choices=("automatic", "manual"),
+       words=(("Automatic", "automatic"), ("Manual", "manual")),
        default="automatic", label="Main spring (automatic: search the catalog / manual: verify)"),
     _f("main_spring_material", "Main spring", kind="str", required=False, catalog="spring_materials",
        label="Main spring material (manual)"),
     _f("main_spring_wire_section", "Main spring", kind="str", required=False, choices=("round", "rectangular"),
-       label="Wire section (manual)"),
+       label="Wire section (manual)", words=(("Round wire", "round"), ("Flat wire", "rectangular"), ("flat", "rectangular"),
+                                             ("rectangular wire", "rectangular"))),
     _f("main_spring_wire_size_mm", "Main spring", "mm", kind="list", required=False,
        label="Wire size: [d] or [b, h] (manual)"),
     _f("main_spring_mean_body_diameter_mm", "Main spring", "mm", required=False, **POS, hi=200,
@@ -167,6 +197,7 @@ FIELDS: tuple[Field, ...] = (
     _f("tilting_safety_factor", "Bolt", required=False, **POS, hi=20, label="Tilting safety factor (target)"),
     _f("sliding_safety_factor", "Bolt", required=False, **POS, hi=20, label="Sliding safety factor (target)"),
     _f("bolt_mode", "Bolt", kind="str", required=False, choices=("automatic", "manual"), default="automatic",
+       words=(("Automatic", "automatic"), ("Manual", "manual")),
        label="Bolt (automatic: escalate format and class / manual: verify)"),
     _f("bolt_format", "Bolt", kind="str", required=False, catalog="bolts", label="Bolt format (manual)"),
     _f("bolt_property_class", "Bolt", kind="str", required=False, catalog="bolt_property_classes",
@@ -212,62 +243,91 @@ DesignInput = make_dataclass(
 DesignInput.__module__ = __name__
 
 
+def _norm_word(text: str) -> str:
+    """A choice as typed, normalised: lower case, quotes dropped, spaces/hyphens/slashes as ``_``."""
+    t = text.strip().lower()
+    for q in "\"'“”‘’`":
+        t = t.replace(q, "")
+    t = re.sub(r"[\s\-/+]+", "_", t)
+    return t.strip("_")
+
+
+def _choice(f: Field, text: str) -> str | None:
+    """The choice ``text`` means: a choice itself or one of the thesis's words for it (case, spaces free)."""
+    norm = _norm_word(text)
+    if norm in f.choices:
+        return norm
+    for word, choice in f.words:
+        if _norm_word(word) == norm:
+            return choice
+    return None
+
+
 def _coerce(f: Field, value: Any, problems: list[Problem]) -> Any:
-    """Convert ``value`` to the field's kind, appending a problem on failure."""
-    if value is None:
+    """Convert ``value`` to the field's kind, appending a problem on failure.
+
+    ``None`` and the "not given" words (``N/A``, ``n.a.``, ``-``, empty; see
+    :data:`synth.io.numbers.NOT_GIVEN`) give None: the field is not given.
+    """
+    if is_not_given(value):
         return None
+    shown = short(value)
     if f.kind == "list":
-        items = value if isinstance(value, (list, tuple)) else [value]
-        try:
-            out = [float(v) for v in items]
-        except (TypeError, ValueError):
-            problems.append(Problem(f.name, value, f.accepted()))
-            return None
-        if not out or any(not math.isfinite(v) or v <= 0 for v in out):
-            problems.append(Problem(f.name, value, f.accepted()))
+        items = parse_number_list(value)
+        items = items if isinstance(items, (list, tuple)) else [items]
+        out = []
+        for v in items:
+            x = _number(v)
+            if x is None or x <= 0:
+                problems.append(Problem(f.name, shown, f.accepted()))
+                return None
+            out.append(x)
+        if not out or len(out) > 2:
+            problems.append(Problem(f.name, shown, f.accepted()))
             return None
         return out
     if f.choices or f.catalog or f.kind == "str":
+        if isinstance(value, (dict, list, tuple, bool)):
+            problems.append(Problem(f.name, shown, f.accepted()))
+            return None
         text = str(value).strip()
         if f.choices:
-            norm = text.lower().replace(" ", "_").replace("-", "_")
-            if norm not in f.choices:
-                problems.append(Problem(f.name, value, f.accepted()))
-                return None
-            return norm
+            choice = _choice(f, text)
+            if choice is None:
+                problems.append(Problem(f.name, shown, f.accepted()))
+            return choice
         if f.catalog and text not in catalog.keys(f.catalog):
-            problems.append(Problem(f.name, value, f.accepted()))
+            problems.append(Problem(f.name, shown, f.accepted()))
             return None
         return text
-    if isinstance(value, bool):
-        problems.append(Problem(f.name, value, f.accepted()))
-        return None
-    if isinstance(value, str):
-        text = value.strip().rstrip("%").strip()
-        try:
-            value = float(text)
-        except ValueError:
-            problems.append(Problem(f.name, value, f.accepted()))
-            return None
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        problems.append(Problem(f.name, value, f.accepted()))
-        return None
-    if not math.isfinite(number):
-        problems.append(Problem(f.name, value, f.accepted()))
+    number = _number(value)
+    if number is None:
+        problems.append(Problem(f.name, shown, f.accepted()))
         return None
     below = number <= f.lo if f.lo_open else number < f.lo
     above = number >= f.hi if f.hi_open else number > f.hi
     if below or above:
-        problems.append(Problem(f.name, value, f.accepted()))
+        problems.append(Problem(f.name, shown, f.accepted()))
         return None
     if f.kind == "int":
         if number != int(number):
-            problems.append(Problem(f.name, value, f.accepted()))
+            problems.append(Problem(f.name, shown, f.accepted()))
             return None
         return int(number)
     return number
+
+
+def _number(value) -> float | None:
+    """A finite float from a number or a cell's text (decimal comma, ``%``), else None (never raises)."""
+    if isinstance(value, bool) or value is None:
+        return None
+    if isinstance(value, str):
+        return number_from_text(value)
+    try:
+        number = float(value)
+    except (TypeError, ValueError, OverflowError):  # a 400-digit integer overflows a float
+        return None
+    return number if math.isfinite(number) else None
 
 
 def _require(d: dict, names: tuple[str, ...], why: str, problems: list[Problem]) -> None:
@@ -325,15 +385,23 @@ def validate(data: dict, partial: bool = False) -> "DesignInput":
     """
     if not isinstance(data, dict):
         raise InputError(Problem("input", type(data).__name__, "a mapping of field names to values"))
+    data = {k: v for k, v in data.items()}
     problems: list[Problem] = []
     out: dict[str, Any] = {}
+    given_as: dict[str, str] = {}
     for key, value in data.items():
+        key = str(key)
         name = _ALIASES.get(key, key)
         if name not in _BY_NAME:
-            near = difflib.get_close_matches(str(key), list(_BY_NAME), n=1)
+            near = difflib.get_close_matches(key, list(_BY_NAME), n=1)
             hint = f" (did you mean {near[0]}?)" if near else ""
-            problems.append(Problem(str(key), value, "a known design-input field" + hint))
+            problems.append(Problem(short(key), short(value), "a known design-input field" + hint))
             continue
+        if name in given_as:
+            problems.append(Problem(key, short(value), f"only one of {given_as[name]} and {key}: both name the field "
+                                                       f"{name} (remove one)"))
+            continue
+        given_as[name] = key
         out[name] = _coerce(_BY_NAME[name], value, problems)
     for f in FIELDS:
         if out.get(f.name) is None and f.default is not None:
@@ -364,35 +432,14 @@ def validate(data: dict, partial: bool = False) -> "DesignInput":
 
 
 def read_mapping(path: str | Path) -> dict:
-    """Read a YAML, TOML, JSON or Excel (.xlsx template) file into a dict (the ``inputs:`` block if any)."""
-    p = Path(path)
-    if p.suffix.lower() in (".xlsx", ".xlsm"):  # the Excel input template (synth template)
-        from synth.excel.reader import read_workbook
-        return read_workbook(p)
-    if not p.is_file():
-        raise InputError(Problem("input file", str(p), "an existing .yaml, .yml, .toml, .json or .xlsx file"))
-    text = p.read_text(encoding="utf-8")
-    suffix = p.suffix.lower()
-    try:
-        if suffix in (".yaml", ".yml"):
-            import yaml
-            data = yaml.safe_load(text)
-        elif suffix == ".toml":
-            import tomllib
-            data = tomllib.loads(text)
-        elif suffix == ".json":
-            data = json.loads(text)
-        else:
-            raise InputError(Problem("input file", str(p), "a file ending in .yaml, .yml, .toml or .json"))
-    except InputError:
-        raise
-    except Exception as exc:  # parser errors carry line numbers: keep them
-        raise InputError(Problem("input file", str(p), f"valid {suffix[1:].upper()} ({exc})")) from None
-    if not isinstance(data, dict):
-        raise InputError(Problem("input file", str(p), "a mapping of field names to values"))
-    if "inputs" in data:
-        data = data["inputs"]
-    return data or {}
+    """Read a design input (YAML, TOML, JSON, the .xlsx template or a LibreOffice .ods) into a dict.
+
+    The file goes through the input gate (:func:`synth.io.documents.read_design_mapping`):
+    size, encoding, YAML aliases, nesting, huge and non-finite numbers are
+    checked before anything is built; a case file's ``inputs:`` block is read.
+    """
+    from synth.io.documents import read_design_mapping
+    return read_design_mapping(path)
 
 
 def load_input(path: str | Path) -> "DesignInput":
@@ -401,21 +448,13 @@ def load_input(path: str | Path) -> "DesignInput":
 
 
 def parse_number_list(value):
-    """A list-valued cell (a wire size: ``2.3 x 2.3``, ``2.3; 2.3``, ``[2.3, 2.3]``, a number) as a list of floats.
+    """A list-valued cell (a wire size: ``2.3 x 2.3``, ``2,5 x 2,5``, ``[2.3, 2.3]``, a number) as a list of floats.
 
     Text that does not parse is returned as it is, for :func:`validate` to
-    report with the field's name. Used by the Excel and portfolio readers.
+    report with the field's name. Used by the Excel and portfolio readers
+    (:func:`synth.io.numbers.parse_number_list`).
 
     >>> parse_number_list("2.3 x 2.3"), parse_number_list("3"), parse_number_list(2.5), parse_number_list("abc")
     ([2.3, 2.3], [3.0], [2.5], 'abc')
     """
-    import numpy as np
-    if isinstance(value, (list, tuple, np.ndarray)):
-        return [float(v) if isinstance(v, (int, float, np.number)) else v for v in value]
-    if isinstance(value, (int, float, np.number)):
-        return [float(value)]
-    parts = [p for p in re.split(r"[x×X;,\s\[\]]+", str(value)) if p]
-    try:
-        return [float(p) for p in parts]
-    except ValueError:
-        return value
+    return _parse_number_list(value)

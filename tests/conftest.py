@@ -38,3 +38,5 @@ def shrink_fit_case(model="paper", initial_rz=4.8, **overrides):
 def shrink_fit_row(table, state, level):
     """The row of a shrink-fit result table for ``state`` (new/worn) and ``level`` (min/max interference)."""
     return next(r for r in table if r["state"] == state and r["interference"] == level)
+# the corpus generator is a script, not a test module (it rewrites tests/bad_inputs/files when run)
+collect_ignore = ["bad_inputs/make_corpus.py"]

@@ -33,12 +33,13 @@ import pandas as pd
 
 from synth import schema
 from synth.errors import InputError, Problem
+from synth.io.numbers import is_not_given
 
-__all__ = ["FORMATS", "read_portfolio", "write_table", "to_table", "clean_cell", "row_record", "records",
+__all__ = ["FORMATS", "read_portfolio", "check_columns", "write_table", "to_table", "clean_cell", "row_record", "records",
            "validate_record", "validate_rows", "field_columns", "column_warnings", "format_problems"]
 
 #: file suffix -> format name
-FORMATS = {".csv": "csv", ".xlsx": "excel", ".xlsm": "excel", ".ods": "excel", ".parquet": "parquet", ".pq": "parquet"}
+FORMATS = {".csv": "csv", ".xlsx": "excel", ".xlsm": "excel", ".ods": "ods", ".parquet": "parquet", ".pq": "parquet"}
 
 _NAMES = {f.name for f in schema.FIELDS}
 _ALIASES = {a: f.name for f in schema.FIELDS for a in f.aliases}
@@ -46,7 +47,6 @@ _LIST_FIELDS = {f.name for f in schema.FIELDS if f.kind == "list"}
 #: usual identification columns, carried through without a "did you mean" warning
 PASSTHROUGH = ("application_id", "id", "name", "application_name", "project", "customer", "engine", "comment",
                "comments", "note", "notes", "row")
-_ACCEPTED = "an existing portfolio table: " + ", ".join(sorted(FORMATS)) + " (one application per row)"
 
 
 def _format(path: Path, what: str) -> str:
@@ -57,32 +57,47 @@ def _format(path: Path, what: str) -> str:
 
 
 def read_portfolio(path) -> pd.DataFrame:
-    """Read a portfolio table (CSV, Excel or Parquet, by extension) as it is in the file.
+    """Read a portfolio table (CSV, Excel, LibreOffice .ods or Parquet, by extension) as it is in the file.
 
-    CSV cells are read as text (the validator converts them, so ``"3,5"`` or
-    ``"abc"`` reach it and are reported, not turned into NaN by pandas);
-    Excel and Parquet keep their cell types. The index is reset to 0..n-1.
-    Raises :class:`~synth.errors.InputError` (exit code 2 in the CLI) for a
-    missing, unreadable or empty file or one without any design-input column.
+    The file goes through the input gate (:func:`synth.io.tables.read_table`:
+    size, rows, encoding, parser errors with their line). CSV cells are read
+    as text (the validator converts them, so ``"3,5"`` or ``"abc"`` reach it
+    and are reported, not turned into NaN by pandas); workbook and Parquet
+    cells keep their types. Raises :class:`~synth.errors.InputError` (exit
+    code 2 in the CLI) for a missing, unreadable or empty file, one without
+    any design-input column, or one that names a field twice (a repeated
+    column, or a field and its alias: ``application`` and ``application_type``).
     """
+    from synth.io.tables import read_table
+
     p = Path(path)
-    fmt = _format(p, "portfolio")
-    if not p.is_file():
-        raise InputError(Problem("portfolio", str(p), _ACCEPTED))
-    try:
-        if fmt == "csv":
-            df = pd.read_csv(p, dtype=str, skipinitialspace=True)
-        elif fmt == "excel":
-            df = pd.read_excel(p, dtype=object)
-        else:
-            df = pd.read_parquet(p)
-    except Exception as exc:  # parser errors: keep the parser's message
-        raise InputError(Problem("portfolio", str(p), f"a readable {fmt} table ({type(exc).__name__}: {exc})")) from None
-    df.columns = [str(c).strip() for c in df.columns]
+    _format(p, "portfolio")
+    df = read_table(p, "portfolio")
+    check_columns(df, p.name)
+    return df
+
+
+def check_columns(df: pd.DataFrame, where: str = "portfolio") -> None:
+    """A Problem for a table without design-input columns or naming one field twice."""
+    from synth.io.tables import duplicate_columns
+
+    problems = []
+    for first, again in duplicate_columns(df):
+        if first in _NAMES or first in _ALIASES:
+            problems.append(Problem(f"column {first} ({where})", "given twice",
+                                    "each design-input field in one column"))
+    by_field: dict[str, list[str]] = {}
+    for c in field_columns(df):
+        by_field.setdefault(_ALIASES.get(c, c), []).append(c)
+    for name, cols in by_field.items():
+        if len(cols) > 1:
+            problems.append(Problem(f"columns {' and '.join(cols)} ({where})", "both given",
+                                    f"only one of them: both name the field {name} (remove one column)"))
     if not field_columns(df):
-        raise InputError(Problem("portfolio", str(p), "a table whose columns are design-input field names "
-                                 "(e.g. " + ", ".join(f.name for f in schema.FIELDS[:3]) + ")"))
-    return df.reset_index(drop=True)
+        problems.append(Problem("portfolio", where, "a table whose columns are design-input field names "
+                                "(e.g. " + ", ".join(f.name for f in schema.FIELDS[:3]) + ")"))
+    if problems:
+        raise InputError(problems)
 
 
 def field_columns(df: pd.DataFrame) -> list[str]:
@@ -124,7 +139,7 @@ def clean_cell(value, name: str | None = None):
         return None
     if isinstance(value, str):
         value = value.strip()
-        if not value:
+        if is_not_given(value):
             return None
     if name is not None and _ALIASES.get(name, name) in _LIST_FIELDS:
         return _parse_list(value)
@@ -203,11 +218,11 @@ def write_table(df: pd.DataFrame, path) -> Path:
     p.parent.mkdir(parents=True, exist_ok=True)
     if fmt == "csv":
         df.to_csv(p, index=False)
-    elif p.suffix.lower() == ".ods":  # OpenDocument (odfpy): strings are string cells, never formulas
-        df.to_excel(p, index=False, engine="odf")
     elif fmt == "excel":  # text as text, significant figures, print setup (synth.excel.cells)
         from synth.excel.cells import write_frame
         write_frame(df, p, sheet="portfolio")
+    elif fmt == "ods":  # OpenDocument (odfpy): strings are string cells, never formulas
+        df.to_excel(p, index=False, engine="odf")
     else:
         arrow_safe(df).to_parquet(p, index=False)
     return p

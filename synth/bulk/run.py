@@ -18,6 +18,18 @@ is the input table, in input order, plus the engine's result columns and
 ``error``; it is assembled from the chunk files, so a fresh and a resumed run
 give the same table.
 
+Run integrity. Every run has an id (a random UUID, in the manifest) and
+holds a lock on its chunk folder (``run.lock``, an advisory ``flock``
+released by the operating system when the process ends, even killed): a
+second ``synth bulk`` on the same ``--out`` is refused while the first one
+runs, naming the run that holds it. Every chunk file carries, in its Parquet
+metadata, the run id, its row range and the SHA-256 of its content.
+``--resume`` continues the run of the manifest (its id) and refuses, naming
+them, chunk files of another run, with a bad checksum, or unreadable; before
+assembling the RESULT every chunk is checked again, so a result is never
+assembled from another run's chunks. RESULT is written to a temporary file
+and moved into place.
+
 ``engine="dask"`` submits one task per chunk to a ``dask.distributed``
 cluster (a :class:`~distributed.LocalCluster` of ``workers`` one-thread
 processes, or the scheduler at ``scheduler``) and writes each chunk as it
@@ -33,7 +45,9 @@ import json
 import logging
 import math
 import os
+import socket
 import time
+import uuid
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -43,19 +57,20 @@ import numpy as np
 import pandas as pd
 
 from synth import __version__, catalog
-from synth.bulk.portfolio import (arrow_safe, column_warnings, field_columns, read_portfolio, records,
+from synth.bulk.portfolio import (arrow_safe, column_warnings, field_columns, read_portfolio, row_record,
                                   validate_record, write_table)
 from synth.errors import InputError, Problem
 from synth.report.progress import Progress
 
 __all__ = ["ENGINES", "FIDELITIES", "DEFAULT_CHUNK_SIZE", "default_chunk_size", "RunReport", "result_columns", "compute_chunk",
-           "run_portfolio", "sidecar", "manifest_of", "chunk_ranges"]
+           "run_portfolio", "sidecar", "manifest_of", "chunk_ranges", "chunk_state", "RunLock"]
 
 ENGINES = ("inprocess", "dask")
 FIDELITIES = ("screening", "full")
 #: applications per chunk when the engine's memory constants are absent (see :func:`default_chunk_size`)
 DEFAULT_CHUNK_SIZE = 250
 MANIFEST = "manifest.json"
+LOCK = "run.lock"
 _MANIFEST_KEYS = ("portfolio_sha256", "n_rows", "objective", "fidelity", "chunk_size", "diagnose",
                   "synth_version", "catalogs_sha256")
 
@@ -248,31 +263,139 @@ def _write_atomic_json(path: Path, data: dict) -> None:
     os.replace(tmp, path)
 
 
-def _write_chunk(folder: Path, i: int, start: int, df: pd.DataFrame) -> None:
+def _canon(v):
+    """A cell as plain JSON data, the same before and after a Parquet round trip (NaN and None as null)."""
+    if v is None or v is pd.NA or v is pd.NaT:
+        return None
+    if isinstance(v, np.generic):
+        v = v.item()
+    if isinstance(v, float) and math.isnan(v):
+        return None
+    return v
+
+
+def content_sha256(df: pd.DataFrame) -> str:
+    """SHA-256 of a chunk's content: column names and every cell, canonically (order kept)."""
+    payload = json.dumps({"columns": [str(c) for c in df.columns],
+                          "rows": [[_canon(v) for v in row] for row in df.itertuples(index=False, name=None)]},
+                         default=str, separators=(",", ":"), allow_nan=True)
+    return hashlib.sha256(payload.encode("utf-8")).hexdigest()
+
+
+def _write_chunk(folder: Path, i: int, start: int, df: pd.DataFrame, run_id: str) -> None:
+    """Write chunk ``i`` (rows from ``start``) with its run id, row range and content checksum in its metadata."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
     df = df.copy()
     df.insert(0, "row", np.arange(start, start + len(df), dtype=np.int64))
+    df = arrow_safe(df)
+    table = pa.Table.from_pandas(df, preserve_index=False)
+    meta = dict(table.schema.metadata or {})
+    meta.update({b"synth_run_id": run_id.encode(), b"synth_chunk": str(i).encode(),
+                 b"synth_rows": f"{start}:{start + len(df)}".encode(),
+                 b"synth_sha256": content_sha256(table.to_pandas()).encode()})
+    table = table.replace_schema_metadata(meta)
     final = _chunk_path(folder, i)
     tmp = final.with_name(f".{final.name}.{os.getpid()}.tmp")
-    arrow_safe(df).to_parquet(tmp, index=False)
+    pq.write_table(table, tmp)
     os.replace(tmp, final)
 
 
-def _chunk_done(folder: Path, i: int, start: int, stop: int) -> bool:
+def _read_chunk(path: Path) -> tuple[pd.DataFrame, dict]:
+    import pyarrow.parquet as pq
+    table = pq.read_table(path)
+    meta = {k.decode(errors="replace"): v.decode(errors="replace") for k, v in (table.schema.metadata or {}).items()
+            if k.startswith(b"synth_")}
+    return table.to_pandas(), meta
+
+
+def chunk_state(folder: Path, i: int, start: int, stop: int, run_id: str) -> str:
+    """``"ok"``, ``"missing"`` or why chunk file ``i`` cannot be used by run ``run_id`` for rows ``start..stop-1``.
+
+    A chunk is usable only when it is readable, was written by run
+    ``run_id``, covers exactly those rows and its content matches its checksum.
+    """
     p = _chunk_path(folder, i)
     if not p.is_file():
-        return False
+        return "missing"
     try:
-        rows = pd.read_parquet(p, columns=["row"])["row"].to_numpy()
-    except Exception:  # a damaged file (should not happen with os.replace): recompute it
-        return False
-    return len(rows) == stop - start and bool((rows == np.arange(start, stop)).all())
+        df, meta = _read_chunk(p)
+    except Exception as exc:  # noqa: BLE001 - a damaged file is reported, never used
+        return f"unreadable ({type(exc).__name__}: {' '.join(str(exc).split())[:120]})"
+    if "synth_run_id" not in meta or "synth_sha256" not in meta:
+        return "written without a run id and checksum (by an older synth, or not by synth bulk)"
+    if meta["synth_run_id"] != run_id:
+        return f"written by another run ({meta['synth_run_id'][:12]}), not by run {run_id[:12]}"
+    if "row" not in df.columns or len(df) != stop - start or not (df["row"].to_numpy() == np.arange(start, stop)).all():
+        return f"rows {meta.get('synth_rows', '?')}, not the chunk's rows {start}:{stop}"
+    if content_sha256(df) != meta["synth_sha256"]:
+        return "its content does not match its checksum (changed or damaged since it was written)"
+    return "ok"
 
 
 def _clear(folder: Path) -> None:
-    """Remove this module's files (chunks, temporaries, manifest) from ``folder``, nothing else."""
+    """Remove this module's files (chunks, temporaries, manifest) from ``folder``, nothing else (not the lock)."""
     for p in list(folder.glob("chunk_*.parquet")) + list(folder.glob(".chunk_*.tmp")) + [folder / MANIFEST]:
         with contextlib.suppress(FileNotFoundError):
             p.unlink()
+
+
+class RunLock:
+    """An exclusive lock on a chunk folder for one run (``run.lock``; ``flock``, released when the process ends).
+
+    >>> import tempfile
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> with RunLock(folder, "run-a", "r.csv"):
+    ...     try:
+    ...         RunLock(folder, "run-b", "r.csv").acquire()
+    ...     except InputError as exc:
+    ...         print(exc.problems[0].field, "refused")
+    --out refused
+    """
+
+    def __init__(self, folder: Path, run_id: str, out) -> None:
+        self.path, self.run_id, self.out = Path(folder) / LOCK, run_id, out
+        self._fd: int | None = None
+
+    def acquire(self) -> "RunLock":
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            import fcntl
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except ImportError:  # pragma: no cover - not POSIX: no advisory locks, the per-run id still guards results
+            pass
+        except OSError:
+            try:
+                held = json.loads(os.pread(fd, 4096, 0).decode("utf-8", "replace") or "{}")
+            except ValueError:
+                held = {}
+            os.close(fd)
+            who = (f"run {str(held.get('run_id', '?'))[:12]} (process {held.get('pid', '?')} on "
+                   f"{held.get('host', '?')}, started {held.get('started', '?')})")
+            raise InputError(Problem("--out", str(self.out), f"a result that no other synth bulk run is writing: "
+                                                             f"{who} holds {self.path}; wait for it to finish, or "
+                                                             "give another --out")) from None
+        info = {"run_id": self.run_id, "pid": os.getpid(), "host": socket.gethostname(),
+                "started": time.strftime("%Y-%m-%d %H:%M:%S")}
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, json.dumps(info).encode(), 0)
+        self._fd = fd
+        return self
+
+    def release(self) -> None:
+        if self._fd is not None:
+            with contextlib.suppress(OSError):
+                os.ftruncate(self._fd, 0)
+            os.close(self._fd)  # closing the descriptor releases the flock; the file stays (no unlink race)
+            self._fd = None
+
+    def __enter__(self) -> "RunLock":
+        return self.acquire()
+
+    def __exit__(self, *exc) -> None:
+        self.release()
 
 
 @dataclass
@@ -291,6 +414,7 @@ class RunReport:
     warnings: list = field(default_factory=list)
     rows_computed: int = 0
     total_seconds: float = 0.0
+    run_id: str = ""
 
     @property
     def n_errors(self) -> int:
@@ -314,10 +438,10 @@ def _validate_settings(objective, fidelity, chunk_size, engine, workers) -> None
         raise InputError(Problem("--fidelity", fidelity, "one of " + ", ".join(FIDELITIES)))
     if engine not in ENGINES:
         raise InputError(Problem("--engine", engine, "one of " + ", ".join(ENGINES)))
-    if not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
-        raise InputError(Problem("--chunk-size", chunk_size, "an integer >= 1"))
-    if workers is not None and (not isinstance(workers, (int, np.integer)) or workers < 1):
-        raise InputError(Problem("--workers", workers, "an integer >= 1"))
+    from synth.io.limits import check_count
+    check_count("--chunk-size", chunk_size)
+    if workers is not None:
+        check_count("--workers", workers)
 
 
 def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str = "screening",
@@ -333,23 +457,25 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
     signature as :func:`synth.bulk.engine.screen_applications`; on Dask it
     must be picklable). Progress is drawn on ``stream`` (default stderr) when
     it is a terminal. ``connect_timeout_s`` bounds the wait for a ``scheduler``.
+    The run holds the lock of ``<out>.chunks`` from start to end (see the module doc).
     """
+    from synth.bulk.portfolio import FORMATS, check_columns
+
     chunk_size = default_chunk_size() if chunk_size is None else chunk_size
     _validate_settings(objective, fidelity, chunk_size, engine, workers)
     t0 = time.monotonic()
+    out = Path(out)
+    if out.suffix.lower() not in FORMATS:
+        raise InputError(Problem("--out", str(out), "a file ending in " + ", ".join(sorted(FORMATS))))
+    if out.is_dir():
+        raise InputError(Problem("--out", str(out), "a file name, not a folder"))
     if isinstance(portfolio, pd.DataFrame):
         table = portfolio.reset_index(drop=True)
-        if not field_columns(table):
-            raise InputError(Problem("portfolio", "DataFrame", "a table whose columns are design-input field names"))
+        check_columns(table, "DataFrame")
         p_hash = _sha256_frame(table)
     else:
         table = read_portfolio(portfolio)
         p_hash = _sha256_file(Path(portfolio))
-    out = Path(out)
-    write_check = out.suffix.lower()
-    from synth.bulk.portfolio import FORMATS
-    if write_check not in FORMATS:
-        raise InputError(Problem("--out", str(out), "a file ending in " + ", ".join(sorted(FORMATS))))
     notes = column_warnings(table)
     rcols = result_columns()
     clash = [c for c in table.columns if c in rcols or c == "row"]
@@ -361,70 +487,130 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
     folder = sidecar(out)
     manifest = manifest_of(p_hash, n, objective=objective, fidelity=fidelity, chunk_size=int(chunk_size),
                            diagnose=diagnose)
-    if resume and (folder / MANIFEST).is_file():
-        try:
-            old = json.loads((folder / MANIFEST).read_text(encoding="utf-8"))
-        except (OSError, ValueError):
-            raise InputError(Problem("--resume", str(folder / MANIFEST), "a readable manifest; rerun without --resume")) from None
-        _check_manifest(old, manifest, folder)
-    else:
-        if resume:
-            notes.append(f"nothing to resume in {folder}: starting from the first chunk")
-        folder.mkdir(parents=True, exist_ok=True)
-        _clear(folder)
-        _write_atomic_json(folder / MANIFEST, manifest)
-    recs = records(table)
-    done = [i for i, (a, b) in enumerate(ranges) if resume and _chunk_done(folder, i, a, b)]
-    todo = [i for i in range(len(ranges)) if i not in set(done)]
-    todo_set = set(todo)
-    kw = dict(objective=objective, fidelity=fidelity, diagnose=diagnose, screen=screen,
-              catalog_dirs=tuple(str(p) for p in catalog._user_dirs()))
-    computed = 0
-
-    def rows_computed() -> int:  # rows of the chunks computed in this run (written files not reused)
-        return sum(b - a for i, (a, b) in enumerate(ranges) if i in todo_set and _chunk_path(folder, i).is_file())
-
-    t_compute = time.monotonic()
-    with Progress(total=n, desc=f"synth bulk ({engine})", stream=stream) as bar:
-        bar.update(sum(ranges[i][1] - ranges[i][0] for i in done), note="reused")
-        if engine == "inprocess":
-            for i in todo:
-                if stop_after_chunks is not None and computed >= stop_after_chunks:
-                    break
-                a, b = ranges[i]
-                _write_chunk(folder, i, a, compute_chunk(recs[a:b], **kw))
-                computed += 1
-                bar.update(b - a)
+    run_id = uuid.uuid4().hex
+    lock = RunLock(folder, run_id, out).acquire()  # before anything in the folder is read or cleared
+    try:
+        done: list[int] = []
+        if resume and (folder / MANIFEST).is_file():
+            try:
+                old = json.loads((folder / MANIFEST).read_text(encoding="utf-8"))
+                if not isinstance(old, dict):
+                    raise ValueError
+            except (OSError, ValueError):
+                raise InputError(Problem("--resume", str(folder / MANIFEST),
+                                         "a readable manifest; rerun without --resume")) from None
+            _check_manifest(old, manifest, folder)
+            if not isinstance(old.get("run_id"), str) or not old["run_id"]:
+                raise InputError(Problem("--resume", str(folder / MANIFEST), "the manifest of a run with a run id "
+                                         "(written by an older synth); rerun without --resume"))
+            run_id = lock.run_id = old["run_id"]  # the resumed run continues the interrupted one
+            done = _resumable(folder, ranges, run_id)
         else:
-            computed = _run_dask(recs, ranges, todo, folder, kw, scheduler, workers, stop_after_chunks, bar,
-                                 connect_timeout_s)
-    seconds = time.monotonic() - t_compute
-    complete = all(_chunk_path(folder, i).is_file() for i in range(len(ranges)))
-    result = None
-    if complete:
-        result = assemble(table, folder, len(ranges))
-        write_table(result, out)
-    rep = RunReport(out=out, table=result, n_rows=n, n_chunks=len(ranges), computed=computed, reused=len(done),
-                    seconds=seconds, engine=engine, complete=complete, warnings=notes,
-                    rows_computed=rows_computed(), total_seconds=time.monotonic() - t0)
-    return rep
+            if resume:
+                notes.append(f"nothing to resume in {folder}: starting from the first chunk")
+            _clear(folder)
+            _write_atomic_json(folder / MANIFEST, {**manifest, "run_id": run_id})
+        todo = [i for i in range(len(ranges)) if i not in set(done)]
+        todo_set = set(todo)
+        kw = dict(objective=objective, fidelity=fidelity, diagnose=diagnose, screen=screen,
+                  catalog_dirs=tuple(str(p) for p in catalog._user_dirs()))
+        computed = 0
+        cols = field_columns(table)
+
+        def chunk_records(k: int) -> list[dict]:  # one chunk's records at a time: a big portfolio is not copied whole
+            a, b = ranges[k]
+            return [row_record(r) for r in table.iloc[a:b][cols].to_dict(orient="records")]
+
+        def write(k: int, df: pd.DataFrame) -> None:
+            _write_chunk(folder, k, ranges[k][0], df, run_id)
+
+        with Progress(total=n, desc=f"synth bulk ({engine})", stream=stream) as bar:
+            bar.update(sum(ranges[i][1] - ranges[i][0] for i in done), note="reused")
+            t_compute = time.monotonic()
+            if engine == "inprocess":
+                for i in todo:
+                    if stop_after_chunks is not None and computed >= stop_after_chunks:
+                        break
+                    write(i, compute_chunk(chunk_records(i), **kw))
+                    computed += 1
+                    bar.update(ranges[i][1] - ranges[i][0])
+            else:
+                computed = _run_dask(chunk_records, ranges, todo, write, kw, scheduler, workers, stop_after_chunks,
+                                     bar, connect_timeout_s)
+            seconds = time.monotonic() - t_compute
+        complete = all(_chunk_path(folder, i).is_file() for i in range(len(ranges)))
+        result = None
+        if complete:
+            result = assemble(table, folder, len(ranges), run_id=run_id, ranges=ranges)
+            tmp = out.with_name(f".{out.stem}.{run_id[:12]}.tmp{out.suffix}")
+            write_table(result, tmp)
+            os.replace(tmp, out)
+        rows_done = sum(b - a for i, (a, b) in enumerate(ranges) if i in todo_set and _chunk_path(folder, i).is_file())
+    finally:
+        lock.release()
+    return RunReport(out=out, table=result, n_rows=n, n_chunks=len(ranges), computed=computed, reused=len(done),
+                     seconds=seconds, engine=engine, complete=complete, warnings=notes, rows_computed=rows_done,
+                     total_seconds=time.monotonic() - t0, run_id=run_id)
 
 
-def assemble(table: pd.DataFrame, folder: Path, n_chunks: int) -> pd.DataFrame:
-    """The input ``table`` plus the result columns read back from the ``n_chunks`` chunk files, in input order."""
-    parts = [pd.read_parquet(_chunk_path(folder, i)) for i in range(n_chunks)]
+def _resumable(folder: Path, ranges: list, run_id: str) -> list[int]:
+    """Chunks of run ``run_id`` that can be reused; an :class:`InputError` naming every unusable chunk file."""
+    done, problems = [], []
+    for i, (a, b) in enumerate(ranges):
+        state = chunk_state(folder, i, a, b, run_id)
+        if state == "ok":
+            done.append(i)
+        elif state != "missing":
+            problems.append(Problem(f"--resume: {_chunk_path(folder, i).name}", state,
+                                    "a chunk of the interrupted run; delete the file to recompute it, or rerun "
+                                    "without --resume to start again"))
+    known = {_chunk_path(folder, i).name for i in range(len(ranges))}
+    for p in sorted(folder.glob("chunk_*.parquet")):
+        if p.name not in known:
+            problems.append(Problem(f"--resume: {p.name}", f"a chunk beyond the run's {len(ranges)} chunks",
+                                    "only chunks of the interrupted run; delete the file, or rerun without --resume"))
+    if problems:
+        raise InputError(problems)
+    return done
+
+
+def assemble(table: pd.DataFrame, folder: Path, n_chunks: int, run_id: str | None = None,
+             ranges: list | None = None) -> pd.DataFrame:
+    """The input ``table`` plus the result columns read back from the ``n_chunks`` chunk files, in input order.
+
+    With ``run_id`` every chunk is checked first (:func:`chunk_state`): a chunk
+    of another run, changed or damaged is an :class:`InputError` naming it, and
+    no result is assembled.
+    """
+    if run_id is not None:
+        if ranges is None or len(ranges) != n_chunks:
+            raise ValueError("assemble(run_id=...) needs the run's chunk ranges")
+        parts, problems = [], []
+        for i in range(n_chunks):
+            p = _chunk_path(folder, i)
+            a, b = ranges[i]
+            state = chunk_state(folder, i, a, b, run_id)
+            if state != "ok":
+                problems.append(Problem(f"chunk {p.name}", state, f"a chunk written by this run ({run_id[:12]}); "
+                                        "another process wrote into the folder? rerun the command"))
+            else:
+                parts.append(_read_chunk(p)[0])
+        if problems:
+            raise InputError(problems)
+    else:
+        parts = [pd.read_parquet(_chunk_path(folder, i)) for i in range(n_chunks)]
     cols = result_columns()
     res = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=["row"] + cols)
     res = res.sort_values("row").reset_index(drop=True)
     if len(res) != len(table) or not (res["row"].to_numpy() == np.arange(len(table))).all():
-        raise RuntimeError(f"chunk files in {folder} do not cover rows 0..{len(table) - 1}")
+        raise InputError(Problem("chunks", str(folder), f"chunk files covering rows 0..{len(table) - 1}; rerun without --resume"))
     res = _typed(res.reindex(columns=cols))
     return pd.concat([table.reset_index(drop=True), res], axis=1)
 
 
-def _run_dask(recs, ranges, todo, folder, kw, scheduler, workers, stop_after_chunks, bar,
+def _run_dask(chunk_records, ranges, todo, write, kw, scheduler, workers, stop_after_chunks, bar,
               connect_timeout_s: float = 20.0) -> int:
-    """Compute chunks ``todo`` on Dask, writing each as it completes; returns how many were written."""
+    """Compute chunks ``todo`` on Dask, writing each (``write(k, df)``) as it completes; returns how many were written."""
     try:
         from dask.distributed import Client, LocalCluster, as_completed
     except ImportError:  # pragma: no cover - dask[distributed] is a dependency
@@ -450,7 +636,7 @@ def _run_dask(recs, ranges, todo, folder, kw, scheduler, workers, stop_after_chu
         futures: dict = {}
 
         def submit(k: int):
-            fut = client.submit(compute_chunk, recs[ranges[k][0]:ranges[k][1]], pure=False, **kw)
+            fut = client.submit(compute_chunk, chunk_records(k), pure=False, **kw)
             futures[fut] = k
             return fut
 
@@ -459,7 +645,7 @@ def _run_dask(recs, ranges, todo, folder, kw, scheduler, workers, stop_after_chu
             for fut in queue:
                 i = futures.pop(fut)
                 a, b = ranges[i]
-                _write_chunk(folder, i, a, fut.result())
+                write(i, fut.result())
                 computed += 1
                 bar.update(b - a)
                 if stop_after_chunks is not None and computed >= stop_after_chunks:

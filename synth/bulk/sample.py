@@ -19,7 +19,6 @@ import pandas as pd
 
 from synth.bulk.portfolio import to_table
 from synth.data.generated_applications import generate
-from synth.errors import InputError, Problem
 
 __all__ = ["BREAKAGES", "sample_portfolio", "break_rows"]
 
@@ -37,9 +36,8 @@ def break_rows(table: pd.DataFrame, k: int, seed: int = 0) -> tuple[pd.DataFrame
 
     Returns the table and ``{row position: kind}``.
     """
-    k = int(k)
-    if k < 0 or k > len(table):
-        raise InputError(Problem("broken", k, f"an integer in [0, {len(table)}] (the number of rows)"))
+    from synth.io.limits import check_count
+    k = check_count("--broken", k, hi=len(table))
     rng = np.random.default_rng(seed + 7919)
     rows = sorted(int(i) for i in rng.choice(len(table), size=k, replace=False))
     out = table.astype(object).copy()
@@ -59,9 +57,9 @@ def sample_portfolio(n: int, seed: int = 0, broken: int = 0) -> pd.DataFrame:
     Columns: ``application_id`` (``APP-00001``...) then every design-input
     field. The same ``(n, seed, broken)`` gives the same table.
     """
-    if int(n) < 1:
-        raise InputError(Problem("N", n, "a number of applications >= 1"))
-    table = to_table(generate(int(n), seed=int(seed)))
+    from synth.io.limits import check_count
+    n, seed = check_count("N", n), check_count("--seed", seed)
+    table = to_table(generate(n, seed=seed))
     table.insert(0, "application_id", [f"APP-{i + 1:05d}" for i in range(len(table))])
     if broken:
         table, _ = break_rows(table, broken, seed=seed)

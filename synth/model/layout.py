@@ -17,9 +17,37 @@ import numpy as np
 from synth.catalog import constant
 
 __all__ = [
-    "is_standard_layout", "pulley_width_mm", "hubload_angle_from_ehr_deg", "belt_contact_centre_deg", "wrap_limits_deg",
-    "pin_angular_zone", "pin_clearance_mm",
+    "layout_of", "is_standard_layout", "pulley_width_mm", "hubload_angle_from_ehr_deg", "belt_contact_centre_deg",
+    "wrap_limits_deg", "pin_angular_zone", "pin_clearance_mm",
 ]
+
+
+def layout_of(middle_plane_belt_height_mm, max_axial_displacement_mm):
+    """The layout eq. (17)-(18) choose, NaN-aware: ``"standard"``, ``"reverse"`` (or ``"unknown"``).
+
+    * both given: standard if ``h_mid >= h_max / 2`` (eq. (17); equality is
+      standard, as the thesis says), else reverse (eq. (18));
+    * max axial displacement not given (NaN or None: the thesis writes N/A in
+      the input table of a reverse-layout tensioner): **reverse**. With no
+      upper limit on the axial space, eq. (17) reads ``h_mid >= inf/2``, which
+      is false, so eq. (18) holds; and the space check of a reverse layout is
+      eq. (27) (belt-crankcase clearance), which needs no maximum height,
+      while the standard layout's eq. (26) cannot be checked without it;
+    * middle plane belt height not given: ``"unknown"`` (the schema requires
+      it, so a validated input never gives this).
+
+    Vectorised: arrays give an array of strings.
+
+    >>> layout_of(29.5, 42.0), layout_of(10.0, 42.0), layout_of(21.0, 42.0), layout_of(16.0, float("nan"))
+    ('standard', 'reverse', 'standard', 'reverse')
+    >>> layout_of([29.5, 16.0, float("nan")], [42.0, None, 42.0]).tolist()
+    ['standard', 'reverse', 'unknown']
+    """
+    h = np.asarray(middle_plane_belt_height_mm, dtype=float)
+    h_max = np.asarray(np.where(np.equal(max_axial_displacement_mm, None), np.nan, max_axial_displacement_mm), dtype=float)
+    standard = np.isfinite(h_max) & (h >= h_max / 2.0)
+    out = np.where(np.isnan(h), "unknown", np.where(standard, "standard", "reverse"))
+    return out.item() if out.ndim == 0 else out
 
 
 def is_standard_layout(middle_plane_belt_height_mm, max_height_mm):

@@ -66,13 +66,9 @@ def synthesise(d, args):
     return solve(d, getattr(args, "objective", DEFAULT_OBJECTIVE), getattr(args, "solver", DEFAULT_SOLVER), **kw)
 
 
-def load_saved_result(path: str | Path):
-    """A :class:`~synth.design.result.Result` saved with ``--json`` (any scene); errors name the file."""
+def load_saved_result(path: str | Path, what: str = "result"):
+    """A :class:`~synth.design.result.Result` saved with ``--json`` (any scene), read through the input gate
+    (:func:`synth.io.results.load_result`: size, encoding, shape, carried inputs); errors name the file."""
     from synth.design.result import Result
-    from synth.errors import InputError, Problem
-    p = Path(path)
-    try:
-        data = json.loads(p.read_text(encoding="utf-8"))
-    except (OSError, ValueError, UnicodeDecodeError) as exc:
-        raise InputError(Problem("result file", str(p), f"a JSON result written by synth --json ({exc})")) from None
-    return Result.from_dict(data, source=str(p))
+    from synth.io.results import load_result
+    return Result.from_dict(load_result(path, what), source=str(Path(path).name))

@@ -8,9 +8,12 @@ violated constraints and the smallest input relaxation of infeasible ones,
 and an ``error`` column for rows with bad data (the other rows still run).
 
 Chunks are saved as they finish in ``RESULT.chunks/``; ``--resume`` continues
-an interrupted run without recomputing them. Exit code 0 when the run
-completed (even with infeasible or broken rows), 2 for a bad command line or
-an unreadable portfolio, 130 when interrupted.
+an interrupted run without recomputing them. A run holds a lock on that
+folder (a second run on the same ``--out`` is refused while the first runs),
+every chunk carries its run id and a checksum, and ``--resume`` refuses,
+naming them, chunks of another run or with a bad checksum. Exit code 0 when
+the run completed (even with infeasible or broken rows), 2 for a bad command
+line, an unreadable portfolio or a refused folder, 130 when interrupted.
 """
 
 from __future__ import annotations
@@ -22,34 +25,40 @@ from synth.bulk.run import ENGINES, FIDELITIES, run_portfolio, sidecar
 __all__ = ["register"]
 
 
-def _positive_int(text: str) -> int:
+def _count(option: str):
+    """An argparse type: an integer within the documented bounds of ``option`` (:data:`synth.io.limits.COUNTS`)."""
     import argparse
-    try:
-        v = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"an integer >= 1, got {text!r}") from None
-    if v < 1:
-        raise argparse.ArgumentTypeError(f"an integer >= 1, got {text!r}")
-    return v
+
+    from synth.errors import InputError
+    from synth.io.limits import check_count
+
+    def parse(text: str) -> int:
+        try:
+            return check_count(option, text)
+        except InputError as exc:
+            raise argparse.ArgumentTypeError(exc.problems[0].accepted) from None
+    parse.__name__ = option.lstrip("-").replace("-", "_")
+    return parse
 
 
 def register(sub) -> None:
     p = sub.add_parser("bulk", help="feasibility of a portfolio of applications (CSV, Excel or Parquet table)")
-    p.add_argument("portfolio", help="portfolio table: one application per row, design-input fields as columns")
+    p.add_argument("portfolio", help="portfolio table (.csv, .xlsx, .ods, .parquet): one application per row, "
+                                     "design-input fields as columns")
     p.add_argument("--out", required=True, metavar="RESULT",
-                   help="result table (.csv, .xlsx or .parquet); chunks are kept in RESULT.chunks/")
+                   help="result table (.csv, .xlsx, .ods or .parquet); chunks are kept in RESULT.chunks/")
     p.add_argument("--objective", default="standard",
                    help="standard | cost | margin, a lexicographic list 'a,b' or weights 'cost=1,margin=5'")
     p.add_argument("--fidelity", default="screening", choices=FIDELITIES,
                    help="screening: closed-form models; full: time-integrated wear")
-    p.add_argument("--chunk-size", type=_positive_int, default=None, metavar="N",
-                   help="applications per chunk (default: the engine's memory budget over its memory per application, "
-                        "catalogs/constants_bulk.csv)")
+    p.add_argument("--chunk-size", type=_count("--chunk-size"), default=None, metavar="N",
+                   help="applications per chunk, 1-10000 (default: the engine's memory budget over its memory per "
+                        "application, catalogs/constants_bulk.csv)")
     p.add_argument("--resume", action="store_true", help="continue an interrupted run, reusing its finished chunks")
     p.add_argument("--engine", default="inprocess", choices=ENGINES, help="run the chunks in this process or on Dask")
     p.add_argument("--scheduler", metavar="ADDRESS", help="Dask scheduler address (default: a local cluster)")
-    p.add_argument("--workers", type=_positive_int, default=None, metavar="N",
-                   help="local Dask cluster: worker processes (default 2)")
+    p.add_argument("--workers", type=_count("--workers"), default=None, metavar="N",
+                   help="local Dask cluster: worker processes, 1-64 (default 2)")
     p.add_argument("--summary", metavar="DIR", help="write the portfolio summary (markdown, CSV, PNG plots) into DIR")
     p.add_argument("--no-diagnose", action="store_true", help="skip the relaxation search of infeasible applications")
     p.set_defaults(func=_main)

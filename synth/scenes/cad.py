@@ -29,8 +29,9 @@ def register(sub) -> None:
 
 def _main(args) -> int:
     from synth.cad import export_result, summary_lines
-    from synth.scenes._options import load_saved_result
-    model, checks, info = export_result(load_saved_result(args.result), args.out, args.input,
+    from synth.io.results import load_result
+    result = load_result(args.result, "result")  # the gate: size, encoding, shape, carried inputs
+    model, checks, info = export_result(result, args.out, args.input,
                                         stl=not args.no_stl, pictures=not args.no_pictures)
     print(f"synth cad: {args.result} -> {args.out}")
     print("\n".join(summary_lines(model, checks, info)))

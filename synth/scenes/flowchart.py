@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 from synth import flowchart, schema
 from synth.report.text import render
@@ -23,7 +24,11 @@ def register(sub) -> None:
 
 def _main(args) -> int:
     d = schema.load_input(args.input)
-    parts = load_saved_result(args.parts).parts if args.parts else None
+    if args.parts:
+        from synth.io.results import parts_of
+        parts = parts_of(load_saved_result(args.parts, "--parts").to_dict(), Path(args.parts).name)
+    else:
+        parts = None
     r = flowchart.run(d, settings_from_args(args), parts=parts)
     if args.json:
         print(json.dumps(r.to_dict(), indent=2))

@@ -15,16 +15,17 @@ def register(sub) -> None:
     p = sub.add_parser("pareto", help="cost against margin: the Pareto front of the catalog designs")
     p.add_argument("input", help="design-input YAML")
     p.add_argument("--out", default="pareto_out", help="folder for front.md, front.json and front.png")
-    p.add_argument("--points", type=int, default=40, help="margin thresholds probed")
+    p.add_argument("--points", default=40, metavar="N",
+                   help="margin thresholds probed, 2-500 (each is one catalog solve; default 40)")
     p.set_defaults(func=_main)
 
 
 def _main(args) -> int:
-    from synth.errors import InputError, Problem
-    if not 1 <= args.points <= 10_000:
-        raise InputError(Problem("--points", args.points, "an integer from 1 to 10000"))
-    front = pareto_front(load_input(args.input), n_points=args.points)
-    out = Path(args.out)
+    from synth.io.limits import check_count
+    from synth.scenes.report import out_folder
+    points = check_count("--points", args.points)
+    out = out_folder(args.out)  # checked before the work: an existing file is not a folder
+    front = pareto_front(load_input(args.input), n_points=points)
     out.mkdir(parents=True, exist_ok=True)
     lines = ["| cost [EUR] | margin | non-standard | binding constraint |", "|---|---|---|---|"]
     lines += [f"| {p['cost_eur']:.4f} | {p['margin']:+.4f} | {p['standard']:g} | {p['binding']} |" for p in front]

@@ -19,7 +19,7 @@ from synth import schema
 from synth.errors import InputError, Problem
 from synth.scenes._options import add_design_options, load_saved_result, synthesise
 
-__all__ = ["register", "make_report", "read_table"]
+__all__ = ["register", "make_report", "read_table", "out_folder"]
 
 
 def register(sub) -> None:
@@ -36,33 +36,21 @@ def register(sub) -> None:
     p.set_defaults(func=_main)
 
 
-def read_table(path: str | Path):
-    """Rows of a scene result file: CSV (pandas), JSON or YAML (a list of mappings or one mapping)."""
+def read_table(path: str | Path, option: str = "scene result file"):
+    """Rows of a scene result file: CSV, JSON or YAML (a list of mappings or one mapping), through the input gate."""
+    from synth.io.documents import read_rows
+    return read_rows(path, option)
+
+
+def out_folder(path, option: str = "--out") -> Path:
+    """``--out DIR`` checked before any work: a folder (existing or to create), not an existing file."""
     p = Path(path)
-    if not p.is_file():
-        raise InputError(Problem("scene result file", str(p), "an existing .csv, .json or .yaml file"))
-    suffix = p.suffix.lower()
-    try:
-        if suffix == ".csv":
-            import pandas as pd
-            return pd.read_csv(p).to_dict(orient="records")
-        text = p.read_text(encoding="utf-8")
-        if suffix == ".json":
-            data = json.loads(text)
-        elif suffix in (".yaml", ".yml"):
-            import yaml
-            data = yaml.safe_load(text)
-        else:
-            raise InputError(Problem("scene result file", str(p), "a .csv, .json or .yaml file"))
-    except InputError:
-        raise
-    except Exception as exc:
-        raise InputError(Problem("scene result file", str(p), f"a readable table ({exc})")) from None
-    if isinstance(data, dict):
-        return [data]
-    if isinstance(data, list) and all(isinstance(r, dict) for r in data):
-        return data
-    raise InputError(Problem("scene result file", str(p), "a list of mappings (rows) or one mapping"))
+    if p.exists() and not p.is_dir():
+        raise InputError(Problem(option, str(path), "a folder (this is an existing file; give a folder name)"))
+    parent = next((q for q in [p, *p.parents] if q.exists()), None)
+    if parent is not None and not parent.is_dir():
+        raise InputError(Problem(option, str(path), f"a folder ({parent} is a file)"))
+    return p
 
 
 def _is_result_file(path: Path) -> bool:
@@ -86,7 +74,7 @@ def result_for_report(source, args=None):
         src = Path(source)
         cells = None
         if _is_result_file(src):
-            res, name = load_saved_result(src), str(src)
+            res, name = load_saved_result(src, "input"), str(src)
         else:
             data = schema.read_mapping(src)
             if src.suffix.lower() in (".xlsx", ".xlsm"):
@@ -148,7 +136,8 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
 
 
 def _main(args) -> int:
-    scenes = {name: read_table(path) for name, path in
+    out_folder(args.out)
+    scenes = {name: read_table(path, f"--{name.lower()}") for name, path in
               (("Optimum", args.optimum), ("Pareto", args.pareto), ("Solvers", args.solvers)) if path}
     for png in args.cad:
         if not Path(png).is_file():

@@ -7,8 +7,13 @@ maximum interference, the load torque, the checks and the verdict.
 
 ``synth shrink-fit-select INPUT [--reassemblies N] [--json] [--plot FILE]``
 chooses the H7/x6 fit with the largest slip margin after N re-assemblies
-among those that keep hub and journal elastic, and tabulates (and plots)
-the margin against the re-assembly count.
+among those that keep hub and journal elastic and do not slip, and
+tabulates (and plots) the margin against the re-assembly count.
+
+Exit codes: ``shrink-fit`` 0 when the verdict is PASS, 1 when it is FAIL;
+``shrink-fit-select`` 0 when an admissible fit exists, 1 when none does;
+2 for invalid input (``--reassemblies`` outside [0, 100], a ``--plot`` file
+type matplotlib cannot write, a bad case file).
 """
 
 from __future__ import annotations
@@ -61,12 +66,31 @@ def _case(args):
 
 
 def _reassemblies(args, case) -> int:
+    from synth.io.limits import check_count
     if args.reassemblies is not None:
-        if args.reassemblies < 0:
-            from synth.errors import InputError, Problem
-            raise InputError(Problem("--reassemblies", args.reassemblies, "a whole number >= 0"))
-        return args.reassemblies
-    return max(1, (case.assemblies + 1) // 2)
+        return check_count("--reassemblies", args.reassemblies)
+    return min(max(1, (case.assemblies + 1) // 2), 100)
+
+
+def plot_path(path: str | None):
+    """``--plot FILE`` checked before any work: a file type matplotlib writes, in an existing folder."""
+    if path is None:
+        return None
+    from pathlib import Path
+
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    from synth.errors import InputError, Problem
+    types = sorted(FigureCanvasBase.get_supported_filetypes())
+    p = Path(path)
+    ext = p.suffix.lower().lstrip(".")
+    if ext not in types:
+        raise InputError(Problem("--plot", path, "a file name ending in ." + ", .".join(types) + " (PNG, SVG, PDF...)"))
+    if not p.parent.is_dir():
+        raise InputError(Problem("--plot", path, f"a file in an existing folder ({p.parent} does not exist)"))
+    if p.is_dir():
+        raise InputError(Problem("--plot", path, "a file name, not a folder"))
+    return path
 
 
 def _margin_table(curves: dict) -> str:
@@ -79,6 +103,7 @@ def _margin_table(curves: dict) -> str:
 
 
 def _main(args) -> int:
+    plot_path(args.plot)
     case = _case(args)
     res = analyse(case)
     n = _reassemblies(args, case)
@@ -93,10 +118,11 @@ def _main(args) -> int:
         print(_margin_table(curves))
         if args.plot:
             print(f"plot saved to {args.plot}")
-    return 0
+    return 1 if res["verdict"] == "fail" else 0
 
 
 def _select(args) -> int:
+    plot_path(args.plot)
     case = _case(args)
     n = _reassemblies(args, case)
     sel = select_fit(case, n)
@@ -106,7 +132,7 @@ def _select(args) -> int:
         plot_margins(curves, args.plot, f"{case.name}: candidate fits")
     if args.json:
         print(json.dumps({**sel, "model": case.model.__dict__, "margin_vs_reassemblies": curves}, indent=2))
-        return 0
+        return 0 if sel["fit"] else 1
     print(f"Fit selection for {case.name}: journal {case.journal_outer_diameter_mm:g} mm, {n} re-assemblies "
           f"({2 * n} displacements), design load {sel['design_load_nm']:.4g} Nm x slip safety {sel['slip_safety']:g}")
     print(f"  model: smoothing {case.model.smoothing_rule}, pressure {case.model.pressure_rule}, "
@@ -124,4 +150,4 @@ def _select(args) -> int:
     print(_margin_table(curves))
     if args.plot:
         print(f"plot saved to {args.plot}")
-    return 0
+    return 0 if sel["fit"] else 1

@@ -26,6 +26,17 @@ from pathlib import Path
 
 from synth.catalog import constant, row
 from synth.errors import CatalogError, InputError, Problem
+from synth.io.limits import short
+
+#: realistic bounds of the case's numbers: each keeps every array finite and says why
+_E_WHY = ("engineering metals: magnesium alloys about 45 GPa to cemented carbide about 650 GPa; "
+          "1e308 would give infinite pressures and margins")
+_HB_WHY = "the Brinell test's range, ISO 6506-1:2005 scope: up to 650 HBW"
+_ISO4288 = "the roughest classes of ISO 4288:1996 Tables 1-3: Ra up to 80 um, Rz up to 200 um, RSm up to 4 mm"
+_RA_MAX, _RZ_MAX, _RSM_MAX = 80.0, 200.0, 4000.0
+_ISO286 = "ten times the largest journal of the catalog's ISO 286-2 fits (50 mm)"
+_U_MAX = 2.0
+_U_WHY = "a diametral interference of 2 mm is 0.4 % of the largest journal: far beyond yield for any steel"
 
 __all__ = ["Roughness", "LoadTorque", "ModelOptions", "PAPER_MODEL", "ShrinkFitCase", "load_case", "case_from_dict"]
 
@@ -118,23 +129,9 @@ class ShrinkFitCase:
 
 
 def _read_file(path: Path) -> dict:
-    if not path.is_file():
-        raise InputError(Problem("INPUT", str(path), "an existing YAML, JSON or TOML file"))
-    text = path.read_text(encoding="utf-8")
-    try:
-        if path.suffix.lower() == ".json":
-            data = json.loads(text)
-        elif path.suffix.lower() == ".toml":
-            try:
-                import tomllib
-            except ModuleNotFoundError:  # Python 3.10
-                import tomli as tomllib  # type: ignore[no-redef]
-            data = tomllib.loads(text)
-        else:
-            import yaml
-            data = yaml.safe_load(text)
-    except Exception as exc:  # parse errors of any of the three formats
-        raise InputError(Problem("INPUT", str(path), f"valid {path.suffix.lstrip('.') or 'YAML'} ({exc})")) from None
+    """The parsed case file, through the input gate (size, UTF-8, YAML aliases, nesting, huge numbers)."""
+    from synth.io.documents import read_document
+    data = read_document(path, "INPUT", accepted="an existing YAML, JSON or TOML file")
     if not isinstance(data, dict):
         raise InputError(Problem("INPUT", str(path), "a mapping with an 'inputs:' section"))
     return data
@@ -154,25 +151,31 @@ class _Collector:
     def __init__(self, data: dict, prefix: str = ""):
         self.data, self.prefix, self.problems = data, prefix, []
 
-    def num(self, key, *, default=None, required=True, lo=None, lo_open=False, integer=False, accepted=None):
+    def num(self, key, *, default=None, required=True, lo=None, lo_open=False, integer=False, accepted=None,
+            hi=None, why=""):
+        """The number at ``key`` within ``[lo, hi]`` (``why``: the reason for the bounds, shown on a problem)."""
         name = self.prefix + key
         value = self.data.get(key, default)
         if value is None:
             if required:
                 self.problems.append(Problem(name, None, accepted or "a number"))
             return None
+        shown = short(value)
         try:
-            x = float(value)
+            x = float(value.strip().replace(",", ".")) if isinstance(value, str) else float(value)
             if isinstance(value, bool) or not math.isfinite(x):
                 raise ValueError
-        except (TypeError, ValueError):
-            self.problems.append(Problem(name, value, accepted or "a finite number"))
+        except (TypeError, ValueError, OverflowError):
+            self.problems.append(Problem(name, shown, accepted or "a finite number"))
             return None
         if integer and x != int(x):
-            self.problems.append(Problem(name, value, accepted or "a whole number"))
+            self.problems.append(Problem(name, shown, accepted or "a whole number"))
             return None
         if lo is not None and (x <= lo if lo_open else x < lo):
-            self.problems.append(Problem(name, value, accepted or f"a number {'>' if lo_open else '>='} {lo:g}"))
+            self.problems.append(Problem(name, shown, accepted or f"a number {'>' if lo_open else '>='} {lo:g}"))
+            return None
+        if hi is not None and x > hi:
+            self.problems.append(Problem(name, shown, f"a number <= {hi:g}" + (f" ({why})" if why else "")))
             return None
         return int(x) if integer else x
 
@@ -182,11 +185,11 @@ def _roughness(raw, name, problems) -> Roughness | None:
         problems.append(Problem(name, raw, "a mapping with Ra and Rz (and optionally Sm, Rp, Rv) in um"))
         return None
     c = _Collector({str(k).lower(): v for k, v in raw.items()}, name + ".")
-    ra = c.num("ra", lo=0, lo_open=True, accepted="Ra in um, > 0")
-    rz = c.num("rz", lo=0, lo_open=True, accepted="Rz in um, > 0")
-    sm = c.num("sm", required=False, lo=0, lo_open=True, accepted="Sm in um, > 0")
-    rp = c.num("rp", required=False, lo=0, lo_open=True, accepted="Rp in um, > 0")
-    rv = c.num("rv", required=False, lo=0, lo_open=True, accepted="Rv in um, > 0")
+    ra = c.num("ra", lo=0, lo_open=True, accepted="Ra in um, > 0", hi=_RA_MAX, why=_ISO4288)
+    rz = c.num("rz", lo=0, lo_open=True, accepted="Rz in um, > 0", hi=_RZ_MAX, why=_ISO4288)
+    sm = c.num("sm", required=False, lo=0, lo_open=True, accepted="Sm in um, > 0", hi=_RSM_MAX, why=_ISO4288)
+    rp = c.num("rp", required=False, lo=0, lo_open=True, accepted="Rp in um, > 0", hi=_RZ_MAX, why=_ISO4288)
+    rv = c.num("rv", required=False, lo=0, lo_open=True, accepted="Rv in um, > 0", hi=_RZ_MAX, why=_ISO4288)
     unknown = set(c.data) - {"ra", "rz", "sm", "rp", "rv"}
     problems.extend(c.problems)
     if unknown:
@@ -249,23 +252,30 @@ def case_from_dict(data: dict) -> ShrinkFitCase:
     unknown = set(inputs) - _INPUT_KEYS - ({"name", "inputs", "model", "thesis_tool", "real_tensioner"} if inputs is data else set())
     problems.extend(Problem(k, inputs[k], "one of the keys " + ", ".join(sorted(_INPUT_KEYS))) for k in sorted(unknown))
     c = _Collector(inputs)
-    d = c.num("journal_outer_diameter_mm", lo=0, lo_open=True)
-    dww = c.num("journal_inner_diameter_mm", default=0.0, lo=0)
-    dzo = c.num("hub_outer_diameter_mm", lo=0, lo_open=True)
-    length = c.num("bore_length_mm", lo=0, lo_open=True)
-    e = c.num("young_modulus_mpa", default=constant("shrink_fit_young_modulus_steel_mpa"), lo=0, lo_open=True)
-    n = c.num("assemblies", default=0, lo=0, integer=True,
-              accepted="a whole number >= 0 (sliding assemblies/disassemblies i of eq. 19)")
-    hb_s = c.num("journal_hardness_hb", lo=0, lo_open=True)
-    hb_h = c.num("hub_hardness_hb", lo=0, lo_open=True)
-    tau0 = c.num("tau0_mpa", default=constant("shrink_fit_tau0_mpa"), lo=0)
-    beta = c.num("beta", default=constant("shrink_fit_beta"), lo=0)
-    t_m = c.num("t_m", default=constant("shrink_fit_t_m"), lo=0, lo_open=True)
-    sm_ra = c.num("sm_over_ra", default=constant("shrink_fit_sm_over_ra"), lo=0, lo_open=True)
-    safety = c.num("slip_safety", default=constant("shrink_fit_slip_safety_min"), lo=0, lo_open=True)
+    d = c.num("journal_outer_diameter_mm", lo=0, lo_open=True, hi=500, why=_ISO286)
+    dww = c.num("journal_inner_diameter_mm", default=0.0, lo=0, hi=500, why=_ISO286)
+    dzo = c.num("hub_outer_diameter_mm", lo=0, lo_open=True, hi=2000, why="four times the largest journal")
+    length = c.num("bore_length_mm", lo=0, lo_open=True, hi=1000, why="twice the largest journal diameter")
+    e = c.num("young_modulus_mpa", default=constant("shrink_fit_young_modulus_steel_mpa"), lo=40_000, hi=700_000,
+              accepted=f"a number in [40000, 700000] MPa ({_E_WHY})", why=_E_WHY)
+    n = c.num("assemblies", default=0, lo=0, integer=True, hi=200,
+              accepted="a whole number in [0, 200] (sliding assemblies/disassemblies i of eq. 19; twice the "
+                       "largest --reassemblies)")
+    hb_s = c.num("journal_hardness_hb", lo=0, lo_open=True, hi=650, why=_HB_WHY)
+    hb_h = c.num("hub_hardness_hb", lo=0, lo_open=True, hi=650, why=_HB_WHY)
+    tau0 = c.num("tau0_mpa", default=constant("shrink_fit_tau0_mpa"), lo=0, hi=10_000,
+                 why="a shear strength of the adhesive bonds above that of any steel")
+    beta = c.num("beta", default=constant("shrink_fit_beta"), lo=0, hi=1, why="a fraction (eq. 2)")
+    t_m = c.num("t_m", default=constant("shrink_fit_t_m"), lo=0, lo_open=True, hi=1,
+                why="a relative bearing-area level (eq. 4-6)")
+    sm_ra = c.num("sm_over_ra", default=constant("shrink_fit_sm_over_ra"), lo=0, lo_open=True, hi=1e4,
+                  why="ten times the case's default ratio")
+    safety = c.num("slip_safety", default=constant("shrink_fit_slip_safety_min"), lo=0, lo_open=True, hi=20,
+                   why="a safety factor")
     neg = "a non-negative diametral interference in mm (a shrink fit needs the journal larger than the bore)"
-    u_min = c.num("interference_min_mm", required=False, lo=0, accepted=neg)
-    u_max = c.num("interference_max_mm", required=False, lo=0, lo_open=True, accepted=neg.replace("non-negative", "positive"))
+    u_min = c.num("interference_min_mm", required=False, lo=0, accepted=neg, hi=_U_MAX, why=_U_WHY)
+    u_max = c.num("interference_max_mm", required=False, lo=0, lo_open=True, accepted=neg.replace("non-negative", "positive"),
+                  hi=_U_MAX, why=_U_WHY)
     problems.extend(c.problems)
 
     if d is not None and dww is not None and dww >= d:
@@ -311,7 +321,7 @@ def case_from_dict(data: dict) -> ShrinkFitCase:
         ji = rough["journal_initial"]
         cj = _Collector({str(k).lower(): v for k, v in (ji.items() if isinstance(ji, dict) else {}.items())},
                         "roughness.journal_initial.")
-        rz0 = cj.num("rz", lo=0, lo_open=True, accepted="Rz in um, > 0")
+        rz0 = cj.num("rz", lo=0, lo_open=True, accepted="Rz in um, > 0", hi=_RZ_MAX, why=_ISO4288)
         problems.extend(cj.problems)
 
     model = _model(data.get("model", inputs.get("model")), problems)
@@ -321,13 +331,14 @@ def case_from_dict(data: dict) -> ShrinkFitCase:
         problems.append(Problem("load_torque", lt, "a mapping"))
         lt = {}
     cl = _Collector(lt, "load_torque.")
-    mc = cl.num("camshaft_friction_torque_max_nm", required=False, lo=0)
-    u = cl.num("gear_ratio", required=False, lo=0, lo_open=True)
-    ncam = cl.num("camshafts", default=1, lo=1, integer=True)
+    mc = cl.num("camshaft_friction_torque_max_nm", required=False, lo=0, hi=5000,
+                why="fifty times the paper's 96 Nm pulley torque")
+    u = cl.num("gear_ratio", required=False, lo=0, lo_open=True, hi=20, why="a belt drive ratio (the paper's is 2)")
+    ncam = cl.num("camshafts", default=1, lo=1, integer=True, hi=8, why="camshafts driven by one belt")
     stated = {}
     for k, v in lt.items():
         if k.startswith("pulley_torque") and k.endswith("_nm"):
-            stated[k] = cl.num(k, lo=0)
+            stated[k] = cl.num(k, lo=0, hi=5000, why="fifty times the paper's 96 Nm pulley torque")
         elif k not in ("camshaft_friction_torque_max_nm", "gear_ratio", "camshafts"):
             cl.problems.append(Problem(f"load_torque.{k}", v, "camshaft_friction_torque_max_nm, gear_ratio, camshafts, pulley_torque_*_nm"))
     problems.extend(cl.problems)

@@ -5,9 +5,11 @@ eq. (19) after ``n`` re-assemblies (the paper's case, i = 2, is one
 re-assembly). The slip margin is evaluated at the fit's minimum interference
 (the weakest joint the tolerances allow), after the planned re-assemblies,
 against ``slip_safety x design load``. A fit is admissible when its minimum
-interference is positive and its maximum interference on new surfaces (the
+interference is positive, its maximum interference on new surfaces (the
 highest pressure ever reached) keeps the hub and the journal elastic (Lame,
-von Mises; see :mod:`~synth.shrink_fit.pressure`).
+von Mises; see :mod:`~synth.shrink_fit.pressure`), and its slip margin after
+the planned re-assemblies is not negative (a fit that slips is never
+labelled admissible).
 """
 
 from __future__ import annotations
@@ -71,6 +73,8 @@ def select_fit(case: ShrinkFitCase, reassemblies: int = 1, hole_grade: int = 7, 
             reason = "transition fit: may be loose"
         elif p_max > p_yield:
             reason = f"plasticises at maximum interference ({p_max:.1f} > {p_yield:.1f} MPa)"
+        elif not margin >= 0:
+            reason = f"slips after {reassemblies} re-assemblies (margin {margin:+.3f} < 0)"
         rows.append({"fit": fit, "interference_min_mm": lim["interference_min_mm"],
                      "interference_max_mm": lim["interference_max_mm"], "pressure_max_mpa": p_max,
                      "yield_pressure_mpa": p_yield, "torque_min_nm": float(worst["torque_nm"]),

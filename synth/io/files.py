@@ -1,0 +1,113 @@
+r"""Opening a file the user named: it exists, it is not too big, it is UTF-8 text (or a workbook).
+
+Every error is an :class:`~synth.errors.InputError` whose field is what the
+user wrote (``input file``, ``--parts``, ``portfolio``...) and whose value is
+the path.
+
+>>> import tempfile, pathlib
+>>> p = pathlib.Path(tempfile.mkdtemp()) / "latin1.yaml"
+>>> _ = p.write_bytes("name: caf\xe9".encode("latin-1"))
+>>> try:
+...     read_text(p, "input file")
+... except InputError as exc:
+...     print(exc.problems[0].accepted[:60])
+UTF-8 text (byte 0xe9 at offset 9 is not UTF-8: the file was
+"""
+
+from __future__ import annotations
+
+import os
+import zipfile
+from pathlib import Path
+
+from synth.errors import InputError, Problem
+from synth.io.limits import LIMITS, MB
+
+__all__ = ["existing_file", "read_text", "check_size", "check_zip", "suffix_of"]
+
+
+def suffix_of(path: str | os.PathLike) -> str:
+    """The lower-case extension of ``path`` (``.yaml``)."""
+    return Path(path).suffix.lower()
+
+
+def existing_file(path, what: str, accepted: str) -> Path:
+    """``path`` as a :class:`~pathlib.Path` if it is an existing regular file, else a Problem."""
+    p = Path(path)
+    try:
+        ok = p.is_file()
+    except (OSError, ValueError):  # a name too long, a NUL byte in it
+        ok = False
+    if not ok:
+        state = "a folder" if _is_dir(p) else "no such file"
+        raise InputError(Problem(what, str(path), f"{accepted} ({state})"))
+    return p
+
+
+def _is_dir(p: Path) -> bool:
+    try:
+        return p.is_dir()
+    except (OSError, ValueError):
+        return False
+
+
+def check_size(path: Path, what: str, limit: int, kind: str = "file") -> int:
+    """The size of ``path`` in bytes, or a Problem when it is above ``limit``."""
+    try:
+        size = path.stat().st_size
+    except OSError as exc:
+        raise InputError(Problem(what, str(path), f"a readable {kind} ({exc.strerror})")) from None
+    if size > limit:
+        raise InputError(Problem(what, str(path), f"a {kind} of at most {_mb(limit)} (this one has {_mb(size)})"))
+    return size
+
+
+def _mb(n: int) -> str:
+    return f"{n / MB:.3g} MB" if n >= MB else f"{n / 1024:.3g} kB" if n >= 1024 else f"{n} bytes"
+
+
+def read_text(path, what: str, *, limit: int | None = None, accepted: str = "a UTF-8 text file") -> str:
+    """The text of file ``path``: existing, at most ``limit`` bytes, UTF-8 (a BOM is accepted).
+
+    A binary file (NUL bytes) or a file in another encoding (Latin-1,
+    UTF-16...) gets a Problem that says so and what is accepted.
+    """
+    p = existing_file(path, what, accepted)
+    check_size(p, what, LIMITS.text_input_bytes if limit is None else limit)
+    try:
+        data = p.read_bytes()
+    except OSError as exc:
+        raise InputError(Problem(what, str(p), f"a readable file ({exc.strerror})")) from None
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        raise InputError(Problem(what, str(p), "UTF-8 text (this file is UTF-16: save it as UTF-8)"))
+    if data.startswith(b"PK\x03\x04"):
+        raise InputError(Problem(what, str(p), f"{accepted}; this is a zip archive (a workbook? give it its "
+                                               ".xlsx or .ods extension)"))
+    if b"\x00" in data[:8192]:
+        raise InputError(Problem(what, str(p), f"{accepted}; this is a binary file, not text"))
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(Problem(what, str(p), f"UTF-8 text (byte 0x{data[exc.start]:02x} at offset {exc.start} is "
+                                               "not UTF-8: the file was saved in another encoding, e.g. Latin-1 "
+                                               "or Windows-1252; save it as UTF-8)")) from None
+    if "\x00" in text:
+        raise InputError(Problem(what, str(p), f"{accepted}; this file holds NUL characters (binary data)"))
+    return text
+
+
+def check_zip(path: Path, what: str, unpacked_limit: int, kind: str) -> None:
+    """A workbook (.xlsx/.ods are zip archives): readable as a zip, unpacking to at most ``unpacked_limit`` bytes.
+
+    Refuses a "zip bomb" (a small file that unpacks to gigabytes) before any
+    XML is parsed.
+    """
+    try:
+        with zipfile.ZipFile(path) as zf:
+            total = sum(i.file_size for i in zf.infolist())
+    except (zipfile.BadZipFile, OSError, ValueError, EOFError):
+        raise InputError(Problem(what, str(path), f"a valid {kind} (this file is not a zip archive, "
+                                                  "or it is damaged)")) from None
+    if total > unpacked_limit:
+        raise InputError(Problem(what, str(path), f"a {kind} that unpacks to at most {_mb(unpacked_limit)} "
+                                                  f"(this one unpacks to {_mb(total)})"))
