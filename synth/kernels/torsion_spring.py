@@ -88,7 +88,8 @@ __all__ = ["MARGIN_NAMES", "SpringOptions", "SpringKeys", "spring_options", "opt
            "FirstFeasible", "MaxMin", "CHUNK_KEYS", "numba_loaded", "load_kernels"]
 
 #: the margins of (a), in this order (``synth.model.torsion_spring.MARGIN_KEYS``)
-MARGIN_NAMES = s9.MARGIN_KEYS
+MARGIN_NAMES = ("spring_yield", "spring_fatigue", "spring_outer_contact", "spring_inner_contact", "spring_coil_gap",
+                "spring_index_min", "spring_index_max")  # registry ids (the speed work rewires the kernels to them)
 ENGINES = ("numba", "numpy")
 
 _JIT = None
