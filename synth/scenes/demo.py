@@ -42,7 +42,7 @@ def _main(args) -> int:
     print(render(r, title="synth demo: the most standardised tensioner for the embedded default application"))
     if not args.no_cad:
         from synth.scenes.design import export_cad
-        print("\n" + "\n".join(export_cad(r, out)))
+        print("\n" + "\n".join(export_cad(r, out, "synth demo (thesis case 3, completed)")))
     if not args.no_report:
         from synth.scenes.report import make_report
         rep = make_report(r, out, show_progress=False)

@@ -36,12 +36,13 @@ def _main(args) -> int:
     else:
         print(render(r, title=f"synth design: {args.input}"))
     if args.cad:
-        print("\n".join(export_cad(r, args.cad)), file=sys.stderr if args.json else sys.stdout)
+        from pathlib import Path
+        print("\n".join(export_cad(r, args.cad, Path(args.input).stem)), file=sys.stderr if args.json else sys.stdout)
     return r.exit_code
 
 
-def export_cad(r, out_dir) -> list[str]:
+def export_cad(r, out_dir, application: str | None = None) -> list[str]:
     """Export the design's 3D model (thesis step 11) and return the summary lines."""
     from synth.cad import export_result, summary_lines
-    model, checks, info = export_result(r, out_dir)
+    model, checks, info = export_result(r, out_dir, application=application)
     return [f"3D model written to {out_dir}"] + summary_lines(model, checks, info)
