@@ -114,7 +114,8 @@ class Parts:
     damper_pad: Table
     endcap_spacer: Table
     spring_material: Table
-    spring_strength: list                   # per material: (d_mm, Rm_min_mpa, Rm_max_mpa) sorted by d
+    spring_strength: dict                   # grade -> (d_mm, Rm_min_mpa, Rm_max_mpa) sorted by d (every grade of the
+                                            # strength table, not only the selectable materials)
     spring_wire: Table
     bolt: Table
     bolt_head: Table                        # format x head type ("M8x1.25 hex"): dw, head size, cost factor
@@ -160,13 +161,13 @@ def _arrays_cached(user_dirs: tuple) -> Parts:
                                                                "sigma_perm_static_fraction", "unit_cost_eur"),
                  strings=("wire_sections",))
     strength_df = load("spring_material_strength")
-    strength = []
+    grade = strength_df["material"].astype(str).str.strip()
+    strength = {g: (_num(rows, "d_mm"), _num(rows, "Rm_min_mpa"), _num(rows, "Rm_max_mpa"))
+                for g, rows in strength_df.assign(material=grade).sort_values("d_mm").groupby("material", sort=True)}
     for key in mat.key:
-        rows = strength_df[strength_df["material"].astype(str).str.strip() == key].sort_values("d_mm")
-        if rows.empty:
+        if key not in strength:
             raise CatalogError(Problem("spring_material_strength.csv", key, "tensile strength rows for every material "
                                        "of spring_materials.csv"))
-        strength.append((_num(rows, "d_mm"), _num(rows, "Rm_min_mpa"), _num(rows, "Rm_max_mpa")))
     wires = load("spring_wires")
     w = _table("spring_wires", wires, ("b_mm", "h_mm", "b_tol_mm", "h_tol_mm", "unit_cost_eur"), strings=("section",))
     w.cols["round_wire"] = np.array([s == "round" for s in w.section], dtype=bool)

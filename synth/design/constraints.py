@@ -47,8 +47,10 @@ GROUPS = ("input", "core", "bushing", "axial", "spring", "bolt", "cad")
 
 #: named requirements: name -> (the input fields, readable description). A requirement is met when every
 #: field is given, except ``durability`` (also met by ``durability_test: assumed`` with an ``engine_type``).
-# logical constraints (a part present or not, a supplier rated or not) have margin 0 or -1: they decide
-# feasibility but do not count in the margin objective (objective=False)
+# logical constraints (a part present or not, a supplier rated or not) have margin 0 or -1, and fits sized to
+# their limit (a clearance hole on its bolt, a cone spring's bore on Table 8's clearance, a preload on its
+# safety factor) have margin 0 by construction: they decide feasibility but do not count in the margin
+# objective (objective=False), which would otherwise be 0 for every design
 REQUIREMENTS = {
     "lockup_pin": (("lockup_pin_position_radius_mm", "lockup_pin_angular_position_deg", "lockup_pin_diameter_mm"),
                    "lock-up pin data"),
@@ -230,7 +232,7 @@ _ENTRIES = (
        correction="a smaller pivot diameter"),
     _c("cone_inner_clearance", "cone spring inner diameter clears the pivot (Table 8 clearance)", 8, "Table 8", "mm",
        "axial", "cone_spring_internal_diameter_mm", "cone_spring_min_internal_diameter_mm", ">=",
-       applies="axial_group_present", correction="a larger cone-spring inner diameter"),
+       applies="axial_group_present", objective=False, correction="a larger cone-spring inner diameter"),
     _c("cone_outer_on_pad", "cone spring outer diameter bears on the damper pad", 8, "step 8", "mm", "axial",
        "cone_spring_external_diameter_mm", "damper_pad_outer_diameter_mm", "<=",
        applies="axial_group_present", correction="a smaller cone-spring outer diameter or a larger damper pad"),
@@ -308,7 +310,7 @@ _ENTRIES = (
        "bolt_thread_stress_mpa", "support_yield_strength_traction_mpa", "<=", needs=("fixation",),
        assumes=("middle_plane_belt_height_increment_worst_mm",), correction="more active threads"),
     _c("pivot_bore", "support bore large enough for the bolt", 10, "step 2; section 10", "mm", "bolt",
-       "engine_support_internal_diameter_mm", "pivot_bore_min_mm", ">=", needs=("fixation",),
+       "engine_support_internal_diameter_mm", "pivot_bore_min_mm", ">=", needs=("fixation",), objective=False,
        correction="a smaller bolt format, or a larger support bore"),
     _c("pivot_base_pressure", "pivot base maximum contact pressure", 10, "eq. (96), Fig. 74", "MPa", "bolt",
        "pivot_base_max_pressure_mpa", "support_yield_strength_compression_mpa", "<=", needs=("fixation",),

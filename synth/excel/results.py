@@ -30,6 +30,7 @@ import re
 from pathlib import Path
 
 from synth import schema
+from synth.design.constraints import FEAS_TOL
 from synth.design.result import FAIL, NOT_VERIFIED, PASS, field_corrections, row_verdict
 from synth.excel.cells import page_setup, put, wrap
 from synth.excel.template import FILLS
@@ -138,9 +139,10 @@ def _checks_sheet(ws, result) -> None:
             put(ws, r, j, val)
     last = max(r, 5)
     # the colour follows value against limit (editing a value recolours), the verdict text for "not verified";
-    # pass as in synth.checks: margin >= -1e-12 of |limit| (of 1 for a zero limit)
+    # pass when the value is on the limit's side; FEAS_TOL of |limit| (of 1 for a zero limit) absorbs round-off
+    # as the registry's margin does (its scale may differ from |limit|: that changes nothing but round-off)
     over = "($D5-$F5)" + '*IF($E5="<=",1,-1)'
-    tol = "1E-12*IF($F5=0,1,ABS($F5))"
+    tol = f"{FEAS_TOL:.0E}*IF($F5=0,1,ABS($F5))"
     numbers = "ISNUMBER($D5),ISNUMBER($F5)"
     cells = f"D5:D{last} H5:I{last}"
     ws.conditional_formatting.add(cells, _rule('$I5="not verified"', NOT_VERIFIED))

@@ -390,7 +390,10 @@ def material_strength_mpa(material, d_mm, which="min"):
     if which not in ("min", "max"):
         raise InputError(Problem("which", which, "'min' or 'max'"))
     p = parts.arrays()
-    upper, rm_min, rm_max = p.spring_strength[p.spring_material.code(material, "main_spring_material")]
+    if str(material).strip() not in p.spring_strength:
+        raise InputError(Problem("main_spring_material", material,
+                                 "a grade of catalogs/spring_material_strength.csv: " + ", ".join(p.spring_strength)))
+    upper, rm_min, rm_max = p.spring_strength[str(material).strip()]
     values = rm_min if which == "min" else rm_max
     d = _f(d_mm)
     # first row whose upper bound is >= d (d_over < d <= d_mm, the standard's table rows); gaps take the next row
