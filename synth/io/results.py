@@ -33,13 +33,16 @@ _ACCEPTED = "a JSON object written by the --json option of a synth scene (design
 
 
 def result_kind(data) -> str | None:
-    """``"result"`` for the one result shape, ``"old"`` for a result of synth before the one result type, else None."""
+    """``"result"`` for the one result shape, ``"old"`` for a result of synth before the one result type,
+    ``"parts"`` for an object with part choices only (enough for ``--parts``), else None."""
     if not isinstance(data, dict):
         return None
     if data.get("kind") == "synth.result" or ("parts" in data and "values" in data and "checks" in data):
         return "result"
-    if "derived" in data or "pulley_width_mm" in data:
+    if "derived" in data:
         return "old"
+    if "parts" in data:
+        return "parts"
     return None
 
 
@@ -86,11 +89,13 @@ def check_result(data, where: str, what: str = "result") -> str:
     if kind == "old":
         raise InputError(Problem(what, where, f"{_ACCEPTED}: this one was written by an older synth (before the one "
                                               "result type); run the scene again"))
-    if kind is None:
+    if kind is None or (kind == "parts" and what != "--parts"):
         keys = ", ".join(sorted(map(str, data))[:8]) or "none"
         raise InputError(Problem(what, where, f"{_ACCEPTED}: a result has 'parts', 'values' and 'checks' "
                                               f"(this one has: {short(keys, 120)})"))
     problems: list[Problem] = []
+    if kind == "parts":  # --parts reads the part choices only: {"parts": {...}} is enough
+        data = {"values": {}, "checks": [], **data}
 
     def block(key: str, kind_, accepted: str):
         v = data.get(key)
@@ -107,6 +112,9 @@ def check_result(data, where: str, what: str = "result") -> str:
     values = block("values", dict, "a mapping of derived values (as --json writes)")
     if values is not None:
         _check_values(values, "values.", where, problems)
+    verdict = data.get("verdict")
+    if verdict is not None and verdict not in ("pass", "incomplete", "fail"):
+        problems.append(Problem(f"verdict ({where})", short(verdict), "pass, incomplete or fail (or absent)"))
     checks = block("checks", list, "a list of checks (as --json writes)")
     if checks is not None and not all(isinstance(c, dict) for c in checks):
         problems.append(Problem(f"checks ({where})", "a list with non-objects", "a list of checks (mappings)"))
@@ -133,7 +141,8 @@ def _finite_text(v: str):
 
 
 def parts_of(data: dict, where: str, what: str = "--parts") -> dict:
-    """The part choices of a checked result (its ``parts``; every part key present)."""
+    """The part choices of a checked result or of a parts-only object ``{"parts": {...}}`` (every part key
+    present)."""
     check_result(data, where, what)
     from synth.design.space import PART_KEYS
     parts = dict(data["parts"])

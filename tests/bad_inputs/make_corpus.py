@@ -34,6 +34,7 @@ sys.path.insert(0, str(ROOT))
 from synth.data import case_path  # noqa: E402
 
 CASE3 = yaml.safe_load(case_path("case3").read_text())["inputs"]
+DEFAULT = yaml.safe_load((ROOT / "synth" / "data" / "default_case.yaml").read_text())["inputs"]  # feasible
 KIA = yaml.safe_load(case_path("shrink_fit_kia_ceed").read_text())
 TEMPLATE = ["template", "{tmp}/out.xlsx", "--from"]  # validates the input, writes a workbook: exit 0 or 2
 
@@ -351,18 +352,22 @@ def results():
     f = write("r_string.json", '"a result"')
     case("cad_result_is_a_string", ["cad", f, "--out", "{tmp}/cad"], 2, ["result", "holds a str"])
     f = write("r_unknown_shape.json", json.dumps({"foo": 1, "bar": [1]}))
-    case("cad_result_unknown_shape", ["cad", f, "--out", "{tmp}/cad"], 2, ["result", "'derived'"])
-    f = write("r_derived_text.json", json.dumps({"status": "optimal", "parts": {"bearing": "6006"},
-                                                 "derived": {"pulley_width_mm": "wide"}, "inputs": good_inputs}))
-    case("cad_result_text_dimension", ["cad", f, "--out", "{tmp}/cad"], 2, ["derived.pulley_width_mm"])
-    f = write("r_parts_list.json", json.dumps({"status": "optimal", "parts": ["6006"], "derived": {}}))
+    case("cad_result_unknown_shape", ["cad", f, "--out", "{tmp}/cad"], 2, ["result", "'parts', 'values' and 'checks'"])
+    f = write("r_old_shape.json", json.dumps({"status": "optimal", "parts": {"bearing": "6006"}, "derived": {}}))
+    case("cad_result_older_synth", ["cad", f, "--out", "{tmp}/cad"], 2, ["result", "older synth"])
+    shape = {"kind": "synth.result", "status": "optimal"}
+    f = write("r_values_text.json", json.dumps({**shape, "parts": {"bearing": "6006"}, "checks": [],
+                                                "values": {"pulley_width_mm": "wide"}, "inputs": good_inputs}))
+    case("cad_result_text_dimension", ["cad", f, "--out", "{tmp}/cad"], 2, ["values.pulley_width_mm"])
+    f = write("r_parts_list.json", json.dumps({**shape, "parts": ["6006"], "values": {}, "checks": []}))
     case("cad_result_parts_not_mapping", ["cad", f, "--out", "{tmp}/cad"], 2, ["parts (r_parts_list.json)"])
-    f = write("r_bad_inputs.json", json.dumps({"status": "optimal", "parts": {"bearing": "6006"}, "derived": {},
+    f = write("r_bad_inputs.json", json.dumps({**shape, "parts": {"bearing": "6006"}, "values": {}, "checks": [],
                                                "inputs": {**good_inputs, "working_arm_mm": -1}}))
     case("cad_result_bad_inputs", ["cad", f, "--out", "{tmp}/cad"], 2, ["inputs.working_arm_mm"])
-    f = write("r_flowchart_text.json", json.dumps({"pulley_width_mm": "x", "verdict": 3, "checks": "none"}))
+    f = write("r_flowchart_text.json", json.dumps({"parts": {}, "values": {"pulley_width_mm": "x"}, "verdict": 3,
+                                                   "checks": "none"}))
     case("cad_flowchart_result_bad_types", ["cad", f, "--out", "{tmp}/cad"], 2,
-         ["pulley_width_mm (r_flowchart_text.json)", "verdict", "checks"])
+         ["values.pulley_width_mm (r_flowchart_text.json)", "verdict (r_flowchart_text.json)", "checks"])
     f = write("r_result.yaml", "status: optimal\n")
     case("cad_result_not_json", ["cad", f, "--out", "{tmp}/cad"], 2, ["result", ".json"])
     f = write("r_syntax.json", '{"status": "optimal", ')
@@ -570,27 +575,23 @@ def counts_and_scenes():
     case("report_cad_picture_missing", ["report", case3, "--out", "{tmp}/rep", "--cad", "{tmp}/none.png"], 2,
          ["--cad"])
     case("template_from_bad_input", ["template", "{tmp}/t.xlsx", "--from", "{dir}/d_latin1.yaml"], 2, ["UTF-8"])
-    # the lead's evaluator and verdicts (issue 14): in the corpus, expected to pass once the lead's code lands
-    lead = "lead: "
-    case("design_blackbox_zero_trials", ["design", case3, "--solver", "blackbox", "--trials", "0"], 2, ["--trials"],
-         xfail=lead + "bound --trials (synth.io.limits.check_count('--trials', ...)) in the design scene")
+    # the evaluator's verdicts reach every scene's exit code (issue 14)
+    case("design_blackbox_zero_trials", ["design", case3, "--solver", "blackbox", "--trials", "0"], 2, ["--trials"])
     f = write("d_working_arm_7_3.yaml", yaml_case({"working_arm_mm": 7.3}))
     case("design_working_arm_not_in_table2", ["design", f], 1, [],
-         xfail=lead + "design reports a failed Table 2 check (exit 1) as the flowchart does, not invalid input")
-    case("design_json_infeasible_exit_1", ["design", case3, "--json"], 1, [], absent=["-Infinity", "Infinity"],
-         xfail=lead + "design --json: exit code independent of --json; no -Infinity in the JSON")
-    f = write("d_no_bolt_data.yaml", yaml_case({}, drop=("engine_support_internal_diameter_mm",
-                                                         "engine_support_external_diameter_mm", "contact_angle_deg")))
-    case("flowchart_step10_not_verified_exit_3", ["flowchart", f], 3, ["not verified"],
-         xfail=lead + "exit code 3 and a verdict of its own when steps were not verified")
-    case("design_time_limit", ["design", case3, "--solver", "minlp", "--time-limit", "0.001"], 1, [],
-         xfail=lead + "--time-limit for every solver: the best design so far, with status and gap")
+         note="a failed Table 2 check (exit 1) as in the flowchart, not invalid input")
+    case("design_json_infeasible_exit_1", ["design", case3, "--json"], 1, [], absent=["-Infinity", "Infinity"])
+    d = {k: v for k, v in DEFAULT.items()
+         if k not in ("engine_support_internal_diameter_mm", "engine_support_external_diameter_mm", "contact_angle_deg")}
+    f = write("d_default_no_bolt_data.yaml", yaml.safe_dump({"inputs": d}, sort_keys=False))
+    case("design_step10_not_verified_exit_3", ["design", f], 3, [], stdout=["not verified", "INCOMPLETE"],
+         note="the feasible default application without fixation data: every other check passes, step 10 is "
+              "not verified, so the verdict is incomplete (exit 3), never a plain PASS")
+    case("design_time_limit", ["design", case3, "--solver", "minlp", "--time-limit", "0.001"], 1, [])
     f = write("d_reverse_na_flowchart.yaml", yaml_case({"max_axial_displacement_mm": "N/A",
                                                         "middle_plane_belt_height_mm": 16.0,
                                                         "min_belt_crankcase_clearance_mm": 0.5}))
-    case("flowchart_reverse_table_na_layout", ["flowchart", f], 1, [], stdout=["rotary_reverse", "1 >= 0.5 mm"],
-         xfail=lead + "the evaluator picks the layout with synth.model.layout.layout_of and checks eq. (27) with "
-                      "min_belt_crankcase_clearance_mm")
+    case("flowchart_reverse_table_na_layout", ["flowchart", f], 1, [], stdout=["rotary_reverse", "1 >= 0.5 mm"])
 
 
 def main() -> None:
