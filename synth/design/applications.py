@@ -107,10 +107,9 @@ class Applications:
         d = self.derived
         d["hubload_nominal_n"] = s3.hubload_nominal_n(f["calculated_torque_target_nm"], f["working_arm_mm"],
                                                       f["differential_angle_deg"])
-        hmax = f["max_axial_displacement_mm"]
-        # eq. (17): standard when the belt plane is at least half the axial height; with no axial limit (N/A) the
-        # layout is reverse, the only one whose eq. (27) needs no upper limit (see docs/sections/step00_03.md)
-        d["layout_standard"] = np.where(np.isnan(hmax), False, f["middle_plane_belt_height_mm"] >= hmax / 2.0)
+        # eq. (17)-(18); with no axial limit (N/A) the layout is reverse (synth.model.layout.layout_of)
+        d["layout_standard"] = np.atleast_1d(s0.layout_of(f["middle_plane_belt_height_mm"],
+                                                          f["max_axial_displacement_mm"]) == "standard")
         d["layout_reverse"] = ~d["layout_standard"]
         d["pulley_width_mm"] = s0.pulley_width_mm(f["belt_width_mm"])
         d["mu_pivot_bushing"] = parts.mu("pivot_bushing", self.env) if n else np.zeros(0)
