@@ -26,7 +26,7 @@ from synth import catalog, parts as P
 from synth.design import evaluate as E
 from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, by_group
-from synth.design.result import NOT_VERIFIED, Check, Result, checks_of
+from synth.design.result import NOT_VERIFIED, Check, Result, checks_of, plain
 from synth.design.space import (NONE, PART_KEYS, axial_attributes, bolt_attributes, bushing_attributes,
                                 core_attributes, space, spring_attributes)
 from synth.design.verify import evaluate_design, inputs_of, values_of, verify
@@ -209,6 +209,10 @@ class _Walk:
         d_in, d_out = float(cg.values["spring_housing_inner_diameter_mm"][0]), \
             float(cg.values["spring_housing_outer_diameter_mm"][0])
         mbd = np.arange(np.ceil(d_in / step) * step, np.floor(d_out / step) * step + step / 2, step)
+        if not len(mbd):  # no mean diameter between the housing's walls: the middle one, whose contact checks fail
+            mbd = np.array([(d_in + d_out) / 2.0])
+            self.notes.append(f"main spring (automatic): the spring housing's inner diameter {d_in:g} mm is not below "
+                              f"its outer diameter {d_out:g} mm; no spring fits (mean diameter {mbd[0]:g} mm shown)")
         m, w, dd = (x.ravel() for x in np.meshgrid(np.arange(len(p.spring_material)), np.arange(len(p.spring_wire)),
                                                    mbd, indexing="ij"))
         opts = spring_attributes(p, m, w, dd)
@@ -274,7 +278,8 @@ def _stopped(walk: _Walk, stop: _Stop) -> Result:
             checks.append(Check(cid, None, None, None, NOT_VERIFIED, f"not run: the flowchart stopped at step {stop.step}"))
     order = {cid: i for i, cid in enumerate(REGISTRY)}
     checks.sort(key=lambda c: order[c.id])
-    values = {k: float(v[0]) for k, v in groups["core"].values.items() if np.ndim(v) and np.asarray(v).dtype.kind == "f"}
+    values = {k: plain(float(v[0])) for k, v in groups["core"].values.items()
+              if np.ndim(v) and np.asarray(v).dtype.kind == "f"}
     return Result(status="baseline", solver="flowchart", values=values, checks=checks,
                   notes=walk.notes + [stop.why], inputs=inputs_of(d), settings=_settings_dict(walk.s),
                   steps_run=sorted(set(walk.steps)))

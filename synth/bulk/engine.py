@@ -37,6 +37,7 @@ from synth import catalog
 from synth.design import evaluate as E
 from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, REGISTRY
+from synth.design.result import FAIL, PASS, WARNING
 from synth.design.space import PART_KEYS, SUBSYSTEMS, core_rows, space
 from synth.optimise.evaluate import core_scores, option_scores
 from synth.optimise.solvers.enumerate import weights_vec
@@ -99,8 +100,9 @@ def row_from_result(res, diagnose: bool = True) -> dict:
         row["binding_constraint"], row["binding_margin"] = binds[0].id, float(binds[0].margin)
     else:
         row["binding_constraint"], row["binding_margin"] = "", math.inf
-    for n in constraint_ids():
-        row[f"margin_{n}"] = float(m[n]) if n in m else math.nan
+    every = {c.id: c.margin for c in res.checks if c.margin is not None and c.verdict in (PASS, FAIL, WARNING)}
+    for n in constraint_ids():  # advisory constraints carry their margin, passing or warning
+        row[f"margin_{n}"] = float(every[n]) if n in every else math.nan
     row["violated"] = ";".join(f"{c.id}:{c.margin:+.3f}" for c in failed) if not feasible else ""
     rel = (res.diagnosis or {}).get("relaxations") or []
     row["relaxation"] = _fmt_relaxation(rel[0]) if (rel and diagnose and not feasible) else ""

@@ -41,6 +41,10 @@ DEFAULTS = {
     "min_belt_crankcase_clearance_mm": "reverse_layout_min_crankcase_clearance_mm",
 }
 
+#: durability input -> its value after the assumed test (engine type) is applied
+_DURABILITY = {"durability_theta_peak_to_peak_deg": "theta_pp_deg", "durability_frequency_hz": "frequency_hz",
+               "durability_duration_h": "duration_h"}
+
 NUMERIC_FIELDS = tuple(f.name for f in FIELDS if f.kind in ("float", "int") and not f.choices and not f.catalog) + tuple(
     n for n in DEFAULTS if n not in {f.name for f in FIELDS})
 
@@ -140,11 +144,25 @@ class Applications:
             ok &= self.given[n] if n in self.given else np.array([getattr(d, n, None) is not None for d in self.inputs])
         return ok
 
-    def missing_note(self, requirement: str) -> str:
-        """``"not verified: <what> missing"`` for a requirement (the readable text of REQUIREMENTS)."""
-        if requirement in REQUIREMENTS:
-            return f"not verified: {REQUIREMENTS[requirement][1]} missing"
-        return f"not verified: {requirement} missing"
+    def missing_note(self, requirement: str, i: int = 0) -> str:
+        """``"not verified: <field>, <field> missing (<what>)"``: the input fields of a requirement that
+        application ``i`` left out, with the readable name of the requirement (REQUIREMENTS).
+
+        >>> from synth.data import case_path
+        >>> from synth.schema import load_input
+        >>> import dataclasses
+        >>> d = dataclasses.replace(load_input(case_path("case1_as_run")), tilting_safety_factor=None)
+        >>> Applications.of([d]).missing_note("fixation")
+        'not verified: tilting_safety_factor missing (fixation data)'
+        """
+        if requirement not in REQUIREMENTS:
+            return f"not verified: {requirement} missing"
+        names, what = REQUIREMENTS[requirement]
+        left_out = [n for n in names if not (self.given[n][i] if n in self.given
+                                             else getattr(self.inputs[i], n, None) is not None)]
+        if requirement == "durability":
+            left_out = [n for n in left_out if not np.isfinite(self.derived[_DURABILITY[n]][i])]
+        return f"not verified: {', '.join(left_out) or requirement} missing ({what})"
 
     def assumed(self, name: str) -> np.ndarray:
         """``(n,)`` bool: the optional input ``name`` was not given and its documented default is used."""

@@ -146,9 +146,10 @@ class Result:
 
     @property
     def margins(self) -> dict:
-        """``{constraint id: margin}`` of the evaluated (non-advisory) checks."""
+        """``{constraint id: margin}`` of the evaluated non-advisory checks (an advisory check's margin is on the
+        check itself, :meth:`check`; it never enters feasibility)."""
         return {c.id: c.margin for c in self.checks
-                if c.verdict in (PASS, FAIL) and c.margin is not None}
+                if c.verdict in (PASS, FAIL) and not c.constraint.advisory and c.margin is not None}
 
     def check(self, cid: str) -> Check:
         for c in self.checks:
@@ -221,7 +222,7 @@ def checks_of(groups: dict, apps, row: int = 0) -> list:
                 out.append(Check(cid, None, None, None, NOT_VERIFIED, f"not verified: {c.limit} not given"))
                 continue
             missing = [r for r in c.needs if not apps.met(r)[a]]
-            out.append(Check(cid, None, None, None, NOT_VERIFIED, apps.missing_note(missing[0]) if missing else ""))
+            out.append(Check(cid, None, None, None, NOT_VERIFIED, apps.missing_note(missing[0], a) if missing else ""))
             continue
         value = float(g.values[c.value][row])
         limit = E._CONSTANT_LIMITS[c.limit] if c.limit in E._CONSTANT_LIMITS else float(g.values[c.limit][row])

@@ -121,11 +121,15 @@ class Space:
                 raise InputError(Problem(f"{field_prefix}.{k}", None, "a value (every part key of a design)"))
             return parts[k]
 
-        def num(k):
+        def num(k, upper=None):
             try:
-                return float(need(k))
+                x = float(need(k))
             except (TypeError, ValueError):
                 raise InputError(Problem(f"{field_prefix}.{k}", parts[k], "a number")) from None
+            if not (np.isfinite(x) and x > 0 and (upper is None or x <= upper)):
+                raise InputError(Problem(f"{field_prefix}.{k}", parts[k], "a positive finite number"
+                                         + (f" up to {upper:g}" if upper is not None else "")))
+            return x
 
         def code(table: P.Table, k, none_ok=False):
             v = str(need(k)).strip()
@@ -146,7 +150,7 @@ class Space:
             di = parts.get("cone_spring_internal_diameter_mm")  # absent in older results: the Table 8 minimum
             inc = (num("cone_spring_internal_diameter_mm") - di_min) if di not in (None, 0, 0.0) else 0.0
             out["axial"] = axial_attributes(p, [spacer], [num("cone_spring_aspect_ratio")],
-                                            [num("cone_spring_deflection_ratio")], [red], [inc])
+                                            [num("cone_spring_deflection_ratio", 1.0)], [red], [inc])
         else:
             out["axial"] = axial_attributes(p, [-1], [0.0], [0.0], [0.0])
         out["spring"] = spring_attributes(p, [code(p.spring_material, "main_spring_material")],

@@ -78,6 +78,10 @@ def values_of(groups: dict, attrs: dict) -> dict:
               "damper_pad_axial_height_mm"):
         if not out.get("axial_group_present"):
             out.pop(k, None)
+    if not out.get("axial_group_present"):  # no cone spring: none of its dimensions or limits describes the design
+        for k in out:
+            if k.startswith("cone_spring_") and k != "cone_spring_sized":
+                out[k] = None
     out["bolt_d_mm"] = plain(attrs["bolt"]["bolt_d_mm"][0])
     if not out.get("axial_damping_present"):
         out["axial_damping_nm"] = None

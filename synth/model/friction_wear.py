@@ -193,6 +193,8 @@ def _deflection_after(s0, target, coef):
 
     ``1/(u q(u)) >= 1/(u q_max)`` on ``(0, s0]`` (``q`` convex: its maximum is at an end), so
     ``v = target * q_max`` already reaches the target: the root lies in ``[0, target * q_max]``.
+    A tiny target (``v`` below ``sqrt(eps)``, e.g. a wear coefficient near zero) is below the round-off of
+    ``Phi(s0) - Phi(s)``: there ``v = target q(s0)`` (first order, ``dPhi/dv = 1/q``; relative error ~ v).
     """
     from scipy.optimize.elementwise import find_root
     alpha, beta, gamma, root = coef
@@ -206,7 +208,9 @@ def _deflection_after(s0, target, coef):
     hi = np.maximum(target * q_max, 0.0) * (1.0 + 1e-9) + 1e-300
     res = find_root(f, (np.zeros_like(hi), hi), args=(s0, phi0, target, alpha, beta, gamma, root),
                     tolerances={"xatol": 0.0, "xrtol": 4 * np.finfo(float).eps})
-    return np.where(target > 0, s0 * np.exp(-res.x), s0)
+    v_first_order = target * (alpha + beta * s0 + gamma * s0 * s0)
+    v = np.where(v_first_order < np.sqrt(np.finfo(float).eps), v_first_order, res.x)
+    return np.where(target > 0, s0 * np.exp(-v), s0)
 
 
 def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm,
