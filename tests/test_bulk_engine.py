@@ -62,21 +62,32 @@ def test_fast_equals_reference_screening(apps, ref_standard):
     assert 0 < fast["feasible"].sum() < len(apps)
 
 
-def test_fast_equals_reference_cost_with_diagnosis():
-    apps = generate(2, seed=4)
-    _assert_same(screen_applications(apps, objective="cost"), screen_applications_reference(apps, objective="cost"))
+def test_fast_equals_reference_cost():
+    # two feasible applications (the fast path) and one infeasible (the fast path hands it to solve: the same code
+    # as the reference, so a chunk of infeasible applications only would compare solve with itself)
+    apps = generate(3, seed=2)
+    fast = screen_applications(apps, objective="cost", diagnose=False)
+    assert fast["feasible"].sum() == 2
+    _assert_same(fast, screen_applications_reference(apps, objective="cost", diagnose=False))
 
 
-def test_fast_equals_reference_margin_objective():
-    apps = generate(2, seed=5)
-    _assert_same(screen_applications(apps, objective="margin", diagnose=False),
-                 screen_applications_reference(apps, objective="margin", diagnose=False))
+def test_margin_objective_rows_are_the_max_min_design():
+    # the margin objective takes the per-application path (solve); its row keeps the largest smallest margin,
+    # never below the most standardised design's
+    d = generate(2, seed=5)[1]
+    std = screen_applications([d], objective="standard", diagnose=False).iloc[0]
+    mar = screen_applications([d], objective="margin", diagnose=False).iloc[0]
+    assert std["feasible"] and mar["feasible"]
+    assert mar["objective_margin"] >= std["objective_margin"] - 1e-12
+    assert mar["objective_margin"] == pytest.approx(solve(d, "margin", relax=False,
+                                                          settings=Settings(fidelity="screening")).objectives["margin"])
 
 
 def test_fast_equals_reference_full_fidelity():
     apps = generate(3, seed=2)
-    _assert_same(screen_applications(apps, fidelity="full", diagnose=False),
-                 screen_applications_reference(apps, fidelity="full", diagnose=False))
+    fast = screen_applications(apps, fidelity="full", diagnose=False)
+    assert fast["feasible"].any()   # rows of the fast path, not only solve's
+    _assert_same(fast, screen_applications_reference(apps, fidelity="full", diagnose=False))
 
 
 def test_one_row_equals_solve(apps, ref_standard):
@@ -139,8 +150,8 @@ def test_only_radial_application():
     """Case 3 (dry, radial damping) declared only_radial: no damper pad, the axial-group margins not applicable
     (NaN); the verdict and relaxation of the optimisation section (case 3: stiffness 0.0164 -> 0.0192)."""
     d = dataclasses.replace(load_input(case_path("case3")), damping_typology="only_radial")
+    # (infeasible: the engine hands it to solve with the diagnosis, the reference's own code: no comparison here)
     fast = screen_applications([d])
-    _assert_same(fast, screen_applications_reference([d]))
     row = fast.iloc[0]
     assert row["part_damper_pad_class"] == "none" and row["part_endcap_spacer_class"] == "none"
     for name in ("cone_sigma_om", "damping_eol", "endcap_spacer_capacity"):
