@@ -15,10 +15,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from synth import catalog
+from synth.design.constraints import REGISTRY, margin
+from synth.design.evaluate import Settings
+from synth.design.verify import verify
 from synth.errors import CatalogError, InputError
 from synth.model import bolted_joint as s10
 
 from synth.data import CASES_DIR as CASES
+
+from conftest import case_flowchart, case_input
 CASE_KEYS = [
     "bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_mpa", "bolt_tau_mpa", "bolt_sigma_eqv_mpa",
     "bolt_under_head_stress_mpa", "bolt_thread_stress_mpa", "pivot_base_contact_surface_mm2",
@@ -58,6 +63,42 @@ def _fix(kw, **opts):
     opts.setdefault("bolt_head_contact_external_diameter_mm", 11.0)
     return s10.fixation(kw["hubload_n"], kw["h"], kw["dh"], kw["sft"], kw["sfs"], kw["dint"], kw["dext"],
                         kw["theta"], kw["scomp"], kw["strac"], **opts)
+
+
+def _margins(r, kw):
+    """The registry's step-10 margins of a :func:`fixation` result for the targets and support of ``kw`` (the
+    pairing of values and limits is the evaluator's: :func:`test_step10_margins_are_the_evaluators`)."""
+    pairs = {"tilting": ("tilting_safety_factor", kw["sft"]), "sliding": ("sliding_safety_factor", kw["sfs"]),
+             "bolt_yield": ("bolt_sigma_eqv_mpa", catalog.constant("bolt_yield_utilisation_max") * r["bolt_rp02_mpa"]),
+             "under_head": ("bolt_under_head_stress_mpa", kw["scomp"]),
+             "thread": ("bolt_thread_stress_mpa", kw["strac"]),
+             "pivot_base_pressure": ("pivot_base_max_pressure_mpa", kw["scomp"])}
+    out = {cid: margin(REGISTRY[cid], r[v], lim) for cid, (v, lim) in pairs.items()}
+    out["pivot_bore"] = margin(REGISTRY["pivot_bore"], kw["dint"], r["pivot_bore_min_mm"])
+    if "bolt_permissible_preload_n" in r:
+        out["bolt_preload_vdi"] = margin(REGISTRY["bolt_preload_vdi"], r["bolt_required_preload_max_n"],
+                                         r["bolt_permissible_preload_n"])
+    return out
+
+
+def _case_kw(inputs):
+    i = inputs
+    return dict(sft=i["tilting_safety_factor"], sfs=i["sliding_safety_factor"],
+                dint=i["engine_support_internal_diameter_mm"], scomp=i["support_yield_strength_compression_mpa"],
+                strac=i["support_yield_strength_traction_mpa"])
+
+
+@pytest.mark.parametrize("name", ["case1_as_run", "case3"])
+def test_step10_margins_are_the_evaluators(name):
+    # fixation() of the case's inputs, paired with the limits as above, gives the margins of verify()'s bolt checks
+    c = _case(name)
+    r = _run(c["inputs"], bolt_format="M8x1.25", bolt_property_class="8.8")
+    res = case_flowchart(name)
+    assert (res.get("bolt_format"), res.get("bolt_property_class"), res.get("bolt_head_type")) == ("M8x1.25", "8.8", "hex")
+    mine = _margins(r, _case_kw(c["inputs"]))
+    for cid, m in mine.items():
+        if cid != "bolt_preload_vdi":
+            assert float(m) == pytest.approx(res.check(cid).margin, rel=1e-9, abs=1e-12), cid
 
 
 # ----------------------------------------------------------------------------------------------
@@ -113,7 +154,7 @@ def test_friction_lookup_and_errors():
     assert s10.friction_coefficient("pivot_bushing", "belt_in_oil") == 0.055
     assert s10.friction_coefficient("pivot_bushing", "dry") == 0.15
     assert s10.friction_coefficient("thread", "dry") == 0.14
-    with pytest.raises(CatalogError, match="application_type.*belt_in_oil, dry"):
+    with pytest.raises(CatalogError, match="application_type.*dry, belt_in_oil"):
         s10.friction_coefficient("thread", "wet")
     with pytest.raises(CatalogError, match="friction interface.*pivot_base_crankcase"):
         s10.friction_coefficient("washer", "dry")
@@ -308,10 +349,10 @@ def test_escalation_order_class_then_format():
     assert r["bolt_format"].tolist() == ["M8x1.25", "M8x1.25", "M8x1.25", "M8x1.25", "M10x1.5", "M12x1.75",
                                          "M12x1.75"]
     assert r["bolt_property_class"].tolist() == ["8.8", "9.8", "10.9", "12.9", "10.9", "12.9", "12.9"]
-    m = r["margin_bolt_yield"]
-    assert (m[:-1] >= 0).all() and m[-1] < 0
-    # the M10 needs a 10.2 mm bore: the 8.2 mm support fails and column G says so
-    assert r["pivot_bore_min_mm"][4] == 10.2 and r["margin_pivot_bore"][4] < 0
+    m = _margins(r, _base())
+    assert (m["bolt_yield"][:-1] >= 0).all() and m["bolt_yield"][-1] < 0
+    # the M10 needs a 10.2 mm bore: the 8.2 mm support fails the registry's bore check
+    assert r["pivot_bore_min_mm"][4] == 10.2 and m["pivot_bore"][4] < 0
     # default head contact diameter is the ISO 4017 dw min of the chosen format
     assert r["bolt_under_head_stress_mpa"][0] == pytest.approx(15000.0 / (np.pi / 4 * (11.63**2 - 8.2**2)))
 
@@ -324,18 +365,18 @@ def test_escalation_threshold_by_hand():
 
 def test_manual_bolt_is_verified_not_escalated():
     r = _fix(_base(hubload_n=1200.0), bolt_format="M8x1.25", bolt_property_class="8.8")
-    assert str(r["bolt_format"]) == "M8x1.25" and float(r["margin_bolt_yield"]) < 0
-    checks = s10.fixation_checks(r, tilting_safety_factor_target=3.0, sliding_safety_factor_target=3.0,
-                                 engine_support_internal_diameter_mm=8.2, support_yield_strength_compression_mpa=400.0,
-                                 support_yield_strength_traction_mpa=400.0)
-    by = {c.name: c for c in checks}
-    assert by["bolt von Mises stress"].verdict == "fail"
+    m = _margins(r, _base(hubload_n=1200.0))
+    assert str(r["bolt_format"]) == "M8x1.25" and float(m["bolt_yield"]) < 0
     # under head: 36000 N on pi/4 (11^2 - 8.2^2) = 42.22 mm^2 -> 853 MPa > 400;
-    # dw >= sqrt(4*36000/(pi*400) + 8.2^2) = sqrt(114.59 + 67.24) = 13.48 mm
-    assert by["under-head stress"].verdict == "fail"
-    assert by["under-head stress"].correction == "bolt-head contact diameter >= 13.5 mm"
+    # dw >= sqrt(4*36000/(pi*400) + 8.2^2) = sqrt(114.59 + 67.24) = 13.48 mm (column G)
+    assert float(r["bolt_under_head_stress_mpa"]) == pytest.approx(36000.0 / (np.pi / 4 * (11.0**2 - 8.2**2)))
+    assert float(m["under_head"]) < 0
+    assert float(r["min_head_contact_diameter_mm"]) == pytest.approx(13.48, abs=0.005)
     # threads: 36000/(24.445*2.6) = 566 MPa > 400; n >= 36000/(24.445*400) = 3.68
-    assert by["thread bearing stress"].correction == "at least 3.7 active threads"
+    assert float(m["thread"]) < 0 and float(r["min_active_threads"]) == pytest.approx(3.68, abs=0.005)
+    # the registry's corrections name the same remedies
+    assert "contact diameter" in REGISTRY["under_head"].correction
+    assert "active threads" in REGISTRY["thread"].correction
     with pytest.raises(CatalogError, match="bolt_format.*M10x1.5"):
         _fix(_base(), bolt_format="M9")
     with pytest.raises(CatalogError, match="bolt_property_class.*10.9"):
@@ -350,7 +391,7 @@ def test_vectorised_equals_scalar():
     r = _fix(kw, application_type="belt_in_oil")
     for j in (0, 7, 1999):
         one = _fix({k: (v[j] if np.ndim(v) else v) for k, v in kw.items()}, application_type="belt_in_oil")
-        for key in CASE_KEYS + ["margin_tilting", "margin_bolt_yield"]:
+        for key in CASE_KEYS + ["bolt_rp02_mpa", "pivot_base_max_pressure_mpa"]:
             assert float(one[key]) == pytest.approx(float(r[key][j]), rel=1e-9), key
         assert str(one["bolt_format"]) == r["bolt_format"][j]
 
@@ -417,7 +458,8 @@ def test_contact_angle_extremes_are_finite(theta):
     r = _fix(_base(theta=theta))
     for key in CASE_KEYS:
         assert np.isfinite(float(r[key])), key
-    assert float(r["margin_tilting"]) >= -1e-9 and float(r["margin_sliding"]) >= -1e-9
+    m = _margins(r, _base(theta=theta))
+    assert float(m["tilting"]) >= -1e-9 and float(m["sliding"]) >= -1e-9
     assert float(r["pivot_base_contact_surface_mm2"]) > 0
 
 
@@ -557,10 +599,24 @@ def test_vdi_path_case1_hand_calculation():
     assert float(r["bolt_permissible_preload_n"]) == pytest.approx(
         float(s10.permissible_assembly_preload_n(1.25, 7.188, 6.466, 1100.0, 0.14)))
     m88 = _run(c["inputs"], method="vdi2230", clamp_length_mm=lk, bolt_format="M8x1.25", bolt_property_class="8.8")
-    assert float(m88["margin_bolt_yield"]) < 0
+    assert float(_margins(m88, _case_kw(c["inputs"]))["bolt_preload_vdi"]) < 0
     assert float(m88["bolt_residual_clamp_force_n"]) == pytest.approx(18130.9 / alpha - fz, rel=1e-4)
     assert float(m88["sliding_safety_factor"]) == pytest.approx(0.10 * (18130.9 / alpha - fz) / 652.48, rel=1e-4)
     assert round(float(m88["sliding_safety_factor"]), 2) == 1.54
+
+
+def test_vdi_path_case1_through_the_registry():
+    # the same design verified with the VDI setting: the registry's VDI preload check fails, the thesis one does not
+    # apply; the flowchart's bolt on the thesis path stays M8x1.25 8.8 (the production bolt)
+    parts = case_flowchart("case1_as_run").parts
+    vdi = verify(case_input("case1_as_run"), parts, Settings(bolt_method="vdi2230"))
+    assert vdi.check("bolt_preload_vdi").verdict == "fail" and vdi.check("bolt_yield").verdict == "not applicable"
+    assert vdi.check("bolt_preload_vdi").limit == pytest.approx(18130.9, rel=1e-4)
+    assert vdi.get("sliding_safety_factor") == pytest.approx(1.54, abs=0.005)
+    thesis = verify(case_input("case1_as_run"), parts)
+    assert thesis.check("bolt_yield").verdict == "pass" and thesis.check("bolt_preload_vdi").verdict == "not applicable"
+    strong = verify(case_input("case1_as_run"), dict(parts, bolt_property_class="12.9"), Settings(bolt_method="vdi2230"))
+    assert strong.check("bolt_preload_vdi").verdict == "pass"
 
 
 def test_vdi_residual_clamp_meets_the_targets_whenever_the_bolt_passes():
@@ -570,9 +626,10 @@ def test_vdi_residual_clamp_meets_the_targets_whenever_the_bolt_passes():
                theta=rng.uniform(120, 360, n), sft=rng.uniform(1.5, 4, n), sfs=rng.uniform(1.5, 4, n))
     for tighten_to in ("permissible", "required"):
         r = _fix(kw, method="vdi2230", clamp_length_mm=rng.uniform(20, 60, n), tighten_to=tighten_to)
-        ok = r["margin_bolt_yield"] >= 0
+        m = _margins(r, kw)
+        ok = m["bolt_preload_vdi"] >= 0
         assert ok.any() and (~ok).any()
-        assert (r["margin_sliding"][ok] >= -1e-9).all() and (r["margin_tilting"][ok] >= -1e-9).all()
+        assert (m["sliding"][ok] >= -1e-9).all() and (m["tilting"][ok] >= -1e-9).all()
         assert (r["bolt_residual_clamp_force_n"][ok] >= r["bolt_clamp_force_required_n"][ok] * (1 - 1e-9)).all()
         assert (r["bolt_axial_force_n"] <= r["bolt_permissible_preload_n"] * (1 + 1e-12)).all()
         if tighten_to == "required":  # tightened to F_M,max: the residual is F_Kerf exactly

@@ -21,7 +21,7 @@ from hypothesis import given, settings, strategies as st
 import synth.bulk.engine as engine_mod
 from synth import catalog, schema
 from synth.bulk import run as run_mod
-from synth.bulk.engine import columns
+from synth.bulk.engine import columns, constraint_ids
 from synth.bulk.portfolio import (clean_cell, column_warnings, read_portfolio, records, to_table, validate_record,
                                   validate_rows, write_table)
 from synth.bulk.run import chunk_ranges, compute_chunk, result_columns, run_portfolio, sidecar
@@ -29,8 +29,10 @@ from synth.bulk.sample import BREAKAGES, break_rows, sample_portfolio
 from synth.bulk.summary import fidelity_agreement, summarise, text, write_summary
 from synth.cli import main
 from synth.data.generated_applications import generate
+from synth.design.space import PART_KEYS
 from synth.errors import InputError
-from synth.optimise.evaluate import CONSTRAINTS
+
+CONSTRAINTS = constraint_ids()
 
 ARM_LIMIT_MM = 3.5  # the fake engine's feasibility rule: working arm >= 3.5 mm
 
@@ -52,15 +54,15 @@ def fake_screen(apps, *, objective="standard", fidelity="screening", diagnose=Tr
     mmin = np.minimum(m_arm, m_tq)
     feas = mmin >= 0
     df["feasible"], df["status"] = feas, np.where(feas, "optimal", "infeasible")
+    df["verdict"] = np.where(feas, "pass", "fail")
     df["objective_standard"], df["objective_cost_eur"] = 0.0, 10.0 + arm
     df["objective_margin"], df["margin_min"] = mmin, mmin
     df["binding_constraint"] = np.where(m_arm <= m_tq, "arm_wall", "self_locking")
     df["binding_margin"] = mmin
-    for k in ("pivot_class_mm", "supplier", "damper_pad", "bushing_length_mm", "endcap_spacer", "cone_aspect_ratio",
-              "spring_material", "spring_wire", "spring_mbd_mm", "bolt_format", "bolt_property_class"):
+    for k in PART_KEYS:
         df[f"part_{k}"] = "X"
-    df["part_bearing"] = np.where(arm < 4.0, "6006", "6205")
-    df["part_pivot_class_mm"] = np.where(arm < 4.0, 17.0, 19.0)
+    df["part_ball_bearing"] = np.where(arm < 4.0, "6006", "6205")
+    df["part_pivot_class_diameter_mm"] = np.where(arm < 4.0, 17.0, 19.0)
     df["violated"] = [f"arm_wall:{m:+.3f}" if m < 0 else "" for m in m_arm]
     df["relaxation"] = [f"working_arm_mm {a:g}->{ARM_LIMIT_MM:g}" if (m < 0 and diagnose) else "" for a, m in zip(arm, m_arm)]
     df["notes"] = "fake engine"
@@ -156,7 +158,7 @@ def test_broken_rows_reported_others_run(tmp_path, fake_engine):
         name = BREAKAGES[kind][0]
         assert t.loc[i, "status"] == "error" and not t.loc[i, "feasible"]
         assert t.loc[i, "error"].startswith(f"{name}: ")
-        assert math.isnan(t.loc[i, "margin_min"]) and t.loc[i, "part_bearing"] is None
+        assert math.isnan(t.loc[i, "margin_min"]) and t.loc[i, "part_ball_bearing"] is None
     errs = {kind: t.loc[i, "error"] for i, kind in broken.items()}
     assert errs["unknown_choice"].startswith("application_type: got 'wet'; accepted: one of dry, belt_in_oil")
     assert errs["non_numeric"] == "calculated_torque_target_nm: got 'three'; accepted: a number in (0, 100] Nm"
@@ -321,8 +323,8 @@ def _hand_table() -> pd.DataFrame:
         "margin_min": [0.10, 0.30, 0.05, -0.20, -0.01, np.nan],
         "violated": ["", "", "", "spring_yield:-0.200;cone_thinness:-0.010", "cone_thinness:-0.030", ""],
         "relaxation": ["", "", "", "max_pivot_height_mm 40->43.5, belt_width_mm 20->19", "", ""],
-        "part_bearing": ["6006", "6006", "6205", "6006", "6205", None],
-        "part_pivot_class_mm": [17.0, 19.0, 19.0, 17.0, 17.0, None],
+        "part_ball_bearing": ["6006", "6006", "6205", "6006", "6205", None],
+        "part_pivot_class_diameter_mm": [17.0, 19.0, 19.0, 17.0, 17.0, None],
     })
 
 
@@ -337,8 +339,8 @@ def test_summary_counts_on_a_hand_built_table(tmp_path):
     # an empty damping_typology is the field default, 'defined'
     assert g.loc[("damping_typology", "defined"), ["evaluated", "feasible"]].tolist() == [4, 2]
     parts = s.parts.set_index(["family", "part"])["count"]
-    assert parts[("bearing", "6006")] == 2 and parts[("bearing", "6205")] == 1  # feasible designs only
-    assert parts[("pivot_class_mm", "19")] == 2 and parts[("pivot_class_mm", "17")] == 1
+    assert parts[("ball_bearing", "6006")] == 2 and parts[("ball_bearing", "6205")] == 1  # feasible designs only
+    assert parts[("pivot_class_diameter_mm", "19")] == 2 and parts[("pivot_class_diameter_mm", "17")] == 1
     assert s.binding.to_dict("records")[0] == {"constraint": "pivot_bore", "count": 2, "share": 2 / 3,
                                                "median_margin": pytest.approx(0.2)}
     v = s.violated.set_index("constraint")
@@ -365,7 +367,7 @@ def test_fidelity_agreement_counts():
     a = _hand_table()
     b = a.copy()
     b.loc[0, ["feasible", "status", "margin_min"]] = [False, "infeasible", -0.05]
-    b.loc[1, "part_bearing"] = "6205"
+    b.loc[1, "part_ball_bearing"] = "6205"
     r = fidelity_agreement(a, b)
     assert (r["rows"], r["verdicts_differ"], r["designs_differ"]) == (5, 1, 1)
     assert r["verdict_share"] == 0.2 and r["margin_min_max_abs_diff"] == pytest.approx(0.15)
@@ -404,7 +406,9 @@ def test_cli_bad_command_lines(tmp_path, capsys):
 
 
 def test_real_engine_end_to_end(tmp_path):
-    """The real engine behind the harness: a broken row and two applications, against solve()."""
+    """The real engine behind the harness (screening fidelity, its default): a broken row and two applications,
+    against solve() at the same fidelity."""
+    from synth.design.evaluate import Settings
     from synth.optimise import solve
     table = sample_portfolio(3, seed=0, broken=1)
     rep = run_portfolio(table, tmp_path / "r.parquet", chunk_size=2)
@@ -415,9 +419,10 @@ def test_real_engine_end_to_end(tmp_path):
         if a is None:
             assert t.loc[i, "error"] == e
             continue
-        r = solve(a, "standard", "enumerate")
-        assert t.loc[i, "feasible"] == (r.status == "optimal")
-        assert t.loc[i, "part_bearing"] == r.parts["bearing"]
+        r = solve(a, "standard", "enumerate", settings=Settings(fidelity="screening"), relax=False)
+        assert t.loc[i, "feasible"] == (r.status == "optimal") and t.loc[i, "verdict"] == r.verdict
+        assert {k: t.loc[i, f"part_{k}"] for k in PART_KEYS} == r.parts
+        assert r.margins
         for name, m in r.margins.items():
             assert t.loc[i, f"margin_{name}"] == pytest.approx(m, rel=1e-9, abs=1e-12)
     assert set(CONSTRAINTS) <= {c[len("margin_"):] for c in t.columns if c.startswith("margin_")}

@@ -6,8 +6,11 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
+from synth.design.constraints import REGISTRY, margin
 from synth.errors import InputError
 from synth.model import disc_spring as cs
+
+from conftest import case_flowchart, case_input
 
 SQRT2 = math.sqrt(2.0)
 
@@ -100,7 +103,10 @@ def test_case1_geometry_limits():
 def test_table8_classes_and_range_flag():
     r = cs.cone_spring_min_internal_diameter_mm([17.79, 17.8, 21.7, 27.6, 28.0])
     assert r["pivot_clearance_mm"].tolist() == [0.2, 0.3, 0.4, 0.4, 0.4]
-    assert (r["margin_table8_range"][:4] >= 0).all() and r["margin_table8_range"][4] < 0
+    assert r["table8_max_mm"] == 28.0   # the last Table 8 class ends at Di 28 mm
+    # the registry's Table 8 constraint: Di 28.0 (pivot 27.6) is the last in range, 28.4 (pivot 28) is out
+    m = margin(REGISTRY["cone_table8_range"], r["cone_spring_min_internal_diameter_mm"], r["table8_max_mm"])
+    assert (m[:4] >= 0).all() and m[4] < 0
 
 
 def test_case1_force_band():
@@ -119,19 +125,37 @@ def test_case1_force_band():
     assert float(f) == pytest.approx(508.95, rel=2e-3)
 
 
+ZETA_PHI = dict(aspect_ratio=1.2, deflection_ratio=0.75)   # catalog defaults: Table 7 max, DIN 2093 reference
+
+
 def test_case1_full_step_with_sized_spring():
-    # our own sizing (zeta 1.2, phi 0.75) in the case-1 limits: De 30, Di 16.2, F_nom = 1.7129/(0.1294*0.026)
-    r = cs.cone_spring(1.7129, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 31.5, 16.0, 0.22)
+    # our own sizing (zeta 1.2, phi 0.75) in the case-1 limits: De 30 (pad 31.5 - 1, whole mm), Di 16.2 (pivot 16
+    # + Table 8), F_nom = 1.7129/(0.1294*0.026)
+    de = float(cs.cone_spring_max_external_diameter_mm(31.5))
+    di = float(cs.cone_spring_min_internal_diameter_mm(16.0)["cone_spring_min_internal_diameter_mm"])
+    r = cs.cone_spring(1.7129, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, de, di, 0.22, **ZETA_PHI)
     assert float(r["cone_spring_fax_nominal_n"]) == pytest.approx(1.7129 / (0.1294 * 0.026), rel=1e-9)
     assert float(r["cone_spring_fax_max_tolerance_n"]) < 577.3          # a stiffer spring than the tool's
     assert float(r["cone_spring_fax_min_tolerance_n"]) > 440.6
-    assert float(r["diameter_ratio"]) == pytest.approx(30.0 / 16.2)
-    assert all(float(m) >= 0 for m in r["margins"].values())
-    checks = cs.cone_spring_checks(r)
-    assert all(c.verdict == "pass" for c in checks)
+    assert float(r["cone_spring_diameter_ratio"]) == pytest.approx(30.0 / 16.2)
+    assert float(r["cone_spring_aspect_ratio"]) == pytest.approx(1.2)
+    # the band room (EN 16983 manufacturing tolerance inside the band) is what the registry compares with 0
+    assert 0 < float(r["cone_spring_force_band_room_n"]) < float(r["cone_spring_fax_band_n"])
     # RSS stack-up leaves a wider band
-    r2 = cs.cone_spring(1.7129, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 31.5, 16.0, 0.1114)
+    r2 = cs.cone_spring(1.7129, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, de, di, 0.1114, **ZETA_PHI)
     assert r2["cone_spring_fax_max_tolerance_n"] > r["cone_spring_fax_max_tolerance_n"]
+
+
+def test_case1_cone_spring_checks_pass_in_the_flowchart():
+    # the same sizing through the registry (was cone_spring_checks): every step-8 constraint passes for case 1
+    r = case_flowchart("case1_as_run")
+    assert (r.get("cone_spring_external_diameter_mm"), r.get("cone_spring_aspect_ratio")) == (30.0, 1.2)
+    step8 = [c for c in r.checks if c.step == 8]
+    assert {c.id for c in step8} >= {"cone_force_band", "cone_not_flattened", "cone_sigma_om", "cone_table8_range",
+                                      "cone_diameter_ratio_min", "cone_thinness_max"}
+    assert [c.id for c in step8 if c.verdict != "pass"] == []
+    # the binding one is the flat position: s_max 0.888 mm against h0 0.891 mm
+    assert r.check("cone_not_flattened").margin == pytest.approx((0.8910 - 0.8883) / 0.8910, abs=2e-4)
 
 
 def test_band_regressive_spring_beyond_peak_uses_the_right_side():
@@ -144,19 +168,41 @@ def test_band_regressive_spring_beyond_peak_uses_the_right_side():
     assert float(r["cone_spring_fax_min_tolerance_n"]) == pytest.approx(f_lo + 10.0)
 
 
-def test_vectorised_with_a_design_without_axial_damping():
-    r = cs.cone_spring(np.array([1.7129, 0.0]), 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 31.5, 16.0, 0.22)
+def test_vectorised_one_call_many_designs():
+    r = cs.cone_spring(np.array([1.7129, 0.8]), 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 30.0, 16.2, 0.22, **ZETA_PHI)
     assert r["cone_spring_thickness_mm"].shape == (2,)
-    assert r["cone_spring_thickness_mm"][1] == 0.0 and np.isinf(r["margins"]["force_band"][1])
-    assert cs.cone_spring_checks(r, 1)[0].verdict == "not verified"
-    assert cs.cone_spring_checks(r, 0)[0].verdict == "pass"
+    one = cs.cone_spring(0.8, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 30.0, 16.2, 0.22, **ZETA_PHI)
+    assert float(r["cone_spring_thickness_mm"][1]) == pytest.approx(float(one["cone_spring_thickness_mm"]), rel=1e-12)
+    # less force, thinner disc at the same zeta and phi
+    assert r["cone_spring_thickness_mm"][1] < r["cone_spring_thickness_mm"][0]
+
+
+def test_a_design_without_axial_damping_has_no_cone_spring_checks():
+    # was: cone_spring gave a zero spring and "not verified"; the registry's cone constraints apply only where a
+    # cone spring is sized, so case 1 without its damper pad and endcap spacer lists them as not applicable
+    from synth.design.verify import verify
+    parts = dict(case_flowchart("case1_as_run").parts, damper_pad_class="none", endcap_spacer_class="none",
+                 cone_spring_aspect_ratio=0.0, cone_spring_deflection_ratio=0.0)
+    r = verify(case_input("case1_as_run"), parts)
+    cone = [c for c in r.checks if c.id.startswith("cone_")]
+    assert cone and {c.verdict for c in cone} == {"not applicable"}
+    # and the damping split of case 1 needs the axial group: that is what fails
+    assert r.check("axial_group_matches_split").verdict == "fail"
 
 
 def test_table7_boundaries():
-    r = cs.table7_margins(24.0, 10.0, 1.0, 1.2)    # De/Di 2.4 (max), h0/t 1.2 (max), De/t 24
-    assert float(r["margin_diameter_ratio"]) == pytest.approx(0.0, abs=1e-12)
-    assert float(r["margin_aspect_ratio"]) == pytest.approx(0.0, abs=1e-12)
-    assert float(cs.table7_margins(50.0, 20.0, 1.0, 0.3)["margin_thinness"]) < 0   # De/t 50 > 42
+    from synth import parts as P
+    rng = P.arrays().cone_ranges
+    r = cs.table7_ratios(24.0, 10.0, 1.0, 1.2)    # De/Di 2.4 (max), h0/t 1.2 (max), De/t 24
+    assert (float(r["diameter_ratio"]), float(r["aspect_ratio"]), float(r["thinness"])) == (2.4, 1.2, 24.0)
+
+    def m(key, side, value):  # the registry's advisory Table 7 margin
+        return float(margin(REGISTRY[f"cone_{key}_{side}"], value, rng[key][0 if side == "min" else 1]))
+
+    assert m("diameter_ratio", "max", r["diameter_ratio"]) == pytest.approx(0.0, abs=1e-12)
+    assert m("aspect_ratio", "max", r["aspect_ratio"]) == pytest.approx(0.0, abs=1e-12)
+    assert m("thinness", "max", cs.table7_ratios(50.0, 20.0, 1.0, 0.3)["thinness"]) < 0   # De/t 50 > 42
+    assert REGISTRY["cone_thinness_max"].advisory   # supplier experience: a warning, never a failure
 
 
 def test_errors():
@@ -166,8 +212,10 @@ def test_errors():
         cs.disc_spring_force_n(0.1, 30.0, 16.2, 0.7, 0.8, fidelity="exact")
     with pytest.raises(InputError, match="plastic_friction_coefficient"):
         cs.required_axial_force_n(1.0, 0.0, 12.5, 13.5)
-    with pytest.raises(InputError, match="damper_pad_outer_diameter_mm"):
-        cs.cone_spring(1.7, 2.0, 0.3, 0.29, 0.13, 12.5, 13.5, 17.0, 16.0, 0.22)
+    with pytest.raises(InputError, match="outer_diameter_mm"):   # De 16 <= Di 16.2: not an annulus
+        cs.cone_spring(1.7, 2.0, 0.3, 0.29, 0.13, 12.5, 13.5, 16.0, 16.2, 0.22, **ZETA_PHI)
+    with pytest.raises(InputError, match="aspect_ratio"):
+        cs.cone_spring(1.7, 2.0, 0.3, 0.29, 0.13, 12.5, 13.5, 30.0, 16.2, 0.22, aspect_ratio=0.0, deflection_ratio=0.75)
 
 
 # --- properties ------------------------------------------------------------------------------------------
@@ -209,8 +257,8 @@ def test_near_sqrt2_monotone_and_finite(t, dz, frac):
 @given(dh1=st.floats(0.0, 0.3), dh2=st.floats(0.0, 0.3))
 def test_band_narrows_with_gap_tolerance(dh1, dh2):
     lo, hi = sorted((dh1, dh2))
-    a = cs.cone_spring(1.7, 2.0, 0.3, 0.29, 0.13, 12.5, 13.5, 31.5, 16.0, lo)
-    b = cs.cone_spring(1.7, 2.0, 0.3, 0.29, 0.13, 12.5, 13.5, 31.5, 16.0, hi)
+    a = cs.cone_spring(1.7, 2.0, 0.3, 0.29, 0.13, 12.5, 13.5, 30.0, 16.2, lo, **ZETA_PHI)
+    b = cs.cone_spring(1.7, 2.0, 0.3, 0.29, 0.13, 12.5, 13.5, 30.0, 16.2, hi, **ZETA_PHI)
     wa = a["cone_spring_fax_max_tolerance_n"] - a["cone_spring_fax_min_tolerance_n"]
     wb = b["cone_spring_fax_max_tolerance_n"] - b["cone_spring_fax_min_tolerance_n"]
     assert wb <= wa + 1e-9

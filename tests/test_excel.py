@@ -101,7 +101,7 @@ def test_filled_with_case3_gives_case3(blank):
     r1 = flowchart.run(from_xlsx).to_dict()
     r2 = flowchart.run(schema.validate(case3)).to_dict()
     assert r1 == r2
-    assert r1["pivot_diameter_mm"] == pytest.approx(21.0)   # case 3 Table 14
+    assert r1["values"]["pivot_diameter_mm"] == pytest.approx(21.0)   # case 3 Table 14
 
 
 def test_standard_selector_reads_empty(blank):

@@ -6,9 +6,12 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
+from synth.design.constraints import REGISTRY, margin
 from synth.errors import CatalogError, InputError
 from synth.model import friction_wear as pw
 from synth.model import disc_spring as cs
+
+from conftest import case_flowchart
 
 # thesis case 1: durability 16 deg peak-to-peak, 50 Hz, 1200 h; damper pad 460 mm2 / R 12.5 / h 3.5;
 # endcap spacer 490 mm2 / R 13.5 / h 1.5; radial damping 0.287 N m; EOL limit 1.50 N m
@@ -20,12 +23,13 @@ TEST = dict(durability_theta_peak_to_peak_deg=16.0, durability_frequency_hz=50.0
 def run(s0, geo, **kw):
     args = dict(PADS, **TEST)
     args.update({k: kw.pop(k) for k in list(kw) if k in args})
-    return pw.plastic_wear(s0, *geo, radial_damping_nm=kw.pop("radial_damping_nm", 0.287),
-                           damping_eol_limit_nm=kw.pop("damping_eol_limit_nm", 1.5), **args, **kw)
+    return pw.plastic_wear(s0, *geo, radial_damping_nm=kw.pop("radial_damping_nm", 0.287), **args, **kw)
 
 
 def case1_spring():
-    r = cs.cone_spring(1.7129, 2.0, 0.3, 0.2871, 0.129, 12.5, 13.5, 31.5, 16.0, 0.22)
+    # step 8 in the case-1 limits (De 30 from the 31.5 mm pad, Di 16.2 from the 16 mm pivot), zeta 1.2, phi 0.75
+    r = cs.cone_spring(1.7129, 2.0, 0.3, 0.2871, 0.129, 12.5, 13.5, 30.0, 16.2, 0.22, aspect_ratio=1.2,
+                       deflection_ratio=0.75)
     geo = tuple(float(r[k]) for k in ("cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm",
                                       "cone_spring_thickness_mm", "cone_spring_cone_height_mm"))
     return float(r["cone_spring_nominal_deflection_mm"]), geo, float(r["cone_spring_fax_nominal_n"])
@@ -85,11 +89,23 @@ def test_case1_eol_damping_narrow_pass():
     full = run(s0, geo, fidelity="full")
     scr = run(s0, geo, fidelity="screening")
     assert float(full["damping_initial_nm"]) == pytest.approx(2.0, rel=1e-3)
-    assert 0.0 <= float(full["margins"]["damping_eol"]) < 0.1
+    # the registry's step-5 constraints (EOL limit 1.50 N m; wear within the allowed share of the height)
+    assert 0.0 <= float(margin(REGISTRY["damping_eol"], full["damping_eol_nm"], 1.5)) < 0.1
     assert float(scr["damping_eol_nm"]) == pytest.approx(float(full["damping_eol_nm"]), rel=0.02)
     assert float(scr["plastic_wear_total_mm"]) == pytest.approx(float(full["plastic_wear_total_mm"]), rel=0.05)
-    checks = pw.plastic_wear_checks(full, 1.5, 3.5, 1.5)
-    assert [c.verdict for c in checks] == ["pass", "pass", "pass"]
+    for key in ("damper_pad_wear", "endcap_spacer_wear"):
+        assert float(margin(REGISTRY[key], full[f"{key}_mm"], full[f"{key}_max_mm"])) > 0
+    # the wear limits: the catalog's allowed fraction of the element heights 3.5 and 1.5 mm
+    assert float(full["damper_pad_wear_max_mm"]) / 3.5 == pytest.approx(float(full["endcap_spacer_wear_max_mm"]) / 1.5)
+
+
+def test_case1_eol_damping_in_the_flowchart():
+    # the same narrow pass through the registry: case 1's flowchart design keeps 1.535 N m >= 1.50 N m at EOL
+    r = case_flowchart("case1_as_run")
+    c = r.check("damping_eol")
+    assert c.verdict == "pass" and c.limit == 1.5
+    assert c.value == pytest.approx(1.535, abs=1e-3) and 0.0 <= c.margin < 0.1
+    assert r.check("damper_pad_wear").verdict == r.check("endcap_spacer_wear").verdict == "pass"
 
 
 def test_vectorised_many_designs_one_integration():
@@ -118,8 +134,21 @@ def test_errors():
         run(s0, geo, damper_pad_contact_area_mm2=0.0)
 
 
+@pytest.mark.xfail(strict=True, reason="core: friction_wear.plastic_wear(fidelity='full') returns NaN wear, force and "
+                   "damping (end of life and history) for a wear coefficient 0 < k_wear < ~1e-22 mm3/(N m): the target "
+                   "of _deflection_after is below the round-off of Phi(s0) - Phi(s), find_root's bracket does not "
+                   "straddle the root; screening gives 2.7e-24 mm, k_wear = 0 gives 0")
+@pytest.mark.parametrize("kw", [1e-30, 1e-100, 3.4e-173])
+def test_vanishing_wear_coefficient_gives_vanishing_wear(kw):
+    t = 0.7
+    r = run(0.75 * 1.2 * t, (30.0, 16.2, t, 1.2 * t), k_wear_mm3_per_n_m=kw, relaxation_pct=0.0, fidelity="full")
+    assert 0.0 <= float(r["plastic_wear_total_mm"]) < 1e-12
+    assert np.isfinite(float(r["damping_eol_nm"]))
+
+
+# k_wear in (0, 1e-15) is left to the xfail above (a core bug; restore st.floats(0.0, 1e-6) once it is fixed)
 @settings(max_examples=25, deadline=None)
-@given(zeta=st.floats(1.3, 1.5), phi=st.floats(0.5, 1.0), kw=st.floats(0.0, 1e-6),
+@given(zeta=st.floats(1.3, 1.5), phi=st.floats(0.5, 1.0), kw=st.one_of(st.just(0.0), st.floats(1e-15, 1e-6)),
        fid=st.sampled_from(["screening", "full"]))
 def test_monotone_in_time_and_force_falls_with_wear(zeta, phi, kw, fid):
     # around h0/t = sqrt(2): wear grows in time, force never rises when zeta <= sqrt(2), never NaN

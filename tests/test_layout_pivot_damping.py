@@ -6,7 +6,18 @@ import numpy as np
 import pytest
 from hypothesis import given, strategies as st
 
+from synth import catalog
+from synth.design import evaluate as E
+from synth.design.applications import Applications
+from synth.design.constraints import REGISTRY, margin
 from synth.model import layout as s0, ball_bearing as s1, pivot as s2, damping as s3
+
+from conftest import case_input
+
+
+def input_group(name, **changes):
+    """The registry's step-0 group (inputs only) of case ``name`` with input ``changes``."""
+    return E.inputs(Applications.of([case_input(name, **changes)]), np.zeros(1, dtype=np.int64))
 
 
 # --- step 0 -------------------------------------------------------------------------------------
@@ -22,11 +33,13 @@ def test_pulley_width_cases(belt, pulley):
 
 
 def test_axial_displacement_cases():
-    # case 1: 29.5 + 20/2 = 39.5 <= 42 ; case 3: 20 + 30/2 = 35 <= 36.3
-    assert float(s0.axial_displacement_margin(29.5, 20, 42, True)) == pytest.approx((42 - 39.5) / 42)
-    assert float(s0.axial_displacement_margin(20.0, 30, 36.3, True)) == pytest.approx((36.3 - 35) / 36.3)
-    # reverse layout: 10 - 20/2 = 0 < 2 mm clearance -> fails by 100 %
-    assert float(s0.axial_displacement_margin(10.0, 20, 42, False)) == pytest.approx(-1.0)
+    # case 1: 29.5 + 20/2 = 39.5 <= 42 ; case 3: 20 + 30/2 = 35 <= 36.3 (registry: pulley_axial_space, eq. (26))
+    assert input_group("case1_as_run").margins["pulley_axial_space"][0] == pytest.approx((42 - 39.5) / 42)
+    assert input_group("case3").margins["pulley_axial_space"][0] == pytest.approx((36.3 - 35) / 36.3)
+    # reverse layout (case 1 at a 10 mm belt plane): 10 - 20/2 = 0 < 2 mm clearance -> fails by 100 % (eq. (27))
+    g = input_group("case1_as_run", middle_plane_belt_height_mm=10.0)
+    assert bool(g.values["layout_reverse"][0]) and g.state["pulley_axial_space"][0] == E.NOT_APPLICABLE
+    assert g.margins["pulley_crankcase_clearance"][0] == pytest.approx(-1.0)
 
 
 def test_pin_zone_wraps_around_360():
@@ -37,8 +50,9 @@ def test_pin_zone_wraps_around_360():
 def test_pin_outside_wrap_tangent_distance():
     # pulley R = 33, theta+ = 90 deg; pin at 180 deg, radius 20: distance to the tangent line y = 33
     # from (-20, 0) is 33 mm -> needs d/2 + 2 = 4 mm -> margin (33 - 4)/4
-    m = s0.pin_clearance_margin(20.0, 180.0, 4.0, 66.0, 90.0, 30.0)
-    assert float(m) == pytest.approx((33 - 4) / 4)
+    c, req = s0.pin_clearance_mm(20.0, 180.0, 4.0, 66.0, 90.0, 30.0)
+    assert (float(c), float(req)) == pytest.approx((33.0, 4.0))
+    assert float(margin(REGISTRY["pin_clearance"], c, req)) == pytest.approx((33 - 4) / 4)
 
 
 # --- step 1 -------------------------------------------------------------------------------------
@@ -68,9 +82,13 @@ def test_table2_beyond_range_is_a_clear_error():
 
 def test_table2_entries_keep_the_arm_wall():
     # every standard class of Table 2 keeps >= 1 mm of arm wall
+    wall_min = catalog.constant("arm_min_wall_mm")
+    assert wall_min == 1.0
     for bearing, d, arm, cls in [("6006", 30, 2.5, 21), ("6006", 30, 3, 21), ("6006", 30, 4, 19),
                                  ("6006", 30, 5, 17), ("6007", 35, 4.5, 22)]:
-        assert s2.arm_wall_margin(d, arm, cls) >= 0
+        assert float(margin(REGISTRY["arm_wall"], s2.arm_wall_mm(d, arm, cls), wall_min)) >= 0
+    # a 19 mm class at the 5 mm arm (Table 2: 17 mm) leaves 30/2 - 5 - 9.5 = 0.5 mm: fails
+    assert float(margin(REGISTRY["arm_wall"], s2.arm_wall_mm(30, 5, 19), wall_min)) < 0
 
 
 def test_case_pivots():
@@ -125,7 +143,8 @@ def test_axial_group_classes_tables_3_4():
 def test_self_locking_gives_inf_and_failing_margin_not_nan():
     # r_p f = 10 * 0.6 / sqrt(1.36) = 5.14 > lever 4 -> self-locking
     rho = s3.lever_ratio(20.0, 0.6, 4.0, 90.0)
-    assert float(s3.self_locking_margin(rho)) < 0
+    assert float(rho) == pytest.approx(10 * 0.6 / math.sqrt(1.36) / 4.0)
+    assert float(margin(REGISTRY["self_locking"], rho, 1.0)) < 0
     hl = s3.hubload_loading_n(1.0, 0.0, 4.0, 90.0, 20.0, 0.6)
     assert np.isinf(hl) and not np.isnan(hl)
 

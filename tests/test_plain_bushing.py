@@ -7,12 +7,15 @@ import pytest
 from hypothesis import given, settings, strategies as st
 from scipy.integrate import quad
 
-from synth import catalog
-from synth.checks import FAIL, PASS
-from synth.errors import InputError
+from synth import catalog, flowchart, parts as P
+from synth.design import evaluate as E
+from synth.design.applications import Applications
+from synth.design.space import bushing_attributes
+from synth.design.verify import verify
+from synth.errors import CatalogError, InputError
 from synth.model import plain_bushing as s4
 
-from conftest import load_case
+from conftest import case_flowchart, case_input, load_case
 
 
 def hubload_n(inp):
@@ -21,17 +24,52 @@ def hubload_n(inp):
         inp["working_arm_mm"] / 1000 * math.sin(math.radians(inp["differential_angle_deg"])))
 
 
+def supplier_of(inp):
+    """Supplier code of the input's radial wall thickness and the environment code."""
+    p = P.arrays()
+    sup = int(np.flatnonzero(np.isclose(p.bushing.radial_thickness_mm, inp["pivot_bushing_radial_thickness_mm"]))[0])
+    return sup, int(P.env_code(inp["application_type"])[0])
+
+
 def case_kwargs(inp, axial_damping):
-    supplier = s4.supplier_for_thickness(inp["pivot_bushing_radial_thickness_mm"])
-    return dict(supplier=supplier, environment=inp["application_type"],
+    """The keyword arguments of :func:`evaluate_bushing` for a case: the supplier's k_w and clearance, the geometry."""
+    p = P.arrays()
+    sup, env = supplier_of(inp)
+    return dict(k_w_mm3_per_n_m=float(p.bushing_limits["k_w_mm3_per_n_m"][sup, env]),
+                radial_clearance_mm=float(p.bushing.radial_clearance_mm[sup]),
                 belt_plane_height_mm=inp["middle_plane_belt_height_mm"],
                 max_pivot_height_mm=inp["max_pivot_height_mm"], axial_damping=axial_damping,
-                pulley_diameter_mm=inp["pulley_diameter_mm"],
-                parallelism_max_mm=inp["pulley_max_parallelism_eol_mm"])
+                pulley_diameter_mm=inp["pulley_diameter_mm"])
 
 
 def durability(inp):
     return (inp["durability_theta_peak_to_peak_deg"], inp["durability_frequency_hz"], inp["durability_duration_h"])
+
+
+def bushing_group(name, hubload, pivot_diameter_mm, lengths_mm, axial, **changes):
+    """The registry's bushing group (one evaluator) of case ``name`` for rows of hubloads and lengths (broadcast).
+
+    The core group is reduced to what step 4 reads of it: the hubload, the pivot diameter and the axial group.
+    """
+    inp = {**load_case(name)["inputs"], **changes}
+    apps = Applications.of([case_input(name, **changes)])
+    hl, d, length = np.broadcast_arrays(np.asarray(hubload, float), np.asarray(pivot_diameter_mm, float),
+                                        np.asarray(lengths_mm, float))
+    hl, d, length = hl.ravel(), d.ravel(), length.ravel()
+    n = len(hl)
+    cg = E.Group("core", {"app": np.zeros(n, dtype=np.int64), "hubload_nominal_n": hl, "pivot_diameter_mm": d,
+                          "axial_group_present": np.full(n, float(axial))})
+    sup, _ = supplier_of(inp)
+    return E.bushing(apps, cg, np.arange(n), bushing_attributes(P.arrays(), np.full(n, sup), length))
+
+
+STEP4 = ("bushing_rated", "bushing_p", "bushing_pv", "bushing_pvt", "bushing_wear", "bushing_parallelism",
+         "bushing_length")
+
+
+def passes(g):
+    """Rows of a bushing group whose every step-4 constraint passes."""
+    return np.all([g.margins[c] >= 0 for c in STEP4], axis=0)
 
 
 # Case 1: HL = 3.25 / (0.005 sin 85 deg) = 652.48 N; case 3: HL = 1.85 / (0.004 * 1) = 462.5 N.
@@ -44,12 +82,18 @@ CASES = {
 # --- catalog ----------------------------------------------------------------------------------
 
 def test_table5_limits_in_catalog():
-    a_bio, a_dry = s4.supplier_limits("A", "belt_in_oil"), s4.supplier_limits("A", "dry")
-    b_dry = s4.supplier_limits("B", "dry")
-    assert (a_dry["p_max_mpa"], a_dry["pv_max_mpa_m_per_s"], a_dry["pvt_max_mpa_m_per_s_h"]) == (2.5, 0.8, 800)
-    assert (a_bio["p_max_mpa"], a_bio["pv_max_mpa_m_per_s"], a_bio["pvt_max_mpa_m_per_s_h"]) == (5.0, 0.95, 850)
-    assert (b_dry["p_max_mpa"], b_dry["pv_max_mpa_m_per_s"], b_dry["pvt_max_mpa_m_per_s_h"]) == (3.0, 0.6, 600)
-    assert (a_bio["radial_thickness_mm"], b_dry["radial_thickness_mm"]) == (1.0, 0.5)
+    p = P.arrays()
+    lim = p.bushing_limits
+    a, b = p.bushing.code("A"), p.bushing.code("B")
+    dry, bio = P.env_code("dry")[0], P.env_code("belt_in_oil")[0]
+
+    def row(s, e):
+        return tuple(float(lim[k][s, e]) for k in ("p_max_mpa", "pv_max_mpa_m_per_s", "pvt_max_mpa_m_per_s_h"))
+
+    assert row(a, dry) == (2.5, 0.8, 800)
+    assert row(a, bio) == (5.0, 0.95, 850)
+    assert row(b, dry) == (3.0, 0.6, 600)
+    assert (p.bushing.radial_thickness_mm[a], p.bushing.radial_thickness_mm[b]) == (1.0, 0.5)
 
 
 def test_catalog_has_source_cost_standard():
@@ -59,15 +103,21 @@ def test_catalog_has_source_cost_standard():
 
 
 def test_supplier_b_not_rated_for_bio():
-    with pytest.raises(InputError, match="rated for belt_in_oil"):
-        s4.supplier_limits("B", "belt_in_oil")
+    # Table 5 has no BIO limits for supplier B: NaN in the arrays, and the registry's rating constraint fails
+    p = P.arrays()
+    b, bio = p.bushing.code("B"), P.env_code("belt_in_oil")[0]
+    assert all(np.isnan(p.bushing_limits[k][b, bio]) for k in p.bushing_limits)
+    r = verify(case_input("case1_as_run"), dict(case_flowchart("case1_as_run").parts, pivot_bushing_supplier="B"))
+    assert r.check("bushing_rated").verdict == "fail"
+    # the Table 5 checks of an unrated supplier do not apply (no limits to compare with)
+    assert {r.check(c).verdict for c in ("bushing_p", "bushing_pv", "bushing_pvt", "bushing_wear")} == {"not applicable"}
 
 
 def test_unknown_thickness_and_environment():
     with pytest.raises(InputError, match="pivot_bushing_radial_thickness_mm.*one of"):
-        s4.supplier_for_thickness(0.7)
-    with pytest.raises(InputError, match="application_type"):
-        s4.supplier_limits("A", "wet")
+        case_input("case1_as_run", pivot_bushing_radial_thickness_mm=0.7)
+    with pytest.raises(CatalogError, match="application_type"):
+        P.env_code("wet")
 
 
 # --- eq. (28)-(32) hand calculations ----------------------------------------------------------
@@ -170,18 +220,18 @@ def test_fidelity_name_checked():
 
 @pytest.mark.parametrize("name, thesis_len, real_len", [("case1_as_run", 16.0, 18.0), ("case3", 21.0, 22.0)])
 def test_thesis_scheme_reproduces_case_lengths(name, thesis_len, real_len):
+    # the flowchart's step 4 (thesis scheme: trial lengths k * D/2): the tool's required length L = D, and the
+    # part is the next catalog length, the real tensioner's
     case = load_case(name)
     inp = case["inputs"]
     assert case["thesis_tool"]["pivot_bushing_length_mm"] == thesis_len
     assert case["real_tensioner"]["pivot_bushing_length_mm"] == real_len
-    hl = hubload_n(inp)
-    assert hl == pytest.approx(CASES[name]["hl"], rel=1e-5)
-    d = case["thesis_tool"]["pivot_diameter_mm"]
-    r = s4.select_bushing_length(hl, d, *durability(inp), scheme="thesis",
-                                 **case_kwargs(inp, CASES[name]["axial"]))
-    assert bool(r["found"])
-    assert float(r["length_mm"]) == pytest.approx(thesis_len, rel=1e-9)          # tool: L = D
-    assert float(r["length_catalog_mm"]) == pytest.approx(real_len, rel=1e-9)    # real: next available
+    assert hubload_n(inp) == pytest.approx(CASES[name]["hl"], rel=1e-5)
+    r = case_flowchart(name)
+    assert r.get("pivot_diameter_mm") == case["thesis_tool"]["pivot_diameter_mm"]
+    assert r.get("pivot_bushing_length_required_mm") == pytest.approx(thesis_len, rel=1e-9)   # tool: L = D
+    assert r.get("pivot_bushing_length_mm") == pytest.approx(real_len, rel=1e-9)              # real: next available
+    assert [r.check(c).verdict for c in STEP4] == ["pass"] * len(STEP4)
 
 
 @pytest.mark.parametrize("name", ["case1_as_run", "case3"])
@@ -192,62 +242,70 @@ def test_first_trial_half_diameter_fails_table5(name):
     inp = case["inputs"]
     d = case["thesis_tool"]["pivot_diameter_mm"]
     r = s4.evaluate_bushing(hubload_n(inp), d, d / 2, *durability(inp), **case_kwargs(inp, CASES[name]["axial"]))
-    assert not bool(r["passes"])
-    assert float(r["margin_pv"]) < 0 and float(r["margin_pvt"]) < 0
+    g = bushing_group(name, hubload_n(inp), d, [d / 2, d], CASES[name]["axial"])
+    assert float(g.values["pivot_bushing_p_mpa"][0]) == pytest.approx(float(r["p_mpa"]), rel=1e-12)
+    assert passes(g).tolist() == [False, True]          # L = D/2 fails, L = D (the re-iteration) passes
+    assert g.margins["bushing_pv"][0] < 0 and g.margins["bushing_pvt"][0] < 0
     if name == "case1_as_run":
-        assert float(r["p_mpa"]) == pytest.approx(5.0977, rel=1e-4) and float(r["margin_p"]) < 0
+        assert float(r["p_mpa"]) == pytest.approx(5.0977, rel=1e-4) and g.margins["bushing_p"][0] < 0
     else:
-        assert float(r["pv_mpa_m_per_s"]) == pytest.approx(0.61502, rel=1e-4) and float(r["margin_p"]) > 0
+        assert float(r["pv_mpa_m_per_s"]) == pytest.approx(0.61502, rel=1e-4) and g.margins["bushing_p"][0] > 0
 
 
 @pytest.mark.parametrize("name", ["case1_as_run", "case3"])
 def test_catalog_scheme_picks_shortest_available_passing(name):
-    # lean choice: 15 mm passes in both cases (14 mm pvt bound: case 1 needs L >= 12.9 mm)
-    case = load_case(name)
-    inp = case["inputs"]
-    d = case["thesis_tool"]["pivot_diameter_mm"]
-    kw = case_kwargs(inp, CASES[name]["axial"])
-    r = s4.select_bushing_length(hubload_n(inp), d, *durability(inp), **kw)
-    assert float(r["length_mm"]) == 15.0 and bool(r["passes"])
-    shorter = s4.evaluate_bushing(hubload_n(inp), d, 12.0, *durability(inp), **kw)
-    assert not bool(shorter["passes"])
+    # lean choice: 15 mm passes in both cases (14 mm pvt bound: case 1 needs L >= 12.9 mm); 12 mm does not
+    r = flowchart.run(case_input(name), flowchart.Settings(bushing_length_scheme="catalog"))
+    assert r.get("pivot_bushing_length_mm") == 15.0
+    assert [r.check(c).verdict for c in STEP4] == ["pass"] * len(STEP4)
+    inp = load_case(name)["inputs"]
+    g = bushing_group(name, hubload_n(inp), r.get("pivot_diameter_mm"), [12.0, 15.0], CASES[name]["axial"])
+    assert passes(g).tolist() == [False, True]
 
 
-def test_no_length_fits_reports_not_found_and_checks():
-    # 3 kN on a 16 mm pivot in a 40 mm pivot: no length passes p*v*t -> longest fitting candidate, found False
-    kw = case_kwargs(load_case("case1_as_run")["inputs"], True)
-    r = s4.select_bushing_length(3000.0, 16.0, 16.0, 50.0, 1200.0, **kw)
-    assert not bool(r["found"]) and float(r["length_mm"]) == 25.0 and float(r["margin_pvt"]) < 0
-    checks = s4.bushing_checks(r, supplier="A", environment="belt_in_oil", parallelism_max_mm=0.3)
-    verdicts = {c.name: c.verdict for c in checks}
-    assert verdicts["pivot bushing p*v*t"] == FAIL
-    assert verdicts["pivot bushing length vs space on the pivot"] == PASS
-    assert "pivot diameter" in checks[2].correction
+def test_no_length_fits_fails_pvt_and_suggests_a_larger_pivot():
+    # 3 kN on a 16 mm pivot in a 40 mm pivot: no catalog length of supplier A passes p*v*t; the longest that fits
+    # (25 mm: L_max = 26 mm) still fails it, and the registry's correction is the thesis's next move
+    lengths = P.arrays().bushing_lengths[P.arrays().bushing.code("A")]
+    g = bushing_group("case1_as_run", 3000.0, 16.0, lengths, True)
+    fits = g.margins["bushing_length"] >= 0
+    assert not passes(g).any() and (g.margins["bushing_pvt"] < 0).all()
+    assert float(lengths[fits][-1]) == 25.0
+    from synth.design.constraints import REGISTRY
+    assert "pivot diameter" in REGISTRY["bushing_pvt"].correction
 
 
 def test_vectorised_over_designs():
+    # 500 hubloads x the catalog lengths in one call of the evaluator; the shortest passing length per hubload
     n = 500
     hl = np.linspace(200.0, 900.0, n)
-    kw = case_kwargs(load_case("case1_as_run")["inputs"], True)
-    r = s4.select_bushing_length(hl, 16.0, 16.0, 50.0, 1200.0, **kw)
-    assert r["length_mm"].shape == (n,)
+    lengths = P.arrays().bushing_lengths[P.arrays().bushing.code("A")]
+    g = bushing_group("case1_as_run", hl[:, None], 16.0, lengths[None, :], True)
+    assert len(g) == n * len(lengths)
+    ok = passes(g).reshape(n, len(lengths))
+    assert ok.any(axis=1).all()
+    shortest = lengths[np.argmax(ok, axis=1)]
     # more load never needs a shorter bushing
-    assert np.all(np.diff(r["length_mm"]) >= 0)
-    one = s4.select_bushing_length(hl[123], 16.0, 16.0, 50.0, 1200.0, **kw)
-    assert float(one["length_mm"]) == r["length_mm"][123]
+    assert np.all(np.diff(shortest) >= 0) and shortest[0] < shortest[-1]
+    one = bushing_group("case1_as_run", hl[123], 16.0, lengths, True)
+    assert np.array_equal(passes(one), ok[123])
 
 
-def test_invalid_geometry_raises():
+def test_invalid_geometry_gives_a_failing_verdict_not_an_exception():
+    # a zero length: infinite pressure, NaN end wear; the evaluator turns NaN into a failing margin (-inf)
     kw = case_kwargs(load_case("case1_as_run")["inputs"], True)
-    with pytest.raises(InputError, match="pivot_bushing_length_mm"):
-        s4.evaluate_bushing(600.0, 16.0, 0.0, 16.0, 50.0, 1200.0, **kw)
+    r = s4.evaluate_bushing(600.0, 16.0, 0.0, 16.0, 50.0, 1200.0, **kw)
+    assert np.isinf(float(r["p_mpa"])) and np.isnan(float(r["wear_max_mm"]))
+    g = bushing_group("case1_as_run", 600.0, 16.0, [0.0], True)
+    assert g.margins["bushing_p"][0] == -np.inf and g.margins["bushing_wear"][0] == -np.inf
+    assert not passes(g)[0]
 
 
 # --- properties ---------------------------------------------------------------------------------
 
 KW1 = case_kwargs({"pivot_bushing_radial_thickness_mm": 1.0, "application_type": "belt_in_oil",
                    "middle_plane_belt_height_mm": 29.5, "max_pivot_height_mm": 40.0,
-                   "pulley_diameter_mm": 66.0, "pulley_max_parallelism_eol_mm": 0.3}, True)
+                   "pulley_diameter_mm": 66.0}, True)
 
 
 @settings(max_examples=40, deadline=None)
@@ -275,14 +333,17 @@ def test_wear_monotonic_in_load(hl, factor, fidelity):
 def test_zero_duration_zero_wear(hl, length, fidelity):
     r = s4.evaluate_bushing(hl, 16.0, length, 16.0, 50.0, 0.0, fidelity=fidelity, **KW1)
     assert float(r["wear_max_mm"]) == 0.0 and float(r["parallelism_mm"]) == 0.0
-    assert float(r["pvt_mpa_m_per_s_h"]) == 0.0 and float(r["margin_wear"]) == 1.0
+    assert float(r["pvt_mpa_m_per_s_h"]) == 0.0
 
 
 @settings(max_examples=25, deadline=None)
 @given(hl=st.floats(2e4, 1e6), fidelity=st.sampled_from(s4.FIDELITIES))
 def test_wear_through_sliding_layer_fails_clearly(hl, fidelity):
     r = s4.evaluate_bushing(hl, 16.0, 20.0, 16.0, 50.0, 1200.0, fidelity=fidelity, **KW1)
-    assert float(r["wear_max_mm"]) > 0.25 and float(r["margin_wear"]) < 0 and not bool(r["passes"])
-    assert np.isfinite(float(r["margin_wear"]))
-    checks = s4.bushing_checks(r, supplier="A", environment="belt_in_oil", parallelism_max_mm=0.3)
-    assert checks[3].verdict == FAIL
+    assert float(r["wear_max_mm"]) > 0.25   # supplier A's sliding layer
+    # the registry's wear constraint fails with a finite margin (the evaluator's bushing group, same physics)
+    g = bushing_group("case1_as_run", hl, 16.0, [20.0], True)
+    assert float(g.values["pivot_bushing_wear_max_mm"][0]) == pytest.approx(float(
+        s4.evaluate_bushing(hl, 16.0, 20.0, 16.0, 50.0, 1200.0, **KW1)["wear_max_mm"]), rel=1e-12)
+    m = float(g.margins["bushing_wear"][0])
+    assert m < 0 and np.isfinite(m) and not passes(g)[0]
