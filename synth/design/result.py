@@ -171,13 +171,15 @@ class Result:
     def to_frame(self):
         """The checks as a pandas DataFrame, one row per registry constraint (index: the constraint id).
 
-        Columns: label, step, equation, unit, sense, value, limit, margin, verdict, advisory,
-        correction (of a failed check), note, assumed.
+        Columns: label, step, equation, unit, sense, value, limit, margin (floats: NaN where not evaluated, an
+        infinite limit kept), verdict, advisory, correction (of a failed check), note, assumed.
         """
         import pandas as pd
         cols = ["id", "label", "step", "equation", "unit", "sense", "value", "limit", "margin", "verdict",
                 "advisory", "correction", "note", "assumed"]
-        return pd.DataFrame([c.as_dict() for c in self.checks], columns=cols).set_index("id")
+        rows = [{**c.as_dict(), "value": c.value, "limit": c.limit, "margin": c.margin} for c in self.checks]
+        df = pd.DataFrame(rows, columns=cols).set_index("id")
+        return df.astype({k: float for k in ("value", "limit", "margin")})  # an infinite limit stays infinite
 
     def _repr_html_(self) -> str:
         """The report's digest (verdict, failing checks, warnings, not verified, assumed): a notebook shows it."""
