@@ -177,3 +177,29 @@ def test_pdf_engine_errors_are_reported_not_raised(tmp_path, monkeypatch):
     html.write_text("<p>x</p>")
     path, engine, note = write_pdf(html, engine="chromium")
     assert path is None and engine == "" and "chromium" in note
+
+
+def test_report_of_an_input_shows_the_design_synth_design_finds(case1, tmp_path, capsys):
+    from synth import cli
+    cli.main(["design", str(CASES / "case1.yaml"), "--json"])
+    printed = json.loads(capsys.readouterr().out)
+    assert case1["result"].parts == printed["parts"]          # same design, same (default) fidelity
+    assert case1["result"].settings == printed["settings"]
+    saved = tmp_path / "design.json"
+    saved.write_text(json.dumps(printed))
+    again = make_report(saved, tmp_path / "rep", show_progress=False, cad_pictures=False, pdf=False)
+    assert again["result"].parts == printed["parts"]
+    assert [c.margin for c in again["result"].checks] == [c.margin for c in case1["result"].checks]
+    assert str(saved) in again["html"].read_text(encoding="utf-8")   # the document block names the result file
+
+
+def test_platform_section_hook(case1, monkeypatch):
+    from synth.report.html import render_html
+    text = render_html(case1["result"], [], [], platform="platform-out")
+    assert 'id="platform"' in text and 'href="#platform"' in text
+    import synth.platform.outputs as outputs
+    monkeypatch.setattr(outputs, "report_section", lambda p: f"<table id='pf'><tr><td>{p}</td></tr></table>",
+                        raising=False)
+    text = render_html(case1["result"], [], [], platform="platform-out")
+    assert "<table id='pf'><tr><td>platform-out</td></tr></table>" in text
+    assert 'id="platform"' not in render_html(case1["result"], [], [])
