@@ -1,10 +1,199 @@
 """synth: design synthesiser for automotive timing-belt tensioners.
 
-The physics lives in :mod:`synth.model` (one module per step of the thesis
-flowchart), standard parts in the ``catalogs/`` CSV files (loaded by
-:mod:`synth.catalog`), the validated design input in :mod:`synth.schema`, and
-the user-facing scenes (flowchart, compare, shrink fit, ...) in
-:mod:`synth.scenes`.
+The Python API (``docs/sections/api.md``); every function imports what it needs when called, so
+``import synth`` stays light (no numpy, pandas or solver is loaded by it):
+
+* :func:`load` - a validated design input from any supported file (YAML, TOML, JSON, the Excel
+  template, a thesis case file, or a saved result of any scene);
+* :func:`synthesise` - the synthesis (``synth design``): the best catalog design for an objective;
+* :func:`run_flowchart` - the thesis procedure (``synth flowchart``), or a given design checked;
+* :func:`verify` - one given design (its part keys) checked through every step;
+* :func:`screen` - a whole portfolio, one row per application (``synth bulk``), as a DataFrame;
+* :func:`write_report` - the HTML report, its PDF and the results workbook (``synth report``).
+
+Each returns a :class:`~synth.design.result.Result` (``.verdict``, ``.parts``, ``.values``,
+``.checks``, ``.to_frame()``; a notebook shows its digest) except :func:`screen` (a DataFrame) and
+:func:`write_report` (the paths written). Model settings are keywords (``fidelity="screening"``,
+``friction_circle=False``, ``bushing_running_in=True``, ``bolt_method="vdi2230"``, ...: the fields of
+:class:`~synth.design.evaluate.Settings`).
+
+The physics lives in :mod:`synth.model`, standard parts in the ``catalogs/`` CSV files, the input
+schema in :mod:`synth.schema`, the registry, evaluator and result in :mod:`synth.design`, the
+command-line scenes in :mod:`synth.scenes`.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # pragma: no cover - types only
+    from pathlib import Path
+
+    import pandas as pd
+
+    from synth.design.evaluate import Settings
+    from synth.design.result import Result
+    from synth.schema import DesignInput
+
 __version__ = "0.1.0"
+
+__all__ = ["load", "synthesise", "run_flowchart", "verify", "screen", "write_report", "settings",
+           "Result", "DesignInput", "Settings", "InputError", "__version__"]
+
+_LAZY = {"Result": ("synth.design.result", "Result"), "DesignInput": ("synth.schema", "DesignInput"),
+         "Settings": ("synth.design.evaluate", "Settings"), "InputError": ("synth.errors", "InputError")}
+
+
+def __getattr__(name: str) -> Any:
+    """The API's types, imported on first use (``synth.Result``, ``synth.DesignInput``, ...)."""
+    if name in _LAZY:
+        import importlib
+        module, attr = _LAZY[name]
+        return getattr(importlib.import_module(module), attr)
+    raise AttributeError(f"module 'synth' has no attribute {name!r}")
+
+
+def settings(**kw) -> "Settings":
+    """The model :class:`~synth.design.evaluate.Settings` of keywords; an unknown one names the accepted ones."""
+    from synth.design.evaluate import Settings
+    from synth.errors import InputError, Problem
+    known = list(Settings.__dataclass_fields__)
+    bad = [Problem(f"setting {k}", v, "one of " + ", ".join(known)) for k, v in kw.items() if k not in known]
+    if bad:
+        raise InputError(bad)
+    return Settings(**kw)
+
+
+def load(path: "str | Path") -> "DesignInput":
+    """The validated design input of ``path``: YAML, TOML, JSON, the Excel template (.xlsx), a thesis case
+    file (its ``inputs:`` block) or a saved result (``--json`` of any scene: the inputs it carries).
+
+    Bad input raises :class:`~synth.errors.InputError` naming the field (and cell, for a workbook).
+    """
+    from pathlib import Path
+
+    from synth import schema
+    data = schema.read_mapping(Path(path))
+    return schema.validate({k: v for k, v in data.items() if v is not None})
+
+
+def _input(d) -> "DesignInput":
+    from synth.schema import DesignInput
+    if isinstance(d, DesignInput):
+        return d
+    if isinstance(d, dict):
+        from synth import schema
+        return schema.validate(d)
+    return load(d)
+
+
+def run_flowchart(d: "DesignInput | str | Path | dict", parts: dict | None = None, **settings_kw) -> "Result":
+    """The thesis procedure (steps 0-10, its selection loops) on input ``d``; with ``parts``, that design checked.
+
+    ``d``: a :class:`~synth.schema.DesignInput`, a mapping of fields or a file (as :func:`load`).
+    The result keeps 60 points of the wear histories for the report's graphs.
+    """
+    from synth import flowchart
+    return flowchart.run(_input(d), settings(**settings_kw), parts=parts, time_points=60)
+
+
+def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard", solver: str = "enumerate", *,
+               pin_inputs: bool = False, time_limit_s: float | None = None, n_trials: int = 200,
+               **settings_kw) -> "Result":
+    """The best catalog design of input ``d`` (what ``synth design`` prints).
+
+    ``objective``: ``standard`` (the most standardised design, cost as tie-break: the default of every
+    scene), ``cost``, ``margin``, a lexicographic ``"a,b"`` or weights ``"cost=1,margin=5"``; ``solver``:
+    ``enumerate`` (exhaustive, exact: the default), ``minlp``, ``milp-highs``, ``milp-cvxpy``,
+    ``blackbox`` (``n_trials``) or ``flowchart``. An infeasible input gets the nearest design and a
+    ``diagnosis`` (what binds, the smallest input relaxation).
+    """
+    from synth.optimise import solve
+    kw: dict = {"settings": settings(**settings_kw)}
+    if solver not in ("blackbox", "flowchart"):
+        kw["pin_inputs"] = pin_inputs
+    if solver == "blackbox":
+        kw["n_trials"] = n_trials
+    if time_limit_s is not None:
+        kw["time_limit_s"] = time_limit_s
+    return solve(_input(d), objective, solver, **kw)
+
+
+def verify(d: "DesignInput | str | Path | dict", parts: dict, **settings_kw) -> "Result":
+    """Design ``parts`` (every part key: ``synth.design.space.PART_KEYS``, as any result's ``.parts``) checked
+    for input ``d`` through every step, with the wear histories for the graphs (60 points)."""
+    from synth.design.space import PART_KEYS
+    from synth.design.verify import verify as _verify
+    from synth.errors import InputError, Problem
+    model = settings(**settings_kw)
+    missing = [k for k in PART_KEYS if k not in (parts or {})]
+    if missing:
+        raise InputError(Problem("parts", ", ".join(missing) + " missing", "a dict with every part key: "
+                                 + ", ".join(PART_KEYS)))
+    return _verify(_input(d), dict(parts), model, time_points=60)
+
+
+def screen(applications, *, objective: str = "standard", fidelity: str = "screening", diagnose: bool = True,
+           chunk_size: int | None = None, progress: bool = True) -> "pd.DataFrame":
+    """Every application of a portfolio, one row each (``synth bulk`` in memory, nothing written).
+
+    ``applications``: a portfolio file (CSV, Excel, .ods, Parquet), a DataFrame whose columns are input
+    fields, or a list of design inputs (:class:`~synth.schema.DesignInput`, mappings or files). Returns the
+    input columns followed by the result columns of :func:`synth.bulk.engine.columns` and ``error`` (a
+    row that does not validate gets its problems there; the others run). A progress bar follows the
+    chunks (a ``tqdm`` bar in Jupyter).
+    """
+    import pandas as pd
+
+    from synth.bulk import portfolio as P
+    from synth.bulk.run import compute_chunk, default_chunk_size, result_columns
+    from synth.errors import InputError, Problem
+    from synth.report.progress import Progress
+    size = default_chunk_size() if chunk_size is None else chunk_size
+    if not isinstance(size, int) or isinstance(size, bool) or size < 1:
+        raise InputError(Problem("chunk_size", chunk_size, "an integer >= 1"))
+    if isinstance(applications, pd.DataFrame):
+        table = applications.reset_index(drop=True)
+        recs = P.records(table)
+    elif isinstance(applications, (list, tuple)):
+        import dataclasses
+        recs = [{k: v for k, v in dataclasses.asdict(_input(a)).items() if v is not None} for a in applications]
+        table = pd.DataFrame(recs)
+    else:
+        table = P.read_portfolio(applications)
+        recs = P.records(table)
+    chunks = []
+    bar = Progress(total=len(recs), desc="synth screen") if progress else None
+    try:
+        for a in range(0, len(recs), size):
+            chunks.append(compute_chunk(recs[a:a + size], objective=objective, fidelity=fidelity, diagnose=diagnose))
+            if bar is not None:
+                bar.update(len(chunks[-1]))
+    finally:
+        if bar is not None:
+            bar.close()
+    res = pd.concat(chunks, ignore_index=True) if chunks else pd.DataFrame(columns=result_columns())
+    keep = [c for c in table.columns if c not in res.columns]
+    return pd.concat([table[keep].reset_index(drop=True), res], axis=1)
+
+
+def write_report(source: "Result | DesignInput | str | Path", out_dir: "str | Path", *, pdf: bool = True,
+                 cad_pictures: bool = True, author: str = "", revision: str = "", page: str = "landscape",
+                 platform=None, scenes: dict | None = None) -> dict:
+    """The design report of ``source`` into ``out_dir``: ``report.html``, ``report.pdf``, ``results.xlsx``
+    (and the 3D model's pictures in ``out_dir/cad``), as ``synth report`` writes them.
+
+    ``source``: a :class:`~synth.design.result.Result` (reported as it is), a design input (synthesised
+    first, as ``synth report INPUT`` does) or a file (an input or a saved result). Returns
+    ``{"html", "pdf", "pdf_note", "xlsx", "result", "graphs", "skipped"}``.
+    """
+    from synth.design.result import Result
+    from synth.scenes.report import make_report
+    from synth.schema import DesignInput
+    if isinstance(source, DesignInput):
+        source = synthesise(source)
+    elif not isinstance(source, Result):
+        from pathlib import Path
+        source = Path(source)
+    return make_report(source, out_dir, scenes=scenes, show_progress=True, cad_pictures=cad_pictures, pdf=pdf,
+                       author=author, revision=revision, page=page, platform=platform)

@@ -168,6 +168,25 @@ class Result:
         rows = [c for c in self.checks if c.verdict in (PASS, FAIL) and c.constraint.objective]
         return sorted(rows, key=lambda c: c.margin)[:n]
 
+    # --- presentation ------------------------------------------------------------------------------------------
+    def to_frame(self):
+        """The checks as a pandas DataFrame, one row per registry constraint (index: the constraint id).
+
+        Columns: label, step, equation, unit, sense, value, limit, margin (floats: NaN where not evaluated, an
+        infinite limit kept), verdict, advisory, correction (of a failed check), note, assumed.
+        """
+        import pandas as pd
+        cols = ["id", "label", "step", "equation", "unit", "sense", "value", "limit", "margin", "verdict",
+                "advisory", "correction", "note", "assumed"]
+        rows = [{**c.as_dict(), "value": c.value, "limit": c.limit, "margin": c.margin} for c in self.checks]
+        df = pd.DataFrame(rows, columns=cols).set_index("id")
+        return df.astype({k: float for k in ("value", "limit", "margin")})  # an infinite limit stays infinite
+
+    def _repr_html_(self) -> str:
+        """The report's digest (verdict, failing checks, warnings, not verified, assumed): a notebook shows it."""
+        from synth.report.html import digest_html
+        return digest_html(self)
+
     # --- serialisation ---------------------------------------------------------------------------------------
     def to_dict(self) -> dict:
         return {
@@ -234,20 +253,37 @@ def checks_of(groups: dict, apps, row: int = 0) -> list:
     return out
 
 
+#: value-key prefix -> the part whose absence (class ``none``) makes those values not applicable
+_ABSENT_WITH = {"damper_pad_": "damper_pad_class", "endcap_spacer_": "endcap_spacer_class",
+                "cone_spring_": "endcap_spacer_class"}
+
+
+def _not_applicable_value(result: Result, key: str, readers: list) -> bool:
+    """A missing value the design does not have: every check reading it does not apply, or its part is ``none``."""
+    if readers:
+        return all(v == NOT_APPLICABLE for v in readers)
+    if key == "axial_damping_nm":
+        return result.values.get("axial_damping_present") is False
+    return any(key.startswith(prefix) and result.parts.get(part) == "none" for prefix, part in _ABSENT_WITH.items())
+
+
 def row_verdict(result: Result, key: str) -> str | None:
     """The verdict of an output-table row: the worst of the checks that compare this value (registry ``value``
-    or ``limit`` keys), ``not verified`` if the value is missing, or None when no check reads it.
+    or ``limit`` keys), or None when no check reads it. A missing value is ``not applicable`` where the design
+    has no such value (the checks reading it do not apply, or its part is ``none``), else ``not verified``.
 
-    >>> r = Result("verified", values={"main_spring_sigma_inst_mpa": 1500.0},
+    >>> r = Result("verified", parts={"damper_pad_class": "none"}, values={"main_spring_sigma_inst_mpa": 1500.0},
     ...            checks=[Check("spring_yield", 1500.0, 1400.0, -0.07, FAIL)])
     >>> row_verdict(r, "main_spring_sigma_inst_mpa"), row_verdict(r, "pulley_width_mm")
     ('fail', 'not verified')
+    >>> row_verdict(r, "damper_pad_contact_area_mm2")
+    'not applicable'
     """
     v = result.get(key)
+    readers = [c.verdict for c in result.checks if key in (c.constraint.value, c.constraint.limit)]
     if v is None or (isinstance(v, float) and not math.isfinite(v)):
-        return NOT_VERIFIED
-    mine = [c.verdict for c in result.checks if key in (c.constraint.value, c.constraint.limit)
-            and c.verdict != NOT_APPLICABLE]
+        return NOT_APPLICABLE if _not_applicable_value(result, key, readers) else NOT_VERIFIED
+    mine = [x for x in readers if x != NOT_APPLICABLE]
     for verdict in (FAIL, WARNING, NOT_VERIFIED, PASS):
         if verdict in mine:
             return verdict

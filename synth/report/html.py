@@ -1,179 +1,393 @@
-"""The design report: one self-contained HTML file (inline CSS, PNG graphs embedded as base64).
+"""The design report: one self-contained HTML file (inline CSS, PNG graphs embedded as base64), and its digest.
 
-Sections: the design summary (input data read, overall verdict), the output
-table of thesis Tables 10/14 with row verdicts, every check with its value,
-limit, margin and suggested correction, the notes of the flowchart, and the
-graphs of :mod:`synth.report.plots` (with the list of graphs that do not
-apply and why). Colours as in the thesis: green verified, red failed, orange
-not verified (data missing).
+Built from a :class:`synth.design.result.Result` with the Jinja2 templates of
+``synth/report/templates`` (autoescaped). In order:
 
-Each graph is a ``<figure id="fig-<graph id>" data-points="N">`` whose image
-is ``data:image/png;base64,...``, so tests and scripts can find them.
+1. the **digest**: the verdict, then the failing checks worst first (value,
+   limit, margin, the suggested correction), the diagnosis of an infeasible
+   input, the warnings (advisory checks), the checks not verified with what is
+   missing, and the documented defaults assumed;
+2. the table of contents and the **document** block: synth version and
+   catalog hash (:func:`synth.cli.version_text`), input file and its SHA-256,
+   the design input's own SHA-256 (the same for a YAML file and the saved
+   result of it), date, author and revision;
+3. the design (parts, what binds), the model settings in words, the output
+   table of thesis Tables 10/14 and every check, each row coloured with its
+   own verdict (:func:`synth.design.result.row_verdict` for an output row,
+   the check's verdict for a check row: :data:`VERDICT_COLOURS`);
+4. the 3D model's section and exploded pictures, the graphs of
+   :mod:`synth.report.plots`, a platform section (the hook
+   :func:`platform_section`), other scenes' tables, notes and the data read.
 
->>> _esc("a < b & c")
-'a &lt; b &amp; c'
+Print: A4 landscape or portrait (``page``), a title block on every page (page
+margin boxes: title and verdict on top; input, revision, author, synth version
+and page n of N below), a page break before each main section, table headers
+repeated, no row or figure split across pages, verdict colours printed.
+
+Each graph is a ``<figure id="fig-<graph id>" data-verdict=... data-points="N">``
+whose image is ``data:image/png;base64,...``; output rows carry ``data-key``,
+check rows ``data-check``, both ``data-verdict``, so tests and scripts find them.
+
+>>> VERDICT_COLOURS["fail"], verdict_class("not verified")
+('#ffc7ce', 'v-nv')
+>>> css_string('rev "B"\\nA. Person')
+'"rev \\\\"B\\\\"\\\\A A. Person"'
 """
 
 from __future__ import annotations
 
 import base64
 import datetime as _dt
-import html
+import hashlib
+import json
+import os
 from pathlib import Path
 
-from synth import schema
-from synth.design.result import FAIL, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, field_corrections, row_verdict
+from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, field_corrections, \
+    row_verdict
 from synth.output_table import ROWS, format_value
 
-__all__ = ["render_html", "write_html"]
+__all__ = ["render_html", "write_html", "digest_html", "metadata", "settings_in_words", "platform_section",
+           "VERDICT_COLOURS", "verdict_class", "css_string"]
+
+#: background colour of a row per verdict (thesis colours: green verified, red failed, orange not verified);
+#: ``None``: a row no check reads
+VERDICT_COLOURS = {PASS: "#c6efce", FAIL: "#ffc7ce", WARNING: "#ffd8a8", NOT_VERIFIED: "#ffeb9c",
+                   NOT_APPLICABLE: "#ededed", None: "#ffffff"}
+_CLASSES = {PASS: "v-pass", FAIL: "v-fail", WARNING: "v-warning", NOT_VERIFIED: "v-nv", NOT_APPLICABLE: "v-na",
+            None: "v-none", INCOMPLETE: "v-nv"}
+_INK = {PASS: "#1b5e20", FAIL: "#9c0006", INCOMPLETE: "#7f6000"}
+
+_TEMPLATES = Path(__file__).resolve().parent / "templates"
 
 _CSS = """
-body{font-family:system-ui,-apple-system,Segoe UI,Roboto,sans-serif;margin:2em auto;max-width:1100px;color:#222}
-h1{margin-bottom:.2em} h2{border-bottom:2px solid #1f4e78;padding-bottom:.2em;margin-top:1.6em}
-table{border-collapse:collapse;width:100%;font-size:.9em;margin:.5em 0}
-th,td{border:1px solid #ccc;padding:3px 6px;text-align:left;vertical-align:top}
-th{background:#d9d9d9} td.num{text-align:right;font-variant-numeric:tabular-nums}
-tr.section td{background:#bdd7ee;font-weight:bold}
-.pass{background:#c6efce} .fail{background:#ffc7ce} .nv{background:#ffd966} .na{background:#f2f2f2;color:#777}
-.banner{display:inline-block;padding:.3em .8em;font-weight:bold;border-radius:4px}
-figure{display:inline-block;margin:.6em;border:3px solid #ccc;padding:4px;vertical-align:top;width:46%}
-figure.pass{border-color:#2e7d32;background:none} figure.fail{border-color:#c62828;background:none}
-figure img{width:100%} figcaption{font-size:.85em}
-.small{font-size:.85em;color:#555}
+body.synth{font-family:"Segoe UI",Roboto,"Helvetica Neue",Arial,"DejaVu Sans",sans-serif;margin:1.5em auto;
+  max-width:1200px;color:#222;line-height:1.35}
+.synth h1{margin:.1em 0 .2em;font-size:1.7em} .synth h2{border-bottom:2px solid #1f4e78;padding-bottom:.15em;
+  margin-top:1.4em;color:#1f4e78} .synth h3{margin:1em 0 .3em;font-size:1.05em}
+.synth table{border-collapse:collapse;width:100%;font-size:.88em;margin:.4em 0}
+.synth th,.synth td{border:1px solid #c8c8c8;padding:2px 6px;text-align:left;vertical-align:top}
+.synth thead th{background:#d9e2ec} .synth table.kv th{background:#eef2f6;width:24%;font-weight:600}
+.synth td.num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
+.synth tr.group td{background:#bdd7ee;font-weight:bold}
+.synth tr.v-pass{background:#c6efce} .synth tr.v-fail{background:#ffc7ce} .synth tr.v-warning{background:#ffd8a8}
+.synth tr.v-nv{background:#ffeb9c} .synth tr.v-na{background:#ededed;color:#666} .synth tr.v-none{background:#ffffff}
+.synth .banner{display:inline-block;padding:.3em .9em;font-weight:bold;border-radius:4px;font-size:1.15em;margin-right:.6em}
+.synth .banner.v-pass{background:#c6efce;color:#1b5e20} .synth .banner.v-fail{background:#ffc7ce;color:#9c0006}
+.synth .banner.v-nv{background:#ffeb9c;color:#7f6000}
+.synth figure{display:inline-block;margin:.5em;border:3px solid #bbb;padding:4px;vertical-align:top;width:46%}
+.synth figure.v-pass{border-color:#2e7d32} .synth figure.v-fail{border-color:#c62828}
+.synth figure.v-warning{border-color:#ef6c00} .synth figure.cad{width:47%;border-color:#1f4e78}
+.synth figure img{width:100%} .synth figcaption{font-size:.85em}
+.synth .small{font-size:.85em;color:#555} .synth nav ol{columns:3;font-size:.92em}
+.synth code{font-size:.9em}
+@media print{
+  body.synth{max-width:none;margin:0;font-size:8.5pt}
+  .synth *{-webkit-print-color-adjust:exact;print-color-adjust:exact}
+  .synth header.title{display:none}
+  .synth section.page{break-before:page}
+  .synth h2,.synth h3{break-after:avoid}
+  .synth thead{display:table-header-group}
+  .synth tr,.synth figure,.synth img{break-inside:avoid}
+  .synth figure{width:47%}
+  .synth a{color:inherit;text-decoration:none}
+}
 """
 
-_CLS = {PASS: "pass", FAIL: "fail", NOT_VERIFIED: "nv", NOT_APPLICABLE: "na", WARNING: "nv", None: "",
-        "incomplete": "nv"}
+
+def verdict_class(verdict) -> str:
+    """The CSS class of a verdict (``v-pass``, ``v-fail``, ``v-warning``, ``v-nv``, ``v-na``, ``v-none``)."""
+    return _CLASSES.get(verdict, "v-none")
 
 
-def _esc(x) -> str:
-    return html.escape(str(x), quote=True)
+def css_string(text) -> str:
+    """``text`` as a CSS string literal (quotes and backslashes escaped, newlines as ``\\A``)."""
+    s = str(text).replace("\\", "\\\\").replace('"', '\\"').replace("\r", "")
+    return '"' + s.replace("\n", "\\A ") + '"'
 
 
-def _num(v, digits: int = 4) -> str:
+def _num(v) -> str:
     if v is None:
         return "-"
     if isinstance(v, float):
-        return f"{v:.{digits}g}"
+        return f"{v:.4g}"
     return format_value(v)
 
 
-def _summary(result, source: str | None) -> str:
-    v = {**result.values, **result.parts}
-    failed, nv = result.failed(), result.not_verified()
-    cls = _CLS[result.verdict]
-    items = [("Input", source or "-"), ("Architecture", v.get("architecture", "-")),
-             ("Ball bearing", v.get("ball_bearing", "-")), ("Pivot diameter", _num(v.get("pivot_diameter_mm")) + " mm"),
-             ("Axial damping", "yes" if v.get("axial_damping_present") else "no"),
-             ("Main spring", f"{v.get('main_spring_material', '-')} {format_value(v.get('main_spring_wire_size_mm'))}"),
-             ("Bolt", f"{v.get('bolt_format', '-')} class {v.get('bolt_property_class', '-')}"),
-             ("Checks", f"{len(result.checks)} ({len(failed)} failed, {len(nv)} not verified)"),
-             ("Steps run", ", ".join(str(s) for s in result.steps_run)),
-             ("Model", f"fidelity {result.settings.get('fidelity')}; radial friction "
-                       + ("on the friction circle r_p sin(atan mu)" if result.settings.get("friction_circle", True)
-                          else "on r_p mu (the thesis tool's tables)"))]
-    rows = "".join(f"<tr><th>{_esc(k)}</th><td>{_esc(val)}</td></tr>" for k, val in items)
-    return (f'<p><span class="banner {cls}">Verdict: {_esc(result.verdict.upper())}</span></p>'
-            f"<table>{rows}</table>")
+def _margin(m) -> str:
+    return "-" if m is None else f"{100 * m:+.1f} %"
 
 
-def _inputs(result) -> str:
+def _sha256_file(path: Path) -> str:
+    h = hashlib.sha256()
+    with path.open("rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _now() -> _dt.datetime:
+    """Now, or ``SOURCE_DATE_EPOCH`` (reproducible builds) when set."""
+    epoch = os.environ.get("SOURCE_DATE_EPOCH", "")
+    if epoch.isdigit():
+        return _dt.datetime.fromtimestamp(int(epoch), tz=_dt.timezone.utc)
+    return _dt.datetime.now().astimezone()
+
+
+def metadata(result, source=None, *, author: str = "", revision: str = "", date: str | None = None,
+             catalog_dirs=()) -> dict:
+    """The document block: synth version and catalog hash, input file and SHA-256, inputs hash, date, author, revision.
+
+    ``inputs_sha256`` hashes the design input itself (canonical JSON of ``result.inputs``): a YAML file
+    and the saved result of it give the same value.
+    """
+    from synth.cli import version_text
+    src = Path(source) if source not in (None, "", "result") else None
+    inputs = {k: v for k, v in (result.inputs or {}).items() if v is not None}
+    return {
+        "synth": version_text(catalog_dirs),
+        "input": str(src) if src else "(a Result given in Python)",
+        "input_sha256": _sha256_file(src) if src and src.is_file() else "-",
+        "inputs_sha256": hashlib.sha256(json.dumps(inputs, sort_keys=True, default=str).encode()).hexdigest()
+        if inputs else "-",
+        "date": date or _now().strftime("%Y-%m-%d %H:%M %Z").strip(),
+        "author": author or "", "revision": revision or "",
+    }
+
+
+def settings_in_words(result) -> list[tuple[str, str]]:
+    """The model settings and how the design was found, as ``(setting, sentence)`` rows."""
+    s = result.settings or {}
+    rows = []
+    if result.solver == "flowchart":
+        how = ("the thesis flowchart's sequential selection (steps 0-10 and their iterations)"
+               if result.status != "verified" else "a given design checked through every step (nothing selected)")
+    elif result.solver:
+        how = (f"synthesis by the {result.solver} solver, objective {result.objective or '-'} "
+               f"(status {result.status})")
+    else:
+        how = f"a given design verified through the evaluator (status {result.status})"
+    rows.append(("Design", how))
+    fid = s.get("fidelity", "full")
+    rows.append(("Fidelity", "full: Almen-Laszlo cone-spring characteristic and its exact plastic wear along it"
+                 if fid == "full" else "screening: linear cone spring and closed-form plastic wear"))
+    rows.append(("Radial friction", "on the friction circle r_p sin(atan mu) (physics)"
+                 if s.get("friction_circle", True) else "on r_p mu, as the thesis tool's tables"))
+    rows.append(("Bushing wear", "with the running-in of the pivot clearance integrated (an extension, "
+                 "illustrative constants)" if s.get("bushing_running_in") else "closed form, eq. (32)"))
+    if result.solver == "flowchart" and result.status != "verified":
+        rows.append(("Bushing length", "the thesis tool's trial lengths (multiples of half the pivot diameter), "
+                     "then the next catalog length" if s.get("bushing_length_scheme", "thesis") == "thesis"
+                     else "the shortest catalog length that passes"))
+    rows.append(("Bolt check", "VDI 2230-1 permissible assembly preload (plastic torsion factor, tightening "
+                 "factor, embedding loss)" if s.get("bolt_method") == "vdi2230"
+                 else "elastic von Mises check of the nominal preload, eq. (103)-(107) (the thesis tool)"))
+    return rows
+
+
+def platform_section(platform) -> str | None:
+    """The platform section's HTML (a fragment synth made) of a rationalisation output, or None.
+
+    The hook of :func:`synth.platform.outputs.report_section` (the rationalisation result in Python,
+    its output folder from the command line); where that function does not exist yet, a sentence says so.
+    """
+    if platform is None:
+        return None
+    from markupsafe import Markup, escape
+    try:
+        from synth.platform.outputs import report_section
+    except ImportError:
+        return Markup(f"<p>A platform output was given ({escape(str(platform))}), but this version of synth has no "
+                      "<code>synth.platform.outputs.report_section</code> to draw it.</p>")
+    return Markup(report_section(platform))
+
+
+def _check_row(c) -> dict:
+    con = c.constraint
+    extra = con.correction if c.verdict in (FAIL, WARNING) and con.correction else \
+        "; ".join(x for x in [c.note, *c.assumed] if x)
+    return {"id": c.id, "label": con.label, "step": con.step, "value": _num(c.value),
+            "sense": con.sense if c.value is not None else "", "limit": _num(c.limit), "unit": con.unit,
+            "margin": _margin(c.margin), "verdict": c.verdict, "cls": verdict_class(c.verdict),
+            "equation": con.equation, "correction": con.correction, "note": c.note, "extra": extra}
+
+
+def _diagnosis(result):
+    dg = result.diagnosis
+    if not dg:
+        return None
+    rel = [", ".join(f"{k} {x['from']:g} -> {x['to']:g}" for k, x in r["inputs"].items())
+           + (" (a specification value)" if r.get("specification") else "") for r in dg.get("relaxations", [])]
+    return {"message": dg.get("message", ""), "relaxations": rel}
+
+
+def digest_context(result) -> dict:
+    """What the digest shows, as plain rows (the template's data)."""
+    from synth.report.text import verdict_line
+    by_margin = sorted(result.failed(), key=lambda c: (c.margin if c.margin is not None else 0.0))
+    p = result.parts or {}
+    design = ""
+    if p:
+        design = (f"Design: bearing {p.get('ball_bearing', '-')}, pivot class {_num(p.get('pivot_class_diameter_mm'))} mm, "
+                  f"bushing {p.get('pivot_bushing_supplier', '-')} x {_num(p.get('pivot_bushing_length_mm'))} mm, "
+                  f"damper pad {p.get('damper_pad_class', '-')}, main spring {p.get('main_spring_material', '-')} "
+                  f"{p.get('main_spring_wire', '-')} on {_num(p.get('main_spring_mean_body_diameter_mm'))} mm, "
+                  f"bolt {p.get('bolt_format', '-')} {p.get('bolt_head_type', '') or ''} "
+                  f"class {p.get('bolt_property_class', '-')}.").replace("  ", " ")
+    line = verdict_line(result)
+    line = line[line.index("(") + 1:-1] if line.endswith(")") and "(" in line else ""
+    return {"verdict": result.verdict, "cls": verdict_class(result.verdict), "line": line,
+            "design": design, "failed": [_check_row(c) for c in by_margin],
+            "warnings": [_check_row(c) for c in sorted(result.warnings(), key=lambda c: c.margin or 0.0)],
+            "not_verified": [_check_row(c) for c in result.not_verified()],
+            "assumed": result.assumptions(), "diagnosis": _diagnosis(result)}
+
+
+def _environment():
+    import jinja2
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(_TEMPLATES)), autoescape=True,
+                             undefined=jinja2.StrictUndefined, trim_blocks=False, lstrip_blocks=False)
+    env.filters["css_string"] = lambda s: jinja2.utils.markupsafe.Markup(css_string(s))
+    return env
+
+
+def digest_html(result) -> str:
+    """The digest alone, with its own styles (``Result._repr_html_``: a notebook shows it)."""
+    env = _environment()
+    tpl = env.from_string('{% from "digest.html.j2" import digest %}<div class="synth">{{ digest(d) }}</div>')
+    return f"<style>{_CSS}</style>" + tpl.render(d=digest_context(result))
+
+
+def _output_rows(result) -> list:
+    readers: dict = {}
+    for c in result.checks:
+        if c.verdict == NOT_APPLICABLE:
+            continue
+        for k in {c.constraint.value, c.constraint.limit}:
+            readers.setdefault(k, []).append(c.id)
+    out, cur = [], None
+    for section, label, key, unit in ROWS:
+        if cur is None or cur["name"] != section:
+            cur = {"name": section, "rows": []}
+            out.append(cur)
+        v = row_verdict(result, key)
+        cur["rows"].append({"key": key, "label": label, "unit": unit, "value": _num(result.get(key)),
+                            "verdict": v or "", "cls": verdict_class(v), "checks": ", ".join(readers.get(key, []))})
+    return out
+
+
+def _check_steps(result) -> tuple[list, list]:
+    from synth.flowchart import STEP_NAMES
+    steps: dict = {}
+    na = []
+    for c in sorted(result.checks, key=lambda c: c.constraint.step):
+        if c.verdict == NOT_APPLICABLE:
+            na.append(c.constraint.label)
+            continue
+        steps.setdefault(c.step, []).append(_check_row(c))
+    names = {**STEP_NAMES, 11: "3D model"}
+    return [{"step": s, "name": names.get(s, ""), "rows": rows} for s, rows in steps.items()], na
+
+
+def _inputs(result) -> list:
+    from synth import schema
     d = result.inputs or {}
     corr = field_corrections(result)
-    out = ["<table><tr><th>Parameter</th><th>Field</th><th>Unit</th><th>Data read</th><th>Suggested correction</th></tr>"]
+    out = []
     for section in schema.SECTIONS:
-        out.append(f'<tr class="section"><td colspan="5">{_esc(section)}</td></tr>')
+        rows = []
         for f in (f for f in schema.FIELDS if f.section == section):
             val = d.get(f.name)
-            cls = "nv" if val is None and f.name in corr else ("fail" if f.name in corr else "")
-            opt = "" if f.required else ' <span class="small">(optional)</span>'
-            out.append(f"<tr><td>{_esc(f.label or f.name)}{opt}</td><td><code>{_esc(f.name)}</code></td>"
-                       f"<td>{_esc(f.unit)}</td><td class='num {cls}'>{_esc(format_value(val))}</td>"
-                       f"<td>{_esc(corr.get(f.name, ''))}</td></tr>")
-    out.append("</table>")
-    return "".join(out)
+            cls = "" if f.name not in corr else ("v-nv" if val is None else "v-fail")
+            rows.append({"name": f.name, "label": f.label or f.name, "unit": f.unit, "required": f.required,
+                         "value": format_value(val), "correction": corr.get(f.name, ""), "cls": cls})
+        out.append({"name": section, "rows": rows})
+    return out
 
 
-def _output(result) -> str:
-    out = ["<table><tr><th>Section</th><th>Parameter</th><th>Unit</th><th>Value</th><th>Verdict</th></tr>"]
-    for section, label, key, unit in ROWS:
-        verdict = row_verdict(result, key)
-        out.append(f"<tr data-key='{_esc(key)}' data-verdict='{_esc(verdict or '')}'><td>{_esc(section)}</td>"
-                   f"<td>{_esc(label)}</td><td>{_esc(unit)}</td>"
-                   f"<td class='num {_CLS[verdict]}'>{_esc(_num(result.get(key)))}</td>"
-                   f"<td class='{_CLS[verdict]}'>{_esc(verdict or '')}</td></tr>")
-    out.append("</table>")
-    return "".join(out)
-
-
-def _checks(result) -> str:
-    from synth.flowchart import STEP_NAMES
-    out = ["<table><tr><th>Step</th><th>Check</th><th>Value</th><th></th><th>Limit</th><th>Unit</th>"
-           "<th>Margin</th><th>Verdict</th><th>Equation</th><th>Suggested correction / note</th></tr>"]
-    for c in sorted((c for c in result.checks if c.verdict != NOT_APPLICABLE), key=lambda c: c.step):
-        con = c.constraint
-        cls = _CLS[c.verdict]
-        margin = "-" if c.margin is None else f"{100 * c.margin:+.1f} %"
-        extra = con.correction if c.verdict == FAIL and con.correction else "; ".join([c.note] + c.assumed).strip("; ")
-        out.append(f"<tr data-check='{_esc(c.id)}' data-verdict='{_esc(c.verdict)}'>"
-                   f"<td>{c.step} {_esc(STEP_NAMES.get(c.step, ''))}</td><td>{_esc(con.label)}</td>"
-                   f"<td class='num'>{_esc(_num(c.value))}</td><td>{_esc(con.sense if c.value is not None else '')}</td>"
-                   f"<td class='num'>{_esc(_num(c.limit))}</td><td>{_esc(con.unit)}</td>"
-                   f"<td class='num {cls}'>{margin}</td><td class='{cls}'>{_esc(c.verdict)}</td>"
-                   f"<td>{_esc(con.equation)}</td><td>{_esc(extra or '')}</td></tr>")
-    out.append("</table>")
-    return "".join(out)
-
-
-def _graphs(graphs, skipped) -> str:
-    out = []
-    for g in graphs:
-        b64 = base64.b64encode(g.png).decode("ascii")
-        n = max((len(v) for v in g.series.values()), default=0)
-        cls = f' class="{_CLS[g.verdict]}"' if g.verdict in (PASS, FAIL) else ""
-        verdict = f" &mdash; {_esc(g.verdict)}" if g.verdict else ""
-        out.append(f'<figure id="fig-{_esc(g.id)}"{cls} data-points="{n}">'
-                   f'<img alt="{_esc(g.title)}" src="data:image/png;base64,{b64}">'
-                   f"<figcaption>{_esc(g.title)} ({_esc(g.figure)}){verdict}</figcaption></figure>")
-    if skipped:
-        out.append("<h3>Graphs not drawn</h3><ul>")
-        out += [f'<li id="skip-{_esc(s.id)}">{_esc(s.title)}: {_esc(s.reason)}</li>' for s in skipped]
-        out.append("</ul>")
-    return "".join(out)
-
-
-def _table(rows) -> str:
+def _scene(name: str, rows) -> dict | None:
+    if rows is None:
+        return None
     if hasattr(rows, "to_dict"):
         rows = rows.to_dict(orient="records")
     if isinstance(rows, dict):
         rows = [rows]
     rows = list(rows or [])
     if not rows:
-        return ""
+        return None
     cols = list(dict.fromkeys(k for r in rows for k in r))
-    head = "".join(f"<th>{_esc(c)}</th>" for c in cols)
-    body = "".join("<tr>" + "".join(f"<td>{_esc(_num(r.get(c)))}</td>" for c in cols) + "</tr>" for r in rows)
-    return f"<table><tr>{head}</tr>{body}</table>"
+    return {"id": name.lower().replace(" ", "-"), "name": name, "columns": cols,
+            "rows": [[_num(r.get(c)) for c in cols] for r in rows]}
+
+
+def _figure(g) -> dict:
+    from synth.report.plots import GRAPH_CHECKS
+    n = max((len(v) for v in g.series.values()), default=0)
+    return {"id": g.id, "title": g.title, "figure": g.figure, "verdict": g.verdict or "",
+            "cls": verdict_class(g.verdict) if g.verdict else "", "points": n,
+            "checks": ", ".join(GRAPH_CHECKS.get(g.id, ())), "b64": base64.b64encode(g.png).decode("ascii")}
 
 
 def render_html(result, graphs, skipped, *, source: str | None = None, title: str | None = None,
-                scenes: dict | None = None) -> str:
-    """The report as one HTML string (self-contained)."""
-    title = title or f"synth design report{': ' + Path(source).name if source else ''}"
-    parts = [f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{_esc(title)}</title>"
-             f"<style>{_CSS}</style></head><body>",
-             f"<h1>{_esc(title)}</h1><p class='small'>generated {_dt.datetime.now():%Y-%m-%d %H:%M} by synth</p>",
-             "<h2 id='summary'>Design summary</h2>", _summary(result, source),
-             "<h2 id='output'>Output table (thesis Tables 10/14)</h2>", _output(result),
-             "<h2 id='checks'>Verdicts and margins</h2>", _checks(result)]
+                scenes: dict | None = None, author: str = "", revision: str = "", page: str = "landscape",
+                platform=None, cad_note: str = "", date: str | None = None) -> str:
+    """The report of ``result`` as one HTML string (self-contained; see the module docstring).
+
+    ``graphs``/``skipped``: :func:`synth.report.plots.build_graphs` (graphs whose id starts with ``cad_``
+    go to the 3D model section); ``scenes``: ``{name: rows}`` tables of other scenes; ``page``:
+    ``landscape`` or ``portrait`` (A4); ``platform``: a rationalisation output (:func:`platform_section`).
+    """
+    from synth.errors import InputError, Problem
+    if page not in ("landscape", "portrait"):
+        raise InputError(Problem("--page", page, "landscape or portrait"))
+    name = Path(source).name if source not in (None, "", "result") else ""
+    title = title or f"synth design report{': ' + name if name else ''}"
+    meta = metadata(result, source, author=author, revision=revision, date=date)
+    meta_rows = [("synth and catalogs", meta["synth"]), ("Input file", meta["input"]),
+                 ("Input file SHA-256", meta["input_sha256"]), ("Design input SHA-256", meta["inputs_sha256"]),
+                 ("Date", meta["date"]), ("Author", meta["author"] or "-"), ("Revision", meta["revision"] or "-")]
+    if result.solver and result.solver != "flowchart":
+        meta_rows.append(("Solver", f"{result.solver}, objective {result.objective or '-'}, status {result.status}"))
+    checks, na = _check_steps(result)
+    cad = [_figure(g) for g in graphs if g.id.startswith("cad_")]
+    figs = [_figure(g) for g in graphs if not g.id.startswith("cad_")]
+    scene_rows = [s for s in (_scene(k, v) for k, v in (scenes or {}).items()) if s]
+    plat = platform_section(platform)
+    digest = digest_context(result)
+    toc = [("digest", "Digest"), ("metadata", "Document"), ("model", "Model settings"), ("design", "Design"),
+           ("output", "Output table"), ("checks", "Checks")]
+    if cad or cad_note:
+        toc.append(("cad", "3D model"))
+    toc.append(("graphs", "Graphs"))
+    if plat is not None:
+        toc.append(("platform", "Platform rationalisation"))
+    toc += [(f"scene-{s['id']}", s["name"]) for s in scene_rows]
     if result.notes:
-        parts += ["<h2 id='notes'>Notes</h2><ul>", *(f"<li>{_esc(n)}</li>" for n in result.notes), "</ul>"]
-    parts += ["<h2 id='graphs'>Graphs</h2>", _graphs(graphs, skipped)]
-    for name, rows in (scenes or {}).items():
-        if rows is not None:
-            parts += [f"<h2 id='scene-{_esc(name.lower())}'>{_esc(name)}</h2>", _table(rows)]
-    parts += ["<h2 id='inputs'>Design input (data read)</h2>", _inputs(result), "</body></html>"]
-    return "\n".join(parts)
+        toc.append(("notes", "Notes"))
+    toc.append(("inputs", "Design input"))
+    block = "  ".join(x for x in (name or meta["input"], f"rev. {revision}" if revision else "", author,
+                                  meta["date"]) if x)
+    block += f"\n{meta['synth']}  inputs sha256 {meta['inputs_sha256'][:16]}"
+    verdict_text = f"Verdict: {result.verdict.upper()}"
+    parts = [(label, key, _num(v)) for key, v in (result.parts or {}).items()
+             for label in [_part_label(key)]]
+    return _environment().get_template("report.html.j2").render(
+        title=title, css=_CSS, page=page, page_title=title, verdict_text=verdict_text,
+        banner_ink=_INK.get(result.verdict, "#222"), title_block=block, meta=meta, meta_rows=meta_rows,
+        d=digest, toc=toc, parts=parts, binding=[_check_row(c) for c in result.binding(5)],
+        settings=settings_in_words(result), output=_output_rows(result), legend_na="grey (not applicable)",
+        checks=checks, not_applicable=na, cad=cad, cad_note=cad_note, graphs=figs,
+        skipped=[{"id": s.id, "title": s.title, "reason": s.reason} for s in skipped], platform=plat,
+        scenes=scene_rows, notes=list(result.notes), inputs=_inputs(result))
+
+
+def _part_label(key: str) -> str:
+    from synth import schema
+    try:
+        f = schema.field_by_name(key)
+        return f.label or key
+    except Exception:  # noqa: BLE001 - a part key that is not an input field: its words
+        return key.replace("_mm", " [mm]").replace("_", " ")
 
 
 def write_html(path: str | Path, result, graphs, skipped, **kw) -> Path:

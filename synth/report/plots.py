@@ -1,21 +1,37 @@
-"""The thesis's graphs of one design, drawn with matplotlib (Agg) from the physics functions.
+"""The thesis's graphs of one design, drawn with matplotlib (Agg) from the evaluator's data.
 
-Each graph is computed from the flowchart result: from ``result.curves`` when
-the flowchart stored the curve under the graph's id, else from the physics
-functions of :mod:`synth.model` with the values of ``result.values`` (and,
-where a step's values are not in the result, the same physics the flowchart
-would call). A graph that cannot be drawn (a step that does not apply, data
-missing) is listed with the reason, never drawn empty.
+Every graph reads its numbers from the one evaluator, never from a second
+physics path:
+
+* the wear histories (damping decay, plastic wear, cone-spring force against
+  time) are ``result.curves["plastic_wear"]``, kept by
+  :func:`synth.design.verify.verify` / :func:`synth.flowchart.run` with
+  ``time_points`` (the report re-verifies a result without them);
+* the bushing wear and the pulley parallelism against time are
+  :func:`synth.design.evaluate.bushing` evaluated at the design's own rows
+  for a time axis (the durability duration as an array of applications);
+* the cone-spring characteristic is :func:`synth.model.disc_spring.disc_spring_force_n`
+  at the geometry the evaluator sized (``result.values``);
+* the hysteresis and sensitivity sweeps, the Goodman diagram and the pivot
+  base pressure call the physics function the evaluator calls, with the
+  result's values and the design's catalog attributes
+  (:meth:`synth.design.space.Space.design_attributes`), over a plotted axis.
+
+Each graph's verdict colour is the verdict of the result's own checks
+(:data:`GRAPH_CHECKS`, registry ids): green pass, red fail, amber warning, and
+the neutral blue where the check was not evaluated. A graph whose data the
+result lacks (a step that does not apply, an input not given) is listed with
+the reason, never drawn empty and never filled in by re-running a step's
+selection.
 
 Every :class:`Graph` carries its data (``series``: named 1-D arrays, the
 plotted lines) and the PNG, so tests assert on the numbers and the report
-embeds the picture. Colours follow the thesis: the curve compared with a
-limit is green when verified, red when failed; the limit is dashed black.
-
-Graph ids and thesis figures: :data:`CATALOG`.
+embeds the picture.
 
 >>> [g[0] for g in CATALOG][:3]
 ['hysteresis_load', 'hysteresis_torque', 'sensitivity_differential_angle']
+>>> GRAPH_CHECKS["bushing_wear"]
+('bushing_wear',)
 """
 
 from __future__ import annotations
@@ -27,12 +43,13 @@ from pathlib import Path
 
 import numpy as np
 
-from synth.design.result import FAIL, PASS
+from synth.design.result import FAIL, PASS, WARNING
 
-__all__ = ["Graph", "Skipped", "CATALOG", "build_graphs", "graph_png", "COLOURS"]
+__all__ = ["Graph", "Skipped", "CATALOG", "GRAPH_CHECKS", "build_graphs", "graph_png", "COLOURS", "graph_verdict"]
 
-#: Thesis colours: verified green, failed red, nominal/reference blue, limit black.
-COLOURS = {PASS: "#2e7d32", FAIL: "#c62828", "nominal": "#1f5fbf", "limit": "black", "other": "#7f7f7f"}
+#: Thesis colours: verified green, failed red, advisory warning amber, nominal/reference blue, limit black.
+COLOURS = {PASS: "#2e7d32", FAIL: "#c62828", WARNING: "#ef6c00", "nominal": "#1f5fbf", "limit": "black",
+           "other": "#7f7f7f"}
 
 #: (id, title, thesis figure)
 CATALOG: tuple[tuple[str, str, str], ...] = (
@@ -54,7 +71,23 @@ CATALOG: tuple[tuple[str, str, str], ...] = (
     ("solvers", "Solver comparison", "optimiser"),
 )
 _TITLES = {i: (t, f) for i, t, f in CATALOG}
-_N = 121  # points per curve
+
+#: graph id -> the registry checks whose verdict colours the graph (the worst of them)
+GRAPH_CHECKS: dict[str, tuple[str, ...]] = {
+    "hysteresis_load": ("self_locking",),
+    "hysteresis_torque": ("damping_upper", "damping_lower"),
+    "bushing_wear": ("bushing_wear",),
+    "pulley_parallelism": ("bushing_parallelism",),
+    "damping_decay": ("damping_eol",),
+    "cone_spring_characteristic": ("cone_not_flattened",),
+    "plastic_wear": ("damper_pad_wear", "endcap_spacer_wear"),
+    "cone_spring_force_time": ("damping_eol",),
+    "cone_spring_tolerance_band": ("cone_force_band",),
+    "goodman": ("spring_fatigue",),
+    "pivot_base_pressure": ("tilting", "pivot_base_pressure"),
+}
+_N = 121  # points per swept curve
+_T = 60   # points of the time axes (as the report's verification keeps the wear history)
 
 
 class _Skip(Exception):
@@ -81,25 +114,64 @@ class Skipped:
     reason: str
 
 
+def graph_verdict(result, gid: str) -> str | None:
+    """The verdict of graph ``gid``: the worst verdict of its :data:`GRAPH_CHECKS` among the result's checks.
+
+    ``fail`` before ``warning`` before ``pass``; None when none of them was evaluated.
+
+    >>> from synth.design.result import Check, Result
+    >>> r = Result("verified", checks=[Check("tilting", 3.8, 3.5, 0.09, "pass"),
+    ...                                Check("pivot_base_pressure", 500.0, 400.0, -0.25, "fail")])
+    >>> graph_verdict(r, "pivot_base_pressure"), graph_verdict(r, "goodman")
+    ('fail', None)
+    """
+    ids = GRAPH_CHECKS.get(gid, ())
+    hits = {c.verdict for c in result.checks if c.id in ids}
+    for v in (FAIL, WARNING, PASS):
+        if v in hits:
+            return v
+    return None
+
+
+def _colour(verdict) -> str:
+    return COLOURS.get(verdict, COLOURS["nominal"])
+
+
 # ------------------------------------------------------------------------------------------ data access
 class _Data:
-    """Values of the result with lazily computed fallbacks of the steps the result lacks."""
+    """The result's values and parts, its application as arrays and its model settings."""
 
     def __init__(self, result, extra: dict | None):
-        from synth.schema import validate
         self.r, self.v = result, {**result.values, **result.parts}
-        self.d = validate(result.inputs) if isinstance(result.inputs, dict) else result.inputs
         self.extra = extra or {}
-        self.fidelity = result.settings.get("fidelity", "full")
-        self.friction_circle = result.settings.get("friction_circle", True)
         self._cache: dict = {}
+        from synth.design.evaluate import Settings
+        known = set(Settings.__dataclass_fields__)
+        self.settings = Settings(**{k: v for k, v in (result.settings or {}).items() if k in known})
+        self.fidelity, self.friction_circle = self.settings.fidelity, self.settings.friction_circle
+        self.d = None
+        if isinstance(result.inputs, dict):
+            from synth.schema import validate
+            self.d = validate({k: v for k, v in result.inputs.items() if v is not None})
+        elif result.inputs is not None:
+            self.d = result.inputs
+
+    @property
+    def apps(self):
+        """The result's application as :class:`~synth.design.applications.Applications` (N = 1)."""
+        if "apps" not in self._cache:
+            if self.d is None:
+                raise _Skip("the result carries no design input")
+            from synth.design.applications import Applications
+            self._cache["apps"] = Applications.of([self.d])
+        return self._cache["apps"]
 
     def need(self, *keys):
         """Values of ``keys`` from the result (or the input); _Skip naming the first missing one."""
         out = []
         for k in keys:
             val = self.v.get(k)
-            if val is None and hasattr(self.d, k):
+            if val is None and self.d is not None and hasattr(self.d, k):
                 val = getattr(self.d, k)
             if val is None or (isinstance(val, float) and not math.isfinite(val)):
                 raise _Skip(f"{k} missing")
@@ -113,111 +185,54 @@ class _Data:
             return default
 
     def durability(self) -> tuple[float, float, float]:
-        """``(theta_pp_deg, frequency_hz, duration_h)``: given, or from the engine type when assumed."""
-        if getattr(self.d, "durability_test", None) == "assumed" and getattr(self.d, "engine_type", None):
-            from synth import catalog
-            row = catalog.row("durability_tests", self.d.engine_type, field="engine_type")
-            return float(row["theta_peak_to_peak_deg"]), float(row["frequency_hz"]), float(row["duration_h"])
-        return tuple(float(x) for x in self.need("durability_theta_peak_to_peak_deg", "durability_frequency_hz",
-                                                 "durability_duration_h"))
+        """``(theta_pp_deg, frequency_hz, duration_h)`` of the evaluator's applications (given or assumed)."""
+        a = self.apps
+        th, fr, du = (float(x[0]) for x in (a.theta_pp_deg, a.frequency_hz, a.duration_h))
+        if not all(math.isfinite(x) for x in (th, fr, du)):
+            raise _Skip("durability test missing (peak-to-peak angle, frequency and duration, or an engine type)")
+        return th, fr, du
 
     def axial(self) -> bool:
         if not self.v.get("axial_damping_present"):
             raise _Skip("no axial damping: the step does not apply")
         return True
 
-    def curve(self, gid):
-        """``result.curves[gid]`` as a dict of 1-D float arrays, or None."""
-        c = (self.r.curves or {}).get(gid)
-        if not isinstance(c, dict):
-            return None
-        try:
-            out = {k: np.asarray(v, float).reshape(-1) for k, v in c.items() if np.size(v) > 1}
-        except (TypeError, ValueError):
-            return None
-        return out if len(out) >= 2 else None
-
-    # --- step 5/6/8 chain ---------------------------------------------------------------------
-    def axial_group(self) -> dict:
-        """Damper pad and endcap spacer data: from the result, else the Table 3-4 class of step 3."""
-        if "group" in self._cache:
-            return self._cache["group"]
-        from synth import catalog
-        from synth.model import damping as s3
-        g = {}
-        for part, table in (("damper_pad", "damper_pads"), ("endcap_spacer", "endcap_spacers")):
-            keys = [f"{part}_contact_area_mm2", f"{part}_mean_radius_mm", f"{part}_axial_height_mm"]
-            if part == "damper_pad":
-                keys.append("damper_pad_outer_diameter_mm")
-            if all(self.v.get(k) is not None for k in keys):
-                g.update({k: float(self.v[k]) for k in keys})
-                continue
-            cls = str(s3.select_axial_group_class(self.need("axial_damping_nm"), table)[0])
-            if not cls:
-                raise _Skip(f"axial damping above every {table} class (Tables 3-4)")
-            row = catalog.row(table, cls)
-            g.update({k: float(row[k.replace(f"{part}_", "")]) for k in keys})
-        self._cache["group"] = g
-        return g
+    def attributes(self) -> dict:
+        """The design's catalog attributes (one row per table), as the evaluator reads them."""
+        if "attrs" not in self._cache:
+            if not self.r.parts or any(v is None for v in self.r.parts.values()):
+                raise _Skip("the result has no complete design (parts)")
+            from synth.design.space import space
+            self._cache["attrs"] = space().design_attributes(self.r.parts)
+        return self._cache["attrs"]
 
     def mu_plastic(self) -> float:
-        val = self.v.get("plastic_friction_coefficient") or self.v.get("mu_plastic")
-        if val is not None:
-            return float(val)
-        from synth.model import friction_wear as s5
-        return float(s5.plastic_material(application_type=self.d.application_type)["plastic_friction_coefficient"])
+        """The plastic friction coefficient the evaluator uses for the application's environment."""
+        return float(self.apps.mu_plastic[0])
 
     def cone(self) -> dict:
-        """Cone spring geometry, nominal deflection and force band (result values, else step 8)."""
-        if "cone" in self._cache:
-            return self._cache["cone"]
+        """Cone spring geometry, nominal deflection and force band as the evaluator sized them."""
         self.axial()
-        from synth.model import stackup as s6, disc_spring as s8
-        geo_keys = ("cone_spring_external_diameter_mm", "cone_spring_internal_diameter_mm",
-                    "cone_spring_thickness_mm", "cone_spring_cone_height_mm", "cone_spring_nominal_deflection_mm",
-                    "cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n")
-        gap = self.v.get("gap_tolerance_mm") or self.v.get("cone_spring_gap_tolerance_mm") or s6.gap_tolerance_mm()
-        if not all(self.v.get(k) is not None for k in geo_keys):
+        keys = ("cone_spring_external_diameter_mm", "cone_spring_internal_diameter_mm",
+                "cone_spring_thickness_mm", "cone_spring_cone_height_mm", "cone_spring_nominal_deflection_mm",
+                "cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n", "cone_spring_gap_tolerance_mm")
+        if not all(isinstance(self.v.get(k), (int, float)) and math.isfinite(self.v[k]) for k in keys):
             raise _Skip("the design has no sized cone spring")
-        c = {k: float(self.v[k]) for k in geo_keys}
-        c["gap_tolerance_mm"] = float(gap)
-        self._cache["cone"] = c
+        c = {k: float(self.v[k]) for k in keys}
+        c["cone_spring_max_deflection_mm"] = float(self.v.get("cone_spring_max_deflection_mm") or math.nan)
         return c
 
     def plastic_history(self) -> dict:
-        """Step 5 time histories (result curves, else :func:`friction_wear.plastic_wear`)."""
-        if "plastic" in self._cache:
-            return self._cache["plastic"]
+        """The step 5 time histories kept by the evaluator (``result.curves["plastic_wear"]``)."""
         self.axial()
-        stored = self.curve("plastic_wear")
+        c = (self.r.curves or {}).get("plastic_wear")
         want = ("time_h", "plastic_wear_total_mm", "cone_spring_force_n", "damping_nm")
-        if stored and all(k in stored for k in want):
-            h = {k: stored[k] for k in want}
-            w_dp, w_es = self.v.get("damper_pad_wear_mm"), self.v.get("endcap_spacer_wear_mm")
-            if w_dp is None or w_es is None:  # split of the total: the step 5 physics below
-                h.update({k: v for k, v in self._plastic_physics().items() if k.endswith("_eol_mm")})
-            else:
-                h["damper_pad_wear_eol_mm"], h["endcap_spacer_wear_eol_mm"] = float(w_dp), float(w_es)
-            self._cache["plastic"] = h
-            return h
-        self._cache["plastic"] = self._plastic_physics()
-        return self._cache["plastic"]
-
-    def _plastic_physics(self) -> dict:
-        from synth.model import friction_wear as s5
-        c, g = self.cone(), self.axial_group()
-        th, f, t = self.durability()
-        r = s5.plastic_wear(c["cone_spring_nominal_deflection_mm"], c["cone_spring_external_diameter_mm"],
-                            c["cone_spring_internal_diameter_mm"], c["cone_spring_thickness_mm"],
-                            c["cone_spring_cone_height_mm"], g["damper_pad_contact_area_mm2"],
-                            g["damper_pad_mean_radius_mm"], g["damper_pad_axial_height_mm"],
-                            g["endcap_spacer_contact_area_mm2"], g["endcap_spacer_mean_radius_mm"],
-                            g["endcap_spacer_axial_height_mm"], th, f, t, self.need("radial_damping_nm"),
-                            application_type=self.d.application_type, fidelity=self.fidelity, time_points=_N,
-                            plastic_friction_coefficient=self.mu_plastic())
-        h = {k: np.asarray(v, float).reshape(-1) for k, v in r["history"].items()}
-        h["damper_pad_wear_eol_mm"] = float(np.asarray(r["damper_pad_wear_mm"]).reshape(-1)[0])
-        h["endcap_spacer_wear_eol_mm"] = float(np.asarray(r["endcap_spacer_wear_mm"]).reshape(-1)[0])
+        if not isinstance(c, dict) or not all(k in c for k in want):
+            raise _Skip("the result keeps no wear history (the durability test is missing, or the result "
+                        "was verified without time points)")
+        h = {k: np.asarray(c[k], float).reshape(-1) for k in want}
+        h["damper_pad_wear_eol_mm"] = float(self.need("damper_pad_wear_mm"))
+        h["endcap_spacer_wear_eol_mm"] = float(self.need("endcap_spacer_wear_mm"))
         return h
 
 
@@ -241,18 +256,6 @@ def _png(fig) -> bytes:
     return buf.getvalue()
 
 
-def _verdict(ok) -> str:
-    return PASS if bool(ok) else FAIL
-
-
-def _check_verdict(result, *ids) -> str | None:
-    """The worst verdict of the result's checks ``ids`` (registry ids)."""
-    hits = [c.verdict for c in result.checks if c.id in ids]
-    if FAIL in hits:
-        return FAIL
-    return PASS if PASS in hits else None
-
-
 # ------------------------------------------------------------------------------------------ graphs
 def _characterisation(dt: _Data):
     from synth.model import damping as s3
@@ -268,25 +271,25 @@ def _characterisation(dt: _Data):
     return theta, ch
 
 
-def g_hysteresis_load(dt: _Data, ax):
+def g_hysteresis_load(dt: _Data, ax, verdict):
     theta, ch = _characterisation(dt)
-    ax.plot(theta, ch["hubload_loading_n"], color=COLOURS["nominal"], label="loading")
+    ax.plot(theta, ch["hubload_loading_n"], color=_colour(verdict), label="loading")
     ax.plot(theta, ch["hubload_unloading_n"], color=COLOURS["other"], label="unloading")
-    ax.fill_between(theta, ch["hubload_unloading_n"], ch["hubload_loading_n"], color=COLOURS["nominal"], alpha=0.1)
+    ax.fill_between(theta, ch["hubload_unloading_n"], ch["hubload_loading_n"], color=_colour(verdict), alpha=0.1)
     ax.set(xlabel="arm rotation from nominal [deg]", ylabel="hubload [N]")
     return {"theta_deg": theta, "hubload_loading_n": ch["hubload_loading_n"],
-            "hubload_unloading_n": ch["hubload_unloading_n"]}, None
+            "hubload_unloading_n": ch["hubload_unloading_n"]}
 
 
-def g_hysteresis_torque(dt: _Data, ax):
+def g_hysteresis_torque(dt: _Data, ax, verdict):
     theta, ch = _characterisation(dt)
-    ax.plot(theta, ch["torque_loading_nm"], color=COLOURS["nominal"], label="loading")
+    ax.plot(theta, ch["torque_loading_nm"], color=_colour(verdict), label="loading")
     ax.plot(theta, ch["torque_unloading_nm"], color=COLOURS["other"], label="unloading")
     ax.plot(theta, ch["calculated_torque_nm"], "--", color="black", lw=0.8, label="calculated torque")
-    ax.fill_between(theta, ch["torque_unloading_nm"], ch["torque_loading_nm"], color=COLOURS["nominal"], alpha=0.1)
+    ax.fill_between(theta, ch["torque_unloading_nm"], ch["torque_loading_nm"], color=_colour(verdict), alpha=0.1)
     ax.set(xlabel="arm rotation from nominal [deg]", ylabel="torque at the pulley [Nm]")
     return {"theta_deg": theta, "torque_loading_nm": ch["torque_loading_nm"],
-            "torque_unloading_nm": ch["torque_unloading_nm"], "calculated_torque_nm": ch["calculated_torque_nm"]}, None
+            "torque_unloading_nm": ch["torque_unloading_nm"], "calculated_torque_nm": ch["calculated_torque_nm"]}
 
 
 def _sensitivity(dt: _Data, ax, parameter, values, xlabel):
@@ -308,96 +311,96 @@ def _sensitivity(dt: _Data, ax, parameter, values, xlabel):
     ax2.set_ylabel("asymmetry ratio [-]")
     ax.set(xlabel=xlabel, ylabel="torque [Nm]")
     return {"values": np.asarray(values, float), "calculated_torque_nm": s["calculated_torque_nm"],
-            "damping_nm": s["damping_nm"], "asymmetry_ratio": np.asarray(s["asymmetry_ratio"], float)}, None
+            "damping_nm": s["damping_nm"], "asymmetry_ratio": np.asarray(s["asymmetry_ratio"], float)}
 
 
-def g_sensitivity_differential_angle(dt: _Data, ax):
+def g_sensitivity_differential_angle(dt: _Data, ax, verdict):
     a = float(dt.need("differential_angle_deg"))
     values = np.linspace(max(a - 30.0, 5.0), min(a + 30.0, 175.0), _N)
     return _sensitivity(dt, ax, "differential_angle_deg", values, "differential angle [deg]")
 
 
-def g_sensitivity_mu_pivot_bushing(dt: _Data, ax):
+def g_sensitivity_mu_pivot_bushing(dt: _Data, ax, verdict):
     mu = float(dt.need("mu_pivot_bushing"))
     return _sensitivity(dt, ax, "mu_pivot_bushing", np.linspace(0.0, 2.0 * mu, _N), "pivot bushing friction [-]")
 
 
-def g_sensitivity_mu_plastic(dt: _Data, ax):
+def g_sensitivity_mu_plastic(dt: _Data, ax, verdict):
     dt.axial()
     mu = dt.mu_plastic()
     return _sensitivity(dt, ax, "mu_plastic", np.linspace(0.5 * mu, 1.5 * mu, _N), "plastic friction coefficient [-]")
 
 
-def _bushing(dt: _Data):
+def bushing_history(result, time_points: int = _T) -> dict:
+    """The bushing group of the result's design over the durability test: ``{"time_h": t, <group values>}``.
+
+    :func:`synth.design.evaluate.bushing` evaluated at the design's own core and bushing rows for
+    ``time_points`` applications that differ only in the test duration (0 to the duration given or
+    assumed): the last point is the result's own end-of-life value.
+    """
+    return _bushing(_Data(result, None), time_points)
+
+
+def _bushing(dt: _Data, time_points: int = _T) -> dict:
     if "bushing" in dt._cache:
         return dt._cache["bushing"]
-    from synth import parts as P
-    from synth.model import plain_bushing as s4
-    th, f, t_end = dt.durability()
-    p = P.arrays()
-    sup = p.bushing.code(dt.need("pivot_bushing_supplier"))
-    env = P.env_code(dt.d.application_type)[0]
-    length = dt.need("pivot_bushing_length_mm")
-    par_max = dt.get("pulley_max_parallelism_eol_mm")
-    t = np.linspace(0.0, float(t_end), _N)
-    r = s4.evaluate_bushing(dt.need("hubload_nominal_n"), dt.need("pivot_diameter_mm"), length, th, f, t,
-                            k_w_mm3_per_n_m=p.bushing_limits["k_w_mm3_per_n_m"][sup, env],
-                            radial_clearance_mm=p.bushing.radial_clearance_mm[sup],
-                            belt_plane_height_mm=dt.need("middle_plane_belt_height_mm"),
-                            max_pivot_height_mm=dt.need("max_pivot_height_mm"),
-                            axial_damping=bool(dt.v.get("axial_group_present")),
-                            pulley_diameter_mm=dt.need("pulley_diameter_mm"),
-                            fidelity="full" if dt.r.settings.get("bushing_running_in") else "screening")
-    lim = {"sliding_layer_depth_mm": p.bushing.sliding_layer_depth_mm[sup]}
-    dt._cache["bushing"] = (t, r, lim, par_max)
-    return dt._cache["bushing"]
+    from synth.design import evaluate as E
+    t_end = dt.durability()[2]
+    attrs = dt.attributes()
+    t = np.linspace(0.0, t_end, time_points)
+    apps = dt.apps.subset(np.zeros(time_points, dtype=np.int64))
+    apps.derived["duration_h"] = t
+    rows = np.arange(time_points)
+    rep = {tab: {k: np.repeat(np.asarray(v), time_points, axis=0) for k, v in attrs[tab].items()}
+           for tab in ("core", "bushing")}
+    cg = E.core(apps, rows, rep["core"], dt.settings)
+    g = E.bushing(apps, cg, rows, rep["bushing"], dt.settings)
+    if not bool(g.values["bushing_rated"][0]):
+        raise _Skip("the bushing supplier has no wear rating for this environment")
+    out = {"time_h": t, **{k: np.asarray(v, float) for k, v in g.values.items() if k != "app"}}
+    dt._cache["bushing"] = out
+    return out
 
 
-def g_bushing_wear(dt: _Data, ax):
-    c = dt.curve("bushing_wear")
-    if c:
-        return _generic(ax, c, "time [h]", "wear [mm]"), None
-    t, r, lim, _ = _bushing(dt)
-    depth = float(lim["sliding_layer_depth_mm"])
-    w_max = np.abs(np.asarray(r["wear_max_mm"], float))
-    verdict = _check_verdict(dt.r, "bushing_wear") or _verdict(w_max[-1] <= depth)
-    ax.plot(t, np.abs(r["wear_a_mm"]), color=COLOURS["other"], label="lower end (A)")
-    ax.plot(t, np.abs(r["wear_b_mm"]), color=COLOURS["nominal"], label="upper end (B)")
-    ax.plot(t, w_max, color=COLOURS[verdict], lw=2, label="most loaded end")
+def g_bushing_wear(dt: _Data, ax, verdict):
+    b = _bushing(dt)
+    t = b["time_h"]
+    depth = float(b["pivot_bushing_sliding_layer_mm"][0])
+    w_max = np.abs(b["pivot_bushing_wear_max_mm"])
+    ax.plot(t, np.abs(b["pivot_bushing_wear_a_mm"]), color=COLOURS["other"], label="lower end (A)")
+    ax.plot(t, np.abs(b["pivot_bushing_wear_b_mm"]), color=COLOURS["nominal"], label="upper end (B)")
+    ax.plot(t, w_max, color=_colour(verdict), lw=2, label="most loaded end")
     ax.axhline(depth, ls="--", color=COLOURS["limit"], label="sliding layer depth")
     ax.set(xlabel="time [h]", ylabel="wear [mm]")
-    return {"time_h": t, "wear_a_mm": np.abs(r["wear_a_mm"]), "wear_b_mm": np.abs(r["wear_b_mm"]),
-            "wear_max_mm": w_max, "limit_mm": np.full_like(t, depth)}, verdict
+    return {"time_h": t, "wear_a_mm": np.abs(b["pivot_bushing_wear_a_mm"]),
+            "wear_b_mm": np.abs(b["pivot_bushing_wear_b_mm"]), "wear_max_mm": w_max,
+            "limit_mm": np.full_like(t, depth)}
 
 
-def g_pulley_parallelism(dt: _Data, ax):
-    c = dt.curve("pulley_parallelism")
-    if c:
-        return _generic(ax, c, "time [h]", "parallelism [mm]"), None
-    t, r, _, par_max = _bushing(dt)
-    par = np.asarray(r["parallelism_mm"], float)
-    verdict = (_check_verdict(dt.r, "bushing_parallelism") or _verdict(par[-1] <= par_max)) if par_max else None
-    ax.plot(t, par, color=COLOURS[verdict] if verdict else COLOURS["nominal"], lw=2, label="pulley parallelism")
+def g_pulley_parallelism(dt: _Data, ax, verdict):
+    b = _bushing(dt)
+    t, par = b["time_h"], b["pivot_bushing_parallelism_mm"]
+    par_max = float(b["pulley_max_parallelism_eol_mm"][0])
+    ax.plot(t, par, color=_colour(verdict), lw=2, label="pulley parallelism")
     series = {"time_h": t, "parallelism_mm": par}
-    if par_max:
+    if math.isfinite(par_max):
         ax.axhline(par_max, ls="--", color=COLOURS["limit"], label="max parallelism at EOL")
         series["limit_mm"] = np.full_like(t, par_max)
     ax.set(xlabel="time [h]", ylabel="parallelism [mm]")
-    return series, verdict
+    return series
 
 
-def g_damping_decay(dt: _Data, ax):
+def g_damping_decay(dt: _Data, ax, verdict):
     h = dt.plastic_history()
     t, dmp = h["time_h"], h["damping_nm"]
     eol = dt.get("damping_eol_limit_nm")
-    verdict = (_check_verdict(dt.r, "damping_eol") or _verdict(dmp[-1] >= eol)) if eol is not None else None
-    ax.plot(t, dmp, color=COLOURS[verdict] if verdict else COLOURS["nominal"], lw=2, label="damping")
+    ax.plot(t, dmp, color=_colour(verdict), lw=2, label="damping")
     series = {"time_h": t, "damping_nm": dmp}
     if eol is not None:
         ax.axhline(eol, ls="--", color=COLOURS["limit"], label="end-of-life limit")
         series["limit_nm"] = np.full_like(t, eol)
     ax.set(xlabel="time [h]", ylabel="damping [Nm]")
-    return series, verdict
+    return series
 
 
 def _characteristic(dt: _Data):
@@ -412,107 +415,94 @@ def _characteristic(dt: _Data):
     return c, geo, s, np.asarray(f, float), s_n, f_n
 
 
-def g_cone_spring_characteristic(dt: _Data, ax):
-    c = dt.curve("cone_spring_characteristic")
-    if c:
-        return _generic(ax, c, "deflection [mm]", "force [N]"), None
+def g_cone_spring_characteristic(dt: _Data, ax, verdict):
     c, geo, s, f, s_n, f_n = _characteristic(dt)
-    ax.plot(s, f, color=COLOURS["nominal"], lw=2, label=f"De {geo[0]:g} / Di {geo[1]:g} / t {geo[2]:.3g} mm")
+    ax.plot(s, f, color=_colour(verdict), lw=2, label=f"De {geo[0]:.3g} / Di {geo[1]:.3g} / t {geo[2]:.3g} mm")
     ax.plot([s_n], [f_n], "o", color="black", label="nominal working point")
+    series = {"deflection_mm": s, "force_n": f, "nominal_deflection_mm": np.array([s_n]),
+              "nominal_force_n": np.array([f_n])}
+    s_max = c["cone_spring_max_deflection_mm"]
+    if math.isfinite(s_max):
+        ax.axvline(s_max, ls="--", color=COLOURS["limit"], lw=0.8, label="maximum deflection (worst gap)")
+        series["max_deflection_mm"] = np.array([s_max])
     ax.set(xlabel="deflection [mm]", ylabel="axial force [N]")
-    return {"deflection_mm": s, "force_n": f, "nominal_deflection_mm": np.array([s_n]),
-            "nominal_force_n": np.array([f_n])}, None
+    return series
 
 
-def g_plastic_wear(dt: _Data, ax):
+def g_plastic_wear(dt: _Data, ax, verdict):
     h = dt.plastic_history()
     t, w = h["time_h"], h["plastic_wear_total_mm"]
     total = h["damper_pad_wear_eol_mm"] + h["endcap_spacer_wear_eol_mm"]
     share = h["damper_pad_wear_eol_mm"] / total if total > 0 else 0.5
-    verdict = _check_verdict(dt.r, "damper_pad_wear", "endcap_spacer_wear")
-    ax.plot(t, w, color=COLOURS[verdict] if verdict else COLOURS["nominal"], lw=2, label="stack-up (total)")
+    ax.plot(t, w, color=_colour(verdict), lw=2, label="stack-up (total)")
     ax.plot(t, share * w, color=COLOURS["other"], label="damper pad")
     ax.plot(t, (1 - share) * w, ":", color=COLOURS["other"], label="endcap spacer")
     ax.set(xlabel="time [h]", ylabel="wear [mm]")
     return {"time_h": t, "plastic_wear_total_mm": w, "damper_pad_wear_mm": share * w,
-            "endcap_spacer_wear_mm": (1 - share) * w}, verdict
+            "endcap_spacer_wear_mm": (1 - share) * w}
 
 
-def g_cone_spring_force_time(dt: _Data, ax):
+def g_cone_spring_force_time(dt: _Data, ax, verdict):
     h = dt.plastic_history()
     t, f = h["time_h"], h["cone_spring_force_n"]
-    verdict = _check_verdict(dt.r, "damping_eol")
-    ax.plot(t, f, color=COLOURS[verdict] if verdict else COLOURS["nominal"], lw=2,
-            label="axial force (wear and relaxation)")
+    ax.plot(t, f, color=_colour(verdict), lw=2, label="axial force (wear and relaxation)")
     ax.set(xlabel="time [h]", ylabel="cone spring axial force [N]")
-    return {"time_h": t, "cone_spring_force_n": f}, verdict
+    return {"time_h": t, "cone_spring_force_n": f}
 
 
-def g_cone_spring_tolerance_band(dt: _Data, ax):
+def g_cone_spring_tolerance_band(dt: _Data, ax, verdict):
     c, geo, s, f, s_n, f_n = _characteristic(dt)
     lo, hi = c["cone_spring_fax_min_tolerance_n"], c["cone_spring_fax_max_tolerance_n"]
-    dh = c["gap_tolerance_mm"]
-    verdict = _check_verdict(dt.r, "cone_force_band") or _verdict(lo <= f_n <= hi)
+    dh = c["cone_spring_gap_tolerance_mm"]
+    col = _colour(verdict)
     ax.plot(s, f, color=COLOURS["nominal"], label="characteristic")
-    ax.axhspan(lo, hi, color=COLOURS[verdict], alpha=0.15, label="force tolerance at nominal gap")
-    ax.axhline(lo, color=COLOURS[verdict], lw=1)
-    ax.axhline(hi, color=COLOURS[verdict], lw=1)
+    ax.axhspan(lo, hi, color=col, alpha=0.15, label="force tolerance at nominal gap")
+    ax.axhline(lo, color=col, lw=1)
+    ax.axhline(hi, color=col, lw=1)
     ax.axvspan(max(s_n - dh, 0.0), s_n + dh, color=COLOURS["other"], alpha=0.12, label="gap tolerance")
     ax.plot([s_n], [f_n], "o", color="black", label="nominal")
     ax.set(xlabel="deflection [mm]", ylabel="axial force [N]")
     return {"deflection_mm": s, "force_n": f, "fax_min_tolerance_n": np.array([lo]),
-            "fax_max_tolerance_n": np.array([hi]), "deflection_band_mm": np.array([max(s_n - dh, 0.0), s_n + dh])}, verdict
+            "fax_max_tolerance_n": np.array([hi]), "deflection_band_mm": np.array([max(s_n - dh, 0.0), s_n + dh])}
 
 
-def g_goodman(dt: _Data, ax):
-    c = dt.curve("goodman")
-    if c:
-        return _generic(ax, c, "mean stress [MPa]", "stress [MPa]"), None
-    from synth.model import torsion_spring as s9
+def g_goodman(dt: _Data, ax, verdict):
     smax, smin = (float(x) for x in dt.need("main_spring_sigma_a_max_mpa", "main_spring_sigma_a_min_mpa"))
-    material = dt.need("main_spring_material")
-    size = dt.need("main_spring_wire_size_mm")
-    size = list(size) if isinstance(size, (list, tuple)) else [float(size)]
-    round_wire = dt.get("main_spring_wire_section", "round") == "round" or len(size) == 1
-    b, h = (size[0], size[0]) if len(size) == 1 else (size[0], size[1])
-    p = s9.material_properties(material, b, h, round_wire)
-    rm, sy, sa0 = (float(np.asarray(p[k]).reshape(-1)[0]) for k in ("Rm_mpa", "sigma_y_mpa", "sigma_A0_mpa"))
+    sf = float(dt.need("main_spring_safety_factor"))
+    sp = dt.attributes()["spring"]
+    rm, sy, sa0 = (float(np.asarray(sp[k]).reshape(-1)[0]) for k in ("Rm_mpa", "sigma_y_mpa", "sigma_A0_mpa"))
     sm = np.linspace(0.0, sy, _N)
     upper = np.minimum(sa0 + sm * (1.0 - sa0 / rm), sy)
     lower = 2.0 * sm - upper
-    sf = float(s9.goodman_safety_factor(smax, smin, rm, sa0, sy))
-    target = dt.get("main_spring_safety_factor_min")
-    verdict = _check_verdict(dt.r, "spring_fatigue") or _verdict(sf >= float(target or 1.0))
     work_m = (smax + smin) / 2.0
     ax.plot(sm, upper, color=COLOURS["nominal"], lw=2, label="upper limit (Goodman, yield)")
     ax.plot(sm, lower, color=COLOURS["nominal"], lw=1)
     ax.plot(sm, sm, ":", color=COLOURS["other"], label="mean stress")
-    ax.plot([work_m, work_m], [smin, smax], color=COLOURS[verdict], lw=4, label="working range")
+    ax.plot([work_m, work_m], [smin, smax], color=_colour(verdict), lw=4, label="working range")
     ax.plot([0.0, work_m * sf], [0.0, smax * sf], "--", color=COLOURS["limit"], lw=0.8,
             label=f"safety factor {sf:.2f}")
     ax.set(xlabel="mean stress [MPa]", ylabel="stress [MPa]")
     return {"mean_stress_mpa": sm, "upper_limit_mpa": upper, "lower_limit_mpa": lower,
-            "working_range_mpa": np.array([smin, smax]), "safety_factor": np.array([sf])}, verdict
+            "working_range_mpa": np.array([smin, smax]), "safety_factor": np.array([sf])}
 
 
-def g_pivot_base_pressure(dt: _Data, ax):
+def g_pivot_base_pressure(dt: _Data, ax, verdict):
     from synth.model import bolted_joint as s10
     force = float(dt.need("bolt_axial_force_n"))
     hl = float(dt.need("hubload_nominal_n"))
     h = float(dt.need("middle_plane_belt_height_mm"))
-    inc = float(dt.get("middle_plane_belt_height_increment_worst_mm", 0.0) or 0.0)
+    inc = float(dt.apps.f["middle_plane_belt_height_increment_worst_mm"][0])
     d_ext, d_int = dt.need("engine_support_external_diameter_mm", "engine_support_internal_diameter_mm")
-    theta = float(dt.get("contact_angle_deg", 360.0) or 360.0)
+    theta = float(dt.need("contact_angle_deg"))
     ang = np.linspace(-180.0, 180.0, 2 * _N + 1) if theta >= 360.0 else np.linspace(-theta / 2, theta / 2, _N)
     nominal = s10.pivot_base_pressure_mpa(ang, force, hl * float(s10.tilting_lever_mm(h, 0.0)), d_ext, d_int, theta)
     worst = s10.pivot_base_pressure_mpa(ang, force, hl * float(s10.tilting_lever_mm(h, inc)), d_ext, d_int, theta)
-    verdict = _check_verdict(dt.r, "tilting") or _verdict(np.min(worst) > 0.0)
     ax.plot(ang, nominal, color=COLOURS["nominal"], label="nominal")
-    ax.plot(ang, worst, color=COLOURS[verdict], lw=2, label="worst condition")
+    ax.plot(ang, worst, color=_colour(verdict), lw=2, label="worst condition")
     ax.axhline(0.0, ls="--", color=COLOURS["limit"], label="lift-off (tilting)")
     ax.set(xlabel="contact angle from the hubload direction [deg]", ylabel="contact pressure [MPa]")
     return {"angle_deg": ang, "pressure_nominal_mpa": np.asarray(nominal, float),
-            "pressure_worst_mpa": np.asarray(worst, float)}, verdict
+            "pressure_worst_mpa": np.asarray(worst, float)}
 
 
 def _rows(obj) -> list[dict]:
@@ -538,7 +528,7 @@ def _numeric_columns(rows):
     return out
 
 
-def g_pareto(dt: _Data, ax):
+def g_pareto(dt: _Data, ax, verdict):
     rows = _rows(dt.extra.get("pareto"))
     num = _numeric_columns(rows)
     if len(rows) < 2 or len(num) < 2:
@@ -547,10 +537,10 @@ def g_pareto(dt: _Data, ax):
     order = np.argsort(x)
     ax.plot(x[order], y[order], "o-", color=COLOURS["nominal"])
     ax.set(xlabel=kx, ylabel=ky)
-    return {kx: x[order], ky: y[order]}, None
+    return {kx: x[order], ky: y[order]}
 
 
-def g_solvers(dt: _Data, ax):
+def g_solvers(dt: _Data, ax, verdict):
     rows = _rows(dt.extra.get("solvers"))
     num = _numeric_columns(rows)
     if not rows or not num:
@@ -560,18 +550,7 @@ def g_solvers(dt: _Data, ax):
     ax.bar(names, vals, color=COLOURS["nominal"])
     ax.set(ylabel=k)
     ax.tick_params(axis="x", rotation=30)
-    return {k: vals}, None
-
-
-def _generic(ax, curve: dict, xlabel: str, ylabel: str) -> dict:
-    """Plot a curve stored by the flowchart: first array as x, the others as y."""
-    keys = list(curve)
-    x = curve[keys[0]]
-    for k in keys[1:]:
-        if curve[k].shape == x.shape:
-            ax.plot(x, curve[k], label=k)
-    ax.set(xlabel=keys[0] or xlabel, ylabel=ylabel)
-    return curve
+    return {k: vals}
 
 
 _FUNCS = {gid: globals()[f"g_{gid}"] for gid, _, _ in CATALOG}
@@ -589,8 +568,9 @@ def graph_png(graph_id: str, result, extra: dict | None = None) -> Graph:
 def _draw(gid: str, dt: _Data):
     title, figure = _TITLES[gid]
     fig, ax = _fig(f"{title} ({figure})")
+    verdict = graph_verdict(dt.r, gid)
     try:
-        series, verdict = _FUNCS[gid](dt, ax)
+        series = _FUNCS[gid](dt, ax, verdict)
     except _Skip as why:
         import matplotlib.pyplot as plt
         plt.close(fig)
@@ -601,13 +581,17 @@ def _draw(gid: str, dt: _Data):
     return Graph(gid, title, figure, series, verdict, png=_png(fig))
 
 
+_CAD_TITLES = {"section": "3D model: section through the pivot axis", "exploded": "3D model: exploded view"}
+
+
 def _cad_graphs(dt: _Data) -> list[Graph]:
     paths = list(dt.extra.get("cad") or []) + list((dt.r.curves or {}).get("cad_images") or [])
     out = []
     for i, p in enumerate(paths):
         p = Path(p)
         if p.is_file() and p.suffix.lower() == ".png":
-            out.append(Graph(f"cad_{i + 1}", f"CAD model: {p.stem}", "Fig. 75-76", {}, None, png=p.read_bytes()))
+            title = _CAD_TITLES.get(p.stem, f"3D model: {p.stem}")
+            out.append(Graph(f"cad_{i + 1}", title, "Fig. 75-76", {}, None, png=p.read_bytes()))
     return out
 
 

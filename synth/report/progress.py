@@ -1,9 +1,13 @@
-"""A tiny progress bar for long runs: drawn on a terminal, silent when piped.
+"""Progress bars for long runs: drawn on a terminal, a ``tqdm.auto`` bar in Jupyter, silent when piped.
 
-No dependency: the bar is drawn on ``sys.stderr`` with carriage returns when
-that stream is a TTY, and nothing at all is written otherwise (so piped or
-redirected output, CI logs and tests stay clean). ``SYNTH_PROGRESS=0`` turns it
-off on a terminal too, ``SYNTH_PROGRESS=1`` forces it on.
+On a terminal the bar is drawn on ``sys.stderr`` with carriage returns (no
+dependency); nothing at all is written when that stream is not a TTY (so
+piped or redirected output, CI logs and tests stay clean). In a Jupyter
+kernel, where stderr is no terminal, the bar is ``tqdm.auto``'s (a widget
+where ipywidgets is installed, else text) when tqdm is installed (an
+optional dependency: ``pip install synth[notebook]``). ``SYNTH_PROGRESS=0``
+turns every bar off, ``SYNTH_PROGRESS=1`` forces the terminal bar on,
+``SYNTH_PROGRESS=tqdm`` forces the tqdm one.
 
 Use it around a loop, or as a context with explicit updates::
 
@@ -24,13 +28,37 @@ import os
 import sys
 import time
 
-__all__ = ["Progress", "progress", "enabled"]
+__all__ = ["Progress", "progress", "enabled", "in_notebook"]
+
+
+def in_notebook() -> bool:
+    """Whether this process is a Jupyter kernel (IPython's ``ZMQInteractiveShell``); IPython is never imported."""
+    ipython = sys.modules.get("IPython")
+    if ipython is None:
+        return False
+    try:
+        shell = ipython.get_ipython()
+    except Exception:  # noqa: BLE001 - a half-imported IPython: no notebook
+        return False
+    return type(shell).__name__ == "ZMQInteractiveShell"
+
+
+def _tqdm_bar(total, desc, stream):
+    """A ``tqdm.auto`` bar when asked for (``SYNTH_PROGRESS=tqdm``) or in a notebook, tqdm installed; else None."""
+    flag = os.environ.get("SYNTH_PROGRESS", "")
+    if flag == "0" or not (flag == "tqdm" or (flag != "1" and in_notebook())):
+        return None
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        return None
+    return tqdm(total=total, desc=desc, file=stream, leave=True, dynamic_ncols=True)
 
 
 def enabled(stream=None) -> bool:
-    """Whether a bar is drawn on ``stream`` (default ``sys.stderr``)."""
+    """Whether the terminal bar is drawn on ``stream`` (default ``sys.stderr``)."""
     flag = os.environ.get("SYNTH_PROGRESS", "")
-    if flag in ("0", "1"):
+    if flag in ("0", "1", "tqdm"):
         return flag == "1"
     stream = sys.stderr if stream is None else stream
     try:
@@ -47,11 +75,17 @@ class Progress:
     def __init__(self, total: int | None = None, desc: str = "", stream=None, min_interval_s: float = 0.1):
         self.total, self.desc, self.n = total, desc, 0
         self.stream = sys.stderr if stream is None else stream
-        self.on = enabled(self.stream)
+        self._tqdm = _tqdm_bar(total, desc, stream)
+        self.on = self._tqdm is None and enabled(self.stream)
         self._min, self._last, self._t0 = min_interval_s, 0.0, time.monotonic()
 
     def update(self, n: int = 1, note: str = "") -> None:
         self.n += n
+        if self._tqdm is not None:
+            if note:
+                self._tqdm.set_postfix_str(note, refresh=False)
+            self._tqdm.update(n)
+            return
         if not self.on:
             return
         now = time.monotonic()
@@ -69,6 +103,9 @@ class Progress:
         self.stream.flush()
 
     def close(self) -> None:
+        if self._tqdm is not None:
+            self._tqdm.close()
+            self._tqdm = None
         if self.on:
             self.stream.write("\n")
             self.stream.flush()

@@ -4,9 +4,12 @@ The report shows the same design ``synth design INPUT`` finds, at the same
 fidelity (the default synthesis of :mod:`synth.scenes._options`), or the
 design of a saved result (the ``--json`` of any scene, re-verified through
 the evaluator so its curves can be drawn), or with ``--flowchart`` the thesis
-procedure's own design. Writes ``DIR/report.html`` (self-contained) and
-``DIR/results.xlsx``; the 3D model's section and exploded pictures are
-embedded unless ``--no-cad``.
+procedure's own design. Writes ``DIR/report.html`` (self-contained),
+``DIR/report.pdf`` beside it (:mod:`synth.report.pdf`, unless ``--no-pdf``)
+and ``DIR/results.xlsx``; the 3D model's section and exploded pictures are
+built into ``DIR/cad`` and embedded unless ``--no-cad``. ``--author`` and
+``--revision`` go into the document block and the title block of every
+printed page; ``--platform`` adds a platform-rationalisation section.
 """
 
 from __future__ import annotations
@@ -32,6 +35,11 @@ def register(sub) -> None:
     p.add_argument("--pareto", metavar="FILE", help="a Pareto front (CSV/JSON rows, numeric objective columns)")
     p.add_argument("--solvers", metavar="FILE", help="a solver comparison (CSV/JSON rows: solver, numbers)")
     p.add_argument("--cad", metavar="PNG", action="append", default=[], help="a CAD picture to include (repeatable)")
+    p.add_argument("--author", default="", help="author named in the document block and on every printed page")
+    p.add_argument("--revision", default="", help="revision named in the document block and on every printed page")
+    p.add_argument("--page", choices=("landscape", "portrait"), default="landscape", help="A4 orientation to print")
+    p.add_argument("--no-pdf", action="store_true", help="do not write report.pdf beside report.html")
+    p.add_argument("--platform", metavar="DIR", help="a rationalisation output (synth rationalise --out) to report")
     add_design_options(p)
     p.set_defaults(func=_main)
 
@@ -108,10 +116,12 @@ def _defaults():
 
 
 def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: list | None = None,
-                show_progress: bool = True, cad_pictures: bool = True) -> dict:
-    """Write ``report.html`` and ``results.xlsx`` of ``source`` (input file, saved result or Result) into ``out_dir``.
+                show_progress: bool = True, cad_pictures: bool = True, pdf: bool = True, author: str = "",
+                revision: str = "", page: str = "landscape", platform=None) -> dict:
+    """Write ``report.html``, ``report.pdf`` and ``results.xlsx`` of ``source`` (input file, saved result or Result).
 
-    Returns ``{"html": Path, "xlsx": Path, "result": Result, "graphs": [...], "skipped": [...]}``.
+    Returns ``{"html": Path, "pdf": Path | None, "pdf_note": str, "xlsx": Path, "result": Result,
+    "graphs": [...], "skipped": [...]}`` (``pdf_note``: why no PDF was written, when none was).
     """
     from synth.excel.results import write_results
     from synth.report.html import write_html
@@ -120,19 +130,28 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     pictures = list(cad or [])
+    cad_note = ""
     if cad_pictures and not pictures and result.parts:
         try:
             from synth.cad import export_result
             _, _, info = export_result(result, out / "cad", stl=False, pictures=True, interference=False)
             pictures = [str(f) for f in info["files"] if str(f).endswith(".png")]
+            cad_note = f"The model of this design: {out / 'cad'} (STEP assembly and pictures)."
         except InputError as exc:  # a design the CAD model cannot draw: the report says so
-            result.notes.append(f"3D model not drawn: {exc}")
+            cad_note = f"3D model not drawn: {exc}"
+            result.notes.append(cad_note)
     scenes = {k: v for k, v in (scenes or {}).items() if v is not None}
     extra = {"pareto": scenes.get("Pareto"), "solvers": scenes.get("Solvers"), "cad": pictures}
     graphs, skipped = build_graphs(result, extra, show_progress=show_progress)
-    html_path = write_html(out / "report.html", result, graphs, skipped, source=name, scenes=scenes)
+    html_path = write_html(out / "report.html", result, graphs, skipped, source=name, scenes=scenes,
+                           author=author, revision=revision, page=page, platform=platform, cad_note=cad_note)
+    pdf_path, pdf_note = None, "not asked for"
+    if pdf:
+        from synth.report.pdf import write_pdf
+        pdf_path, _, pdf_note = write_pdf(html_path)
     xlsx_path = write_results(out / "results.xlsx", result, cells=cells, source=name, scenes=scenes)
-    return {"html": html_path, "xlsx": xlsx_path, "result": result, "graphs": graphs, "skipped": skipped}
+    return {"html": html_path, "pdf": pdf_path, "pdf_note": pdf_note if pdf_path is None else "", "xlsx": xlsx_path,
+            "result": result, "graphs": graphs, "skipped": skipped}
 
 
 def _main(args) -> int:
@@ -142,8 +161,15 @@ def _main(args) -> int:
     for png in args.cad:
         if not Path(png).is_file():
             raise InputError(Problem("--cad", png, "an existing PNG file"))
-    r = make_report(args.input, args.out, args, scenes=scenes, cad=args.cad, cad_pictures=not args.no_cad)
-    print(f"wrote {r['html']} ({len(r['graphs'])} graphs) and {r['xlsx']}")
+    if args.platform and not Path(args.platform).exists():
+        raise InputError(Problem("--platform", args.platform, "an existing rationalisation output (synth rationalise --out)"))
+    r = make_report(args.input, args.out, args, scenes=scenes, cad=args.cad, cad_pictures=not args.no_cad,
+                    pdf=not args.no_pdf, author=args.author, revision=args.revision, page=args.page,
+                    platform=Path(args.platform) if args.platform else None)
+    pdf = f", {r['pdf']}" if r["pdf"] else ""
+    print(f"wrote {r['html']} ({len(r['graphs'])} graphs){pdf} and {r['xlsx']}")
+    if not args.no_pdf and r["pdf"] is None:
+        print(f"  PDF not written: {r['pdf_note']}", file=sys.stderr)
     for s in r["skipped"]:
         print(f"  graph not drawn: {s.title}: {s.reason}", file=sys.stderr)
     return r["result"].exit_code
