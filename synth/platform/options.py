@@ -36,7 +36,7 @@ the axial option table holds one block of options per damper pad
 >>> cat.pf_parts["ball_bearing"][:2], cat.n_options("axial") == 1 + cat.n_pads * cat.n_axial_real
 (['6006', '6007'], True)
 >>> cat.pf_parts["bolt"][0], cat.pf_parts["main_spring"][0]
-('M6x1 flange 8.8', 'VDCrV R2.00 Dm 18 mm')
+('M6x1 hex 8.8', 'VDSiCr R2.00 Dm 20 mm')
 """
 
 from __future__ import annotations
