@@ -50,7 +50,10 @@ from synth import catalog
 from synth.design.space import Space, space
 from synth.model import disc_spring as s8
 
-__all__ = ["Catalogue", "catalogue"]
+__all__ = ["Catalogue", "catalogue", "family_keys", "NO_PART_KEY"]
+
+#: the part key of "no part of this family" (no damper pad, no axial group)
+NO_PART_KEY = "none"
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,6 +96,46 @@ class Catalogue:
         return self.space.spring_cost_eur(stiffness_nm_per_deg, self.option_row["spring"])
 
 
+def _bushing_key(supplier, length_mm) -> str:
+    return f"{supplier} {_num(length_mm)} mm"
+
+
+def _cone_key(aspect_ratio, deflection_ratio, de_mm) -> str:
+    return f"h0/t {_num(aspect_ratio)}, s/h0 {_num(deflection_ratio)}, De {_num(round(float(de_mm), 6))} mm"
+
+
+def _spring_key(material, wire, mbd_mm) -> str:
+    return f"{material} {wire} Dm {_num(mbd_mm)} mm"
+
+
+def _bolt_key(fmt, head, cls) -> str:
+    return f"{fmt} {head} {cls}"
+
+
+def family_keys(parts: dict) -> dict:
+    """``{family: part key}`` of a design given by its part keys (:data:`synth.design.space.PART_KEYS`, as every
+    result reports them; ``none`` where the design has no part of the family).
+
+    >>> family_keys({"ball_bearing": "6006", "pivot_class_diameter_mm": 19.0, "pivot_bushing_supplier": "B",
+    ...     "damper_pad_class": "none", "pivot_bushing_length_mm": 20.0, "endcap_spacer_class": "none",
+    ...     "main_spring_material": "VDSiCr", "main_spring_wire": "R2.30", "main_spring_mean_body_diameter_mm": 44.0,
+    ...     "bolt_format": "M8x1.25", "bolt_head_type": "hex", "bolt_property_class": "8.8"})["main_spring"]
+    'VDSiCr R2.30 Dm 44 mm'
+    """
+    none = str(parts.get("endcap_spacer_class", NO_PART_KEY)) == NO_PART_KEY
+    return {"ball_bearing": str(parts["ball_bearing"]),
+            "pivot_class_diameter_mm": _num(parts["pivot_class_diameter_mm"]),
+            "damper_pad_class": str(parts["damper_pad_class"]),
+            "pivot_bushing": _bushing_key(parts["pivot_bushing_supplier"], parts["pivot_bushing_length_mm"]),
+            "endcap_spacer_class": str(parts["endcap_spacer_class"]),
+            "cone_spring": NO_PART_KEY if none else _cone_key(parts["cone_spring_aspect_ratio"],
+                                                              parts["cone_spring_deflection_ratio"],
+                                                              parts["cone_spring_external_diameter_mm"]),
+            "main_spring": _spring_key(parts["main_spring_material"], parts["main_spring_wire"],
+                                       parts["main_spring_mean_body_diameter_mm"]),
+            "bolt": _bolt_key(parts["bolt_format"], parts.get("bolt_head_type") or "hex", parts["bolt_property_class"])}
+
+
 def _codes(keys) -> tuple[list, np.ndarray]:
     """Distinct keys in first-seen order and the code of every entry."""
     uniq = list(dict.fromkeys(keys))
@@ -118,7 +161,7 @@ def _catalogue(user_dirs: tuple) -> Catalogue:
                   "damper_pad_class": core["pad_code"].astype(np.int64)}
     options, rows, cost = {}, {}, {}
     bu = sp.tables["bushing"]
-    keys = [f"{s} {_num(L)} mm" for s, L in zip(bu["pivot_bushing_supplier"], bu["pivot_bushing_length_mm"])]
+    keys = [_bushing_key(s, L) for s, L in zip(bu["pivot_bushing_supplier"], bu["pivot_bushing_length_mm"])]
     pf_parts["pivot_bushing"], codes = _codes(keys)
     options["bushing"] = {"pivot_bushing": codes}
     rows["bushing"], cost["bushing"] = np.arange(sp.n("bushing")), bu["cost_eur"].astype(float)
@@ -131,8 +174,8 @@ def _catalogue(user_dirs: tuple) -> Catalogue:
     pad = np.repeat(np.arange(n_pads), len(real))
     r = np.tile(real, n_pads)
     de = de_max[pad] - ax["cone_spring_de_reduction_mm"][r]
-    cone = [f"h0/t {_num(z)}, s/h0 {_num(f)}, De {_num(round(d, 6))} mm"
-            for z, f, d in zip(ax["cone_spring_aspect_ratio"][r], ax["cone_spring_deflection_ratio"][r], de)]
+    cone = [_cone_key(z, f, d) for z, f, d in zip(ax["cone_spring_aspect_ratio"][r], ax["cone_spring_deflection_ratio"][r],
+                                                  de)]
     pf_parts["cone_spring"], cone_codes = _codes(cone)
     pf_parts["endcap_spacer_class"] = [str(k) for k in p.endcap_spacer.key]
     options["axial"] = {"endcap_spacer_class": np.concatenate([[-1], ax["spacer_code"][r]]).astype(np.int64),
@@ -140,14 +183,14 @@ def _catalogue(user_dirs: tuple) -> Catalogue:
     rows["axial"] = np.concatenate([[none], r]).astype(np.int64)
     cost["axial"] = ax["cost_eur"][rows["axial"]].astype(float)
     spt = sp.tables["spring"]
-    keys = [f"{m} {w} Dm {_num(d)} mm" for m, w, d in zip(spt["main_spring_material"], spt["main_spring_wire"],
-                                                         spt["main_spring_mean_body_diameter_mm"])]
+    keys = [_spring_key(m, w, d) for m, w, d in zip(spt["main_spring_material"], spt["main_spring_wire"],
+                                                    spt["main_spring_mean_body_diameter_mm"])]
     pf_parts["main_spring"], codes = _codes(keys)
     options["spring"] = {"main_spring": codes}
     rows["spring"] = np.arange(sp.n("spring"))
     cost["spring"] = spt["cost_eur_times_stiffness"].astype(float)
     bo = sp.tables["bolt"]
-    keys = [f"{f} {h} {c}" for f, h, c in zip(bo["bolt_format"], bo["bolt_head_type"], bo["bolt_property_class"])]
+    keys = [_bolt_key(f, h, c) for f, h, c in zip(bo["bolt_format"], bo["bolt_head_type"], bo["bolt_property_class"])]
     pf_parts["bolt"], codes = _codes(keys)
     options["bolt"] = {"bolt": codes}
     rows["bolt"], cost["bolt"] = np.arange(sp.n("bolt")), bo["cost_eur"].astype(float)

@@ -498,6 +498,11 @@ def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: E
     jobs = [([inputs[i] for i in valid[lo:hi]], [ids[i] for i in valid[lo:hi]], volumes[valid[lo:hi]])
             for lo, hi in ranges]
     results = _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress)
+    stats = {"engine": engine, "chunks": len(ranges)}
+    for _, st in results:
+        for k, v in st.items():
+            stats[k] = stats.get(k, 0) + v
+    results = [res for res, _ in results]
     apps: list = [None] * n
     for (lo, hi), res in zip(ranges, results):
         for i, af in zip(valid[lo:hi], res):
@@ -513,8 +518,14 @@ def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: E
         notes=[f"feasibility from the evaluator (synth.design.evaluate, fidelity {settings.fidelity}); "
                "per-variant fixed costs: illustrative constants (catalogs/constants_platform.csv)"],
         design_inputs=list(inputs), settings=settings, catalogue=cat,
-        stats={"feasibility_s": time.perf_counter() - t0, "engine": engine, "chunks": len(ranges)})
+        stats={"feasibility_s": time.perf_counter() - t0, **stats})
     return validate(pf)
+
+
+def _chunk_job(inputs, ids, volumes, settings, **kw) -> tuple:
+    """One chunk and its statistics (what a Dask task returns)."""
+    stats: dict = {}
+    return chunk_feasibility(inputs, ids, volumes, settings, stats=stats, **kw), stats
 
 
 def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress) -> list:
@@ -522,7 +533,7 @@ def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress) -> lis
     if engine == "inprocess":
         out, done = [], 0
         for inp, ids, vol in jobs:
-            out.append(chunk_feasibility(inp, ids, vol, settings, **kw))
+            out.append(_chunk_job(inp, ids, vol, settings, **kw))
             done += len(inp)
             if progress:
                 progress(done, total)
@@ -534,8 +545,10 @@ def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress) -> lis
         from dask.distributed import Client, LocalCluster, as_completed
     except ImportError:  # pragma: no cover - dask[distributed] is a dependency
         raise InputError(Problem("--engine", "dask", "an installation with dask[distributed]")) from None
+    import warnings
     out: list = [None] * len(jobs)
-    with _quiet_dask(), contextlib.ExitStack() as stack:
+    with _quiet_dask(), contextlib.ExitStack() as stack, warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="Port .* is already in use")
         if scheduler:
             try:
                 client = stack.enter_context(Client(scheduler, timeout="20s"))
@@ -545,7 +558,7 @@ def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress) -> lis
             cluster = stack.enter_context(LocalCluster(n_workers=int(workers or 2), threads_per_worker=1, processes=True,
                                                        dashboard_address=None, silence_logs=logging.ERROR))
             client = stack.enter_context(Client(cluster))
-        futures = {client.submit(chunk_feasibility, inp, ids, vol, settings, pure=False, **kw): j
+        futures = {client.submit(_chunk_job, inp, ids, vol, settings, pure=False, **kw): j
                    for j, (inp, ids, vol) in enumerate(jobs)}
         done = 0
         for fut in as_completed(list(futures)):
