@@ -166,44 +166,41 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     has = part >= 0
     if not has.any():
         return 0
-    # tokens: (row, rest); M[token, part] = 1 when the option rest + part is in the row
-    tok_ids, tok = np.unique(np.stack([r_of[has], rest[has]], axis=1), axis=0, return_inverse=True)
+    # tokens: (row, rest); part j "is in" token t when the option rest + j is in the row (each (row, pattern) once)
+    tok_ids, tok = np.unique(r_of[has].astype(np.int64) * (int(rest.max()) + 1) + rest[has], return_inverse=True)
     tok = np.asarray(tok).reshape(-1)
     cand, pcol = np.unique(part[has], return_inverse=True)
     pcol = np.asarray(pcol).reshape(-1)
     if len(cand) < 2:
         return 0
-    M = sp.csr_matrix((np.ones(len(tok), np.float32), (tok, pcol)), shape=(len(tok_ids), len(cand)))
-    M.sum_duplicates()
-    M.data[:] = 1.0
-    cnt = np.asarray(M.sum(axis=0)).ravel()
-    G = (M.T @ M).tocsr()                               # G[j, k] = tokens shared by j and k
-    gj = np.repeat(np.arange(len(cand)), np.diff(G.indptr))
-    gk = G.indices
-    sel = (gj != gk) & (G.data >= cnt[gj] - 0.5) \
-        & (w.part_weight[cand[gk]] <= w.part_weight[cand[gj]]) \
-        & (w.part_fixed_cost[cand[gk]] <= w.part_fixed_cost[cand[gj]])
-    j_i, k_i = gj[sel], gk[sel]
-    if cost_obj and len(j_i):
-        # the counterpart no dearer in every token of j
-        C = sp.csc_matrix((cost[has] + 1.0, (tok, pcol)), shape=(len(tok_ids), len(cand)))  # +1: 0 cost is stored
-        ok = np.ones(len(j_i), bool)
-        for j in np.unique(j_i):
-            col = C[:, j]
-            t, cj = col.indices, col.data
-            n = np.flatnonzero(j_i == j)
-            ck = C[t][:, k_i[n]].toarray()
-            ok[n] = np.all(ck <= cj[:, None] + 1e-9, axis=0)
-        j_i, k_i = j_i[ok], k_i[ok]
-    if not len(j_i):
-        return 0
-    # strict order with index tie-break: k dominates j unless j also dominates k and j < k
-    mutual = set(zip(k_i.tolist(), j_i.tolist()))
-    dom = np.zeros(len(cand), bool)
-    for j, k in zip(j_i.tolist(), k_i.tolist()):
-        if (j, k) in mutual and j < k:
+    nt, nc = len(tok_ids), len(cand)
+    by_part = sp.csc_matrix((cost[has] + 1.0, (tok, pcol)), shape=(nt, nc))   # +1: a zero cost is stored
+    by_tok = by_part.tocsr()
+    cnt = np.diff(by_part.indptr)
+    tok_len = np.diff(by_tok.indptr)
+    bits = np.zeros((nc, (nt + 63) // 64), np.uint64)                          # the token set of each part
+    np.bitwise_or.at(bits, (pcol, tok // 64), np.left_shift(np.uint64(1), (tok % 64).astype(np.uint64)))
+    weight, fixed = w.part_weight[cand], w.part_fixed_cost[cand]
+    dom = np.zeros(nc, bool)
+    for j in range(nc):
+        tj = by_part.indices[by_part.indptr[j]:by_part.indptr[j + 1]]
+        t0 = tj[np.argmin(tok_len[tj])]                  # a dominator is in j's smallest token
+        ks = by_tok.indices[by_tok.indptr[t0]:by_tok.indptr[t0 + 1]]
+        ks = ks[(ks != j) & (cnt[ks] >= cnt[j]) & (weight[ks] <= weight[j]) & (fixed[ks] <= fixed[j])]
+        if not len(ks):
             continue
-        dom[j] = True
+        ks = ks[~np.any(bits[j][None, :] & ~bits[ks], axis=1)]          # j's tokens are all k's
+        if not len(ks):
+            continue
+        same = (cnt[ks] == cnt[j]) & (weight[ks] == weight[j]) & (fixed[ks] == fixed[j])
+        if cost_obj:
+            cj = by_part.data[by_part.indptr[j]:by_part.indptr[j + 1]]
+            ck = by_part[tj][:, ks].toarray()
+            ok = np.all(ck <= cj[:, None] + 1e-9, axis=0)
+            same &= np.all(np.abs(ck - cj[:, None]) <= 1e-9, axis=0)
+            ks, same = ks[ok], same[ok]
+        # strict order with index tie-break: a mutual substitute of higher index does not remove j
+        dom[j] = bool(np.any(~same | (ks < j)))
     gone = cand[dom]
     bad_pat = np.zeros(len(w.patterns), bool)
     bad_pat[upat[np.isin(part_u, gone)]] = True
