@@ -50,7 +50,7 @@ def test_producer_equals_the_optimiser_product(sample):
     _, pf = sample
     cat = catalogue()
     checked = 0
-    for a, d in list(zip(pf.apps, pf.design_inputs))[:5]:
+    for a, d in zip(pf.apps, pf.design_inputs):
         ev = evaluate(d, SETTINGS)
         feasible_cores = ev.cores[ev.rows]
         assert sorted(a.core_rows.tolist()) == sorted(feasible_cores.tolist())
@@ -95,6 +95,18 @@ def test_spring_stages_declare_what_the_margins_read(sample):
             other = P.spring_group(apps, moved, k, opts, SETTINGS)
             for cid in ids:
                 np.testing.assert_array_equal(other.margins[cid], base.margins[cid], err_msg=f"{cid} reads {col}")
+    # the torque-only margins do not increase with the torque (a spring failing at one torque is not tried at a
+    # larger one of the same application)
+    prev = base
+    for f in (1.1, 1.5, 2.5):
+        moved = dict(keys)
+        moved["spring_torque_nominal_nm"] = keys["spring_torque_nominal_nm"] * f
+        more = P.spring_group(apps, moved, k, opts, SETTINGS)
+        for cid in P.SPRING_TORQUE_ONLY:
+            if not REGISTRY[cid].advisory:
+                assert np.all(more.margins[cid] <= prev.margins[cid] + 1e-12), cid
+        prev = more
+    assert not np.array_equal(prev.margins["spring_yield"], base.margins["spring_yield"])
     # and the exercise is not empty: moving a stage column does change a stage margin
     moved = dict(keys)
     moved["spring_housing_height_mm"] = keys["spring_housing_height_mm"] * 0.5

@@ -87,7 +87,11 @@ SPRING_TORQUE_ONLY = ("spring_yield", "spring_static_permissible", "spring_fatig
                       "spring_index_max", "spring_material_section")
 #: the stages of the main-spring evaluation: (key columns, the constraints whose margins depend on the key only
 #: through them); each stage's columns contain the previous ones, a spring failing a stage is dropped for every
-#: key of that stage group (the coil gap, eq. (89)-(93), sees the torque and the housing height only)
+#: key of that stage group (the coil gap, eq. (89)-(93), sees the torque and the housing height only). The
+#: torque-only margins do not increase with the nominal torque (for one application and spring): the working
+#: angles grow with it (eq. 66-70), the stresses are linear in the torques (eq. 71-77), the Goodman factor falls
+#: as the mean stress grows at a fixed or growing amplitude (figure 71); so a spring failing them at one torque
+#: is not tried at the application's larger torques.
 SPRING_STAGES = ((("spring_torque_nominal_nm",), SPRING_TORQUE_ONLY),
                  (("spring_torque_nominal_nm", "spring_housing_height_mm"), ("spring_coil_gap",)))
 #: portfolio columns read as the annual volume of an application (weights its unit cost; 1 when absent)
@@ -306,24 +310,37 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
         parent = None if prev_of is None else prev_of[srep]
         survive = np.zeros((ng, len(rows)), bool)
         best, best_b = np.full(ng, -np.inf), np.full(ng, _NO_BINDING, np.int16)
+        # the torque-only stage in rounds of increasing torque per application (groups are sorted by application,
+        # then torque): a spring that fails at one torque fails at every larger one (see SPRING_STAGES)
+        app_g = keys["app"][srep]
+        slot = np.searchsorted(np.unique(app_g), app_g)
+        rank = np.arange(ng) - np.searchsorted(app_g, app_g) if ids is SPRING_TORQUE_ONLY else np.zeros(ng, np.int64)
+        failed = np.zeros((int(slot.max()) + 1 if ng else 0, len(rows)), bool)
+        torque_ok = np.isfinite(keys["spring_torque_nominal_nm"][srep])
         step = max(1, 4 * BLOCK_PAIRS // max(len(rows), 1))
-        for g0 in range(0, ng, step):
-            gb = np.arange(g0, min(g0 + step, ng))
-            cand = window(g_lo[gb], g_hi[gb])
-            if parent is not None:
-                cand &= prev[parent[gb]]
-            g, o = np.nonzero(cand)
-            g = gb[g]
-            n_stage += len(g)
-            for blk in _blocks(len(g)):
-                gg_, oo = g[blk], o[blk]
-                m, b = _stage_margin(spring_group(apps, keys, srep[gg_], cat.space.rows("spring", rows[oo]), settings),
-                                     ids)
-                ok = m >= -FEAS_TOL
-                survive[gg_[ok], oo[ok]] = True
-                gg, mm, at = _segment_best(gg_, m)
-                upd = mm > best[gg]
-                best[gg[upd]], best_b[gg[upd]] = mm[upd], b[at[upd]]
+        for rk in range(int(rank.max()) + 1 if ng else 0):
+            in_round = np.flatnonzero(rank == rk)
+            for g0 in range(0, len(in_round), step):
+                gb = in_round[g0:g0 + step]
+                cand = window(g_lo[gb], g_hi[gb])
+                if parent is not None:
+                    cand &= prev[parent[gb]]
+                if ids is SPRING_TORQUE_ONLY:
+                    cand &= ~failed[slot[gb]]
+                g, o = np.nonzero(cand)
+                g = gb[g]
+                n_stage += len(g)
+                for blk in _blocks(len(g)):
+                    gg_, oo = g[blk], o[blk]
+                    m, b = _stage_margin(spring_group(apps, keys, srep[gg_], cat.space.rows("spring", rows[oo]),
+                                                      settings), ids)
+                    ok = m >= -FEAS_TOL
+                    survive[gg_[ok], oo[ok]] = True
+                    bad = ~ok & torque_ok[gg_]
+                    failed[slot[gg_[bad]], oo[bad]] = True
+                    gg, mm, at = _segment_best(gg_, m)
+                    upd = mm > best[gg]
+                    best[gg[upd]], best_b[gg[upd]] = mm[upd], b[at[upd]]
         stages.append((of, survive, best, best_b))
         prev_of, prev = of, survive
     # every key against the survivors of its last-stage group, in its own window: the exact group
