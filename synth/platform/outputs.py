@@ -138,7 +138,8 @@ def plot_tradeoff(rows: list, path, kind: str) -> Path:
         ax.plot([r["margin_floor"] for r in rows], x, "o-")
         ax.set_xlabel("margin floor (every design's smallest margin) [-]")
         ax.set_ylabel("distinct parts in the platform")
-        ax.set_title("Platform size against the worst margin")
+        ax.set_title(f"Platform size against the worst margin ({rows[0]['served']} applications)")
+        ax.yaxis.get_major_locator().set_params(integer=True)
     else:
         ax.plot(x, [r["cost_eur"] / 1e6 for r in rows], "o-")
         ax.set_xlabel("distinct parts in the platform (weighted)")
