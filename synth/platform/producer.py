@@ -87,13 +87,17 @@ SPRING_TORQUE_ONLY = ("spring_yield", "spring_static_permissible", "spring_fatig
                       "spring_index_max", "spring_material_section")
 #: the stages of the main-spring evaluation: (key columns, the constraints whose margins depend on the key only
 #: through them); each stage's columns contain the previous ones, a spring failing a stage is dropped for every
-#: key of that stage group (the coil gap, eq. (89)-(93), sees the torque and the housing height only). The
-#: torque-only margins do not increase with the nominal torque (for one application and spring): the working
-#: angles grow with it (eq. 66-70), the stresses are linear in the torques (eq. 71-77), the Goodman factor falls
-#: as the mean stress grows at a fixed or growing amplitude (figure 71); so a spring failing them at one torque
-#: is not tried at the application's larger torques.
-SPRING_STAGES = ((("spring_torque_nominal_nm",), SPRING_TORQUE_ONLY),
-                 (("spring_torque_nominal_nm", "spring_housing_height_mm"), ("spring_coil_gap",)))
+#: key of that stage group (the coil gap, eq. (89)-(93), sees the torque and the housing height only). The third
+#: item ``(column, direction)`` says how the stage's margins move with one column, everything else held:
+#: ``+1`` they do not increase as it grows, ``-1`` they do not decrease. The torque-only margins do not increase
+#: with the nominal torque (for one application and spring): the working angles grow with it (eq. 66-70), the
+#: stresses are linear in the torques (eq. 71-77), the Goodman factor falls as the mean stress grows at a fixed
+#: or growing amplitude (figure 71). The coil gap ``(H - b)/n - b`` grows with the housing height H. So the
+#: stage groups are evaluated in rounds along that column, and a spring that failed at one value is not tried
+#: again where it must fail too.
+SPRING_STAGES = ((("spring_torque_nominal_nm",), SPRING_TORQUE_ONLY, ("spring_torque_nominal_nm", +1)),
+                 (("spring_torque_nominal_nm", "spring_housing_height_mm"), ("spring_coil_gap",),
+                  ("spring_housing_height_mm", -1)))
 #: portfolio columns read as the annual volume of an application (weights its unit cost; 1 when absent)
 VOLUME_COLUMNS = ("annual_volume", "volume")
 #: (group, option) pairs per group-function call (bounds the memory of a chunk)
@@ -301,7 +305,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
     window = (lambda lo_, hi_: (mbd[None, :] >= lo_[:, None]) & (mbd[None, :] <= hi_[:, None]))  # noqa: E731
     n_stage = n_last = 0
     stages, prev_of, prev = [], None, None
-    for cols, ids in SPRING_STAGES:
+    for cols, ids, (mcol, direction) in SPRING_STAGES:
         of, srep = _group_ids(keys, kpos, cols)        # stage group of each key; a representative key each
         ng = len(srep)
         g_lo, g_hi = np.full(ng, np.inf), np.full(ng, -np.inf)
@@ -310,23 +314,23 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
         parent = None if prev_of is None else prev_of[srep]
         survive = np.zeros((ng, len(rows)), bool)
         best, best_b = np.full(ng, -np.inf), np.full(ng, _NO_BINDING, np.int16)
-        # the torque-only stage in rounds of increasing torque per application (groups are sorted by application,
-        # then torque): a spring that fails at one torque fails at every larger one (see SPRING_STAGES)
-        app_g = keys["app"][srep]
-        slot = np.searchsorted(np.unique(app_g), app_g)
-        rank = np.arange(ng) - np.searchsorted(app_g, app_g) if ids is SPRING_TORQUE_ONLY else np.zeros(ng, np.int64)
-        failed = np.zeros((int(slot.max()) + 1 if ng else 0, len(rows)), bool)
-        torque_ok = np.isfinite(keys["spring_torque_nominal_nm"][srep])
+        # rounds along the monotone column within the groups equal on the other columns ("lines"): a spring that
+        # failed in a line is not tried again further along it
+        line, _ = _group_ids(keys, srep, tuple(c for c in cols if c != mcol))
+        val = np.asarray(keys[mcol][srep], dtype=float)
+        order = np.lexsort((direction * val, line))
+        rank = np.empty(ng, np.int64)
+        rank[order] = np.arange(ng) - np.searchsorted(line[order], line[order])
+        failed = np.zeros((int(line.max()) + 1 if ng else 0, len(rows)), bool)
+        finite = np.isfinite(val)
         step = max(1, 4 * BLOCK_PAIRS // max(len(rows), 1))
         for rk in range(int(rank.max()) + 1 if ng else 0):
             in_round = np.flatnonzero(rank == rk)
             for g0 in range(0, len(in_round), step):
                 gb = in_round[g0:g0 + step]
-                cand = window(g_lo[gb], g_hi[gb])
+                cand = window(g_lo[gb], g_hi[gb]) & ~failed[line[gb]]
                 if parent is not None:
                     cand &= prev[parent[gb]]
-                if ids is SPRING_TORQUE_ONLY:
-                    cand &= ~failed[slot[gb]]
                 g, o = np.nonzero(cand)
                 g = gb[g]
                 n_stage += len(g)
@@ -336,8 +340,8 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
                                                       settings), ids)
                     ok = m >= -FEAS_TOL
                     survive[gg_[ok], oo[ok]] = True
-                    bad = ~ok & torque_ok[gg_]
-                    failed[slot[gg_[bad]], oo[bad]] = True
+                    bad = ~ok & finite[gg_]
+                    failed[line[gg_[bad]], oo[bad]] = True
                     gg, mm, at = _segment_best(gg_, m)
                     upd = mm > best[gg]
                     best[gg[upd]], best_b[gg[upd]] = mm[upd], b[at[upd]]
