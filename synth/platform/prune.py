@@ -181,6 +181,18 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     bits = np.zeros((nc, (nt + 63) // 64), np.uint64)                          # the token set of each part
     np.bitwise_or.at(bits, (pcol, tok // 64), np.left_shift(np.uint64(1), (tok % 64).astype(np.uint64)))
     weight, fixed = w.part_weight[cand], w.part_fixed_cost[cand]
+    if cost_obj:
+        # per (application, rest, part) the lowest and highest cost over the application's tokens with that rest:
+        # k is no dearer than j in all of them when its highest cost is at most j's lowest (exact when the rows of
+        # an application price an option alike, as the producer's data do; otherwise it prunes less)
+        app_t = np.asarray(w.row_app)[np.asarray(rows)][r_of[has]].astype(np.int64)
+        _, cls = np.unique(app_t * (int(rest.max()) + 1) + rest[has], return_inverse=True)
+        cls = np.asarray(cls).reshape(-1)
+        n_app = int(cls.max()) + 1
+        cmin, cmax = np.full((n_app, nc), np.inf), np.full((n_app, nc), -np.inf)
+        np.minimum.at(cmin, (cls, pcol), cost[has])
+        np.maximum.at(cmax, (cls, pcol), cost[has])
+        in_app = sp.csc_matrix((np.ones(len(cls), bool), (cls, pcol)), shape=(n_app, nc))
     dom = np.zeros(nc, bool)
     for j in range(nc):
         tj = by_part.indices[by_part.indptr[j]:by_part.indptr[j + 1]]
@@ -193,14 +205,16 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
         if not len(ks):
             continue
         same = (cnt[ks] == cnt[j]) & (weight[ks] == weight[j]) & (fixed[ks] == fixed[j])
-        if cost_obj:
-            cj = by_part.data[by_part.indptr[j]:by_part.indptr[j + 1]]
-            ck = by_part[tj][:, ks].toarray()
-            ok = np.all(ck <= cj[:, None] + 1e-9, axis=0)
-            same &= np.all(np.abs(ck - cj[:, None]) <= 1e-9, axis=0)
-            ks, same = ks[ok], same[ok]
-        # strict order with index tie-break: a mutual substitute of higher index does not remove j
-        dom[j] = bool(np.any(~same | (ks < j)))
+        if not cost_obj:
+            # strict order with index tie-break: a mutual substitute of higher index does not remove j
+            dom[j] = bool(np.any(~same | (ks < j)))
+            continue
+        apps_j = in_app.indices[in_app.indptr[j]:in_app.indptr[j + 1]]
+        hi_k, lo_j = cmax[np.ix_(apps_j, ks)], cmin[apps_j, j][:, None]
+        ok = np.all(hi_k <= lo_j + 1e-9, axis=0)
+        same &= np.all((cmin[np.ix_(apps_j, ks)] >= lo_j - 1e-9) & (hi_k <= lo_j + 1e-9)
+                       & (cmax[apps_j, j][:, None] <= lo_j + 1e-9), axis=0)
+        dom[j] = bool(np.any(ok & (~same | (ks < j))))
     gone = cand[dom]
     bad_pat = np.zeros(len(w.patterns), bool)
     bad_pat[upat[np.isin(part_u, gone)]] = True
