@@ -261,6 +261,7 @@ def chunk_feasibility(inputs: list, ids: list, volumes, settings: E.Settings = E
         st["spring_stage1_pairs"] = st.get("spring_stage1_pairs", 0) + n1
         lap("spring", n1 + n2)
         lap("bolt", _bolt(apps, cat, cg, rep["bolt"], settings, pairs["bolt"]))
+        lap("reasons", _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings))
         out = _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all_m, all_b, gid, rep, pairs,
                         diagnose, settings)
     lap("assemble")
@@ -367,6 +368,46 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
         acc.evaluated[k] = np.isfinite(best[of[k]])
         left = left[~empty]
     return n_stage, n_last
+
+
+def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, rounds: int = 64) -> int:
+    """For an application with no complete design whose nearest core has no feasible main spring, that core's
+    spring key against every spring of its window: the nearest spring over every constraint (the stages only
+    know the margins of their own constraints over the springs that reached them). Repeated until the nearest
+    core's spring is known exactly, so the reason names what that design really misses. Returns the rows
+    evaluated."""
+    has = {s: np.bincount(np.concatenate(pairs[s].g) if pairs[s].g else np.zeros(0, np.int64),
+                          minlength=len(rep[s])) > 0 for s in SUBSYSTEMS}
+    complete = np.ones(len(pos), bool)
+    for s in SUBSYSTEMS:
+        complete &= has[s][gid[s]]
+    todo = [np.flatnonzero(a[pos] == i) for i in np.unique(a[pos])]
+    todo = [k for k in todo if not complete[k].any()]
+    acc = pairs["spring"]
+    refined = np.zeros(len(rep["spring"]), bool) | has["spring"]
+    rows = cat.option_row["spring"]
+    mbd = cat.space.tables["spring"]["main_spring_mean_body_diameter_mm"][rows]
+    n = 0
+    for _ in range(rounds):
+        val = all_m[pos].copy()
+        for s in SUBSYSTEMS:
+            val = np.minimum(val, np.where(has[s][gid[s]], np.inf, pairs[s].best[gid[s]]))
+        groups = {int(gid["spring"][k[int(np.argmax(val[k]))]]) for k in todo}
+        todo = [k for k in todo if not refined[gid["spring"][k[int(np.argmax(val[k]))]]]]
+        groups = np.array(sorted(g for g in groups if not refined[g]), np.int64)
+        if not len(groups):
+            break
+        keys = E.spring_keys(cg, rep["spring"][groups])
+        lo = np.floor(keys["spring_housing_inner_diameter_mm"]) - 1e-9
+        hi = np.ceil(keys["spring_housing_outer_diameter_mm"]) + 1e-9
+        g, o = np.nonzero((mbd[None, :] >= lo[:, None]) & (mbd[None, :] <= hi[:, None]))
+        best = _Pairs(len(groups))
+        for blk in _blocks(len(g)):
+            best.add(g[blk], o[blk], spring_group(apps, keys, g[blk], cat.space.rows("spring", rows[o[blk]]), settings))
+        acc.best[groups], acc.best_b[groups], acc.evaluated[groups] = best.best, best.best_b, best.evaluated
+        refined[groups] = True
+        n += len(g)
+    return n
 
 
 def _stage_margin(grp: E.Group, ids: tuple):
