@@ -25,8 +25,8 @@ import pandas as pd
 from synth.platform.assign import platform_parts_used
 from synth.platform.data import FAMILIES
 
-__all__ = ["platform_table", "assignment_table", "price_of_standardisation", "summary_markdown", "tradeoff_table",
-           "plot_tradeoff", "plot_families", "write_all", "report_section"]
+__all__ = ["platform_table", "gap_text", "assignment_table", "price_of_standardisation", "summary_markdown",
+           "tradeoff_table", "plot_tradeoff", "plot_families", "write_all", "report_section"]
 
 
 def platform_table(pf, result) -> pd.DataFrame:
@@ -67,6 +67,11 @@ def price_of_standardisation(pf, result) -> dict:
             "unit_cost_increase": (cost_p - cost_o) / cost_o if cost_o else 0.0}
 
 
+def gap_text(x: float, digits: int = 1) -> str:
+    """A relative gap, or "n/a (caps)" where there is none (the greedy baseline ignores --max-variants)."""
+    return "n/a (caps)" if not np.isfinite(x) else f"{x:+.{digits}%}"
+
+
 def summary_markdown(pf, result) -> str:
     p = price_of_standardisation(pf, result)
     n_bad = sum(not r["feasible"] for r in result.records)
@@ -97,7 +102,7 @@ def summary_markdown(pf, result) -> str:
     lines += ["", "## Solve", "",
               f"- MILP: {result.status}, objective {result.objective_value:,.6g}, bound {result.bound:,.6g}, "
               f"gap {result.gap:.3%}",
-              f"- greedy baseline: {result.greedy_value:,.6g} ({result.greedy_gap:+.2%} against the MILP)",
+              f"- greedy baseline: {result.greedy_value:,.6g} ({gap_text(result.greedy_gap, 2)} against the MILP)",
               f"- size: {s.get('variables', 0):,} variables ({s.get('binaries', 0)} binary), "
               f"{s.get('constraints', 0):,} constraints, {s.get('nonzeros', 0):,} non-zeros",
               f"- times [s]: compile {t['compile_s']:.2f}, reductions {t['prune_s']:.2f}, greedy {t['greedy_s']:.2f}, "
@@ -228,7 +233,7 @@ def report_section(result) -> str:
     s, t = result.size, result.times
     out.append(f"<p class='small'>MILP: {s.get('variables', 0):,} variables ({s.get('binaries', 0)} binary), "
                f"{s.get('constraints', 0):,} constraints, {s.get('nonzeros', 0):,} non-zeros; solved in "
-               f"{t['solve_s']:.2f} s (total {t['total_s']:.2f} s); greedy baseline {result.greedy_gap:+.1%}.</p>")
+               f"{t['solve_s']:.2f} s (total {t['total_s']:.2f} s); greedy baseline {gap_text(result.greedy_gap)}.</p>")
     out.append("</section>")
     return "\n".join(out)
 

@@ -155,7 +155,8 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     res = PlatformResult(
         objective=objective, status=status, platform=platform, records=records, objective_value=float(obj),
         bound=float(sol.bound), gap=float(sol.gap), greedy_value=float(g_val),
-        greedy_gap=float((g_val - obj) / max(abs(obj), 1e-9)) if np.isfinite(g_val) and np.isfinite(obj) else np.nan,
+        greedy_gap=float((g_val - obj) / max(abs(obj), 1e-9)) if np.isfinite(g_val) and np.isfinite(obj) and not capped
+        else np.nan,   # the greedy platform ignores caps: no baseline for a capped MILP
         size=dict(sol.size), sizes_before_prune=before, prune_log=list(work.log),
         times={"compile_s": t1 - t0, "prune_s": t2 - t1, "greedy_s": t3 - t2, "build_s": sol.build_s,
                "solve_s": sol.time_s, "milp_s": t4 - t3, "assign_s": t5 - t4 - t_v, "verify_s": t_v,

@@ -69,7 +69,7 @@ def register(sub) -> None:
 
 
 def _main(args) -> int:
-    from synth.platform.outputs import price_of_standardisation, write_all
+    from synth.platform.outputs import gap_text, price_of_standardisation, write_all
     from synth.platform.producer import load_feasibility
     from synth.platform.rationalise import rationalise, tradeoff
     caps = parse_max_variants(args.max_variants)
@@ -93,6 +93,6 @@ def _main(args) -> int:
     print(f"synth rationalise: {p['applications_served']} of {len(r.records)} applications served by "
           f"{r.n_parts} distinct parts (union of per-application optima: {p['parts_union_of_optima']}); "
           f"unit cost {p['unit_cost_increase']:+.2%} against the per-application optima; MILP {r.status}, "
-          f"gap {r.gap:.2%}; greedy {r.greedy_gap:+.1%}")
+          f"gap {r.gap:.2%}; greedy {gap_text(r.greedy_gap)}")
     print("written: " + ", ".join(str(x) for x in paths))
     return 0 if r.status in ("optimal", "time_limit", "greedy") else 1
