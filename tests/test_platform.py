@@ -28,13 +28,19 @@ SIZES = {"ball_bearing": 2, "pivot_class_diameter_mm": 2, "damper_pad_class": 1,
          "endcap_spacer_class": 1, "cone_spring": 1, "main_spring": 4, "bolt": 2}
 
 
-def random_portfolio(n_apps: int, seed: int) -> PortfolioFeasibility:
+#: the same number of parts with two spacers and two cone springs (four two-part axial options): the part
+#: substitution of R2 on options of several parts
+SIZES_AXIAL = {**SIZES, "endcap_spacer_class": 2, "cone_spring": 2, "main_spring": 2}
+
+
+def random_portfolio(n_apps: int, seed: int, sizes: dict = SIZES, nested_axial: bool = False) -> PortfolioFeasibility:
     """Random feasibility data of the interface's shape (random cores, groups and feasible sets)."""
     rng = np.random.default_rng(seed)
-    parts = {f: [f"{f[:3]}{i}" for i in range(n)] for f, n in SIZES.items()}
-    options = {"bushing": {"pivot_bushing": np.array([0, 1])},
-               "axial": {"endcap_spacer_class": np.array([-1, 0]), "cone_spring": np.array([-1, 0])},
-               "spring": {"main_spring": np.arange(4)}, "bolt": {"bolt": np.arange(2)}}
+    parts = {f: [f"{f[:3]}{i}" for i in range(n)] for f, n in sizes.items()}
+    ax = [(-1, -1)] + [(e, c) for e in range(sizes["endcap_spacer_class"]) for c in range(sizes["cone_spring"])]
+    options = {"bushing": {"pivot_bushing": np.arange(sizes["pivot_bushing"])},
+               "axial": {"endcap_spacer_class": np.array([e for e, _ in ax]), "cone_spring": np.array([c for _, c in ax])},
+               "spring": {"main_spring": np.arange(sizes["main_spring"])}, "bolt": {"bolt": np.arange(sizes["bolt"])}}
     ocost = {s: np.round(rng.uniform(0.1, 2.0, len(next(iter(o.values())))), 3) for s, o in options.items()}
     grid = np.array(list(itertools.product(range(2), range(2), (-1, 0))))
     apps = []
@@ -47,14 +53,19 @@ def random_portfolio(n_apps: int, seed: int) -> PortfolioFeasibility:
             ng = int(rng.integers(1, 3))
             group[s] = rng.integers(0, ng, nc)
             feas[s] = [np.flatnonzero(rng.random(n_opt) < 0.6) for _ in range(ng)]
+            if s == "axial" and nested_axial:   # a larger spacer or cone spring serves more (as on real data)
+                ec = np.array(ax)
+                feas[s] = [np.flatnonzero((ec[:, 0] >= rng.integers(0, 2)) & (ec[:, 1] >= rng.integers(0, 2)))
+                           for _ in range(ng)]
             marg[s] = [np.round(rng.uniform(0.0, 1.0, len(f)), 3) for f in feas[s]]
         apps.append(AppFeasibility(
             app_id=f"R{a}", core_parts={"ball_bearing": cores[:, 0], "pivot_class_diameter_mm": cores[:, 1],
                                         "damper_pad_class": cores[:, 2]},
             core_cost_eur=np.round(rng.uniform(0.5, 3.0, nc), 3), core_margin=np.round(rng.uniform(0, 1, nc), 3),
             group=group, feasible=feas, option_margin=marg, volume=float(rng.integers(1, 1000)),
-            option_cost_eur={"spring": np.round(rng.uniform(0.1, 2.0, 4), 3)} if rng.random() < 0.5 else None))
-    fixed = {f: np.round(rng.uniform(100.0, 3000.0, n), 1) for f, n in SIZES.items()}
+            option_cost_eur={"spring": np.round(rng.uniform(0.1, 2.0, sizes["main_spring"]), 3)}
+            if rng.random() < 0.5 else None))
+    fixed = {f: np.round(rng.uniform(100.0, 3000.0, n), 1) for f, n in sizes.items()}
     return validate(PortfolioFeasibility(apps=apps, parts=parts, part_cost_eur=fixed, options=options,
                                          option_cost_eur=ocost))
 
@@ -117,6 +128,28 @@ def test_milp_equals_brute_force(seed, objective):
         assert sol.objective == pytest.approx(expected, rel=1e-7)
 
 
+@pytest.mark.parametrize("seed", [0, 1, 2, 3, 4, 5, 6, 7])
+@pytest.mark.parametrize("objective", ["variants", "cost"])
+def test_milp_equals_brute_force_with_two_part_axial_options(seed, objective):
+    """R2's part substitution on the (spacer, cone spring) options keeps the optimum."""
+    pf = random_portfolio(5, seed, SIZES_AXIAL, nested_axial=True)
+    expected = brute_force(pf, objective)
+    w, _, sol = _milp(pf, objective, True)
+    assert sol.status == "optimal" and sol.objective == pytest.approx(expected, rel=1e-7)
+    assert _milp(pf, objective, False)[2].objective == pytest.approx(expected, rel=1e-7)
+
+
+def test_part_substitution_removes_axial_parts():
+    """The test above is not vacuous: R2 removes cone springs or spacers (with the other part held) there."""
+    from synth.platform.prune import _substitute
+    n = []
+    for seed in range(8):
+        w = compile_portfolio(random_portfolio(5, seed, SIZES_AXIAL, nested_axial=True), "variants")
+        n.append(sum(_substitute(w, SUBSYSTEMS.index("axial"), FAMILIES.index(f), False)
+                     for f in ("cone_spring", "endcap_spacer_class")))
+    assert sum(x > 0 for x in n) >= 4
+
+
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(seed=st.integers(0, 10_000), n=st.integers(1, 6), objective=st.sampled_from(["variants", "cost"]))
 def test_milp_equals_brute_force_property(seed, n, objective):
@@ -176,7 +209,7 @@ def test_assignment_uses_only_platform_parts_and_is_feasible(objective):
                 assert code < 0 or code in r.platform[f]
         assert rec["margin"] >= 0
     if objective == "variants":
-        assert r.objective_value == r.n_parts  # unit weights: the objective is the part count
+        assert r.objective_value == pytest.approx(r.n_parts)  # unit weights: the objective is the part count
     # the price of standardisation is not negative: no application is cheaper than its own optimum
     for rec, opt in zip(r.records, r.per_app_optima):
         if rec["feasible"]:

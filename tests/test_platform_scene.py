@@ -50,6 +50,8 @@ def test_bad_arguments_are_named(tmp_path, argv, match):
         _run(["rationalise", "synthetic:3", "--out", str(tmp_path)] + argv)
 
 
-def test_a_table_without_the_producer_says_so(tmp_path):
-    with pytest.raises(InputError, match="producer is not wired yet"):
+def test_a_missing_table_or_unknown_portfolio_is_named(tmp_path):
+    with pytest.raises(InputError, match="portfolio: got .*portfolio.csv'; accepted: an existing portfolio table"):
         _run(["rationalise", str(tmp_path / "portfolio.csv"), "--out", str(tmp_path)])
+    with pytest.raises(InputError, match="PORTFOLIO: got 'engines.txt'; accepted: synthetic:N"):
+        _run(["rationalise", "engines.txt", "--out", str(tmp_path)])

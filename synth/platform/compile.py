@@ -130,7 +130,9 @@ class _Patterns:
         return ids[np.asarray(inv).reshape(-1)]
 
 
-def _why_unservable(a, dead_by: dict, n_cores: int) -> str:
+def _why_unservable(a, dead_by: dict, n_cores: int, floor: bool) -> str:
+    if a.note and not floor:
+        return a.note          # the producer's reason (no feasible design at all)
     if n_cores == 0:
         return a.note or "no feasible core: no bearing, pivot class, bushing supplier and damper pad pass their own constraints"
     parts = [f"{s} ({n} of {n_cores} cores)" for s, n in sorted(dead_by.items(), key=lambda t: -t[1]) if n]
@@ -183,7 +185,8 @@ def compile_portfolio(pf: PortfolioFeasibility, objective: str = "variants", *, 
             dead_by[s] = int(np.sum(dead & ok0))
             ok &= ~dead
         if not ok.any():
-            unservable.append((ai, _why_unservable(a, dead_by, int(np.sum(np.asarray(a.core_margin) >= tau)))))
+            unservable.append((ai, _why_unservable(a, dead_by, int(np.sum(np.asarray(a.core_margin) >= tau)),
+                                              min_margin is not None)))
             continue
         inst_a = len(app_index)
         app_index.append(ai)

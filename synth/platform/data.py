@@ -77,7 +77,9 @@ class AppFeasibility:
       portfolio's ``option_cost_eur`` otherwise;
     * ``core_binding`` / ``option_binding``: optional names of the binding constraint
       (same shapes as the margins), reported in ``assignment.csv``;
-    * ``note``: why the application has no feasible core, when it has none.
+    * ``note``: why the application has no feasible design, when it has none;
+    * ``core_rows``: optional ``(n_c,)`` row of each core in the design space's core table
+      (:mod:`synth.design.space`; real data only: how a design is rebuilt and verified).
     """
 
     app_id: str
@@ -92,6 +94,7 @@ class AppFeasibility:
     core_binding: np.ndarray | None = None
     option_binding: dict | None = None
     note: str = ""
+    core_rows: np.ndarray | None = None
 
     @property
     def n_cores(self) -> int:
@@ -107,7 +110,11 @@ class PortfolioFeasibility:
       qualification, stock keeping), used by the cost objective;
     * ``options[s][f]``: ``(n_options,)`` part code of family ``f`` per option of
       subsystem ``s`` (``-1``: no part), for the families of :data:`SUBSYSTEM_FAMILIES`;
-    * ``option_cost_eur[s]``: ``(n_options,)`` unit cost per option.
+    * ``option_cost_eur[s]``: ``(n_options,)`` unit cost per option;
+    * real data only (:mod:`synth.platform.producer`): ``design_inputs`` (the validated input
+      of each application, None for a row that failed validation), the evaluator
+      ``settings``, the ``catalogue`` (:class:`synth.platform.options.Catalogue`: how an
+      option is a row of the design space) and ``stats`` (times).
     """
 
     apps: list
@@ -116,6 +123,10 @@ class PortfolioFeasibility:
     options: dict
     option_cost_eur: dict
     notes: list = field(default_factory=list)
+    design_inputs: list | None = None
+    settings: object = None
+    catalogue: object = None
+    stats: dict = field(default_factory=dict)
 
     def n_options(self, s: str) -> int:
         return int(len(self.option_cost_eur[s]))

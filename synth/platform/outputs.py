@@ -6,11 +6,17 @@
   (``none``: no part of that family), unit cost, smallest margin and its binding
   constraint, and for an application no platform serves, the reason.
 * ``summary.md``: the price of standardisation (platform parts and cost against the
-  per-application optima), the solve (status, gap, size, times), the reductions.
+  per-application optima), the feasibility data (time, applications), the solve
+  (status, gap, MILP size, times), the reductions.
+* :func:`report_section`: the same for the HTML report, one self-contained ``<section>``
+  (tables and the plots embedded as base64 PNG).
 """
 
 from __future__ import annotations
 
+import base64
+import html
+import io
 from pathlib import Path
 
 import numpy as np
@@ -19,8 +25,8 @@ import pandas as pd
 from synth.platform.assign import platform_parts_used
 from synth.platform.data import FAMILIES
 
-__all__ = ["platform_table", "assignment_table", "price_of_standardisation", "summary_markdown", "tradeoff_table",
-           "plot_tradeoff", "write_all"]
+__all__ = ["platform_table", "gap_text", "assignment_table", "price_of_standardisation", "summary_markdown",
+           "tradeoff_table", "plot_tradeoff", "plot_families", "write_all", "report_section"]
 
 
 def platform_table(pf, result) -> pd.DataFrame:
@@ -36,7 +42,7 @@ def assignment_table(result) -> pd.DataFrame:
         row = {"application_id": r["app_id"], "feasible": r["feasible"]}
         row.update({f: r["parts"].get(f, "") for f in FAMILIES})
         row.update({"unit_cost_eur": r["unit_cost_eur"], "margin": r["margin"], "binding_constraint": r["binding"],
-                    "reason": r["reason"]})
+                    "verdict": r.get("verdict", ""), "reason": r["reason"]})
         rows.append(row)
     return pd.DataFrame(rows)
 
@@ -61,6 +67,11 @@ def price_of_standardisation(pf, result) -> dict:
             "unit_cost_increase": (cost_p - cost_o) / cost_o if cost_o else 0.0}
 
 
+def gap_text(x: float, digits: int = 1) -> str:
+    """A relative gap, or "n/a (caps)" where there is none (the greedy baseline ignores --max-variants)."""
+    return "n/a (caps)" if not np.isfinite(x) else f"{x:+.{digits}%}"
+
+
 def summary_markdown(pf, result) -> str:
     p = price_of_standardisation(pf, result)
     n_bad = sum(not r["feasible"] for r in result.records)
@@ -78,14 +89,25 @@ def summary_markdown(pf, result) -> str:
              "| family | platform | union of optima |", "|---|---|---|"]
     lines += [f"| {f} | {a} | {b} |" for f, (a, b) in p["parts_by_family"].items()]
     s = result.size
+    st = getattr(pf, "stats", {}) or {}
+    if "feasibility_s" in st:
+        lines += ["", "## Feasibility data", "",
+                  f"- {len(pf.apps)} applications through the evaluator in {st['feasibility_s']:.1f} s "
+                  f"({st.get('engine', '')}, {st.get('chunks', 0)} chunks); "
+                  f"{sum(a.n_cores > 0 for a in pf.apps)} with a feasible core, "
+                  f"{sum(not r['feasible'] for r in result.per_app_optima)} with no feasible design"]
+        pairs = {k[:-6]: v for k, v in st.items() if k.endswith("_pairs") and v}
+        if pairs:
+            lines.append("- evaluated rows: " + ", ".join(f"{k} {v:,}" for k, v in pairs.items()))
     lines += ["", "## Solve", "",
               f"- MILP: {result.status}, objective {result.objective_value:,.6g}, bound {result.bound:,.6g}, "
               f"gap {result.gap:.3%}",
-              f"- greedy baseline: {result.greedy_value:,.6g} ({result.greedy_gap:+.2%} against the MILP)",
+              f"- greedy baseline: {result.greedy_value:,.6g} ({gap_text(result.greedy_gap, 2)} against the MILP)",
               f"- size: {s.get('variables', 0):,} variables ({s.get('binaries', 0)} binary), "
               f"{s.get('constraints', 0):,} constraints, {s.get('nonzeros', 0):,} non-zeros",
               f"- times [s]: compile {t['compile_s']:.2f}, reductions {t['prune_s']:.2f}, greedy {t['greedy_s']:.2f}, "
-              f"model build {t['build_s']:.2f}, solve {t['solve_s']:.2f}, total {t['total_s']:.2f}",
+              f"model build {t['build_s']:.2f}, solve {t['solve_s']:.2f}, verification {t.get('verify_s', 0.0):.2f}, "
+              f"total {t['total_s']:.2f}",
               f"- weights: " + ", ".join(f"{f} {w:g}" for f, w in result.weights.items())]
     if result.max_variants:
         lines.append("- max variants: " + ", ".join(f"{f} {n}" for f, n in result.max_variants.items()))
@@ -121,7 +143,8 @@ def plot_tradeoff(rows: list, path, kind: str) -> Path:
         ax.plot([r["margin_floor"] for r in rows], x, "o-")
         ax.set_xlabel("margin floor (every design's smallest margin) [-]")
         ax.set_ylabel("distinct parts in the platform")
-        ax.set_title("Platform size against the worst margin")
+        ax.set_title(f"Platform size against the worst margin ({rows[0]['served']} applications)")
+        ax.yaxis.get_major_locator().set_params(integer=True)
     else:
         ax.plot(x, [r["cost_eur"] / 1e6 for r in rows], "o-")
         ax.set_xlabel("distinct parts in the platform (weighted)")
@@ -129,10 +152,95 @@ def plot_tradeoff(rows: list, path, kind: str) -> Path:
         ax.set_title("What each extra variant buys")
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=110)
+    path = path if hasattr(path, "write") else Path(path)
+    fig.savefig(path, dpi=110, format="png")
     plt.close(fig)
     return path
+
+
+def plot_families(result, path=None, price: dict | None = None):
+    """Distinct parts per family: the platform against the union of the per-application optima (PNG bytes, or the
+    file ``path``)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    counts = (price or result.price)["parts_by_family"]
+    fams = list(counts)
+    x = np.arange(len(fams))
+    fig, ax = plt.subplots(figsize=(7, 3.6))
+    union, plat = [counts[f][1] for f in fams], [counts[f][0] for f in fams]
+    ax.bar(x - 0.2, union, 0.4, label="union of per-application optima", color="#bbbbbb")
+    ax.bar(x + 0.2, plat, 0.4, label="platform", color="#1f77b4")
+    for xi, (u, p) in enumerate(zip(union, plat)):
+        ax.text(xi - 0.2, max(u, 0.9), str(u), ha="center", va="bottom", fontsize=8)
+        ax.text(xi + 0.2, max(p, 0.9), str(p), ha="center", va="bottom", fontsize=8)
+    ax.set_xticks(x, [f.replace("_diameter_mm", "").replace("_class", "") for f in fams], rotation=30, ha="right")
+    ax.set_ylabel("distinct parts (log scale)")
+    ax.set_yscale("log")
+    ax.set_ylim(0.8, 3.0 * max(union + plat + [1]))
+    ax.legend(frameon=False, loc="upper left")
+    ax.grid(True, axis="y", alpha=0.3)
+    fig.tight_layout()
+    buf = io.BytesIO()
+    fig.savefig(buf if path is None else path, dpi=110, format="png")
+    plt.close(fig)
+    return buf.getvalue() if path is None else Path(path)
+
+
+def _png_tag(png: bytes, alt: str, caption: str) -> str:
+    b64 = base64.b64encode(png).decode("ascii")
+    return (f'<figure><img alt="{html.escape(alt)}" src="data:image/png;base64,{b64}">'
+            f"<figcaption>{html.escape(caption)}</figcaption></figure>")
+
+
+def _html_table(header: list, rows: list) -> str:
+    head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in r) + "</tr>" for r in rows)
+    return f"<table><tr>{head}</tr>{body}</table>"
+
+
+def report_section(result) -> str:
+    """The platform for the HTML report: one self-contained ``<section id="platform">`` (the price of
+    standardisation, the platform's parts and their use, the solve, and the plots embedded as base64 PNG: parts
+    per family, and the trade-off curve when ``result.tradeoff`` holds one).
+
+    >>> from synth.platform.rationalise import rationalise
+    >>> from synth.platform.synthetic import synthetic_portfolio
+    >>> sec = report_section(rationalise(synthetic_portfolio(6, seed=1), time_limit=30))
+    >>> sec.startswith('<section id="platform">'), sec.count("data:image/png;base64,")
+    (True, 1)
+    """
+    p = result.price
+    n_bad = len(result.records) - p["applications_served"]
+    out = ['<section id="platform">', "<h2>Platform rationalisation</h2>",
+           f"<p>{p['applications_served']} of {len(result.records)} applications served by "
+           f"{result.n_parts} distinct parts ({result.objective} objective, MILP {html.escape(result.status)}, "
+           f"gap {result.gap:.2%}); {n_bad} not served (see <code>assignment.csv</code>). "
+           f"The union of the applications' own optimal designs uses {p['parts_union_of_optima']} parts; "
+           f"standardising changes the unit cost x volume by {p['unit_cost_increase']:+.2%}.</p>",
+           _html_table(["family", "platform", "union of per-application optima"],
+                       [(f, a, b) for f, (a, b) in p["parts_by_family"].items()]),
+           _png_tag(plot_families(result), "parts per family", "Distinct parts per family: platform against the "
+                    "union of the per-application optima"),
+           "<h3>Platform parts</h3>",
+           _html_table(["family", "part", "applications"], [(r["family"], r["part"], r["applications"])
+                                                              for r in result.table])]
+    rows = getattr(result, "tradeoff", None)
+    if rows:
+        kind = "margin" if "margin_floor" in rows[0] else "cost"
+        buf = io.BytesIO()
+        plot_tradeoff(rows, buf, kind)
+        out += [f"<h3>Trade-off ({kind})</h3>", _png_tag(buf.getvalue(), "trade-off", "Platform size against "
+                                                           + ("the worst margin" if kind == "margin" else "total cost")),
+                _html_table(list(k for k in rows[0] if k != "status") + ["status"],
+                            [[f"{r[k]:,.4g}" if isinstance(r[k], (float, np.floating)) else r[k]
+                              for k in rows[0] if k != "status"] + [r["status"]] for r in rows])]
+    s, t = result.size, result.times
+    out.append(f"<p class='small'>MILP: {s.get('variables', 0):,} variables ({s.get('binaries', 0)} binary), "
+               f"{s.get('constraints', 0):,} constraints, {s.get('nonzeros', 0):,} non-zeros; solved in "
+               f"{t['solve_s']:.2f} s (total {t['total_s']:.2f} s); greedy baseline {gap_text(result.greedy_gap)}.</p>")
+    out.append("</section>")
+    return "\n".join(out)
 
 
 def write_all(pf, result, out, tradeoff_rows: list | None = None, kind: str = "margin") -> list:

@@ -15,17 +15,24 @@ R1 **Dominated option in a row.** Option ``o`` of row ``r`` goes when another op
    row in the variants objective, and the row (always covered) is dropped; in the cost
    objective its cost folds into the row's cores.
 
-R2 **Dominated spring (bolt, bushing) variant across the portfolio.** For one-part
-   patterns whose part occurs in no other pattern: ``p`` goes when another such pattern
-   ``q`` of the same subsystem and family is in every row ``p`` is in (coverage
-   ``rows(p) <= rows(q)``), with weight and per-variant fixed cost no higher and, for the
-   cost objective, a unit cost no higher in every one of those rows (ties between equal
-   patterns: the lower index stays). *Proof*: in a solution using ``p``, replace part ``p``
-   by part ``q``: every row covered by ``p`` is covered by ``q``; nothing else used ``p``;
-   the objective does not increase and no family gains a variant (``max_variants`` and
-   the part-count budget stay met). The relation (weakly better in every respect, ties
-   broken by index) is a strict partial order, so removing every dominated pattern at
-   once leaves, for each, a kept dominator.
+R2 **Dominated variant across the portfolio (part substitution).** For two parts ``j``
+   and ``k`` of one subsystem family (a main spring, a bolt, a bushing, a cone spring, an
+   endcap spacer): ``j`` goes, with every option that contains it, when ``k`` can stand
+   in for it everywhere: for every row ``r`` and every option ``o`` of ``r`` containing
+   ``j``, the option ``o - {j} + {k}`` is in ``r`` too (for the cost objective, at no
+   higher unit cost), and ``k``'s weight and per-variant fixed cost are no higher (ties
+   between mutual substitutes: the lower index stays). For one-part options (springs,
+   bolts, bushings) this reads "``k`` is feasible in every row ``j`` is"; for the axial
+   options (spacer and cone spring) it compares cone springs with the spacer held, and
+   spacers with the cone spring held. *Proof*: in a solution using ``j``, replace part
+   ``j`` by part ``k``: every design that used an option with ``j`` uses its counterpart
+   with ``k``, in the same row, on the same core, at no higher cost; no other design
+   changes; no family gains a variant (``max_variants`` and the part-count budget stay
+   met) and the objective does not increase. Substitution is transitive, so the relation
+   (ties broken by index) is a strict partial order: removing every dominated part of
+   one family at once leaves, for each, a kept dominator. The families are reduced one
+   after the other (an option holds one part of each), so a counterpart is never removed
+   in the same pass.
 
 R3 **Dominated core of an application.** Core ``c`` goes when another core ``c'`` of the
    same application has ``parts(c') <= parts(c)``, for every subsystem a row whose
@@ -85,12 +92,16 @@ def dominated_options(w: Work) -> int:
     multi = {si for si in range(len(SUBSYSTEMS))
              if any(len(w.patterns[k]) != 1 for k in np.unique(np.concatenate(
                  [w.row_pats[i] for i in _live_rows(w, si)] or [np.zeros(0, int)])))}
+    plen = np.array([len(x) for x in w.patterns])
     for i in _live_rows(w):
         if w.row_sub[i] not in multi:
             continue
         p, c = w.row_pats[i], w.row_cost[i]
         if len(p) < 2:
             continue
+        lens = plen[p]
+        if lens.min() == lens.max() and lens.min() > 0:
+            continue                                   # distinct patterns of one size: none is a subset of another
         S = _subset_matrix(w, p)                       # S[a, b]: p[a] subset of p[b]
         better = S & ((c[:, None] <= c[None, :] + 1e-9) if cost_obj else True)
         np.fill_diagonal(better, False)
@@ -122,70 +133,96 @@ def _row_matrix(w: Work, rows: list, pats: np.ndarray) -> sp.csr_matrix:
 
 
 def dominated_variants(w: Work) -> int:
-    """R2. Returns the number of patterns removed."""
+    """R2 (part substitution, family by family). Returns the number of parts removed."""
+    from synth.platform.data import SUBSYSTEM_FAMILIES, FAMILIES
     removed = 0
-    n_occ = np.bincount(np.concatenate(w.patterns) if w.patterns else np.zeros(0, int), minlength=w.n_parts)
     cost_obj = w.objective == "cost"
-    for si in range(len(SUBSYSTEMS)):
-        rows = _live_rows(w, si)
-        if not rows:
-            continue
-        pats = np.unique(np.concatenate([w.row_pats[i] for i in rows]))
-        one = np.array([len(w.patterns[k]) == 1 and n_occ[w.patterns[k][0]] == 1 for k in pats], bool)
-        pats = pats[one]
-        if len(pats) < 2:
-            continue
-        part = np.array([w.patterns[k][0] for k in pats])
-        fam = w.part_family[part]
-        M = _row_matrix(w, rows, pats)                 # rows x pats
-        cnt = np.asarray(M.sum(axis=0)).ravel()
-        G = (M.T @ M).tocsr()                          # G[p, q] = |rows(p) & rows(q)|
-        G.eliminate_zeros()
-        gp = np.repeat(np.arange(len(pats)), np.diff(G.indptr))
-        gq = G.indices
-        sel = (gp != gq) & (G.data >= cnt[gp] - 0.5) & (fam[gp] == fam[gq]) \
-            & (w.part_weight[part[gq]] <= w.part_weight[part[gp]]) \
-            & (w.part_fixed_cost[part[gq]] <= w.part_fixed_cost[part[gp]])
-        p_i, q_i = gp[sel], gq[sel]
-        if cost_obj and len(p_i):
-            # unit cost of q no higher wherever p is feasible: per (application, pattern) the highest cost of q
-            # against the lowest of p over the application's rows (rows of one application share option costs,
-            # so this is exact; otherwise it only prunes less)
-            app_of = np.array([w.row_app[i] for i in rows])
-            col = np.full(len(w.patterns), -1)
-            col[pats] = np.arange(len(pats))
-            r_idx = np.repeat(np.arange(len(rows)), [len(w.row_pats[i]) for i in rows])
-            c_idx = col[np.concatenate([w.row_pats[i] for i in rows])]
-            vals = np.concatenate([w.row_cost[i] for i in rows])
-            r_idx, vals, c_idx = r_idx[c_idx >= 0], vals[c_idx >= 0], c_idx[c_idx >= 0]
-            na = int(app_of.max()) + 1
-            cmax = np.full((na, len(pats)), -np.inf)
-            cmin = np.full((na, len(pats)), np.inf)
-            np.maximum.at(cmax, (app_of[r_idx], c_idx), vals)
-            np.minimum.at(cmin, (app_of[r_idx], c_idx), vals)
-            Mc = M.tocsc()
-            ok = np.ones(len(p_i), bool)
-            for p in np.unique(p_i):
-                apps_p = np.unique(app_of[Mc.indices[Mc.indptr[p]:Mc.indptr[p + 1]]])
-                n = np.flatnonzero(p_i == p)
-                ok[n] = np.all(cmax[np.ix_(apps_p, q_i[n])] <= cmin[apps_p, p][:, None] + 1e-9, axis=0)
-            p_i, q_i = p_i[ok], q_i[ok]
-        if not len(p_i):
-            continue
-        # strict order with index tie-break: q dominates p unless p also dominates q and p < q
-        pairs = set(zip(p_i.tolist(), q_i.tolist()))
-        dom = np.zeros(len(pats), bool)
-        for p, q in pairs:
-            if (q, p) in pairs and p < q:
-                continue
-            dom[p] = True
-        gone = set(pats[dom].tolist())
-        for i in rows:
-            keep = np.array([k not in gone for k in w.row_pats[i].tolist()], bool)
-            if not keep.all():
-                w.row_pats[i], w.row_cost[i] = w.row_pats[i][keep], w.row_cost[i][keep]
-        removed += int(dom.sum())
+    for si, s in enumerate(SUBSYSTEMS):
+        for fam in SUBSYSTEM_FAMILIES[s]:
+            removed += _substitute(w, si, FAMILIES.index(fam), cost_obj)
     return removed
+
+
+def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
+    rows = _live_rows(w, si)
+    if not rows:
+        return 0
+    pats = np.concatenate([w.row_pats[i] for i in rows])
+    cost = np.concatenate([w.row_cost[i] for i in rows])
+    r_of = np.repeat(np.arange(len(rows)), [len(w.row_pats[i]) for i in rows])
+    # per option: its part of family fi (-1: none) and the pattern of its other parts ("rest")
+    upat, inv = np.unique(pats, return_inverse=True)
+    inv = np.asarray(inv).reshape(-1)
+    part_u = np.full(len(upat), -1)
+    rest_key = []
+    for n, k in enumerate(upat):
+        ps = w.patterns[k]
+        mine = ps[w.part_family[ps] == fi]
+        part_u[n] = mine[0] if len(mine) else -1
+        rest_key.append(tuple(ps[w.part_family[ps] != fi].tolist()))
+    rest_ids = {key: n for n, key in enumerate(dict.fromkeys(rest_key))}
+    rest_u = np.array([rest_ids[key] for key in rest_key], np.int64)
+    part, rest = part_u[inv], rest_u[inv]
+    has = part >= 0
+    if not has.any():
+        return 0
+    # tokens: (row, rest); part j "is in" token t when the option rest + j is in the row (each (row, pattern) once)
+    tok_ids, tok = np.unique(r_of[has].astype(np.int64) * (int(rest.max()) + 1) + rest[has], return_inverse=True)
+    tok = np.asarray(tok).reshape(-1)
+    cand, pcol = np.unique(part[has], return_inverse=True)
+    pcol = np.asarray(pcol).reshape(-1)
+    if len(cand) < 2:
+        return 0
+    nt, nc = len(tok_ids), len(cand)
+    by_part = sp.csc_matrix((cost[has] + 1.0, (tok, pcol)), shape=(nt, nc))   # +1: a zero cost is stored
+    by_tok = by_part.tocsr()
+    cnt = np.diff(by_part.indptr)
+    tok_len = np.diff(by_tok.indptr)
+    bits = np.zeros((nc, (nt + 63) // 64), np.uint64)                          # the token set of each part
+    np.bitwise_or.at(bits, (pcol, tok // 64), np.left_shift(np.uint64(1), (tok % 64).astype(np.uint64)))
+    weight, fixed = w.part_weight[cand], w.part_fixed_cost[cand]
+    if cost_obj:
+        # per (application, rest, part) the lowest and highest cost over the application's tokens with that rest:
+        # k is no dearer than j in all of them when its highest cost is at most j's lowest (exact when the rows of
+        # an application price an option alike, as the producer's data do; otherwise it prunes less)
+        app_t = np.asarray(w.row_app)[np.asarray(rows)][r_of[has]].astype(np.int64)
+        _, cls = np.unique(app_t * (int(rest.max()) + 1) + rest[has], return_inverse=True)
+        cls = np.asarray(cls).reshape(-1)
+        n_app = int(cls.max()) + 1
+        cmin, cmax = np.full((n_app, nc), np.inf), np.full((n_app, nc), -np.inf)
+        np.minimum.at(cmin, (cls, pcol), cost[has])
+        np.maximum.at(cmax, (cls, pcol), cost[has])
+        in_app = sp.csc_matrix((np.ones(len(cls), bool), (cls, pcol)), shape=(n_app, nc))
+    dom = np.zeros(nc, bool)
+    for j in range(nc):
+        tj = by_part.indices[by_part.indptr[j]:by_part.indptr[j + 1]]
+        t0 = tj[np.argmin(tok_len[tj])]                  # a dominator is in j's smallest token
+        ks = by_tok.indices[by_tok.indptr[t0]:by_tok.indptr[t0 + 1]]
+        ks = ks[(ks != j) & (cnt[ks] >= cnt[j]) & (weight[ks] <= weight[j]) & (fixed[ks] <= fixed[j])]
+        if not len(ks):
+            continue
+        ks = ks[~np.any(bits[j][None, :] & ~bits[ks], axis=1)]          # j's tokens are all k's
+        if not len(ks):
+            continue
+        same = (cnt[ks] == cnt[j]) & (weight[ks] == weight[j]) & (fixed[ks] == fixed[j])
+        if not cost_obj:
+            # strict order with index tie-break: a mutual substitute of higher index does not remove j
+            dom[j] = bool(np.any(~same | (ks < j)))
+            continue
+        apps_j = in_app.indices[in_app.indptr[j]:in_app.indptr[j + 1]]
+        hi_k, lo_j = cmax[np.ix_(apps_j, ks)], cmin[apps_j, j][:, None]
+        ok = np.all(hi_k <= lo_j + 1e-9, axis=0)
+        same &= np.all((cmin[np.ix_(apps_j, ks)] >= lo_j - 1e-9) & (hi_k <= lo_j + 1e-9)
+                       & (cmax[apps_j, j][:, None] <= lo_j + 1e-9), axis=0)
+        dom[j] = bool(np.any(ok & (~same | (ks < j))))
+    gone = cand[dom]
+    bad_pat = np.zeros(len(w.patterns), bool)
+    bad_pat[upat[np.isin(part_u, gone)]] = True
+    for i in rows:
+        keep = ~bad_pat[w.row_pats[i]]
+        if not keep.all():
+            w.row_pats[i], w.row_cost[i] = w.row_pats[i][keep], w.row_cost[i][keep]
+    return int(dom.sum())
 
 
 def _core_rows(w: Work) -> np.ndarray:

@@ -24,6 +24,7 @@ from synth.platform.compile import compile_portfolio
 from synth.platform.data import FAMILIES, PortfolioFeasibility, default_weights
 from synth.platform.greedy import greedy
 from synth.platform.prune import prune as prune_work
+from synth.platform.verified import verify_records
 
 __all__ = ["PlatformResult", "rationalise", "tradeoff", "OBJECTIVES"]
 
@@ -51,6 +52,9 @@ class PlatformResult:
     weights: dict
     max_variants: dict = field(default_factory=dict)
     notes: list = field(default_factory=list)
+    price: dict = field(default_factory=dict)     # synth.platform.outputs.price_of_standardisation
+    table: list = field(default_factory=list)     # platform.csv rows: family, part, applications
+    tradeoff: list | None = None                  # trade-off rows when a sweep was made (the report section)
 
     @property
     def n_parts(self) -> int:
@@ -89,13 +93,15 @@ def _check(objective, max_variants, time_limit, weights):
 
 def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_variants: dict | None = None,
                 time_limit: float = 60.0, weights: dict | None = None, solver: str = "highs", prune: bool = True,
-                min_margin: float | None = None, budget: float | None = None) -> PlatformResult:
+                min_margin: float | None = None, budget: float | None = None, verify: bool = True) -> PlatformResult:
     """The platform of ``pf`` minimising ``objective`` (``variants``: weighted count of distinct
     parts; ``cost``: unit cost x volume plus per-variant fixed cost).
 
     ``max_variants``: ``{family: N}`` caps (applications no capped platform serves are
     reported, not an error); ``min_margin``: only cores and options with at least this
-    margin; ``budget``: a ceiling on the weighted part count (the trade-off sweep).
+    margin; ``budget``: a ceiling on the weighted part count (the trade-off sweep);
+    ``verify``: check every assigned design again through the evaluator
+    (:func:`synth.platform.verified.verify_records`, real data only).
     """
     _check(objective, max_variants, time_limit, weights)
     w_all = {**default_weights(), **(weights or {})}
@@ -125,6 +131,10 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
         y, status = np.zeros(inst.n_parts, bool), sol.status
     platform = platform_from_y(work, y)
     records = assign(pf, platform, min_margin=min_margin)
+    t_v = time.perf_counter()
+    if verify:
+        verify_records(pf, records)
+    t_v = time.perf_counter() - t_v
     reasons = dict(work.unservable)
     for i, r in enumerate(records):
         if not r["feasible"] and i in reasons:
@@ -142,14 +152,20 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     per_app = assign(pf, full_platform(pf), min_margin=min_margin)
     t5 = time.perf_counter()
     obj = sol.objective if sol.y is not None else g_val
-    return PlatformResult(
+    res = PlatformResult(
         objective=objective, status=status, platform=platform, records=records, objective_value=float(obj),
         bound=float(sol.bound), gap=float(sol.gap), greedy_value=float(g_val),
-        greedy_gap=float((g_val - obj) / max(abs(obj), 1e-9)) if np.isfinite(g_val) and np.isfinite(obj) else np.nan,
+        greedy_gap=float((g_val - obj) / max(abs(obj), 1e-9)) if np.isfinite(g_val) and np.isfinite(obj) and not capped
+        else np.nan,   # the greedy platform ignores caps: no baseline for a capped MILP
         size=dict(sol.size), sizes_before_prune=before, prune_log=list(work.log),
         times={"compile_s": t1 - t0, "prune_s": t2 - t1, "greedy_s": t3 - t2, "build_s": sol.build_s,
-               "solve_s": sol.time_s, "milp_s": t4 - t3, "assign_s": t5 - t4, "total_s": t5 - t0},
+               "solve_s": sol.time_s, "milp_s": t4 - t3, "assign_s": t5 - t4 - t_v, "verify_s": t_v,
+               "total_s": t5 - t0},
         per_app_optima=per_app, weights=w_all, max_variants=dict(max_variants or {}), notes=notes)
+    from synth.platform.outputs import platform_table, price_of_standardisation
+    res.price = price_of_standardisation(pf, res)
+    res.table = platform_table(pf, res).to_dict(orient="records")
+    return res
 
 
 def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6, time_limit: float = 30.0,
@@ -178,8 +194,6 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
                 "status": r.status, **extra}
 
     if kind == "margin":
-        base = rationalise(pf, "variants", time_limit=time_limit, weights=weights)
-        n_served = sum(r["feasible"] for r in base.per_app_optima)
         # the largest floor every servable application can meet: the smallest per-application best margin
         best = []
         for a in pf.apps:
@@ -189,26 +203,30 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
                     gm = np.array([np.max(x) if len(x) else -np.inf for x in a.option_margin[s]])
                     m = np.minimum(m, gm[np.asarray(a.group[s])])
                 m = np.minimum(m, a.core_margin)
-                if np.isfinite(m).any() and m.max() >= 0:
+                if m.size and m.max() >= 0:
                     best.append((float(m.max()), a))
-        top = float(np.quantile([b for b, _ in best], 0.25)) if best else 0.0
+        # floors up to the lower quartile of the positive best margins (an application whose every design has a
+        # margin of 0, e.g. a bolt that exactly fits the engine's bore, cannot take part in the curve)
+        pos = [b for b, _ in best if b > 0]
+        top = float(np.quantile(np.minimum(pos, 1e6), 0.25)) if pos else 0.0
         import dataclasses
         pf = dataclasses.replace(pf, apps=[a for b, a in best if b >= top])   # one set of applications for every floor
-        base = rationalise(pf, "variants", time_limit=time_limit, weights=weights)
+        base = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False)
         n_served = len(pf.apps)
         for tau in np.linspace(0.0, top, points):
             r = base if tau == 0.0 else rationalise(pf, "variants", time_limit=time_limit, weights=weights,
-                                                    min_margin=float(tau))
+                                                    min_margin=float(tau), verify=False)
             rows.append(row(r, margin_floor=float(tau)))
             if rows[-1]["served"] < n_served:
                 rows[-1]["status"] += " (fewer served)"
         return rows
-    small = rationalise(pf, "variants", time_limit=time_limit, weights=weights)
-    cheap = rationalise(pf, "cost", time_limit=time_limit, weights=weights)
+    small = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False)
+    cheap = rationalise(pf, "cost", time_limit=time_limit, weights=weights, verify=False)
     lo, hi = sum(small.weights[f] * len(c) for f, c in small.platform.items()), \
         sum(cheap.weights[f] * len(c) for f, c in cheap.platform.items())
     budgets = np.unique(np.round(np.linspace(lo, max(hi, lo), points), 6))
     for b in budgets:
-        r = cheap if b >= hi else rationalise(pf, "cost", time_limit=time_limit, weights=weights, budget=float(b))
+        r = cheap if b >= hi else rationalise(pf, "cost", time_limit=time_limit, weights=weights, budget=float(b),
+                                              verify=False)
         rows.append(row(r, budget=float(b)))
     return rows

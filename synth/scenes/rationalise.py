@@ -6,6 +6,11 @@ distinct parts (``--objective variants``) or the total cost (``cost``: unit cost
 plus a per-variant fixed cost). Writes ``platform.csv``, ``assignment.csv``,
 ``summary.md`` and the trade-off curve (``tradeoff.csv``, ``tradeoff.png``).
 See :mod:`synth.platform.rationalise`.
+
+``PORTFOLIO`` is a portfolio table (the one ``synth bulk`` reads; an optional
+``annual_volume`` column weighs the cost objective): its feasibility comes from the
+evaluator (:mod:`synth.platform.producer`, ``--fidelity``, ``--engine dask`` for the
+chunks); ``synthetic:N[:SEED]`` gives illustrative data of the same shape.
 """
 
 from __future__ import annotations
@@ -51,25 +56,43 @@ def register(sub) -> None:
     p.add_argument("--tradeoff", default="margin", choices=["margin", "cost", "none"],
                    help="trade-off curve: platform size against worst margin or total cost")
     p.add_argument("--points", type=int, default=5, help="points of the trade-off curve")
+    p.add_argument("--fidelity", default="full", choices=["full", "screening"],
+                   help="model fidelity of the feasibility data (full: the design scenes' default)")
+    p.add_argument("--engine", default="inprocess", choices=["inprocess", "dask"],
+                   help="evaluate the chunks of applications in this process or on Dask")
+    p.add_argument("--workers", type=int, default=None, metavar="N", help="local Dask cluster: worker processes")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="Dask scheduler address (default: a local cluster)")
+    p.add_argument("--diagnose", action="store_true",
+                   help="applications with no feasible design: the nearest design of synth.optimise.diagnose "
+                        "(about 1 s each) instead of the nearest evaluated one")
     p.set_defaults(func=_main)
 
 
 def _main(args) -> int:
-    from synth.platform.outputs import price_of_standardisation, write_all
+    from synth.platform.outputs import gap_text, price_of_standardisation, write_all
     from synth.platform.producer import load_feasibility
     from synth.platform.rationalise import rationalise, tradeoff
     caps = parse_max_variants(args.max_variants)
     if args.points < 2:
         raise InputError(Problem("--points", args.points, "a whole number >= 2"))
-    pf = load_feasibility(args.portfolio)
+    from synth.design.evaluate import Settings
+    from synth.report.progress import Progress
+    if args.workers is not None and args.workers < 1:
+        raise InputError(Problem("--workers", args.workers, "a whole number >= 1"))
+    engine = "dask" if args.scheduler else args.engine
+    with Progress(total=None, desc="synth rationalise: feasibility") as bar:
+        pf = load_feasibility(args.portfolio, Settings(fidelity=args.fidelity), engine=engine, workers=args.workers,
+                              scheduler=args.scheduler, diagnose=args.diagnose,
+                              progress=lambda done, total: bar.update(done - bar.n))
     r = rationalise(pf, args.objective, max_variants=caps, time_limit=args.time_limit, solver=args.solver)
     rows = None if args.tradeoff == "none" else tradeoff(pf, args.tradeoff, points=args.points,
                                                          time_limit=args.time_limit)
+    r.tradeoff = rows
     paths = write_all(pf, r, args.out, rows, args.tradeoff)
     p = price_of_standardisation(pf, r)
     print(f"synth rationalise: {p['applications_served']} of {len(r.records)} applications served by "
           f"{r.n_parts} distinct parts (union of per-application optima: {p['parts_union_of_optima']}); "
           f"unit cost {p['unit_cost_increase']:+.2%} against the per-application optima; MILP {r.status}, "
-          f"gap {r.gap:.2%}; greedy {r.greedy_gap:+.1%}")
+          f"gap {r.gap:.2%}; greedy {gap_text(r.greedy_gap)}")
     print("written: " + ", ".join(str(x) for x in paths))
     return 0 if r.status in ("optimal", "time_limit", "greedy") else 1

@@ -1,0 +1,310 @@
+"""Platform rationalisation on real data: the producer against the optimiser's catalog product, every assigned
+design verified, the platform against the union of the per-application optima.
+
+The fast tests use a 12-application ``portfolio-sample``. The 200-application tests of issue 16 take a few
+minutes (they solve every application with ``synth.optimise.solve``): they are marked ``slow`` and run with
+``SYNTH_SLOW=1 pytest tests/test_platform_real.py``.
+"""
+
+import os
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from synth.bulk.portfolio import records, validate_record
+from synth.bulk.sample import sample_portfolio
+from synth.design import evaluate as E
+from synth.design.applications import Applications
+from synth.design.constraints import REGISTRY
+from synth.design.space import SUBSYSTEMS, core_rows
+from synth.design.verify import verify
+from synth.errors import InputError
+from synth.platform import producer as P
+from synth.platform.data import FAMILIES
+from synth.platform.options import NO_PART_KEY, catalogue, family_keys
+from synth.platform.outputs import report_section
+from synth.platform.rationalise import rationalise
+
+slow = pytest.mark.skipif(not os.environ.get("SYNTH_SLOW"), reason="slow (minutes): set SYNTH_SLOW=1 to run")
+
+SETTINGS = E.Settings()
+
+
+@pytest.fixture(scope="module")
+def sample():
+    table = sample_portfolio(12, seed=5)
+    return table, P.from_table(table, SETTINGS)
+
+
+@pytest.fixture(scope="module")
+def platform(sample):
+    return rationalise(sample[1], "variants", time_limit=60)
+
+
+def test_producer_equals_the_optimiser_product(sample):
+    """Per application, per feasible core, per subsystem: the feasible options (and their margins) of the
+    producer's grouped, staged evaluation are those of ``synth.optimise.evaluate`` (every core against every
+    option of the optimiser's design space, ungrouped)."""
+    from synth.optimise.evaluate import evaluate
+    _, pf = sample
+    cat = catalogue()
+    checked = 0
+    for a, d in zip(pf.apps, pf.design_inputs):
+        ev = evaluate(d, SETTINGS)
+        feasible_cores = ev.cores[ev.rows]
+        assert sorted(a.core_rows.tolist()) == sorted(feasible_cores.tolist())
+        for r_idx, row in enumerate(feasible_cores):
+            c = int(np.flatnonzero(a.core_rows == row)[0])
+            assert a.core_margin[c] == ev.core.min_margin()[ev.rows[r_idx]]
+            for s in SUBSYSTEMS:
+                g = int(a.group[s][c])
+                mine = dict(zip([int(cat.option_row[s][int(o)]) for o in a.feasible[s][g]], a.option_margin[s][g]))
+                sub = ev.subs[s]
+                theirs = np.flatnonzero(sub.feasible[r_idx])
+                assert set(mine) == set(theirs.tolist()), (a.app_id, s, int(row))
+                for k in theirs[:50]:
+                    assert mine[int(k)] == sub.margin[r_idx, k]
+                checked += len(theirs)
+    assert checked > 500
+
+
+def test_spring_stages_declare_what_the_margins_read(sample):
+    """A stage's constraints give the same margins whatever the key columns outside the stage's."""
+    _, pf = sample
+    d = next(x for x, a in zip(pf.design_inputs, pf.apps) if a.n_cores)
+    apps = Applications.of([d])
+    sp = catalogue().space
+    rows = core_rows(sp, d)
+    with np.errstate(all="ignore"):
+        cg = E.core(apps, np.zeros(len(rows), np.int64), sp.rows("core", rows), SETTINGS)
+    keys = E.spring_keys(cg, np.arange(len(rows))[:1])
+    opts = sp.rows("spring", np.arange(0, sp.n("spring"), 7))
+    k = np.zeros(len(opts["E_mpa"]), np.int64)
+    base = P.spring_group(apps, keys, k, opts, SETTINGS)
+    cols = ("spring_torque_nominal_nm", "spring_housing_height_mm", "spring_housing_outer_diameter_mm",
+            "spring_housing_inner_diameter_mm")
+    assert all(set(P.SPRING_STAGES[i][0]) <= set(P.SPRING_STAGES[i + 1][0]) for i in range(len(P.SPRING_STAGES) - 1))
+    for stage_cols, ids, _ in P.SPRING_STAGES:
+        assert all(REGISTRY[c].group == "spring" for c in ids)
+        for col in cols:
+            if col in stage_cols:
+                continue
+            moved = dict(keys)
+            moved[col] = keys[col] * 1.37 + 3.0
+            other = P.spring_group(apps, moved, k, opts, SETTINGS)
+            for cid in ids:
+                np.testing.assert_array_equal(other.margins[cid], base.margins[cid], err_msg=f"{cid} reads {col}")
+    # each stage's margins move one way along its monotone column (a spring failing at one value is not tried
+    # again where it must fail too)
+    for _, ids, (mcol, direction) in P.SPRING_STAGES:
+        prev = base
+        for f in (1.1, 1.5, 2.5):
+            moved = dict(keys)
+            moved[mcol] = keys[mcol] * f
+            more = P.spring_group(apps, moved, k, opts, SETTINGS)
+            for cid in ids:
+                if not REGISTRY[cid].advisory:
+                    step = more.margins[cid] - prev.margins[cid]
+                    assert np.all(direction * step[np.isfinite(step)] <= 1e-12), (cid, mcol)
+            prev = more
+        assert any(not np.array_equal(prev.margins[c], base.margins[c]) for c in ids)
+    # and the exercise is not empty: moving a stage column does change a stage margin
+    moved = dict(keys)
+    moved["spring_housing_height_mm"] = keys["spring_housing_height_mm"] * 0.5
+    assert not np.array_equal(P.spring_group(apps, moved, k, opts, SETTINGS).margins["spring_coil_gap"],
+                              base.margins["spring_coil_gap"])
+
+
+def test_margins_and_binding_is_the_groups_min_margin(sample):
+    _, pf = sample
+    apps = Applications.of([pf.design_inputs[0]])
+    sp = catalogue().space
+    with np.errstate(all="ignore"):
+        cg = E.core(apps, np.zeros(sp.n("core"), np.int64), sp.rows("core", np.arange(sp.n("core"))), SETTINGS)
+    for objective_only in (True, False):
+        m, b = P.margins_and_binding(cg, objective_only)
+        np.testing.assert_array_equal(m, cg.min_margin(objective_only))
+        ids = list(REGISTRY)
+        for i in np.flatnonzero(np.isfinite(m))[:20]:
+            assert cg.margins[ids[b[i]]][i] == m[i]
+
+
+def test_every_assigned_design_verifies_and_uses_platform_parts(sample, platform):
+    table, pf = sample
+    r = platform
+    assert r.status == "optimal"
+    served = [x for x in r.records if x["feasible"]]
+    assert len(served) == sum(x["feasible"] for x in r.per_app_optima) >= 3
+    keys_of = {f: {pf.part_key(f, c) for c in r.platform[f]} for f in FAMILIES}
+    for i, rec in enumerate(r.records):
+        if not rec["feasible"]:
+            continue
+        res = verify(pf.design_inputs[i], rec["design"], SETTINGS, detail=False)
+        assert not res.failed() and res.verdict == rec["verdict"]
+        assert (res.binding(1)[0].id, res.binding(1)[0].margin) == (rec["binding"], rec["margin"])
+        fk = family_keys(rec["design"])
+        assert fk == rec["parts"]                                    # the option tables name the parts right
+        for f, key in fk.items():
+            assert key == NO_PART_KEY or key in keys_of[f]
+    assert r.n_parts <= r.n_parts_union_optima
+
+
+def test_flowchart_fixed_parts_agrees(sample, platform):
+    from synth.flowchart import run
+    _, pf = sample
+    done = 0
+    for i, rec in enumerate(platform.records):
+        if rec["feasible"] and done < 2:
+            res = run(pf.design_inputs[i], parts=rec["design"], time_points=0)
+            assert not res.failed()
+            assert res.binding(1)[0].id == rec["binding"]
+            done += 1
+    assert done == 2
+
+
+def test_applications_with_no_design_say_why_and_are_infeasible(sample):
+    from synth.optimise.diagnose import is_feasible
+    _, pf = sample
+    bad = [(a, d) for a, d in zip(pf.apps, pf.design_inputs) if a.note]
+    good = [(a, d) for a, d in zip(pf.apps, pf.design_inputs) if not a.note]
+    assert bad and good
+    ids = set(REGISTRY)
+    for a, d in bad[:1]:
+        assert a.note.startswith("no ")
+        assert any(cid in a.note for cid in ids)
+        assert not is_feasible(d, SETTINGS)
+    assert is_feasible(good[0][1], SETTINGS)
+
+
+def test_diagnose_option_names_the_nearest_design():
+    table = sample_portfolio(12, seed=5)
+    d, _ = validate_record(records(table)[0])
+    pf = P.feasibility([d], ["x"], settings=SETTINGS, diagnose=True)
+    note = pf.apps[0].note
+    if note:  # an application with no design: the diagnosis of the whole catalog product
+        assert note.startswith("no feasible design (synth.optimise.diagnose)")
+
+
+def test_broken_rows_are_reported_not_evaluated(tmp_path):
+    table = sample_portfolio(4, seed=1, broken=2)
+    pf = P.from_table(table, SETTINGS)
+    notes = [a.note for a in pf.apps]
+    assert sum(n.startswith("input error: ") for n in notes) == 2
+    r = rationalise(pf, time_limit=30)
+    for rec, n in zip(r.records, notes):
+        if n.startswith("input error"):
+            assert not rec["feasible"] and rec["reason"].startswith("input error: ")
+
+
+def test_volume_column_weighs_the_cost_and_a_bad_volume_is_named():
+    table = sample_portfolio(3, seed=1)
+    table["annual_volume"] = [1000, 50000, 200]
+    pf = P.from_table(table, SETTINGS)
+    assert [a.volume for a in pf.apps] == [1000.0, 50000.0, 200.0]
+    table["annual_volume"] = [1000, "lots", -3]
+    with pytest.raises(InputError) as e:
+        P.from_table(table, SETTINGS)
+    text = str(e.value)
+    assert "annual_volume (row 2): got 'lots'" in text and "annual_volume (row 3): got -3" in text
+
+
+def test_dask_engine_gives_the_same_data():
+    table = sample_portfolio(2, seed=2)
+    a = P.from_table(table, SETTINGS, chunk_size=1)
+    b = P.from_table(table, SETTINGS, chunk_size=1, engine="dask", workers=1)
+    for x, y in zip(a.apps, b.apps):
+        assert x.note == y.note
+        np.testing.assert_array_equal(x.core_rows, y.core_rows)
+        for s in SUBSYSTEMS:
+            np.testing.assert_array_equal(x.group[s], y.group[s])
+            assert all(np.array_equal(p, q) for p, q in zip(x.feasible[s], y.feasible[s]))
+
+
+def test_report_section_is_self_contained(platform):
+    platform.tradeoff = [{"margin_floor": 0.0, "parts": platform.n_parts, "weighted_parts": platform.n_parts,
+                          "cost_eur": 1.0, "worst_margin": 0.0, "served": 3, "status": "optimal"},
+                         {"margin_floor": 0.05, "parts": platform.n_parts + 2, "weighted_parts": platform.n_parts + 2,
+                          "cost_eur": 1.0, "worst_margin": 0.05, "served": 3, "status": "optimal"}]
+    html = report_section(platform)
+    platform.tradeoff = None
+    assert html.startswith('<section id="platform">') and html.endswith("</section>")
+    assert html.count("data:image/png;base64,") == 2
+    for row in platform.table:
+        assert f"<td>{row['part']}</td>" in html.replace("&quot;", '"')
+    assert "<script" not in html and "http" not in html
+
+
+def test_scene_on_a_real_portfolio(tmp_path, capsys):
+    import argparse
+    from synth.scenes import rationalise as scene
+    path = tmp_path / "portfolio.csv"
+    sample_portfolio(8, seed=5, broken=1).to_csv(path, index=False)
+    p = argparse.ArgumentParser()
+    scene.register(p.add_subparsers())
+    args = p.parse_args(["rationalise", str(path), "--out", str(tmp_path / "out"), "--tradeoff", "none"])
+    assert args.func(args) == 0
+    assign = pd.read_csv(tmp_path / "out" / "assignment.csv", keep_default_na=False)
+    plat = pd.read_csv(tmp_path / "out" / "platform.csv")
+    assert len(assign) == 8 and "verdict" in assign.columns
+    ok = assign[assign["feasible"].astype(str) == "True"]
+    assert len(ok) and set(ok["verdict"]) <= {"pass", "incomplete"}
+    for f in FAMILIES:
+        used = set(ok[f][ok[f] != "none"].astype(str))
+        assert used <= set(plat.loc[plat["family"] == f, "part"].astype(str))
+    bad = assign[assign["feasible"].astype(str) == "False"]
+    assert (bad["reason"] != "").all() and bad["reason"].str.startswith("input error").sum() == 1
+    summary = (tmp_path / "out" / "summary.md").read_text()
+    assert "## Feasibility data" in summary and "variables" in summary
+    assert "applications served by" in capsys.readouterr().out
+
+
+# ------------------------------------------------------------------------------------------- 200 applications
+
+@pytest.fixture(scope="module")
+def big():
+    table = sample_portfolio(200, seed=0)
+    pf = P.from_table(table, SETTINGS)
+    return pf, rationalise(pf, "variants", time_limit=120)
+
+
+@slow
+def test_200_every_assigned_design_verifies_through_verify(big):
+    pf, r = big
+    keys_of = {f: {pf.part_key(f, c) for c in r.platform[f]} for f in FAMILIES}
+    n = 0
+    for i, rec in enumerate(r.records):
+        if not rec["feasible"]:
+            continue
+        res = verify(pf.design_inputs[i], rec["design"], SETTINGS, detail=False)
+        assert res.feasible and res.verdict == rec["verdict"]
+        assert all(k == NO_PART_KEY or k in keys_of[f] for f, k in family_keys(rec["design"]).items())
+        n += 1
+    assert n == sum(x["feasible"] for x in r.per_app_optima) > 100
+
+
+@slow
+def test_200_a_sample_verifies_through_the_flowchart(big):
+    from synth.flowchart import run
+    pf, r = big
+    served = [i for i, rec in enumerate(r.records) if rec["feasible"]]
+    for i in served[:: max(1, len(served) // 12)]:
+        res = run(pf.design_inputs[i], parts=r.records[i]["design"], time_points=0)
+        assert not res.failed()
+
+
+@slow
+def test_200_platform_no_larger_than_the_union_of_per_application_optima(big):
+    """The union of the designs ``synth.optimise.solve(d, "standard")`` picks is itself a platform; the MILP's
+    is no larger, and the applications it serves are exactly those ``solve`` finds feasible."""
+    from synth.optimise import solve
+    pf, r = big
+    union = {f: set() for f in FAMILIES}
+    for i, (d, rec) in enumerate(zip(pf.design_inputs, r.records)):
+        res = solve(d, "standard", "enumerate", settings=SETTINGS, relax=False)
+        assert (res.status == "optimal") == rec["feasible"], pf.apps[i].app_id
+        if res.status == "optimal":
+            for f, k in family_keys(res.parts).items():
+                if k != NO_PART_KEY:
+                    union[f].add(k)
+    assert r.n_parts <= sum(len(v) for v in union.values())
