@@ -30,19 +30,21 @@ from synth.design.space import NONE, PART_KEYS, space
 
 __all__ = ["evaluate_design", "verify", "values_of", "inputs_of", "wire_size_mm"]
 
-_ONE = np.zeros(1, dtype=np.int64)
 
 
 def evaluate_design(apps: Applications, attrs: dict, settings: E.Settings = E.Settings(), *, detail: bool = True,
                     time_points: int = 0) -> dict:
-    """Every group of one design (``attrs``: one-row attribute dicts per table) for application 0 of ``apps``."""
-    groups = {"input": E.inputs(apps, _ONE)}
-    cg = E.core(apps, _ONE, attrs["core"], settings, detail=detail)
+    """Every group of N designs (``attrs``: N-row attribute dicts per table), design ``i`` for application ``i``
+    of ``apps`` (one design: application 0). The one sequence of the evaluator's groups for given designs:
+    the flowchart, :func:`verify`, the optimiser's winner and the platform's assignments call it."""
+    idx = np.arange(len(next(iter(attrs["core"].values()))), dtype=np.int64)
+    groups = {"input": E.inputs(apps, idx)}
+    cg = E.core(apps, idx, attrs["core"], settings, detail=detail)
     groups["core"] = cg
-    groups["bushing"] = E.bushing(apps, cg, _ONE, attrs["bushing"], settings)
-    groups["axial"] = E.axial(apps, cg, _ONE, attrs["axial"], settings, time_points=time_points)
-    groups["spring"] = E.spring(apps, E.spring_keys(cg, _ONE), _ONE, attrs["spring"], settings)
-    groups["bolt"] = E.bolt(apps, cg, _ONE, attrs["bolt"], settings)
+    groups["bushing"] = E.bushing(apps, cg, idx, attrs["bushing"], settings)
+    groups["axial"] = E.axial(apps, cg, idx, attrs["axial"], settings, time_points=time_points)
+    groups["spring"] = E.spring(apps, E.spring_keys(cg, idx), idx, attrs["spring"], settings)
+    groups["bolt"] = E.bolt(apps, cg, idx, attrs["bolt"], settings)
     return groups
 
 

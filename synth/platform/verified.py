@@ -12,9 +12,8 @@ from the same group functions; the tests check it on 200 applications).
 
 :func:`verify_records` is :func:`synth.design.verify.verify` on the applications axis:
 the attributes come from the part keys (:meth:`synth.design.space.Space.design_attributes`,
-as ``verify`` builds them), every group is evaluated once for all the designs (the
-steps of :func:`synth.design.verify.evaluate_design`, with one row per design instead
-of one) and each row's checks are :func:`synth.design.result.checks_of`. The tests
+as ``verify`` builds them), every group is evaluated once for all the designs
+(:func:`synth.design.verify.evaluate_design` with one row per design) and each row's checks are :func:`synth.design.result.checks_of`. The tests
 hold it equal to ``verify`` design by design (verdicts, margins, binding constraint);
 it is 20x faster (one bolt step-10 evaluation per bolt, not per design).
 
@@ -35,9 +34,9 @@ from synth.design import evaluate as E
 from synth.design.applications import Applications
 from synth.design.space import SUBSYSTEMS
 from synth.design.result import Result, checks_of
-from synth.design.verify import parts_of_attributes
+from synth.design.verify import evaluate_design, parts_of_attributes
 
-__all__ = ["design_parts", "verify_records", "evaluate_designs"]
+__all__ = ["design_parts", "verify_records"]
 
 
 def design_parts(pf, items: list) -> list:
@@ -61,20 +60,6 @@ def design_parts(pf, items: list) -> list:
             for k in range(len(items))]
 
 
-def evaluate_designs(apps, attrs: dict, settings: E.Settings = E.Settings()) -> dict:
-    """Every group of design ``i`` for application ``i`` of ``apps`` (``attrs``: N-row attribute dicts per table):
-    the steps of :func:`synth.design.verify.evaluate_design`, one row per design."""
-    idx = np.arange(len(apps))
-    groups = {"input": E.inputs(apps, idx)}
-    cg = E.core(apps, idx, attrs["core"], settings)
-    groups["core"] = cg
-    groups["bushing"] = E.bushing(apps, cg, idx, attrs["bushing"], settings)
-    groups["axial"] = E.axial(apps, cg, idx, attrs["axial"], settings)
-    groups["spring"] = E.spring(apps, E.spring_keys(cg, idx), idx, attrs["spring"], settings)
-    groups["bolt"] = E.bolt(apps, cg, idx, attrs["bolt"], settings)
-    return groups
-
-
 def verify_records(pf, records: list) -> list:
     """Verify every feasible record of ``records`` (in place; returned): ``design`` (the part keys),
     ``verdict`` (``pass`` or ``incomplete``), ``margin`` and ``binding`` from the verified result.
@@ -94,7 +79,7 @@ def verify_records(pf, records: list) -> list:
     attrs = {t: {k: np.concatenate([np.asarray(x[t][k]) for x in one]) for k in one[0][t]} for t in one[0]}
     apps = Applications.of([pf.design_inputs[i] for i in todo])
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        groups = evaluate_designs(apps, attrs, settings)
+        groups = evaluate_design(apps, attrs, settings, detail=False)
     for row, (i, p) in enumerate(zip(todo, parts)):
         rec = records[i]
         res = Result(status="verified", parts=p, checks=checks_of(groups, apps, row))
