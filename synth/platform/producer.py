@@ -602,31 +602,13 @@ def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress) -> lis
             if progress:
                 progress(done, total)
         return out
-    import contextlib
-    import logging
-    from synth.bulk.run import _quiet_dask
+    from synth.bulk.run import dask_client
     try:
-        from dask.distributed import Client, LocalCluster, as_completed
+        from dask.distributed import as_completed
     except ImportError:  # pragma: no cover - dask[distributed] is a dependency
         raise InputError(Problem("--engine", "dask", "an installation with dask[distributed]")) from None
-    import warnings
-    import dask
     out: list = [None] * len(jobs)
-    # distributed starts its workers with MALLOC_TRIM_THRESHOLD_=65536: glibc then returns every large numpy
-    # temporary to the system and faults it back in, and the group functions (arrays of 10^5 rows) run 3-4x
-    # slower than in a plain process; the workers here keep glibc's default
-    with _quiet_dask(), contextlib.ExitStack() as stack, warnings.catch_warnings(), \
-            dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
-        warnings.filterwarnings("ignore", message="Port .* is already in use")
-        if scheduler:
-            try:
-                client = stack.enter_context(Client(scheduler, timeout="20s"))
-            except (OSError, TimeoutError) as exc:
-                raise InputError(Problem("--scheduler", scheduler, f"the address of a running Dask scheduler ({exc})")) from None
-        else:
-            cluster = stack.enter_context(LocalCluster(n_workers=int(workers or 2), threads_per_worker=1, processes=True,
-                                                       dashboard_address=None, silence_logs=logging.ERROR))
-            client = stack.enter_context(Client(cluster))
+    with dask_client(scheduler, workers) as client:
         futures = {client.submit(_chunk_job, inp, ids, vol, settings, pure=False, **kw): j
                    for j, (inp, ids, vol) in enumerate(jobs)}
         done = 0
