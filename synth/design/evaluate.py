@@ -42,7 +42,8 @@ from synth.model import layout as s0, packaging as s7, pivot as s2, plain_bushin
 from synth.model import torsion_spring as s9
 
 __all__ = ["Settings", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
-           "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES"]
+           "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
+           "spring_values"]
 
 EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
 FIDELITIES = ("full", "screening")
@@ -406,49 +407,81 @@ def spring_keys(cg: Group, r) -> dict:
                                             "spring_housing_outer_diameter_mm", "spring_housing_inner_diameter_mm")}}
 
 
-def spring(apps, keys: dict, k, o: dict, settings: Settings = Settings()) -> Group:
-    """Group ``spring`` (step 9) for rows pairing key ``k[i]`` of ``keys`` (:func:`spring_keys`) with option ``o``."""
+#: the per-row inputs of :func:`spring_values` besides the option (what a main spring sees of its application)
+SPRING_INPUTS = ("spring_torque_nominal_nm", "housing_height_mm", "housing_outer_diameter_mm",
+                 "housing_inner_diameter_mm", "stiffness_nm_per_deg", "torque_tolerance_pct", "theta_pp_deg",
+                 "dtheta_inst_nom_deg", "dtheta_nom_free_arm_deg")
+
+
+def spring_inputs(apps, keys: dict, k) -> dict:
+    """The :data:`SPRING_INPUTS` of rows ``k`` of ``keys`` (:func:`spring_keys`): the key's torque (at least
+    1e-6 N m), housing height and diameters, and its application's stiffness, torque tolerance, theta_pp (0 without
+    a durability test: no oscillation, the fatigue check is then not verified) and travels (documented defaults)."""
     a = keys["app"][k]
-    f = {name: apps.f[name][a] for name in ("spring_stiffness_nm_per_deg", "spring_torque_tolerance_pct",
-                                            "arm_travel_nominal_to_installation_deg", "arm_travel_nominal_to_free_deg")}
-    theta_pp = np.nan_to_num(apps.theta_pp_deg[a], nan=0.0)  # no durability test: no oscillation (fatigue not verified)
+    f = apps.f
+    return {"spring_torque_nominal_nm": np.maximum(keys["spring_torque_nominal_nm"][k], 1e-6),
+            "housing_height_mm": keys["spring_housing_height_mm"][k],
+            "housing_outer_diameter_mm": keys["spring_housing_outer_diameter_mm"][k],
+            "housing_inner_diameter_mm": keys["spring_housing_inner_diameter_mm"][k],
+            "stiffness_nm_per_deg": f["spring_stiffness_nm_per_deg"][a],
+            "torque_tolerance_pct": f["spring_torque_tolerance_pct"][a],
+            "theta_pp_deg": np.nan_to_num(apps.theta_pp_deg[a], nan=0.0),
+            "dtheta_inst_nom_deg": f["arm_travel_nominal_to_installation_deg"][a],
+            "dtheta_nom_free_arm_deg": f["arm_travel_nominal_to_free_deg"][a]}
+
+
+def spring_values(o: dict, x: dict) -> dict:
+    """The values of group ``spring`` (step 9, eq. (64)-(93)) for options ``o`` (the spring table's columns) and
+    per-row inputs ``x`` (:data:`SPRING_INPUTS`, :func:`spring_inputs`), all broadcast to one length.
+
+    The one mapping from the physics (:func:`synth.model.torsion_spring.main_spring_design`) to the values the
+    registry's spring constraints compare: :func:`spring` adds the application and the registry margins, the
+    compiled kernels (:mod:`synth.kernels.torsion_spring`) use it as their numpy reference.
+    """
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         r = s9.main_spring_design(
             E_mpa=o["E_mpa"], Rm_mpa=o["Rm_mpa"], sigma_y_mpa=o["sigma_y_mpa"], sigma_A0_mpa=o["sigma_A0_mpa"],
             b_mm=o["b_mm"], h_mm=o["h_mm"], round_wire=o["round_wire"], mbd_mm=o["main_spring_mean_body_diameter_mm"],
-            stiffness_nm_per_deg=f["spring_stiffness_nm_per_deg"],
-            spring_torque_nominal_nm=np.maximum(keys["spring_torque_nominal_nm"][k], 1e-6),
-            torque_tolerance_pct=f["spring_torque_tolerance_pct"], theta_pp_deg=theta_pp,
-            housing_height_mm=keys["spring_housing_height_mm"][k],
-            housing_outer_diameter_mm=keys["spring_housing_outer_diameter_mm"][k],
-            housing_inner_diameter_mm=keys["spring_housing_inner_diameter_mm"][k],
-            b_tol_mm=o["b_tol_mm"], h_tol_mm=o["h_tol_mm"],
-            dtheta_inst_nom_deg=f["arm_travel_nominal_to_installation_deg"],
-            dtheta_nom_free_arm_deg=f["arm_travel_nominal_to_free_deg"], sigma_perm_static_mpa=o["sigma_perm_static_mpa"])
-    n = len(a)
-    v = {"app": a}
+            stiffness_nm_per_deg=x["stiffness_nm_per_deg"], spring_torque_nominal_nm=x["spring_torque_nominal_nm"],
+            torque_tolerance_pct=x["torque_tolerance_pct"], theta_pp_deg=x["theta_pp_deg"],
+            housing_height_mm=x["housing_height_mm"], housing_outer_diameter_mm=x["housing_outer_diameter_mm"],
+            housing_inner_diameter_mm=x["housing_inner_diameter_mm"], b_tol_mm=o["b_tol_mm"], h_tol_mm=o["h_tol_mm"],
+            dtheta_inst_nom_deg=x["dtheta_inst_nom_deg"], dtheta_nom_free_arm_deg=x["dtheta_nom_free_arm_deg"],
+            sigma_perm_static_mpa=o["sigma_perm_static_mpa"])
+    shape = np.broadcast(r["main_spring_active_coils_free"], np.asarray(x["stiffness_nm_per_deg"])).shape
+    v = {}
     for key in ("main_spring_active_coils_free", "main_spring_sigma_a_max_mpa", "main_spring_sigma_a_min_mpa",
                 "main_spring_sigma_inst_mpa", "main_spring_safety_factor", "hooks_angle_free_state_deg",
                 "hooks_angle_nominal_deg", "spring_index", "curvature_factor", "theta_nom_deg", "theta_inst_deg",
                 "theta_free_arm_deg", "torque_inst_nm", "block_length_max_mm", "main_spring_sigma_inst_uncorrected_mpa",
                 "sigma_perm_static_limit_mpa"):
-        v[key] = np.broadcast_to(np.asarray(r[key], dtype=float), (n,))
+        v[key] = np.broadcast_to(np.asarray(r[key], dtype=float), shape)
     v["main_spring_index"] = v.pop("spring_index")
-    v.update(main_spring_sigma_permissible_mpa=np.broadcast_to(np.asarray(r["sigma_y_limit_mpa"], float), (n,)),
-             main_spring_min_safety_factor=np.full(n, _const("main_spring_min_safety_factor")),
-             main_spring_outer_diameter_max_mm=np.asarray(r["outer_diameter_max_mm"], dtype=float),
-             spring_housing_outer_diameter_min_mm=np.asarray(r["housing_outer_diameter_min_mm"], dtype=float),
-             main_spring_inner_diameter_min_mm=np.asarray(r["inner_diameter_min_mm"], dtype=float),
-             spring_housing_inner_diameter_max_mm=np.asarray(r["housing_inner_diameter_max_mm"], dtype=float),
-             main_spring_coil_gap_min_mm=np.asarray(r["coil_gap_min_mm"], dtype=float),
-             main_spring_min_coil_gap_mm=np.full(n, _const("main_spring_min_coil_gap_mm")),
-             main_spring_wire_b_mm=np.asarray(o["b_mm"], dtype=float),
-             main_spring_index_min=np.full(n, _const("main_spring_index_min")),
-             main_spring_index_max=np.full(n, _const("main_spring_index_max")),
-             main_spring_mean_body_diameter_mm=np.asarray(o["main_spring_mean_body_diameter_mm"], dtype=float))
-    v["main_spring_supplied_in_section"] = np.asarray(o["supplied_in_section"], dtype=float)
-    length_m = np.pi * v["main_spring_mean_body_diameter_mm"] * v["main_spring_active_coils_free"] / 1000.0
-    v["main_spring_wire_length_m"] = length_m
+
+    def full(x_):
+        return np.broadcast_to(np.asarray(x_, dtype=float), shape)
+    v.update(main_spring_sigma_permissible_mpa=full(r["sigma_y_limit_mpa"]),
+             main_spring_min_safety_factor=np.full(shape, _const("main_spring_min_safety_factor")),
+             main_spring_outer_diameter_max_mm=full(r["outer_diameter_max_mm"]),
+             spring_housing_outer_diameter_min_mm=full(r["housing_outer_diameter_min_mm"]),
+             main_spring_inner_diameter_min_mm=full(r["inner_diameter_min_mm"]),
+             spring_housing_inner_diameter_max_mm=full(r["housing_inner_diameter_max_mm"]),
+             main_spring_coil_gap_min_mm=full(r["coil_gap_min_mm"]),
+             main_spring_min_coil_gap_mm=np.full(shape, _const("main_spring_min_coil_gap_mm")),
+             main_spring_wire_b_mm=full(o["b_mm"]),
+             main_spring_index_min=np.full(shape, _const("main_spring_index_min")),
+             main_spring_index_max=np.full(shape, _const("main_spring_index_max")),
+             main_spring_mean_body_diameter_mm=full(o["main_spring_mean_body_diameter_mm"]),
+             main_spring_supplied_in_section=full(o["supplied_in_section"]))
+    v["main_spring_wire_length_m"] = (np.pi * v["main_spring_mean_body_diameter_mm"]
+                                      * v["main_spring_active_coils_free"] / 1000.0)
+    return v
+
+
+def spring(apps, keys: dict, k, o: dict, settings: Settings = Settings()) -> Group:
+    """Group ``spring`` (step 9) for rows pairing key ``k[i]`` of ``keys`` (:func:`spring_keys`) with option ``o``."""
+    a = keys["app"][k]
+    v = {"app": a, **spring_values(o, spring_inputs(apps, keys, k))}
     return finish("spring", v, apps, a)
 
 
