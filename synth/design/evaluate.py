@@ -43,7 +43,8 @@ from synth.model import torsion_spring as s9
 
 __all__ = ["Settings", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
-           "spring_values"]
+           "spring_values", "fixation_values", "pivot_wall_values", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
+           "BOLT_CORE_VALUES"]
 
 EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
 FIDELITIES = ("full", "screening")
@@ -167,10 +168,35 @@ def _const(name: str) -> float:
     return catalog.constant(name)
 
 
+class _Fields(dict):
+    """The applications' numeric fields at rows ``a``, gathered on first access (a group reads a handful of the
+    many fields; gathering them all for every row was most of the cost of a large chunk)."""
+
+    def __init__(self, apps, a):
+        super().__init__()
+        self._f, self._a = apps.f, a
+
+    def __missing__(self, key):
+        v = self[key] = self._f[key][self._a]
+        return v
+
+
+#: what the bushing group reads of its core row (besides the application): the bulk engine evaluates one row per
+#: distinct value of these, exactly
+BUSHING_CORE_VALUES = ("hubload_nominal_n", "pivot_diameter_mm", "axial_group_present")
+#: what the axial group reads of its core row (besides the application)
+AXIAL_CORE_VALUES = ("axial_damping_nm", "radial_damping_nm", "axial_damping_share_nm",
+                     "cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm",
+                     "cone_spring_table8_max_mm", "damper_pad_mean_radius_mm", "damper_pad_contact_area_mm2",
+                     "damper_pad_axial_height_mm", "bearing_width_mm", "axial_group_present")
+#: what the bolt group reads of its core row (besides the application): the pivot wall around the bolt hole
+BOLT_CORE_VALUES = ("pivot_diameter_mm", "loading_arm_mm")
+
+
 # --------------------------------------------------------------------------- step 0: inputs only
 def inputs(apps, a) -> Group:
     """Group ``input``: layout, pulley axial space, lock-up pin (eq. (17)-(27)) for applications ``a``."""
-    f = {k: v[a] for k, v in apps.f.items()}
+    f = _Fields(apps, a)
     v = {"layout_standard": apps.layout_standard[a], "layout_reverse": apps.layout_reverse[a]}
     w = apps.pulley_width_mm[a]
     mpbh = f["middle_plane_belt_height_mm"]
@@ -216,7 +242,7 @@ def core(apps, a, c: dict, settings: Settings = Settings(), detail: bool = False
     """
     from synth import parts as P
     p = P.arrays()
-    f = {k: v[a] for k, v in apps.f.items()}
+    f = _Fields(apps, a)
     n = len(a)
     wa, alpha = f["working_arm_mm"], f["differential_angle_deg"]
     b = c["bearing_code"]
@@ -283,12 +309,13 @@ def bushing(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Gro
     from synth import parts as P
     p = P.arrays()
     a = cg.values["app"][r]
-    f = {k: v[a] for k, v in apps.f.items()}
+    f = _Fields(apps, a)
     sup, env = np.asarray(o["supplier_code"]), apps.env[a]
     lim = {k: p.bushing_limits[k][sup, env] for k in p.bushing_limits}
     rated = np.isfinite(lim["pvt_max_mpa_m_per_s_h"]) & np.isfinite(lim["k_w_mm3_per_n_m"])
-    pad = cg.values["axial_group_present"][r] > 0
-    res = s4.evaluate_bushing(cg.values["hubload_nominal_n"][r], cg.values["pivot_diameter_mm"][r],
+    cv = {k: cg.values[k][r] for k in BUSHING_CORE_VALUES}
+    pad = cv["axial_group_present"] > 0
+    res = s4.evaluate_bushing(cv["hubload_nominal_n"], cv["pivot_diameter_mm"],
                               o["pivot_bushing_length_mm"], apps.theta_pp_deg[a], apps.frequency_hz[a],
                               apps.duration_h[a], k_w_mm3_per_n_m=np.where(rated, lim["k_w_mm3_per_n_m"], 0.0),
                               radial_clearance_mm=p.bushing.radial_clearance_mm[sup],
@@ -317,17 +344,13 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     from synth import parts as P
     p = P.arrays()
     a = cg.values["app"][r]
-    f = {k: v[a] for k, v in apps.f.items()}
+    f = _Fields(apps, a)
     n = len(a)
-    cv = {k: cg.values[k][r] for k in ("axial_damping_nm", "radial_damping_nm", "axial_damping_share_nm",
-                                        "cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm",
-                                        "cone_spring_table8_max_mm", "damper_pad_mean_radius_mm",
-                                        "damper_pad_contact_area_mm2", "damper_pad_axial_height_mm",
-                                        "bearing_width_mm")}
+    cv = {k: cg.values[k][r] for k in AXIAL_CORE_VALUES}
     real = np.asarray(o["axial_group_present"], dtype=bool)
     std = apps.layout_standard[a]
     es_h = np.asarray(o["endcap_spacer_axial_height_mm"], dtype=float)
-    pad = cg.values["axial_group_present"][r] > 0
+    pad = cv["axial_group_present"] > 0
     v = {"app": a, "layout_standard": std, "layout_reverse": ~std, "axial_group_present": real.astype(float),
          "axial_group_mismatch": (real != pad).astype(float),
          "middle_plane_belt_height_mm": f["middle_plane_belt_height_mm"],
@@ -498,40 +521,63 @@ _BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_m
 def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
     """Step 10 (:func:`synth.model.bolted_joint.fixation`) for rows of applications ``a`` and bolts ``o``.
 
-    One vectorised call per bolt option over its applications (grouped by environment and whether the
-    head contact diameter is given); NaN for applications without their fixation data.
+    One vectorised call per distinct bolt (format, head form, property class) over the rows that use it, every
+    application type together: the friction coefficients of each row's environment and its bolt-head contact
+    diameter (the input, or the head's catalog ``dw_min`` where not given, as ``fixation`` takes it) are passed
+    per row. NaN for applications without their fixation data.
     """
+    from synth import parts as P
     n = len(a)
     out = {k: np.full(n, np.nan) for k in _BOLT_VALUES}
     has = apps.met("fixation")[a]
     if not has.any():
         return out
-    fmt, cls = np.asarray(o["bolt_format"], dtype=object), np.asarray(o["bolt_property_class"], dtype=object)
-    head = np.asarray(o["bolt_head_type"], dtype=object)
-    head_given = apps.given["bolt_head_contact_external_diameter_mm"][a]
-    f = apps.f
     rows = np.flatnonzero(has)
-    keys = np.array([f"{fmt[i]}|{cls[i]}|{head[i]}|{apps.env[a[i]]}|{head_given[i]}" for i in rows])
-    for key in np.unique(keys):
-        sel = rows[keys == key]
-        aa = a[sel]
-        env = apps.inputs[aa[0]].application_type
+    aa_all = np.asarray(a)[rows]
+    fmt, cls = np.asarray(o["bolt_format"], dtype=object)[rows], np.asarray(o["bolt_property_class"], dtype=object)[rows]
+    head = np.asarray(o["bolt_head_type"], dtype=object)[rows]
+    dw_min = np.asarray(o["bolt_head_dw_min_mm"], dtype=float)[rows]
+    bolt_id = np.asarray(o["head_code"], dtype=np.int64)[rows] * 1000 + np.asarray(o["class_code"], dtype=np.int64)[rows]
+    env = apps.env[aa_all]
+    mu = {k: np.asarray(P.mu(k, env), dtype=float) for k in ("pivot_base_crankcase", "thread", "under_head")}
+    f = apps.f
+    head_dw = np.where(apps.given["bolt_head_contact_external_diameter_mm"][aa_all],
+                       f["bolt_head_contact_external_diameter_mm"][aa_all], dw_min)
+    order = np.argsort(bolt_id, kind="stable")
+    bounds = np.flatnonzero(np.diff(bolt_id[order])) + 1
+    for grp in np.split(order, bounds):
+        aa, i0 = aa_all[grp], grp[0]
         r = s10.fixation(
             apps.hubload_nominal_n[aa], f["middle_plane_belt_height_mm"][aa],
             f["middle_plane_belt_height_increment_worst_mm"][aa], f["tilting_safety_factor"][aa],
             f["sliding_safety_factor"][aa], f["engine_support_internal_diameter_mm"][aa],
             f["engine_support_external_diameter_mm"][aa], f["contact_angle_deg"][aa],
             f["support_yield_strength_compression_mpa"][aa], f["support_yield_strength_traction_mpa"][aa],
-            number_of_active_threads=f["number_of_active_threads"][aa], application_type=env,
-            bolt_head_contact_external_diameter_mm=f["bolt_head_contact_external_diameter_mm"][aa]
-            if head_given[sel[0]] else None,
-            bolt_format=str(fmt[sel[0]]), bolt_property_class=str(cls[sel[0]]), head_type=str(head[sel[0]]),
+            number_of_active_threads=f["number_of_active_threads"][aa],
+            mu_crankcase=mu["pivot_base_crankcase"][grp], mu_thread=mu["thread"][grp], mu_head=mu["under_head"][grp],
+            bolt_head_contact_external_diameter_mm=head_dw[grp],
+            bolt_format=str(fmt[i0]), bolt_property_class=str(cls[i0]), head_type=str(head[i0]),
             method=settings.bolt_method,
             clamp_length_mm=f["max_pivot_height_mm"][aa] if settings.bolt_method == "vdi2230" else None)
+        sel = rows[grp]
         for k in _BOLT_VALUES:
             if k in r:
                 out[k][sel] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(sel),))
     return out
+
+
+def pivot_wall_values(pivot_diameter_mm, loading_arm_mm, bolt_d_mm) -> dict:
+    """The values of constraint ``pivot_wall`` (step 2): the bolt hole and the pivot wall around it, and its limit.
+
+    The only values of group ``bolt`` that depend on the core (:data:`BOLT_CORE_VALUES`); the bulk engine
+    evaluates them per core and bolt diameter, the rest per application and bolt.
+    """
+    hole = s2.bolt_hole_diameter_mm(bolt_d_mm)
+    wall = s2.pivot_wall_mm(pivot_diameter_mm, loading_arm_mm, hole)
+    shape = np.shape(wall)
+    return {"pivot_bolt_hole_diameter_mm": np.broadcast_to(np.asarray(hole, dtype=float), shape),
+            "pivot_wall_mm": np.asarray(wall, dtype=float),
+            "pivot_min_wall_mm": np.full(shape, _const("pivot_min_wall_mm"))}
 
 
 def bolt(apps, cg: Group, r, o: dict, settings: Settings = Settings(), fixation: dict | None = None) -> Group:
@@ -541,16 +587,13 @@ def bolt(apps, cg: Group, r, o: dict, settings: Settings = Settings(), fixation:
     application and bolt (they do not depend on the core).
     """
     a = cg.values["app"][r]
-    f = {k: v[a] for k, v in apps.f.items()}
+    f = _Fields(apps, a)
     n = len(a)
     fix = fixation if fixation is not None else fixation_values(apps, a, o, settings)
     v = {"app": a, **fix}
     v["bolt_method_thesis"] = np.full(n, settings.bolt_method == "thesis")
     v["bolt_method_vdi"] = ~v["bolt_method_thesis"]
-    v["pivot_bolt_hole_diameter_mm"] = s2.bolt_hole_diameter_mm(o["bolt_d_mm"])
-    v["pivot_wall_mm"] = s2.pivot_wall_mm(cg.values["pivot_diameter_mm"][r], cg.values["loading_arm_mm"][r],
-                                          v["pivot_bolt_hole_diameter_mm"])
-    v["pivot_min_wall_mm"] = np.full(n, _const("pivot_min_wall_mm"))
+    v.update(pivot_wall_values(*(cg.values[k][r] for k in BOLT_CORE_VALUES), o["bolt_d_mm"]))
     v["bolt_sigma_permissible_mpa"] = _const("bolt_yield_utilisation_max") * np.asarray(o["rp02_mpa"], dtype=float)
     v["pivot_bore_min_mm"] = np.asarray(o["pivot_bore_min_mm"], dtype=float)
     for k in ("tilting_safety_factor", "sliding_safety_factor"):

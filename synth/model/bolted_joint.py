@@ -912,6 +912,31 @@ def bolt_candidates(bolt_format: str | None = None, property_class: str | None =
     >>> len(bolt_candidates("M10x1.25", "10.9")), bolt_candidates("M8x1.25", "8.8", "socket")[0]["dw_min_mm"]
     (1, 12.33)
     """
+    key = (None if bolt_format is None else str(bolt_format).strip(),
+           None if property_class is None else str(property_class).strip(), head_type)
+    return [dict(c) for c in _candidates_memo(key, (bolt_format, property_class, head_type))]
+
+
+_CANDIDATES: dict = {}
+
+
+def _candidates_memo(key, args) -> tuple:
+    """:func:`bolt_candidates` memoised per arguments and catalog tables (a user catalog folder, or a cleared
+    catalog cache, gives new tables and so a new list; the bulk evaluation asks once per bolt and chunk)."""
+    from synth import catalog as _catalog
+    dirs = tuple(_catalog._user_dirs())
+    tables = tuple(_catalog._load_cached(n, dirs) for n in ("bolts", "bolt_property_classes", "bolt_heads"))
+    hit = _CANDIDATES.get((key, dirs))
+    if hit is not None and all(a is b for a, b in zip(hit[0], tables)):
+        return hit[1]
+    out = tuple(_bolt_candidates(*args))
+    if len(_CANDIDATES) > 4096:
+        _CANDIDATES.clear()
+    _CANDIDATES[(key, dirs)] = (tables, out)
+    return out
+
+
+def _bolt_candidates(bolt_format, property_class, head_type):
     if head_type not in HEAD_TYPES:
         raise InputError(Problem("head_type", head_type, "one of " + ", ".join(HEAD_TYPES)))
     bolts = load("bolts")
