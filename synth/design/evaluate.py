@@ -521,10 +521,11 @@ _BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_m
 def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
     """Step 10 (:func:`synth.model.bolted_joint.fixation`) for rows of applications ``a`` and bolts ``o``.
 
-    One vectorised call per distinct bolt (format, head form, property class) over the rows that use it, every
-    application type together: the friction coefficients of each row's environment and its bolt-head contact
-    diameter (the input, or the head's catalog ``dw_min`` where not given, as ``fixation`` takes it) are passed
-    per row. NaN for applications without their fixation data.
+    One vectorised call per bolt-head form and whether the application gives its bolt-head contact diameter:
+    the distinct applications of those rows x the distinct bolts (format, property class) among them, every
+    bolt evaluated as the chosen one (``fixation(..., candidates=...)``), the friction coefficients of each
+    application's environment passed per application; the rows gather their (application, bolt) entry.
+    NaN for applications without their fixation data.
     """
     from synth import parts as P
     n = len(a)
@@ -536,33 +537,36 @@ def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
     aa_all = np.asarray(a)[rows]
     fmt, cls = np.asarray(o["bolt_format"], dtype=object)[rows], np.asarray(o["bolt_property_class"], dtype=object)[rows]
     head = np.asarray(o["bolt_head_type"], dtype=object)[rows]
-    dw_min = np.asarray(o["bolt_head_dw_min_mm"], dtype=float)[rows]
-    bolt_id = np.asarray(o["head_code"], dtype=np.int64)[rows] * 1000 + np.asarray(o["class_code"], dtype=np.int64)[rows]
-    env = apps.env[aa_all]
-    mu = {k: np.asarray(P.mu(k, env), dtype=float) for k in ("pivot_base_crankcase", "thread", "under_head")}
+    given = apps.given["bolt_head_contact_external_diameter_mm"][aa_all]
     f = apps.f
-    head_dw = np.where(apps.given["bolt_head_contact_external_diameter_mm"][aa_all],
-                       f["bolt_head_contact_external_diameter_mm"][aa_all], dw_min)
-    order = np.argsort(bolt_id, kind="stable")
-    bounds = np.flatnonzero(np.diff(bolt_id[order])) + 1
-    for grp in np.split(order, bounds):
-        aa, i0 = aa_all[grp], grp[0]
-        r = s10.fixation(
-            apps.hubload_nominal_n[aa], f["middle_plane_belt_height_mm"][aa],
-            f["middle_plane_belt_height_increment_worst_mm"][aa], f["tilting_safety_factor"][aa],
-            f["sliding_safety_factor"][aa], f["engine_support_internal_diameter_mm"][aa],
-            f["engine_support_external_diameter_mm"][aa], f["contact_angle_deg"][aa],
-            f["support_yield_strength_compression_mpa"][aa], f["support_yield_strength_traction_mpa"][aa],
-            number_of_active_threads=f["number_of_active_threads"][aa],
-            mu_crankcase=mu["pivot_base_crankcase"][grp], mu_thread=mu["thread"][grp], mu_head=mu["under_head"][grp],
-            bolt_head_contact_external_diameter_mm=head_dw[grp],
-            bolt_format=str(fmt[i0]), bolt_property_class=str(cls[i0]), head_type=str(head[i0]),
-            method=settings.bolt_method,
-            clamp_length_mm=f["max_pivot_height_mm"][aa] if settings.bolt_method == "vdi2230" else None)
-        sel = rows[grp]
-        for k in _BOLT_VALUES:
-            if k in r:
-                out[k][sel] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(sel),))
+    for h in dict.fromkeys(head.tolist()):
+        for g in (False, True):
+            sel = np.flatnonzero((head == h) & (given == g))
+            if not len(sel):
+                continue
+            ua, ia = np.unique(aa_all[sel], return_inverse=True)
+            code = {}
+            ib = np.array([code.setdefault(x, len(code)) for x in zip(fmt[sel].tolist(), cls[sel].tolist())],
+                          dtype=np.int64)
+            pairs = list(code)
+            env = apps.env[ua]
+            r = s10.fixation(
+                apps.hubload_nominal_n[ua], f["middle_plane_belt_height_mm"][ua],
+                f["middle_plane_belt_height_increment_worst_mm"][ua], f["tilting_safety_factor"][ua],
+                f["sliding_safety_factor"][ua], f["engine_support_internal_diameter_mm"][ua],
+                f["engine_support_external_diameter_mm"][ua], f["contact_angle_deg"][ua],
+                f["support_yield_strength_compression_mpa"][ua], f["support_yield_strength_traction_mpa"][ua],
+                number_of_active_threads=f["number_of_active_threads"][ua],
+                mu_crankcase=np.asarray(P.mu("pivot_base_crankcase", env), dtype=float),
+                mu_thread=np.asarray(P.mu("thread", env), dtype=float),
+                mu_head=np.asarray(P.mu("under_head", env), dtype=float),
+                bolt_head_contact_external_diameter_mm=f["bolt_head_contact_external_diameter_mm"][ua] if g else None,
+                head_type=str(h), candidates=pairs, method=settings.bolt_method,
+                clamp_length_mm=f["max_pivot_height_mm"][ua] if settings.bolt_method == "vdi2230" else None)
+            ia = np.asarray(ia).reshape(-1)
+            for k in _BOLT_VALUES:
+                if k in r:
+                    out[k][rows[sel]] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(ua), len(pairs)))[ia, ib]
     return out
 
 
