@@ -238,13 +238,25 @@ def spring_options(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, roun
     return _options(raw)
 
 
+_SPACE_OPTIONS: dict = {}
+
+
 def options_of_space(table: dict | None = None, idx=None) -> SpringOptions:
     """:class:`SpringOptions` of a design space's spring table (default: :func:`synth.design.space.space`'s;
-    ``idx``: a subset of its rows)."""
+    ``idx``: a subset of its rows). The whole table's is kept per table and catalog constants (its yield
+    thresholds too)."""
     if table is None:
         from synth.design.space import space
         table = space().tables["spring"]
-    raw = {k: (np.asarray(table[k]) if idx is None else np.asarray(table[k])[idx]) for k in OPTION_FIELDS}
+    if idx is None:
+        hit = _SPACE_OPTIONS.get(id(table))
+        if hit is not None and hit[0] is table and hit[1].constants == s9.main_spring_constants():
+            return hit[1]
+        opts = options_of_space(table, np.arange(len(table["b_mm"])))
+        _SPACE_OPTIONS.clear()
+        _SPACE_OPTIONS[id(table)] = (table, opts)
+        return opts
+    raw = {k: np.asarray(table[k])[idx] for k in OPTION_FIELDS}
     raw["round_wire"] = raw["round_wire"].astype(bool)
     raw["supplied_in_section"] = raw["supplied_in_section"].astype(bool)
     for k in OPTION_FIELDS:
@@ -618,25 +630,36 @@ def _keys_by_group(kg, n_groups):
 
 
 def _first_feasible_numpy(keys, options, ptr, idx, kg, score, limit, tol):
+    """(b) in numpy: each list in blocks for the keys still looking, the registry path on every pair of a block.
+
+    Options that no key of the list can pass are left out first, exactly: an option-only margin (index range,
+    material section) below ``-tol``, or an installation-torque threshold (:func:`yield_thresholds`) below the
+    smallest installation torque of the list's keys."""
     pick, visited = np.full(len(keys), -1, np.int64), np.zeros(len(keys), np.int64)
+    t_max = yield_thresholds(options, tol)
+    t_inst = keys.derived["t_inst"]
     for g, kk in enumerate(_keys_by_group(kg, len(ptr) - 1)):
         lst = idx[ptr[g]:ptr[g + 1]]
         if not len(kk) or not len(lst):
             continue
         over = score[ptr[g]:ptr[g + 1]][None, :] > limit[kk][:, None]
         stop = np.where(over.any(axis=1), np.argmax(over, axis=1), len(lst))  # scan length of each key
+        with np.errstate(invalid="ignore"):
+            t_lo = np.nanmin(t_inst[kk]) if np.isfinite(t_inst[kk]).any() else np.inf
+        can = np.flatnonzero((options.upper_bound[lst] >= -tol) & (t_max[lst] >= t_lo))  # positions in lst
         active = stop > 0
-        for lo, hi in _blocks(len(lst)):
+        for lo, hi in _blocks(len(can)):
             a = np.flatnonzero(active)
             if not len(a):
                 break
-            m = reference_margins(keys, options, kk[a], lst[lo:hi])
-            ok = np.all(m >= -tol, axis=2) & (np.arange(lo, hi)[None, :] < stop[a][:, None])
-            visited[kk[a]] += np.minimum(hi, stop[a]) - lo
+            pos = can[lo:hi]
+            m = reference_margins(keys, options, kk[a], lst[pos])
+            ok = np.all(m >= -tol, axis=2) & (pos[None, :] < stop[a][:, None])
+            visited[kk[a]] += ((pos[None, :] < stop[a][:, None])).sum(axis=1)
             has = ok.any(axis=1)
-            pick[kk[a[has]]] = lst[lo + np.argmax(ok[has], axis=1)]
+            pick[kk[a[has]]] = lst[pos[np.argmax(ok[has], axis=1)]]
             active[a[has]] = False
-            active &= stop > hi
+            active &= (stop > (pos[-1] + 1)) if len(pos) else False
     return pick, visited
 
 
