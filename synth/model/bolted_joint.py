@@ -922,18 +922,65 @@ _CANDIDATES: dict = {}
 
 def _candidates_memo(key, args) -> tuple:
     """:func:`bolt_candidates` memoised per arguments and catalog tables (a user catalog folder, or a cleared
-    catalog cache, gives new tables and so a new list; the bulk evaluation asks once per bolt and chunk)."""
+    catalog cache, gives new tables and so a new list). A named format and class is read from the table of every
+    (format, class) of its head form, built in one pass; anything else (automatic mode, an unknown name: its
+    error) by :func:`_bolt_candidates`."""
     from synth import catalog as _catalog
     dirs = tuple(_catalog._user_dirs())
     tables = tuple(_catalog._load_cached(n, dirs) for n in ("bolts", "bolt_property_classes", "bolt_heads"))
     hit = _CANDIDATES.get((key, dirs))
     if hit is not None and all(a is b for a, b in zip(hit[0], tables)):
         return hit[1]
-    out = tuple(_bolt_candidates(*args))
     if len(_CANDIDATES) > 4096:
         _CANDIDATES.clear()
+    fmt, cls, head = key
+    out = None
+    if fmt is not None and cls is not None and head in HEAD_TYPES:
+        every = _CANDIDATES.get((("*", "*", head), dirs))
+        if every is None or not all(a is b for a, b in zip(every[0], tables)):
+            every = (tables, _every_candidate(head))
+            _CANDIDATES[(("*", "*", head), dirs)] = every
+        if (fmt, cls) in every[1]:
+            out = (every[1][(fmt, cls)],)
+    if out is None:
+        out = tuple(_bolt_candidates(*args))
     _CANDIDATES[(key, dirs)] = (tables, out)
     return out
+
+
+def _every_candidate(head_type) -> dict:
+    """``{(format, class): candidate}`` of every defined pair in one head form (one pass over the catalogs)."""
+    bolts, classes, heads = load("bolts"), load("bolt_property_classes"), load("bolt_heads")
+    key_b, key_c = bolts.columns[0], classes.columns[0]
+    head_of = {str(h["bolt_format"]).strip(): h for _, h in heads[heads["head_type"] == head_type].iterrows()}
+    out = {}
+    for _, b in bolts.iterrows():
+        head = head_of.get(str(b[key_b]))
+        if head is None:
+            continue
+        for _, c in classes.iterrows():
+            cand = _candidate(b, c, head, head_type, key_b, key_c)
+            if cand is not None:
+                out[(cand["bolt_format"], cand["bolt_property_class"])] = cand
+    return out
+
+
+def _candidate(b, c, head, head_type, key_b, key_c) -> dict | None:
+    """The candidate dict of one bolt row, class row and head row; None for a class not defined at the diameter."""
+    if not np.isnan(float(c["d_max_mm"])) and float(b["d_mm"]) > float(c["d_max_mm"]):
+        return None
+    big = float(b["d_mm"]) > 16.0
+    rp = float(c["rp02_min_d_gt16_mpa"] if big else c["rp02_min_mpa"])
+    rm = float(c["rm_min_d_gt16_mpa"] if big else c["rm_min_mpa"])
+    return {
+        "bolt_format": str(b[key_b]), "bolt_property_class": str(c[key_c]),
+        **{k: float(b[k]) for k in _NUMERIC_BOLT_COLUMNS},
+        "head_type": head_type, "dw_min_mm": float(head["dw_min_mm"]),
+        "head_outer_mm": float(head["head_outer_mm"]), "head_height_mm": float(head["head_height_mm"]),
+        "head_product_standard": str(head["product_standard"]),
+        "unit_cost_eur": float(b["unit_cost_eur"]) * float(head["cost_factor"]),
+        "rp02_mpa": rp, "rm_mpa": rm, "unit_cost_factor": float(c["unit_cost_factor"]),
+    }
 
 
 def _bolt_candidates(bolt_format, property_class, head_type):
@@ -959,22 +1006,11 @@ def _bolt_candidates(bolt_format, property_class, head_type):
         classes = hit
     out = []
     for _, b in bolts.iterrows():
-        big = float(b["d_mm"]) > 16.0
         head = bolt_head(str(b[key_b]), head_type)
         for _, c in classes.iterrows():
-            if not np.isnan(float(c["d_max_mm"])) and float(b["d_mm"]) > float(c["d_max_mm"]):
-                continue
-            rp = float(c["rp02_min_d_gt16_mpa"] if big else c["rp02_min_mpa"])
-            rm = float(c["rm_min_d_gt16_mpa"] if big else c["rm_min_mpa"])
-            out.append({
-                "bolt_format": str(b[key_b]), "bolt_property_class": str(c[key_c]),
-                **{k: float(b[k]) for k in _NUMERIC_BOLT_COLUMNS},
-                "head_type": head_type, "dw_min_mm": float(head["dw_min_mm"]),
-                "head_outer_mm": float(head["head_outer_mm"]), "head_height_mm": float(head["head_height_mm"]),
-                "head_product_standard": str(head["product_standard"]),
-                "unit_cost_eur": float(b["unit_cost_eur"]) * float(head["cost_factor"]),
-                "rp02_mpa": rp, "rm_mpa": rm, "unit_cost_factor": float(c["unit_cost_factor"]),
-            })
+            cand = _candidate(b, c, head, head_type, key_b, key_c)
+            if cand is not None:
+                out.append(cand)
     if not out:
         raise InputError(Problem("bolt_property_class", property_class,
                                  f"a class defined for {bolt_format} (ISO 898-1: 9.8 only up to 16 mm)"))
