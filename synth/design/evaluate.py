@@ -43,7 +43,7 @@ from synth.model import torsion_spring as s9
 
 __all__ = ["Settings", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
-           "spring_values", "fixation_values", "pivot_wall_values", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
+           "spring_values", "SPRING_OPTION_COLUMNS", "fixation_values", "pivot_wall_values", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
            "BOLT_CORE_VALUES"]
 
 EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
@@ -434,6 +434,13 @@ def spring_keys(cg: Group, r) -> dict:
 SPRING_INPUTS = ("spring_torque_nominal_nm", "housing_height_mm", "housing_outer_diameter_mm",
                  "housing_inner_diameter_mm", "stiffness_nm_per_deg", "torque_tolerance_pct", "theta_pp_deg",
                  "dtheta_inst_nom_deg", "dtheta_nom_free_arm_deg")
+
+
+#: the option columns :func:`spring_values` reads (of the space's spring table, or any part's
+#: :func:`synth.design.space.spring_attributes`)
+SPRING_OPTION_COLUMNS = ("E_mpa", "Rm_mpa", "sigma_y_mpa", "sigma_A0_mpa", "b_mm", "h_mm", "round_wire",
+                         "main_spring_mean_body_diameter_mm", "b_tol_mm", "h_tol_mm", "sigma_perm_static_mpa",
+                         "supplied_in_section")
 
 
 def spring_inputs(apps, keys: dict, k) -> dict:

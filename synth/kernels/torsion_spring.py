@@ -113,9 +113,7 @@ if _REGISTERED != MARGIN_NAMES:  # pragma: no cover - a new spring constraint ne
                       f"{_REGISTERED}: add the new constraint to the kernels (and their tests)")
 ENGINES = ("numba", "numpy")
 #: the option columns the numpy twin reads (the space's spring table names them so)
-OPTION_FIELDS = ("E_mpa", "Rm_mpa", "sigma_y_mpa", "sigma_A0_mpa", "b_mm", "h_mm", "round_wire",
-                 "main_spring_mean_body_diameter_mm", "b_tol_mm", "h_tol_mm", "sigma_perm_static_mpa",
-                 "supplied_in_section")
+OPTION_FIELDS = E.SPRING_OPTION_COLUMNS
 
 _JIT = None
 
