@@ -25,12 +25,12 @@ import numpy as np
 from synth import catalog, parts as P
 from synth.design import evaluate as E
 from synth.design.applications import Applications
-from synth.design.constraints import FEAS_TOL, by_group
+from synth.design.constraints import FEAS_TOL
 from synth.design.result import NOT_VERIFIED, Check, Result, checks_of, plain
-from synth.design.space import (NONE, PART_KEYS, axial_attributes, bolt_attributes, bushing_attributes,
+from synth.design.space import (PART_KEYS, axial_attributes, bolt_attributes, bushing_attributes,
                                 core_attributes, space, spring_attributes)
 from synth.design.verify import evaluate_design, inputs_of, values_of, verify
-from synth.model import ball_bearing as s1, disc_spring as s8
+from synth.model import ball_bearing as s1
 
 __all__ = ["Settings", "run", "STEP_NAMES", "PART_KEYS"]
 

@@ -237,9 +237,6 @@ def test_property_never_nan_never_raises(seed, stiff, tol):
     assert row["feasible"] == (row["status"] == "optimal")
 
 
-@pytest.mark.xfail(strict=True, reason="core: Result.margins keeps an advisory (Table 7) margin while it passes and "
-                   "drops it when it warns, so the bulk column margin_cone_aspect_ratio_max is a number inside the "
-                   "supplier range and NaN outside it (the docstring says advisory margins are excluded)")
 def test_advisory_margins_are_kept_or_dropped_together():
     # case 1's design with h0/t 1.3: above Table 7's 1.2 (a warning), the other ratios within their ranges
     r = verify(case_input("case1_as_run"), dict(case_flowchart("case1_as_run").parts, cone_spring_aspect_ratio=1.3))

@@ -139,8 +139,12 @@ def test_case1_full_step_with_sized_spring():
     assert float(r["cone_spring_fax_min_tolerance_n"]) > 440.6
     assert float(r["cone_spring_diameter_ratio"]) == pytest.approx(30.0 / 16.2)
     assert float(r["cone_spring_aspect_ratio"]) == pytest.approx(1.2)
-    # the band room (EN 16983 manufacturing tolerance inside the band) is what the registry compares with 0
-    assert 0 < float(r["cone_spring_force_band_room_n"]) < float(r["cone_spring_fax_band_n"])
+    # the gap band (Fig. 68: force over the stack-up's gap tolerance) is what gates (cone_force_band) ...
+    assert 0 < float(r["cone_spring_gap_band_room_n"]) < float(r["cone_spring_fax_band_n"])
+    # ... while the band with EN 16983's standard manufacturing tolerance (+25/-7.5 % below t = 1.25 mm, here
+    # t = 0.74 mm) does not hold (advisory cone_force_manufacturing: a custom spring is specified tighter,
+    # case 1's real one at +/-8.5 %)
+    assert float(r["cone_spring_force_band_room_n"]) < 0
     # RSS stack-up leaves a wider band
     r2 = cs.cone_spring(1.7129, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, de, di, 0.1114, **ZETA_PHI)
     assert r2["cone_spring_fax_max_tolerance_n"] > r["cone_spring_fax_max_tolerance_n"]
@@ -153,7 +157,9 @@ def test_case1_cone_spring_checks_pass_in_the_flowchart():
     step8 = [c for c in r.checks if c.step == 8]
     assert {c.id for c in step8} >= {"cone_force_band", "cone_not_flattened", "cone_sigma_om", "cone_table8_range",
                                       "cone_diameter_ratio_min", "cone_thinness_max"}
-    assert [c.id for c in step8 if c.verdict != "pass"] == []
+    assert [c.id for c in step8 if c.verdict == "fail"] == []
+    # the standard manufacturing tolerance of a 0.74 mm disc spring does not fit the band: a warning, not a fail
+    assert [c.id for c in step8 if c.verdict == "warning"] == ["cone_force_manufacturing"]
     # the binding one is the flat position: s_max 0.888 mm against h0 0.891 mm
     assert r.check("cone_not_flattened").margin == pytest.approx((0.8910 - 0.8883) / 0.8910, abs=2e-4)
 

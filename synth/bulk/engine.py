@@ -33,14 +33,10 @@ from typing import Sequence
 import numpy as np
 import pandas as pd
 
-from synth import catalog
 from synth.design import evaluate as E
-from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.design.result import FAIL, PASS, WARNING
-from synth.design.space import PART_KEYS, SUBSYSTEMS, core_rows, space
-from synth.optimise.evaluate import core_scores, option_scores
-from synth.optimise.solvers.enumerate import weights_vec
+from synth.design.space import NONE, PART_KEYS, SUBSYSTEMS
 
 __all__ = ["columns", "constraint_ids", "screen_applications", "screen_applications_reference", "row_from_result"]
 
@@ -139,14 +135,17 @@ def frame(rows: list) -> pd.DataFrame:
 
 def screen_applications_reference(apps: Sequence, *, objective: str = "standard", fidelity: str = "screening",
                                   diagnose: bool = True) -> pd.DataFrame:
-    """Reference engine: ``solve(d, objective, "enumerate")`` per application (slow; the right answer)."""
+    """Reference engine: ``solve(d, objective, "enumerate", exhaustive=True)`` per application: every core and
+    option of its catalog product evaluated, the nearest design and each relaxation probe by the exhaustive
+    evaluation (slow; the right answer, and what the fast path is tested against)."""
     from synth.errors import InputError
     from synth.optimise import solve
     settings = E.Settings(fidelity=fidelity)
     rows = []
     for d in apps:
         try:
-            rows.append(row_from_result(solve(d, objective, "enumerate", settings=settings, relax=diagnose), diagnose))
+            rows.append(row_from_result(solve(d, objective, "enumerate", settings=settings, relax=diagnose,
+                                              exhaustive=True), diagnose))
         except InputError as exc:
             rows.append(error_row(exc))
     return frame(rows)
@@ -156,131 +155,215 @@ def screen_applications_reference(apps: Sequence, *, objective: str = "standard"
 # the fast path
 # --------------------------------------------------------------------------------------------------------------
 
-def _first_feasible(n_rows: int, order: np.ndarray, ok_of, first: int, growth: int) -> np.ndarray:
-    """Per row, the first option of ``order`` that ``ok_of(rows, options) -> bool`` accepts (-1: none).
-
-    Options are tried in growing blocks; a row stops at its first feasible option, so the cheapest
-    feasible option (in score order, ties by position) is found without evaluating the rest.
-    """
-    pick = np.full(n_rows, -1, dtype=np.int64)
-    active = np.arange(n_rows)
-    pos, block = 0, max(int(first), 1)
-    while len(active) and pos < len(order):
-        blk = order[pos:pos + block]
-        rr, kk = (x.ravel() for x in np.meshgrid(active, np.arange(len(blk)), indexing="ij"))
-        ok = ok_of(rr, blk[kk]).reshape(len(active), len(blk))
-        has = ok.any(axis=1)
-        pick[active[has]] = blk[np.argmax(ok[has], axis=1)]
-        active = active[~has]
-        pos += len(blk)
-        block *= max(int(growth), 1)
-    return pick
+_COLS = [c for c in REGISTRY.values() if c.group != "cad"]
+_ADVISORY = np.array([c.advisory for c in _COLS])
+_OBJECTIVE = np.array([c.objective for c in _COLS])
+_VERIFICATION_NOTES = "durability test not given: bushing, plastic wear and spring fatigue checks are not verified"
 
 
-def _solve_chunk(inputs: list, weights: dict, settings: E.Settings) -> list:
-    """``[(core row, {subsystem: option row}) or None]`` per application: the exact additive optimum."""
-    sp = space()
-    apps = Applications.of(inputs)
-    n = len(apps)
-    first, growth = int(catalog.constant("bulk_spring_first_block")), int(catalog.constant("bulk_spring_block_growth"))
+def _design_attributes(b, rows, options: dict) -> dict:
+    """One-row attributes of the chosen designs, as :func:`synth.design.verify.verify` builds them from their part
+    keys (the cone spring's outer diameter made absolute and back: the same doubles)."""
+    from synth.design.space import axial_attributes
+    sp = b.sp
+    attrs = {"core": sp.rows("core", b.C[rows])}
+    for s in ("bushing", "spring", "bolt"):
+        attrs[s] = sp.rows(s, options[s])
+    ax = sp.rows("axial", options["axial"])
+    de_max = b.cg.values["cone_spring_max_external_diameter_mm"][rows]
+    spacer = np.asarray(ax["spacer_code"])
+    pad = np.asarray(attrs["core"]["pad_code"]) >= 0
+    ext = np.where((spacer >= 0) & np.isfinite(de_max), de_max - ax["cone_spring_de_reduction_mm"], 0.0)
+    red = np.where(pad, de_max - ext, 0.0)
+    attrs["axial"] = axial_attributes(sp.parts, spacer, np.where(spacer >= 0, ax["cone_spring_aspect_ratio"], 0.0),
+                                      np.where(spacer >= 0, ax["cone_spring_deflection_ratio"], 0.0),
+                                      np.where(spacer >= 0, red, 0.0))
+    return attrs
+
+
+def _verify(b, idx, rows, options: dict) -> dict:
+    """Every group of the chosen designs of applications ``idx`` (one call per group for all of them)."""
+    apps, st = b.apps, b.settings
+    attrs = _design_attributes(b, rows, options)
+    one = np.arange(len(idx))
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        ig = E.inputs(apps, np.arange(n))
-        in_ok = ig.ok()
-        per_app = [core_rows(sp, d) for d in inputs]
-        a = np.concatenate([np.full(len(c), i, dtype=np.int64) for i, c in enumerate(per_app)])
-        c = np.concatenate(per_app)
-        keep = in_ok[a]
-        a, c = a[keep], c[keep]
-        cg = E.core(apps, a, sp.rows("core", c), settings)
-        ok = cg.ok()
-        rows = np.flatnonzero(ok)
-        a_r, c_r = a[rows], c[rows]
-        cv = {k: cg.values[k][rows] for k in ("pivot_class_standard_mm", "pivot_class_diameter_mm")}
-        total = weights_vec(core_scores(sp, c_r, cv), weights)
-        pick = {}
-        # bushing: options of the core's supplier, in score order
-        sc = weights_vec(option_scores(sp, "bushing"), weights)
-        sup_opt = sp.tables["bushing"]["supplier_code"]
-        bpick = np.full(len(rows), -1, dtype=np.int64)
-        for s in np.unique(cg.values["supplier_code"][rows]):
-            sel = np.flatnonzero(cg.values["supplier_code"][rows] == s)
-            opts = np.flatnonzero(sup_opt == s)
-            order = opts[np.argsort(sc[opts], kind="stable")]
-            bpick[sel] = _first_feasible(len(sel), order, lambda rr, kk: E.bushing(
-                apps, cg, rows[sel][rr], sp.rows("bushing", kk), settings).ok(), len(order), 1)
-        pick["bushing"] = bpick
-        # axial: the none option for cores without a pad, real options in score order for the others
-        sc = weights_vec(option_scores(sp, "axial"), weights)
-        real = sp.tables["axial"]["axial_group_present"]
-        has_pad = cg.values["axial_group_present"][rows] > 0
-        apick = np.full(len(rows), -1, dtype=np.int64)
-        none = np.flatnonzero(~real)
-        sel = np.flatnonzero(~has_pad)
-        if len(sel):
-            apick[sel] = _first_feasible(len(sel), none, lambda rr, kk: E.axial(
-                apps, cg, rows[sel][rr], sp.rows("axial", kk), settings).ok(), 1, 1)
-        sel = np.flatnonzero(has_pad)
-        if len(sel):
-            opts = np.flatnonzero(real)
-            order = opts[np.argsort(sc[opts], kind="stable")]
-            apick[sel] = _first_feasible(len(sel), order, lambda rr, kk: E.axial(
-                apps, cg, rows[sel][rr], sp.rows("axial", kk), settings).ok(), first, growth)
-        pick["axial"] = apick
-        # bolt: step 10 per application and bolt (no core dependence), the pivot wall per core
-        nb = sp.n("bolt")
-        ua = np.unique(a_r)
-        fa, fb = (x.ravel() for x in np.meshgrid(ua, np.arange(nb), indexing="ij"))
-        fix = E.fixation_values(apps, fa, sp.rows("bolt", fb), settings)
-        slot = {int(x): i for i, x in enumerate(ua)}
-        sc = weights_vec(option_scores(sp, "bolt"), weights)
-        order = np.argsort(sc, kind="stable")
-        app_slot = np.array([slot[int(x)] for x in a_r], dtype=np.int64)
+        groups = {"input": E.inputs(apps, idx)}
+        cg = E.core(apps, idx, attrs["core"], st)
+        groups["core"] = cg
+        groups["bushing"] = E.bushing(apps, cg, one, attrs["bushing"], st)
+        groups["axial"] = E.axial(apps, cg, one, attrs["axial"], st)
+        groups["spring"] = E.spring(apps, E.spring_keys(cg, one), one, attrs["spring"], st)
+        groups["bolt"] = E.bolt(apps, cg, one, attrs["bolt"], st)
+    groups["_attrs"] = attrs
+    return groups
 
-        def bolt_ok(rr, kk):
-            idx = app_slot[rr] * nb + kk
-            return E.bolt(apps, cg, rows[rr], sp.rows("bolt", kk), settings,
-                          fixation={k: v[idx] for k, v in fix.items()}).ok()
-        pick["bolt"] = _first_feasible(len(rows), order, bolt_ok, nb, 1)
-        # main spring: once per distinct key, options in score order (the cost order does not depend on k)
-        keys = E.spring_keys(cg, rows)
-        stack = np.stack([keys["app"].astype(float)] + [keys[k] for k in (
-            "spring_torque_nominal_nm", "spring_housing_height_mm", "spring_housing_outer_diameter_mm",
-            "spring_housing_inner_diameter_mm")], axis=1)
-        uniq, inv = np.unique(stack, axis=0, return_inverse=True)
-        inv = np.asarray(inv).reshape(-1)
-        ukeys = {"app": uniq[:, 0].astype(np.int64), "spring_torque_nominal_nm": uniq[:, 1],
-                 "spring_housing_height_mm": uniq[:, 2], "spring_housing_outer_diameter_mm": uniq[:, 3],
-                 "spring_housing_inner_diameter_mm": uniq[:, 4]}
-        mbd = sp.tables["spring"]["main_spring_mean_body_diameter_mm"]
-        sc = weights_vec(option_scores(sp, "spring", 1.0), weights)  # the order: the cost is (per-unit cost) / k
-        spick_key = np.full(len(uniq), -1, dtype=np.int64)
-        for ai in np.unique(ukeys["app"]):  # the searched diameters follow each application's housings
-            ks = np.flatnonzero(ukeys["app"] == ai)
-            lo = np.floor(ukeys["spring_housing_inner_diameter_mm"][ks].min()) - 1e-9
-            hi = np.ceil(ukeys["spring_housing_outer_diameter_mm"][ks].max()) + 1e-9
-            opts = np.flatnonzero((mbd >= lo) & (mbd <= hi))
-            order = opts[np.argsort(sc[opts], kind="stable")]
-            spick_key[ks] = _first_feasible(len(ks), order, lambda rr, kk: E.spring(
-                apps, ukeys, ks[rr], sp.rows("spring", kk), settings).ok(), first, growth)
-        pick["spring"] = spick_key[inv]
-        k_app = apps.spring_stiffness_nm_per_deg[a_r]
-        for s in SUBSYSTEMS:  # the same sums, in the same order, as synth.optimise.solvers.enumerate
-            p = pick[s]
-            pp = np.maximum(p, 0)
-            if s == "spring":
-                s_sc = weights_vec({"standard": sp.tables["spring"]["nonstandard"][pp],
-                                    "cost": sp.spring_cost_eur(k_app, pp)}, weights)
-            else:
-                s_sc = weights_vec(option_scores(sp, s), weights)[pp]
-            total = total + np.where(p >= 0, s_sc, np.inf)
-    out: list = [None] * n
-    for i in range(n):
-        sel = np.flatnonzero((a_r == i) & np.isfinite(total))
-        if not len(sel):
-            continue
-        j = sel[np.argmin(total[sel])]
-        out[i] = (int(c_r[j]), {s: int(pick[s][j]) for s in SUBSYSTEMS})
+
+def _notes_of(apps, idx, state, evaluated, cache: dict) -> list:
+    """Per application: the "not verified: ..." and "assumed: ..." notes of its checks (as :func:`row_from_result`
+    writes them from the result), built once per distinct pattern of missing requirements and defaults."""
+    from synth.design.applications import DEFAULTS
+    from synth.design.evaluate import NOT_VERIFIED
+    reqs = sorted({r for c in _COLS for r in c.needs})
+    met = np.stack([apps.met(r)[idx] for r in reqs], axis=1) if reqs else np.zeros((len(idx), 0), bool)
+    names = sorted({x for c in _COLS for x in c.assumes if x in DEFAULTS})
+    assumed = np.stack([apps.assumed(x)[idx] for x in names], axis=1) if names else np.zeros((len(idx), 0), bool)
+    nv = state == NOT_VERIFIED
+    out = []
+    for j in range(len(idx)):
+        key = (nv[j].tobytes(), met[j].tobytes(), evaluated[j].tobytes(), assumed[j].tobytes())
+        hit = cache.get(key)
+        if hit is None:
+            i = int(idx[j])
+            groups: dict = {}
+            for c in np.flatnonzero(nv[j]):
+                con = _COLS[c]
+                missing = [r for r in con.needs if not met[j, reqs.index(r)]]
+                why = apps.missing_note(missing[0]).replace("not verified: ", "") if missing else ""
+                groups.setdefault(why, []).append(con.id)
+            notes = []
+            if groups:
+                notes.append("not verified: " + "; ".join(f"{', '.join(ids)} ({why})" for why, ids in groups.items()))
+            seen = []
+            for c in np.flatnonzero(evaluated[j]):
+                for x in _COLS[c].assumes:
+                    if x in DEFAULTS and assumed[j, names.index(x)]:
+                        seen.append(apps.assumed_note(x, i))
+            seen = list(dict.fromkeys(seen))
+            if seen:
+                notes.append("assumed: " + "; ".join(a.replace(" assumed", "") for a in seen))
+            hit = cache[key] = (notes, bool(groups or seen))
+        out.append(hit)
     return out
+
+
+def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> list:
+    """The result rows (dicts of :func:`columns`) of designs verified by :func:`_verify`: what
+    :func:`row_from_result` gives for :func:`synth.optimise.result.build_result`'s result of each."""
+    from synth.design.evaluate import EVALUATED
+    from synth.optimise.evaluate import core_scores, option_scores
+    m = len(idx)
+    state = np.stack([groups[c.group].state[c.id] for c in _COLS], axis=1)
+    marg = np.stack([np.asarray(groups[c.group].margins[c.id], dtype=float) for c in _COLS], axis=1)
+    ev = state == EVALUATED
+    passed = marg >= -FEAS_TOL
+    failed = ev & ~passed & ~_ADVISORY
+    counted = ev & (passed | ~_ADVISORY)  # the result's margins: verdict pass or fail
+    objective_counted = counted & _OBJECTIVE
+    # the margin objective: counted, objective, unless the design meets it by construction
+    margin_obj = objective_counted.copy()
+    for c, con in enumerate(_COLS):
+        if con.objective_unless is not None and not con.advisory:
+            v = np.asarray(groups[con.group].values[con.objective_unless], dtype=float)
+            margin_obj[:, c] &= ~(np.isfinite(v) & (v != 0))
+    m_counted = np.where(counted, marg, np.inf)
+    margin_min = m_counted.min(axis=1) if len(_COLS) else np.full(m, np.inf)
+    obj_margin = np.where(margin_obj, marg, np.inf).min(axis=1)
+    # objectives as Evaluation.objective_values sums them
+    sp = b.sp
+    cv = {k: b.cg.values[k][rows] for k in ("pivot_class_standard_mm", "pivot_class_diameter_mm")}
+    sc = core_scores(sp, b.C[rows], cv)
+    k = b.apps.spring_stiffness_nm_per_deg[idx]
+    std, cost = np.zeros(m), np.zeros(m)
+    for s in SUBSYSTEMS:
+        o = option_scores(sp, s, k if s == "spring" else None, options[s])
+        std, cost = std + o["standard"], cost + o["cost"]
+    std, cost = sc["standard"] + std, sc["cost"] + cost
+    out = []
+    cache: dict = {}
+    notes_nv = _notes_of(b.apps, idx, state, ev, cache)
+    part_cols = _parts(groups["_attrs"], groups["core"].values["cone_spring_max_external_diameter_mm"])
+    ids = [c.id for c in _COLS]
+    for j in range(m):
+        i = int(idx[j])
+        fj = np.flatnonzero(failed[j])
+        feasible = status == "optimal" and not len(fj)
+        row = {"feasible": bool(feasible), "status": "optimal" if feasible else "infeasible"}
+        nv_notes, incomplete = notes_nv[j]
+        row["verdict"] = "fail" if len(fj) else ("incomplete" if incomplete else "pass")
+        row["objective_standard"] = float(std[j])
+        row["objective_cost_eur"] = round(float(cost[j]), 6)
+        row["objective_margin"] = float(obj_margin[j])
+        for key, col in part_cols.items():
+            row[f"part_{key}"] = col[j]
+        row["margin_min"] = float(margin_min[j])
+        order = fj[np.argsort(marg[j, fj], kind="stable")] if len(fj) else fj
+        if len(order):
+            row["binding_constraint"], row["binding_margin"] = ids[order[0]], float(marg[j, order[0]])
+        else:
+            oc = np.flatnonzero(objective_counted[j])
+            if len(oc):
+                c = oc[np.argmin(marg[j, oc])]
+                row["binding_constraint"], row["binding_margin"] = ids[c], float(marg[j, c])
+            else:
+                row["binding_constraint"], row["binding_margin"] = "", math.inf
+        for c, cid in enumerate(ids):
+            row[f"margin_{cid}"] = float(marg[j, c]) if counted[j, c] else math.nan
+        row["violated"] = ";".join(f"{ids[c]}:{marg[j, c]:+.3f}" for c in order) if not feasible else ""
+        row["relaxation"] = ""
+        notes = b.notes(i)
+        if status in ("optimal", "feasible") and len(fj):
+            notes = notes + ["verification failed: " + ", ".join(f"{ids[c]} {marg[j, c]:+.3g}" for c in fj)]
+        row["notes"] = "; ".join(dict.fromkeys([str(x) for x in notes] + nv_notes))
+        row["_failed"] = [ids[c] for c in fj]
+        out.append(row)
+    return out
+
+
+def _parts(attrs: dict, de_max) -> dict:
+    """The part columns (:data:`PART_KEYS`) of verified designs, as
+    :func:`synth.design.verify.parts_of_attributes` gives a result's parts (plain values; the cone spring's outer
+    diameter made absolute from the verified attributes)."""
+    from synth.design.result import plain
+    cols = {}
+    for table in ("core", "bushing", "axial", "spring", "bolt"):
+        for k, v in attrs[table].items():
+            if k in PART_KEYS:
+                cols[k] = [plain(x) for x in np.asarray(v)]
+    red = np.asarray(attrs["axial"]["cone_spring_de_reduction_mm"], dtype=float)
+    spacer = np.asarray(attrs["axial"]["endcap_spacer_class"])
+    cols["cone_spring_external_diameter_mm"] = [plain(float(x) - float(r)) if (sc != NONE and np.isfinite(x)) else 0.0
+                                                for x, r, sc in zip(de_max, red, spacer)]
+    cols["pivot_bushing_supplier"] = [plain(x) for x in np.asarray(attrs["core"]["pivot_bushing_supplier"])]
+    n = len(red)
+    return {k: cols.get(k, [None] * n) for k in PART_KEYS}
+
+
+def _screen_chunk(inputs: list, weights: dict, obj, settings, diagnose: bool) -> list:
+    """The rows of a chunk of applications (see :func:`screen_applications`)."""
+    from synth.optimise.batch import Batch
+    from synth.optimise.diagnose import relaxations_batch
+    n = len(inputs)
+    b = Batch(inputs, settings)
+    found = b.optimum(weights)
+    bad = [i for i, f in enumerate(found) if f is None]
+    near = b.nearest(bad) if bad else [None] * n
+    rows: list = [None] * n
+    for status, sel in (("optimal", [i for i in range(n) if found[i] is not None]), ("infeasible", bad)):
+        designs = [found[i] if status == "optimal" else near[i] for i in sel]
+        if any(d is None for d in designs):  # no core at all: the reference's own answer (or its error)
+            raise _NoSpace([i for i, d in zip(sel, designs) if d is None])
+        if not sel:
+            continue
+        idx = np.asarray(sel, dtype=np.int64)
+        core_rows = np.array([d[0] for d in designs], dtype=np.int64)
+        options = {s: np.array([d[1][s] for d in designs], dtype=np.int64) for s in SUBSYSTEMS}
+        groups = _verify(b, idx, core_rows, options)
+        for i, r in zip(sel, _rows(b, idx, core_rows, options, groups, status, obj)):
+            rows[i] = r
+    if diagnose and bad:
+        rel = relaxations_batch([inputs[i] for i in bad], [rows[i]["_failed"] for i in bad], settings=settings)
+        for i, r in zip(bad, rel):
+            if r and not rows[i]["feasible"]:
+                rows[i]["relaxation"] = _fmt_relaxation(r[0])
+    for r in rows:
+        r.pop("_failed", None)
+    return rows
+
+
+class _NoSpace(Exception):
+    def __init__(self, which):
+        super().__init__(f"applications {which} have no core")
+        self.which = which
 
 
 def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity: str = "screening",
@@ -292,42 +375,40 @@ def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity
     ``diagnose=False`` skips the relaxation search of infeasible applications.
     Columns: :func:`columns`. The same answer as :func:`screen_applications_reference`.
 
+    Additive objectives (``standard``, ``cost``, their orders and weighted sums without the margin) take the
+    fast path: the chunk on the applications axis (:class:`synth.optimise.batch.Batch`: optimum, nearest
+    design), the chosen designs verified together (one call per registry group), the rows assembled from
+    the groups, the relaxations of the infeasible ones bisected together
+    (:func:`synth.optimise.diagnose.relaxations_batch`). An application whose data a physics function
+    refuses (an :class:`~synth.errors.InputError` inside the chunk) is isolated and takes the reference's
+    path; objectives with the margin take it too.
+
     >>> from synth.data.generated_applications import generate
     >>> df = screen_applications(generate(2, seed=0), objective="cost")
     >>> list(df.index), df.loc[1, "status"]
     ([0, 1], 'optimal')
     """
-    from synth.errors import InputError
-    from synth.optimise import solve
+    from synth.optimise.batch import robust
     from synth.optimise.objectives import Objective
-    from synth.optimise.result import build_result
     settings = E.Settings(fidelity=fidelity)
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     apps = list(apps)
-    rows: list = [None] * len(apps)
     if obj.uses_margin():
         return screen_applications_reference(apps, objective=objective, fidelity=fidelity, diagnose=diagnose)
     w = obj.additive_weights() or {"cost": 1.0}
-    chosen = _solve_chunk(apps, w, settings)
-    from synth.design.verify import verify
-    from synth.optimise.evaluate import design_scores
-    from synth.optimise.result import design_margin, objective_name
-    sp = space()
-    for i, (d, ch) in enumerate(zip(apps, chosen)):
+
+    def reference_row(d, exc=None):
+        return screen_applications_reference([d], objective=obj, fidelity=fidelity,
+                                             diagnose=diagnose).to_dict(orient="records")[0]
+
+    def chunk(items):
         try:
-            if ch is None:
-                res = solve(d, obj, "enumerate", settings=settings, relax=diagnose)
-            else:
-                core, opts = ch
-                from synth.design.verify import parts_of_attributes
-                attrs = {"core": sp.rows("core", [core]), **{s: sp.rows(s, [opts[s]]) for s in SUBSYSTEMS}}
-                app1 = Applications.of([d])
-                cg = E.core(app1, np.zeros(1, dtype=np.int64), attrs["core"], settings)
-                parts = parts_of_attributes(attrs, {"core": cg})
-                res = verify(d, parts, settings, status="optimal", solver="enumerate", detail=False)
-                res.objective = objective_name(obj)
-                res.objectives = {**design_scores(d, parts, settings), "margin": design_margin(res)}
-            rows[i] = row_from_result(res, diagnose)
-        except InputError as exc:
-            rows[i] = error_row(exc)
-    return frame(rows)
+            return _screen_chunk(items, w, obj, settings, diagnose)
+        except _NoSpace as exc:  # rare: those applications alone, by the reference
+            rows = _screen_chunk([d for i, d in enumerate(items) if i not in exc.which], w, obj, settings, diagnose) \
+                if len(exc.which) < len(items) else []
+            out, it = [], iter(rows)
+            for i, d in enumerate(items):
+                out.append(reference_row(d) if i in exc.which else next(it))
+            return out
+    return frame(robust(chunk, apps, reference_row))

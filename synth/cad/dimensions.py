@@ -40,8 +40,9 @@ class TensionerGeometry:
     """Everything the parametric assembly reads (mm, counts, names).
 
     ``layout`` is ``standard`` (eq. 17: pulley above the spring housing) or
-    ``reverse`` (eq. 18: pulley below it). ``status`` says whether the result
-    is feasible; an infeasible nearest design is still exported.
+    ``reverse`` (eq. 18: pulley below it). ``status`` is the result's status
+    (optimal, baseline...), ``verdict`` its verdict (pass, incomplete, fail); an infeasible nearest design is
+    still exported.
     """
 
     name: str
@@ -99,6 +100,7 @@ class TensionerGeometry:
     endcap_height_mm: float = 1.2
     calking_height_mm: float = 1.0
     pivot_base_height_mm: float = 3.0
+    verdict: str = ""                # the result's verdict (pass, incomplete, fail): the STEP header
 
     def replace(self, **changes) -> "TensionerGeometry":
         """A copy with some fields changed (for what-if and test geometries)."""
@@ -126,8 +128,9 @@ def load_result(path: str | Path) -> dict:
         raise InputError(Problem("result", str(path), f"a JSON file written by synth design/flowchart --json ({exc})"))
 
 
-def _split(result) -> tuple[dict, dict | None, str, bool, str]:
-    """``(parts and values, inputs, status, feasible, name)`` of a result, its JSON dict or its JSON path."""
+def _split(result) -> tuple[dict, dict | None, str, bool, str, str]:
+    """``(parts and values, inputs, status, feasible, name, verdict)`` of a result, its JSON dict or its JSON
+    path."""
     from synth.design.result import Result
     if isinstance(result, (str, Path)):
         result = load_result(result)
@@ -136,7 +139,8 @@ def _split(result) -> tuple[dict, dict | None, str, bool, str]:
     if not isinstance(result, Result):
         raise InputError(Problem("result", type(result).__name__, "a synth result or the JSON of --json"))
     values = {**result.values, **result.parts}
-    return values, result.inputs, result.status, result.feasible, f"{result.solver or 'design'}-{result.status}"
+    return (values, result.inputs, result.status, result.feasible, f"{result.solver or 'design'}-{result.status}",
+            result.verdict)
 
 
 def _inputs_dict(inputs) -> dict | None:
@@ -167,7 +171,7 @@ def geometry_from(result, inputs=None, *, name: str | None = None) -> TensionerG
     only when the result does not carry its inputs (the flowchart JSON).
     A missing dimension raises :class:`~synth.errors.InputError` naming it.
     """
-    values, ins, status, feasible, label = _split(result)
+    values, ins, status, feasible, label, verdict = _split(result)
     ins = _inputs_dict(inputs) or _inputs_dict(ins)
     if ins is None:
         raise InputError(Problem("inputs", None, "the design input (pass --input INPUT.yaml: this result does not carry it)"))
@@ -208,7 +212,7 @@ def geometry_from(result, inputs=None, *, name: str | None = None) -> TensionerG
     if arch not in ("rotary_standard", "rotary_reverse"):
         miss.append("architecture")
     kw = dict(
-        name=name or label, status=status, feasible=bool(feasible),
+        name=name or label, status=status, feasible=bool(feasible), verdict=verdict,
         layout="reverse" if arch == "rotary_reverse" else "standard",
         pulley_type=str(v.get("pulley_type") or ins.get("pulley_shell_type")),
         axial_damping=axial, wire_section=section, eccentric=str(ins["belt_loading_type"]),

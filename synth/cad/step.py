@@ -68,7 +68,7 @@ def step_header(model: TensionerModel, application: str, design: dict) -> dict:
     from synth import __version__
     g = model.geometry
     fmt = {k: (f"{v:g}" if isinstance(v, float) else str(v)) for k, v in design.items()}
-    status = f"status={g.status}" + ("" if g.feasible else " (infeasible: nearest design)")
+    status = f"status={g.verdict or g.status} ({g.status})" + ("" if g.feasible else " (infeasible: nearest design)")
     return {"name": f"synth tensioner {application}", "author": f"synth {__version__}",
             "organisation": f"synth {__version__}",
             "description": [f"synth tensioner design ({g.layout} layout, {g.name})", status]

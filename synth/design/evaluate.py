@@ -42,7 +42,9 @@ from synth.model import layout as s0, packaging as s7, pivot as s2, plain_bushin
 from synth.model import torsion_spring as s9
 
 __all__ = ["Settings", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
-           "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES"]
+           "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
+           "spring_values", "SPRING_OPTION_COLUMNS", "fixation_values", "pivot_wall_values", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
+           "BOLT_CORE_VALUES"]
 
 EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
 FIDELITIES = ("full", "screening")
@@ -166,10 +168,36 @@ def _const(name: str) -> float:
     return catalog.constant(name)
 
 
+class _Fields(dict):
+    """The applications' numeric fields at rows ``a``, gathered on first access (a group reads a handful of the
+    many fields; gathering them all for every row was most of the cost of a large chunk)."""
+
+    def __init__(self, apps, a):
+        super().__init__()
+        self._f, self._a = apps.f, a
+
+    def __missing__(self, key):
+        v = self[key] = self._f[key][self._a]
+        return v
+
+
+#: what the bushing group reads of its core row (besides the application): the bulk engine evaluates one row per
+#: distinct value of these, exactly
+BUSHING_CORE_VALUES = ("hubload_nominal_n", "pivot_diameter_mm", "axial_group_present")
+#: what the axial group reads of its core row (besides the application)
+AXIAL_CORE_VALUES = ("axial_damping_nm", "radial_damping_nm", "axial_damping_share_nm",
+                     "cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm",
+                     "cone_spring_table8_max_mm", "damper_pad_mean_radius_mm", "damper_pad_contact_area_mm2",
+                     "damper_pad_axial_height_mm", "bearing_width_mm", "axial_group_present",
+                     "damper_pad_outer_diameter_mm")
+#: what the bolt group reads of its core row (besides the application): the pivot wall around the bolt hole
+BOLT_CORE_VALUES = ("pivot_diameter_mm", "loading_arm_mm")
+
+
 # --------------------------------------------------------------------------- step 0: inputs only
 def inputs(apps, a) -> Group:
     """Group ``input``: layout, pulley axial space, lock-up pin (eq. (17)-(27)) for applications ``a``."""
-    f = {k: v[a] for k, v in apps.f.items()}
+    f = _Fields(apps, a)
     v = {"layout_standard": apps.layout_standard[a], "layout_reverse": apps.layout_reverse[a]}
     w = apps.pulley_width_mm[a]
     mpbh = f["middle_plane_belt_height_mm"]
@@ -215,7 +243,7 @@ def core(apps, a, c: dict, settings: Settings = Settings(), detail: bool = False
     """
     from synth import parts as P
     p = P.arrays()
-    f = {k: v[a] for k, v in apps.f.items()}
+    f = _Fields(apps, a)
     n = len(a)
     wa, alpha = f["working_arm_mm"], f["differential_angle_deg"]
     b = c["bearing_code"]
@@ -282,12 +310,13 @@ def bushing(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Gro
     from synth import parts as P
     p = P.arrays()
     a = cg.values["app"][r]
-    f = {k: v[a] for k, v in apps.f.items()}
+    f = _Fields(apps, a)
     sup, env = np.asarray(o["supplier_code"]), apps.env[a]
     lim = {k: p.bushing_limits[k][sup, env] for k in p.bushing_limits}
     rated = np.isfinite(lim["pvt_max_mpa_m_per_s_h"]) & np.isfinite(lim["k_w_mm3_per_n_m"])
-    pad = cg.values["axial_group_present"][r] > 0
-    res = s4.evaluate_bushing(cg.values["hubload_nominal_n"][r], cg.values["pivot_diameter_mm"][r],
+    cv = {k: cg.values[k][r] for k in BUSHING_CORE_VALUES}
+    pad = cv["axial_group_present"] > 0
+    res = s4.evaluate_bushing(cv["hubload_nominal_n"], cv["pivot_diameter_mm"],
                               o["pivot_bushing_length_mm"], apps.theta_pp_deg[a], apps.frequency_hz[a],
                               apps.duration_h[a], k_w_mm3_per_n_m=np.where(rated, lim["k_w_mm3_per_n_m"], 0.0),
                               radial_clearance_mm=p.bushing.radial_clearance_mm[sup],
@@ -316,18 +345,13 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     from synth import parts as P
     p = P.arrays()
     a = cg.values["app"][r]
-    f = {k: v[a] for k, v in apps.f.items()}
+    f = _Fields(apps, a)
     n = len(a)
-    cv = {k: cg.values[k][r] for k in ("axial_damping_nm", "radial_damping_nm", "axial_damping_share_nm",
-                                        "damper_pad_outer_diameter_mm",
-                                        "cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm",
-                                        "cone_spring_table8_max_mm", "damper_pad_mean_radius_mm",
-                                        "damper_pad_contact_area_mm2", "damper_pad_axial_height_mm",
-                                        "bearing_width_mm")}
+    cv = {k: cg.values[k][r] for k in AXIAL_CORE_VALUES}
     real = np.asarray(o["axial_group_present"], dtype=bool)
     std = apps.layout_standard[a]
     es_h = np.asarray(o["endcap_spacer_axial_height_mm"], dtype=float)
-    pad = cg.values["axial_group_present"][r] > 0
+    pad = cv["axial_group_present"] > 0
     v = {"app": a, "layout_standard": std, "layout_reverse": ~std, "axial_group_present": real.astype(float),
          "axial_group_mismatch": (real != pad).astype(float),
          "middle_plane_belt_height_mm": f["middle_plane_belt_height_mm"],
@@ -410,49 +434,88 @@ def spring_keys(cg: Group, r) -> dict:
                                             "spring_housing_outer_diameter_mm", "spring_housing_inner_diameter_mm")}}
 
 
-def spring(apps, keys: dict, k, o: dict, settings: Settings = Settings()) -> Group:
-    """Group ``spring`` (step 9) for rows pairing key ``k[i]`` of ``keys`` (:func:`spring_keys`) with option ``o``."""
+#: the per-row inputs of :func:`spring_values` besides the option (what a main spring sees of its application)
+SPRING_INPUTS = ("spring_torque_nominal_nm", "housing_height_mm", "housing_outer_diameter_mm",
+                 "housing_inner_diameter_mm", "stiffness_nm_per_deg", "torque_tolerance_pct", "theta_pp_deg",
+                 "dtheta_inst_nom_deg", "dtheta_nom_free_arm_deg")
+
+
+#: the option columns :func:`spring_values` reads (of the space's spring table, or any part's
+#: :func:`synth.design.space.spring_attributes`)
+SPRING_OPTION_COLUMNS = ("E_mpa", "Rm_mpa", "sigma_y_mpa", "sigma_A0_mpa", "b_mm", "h_mm", "round_wire",
+                         "main_spring_mean_body_diameter_mm", "b_tol_mm", "h_tol_mm", "sigma_perm_static_mpa",
+                         "supplied_in_section")
+
+
+def spring_inputs(apps, keys: dict, k) -> dict:
+    """The :data:`SPRING_INPUTS` of rows ``k`` of ``keys`` (:func:`spring_keys`): the key's torque (at least
+    1e-6 N m), housing height and diameters, and its application's stiffness, torque tolerance, theta_pp (0 without
+    a durability test: no oscillation, the fatigue check is then not verified) and travels (documented defaults)."""
     a = keys["app"][k]
-    f = {name: apps.f[name][a] for name in ("spring_stiffness_nm_per_deg", "spring_torque_tolerance_pct",
-                                            "arm_travel_nominal_to_installation_deg", "arm_travel_nominal_to_free_deg")}
-    theta_pp = np.nan_to_num(apps.theta_pp_deg[a], nan=0.0)  # no durability test: no oscillation (fatigue not verified)
+    f = apps.f
+    return {"spring_torque_nominal_nm": np.maximum(keys["spring_torque_nominal_nm"][k], 1e-6),
+            "housing_height_mm": keys["spring_housing_height_mm"][k],
+            "housing_outer_diameter_mm": keys["spring_housing_outer_diameter_mm"][k],
+            "housing_inner_diameter_mm": keys["spring_housing_inner_diameter_mm"][k],
+            "stiffness_nm_per_deg": f["spring_stiffness_nm_per_deg"][a],
+            "torque_tolerance_pct": f["spring_torque_tolerance_pct"][a],
+            "theta_pp_deg": np.nan_to_num(apps.theta_pp_deg[a], nan=0.0),
+            "dtheta_inst_nom_deg": f["arm_travel_nominal_to_installation_deg"][a],
+            "dtheta_nom_free_arm_deg": f["arm_travel_nominal_to_free_deg"][a]}
+
+
+def spring_values(o: dict, x: dict) -> dict:
+    """The values of group ``spring`` (step 9, eq. (64)-(93)) for options ``o`` (the spring table's columns) and
+    per-row inputs ``x`` (:data:`SPRING_INPUTS`, :func:`spring_inputs`), all broadcast to one length.
+
+    The one mapping from the physics (:func:`synth.model.torsion_spring.main_spring_design`) to the values the
+    registry's spring constraints compare: :func:`spring` adds the application and the registry margins, the
+    compiled kernels (:mod:`synth.kernels.torsion_spring`) use it as their numpy reference.
+    """
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         r = s9.main_spring_design(
             E_mpa=o["E_mpa"], Rm_mpa=o["Rm_mpa"], sigma_y_mpa=o["sigma_y_mpa"], sigma_A0_mpa=o["sigma_A0_mpa"],
             b_mm=o["b_mm"], h_mm=o["h_mm"], round_wire=o["round_wire"], mbd_mm=o["main_spring_mean_body_diameter_mm"],
-            stiffness_nm_per_deg=f["spring_stiffness_nm_per_deg"],
-            spring_torque_nominal_nm=np.maximum(keys["spring_torque_nominal_nm"][k], 1e-6),
-            torque_tolerance_pct=f["spring_torque_tolerance_pct"], theta_pp_deg=theta_pp,
-            housing_height_mm=keys["spring_housing_height_mm"][k],
-            housing_outer_diameter_mm=keys["spring_housing_outer_diameter_mm"][k],
-            housing_inner_diameter_mm=keys["spring_housing_inner_diameter_mm"][k],
-            b_tol_mm=o["b_tol_mm"], h_tol_mm=o["h_tol_mm"],
-            dtheta_inst_nom_deg=f["arm_travel_nominal_to_installation_deg"],
-            dtheta_nom_free_arm_deg=f["arm_travel_nominal_to_free_deg"], sigma_perm_static_mpa=o["sigma_perm_static_mpa"])
-    n = len(a)
-    v = {"app": a}
+            stiffness_nm_per_deg=x["stiffness_nm_per_deg"], spring_torque_nominal_nm=x["spring_torque_nominal_nm"],
+            torque_tolerance_pct=x["torque_tolerance_pct"], theta_pp_deg=x["theta_pp_deg"],
+            housing_height_mm=x["housing_height_mm"], housing_outer_diameter_mm=x["housing_outer_diameter_mm"],
+            housing_inner_diameter_mm=x["housing_inner_diameter_mm"], b_tol_mm=o["b_tol_mm"], h_tol_mm=o["h_tol_mm"],
+            dtheta_inst_nom_deg=x["dtheta_inst_nom_deg"], dtheta_nom_free_arm_deg=x["dtheta_nom_free_arm_deg"],
+            sigma_perm_static_mpa=o["sigma_perm_static_mpa"])
+    shape = np.broadcast(r["main_spring_active_coils_free"], np.asarray(x["stiffness_nm_per_deg"])).shape
+    v = {}
     for key in ("main_spring_active_coils_free", "main_spring_sigma_a_max_mpa", "main_spring_sigma_a_min_mpa",
                 "main_spring_sigma_inst_mpa", "main_spring_safety_factor", "hooks_angle_free_state_deg",
                 "hooks_angle_nominal_deg", "spring_index", "curvature_factor", "theta_nom_deg", "theta_inst_deg",
                 "theta_free_arm_deg", "torque_inst_nm", "block_length_max_mm", "main_spring_sigma_inst_uncorrected_mpa",
                 "sigma_perm_static_limit_mpa"):
-        v[key] = np.broadcast_to(np.asarray(r[key], dtype=float), (n,))
+        v[key] = np.broadcast_to(np.asarray(r[key], dtype=float), shape)
     v["main_spring_index"] = v.pop("spring_index")
-    v.update(main_spring_sigma_permissible_mpa=np.broadcast_to(np.asarray(r["sigma_y_limit_mpa"], float), (n,)),
-             main_spring_min_safety_factor=np.full(n, _const("main_spring_min_safety_factor")),
-             main_spring_outer_diameter_max_mm=np.asarray(r["outer_diameter_max_mm"], dtype=float),
-             spring_housing_outer_diameter_min_mm=np.asarray(r["housing_outer_diameter_min_mm"], dtype=float),
-             main_spring_inner_diameter_min_mm=np.asarray(r["inner_diameter_min_mm"], dtype=float),
-             spring_housing_inner_diameter_max_mm=np.asarray(r["housing_inner_diameter_max_mm"], dtype=float),
-             main_spring_coil_gap_min_mm=np.asarray(r["coil_gap_min_mm"], dtype=float),
-             main_spring_min_coil_gap_mm=np.full(n, _const("main_spring_min_coil_gap_mm")),
-             main_spring_wire_b_mm=np.asarray(o["b_mm"], dtype=float),
-             main_spring_index_min=np.full(n, _const("main_spring_index_min")),
-             main_spring_index_max=np.full(n, _const("main_spring_index_max")),
-             main_spring_mean_body_diameter_mm=np.asarray(o["main_spring_mean_body_diameter_mm"], dtype=float))
-    v["main_spring_supplied_in_section"] = np.asarray(o["supplied_in_section"], dtype=float)
-    length_m = np.pi * v["main_spring_mean_body_diameter_mm"] * v["main_spring_active_coils_free"] / 1000.0
-    v["main_spring_wire_length_m"] = length_m
+
+    def full(x_):
+        return np.broadcast_to(np.asarray(x_, dtype=float), shape)
+    v.update(main_spring_sigma_permissible_mpa=full(r["sigma_y_limit_mpa"]),
+             main_spring_min_safety_factor=np.full(shape, _const("main_spring_min_safety_factor")),
+             main_spring_outer_diameter_max_mm=full(r["outer_diameter_max_mm"]),
+             spring_housing_outer_diameter_min_mm=full(r["housing_outer_diameter_min_mm"]),
+             main_spring_inner_diameter_min_mm=full(r["inner_diameter_min_mm"]),
+             spring_housing_inner_diameter_max_mm=full(r["housing_inner_diameter_max_mm"]),
+             main_spring_coil_gap_min_mm=full(r["coil_gap_min_mm"]),
+             main_spring_min_coil_gap_mm=np.full(shape, _const("main_spring_min_coil_gap_mm")),
+             main_spring_wire_b_mm=full(o["b_mm"]),
+             main_spring_index_min=np.full(shape, _const("main_spring_index_min")),
+             main_spring_index_max=np.full(shape, _const("main_spring_index_max")),
+             main_spring_mean_body_diameter_mm=full(o["main_spring_mean_body_diameter_mm"]),
+             main_spring_supplied_in_section=full(o["supplied_in_section"]))
+    v["main_spring_wire_length_m"] = (np.pi * v["main_spring_mean_body_diameter_mm"]
+                                      * v["main_spring_active_coils_free"] / 1000.0)
+    return v
+
+
+def spring(apps, keys: dict, k, o: dict, settings: Settings = Settings()) -> Group:
+    """Group ``spring`` (step 9) for rows pairing key ``k[i]`` of ``keys`` (:func:`spring_keys`) with option ``o``."""
+    a = keys["app"][k]
+    v = {"app": a, **spring_values(o, spring_inputs(apps, keys, k))}
     return finish("spring", v, apps, a)
 
 
@@ -469,40 +532,67 @@ _BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_m
 def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
     """Step 10 (:func:`synth.model.bolted_joint.fixation`) for rows of applications ``a`` and bolts ``o``.
 
-    One vectorised call per bolt option over its applications (grouped by environment and whether the
-    head contact diameter is given); NaN for applications without their fixation data.
+    One vectorised call per bolt-head form and whether the application gives its bolt-head contact diameter:
+    the distinct applications of those rows x the distinct bolts (format, property class) among them, every
+    bolt evaluated as the chosen one (``fixation(..., candidates=...)``), the friction coefficients of each
+    application's environment passed per application; the rows gather their (application, bolt) entry.
+    NaN for applications without their fixation data.
     """
+    from synth import parts as P
     n = len(a)
     out = {k: np.full(n, np.nan) for k in _BOLT_VALUES}
     has = apps.met("fixation")[a]
     if not has.any():
         return out
-    fmt, cls = np.asarray(o["bolt_format"], dtype=object), np.asarray(o["bolt_property_class"], dtype=object)
-    head = np.asarray(o["bolt_head_type"], dtype=object)
-    head_given = apps.given["bolt_head_contact_external_diameter_mm"][a]
-    f = apps.f
     rows = np.flatnonzero(has)
-    keys = np.array([f"{fmt[i]}|{cls[i]}|{head[i]}|{apps.env[a[i]]}|{head_given[i]}" for i in rows])
-    for key in np.unique(keys):
-        sel = rows[keys == key]
-        aa = a[sel]
-        env = apps.inputs[aa[0]].application_type
-        r = s10.fixation(
-            apps.hubload_nominal_n[aa], f["middle_plane_belt_height_mm"][aa],
-            f["middle_plane_belt_height_increment_worst_mm"][aa], f["tilting_safety_factor"][aa],
-            f["sliding_safety_factor"][aa], f["engine_support_internal_diameter_mm"][aa],
-            f["engine_support_external_diameter_mm"][aa], f["contact_angle_deg"][aa],
-            f["support_yield_strength_compression_mpa"][aa], f["support_yield_strength_traction_mpa"][aa],
-            number_of_active_threads=f["number_of_active_threads"][aa], application_type=env,
-            bolt_head_contact_external_diameter_mm=f["bolt_head_contact_external_diameter_mm"][aa]
-            if head_given[sel[0]] else None,
-            bolt_format=str(fmt[sel[0]]), bolt_property_class=str(cls[sel[0]]), head_type=str(head[sel[0]]),
-            method=settings.bolt_method,
-            clamp_length_mm=f["max_pivot_height_mm"][aa] if settings.bolt_method == "vdi2230" else None)
-        for k in _BOLT_VALUES:
-            if k in r:
-                out[k][sel] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(sel),))
+    aa_all = np.asarray(a)[rows]
+    fmt, cls = np.asarray(o["bolt_format"], dtype=object)[rows], np.asarray(o["bolt_property_class"], dtype=object)[rows]
+    head = np.asarray(o["bolt_head_type"], dtype=object)[rows]
+    given = apps.given["bolt_head_contact_external_diameter_mm"][aa_all]
+    f = apps.f
+    for h in dict.fromkeys(head.tolist()):
+        for g in (False, True):
+            sel = np.flatnonzero((head == h) & (given == g))
+            if not len(sel):
+                continue
+            ua, ia = np.unique(aa_all[sel], return_inverse=True)
+            code = {}
+            ib = np.array([code.setdefault(x, len(code)) for x in zip(fmt[sel].tolist(), cls[sel].tolist())],
+                          dtype=np.int64)
+            pairs = list(code)
+            env = apps.env[ua]
+            r = s10.fixation(
+                apps.hubload_nominal_n[ua], f["middle_plane_belt_height_mm"][ua],
+                f["middle_plane_belt_height_increment_worst_mm"][ua], f["tilting_safety_factor"][ua],
+                f["sliding_safety_factor"][ua], f["engine_support_internal_diameter_mm"][ua],
+                f["engine_support_external_diameter_mm"][ua], f["contact_angle_deg"][ua],
+                f["support_yield_strength_compression_mpa"][ua], f["support_yield_strength_traction_mpa"][ua],
+                number_of_active_threads=f["number_of_active_threads"][ua],
+                mu_crankcase=np.asarray(P.mu("pivot_base_crankcase", env), dtype=float),
+                mu_thread=np.asarray(P.mu("thread", env), dtype=float),
+                mu_head=np.asarray(P.mu("under_head", env), dtype=float),
+                bolt_head_contact_external_diameter_mm=f["bolt_head_contact_external_diameter_mm"][ua] if g else None,
+                head_type=str(h), candidates=pairs, method=settings.bolt_method,
+                clamp_length_mm=f["max_pivot_height_mm"][ua] if settings.bolt_method == "vdi2230" else None)
+            ia = np.asarray(ia).reshape(-1)
+            for k in _BOLT_VALUES:
+                if k in r:
+                    out[k][rows[sel]] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(ua), len(pairs)))[ia, ib]
     return out
+
+
+def pivot_wall_values(pivot_diameter_mm, loading_arm_mm, bolt_d_mm) -> dict:
+    """The values of constraint ``pivot_wall`` (step 2): the bolt hole and the pivot wall around it, and its limit.
+
+    The only values of group ``bolt`` that depend on the core (:data:`BOLT_CORE_VALUES`); the bulk engine
+    evaluates them per core and bolt diameter, the rest per application and bolt.
+    """
+    hole = s2.bolt_hole_diameter_mm(bolt_d_mm)
+    wall = s2.pivot_wall_mm(pivot_diameter_mm, loading_arm_mm, hole)
+    shape = np.shape(wall)
+    return {"pivot_bolt_hole_diameter_mm": np.broadcast_to(np.asarray(hole, dtype=float), shape),
+            "pivot_wall_mm": np.asarray(wall, dtype=float),
+            "pivot_min_wall_mm": np.full(shape, _const("pivot_min_wall_mm"))}
 
 
 def bolt(apps, cg: Group, r, o: dict, settings: Settings = Settings(), fixation: dict | None = None) -> Group:
@@ -512,16 +602,13 @@ def bolt(apps, cg: Group, r, o: dict, settings: Settings = Settings(), fixation:
     application and bolt (they do not depend on the core).
     """
     a = cg.values["app"][r]
-    f = {k: v[a] for k, v in apps.f.items()}
+    f = _Fields(apps, a)
     n = len(a)
     fix = fixation if fixation is not None else fixation_values(apps, a, o, settings)
     v = {"app": a, **fix}
     v["bolt_method_thesis"] = np.full(n, settings.bolt_method == "thesis")
     v["bolt_method_vdi"] = ~v["bolt_method_thesis"]
-    v["pivot_bolt_hole_diameter_mm"] = s2.bolt_hole_diameter_mm(o["bolt_d_mm"])
-    v["pivot_wall_mm"] = s2.pivot_wall_mm(cg.values["pivot_diameter_mm"][r], cg.values["loading_arm_mm"][r],
-                                          v["pivot_bolt_hole_diameter_mm"])
-    v["pivot_min_wall_mm"] = np.full(n, _const("pivot_min_wall_mm"))
+    v.update(pivot_wall_values(*(cg.values[k][r] for k in BOLT_CORE_VALUES), o["bolt_d_mm"]))
     v["bolt_sigma_permissible_mpa"] = _const("bolt_yield_utilisation_max") * np.asarray(o["rp02_mpa"], dtype=float)
     v["pivot_bore_min_mm"] = np.asarray(o["pivot_bore_min_mm"], dtype=float)
     for k in ("tilting_safety_factor", "sliding_safety_factor"):

@@ -310,6 +310,13 @@ def mbd_grid(p: P.Parts) -> np.ndarray:
     return np.arange(math.ceil(lo / step) * step, math.floor(hi / step) * step + step / 2, step)
 
 
+def _supplied(p: P.Parts) -> np.ndarray:
+    """``(materials, wires)``: the material is supplied in the wire's section (``spring_materials.csv``)."""
+    mat, wire = p.spring_material, p.spring_wire
+    return np.array([[wire.section[wi] in mat.wire_sections[mi].split() for wi in range(len(wire))]
+                     for mi in range(len(mat))], dtype=bool).reshape(len(mat), len(wire))
+
+
 def spring_attributes(p: P.Parts, material, wire, mbd_mm) -> dict:
     """The spring table's columns for material and wire codes and mean body diameters (any diameter)."""
     m, w = np.asarray(material, dtype=np.int64), np.asarray(wire, dtype=np.int64)
@@ -331,8 +338,7 @@ def spring_attributes(p: P.Parts, material, wire, mbd_mm) -> dict:
         "main_spring_material": mat.key[m], "main_spring_wire": wire_t.key[w], "main_spring_mean_body_diameter_mm": d,
         "E_mpa": mat.E_mpa[m], "Rm_mpa": rm, "sigma_y_mpa": mat.sigma_y_bend_fraction[m] * rm,
         "sigma_A0_mpa": mat.sigma_A0_fraction[m] * rm, "sigma_perm_static_mpa": mat.sigma_perm_static_fraction[m] * rm,
-        "supplied_in_section": np.array([wire_t.section[wi] in mat.wire_sections[mi].split()
-                                         for mi, wi in zip(np.atleast_1d(m), np.atleast_1d(w))], dtype=bool),
+        "supplied_in_section": _supplied(p)[m, w],
         "b_mm": wire_t.b_mm[w], "h_mm": wire_t.h_mm[w], "round_wire": rnd, "b_tol_mm": wire_t.b_tol_mm[w],
         "h_tol_mm": wire_t.h_tol_mm[w], "second_moment_mm4": inertia, "wire_section_area_mm2": area,
         "density_kg_m3": mat.density_kg_m3[m],
@@ -345,8 +351,7 @@ def _spring(p: P.Parts) -> dict:
     m, w, d = (a.ravel() for a in np.meshgrid(np.arange(len(p.spring_material)), np.arange(len(p.spring_wire)),
                                               mbd_grid(p), indexing="ij"))
     # a material pairs only with the wire sections it is supplied in (spring_materials.csv wire_sections)
-    supplied = np.array([p.spring_wire.section[wi] in p.spring_material.wire_sections[mi].split()
-                         for mi, wi in zip(m, w)], dtype=bool)
+    supplied = _supplied(p)[m, w]
     return spring_attributes(p, m[supplied], w[supplied], d[supplied])
 
 

@@ -26,7 +26,6 @@ True
 from __future__ import annotations
 
 import math
-import re
 from pathlib import Path
 
 from synth import schema

@@ -3,16 +3,19 @@
 Importing this package does not import numba: the kernels are compiled (or
 loaded from numba's on-disk cache) on their first call, so the
 one-application path keeps its start-up time. Each kernel has a numpy twin
-(``engine="numpy"``) built on the reference function, for tests and benchmarks.
+(``engine="numpy"``) built on the registry's group function, for tests,
+benchmarks and the one-application path.
 
 * :mod:`synth.kernels.torsion_spring` -- the main spring of thesis step 9:
-  margins, first feasible option in score order, max-min margin, any feasible.
+  the registry's spring-group margins, first feasible option in score order,
+  max-min margin, any feasible.
 """
 
 from synth.kernels.torsion_spring import (  # noqa: F401
-    MARGIN_NAMES, FirstFeasible, MaxMin, SpringKeys, SpringOptions, any_feasible, first_feasible, margins,
-    max_min_margin, options_from_table, reference_margins, spring_keys, spring_options,
+    MARGIN_NAMES, FirstFeasible, MaxMin, SpringKeys, SpringOptions, any_feasible, first_feasible, keys_of_rows,
+    margins, max_min_margin, options_of_space, reference_margins, spring_keys, spring_options,
 )
 
 __all__ = ["MARGIN_NAMES", "FirstFeasible", "MaxMin", "SpringKeys", "SpringOptions", "any_feasible", "first_feasible",
-           "margins", "max_min_margin", "options_from_table", "reference_margins", "spring_keys", "spring_options"]
+           "keys_of_rows", "margins", "max_min_margin", "options_of_space", "reference_margins", "spring_keys",
+           "spring_options"]

@@ -3,13 +3,16 @@
 This module imports numba at import time, so nothing imports it except the
 lazy loader of :mod:`synth.kernels.torsion_spring` (the one-application path
 never pays for numba). Every arithmetic line repeats one line of
-:func:`synth.model.torsion_spring.main_spring_design`, in the same order of
-operations, so the margins are the reference's to the last bit in practice;
-the quantities that depend on the option alone (second moment, section
-modulus, curvature factor, index margins) or on the key alone (working
-angles, torques, coil increments, housing limits) are computed beforehand by
-the reference functions themselves and arrive here as the columns of two
-tables (``opts[j, O_*]``, ``keys[i, K_*]``).
+:func:`synth.model.torsion_spring.main_spring_design` and of the registry's
+:func:`synth.design.constraints.margin`, in the same order of operations, so
+the margins are the registry's spring-group margins
+(:func:`synth.design.evaluate.spring`) to the last bit in practice; the
+quantities that depend on the option alone (second moment, section modulus,
+curvature factor, the index and material-section margins) or on the key alone
+(working angles, torques, coil increments, housing limits, whether the
+fatigue check is verified) are computed beforehand by the reference functions
+themselves and arrive here as the columns of two tables (``opts[j, O_*]``,
+``keys[i, K_*]``).
 
 Kernels (loops over keys x options, no allocation per pair):
 
@@ -34,20 +37,20 @@ from numba import njit, prange
 
 #: columns of the option table (``spring_options`` computes them by name; the kernels read them by number)
 OPTION_COLUMNS = ("ei", "mbd", "kf", "z", "rm", "sa0", "sy", "sy_scale", "h", "h_tol", "bb", "b_scale", "idx_min",
-                  "idx_max")
+                  "idx_max", "sec", "ub")
 #: columns of the key table (``spring_keys``)
 KEY_COLUMNS = ("k180", "t_plus", "t_minus", "t_inst", "inc_inst", "inc_free_arm", "inc_nom", "height", "outer_min",
-               "outer_scale", "inner_max", "inner_scale", "winding")
+               "outer_scale", "inner_max", "inner_scale", "winding", "fatigue")
 #: the scalar constants
 CONST_NAMES = ("mbd_tol", "sf_min", "sf_scale", "min_gap")
 (O_EI, O_MBD, O_KF, O_Z, O_RM, O_SA0, O_SY, O_SY_SCALE, O_H, O_H_TOL, O_BB, O_B_SCALE, O_IDX_MIN,
- O_IDX_MAX) = range(len(OPTION_COLUMNS))
+ O_IDX_MAX, O_SEC, O_UB) = range(len(OPTION_COLUMNS))
 (K_K180, K_T_PLUS, K_T_MINUS, K_T_INST, K_INC_INST, K_INC_FREE_ARM, K_INC_NOM, K_HEIGHT, K_OUTER_MIN, K_OUTER_SCALE,
- K_INNER_MAX, K_INNER_SCALE, K_WINDING) = range(len(KEY_COLUMNS))
+ K_INNER_MAX, K_INNER_SCALE, K_WINDING, K_FATIGUE) = range(len(KEY_COLUMNS))
 C_MBD_TOL, C_SF_MIN, C_SF_SCALE, C_MIN_GAP = range(len(CONST_NAMES))
-#: margins of ``margins_table``, in the order of ``synth.model.torsion_spring.MARGIN_KEYS``
-M_YIELD, M_FATIGUE, M_OUTER, M_INNER, M_GAP, M_IDX_MIN, M_IDX_MAX = range(7)
-N_MARGINS = 7
+#: margins of ``margins_table``, in the registry's order of the spring group (``torsion_spring.MARGIN_NAMES``)
+M_YIELD, M_SECTION, M_FATIGUE, M_OUTER, M_INNER, M_GAP, M_IDX_MIN, M_IDX_MAX = range(8)
+N_MARGINS = 8
 
 
 @njit(cache=True, error_model="numpy")
@@ -75,7 +78,10 @@ def _yield_margin(keys, i, opts, j):
 
 @njit(cache=True, error_model="numpy")
 def _fatigue_margin(keys, i, opts, j, cst):
-    """Figure 71: Smith-Goodman safety factor of the +-theta_pp/2 swing against its minimum."""
+    """Figure 71: Smith-Goodman safety factor of the +-theta_pp/2 swing against its minimum; +inf where the
+    check is not verified (no durability test: the registry's ``needs``)."""
+    if keys[i, K_FATIGUE] == 0.0:
+        return np.inf
     kf, z = opts[j, O_KF], opts[j, O_Z]
     smax = kf * keys[i, K_T_PLUS] * 1000.0 / z
     smin = kf * keys[i, K_T_MINUS] * 1000.0 / z
@@ -173,16 +179,23 @@ def _min_margin_past_yield(keys, i, opts, j, cst, best, m):
 
 
 @njit(cache=True, error_model="numpy")
+def _reg(m):
+    """A margin as the registry keeps it: NaN is -inf (infeasible, never silently kept)."""
+    return -np.inf if m != m else m
+
+
+@njit(cache=True, error_model="numpy")
 def _margins_row(keys, i, opts, cst, out):
     for j in range(opts.shape[0]):
-        out[i, j, M_YIELD] = _yield_margin(keys, i, opts, j)
-        out[i, j, M_FATIGUE] = _fatigue_margin(keys, i, opts, j, cst)
+        out[i, j, M_YIELD] = _reg(_yield_margin(keys, i, opts, j))
+        out[i, j, M_SECTION] = _reg(opts[j, O_SEC])
+        out[i, j, M_FATIGUE] = _reg(_fatigue_margin(keys, i, opts, j, cst))
         m_out, m_in, m_gap = _geometry_margins(keys, i, opts, j, cst)
-        out[i, j, M_OUTER] = m_out
-        out[i, j, M_INNER] = m_in
-        out[i, j, M_GAP] = m_gap
-        out[i, j, M_IDX_MIN] = opts[j, O_IDX_MIN]
-        out[i, j, M_IDX_MAX] = opts[j, O_IDX_MAX]
+        out[i, j, M_OUTER] = _reg(m_out)
+        out[i, j, M_INNER] = _reg(m_in)
+        out[i, j, M_GAP] = _reg(m_gap)
+        out[i, j, M_IDX_MIN] = _reg(opts[j, O_IDX_MIN])
+        out[i, j, M_IDX_MAX] = _reg(opts[j, O_IDX_MAX])
 
 
 @njit(cache=True, error_model="numpy")
@@ -196,6 +209,7 @@ def _remove_at(work, lo, a, n_act):
 @njit(cache=True, error_model="numpy")
 def _first_feasible_chunk(c, keys, opts, cst, tol, t_max, ptr, idx, chunk_list, kptr, kperm, score, score_limit,
                           pick, visited, work):
+    # score[p]: the score of candidate p of the lists (aligned with idx)
     """(b) for the keys ``kperm[kptr[c]:kptr[c+1]]`` (sorted by installation torque), which share the candidate
     list ``chunk_list[c]``: the list is walked once, option by option, for all keys still looking.
 
@@ -215,7 +229,7 @@ def _first_feasible_chunk(c, keys, opts, cst, tol, t_max, ptr, idx, chunk_list, 
         lim = score_limit[i]
         if lim < np.inf:
             for p in range(p0, p1):
-                if score[idx[p]] > lim:
+                if score[p] > lim:
                     stop = p
                     break
         visited[i] = stop - p0  # the options the key examines if it finds none
@@ -226,8 +240,8 @@ def _first_feasible_chunk(c, keys, opts, cst, tol, t_max, ptr, idx, chunk_list, 
         if n_act == 0:
             break
         j = idx[p]
-        if not (opts[j, O_IDX_MIN] >= -tol and opts[j, O_IDX_MAX] >= -tol):
-            continue
+        if not (opts[j, O_UB] >= -tol):
+            continue  # index range or material section: no key passes
         t_j = t_max[j]
         a = 0
         while a < n_act:
@@ -310,7 +324,7 @@ def _max_min_chunk(c, keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kpe
 
 @njit(cache=True, error_model="numpy")
 def margins_table(keys, opts, cst, out):
-    """(a) ``out[i, j, :]`` = the seven margins of key ``i`` x option ``j`` (order of ``MARGIN_KEYS``)."""
+    """(a) ``out[i, j, :]`` = the eight margins of key ``i`` x option ``j`` (order of ``MARGIN_NAMES``)."""
     for i in range(keys.shape[0]):
         _margins_row(keys, i, opts, cst, out)
 
@@ -326,7 +340,7 @@ def margins_table_parallel(keys, opts, cst, out):
 def first_feasible_scan(keys, opts, cst, tol, t_max, ptr, idx, chunk_list, kptr, kperm, score, score_limit, pick,
                         visited, work):
     """(b)/(d) per key ``i``: the first option of its candidate list whose margins are all ``>= -tol``, or -1;
-    a key's scan stops at an option with ``score > score_limit[i]``; ``visited[i]`` counts the options the key
+    a key's scan stops at a candidate with ``score[p] > score_limit[i]`` (scores aligned with ``idx``); ``visited[i]`` counts the options the key
     examined (up to and including its hit). Keys come in chunks sharing a list (:func:`_first_feasible_chunk`);
     ``work`` is scratch of one int per key."""
     for c in range(len(kptr) - 1):

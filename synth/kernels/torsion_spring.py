@@ -1,19 +1,19 @@
 """Main-spring margins for many keys x many options: compiled kernels and their numpy twins (bulk screening).
 
 In a design space a main-spring option is (material, wire, mean body
-diameter); it sees the rest of the design only through a **key**: the spring
-torque at nominal, the spring-housing height, outer and inner diameter, and
-the application's own inputs (stiffness, torque tolerance, theta_pp, the
-installation and free-arm travels, winding direction and tolerance side).
-Bulk screening needs, for many keys (across many applications) x thousands
-of options, the step-9 margins of :func:`synth.model.torsion_spring.main_spring_design`
-(yield at installation, Smith-Goodman safety factor, outer and inner contact,
-coil gap, index min/max; thesis eq. (64)-(93), figure 71):
+diameter: a row of the space's spring table); it sees the rest of the design
+only through a **key**: the spring torque at nominal, the spring-housing
+height, outer and inner diameter, and its application's inputs (stiffness,
+torque tolerance, theta_pp, the installation and free-arm travels, whether the
+durability test is given). Bulk screening needs, for many keys (across many
+applications) x thousands of options, the margins of the registry's spring
+group (:func:`synth.design.evaluate.spring`: :data:`MARGIN_NAMES`, the
+non-advisory constraints of step 9, thesis eq. (64)-(93), figure 71):
 
-(a) :func:`margins` -- every margin, ``(n_keys, n_options, 7)``;
+(a) :func:`margins` -- every margin, ``(n_keys, n_options, 8)``;
 (b) :func:`first_feasible` -- per key, the first feasible option of a list
-    in score order (options sorted by the objective), early exit, and how
-    many options were examined;
+    in score order (options sorted by the objective), early exit, an optional
+    score limit (branch and bound), and how many options were examined;
 (c) :func:`max_min_margin` -- per key, the option with the largest smallest
     margin (the nearest design when none is feasible), skipping options an
     upper bound rules out;
@@ -21,19 +21,33 @@ coil gap, index min/max; thesis eq. (64)-(93), figure 71):
 
 Each takes ``engine="numba"`` (compiled loops over keys x options, no
 allocation per pair; :mod:`synth.kernels._torsion_spring_jit`) or
-``engine="numpy"`` (the reference function on blocks of keys x options, the
+``engine="numpy"`` (the registry's group on blocks of keys x options, the
 same early exits block by block): the benchmark compares both in one run
-and the tests hold them equal to the reference. Units as in
+and the tests hold them equal to the registry path. Units as in
 :mod:`synth.model.torsion_spring` (mm, N m, N m/deg, MPa, deg).
 
+**Registry semantics.** A margin is :func:`synth.design.constraints.margin`
+of the value and limit :func:`synth.design.evaluate.spring_values` gives
+(the one mapping from the physics to the values; the numpy twin calls it and
+:func:`synth.design.evaluate.finish`); ``spring_fatigue`` needs the durability
+test (``fatigue_verified``): not verified, its margin is ``+inf`` and it never
+makes an option infeasible; the travels and the torque tolerance are per key
+(the applications' documented defaults where absent, :mod:`synth.design.applications`);
+``spring_material_section`` is an option-only margin (0 for the options of
+the space: a material not supplied in a wire section is not in the space).
+A NaN margin fails (``-inf``), as in :func:`finish`. Feasible means every
+margin ``>= -tol`` (the registry's :data:`~synth.design.constraints.FEAS_TOL`
+by default).
+
 **Exactness.** The quantities that depend on the option alone (second
-moment, section modulus, index, curvature factor, index margins,
-:func:`spring_options`) or on the key alone (working angles, torques, coil
-increments, housing limits, :func:`spring_keys`) are computed once by the
-reference functions themselves; the kernel repeats only the per-pair lines
-of ``main_spring_design`` in the same order of operations, with the same
-constants (:func:`synth.model.torsion_spring.main_spring_constants`, read
-once and passed in as scalars). Margins then agree with the reference to the
+moment, section modulus, index, curvature factor, the index and section
+margins, :func:`spring_options`) or on the key alone (working angles,
+torques, coil increments, housing limits, :func:`spring_keys`) are computed
+once by the reference functions themselves; the kernel repeats only the
+per-pair lines of ``main_spring_design`` and of ``margin`` in the same order
+of operations, with the same constants
+(:func:`synth.model.torsion_spring.main_spring_constants`, read once and
+passed in as scalars). Margins then agree with the registry path to the
 last bit in practice (tested to 1e-9 relative) and the verdicts are the same.
 
 **Cost.** numba is imported on the first kernel call, not with this module:
@@ -46,30 +60,32 @@ because the bulk engine scales out over processes and numba's OpenMP layer
 is not fork-safe.
 
 Validity: the ranges of ``main_spring_design`` (positive stiffness and wire
-sizes, finite inputs); the housing diameters must be given (the bulk path
-always has them; a missing one is the reference's ``not_verified`` case).
+sizes). :func:`spring_keys` and :func:`spring_options` refuse non-finite
+inputs; :func:`keys_of_rows` (the evaluator's rows) lets a NaN through, whose
+margins are then ``-inf`` as in the registry path.
 
 Thesis case 3 (Tables 13-14: VDSiCr, mean diameter 44 mm, 0.0164 N m/deg,
-1.56 N m, 8 % on the lower side, theta_pp 16 deg, installation travel 28.6 deg,
+1.56 N m, 8 % tolerance, theta_pp 16 deg, installation travel 28.6 deg,
 housing 8.8 mm high), with the round 2.3 mm wire that reproduces its printed
 2.18 coils (it prints 3.0 mm, ``docs/sections/torsion_spring.md``); the housing
 diameters 48/30 mm are illustrative (the case does not print them). The
-yield margin gives back the reference's installation stress,
-``1763.5 (1 - m) = 1659 MPa`` (the thesis tool prints 1626 MPa, +2 %):
+registry checks the installation stress at the upper torque tolerance:
+``T_inst = 1.56 * 1.08 + 0.0164 * 28.6 = 2.1538 N m``, ``sigma = k_f T / Z =
+1.040646 * 2153.8 / 1.194492 = 1876 MPa`` (the thesis tool prints 1626 MPa at
+the lower tolerance), 6 % above the 1763.5 MPa limit; no option is feasible and
+the 44 mm one is the nearest:
 
 >>> import numpy as np
 >>> opts = spring_options(E_mpa=206000, Rm_mpa=2004, sigma_y_mpa=1763.5, sigma_A0_mpa=701.4, b_mm=2.3, h_mm=2.3,
 ...                       round_wire=True, b_tol_mm=0.025, h_tol_mm=0.025, mbd_mm=[40.0, 44.0])
 >>> keys = spring_keys(spring_torque_nominal_nm=1.56, housing_height_mm=8.8, housing_outer_diameter_mm=48.0,
 ...                    housing_inner_diameter_mm=30.0, stiffness_nm_per_deg=0.0164, torque_tolerance_pct=8,
-...                    theta_pp_deg=16, dtheta_inst_nom_deg=28.6, torque_tolerance_side=-1)
+...                    theta_pp_deg=16, dtheta_inst_nom_deg=28.6, dtheta_nom_free_arm_deg=30.0)
 >>> m = margins(keys, opts)
->>> np.round(m[0, 1], 3).tolist()
-[0.059, 0.059, 0.025, 0.183, 0.115, 3.783, 0.043]
 >>> round(1763.5 * (1 - float(m[0, 1, 0]))), bool((m == margins(keys, opts, engine="numpy")).all())
-(1659, True)
->>> first_feasible(keys, opts, order=[1, 0]).index.tolist()
-[1]
+(1876, True)
+>>> first_feasible(keys, opts).index.tolist(), max_min_margin(keys, opts).index.tolist()
+([-1], [1])
 """
 
 from __future__ import annotations
@@ -79,18 +95,25 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from synth import catalog
-from synth.checks import margin_lower, margin_upper
+from synth.design import evaluate as E
+from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin as registry_margin
 from synth.errors import InputError, Problem
 from synth.model import torsion_spring as s9
 
-__all__ = ["MARGIN_NAMES", "SpringOptions", "SpringKeys", "spring_options", "options_from_table", "spring_keys",
-           "margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin", "any_feasible",
-           "FirstFeasible", "MaxMin", "CHUNK_KEYS", "numba_loaded", "load_kernels"]
+__all__ = ["MARGIN_NAMES", "SpringOptions", "SpringKeys", "spring_options", "options_of_space", "spring_keys",
+           "keys_of_rows", "margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin",
+           "any_feasible", "FirstFeasible", "MaxMin", "CHUNK_KEYS", "numba_loaded", "load_kernels", "FEAS_TOL"]
 
-#: the margins of (a), in this order (``synth.model.torsion_spring.MARGIN_KEYS``)
-MARGIN_NAMES = ("spring_yield", "spring_fatigue", "spring_outer_contact", "spring_inner_contact", "spring_coil_gap",
-                "spring_index_min", "spring_index_max")  # registry ids (the speed work rewires the kernels to them)
+#: the margins of (a), in this order: the registry's non-advisory spring constraints (the kernels' layout)
+MARGIN_NAMES = ("spring_yield", "spring_material_section", "spring_fatigue", "spring_outer_contact",
+                "spring_inner_contact", "spring_coil_gap", "spring_index_min", "spring_index_max")
+_REGISTERED = tuple(c.id for c in by_group("spring") if not c.advisory)
+if _REGISTERED != MARGIN_NAMES:  # pragma: no cover - a new spring constraint needs its line in the kernels
+    raise ImportError(f"synth.kernels.torsion_spring computes {MARGIN_NAMES}; the registry's spring group is "
+                      f"{_REGISTERED}: add the new constraint to the kernels (and their tests)")
 ENGINES = ("numba", "numpy")
+#: the option columns the numpy twin reads (the space's spring table names them so)
+OPTION_FIELDS = E.SPRING_OPTION_COLUMNS
 
 _JIT = None
 
@@ -139,19 +162,19 @@ def _length(fields: dict) -> int:
 
 
 def _scale(limit):
-    """``|limit|``, or 1 where it is zero: the denominator of :func:`synth.checks.margin_upper`/``margin_lower``."""
+    """The registry's default scale of a margin: ``|limit|``, or 1 where it is zero (:func:`registry_margin`)."""
     a = np.abs(np.asarray(limit, dtype=float))
     return np.where(a > 0, a, 1.0)
 
 
 @dataclass(frozen=True, eq=False)
 class SpringOptions:
-    """Main-spring options: the raw per-option arrays and the option-only quantities the kernels read."""
+    """Main-spring options: the raw per-option columns (:data:`OPTION_FIELDS`) and the option-only quantities
+    the kernels read."""
 
-    raw: dict          # E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, round_wire, b_tol_mm, h_tol_mm, mbd_mm
+    raw: dict          # the columns of the space's spring table the group reads
     derived: dict      # the columns of _torsion_spring_jit.OPTION_COLUMNS, by name
-    upper_bound: np.ndarray  # smallest index margin (NaN as -inf): bounds the option's smallest margin for any key
-    fibre: str
+    upper_bound: np.ndarray  # smallest option-only margin (index, section; NaN as -inf): bounds the smallest margin
     constants: dict    # main_spring_constants() when built
     _table: dict = field(default_factory=dict, repr=False)
 
@@ -161,61 +184,89 @@ class SpringOptions:
     def take(self, idx) -> "SpringOptions":
         """The options ``idx`` (indices or a boolean mask), as a new :class:`SpringOptions`."""
         return SpringOptions({k: v[idx] for k, v in self.raw.items()}, {k: v[idx] for k, v in self.derived.items()},
-                             self.upper_bound[idx], self.fibre, self.constants)
+                             self.upper_bound[idx], self.constants)
+
+
+def _options(raw: dict) -> SpringOptions:
+    cst = s9.main_spring_constants()
+    b, h, rnd = raw["b_mm"], raw["h_mm"], raw["round_wire"]
+    mbd, sy = raw["main_spring_mean_body_diameter_mm"], raw["sigma_y_mpa"]
+    c = s9.spring_index(mbd, b, h, rnd)
+    reg = REGISTRY
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        d = {
+            "ei": raw["E_mpa"] * s9.second_moment_mm4(b, h, rnd), "mbd": mbd, "kf": s9.curvature_factor(c, "inner"),
+            "z": s9.section_modulus_mm3(b, h, rnd), "rm": raw["Rm_mpa"], "sa0": raw["sigma_A0_mpa"], "sy": sy,
+            "sy_scale": _scale(sy), "h": h, "h_tol": raw["h_tol_mm"], "bb": b + raw["b_tol_mm"],
+            "b_scale": np.where(b > 0, b, 1.0),
+            "idx_min": registry_margin(reg["spring_index_min"], c, cst["main_spring_index_min"]),
+            "idx_max": registry_margin(reg["spring_index_max"], c, cst["main_spring_index_max"]),
+            "sec": registry_margin(reg["spring_material_section"], raw["supplied_in_section"].astype(float), 1.0),
+        }
+    d = {k: np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), mbd.shape)) for k, v in d.items()}
+    ub = np.minimum(np.minimum(d["idx_min"], d["idx_max"]), d["sec"])
+    d["ub"] = np.where(np.isnan(ub), -np.inf, ub)
+    return SpringOptions(raw, d, d["ub"], cst)
 
 
 def spring_options(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, round_wire, mbd_mm, b_tol_mm=0.0,
-                   h_tol_mm=0.0, fibre="inner") -> SpringOptions:
-    """The main-spring options (arguments as in ``main_spring_design``, broadcast to one length).
+                   h_tol_mm=0.0, sigma_perm_static_mpa=np.nan, supplied_in_section=True) -> SpringOptions:
+    """Main-spring options from per-option arguments (as ``main_spring_design`` names them, broadcast).
 
     Computes with the reference functions what depends on the option alone:
     ``E I`` (eq. 64-65), the section modulus (eq. 73/76), the curvature
-    factor (eq. 74) at the index (eq. 75/77), the index margins (EN 13906-3
-    range of ``constants_main_spring.csv``), ``b + b_tol`` and the scales of
-    the normalised margins.
+    factor (eq. 74) at the index (eq. 75/77), the registry margins of the
+    index range (EN 13906-3, ``constants_main_spring.csv``) and of the
+    material's wire section, ``b + b_tol`` and the scales of the margins.
+    ``sigma_perm_static_mpa`` only feeds the advisory static check (not a
+    kernel margin).
     """
     fields = dict(E_mpa=E_mpa, Rm_mpa=Rm_mpa, sigma_y_mpa=sigma_y_mpa, sigma_A0_mpa=sigma_A0_mpa, b_mm=b_mm,
-                  h_mm=h_mm, round_wire=round_wire, b_tol_mm=b_tol_mm, h_tol_mm=h_tol_mm, mbd_mm=mbd_mm)
+                  h_mm=h_mm, round_wire=round_wire, b_tol_mm=b_tol_mm, h_tol_mm=h_tol_mm,
+                  main_spring_mean_body_diameter_mm=mbd_mm, sigma_perm_static_mpa=sigma_perm_static_mpa,
+                  supplied_in_section=supplied_in_section)
     n = _length(fields)
-    raw = {k: _arr(k, v, n, positive=not k.endswith("_tol_mm")) for k, v in fields.items() if k != "round_wire"}
+    raw = {k: _arr(k if k != "main_spring_mean_body_diameter_mm" else "mbd_mm", v, n,
+                   positive=not k.endswith("_tol_mm"))
+           for k, v in fields.items() if k not in ("round_wire", "supplied_in_section", "sigma_perm_static_mpa")}
     raw["round_wire"] = _bools("round_wire", round_wire, n, "True (round) or False (rectangular) per option")
-    if fibre not in ("inner", "outer"):
-        raise InputError(Problem("fibre", fibre, "'inner' or 'outer'"))
-    cst = s9.main_spring_constants()
-    b, h, rnd, mbd, sy = raw["b_mm"], raw["h_mm"], raw["round_wire"], raw["mbd_mm"], raw["sigma_y_mpa"]
-    c = s9.spring_index(mbd, b, h, rnd)
-    d = {
-        "ei": raw["E_mpa"] * s9.second_moment_mm4(b, h, rnd), "mbd": mbd, "kf": s9.curvature_factor(c, fibre),
-        "z": s9.section_modulus_mm3(b, h, rnd), "rm": raw["Rm_mpa"], "sa0": raw["sigma_A0_mpa"], "sy": sy,
-        "sy_scale": _scale(sy), "h": h, "h_tol": raw["h_tol_mm"], "bb": b + raw["b_tol_mm"],
-        "b_scale": np.maximum(b, 1e-9), "idx_min": margin_lower(c, cst["main_spring_index_min"]),
-        "idx_max": margin_upper(c, cst["main_spring_index_max"]),
-    }
-    ub = np.minimum(d["idx_min"], d["idx_max"])
-    return SpringOptions(raw, d, np.where(np.isnan(ub), -np.inf, ub), fibre, cst)
+    raw["supplied_in_section"] = _bools("supplied_in_section", supplied_in_section, n, "True or False per option")
+    sp = np.asarray(sigma_perm_static_mpa, dtype=float).reshape(-1)
+    raw["sigma_perm_static_mpa"] = np.full(n, sp[0]) if sp.size == 1 else sp
+    return _options(raw)
 
 
-def options_from_table(table, fibre="inner") -> SpringOptions:
-    """:func:`spring_options` of an optimiser spring table (:mod:`synth.optimise.space`: ``spring_material``,
-    ``b_mm``, ``h_mm``, ``round_wire``, ``b_tol_mm``, ``h_tol_mm``, ``spring_mbd_mm``), the material data from
-    :func:`synth.model.torsion_spring.material_properties` as the optimiser reads them."""
-    mats = table["spring_material"].to_numpy().astype(str)
-    b, h = table["b_mm"].to_numpy(float), table["h_mm"].to_numpy(float)
-    rnd = table["round_wire"].to_numpy(bool)
-    props = {k: np.empty(len(table)) for k in ("E_mpa", "Rm_mpa", "sigma_y_mpa", "sigma_A0_mpa")}
-    for mat in dict.fromkeys(mats):
-        sel = mats == mat
-        p = s9.material_properties(mat, b[sel], h[sel], rnd[sel])
-        for k in props:
-            props[k][sel] = p[k]
-    return spring_options(**props, b_mm=b, h_mm=h, round_wire=rnd, b_tol_mm=table["b_tol_mm"].to_numpy(float),
-                          h_tol_mm=table["h_tol_mm"].to_numpy(float), mbd_mm=table["spring_mbd_mm"].to_numpy(float),
-                          fibre=fibre)
+_SPACE_OPTIONS: dict = {}
+
+
+def options_of_space(table: dict | None = None, idx=None) -> SpringOptions:
+    """:class:`SpringOptions` of a design space's spring table (default: :func:`synth.design.space.space`'s;
+    ``idx``: a subset of its rows). The whole table's is kept per table and catalog constants (its yield
+    thresholds too)."""
+    if table is None:
+        from synth.design.space import space
+        table = space().tables["spring"]
+    if idx is None:
+        hit = _SPACE_OPTIONS.get(id(table))
+        if hit is not None and hit[0] is table and hit[1].constants == s9.main_spring_constants():
+            return hit[1]
+        opts = options_of_space(table, np.arange(len(table["b_mm"])))
+        _SPACE_OPTIONS.clear()
+        _SPACE_OPTIONS[id(table)] = (table, opts)
+        return opts
+    raw = {k: np.asarray(table[k])[idx] for k in OPTION_FIELDS}
+    raw["round_wire"] = raw["round_wire"].astype(bool)
+    raw["supplied_in_section"] = raw["supplied_in_section"].astype(bool)
+    for k in OPTION_FIELDS:
+        if k not in ("round_wire", "supplied_in_section"):
+            raw[k] = raw[k].astype(float)
+    return _options(raw)
 
 
 @dataclass(frozen=True, eq=False)
 class SpringKeys:
-    """Spring keys: the raw per-key arrays and the key-only quantities the kernels read."""
+    """Spring keys: the raw per-key inputs (:data:`synth.design.evaluate.SPRING_INPUTS` and ``fatigue_verified``)
+    and the key-only quantities the kernels read."""
 
     raw: dict
     derived: dict      # the columns of _torsion_spring_jit.KEY_COLUMNS, by name
@@ -232,16 +283,42 @@ class SpringKeys:
                           self.consts, self.constants)
 
 
+def _keys(raw: dict) -> SpringKeys:
+    cst = s9.main_spring_constants()
+    k = raw["stiffness_nm_per_deg"]
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        ang = s9.working_angles_deg(raw["spring_torque_nominal_nm"], raw["torque_tolerance_pct"], k,
+                                    raw["theta_pp_deg"], raw["dtheta_inst_nom_deg"], raw["dtheta_nom_free_arm_deg"])
+        outer_min = raw["housing_outer_diameter_mm"] - cst["spring_housing_outer_tol_mm"]
+        inner_max = raw["housing_inner_diameter_mm"] + cst["spring_housing_inner_tol_mm"]
+        d = {
+            "k180": 180.0 * np.maximum(k * 1000.0, 1e-12), "t_plus": s9.torque_nm(ang["theta_plus"], k),
+            "t_minus": s9.torque_nm(ang["theta_minus"], k), "t_inst": s9.torque_nm(ang["theta_inst"], k),
+            "inc_inst": 1.0 * ang["theta_inst"] / 360.0, "inc_free_arm": 1.0 * ang["theta_free_arm"] / 360.0,
+            "inc_nom": 1.0 * ang["theta_nom"] / 360.0, "height": raw["housing_height_mm"],
+            "outer_min": outer_min, "outer_scale": _scale(outer_min), "inner_max": inner_max,
+            "inner_scale": _scale(inner_max), "winding": np.ones(len(k)),
+            "fatigue": raw["fatigue_verified"].astype(float),
+        }
+    d = {name: np.ascontiguousarray(np.asarray(v, dtype=float)) for name, v in d.items()}
+    sf_min = cst["main_spring_min_safety_factor"]
+    consts = {"mbd_tol": cst["main_spring_mbd_tol_mm"], "sf_min": sf_min, "sf_scale": float(_scale(sf_min)),
+              "min_gap": cst["main_spring_min_coil_gap_mm"]}
+    return SpringKeys(raw, d, consts, cst)
+
+
 def spring_keys(*, spring_torque_nominal_nm, housing_height_mm, housing_outer_diameter_mm, housing_inner_diameter_mm,
                 stiffness_nm_per_deg, torque_tolerance_pct, theta_pp_deg, dtheta_inst_nom_deg=None,
-                dtheta_nom_free_arm_deg=None, torque_tolerance_side=1.0, winding=True) -> SpringKeys:
-    """The spring keys (arguments as in ``main_spring_design``, broadcast to one length).
+                dtheta_nom_free_arm_deg=None, fatigue_verified=True) -> SpringKeys:
+    """Spring keys from per-key arguments (as ``main_spring_design`` names them, broadcast).
 
     Computes with the reference functions what depends on the key alone: the
     working angles (eq. 66-70), the torques at theta+, theta- and
-    installation (eq. 71), the coil increments ``+-theta/360`` (eq. 78-79),
-    ``180 k_t`` (eq. 64-65) and the housing limits with their tolerances
-    (eq. 82, 86). Missing travels take the catalog defaults, as the reference.
+    installation (eq. 71), the coil increments ``theta/360`` (eq. 78, the
+    winding spring of the evaluator), ``180 k_t`` (eq. 64-65) and the housing
+    limits with their tolerances (eq. 82, 86). Missing travels take their
+    documented defaults (:data:`synth.design.applications.DEFAULTS`).
+    ``fatigue_verified=False``: no durability test, the fatigue margin is ``+inf``.
     """
     cst = s9.main_spring_constants()
     if dtheta_inst_nom_deg is None:
@@ -253,28 +330,24 @@ def spring_keys(*, spring_torque_nominal_nm, housing_height_mm, housing_outer_di
                   housing_inner_diameter_mm=housing_inner_diameter_mm, stiffness_nm_per_deg=stiffness_nm_per_deg,
                   torque_tolerance_pct=torque_tolerance_pct, theta_pp_deg=theta_pp_deg,
                   dtheta_inst_nom_deg=dtheta_inst_nom_deg, dtheta_nom_free_arm_deg=dtheta_nom_free_arm_deg,
-                  torque_tolerance_side=torque_tolerance_side, winding=winding)
+                  fatigue_verified=fatigue_verified)
     n = _length(fields)
-    raw = {k: _arr(k, v, n, positive=k == "stiffness_nm_per_deg") for k, v in fields.items() if k != "winding"}
-    raw["winding"] = _bools("winding", winding, n, "True (winding) or False (unwinding) per key")
-    k = raw["stiffness_nm_per_deg"]
-    ang = s9.working_angles_deg(raw["spring_torque_nominal_nm"], raw["torque_tolerance_pct"], k, raw["theta_pp_deg"],
-                                raw["dtheta_inst_nom_deg"], raw["dtheta_nom_free_arm_deg"], raw["torque_tolerance_side"])
-    sign = np.where(raw["winding"], 1.0, -1.0)
-    outer_min = raw["housing_outer_diameter_mm"] - cst["spring_housing_outer_tol_mm"]
-    inner_max = raw["housing_inner_diameter_mm"] + cst["spring_housing_inner_tol_mm"]
-    d = {
-        "k180": 180.0 * np.maximum(k * 1000.0, 1e-12), "t_plus": s9.torque_nm(ang["theta_plus"], k),
-        "t_minus": s9.torque_nm(ang["theta_minus"], k), "t_inst": s9.torque_nm(ang["theta_inst"], k),
-        "inc_inst": sign * ang["theta_inst"] / 360.0, "inc_free_arm": sign * ang["theta_free_arm"] / 360.0,
-        "inc_nom": sign * ang["theta_nom"] / 360.0, "height": raw["housing_height_mm"],
-        "outer_min": outer_min, "outer_scale": _scale(outer_min), "inner_max": inner_max,
-        "inner_scale": _scale(inner_max), "winding": raw["winding"].astype(float),
-    }
-    sf_min = cst["main_spring_min_safety_factor"]
-    consts = {"mbd_tol": cst["main_spring_mbd_tol_mm"], "sf_min": sf_min, "sf_scale": float(_scale(sf_min)),
-              "min_gap": cst["main_spring_min_coil_gap_mm"]}
-    return SpringKeys(raw, d, consts, cst)
+    raw = {k: _arr(k, v, n, positive=k == "stiffness_nm_per_deg") for k, v in fields.items()
+           if k != "fatigue_verified"}
+    raw["spring_torque_nominal_nm"] = np.maximum(raw["spring_torque_nominal_nm"], 1e-6)  # as the evaluator
+    raw["fatigue_verified"] = _bools("fatigue_verified", fatigue_verified, n, "True or False per key")
+    return _keys(raw)
+
+
+def keys_of_rows(apps, keys: dict, k=None) -> SpringKeys:
+    """:class:`SpringKeys` of rows ``k`` (default all) of the evaluator's keys (:func:`synth.design.evaluate.spring_keys`)
+    of applications ``apps``: the inputs :func:`synth.design.evaluate.spring_inputs` gives the spring group, and
+    whether the application has its durability test (the fatigue check's requirement)."""
+    if k is None:
+        k = np.arange(len(keys["app"]))
+    raw = {name: np.ascontiguousarray(np.asarray(v, dtype=float)) for name, v in E.spring_inputs(apps, keys, k).items()}
+    raw["fatigue_verified"] = np.asarray(apps.met(REGISTRY["spring_fatigue"].needs[0]))[keys["app"][k]]
+    return _keys(raw)
 
 
 def _tables(keys: SpringKeys, options: SpringOptions):
@@ -303,24 +376,33 @@ def _same_constants(keys: SpringKeys, options: SpringOptions):
                                      "keys and options built after the last change of the catalog constants"))
 
 
+class _Requirements:
+    """What :func:`synth.design.evaluate.finish` asks of the applications, for keys x options rows."""
+
+    def __init__(self, fatigue_verified):
+        self.fatigue_verified = fatigue_verified
+
+    def met(self, requirement):
+        if requirement != REGISTRY["spring_fatigue"].needs[0]:  # pragma: no cover - a new requirement in step 9
+            raise KeyError(f"the spring kernels know the requirement of spring_fatigue only, not {requirement!r}")
+        return self.fatigue_verified
+
+
 def reference_margins(keys: SpringKeys, options: SpringOptions, key_idx=None, option_idx=None) -> np.ndarray:
-    """Margins ``(n_keys, n_options, 7)`` by the reference :func:`~synth.model.torsion_spring.main_spring_design`
-    (one call on keys x options broadcast), optionally for the keys ``key_idx`` and options ``option_idx``."""
-    rk = {k: (v if key_idx is None else v[key_idx])[:, None] for k, v in keys.raw.items()}
-    ro = {k: (v if option_idx is None else v[option_idx])[None, :] for k, v in options.raw.items()}
-    shape = (rk["housing_height_mm"].shape[0], ro["mbd_mm"].shape[1])
-    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # extremes overflow as in the optimiser
-        r = s9.main_spring_design(
-            E_mpa=ro["E_mpa"], Rm_mpa=ro["Rm_mpa"], sigma_y_mpa=ro["sigma_y_mpa"], sigma_A0_mpa=ro["sigma_A0_mpa"],
-            b_mm=ro["b_mm"], h_mm=ro["h_mm"], round_wire=ro["round_wire"], mbd_mm=ro["mbd_mm"],
-            b_tol_mm=ro["b_tol_mm"], h_tol_mm=ro["h_tol_mm"], stiffness_nm_per_deg=rk["stiffness_nm_per_deg"],
-            spring_torque_nominal_nm=rk["spring_torque_nominal_nm"], torque_tolerance_pct=rk["torque_tolerance_pct"],
-            theta_pp_deg=rk["theta_pp_deg"], housing_height_mm=rk["housing_height_mm"],
-            housing_outer_diameter_mm=rk["housing_outer_diameter_mm"],
-            housing_inner_diameter_mm=rk["housing_inner_diameter_mm"], dtheta_inst_nom_deg=rk["dtheta_inst_nom_deg"],
-            dtheta_nom_free_arm_deg=rk["dtheta_nom_free_arm_deg"], torque_tolerance_side=rk["torque_tolerance_side"],
-            winding=rk["winding"], fibre=options.fibre)
-        return np.stack([np.broadcast_to(r[m], shape) for m in MARGIN_NAMES], axis=-1)
+    """Margins ``(n_keys, n_options, 8)`` by the registry path itself: :func:`synth.design.evaluate.spring_values`
+    on keys x options broadcast and :func:`synth.design.evaluate.finish` (optionally for the keys ``key_idx`` and
+    the options ``option_idx``)."""
+    ki = np.arange(len(keys)) if key_idx is None else np.asarray(key_idx)
+    oi = np.arange(len(options)) if option_idx is None else np.asarray(option_idx)
+    nk, no = len(ki), len(oi)
+    x = {k: v[ki][:, None] for k, v in keys.raw.items() if k != "fatigue_verified"}
+    o = {k: v[oi][None, :] for k, v in options.raw.items()}
+    v = E.spring_values(o, x)
+    flat = {name: np.broadcast_to(val, (nk, no)).reshape(-1) for name, val in v.items()}
+    req = _Requirements(np.repeat(keys.raw["fatigue_verified"][ki], no))
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        g = E.finish("spring", flat, req, np.arange(nk * no))
+    return np.stack([g.margins[m].reshape(nk, no) for m in MARGIN_NAMES], axis=-1)
 
 
 def margins(keys: SpringKeys, options: SpringOptions, *, engine: str = "numba", parallel: bool = False,
@@ -328,8 +410,8 @@ def margins(keys: SpringKeys, options: SpringOptions, *, engine: str = "numba", 
     """(a) Every margin, ``out[i, j, m]`` for key ``i``, option ``j`` and margin ``MARGIN_NAMES[m]`` (>= 0 passes).
 
     ``engine="numpy"`` is :func:`reference_margins` itself. The array holds
-    ``7 * 8`` bytes per pair: call it on chunks of keys for large tables, and
-    pass ``out`` (float64, C order, ``(n_keys, n_options, 7)``) to reuse one
+    ``8 * 8`` bytes per pair: call it on chunks of keys for large tables, and
+    pass ``out`` (float64, C order, ``(n_keys, n_options, 8)``) to reuse one
     buffer (numba engine).
     """
     _check_engine(engine)
@@ -416,14 +498,16 @@ class MaxMin(tuple):
 
 
 def first_feasible(keys: SpringKeys, options: SpringOptions, order=None, *, key_group=None, score=None,
-                   score_limit=None, tol: float = 0.0, engine: str = "numba", parallel: bool = False) -> FirstFeasible:
+                   score_limit=None, tol: float = FEAS_TOL, engine: str = "numba",
+                   parallel: bool = False) -> FirstFeasible:
     """(b) Per key, the first option of ``order`` whose margins are all ``>= -tol`` (early exit).
 
     ``order``: option indices in score order (e.g. ``np.argsort(cost, kind="stable")``), one list for every
     key, or a list of such lists with ``key_group[i]`` naming key ``i``'s (one list per application).
-    Default: every option in index order. With ``score`` (per option) and ``score_limit`` (per key) a key's
-    scan stops at the first option whose score exceeds its limit (the branch and bound of the bulk engine).
-    ``tol=0`` is the reference's verdict; the optimiser uses ``FEAS_TOL``. A NaN margin fails.
+    Default: every option in index order. With ``score`` and ``score_limit`` (per key) a key's scan stops at
+    the first candidate whose score exceeds its limit (the branch and bound of the bulk engine): ``score`` per
+    option, or one array per list (aligned with it: an application's own scores). ``tol``: the registry's
+    ``FEAS_TOL`` (its verdict) by default. A NaN margin fails.
 
     Returns :class:`FirstFeasible` ``(index, visited)``: ``index[i] = -1`` when no option qualifies;
     ``visited`` counts the options the kernel examined (numpy: the pairs evaluated, whole blocks).
@@ -431,13 +515,31 @@ def first_feasible(keys: SpringKeys, options: SpringOptions, order=None, *, key_
     _check_engine(engine)
     n = len(keys)
     ptr, idx, kg = _groups(n, len(options), order, key_group)
-    sc = np.zeros(len(options)) if score is None else _per_key(score, len(options), "score", 0.0)
+    sc = _candidate_scores(score, ptr, idx, len(options))
     lim = _per_key(score_limit, n, "score_limit", np.inf)
     return _first_feasible(keys, options, ptr, idx, kg, sc, lim, float(tol), engine, parallel)
 
 
+def _candidate_scores(score, ptr, idx, n_opt) -> np.ndarray:
+    """The score of every candidate (aligned with ``idx``): from one score per option or one array per list."""
+    if score is None:
+        return np.zeros(len(idx))
+    if isinstance(score, np.ndarray) or (len(score) and np.ndim(score[0]) == 0):
+        return _per_key(score, n_opt, "score", 0.0)[idx]
+    parts = [np.asarray(x, dtype=float).reshape(-1) for x in score]
+    sizes = np.diff(ptr)
+    if len(parts) != len(sizes) or any(len(x) != m for x, m in zip(parts, sizes)):
+        raise InputError(Problem("score", f"{len(parts)} arrays", f"one score per option ({n_opt}) or one array per "
+                                 f"candidate list, as long as it ({sizes[:5].tolist()}...)"))
+    out = np.concatenate(parts) if parts else np.zeros(0)
+    if np.isnan(out).any():
+        raise InputError(Problem("score", "NaN", "numbers"))
+    return out
+
+
 def _first_feasible(keys, options, ptr, idx, kg, sc, lim, tol, engine, parallel) -> FirstFeasible:
-    """:func:`first_feasible` on checked candidate lists (CSR ``ptr``, ``idx``; ``kg`` per key)."""
+    """:func:`first_feasible` on checked candidate lists (CSR ``ptr``, ``idx``, scores ``sc`` aligned with ``idx``;
+    ``kg`` per key)."""
     _same_constants(keys, options)
     n = len(keys)
     if engine == "numba":
@@ -445,8 +547,8 @@ def _first_feasible(keys, options, ptr, idx, kg, sc, lim, tol, engine, parallel)
         kperm, kptr, chunk_list = _chunks(kg, keys.derived["t_inst"])
         pick, visited, work = np.empty(n, np.int64), np.empty(n, np.int64), np.empty(n, np.int64)
         scan = jit.first_feasible_scan_parallel if parallel else jit.first_feasible_scan
-        scan(kt, ot, c, float(tol), yield_thresholds(options, tol), ptr, idx, chunk_list, kptr, kperm, sc, lim, pick,
-             visited, work)
+        scan(kt, ot, c, float(tol), yield_thresholds(options, tol), ptr, idx, chunk_list, kptr, kperm,
+             np.ascontiguousarray(sc, dtype=float), lim, pick, visited, work)
         return FirstFeasible((pick, visited))
     return FirstFeasible(_first_feasible_numpy(keys, options, ptr, idx, kg, sc, lim, tol))
 
@@ -480,7 +582,7 @@ def _from_ordinal(k):
     return np.where(k >= 0, k, (-k) | np.int64(-0x8000000000000000)).view(np.float64)
 
 
-def yield_thresholds(options: SpringOptions, tol: float = 0.0) -> np.ndarray:
+def yield_thresholds(options: SpringOptions, tol: float = FEAS_TOL) -> np.ndarray:
     """Per option, the largest installation torque ``T_inst`` [N m] whose yield margin (eq. 72-77) is ``>= -tol``.
 
     The margin ``(sigma_y - k_f T 1000 / Z) / |sigma_y|`` is computed by a chain
@@ -526,29 +628,40 @@ def _keys_by_group(kg, n_groups):
 
 
 def _first_feasible_numpy(keys, options, ptr, idx, kg, score, limit, tol):
+    """(b) in numpy: each list in blocks for the keys still looking, the registry path on every pair of a block.
+
+    Options that no key of the list can pass are left out first, exactly: an option-only margin (index range,
+    material section) below ``-tol``, or an installation-torque threshold (:func:`yield_thresholds`) below the
+    smallest installation torque of the list's keys."""
     pick, visited = np.full(len(keys), -1, np.int64), np.zeros(len(keys), np.int64)
+    t_max = yield_thresholds(options, tol)
+    t_inst = keys.derived["t_inst"]
     for g, kk in enumerate(_keys_by_group(kg, len(ptr) - 1)):
         lst = idx[ptr[g]:ptr[g + 1]]
         if not len(kk) or not len(lst):
             continue
-        over = score[lst][None, :] > limit[kk][:, None]
+        over = score[ptr[g]:ptr[g + 1]][None, :] > limit[kk][:, None]
         stop = np.where(over.any(axis=1), np.argmax(over, axis=1), len(lst))  # scan length of each key
+        with np.errstate(invalid="ignore"):
+            t_lo = np.nanmin(t_inst[kk]) if np.isfinite(t_inst[kk]).any() else np.inf
+        can = np.flatnonzero((options.upper_bound[lst] >= -tol) & (t_max[lst] >= t_lo))  # positions in lst
         active = stop > 0
-        for lo, hi in _blocks(len(lst)):
+        for lo, hi in _blocks(len(can)):
             a = np.flatnonzero(active)
             if not len(a):
                 break
-            m = reference_margins(keys, options, kk[a], lst[lo:hi])
-            ok = np.all(m >= -tol, axis=2) & (np.arange(lo, hi)[None, :] < stop[a][:, None])
-            visited[kk[a]] += np.minimum(hi, stop[a]) - lo
+            pos = can[lo:hi]
+            m = reference_margins(keys, options, kk[a], lst[pos])
+            ok = np.all(m >= -tol, axis=2) & (pos[None, :] < stop[a][:, None])
+            visited[kk[a]] += ((pos[None, :] < stop[a][:, None])).sum(axis=1)
             has = ok.any(axis=1)
-            pick[kk[a[has]]] = lst[lo + np.argmax(ok[has], axis=1)]
+            pick[kk[a[has]]] = lst[pos[np.argmax(ok[has], axis=1)]]
             active[a[has]] = False
-            active &= stop > hi
+            active &= (stop > (pos[-1] + 1)) if len(pos) else False
     return pick, visited
 
 
-def any_feasible(keys: SpringKeys, options: SpringOptions, candidates=None, *, key_group=None, tol: float = 0.0,
+def any_feasible(keys: SpringKeys, options: SpringOptions, candidates=None, *, key_group=None, tol: float = FEAS_TOL,
                  engine: str = "numba", parallel: bool = False) -> FirstFeasible:
     """(d) Per key, whether some option of ``candidates`` (lists as in :func:`first_feasible`) is feasible.
 
@@ -566,7 +679,7 @@ def any_feasible(keys: SpringKeys, options: SpringOptions, candidates=None, *, k
     grp = np.repeat(np.arange(len(ptr) - 1), np.diff(ptr))[keep]
     ptr_k = np.zeros_like(ptr)
     ptr_k[1:] = np.cumsum(np.bincount(grp, minlength=len(ptr) - 1))
-    r = _first_feasible(keys, options, ptr_k, idx[keep], kg, np.zeros(len(options)), np.full(len(keys), np.inf),
+    r = _first_feasible(keys, options, ptr_k, idx[keep], kg, np.zeros(int(keep.sum())), np.full(len(keys), np.inf),
                         float(tol), engine, parallel)
     return FirstFeasible((r.index >= 0, r.visited))
 

@@ -912,6 +912,78 @@ def bolt_candidates(bolt_format: str | None = None, property_class: str | None =
     >>> len(bolt_candidates("M10x1.25", "10.9")), bolt_candidates("M8x1.25", "8.8", "socket")[0]["dw_min_mm"]
     (1, 12.33)
     """
+    key = (None if bolt_format is None else str(bolt_format).strip(),
+           None if property_class is None else str(property_class).strip(), head_type)
+    return [dict(c) for c in _candidates_memo(key, (bolt_format, property_class, head_type))]
+
+
+_CANDIDATES: dict = {}
+
+
+def _candidates_memo(key, args) -> tuple:
+    """:func:`bolt_candidates` memoised per arguments and catalog tables (a user catalog folder, or a cleared
+    catalog cache, gives new tables and so a new list). A named format and class is read from the table of every
+    (format, class) of its head form, built in one pass; anything else (automatic mode, an unknown name: its
+    error) by :func:`_bolt_candidates`."""
+    from synth import catalog as _catalog
+    dirs = tuple(_catalog._user_dirs())
+    tables = tuple(_catalog._load_cached(n, dirs) for n in ("bolts", "bolt_property_classes", "bolt_heads"))
+    hit = _CANDIDATES.get((key, dirs))
+    if hit is not None and all(a is b for a, b in zip(hit[0], tables)):
+        return hit[1]
+    if len(_CANDIDATES) > 4096:
+        _CANDIDATES.clear()
+    fmt, cls, head = key
+    out = None
+    if fmt is not None and cls is not None and head in HEAD_TYPES:
+        every = _CANDIDATES.get((("*", "*", head), dirs))
+        if every is None or not all(a is b for a, b in zip(every[0], tables)):
+            every = (tables, _every_candidate(head))
+            _CANDIDATES[(("*", "*", head), dirs)] = every
+        if (fmt, cls) in every[1]:
+            out = (every[1][(fmt, cls)],)
+    if out is None:
+        out = tuple(_bolt_candidates(*args))
+    _CANDIDATES[(key, dirs)] = (tables, out)
+    return out
+
+
+def _every_candidate(head_type) -> dict:
+    """``{(format, class): candidate}`` of every defined pair in one head form (one pass over the catalogs)."""
+    bolts, classes, heads = load("bolts"), load("bolt_property_classes"), load("bolt_heads")
+    key_b, key_c = bolts.columns[0], classes.columns[0]
+    head_of = {str(h["bolt_format"]).strip(): h for _, h in heads[heads["head_type"] == head_type].iterrows()}
+    out = {}
+    for _, b in bolts.iterrows():
+        head = head_of.get(str(b[key_b]))
+        if head is None:
+            continue
+        for _, c in classes.iterrows():
+            cand = _candidate(b, c, head, head_type, key_b, key_c)
+            if cand is not None:
+                out[(cand["bolt_format"], cand["bolt_property_class"])] = cand
+    return out
+
+
+def _candidate(b, c, head, head_type, key_b, key_c) -> dict | None:
+    """The candidate dict of one bolt row, class row and head row; None for a class not defined at the diameter."""
+    if not np.isnan(float(c["d_max_mm"])) and float(b["d_mm"]) > float(c["d_max_mm"]):
+        return None
+    big = float(b["d_mm"]) > 16.0
+    rp = float(c["rp02_min_d_gt16_mpa"] if big else c["rp02_min_mpa"])
+    rm = float(c["rm_min_d_gt16_mpa"] if big else c["rm_min_mpa"])
+    return {
+        "bolt_format": str(b[key_b]), "bolt_property_class": str(c[key_c]),
+        **{k: float(b[k]) for k in _NUMERIC_BOLT_COLUMNS},
+        "head_type": head_type, "dw_min_mm": float(head["dw_min_mm"]),
+        "head_outer_mm": float(head["head_outer_mm"]), "head_height_mm": float(head["head_height_mm"]),
+        "head_product_standard": str(head["product_standard"]),
+        "unit_cost_eur": float(b["unit_cost_eur"]) * float(head["cost_factor"]),
+        "rp02_mpa": rp, "rm_mpa": rm, "unit_cost_factor": float(c["unit_cost_factor"]),
+    }
+
+
+def _bolt_candidates(bolt_format, property_class, head_type):
     if head_type not in HEAD_TYPES:
         raise InputError(Problem("head_type", head_type, "one of " + ", ".join(HEAD_TYPES)))
     bolts = load("bolts")
@@ -934,22 +1006,11 @@ def bolt_candidates(bolt_format: str | None = None, property_class: str | None =
         classes = hit
     out = []
     for _, b in bolts.iterrows():
-        big = float(b["d_mm"]) > 16.0
         head = bolt_head(str(b[key_b]), head_type)
         for _, c in classes.iterrows():
-            if not np.isnan(float(c["d_max_mm"])) and float(b["d_mm"]) > float(c["d_max_mm"]):
-                continue
-            rp = float(c["rp02_min_d_gt16_mpa"] if big else c["rp02_min_mpa"])
-            rm = float(c["rm_min_d_gt16_mpa"] if big else c["rm_min_mpa"])
-            out.append({
-                "bolt_format": str(b[key_b]), "bolt_property_class": str(c[key_c]),
-                **{k: float(b[k]) for k in _NUMERIC_BOLT_COLUMNS},
-                "head_type": head_type, "dw_min_mm": float(head["dw_min_mm"]),
-                "head_outer_mm": float(head["head_outer_mm"]), "head_height_mm": float(head["head_height_mm"]),
-                "head_product_standard": str(head["product_standard"]),
-                "unit_cost_eur": float(b["unit_cost_eur"]) * float(head["cost_factor"]),
-                "rp02_mpa": rp, "rm_mpa": rm, "unit_cost_factor": float(c["unit_cost_factor"]),
-            })
+            cand = _candidate(b, c, head, head_type, key_b, key_c)
+            if cand is not None:
+                out.append(cand)
     if not out:
         raise InputError(Problem("bolt_property_class", property_class,
                                  f"a class defined for {bolt_format} (ISO 898-1: 9.8 only up to 16 mm)"))
@@ -973,7 +1034,7 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
              method="thesis", clamp_length_mm=None, tightening_method=DEFAULT_TIGHTENING_METHOD, alpha_a=None,
              embedding_roughness=DEFAULT_EMBEDDING_ROUGHNESS, embedding_loading=DEFAULT_EMBEDDING_LOADING,
              clamped_interfaces=None, joint_type="tapped", clamped_parts_modulus_mpa=None,
-             free_thread_length_mm=0.0, utilisation=None, tighten_to="permissible"):
+             free_thread_length_mm=0.0, utilisation=None, tighten_to="permissible", candidates=None):
     """Step 10 of the flowchart: bolt preload, bolt choice and all checks (eq. (94)-(111)).
 
     Vectorised over designs: every numeric argument broadcasts. The clamp
@@ -1021,6 +1082,11 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     (``axial``/``transverse``), ``clamped_interfaces``, ``joint_type``
     (``tapped``/``through``), ``clamped_parts_modulus_mpa``,
     ``free_thread_length_mm`` (loaded free thread inside l_K, default 0).
+
+    ``candidates`` (a list of ``(bolt_format, bolt_property_class)`` pairs, with ``bolt_format`` and
+    ``bolt_property_class`` left None): every pair is evaluated as the chosen bolt, no escalation, and every
+    returned array gains a trailing axis, one entry per pair (a design space evaluates all its bolts of one
+    head form in one call; each entry equals the call naming that bolt).
 
     Returns a dict of arrays with the case keys ``bolt_tightening_torque_nm``,
     ``bolt_axial_force_n``, ``bolt_sigma_mpa``, ``bolt_tau_mpa``,
@@ -1085,7 +1151,15 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     moment = hl * lever
 
     # --- bolt escalation: candidates on a trailing axis --------------------------------------
-    cands = bolt_candidates(bolt_format, bolt_property_class, head_type)
+    if candidates is not None:
+        if bolt_format is not None or bolt_property_class is not None:
+            raise InputError(Problem("candidates", "given with bolt_format/bolt_property_class",
+                                     "either a list of (format, class) pairs or one format and class"))
+        cands = [bolt_candidates(f, c, head_type)[0] for f, c in candidates]
+        if not cands:
+            raise InputError(Problem("candidates", "[]", "at least one (format, class) pair"))
+    else:
+        cands = bolt_candidates(bolt_format, bolt_property_class, head_type)
     col = {key: np.array([c[key] for c in cands], dtype=float) for key, v in cands[0].items() if isinstance(v, float)}
     names_f = np.array([c["bolt_format"] for c in cands])
     names_c = np.array([c["bolt_property_class"] for c in cands])
@@ -1119,39 +1193,53 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         per["f_zul"] = permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"], col["rp02_mpa"],
                                                       mu_gk, utilisation=utilisation)
         passes = per["f_max"] <= per["f_zul"]
-    idx = np.where(passes.any(axis=-1), passes.argmax(axis=-1), len(cands) - 1)
+    each = candidates is not None
+    if each:  # every candidate is the chosen bolt: its trailing axis stays, the design arrays gain one
+        idx = np.broadcast_to(np.arange(len(cands)), passes.shape)
 
-    def pick(a):
-        a = np.broadcast_to(a, passes.shape)
-        return np.take_along_axis(a, idx[..., None], axis=-1)[..., 0]
+        def pick(a):
+            return np.broadcast_to(a, passes.shape)
+
+        def ex(a):
+            return np.asarray(a, dtype=float)[..., None]
+    else:
+        idx = np.where(passes.any(axis=-1), passes.argmax(axis=-1), len(cands) - 1)
+
+        def pick(a):
+            a = np.broadcast_to(a, passes.shape)
+            return np.take_along_axis(a, idx[..., None], axis=-1)[..., 0]
+
+        def ex(a):
+            return a
 
     sel = {key: col[key][idx] for key in col}
     dw = pick(dw_c)
     if method == "thesis":
-        f_bolt = force
+        f_bolt = ex(force)
         sigma_s, tau_s, eqv_s = pick(per["sigma"]), pick(per["tau"]), pick(per["eqv"])
-        torque = (pick(per["t_thread"]) + under_head_torque_nmm(force, dw, d_int, mu_k)) / 1000.0
-        residual = force
+        torque = (pick(per["t_thread"]) + under_head_torque_nmm(ex(force), dw, ex(d_int), ex(mu_k))) / 1000.0
+        residual = ex(force)
     else:
         f_zul, f_z, f_max = pick(per["f_zul"]), pick(per["f_z"]), pick(per["f_max"])
         f_bolt = f_zul if tighten_to == "permissible" else np.minimum(f_max, f_zul)
         d0 = (sel["d2_mm"] + sel["d3_mm"]) / 2.0
-        thread_moment = f_bolt / 2.0 * (sel["pitch_mm"] / np.pi + mu_g * sel["d2_mm"] /
+        thread_moment = f_bolt / 2.0 * (sel["pitch_mm"] / np.pi + ex(mu_g) * sel["d2_mm"] /
                                         np.cos(np.radians(constant("thread_flank_half_angle_deg"))))
         sigma_s = f_bolt / (np.pi / 4.0 * d0**2)
         tau_s = 12.0 * thread_moment / (np.pi * d0**3)  # plastic torsion section pi d0^3/12 (VDI R7)
         eqv_s = von_mises_stress_mpa(sigma_s, tau_s)
-        torque = assembly_torque_nm(f_bolt, sel["pitch_mm"], sel["d2_mm"], mu_g, head_mean_diameter_mm(dw, d_int), mu_k)
+        torque = assembly_torque_nm(f_bolt, sel["pitch_mm"], sel["d2_mm"], ex(mu_g), head_mean_diameter_mm(dw, ex(d_int)),
+                                    ex(mu_k))
         residual = f_bolt / alpha - f_z
-    sf_t = tilting_safety_factor(np.maximum(residual, 0.0), hl, lever, d_ext, d_int, contact_angle_deg,
-                                 model=contact_model)
-    sf_s = sliding_safety_factor(np.maximum(residual, 0.0), hl, mu_cc)
-    p_avg = f_bolt / area
-    s_head = under_head_stress_mpa(f_bolt, dw, d_int)
+    sf_t = tilting_safety_factor(np.maximum(residual, 0.0), ex(hl), ex(lever), ex(d_ext), ex(d_int),
+                                 ex(contact_angle_deg), model=contact_model)
+    sf_s = sliding_safety_factor(np.maximum(residual, 0.0), ex(hl), ex(mu_cc))
+    p_avg = f_bolt / ex(area)
+    s_head = under_head_stress_mpa(f_bolt, dw, ex(d_int))
     a_thr = thread_area_mm2(sel["d_mm"], sel["pitch_mm"], sel["d2_mm"], sel["d3_mm"], sel["D1_mm"],
                             model=thread_area_model)
-    s_thr = thread_bearing_stress_mpa(f_bolt, a_thr, n_thr)
-    p_max = p_avg + moment * k
+    s_thr = thread_bearing_stress_mpa(f_bolt, a_thr, ex(n_thr))
+    p_max = p_avg + ex(moment) * ex(k)
 
     out = {
         "bolt_tightening_torque_nm": torque,
@@ -1163,24 +1251,27 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         "bolt_thread_stress_mpa": s_thr,
         "bolt_format": names_f[idx],
         "bolt_property_class": names_c[idx],
-        "pivot_base_contact_surface_mm2": area,
+        "pivot_base_contact_surface_mm2": ex(area),
         "average_contact_pressure_mpa": p_avg,
         "tilting_safety_factor": sf_t,
         "sliding_safety_factor": sf_s,
-        "bolt_force_tilting_n": f_tilt,
-        "bolt_force_sliding_n": f_slide,
-        "bolt_clamp_force_required_n": force,
-        "tilting_moment_nmm": moment,
+        "bolt_force_tilting_n": ex(f_tilt),
+        "bolt_force_sliding_n": ex(f_slide),
+        "bolt_clamp_force_required_n": ex(force),
+        "tilting_moment_nmm": ex(moment),
         "pivot_base_max_pressure_mpa": p_max,
-        "pivot_base_min_pressure_mpa": residual / area - moment * k,
+        "pivot_base_min_pressure_mpa": residual / ex(area) - ex(moment) * ex(k),
         "bolt_rp02_mpa": sel["rp02_mpa"],
         "bolt_utilisation": eqv_s / sel["rp02_mpa"],
         "bolt_head_contact_diameter_mm": dw,
         "bolt_unit_cost_eur": sel["unit_cost_eur"] * sel["unit_cost_factor"],
-        "min_head_contact_diameter_mm": min_head_contact_diameter_mm(f_bolt, d_int, s_comp),
-        "min_active_threads": min_active_threads(f_bolt, a_thr, s_trac),
+        "min_head_contact_diameter_mm": min_head_contact_diameter_mm(f_bolt, ex(d_int), ex(s_comp)),
+        "min_active_threads": min_active_threads(f_bolt, a_thr, ex(s_trac)),
         "pivot_bore_min_mm": sel["pivot_bore_min_mm"],
     }
+    if each:
+        shape = passes.shape
+        out = {key: np.broadcast_to(v, shape) for key, v in out.items()}
     if method == "vdi2230":
         out.update({
             "bolt_permissible_preload_n": f_zul,

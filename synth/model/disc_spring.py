@@ -287,12 +287,23 @@ def disc_spring_thickness_for_force_mm(force_n, outer_diameter_mm, inner_diamete
     return (np.maximum(_f(force_n), 0.0) / (scale * g)) ** 0.25
 
 
+_TOLERANCE_ROWS: dict = {}
+
+
 def _tolerance_rows():
+    """The force-tolerance table as arrays, parsed once per catalog table (a user folder or a cleared catalog
+    cache gives a new table, and so a new parse)."""
+    dirs = tuple(catalog._user_dirs())
+    src = catalog._load_cached("disc_spring_force_tolerances", dirs)
+    hit = _TOLERANCE_ROWS.get(dirs)
+    if hit is not None and hit[0] is src:
+        return hit[1]
     tab = catalog.load("disc_spring_force_tolerances")
     truth = {"true": True, "false": False}
     lo, hi = tab["t_from_mm"].to_numpy(float), tab["t_to_mm"].to_numpy(float)
     inc_lo = tab["includes_t_from"].astype(str).str.strip().str.lower().map(truth).to_numpy(bool)
     inc_hi = tab["includes_t_to"].astype(str).str.strip().str.lower().map(truth).to_numpy(bool)
+    _TOLERANCE_ROWS[dirs] = (src, (tab, lo, hi, inc_lo, inc_hi))
     return tab, lo, hi, inc_lo, inc_hi
 
 

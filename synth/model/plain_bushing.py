@@ -33,7 +33,6 @@ from __future__ import annotations
 import functools
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from synth import catalog
 from synth.errors import InputError, Problem
@@ -130,6 +129,7 @@ _TAU0 = 8.0 * np.sqrt(2.0) / (3.0 * np.pi) * _U0 ** 1.5
 @functools.lru_cache(maxsize=32)
 def _running_in_curve(tau_max: float):
     """Dense solution u(tau) of du/dtau = F(u) on [tau0, tau_max] (solve_ivp, cached)."""
+    from scipy.integrate import solve_ivp  # imported here: only the running-in option needs scipy
     sol = solve_ivp(lambda t, u: _conformity_factor(u), (_TAU0, max(tau_max, 2 * _TAU0)), [_U0],
                     method="LSODA", dense_output=True, rtol=1e-8, atol=1e-12)
     return sol

@@ -547,16 +547,17 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
                              dtheta_inst_nom_deg, dtheta_nom_free_arm_deg, torque_tolerance_side)  # eq. 66-70
     out = {f"{name}_deg": val for name, val in ang.items()}
     sig, coils, dia = {}, {}, {}
+    c = spring_index(mbd, b_mm, h_mm, round_wire)
+    kf, z = curvature_factor(c, fibre), section_modulus_mm3(b_mm, h_mm, round_wire)  # once: they depend on the wire
     for state in ("free_arm", "minus", "nom", "plus", "inst", "free_state"):
         th = ang[f"theta_{state}"]
         out[f"torque_{state}_nm"] = torque_nm(th, k)                                # eq. 71
-        sig[state] = bending_stress_mpa(out[f"torque_{state}_nm"], mbd, b_mm, h_mm, round_wire, fibre)  # eq. 73-77
+        sig[state] = kf * _f(out[f"torque_{state}_nm"]) * 1000.0 / z               # eq. 73-77, bending_stress_mpa
         coils[state] = coils_at_angle(n_a, th, winding)                             # eq. 78-79
         dia[state] = mean_diameter_at_coils_mm(mbd, n_a, coils[state])             # eq. 80
         out[f"sigma_{state}_mpa"] = sig[state]
         out[f"coils_{state}"] = coils[state]
         out[f"mbd_{state}_mm"] = dia[state]
-    c = spring_index(mbd, b_mm, h_mm, round_wire)
     sf = goodman_safety_factor(sig["plus"], sig["minus"], Rm_mpa, sigma_A0_mpa, sigma_y_mpa)
 
     # radial contacts (eq. 81-88): winding -> largest diameter in the free state (assembly),
@@ -580,7 +581,7 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
         "hooks_angle_free_state_deg": hooks_angle_deg(n_a),
         "hooks_angle_nominal_deg": hooks_angle_deg(coils["nom"]),
         "spring_index": c,
-        "curvature_factor": curvature_factor(c, fibre),
+        "curvature_factor": kf,
         "outer_diameter_max_mm": d_out,
         "inner_diameter_min_mm": d_in,
         "coil_gap_min_mm": gap,

@@ -32,7 +32,8 @@ from synth.errors import InputError
 from synth.optimise.evaluate import evaluate
 from synth.schema import field_by_name
 
-__all__ = ["RELAXABLE", "nearest_design", "is_feasible", "relaxations", "diagnose"]
+__all__ = ["RELAXABLE", "nearest_design", "is_feasible", "relaxations", "relaxations_batch", "probe_batch",
+           "diagnose"]
 
 #: input field -> (direction: +1 raise / -1 lower, the constraints it relaxes, a specification value?)
 RELAXABLE = {
@@ -97,6 +98,30 @@ def _far(d, name, sign):
     return f.lo + 1e-3 * abs(cur) if f.lo_open and far <= f.lo else far
 
 
+def _candidates(d, violated) -> dict:
+    return {n: sign for n, (sign, rel, _) in RELAXABLE.items()
+            if getattr(d, n, None) is not None and set(rel) & set(violated)}
+
+
+def _single(d, name, good, violated) -> dict:
+    cur = getattr(d, name)
+    return {"inputs": {name: {"from": cur, "to": round(float(good), 4)}},
+            "relative_change": round(abs(good - cur) / max(abs(cur), 1e-9), 4),
+            "specification": RELAXABLE[name][2],
+            "relaxes": sorted(set(RELAXABLE[name][1]) & set(violated))}
+
+
+def _joint(d, cands, far, good, violated) -> dict:
+    at = {n: getattr(d, n) + good * (far[n] - getattr(d, n)) for n in cands}
+    return {"inputs": {n: {"from": getattr(d, n), "to": round(float(v), 4)} for n, v in at.items()},
+            "relative_change": round(good, 4),
+            "specification": any(RELAXABLE[n][2] for n in cands), "relaxes": sorted(set(violated))}
+
+
+def _order(out: list) -> list:
+    return sorted(out, key=lambda r: (r["specification"], r["relative_change"]))
+
+
 def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: int = 7, probe=None) -> list:
     """Smallest input changes that make ``d`` feasible, for the inputs that relax ``violated``.
 
@@ -109,8 +134,7 @@ def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: in
     """
     _probe = probe or _probe_default
     out = []
-    cands = {n: sign for n, (sign, rel, _) in RELAXABLE.items()
-             if getattr(d, n, None) is not None and set(rel) & set(violated)}
+    cands = _candidates(d, violated)
     for name, sign in cands.items():
         cur, far = getattr(d, name), _far(d, name, sign)
         if not _probe(d, {name: far}, settings):
@@ -122,10 +146,7 @@ def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: in
                 good = mid
             else:
                 bad = mid
-        out.append({"inputs": {name: {"from": cur, "to": round(float(good), 4)}},
-                    "relative_change": round(abs(good - cur) / max(abs(cur), 1e-9), 4),
-                    "specification": RELAXABLE[name][2],
-                    "relaxes": sorted(set(RELAXABLE[name][1]) & set(violated))})
+        out.append(_single(d, name, good, violated))
     if not out and len(cands) > 1:
         far = {n: _far(d, n, s) for n, s in cands.items()}
 
@@ -136,27 +157,98 @@ def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: in
             for _ in range(steps):
                 mid = 0.5 * (good + bad)
                 good, bad = (mid, bad) if _probe(d, at(mid), settings) else (good, mid)
-            out.append({"inputs": {n: {"from": getattr(d, n), "to": round(float(v), 4)} for n, v in at(good).items()},
-                        "relative_change": round(good, 4),
-                        "specification": any(RELAXABLE[n][2] for n in cands), "relaxes": sorted(set(violated))})
-    return sorted(out, key=lambda r: (r["specification"], r["relative_change"]))
+            out.append(_joint(d, cands, far, good, violated))
+    return _order(out)
+
+
+def probe_batch(settings: Settings = Settings(), spring_engine: str = "numba"):
+    """A batched feasibility probe: ``probe([(d, changes), ...]) -> [bool, ...]``, every probe of a bisection
+    step in one vectorised feasibility search (:func:`synth.optimise.batch.any_feasible`); the same answers as
+    the reference probe (``is_feasible`` of the changed input; an input the physics refuses is not feasible)."""
+    from synth.optimise.batch import any_feasible
+
+    def probe(items):
+        return any_feasible([dataclasses.replace(d, **ch) for d, ch in items], settings, spring_engine=spring_engine)
+    return probe
+
+
+def relaxations_batch(ds: list, violated: list, *, settings: Settings = Settings(), steps: int = 7,
+                      probe=None) -> list:
+    """:func:`relaxations` of many applications at once: per application the same candidate inputs, the same
+    far probe and the same bisection, hence the same relaxations; but each step probes every pending
+    (application, input) pair together (``probe``, default :func:`probe_batch`): 1 + ``steps`` probe rounds for
+    the inputs alone, 1 + ``steps`` for the inputs together, whatever the number of applications."""
+    probe = probe or probe_batch(settings)
+    cands = [_candidates(d, v) for d, v in zip(ds, violated)]
+    out: list = [[] for _ in ds]
+    pairs = [(i, name, getattr(ds[i], name), _far(ds[i], name, sign)) for i, c in enumerate(cands)
+             for name, sign in c.items()]
+    ok = probe([(ds[i], {name: far}) for i, name, _, far in pairs]) if pairs else []
+    live = [(i, name, far, cur) for (i, name, cur, far), good in zip(pairs, ok) if good]  # (i, name, good, bad)
+    for _ in range(steps):
+        mids = [0.5 * (good + bad) for _, _, good, bad in live]
+        res = probe([(ds[i], {name: mid}) for (i, name, _, _), mid in zip(live, mids)]) if live else []
+        live = [(i, name, mid, bad) if r else (i, name, good, mid)
+                for (i, name, good, bad), mid, r in zip(live, mids, res)]
+    found = {(i, name): good for i, name, good, _ in live}
+    for i, c in enumerate(cands):  # in the candidates' order, as relaxations() appends
+        for name in c:
+            if (i, name) in found:
+                out[i].append(_single(ds[i], name, found[(i, name)], violated[i]))
+    joint = [i for i, c in enumerate(cands) if not out[i] and len(c) > 1]
+    far = {i: {n: _far(ds[i], n, s) for n, s in cands[i].items()} for i in joint}
+
+    def at(i, lam):
+        return {n: getattr(ds[i], n) + lam * (far[i][n] - getattr(ds[i], n)) for n in cands[i]}
+    ok = probe([(ds[i], at(i, 1.0)) for i in joint]) if joint else []
+    live = [(i, 1.0, 0.0) for i, good in zip(joint, ok) if good]
+    for _ in range(steps):
+        mids = [0.5 * (good + bad) for _, good, bad in live]
+        res = probe([(ds[i], at(i, mid)) for (i, _, _), mid in zip(live, mids)]) if live else []
+        live = [(i, mid, bad) if r else (i, good, mid) for (i, good, bad), mid, r in zip(live, mids, res)]
+    for i, good, _ in live:
+        out[i].append(_joint(ds[i], cands[i], far[i], good, violated[i]))
+    return [_order(o) for o in out]
 
 
 def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: dict | None = None,
-             relax: bool = True, settings: Settings = Settings()):
-    """A :class:`~synth.design.result.Result` with ``status="infeasible"`` and its ``diagnosis``."""
+             relax: bool = True, settings: Settings = Settings(), exhaustive: bool = False, batch=None):
+    """A :class:`~synth.design.result.Result` with ``status="infeasible"`` and its ``diagnosis``.
+
+    The nearest design and the relaxations come from the batched searches (:meth:`synth.optimise.batch.Batch.nearest`,
+    :func:`relaxations_batch` with the numpy spring twins) unless ``exhaustive=True`` or an evaluation ``ev`` of
+    every core is given: then from the exhaustive evaluation and one probe at a time (the reference; the same
+    answer).
+    """
     from synth.optimise.result import build_result
     t0 = time.perf_counter()
-    ev = ev if ev is not None and len(ev.rows) == len(ev.cores) else evaluate(d, settings, prune=False)
-    pos, options, _ = nearest_design(ev)
-    res = build_result(ev, pos, options, status="infeasible", solver=solver,
-                       objective=objective if objective is not None else "standard,cost", stats=stats or {})
+    obj = objective if objective is not None else "standard,cost"
+    if exhaustive or ev is not None:
+        ev = ev if ev is not None and len(ev.rows) == len(ev.cores) else evaluate(d, settings, prune=False)
+        pos, options, _ = nearest_design(ev)
+        res = build_result(ev, pos, options, status="infeasible", solver=solver, objective=obj, stats=stats or {})
+    else:
+        from synth.optimise.batch import Batch
+        b = batch if batch is not None else Batch([d], settings, spring_engine="numpy")
+        near = b.nearest([0])[0]
+        if near is None:  # no core at all: as the exhaustive search (its argmax of nothing raises)
+            return diagnose(d, solver=solver, objective=objective, stats=stats, relax=relax, settings=settings,
+                            exhaustive=True)
+        res = build_result(b.view(0), near[0], near[1], status="infeasible", solver=solver, objective=obj,
+                           stats=stats or {})
     violated = [c for c in res.failed()]
+    ids = [c.id for c in violated]
+    if not relax:
+        rel = []
+    elif exhaustive or ev is not None:
+        rel = relaxations(d, ids, settings=settings)
+    else:
+        rel = relaxations_batch([d], [ids], settings=settings, probe=probe_batch(settings, spring_engine="numpy"))[0]
     res.diagnosis = {
         "message": "no design of the catalog product meets every constraint; the nearest design is shown",
         "violated": [{"constraint": c.id, "label": c.label, "step": c.step, "margin": c.margin}
                      for c in sorted(violated, key=lambda c: c.margin)],
-        "relaxations": relaxations(d, [c.id for c in violated], settings=settings) if relax else [],
+        "relaxations": rel,
     }
     res.stats["diagnosis_time_s"] = time.perf_counter() - t0
     return res

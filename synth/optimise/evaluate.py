@@ -166,7 +166,8 @@ def _spring(apps, sp, cg, pos, settings, counter) -> SubTable:
     for start in range(0, len(opts_idx), block):
         oi = opts_idx[start:start + block]
         kk, oo = (x.ravel() for x in np.meshgrid(np.arange(len(uniq)), oi, indexing="ij"))
-        g = E.spring(apps, ukeys, kk, sp.rows("spring", oo), settings)
+        t = sp.tables["spring"]
+        g = E.spring(apps, ukeys, kk, {c: t[c][oo] for c in E.SPRING_OPTION_COLUMNS}, settings)
         feas[kk, oo] = g.ok()
         marg[kk, oo] = g.min_margin()
         mmin[kk, oo] = g.min_margin(objective_only=False)

@@ -108,7 +108,7 @@ def summary_markdown(pf, result) -> str:
               f"- times [s]: compile {t['compile_s']:.2f}, reductions {t['prune_s']:.2f}, greedy {t['greedy_s']:.2f}, "
               f"model build {t['build_s']:.2f}, solve {t['solve_s']:.2f}, verification {t.get('verify_s', 0.0):.2f}, "
               f"total {t['total_s']:.2f}",
-              f"- weights: " + ", ".join(f"{f} {w:g}" for f, w in result.weights.items())]
+              "- weights: " + ", ".join(f"{f} {w:g}" for f, w in result.weights.items())]
     if result.max_variants:
         lines.append("- max variants: " + ", ".join(f"{f} {n}" for f, n in result.max_variants.items()))
     lines += ["", "## Reductions (R1-R5, `docs/model.md`)", "",

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from synth.platform.data import (CORE_FAMILIES, FAMILIES, SUBSYSTEMS, AppFeasibility, PortfolioFeasibility,
+from synth.platform.data import (AppFeasibility, PortfolioFeasibility,
                                  default_fixed_costs)
 
 __all__ = ["synthetic_portfolio", "SHAPE"]

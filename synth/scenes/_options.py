@@ -8,7 +8,6 @@ standardised design (objective ``standard``, cost as tie-break), full fidelity.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 __all__ = ["add_model_options", "settings_from_args", "add_design_options", "synthesise", "load_saved_result",

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 from synth.optimise.pareto import pareto_front, plot_front
 from synth.schema import load_input

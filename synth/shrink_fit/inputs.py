@@ -19,7 +19,6 @@ Extra keys beyond the paper's case (all optional):
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path

@@ -47,7 +47,6 @@ def solve(d, objective="standard", *, n_trials: int = 200, settings: Settings = 
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     t0 = time.perf_counter()
     ev = _space(d, settings)
-    names = obj.order if not obj.weights else tuple(obj.weights)
     multi = False  # one scalar objective (lexicographic orders are scalarised); see front() for NSGA-II
     cache = {}
 

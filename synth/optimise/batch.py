@@ -1,0 +1,755 @@
+"""The decomposed design space of many applications at once: the exact optimum, the nearest design, feasibility.
+
+:class:`Batch` holds N applications on the applications axis of the one
+evaluator (:mod:`synth.design.evaluate`): the input and core groups of every
+core of every application (one call each), then, lazily and only where a
+bound says it can matter, the subsystems of the cores: each group function
+is called once per round for all the rows of all the applications that need
+it, never once per application. It answers, per application, exactly what
+the exhaustive enumeration (:func:`synth.optimise.solvers.enumerate.solve`
+with ``exhaustive=True``: every core x every option evaluated) answers:
+
+* :meth:`Batch.optimum` -- the design with the smallest additive score
+  (``standard``, ``cost``, their orders and weighted sums without the
+  margin), the same core and options, ties to the same (lowest) rows;
+  ``first=True`` stops at any feasible design (a feasibility probe);
+* :meth:`Batch.nearest` -- the design with the largest smallest margin
+  (every constraint, every core: the nearest design of an infeasible
+  application), with the same tie-breaks.
+
+**How the work is cut, exactly.** A design's score is the core's plus one
+option per subsystem (bushing, axial, spring, bolt: they share no constraint
+given the core), and its smallest margin the minimum of theirs.
+
+* Bushing and bolt are cheap and evaluated for every candidate core: the
+  bushing once per distinct value of what it reads of the core
+  (:data:`~synth.design.evaluate.BUSHING_CORE_VALUES`); the bolt's step-10
+  constraints once per application and bolt, its pivot wall per core and bolt
+  diameter (:func:`~synth.design.evaluate.pivot_wall_values`, the only bolt
+  value that depends on the core).
+* Springs go through the compiled kernels (:mod:`synth.kernels.torsion_spring`)
+  once per distinct key, the axial group in blocks of its options in score
+  order, once per distinct value of what it reads of the core
+  (:data:`~synth.design.evaluate.AXIAL_CORE_VALUES`).
+* Branch and bound over the cores: a core's lower bound is its score, its
+  bushing and bolt optima and the smallest axial and spring scores; cores are
+  taken in increasing bound, in rounds of growing blocks over all
+  applications, until the next bound exceeds the best design found. The sums
+  are formed in the enumeration's order, so a bound never exceeds the total
+  (IEEE rounding is monotone) and every core that could tie is evaluated.
+  Within a spring key or an axial row, options are scanned in score order
+  and stop at the first feasible, or where the score cannot beat the best
+  (a relative slack of 1e-9 keeps the cut on the safe side of rounding).
+* The nearest design the same way with the margins: a core's upper bound is
+  the minimum of its own, its bushing's and its bolt's best margins; springs
+  and axial options are searched with a cap (they need not beat the bound),
+  and the winning core's options exactly (the enumeration's argmax per
+  subsystem, first index of the ties).
+
+>>> from synth.data.generated_applications import generate
+>>> b = Batch(generate(3, seed=0), spring_engine="numpy")
+>>> found = b.optimum({"cost": 1.0})
+>>> [f is not None for f in found]
+[False, True, True]
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from synth.design import evaluate as E
+from synth.design.applications import Applications
+from synth.design.constraints import FEAS_TOL, REGISTRY, margin as registry_margin
+from synth.design.space import SUBSYSTEMS, core_rows, space
+from synth.optimise.evaluate import core_scores, option_scores
+
+__all__ = ["Batch", "wsum", "SLACK", "any_feasible", "robust"]
+
+#: relative slack of the score cuts (a cut never removes a design within 1e-9 of the best: rounding is far below)
+SLACK = 1e-9
+_WALL = REGISTRY["pivot_wall"]
+if _WALL.needs or _WALL.applies or _WALL.group != "bolt":  # pragma: no cover - the wall shortcut assumes this
+    raise ImportError("synth.optimise.batch evaluates pivot_wall apart: it must stay an always-evaluated bolt check")
+_BOLT_APP_IDS = tuple(c.id for c in REGISTRY.values() if c.group == "bolt" and c.id != "pivot_wall" and not c.advisory)
+
+
+def wsum(scores: dict, weights: dict):
+    """``sum_k w_k score_k`` over ``standard``/``cost`` (any shapes that broadcast), in the order and with the
+    operations of :func:`synth.optimise.solvers.enumerate.weights_vec`: the same doubles."""
+    out = 0.0
+    for k, w in weights.items():
+        if k != "margin":
+            out = out + w * scores[k]
+    return out
+
+
+def _first_true(mask: np.ndarray) -> np.ndarray:
+    """Per row of a 2-D boolean array, the first True column (-1: none)."""
+    if mask.shape[1] == 0:
+        return np.full(mask.shape[0], -1, dtype=np.int64)
+    return np.where(mask.any(axis=1), np.argmax(mask, axis=1), -1)
+
+
+def _argmax_value(vals: np.ndarray, cols: np.ndarray):
+    """Per row, ``(value, option)`` of ``numpy.argmax`` over the full option axis, where only ``cols`` (sorted
+    option indices) are available and the others are -inf: the first index of the maximum, option 0 when every
+    available value is -inf (as the enumeration's argmax over -inf rows)."""
+    if vals.shape[1] == 0:
+        return np.full(vals.shape[0], -np.inf), np.zeros(vals.shape[0], dtype=np.int64)
+    j = np.argmax(vals, axis=1)
+    v = vals[np.arange(len(vals)), j]
+    return v, np.where(v > -np.inf, cols[j], 0)
+
+
+def _unique_rows(*cols):
+    """``(first, inverse)``: one representative position per distinct tuple of the columns (floats; NaN equal to
+    NaN), and each position's representative index."""
+    stack = np.stack([np.asarray(c, dtype=float) for c in cols], axis=1)
+    if not len(stack):
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    stack = np.where(np.isnan(stack), np.finfo(float).max, stack)  # NaN keys compare equal
+    _, first, inv = np.unique(stack, axis=0, return_index=True, return_inverse=True)
+    return first.astype(np.int64), np.asarray(inv).reshape(-1).astype(np.int64)
+
+
+def _segments(starts, counts):
+    """Concatenated ``arange(start, start + count)`` of every segment."""
+    counts = np.asarray(counts, dtype=np.int64)
+    tot = int(counts.sum())
+    if not tot:
+        return np.zeros(0, dtype=np.int64)
+    offs = np.repeat(np.asarray(starts, dtype=np.int64) - np.cumsum(counts) + counts, counts)
+    return offs + np.arange(tot, dtype=np.int64)
+
+
+class Batch:
+    """N applications and their decomposed design space on the applications axis (see the module docstring).
+
+    ``spring_engine``: ``"numba"`` (the compiled kernels; imports numba on first use) or ``"numpy"`` (their
+    twins, the registry's group on blocks: the one-application path, which must not import numba).
+    """
+
+    def __init__(self, inputs, settings: E.Settings = E.Settings(), *, pin_inputs: bool = False,
+                 spring_engine: str = "numba", apps: Applications | None = None):
+        self.inputs = list(inputs)
+        self.settings = settings
+        self.engine = spring_engine
+        self.sp = sp = space()
+        self.apps = apps if apps is not None else Applications.of(self.inputs)
+        n = len(self.inputs)
+        per = [core_rows(sp, d, pin_inputs=pin_inputs) for d in self.inputs]
+        counts = np.array([len(c) for c in per], dtype=np.int64)
+        self.ptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+        self.A = np.repeat(np.arange(n, dtype=np.int64), counts)
+        self.C = np.concatenate(per).astype(np.int64) if n else np.zeros(0, dtype=np.int64)
+        self.evaluations = len(self.C)
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            self.ig = E.inputs(self.apps, np.arange(n))
+            self.cg = E.core(self.apps, self.A, sp.rows("core", self.C), settings)
+        self.in_ok = self.ig.ok()
+        self.in_min = self.ig.min_margin(objective_only=False)
+        self.core_ok = self.cg.ok() & self.in_ok[self.A]
+        self.pad = np.asarray(self.cg.values["axial_group_present"], dtype=float) > 0
+        self._fix = None
+        self._wall_d = None
+        self._spring_range = None
+        self._memo: dict = {}
+        self._spring_opts = None
+
+    def __len__(self) -> int:
+        return len(self.inputs)
+
+    # ------------------------------------------------------------------------------------------- bushing
+    def _bushing(self, rows, weights=None):
+        """Per core row: with ``weights``, ``(score, option)`` of the first feasible bushing in score order (inf,
+        -1 when none); without, ``(value, option)`` of the largest smallest margin (the enumeration's argmax)."""
+        sp, cg = self.sp, self.cg
+        t = sp.tables["bushing"]
+        n_r = len(rows)
+        out_v = np.full(n_r, np.inf if weights is not None else -np.inf)
+        out_k = np.full(n_r, -1 if weights is not None else 0, dtype=np.int64)
+        if not n_r:
+            return out_v, out_k
+        sup = cg.values["supplier_code"][rows]
+        first, inv = _unique_rows(self.A[rows], sup, *(cg.values[k][rows] for k in E.BUSHING_CORE_VALUES))
+        rep = rows[first]
+        score = wsum(option_scores(sp, "bushing"), weights) if weights is not None else None
+        res_v = np.empty(len(rep))
+        res_k = np.empty(len(rep), dtype=np.int64)
+        rep_sup = sup[first]
+        for s in np.unique(rep_sup):
+            sel = np.flatnonzero(rep_sup == s)
+            opts = np.flatnonzero(t["supplier_code"] == s)  # index order
+            rr, oo = np.repeat(rep[sel], len(opts)), np.tile(opts, len(sel))
+            with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+                g = E.bushing(self.apps, cg, rr, sp.rows("bushing", oo), self.settings)
+            self.evaluations += len(rr)
+            if weights is not None:
+                order = np.argsort(score[opts], kind="stable")
+                ok = g.ok().reshape(len(sel), len(opts))[:, order]
+                j = _first_true(ok)
+                res_k[sel] = np.where(j >= 0, opts[order][j], -1)
+                res_v[sel] = np.where(j >= 0, score[opts[order][j]], np.inf)
+            else:
+                v, k = _argmax_value(g.min_margin(objective_only=False).reshape(len(sel), len(opts)), opts)
+                res_v[sel], res_k[sel] = v, k
+        return res_v[inv], res_k[inv]
+
+    # ------------------------------------------------------------------------------------------- bolt
+    def _bolt_app(self, which, bolts):
+        """Per application x bolt: every step-10 check passes (``ok``), and their smallest margin (``min``),
+        the pivot wall apart; evaluated on demand for the applications ``which`` x ``bolts`` not done yet (one
+        fixation call per bolt over its applications) and kept for the batch."""
+        sp, n = self.sp, len(self)
+        nb = sp.n("bolt")
+        if self._fix is None:
+            self._fix = (np.zeros((n, nb), dtype=bool), np.full((n, nb), -np.inf), np.zeros((n, nb), dtype=bool))
+        ok, mn, done = self._fix
+        which = np.asarray(which, dtype=np.int64)
+        which = which[np.diff(self.ptr)[which] > 0]
+        bolts = np.asarray(bolts, dtype=np.int64)
+        ai, bi = np.nonzero(~done[np.ix_(which, bolts)])
+        if len(ai):
+            a, b = which[ai], bolts[bi]
+            o = sp.rows("bolt", b)
+            with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+                fix = E.fixation_values(self.apps, a, o, self.settings)
+                g = E.bolt(self.apps, self.cg, self.ptr[a], o, self.settings, fixation=fix)
+            self.evaluations += len(a)
+            m = np.full(len(a), np.inf)
+            for cid in _BOLT_APP_IDS:
+                m = np.minimum(m, g.margins[cid])
+            ok[a, b], mn[a, b], done[a, b] = m >= -FEAS_TOL, m, True
+        return ok, mn
+
+    def _wall(self, rows):
+        """``(margins (len(rows), n_diameters), diameter code per bolt)`` of the pivot wall (step 2)."""
+        sp = self.sp
+        if self._wall_d is None:
+            self._wall_d = np.unique(sp.tables["bolt"]["bolt_d_mm"], return_inverse=True)
+        d, code = self._wall_d
+        cv = [self.cg.values[k][rows][:, None] for k in E.BOLT_CORE_VALUES]
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            v = E.pivot_wall_values(*cv, d[None, :])
+            m = registry_margin(_WALL, v[_WALL.value], v[_WALL.limit])
+        return np.where(np.isnan(m), -np.inf, m), np.asarray(code).reshape(-1)
+
+    def _bolt(self, rows, weights=None):
+        """Per core row, as :meth:`_bushing` for the bolt: the first feasible bolt in score order (with
+        ``weights``), or the largest smallest margin (its value; :meth:`_bolt_pick` gives the option).
+
+        A bolt is feasible for a core when its step-10 checks pass for the application and the pivot wall
+        passes for the core and the bolt's diameter: bolts are scanned in score order in blocks (the step-10
+        checks of a block evaluated for the applications still looking). The best margin is the largest, over
+        the diameters, of the smaller of the diameter's best step-10 margin and its wall margin.
+        """
+        wall, code = self._wall(rows)
+        a = self.A[rows]
+        nb = self.sp.n("bolt")
+        if weights is None:
+            ua = np.unique(a)
+            _, min_app = self._bolt_app(ua, np.arange(nb))
+            best = np.full((len(self), wall.shape[1]), -np.inf)
+            for dc in range(wall.shape[1]):
+                if (code == dc).any():
+                    best[ua, dc] = min_app[ua][:, code == dc].max(axis=1)
+            return np.minimum(best[a], wall).max(axis=1), None
+        key = ("bolt", tuple(sorted(weights.items())))
+        if key not in self._memo:
+            score = wsum(option_scores(self.sp, "bolt"), weights)
+            self._memo[key] = (score, np.argsort(score, kind="stable"))
+        score, order = self._memo[key]
+        k = np.full(len(rows), -1, dtype=np.int64)
+        active = np.arange(len(rows))
+        # a fixation call costs about as much for one application as for a hundred: a few applications take
+        # every bolt at once, a chunk the cheap ones first (numerics: the same answer either way)
+        pos, block = 0, nb if len(self) <= 16 else 8
+        while len(active) and pos < nb:
+            blk = order[pos:pos + block]
+            ok_app, _ = self._bolt_app(np.unique(a[active]), blk)
+            feas = ok_app[a[active]][:, blk] & (wall[active][:, code[blk]] >= -FEAS_TOL)
+            j = _first_true(feas)
+            hit = j >= 0
+            k[active[hit]] = blk[j[hit]]
+            active = active[~hit]
+            pos += len(blk)
+            block *= 4
+        return np.where(k >= 0, score[np.maximum(k, 0)], np.inf), k
+
+    def _bolt_pick(self, rows):
+        """The enumeration's argmax bolt of core rows (first index of the largest smallest margin)."""
+        wall, code = self._wall(rows)
+        a = self.A[rows]
+        _, min_app = self._bolt_app(np.unique(a), np.arange(self.sp.n("bolt")))
+        vals = np.minimum(min_app[a], wall[:, code])
+        return _argmax_value(vals, np.arange(vals.shape[1]))[1]
+
+    # ------------------------------------------------------------------------------------------- spring
+    def _ranges(self):
+        """Per application, the mean-diameter range of the springs searched (the enumeration's, over every core)
+        as a group code, and the groups' option lists (index order)."""
+        if self._spring_range is None:
+            sp = self.sp
+            mbd = sp.tables["spring"]["main_spring_mean_body_diameter_mm"]
+            n = len(self)
+            lo, hi = np.full(n, np.nan), np.full(n, np.nan)
+            has = np.diff(self.ptr) > 0
+            inner = self.cg.values["spring_housing_inner_diameter_mm"]
+            outer = self.cg.values["spring_housing_outer_diameter_mm"]
+            if has.any():
+                st = self.ptr[:-1][has]
+                lo[has] = np.floor(np.minimum.reduceat(inner, st)) - 1e-9
+                hi[has] = np.ceil(np.maximum.reduceat(outer, st)) + 1e-9
+            first, inv = _unique_rows(lo, hi)
+            lists = [np.flatnonzero((mbd >= lo[i]) & (mbd <= hi[i])) for i in first]
+            self._spring_range = (inv, lists)
+        return self._spring_range
+
+    def _options(self):
+        if self._spring_opts is None:
+            from synth.kernels import torsion_spring as K
+            self._spring_opts = K.options_of_space(self.sp.tables["spring"])
+        return self._spring_opts
+
+    def _spring_app_lists(self, weights):
+        """The spring candidates of every application in its own score order (ties by index), shared: ``(lists,
+        list_of_app, scores_of_app, smallest score)``. The scores follow each application's stiffness (the cost is
+        per unit compliance over it); the applications of one mean-diameter range share the range's order when
+        their scores keep it (checked per application, every adjacent pair), else get their own stable sort."""
+        key = ("spring", tuple(sorted(weights.items())))
+        if key in self._memo:
+            return self._memo[key]
+        sp = self.sp
+        inv, ranges = self._ranges()
+        k = self.apps.spring_stiffness_nm_per_deg
+        base = wsum(option_scores(sp, "spring", 1.0), weights)
+        order_all = np.argsort(base, kind="stable")
+        lists: list = []
+        list_of = np.full(len(self), -1, dtype=np.int64)
+        score_of: list = [None] * len(self)
+        smin = np.full(len(self), np.inf)
+        for g, lst in enumerate(ranges):
+            apps_g = np.flatnonzero(inv == g)
+            if not len(apps_g) or not len(lst):
+                continue
+            in_rng = np.zeros(sp.n("spring"), dtype=bool)
+            in_rng[lst] = True
+            cand = order_all[in_rng[order_all]]  # the range's options in the base order
+            sc = np.broadcast_to(wsum(option_scores(sp, "spring", k[apps_g][:, None], cand[None, :]), weights),
+                                 (len(apps_g), len(cand)))
+            d = np.diff(sc, axis=1)
+            good = ((d > 0) | ((d == 0) & (np.diff(cand) > 0)[None, :])).all(axis=1)
+            lid = len(lists)
+            lists.append(cand)
+            for j, i in enumerate(apps_g):
+                if good[j]:
+                    list_of[i], score_of[i] = lid, sc[j]
+                else:  # this stiffness reorders (rounding ties): its own stable sort
+                    s_i = wsum(option_scores(sp, "spring", k[i], lst), weights)
+                    o = np.argsort(s_i, kind="stable")
+                    list_of[i], score_of[i] = len(lists), s_i[o]
+                    lists.append(lst[o])
+                smin[i] = score_of[i][0]
+        positions = [np.arange(len(x), dtype=float) for x in lists]
+        self._memo[key] = (lists, list_of, score_of, smin, positions)
+        return self._memo[key]
+
+    def _spring_keys(self, rows):
+        """``(keys dict, inverse)``: the distinct spring keys of core rows (application and what the spring sees)."""
+        kd = E.spring_keys(self.cg, rows)
+        first, inv = _unique_rows(kd["app"], *(kd[k] for k in ("spring_torque_nominal_nm", "spring_housing_height_mm",
+                                                                 "spring_housing_outer_diameter_mm",
+                                                                 "spring_housing_inner_diameter_mm")))
+        return {k: v[first] for k, v in kd.items()}, inv
+
+    def _spring_first(self, keys, limit, weights):
+        """Per key: ``(score, option)`` of the first feasible spring of its application's score-ordered list with
+        a score at most ``limit`` (inf, -1: none). The score cut is a position cut in the list (the scores
+        grow along it): the kernel's score is the position."""
+        from synth.kernels import torsion_spring as K
+        lists, list_of, score_of, _, positions = self._spring_app_lists(weights)
+        apps_k = keys["app"]
+        grp = list_of[apps_k]
+        last = np.full(len(apps_k), np.inf)
+        for j in np.flatnonzero(np.isfinite(limit)):
+            last[j] = np.searchsorted(score_of[apps_k[j]], limit[j], side="right") - 1.0
+        kk = K.keys_of_rows(self.apps, keys)
+        r = K.first_feasible(kk, self._options(), lists, key_group=grp, score=positions, score_limit=last,
+                             engine=self.engine)
+        self.evaluations += int(r.visited.sum())
+        out = np.full(len(apps_k), np.inf)
+        for j in np.flatnonzero(r.index >= 0):  # the chosen option's score (numba: at position visited - 1)
+            lst = lists[grp[j]]
+            p = int(r.visited[j]) - 1 if self.engine == "numba" else -1
+            if not (0 <= p < len(lst) and lst[p] == r.index[j]):
+                p = int(np.flatnonzero(lst == r.index[j])[0])
+            out[j] = score_of[apps_k[j]][p]
+        return out, np.where(r.index >= 0, r.index, -1)
+
+    def _spring_max(self, keys, cap=None):
+        """Per key: ``(value, option)`` of the largest smallest margin over its application's range (index
+        order, first of the ties; option 0 when every value is -inf); ``cap``: exact below it."""
+        from synth.kernels import torsion_spring as K
+        inv, lists = self._ranges()
+        grp = inv[keys["app"]]
+        kk = K.keys_of_rows(self.apps, keys)
+        r = K.max_min_margin(kk, self._options(), lists, key_group=grp, cap=cap, engine=self.engine)
+        self.evaluations += int(r.visited.sum())
+        v = np.asarray(r.value, dtype=float)
+        return v, np.where((r.index >= 0) & (v > -np.inf), r.index, 0)
+
+    # ------------------------------------------------------------------------------------------- axial
+    def _axial_rows(self, rows):
+        first, inv = _unique_rows(self.A[rows], *(self.cg.values[k][rows] for k in E.AXIAL_CORE_VALUES))
+        return rows[first], inv
+
+    def _axial_eval(self, rr, oo):
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            g = E.axial(self.apps, self.cg, rr, self.sp.rows("axial", oo), self.settings)
+        self.evaluations += len(rr)
+        return g
+
+    def _axial_blocks(self):
+        from synth import catalog
+        return int(catalog.constant("bulk_axial_first_block")), max(int(catalog.constant("bulk_axial_block_growth")), 1)
+
+    def _axial_first(self, rows, limit, weights):
+        """Per core row: ``(score, option)`` of the first feasible axial option in score order with a score at
+        most ``limit`` (the none option for a core without a damper pad)."""
+        sp = self.sp
+        t = sp.tables["axial"]
+        score = wsum(option_scores(sp, "axial"), weights)
+        rep, inv = self._axial_rows(rows)
+        lim = np.full(len(rep), -np.inf)
+        np.maximum.at(lim, inv, limit)
+        out_v, out_k = np.full(len(rep), np.inf), np.full(len(rep), -1, dtype=np.int64)
+        pad = self.pad[rep]
+        none = np.flatnonzero(~t["axial_group_present"])
+        real = np.flatnonzero(t["axial_group_present"])
+        order = real[np.argsort(score[real], kind="stable")]
+        sel = np.flatnonzero(~pad)
+        if len(sel):  # one option: none (it may still fail, e.g. the belt plane)
+            g = self._axial_eval(rep[sel], np.full(len(sel), none[0]))
+            okn = g.ok() & (score[none[0]] <= lim[sel])
+            out_v[sel] = np.where(okn, score[none[0]], np.inf)
+            out_k[sel] = np.where(okn, none[0], -1)
+        active = np.flatnonzero(pad)
+        pos, (block, growth) = 0, self._axial_blocks()
+        while len(active) and pos < len(order):
+            blk = order[pos:pos + block]
+            within = score[blk][None, :] <= lim[active][:, None]
+            active = active[within[:, 0]]  # scores grow along the order: a row past its limit is done
+            within = within[within[:, 0]]
+            if not len(active):
+                break
+            ai, bi = np.nonzero(within)
+            g = self._axial_eval(rep[active[ai]], blk[bi])
+            ok = np.zeros(within.shape, dtype=bool)
+            ok[ai, bi] = g.ok()
+            j = _first_true(ok)
+            hit = j >= 0
+            out_k[active[hit]] = blk[j[hit]]
+            out_v[active[hit]] = score[blk[j[hit]]]
+            keep = ~hit & within[:, -1]
+            active = active[keep]
+            pos += len(blk)
+            block *= growth
+        return out_v[inv], out_k[inv]
+
+    def _axial_max(self, rows, cap=None):
+        """Per core row: ``(value, option)`` of the largest smallest margin over its axial options (the none
+        option without a pad); ``cap``: the search stops once a row reaches it (exact below it); without a cap
+        the enumeration's argmax (index order, first of the ties)."""
+        sp = self.sp
+        t = sp.tables["axial"]
+        rep, inv = self._axial_rows(rows)
+        cp = np.full(len(rep), np.inf)
+        if cap is not None:
+            cp = np.full(len(rep), -np.inf)
+            np.maximum.at(cp, inv, cap)
+        pad = self.pad[rep]
+        none = np.flatnonzero(~t["axial_group_present"])
+        real = np.flatnonzero(t["axial_group_present"])
+        out_v, out_k = np.full(len(rep), -np.inf), np.zeros(len(rep), dtype=np.int64)
+        sel = np.flatnonzero(~pad)
+        if len(sel):
+            g = self._axial_eval(rep[sel], np.full(len(sel), none[0]))
+            v = g.min_margin(objective_only=False)
+            out_v[sel], out_k[sel] = v, np.where(v > -np.inf, none[0], 0)
+        active = np.flatnonzero(pad)
+        best_pos = np.full(len(rep), len(real), dtype=np.int64)
+        pos, (block, growth) = 0, self._axial_blocks()
+        while len(active) and pos < len(real):
+            blk = real[pos:pos + block]
+            g = self._axial_eval(np.repeat(rep[active], len(blk)), np.tile(blk, len(active)))
+            m = g.min_margin(objective_only=False).reshape(len(active), len(blk))
+            j = np.argmax(m, axis=1)
+            v = m[np.arange(len(active)), j]
+            better = v > out_v[active]  # strictly: an earlier option keeps a tie (argmax's first index)
+            out_v[active[better]] = v[better]
+            best_pos[active[better]] = pos + j[better]
+            active = active[~(out_v[active] >= cp[active])]
+            pos += len(blk)
+            block *= growth
+        has = pad & (best_pos < len(real)) & (out_v > -np.inf)
+        out_k[pad] = np.where(has[pad], real[np.minimum(best_pos[pad], len(real) - 1)], 0)
+        return out_v[inv], out_k[inv]
+
+    # ------------------------------------------------------------------------------------------- searches
+    def optimum(self, weights: dict, *, first: bool = False, which=None) -> list:
+        """Per application (``which``: a subset, default all): ``(core row, {subsystem: option row})`` of the
+        smallest additive score ``weights`` (over ``standard``/``cost``), or None when no design is feasible.
+        ``first=True``: any feasible design (a feasibility probe), not the best."""
+        n = len(self)
+        want = np.ones(n, dtype=bool) if which is None else np.isin(np.arange(n), which)
+        R = np.flatnonzero(self.core_ok & want[self.A])
+        out: list = [None] * n
+        if not len(R):
+            return out
+        sp, cg = self.sp, self.cg
+        cs = wsum(core_scores(sp, self.C[R], {k: cg.values[k][R] for k in ("pivot_class_standard_mm",
+                                                                          "pivot_class_diameter_mm")}), weights)
+        b_sc, b_pk = self._bushing(R, weights)
+        t_sc, t_pk = self._bolt(R, weights)
+        ax_sc = wsum(option_scores(sp, "axial"), weights)
+        real = sp.tables["axial"]["axial_group_present"]
+        min_a = np.where(self.pad[R], ax_sc[real].min() if real.any() else np.inf, ax_sc[~real].min())
+        smin = self._spring_app_lists(weights)[3]
+        a_of = self.A[R]
+        p0 = cs + b_sc
+        lb = ((p0 + min_a) + smin[a_of]) + t_sc
+        alive = np.isfinite(lb)
+        R, a_of, cs, b_sc, b_pk, t_sc, t_pk, min_a, p0, lb = (x[alive] for x in (R, a_of, cs, b_sc, b_pk, t_sc, t_pk,
+                                                                                   min_a, p0, lb))
+        if not len(R):
+            return out
+        o = np.lexsort((R, lb, a_of))  # per application, by bound, then row
+        R, a_of, b_pk, t_sc, t_pk, min_a, p0, lb = (x[o] for x in (R, a_of, b_pk, t_sc, t_pk, min_a, p0, lb))
+        keys, kinv = self._spring_keys(R)
+        # the smallest partial score of each key's rows: its spring scan can stop where no row can win
+        k_part = np.full(len(keys["app"]), np.inf)
+        np.minimum.at(k_part, kinv, (p0 + min_a) + t_sc)
+        k_sc = np.full(len(keys["app"]), np.nan)  # NaN: not scanned yet
+        k_pk = np.full(len(keys["app"]), -1, dtype=np.int64)
+        a_sc, a_pk = np.full(len(R), np.inf), np.full(len(R), -1, dtype=np.int64)
+        total = np.full(len(R), np.inf)
+        inc = np.full(n, np.inf)
+        best = np.full(n, -1, dtype=np.int64)  # position in R
+        seg = np.flatnonzero(np.r_[True, a_of[1:] != a_of[:-1]])
+        seg_app = a_of[seg]
+        seg_end = np.r_[seg[1:], len(R)]
+        pos = seg.copy()
+        block = 1
+
+        def may_win(j):  # rows sorted by (bound, row): a row whose bound can still beat or tie the best
+            i = a_of[j]
+            bj = np.maximum(best[i], 0)
+            return (lb[j] < inc[i]) | ((lb[j] == inc[i]) & ((best[i] < 0) | (R[j] < R[bj])))
+
+        while True:
+            nxt = np.minimum(pos, seg_end - 1)
+            live = (pos < seg_end) & may_win(nxt)
+            if first:
+                live &= ~np.isfinite(inc[seg_app])
+            if not live.any():
+                break
+            cnt = np.minimum(block, seg_end - pos)
+            take = _segments(pos[live], cnt[live])
+            take = take[may_win(take)]
+            pos[live] = pos[live] + cnt[live]
+            block *= 2
+            if not len(take):
+                continue
+            # springs of the keys not scanned yet
+            kt = np.unique(kinv[take])
+            kt = kt[np.isnan(k_sc[kt])]
+            if len(kt):
+                lim = inc[keys["app"][kt]] - k_part[kt]
+                lim = lim + SLACK * np.maximum(1.0, np.abs(inc[keys["app"][kt]]))
+                if first:
+                    lim = np.full(len(kt), np.inf)
+                sub = {k: v[kt] for k, v in keys.items()}
+                k_sc[kt], k_pk[kt] = self._spring_first(sub, np.where(np.isfinite(lim), lim, np.inf), weights)
+            s = k_sc[kinv[take]]
+            lb2 = ((p0[take] + min_a[take]) + s) + t_sc[take]
+            inc_t = inc[a_of[take]]
+            go = np.isfinite(lb2) & (lb2 <= inc_t)
+            ta = take[go]
+            if len(ta):
+                lim_a = inc[a_of[ta]] - ((p0[ta] + s[go]) + t_sc[ta]) + SLACK * np.maximum(1.0, np.abs(inc[a_of[ta]]))
+                if first:
+                    lim_a = np.full(len(ta), np.inf)
+                a_sc[ta], a_pk[ta] = self._axial_first(R[ta], np.where(np.isfinite(lim_a), lim_a, np.inf), weights)
+                total[ta] = ((p0[ta] + a_sc[ta]) + s[go]) + t_sc[ta]
+                fin = ta[np.isfinite(total[ta])]
+                for j in fin[np.lexsort((R[fin], total[fin]))]:  # few: the finite totals of this round
+                    i = a_of[j]
+                    if total[j] < inc[i] or (total[j] == inc[i] and R[j] < R[best[i]]):
+                        inc[i], best[i] = total[j], j
+        for i in np.flatnonzero(best >= 0):
+            j = best[i]
+            out[i] = (int(R[j]), {"bushing": int(b_pk[j]), "axial": int(a_pk[j]), "spring": int(k_pk[kinv[j]]),
+                                  "bolt": int(t_pk[j])})
+        return out
+
+    def nearest(self, which=None) -> list:
+        """Per application (``which``: a subset, default all): ``(core row, {subsystem: option row}, value)`` of
+        the design with the largest smallest margin over every core and option (every non-advisory constraint,
+        the input-only ones included), as the enumeration's ``nearest_design``; None without any core."""
+        n = len(self)
+        want = np.ones(n, dtype=bool) if which is None else np.isin(np.arange(n), which)
+        R = np.flatnonzero(want[self.A])
+        out: list = [None] * n
+        if not len(R):
+            return out
+        u0 = np.minimum(self.cg.min_margin(objective_only=False)[R], self.in_min[self.A[R]])
+        vb, pb = self._bushing(R)
+        vt, _ = self._bolt(R)
+        v1 = np.minimum(np.minimum(u0, vb), vt)
+        a_of = self.A[R]
+        o = np.lexsort((R, -v1, a_of))
+        R, a_of, v1, pb = (x[o] for x in (R, a_of, v1, pb))
+        keys, kinv = self._spring_keys(R)
+        k_val = np.full(len(keys["app"]), np.nan)
+        k_cap = np.full(len(keys["app"]), -np.inf)
+        val = np.full(len(R), -np.inf)
+        best_v = np.full(n, -np.inf)
+        best = np.full(n, -1, dtype=np.int64)
+        seg = np.flatnonzero(np.r_[True, a_of[1:] != a_of[:-1]])
+        seg_end = np.r_[seg[1:], len(R)]
+        pos = seg.copy()
+        block = 1
+
+        def could_win_value(v, j):  # a row whose value (so far) can still win or win a tie
+            i = a_of[j]
+            bj = np.maximum(best[i], 0)
+            return (best[i] < 0) | (v > best_v[i]) | ((v == best_v[i]) & (R[j] < R[bj]))
+
+        def could_win(j):  # rows sorted by (-v1, row): a row can still win or win a tie
+            i = a_of[j]
+            bj = np.maximum(best[i], 0)
+            return (best[i] < 0) | (v1[j] > best_v[i]) | ((v1[j] == best_v[i]) & (R[j] < R[bj]))
+
+        while True:
+            nxt = np.minimum(pos, seg_end - 1)
+            live = (pos < seg_end) & could_win(nxt)
+            if not live.any():
+                break
+            cnt = np.minimum(block, seg_end - pos)
+            take = _segments(pos[live], cnt[live])
+            take = take[could_win(take)]
+            pos[live] = pos[live] + cnt[live]
+            block *= 2
+            if not len(take):
+                continue
+            kt_all = kinv[take]
+            need = np.full(len(keys["app"]), -np.inf)
+            np.maximum.at(need, kt_all, v1[take])
+            kt = np.unique(kt_all)
+            kt = kt[np.isnan(k_val[kt]) | (k_cap[kt] < need[kt])]
+            if len(kt):  # the springs of these keys, exact up to the largest bound of their rows
+                sub = {k: v[kt] for k, v in keys.items()}
+                v, _ = self._spring_max(sub, need[kt])
+                k_val[kt], k_cap[kt] = np.minimum(v, need[kt]), need[kt]
+            v2 = np.minimum(v1[take], k_val[kt_all])
+            go = could_win_value(v2, take)
+            ta = take[go]
+            if len(ta):
+                va, _ = self._axial_max(R[ta], v2[go])
+                val[ta] = np.minimum(v2[go], va)
+            for j in ta[np.lexsort((R[ta], -val[ta]))]:
+                i = a_of[j]
+                if best[i] < 0 or val[j] > best_v[i] or (val[j] == best_v[i] and R[j] < R[best[i]]):
+                    best_v[i], best[i] = val[j], j
+        # the winners' options exactly: the enumeration's argmax per subsystem
+        win = np.flatnonzero(best >= 0)
+        if not len(win):
+            return out
+        jw = best[win]
+        rows_w = R[jw]
+        sk = {k: v[kinv[jw]] for k, v in keys.items()}
+        _, ps = self._spring_max(sk)
+        _, pa = self._axial_max(rows_w)
+        pt = self._bolt_pick(rows_w)
+        for t, i in enumerate(win):
+            j = jw[t]
+            out[i] = (int(R[j]), {"bushing": int(pb[j]), "axial": int(pa[t]), "spring": int(ps[t]),
+                                  "bolt": int(pt[t])}, float(best_v[i]))
+        return out
+
+    # ------------------------------------------------------------------------------------------- designs
+    def parts(self, i: int, core_row: int, options: dict) -> dict:
+        """The part keys of a design of application ``i`` (core row of this batch, option rows of the space)."""
+        from synth.design.verify import parts_of_attributes
+        sp = self.sp
+        attrs = {"core": sp.rows("core", [self.C[core_row]])}
+        attrs.update({s: sp.rows(s, [options[s]]) for s in SUBSYSTEMS})
+        de = {"core": E.Group("core", {"cone_spring_max_external_diameter_mm":
+                                       self.cg.values["cone_spring_max_external_diameter_mm"][[core_row]]})}
+        return parts_of_attributes(attrs, de)
+
+    def objective_values(self, core_row: int, options: dict) -> dict:
+        """``{standard, cost}`` of a design, summed as :meth:`synth.optimise.evaluate.Evaluation.objective_values`."""
+        sp = self.sp
+        cv = {k: self.cg.values[k][[core_row]] for k in ("pivot_class_standard_mm", "pivot_class_diameter_mm")}
+        sc = core_scores(sp, self.C[[core_row]], cv)
+        k = float(self.apps.spring_stiffness_nm_per_deg[self.A[core_row]])
+        opt = {s: option_scores(sp, s, k) for s in SUBSYSTEMS}
+        std = float(sc["standard"][0]) + sum(opt[s]["standard"][options[s]] for s in SUBSYSTEMS)
+        cost = float(sc["cost"][0]) + sum(opt[s]["cost"][options[s]] for s in SUBSYSTEMS)
+        return {"standard": float(std), "cost": round(float(cost), 6)}
+
+    def notes(self, i: int) -> list:
+        """The notes the enumeration's evaluation gives application ``i``."""
+        if not self.apps.met("durability")[i]:
+            return ["durability test not given: bushing, plastic wear and spring fatigue checks are not verified"]
+        return []
+
+    def view(self, i: int) -> "_View":
+        """Application ``i`` as :func:`synth.optimise.result.build_result` reads an evaluation."""
+        return _View(self, i)
+
+    def candidates(self, i: int) -> int:
+        """Whole-tensioner designs of application ``i``'s catalog product (every core x every option)."""
+        return int(self.ptr[i + 1] - self.ptr[i]) * int(np.prod([self.sp.n(s) for s in SUBSYSTEMS]))
+
+
+
+class _View:
+    """One application of a :class:`Batch` with the attributes :func:`synth.optimise.result.build_result` reads of
+    an :class:`~synth.optimise.evaluate.Evaluation` (positions are core rows of the batch)."""
+
+    def __init__(self, b: Batch, i: int):
+        self.b, self.i = b, i
+        self.inputs, self.settings, self.notes = b.inputs[i], b.settings, b.notes(i)
+
+    def parts(self, pos: int, options: dict) -> dict:
+        return self.b.parts(self.i, pos, options)
+
+    def objective_values(self, pos: int, options: dict, margin: float) -> dict:
+        return {**self.b.objective_values(pos, options), "margin": margin}
+
+
+def robust(fn, items: list, on_error):
+    """``fn(items)`` (a list, one entry per item); where it raises :class:`~synth.errors.InputError` (one item's
+    data the physics refuses), the halves again, down to single items, whose entry is ``on_error(item, exc)``:
+    one bad application never decides the others' answers."""
+    from synth.errors import InputError
+    if not items:
+        return []
+    try:
+        return list(fn(items))
+    except InputError as exc:
+        if len(items) == 1:
+            return [on_error(items[0], exc)]
+        half = len(items) // 2
+        return robust(fn, items[:half], on_error) + robust(fn, items[half:], on_error)
+
+
+def any_feasible(inputs: list, settings: E.Settings = E.Settings(), *, spring_engine: str = "numba") -> list:
+    """Per input, whether some design of its catalog product meets every constraint (the enumeration's
+    ``is_feasible``; an input the physics refuses is not feasible)."""
+    def run(items):
+        return [f is not None for f in Batch(items, settings, spring_engine=spring_engine).optimum({"cost": 1.0},
+                                                                                                  first=True)]
+    return robust(run, list(inputs), lambda item, exc: False)

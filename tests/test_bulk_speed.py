@@ -1,0 +1,145 @@
+"""The fast paths (issue 13) against the reference per-application path: the same rows, designs and relaxations.
+
+Sources: the reference is ``screen_applications_reference`` (``solve(d, objective, "enumerate", exhaustive=True)``
+per application: every core and option of the catalog product evaluated, the nearest design by the exhaustive
+``nearest_design``, each relaxation probe one exhaustive feasibility check) and ``row_from_result``; the
+applications are generated across the input schema's choices with every optional input present and absent
+(``generate(n, seed, vary=True)``). No timing is asserted here: speed is measured by ``benchmarks/``.
+
+* 500 generated applications at screening fidelity (ten slices of 50): every column equal (same verdicts,
+  statuses, chosen or nearest designs, objectives, notes; margins to 1e-9);
+* the relaxations of the infeasible ones (diagnosis on) and full fidelity on smaller samples;
+* ``solve(d, ..., "enumerate")`` (branch and bound) against ``exhaustive=True``: the same Result;
+* :func:`synth.optimise.diagnose.relaxations_batch` against :func:`~synth.optimise.diagnose.relaxations`;
+* an application whose data a physics function refuses does not change the others' rows.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from synth.bulk.engine import columns, screen_applications, screen_applications_reference
+from synth.data.generated_applications import generate
+from synth.design.evaluate import Settings
+from synth.optimise import solve
+from synth.optimise.batch import Batch, any_feasible
+from synth.optimise.diagnose import is_feasible, relaxations, relaxations_batch
+
+PORTFOLIO = generate(500, seed=31, vary=True)
+
+
+def assert_same_rows(fast: pd.DataFrame, ref: pd.DataFrame):
+    """Every column equal: floats to 1e-9 (NaN where NaN, the same infinities), the others as text."""
+    assert list(fast.columns) == list(ref.columns) == columns()
+    assert len(fast) == len(ref)
+    for c in fast.columns:
+        a, b = fast[c].to_numpy(), ref[c].to_numpy()
+        if fast[c].dtype == float:
+            with np.errstate(invalid="ignore"):
+                same = (np.isnan(a) & np.isnan(b)) | (a == b) | (np.abs(a - b) <= 1e-9)
+            assert same.all(), (c, np.flatnonzero(~same)[:5], a[~same][:3], b[~same][:3])
+        else:
+            bad = [i for i, (x, y) in enumerate(zip(a, b)) if str(x) != str(y)]
+            assert not bad, (c, bad[:5], [a[i] for i in bad[:2]], [b[i] for i in bad[:2]])
+
+
+@pytest.mark.parametrize("part", range(10))
+def test_fast_path_equals_the_reference_on_500_generated_applications(part):
+    apps = PORTFOLIO[50 * part:50 * (part + 1)]
+    fast = screen_applications(apps, objective="standard", fidelity="screening", diagnose=False)
+    ref = screen_applications_reference(apps, objective="standard", fidelity="screening", diagnose=False)
+    assert_same_rows(fast, ref)
+    # both verdicts and both kinds of rows occur in every slice (otherwise the comparison proves little)
+    assert 0 < fast["feasible"].sum() < len(apps)
+    assert {"pass", "incomplete", "fail"} >= set(fast["verdict"]) and "fail" in set(fast["verdict"])
+
+
+def test_relaxations_equal_the_reference():
+    # infeasible applications (generated with every input given, and varied), diagnosis on: the same probes, the
+    # same bisection, the same relaxation strings
+    st = Settings(fidelity="screening")
+    apps = [d for d in generate(100, seed=38) if not is_feasible(d, st)][:20]
+    apps += [d for d in PORTFOLIO[:40] if not is_feasible(d, st)][:10]
+    assert len(apps) >= 25
+    fast = screen_applications(apps, objective="standard", diagnose=True)
+    ref = screen_applications_reference(apps, objective="standard", diagnose=True)
+    assert_same_rows(fast, ref)
+    assert (fast["relaxation"] != "").sum() >= 5
+
+
+def test_full_fidelity_and_cost_objective_equal_the_reference():
+    apps = generate(30, seed=32, vary=True)
+    for fid, obj in (("full", "standard"), ("screening", "cost")):
+        assert_same_rows(screen_applications(apps, objective=obj, fidelity=fid, diagnose=False),
+                         screen_applications_reference(apps, objective=obj, fidelity=fid, diagnose=False))
+
+
+def _without_stats(r) -> str:
+    d = r.to_dict()
+    d.pop("stats")
+    return json.dumps(d, sort_keys=True, default=str)
+
+
+@pytest.mark.parametrize("fidelity", ["screening", "full"])
+def test_branch_and_bound_solve_is_the_exhaustive_result(fidelity):
+    st = Settings(fidelity=fidelity)
+    apps = generate(24, seed=33, vary=True)
+    statuses = set()
+    for d in apps:
+        fast = solve(d, "standard", "enumerate", settings=st)
+        ref = solve(d, "standard", "enumerate", settings=st, exhaustive=True)
+        assert _without_stats(fast) == _without_stats(ref)
+        statuses.add(fast.status)
+    assert statuses == {"optimal", "infeasible"}
+
+
+def test_batched_relaxations_equal_the_sequential_ones():
+    st = Settings(fidelity="screening")
+    apps = [d for d in generate(40, seed=34, vary=True) if not is_feasible(d, st)][:6]
+    violated = []
+    for d in apps:
+        r = solve(d, "standard", "enumerate", settings=st, relax=False, exhaustive=True)
+        violated.append([c.id for c in r.failed()])
+    batch = relaxations_batch(apps, violated, settings=st)
+    for d, v, got in zip(apps, violated, batch):
+        assert got == relaxations(d, v, settings=st)
+    assert any(batch)
+
+
+def test_feasibility_probe_equals_is_feasible():
+    st = Settings(fidelity="screening")
+    apps = generate(40, seed=35, vary=True)
+    got = any_feasible(apps, st)
+    assert got == [is_feasible(d, st) for d in apps]
+    assert any(got) and not all(got)
+
+
+def test_an_application_the_physics_refuses_gets_its_own_row():
+    # the fixation refuses a support whose external diameter is not above the internal one (InputError inside the
+    # chunk's vectorised call): that application takes the reference path, the others are unaffected
+    apps = generate(6, seed=36)
+    bad = dataclasses.replace(apps[2], engine_support_external_diameter_mm=apps[2].engine_support_internal_diameter_mm)
+    chunk = apps[:2] + [bad] + apps[3:]
+    fast = screen_applications(chunk, diagnose=False)
+    assert_same_rows(fast, screen_applications_reference(chunk, diagnose=False))
+    assert fast.loc[2, "notes"].startswith("not evaluated")
+    assert_same_rows(fast.drop(index=2).reset_index(drop=True),
+                     screen_applications_reference(apps[:2] + apps[3:], diagnose=False))
+
+
+def test_batch_nearest_design_is_the_exhaustive_one():
+    from synth.optimise.diagnose import nearest_design
+    from synth.optimise.evaluate import evaluate
+    st = Settings(fidelity="screening")
+    apps = generate(25, seed=37, vary=True)
+    b = Batch(apps, st, spring_engine="numpy")
+    near = b.nearest()
+    for i, d in enumerate(apps):
+        ev = evaluate(d, st, prune=False)
+        pos, opts, value = nearest_design(ev)
+        assert (int(b.C[near[i][0]]), near[i][1], near[i][2]) == (int(ev.cores[pos]), opts, value)
