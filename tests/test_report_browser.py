@@ -193,13 +193,19 @@ def test_report_of_an_input_shows_the_design_synth_design_finds(case1, tmp_path,
     assert str(saved) in again["html"].read_text(encoding="utf-8")   # the document block names the result file
 
 
-def test_platform_section_hook(case1, monkeypatch):
+def test_platform_section_hook(case1, tmp_path):
+    """``synth report --platform DIR``: the section the rationalisation wrote, in the report and its contents."""
+    from synth.errors import InputError
+    from synth.platform.outputs import write_all
+    from synth.platform.rationalise import rationalise
+    from synth.platform.synthetic import synthetic_portfolio
     from synth.report.html import render_html
-    text = render_html(case1["result"], [], [], platform="platform-out")
+    pf = synthetic_portfolio(6, seed=1)
+    r = rationalise(pf, time_limit=30)
+    write_all(pf, r, tmp_path / "platform-out")
+    text = render_html(case1["result"], [], [], platform=tmp_path / "platform-out")
     assert 'id="platform"' in text and 'href="#platform"' in text
-    import synth.platform.outputs as outputs
-    monkeypatch.setattr(outputs, "report_section", lambda p: f"<table id='pf'><tr><td>{p}</td></tr></table>",
-                        raising=False)
-    text = render_html(case1["result"], [], [], platform="platform-out")
-    assert "<table id='pf'><tr><td>platform-out</td></tr></table>" in text
+    assert f"{r.n_parts} distinct parts" in text and text.count("data:image/png;base64,") >= 1
     assert 'id="platform"' not in render_html(case1["result"], [], [])
+    with pytest.raises(InputError, match="--platform"):
+        render_html(case1["result"], [], [], platform=tmp_path)   # a folder without section.html

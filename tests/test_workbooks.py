@@ -23,7 +23,7 @@ from openpyxl import load_workbook
 
 from synth import flowchart, schema
 from synth.bulk.portfolio import write_table
-from synth.checks import FAIL, NOT_VERIFIED, PASS
+from synth.design.result import FAIL, NOT_VERIFIED, PASS, WARNING
 from synth.data import CASES_DIR
 from synth.excel import template
 from synth.excel.cells import FORMULA_LEADS, put, sig_format, write_frame
@@ -134,11 +134,12 @@ def test_verdict_colours_are_conditional_formats(results_xlsx):
     wb = load_workbook(results_xlsx)
     out = _rules(wb["Output"])
     last = 4 + len(ROWS)
-    for verdict in (PASS, FAIL, NOT_VERIFIED):
+    for verdict in (PASS, FAIL, NOT_VERIFIED, WARNING):
         assert (f"D5:E{last}", f'$E5="{verdict}"', FILLS[verdict]) in out
     checks = {f: colour for cells, f, colour in _rules(wb["Checks"]) if cells.startswith("D5:")}
     assert checks['$I5="not verified"'] == FILLS[NOT_VERIFIED]
-    assert sorted(checks.values()) == sorted([FILLS[NOT_VERIFIED], FILLS[FAIL], FILLS[PASS]])
+    assert checks['$I5="warning"'] == FILLS[WARNING]   # an advisory range left is amber, never red
+    assert sorted(checks.values()) == sorted([FILLS[NOT_VERIFIED], FILLS[WARNING], FILLS[FAIL], FILLS[PASS]])
     assert any("$D5" in f and "$F5" in f for f in checks)  # the colour follows value against limit
     assert {f: c for s, f, c in _rules(wb["Output"]) if s == "A2"}['ISNUMBER(SEARCH("FAIL",$A$2))'] == FILLS[FAIL]
     assert any(s.startswith("D") for s, *_ in _rules(wb["Optimum"]))  # the optimum's verdict column

@@ -107,11 +107,16 @@ def row_from_result(res, diagnose: bool = True) -> dict:
     for c in res.not_verified():
         nv.setdefault(c.note.replace("not verified: ", ""), []).append(c.id)
     if nv:
-        notes.append("not verified: " + "; ".join(f"{', '.join(ids)} ({why})" for why, ids in nv.items()))
+        notes.append(_not_verified_note(nv))
     if res.assumptions():
         notes.append("assumed: " + "; ".join(a.replace(" assumed", "") for a in res.assumptions()))
     row["notes"] = "; ".join(dict.fromkeys(notes))
     return row
+
+
+def _not_verified_note(groups: dict) -> str:
+    """One note for the not-verified checks of a row, grouped by why: ``{why: [constraint ids]}``."""
+    return "not verified: " + "; ".join(f"{', '.join(ids)}: {why}" for why, ids in groups.items())
 
 
 def error_row(exc: Exception) -> dict:
@@ -210,7 +215,10 @@ def _notes_of(apps, idx, state, evaluated, cache: dict) -> list:
     nv = state == NOT_VERIFIED
     out = []
     for j in range(len(idx)):
-        key = (nv[j].tobytes(), met[j].tobytes(), evaluated[j].tobytes(), assumed[j].tobytes())
+        # which fields of an unmet requirement were left out differs between applications
+        why_of = {r: apps.missing_note(r, int(idx[j])).replace("not verified: ", "")
+                  for k, r in enumerate(reqs) if not met[j, k]} if nv[j].any() else {}
+        key = (nv[j].tobytes(), evaluated[j].tobytes(), assumed[j].tobytes(), tuple(why_of.items()))
         hit = cache.get(key)
         if hit is None:
             i = int(idx[j])
@@ -218,11 +226,11 @@ def _notes_of(apps, idx, state, evaluated, cache: dict) -> list:
             for c in np.flatnonzero(nv[j]):
                 con = _COLS[c]
                 missing = [r for r in con.needs if not met[j, reqs.index(r)]]
-                why = apps.missing_note(missing[0]).replace("not verified: ", "") if missing else ""
+                why = why_of[missing[0]] if missing else ""
                 groups.setdefault(why, []).append(con.id)
             notes = []
             if groups:
-                notes.append("not verified: " + "; ".join(f"{', '.join(ids)} ({why})" for why, ids in groups.items()))
+                notes.append(_not_verified_note(groups))
             seen = []
             for c in np.flatnonzero(evaluated[j]):
                 for x in _COLS[c].assumes:
@@ -271,7 +279,7 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
     out = []
     cache: dict = {}
     notes_nv = _notes_of(b.apps, idx, state, ev, cache)
-    part_cols = _parts(groups["_attrs"], groups["core"].values["cone_spring_max_external_diameter_mm"])
+    part_cols = _parts(groups["_attrs"], groups["core"].values)
     ids = [c.id for c in _COLS]
     for j in range(m):
         i = int(idx[j])
@@ -297,7 +305,7 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
             else:
                 row["binding_constraint"], row["binding_margin"] = "", math.inf
         for c, cid in enumerate(ids):
-            row[f"margin_{cid}"] = float(marg[j, c]) if counted[j, c] else math.nan
+            row[f"margin_{cid}"] = float(marg[j, c]) if ev[j, c] else math.nan  # advisory too, as warnings
         row["violated"] = ";".join(f"{ids[c]}:{marg[j, c]:+.3f}" for c in order) if not feasible else ""
         row["relaxation"] = ""
         notes = b.notes(i)
@@ -309,23 +317,11 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
     return out
 
 
-def _parts(attrs: dict, de_max) -> dict:
-    """The part columns (:data:`PART_KEYS`) of verified designs, as
-    :func:`synth.design.verify.parts_of_attributes` gives a result's parts (plain values; the cone spring's outer
-    diameter made absolute from the verified attributes)."""
-    from synth.design.result import plain
-    cols = {}
-    for table in ("core", "bushing", "axial", "spring", "bolt"):
-        for k, v in attrs[table].items():
-            if k in PART_KEYS:
-                cols[k] = [plain(x) for x in np.asarray(v)]
-    red = np.asarray(attrs["axial"]["cone_spring_de_reduction_mm"], dtype=float)
-    spacer = np.asarray(attrs["axial"]["endcap_spacer_class"])
-    cols["cone_spring_external_diameter_mm"] = [plain(float(x) - float(r)) if (sc != NONE and np.isfinite(x)) else 0.0
-                                                for x, r, sc in zip(de_max, red, spacer)]
-    cols["pivot_bushing_supplier"] = [plain(x) for x in np.asarray(attrs["core"]["pivot_bushing_supplier"])]
-    n = len(red)
-    return {k: cols.get(k, [None] * n) for k in PART_KEYS}
+def _parts(attrs: dict, core_values: dict) -> dict:
+    """The part columns (:data:`PART_KEYS`) of verified designs: :func:`synth.design.verify.parts_of_rows`."""
+    from synth.design.verify import parts_of_rows
+    rows = parts_of_rows(attrs, core_values)
+    return {k: [r[k] for r in rows] for k in PART_KEYS}
 
 
 def _screen_chunk(inputs: list, weights: dict, obj, settings, diagnose: bool) -> list:

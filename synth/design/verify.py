@@ -97,24 +97,38 @@ def inputs_of(d) -> dict | None:
     return {k: plain(v) for k, v in dataclasses.asdict(d).items()}
 
 
-def parts_of_attributes(attrs: dict, groups: dict) -> dict:
-    """The part keys of a design from its one-row attributes (the cone spring's outer diameter made absolute)."""
-    de_max = float(groups["core"].values["cone_spring_max_external_diameter_mm"][0])
-    di_min = float(groups["core"].values["cone_spring_min_internal_diameter_mm"][0]) \
-        if "cone_spring_min_internal_diameter_mm" in groups["core"].values else np.nan
-    out = {}
+def parts_of_rows(attrs: dict, core_values: dict) -> list:
+    """The part keys of N designs (one dict each) from their N-row attributes and their core group's values
+    (the cone spring's diameters made absolute: De = De_max - reduction, Di = Di_min + increase; 0 without one)."""
+    n = len(np.asarray(attrs["core"]["pivot_bushing_supplier"]))
+    de_max = np.broadcast_to(np.asarray(core_values["cone_spring_max_external_diameter_mm"], dtype=float), (n,))
+    di_min = np.broadcast_to(np.asarray(core_values.get("cone_spring_min_internal_diameter_mm", np.nan),
+                                        dtype=float), (n,))
+    cols = {}
     for table in ("core", "bushing", "axial", "spring", "bolt"):
         for k, v in attrs[table].items():
             if k in PART_KEYS:
-                out[k] = plain(np.asarray(v)[0])
-    if out.get("endcap_spacer_class", NONE) != NONE and np.isfinite(de_max):
-        out["cone_spring_external_diameter_mm"] = plain(de_max - float(attrs["axial"]["cone_spring_de_reduction_mm"][0]))
-        out["cone_spring_internal_diameter_mm"] = plain(di_min + float(attrs["axial"]["cone_spring_di_increase_mm"][0]))
-    else:
-        out["cone_spring_external_diameter_mm"] = 0.0
-        out["cone_spring_internal_diameter_mm"] = 0.0
-    out["pivot_bushing_supplier"] = plain(attrs["core"]["pivot_bushing_supplier"][0])
-    return {k: out.get(k) for k in PART_KEYS}
+                cols[k] = np.asarray(v)
+    spacer = cols.get("endcap_spacer_class", np.full(n, NONE, dtype=object))
+    red = np.asarray(attrs["axial"]["cone_spring_de_reduction_mm"], dtype=float)
+    inc = np.asarray(attrs["axial"]["cone_spring_di_increase_mm"], dtype=float)
+    out = []
+    for j in range(n):
+        part = {k: plain(v[j]) for k, v in cols.items()}
+        if spacer[j] != NONE and np.isfinite(de_max[j]):
+            part["cone_spring_external_diameter_mm"] = plain(de_max[j] - red[j])
+            part["cone_spring_internal_diameter_mm"] = plain(di_min[j] + inc[j])
+        else:
+            part["cone_spring_external_diameter_mm"] = 0.0
+            part["cone_spring_internal_diameter_mm"] = 0.0
+        part["pivot_bushing_supplier"] = plain(np.asarray(attrs["core"]["pivot_bushing_supplier"])[j])
+        out.append({k: part.get(k) for k in PART_KEYS})
+    return out
+
+
+def parts_of_attributes(attrs: dict, groups: dict) -> dict:
+    """The part keys of a design from its one-row attributes (see :func:`parts_of_rows`)."""
+    return parts_of_rows(attrs, groups["core"].values)[0]
 
 
 def verify(d, parts: dict, settings: E.Settings = E.Settings(), *, status: str = "verified", solver: str = "",

@@ -30,7 +30,7 @@ from pathlib import Path
 
 from synth import schema
 from synth.design.constraints import FEAS_TOL
-from synth.design.result import FAIL, NOT_VERIFIED, PASS, field_corrections, row_verdict
+from synth.design.result import FAIL, NOT_VERIFIED, PASS, WARNING, field_corrections, row_verdict
 from synth.excel.cells import page_setup, put, wrap
 from synth.excel.template import FILLS
 from synth.output_table import ROWS, format_value
@@ -97,7 +97,7 @@ def _verdict_colours(ws, cells: str, ref: str, *, contains: bool = False) -> Non
     ``ref`` is the first row's verdict cell (``$E5``: relative row); ``contains``
     matches ``Verdict: FAIL``-style text.
     """
-    for key in (FAIL, NOT_VERIFIED, PASS):
+    for key in (FAIL, NOT_VERIFIED, WARNING, PASS):
         word = key.upper() if contains else key
         formula = f'ISNUMBER(SEARCH("{word}",{ref}))' if contains else f'{ref}="{word}"'
         ws.conditional_formatting.add(cells, _rule(formula, key))
@@ -145,6 +145,7 @@ def _checks_sheet(ws, result) -> None:
     numbers = "ISNUMBER($D5),ISNUMBER($F5)"
     cells = f"D5:D{last} H5:I{last}"
     ws.conditional_formatting.add(cells, _rule('$I5="not verified"', NOT_VERIFIED))
+    ws.conditional_formatting.add(cells, _rule('$I5="warning"', WARNING))  # advisory: amber whatever the value
     ws.conditional_formatting.add(cells, _rule(f"AND({numbers},{over}>{tol})", FAIL))
     ws.conditional_formatting.add(cells, _rule(f"AND({numbers},{over}<={tol})", PASS))
     wrap(ws, "K", 5, last)

@@ -84,6 +84,7 @@ FILLS = {
     "pass": "C6EFCE",
     "fail": "FFC7CE",
     "not verified": "FFD966",
+    "warning": "FFEB9C",
 }
 
 #: The colour legend (Fig. 24): (fill key, meaning).
@@ -94,6 +95,7 @@ LEGEND = (
     ("info", "information only (not read)"),
     ("pass", "data read / verified (green)"),
     ("not verified", "not verified: data missing (orange)"),
+    ("warning", "advisory range left (Table 7): a warning, never a failure (yellow)"),
     ("fail", "problem: invalid data or failed check (red)"),
 )
 

@@ -23,6 +23,7 @@ import numpy as np
 import pandas as pd
 
 from synth.platform.assign import platform_parts_used
+from synth.errors import InputError, Problem
 from synth.platform.data import FAMILIES
 
 __all__ = ["platform_table", "gap_text", "assignment_table", "price_of_standardisation", "summary_markdown",
@@ -209,7 +210,15 @@ def report_section(result) -> str:
     >>> sec = report_section(rationalise(synthetic_portfolio(6, seed=1), time_limit=30))
     >>> sec.startswith('<section id="platform">'), sec.count("data:image/png;base64,")
     (True, 1)
+
+    ``result`` may also be the folder :func:`write_all` wrote (``synth rationalise --out``): its ``section.html``.
     """
+    if isinstance(result, (str, Path)):
+        f = Path(result) / "section.html"
+        if not f.is_file():
+            raise InputError(Problem("--platform", str(result), "a folder written by synth rationalise --out "
+                                     "(with section.html)"))
+        return f.read_text(encoding="utf-8")
     p = result.price
     n_bad = len(result.records) - p["applications_served"]
     out = ['<section id="platform">', "<h2>Platform rationalisation</h2>",
@@ -256,4 +265,8 @@ def write_all(pf, result, out, tradeoff_rows: list | None = None, kind: str = "m
         pd.DataFrame(tradeoff_rows).to_csv(out / "tradeoff.csv", index=False)
         paths += [out / "tradeoff.csv", plot_tradeoff(tradeoff_rows, out / "tradeoff.png", kind)]
     paths[2].write_text(text, encoding="utf-8")
+    if tradeoff_rows and not getattr(result, "tradeoff", None):
+        result.tradeoff = tradeoff_rows
+    paths.append(out / "section.html")  # the report's platform section (synth report --platform DIR)
+    paths[-1].write_text(report_section(result), encoding="utf-8")
     return paths

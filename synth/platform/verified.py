@@ -34,7 +34,7 @@ from synth.design import evaluate as E
 from synth.design.applications import Applications
 from synth.design.space import SUBSYSTEMS
 from synth.design.result import Result, checks_of
-from synth.design.verify import evaluate_design, parts_of_attributes
+from synth.design.verify import evaluate_design, parts_of_rows
 
 __all__ = ["design_parts", "verify_records"]
 
@@ -53,11 +53,7 @@ def design_parts(pf, items: list) -> list:
     apps = Applications.of([pf.design_inputs[i] for i, _, _ in items])
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
         cg = E.core(apps, np.arange(len(items)), attrs["core"], pf.settings or E.Settings())
-    de = cg.values["cone_spring_max_external_diameter_mm"]
-    one = (lambda d, k: {key: v[k:k + 1] for key, v in d.items()})  # noqa: E731
-    return [parts_of_attributes({t: one(attrs[t], k) for t in attrs},
-                                {"core": E.Group("core", {"cone_spring_max_external_diameter_mm": de[k:k + 1]})})
-            for k in range(len(items))]
+    return parts_of_rows(attrs, cg.values)
 
 
 def verify_records(pf, records: list) -> list:

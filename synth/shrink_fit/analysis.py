@@ -13,7 +13,7 @@ from dataclasses import asdict
 
 import numpy as np
 
-from synth.checks import Check
+from synth.shrink_fit.check import Check
 from synth.shrink_fit.fits import fit_limits
 from synth.shrink_fit.friction import friction_coefficient
 from synth.shrink_fit.inputs import ShrinkFitCase

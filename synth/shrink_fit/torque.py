@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from synth.checks import margin_lower
+from synth.shrink_fit.check import margin_lower
 
 __all__ = ["LOAD_RULES", "friction_torque_nm", "pulley_load_torque_nm", "slip_margin"]
 

@@ -1,4 +1,5 @@
-"""Verification checks and normalised margins, shared by every step.
+"""Checks and normalised margins of the shrink fit (the crankshaft pulley scene; the tensioner's checks are the
+registry's, :mod:`synth.design.constraints`).
 
 A margin is normalised so that ``margin >= 0`` passes and its size is the
 relative distance to the limit, whatever the unit:
