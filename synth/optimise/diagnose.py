@@ -89,13 +89,47 @@ def _probe_default(d, changes: dict, settings):
         return False
 
 
+def _consistent(d, changes: dict) -> bool:
+    """Whether input ``d`` with ``changes`` still meets the schema's cross-field rules (a bolt head wider than
+    the support's bore, a support bore narrower than its outer diameter, ...): a probe outside them is not an
+    input a user could give."""
+    from synth.schema import _consistency
+    problems: list = []
+    _consistency({**vars(d), **changes}, problems)
+    return not problems
+
+
+def _within_rules(d, far: dict, steps: int = 30) -> float:
+    """The largest fraction ``lam`` in [0, 1] of the move from ``d`` to ``far`` (field -> value) that keeps the
+    cross-field rules (:func:`_consistent`; 1 when the whole move does), by bisection."""
+    at = (lambda lam: {n: getattr(d, n) + lam * (v - getattr(d, n)) for n, v in far.items()})  # noqa: E731
+    if _consistent(d, at(1.0)):
+        return 1.0
+    good, bad = 0.0, 1.0
+    for _ in range(steps):
+        mid = 0.5 * (good + bad)
+        good, bad = (mid, bad) if _consistent(d, at(mid)) else (good, mid)
+    return good
+
+
 def _far(d, name, sign):
+    """The far probe of input ``name``: x2 (raise) or /4 (lower) within the schema's range of the field, and
+    short of the first cross-field rule it would break."""
     cur = getattr(d, name)
     f = field_by_name(name)
     if sign > 0:
-        return min(2.0 * cur, f.hi) if np.isfinite(f.hi) else 2.0 * cur
-    far = max(0.25 * cur, f.lo if np.isfinite(f.lo) else 0.0)
-    return f.lo + 1e-3 * abs(cur) if f.lo_open and far <= f.lo else far
+        far = min(2.0 * cur, f.hi) if np.isfinite(f.hi) else 2.0 * cur
+    else:
+        far = max(0.25 * cur, f.lo if np.isfinite(f.lo) else 0.0)
+        far = f.lo + 1e-3 * abs(cur) if f.lo_open and far <= f.lo else far
+    return cur + _within_rules(d, {name: far}) * (far - cur)
+
+
+def _far_joint(d, cands: dict) -> dict:
+    """The far probe of all inputs ``cands`` moved together (each :func:`_far`), short of the cross-field rules."""
+    far = {n: _far(d, n, s) for n, s in cands.items()}
+    lam = _within_rules(d, far)
+    return {n: getattr(d, n) + lam * (v - getattr(d, n)) for n, v in far.items()}
 
 
 def _candidates(d, violated) -> dict:
@@ -148,7 +182,7 @@ def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: in
                 bad = mid
         out.append(_single(d, name, good, violated))
     if not out and len(cands) > 1:
-        far = {n: _far(d, n, s) for n, s in cands.items()}
+        far = _far_joint(d, cands)
 
         def at(lam):
             return {n: getattr(d, n) + lam * (far[n] - getattr(d, n)) for n in cands}
@@ -196,7 +230,7 @@ def relaxations_batch(ds: list, violated: list, *, settings: Settings = Settings
             if (i, name) in found:
                 out[i].append(_single(ds[i], name, found[(i, name)], violated[i]))
     joint = [i for i, c in enumerate(cands) if not out[i] and len(c) > 1]
-    far = {i: {n: _far(ds[i], n, s) for n, s in cands[i].items()} for i in joint}
+    far = {i: _far_joint(ds[i], cands[i]) for i in joint}
 
     def at(i, lam):
         return {n: getattr(ds[i], n) + lam * (far[i][n] - getattr(ds[i], n)) for n in cands[i]}
