@@ -4,7 +4,8 @@ Run: ``.venv/bin/python benchmarks/bench_cli.py [--runs N]`` (default 7; prints 
 Each command runs as a fresh process, the reference A (``python -c "import numpy"``) and the
 command B in turn, A B A B ..., after one warm-up of each; the table gives the median wall time
 of each and the median of the pair-by-pair ratio B/A, so a drift of the machine's speed cancels.
-The aim (issue 13): ``synth --help`` under 0.3 s.
+The aims (issue 13): ``synth --help`` under 0.3 s; ``synth design`` within 0.5 s of the reference
+(the column "difference": median of the pair-by-pair differences B - A).
 """
 
 from __future__ import annotations
@@ -23,6 +24,8 @@ COMMANDS = {
     "synth --help": ["-m", "synth", "--help"],
     "synth --version": ["-m", "synth", "--version"],
     "synth flowchart --help (imports the scene)": ["-m", "synth", "flowchart", "--help"],
+    "synth design (embedded default application, whole command)":
+        ["-m", "synth", "design", str(ROOT / "synth" / "data" / "default_case.yaml")],
 }
 
 
@@ -34,8 +37,9 @@ def _wall(cmd: list[str], env: dict) -> float:
 
 def main(runs: int = 7) -> None:
     env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-    print(f"| command | median wall [s] | reference `python -c \"import numpy\"` [s] | ratio to reference | runs |")
-    print("|---|---|---|---|---|")
+    print(f"| command | median wall [s] | reference `python -c \"import numpy\"` [s] | ratio to reference | "
+          "difference [s] | runs |")
+    print("|---|---|---|---|---|---|")
     for label, args in COMMANDS.items():
         cmd = [sys.executable, *args]
         _wall(REFERENCE, env), _wall(cmd, env)  # warm-up (file cache, .pyc)
@@ -44,7 +48,9 @@ def main(runs: int = 7) -> None:
             a.append(_wall(REFERENCE, env))
             b.append(_wall(cmd, env))
         ratio = statistics.median(y / x for x, y in zip(a, b))
-        print(f"| {label} | {statistics.median(b):.3f} | {statistics.median(a):.3f} | {ratio:.2f} | {runs} |")
+        diff = statistics.median(y - x for x, y in zip(a, b))
+        print(f"| {label} | {statistics.median(b):.3f} | {statistics.median(a):.3f} | {ratio:.2f} | {diff:.3f} | "
+              f"{runs} |")
 
 
 if __name__ == "__main__":

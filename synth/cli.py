@@ -89,19 +89,14 @@ def version_text(catalog_dirs=()) -> str:
     The hash covers the built-in ``catalogs/*.csv`` and the CSVs of every user folder
     (``--catalogs``, ``SYNTH_CATALOGS``), file names and bytes: two runs with the same hash read the same data.
     """
-    import hashlib
     from pathlib import Path
 
     from synth import __version__
-    here = Path(__file__).resolve().parent
-    builtin = next((d for d in (here / "catalogs", here.parent / "catalogs") if d.is_dir()), None)
+    from synth.fingerprint import catalogs_sha256
     user = [Path(d) for d in catalog_dirs] + [Path(p) for p in os.environ.get("SYNTH_CATALOGS", "").split(os.pathsep) if p]
-    h = hashlib.sha256()
-    for d in ([builtin] if builtin else []) + user:
-        for f in sorted(d.glob("*.csv")) if d.is_dir() else []:
-            h.update(f.name.encode() + b"\0" + f.read_bytes() + b"\0")
+    digest = catalogs_sha256(user)
     extra = f"; user catalogs: {', '.join(str(d) for d in user)}" if user else ""
-    return f"synth {__version__} (catalogs sha256 {h.hexdigest()[:12]}{extra})"
+    return f"synth {__version__} (catalogs sha256 {digest[:12]}{extra})"
 
 
 class _VersionAction(argparse.Action):

@@ -383,11 +383,18 @@ def _bolt(p: P.Parts) -> dict:
     return {k: v[keep] for k, v in t.items()}
 
 
-@functools.lru_cache(maxsize=8)
-def _space_cached(user_dirs: tuple) -> Space:
+def _build_space() -> Space:
     p = P.arrays()
     return Space({"core": _core(p), "bushing": _bushing(p), "axial": _axial(p), "spring": _spring(p),
                   "bolt": _bolt(p)}, p)
+
+
+@functools.lru_cache(maxsize=8)
+def _space_cached(user_dirs: tuple) -> Space:
+    """The space of these catalogs, built once per catalog data and builder source (the on-disk cache of
+    :func:`synth.fingerprint.cached`: about 5 ms to check and load against about 0.1 s to build)."""
+    from synth.fingerprint import cached, catalogs_sha256, source_stamp
+    return cached("space", [catalogs_sha256(user_dirs), source_stamp()], _build_space)
 
 
 def space() -> Space:

@@ -1,0 +1,89 @@
+"""Fingerprints of the data and code a result depends on, and the on-disk cache they key.
+
+* :func:`catalogs_sha256`: the built-in ``catalogs/*.csv`` and every user folder's CSVs (file names
+  and bytes): two runs with the same hash read the same data (``synth --version`` prints it).
+* :func:`cached`: a value built once per fingerprint and kept as a pickle in the user's cache folder
+  (``SYNTH_CACHE_DIR``, else ``$XDG_CACHE_HOME/synth``, else ``~/.cache/synth``; ``SYNTH_CACHE_DIR=off``
+  disables it). A file that cannot be read or written is rebuilt or skipped silently: the cache only
+  saves time, it never changes an answer (its key covers the catalogs and synth's source, :func:`source_stamp`).
+
+No pandas, no numpy at import: ``synth --version`` stays fast.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import pickle
+from pathlib import Path
+
+__all__ = ["builtin_catalog_dir", "catalogs_sha256", "source_stamp", "cached"]
+
+
+def builtin_catalog_dir() -> Path | None:
+    """Folder of the built-in catalogs (inside the wheel, or the source tree), or None."""
+    here = Path(__file__).resolve().parent
+    return next((d for d in (here / "catalogs", here.parent / "catalogs") if d.is_dir()), None)
+
+
+def catalogs_sha256(user_dirs=()) -> str:
+    """Hex sha256 of the built-in catalog CSVs and those of ``user_dirs`` (names and bytes, in order)."""
+    builtin = builtin_catalog_dir()
+    h = hashlib.sha256()
+    for d in ([builtin] if builtin else []) + [Path(d) for d in user_dirs]:
+        for f in sorted(d.glob("*.csv")) if d.is_dir() else []:
+            h.update(f.name.encode() + b"\0" + f.read_bytes() + b"\0")
+    return h.hexdigest()
+
+
+def source_stamp() -> str:
+    """A stamp of synth's own source: every module's path, size and modification time (a ``stat`` each, no
+    reading): an edited module makes every cached value stale."""
+    root = os.path.dirname(os.path.abspath(__file__))
+    parts = []
+    for folder, dirs, files in os.walk(root):
+        dirs[:] = [d for d in dirs if d != "__pycache__"]
+        for e in os.scandir(folder):
+            if e.name.endswith(".py") and e.is_file():
+                st = e.stat()
+                parts.append(f"{os.path.relpath(e.path, root)}:{st.st_size}:{st.st_mtime_ns}")
+    return hashlib.sha256("\0".join(sorted(parts)).encode()).hexdigest()
+
+
+def _cache_dir() -> Path | None:
+    env = os.environ.get("SYNTH_CACHE_DIR")
+    if env is not None:
+        return None if env.strip().lower() in ("", "off", "0", "none") else Path(env)
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "synth"
+
+
+def cached(name: str, key_parts: list, build):
+    """``build()``, or its pickle from the cache when one was stored under the same ``name`` and key.
+
+    ``key_parts``: strings or paths (a path contributes its bytes: the source files of the builder).
+    """
+    from synth import __version__
+    h = hashlib.sha256(__version__.encode())
+    for k in key_parts:
+        h.update(Path(k).read_bytes() if isinstance(k, Path) else str(k).encode())
+        h.update(b"\0")
+    folder = _cache_dir()
+    path = folder / f"{name}-{h.hexdigest()[:20]}.pickle" if folder else None
+    if path is not None and path.is_file():
+        try:
+            with open(path, "rb") as f:
+                return pickle.load(f)
+        except Exception:  # noqa: BLE001 - a damaged or foreign cache file: rebuild
+            pass
+    value = build()
+    if path is not None:
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+            tmp = path.with_suffix(f".{os.getpid()}.tmp")
+            with open(tmp, "wb") as f:
+                pickle.dump(value, f, protocol=pickle.HIGHEST_PROTOCOL)
+            os.replace(tmp, path)
+        except OSError:
+            pass
+    return value
