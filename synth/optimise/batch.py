@@ -108,8 +108,16 @@ def _unique_rows(*cols):
     if not len(stack):
         return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
     stack = np.where(np.isnan(stack), np.finfo(float).max, stack)  # NaN keys compare equal
-    _, first, inv = np.unique(stack, axis=0, return_index=True, return_inverse=True)
-    return first.astype(np.int64), np.asarray(inv).reshape(-1).astype(np.int64)
+    stack = stack + 0.0  # -0.0 -> 0.0: equal keys, equal bits
+    # a stable lexicographic sort and the row changes: np.unique(axis=0)'s groups, in its order, several
+    # times faster (np.unique sorts a structured view)
+    order = np.lexsort(stack.T[::-1])
+    srt = stack[order]
+    new = np.ones(len(srt), dtype=bool)
+    new[1:] = (srt[1:] != srt[:-1]).any(axis=1)
+    inv = np.empty(len(srt), dtype=np.int64)
+    inv[order] = np.cumsum(new) - 1
+    return order[new].astype(np.int64), inv
 
 
 def _segments(starts, counts):
