@@ -36,20 +36,17 @@ import pandas as pd
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from synth import catalog  # noqa: E402
 from synth.data.generated_applications import generate  # noqa: E402
+from synth.design.constraints import FEAS_TOL  # noqa: E402
+from synth.design.evaluate import Settings  # noqa: E402
 from synth.kernels import torsion_spring as K  # noqa: E402
-from synth.optimise import evaluate as E  # noqa: E402
-from synth.optimise.space import build_space  # noqa: E402
-
-FEAS_TOL = E.FEAS_TOL
 
 # --------------------------------------------------------------------------------------- 1. numba costs
 
 _CHILD = r"""
 import json, sys, time
 if sys.argv[1:] == ["bulk"]:
-    import synth.optimise.evaluate  # what the bulk path has imported before it calls a kernel (pandas, scipy)
+    import synth.optimise.batch  # what the bulk path has imported before it calls a kernel (pandas, scipy)
 t0 = time.perf_counter()
 import numpy as np
 t1 = time.perf_counter()
@@ -123,57 +120,22 @@ def numba_costs(runs: int) -> None:
 # --------------------------------------------------------------------------------------- keys of generated applications
 
 
-def _app_inputs(d, sp) -> dict:
-    dur = sp.fixed["durability"]
-    return {"stiffness_nm_per_deg": d.spring_stiffness_nm_per_deg,
-            "torque_tolerance_pct": d.spring_torque_tolerance_pct or 0.0, "theta_pp_deg": dur[0] if dur else 0.0}
-
-
 def sample(n_apps: int, seed: int):
-    """Spring keys of the core-feasible cores of ``n_apps`` generated applications, every application's catalog
-    springs as indices into one union option table, ordered by the application's spring cost."""
+    """Spring keys of the core-feasible cores of ``n_apps`` generated applications, as the bulk engine builds
+    them (:class:`synth.optimise.batch.Batch`: the distinct keys of every feasible core row, each application's
+    catalog springs of its mean-diameter range in cost order)."""
+    from synth.optimise.batch import Batch
     t0 = time.perf_counter()
-    cache: dict = {}
-    keys_u, inputs, tables = [], [], []
-    for d in generate(n_apps, seed=seed):
-        sp = build_space(d, cache=cache)
-        _, arr, avail, cv = E._core(sp)
-        rows = np.flatnonzero(avail & np.all(arr >= -FEAS_TOL, axis=1))
-        u = np.unique(E.spring_keys(cv, rows), axis=0) if len(rows) else np.zeros((0, 4))
-        keys_u.append(u)
-        inputs.append(_app_inputs(d, sp))
-        tables.append(sp.subsystems["spring"][["spring_material", "spring_wire", "spring_mbd_mm", "cost_eur"]])
+    b = Batch(generate(n_apps, seed=seed), Settings(fidelity="screening"))
+    rows = np.flatnonzero(b.core_ok)
+    keys, _ = b._spring_keys(rows)
+    lists, list_of, _, _, _ = b._spring_app_lists({"cost": 1.0})
+    app = np.asarray(keys["app"], dtype=np.int64)
+    kk = K.keys_of_rows(b.apps, keys)
+    grp = list_of[app]
+    keep = np.flatnonzero(grp >= 0)   # applications whose range holds springs
     prep = time.perf_counter() - t0
-    # one union table: material x wire x mean diameter over every application's grid
-    mats = catalog.load("spring_materials")["material"].astype(str).tolist()
-    wires = catalog.load("spring_wires")
-    wnames = wires["designation"].astype(str).tolist()
-    step = catalog.constant("optimise_mbd_step_mm")
-    lo = min(float(t["spring_mbd_mm"].min()) for t in tables)
-    hi = max(float(t["spring_mbd_mm"].max()) for t in tables)
-    grid = lo + step * np.arange(int(round((hi - lo) / step)) + 1)
-    nm, nw, ng = len(mats), len(wnames), len(grid)
-    mi, wi, gi = np.meshgrid(np.arange(nm), np.arange(nw), np.arange(ng), indexing="ij")
-    mi, wi, gi = mi.ravel(), wi.ravel(), gi.ravel()
-    union = pd.DataFrame({"spring_material": np.array(mats)[mi], "spring_mbd_mm": grid[gi]})
-    for col in ("b_mm", "h_mm", "b_tol_mm", "h_tol_mm"):
-        union[col] = wires[col].to_numpy(float)[wi]
-    union["round_wire"] = (wires["section"].str.strip() == "round").to_numpy()[wi]
-    options = K.options_from_table(union)
-    mcode, wcode = {m: i for i, m in enumerate(mats)}, {w: i for i, w in enumerate(wnames)}
-    orders = []
-    for t in tables:
-        code = (t["spring_material"].map(mcode).to_numpy() * nw + t["spring_wire"].map(wcode).to_numpy()) * ng \
-            + np.rint((t["spring_mbd_mm"].to_numpy(float) - lo) / step).astype(int)
-        assert np.allclose(union["spring_mbd_mm"].to_numpy()[code], t["spring_mbd_mm"].to_numpy(float))
-        orders.append(code[np.argsort(t["cost_eur"].to_numpy(float), kind="stable")].astype(np.int64))
-    n_per = np.array([len(u) for u in keys_u])
-    u = np.concatenate(keys_u)
-    app = {k: np.repeat([a[k] for a in inputs], n_per) for k in inputs[0]}
-    keys = K.spring_keys(spring_torque_nominal_nm=np.maximum(u[:, 0], 1e-6), housing_height_mm=u[:, 1],
-                         housing_outer_diameter_mm=u[:, 2], housing_inner_diameter_mm=u[:, 3], **app)
-    key_group = np.repeat(np.arange(n_apps), n_per)
-    return keys, options, orders, key_group, prep
+    return kk.take(keep), b._options(), lists, grp[keep], prep, app[keep]
 
 
 def _warm(keys, options) -> None:
@@ -242,7 +204,7 @@ def pairs_table(keys, options, orders, key_group, repeat: int) -> None:
 # --------------------------------------------------------------------------------------- 3. applications/s
 
 
-def apps_table(keys, options, orders, key_group, n_apps, n_numpy, prep, repeat) -> None:
+def apps_table(keys, options, orders, key_group, n_apps, n_numpy, prep, repeat, app) -> None:
     _warm(keys, options)
     rows = []
     t_nb, r_nb = _best(lambda: K.first_feasible(keys, options, orders, key_group=key_group, tol=FEAS_TOL), repeat)
@@ -250,13 +212,13 @@ def apps_table(keys, options, orders, key_group, n_apps, n_numpy, prep, repeat) 
     t_par, r_par = _best(lambda: K.first_feasible(keys, options, orders, key_group=key_group, tol=FEAS_TOL,
                                                   parallel=True), repeat)
     rows.append(("numba parallel=True", n_apps, len(keys), t_par, int(r_par.visited.sum())))
-    sel = np.flatnonzero(key_group < n_numpy)
+    sel = np.flatnonzero(app < n_numpy)
     sub = keys.take(sel)
-    t_np, r_np = _best(lambda: K.first_feasible(sub, options, orders[:n_numpy], key_group=key_group[sel],
+    t_np, r_np = _best(lambda: K.first_feasible(sub, options, orders, key_group=key_group[sel],
                                                 tol=FEAS_TOL, engine="numpy"), 1)
     rows.append(("numpy (reference, blocks)", n_numpy, len(sub), t_np, int(r_np.visited.sum())))
     same = np.array_equal(r_np.index, r_nb.index[sel]) and np.array_equal(r_par.index, r_nb.index)
-    with_keys = np.unique(key_group).size
+    with_keys = np.unique(app).size
     print(f"## Spring subsystem of {n_apps} generated applications (first feasible in cost order, early exit)\n")
     print(f"{len(keys):,} spring keys ({len(keys) / n_apps:.1f} per application; {with_keys} applications have a "
           f"core-feasible core), {len(options):,} union options. Building the spaces and core evaluations "
@@ -284,10 +246,10 @@ def main(argv=None) -> int:
     print(f"# Main-spring kernels benchmark (generated applications, seed {args.seed}; "
           f"numba threads {os.environ.get('NUMBA_NUM_THREADS', os.cpu_count())})\n")
     numba_costs(args.runs)
-    keys, options, orders, kg, _ = sample(args.pair_apps, args.seed)
+    keys, options, orders, kg, _, _ = sample(args.pair_apps, args.seed)
     pairs_table(keys, options, orders, kg, args.runs)
-    keys, options, orders, kg, prep = sample(args.apps, args.seed)
-    apps_table(keys, options, orders, kg, args.apps, min(args.numpy_apps, args.apps), prep, args.runs)
+    keys, options, orders, kg, prep, app = sample(args.apps, args.seed)
+    apps_table(keys, options, orders, kg, args.apps, min(args.numpy_apps, args.apps), prep, args.runs, app)
     return 0
 
 
