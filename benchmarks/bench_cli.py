@@ -5,7 +5,9 @@ Each command runs as a fresh process, the reference A (``python -c "import numpy
 command B in turn, A B A B ..., after one warm-up of each; the table gives the median wall time
 of each and the median of the pair-by-pair ratio B/A, so a drift of the machine's speed cancels.
 The aims (issue 13): ``synth --help`` under 0.3 s; ``synth design`` within 0.5 s of the reference
-(the column "difference": median of the pair-by-pair differences B - A).
+(the column "difference": median of the pair-by-pair differences B - A). The processes may write
+byte-code (``PYTHONDONTWRITEBYTECODE`` is removed), as pip's install of the wheel compiles it; the design
+space, parts and constants come from synth's on-disk cache after the warm-up run (:mod:`synth.fingerprint`).
 """
 
 from __future__ import annotations
@@ -37,6 +39,7 @@ def _wall(cmd: list[str], env: dict) -> float:
 
 def main(runs: int = 7) -> None:
     env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    env.pop("PYTHONDONTWRITEBYTECODE", None)  # byte-compiled modules, as an installed package has them
     print(f"| command | median wall [s] | reference `python -c \"import numpy\"` [s] | ratio to reference | "
           "difference [s] | runs |")
     print("|---|---|---|---|---|---|")

@@ -209,5 +209,10 @@ def constant(name: str) -> float:
 
 @functools.lru_cache(maxsize=None)
 def _constant_values(user_dirs: tuple[Path, ...]) -> dict:
-    df, index = _constants_cached(user_dirs)
-    return {n: df["value"].iloc[i] for n, i in index.items()}
+    """``{name: value}`` of every constant, read once per catalog data (:func:`synth.fingerprint.cached`)."""
+    from synth.fingerprint import cached, catalogs_sha256, source_stamp
+
+    def build():
+        df, index = _constants_cached(user_dirs)
+        return {n: df["value"].iloc[i] for n, i in index.items()}
+    return cached("constants", [catalogs_sha256(user_dirs), source_stamp()], build)

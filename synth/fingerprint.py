@@ -12,12 +12,16 @@ No pandas, no numpy at import: ``synth --version`` stays fast.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import os
 import pickle
 from pathlib import Path
 
 __all__ = ["builtin_catalog_dir", "catalogs_sha256", "source_stamp", "cached"]
+
+#: cached versions kept per name (several catalog settings in use side by side)
+_KEEP = 8
 
 
 def builtin_catalog_dir() -> Path | None:
@@ -36,6 +40,7 @@ def catalogs_sha256(user_dirs=()) -> str:
     return h.hexdigest()
 
 
+@functools.lru_cache(maxsize=1)
 def source_stamp() -> str:
     """A stamp of synth's own source: every module's path, size and modification time (a ``stat`` each, no
     reading): an edited module makes every cached value stale."""
@@ -84,6 +89,9 @@ def cached(name: str, key_parts: list, build):
             with open(tmp, "wb") as f:
                 pickle.dump(value, f, protocol=pickle.HIGHEST_PROTOCOL)
             os.replace(tmp, path)
+            old = sorted(folder.glob(f"{name}-*.pickle"), key=lambda f: f.stat().st_mtime)[:-_KEEP]
+            for f in old:  # stale versions (an older synth or catalog): the newest _KEEP stay
+                f.unlink(missing_ok=True)
         except OSError:
             pass
     return value

@@ -129,6 +129,13 @@ class Parts:
 
 @functools.lru_cache(maxsize=8)
 def _arrays_cached(user_dirs: tuple) -> Parts:
+    """The parts of these catalogs, read once per catalog data and synth source (the on-disk cache of
+    :func:`synth.fingerprint.cached`)."""
+    from synth.fingerprint import cached, catalogs_sha256, source_stamp
+    return cached("parts", [catalogs_sha256(user_dirs), source_stamp()], _read_parts)
+
+
+def _read_parts() -> Parts:
     load = catalog.load
     bear = load("ball_bearings")
     b = _table("ball_bearings", bear, ("d_mm", "D_mm", "B_mm", "C_n", "C0_n", "ball_count", "ball_diameter_mm",

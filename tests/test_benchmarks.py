@@ -1,0 +1,36 @@
+"""The benchmarks still run (a smoke test of their small sizes: an API change must not leave them broken).
+
+No timing is asserted: the benchmarks print the speed tables (README, "Benchmarks"); here the bulk benchmark's
+own check must hold: the fast engine equals the reference on the applications it compares.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+BENCH = Path(__file__).resolve().parents[1] / "benchmarks"
+
+
+def _module(name: str):
+    spec = importlib.util.spec_from_file_location(name, BENCH / f"{name}.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_bench_bulk_quick_runs_and_the_engine_equals_the_reference(capsys):
+    assert _module("bench_bulk").main(["--quick", "--no-command"]) == 0
+    out = capsys.readouterr().out
+    assert "equals the reference on the first 4 applications: yes" in out
+    assert "One optimum inside a process" in out
+
+
+def test_bench_kernels_sample_is_the_engines_keys():
+    """The kernel benchmark's sample: keys of feasible cores, each with a cost-ordered list of its range."""
+    mod = _module("bench_kernels")
+    keys, options, lists, groups, _, app = mod.sample(6, 0)
+    assert len(keys) == len(groups) == len(app) > 0 and len(options) >= 10000
+    assert all(0 <= g < len(lists) for g in groups)
+    r = mod.K.first_feasible(keys, options, lists, key_group=groups, tol=mod.FEAS_TOL, engine="numpy")
+    assert (r.index >= 0).any()
