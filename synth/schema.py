@@ -83,7 +83,8 @@ class Field:
         if self.catalog:
             return "one of " + ", ".join(catalog.keys(self.catalog)) + f" (catalogs/{self.catalog}.csv)"
         if self.kind == "list":
-            return f"a list of positive numbers [{self.unit}]"
+            bound = f" in (0, {self.hi:g}] {self.unit}" if math.isfinite(self.hi) else f" [{self.unit}]"
+            return f"one or two positive numbers{bound}"
         lo = "(" if self.lo_open else "["
         hi = ")" if self.hi_open else "]"
         kind = "an integer" if self.kind == "int" else "a number"
@@ -189,8 +190,8 @@ FIELDS: tuple[Field, ...] = (
     _f("main_spring_wire_section", "Main spring", kind="str", required=False, choices=("round", "rectangular"),
        label="Wire section (manual)", words=(("Round wire", "round"), ("Flat wire", "rectangular"), ("flat", "rectangular"),
                                              ("rectangular wire", "rectangular"))),
-    _f("main_spring_wire_size_mm", "Main spring", "mm", kind="list", required=False,
-       label="Wire size: [d] or [b, h] (manual)"),
+    _f("main_spring_wire_size_mm", "Main spring", "mm", kind="list", required=False, **POS, hi=20,
+       label="Wire size: [d] or [b, h] (manual)"),  # EN 10270-1 wire: 0.05-20 mm
     _f("main_spring_mean_body_diameter_mm", "Main spring", "mm", required=False, **POS, hi=200,
        label="Mean body diameter (manual)"),
     # Bolt
@@ -278,7 +279,7 @@ def _coerce(f: Field, value: Any, problems: list[Problem]) -> Any:
         out = []
         for v in items:
             x = _number(v)
-            if x is None or x <= 0:
+            if x is None or x <= 0 or x > f.hi:
                 problems.append(Problem(f.name, shown, f.accepted()))
                 return None
             out.append(x)

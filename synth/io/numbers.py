@@ -68,12 +68,18 @@ def parse_number_list(value):
     """
     import numpy as np
 
+    def as_float(v):  # a number too large for a float stays as it is: the validator names the field
+        try:
+            return float(v)
+        except OverflowError:
+            return v
+
     if isinstance(value, (list, tuple, np.ndarray)):
-        return [float(v) if isinstance(v, (int, float, np.number)) and not isinstance(v, bool) else v for v in value]
+        return [as_float(v) if isinstance(v, (int, float, np.number)) and not isinstance(v, bool) else v for v in value]
     if isinstance(value, bool):
         return value
     if isinstance(value, (int, float, np.number)):
-        return [float(value)]
+        return [as_float(value)]
     text = str(value).strip()
     bracketed = text.startswith("[") and text.endswith("]")
     if bracketed:
