@@ -36,7 +36,7 @@ import pandas as pd
 from synth.design import evaluate as E
 from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.design.result import FAIL, PASS, WARNING
-from synth.design.space import NONE, PART_KEYS, SUBSYSTEMS
+from synth.design.space import PART_KEYS, SUBSYSTEMS
 
 __all__ = ["columns", "constraint_ids", "screen_applications", "screen_applications_reference", "row_from_result"]
 

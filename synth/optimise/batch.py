@@ -130,6 +130,26 @@ def _segments(starts, counts):
     return offs + np.arange(tot, dtype=np.int64)
 
 
+def _rounds(pos, seg_end, block: int, may, still=None):
+    """The rounds of a branch and bound over segments of sorted candidates (one segment per application):
+    each round takes, in every live segment, the next ``block`` positions (doubling every round) that ``may``
+    still win, and yields them (non-empty). A segment is live while it has positions left, its next one may
+    win and ``still()`` (evaluated each round: the incumbents change) holds for it. ``pos`` advances in place."""
+    while True:
+        live = (pos < seg_end) & may(np.minimum(pos, seg_end - 1))
+        if still is not None:
+            live &= still()
+        if not live.any():
+            return
+        cnt = np.minimum(block, seg_end - pos)
+        take = _segments(pos[live], cnt[live])
+        take = take[may(take)]
+        pos[live] = pos[live] + cnt[live]
+        block *= 2
+        if len(take):
+            yield take
+
+
 class Batch:
     """N applications and their decomposed design space on the applications axis (see the module docstring).
 
@@ -554,20 +574,8 @@ class Batch:
             bj = np.maximum(best[i], 0)
             return (lb[j] < inc[i]) | ((lb[j] == inc[i]) & ((best[i] < 0) | (R[j] < R[bj])))
 
-        while True:
-            nxt = np.minimum(pos, seg_end - 1)
-            live = (pos < seg_end) & may_win(nxt)
-            if first:
-                live &= ~np.isfinite(inc[seg_app])
-            if not live.any():
-                break
-            cnt = np.minimum(block, seg_end - pos)
-            take = _segments(pos[live], cnt[live])
-            take = take[may_win(take)]
-            pos[live] = pos[live] + cnt[live]
-            block *= 2
-            if not len(take):
-                continue
+        for take in _rounds(pos, seg_end, block, may_win,
+                            (lambda: ~np.isfinite(inc[seg_app])) if first else None):
             # springs of the keys not scanned yet
             kt = np.unique(kinv[take])
             kt = kt[np.isnan(k_sc[kt])]
@@ -638,18 +646,7 @@ class Batch:
             bj = np.maximum(best[i], 0)
             return (best[i] < 0) | (v1[j] > best_v[i]) | ((v1[j] == best_v[i]) & (R[j] < R[bj]))
 
-        while True:
-            nxt = np.minimum(pos, seg_end - 1)
-            live = (pos < seg_end) & could_win(nxt)
-            if not live.any():
-                break
-            cnt = np.minimum(block, seg_end - pos)
-            take = _segments(pos[live], cnt[live])
-            take = take[could_win(take)]
-            pos[live] = pos[live] + cnt[live]
-            block *= 2
-            if not len(take):
-                continue
+        for take in _rounds(pos, seg_end, block, could_win):
             kt_all = kinv[take]
             need = np.full(len(keys["app"]), -np.inf)
             np.maximum.at(need, kt_all, v1[take])
