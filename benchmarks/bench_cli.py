@@ -40,7 +40,7 @@ def _wall(cmd: list[str], env: dict) -> float:
 def main(runs: int = 7) -> None:
     env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
     env.pop("PYTHONDONTWRITEBYTECODE", None)  # byte-compiled modules, as an installed package has them
-    print(f"| command | median wall [s] | reference `python -c \"import numpy\"` [s] | ratio to reference | "
+    print("| command | median wall [s] | reference `python -c \"import numpy\"` [s] | ratio to reference | "
           "difference [s] | runs |")
     print("|---|---|---|---|---|---|")
     for label, args in COMMANDS.items():

@@ -162,7 +162,6 @@ def build_model(inst: PlatformInstance, objective: str = "variants", *, max_vari
     m = pyo.ConcreteModel("platform")
     J, C, R = inst.n_parts, len(inst.core_app), len(inst.row_app)
     n_z = int(inst.row_opt_ptr[-1])
-    K = max(inst.n_patterns, 1)
     # (core, part) and (option entry, part) incidences
     c_item, c_part = _expand(inst.pattern_ptr, inst.pattern_parts, inst.core_pattern)
     z_item, z_part = _expand(inst.pattern_ptr, inst.pattern_parts, inst.row_opt_pattern)

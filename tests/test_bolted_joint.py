@@ -6,7 +6,6 @@ Tables 13-14 (case 3), cases/NOTES.md; ISO 724, ISO 898-1, VDI 2230-1.
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import numpy as np
 import pytest

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 import sys
-from pathlib import Path
 
 import cloudpickle
 import numpy as np
@@ -20,7 +19,6 @@ from hypothesis import given, settings, strategies as st
 
 import synth.bulk.engine as engine_mod
 from synth import catalog, schema
-from synth.bulk import run as run_mod
 from synth.bulk.engine import columns, constraint_ids
 from synth.bulk.portfolio import (clean_cell, column_warnings, read_portfolio, records, to_table, validate_record,
                                   validate_rows, write_table)

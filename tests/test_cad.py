@@ -24,7 +24,7 @@ from synth.cad.dimensions import _example_inputs, _example_values
 from synth.cad.parts import spring_pitch_mm, stack
 from synth.cad.verify import failed, verify_model
 from synth.cli import main
-from synth.design.result import FAIL, PASS, Result
+from synth.design.result import FAIL, PASS
 from synth.errors import InputError
 from synth.schema import load_input
 

@@ -13,7 +13,7 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 
 from formulations.platform import solve as solve_milp
 from synth.errors import InputError
-from synth.platform.assign import assign, full_platform, serve
+from synth.platform.assign import assign, serve
 from synth.platform.compile import app_option_cost, compile_portfolio
 from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, validate
 from synth.platform.greedy import greedy

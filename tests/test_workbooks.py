@@ -26,7 +26,7 @@ from synth.bulk.portfolio import write_table
 from synth.design.result import FAIL, NOT_VERIFIED, PASS, WARNING
 from synth.data import CASES_DIR
 from synth.excel import template
-from synth.excel.cells import FORMULA_LEADS, put, sig_format, write_frame
+from synth.excel.cells import FORMULA_LEADS, put, sig_format
 from synth.excel.results import row_verdict, write_results
 from synth.excel.template import FILLS
 from synth.output_table import ROWS
