@@ -224,12 +224,8 @@ def _sha256_frame(df: pd.DataFrame) -> str:
 
 def _catalogs_sha256() -> str:
     """Hash of every catalog CSV in use (built-in and user folders): a changed catalog invalidates a resume."""
-    h = hashlib.sha256()
-    for d in [catalog.builtin_dir()] + list(catalog._user_dirs()):
-        for p in sorted(Path(d).glob("*.csv")):
-            h.update(str(p.name).encode())
-            h.update(p.read_bytes())
-    return h.hexdigest()
+    from synth.fingerprint import catalogs_sha256
+    return catalogs_sha256(catalog._user_dirs())
 
 
 def manifest_of(portfolio_hash: str, n_rows: int, *, objective: str, fidelity: str, chunk_size: int,
