@@ -435,3 +435,21 @@ def test_real_engine_on_dask_equals_inprocess(tmp_path):
     assert (b.computed, b.engine, b.complete) == (3, "dask", True)
     assert 0 < a.table["feasible"].sum() < 43 and a.table["relaxation"].fillna("").str.contains("->").any()
     pd.testing.assert_frame_equal(a.table, b.table)
+
+
+def test_dask_default_chunks_feed_every_worker_and_resume_anywhere(tmp_path):
+    """Without --chunk-size a Dask run cuts at least two chunks per worker; a resume without --chunk-size continues
+    with the interrupted run's chunks, here in-process."""
+    cloudpickle.register_pickle_by_value(sys.modules[__name__])
+    try:
+        path = write_table(sample_portfolio(40, seed=8), tmp_path / "p.parquet")
+        a = run_portfolio(path, tmp_path / "a.parquet", screen=fake_screen)
+        c1 = run_portfolio(path, tmp_path / "c.parquet", screen=fake_screen, engine="dask", workers=2,
+                           stop_after_chunks=1)
+        c2 = run_portfolio(path, tmp_path / "c.parquet", screen=fake_screen, resume=True)
+    finally:
+        cloudpickle.unregister_pickle_by_value(sys.modules[__name__])
+    assert a.n_chunks == 1 and "in 1 chunk:" in a.message()
+    assert c1.n_chunks == 4 and (c1.computed, c1.complete) == (1, False)       # 40 rows / (2 x 2 workers)
+    assert (c2.n_chunks, c2.computed, c2.reused, c2.complete) == (4, 3, 1, True)
+    pd.testing.assert_frame_equal(a.table, c2.table)

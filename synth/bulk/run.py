@@ -423,7 +423,8 @@ class RunReport:
 
     def message(self) -> str:
         state = "complete" if self.complete else "interrupted"
-        return (f"{self.n_rows} applications in {self.n_chunks} chunks: {self.computed} computed, "
+        return (f"{self.n_rows} applications in {self.n_chunks} chunk{'s' if self.n_chunks != 1 else ''}: "
+                f"{self.computed} computed, "
                 f"{self.reused} reused ({state}, {self.engine}, {self.seconds:.1f} s)")
 
 
@@ -457,6 +458,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
     """
     from synth.bulk.portfolio import FORMATS, check_columns
 
+    given = chunk_size is not None
     chunk_size = default_chunk_size() if chunk_size is None else chunk_size
     _validate_settings(objective, fidelity, chunk_size, engine, workers)
     t0 = time.monotonic()
@@ -479,6 +481,8 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
         notes.append("input columns replaced by result columns: " + ", ".join(clash))
         table = table.drop(columns=clash)
     n = len(table)
+    if not given and engine == "dask":  # at least two chunks per worker, so that every worker has work
+        chunk_size = max(1, min(int(chunk_size), -(-n // (2 * int(workers or 2)))))
     ranges = chunk_ranges(n, int(chunk_size))
     folder = sidecar(out)
     manifest = manifest_of(p_hash, n, objective=objective, fidelity=fidelity, chunk_size=int(chunk_size),
@@ -495,6 +499,12 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
             except (OSError, ValueError):
                 raise InputError(Problem("--resume", str(folder / MANIFEST),
                                          "a readable manifest; rerun without --resume")) from None
+            if not given and isinstance(old.get("chunk_size"), int) and old["chunk_size"] >= 1:
+                # a resume without --chunk-size continues with the interrupted run's chunks (any engine)
+                chunk_size = old["chunk_size"]
+                ranges = chunk_ranges(n, chunk_size)
+                manifest = manifest_of(p_hash, n, objective=objective, fidelity=fidelity, chunk_size=chunk_size,
+                                       diagnose=diagnose)
             _check_manifest(old, manifest, folder)
             if not isinstance(old.get("run_id"), str) or not old["run_id"]:
                 raise InputError(Problem("--resume", str(folder / MANIFEST), "the manifest of a run with a run id "
