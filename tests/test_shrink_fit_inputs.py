@@ -85,9 +85,9 @@ def test_several_problems_reported_together():
     assert {"journal_inner_diameter_mm", "bore_length_mm", "journal_hardness_hb"} <= fields
 
 
-def test_missing_file():
+def test_missing_file(tmp_path):
     with pytest.raises(InputError, match="existing YAML, JSON or TOML file"):
-        load_case("/nonexistent/case.yaml")
+        load_case(tmp_path / "no_such_case.yaml")   # inside the test's own folder, never outside the repository
 
 
 # ---------------------------------------------------------------- CLI

@@ -35,7 +35,7 @@ from synth import schema
 from synth.errors import InputError, Problem
 from synth.io.numbers import is_not_given
 
-__all__ = ["FORMATS", "read_portfolio", "check_columns", "write_table", "to_table", "clean_cell", "row_record", "records",
+__all__ = ["FORMATS", "read_portfolio", "check_columns", "write_table", "to_table", "plain_cell", "clean_cell", "row_record", "records",
            "validate_record", "validate_rows", "field_columns", "column_warnings", "format_problems"]
 
 #: file suffix -> format name
@@ -125,18 +125,24 @@ def column_warnings(df: pd.DataFrame) -> list[str]:
 _parse_list = schema.parse_number_list
 
 
-def clean_cell(value, name: str | None = None):
-    """One cell as the validator expects it: empty/NaN -> None, text stripped, numpy scalars as Python.
-
-    >>> clean_cell("  "), clean_cell(float("nan")), clean_cell(" dry "), clean_cell("2.3x4.0", "main_spring_wire_size_mm")
-    (None, None, 'dry', [2.3, 4.0])
-    """
+def plain_cell(value):
+    """A table cell as plain Python data: numpy scalars as Python, empty (None, NA, NaT, NaN) as None."""
     if value is None or value is pd.NA or value is pd.NaT:
         return None
     if isinstance(value, np.generic):
         value = value.item()
     if isinstance(value, float) and math.isnan(value):
         return None
+    return value
+
+
+def clean_cell(value, name: str | None = None):
+    """One cell as the validator expects it: empty/NaN -> None, text stripped, numpy scalars as Python.
+
+    >>> clean_cell("  "), clean_cell(float("nan")), clean_cell(" dry "), clean_cell("2.3x4.0", "main_spring_wire_size_mm")
+    (None, None, 'dry', [2.3, 4.0])
+    """
+    value = plain_cell(value)
     if isinstance(value, str):
         value = value.strip()
         if is_not_given(value):

@@ -57,7 +57,7 @@ import numpy as np
 import pandas as pd
 
 from synth import __version__, catalog
-from synth.bulk.portfolio import (arrow_safe, column_warnings, field_columns, read_portfolio, row_record,
+from synth.bulk.portfolio import (arrow_safe, column_warnings, field_columns, plain_cell, read_portfolio, row_record,
                                   validate_record, write_table)
 from synth.errors import InputError, Problem
 from synth.report.progress import Progress
@@ -259,21 +259,10 @@ def _write_atomic_json(path: Path, data: dict) -> None:
     os.replace(tmp, path)
 
 
-def _canon(v):
-    """A cell as plain JSON data, the same before and after a Parquet round trip (NaN and None as null)."""
-    if v is None or v is pd.NA or v is pd.NaT:
-        return None
-    if isinstance(v, np.generic):
-        v = v.item()
-    if isinstance(v, float) and math.isnan(v):
-        return None
-    return v
-
-
 def content_sha256(df: pd.DataFrame) -> str:
     """SHA-256 of a chunk's content: column names and every cell, canonically (order kept)."""
     payload = json.dumps({"columns": [str(c) for c in df.columns],
-                          "rows": [[_canon(v) for v in row] for row in df.itertuples(index=False, name=None)]},
+                          "rows": [[plain_cell(v) for v in row] for row in df.itertuples(index=False, name=None)]},
                          default=str, separators=(",", ":"), allow_nan=True)
     return hashlib.sha256(payload.encode("utf-8")).hexdigest()
 

@@ -249,20 +249,14 @@ def workbooks():
     base = tmp / "case3.xlsx"
     assert main(["template", str(base), "--from", str(src)]) == 0
 
-    def rows(ws):
-        out, started = {}, False
-        for r in range(1, ws.max_row + 1):
-            v = ws[f"B{r}"].value
-            if v == "Field":
-                started = True
-            elif started and v:
-                out[v] = r
-        return out
+    from synth.excel.reader import locate
+    from synth.io.workbook import read_sheet
+    rows = locate(read_sheet(base, "template", "Input"))  # the reader's own rows of the fields
 
     def variant(name: str, edit) -> str:
         wb = load_workbook(base)
         ws = wb["Input"]
-        edit(wb, ws, rows(ws))
+        edit(wb, ws, rows)
         p = FILES / name
         wb.save(p)
         return "{dir}/" + name
@@ -325,7 +319,7 @@ def workbooks():
         shutil.copy(out / "lo_case3.xlsx", FILES / "lo_case3_saved_by_libreoffice.xlsx")
         formula = tmp / "lo_formula.xlsx"
         wb = load_workbook(base)
-        r = rows(wb["Input"])
+        r = rows
         wb["Input"][f"E{r['working_arm_mm']}"] = "=2*2"
         wb["Input"][f"E{r['belt_width_mm']}"] = "wide"
         wb.save(formula)
