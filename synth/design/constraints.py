@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Constraint", "REGISTRY", "GROUPS", "REQUIREMENTS", "margin", "by_group", "FEAS_TOL"]
+__all__ = ["Constraint", "REGISTRY", "GROUPS", "REQUIREMENTS", "margin", "normalised_margin", "by_group", "FEAS_TOL"]
 
 #: a margin above ``-FEAS_TOL`` passes (round-off of equal values)
 FEAS_TOL = 1e-9
@@ -104,13 +104,23 @@ class Constraint:
 
 def margin(c: Constraint, value, limit, scale=None) -> np.ndarray:
     """The normalised margin of constraint ``c`` (arrays broadcast); NaN where value or limit is NaN."""
+    return normalised_margin(value, limit, c.sense, scale)
+
+
+def normalised_margin(value, limit, sense: str, scale=None) -> np.ndarray:
+    """``(limit - value) / scale`` for ``sense`` ``"<="``, ``(value - limit) / scale`` for ``">="`` (positive
+    passes); ``scale`` defaults to ``|limit|``, 1 where it is 0 (the margin is then absolute).
+
+    >>> float(normalised_margin(8.0, 10.0, "<=")), float(normalised_margin(3.0, 0.0, ">="))
+    (0.2, 3.0)
+    """
     value = np.asarray(value, dtype=float)
     limit = np.asarray(limit, dtype=float)
     if scale is None:
         scale = np.abs(limit)
     scale = np.asarray(scale, dtype=float)
     scale = np.where(scale > 0, scale, 1.0)
-    diff = limit - value if c.sense == "<=" else value - limit
+    diff = limit - value if sense == "<=" else value - limit
     with np.errstate(invalid="ignore"):
         m = diff / scale
     # an infinite limit (no upper bound, e.g. the last Table 1 row) is an infinite margin, never NaN

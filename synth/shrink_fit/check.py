@@ -18,23 +18,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-import numpy as np
+from synth.design.constraints import normalised_margin
+from synth.design.result import FAIL, NOT_VERIFIED, PASS
 
 __all__ = ["margin_upper", "margin_lower", "Check", "PASS", "FAIL", "NOT_VERIFIED"]
 
-PASS, FAIL, NOT_VERIFIED = "pass", "fail", "not verified"
-
-
-def _scale(limit):
-    """``|limit|``, or 1 where the limit is zero (the margin is then absolute)."""
-    a = np.abs(limit)
-    return np.where(a > 0, a, 1.0)
-
-
 def margin_upper(value, limit):
-    """Normalised margin of ``value <= limit`` (positive passes; absolute if the limit is 0)."""
-    value, limit = np.asarray(value, dtype=float), np.asarray(limit, dtype=float)
-    return (limit - value) / _scale(limit)
+    """Normalised margin of ``value <= limit`` (positive passes; absolute if the limit is 0): the registry's."""
+    return normalised_margin(value, limit, "<=")
 
 
 def margin_lower(value, limit):
@@ -43,8 +34,7 @@ def margin_lower(value, limit):
     >>> float(margin_lower(3.0, 0.0))
     3.0
     """
-    value, limit = np.asarray(value, dtype=float), np.asarray(limit, dtype=float)
-    return (value - limit) / _scale(limit)
+    return normalised_margin(value, limit, ">=")
 
 
 @dataclass
