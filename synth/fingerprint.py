@@ -18,7 +18,7 @@ import os
 import pickle
 from pathlib import Path
 
-__all__ = ["builtin_catalog_dir", "catalogs_sha256", "source_stamp", "cached"]
+__all__ = ["builtin_catalog_dir", "catalogs_sha256", "file_sha256", "source_stamp", "cached"]
 
 #: cached versions kept per name (several catalog settings in use side by side)
 _KEEP = 8
@@ -53,6 +53,15 @@ def source_stamp() -> str:
                 st = e.stat()
                 parts.append(f"{os.path.relpath(e.path, root)}:{st.st_size}:{st.st_mtime_ns}")
     return hashlib.sha256("\0".join(sorted(parts)).encode()).hexdigest()
+
+
+def file_sha256(path) -> str:
+    """Hex sha256 of a file's bytes (read in 1 MB blocks)."""
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
 
 
 def _cache_dir() -> Path | None:

@@ -163,7 +163,6 @@ def screen_applications_reference(apps: Sequence, *, objective: str = "standard"
 _COLS = [c for c in REGISTRY.values() if c.group != "cad"]
 _ADVISORY = np.array([c.advisory for c in _COLS])
 _OBJECTIVE = np.array([c.objective for c in _COLS])
-_VERIFICATION_NOTES = "durability test not given: bushing, plastic wear and spring fatigue checks are not verified"
 
 
 def _design_attributes(b, rows, options: dict) -> dict:

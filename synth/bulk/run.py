@@ -57,6 +57,7 @@ import numpy as np
 import pandas as pd
 
 from synth import __version__, catalog
+from synth.fingerprint import file_sha256
 from synth.bulk.portfolio import (arrow_safe, column_warnings, field_columns, plain_cell, read_portfolio, row_record,
                                   validate_record, write_table)
 from synth.errors import InputError, Problem
@@ -206,14 +207,6 @@ def sidecar(out) -> Path:
 
 def _chunk_path(folder: Path, i: int) -> Path:
     return folder / f"chunk_{i:05d}.parquet"
-
-
-def _sha256_file(path: Path) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
 
 
 def _sha256_frame(df: pd.DataFrame) -> str:
@@ -462,7 +455,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
         p_hash = _sha256_frame(table)
     else:
         table = read_portfolio(portfolio)
-        p_hash = _sha256_file(Path(portfolio))
+        p_hash = file_sha256(Path(portfolio))
     notes = column_warnings(table)
     rcols = result_columns()
     clash = [c for c in table.columns if c in rcols or c == "row"]

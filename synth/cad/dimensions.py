@@ -24,7 +24,6 @@ Tables 3-4 give those two numbers and not the diameters.
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -32,7 +31,7 @@ from pathlib import Path
 from synth import catalog
 from synth.errors import InputError, Problem
 
-__all__ = ["TensionerGeometry", "geometry_from", "load_result"]
+__all__ = ["TensionerGeometry", "geometry_from"]
 
 
 @dataclass(frozen=True)
@@ -120,20 +119,13 @@ _INPUT_KEYS = ("middle_plane_belt_height_mm", "max_pivot_height_mm", "pulley_dia
                "belt_loading_type", "pulley_shell_type")
 
 
-def load_result(path: str | Path) -> dict:
-    """Read a saved result (the ``--json`` of ``synth design`` or ``synth flowchart``)."""
-    try:
-        return json.loads(Path(path).read_text(encoding="utf-8"))
-    except (OSError, json.JSONDecodeError, UnicodeDecodeError) as exc:
-        raise InputError(Problem("result", str(path), f"a JSON file written by synth design/flowchart --json ({exc})"))
-
-
 def _split(result) -> tuple[dict, dict | None, str, bool, str, str]:
     """``(parts and values, inputs, status, feasible, name, verdict)`` of a result, its JSON dict or its JSON
     path."""
     from synth.design.result import Result
     if isinstance(result, (str, Path)):
-        result = load_result(result)
+        from synth.io.results import load_result
+        result = load_result(result)  # the input gate's reader: size, encoding, shape
     if isinstance(result, dict):
         result = Result.from_dict(result)
     if not isinstance(result, Result):

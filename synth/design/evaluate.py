@@ -427,11 +427,14 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
 
 
 # --------------------------------------------------------------------------- step 9: the main spring
+#: what a main spring reads of its core row (besides the application): its key
+SPRING_KEY_VALUES = ("spring_torque_nominal_nm", "spring_housing_height_mm", "spring_housing_outer_diameter_mm",
+                     "spring_housing_inner_diameter_mm")
+
+
 def spring_keys(cg: Group, r) -> dict:
     """What a main spring sees of core rows ``r``: application, spring torque, housing height and diameters."""
-    return {"app": cg.values["app"][r],
-            **{k: cg.values[k][r] for k in ("spring_torque_nominal_nm", "spring_housing_height_mm",
-                                            "spring_housing_outer_diameter_mm", "spring_housing_inner_diameter_mm")}}
+    return {"app": cg.values["app"][r], **{k: cg.values[k][r] for k in SPRING_KEY_VALUES}}
 
 
 #: the per-row inputs of :func:`spring_values` besides the option (what a main spring sees of its application)

@@ -27,12 +27,15 @@ import numpy as np
 
 from synth.design.constraints import FEAS_TOL, REGISTRY
 
-__all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain",
+__all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "VERDICT_FILLS", "plain",
            "checks_of", "row_verdict", "field_corrections"]
 
 PASS, FAIL, INCOMPLETE = "pass", "fail", "incomplete"
 NOT_VERIFIED, NOT_APPLICABLE, WARNING = "not verified", "not applicable", "warning"
 EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 3}
+#: the one verdict palette (RGB hex) of every output, after the thesis's legend (Fig. 24-25): green verified,
+#: red failed, orange not verified; amber an advisory warning, grey not applicable
+VERDICT_FILLS = {PASS: "C6EFCE", FAIL: "FFC7CE", NOT_VERIFIED: "FFD966", WARNING: "FFD8A8", NOT_APPLICABLE: "EDEDED"}
 
 
 def plain(v):

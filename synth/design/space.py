@@ -35,7 +35,7 @@ height and diameters), so springs are evaluated once per distinct key.
 :class:`Space` holds the application-independent tables of one catalog
 setting (each built once and cached); which rows an application may use
 (only radial damping, pinned parts, the mean-diameter range of its housing)
-is decided per application by :func:`core_rows` and :func:`spring_range`.
+is decided per application by :func:`core_rows` and :func:`spring_window`.
 
 >>> s = space()
 >>> sorted(SUBSYSTEMS), s.n("core") > 100, s.n("spring") > 1000
@@ -54,7 +54,7 @@ from synth import catalog, parts as P
 from synth.errors import InputError, Problem
 from synth.model import packaging as s7, pivot as s2, torsion_spring as s9
 
-__all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "NONE", "Space", "space", "core_rows", "spring_range"]
+__all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "NONE", "Space", "space", "core_rows", "spring_window"]
 
 SUBSYSTEMS = ("bushing", "axial", "spring", "bolt")
 TABLES = ("core",) + SUBSYSTEMS
@@ -417,6 +417,7 @@ def core_rows(sp: Space, d, *, pin_inputs: bool = False) -> np.ndarray:
     return np.flatnonzero(ok)
 
 
-def spring_range(housing_inner_mm, housing_outer_mm, mbd: np.ndarray) -> np.ndarray:
-    """Mask of the mean diameters between a housing's inner and outer diameter (the searched springs)."""
-    return (mbd >= np.floor(np.min(housing_inner_mm)) - 1e-9) & (mbd <= np.ceil(np.max(housing_outer_mm)) + 1e-9)
+def spring_window(housing_inner_mm, housing_outer_mm):
+    """``(lo, hi)`` [mm]: the mean body diameters searched for a housing (elementwise): from the inner diameter
+    rounded down to the outer rounded up, 1e-9 mm wider so that grid values on the bounds stay in."""
+    return np.floor(housing_inner_mm) - 1e-9, np.ceil(housing_outer_mm) + 1e-9

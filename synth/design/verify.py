@@ -126,6 +126,16 @@ def parts_of_rows(attrs: dict, core_values: dict) -> list:
     return out
 
 
+def parts_of_design(sp, core: int, options: dict, core_values: dict, row: int) -> dict:
+    """The part keys of one design: core ``core`` and option rows ``options`` of space ``sp``, its core group's
+    values at row ``row`` of ``core_values`` (the evaluated core rows of an optimiser)."""
+    from synth.design.space import SUBSYSTEMS
+    attrs = {"core": sp.rows("core", [core])}
+    attrs.update({s: sp.rows(s, [options[s]]) for s in SUBSYSTEMS})
+    cone = {k: np.asarray(v)[[row]] for k, v in core_values.items() if k.startswith("cone_spring_")}
+    return parts_of_rows(attrs, cone)[0]
+
+
 def parts_of_attributes(attrs: dict, groups: dict) -> dict:
     """The part keys of a design from its one-row attributes (see :func:`parts_of_rows`)."""
     return parts_of_rows(attrs, groups["core"].values)[0]

@@ -42,6 +42,7 @@ from pathlib import Path
 import yaml
 
 from synth import catalog, schema
+from synth.design.result import VERDICT_FILLS
 from synth.excel.cells import page_setup, put, wrap
 from synth.schema import Field
 
@@ -81,10 +82,7 @@ FILLS = {
     "optional": "F2F2F2",
     "selector": "FFF2CC",
     "info": "E7E6E6",
-    "pass": "C6EFCE",
-    "fail": "FFC7CE",
-    "not verified": "FFD966",
-    "warning": "FFEB9C",
+    **{k: VERDICT_FILLS[k] for k in ("pass", "fail", "not verified", "warning")},  # the one verdict palette
 }
 
 #: The colour legend (Fig. 24): (fill key, meaning).

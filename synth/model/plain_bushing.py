@@ -52,7 +52,6 @@ FIDELITIES = ("screening", "full")
 PRESSURE_MODELS = {"linear": 6.0, "two_point": 2.0}
 
 _SECONDS_PER_HOUR = 3600.0
-_MM_PER_M = 1000.0
 
 
 # --------------------------------------------------------------------------- eq. (28)-(31)
@@ -74,13 +73,14 @@ def sliding_speed_m_per_s(theta_peak_to_peak_deg, frequency_hz, sliding_diameter
     """Mean sliding speed of the durability oscillation, eq. (29) [m/s].
 
     ``v = 2 * theta_pp * pi * (D/2) * f / 180``: each cycle sweeps the
-    peak-to-peak angle twice.
+    peak-to-peak angle twice; the plastic elements' eq. (46)/(49) at the
+    radius ``D/2`` (:func:`synth.model.friction_wear.sliding_speed_m_per_s`).
 
     >>> round(float(sliding_speed_m_per_s(16.0, 50.0, 16.0)), 5)
     0.22340
     """
-    th, f, d = (np.asarray(x, dtype=float) for x in (theta_peak_to_peak_deg, frequency_hz, sliding_diameter_mm))
-    return 2.0 * np.deg2rad(th) * (d / 2.0) / _MM_PER_M * f
+    from synth.model.friction_wear import sliding_speed_m_per_s as at_radius
+    return at_radius(theta_peak_to_peak_deg, 0.5 * np.asarray(sliding_diameter_mm, dtype=float), frequency_hz)
 
 
 def pv_mpa_m_per_s(p_mpa, v_m_per_s):

@@ -60,8 +60,8 @@ import numpy as np
 from synth.design import evaluate as E
 from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, REGISTRY, margin as registry_margin
-from synth.design.space import SUBSYSTEMS, core_rows, space
-from synth.optimise.evaluate import core_scores, option_scores
+from synth.design.space import SUBSYSTEMS, core_rows, space, spring_window
+from synth.optimise.evaluate import DURABILITY_NOTE, core_scores, option_scores
 
 __all__ = ["Batch", "wsum", "SLACK", "any_feasible", "robust"]
 
@@ -326,8 +326,7 @@ class Batch:
             outer = self.cg.values["spring_housing_outer_diameter_mm"]
             if has.any():
                 st = self.ptr[:-1][has]
-                lo[has] = np.floor(np.minimum.reduceat(inner, st)) - 1e-9
-                hi[has] = np.ceil(np.maximum.reduceat(outer, st)) + 1e-9
+                lo[has], hi[has] = spring_window(np.minimum.reduceat(inner, st), np.maximum.reduceat(outer, st))
             first, inv = _unique_rows(lo, hi)
             lists = [np.flatnonzero((mbd >= lo[i]) & (mbd <= hi[i])) for i in first]
             self._spring_range = (inv, lists)
@@ -385,9 +384,7 @@ class Batch:
     def _spring_keys(self, rows):
         """``(keys dict, inverse)``: the distinct spring keys of core rows (application and what the spring sees)."""
         kd = E.spring_keys(self.cg, rows)
-        first, inv = _unique_rows(kd["app"], *(kd[k] for k in ("spring_torque_nominal_nm", "spring_housing_height_mm",
-                                                                 "spring_housing_outer_diameter_mm",
-                                                                 "spring_housing_inner_diameter_mm")))
+        first, inv = _unique_rows(kd["app"], *(kd[k] for k in E.SPRING_KEY_VALUES))
         return {k: v[first] for k, v in kd.items()}, inv
 
     def _spring_first(self, keys, limit, weights):
@@ -685,13 +682,8 @@ class Batch:
     # ------------------------------------------------------------------------------------------- designs
     def parts(self, i: int, core_row: int, options: dict) -> dict:
         """The part keys of a design of application ``i`` (core row of this batch, option rows of the space)."""
-        from synth.design.verify import parts_of_attributes
-        sp = self.sp
-        attrs = {"core": sp.rows("core", [self.C[core_row]])}
-        attrs.update({s: sp.rows(s, [options[s]]) for s in SUBSYSTEMS})
-        de = {"core": E.Group("core", {"cone_spring_max_external_diameter_mm":
-                                       self.cg.values["cone_spring_max_external_diameter_mm"][[core_row]]})}
-        return parts_of_attributes(attrs, de)
+        from synth.design.verify import parts_of_design
+        return parts_of_design(self.sp, self.C[core_row], options, self.cg.values, core_row)
 
     def objective_values(self, core_row: int, options: dict) -> dict:
         """``{standard, cost}`` of a design, summed as :meth:`synth.optimise.evaluate.Evaluation.objective_values`."""
@@ -707,7 +699,7 @@ class Batch:
     def notes(self, i: int) -> list:
         """The notes the enumeration's evaluation gives application ``i``."""
         if not self.apps.met("durability")[i]:
-            return ["durability test not given: bushing, plastic wear and spring fatigue checks are not verified"]
+            return [DURABILITY_NOTE]
         return []
 
     def view(self, i: int) -> "_View":

@@ -31,7 +31,7 @@ import numpy as np
 from synth import catalog
 from synth.design import evaluate as E
 from synth.design.applications import Applications
-from synth.design.space import SUBSYSTEMS, Space, core_rows, space
+from synth.design.space import SUBSYSTEMS, Space, core_rows, space, spring_window
 
 __all__ = ["SubTable", "Evaluation", "evaluate", "SPRING_BLOCK_PAIRS", "design_scores", "evaluate_choice",
            "core_scores", "option_scores"]
@@ -82,19 +82,18 @@ class Evaluation:
 
     def parts(self, pos: int, options: dict) -> dict:
         """The part keys of core position ``pos`` (in ``cores``) and option rows ``options``."""
-        from synth.design.verify import parts_of_attributes
-        sp = self.space
-        attrs = {"core": sp.rows("core", [self.cores[pos]])}
-        attrs.update({s: sp.rows(s, [options[s]]) for s in SUBSYSTEMS})
-        de = {"core": E.Group("core", {k: self.core.values[k][[pos]] for k in (
-            "cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm")})}
-        return parts_of_attributes(attrs, de)
+        from synth.design.verify import parts_of_design
+        return parts_of_design(self.space, self.cores[pos], options, self.core.values, pos)
 
     def objective_values(self, pos: int, options: dict, margin: float) -> dict:
         """``{standard, cost, margin}`` of a design given by positions."""
         std = self.score_core["standard"][pos] + sum(self.score[s]["standard"][options[s]] for s in SUBSYSTEMS)
         cost = self.score_core["cost"][pos] + sum(self.score[s]["cost"][options[s]] for s in SUBSYSTEMS)
         return {"standard": float(std), "cost": round(float(cost), 6), "margin": margin}
+
+
+#: the note of an application without its durability test (the checks that need it are not verified)
+DURABILITY_NOTE = "durability test not given: bushing, plastic wear and spring fatigue checks are not verified"
 
 
 def core_scores(sp: Space, cores, core_values: dict) -> dict:
@@ -154,7 +153,7 @@ def _spring(apps, sp, cg, pos, settings, counter) -> SubTable:
     ukeys = {"app": np.zeros(len(uniq), dtype=np.int64), "spring_torque_nominal_nm": uniq[:, 0],
              "spring_housing_height_mm": uniq[:, 1], "spring_housing_outer_diameter_mm": uniq[:, 2],
              "spring_housing_inner_diameter_mm": uniq[:, 3]}
-    lo, hi = np.floor(uniq[:, 3].min()) - 1e-9, np.ceil(uniq[:, 2].max()) + 1e-9
+    lo, hi = spring_window(uniq[:, 3].min(), uniq[:, 2].max())
     opts_idx = np.flatnonzero((mbd >= lo) & (mbd <= hi))
     shape = (len(uniq), nk)
     feas = np.zeros(shape, dtype=bool)
@@ -213,7 +212,7 @@ def evaluate(d, settings: E.Settings = E.Settings(fidelity="full"), *, pin_input
     score = {s: option_scores(sp, s, float(apps.spring_stiffness_nm_per_deg[0])) for s in SUBSYSTEMS}
     notes = []
     if not apps.met("durability")[0]:
-        notes.append("durability test not given: bushing, plastic wear and spring fatigue checks are not verified")
+        notes.append(DURABILITY_NOTE)
     return Evaluation(d, apps, sp, settings, cores, ig, cg, pos, subs, score_core, score, notes, counter[0])
 
 

@@ -62,7 +62,7 @@ from synth import catalog
 from synth.design import evaluate as E
 from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, REGISTRY
-from synth.design.space import SUBSYSTEMS, core_rows
+from synth.design.space import SUBSYSTEMS, core_rows, spring_window
 from synth.errors import InputError, Problem
 from synth.platform.data import AppFeasibility, PortfolioFeasibility, default_fixed_costs, validate
 from synth.platform.options import Catalogue, catalogue
@@ -71,16 +71,10 @@ __all__ = ["load_feasibility", "feasibility", "from_table", "chunk_feasibility",
            "VOLUME_COLUMNS", "margins_and_binding", "spring_group", "PRODUCER"]
 
 #: subsystem -> the core values its group function reads (besides the application): the group key
-GROUP_KEYS = {
-    "bushing": ("supplier_code", "pivot_diameter_mm", "axial_group_present"),
-    "axial": ("pad_code", "axial_group_present", "axial_damping_nm", "radial_damping_nm", "axial_damping_share_nm",
-              "cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm",
-              "cone_spring_table8_max_mm", "damper_pad_mean_radius_mm", "damper_pad_contact_area_mm2",
-              "damper_pad_axial_height_mm", "bearing_width_mm"),
-    "spring": ("spring_torque_nominal_nm", "spring_housing_height_mm", "spring_housing_outer_diameter_mm",
-               "spring_housing_inner_diameter_mm"),
-    "bolt": ("pivot_diameter_mm", "loading_arm_mm"),
-}
+GROUP_KEYS = {"bushing": ("supplier_code", *E.BUSHING_CORE_VALUES),
+              "axial": ("pad_code", *E.AXIAL_CORE_VALUES),
+              "spring": E.SPRING_KEY_VALUES,
+              "bolt": E.BOLT_CORE_VALUES}
 #: spring constraints whose margins depend on the key only through the nominal spring torque (and the
 #: application): the stresses (eq. 69-77, figure 71) and the option-only index range and wire section
 SPRING_TORQUE_ONLY = ("spring_yield", "spring_static_permissible", "spring_fatigue", "spring_index_min",
@@ -300,8 +294,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
     keys = E.spring_keys(cg, rep)
     rows = cat.option_row["spring"]
     mbd = cat.space.tables["spring"]["main_spring_mean_body_diameter_mm"][rows]
-    lo = np.floor(keys["spring_housing_inner_diameter_mm"]) - 1e-9
-    hi = np.ceil(keys["spring_housing_outer_diameter_mm"]) + 1e-9
+    lo, hi = spring_window(keys["spring_housing_inner_diameter_mm"], keys["spring_housing_outer_diameter_mm"])
     nk, kpos = len(rep), np.arange(len(rep))
     window = (lambda lo_, hi_: (mbd[None, :] >= lo_[:, None]) & (mbd[None, :] <= hi_[:, None]))  # noqa: E731
     n_stage = n_last = 0
@@ -398,8 +391,7 @@ def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, ro
         if not len(groups):
             break
         keys = E.spring_keys(cg, rep["spring"][groups])
-        lo = np.floor(keys["spring_housing_inner_diameter_mm"]) - 1e-9
-        hi = np.ceil(keys["spring_housing_outer_diameter_mm"]) + 1e-9
+        lo, hi = spring_window(keys["spring_housing_inner_diameter_mm"], keys["spring_housing_outer_diameter_mm"])
         g, o = np.nonzero((mbd[None, :] >= lo[:, None]) & (mbd[None, :] <= hi[:, None]))
         best = _Pairs(len(groups))
         for blk in _blocks(len(g)):

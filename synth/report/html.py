@@ -43,8 +43,9 @@ import json
 import os
 from pathlib import Path
 
-from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, field_corrections, \
-    row_verdict
+from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, PASS, VERDICT_FILLS, WARNING, \
+    field_corrections, row_verdict
+from synth.fingerprint import file_sha256
 from synth.output_table import ROWS, format_value
 
 __all__ = ["render_html", "write_html", "digest_html", "metadata", "settings_in_words", "platform_section",
@@ -52,8 +53,7 @@ __all__ = ["render_html", "write_html", "digest_html", "metadata", "settings_in_
 
 #: background colour of a row per verdict (thesis colours: green verified, red failed, orange not verified);
 #: ``None``: a row no check reads
-VERDICT_COLOURS = {PASS: "#c6efce", FAIL: "#ffc7ce", WARNING: "#ffd8a8", NOT_VERIFIED: "#ffeb9c",
-                   NOT_APPLICABLE: "#ededed", None: "#ffffff"}
+VERDICT_COLOURS = {**{k: f"#{v.lower()}" for k, v in VERDICT_FILLS.items()}, None: "#ffffff"}
 _CLASSES = {PASS: "v-pass", FAIL: "v-fail", WARNING: "v-warning", NOT_VERIFIED: "v-nv", NOT_APPLICABLE: "v-na",
             None: "v-none", INCOMPLETE: "v-nv"}
 _INK = {PASS: "#1b5e20", FAIL: "#9c0006", INCOMPLETE: "#7f6000"}
@@ -70,11 +70,11 @@ body.synth{font-family:"Segoe UI",Roboto,"Helvetica Neue",Arial,"DejaVu Sans",sa
 .synth thead th{background:#d9e2ec} .synth table.kv th{background:#eef2f6;width:24%;font-weight:600}
 .synth td.num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
 .synth tr.group td{background:#bdd7ee;font-weight:bold}
-.synth tr.v-pass{background:#c6efce} .synth tr.v-fail{background:#ffc7ce} .synth tr.v-warning{background:#ffd8a8}
-.synth tr.v-nv{background:#ffeb9c} .synth tr.v-na{background:#ededed;color:#666} .synth tr.v-none{background:#ffffff}
+.synth tr.v-pass{background:@pass@} .synth tr.v-fail{background:@fail@} .synth tr.v-warning{background:@warning@}
+.synth tr.v-nv{background:@not verified@} .synth tr.v-na{background:@not applicable@;color:#666} .synth tr.v-none{background:#ffffff}
 .synth .banner{display:inline-block;padding:.3em .9em;font-weight:bold;border-radius:4px;font-size:1.15em;margin-right:.6em}
-.synth .banner.v-pass{background:#c6efce;color:#1b5e20} .synth .banner.v-fail{background:#ffc7ce;color:#9c0006}
-.synth .banner.v-nv{background:#ffeb9c;color:#7f6000}
+.synth .banner.v-pass{background:@pass@;color:#1b5e20} .synth .banner.v-fail{background:@fail@;color:#9c0006}
+.synth .banner.v-nv{background:@not verified@;color:#7f6000}
 .synth figure{display:inline-block;margin:.5em;border:3px solid #bbb;padding:4px;vertical-align:top;width:46%}
 .synth figure.v-pass{border-color:#2e7d32} .synth figure.v-fail{border-color:#c62828}
 .synth figure.v-warning{border-color:#ef6c00} .synth figure.cad{width:47%;border-color:#1f4e78}
@@ -93,6 +93,8 @@ body.synth{font-family:"Segoe UI",Roboto,"Helvetica Neue",Arial,"DejaVu Sans",sa
   .synth a{color:inherit;text-decoration:none}
 }
 """
+for _verdict, _colour in VERDICT_COLOURS.items():  # the palette's colours into the style sheet
+    _CSS = _CSS.replace(f"@{_verdict}@", _colour)
 
 
 def verdict_class(verdict) -> str:
@@ -118,14 +120,6 @@ def _margin(m) -> str:
     return "-" if m is None else f"{100 * m:+.1f} %"
 
 
-def _sha256_file(path: Path) -> str:
-    h = hashlib.sha256()
-    with path.open("rb") as fh:
-        for block in iter(lambda: fh.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
-
-
 def _now() -> _dt.datetime:
     """Now, or ``SOURCE_DATE_EPOCH`` (reproducible builds) when set."""
     epoch = os.environ.get("SOURCE_DATE_EPOCH", "")
@@ -147,7 +141,7 @@ def metadata(result, source=None, *, author: str = "", revision: str = "", date:
     return {
         "synth": version_text(catalog_dirs),
         "input": str(src) if src else "(a Result given in Python)",
-        "input_sha256": _sha256_file(src) if src and src.is_file() else "-",
+        "input_sha256": file_sha256(src) if src and src.is_file() else "-",
         "inputs_sha256": hashlib.sha256(json.dumps(inputs, sort_keys=True, default=str).encode()).hexdigest()
         if inputs else "-",
         "date": date or _now().strftime("%Y-%m-%d %H:%M %Z").strip(),

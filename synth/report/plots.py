@@ -43,6 +43,7 @@ from pathlib import Path
 
 import numpy as np
 
+from synth.design.constraints import REGISTRY
 from synth.design.result import FAIL, PASS, WARNING
 
 __all__ = ["Graph", "Skipped", "CATALOG", "GRAPH_CHECKS", "build_graphs", "graph_png", "COLOURS", "graph_verdict"]
@@ -86,6 +87,9 @@ GRAPH_CHECKS: dict[str, tuple[str, ...]] = {
     "goodman": ("spring_fatigue",),
     "pivot_base_pressure": ("tilting", "pivot_base_pressure"),
 }
+_UNKNOWN = sorted({c for ids in GRAPH_CHECKS.values() for c in ids} - set(REGISTRY))
+if _UNKNOWN:  # pragma: no cover - a renamed registry id must not silently leave a graph uncoloured
+    raise ImportError(f"synth.report.plots: GRAPH_CHECKS names checks the registry does not hold: {_UNKNOWN}")
 _N = 121  # points per swept curve
 _T = 60   # points of the time axes (as the report's verification keeps the wear history)
 
@@ -329,16 +333,6 @@ def g_sensitivity_mu_plastic(dt: _Data, ax, verdict):
     dt.axial()
     mu = dt.mu_plastic()
     return _sensitivity(dt, ax, "mu_plastic", np.linspace(0.5 * mu, 1.5 * mu, _N), "plastic friction coefficient [-]")
-
-
-def bushing_history(result, time_points: int = _T) -> dict:
-    """The bushing group of the result's design over the durability test: ``{"time_h": t, <group values>}``.
-
-    :func:`synth.design.evaluate.bushing` evaluated at the design's own core and bushing rows for
-    ``time_points`` applications that differ only in the test duration (0 to the duration given or
-    assumed): the last point is the result's own end-of-life value.
-    """
-    return _bushing(_Data(result, None), time_points)
 
 
 def _bushing(dt: _Data, time_points: int = _T) -> dict:
