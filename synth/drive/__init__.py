@@ -7,7 +7,7 @@ See ``docs/sections/drive.md`` for the equations. The API:
   whether the arm locks or the belt goes slack, and the tolerance check of the periodic solution.
 """
 
-
+from synth.drive.analysis import analyse, durability_point, tensioner_checks
 from synth.drive.inputs import Drive, example_drive, load_drive
 
-__all__ = ["Drive", "load_drive", "example_drive"]
+__all__ = ["Drive", "load_drive", "example_drive", "analyse", "durability_point", "tensioner_checks"]

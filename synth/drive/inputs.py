@@ -31,7 +31,7 @@ from synth.io.numbers import is_not_given, number_from_text
 from synth.schema import Field
 
 __all__ = ["FIELDS", "ROLES", "Pulley", "Tensioner", "Order", "Drive", "validate", "load_drive", "example_drive",
-           "EXAMPLE_PATH", "DRIVE_SUFFIXES"]
+           "EXAMPLE_PATH", "DRIVE_SUFFIXES", "drive_from_mapping"]
 
 INF = math.inf
 ROLES = ("crank", "driven", "idler", "tensioner")
@@ -80,6 +80,12 @@ FIELDS: tuple[Field, ...] = (
        label="Mean load torque (driven pulleys)"),
     _f("damping_nm_s_per_rad", "pulleys", "Nm s/rad", required=False, lo=0.0, hi=100, default=0.0,
        label="Viscous damping of the pulley's shaft"),
+    _f("torque_order", "pulleys", required=False, **_POS, hi=50,
+       label="Order of the load torque's fluctuation (a camshaft of 4 cylinders: 2), a multiple of 0.5"),
+    _f("torque_amplitude_nm", "pulleys", "Nm", required=False, lo=0.0, hi=1000, default=0.0,
+       label="Amplitude of the load torque's fluctuation"),
+    _f("torque_phase_deg", "pulleys", "deg", required=False, lo=-360, hi=360, default=0.0,
+       label="Phase of the load torque's fluctuation"),
     _f("backside", "pulleys", kind="str", required=False, choices=("true", "false"), default="false",
        label="The belt's back on the pulley (outside the loop)"),
     _f("speed_min_rpm", "excitation", "rpm", **_POS, hi=20000, label="Lowest engine speed of the sweep"),
@@ -118,6 +124,9 @@ class Pulley:
     load_torque_nm: float = 0.0
     damping_nm_s_per_rad: float = 0.0
     backside: bool = False
+    torque_order: float = 0.0
+    torque_amplitude_nm: float = 0.0
+    torque_phase_deg: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -289,13 +298,21 @@ def validate(data) -> Drive:
                 p.field == f"{where}.inertia_kg_m2" for p in problems):
             problems.append(Problem(f"{where}.inertia_kg_m2", None, "a value (every pulley but the crank, whose "
                                                                     "motion is given, has an inertia)"))
-        if role in ("idler", "tensioner") and (v.get("load_torque_nm") or 0.0) != 0.0:
-            problems.append(Problem(f"{where}.load_torque_nm", v["load_torque_nm"], f"0 for a {role} pulley"))
+        for key in ("load_torque_nm", "torque_amplitude_nm"):
+            if role in ("idler", "tensioner", "crank") and (v.get(key) or 0.0) != 0.0:
+                problems.append(Problem(f"{where}.{key}", v[key], f"0 for a {role} pulley"))
+        if (v.get("torque_amplitude_nm") or 0.0) > 0:
+            o = v.get("torque_order")
+            if o is None or abs(2 * o - round(2 * o)) > 1e-9:
+                problems.append(Problem(f"{where}.torque_order", o, "a multiple of 0.5 (the order of the load "
+                                                                    "torque's fluctuation)"))
         pulleys.append(Pulley(name=v.get("name") or f"P{i + 1}", role=role, x_mm=v.get("x_mm") or 0.0,
                               y_mm=v.get("y_mm") or 0.0, radius_mm=v.get("radius_mm") or 1.0,
                               inertia_kg_m2=v.get("inertia_kg_m2") or 0.0, load_torque_nm=v.get("load_torque_nm") or 0.0,
                               damping_nm_s_per_rad=v.get("damping_nm_s_per_rad") or 0.0,
-                              backside=v.get("backside") == "true"))
+                              backside=v.get("backside") == "true", torque_order=v.get("torque_order") or 0.0,
+                              torque_amplitude_nm=v.get("torque_amplitude_nm") or 0.0,
+                              torque_phase_deg=v.get("torque_phase_deg") or 0.0))
     if raw_pulleys:
         for role in ("crank", "tensioner"):
             n = sum(p.role == role for p in pulleys)
@@ -414,3 +431,17 @@ def _from_sheet(path) -> Drive:
 def example_drive() -> Drive:
     """The shipped illustrative timing drive (``synth/data/drives/example_timing_drive.yaml``)."""
     return load_drive(EXAMPLE_PATH)
+
+
+def drive_from_mapping(data) -> Drive:
+    """A :class:`Drive` from a drive-file mapping or from ``dataclasses.asdict`` of one (a saved result's
+    settings); a :class:`Drive` is returned as it is."""
+    if isinstance(data, Drive) or data is None:
+        return data
+    if isinstance(data, dict) and "belt_stiffness_n" in data:
+        d = dict(data)
+        d["pulleys"] = tuple(Pulley(**p) for p in d["pulleys"])
+        d["tensioner"] = Tensioner(**d["tensioner"])
+        d["orders"] = tuple(Order(**o) for o in d["orders"])
+        return Drive(**d)
+    return validate(data)

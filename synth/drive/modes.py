@@ -48,6 +48,7 @@ class LinearDrive:
     c_span: np.ndarray     # (spans,) [N s/m]
     tension0_n: np.ndarray
     arm: int
+    pulley_dof: tuple      # the pulley index of each rotational degree of freedom (dofs but the arm)
     dofs: tuple
     span_names: tuple
     static: dict
@@ -95,7 +96,8 @@ def linear_drive(drive, static: dict | None = None) -> LinearDrive:
     C = B.T @ (c_span[:, None] * B) + Cp
     names = tuple(p[i].name for i in free) + ("arm",)
     spans = tuple(f"{p[j].name}-{p[(j + 1) % n].name}" for j in range(n))
-    return LinearDrive(M, C, K, B, b_c, k_span, c_span, np.asarray(s["tension_n"], float), arm, names, spans, s)
+    return LinearDrive(M, C, K, B, b_c, k_span, c_span, np.asarray(s["tension_n"], float), arm, tuple(free), names,
+                       spans, s)
 
 
 def natural_frequencies(model: LinearDrive, arm_locked: bool = False) -> dict:

@@ -43,12 +43,18 @@ from synth.drive.friction import critical_friction_torque_nm, friction_slope, fr
 __all__ = ["Excitation", "excitation", "harmonic_balance", "speed_response", "sweep", "time_response"]
 
 
+def nd_of(model) -> int:
+    return len(model.dofs)
+
+
 @dataclass(frozen=True)
 class Excitation:
-    """The crank's fluctuation at one speed: base frequency [rad/s] and complex harmonics [rad]."""
+    """The excitation at one speed: base frequency [rad/s], the crank's complex harmonics [rad] and each
+    pulley's load-torque harmonics [N m] (``(pulleys, H + 1)``)."""
 
     omega_b: float
     theta: np.ndarray  # (H + 1,) complex
+    torque: np.ndarray  # (pulleys, H + 1) complex
 
 
 def _base_and_index(orders) -> tuple[float, list[int]]:
@@ -69,13 +75,18 @@ def excitation(drive, speed_rpm: float, harmonics: int) -> Excitation:
     >>> round(e.omega_b, 3), [round(abs(x), 5) for x in e.theta]
     (628.319, [0.0, 0.00873, 0.0, 0.0, 0.0])
     """
-    base, index = _base_and_index([o.order for o in drive.orders])
+    loads = [(i, p) for i, p in enumerate(drive.pulleys) if p.torque_amplitude_nm > 0]
+    base, index = _base_and_index([o.order for o in drive.orders] + [p.torque_order for _, p in loads])
     omega = 2.0 * np.pi * speed_rpm / 60.0
     theta = np.zeros(harmonics + 1, dtype=complex)
+    torque = np.zeros((len(drive.pulleys), harmonics + 1), dtype=complex)
     for o, h in zip(drive.orders, index):
         if h <= harmonics:
             theta[h] += np.radians(o.amplitude_deg) * np.exp(1j * np.radians(o.phase_deg))
-    return Excitation(base * omega, theta)
+    for (i, p), h in zip(loads, index[len(drive.orders):]):
+        if h <= harmonics:
+            torque[i, h] += p.torque_amplitude_nm * np.exp(1j * np.radians(p.torque_phase_deg))
+    return Excitation(base * omega, theta, torque)
 
 
 def _frames(H: int, n_time: int):
@@ -172,9 +183,13 @@ def _dynamic(model, omega_b, H):
 
 
 def _forcing(model, exc: Excitation, H):
+    """Harmonics of the generalised forces: the crank's motion through the spans, the pulleys' load torques
+    (a load resists its pulley's rotation)."""
     w = np.arange(H + 1) * exc.omega_b
     stretch = (model.k_span[None] + 1j * w[:, None] * model.c_span[None]) * model.b_crank[None] * exc.theta[:, None]
-    return -(stretch @ model.B)   # (H+1, dofs)
+    F = -(stretch @ model.B)   # (H+1, dofs)
+    F[:, :len(model.pulley_dof)] -= exc.torque[list(model.pulley_dof)].T
+    return F
 
 
 def _samples(X, n_time):
@@ -286,8 +301,11 @@ def time_response(model, drive, speed_rpm: float, friction_nm: float, *, eps_rad
     """Integrate the same equations in time (:func:`scipy.integrate.solve_ivp`, LSODA) from the static state
     for ``periods`` base periods; the last period's arm angle and span tensions (the tests' reference)."""
     from scipy.integrate import solve_ivp
-    exc = excitation(drive, speed_rpm, max(1, int(np.flatnonzero(np.abs(excitation(
-        drive, speed_rpm, 64).theta) > 0).max(initial=1))))
+    probe = excitation(drive, speed_rpm, 64)
+    used = np.flatnonzero((np.abs(probe.theta) > 0) | (np.abs(probe.torque).sum(axis=0) > 0))
+    exc = excitation(drive, speed_rpm, max(1, int(used.max(initial=1))))
+    torque_dof = np.zeros((nd_of(model), len(exc.theta)), dtype=complex)
+    torque_dof[:len(model.pulley_dof)] = exc.torque[list(model.pulley_dof)]
     w = exc.omega_b
     hs = np.arange(len(exc.theta))
     nd = len(model.dofs)
@@ -303,7 +321,7 @@ def time_response(model, drive, speed_rpm: float, friction_nm: float, *, eps_rad
     def rhs(t, y):
         q, v = y[:nd], y[nd:]
         th, thd = crank(t)
-        f = -kb * th - cb * thd - model.K @ q - model.C @ v
+        f = -kb * th - cb * thd - model.K @ q - model.C @ v - (torque_dof @ np.exp(1j * hs * w * t)).real
         f[a] -= friction_nm * np.tanh(v[a] / eps_rad_s)
         return np.concatenate([v, Minv @ f])
 
