@@ -6,10 +6,11 @@ torque in loading and unloading, N m about the pivot). In the drive it is a
 Coulomb torque opposing the arm's speed, regularised so that a smooth
 periodic solution exists:
 
-    T_f(psi') = D tanh(psi' / eps),      eps = eps_rel * V_ref
+    T_f(psi') = D tanh(psi' / eps),      eps = eps_rel * V
 
-with ``V_ref`` the arm's peak speed without friction at that engine speed
-(so ``eps_rel`` is a fraction of the motion's own scale). ``eps -> 0`` is
+with ``V`` the arm's peak speed in the periodic solution itself (a fixed
+point the solver reaches in a few passes), so ``eps_rel`` is a fraction of
+the motion's own scale. ``eps -> 0`` is
 Coulomb's law; the drive's tolerance check halves ``eps_rel`` and doubles the
 harmonics and says whether the answer moved (:mod:`synth.drive.response`).
 Limits: the friction is rate-independent and symmetric; the radial part of

@@ -103,7 +103,7 @@ FIELDS: tuple[Field, ...] = (
        label="Harmonics of the base frequency in the harmonic balance"),
     _f("regularisation", "solver", required=False, **_POS, hi=0.5, default=0.01,
        label="Friction regularisation eps / peak arm speed without friction"),
-    _f("tolerance", "solver", required=False, **_POS, hi=0.5, default=0.02,
+    _f("tolerance", "solver", required=False, **_POS, hi=0.5, default=0.05,
        label="Largest relative move of the answer when the regularisation is halved and the harmonics doubled"),
 )
 
@@ -171,7 +171,7 @@ class Drive:
     belt_friction_coefficient: float | None = None
     harmonics: int = 24
     regularisation: float = 0.01
-    tolerance: float = 0.02
+    tolerance: float = 0.05
 
     @property
     def crank_index(self) -> int:

@@ -236,13 +236,20 @@ def speed_response(model, drive, speed_rpm: float, friction_nm: float, *, harmon
         X_lin, G_a = sol[:, :, 0], sol[:, :, 1]
         v_ref = float(np.max(np.abs(_samples((hw * X_lin[:, a])[None], N))))
         eps = max(eps_rel * v_ref, 1e-12)
-        hb = harmonic_balance(X_lin[:, a], G_a[:, a], exc.omega_b, friction_nm, eps, n_time=N, start=start)
-        if not hb["converged"]:   # continuation in the regularisation
-            guess = None
-            for factor in (10.0, 4.0, 2.0, 1.0):
-                hb = harmonic_balance(X_lin[:, a], G_a[:, a], exc.omega_b, friction_nm, eps * factor, n_time=N,
-                                      start=guess)
-                guess = hb["psi"]
+        for _ in range(3):   # eps follows the solution's own peak speed (a fixed point, a few passes)
+            hb = harmonic_balance(X_lin[:, a], G_a[:, a], exc.omega_b, friction_nm, eps, n_time=N, start=start)
+            if not hb["converged"]:   # continuation in the regularisation
+                guess = None
+                for factor in (10.0, 4.0, 2.0, 1.0):
+                    hb = harmonic_balance(X_lin[:, a], G_a[:, a], exc.omega_b, friction_nm, eps * factor,
+                                          n_time=N, start=guess)
+                    guess = hb["psi"]
+            start = hb["psi"]
+            v_sol = float(np.max(np.abs(_samples((hw * hb["psi"])[None], N))))
+            new = max(eps_rel * v_sol, 1e-12)
+            if abs(new - eps) <= 0.25 * eps:
+                break
+            eps = new
         psi_h, tf_h = hb["psi"], hb["friction"]
         X = X_lin - G_a * tf_h[:, None]
     e_h = X @ model.B.T + exc.theta[:, None] * model.b_crank[None]          # (H+1, spans)
