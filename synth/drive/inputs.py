@@ -195,7 +195,7 @@ class Drive:
         out = {"name": self.name,
                "belt": {"stiffness_n": self.belt_stiffness_n, "damping_n_s": self.belt_damping_n_s,
                         "min_tension_n": self.belt_min_tension_n},
-               "pulleys": [{**asdict(p), "backside": "true" if p.backside else "false"} for p in self.pulleys],
+               "pulleys": [_pulley_dict(p) for p in self.pulleys],
                "tensioner": t,
                "excitation": {"speed_min_rpm": self.speed_min_rpm, "speed_max_rpm": self.speed_max_rpm,
                               "speeds": self.speeds, "orders": [asdict(o) for o in self.orders]},
@@ -206,6 +206,18 @@ class Drive:
         if self.belt_friction_coefficient is not None:
             out["belt"]["friction_coefficient"] = self.belt_friction_coefficient
         return out
+
+
+def _pulley_dict(p: Pulley) -> dict:
+    out = {**asdict(p), "backside": "true" if p.backside else "false"}
+    if p.torque_amplitude_nm == 0:
+        for k in ("torque_order", "torque_amplitude_nm", "torque_phase_deg"):
+            out.pop(k)
+    if p.role == "crank" and p.inertia_kg_m2 == 0:
+        out.pop("inertia_kg_m2")
+    if p.role == "tensioner":
+        out.pop("x_mm"), out.pop("y_mm")
+    return out
 
 
 def _value(f: Field, raw, where: str, problems: list):
