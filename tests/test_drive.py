@@ -169,3 +169,14 @@ def test_design_with_a_drive_adds_the_registry_checks(tmp_path):
     assert slack.verdict == "pass"
     plain = verify(d, parts)
     assert plain.check("drive_arm_lock").verdict == "not applicable"
+
+
+def test_bench_drive_quick_runs(capsys):
+    import importlib.util
+    from pathlib import Path
+    spec = importlib.util.spec_from_file_location("bench_drive", Path(__file__).resolve().parents[1] / "benchmarks"
+                                                  / "bench_drive.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    assert mod.main(["--quick"]) == 0
+    assert "| default (24 harmonics" in capsys.readouterr().out
