@@ -45,7 +45,7 @@ def durability_point(drive, friction_nm: float | None = None) -> dict:
     >>> from synth.drive.inputs import example_drive
     >>> p = durability_point(example_drive())
     >>> round(p["frequency_hz"], 1), p["locked"]
-    (50.0, True)
+    (50.0, False)
     """
     speed = require_durability_speed(drive)
     fr = drive.tensioner.friction_torque_nm if friction_nm is None else float(friction_nm)

@@ -60,7 +60,7 @@ def linear_drive(drive, static: dict | None = None) -> LinearDrive:
     >>> from synth.drive.inputs import example_drive
     >>> m = linear_drive(example_drive())
     >>> m.dofs, m.K.shape
-    (('TEN', 'CAM', 'IDL', 'arm'), (4, 4))
+    (('TEN', 'CAM', 'IDL', 'WP', 'arm'), (5, 5))
     """
     from synth.drive.statics import static_state
     s = static if static is not None else static_state(drive)

@@ -72,8 +72,8 @@ def excitation(drive, speed_rpm: float, harmonics: int) -> Excitation:
 
     >>> from synth.drive.inputs import example_drive
     >>> e = excitation(example_drive(), 3000.0, 4)
-    >>> round(e.omega_b, 3), [round(abs(x), 5) for x in e.theta]
-    (628.319, [0.0, 0.00873, 0.0, 0.0, 0.0])
+    >>> round(e.omega_b, 3), [round(float(abs(x)), 5) for x in e.theta]
+    (628.319, [0.0, 0.01745, 0.0, 0.0, 0.0])
     """
     loads = [(i, p) for i, p in enumerate(drive.pulleys) if p.torque_amplitude_nm > 0]
     base, index = _base_and_index([o.order for o in drive.orders] + [p.torque_order for _, p in loads])

@@ -36,7 +36,7 @@ def static_state(drive) -> dict:
     >>> from synth.drive.inputs import example_drive
     >>> s = static_state(example_drive())
     >>> round(s["tensioner_tension_n"], 1), round(s["take_up_mm_per_rad"], 3)
-    (343.6, 10.085)
+    (573.7, 3.225)
     """
     p = drive.pulleys
     t_idx = drive.tensioner_index
