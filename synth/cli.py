@@ -77,6 +77,7 @@ SCENES: dict[str, Scene] = {
                               "write a synthetic portfolio of N applications (for synth bulk)"),
     "rationalise": Scene("synth.scenes.rationalise",
                          "the fewest standard parts that serve a whole portfolio (platform rationalisation)"),
+    "drive": Scene("synth.scenes.drive", "the belt drive around the tensioner: tensions, modes, arm response vs speed"),
     "shrink-fit": Scene("synth.scenes.shrink_fit", "crankshaft toothed-pulley shrink fit (paper Tables 1-4 and verdict)"),
     "shrink-fit-select": Scene("synth.scenes.shrink_fit",
                                "best ISO 286 fit of the crank pulley after planned re-assemblies"),

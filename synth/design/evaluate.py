@@ -43,7 +43,7 @@ from synth.model import torsion_spring as s9
 
 __all__ = ["Settings", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
-           "spring_values", "SPRING_OPTION_COLUMNS", "fixation_values", "pivot_wall_values", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
+           "spring_values", "SPRING_OPTION_COLUMNS", "drive_values", "fixation_values", "pivot_wall_values", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
            "BOLT_CORE_VALUES"]
 
 EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
@@ -71,7 +71,10 @@ class Settings:
       its safety targets already hold the preload scatter) or ``"vdi2230"``
       (permissible assembly preload with the plastic torsion factor, tightening
       factor and embedding loss, VDI 2230-1; the clamped length is taken as the
-      maximum pivot height).
+      maximum pivot height);
+    * ``drive``: the belt drive around the tensioner (:class:`synth.drive.inputs.Drive`, ``synth design
+      --drive``) or None; with a drive the core group adds the registry's ``drive_belt_slack`` and
+      ``drive_arm_lock`` checks at each design's own damping (a saved result's dict form is read back).
     """
 
     fidelity: str = "full"
@@ -79,9 +82,13 @@ class Settings:
     bushing_running_in: bool = False
     bushing_length_scheme: str = "thesis"
     bolt_method: str = "thesis"
+    drive: object = None
 
     def __post_init__(self):
         from synth.errors import InputError, Problem
+        if isinstance(self.drive, dict):
+            from synth.drive.inputs import drive_from_mapping
+            object.__setattr__(self, "drive", drive_from_mapping(self.drive))
         if self.fidelity not in FIDELITIES:
             raise InputError(Problem("fidelity", self.fidelity, "one of " + ", ".join(FIDELITIES)))
         if self.bolt_method not in ("thesis", "vdi2230"):
@@ -291,6 +298,7 @@ def core(apps, a, c: dict, settings: Settings = Settings(), detail: bool = False
     v["spring_housing_height_mm"] = np.where(apps.layout_standard[a], h_std, h_rev)
     v["spring_housing_outer_diameter_mm"] = s7.spring_housing_outer_diameter_mm(c["bearing_outer_diameter_mm"], wa)
     v["spring_cavity_min_height_mm"] = np.full(n, _const("spring_cavity_min_height_mm"))
+    v.update(drive_values(settings.drive, v["damping_nm"]))
     if detail:
         ch = s3.characterisation(v["spring_torque_nominal_nm"], f["spring_stiffness_nm_per_deg"],
                                  np.where(v["axial_damping_present"] > 0, v["axial_damping_nm"], 0.0), wa, alpha,
@@ -298,6 +306,22 @@ def core(apps, a, c: dict, settings: Settings = Settings(), detail: bool = False
         for k in ("hubload_loading_n", "hubload_unloading_n", "asymmetry_ratio"):
             v[k] = np.asarray(ch[k], dtype=float)
     return finish("core", v, apps, a)
+
+
+def drive_values(drive, damping_nm) -> dict:
+    """The values of the registry's drive constraints (``drive_belt_slack``, ``drive_arm_lock``) for rows of
+    damping ``damping_nm`` [N m]: with no drive, ``drive_given`` is False (the constraints do not apply)."""
+    n = len(damping_nm)
+    if drive is None:
+        return {"drive_given": np.zeros(n, dtype=bool),
+                **{k: np.full(n, np.nan) for k in ("drive_min_span_tension_n", "drive_belt_min_tension_n",
+                                                   "drive_static_tension_n", "drive_critical_friction_nm")}}
+    from synth.drive.analysis import tensioner_checks
+    t = tensioner_checks(drive, damping_nm)
+    return {"drive_given": np.ones(n, dtype=bool), "drive_min_span_tension_n": t["min_span_tension_n"],
+            "drive_belt_min_tension_n": np.full(n, t["belt_min_tension_n"]),
+            "drive_static_tension_n": np.full(n, t["static_tension_n"]),
+            "drive_critical_friction_nm": np.full(n, t["critical_friction_nm"])}
 
 
 # --------------------------------------------------------------------------- step 4: the pivot bushing

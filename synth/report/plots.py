@@ -46,7 +46,8 @@ import numpy as np
 from synth.design.constraints import REGISTRY
 from synth.design.result import FAIL, PASS, WARNING
 
-__all__ = ["Graph", "Skipped", "CATALOG", "GRAPH_CHECKS", "build_graphs", "graph_png", "COLOURS", "graph_verdict"]
+__all__ = ["Graph", "Skipped", "CATALOG", "GRAPH_CHECKS", "build_graphs", "graph_png", "COLOURS", "graph_verdict",
+           "drive_figure"]
 
 #: Thesis colours: verified green, failed red, advisory warning amber, nominal/reference blue, limit black.
 COLOURS = {PASS: "#2e7d32", FAIL: "#c62828", WARNING: "#ef6c00", "nominal": "#1f5fbf", "limit": "black",
@@ -68,6 +69,9 @@ CATALOG: tuple[tuple[str, str, str], ...] = (
     ("cone_spring_tolerance_band", "Cone spring force tolerance band", "Fig. 68"),
     ("goodman", "Smith-Goodman diagram of the main spring", "Fig. 71"),
     ("pivot_base_pressure", "Pivot base contact pressure against contact angle", "Fig. 74"),
+    ("drive_arm_amplitude", "Tensioner arm amplitude against engine speed", "drive"),
+    ("drive_span_tension", "Span tensions against engine speed", "drive"),
+    ("drive_hysteresis_loop", "Arm friction loop at the durability speed", "drive"),
     ("pareto", "Pareto front", "optimiser"),
     ("solvers", "Solver comparison", "optimiser"),
 )
@@ -86,6 +90,9 @@ GRAPH_CHECKS: dict[str, tuple[str, ...]] = {
     "cone_spring_tolerance_band": ("cone_force_band",),
     "goodman": ("spring_fatigue",),
     "pivot_base_pressure": ("tilting", "pivot_base_pressure"),
+    "drive_arm_amplitude": ("drive_arm_lock",),
+    "drive_span_tension": ("drive_belt_slack",),
+    "drive_hysteresis_loop": ("drive_arm_lock",),
 }
 _UNKNOWN = sorted({c for ids in GRAPH_CHECKS.values() for c in ids} - set(REGISTRY))
 if _UNKNOWN:  # pragma: no cover - a renamed registry id must not silently leave a graph uncoloured
@@ -499,6 +506,73 @@ def g_pivot_base_pressure(dt: _Data, ax, verdict):
             "pressure_worst_mpa": np.asarray(worst, float)}
 
 
+def _drive_sweep(dt: _Data):
+    """The drive's sweep with the design's own damping (the registry's drive checks evaluate the same sweep)."""
+    drive = dt.settings.drive
+    if drive is None:
+        raise _Skip("the design was not run with a drive (synth design --drive)")
+    from synth.drive.analysis import _model, _sweep
+    damping = dt.get("damping_nm")
+    if damping is None:
+        raise _Skip("the design has no damping value")
+    return drive, _model(drive), _sweep(drive, float(damping)), float(damping)
+
+
+def g_drive_arm_amplitude(dt: _Data, ax, verdict):
+    drive, _, sw, damping = _drive_sweep(dt)
+    ax.plot(sw["speed_rpm"], sw["theta_pp_deg"], color=_colour(verdict), label=f"damping {damping:.3g} Nm")
+    if drive.durability_speed_rpm is not None:
+        ax.axvline(drive.durability_speed_rpm, color=COLOURS["limit"], ls="--", lw=0.8, label="durability speed")
+    ax.set(xlabel="engine speed [rpm]", ylabel="arm peak-to-peak angle [deg]")
+    return {"speed_rpm": sw["speed_rpm"], "theta_pp_deg": sw["theta_pp_deg"]}
+
+
+def g_drive_span_tension(dt: _Data, ax, verdict):
+    drive, model, sw, _ = _drive_sweep(dt)
+    out = {"speed_rpm": sw["speed_rpm"]}
+    for j, name in enumerate(model.span_names):
+        line, = ax.plot(sw["speed_rpm"], sw["tension_max_n"][:, j], lw=1, label=name)
+        ax.plot(sw["speed_rpm"], sw["tension_min_n"][:, j], lw=1, color=line.get_color(), ls=":")
+        out[f"{name}_min_n"], out[f"{name}_max_n"] = sw["tension_min_n"][:, j], sw["tension_max_n"][:, j]
+    ax.axhline(drive.belt_min_tension_n, color=_colour(verdict), lw=1.5, label="slack limit")
+    ax.set(xlabel="engine speed [rpm]", ylabel="span tension, max (solid) and min (dotted) [N]")
+    return out
+
+
+def g_drive_hysteresis_loop(dt: _Data, ax, verdict):
+    drive, _, _, damping = _drive_sweep(dt)
+    if drive.durability_speed_rpm is None:
+        raise _Skip("the drive gives no durability speed")
+    from synth.drive.analysis import durability_point
+    p = durability_point(drive, damping)
+    ang = np.degrees(p["psi_rad"])
+    tq = drive.tensioner.nominal_torque_nm - drive.tensioner.stiffness_nm_per_deg * ang - p["friction_nm_t"]
+    ax.plot(np.append(ang, ang[:1]), np.append(tq, tq[:1]), color=_colour(verdict))
+    ax.set(xlabel="arm angle from nominal (take-up positive) [deg]",
+           ylabel="belt torque on the arm [Nm]", title=f"{p['speed_rpm']:g} rpm, theta_pp {p['theta_pp_deg']:.3g} deg")
+    return {"angle_deg": ang, "torque_nm": tq}
+
+
+def drive_figure(res: dict):
+    """Arm amplitude and the lowest span tension against speed, from :func:`synth.drive.analysis.analyse`."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    sw = res["sweep"]
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    a1.plot(sw["speed_rpm"], sw["theta_pp_deg"], color=COLOURS["nominal"])
+    a1.set(ylabel="arm peak-to-peak [deg]", title=res["name"])
+    t_min, t_max = np.asarray(sw["tension_min_n"]), np.asarray(sw["tension_max_n"])
+    for j, name in enumerate(res["spans"]):
+        line, = a2.plot(sw["speed_rpm"], t_max[:, j], lw=1, label=name)
+        a2.plot(sw["speed_rpm"], t_min[:, j], lw=1, ls=":", color=line.get_color())
+    a2.axhline(res["slack"]["limit_n"], color=COLOURS["limit"], lw=1)
+    a2.set(xlabel="engine speed [rpm]", ylabel="span tension [N]")
+    a2.legend(fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
 def _rows(obj) -> list[dict]:
     if obj is None:
         return []
@@ -598,7 +672,7 @@ def build_graphs(result, extra: dict | None = None, *, show_progress: bool = Tru
     from synth.report.progress import progress
     dt = _Data(result, extra)
     graphs, skipped = [], []
-    ids = [gid for gid, _, _ in CATALOG]
+    ids = [gid for gid, _, _ in CATALOG if not gid.startswith("drive_") or dt.settings.drive is not None]
     for gid in (progress(ids, "report graphs") if show_progress else ids):
         g = _draw(gid, dt)
         (skipped if isinstance(g, Skipped) else graphs).append(g)

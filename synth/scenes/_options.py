@@ -30,7 +30,7 @@ def add_model_options(p) -> None:
 def settings_from_args(args):
     from synth.design.evaluate import Settings
     return Settings(fidelity=args.fidelity, friction_circle=not args.linear_friction,
-                    bolt_method=getattr(args, "bolt_method", "thesis"))
+                    bolt_method=getattr(args, "bolt_method", "thesis"), drive=getattr(args, "drive_model", None))
 
 
 def add_design_options(p) -> None:

@@ -22,6 +22,9 @@ def register(sub) -> None:
     p.add_argument("input", help="design input (.yaml, .toml, .json, .xlsx; a case file works)")
     add_design_options(p)
     p.add_argument("--json", action="store_true", help="print the result as one JSON object (exit code as without)")
+    p.add_argument("--drive", metavar="DRIVE", default=None,
+                   help="the belt drive around the tensioner (.yaml, .toml, .json, .xlsx): theta_pp and f for the "
+                        "wear and spring checks come from it, and the registry adds belt-slack and arm-lock checks")
     p.add_argument("--cad", metavar="DIR", default=None,
                    help="also export the 3D model of the design (STEP, STL, pictures, geometric checks) into DIR")
     p.set_defaults(func=_main)
@@ -30,7 +33,12 @@ def register(sub) -> None:
 def _main(args) -> int:
     from synth.schema import load_input
     d = load_input(args.input)
+    note = None
+    if getattr(args, "drive", None):
+        d, args.drive_model, note = with_drive(d, args.drive)
     r = synthesise(d, args)
+    if note:
+        r.notes.insert(0, note)
     if args.json:
         print(json.dumps(r.to_dict(), indent=2))
     else:
@@ -39,6 +47,33 @@ def _main(args) -> int:
         from pathlib import Path
         print("\n".join(export_cad(r, args.cad, Path(args.input).stem)), file=sys.stderr if args.json else sys.stdout)
     return r.exit_code
+
+
+def with_drive(d, path):
+    """The design input with the durability test's theta_pp and f from the drive at its durability speed, the
+    drive with the design input's tensioner (arm, spring, calculated torque, damping target), and a note."""
+    import dataclasses
+
+    from synth.drive.analysis import durability_point
+    from synth.drive.inputs import load_drive
+    drive = load_drive(path)
+    ten = {"arm_length_mm": d.working_arm_mm, "stiffness_nm_per_deg": d.spring_stiffness_nm_per_deg,
+           "nominal_torque_nm": d.calculated_torque_target_nm}
+    if d.damping_target_nm is not None:
+        ten["friction_torque_nm"] = d.damping_target_nm
+    drive = drive.with_tensioner(**ten)
+    p = durability_point(drive)
+    duration = d.durability_duration_h
+    if d.durability_test == "assumed" and d.engine_type:
+        from synth import parts
+        arr = parts.arrays().durability
+        duration = float(arr.cols["duration_h"][arr.code(d.engine_type, "engine_type")])
+    d = dataclasses.replace(d, durability_test="defined", durability_theta_peak_to_peak_deg=p["theta_pp_deg"],
+                            durability_frequency_hz=p["frequency_hz"], durability_duration_h=duration)
+    note = (f"durability: theta_pp = {p['theta_pp_deg']:.3g} deg and f = {p['frequency_hz']:.3g} Hz from the drive "
+            f"'{drive.name}' at {p['speed_rpm']:g} rpm with the damping target {p['friction_nm']:g} Nm"
+            + (" (the arm locks there: theta_pp 0)" if p["locked"] else ""))
+    return d, drive, note
 
 
 def export_cad(r, out_dir, application: str | None = None) -> list[str]:

@@ -1,0 +1,135 @@
+"""One drive analysed: statics, modes, the speed sweep, the durability point, slack and lock, the tolerance check.
+
+:func:`analyse` is what ``synth drive`` prints; :func:`durability_point` gives
+the thesis's durability inputs (theta_pp and f, "from the system
+calculation") and :func:`tensioner_checks` the values of the registry's
+``drive_belt_slack`` and ``drive_arm_lock`` constraints for the friction
+torques of many designs (one sweep per distinct friction, remembered).
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from synth.drive.modes import linear_drive, natural_frequencies
+from synth.drive.response import speed_response, sweep
+from synth.drive.statics import static_state
+from synth.errors import InputError, Problem
+
+__all__ = ["analyse", "durability_point", "tensioner_checks", "require_durability_speed"]
+
+
+def require_durability_speed(drive) -> float:
+    """The drive's durability speed, or an input error saying why it is needed."""
+    if drive.durability_speed_rpm is None:
+        raise InputError(Problem("excitation.durability_speed_rpm", None,
+                                 "a value: the durability test's engine speed (theta_pp and f are taken there)"))
+    return float(drive.durability_speed_rpm)
+
+
+@lru_cache(maxsize=64)
+def _model(drive):
+    return linear_drive(drive)
+
+
+@lru_cache(maxsize=256)
+def _sweep(drive, friction_nm: float):
+    return sweep(_model(drive), drive, friction_nm, drive.speeds_rpm())
+
+
+def durability_point(drive, friction_nm: float | None = None) -> dict:
+    """theta_pp [deg] and f [Hz] of the arm at the durability speed (the drive's friction unless given).
+
+    >>> from synth.drive.inputs import example_drive
+    >>> p = durability_point(example_drive())
+    >>> round(p["frequency_hz"], 1), p["locked"]
+    (50.0, False)
+    """
+    speed = require_durability_speed(drive)
+    fr = drive.tensioner.friction_torque_nm if friction_nm is None else float(friction_nm)
+    r = speed_response(_model(drive), drive, speed, fr, harmonics=drive.harmonics, eps_rel=drive.regularisation)
+    return {"speed_rpm": speed, "theta_pp_deg": r["theta_pp_deg"], "frequency_hz": r["arm_frequency_hz"],
+            "locked": r["locked"], "critical_friction_nm": r["critical_friction_nm"], "friction_nm": fr,
+            "psi_rad": r["psi_rad"], "friction_nm_t": r["friction_nm_t"], "omega_b": r["omega_b"],
+            "tension_min_n": r["tension_min_n"], "tension_max_n": r["tension_max_n"]}
+
+
+def tensioner_checks(drive, friction_nm) -> dict:
+    """Per friction torque (array, N m): the lowest effective span tension over the sweep [N], and the drive's
+    critical friction at the durability speed, its slack limit and static tensioner tension (for the margins).
+    NaN friction gives NaN."""
+    fr = np.atleast_1d(np.asarray(friction_nm, dtype=float))
+    out = np.full(fr.shape, np.nan)
+    for v in np.unique(fr[np.isfinite(fr)]):
+        out[fr == v] = float(_sweep(drive, float(v))["tension_min_n"].min())
+    point = durability_point(drive, 0.0)
+    return {"min_span_tension_n": out, "critical_friction_nm": point["critical_friction_nm"],
+            "belt_min_tension_n": drive.belt_min_tension_n,
+            "static_tension_n": float(_model(drive).static["tensioner_tension_n"])}
+
+
+def analyse(drive, *, check: bool = True) -> dict:
+    """Everything ``synth drive`` reports, as plain data (numbers, lists)."""
+    model = _model(drive)
+    s = model.static
+    free = natural_frequencies(model)
+    held = natural_frequencies(model, arm_locked=True)
+    sw = sweep(model, drive, drive.tensioner.friction_torque_nm, drive.speeds_rpm(), check=check)
+    t_min = sw["tension_min_n"]
+    i_slack = int(np.argmin(t_min.min(axis=1)))
+    slack = bool(t_min.min() < drive.belt_min_tension_n)
+    out = {
+        "name": drive.name,
+        "spans": list(model.span_names),
+        "pulleys": [p.name for p in drive.pulleys],
+        "static": {"tension_n": s["tension_n"].tolist(), "span_length_mm": s["span_length_mm"].tolist(),
+                   "hub_load_n": s["hub_load_n"].tolist(), "wrap_deg": s["wrap_deg"].tolist(),
+                   "load_torque_nm": s["load_torque_nm"].tolist(),
+                   "tensioner_tension_n": s["tensioner_tension_n"], "take_up_mm_per_rad": s["take_up_mm_per_rad"],
+                   "differential_angle_deg": s["differential_angle_deg"]},
+        "modes": {"arm_free_hz": free["frequency_hz"].tolist(), "arm_locked_hz": held["frequency_hz"].tolist(),
+                  "dofs": list(free["dofs"]),
+                  "shapes": np.asarray(free["modes"]).T.tolist()},
+        "sweep": {"speed_rpm": sw["speed_rpm"].tolist(), "theta_pp_deg": sw["theta_pp_deg"].tolist(),
+                  "arm_frequency_hz": sw["arm_frequency_hz"].tolist(),
+                  "tension_min_n": sw["tension_min_n"].tolist(), "tension_max_n": sw["tension_max_n"].tolist(),
+                  "critical_friction_nm": sw["critical_friction_nm"].tolist(), "locked": sw["locked"].tolist(),
+                  "converged": bool(sw["converged"].all())},
+        "slack": {"slack": slack, "min_tension_n": float(t_min.min()), "at_speed_rpm": float(sw["speed_rpm"][i_slack]),
+                  "span": model.span_names[int(np.argmin(t_min[i_slack]))], "limit_n": drive.belt_min_tension_n},
+        "friction_nm": drive.tensioner.friction_torque_nm,
+        "solver": {"harmonics": sw["harmonics"], "regularisation": sw["regularisation"], "tolerance": drive.tolerance},
+    }
+    if check:
+        out["solver"].update(change=sw["change"], within_tolerance=sw["within_tolerance"])
+    if drive.belt_friction_coefficient is not None:
+        out["slip"] = _slip_margins(drive, model, sw)
+    if drive.durability_speed_rpm is not None:
+        p = durability_point(drive)
+        out["durability"] = {k: p[k] for k in ("speed_rpm", "theta_pp_deg", "frequency_hz", "locked",
+                                               "critical_friction_nm", "friction_nm")}
+        out["durability"]["loop"] = {"angle_deg": np.degrees(p["psi_rad"]).tolist(),
+                                     "friction_torque_nm": p["friction_nm_t"].tolist()}
+    return out
+
+
+def _slip_margins(drive, model, sw) -> dict:
+    """Euler-Eytelwein per pulley with a load: ``1 - ln(T_tight / T_slack) / (mu wrap)`` at each speed's extremes
+    (the tight side's largest over the slack side's lowest tension: a conservative pairing)."""
+    mu = drive.belt_friction_coefficient
+    wrap = np.radians(model.static["wrap_deg"])
+    n = len(drive.pulleys)
+    out = {}
+    for i, p in enumerate(drive.pulleys):
+        if p.role in ("idler", "tensioner"):
+            continue
+        t_in_min, t_out_min = sw["tension_min_n"][:, (i - 1) % n], sw["tension_min_n"][:, i]
+        t_in_max, t_out_max = sw["tension_max_n"][:, (i - 1) % n], sw["tension_max_n"][:, i]
+        tight = np.maximum(t_in_max, t_out_max)
+        loose = np.minimum(t_in_min, t_out_min)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            m = 1.0 - np.log(tight / loose) / (mu * wrap[i])
+        out[p.name] = np.where(loose > 0, m, -np.inf).tolist()
+    return out

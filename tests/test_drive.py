@@ -1,0 +1,182 @@
+"""The belt drive: geometry, statics, modes, the harmonic balance against a time integration, the locked arm,
+inputs, the scene and the coupling with the design's registry checks."""
+
+import dataclasses
+import json
+
+import numpy as np
+import pytest
+
+from synth.drive.inputs import EXAMPLE_PATH, example_drive, load_drive, validate
+from synth.drive.modes import linear_drive, natural_frequencies
+from synth.drive.response import speed_response, sweep, time_response
+from synth.drive.statics import static_state
+from synth.errors import InputError
+
+
+@pytest.fixture(scope="module")
+def drive():
+    return example_drive()
+
+
+def test_take_up_by_projection_is_the_path_length_derivative(drive):
+    s = static_state(drive)
+    assert s["take_up_mm_per_rad"] == pytest.approx(abs(s["path_d1_mm_per_rad"]), rel=1e-6)
+
+
+def test_tensioner_hub_load_is_the_thesis_hubload_of_its_torque(drive):
+    from synth.model.damping import hubload_nominal_n
+    s = static_state(drive)
+    t = drive.tensioner
+    hl = float(hubload_nominal_n(t.nominal_torque_nm, t.arm_length_mm, s["differential_angle_deg"]))
+    assert s["hub_load_n"][drive.tensioner_index] == pytest.approx(hl, rel=1e-6)
+    # tensions close round the belt: the crank gives back what the driven pulleys take
+    r = s["radii_mm"] / 1000
+    assert np.sum(s["load_torque_nm"] / r) == pytest.approx(0.0, abs=1e-9)
+
+
+def test_three_pulley_hand_calculation_of_the_first_mode():
+    """Crank, a driven pulley and a nearly massless tensioner held still: the two spans through the tensioner act
+    in series, f = sqrt((EA/(L1 + L2) + EA/L3) r^2 / J) / 2 pi."""
+    d = validate({"belt": {"stiffness_n": 1e5}, "pulleys": [
+        {"name": "C", "role": "crank", "x_mm": 0, "y_mm": 0, "radius_mm": 30},
+        {"name": "T", "role": "tensioner", "radius_mm": 20, "inertia_kg_m2": 1e-12, "backside": True},
+        {"name": "A", "x_mm": 0, "y_mm": 300, "radius_mm": 40, "inertia_kg_m2": 0.002}],
+        "tensioner": {"pivot_x_mm": 70, "pivot_y_mm": 146, "arm_length_mm": 4, "arm_angle_deg": 90,
+                      "inertia_kg_m2": 1e-5, "stiffness_nm_per_deg": 0.02, "nominal_torque_nm": 2,
+                      "friction_torque_nm": 0.5},
+        "excitation": {"speed_min_rpm": 1000, "speed_max_rpm": 2000, "orders": [{"order": 2, "amplitude_deg": 1}]}})
+    m = linear_drive(d)
+    L = m.static["span_length_mm"] / 1000
+    k = 1e5 / (L[0] + L[1]) + 1e5 / L[2]
+    f = np.sqrt(k * 0.04 ** 2 / 0.002) / (2 * np.pi)
+    assert natural_frequencies(m, arm_locked=True)["frequency_hz"][0] == pytest.approx(f, rel=1e-6)
+
+
+def test_harmonic_balance_matches_the_time_integration(drive):
+    m = linear_drive(drive)
+    hb = speed_response(m, drive, 1500.0, 0.45, harmonics=48, eps_rel=0.005)
+    td = time_response(m, drive, 1500.0, 0.45, eps_rad_s=hb["eps_rad_s"], periods=60, rtol=1e-7, atol=1e-10)
+    assert not hb["locked"] and td["success"]
+    assert hb["theta_pp_deg"] == pytest.approx(td["theta_pp_deg"], rel=0.02)
+    np.testing.assert_allclose(hb["tension_min_n"], td["tension_min_n"], rtol=0.01)
+
+
+def test_the_arm_locks_above_the_critical_friction_and_swings_below(drive):
+    m = linear_drive(drive)
+    crit = speed_response(m, drive, 1500.0, 0.0, harmonics=24, eps_rel=0.01)["critical_friction_nm"]
+    above = speed_response(m, drive, 1500.0, 1.01 * crit, harmonics=24, eps_rel=0.01)
+    below = speed_response(m, drive, 1500.0, 0.9 * crit, harmonics=24, eps_rel=0.01)
+    assert above["locked"] and above["theta_pp_deg"] == 0.0
+    assert not below["locked"] and below["theta_pp_deg"] > 0.1
+    # the time integration agrees: above the limit the regularised arm only creeps
+    td = time_response(m, drive, 1500.0, 1.2 * crit, eps_rad_s=1e-4, periods=40, rtol=1e-7, atol=1e-10)
+    assert td["theta_pp_deg"] < 0.02 * below["theta_pp_deg"]
+
+
+def test_the_tolerance_check_holds_on_the_example(drive):
+    sw = sweep(linear_drive(drive), drive, 0.45, drive.speeds_rpm()[::5], check=True)
+    assert sw["within_tolerance"], sw["change"]
+    assert sw["converged"].all()
+
+
+def test_input_errors_name_the_field():
+    with pytest.raises(InputError, match=r"pulleys\[1\]\.radius_mm: got -3") as exc:
+        data = example_drive().to_dict()
+        data["pulleys"][1]["radius_mm"] = -3
+        data["tensioner"]["arm_length_mm"] = "abc"
+        validate(data)
+    assert any(p.field == "tensioner.arm_length_mm" for p in exc.value.problems)
+    with pytest.raises(InputError, match="exactly one crank"):
+        data = example_drive().to_dict()
+        data["pulleys"][0]["role"] = "driven"
+        data["pulleys"][0]["inertia_kg_m2"] = 0.01
+        validate(data)
+
+
+def test_the_drive_round_trips_through_its_dict_and_a_workbook(tmp_path, drive):
+    assert validate(drive.to_dict()) == dataclasses.replace(drive)
+    from openpyxl import Workbook
+    wb = Workbook()
+    ws = wb.active
+    ws.title = "Drive"
+    data = drive.to_dict()
+    rows = [["name", drive.name]]
+    for sec in ("belt", "tensioner", "solver"):
+        rows += [[f"{sec}.{k}", v] for k, v in data[sec].items()]
+    rows += [[f"excitation.{k}", v] for k, v in data["excitation"].items() if k != "orders"]
+    cols = list(dict.fromkeys(k for p in data["pulleys"] for k in p))
+    rows += [[], ["pulleys"], [None, *cols]]
+    rows += [[None, *(p.get(k) for k in cols)] for p in data["pulleys"]]
+    rows += [[], ["orders"], [None, "order", "amplitude_deg", "phase_deg"]]
+    rows += [[None, o["order"], o["amplitude_deg"], o["phase_deg"]] for o in data["excitation"]["orders"]]
+    for r in rows:
+        ws.append(r)
+    path = tmp_path / "drive.xlsx"
+    wb.save(path)
+    assert load_drive(path) == drive
+    ws["B2"] = -5
+    wb.save(path)
+    with pytest.raises(InputError, match=r"belt.stiffness_n \(Drive!B2\)"):
+        load_drive(path)
+
+
+def test_settings_read_a_saved_drive_back(drive):
+    from synth.design.evaluate import Settings
+    s = Settings(drive=drive)
+    assert Settings(**dataclasses.asdict(s)).drive == drive
+
+
+def test_synth_drive_scene(capsys, tmp_path):
+    from synth.cli import main
+    small = example_drive().to_dict()
+    small["excitation"]["speeds"] = 6
+    path = tmp_path / "d.json"
+    path.write_text(json.dumps(small))
+    assert main(["drive", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["verdict"] == "pass" and len(out["sweep"]["speed_rpm"]) == 6
+    assert out["durability"]["frequency_hz"] == pytest.approx(50.0)
+    assert main(["drive", str(tmp_path / "missing.yaml")]) == 2
+    assert "--drive" in capsys.readouterr().err
+
+
+def test_design_with_a_drive_adds_the_registry_checks(tmp_path):
+    """case 3 with the example drive: theta_pp and f come from the drive; a design whose damping is above the
+    critical friction fails drive_arm_lock, one below passes (the same evaluator, the design's own damping)."""
+    from synth.data import case_path
+    from synth.design.evaluate import Settings
+    from synth.design.verify import verify
+    from synth.scenes.design import with_drive
+    from synth.schema import load_input
+    small = example_drive().to_dict()
+    small["excitation"]["speeds"] = 5
+    path = tmp_path / "d.yaml"
+    import yaml
+    path.write_text(yaml.safe_dump(small))
+    d, drive, note = with_drive(load_input(case_path("case3")), path)
+    assert d.durability_frequency_hz == pytest.approx(50.0) and d.durability_theta_peak_to_peak_deg > 1.0
+    assert "from the drive" in note
+    parts = {"ball_bearing": "6006", "pivot_class_diameter_mm": 19.0, "pivot_bushing_supplier": "B",
+             "damper_pad_class": "none", "pivot_bushing_length_mm": 20.0, "endcap_spacer_class": "none",
+             "cone_spring_aspect_ratio": 0.0, "cone_spring_deflection_ratio": 0.0,
+             "cone_spring_external_diameter_mm": 0.0, "main_spring_material": "VDSiCr", "main_spring_wire": "R2.30",
+             "main_spring_mean_body_diameter_mm": 44.0, "bolt_format": "M8x1.25", "bolt_property_class": "8.8"}
+    r = verify(d, parts, Settings(drive=drive))
+    lock, slack = r.check("drive_arm_lock"), r.check("drive_belt_slack")
+    crit = r.values["drive_critical_friction_nm"]
+    assert lock.verdict == ("pass" if r.values["damping_nm"] <= crit else "fail")
+    assert slack.verdict == "pass"
+    plain = verify(d, parts)
+    assert plain.check("drive_arm_lock").verdict == "not applicable"
+
+
+def test_bench_drive_quick_runs(capsys):
+    import importlib.util
+    from pathlib import Path
+    spec = importlib.util.spec_from_file_location("bench_drive", Path(__file__).resolve().parents[1] / "benchmarks"
+                                                  / "bench_drive.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    assert mod.main(["--quick"]) == 0
+    assert "| default (24 harmonics" in capsys.readouterr().out
