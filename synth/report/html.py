@@ -49,7 +49,7 @@ from synth.fingerprint import file_sha256
 from synth.output_table import ROWS, format_value
 
 __all__ = ["render_html", "write_html", "digest_html", "metadata", "settings_in_words", "platform_section",
-           "VERDICT_COLOURS", "verdict_class", "css_string"]
+           "VERDICT_COLOURS", "verdict_class", "css_string", "check_steps"]
 
 #: background colour of a row per verdict (thesis colours: green verified, red failed, orange not verified);
 #: ``None``: a row no check reads
@@ -270,7 +270,10 @@ def _output_rows(result) -> list:
     return out
 
 
-def _check_steps(result) -> tuple[list, list]:
+def check_steps(result) -> tuple[list, list]:
+    """The checks as the report lists them: ``([{"step", "name", "rows"}], labels not applicable)``, each row
+    formatted (value, limit, margin, verdict and its CSS class, equation, correction or note); ``synth ui``
+    shows the same rows."""
     from synth.flowchart import STEP_NAMES
     steps: dict = {}
     na = []
@@ -342,7 +345,7 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
                  ("Date", meta["date"]), ("Author", meta["author"] or "-"), ("Revision", meta["revision"] or "-")]
     if result.solver and result.solver != "flowchart":
         meta_rows.append(("Solver", f"{result.solver}, objective {result.objective or '-'}, status {result.status}"))
-    checks, na = _check_steps(result)
+    checks, na = check_steps(result)
     cad = [_figure(g) for g in graphs if g.id.startswith("cad_")]
     figs = [_figure(g) for g in graphs if not g.id.startswith("cad_")]
     scene_rows = [s for s in (_scene(k, v) for k, v in (scenes or {}).items()) if s]
