@@ -74,7 +74,12 @@ class DesignSession:
                 unknown[str(k)] = v
         if source is not None:
             self.source = source
-        return self.validate(extra=unknown)
+        ok = self.validate(extra=unknown)
+        if ok:  # a drop-down shows the choice a thesis word means ("Autosetting" is single_eccentric)
+            for f in schema.FIELDS:
+                if f.choices and self.texts[f.name] and getattr(self.input, f.name) is not None:
+                    self.texts[f.name] = getattr(self.input, f.name)
+        return ok
 
     def validate(self, extra: dict | None = None) -> bool:
         """Validate the boxes (and ``extra`` fields the form has no box for: they are reported, not kept)."""
