@@ -32,6 +32,7 @@ def _check_port(host: str, port: int) -> None:
         raise InputError(Problem("--port", port, "a TCP port in [1, 65535]"))
     family = socket.AF_INET6 if ":" in host else socket.AF_INET
     with socket.socket(family, socket.SOCK_STREAM) as s:
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # as uvicorn binds: a closing connection is no user
         try:
             s.bind((host, port))
         except OSError as e:

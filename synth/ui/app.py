@@ -72,13 +72,11 @@ def _header(host: str, port: int) -> None:
 
 
 def _messages(el, msgs: list[str]) -> None:
-    """Show a field's problems under it (Quasar's error line), or its hint again."""
-    text = "; ".join(msgs)
-    if bool(el.props.get("error")) == bool(msgs) and el.props.get("error-message", "") == text:
-        return
-    el.props["error"] = bool(msgs)
-    el.props["error-message"] = text
-    el.update()
+    """Show a field's problems under it (Quasar's error line, NiceGUI's ``error``), or its hint again."""
+    text = "; ".join(msgs) or None
+    if el.error != text:
+        el.error = text
+        el.update()
 
 
 def _select_value(el, options: dict, text: str):
@@ -134,6 +132,8 @@ class DesignPage:
             el = ui.input(form.label(f), value=text).classes("w-full").props("dense")
         el.props["hint"] = form.hint(f)
         el.props["bottom-slots"] = True
+        el.props["hide-bottom-space"] = True  # a long hint or message grows the field, never overlaps the next
+        el.without_auto_validation()  # synth.schema validates, not NiceGUI
         el.on_value_change(lambda e, name=f.name: self.on_edit(name, e.value))
         return el
 
@@ -316,12 +316,12 @@ class DesignPage:
         rel = files["folder"].relative_to(self.root).as_posix()
         self.scene.clear()
         with self.scene:
-            with self.scene.group().scale(0.02):
+            with self.scene.group().scale(0.04):  # millimetres to scene units: the tensioner about 4 units wide
                 for name, path in files["stl"].items():
                     r, g, b, a = colour_of(name)
                     colour = "#{:02x}{:02x}{:02x}".format(*(round(255 * x) for x in (r, g, b)))
                     self.scene.stl(f"{FILES_URL}/{rel}/stl/{path.name}").material(colour, opacity=a)
-        self.scene.move_camera(x=2.5, y=-3.0, z=2.5, look_at_x=0, look_at_y=0, look_at_z=0.6, duration=0)
+        self.scene.move_camera(x=3.5, y=-4.5, z=4.0, look_at_x=0, look_at_y=0, look_at_z=1.0, duration=0)
         if files["section"].is_file():
             self.section.set_source(f"{FILES_URL}/{rel}/section.png")
         failed = [c.label for c in files["checks"] if c.verdict == "fail"]
