@@ -340,7 +340,7 @@ class DesignPage:
             if kind == "step":
                 path = (await run.io_bound(self.s.cad))["step"]
             else:
-                files = await run.io_bound(self.s.report)
+                files = await run.io_bound(self.s.report, kind == "pdf")
                 path = files.get(kind)
                 if not path or not Path(path).is_file():
                     ui.notify(files.get("pdf_note") or f"no {kind} written", type="warning")

@@ -171,10 +171,11 @@ class DesignSession:
                                 "checks": checks, "folder": out}
         return self._files[key]
 
-    def report(self) -> dict:
-        """The report of the current result (``synth.write_report``: HTML, PDF, workbook): paths."""
+    def report(self, pdf: bool = False) -> dict:
+        """The report of the current result (``synth.write_report``: HTML and workbook, and the PDF when ``pdf``;
+        Chromium prints it in about 2 s, so only when asked): paths."""
         seq, result = self.seq, self.result
-        key = ("report", seq)
+        key = ("report", seq, pdf)
         if key not in self._files:
-            self._files[key] = synth.write_report(result, self._folder("report", seq))
+            self._files[key] = synth.write_report(result, self._folder("report-pdf" if pdf else "report", seq), pdf=pdf)
         return self._files[key]
