@@ -29,4 +29,4 @@ def serve(values: dict, source: str, *, host: str = "127.0.0.1", port: int = 808
     folder = Path(root) if root else Path(tempfile.mkdtemp(prefix="synth-ui-"))
     setup(values, source, host=host, port=port, root=folder)
     ui.run(host=host, port=port, title="synth", reload=False, show=False, show_welcome_message=False,
-           uvicorn_logging_level="warning", favicon="⚙")
+           uvicorn_logging_level="warning", favicon="⚙", tailwind=False)  # Quasar classes only: no Tailwind runtime

@@ -97,7 +97,7 @@ class DesignPage:
         self.graphs_seq = self.model_seq = -1
         self._loading = False
         _header(host, port)
-        with ui.row().classes("w-full no-wrap items-start synth-ui"):
+        with ui.row().classes("full-width no-wrap items-start synth-ui"):
             with ui.column().classes("q-pa-sm").style("width:34%;min-width:330px"):
                 self._form()
             with ui.column().classes("q-pa-sm").style("width:66%"):
@@ -111,25 +111,25 @@ class DesignPage:
     def _form(self) -> None:
         with ui.row().classes("items-center"):
             ui.upload(label="Open an input (YAML, TOML, JSON, Excel)", auto_upload=True, on_upload=self.on_upload) \
-                .props("accept=.yaml,.yml,.toml,.json,.xlsx,.ods flat bordered").classes("w-full")
+                .props("accept=.yaml,.yml,.toml,.json,.xlsx,.ods flat bordered").classes("full-width")
             ui.button("Save YAML", icon="download", on_click=self.save_yaml).props("outline dense")
             ui.button("Excel template", icon="grid_on", on_click=self.save_template).props("outline dense")
         self.source_label = ui.label().classes("text-caption")
         self.other_box = ui.label().classes("text-negative text-caption")
         for section, fields in form.sections():
-            with ui.expansion(section, value=True).classes("w-full").props("dense header-class=text-weight-bold"):
+            with ui.expansion(section, value=True).classes("full-width").props("dense header-class=text-weight-bold"):
                 for f in fields:
-                    with ui.element("div").classes("w-full").props(f"data-field={f.name}"):
+                    with ui.element("div").classes("full-width").props(f"data-field={f.name}"):
                         self.widgets[f.name] = self._widget(f)
 
     def _widget(self, f: schema.Field):
         text = self.s.texts[f.name]
         if form.widget(f) == "select":
             opts = form.options(f)
-            el = ui.select(opts, label=form.label(f), clearable=not f.required).classes("w-full").props("dense")
+            el = ui.select(opts, label=form.label(f), clearable=not f.required).classes("full-width").props("dense")
             _select_value(el, opts, text)
         else:
-            el = ui.input(form.label(f), value=text).classes("w-full").props("dense")
+            el = ui.input(form.label(f), value=text).classes("full-width").props("dense")
         el.props["hint"] = form.hint(f)
         el.props["bottom-slots"] = True
         el.props["hide-bottom-space"] = True  # a long hint or message grows the field, never overlaps the next
@@ -209,15 +209,15 @@ class DesignPage:
                     .props(f"outline dense data-testid=download-{kind}")
         self.status = ui.label().classes("text-caption")
         self.seq = ui.label().props("data-testid=seq").classes("text-caption text-grey")
-        self.digest = ui.html("", sanitize=False).classes("w-full")
-        with ui.tabs().classes("w-full") as tabs:
+        self.digest = ui.html("", sanitize=False).classes("full-width")
+        with ui.tabs().classes("full-width") as tabs:
             t_checks = ui.tab("Checks")
             t_design = ui.tab("Design")
             ui.tab(GRAPHS)
             ui.tab(MODEL)
-        with ui.tab_panels(tabs, value=t_checks, on_change=self.on_tab).classes("w-full").props("keep-alive"):
+        with ui.tab_panels(tabs, value=t_checks, on_change=self.on_tab).classes("full-width").props("keep-alive"):
             with ui.tab_panel(t_checks):
-                self.checks = ui.html("", sanitize=False).classes("w-full")
+                self.checks = ui.html("", sanitize=False).classes("full-width")
             with ui.tab_panel(t_design):
                 ui.label("Parts").classes("text-subtitle1")
                 self.parts = ui.html("", sanitize=False)
@@ -230,7 +230,7 @@ class DesignPage:
                 ui.label("Notes").classes("text-subtitle1")
                 self.notes = ui.html("", sanitize=False)
             with ui.tab_panel(GRAPHS):
-                self.graphs = ui.column().classes("w-full")
+                self.graphs = ui.column().classes("full-width")
             with ui.tab_panel(MODEL):
                 with ui.row().classes("items-start"):
                     self.scene = ui.scene(width=640, height=480, grid=False).props("data-testid=scene")
@@ -298,7 +298,7 @@ class DesignPage:
             figs = "".join(f'<figure data-graph="{html.escape(g.id)}" data-verdict="{html.escape(g.verdict or "")}">'
                            f'<img alt="{html.escape(g.title)}" src="{_png(g.png)}"><figcaption>'
                            f"{html.escape(g.title)} ({html.escape(g.figure)})</figcaption></figure>" for g in graphs)
-            ui.html(figs, sanitize=False).classes("w-full")
+            ui.html(figs, sanitize=False).classes("full-width")
             if skipped:
                 ui.html("<p class='small'>Not drawn: " + "; ".join(f"{html.escape(k.title)} ({html.escape(k.reason)})"
                                                                  for k in skipped) + "</p>", sanitize=False)
@@ -362,8 +362,8 @@ class PortfolioPage:
         self.p = PortfolioSession(Path(tempfile.mkdtemp(prefix="portfolio-", dir=root)))
         self.done = (0, 0)
         _header(host, port)
-        with ui.column().classes("w-full q-pa-md synth-ui"):
-            with ui.row().classes("items-center w-full"):
+        with ui.column().classes("full-width q-pa-md synth-ui"):
+            with ui.row().classes("items-center full-width"):
                 ui.upload(label="Open a portfolio (CSV, Excel, .ods, Parquet)", auto_upload=True,
                           on_upload=self.on_upload).props("accept=.csv,.xlsx,.xlsm,.ods,.parquet flat bordered")
                 ui.label("or")
@@ -376,16 +376,16 @@ class PortfolioPage:
                     .props("data-testid=run")
                 self.rat_button = ui.button("Rationalise (platform)", icon="category", on_click=self.on_rationalise) \
                     .props("outline")
-            self.bar = ui.linear_progress(value=0, show_value=False).classes("w-full")
+            self.bar = ui.linear_progress(value=0, show_value=False).classes("full-width")
             self.progress = ui.label().classes("text-caption")
             self.share = ui.label().classes("text-h6").props("data-testid=feasible-share")
-            self.plots = ui.row().classes("w-full")
+            self.plots = ui.row().classes("full-width")
             self.filter = ui.input("filter the table").props("clearable dense").style("width:24em")
-            self.table = ui.table(rows=[], columns=[], row_key="#", pagination=15).classes("w-full")
+            self.table = ui.table(rows=[], columns=[], row_key="#", pagination=15).classes("full-width")
             self.table.bind_filter_from(self.filter, "value")
             self.table.on("rowClick", self.on_row)
             ui.label("A row opens that application on the design page.").classes("text-caption")
-            self.platform = ui.html("", sanitize=False).classes("w-full")
+            self.platform = ui.html("", sanitize=False).classes("full-width")
         ui.timer(0.2, self._tick)
 
     def _tick(self) -> None:
