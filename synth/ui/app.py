@@ -97,10 +97,11 @@ class DesignPage:
         self.graphs_seq = self.model_seq = -1
         self._loading = False
         _header(host, port)
+        pane = "height:calc(100vh - 64px);overflow-y:auto;flex-wrap:nowrap"  # form and results scroll apart
         with ui.row().classes("full-width no-wrap items-start synth-ui"):
-            with ui.column().classes("q-pa-sm").style("width:34%;min-width:330px"):
+            with ui.column().classes("q-pa-sm").style(f"width:34%;min-width:330px;{pane}"):
                 self._form()
-            with ui.column().classes("q-pa-sm").style("width:66%"):
+            with ui.column().classes("q-pa-sm").style(f"width:66%;{pane}"):
                 self._results()
         if self.s.input is not None:
             self.s.synthesise()
@@ -243,8 +244,9 @@ class DesignPage:
         if r is None:
             self.status.text = "no design yet: complete the input"
             return
-        self.status.text = (f"{r.status} design ({r.solver}, objective {r.objective or '-'}), "
-                            f"fidelity {r.settings.get('fidelity', self.s.fidelity)}: verdict {r.verdict}")
+        how = f" ({r.solver}, objective {r.objective})" if r.solver else " (the current design, for the input as edited)"
+        self.status.text = (f"{r.status} design{how}, fidelity {r.settings.get('fidelity', self.s.fidelity)}: "
+                            f"verdict {r.verdict}")
         self.status.classes(replace="text-positive" if r.verdict == "pass" else "text-negative")
         self.digest.content = digest_html(r)
         self.checks.content = views.checks_table(r)
