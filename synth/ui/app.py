@@ -48,6 +48,8 @@ _CSS = """
 .synth-ui figure[data-verdict=warning]{border-color:#ef6c00}
 .synth-ui figure img{width:100%} .synth-ui figcaption{font-size:.85em}
 .synth-ui .small{font-size:.85em;color:#555}
+.synth-ui h2{font-size:1.4em;line-height:1.6;margin:.6em 0 .2em;font-weight:500}
+.synth-ui h3{font-size:1.15em;line-height:1.5;margin:.5em 0 .2em;font-weight:500}
 """
 
 GRAPHS, MODEL = "Graphs", "3D model"  # the tabs drawn when they come into view
