@@ -13,7 +13,8 @@ Run: ``.venv/bin/python benchmarks/bench_ui.py [--starts N] [--edits M]`` (needs
 * **of which in the server**: the same edits through :class:`synth.ui.session.DesignSession` and the
   HTML it renders, in this process (no browser, no network).
 * **reference: the command line**: ``synth design`` on the same input as a whole process, the answer to
-  one edit before ``synth ui`` (median of N), measured in the same run.
+  one edit before ``synth ui`` (median of N), measured in the same run; and ``python -c "import pandas,
+  nicegui"``, the imports any start of the server pays (the machine's load shows in both).
 
 Targets (issue 25): cold start under 3 s, re-verification under 200 ms (median).
 """
@@ -79,9 +80,14 @@ def server_side(edits: int) -> list[float]:
     return out
 
 
-def command_line(runs: int) -> list[float]:
+#: the references, whole processes: one edit's answer on the command line, and the imports a server needs
+REFERENCES = {"design": ["-m", "synth", "design", str(ROOT / "synth" / "data" / "default_case.yaml")],
+              "imports": ["-c", "import pandas, nicegui"]}
+
+
+def command_line(runs: int, which: str = "design") -> list[float]:
     env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-    cmd = [sys.executable, "-m", "synth", "design", str(ROOT / "synth" / "data" / "default_case.yaml")]
+    cmd = [sys.executable, *REFERENCES[which]]
     subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, check=False)  # warm-up
     out = []
     for _ in range(runs):
@@ -125,6 +131,7 @@ def main(argv: list[str] | None = None) -> int:
         browser.close()
     server = server_side(a.edits)
     cli = command_line(a.starts)
+    imports = command_line(a.starts, "imports")
     print(f"synth ui on this machine ({os.cpu_count()} cores, shared); {a.starts} cold starts after one warm-up, "
           f"{a.edits} edits after two warm-up edits.\n")
     print("| measurement | median | p90 | target | n |")
@@ -137,6 +144,8 @@ def main(argv: list[str] | None = None) -> int:
           f"{_p90(server):.1f} | | {len(server)} |")
     print(f"| reference: `synth design` on the same input, whole command [s] | {statistics.median(cli):.2f} | "
           f"{_p90(cli):.2f} | | {len(cli)} |")
+    print(f"| reference: `python -c \"import pandas, nicegui\"` [s] | {statistics.median(imports):.2f} | "
+          f"{_p90(imports):.2f} | | {len(imports)} |")
     print(f"\nAn edit in the page answers {statistics.median(cli) * 1000 / statistics.median(edits):.0f} times faster "
           "than the command line's whole run (medians of this run).")
     return 0
