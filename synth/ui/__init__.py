@@ -21,12 +21,15 @@ LOCAL_HOSTS = ("127.0.0.1", "localhost", "::1")
 
 def serve(values: dict, source: str, *, host: str = "127.0.0.1", port: int = 8080, root: str | Path | None = None) -> None:
     """Serve the pages on ``host:port`` until interrupted; ``values``: the design input the design page opens."""
+    import shutil
     import tempfile
 
-    from nicegui import ui
+    from nicegui import app, ui
 
     from synth.ui.app import setup
     folder = Path(root) if root else Path(tempfile.mkdtemp(prefix="synth-ui-"))
     setup(values, source, host=host, port=port, root=folder)
+    if root is None:  # the uploads, 3D models and reports of every tab: gone with the server
+        app.on_shutdown(lambda: shutil.rmtree(folder, ignore_errors=True))
     ui.run(host=host, port=port, title="synth", reload=False, show=False, show_welcome_message=False,
            uvicorn_logging_level="warning", favicon="⚙", tailwind=False)  # Quasar classes only: no Tailwind runtime

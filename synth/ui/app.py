@@ -21,6 +21,7 @@ import base64
 import html
 import secrets
 import tempfile
+import threading
 from pathlib import Path
 
 from nicegui import app, run, ui
@@ -56,6 +57,21 @@ GRAPHS, MODEL = "Graphs", "3D model"  # the tabs drawn when they come into view
 
 #: token -> (input mapping, source): an application of the portfolio page opened on the design page
 _HANDOFF: dict[str, tuple[dict, str]] = {}
+
+
+_DRAW = threading.Lock()  # matplotlib's pyplot is not thread-safe: one drawing job at a time, whatever the tab
+
+
+def _drawing(fn, *args, **kw):
+    """``fn(*args, **kw)`` holding the drawing lock (run in a worker thread by ``run.io_bound``)."""
+    with _DRAW:
+        return fn(*args, **kw)
+
+
+def _refused(exc: InputError, what: str = "synth: invalid input") -> None:
+    """The problems of ``exc`` as the command line prints them, in a notification that stays until closed."""
+    ui.notify(what + ": " + "; ".join(str(p) for p in exc.problems), type="negative", multi_line=True, timeout=0,
+              close_button=True)
 
 
 def _png(path_or_bytes) -> str:
@@ -98,6 +114,7 @@ class DesignPage:
         self.widgets: dict = {}
         self.graphs_seq = self.model_seq = -1
         self._loading = False
+        self.tab = "Checks"
         _header(host, port)
         pane = "height:calc(100vh - 64px);overflow-y:auto;flex-wrap:nowrap"  # form and results scroll apart
         with ui.row().classes("full-width no-wrap items-start synth-ui"):
@@ -178,8 +195,7 @@ class DesignPage:
         try:
             self.s.load(path)
         except InputError as exc:
-            ui.notify("synth: invalid input: " + "; ".join(str(p) for p in exc.problems), type="negative",
-                      multi_line=True, timeout=0, close_button=True)
+            _refused(exc)
             return
         self.s.source = name
         self.fill_form()
@@ -193,7 +209,7 @@ class DesignPage:
         try:
             path = self.s.write_template(self.s.workdir / (_stem(self.s.source) + ".xlsx"))
         except InputError as exc:
-            ui.notify("the template needs a valid input: " + "; ".join(str(p) for p in exc.problems), type="warning")
+            _refused(exc, "the template needs a valid input")
             return
         ui.download.file(path)
 
@@ -265,8 +281,6 @@ class DesignPage:
         elif self.tab == MODEL:
             asyncio.ensure_future(self.draw_model())
 
-    tab = "Checks"
-
     async def on_tab(self, e) -> None:
         self.tab = e.value
         if self.tab == GRAPHS:
@@ -280,12 +294,21 @@ class DesignPage:
             self.s.verify()
             self.show_result()
 
+    async def _api(self, fn, *args) -> bool:
+        """``fn(*args)`` in a worker thread; an :class:`InputError` is shown as the command line words it."""
+        try:
+            await run.io_bound(fn, *args)
+            return True
+        except InputError as exc:
+            _refused(exc)
+            return False
+
     async def on_synthesise(self) -> None:
         if self.s.input is None:
             ui.notify("complete the input first: the marked fields", type="warning")
             return
         self.status.text = "synthesising..."
-        await run.io_bound(self.s.synthesise)
+        await self._api(self.s.synthesise)
         self.show_result()
 
     async def draw_graphs(self) -> None:
@@ -294,7 +317,7 @@ class DesignPage:
         if r is None or seq == self.graphs_seq:
             return
         self.graphs_seq = seq
-        graphs, skipped = await run.io_bound(build_graphs, r, show_progress=False)
+        graphs, skipped = await run.io_bound(_drawing, build_graphs, r, show_progress=False)
         if seq != self.s.seq:
             return
         self.graphs.clear()
@@ -314,7 +337,7 @@ class DesignPage:
             return
         self.model_seq = seq
         self.model_note.text = "building the 3D model..."
-        files = await run.io_bound(self.s.cad)
+        files = await run.io_bound(_drawing, self.s.cad)
         if seq != self.s.seq:
             return
         rel = files["folder"].relative_to(self.root).as_posix()
@@ -342,9 +365,9 @@ class DesignPage:
                                spinner=True, timeout=None)
         try:
             if kind == "step":
-                path = (await run.io_bound(self.s.cad))["step"]
+                path = (await run.io_bound(_drawing, self.s.cad))["step"]
             else:
-                files = await run.io_bound(self.s.report, kind == "pdf")
+                files = await run.io_bound(_drawing, self.s.report, kind == "pdf")
                 path = files.get(kind)
                 if not path or not Path(path).is_file():
                     ui.notify(files.get("pdf_note") or f"no {kind} written", type="warning")
@@ -412,14 +435,13 @@ class PortfolioPage:
         try:
             self._loaded(await run.io_bound(self.p.load, path, name))
         except InputError as exc:
-            ui.notify("synth: invalid portfolio: " + "; ".join(str(p) for p in exc.problems), type="negative",
-                      multi_line=True, timeout=0, close_button=True)
+            _refused(exc, "synth: invalid portfolio")
 
     async def on_sample(self) -> None:
         try:
             self._loaded(await run.io_bound(self.p.sample, int(self.n.value or 0)))
         except InputError as exc:
-            ui.notify("; ".join(str(p) for p in exc.problems), type="negative")
+            _refused(exc)
 
     def _progress(self, done: int, total: int) -> None:
         self.done = (done, total)
@@ -438,7 +460,7 @@ class PortfolioPage:
         o = self.p.summary.overall
         self.share.text = (f"feasible share: {100 * o['feasible_share']:.1f} % ({o['feasible']} of {o['evaluated']} "
                            f"evaluated; {o['input_errors']} input errors)")
-        pngs = await run.io_bound(self.p.plots)
+        pngs = await run.io_bound(_drawing, self.p.plots)
         self.plots.clear()
         with self.plots:
             for p in pngs:
@@ -464,9 +486,9 @@ class PortfolioPage:
         self.rat_button.disable()
         self.done = (0, 1)
         try:
-            section = await run.io_bound(self.p.rationalise, self._progress)
+            section = await run.io_bound(_drawing, self.p.rationalise, self._progress)
         except InputError as exc:
-            ui.notify("; ".join(str(p) for p in exc.problems), type="negative", multi_line=True)
+            _refused(exc, "synth rationalise")
             return
         finally:
             self.rat_button.enable()
