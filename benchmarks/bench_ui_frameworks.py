@@ -25,7 +25,6 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import os
-import socket
 import statistics
 import subprocess
 import sys
@@ -33,11 +32,13 @@ import tempfile
 import textwrap
 import time
 from pathlib import Path
-from urllib.parse import urlparse
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))  # synth.ui.browser needs only the standard library: any Python with Playwright runs this
+
+from synth.ui.browser import free_port, goto_when_up, is_local, launch_chromium  # noqa: E402
 
 CHROMIUM = os.environ.get("SYNTH_CHROMIUM", "/usr/bin/chromium")
-FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-         "--disable-component-update", "--disable-sync", "--no-first-run"]
 
 APPS = {
     "nicegui": textwrap.dedent("""
@@ -93,23 +94,6 @@ def _url(name: str, port: int, script: Path) -> str:
     return f"http://127.0.0.1:{port}/" + (script.stem if name == "panel" else "")
 
 
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def _goto_until_up(page, url: str, deadline: float) -> None:
-    while True:
-        try:
-            page.goto(url, wait_until="commit", timeout=2000)
-            return
-        except Exception:  # noqa: BLE001 - the server is not listening yet
-            if time.perf_counter() > deadline:
-                raise
-            time.sleep(0.02)
-
-
 def one_round(browser, name: str, folder: Path, updates: int) -> dict:
     port = free_port()
     script = folder / f"app_{name}.py"
@@ -123,13 +107,12 @@ def one_round(browser, name: str, folder: Path, updates: int) -> dict:
         page = browser.new_page()
 
         def route(r):
-            host = urlparse(r.request.url).hostname
-            if host not in ("127.0.0.1", "localhost", None) and not r.request.url.startswith("data:"):
+            if not is_local(r.request.url, port):
                 external.append(r.request.url)
                 return r.abort()
             return r.continue_()
         page.route("**/*", route)
-        _goto_until_up(page, _url(name, port, script), t0 + 60)
+        goto_when_up(page, _url(name, port, script), 60)
         page.get_by_text("torque = 60 Nm").wait_for(timeout=60000)
         cold = time.perf_counter() - t0
         box = page.locator("input").first
@@ -163,7 +146,7 @@ def main(argv: list[str] | None = None) -> int:
     missing = [n for n in APPS if n not in names]
     rows: dict = {n: [] for n in names}
     with tempfile.TemporaryDirectory() as tmp, sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
+        browser = launch_chromium(p, CHROMIUM)
         for _ in range(a.rounds):
             for n in names:
                 rows[n].append(one_round(browser, n, Path(tmp), a.updates))
