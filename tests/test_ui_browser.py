@@ -117,6 +117,10 @@ def test_a_bad_value_shows_the_command_lines_message_next_to_its_field(page, tmp
     alert.wait_for()
     assert alert.inner_text() == cli[0]
     assert "input not valid" in pg.locator(".text-negative").last.inner_text()
+    pg.locator("input[type=file]").set_input_files(str(bad))  # the same file opened in the page
+    pg.get_by_text("input: bad.yaml").wait_for()
+    assert pg.locator("[data-field=pulley_diameter_mm] input").input_value() == "500"
+    assert pg.locator("[data-field=pulley_diameter_mm] [role=alert]").inner_text() == cli[0]
 
 
 def test_synthesise_then_download_the_report(page, tmp_path):
