@@ -81,6 +81,7 @@ SCENES: dict[str, Scene] = {
     "shrink-fit": Scene("synth.scenes.shrink_fit", "crankshaft toothed-pulley shrink fit (paper Tables 1-4 and verdict)"),
     "shrink-fit-select": Scene("synth.scenes.shrink_fit",
                                "best ISO 286 fit of the crank pulley after planned re-assemblies"),
+    "ui": Scene("synth.scenes.ui", "the design loop in a local web application (form, checks, graphs, 3D, portfolio)"),
 }
 
 

@@ -49,7 +49,7 @@ from synth.fingerprint import file_sha256
 from synth.output_table import ROWS, format_value
 
 __all__ = ["render_html", "write_html", "digest_html", "metadata", "settings_in_words", "platform_section",
-           "VERDICT_COLOURS", "verdict_class", "css_string"]
+           "VERDICT_COLOURS", "verdict_class", "css_string", "check_steps", "check_row", "part_label"]
 
 #: background colour of a row per verdict (thesis colours: green verified, red failed, orange not verified);
 #: ``None``: a row no check reads
@@ -196,7 +196,8 @@ def platform_section(platform) -> str | None:
     return Markup(report_section(platform))
 
 
-def _check_row(c) -> dict:
+def check_row(c) -> dict:
+    """One check as the report shows it (formatted value, limit, margin; verdict and its class; correction)."""
     con = c.constraint
     extra = con.correction if c.verdict in (FAIL, WARNING) and con.correction else \
         "; ".join(x for x in [c.note, *c.assumed] if x)
@@ -231,9 +232,9 @@ def digest_context(result) -> dict:
     line = verdict_line(result)
     line = line[line.index("(") + 1:-1] if line.endswith(")") and "(" in line else ""
     return {"verdict": result.verdict, "cls": verdict_class(result.verdict), "line": line,
-            "design": design, "failed": [_check_row(c) for c in by_margin],
-            "warnings": [_check_row(c) for c in sorted(result.warnings(), key=lambda c: c.margin or 0.0)],
-            "not_verified": [_check_row(c) for c in result.not_verified()],
+            "design": design, "failed": [check_row(c) for c in by_margin],
+            "warnings": [check_row(c) for c in sorted(result.warnings(), key=lambda c: c.margin or 0.0)],
+            "not_verified": [check_row(c) for c in result.not_verified()],
             "assumed": result.assumptions(), "diagnosis": _diagnosis(result)}
 
 
@@ -270,7 +271,10 @@ def _output_rows(result) -> list:
     return out
 
 
-def _check_steps(result) -> tuple[list, list]:
+def check_steps(result) -> tuple[list, list]:
+    """The checks as the report lists them: ``([{"step", "name", "rows"}], labels not applicable)``, each row
+    formatted (value, limit, margin, verdict and its CSS class, equation, correction or note); ``synth ui``
+    shows the same rows."""
     from synth.flowchart import STEP_NAMES
     steps: dict = {}
     na = []
@@ -278,7 +282,7 @@ def _check_steps(result) -> tuple[list, list]:
         if c.verdict == NOT_APPLICABLE:
             na.append(c.constraint.label)
             continue
-        steps.setdefault(c.step, []).append(_check_row(c))
+        steps.setdefault(c.step, []).append(check_row(c))
     names = {**STEP_NAMES, 11: "3D model"}
     return [{"step": s, "name": names.get(s, ""), "rows": rows} for s, rows in steps.items()], na
 
@@ -342,7 +346,7 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
                  ("Date", meta["date"]), ("Author", meta["author"] or "-"), ("Revision", meta["revision"] or "-")]
     if result.solver and result.solver != "flowchart":
         meta_rows.append(("Solver", f"{result.solver}, objective {result.objective or '-'}, status {result.status}"))
-    checks, na = _check_steps(result)
+    checks, na = check_steps(result)
     cad = [_figure(g) for g in graphs if g.id.startswith("cad_")]
     figs = [_figure(g) for g in graphs if not g.id.startswith("cad_")]
     scene_rows = [s for s in (_scene(k, v) for k, v in (scenes or {}).items()) if s]
@@ -364,18 +368,19 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
     block += f"\n{meta['synth']}  inputs sha256 {meta['inputs_sha256'][:16]}"
     verdict_text = f"Verdict: {result.verdict.upper()}"
     parts = [(label, key, _num(v)) for key, v in (result.parts or {}).items()
-             for label in [_part_label(key)]]
+             for label in [part_label(key)]]
     return _environment().get_template("report.html.j2").render(
         title=title, css=_CSS, page=page, page_title=title, verdict_text=verdict_text,
         banner_ink=_INK.get(result.verdict, "#222"), title_block=block, meta=meta, meta_rows=meta_rows,
-        d=digest, toc=toc, parts=parts, binding=[_check_row(c) for c in result.binding(5)],
+        d=digest, toc=toc, parts=parts, binding=[check_row(c) for c in result.binding(5)],
         settings=settings_in_words(result), output=_output_rows(result), legend_na="grey (not applicable)",
         checks=checks, not_applicable=na, cad=cad, cad_note=cad_note, graphs=figs,
         skipped=[{"id": s.id, "title": s.title, "reason": s.reason} for s in skipped], platform=plat,
         scenes=scene_rows, notes=list(result.notes), inputs=_inputs(result))
 
 
-def _part_label(key: str) -> str:
+def part_label(key: str) -> str:
+    """A part key in words: its input field's label, else the key itself in words."""
     from synth import schema
     try:
         f = schema.field_by_name(key)

@@ -1,0 +1,83 @@
+"""``synth ui`` driven from outside, as its tests and its benchmark do: a server process and a headless Chromium.
+
+The browser is Debian's Chromium (:func:`synth.report.pdf.chromium_binary`), never one Playwright
+downloads, started with the flags that keep it from calling home (:data:`CHROMIUM_FLAGS`).
+
+>>> "--disable-background-networking" in CHROMIUM_FLAGS
+True
+>>> is_local("http://127.0.0.1:8080/_nicegui/x.js", 8080), is_local("https://fonts.example.org/a.css", 8080)
+(True, False)
+"""
+
+from __future__ import annotations
+
+import os
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+from urllib.parse import urlparse
+
+__all__ = ["CHROMIUM_FLAGS", "free_port", "start_server", "stop_server", "launch_chromium", "goto_when_up", "is_local"]
+
+ROOT = Path(__file__).resolve().parents[2]
+
+#: headless, no GPU, no sandbox (containers), and none of Chromium's own traffic (updates, sync, first run)
+CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+                  "--disable-component-update", "--disable-sync", "--no-first-run"]
+
+
+def free_port() -> int:
+    """A TCP port free on 127.0.0.1 now."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def start_server(port: int, *args: str, env: dict | None = None) -> tuple[subprocess.Popen, str]:
+    """``python -m synth ui --port PORT ARGS`` as a process; returns it and the first line it printed."""
+    e = {**os.environ, **(env or {}), "PYTHONUNBUFFERED": "1"}
+    e["PYTHONPATH"] = str(ROOT) + os.pathsep + e.get("PYTHONPATH", "")
+    e.pop("PYTEST_CURRENT_TEST", None)  # NiceGUI would take its own test mode (and port) for a test's child
+    proc = subprocess.Popen([sys.executable, "-m", "synth", "ui", "--port", str(port), *args], env=e,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    line = proc.stdout.readline().strip()
+    return proc, line
+
+
+def stop_server(proc: subprocess.Popen) -> None:
+    proc.terminate()
+    try:
+        proc.wait(15)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait(5)
+    if proc.stdout:
+        proc.stdout.close()
+
+
+def launch_chromium(playwright, executable: str):
+    """Playwright's Chromium driver on the given binary (Debian's), with :data:`CHROMIUM_FLAGS`."""
+    return playwright.chromium.launch(executable_path=executable, args=CHROMIUM_FLAGS)
+
+
+def goto_when_up(page, url: str, timeout_s: float = 30.0) -> None:
+    """Open ``url``, retrying while the server is not listening yet."""
+    deadline = time.perf_counter() + timeout_s
+    while True:
+        try:
+            page.goto(url, wait_until="commit", timeout=5000)
+            return
+        except Exception:  # noqa: BLE001 - connection refused until the server listens
+            if time.perf_counter() > deadline:
+                raise
+            time.sleep(0.02)
+
+
+def is_local(url: str, port: int) -> bool:
+    """Whether a request the page made stays on this server (``data:`` and ``blob:`` URLs never leave)."""
+    if url.startswith(("data:", "blob:", "about:")):
+        return True
+    u = urlparse(url)
+    return u.hostname in ("127.0.0.1", "localhost") and (u.port or 80) == port

@@ -1,0 +1,133 @@
+"""The design input as a form: one widget per field of :data:`synth.schema.FIELDS`, in its sections.
+
+Nothing here knows a field by name: the widget, its options, label, unit and the accepted values shown
+under it come from the field's declaration (:class:`synth.schema.Field`), so a field added to the
+schema appears in ``synth ui`` by itself.
+
+A text box holds what the user typed; :func:`value_of` reads it as one YAML scalar, as the same text in
+an input file would be read, so :func:`synth.schema.validate` reports exactly the message the command
+line gives for that file (``pulley_diameter_mm: got 500; accepted: a number in (0, 200] mm``).
+
+>>> f = schema.field_by_name("pulley_diameter_mm")
+>>> widget(f), label(f), hint(f)
+('text', 'Pulley diameter [mm]', 'a number in (0, 200] mm')
+>>> value_of("62,5"), value_of(" "), value_of("[2.3, 2.3]")
+('62,5', None, [2.3, 2.3])
+>>> options(schema.field_by_name("belt_loading_type"))["single_eccentric"]
+'single_eccentric (Autosetting)'
+>>> problems_by_field(InputError(Problem("pulley_diameter_mm", 500, "a number in (0, 200] mm")))
+({'pulley_diameter_mm': ['pulley_diameter_mm: got 500; accepted: a number in (0, 200] mm']}, [])
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import yaml
+
+from synth import catalog, schema
+from synth.errors import InputError, Problem
+
+__all__ = ["widget", "options", "label", "hint", "text_of", "value_of", "mapping", "problems_by_field", "to_yaml",
+           "sections", "MAX_TEXT"]
+
+#: longest text a box accepts (a value, never a document: the input gate's limits stay with files)
+MAX_TEXT = 200
+
+
+def sections() -> list[tuple[str, list[schema.Field]]]:
+    """``[(section, [fields])]`` in the schema's order (the thesis's input table)."""
+    return [(s, [f for f in schema.FIELDS if f.section == s]) for s in schema.SECTIONS]
+
+
+def widget(f: schema.Field) -> str:
+    """``select`` for a field with choices or a catalog (a drop-down), else ``text``."""
+    return "select" if f.choices or f.catalog else "text"
+
+
+def options(f: schema.Field) -> dict[str, str]:
+    """A drop-down's ``{value: shown text}``: the choices with the thesis's first word for each, or the catalog keys."""
+    if f.choices:
+        words: dict[str, str] = {}
+        for word, choice in f.words:
+            if word.lower().replace(" ", "_") != choice:
+                words.setdefault(choice, word)
+        return {c: f"{c} ({words[c]})" if c in words else c for c in f.choices}
+    return {k: k for k in catalog.keys(f.catalog)} if f.catalog else {}
+
+
+def label(f: schema.Field) -> str:
+    """The field's label and unit (``Pulley diameter [mm]``)."""
+    unit = "" if f.unit in ("-", "") else f" [{f.unit}]"
+    return f"{f.label or f.name}{unit}"
+
+
+def hint(f: schema.Field) -> str:
+    """What the field accepts (:meth:`synth.schema.Field.accepted`), and ``optional`` for an optional one."""
+    return f.accepted() + ("" if f.required else "; optional")
+
+
+def text_of(value: Any) -> str:
+    """A value as shown in a text box (``62``, ``0.5``, ``[2.3, 2.3]``; None empty)."""
+    if value is None:
+        return ""
+    if isinstance(value, float) and math.isfinite(value):
+        return f"{value:g}" if abs(value) < 1e15 else repr(value)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(text_of(v) for v in value) + "]"
+    return str(value)
+
+
+def value_of(text: Any) -> Any:
+    """The value a box's text means: the text read as one YAML scalar (or flow list), as in an input file.
+
+    Empty is None (not given); text YAML cannot read stays the text, for the validator to report.
+    """
+    if text is None:
+        return None
+    if not isinstance(text, str):
+        return text
+    t = text.strip()
+    if not t:
+        return None
+    try:
+        v = yaml.safe_load(t)
+    except yaml.YAMLError:
+        return t
+    return v if isinstance(v, (int, float, str, list)) and not isinstance(v, bool) else t
+
+
+def mapping(texts: dict[str, Any]) -> dict[str, Any]:
+    """The input mapping of the form's boxes (``{field: value}``, the given ones only)."""
+    out = {}
+    for name, text in texts.items():
+        if isinstance(text, str) and len(text) > MAX_TEXT:
+            raise InputError(Problem(name, text[:40] + "...", f"at most {MAX_TEXT} characters"))
+        v = value_of(text)
+        if v is not None:
+            out[name] = v
+    return out
+
+
+def problems_by_field(exc: InputError) -> tuple[dict[str, list[str]], list[str]]:
+    """``({field: [messages]}, [messages about no one field])``: each problem's text as the command line prints it."""
+    known = {f.name for f in schema.FIELDS}
+    by_field: dict[str, list[str]] = {}
+    other = []
+    for p in exc.problems:
+        if p.field in known:
+            by_field.setdefault(p.field, []).append(str(p))
+        else:
+            other.append(str(p))
+    return by_field, other
+
+
+def to_yaml(values: dict[str, Any], source: str = "") -> str:
+    """The input as a YAML design-input file (fields in the schema's order), loadable by every scene."""
+    order = [f.name for f in schema.FIELDS]
+    data = {k: values[k] for k in order if values.get(k) is not None}
+    data.update({k: v for k, v in values.items() if k not in data and v is not None})
+    source = " ".join(str(source).split())  # one comment line, whatever the file name holds
+    head = "# synth design input" + (f" (from {source})" if source else "") + ", saved by synth ui\n"
+    return head + yaml.safe_dump(data, sort_keys=False, allow_unicode=True)

@@ -1,0 +1,101 @@
+"""HTML fragments of a :class:`~synth.design.result.Result` for ``synth ui`` (every text escaped for HTML).
+
+The rows are the report's own (:func:`synth.report.html.check_steps`, :func:`synth.report.html.digest_html`),
+coloured with the one verdict palette :data:`synth.design.result.VERDICT_FILLS`; each check row carries
+``data-check`` and ``data-verdict`` as the report's rows do, so a test reads the verdict and the colour
+the browser computes.
+
+>>> from synth.design.result import Check, Result
+>>> r = Result("verified", parts={"ball_bearing": "6006"}, checks=[Check("bearing_load", 462.5, 900.0, 0.49, "pass")])
+>>> 'data-check="bearing_load" data-verdict="pass" style="background:#c6efce"' in checks_table(r)
+True
+>>> "<td>6006</td>" in parts_table(r)
+True
+"""
+
+from __future__ import annotations
+
+from html import escape
+
+from synth.design.result import VERDICT_FILLS
+
+__all__ = ["checks_table", "parts_table", "binding_table", "diagnosis_html", "alternatives_html", "fill"]
+
+def fill(verdict) -> str:
+    """The background of a verdict (``#c6efce`` for pass), white for none."""
+    return "#" + VERDICT_FILLS[verdict].lower() if verdict in VERDICT_FILLS else "#ffffff"
+
+
+def _e(x) -> str:
+    return escape("" if x is None else str(x), quote=True)
+
+
+def checks_table(result) -> str:
+    """Every check, by thesis step: value, sense, limit, unit, margin, verdict, equation, correction or note."""
+    from synth.report.html import check_steps
+    steps, not_applicable = check_steps(result)
+    head = ("<tr><th>check</th><th>value</th><th></th><th>limit</th><th>unit</th><th>margin</th><th>verdict</th>"
+            "<th>equation</th><th>correction / note</th></tr>")
+    body = []
+    for s in steps:
+        body.append(f'<tr class="group"><td colspan="9">Step {_e(s["step"])}: {_e(s["name"])}</td></tr>')
+        for r in s["rows"]:
+            body.append(f'<tr data-check="{_e(r["id"])}" data-verdict="{_e(r["verdict"])}" '
+                        f'style="background:{fill(r["verdict"])}"><td>{_e(r["label"])}</td>'
+                        f'<td class="num">{_e(r["value"])}</td><td>{_e(r["sense"])}</td>'
+                        f'<td class="num">{_e(r["limit"])}</td><td>{_e(r["unit"])}</td>'
+                        f'<td class="num">{_e(r["margin"])}</td><td>{_e(r["verdict"])}</td>'
+                        f'<td>{_e(r["equation"])}</td><td>{_e(r["extra"])}</td></tr>')
+    na = ""
+    if not_applicable:
+        na = (f'<p class="small" style="background:{fill("not applicable")}">Not applicable to this design: '
+              + _e(", ".join(not_applicable)) + "</p>")
+    return f'<table class="checks"><thead>{head}</thead><tbody>{"".join(body)}</tbody></table>{na}'
+
+
+def parts_table(result) -> str:
+    """The design's parts (part key, in words, value)."""
+    from synth.report.html import part_label
+    rows = "".join(f"<tr><th>{_e(part_label(k))}</th><td>{_e(v)}</td></tr>" for k, v in (result.parts or {}).items())
+    return f'<table class="kv parts"><tbody>{rows}</tbody></table>'
+
+
+def binding_table(result, n: int = 8) -> str:
+    """What binds: the ``n`` smallest margins of the checks the margin objective counts (``Result.binding``)."""
+    from synth.report.html import check_row
+    rows = "".join(f'<tr style="background:{fill(r["verdict"])}"><td>{_e(r["label"])}</td>'
+                   f'<td class="num">{_e(r["margin"])}</td><td>{_e(r["correction"])}</td></tr>'
+                   for r in map(check_row, result.binding(n)))
+    return ("<table class=\"binding\"><thead><tr><th>check</th><th>margin</th><th>what relaxes it</th></tr></thead>"
+            f"<tbody>{rows}</tbody></table>")
+
+
+def diagnosis_html(result) -> str:
+    """The diagnosis of an infeasible input (what binds, the smallest input relaxations), else a line saying none."""
+    dg = result.diagnosis
+    if not dg:
+        return "<p>No diagnosis: the design is feasible (a diagnosis is made when no catalog design is).</p>"
+    rel = []
+    for r in dg.get("relaxations", []):
+        change = ", ".join(f"{k} {x['from']:g} -> {x['to']:g}" for k, x in r.get("inputs", {}).items())
+        rel.append(f"<li>{_e(change)}{' (a specification value)' if r.get('specification') else ''}</li>")
+    return (f"<p>{_e(dg.get('message', ''))}</p>"
+            + (f"<p>Smallest input relaxations that make a design feasible:</p><ul>{''.join(rel)}</ul>" if rel else ""))
+
+
+def alternatives_html(result) -> str:
+    """The ranked alternative designs, where the result carries them.
+
+    Hook for issue 23 (``synthesise --top K``, relaxations split by who controls them): a result that
+    carries ``alternatives`` (a list of part dicts with their objective values) is listed here; today's
+    results carry none, and the page says so.
+    """
+    alts = getattr(result, "alternatives", None) or (result.stats or {}).get("alternatives")
+    if not alts:
+        return ("<p>Ranked alternatives are not computed yet (issue 23: <code>synth design --top K</code>); "
+                "the design above is the optimum of the objective.</p>")
+    cols = list(dict.fromkeys(k for a in alts for k in a))
+    head = "".join(f"<th>{_e(c)}</th>" for c in cols)
+    rows = "".join(f"<tr><td>{i + 1}</td>" + "".join(f"<td>{_e(a.get(c))}</td>" for c in cols) + "</tr>"
+                   for i, a in enumerate(alts))
+    return f"<table class=\"alternatives\"><thead><tr><th>#</th>{head}</tr></thead><tbody>{rows}</tbody></table>"

@@ -1,0 +1,142 @@
+"""``synth ui`` without a browser: the form from the schema, the design session on the API, the HTML, the scene.
+
+The browser tests (``tests/test_ui_browser.py``) drive the pages; here the pieces under them are checked
+against the paths they stand for: the command line's messages, :func:`synth.verify`, :func:`synth.load`
+of the files the page saves, the report's rows.
+"""
+
+from __future__ import annotations
+
+import socket
+
+import pytest
+
+import synth
+from synth import catalog, schema
+from synth.cli import main
+from synth.design.result import VERDICT_FILLS, Check, Result
+from synth.errors import InputError
+from synth.ui import form, views
+from synth.ui.session import DesignSession, default_values
+
+
+@pytest.fixture(scope="module")
+def designed():
+    s = DesignSession(default_values(), source="default")
+    s.synthesise()
+    return s
+
+
+def test_every_schema_field_has_its_widget_options_and_accepted_values():
+    for f in schema.FIELDS:
+        if f.choices or f.catalog:
+            assert form.widget(f) == "select"
+            assert list(form.options(f)) == list(f.choices or catalog.keys(f.catalog))
+        else:
+            assert form.widget(f) == "text"
+        assert form.hint(f).startswith(f.accepted())
+    assert [s for s, _ in form.sections()] == list(schema.SECTIONS)
+    assert sum(len(fs) for _, fs in form.sections()) == len(schema.FIELDS)
+
+
+def test_a_box_is_read_as_the_same_text_in_a_yaml_file_would_be():
+    assert [form.value_of(t) for t in ("62", "62.5", "2,5", "", "[2.3, 2.3]", "Autosetting", "yes")] == \
+        [62, 62.5, "2,5", None, [2.3, 2.3], "Autosetting", "yes"]
+    with pytest.raises(InputError, match="at most 200 characters"):
+        form.mapping({"pulley_diameter_mm": "9" * 201})
+
+
+def test_an_edit_reverifies_the_design_as_synth_verify_does(designed):
+    s = DesignSession(default_values())
+    s.synthesise()
+    parts = dict(s.result.parts)
+    assert s.edit("spring_stiffness_nm_per_deg", "1.5")
+    ref = synth.verify({**default_values(), "spring_stiffness_nm_per_deg": 1.5}, parts)
+    assert s.result.parts == parts and s.result.status == "verified"
+    assert [(c.id, c.verdict, c.value) for c in s.result.checks] == [(c.id, c.verdict, c.value) for c in ref.checks]
+    assert s.result.check("spring_yield").verdict == "fail"
+
+
+def test_a_bad_value_gets_the_command_lines_message_and_keeps_the_last_result(designed, tmp_path, capsys):
+    import yaml
+    s = DesignSession(default_values())
+    s.synthesise()
+    before = s.seq
+    assert not s.edit("working_arm_mm", "abc")
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(yaml.safe_dump({**default_values(), "working_arm_mm": "abc"}), encoding="utf-8")
+    assert main(["flowchart", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert s.problems == {"working_arm_mm": [err.splitlines()[1].strip()[2:]]}
+    assert s.seq == before and s.result is not None
+
+
+def test_the_saved_yaml_and_excel_template_load_back_to_the_same_input(designed, tmp_path):
+    y = tmp_path / "in.yaml"
+    y.write_text(designed.yaml_text(), encoding="utf-8")
+    assert synth.load(y) == designed.input
+    x = designed.write_template(tmp_path / "in.xlsx")
+    assert synth.load(x) == designed.input
+    other = DesignSession()
+    assert other.load(x) and other.input == designed.input and other.result.parts == designed.result.parts
+
+
+def test_a_file_in_the_thesiss_words_fills_the_drop_downs_with_their_choices(tmp_path):
+    import yaml
+    f = tmp_path / "words.yaml"
+    f.write_text(yaml.safe_dump({**default_values(), "belt_loading_type": "Autosetting", "loading_arm_mm": None}),
+                 encoding="utf-8")
+    s = DesignSession()
+    assert s.load(f)
+    assert s.texts["belt_loading_type"] == "single_eccentric"
+
+
+def test_the_checks_table_is_the_reports_rows_in_the_verdict_palette(designed):
+    html = views.checks_table(designed.result)
+    shown = [c for c in designed.result.checks if c.verdict != "not applicable"]
+    assert html.count("data-check=") == len(shown)
+    for c in shown:
+        assert f'data-check="{c.id}" data-verdict="{c.verdict}" style="background:#{VERDICT_FILLS[c.verdict].lower()}"' in html
+
+
+def test_every_text_of_a_result_is_escaped_for_html():
+    r = Result("verified", parts={"ball_bearing": "<b>6006</b>"}, notes=["a < b"],
+               checks=[Check("bearing_load", None, None, None, "not verified", note="<script>x</script>")],
+               diagnosis={"message": "<i>binds</i>", "relaxations": []})
+    out = views.checks_table(r) + views.parts_table(r) + views.diagnosis_html(r)
+    assert "<script>" not in out and "&lt;script&gt;" in out
+    assert "<b>6006" not in out and "<i>binds" not in out
+
+
+def test_alternatives_say_they_are_not_computed_until_a_result_carries_them(designed):
+    assert "issue 23" in views.alternatives_html(designed.result)
+    r = Result("optimal", stats={"alternatives": [{"ball_bearing": "6006", "cost_eur": 3.5}]})
+    assert "<td>1</td><td>6006</td><td>3.5</td>" in views.alternatives_html(r)
+
+
+def test_the_scene_refuses_a_bad_input_and_a_busy_port_before_serving(tmp_path, capsys):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("pulley_diameter_mm: 500\n", encoding="utf-8")
+    assert main(["ui", str(bad)]) == 2
+    assert "pulley_diameter_mm: got 500; accepted: a number in (0, 200] mm" in capsys.readouterr().err
+    assert main(["ui", "--port", "0"]) == 2
+    assert "--port: got 0; accepted: a TCP port in [1, 65535]" in capsys.readouterr().err
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        s.listen()
+        port = s.getsockname()[1]
+        assert main(["ui", "--port", str(port)]) == 2
+    assert f"--port: got {port}; accepted: a free port on 127.0.0.1" in capsys.readouterr().err
+
+
+def test_a_portfolio_row_opens_as_the_input_synth_bulk_read():
+    from synth.bulk.portfolio import records
+    from synth.ui.portfolio import PortfolioSession
+    p = PortfolioSession()
+    p.sample(5, seed=2)
+    assert len(p.run(slices=2, min_slice=1)) == 5
+    table_rows, cols = p.rows()
+    assert cols[:2] == ["#", "application_id"] and [r["#"] for r in table_rows] == list(range(5))
+    assert p.application(3) == records(p.table)[3]
+    whole = synth.screen(p.table, progress=False)
+    assert list(whole["feasible"]) == list(p.results["feasible"])  # slices give the rows of one call

@@ -1,0 +1,191 @@
+"""``synth ui`` in a real browser (issue 25): Playwright drives Debian's headless Chromium against the server.
+
+One server for the module (``python -m synth ui`` on a free port), one page per test. Every request every
+page makes is logged, and the last test asserts none left the machine. Skips where Chromium, Playwright
+or NiceGUI is missing (``.ci/run`` installs Chromium; the ``test`` extra brings the other two).
+"""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from synth.report.pdf import chromium_binary
+
+pytest.importorskip("nicegui")
+sync_api = pytest.importorskip("playwright.sync_api")
+
+from synth.design.result import VERDICT_FILLS  # noqa: E402
+from synth.ui.browser import free_port, goto_when_up, is_local, launch_chromium, start_server, stop_server  # noqa: E402
+
+CHROMIUM = chromium_binary()
+pytestmark = pytest.mark.skipif(CHROMIUM is None, reason="no chromium binary (apt-get install chromium)")
+
+CHECKS = "table.checks tr[data-check]"
+REQUESTS: list[str] = []
+
+
+def _rgb(hex_colour: str) -> str:
+    return "rgb({}, {}, {})".format(*(int(hex_colour[i:i + 2], 16) for i in (0, 2, 4)))
+
+
+@pytest.fixture(scope="module")
+def server():
+    port = free_port()
+    proc, line = start_server(port)
+    try:
+        yield port, line
+    finally:
+        stop_server(proc)
+
+
+@pytest.fixture(scope="module")
+def browser():
+    with sync_api.sync_playwright() as p:
+        b = launch_chromium(p, CHROMIUM)
+        yield b
+        b.close()
+
+
+@pytest.fixture
+def page(browser, server):
+    ctx = browser.new_context(accept_downloads=True, viewport={"width": 1400, "height": 900})
+    ctx.on("request", lambda r: REQUESTS.append(r.url))
+    pg = ctx.new_page()
+    pg.set_default_timeout(60000)
+    yield pg, f"http://127.0.0.1:{server[0]}/"
+    ctx.close()
+
+
+def _seq(pg) -> int:
+    return int(pg.locator("[data-testid=seq]").get_attribute("data-seq") or 0)
+
+
+def _wait_seq_after(pg, seq: int) -> None:
+    pg.wait_for_function(f"Number(document.querySelector('[data-testid=seq]').dataset.seq) > {seq}")
+
+
+def _verdicts(pg) -> dict:
+    return pg.eval_on_selector_all(CHECKS, "rows => Object.fromEntries(rows.map(r => [r.dataset.check, "
+                                           "[r.dataset.verdict, getComputedStyle(r).backgroundColor]]))")
+
+
+def test_the_server_says_it_binds_to_this_machine_only(server):
+    port, line = server
+    assert line == f"synth ui: http://127.0.0.1:{port}/ (bound to 127.0.0.1: this machine only); Ctrl-C stops it"
+
+
+def test_default_case_then_an_edit_turns_a_check_red_as_the_api_verifies_it(page):
+    import synth
+    from synth.ui.session import default_values
+    pg, url = page
+    goto_when_up(pg, url)
+    pg.locator(CHECKS).first.wait_for()
+    d = default_values()
+    best = synth.synthesise(d)
+    shown = _verdicts(pg)
+    assert {k: v for k, (v, _) in shown.items()} == {c.id: c.verdict for c in best.checks if c.verdict != "not applicable"}
+    assert shown["spring_yield"] == ["pass", _rgb(VERDICT_FILLS["pass"])]
+
+    seq = _seq(pg)
+    pg.locator("[data-field=spring_stiffness_nm_per_deg] input").fill("1.5")
+    _wait_seq_after(pg, seq)
+    stiff = synth.verify({**d, "spring_stiffness_nm_per_deg": 1.5}, best.parts)
+    shown = _verdicts(pg)
+    assert shown["spring_yield"] == ["fail", _rgb(VERDICT_FILLS["fail"])]  # the check changed colour
+    assert {k: v for k, (v, _) in shown.items()} == {c.id: c.verdict for c in stiff.checks if c.verdict != "not applicable"}
+    value = pg.locator("table.checks tr[data-check=spring_yield] td.num").first.inner_text()
+    assert value == f"{stiff.check('spring_yield').value:.4g}"
+
+
+def test_a_bad_value_shows_the_command_lines_message_next_to_its_field(page, tmp_path, capsys):
+    import yaml
+
+    from synth.cli import main
+    from synth.ui.session import default_values
+    pg, url = page
+    goto_when_up(pg, url)
+    pg.locator(CHECKS).first.wait_for()
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(yaml.safe_dump({**default_values(), "pulley_diameter_mm": 500}), encoding="utf-8")
+    assert main(["flowchart", str(bad)]) == 2
+    cli = [ln.strip()[2:] for ln in capsys.readouterr().err.splitlines() if ln.strip().startswith("- ")]
+    assert cli == ["pulley_diameter_mm: got 500; accepted: a number in (0, 200] mm"]
+    pg.locator("[data-field=pulley_diameter_mm] input").fill("500")
+    alert = pg.locator("[data-field=pulley_diameter_mm] [role=alert]")
+    alert.wait_for()
+    assert alert.inner_text() == cli[0]
+    assert "input not valid" in pg.locator(".text-negative").last.inner_text()
+    pg.locator("input[type=file]").set_input_files(str(bad))  # the same file opened in the page
+    pg.get_by_text("input: bad.yaml").wait_for()
+    assert pg.locator("[data-field=pulley_diameter_mm] input").input_value() == "500"
+    assert pg.locator("[data-field=pulley_diameter_mm] [role=alert]").inner_text() == cli[0]
+
+
+def test_synthesise_then_download_the_report(page, tmp_path):
+    pg, url = page
+    goto_when_up(pg, url)
+    pg.locator(CHECKS).first.wait_for()
+    pg.locator("[data-field=differential_angle_deg] input").fill("70")
+    seq = _seq(pg)
+    pg.locator("[data-testid=synthesise]").click()
+    _wait_seq_after(pg, seq)
+    assert re.search(r"^optimal design \(enumerate", pg.get_by_text("design (enumerate").inner_text())
+    with pg.expect_download() as dl:
+        pg.locator("[data-testid=download-html]").click()
+    report = tmp_path / "report.html"
+    dl.value.save_as(report)
+    html = report.read_text(encoding="utf-8")
+    verdict = pg.locator(".banner").first.inner_text()  # the digest's banner: "Verdict: PASS"
+    assert verdict.startswith("Verdict: ") and verdict in html and "differential_angle_deg" in html
+
+
+def test_a_200_application_portfolio_screens_to_the_apis_feasible_share(page, tmp_path):
+    import synth
+    from synth.bulk.portfolio import write_table
+    from synth.bulk.sample import sample_portfolio
+    pg, url = page
+    import concurrent.futures
+    table = sample_portfolio(200, seed=3)
+    path = write_table(table, tmp_path / "fleet.csv")
+    pool = concurrent.futures.ThreadPoolExecutor(1)  # the API's screening, while the page's runs on the other core
+    expected = pool.submit(synth.screen, table, progress=False)
+    goto_when_up(pg, url + "portfolio")
+    pg.locator("input[type=file]").set_input_files(str(path))
+    pg.get_by_text("200 applications from fleet.csv").wait_for()
+    pg.locator("[data-testid=run]").click()
+    shown = pg.locator("[data-testid=feasible-share]")
+    pg.wait_for_function("document.querySelector('[data-testid=feasible-share]').innerText.length > 0")
+    api = expected.result()
+    pool.shutdown()
+    share = 100 * api["feasible"].astype(bool).sum() / (api["error"].fillna("") == "").sum()
+    assert shown.inner_text().startswith(f"feasible share: {share:.1f} % ")
+    pg.get_by_text("200 of 200 applications").wait_for()
+    pg.locator("img[alt=binding]").wait_for()
+    pg.locator("input[aria-label='filter the table']").fill("APP-00007")
+    pg.locator("tbody tr", has_text="APP-00007").first.click()  # opens on the design page
+    pg.wait_for_url(re.compile(r"/\?open="))
+    pg.get_by_text("input: fleet.csv: APP-00007").wait_for()
+    pg.locator(CHECKS).first.wait_for()
+
+
+def test_graphs_3d_model_step_download_and_no_request_leaves_the_machine(page, server, tmp_path):
+    pg, url = page
+    goto_when_up(pg, url)
+    pg.locator(CHECKS).first.wait_for()
+    pg.get_by_role("tab", name="Graphs").click()
+    pg.locator("figure[data-graph]").first.wait_for()
+    with pg.expect_response(lambda r: r.url.endswith(".stl") and r.status == 200):
+        pg.get_by_role("tab", name="3D model").click()
+    pg.get_by_text("parts (STL, millimetres)").wait_for()
+    with pg.expect_download() as dl:  # the model in view: its STEP
+        pg.locator("[data-testid=download-step]").click()
+    step = tmp_path / "t.step"
+    dl.value.save_as(step)
+    text = step.read_text(encoding="utf-8", errors="replace")
+    assert text.startswith("ISO-10303-21;") and "synth tensioner" in text
+    assert REQUESTS, "the request log is empty"
+    outside = [u for u in REQUESTS if not is_local(u, server[0])]
+    assert outside == [], f"requests that left the machine: {outside[:5]}"
+    assert any("/synth-files/" in u and u.endswith(".stl") for u in REQUESTS)
