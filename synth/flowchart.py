@@ -106,8 +106,8 @@ class _Walk:
             self.notes.append(f"pivot class: Table 2 standard {std:g} mm (bearing {p.bearing.key[bearing]}, working arm "
                               f"{d.working_arm_mm:g} mm)")
         elif cls > std:
-            self.notes.append(f"pivot class {cls:g} mm is custom and above Table 2's standard {std:g} mm; the arm-wall "
-                              "check decides")
+            self.notes.append(f"pivot class {cls:g} mm is custom and above Table 2's standard {std:g} mm (step 2 allows "
+                              "only smaller custom values); the arm-wall check, the reason for that limit, decides")
         attrs, cg = self.core_group(bearing, cls, supplier, -1)
         if not in_table:
             raise _Stop(2, f"step 2 has no Table 2 pivot class for bearing {p.bearing.key[bearing]} and working arm "
