@@ -218,7 +218,7 @@ def test_manual_bolt_is_verified_not_escalated():
 
 def test_screening_eol_damping_is_optimistic_by_a_bounded_amount():
     # screening = linear cone spring (flatter force drop) + closed-form wear: it overstates the
-    # end-of-life damping; on case 1 by ~11 % (benchmarks/bench_flowchart.py reports the number)
+    # end-of-life damping; on case 1 by ~13 % (benchmarks/bench_flowchart.py reports the number)
     d = schema.load_input(CASES / "case1_as_run.yaml")
     full = flowchart.run(d, flowchart.Settings(fidelity="full")).values["damping_eol_nm"]
     fast = flowchart.run(d, flowchart.Settings(fidelity="screening")).values["damping_eol_nm"]
