@@ -2,9 +2,11 @@
 
 :func:`run` walks the thesis's sequential procedure: Table 1 bearing, Table 2
 pivot class, damping split, "lengthen the bushing", damper-pad and endcap-spacer
-classes from the axial damping (the next class when the end-of-life damping
-fails), the automatic spring search (cheapest that passes), the bolt
-escalation (class first, then format). Every number it compares comes from
+classes from the axial damping (Tables 3-4; the next class of each element
+while the end-of-life damping fails), the automatic spring search (a round
+wire where one passes, else rectangular), the bolt escalation (class first,
+then format). Each rule and the sentence of the thesis it comes from are listed
+in ``docs/sections/flowchart_rules.md``. Every number it compares comes from
 :mod:`synth.design.evaluate` (the one evaluator the optimiser and the bulk
 engine use), and the design it ends with is verified by
 :func:`synth.design.verify.verify`: its checks are the registry's.
@@ -30,7 +32,7 @@ from synth.design.result import NOT_VERIFIED, Check, Result, checks_of, plain
 from synth.design.space import (PART_KEYS, axial_attributes, bolt_attributes, bushing_attributes,
                                 core_attributes, space, spring_attributes)
 from synth.design.verify import evaluate_design, inputs_of, values_of, verify
-from synth.model import ball_bearing as s1, damping as s3
+from synth.model import ball_bearing as s1, damping as s3, pivot as s2
 
 __all__ = ["Settings", "run", "STEP_NAMES", "PART_KEYS"]
 
@@ -98,9 +100,8 @@ class _Walk:
             supplier = int(np.flatnonzero(np.isclose(p.bushing.radial_thickness_mm,
                                                      float(d.pivot_bushing_radial_thickness_mm)))[0])
         arms, classes, _ = p.table2[bearing]
-        in_table = len(arms) and float(d.working_arm_mm) <= arms[-1] + 1e-9
-        std = float(classes[min(np.searchsorted(arms, float(d.working_arm_mm) - 1e-9), len(arms) - 1)]) if len(arms) \
-            else float(d.pivot_class_diameter_mm or 0.0)
+        column, in_table = s2.table2_column(arms, float(d.working_arm_mm)) if len(arms) else (0, False)
+        std = float(classes[column]) if len(arms) else float(d.pivot_class_diameter_mm or 0.0)
         cls = std if d.pivot_class_diameter_mm is None else float(d.pivot_class_diameter_mm)
         if d.pivot_class_diameter_mm is None:
             self.notes.append(f"pivot class: Table 2 standard {std:g} mm (bearing {p.bearing.key[bearing]}, working arm "

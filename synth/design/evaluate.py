@@ -230,7 +230,7 @@ def _table2(p, bearing, working_arm_mm):
         arms, classes, max_la = p.table2[int(b)]
         if not len(arms):
             continue
-        i = np.minimum(np.searchsorted(arms, working_arm_mm[sel] - 1e-9), len(arms) - 1)
+        i = s2.table2_column(arms, working_arm_mm[sel])[0]
         cls[sel], la[sel], arm_max[sel] = classes[i], max_la[i], arms[-1]
     return cls, la, arm_max
 
