@@ -2,9 +2,11 @@
 
 :func:`run` walks the thesis's sequential procedure: Table 1 bearing, Table 2
 pivot class, damping split, "lengthen the bushing", damper-pad and endcap-spacer
-classes from the axial damping (the next class when the end-of-life damping
-fails), the automatic spring search (cheapest that passes), the bolt
-escalation (class first, then format). Every number it compares comes from
+classes from the axial damping (Tables 3-4; the next class of each element
+while the end-of-life damping fails), the automatic spring search (a round
+wire where one passes, else rectangular), the bolt escalation (class first,
+then format). Each rule and the sentence of the thesis it comes from are listed
+in ``docs/sections/flowchart_rules.md``. Every number it compares comes from
 :mod:`synth.design.evaluate` (the one evaluator the optimiser and the bulk
 engine use), and the design it ends with is verified by
 :func:`synth.design.verify.verify`: its checks are the registry's.
@@ -30,7 +32,7 @@ from synth.design.result import NOT_VERIFIED, Check, Result, checks_of, plain
 from synth.design.space import (PART_KEYS, axial_attributes, bolt_attributes, bushing_attributes,
                                 core_attributes, space, spring_attributes)
 from synth.design.verify import evaluate_design, inputs_of, values_of, verify
-from synth.model import ball_bearing as s1
+from synth.model import ball_bearing as s1, damping as s3, pivot as s2
 
 __all__ = ["Settings", "run", "STEP_NAMES", "PART_KEYS"]
 
@@ -98,16 +100,15 @@ class _Walk:
             supplier = int(np.flatnonzero(np.isclose(p.bushing.radial_thickness_mm,
                                                      float(d.pivot_bushing_radial_thickness_mm)))[0])
         arms, classes, _ = p.table2[bearing]
-        in_table = len(arms) and float(d.working_arm_mm) <= arms[-1] + 1e-9
-        std = float(classes[min(np.searchsorted(arms, float(d.working_arm_mm) - 1e-9), len(arms) - 1)]) if len(arms) \
-            else float(d.pivot_class_diameter_mm or 0.0)
+        column, in_table = s2.table2_column(arms, float(d.working_arm_mm)) if len(arms) else (0, False)
+        std = float(classes[column]) if len(arms) else float(d.pivot_class_diameter_mm or 0.0)
         cls = std if d.pivot_class_diameter_mm is None else float(d.pivot_class_diameter_mm)
         if d.pivot_class_diameter_mm is None:
             self.notes.append(f"pivot class: Table 2 standard {std:g} mm (bearing {p.bearing.key[bearing]}, working arm "
                               f"{d.working_arm_mm:g} mm)")
         elif cls > std:
-            self.notes.append(f"pivot class {cls:g} mm is custom and above Table 2's standard {std:g} mm; the arm-wall "
-                              "check decides")
+            self.notes.append(f"pivot class {cls:g} mm is custom and above Table 2's standard {std:g} mm (step 2 allows "
+                              "only smaller custom values); the arm-wall check, the reason for that limit, decides")
         attrs, cg = self.core_group(bearing, cls, supplier, -1)
         if not in_table:
             raise _Stop(2, f"step 2 has no Table 2 pivot class for bearing {p.bearing.key[bearing]} and working arm "
@@ -118,12 +119,13 @@ class _Walk:
                         {"core": cg})
         pad = -1
         if cg.values["axial_damping_present"][0] > 0:
-            share = float(cg.values["axial_damping_share_nm"][0])
-            caps = p.damper_pad.max_axial_damping_nm
-            pad = int(min(np.searchsorted(caps, share, side="left"), len(caps) - 1))
-            if share > caps[pad]:
-                self.notes.append(f"axial damping share {share:.3g} Nm above every damper-pad class: the largest is "
-                                  "checked")
+            # Tables 3-4 are entered with the axial damping of eq. (9) itself (both friction faces)
+            dax = float(cg.values["axial_damping_nm"][0])
+            row, within = s3.axial_group_class(dax, p.damper_pad.max_axial_damping_nm)
+            pad = int(row)
+            if not within:
+                self.notes.append(f"axial damping {dax:.3g} Nm above every damper-pad class of Table 3: the largest "
+                                  "is checked")
             attrs, cg = self.core_group(bearing, cls, supplier, pad)
         return attrs, cg
 
@@ -177,25 +179,32 @@ class _Walk:
         self.steps += [5, 6, 8]
         zeta = catalog.constant("cone_spring_default_aspect_ratio")
         phi = catalog.constant("cone_spring_nominal_deflection_ratio")
-        share = float(cg.values["axial_damping_share_nm"][0])
-        spacer = int(min(np.searchsorted(p.endcap_spacer.max_axial_damping_nm, share, side="left"),
-                         len(p.endcap_spacer) - 1))
-        first = True
+        dax = float(cg.values["axial_damping_nm"][0])
+        spacer = int(s3.axial_group_class(dax, p.endcap_spacer.max_axial_damping_nm)[0])
+        self.notes.append(f"plastic elements initialised from Tables 3-4 at the axial damping {dax:.3g} Nm: damper pad "
+                          f"{p.damper_pad.key[pad]}, endcap spacer {p.endcap_spacer.key[spacer]}")
+        attempt = 1
         while True:
-            if not first:
-                attrs_core, cg = self.core_group(int(attrs_core["bearing_code"][0]),
-                                                 float(attrs_core["pivot_class_diameter_mm"][0]),
-                                                 int(attrs_core["supplier_code"][0]), pad)
-            first = False
             ax = axial_attributes(p, [spacer], [zeta], [phi], [0.0])
             g = E.axial(self.apps, cg, _ONE, ax, self.s)
-            eol_fails = g.margins["damping_eol"][0] < -FEAS_TOL
-            if eol_fails and pad + 1 < len(p.damper_pad) and spacer + 1 < len(p.endcap_spacer):
-                self.notes.append(f"plastic elements {p.damper_pad.key[pad]}/{p.endcap_spacer.key[spacer]}: end-of-life "
-                                  f"damping {g.values['damping_eol_nm'][0]:.3f} Nm below the limit; next class")
-                pad, spacer = pad + 1, spacer + 1
-                continue
-            return attrs_core, ax, cg
+            if g.margins["damping_eol"][0] >= -FEAS_TOL:
+                return attrs_core, ax, cg
+            # step 5: the EOL damping is below its limit: larger contact surfaces (the next class of each element
+            # not yet at its largest), the cone spring resized for the same axial damping, the wear run again
+            nxt_pad, nxt_spacer = _next_class(p.damper_pad, pad), _next_class(p.endcap_spacer, spacer)
+            eol = f"end-of-life damping {g.values['damping_eol_nm'][0]:.3f} Nm below the limit " \
+                  f"{g.values['damping_eol_limit_nm'][0]:.3g} Nm"
+            if nxt_pad == pad and nxt_spacer == spacer:
+                self.notes.append(f"step 5, attempt {attempt}: {eol} with the largest contact surfaces "
+                                  f"({p.damper_pad.key[pad]}/{p.endcap_spacer.key[spacer]}); no larger class")
+                return attrs_core, ax, cg
+            self.notes.append(f"step 5, attempt {attempt}: plastic elements {p.damper_pad.key[pad]}/"
+                              f"{p.endcap_spacer.key[spacer]}: {eol}; contact surfaces increased to "
+                              f"{p.damper_pad.key[nxt_pad]}/{p.endcap_spacer.key[nxt_spacer]}")
+            pad, spacer, attempt = nxt_pad, nxt_spacer, attempt + 1
+            attrs_core, cg = self.core_group(int(attrs_core["bearing_code"][0]),
+                                             float(attrs_core["pivot_class_diameter_mm"][0]),
+                                             int(attrs_core["supplier_code"][0]), pad)
 
     # --- step 9 ------------------------------------------------------------------------------------------------
     def step9(self, cg) -> dict:
@@ -219,11 +228,19 @@ class _Walk:
         g = E.spring(self.apps, E.spring_keys(cg, _ONE), np.zeros(len(m), int), opts, self.s)
         ok = _passes(g)
         cost = opts["cost_eur_times_stiffness"] / float(self.apps.spring_stiffness_nm_per_deg[0])
+        rnd = np.asarray(opts["round_wire"], dtype=bool)
         if ok.any():
-            order = np.lexsort((-g.values["main_spring_safety_factor"], cost, ~ok))
+            # step 9: "Round wire is preferred due to the lower cost ... if it is not sufficient, the rectangular
+            # wire is implemented": a feasible round-wire spring whenever one exists; within the section the text
+            # gives no order, the cheapest (catalog costs, illustrative) is taken
+            section = rnd if (ok & rnd).any() else ~rnd
+            pool = ok & section
+            order = np.lexsort((-g.values["main_spring_safety_factor"], cost, ~pool))
             i = int(order[0])
-            self.notes.append(f"main spring (automatic): {int(ok.sum())} feasible of {len(m)} catalog springs; the "
-                              "cheapest feasible is chosen")
+            which = "round wire suffices" if rnd[i] else "no round wire suffices: rectangular wire"
+            self.notes.append(f"main spring (automatic): {int((ok & rnd).sum())} round-wire and "
+                              f"{int((ok & ~rnd).sum())} rectangular-wire springs pass of {len(m)} catalog springs; "
+                              f"{which} (step 9), the cheapest feasible of the section is chosen")
         else:
             i = int(np.argmax(g.min_margin(objective_only=False)))
             self.notes.append(f"main spring (automatic): none of {len(m)} catalog springs passes; the one with the "
@@ -250,6 +267,14 @@ class _Walk:
         ok = g.margins["bolt_yield"] >= -FEAS_TOL
         i = int(np.argmax(ok)) if ok.any() else len(rows) - 1
         return {k: v[[i]] for k, v in opts.items()}
+
+
+def _next_class(table, row: int) -> int:
+    """The Table 3/4 row after ``row`` (the next larger axial-damping bound: larger contact surfaces), or ``row``
+    itself at the largest."""
+    order = np.argsort(table.max_axial_damping_nm, kind="stable")
+    k = int(np.flatnonzero(order == row)[0])
+    return int(order[k + 1]) if k + 1 < len(order) else row
 
 
 def _wire_code(p, section: str, size_mm) -> int:

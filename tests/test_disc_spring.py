@@ -10,7 +10,7 @@ from synth.design.constraints import REGISTRY, margin
 from synth.errors import InputError
 from synth.model import disc_spring as cs
 
-from conftest import case_flowchart, case_input
+from conftest import case_flowchart, case_input, tool_design
 
 SQRT2 = math.sqrt(2.0)
 
@@ -151,8 +151,9 @@ def test_case1_full_step_with_sized_spring():
 
 
 def test_case1_cone_spring_checks_pass_in_the_flowchart():
-    # the same sizing through the registry (was cone_spring_checks): every step-8 constraint passes for case 1
-    r = case_flowchart("case1_as_run")
+    # the same sizing through the registry (was cone_spring_checks): every step-8 constraint passes for case 1's
+    # printed plastic elements (Table 10: DP2/ES2, cone spring 30 mm)
+    r = tool_design("case1_as_run")
     assert (r.get("cone_spring_external_diameter_mm"), r.get("cone_spring_aspect_ratio")) == (30.0, 1.2)
     step8 = [c for c in r.checks if c.step == 8]
     assert {c.id for c in step8} >= {"cone_force_band", "cone_not_flattened", "cone_sigma_om", "cone_table8_range",

@@ -76,7 +76,7 @@ def test_flowchart_design_round_trip():
         free = run(d, s)
         parts = free.parts
         assert set(parts) == set(PART_KEYS)
-        assert parts["ball_bearing"] == "6006" and parts["damper_pad_class"] == "DP2"
+        assert parts["ball_bearing"] == "6006" and parts["damper_pad_class"] == "DP3"   # Table 3 at 1.71 N m
         fixed = run(d, s, parts=parts)
         assert fixed.parts == parts
         shared = set(free.values) & set(fixed.values)

@@ -136,8 +136,16 @@ def test_friction_circle_vs_linear_difference():
 
 
 def test_axial_group_classes_tables_3_4():
-    assert s3.select_axial_group_class([0.7, 0.71, 1.1, 2.0], "damper_pads").tolist() == ["DP1", "DP2", "DP2", "DP3"]
-    assert s3.select_axial_group_class([0.3], "endcap_spacers").tolist() == ["ES1"]
+    # Tables 3-4 by the axial damping D_ax (both faces): a bound belongs to the lower row, above 2.00 none
+    from synth import parts as P
+    p = P.arrays()
+    for table in (p.damper_pad, p.endcap_spacer):
+        row, within = s3.axial_group_class([0.7, 0.71, 1.1, 1.71, 2.0, 2.01], table.max_axial_damping_nm)
+        assert table.key[row].tolist() == [table.key[i] for i in (0, 1, 1, 2, 2, 2)]
+        assert within.tolist() == [True] * 5 + [False]
+    # any row order of a user catalog: the same rows
+    row, _ = s3.axial_group_class([0.3, 1.0, 1.5], [2.0, 0.7, 1.1])
+    assert row.tolist() == [1, 2, 0]
 
 
 def test_self_locking_gives_inf_and_failing_margin_not_nan():

@@ -12,7 +12,7 @@ from synth.design.verify import verify
 from synth.errors import InputError
 from synth.model import packaging as s7
 
-from conftest import case_flowchart, case_input, load_case
+from conftest import case_input, load_case, tool_design, tool_parts
 
 # 6006 bearing: B = 13 mm, D = 55 mm
 W, D_EXT = 13.0, 55.0
@@ -22,8 +22,9 @@ NO_AXIAL = dict(damper_pad_class="none", endcap_spacer_class="none", cone_spring
 
 
 def verify_case(name, parts=None, **changes):
-    """Case ``name``'s flowchart design (or it with ``parts`` changes) verified for the case with input ``changes``."""
-    return verify(case_input(name, **changes), dict(case_flowchart(name).parts, **(parts or {})))
+    """Case ``name``'s design with the thesis tool's plastic elements (or it with ``parts`` changes) verified for the
+    case with input ``changes``."""
+    return verify(case_input(name, **changes), dict(tool_parts(name), **(parts or {})))
 
 
 @pytest.mark.parametrize("name", ["case1_as_run", "case3"])
@@ -35,8 +36,8 @@ def test_spring_housing_height_reproduces_tables(name):
     h = s7.spring_housing_height_mm(inp["middle_plane_belt_height_mm"], W, axial_damping=bool(out["axial_damping_present"]),
                                     damper_pad_height_mm=out.get("damper_pad_axial_height_mm") or 0.0)
     assert float(h) == pytest.approx(out["spring_housing_height_mm"], rel=1e-3)
-    # the same through the evaluator, and step 7's constraints pass
-    r = case_flowchart(name)
+    # the same through the evaluator (with the tool's plastic elements), and step 7's constraints pass
+    r = tool_design(name)
     assert r.get("spring_housing_height_mm") == pytest.approx(out["spring_housing_height_mm"], rel=1e-3)
     assert [r.check(c).verdict for c in STEP7] == ["pass"] * 3
 
@@ -57,7 +58,7 @@ def test_eq50_eq54_case_values():
 
 
 def test_case_margins_by_hand():
-    r1 = case_flowchart("case1_as_run")
+    r1 = tool_design("case1_as_run")
     # belt plane (29.8 - 29.5)/29.8 ; pulley top 29.5 + 10 = 39.5 vs 42 -> 2.5/42
     assert (r1.check("belt_plane").value, r1.check("belt_plane").limit) == pytest.approx((29.5, 29.8))
     assert r1.check("belt_plane").margin == pytest.approx(0.3 / 29.8)

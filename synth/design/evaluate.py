@@ -192,7 +192,7 @@ class _Fields(dict):
 #: distinct value of these, exactly
 BUSHING_CORE_VALUES = ("hubload_nominal_n", "pivot_diameter_mm", "axial_group_present")
 #: what the axial group reads of its core row (besides the application)
-AXIAL_CORE_VALUES = ("axial_damping_nm", "radial_damping_nm", "axial_damping_share_nm",
+AXIAL_CORE_VALUES = ("axial_damping_nm", "radial_damping_nm",
                      "cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm",
                      "cone_spring_table8_max_mm", "damper_pad_mean_radius_mm", "damper_pad_contact_area_mm2",
                      "damper_pad_axial_height_mm", "bearing_width_mm", "axial_group_present",
@@ -237,7 +237,7 @@ def _table2(p, bearing, working_arm_mm):
         arms, classes, max_la = p.table2[int(b)]
         if not len(arms):
             continue
-        i = np.minimum(np.searchsorted(arms, working_arm_mm[sel] - 1e-9), len(arms) - 1)
+        i = s2.table2_column(arms, working_arm_mm[sel])[0]
         cls[sel], la[sel], arm_max[sel] = classes[i], max_la[i], arms[-1]
     return cls, la, arm_max
 
@@ -285,7 +285,6 @@ def core(apps, a, c: dict, settings: Settings = Settings(), detail: bool = False
     v["damping_lower_nm"] = f["damping_target_nm"] - f["damping_tolerance_nm"]
     pad = np.asarray(c["axial_group_present"], dtype=bool)
     v["axial_group_present"] = pad.astype(float)
-    v["axial_damping_share_nm"] = v["axial_damping_nm"] / 2.0  # each element carries half (two friction faces)
     v["cone_spring_max_external_diameter_mm"] = np.where(
         pad, s8.cone_spring_max_external_diameter_mm(c["damper_pad_outer_diameter_mm"]), np.nan)
     di = s8.cone_spring_min_internal_diameter_mm(c["pivot_diameter_mm"])
@@ -383,7 +382,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
                                                                           cv["bearing_width_mm"], es_h),
                                          s7.min_belt_plane_height_mm(cv["bearing_width_mm"], es_h)),
          "endcap_spacer_max_axial_damping_nm": np.asarray(o["endcap_spacer_max_axial_damping_nm"], dtype=float),
-         "axial_damping_share_nm": cv["axial_damping_share_nm"],
+         "axial_damping_nm": cv["axial_damping_nm"],
          "cone_spring_min_internal_diameter_mm": cv["cone_spring_min_internal_diameter_mm"],
          "cone_spring_table8_max_mm": cv["cone_spring_table8_max_mm"],
          "damper_pad_outer_diameter_mm": cv["damper_pad_outer_diameter_mm"]}

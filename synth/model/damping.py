@@ -32,12 +32,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from synth import catalog
 
 __all__ = [
     "friction_circle_factor", "lever_mm", "hubload_nominal_n", "lever_ratio",
     "damping_split", "hubload_loading_n", "hubload_unloading_n", "asymmetry_ratio", "characterisation",
-    "sensitivity", "axial_damping_nm", "axial_force_required_n", "select_axial_group_class",
+    "sensitivity", "axial_damping_nm", "axial_force_required_n", "axial_group_class",
 ]
 
 
@@ -269,17 +268,28 @@ def axial_force_required_n(axial_damping_nm_, mu_plastic, damper_pad_mean_radius
     return np.asarray(axial_damping_nm_, float) / (np.asarray(mu_plastic, float) * r)
 
 
-def select_axial_group_class(axial_damping_nm_, table: str = "damper_pads"):
-    """Class of damper pad (Table 3) or endcap spacer (Table 4) for an axial damping.
+def axial_group_class(axial_damping_nm_, class_max_axial_damping_nm):
+    """Row of thesis Table 3 (damper pad) or Table 4 (endcap spacer) for an axial damping (step 3) [index].
 
-    The first class (in file order) whose ``max_axial_damping_nm`` is not
-    below the damping; ``""`` where the damping exceeds every class.
+    Both tables are entered with the axial damping ``D_ax`` of eq. (9), the
+    friction torque of both faces together ("Damper pad dimensions as a
+    function of the axial damping", rows ``DAX < 0.7``, ``0.7 < DAX < 1.10``,
+    ``1.10 < DAX < 2.00`` Nm), not with a share of it. The row is the first
+    whose upper bound ``class_max_axial_damping_nm`` (the catalog's
+    ``max_axial_damping_nm``, in any row order) is not below ``D_ax``: the
+    printed open intervals leave their bounds to neither row, synth gives a
+    bound to the lower row, as the registry's capacity checks
+    (``D_ax <= class max``) do.
 
-    >>> select_axial_group_class([0.5, 1.71, 2.5]).tolist()
-    ['DP1', 'DP3', '']
+    Returns ``(row, within)``: the catalog row (above every bound: the row of
+    the largest bound) and whether ``D_ax`` is within the table (False above
+    every bound, where that row's capacity check fails).
+
+    >>> i, ok = axial_group_class([0.5, 0.7, 0.71, 1.71, 2.5], [0.70, 1.10, 2.00])
+    >>> i.tolist(), ok.tolist()
+    ([0, 0, 1, 2, 2], [True, True, True, True, False])
     """
-    df = catalog.load(table)
-    limits = df["max_axial_damping_nm"].astype(float).to_numpy()
-    names = np.append(df[df.columns[0]].astype(str).to_numpy(), "")
-    idx = np.searchsorted(limits, np.atleast_1d(np.asarray(axial_damping_nm_, float)), side="left")
-    return names[idx]
+    caps = np.asarray(class_max_axial_damping_nm, float)
+    order = np.argsort(caps, kind="stable")
+    k = np.searchsorted(caps[order], np.asarray(axial_damping_nm_, float), side="left")
+    return order[np.minimum(k, len(caps) - 1)], k < len(caps)

@@ -23,9 +23,27 @@ from synth.catalog import constant
 from synth.errors import InputError, Problem
 
 __all__ = [
-    "standard_pivot_class", "pivot_diameter_mm", "bolt_hole_diameter_mm", "arm_wall_mm", "pivot_wall_mm",
+    "table2_column", "standard_pivot_class", "pivot_diameter_mm", "bolt_hole_diameter_mm", "arm_wall_mm", "pivot_wall_mm",
     "max_pivot_class_for_wall_mm",
 ]
+
+
+def table2_column(working_arms_mm, working_arm_mm):
+    """Column of thesis Table 2 for a working arm, among a bearing's ascending ``working_arms_mm`` [index].
+
+    "Given a tensioner working arm length, the standard value for the loading arm length (if present) and for the
+    pivot class diameter correspond to the value that can be found in the same column." An arm between two
+    columns takes the next larger arm's column (the smaller pivot class, which keeps the arm wall); the text
+    leaves that case open. Returns ``(column, within)``: the column (clipped to the last) and whether the arm is
+    within the table (not beyond its last column).
+
+    >>> i, ok = table2_column([2.5, 3.0, 4.0, 5.0], [3.0, 3.5, 5.0, 5.5])
+    >>> i.tolist(), ok.tolist()
+    ([1, 2, 3, 3], [True, True, True, False])
+    """
+    arms = np.asarray(working_arms_mm, float)
+    wa = np.asarray(working_arm_mm, float)
+    return np.minimum(np.searchsorted(arms, wa - 1e-9), len(arms) - 1), wa <= arms[-1] + 1e-9
 
 
 def standard_pivot_class(bearing: str, working_arm_mm: float) -> tuple[float, float]:
@@ -38,12 +56,11 @@ def standard_pivot_class(bearing: str, working_arm_mm: float) -> tuple[float, fl
     df = catalog.load("pivot_classes")
     df = df[df["bearing"].astype(str) == str(bearing)].sort_values("working_arm_mm")
     arms = df["working_arm_mm"].astype(float).to_numpy()
-    if df.empty or working_arm_mm > arms[-1] + 1e-9:
+    if df.empty or not table2_column(arms, working_arm_mm)[1]:
         raise InputError(Problem("working_arm_mm", working_arm_mm,
                                  f"at most {arms[-1]:g} mm with bearing {bearing} (thesis Table 2)" if len(arms)
                                  else f"a bearing listed in catalogs/pivot_classes.csv (got {bearing})"))
-    i = int(np.searchsorted(arms, working_arm_mm - 1e-9))
-    row = df.iloc[i]
+    row = df.iloc[int(table2_column(arms, working_arm_mm)[0])]
     return float(row["pivot_class_diameter_mm"]), float(row["max_loading_arm_mm"])
 
 

@@ -3,8 +3,9 @@
 The baseline is :func:`synth.flowchart.run` itself (one procedure, not a
 second greedy): bearing from Table 1, pivot class from the input or Table 2,
 the damping split, the thesis's bushing length, pad and spacer classes from
-the axial damping, the cheapest main spring that passes and the bolt
-escalation. Each choice is final: a later failure is not repaired.
+the axial damping (enlarged while the end-of-life damping fails), a round-wire
+main spring before a rectangular one and the bolt escalation. Each choice is
+final: a later failure is not repaired.
 
 >>> from synth.data.generated_applications import generate
 >>> r = solve(generate(2, seed=0)[1])
