@@ -8,9 +8,9 @@ without ``--json``.
 
 from __future__ import annotations
 
-import json
 import sys
 
+from synth.io.outputs import json_text
 from synth.report.text import render
 from synth.scenes._options import add_design_options, synthesise
 
@@ -32,7 +32,7 @@ def _main(args) -> int:
     d = load_input(args.input)
     r = synthesise(d, args)
     if args.json:
-        print(json.dumps(r.to_dict(), indent=2))
+        print(json_text(r.to_dict(), indent=2))
     else:
         print(render(r, title=f"synth design: {args.input}"))
     if args.cad:

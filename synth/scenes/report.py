@@ -126,15 +126,16 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     from synth.excel.results import write_results
     from synth.report.html import write_html
     from synth.report.plots import build_graphs
+    from synth.io.outputs import output_folder
     result, cells, name = result_for_report(source, args)
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_folder(out_dir)
     pictures = list(cad or [])
     cad_note = ""
     if cad_pictures and not pictures and result.parts:
+        cad_dir = output_folder(out / "cad", inside=True)  # never through a link the folder holds
         try:
             from synth.cad import export_result
-            _, _, info = export_result(result, out / "cad", stl=False, pictures=True, interference=False)
+            _, _, info = export_result(result, cad_dir, stl=False, pictures=True, interference=False)
             pictures = [str(f) for f in info["files"] if str(f).endswith(".png")]
             cad_note = f"The model of this design: {out / 'cad'} (STEP assembly and pictures)."
         except InputError as exc:  # a design the CAD model cannot draw: the report says so
