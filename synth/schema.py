@@ -32,6 +32,7 @@ from __future__ import annotations
 import difflib
 import math
 import re
+import sys
 from dataclasses import dataclass, field, fields as dc_fields, make_dataclass
 from pathlib import Path
 from typing import Any
@@ -350,16 +351,22 @@ def _coerce(f: Field, value: Any, problems: list[Problem]) -> Any:
 
 
 def _number(value) -> float | None:
-    """A finite float from a number or a cell's text (decimal comma, ``%``), else None (never raises)."""
+    """A finite float from a number or a cell's text (decimal comma, ``%``), else None (never raises).
+
+    A subnormal number (below 2.2e-308 in magnitude, not 0) is no physical value either: None.
+    """
     if isinstance(value, bool) or value is None:
         return None
     if isinstance(value, str):
-        return number_from_text(value)
-    try:
-        number = float(value)
-    except (TypeError, ValueError, OverflowError):  # a 400-digit integer overflows a float
+        number = number_from_text(value)
+    else:
+        try:
+            number = float(value)
+        except (TypeError, ValueError, OverflowError):  # a 400-digit integer overflows a float
+            return None
+    if number is None or not math.isfinite(number) or (number != 0.0 and abs(number) < sys.float_info.min):
         return None
-    return number if math.isfinite(number) else None
+    return number
 
 
 def _require(d: dict, names: tuple[str, ...], why: str, problems: list[Problem]) -> None:
