@@ -33,7 +33,7 @@ from synth.optimise.evaluate import evaluate
 from synth.schema import field_by_name
 
 __all__ = ["RELAXABLE", "nearest_design", "is_feasible", "relaxations", "relaxations_batch", "probe_batch",
-           "diagnose"]
+           "diagnose", "layout_switch", "reference_probe"]
 
 #: input field -> (direction: +1 raise / -1 lower, the constraints it relaxes, a specification value?)
 RELAXABLE = {
@@ -307,5 +307,38 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
                      for c in sorted(violated, key=lambda c: c.margin)],
         "relaxations": rel,
     }
+    switch = layout_switch(d, settings, pin_inputs=pin_inputs) if relax else None
+    if switch is not None:
+        res.diagnosis["message"] += "; " + switch["message"]
+        res.diagnosis["layout"] = switch
+        res.diagnosis["relaxations"] = [switch["relaxation"]] + rel
     res.stats["diagnosis_time_s"] = time.perf_counter() - t0
     return res
+
+
+def layout_switch(d, settings: Settings = Settings(), *, pin_inputs: bool = False) -> dict | None:
+    """The layout switch of eq. (17)-(18) that makes ``d`` infeasible, explained, or None.
+
+    Eq. (17) selects the standard layout when the middle plane belt height is at least half the maximum axial
+    displacement, eq. (18) the reverse one otherwise: *raising* the axial space limit past twice the belt height
+    switches to the reverse layout, whose packaging differs (the spring housing under the bearing, eq. (27)'s
+    crankcase clearance), so loosening a limit can lose feasibility (40.0 -> 40.001 mm did, silently). When ``d``
+    is reverse by eq. (18) with a given maximum, and the largest maximum that keeps the standard layout (twice the
+    belt height) has a feasible design, this says so: ``{"message", "layout", "relaxation"}``.
+    """
+    from synth.model.layout import layout_of
+    h, h_max = d.middle_plane_belt_height_mm, d.max_axial_displacement_mm
+    if h is None or h_max is None or layout_of(h, h_max) != "reverse":
+        return None
+    edge = 2.0 * float(h)  # eq. (17) at equality is standard
+    changes = {"max_axial_displacement_mm": edge}
+    if not _consistent(d, changes) or not reference_probe(pin_inputs)(d, changes, settings):
+        return None
+    message = (f"the layout is the reverse one (eq. (18)): the middle plane belt height {h:g} mm is below half the "
+               f"maximum axial displacement {h_max:g} mm (eq. (17)); with max_axial_displacement_mm at most "
+               f"{edge:g} mm (twice the belt height) eq. (17) selects the standard layout, which has a feasible "
+               "design: a larger axial space changed the layout, it did not only loosen a limit")
+    relaxation = {"inputs": {"max_axial_displacement_mm": {"from": h_max, "to": round(edge, 4)}},
+                  "relative_change": round(abs(h_max - edge) / max(abs(h_max), 1e-9), 4), "specification": False,
+                  "relaxes": ["layout (eq. (17)-(18))"], "note": "the standard layout (eq. (17))"}
+    return {"message": message, "layout": "reverse", "standard_up_to_mm": edge, "relaxation": relaxation}

@@ -219,7 +219,8 @@ def _diagnosis(result):
     if not dg:
         return None
     rel = [", ".join(f"{k} {x['from']:g} -> {x['to']:g}" for k, x in r["inputs"].items())
-           + (" (a specification value)" if r.get("specification") else "") for r in dg.get("relaxations", [])]
+           + (" (a specification value)" if r.get("specification") else "")
+           + (f" ({r['note']})" if r.get("note") else "") for r in dg.get("relaxations", [])]
     return {"message": dg.get("message", ""), "relaxations": rel}
 
 
