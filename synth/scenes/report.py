@@ -96,7 +96,9 @@ def result_for_report(source, args=None):
                 return flowchart.run(d, settings_from_args(args)), cells, name
             res = synthesise(d, args or _defaults())
     if res.inputs is None:
-        raise InputError(Problem("result", name, "a result that carries its inputs (--json of synth 0.2 or later)"))
+        raise InputError(Problem(f"inputs ({Path(name).name})", None, "the design input the result was made from "
+                                                                     "(a result of synth design/flowchart --json, "
+                                                                     "0.2 or later, carries it under 'inputs')"))
     if not res.curves and res.parts and res.solver != "flowchart":  # re-verify for the curves of the graphs
         fields = {k for k in Settings.__dataclass_fields__}
         settings = Settings(**{k: v for k, v in (res.settings or {}).items() if k in fields})
