@@ -17,7 +17,11 @@ Exit codes (:data:`EXIT_CODES`): 0 pass, 1 a check fails, 2 invalid input
 (:class:`synth.errors.InputError`: one problem per line on stderr, never a
 traceback; also a bad command line), 3 passed what was checked but some
 checks were not verified, 70 internal error (any other exception: one line on
-stderr, ``SYNTH_DEBUG=1`` re-raises it for the traceback), 130 interrupted.
+stderr, ``SYNTH_DEBUG=1`` re-raises it for the traceback), 130 interrupted
+(Ctrl-C), 143 terminated (SIGTERM, handled as Ctrl-C is: the scene stops
+cleanly, says so, and a bulk run can be resumed). A file-system refusal
+(read-only folder, full disk, a file where a folder is needed...) is the
+environment's, not a bug: exit 2 naming the path (:func:`synth.io.outputs.os_problem`).
 
 >>> _split(["--catalogs", "my", "flowchart", "case.yaml", "--json"])
 (['--catalogs', 'my'], 'flowchart', ['case.yaml', '--json'])
@@ -29,9 +33,12 @@ from __future__ import annotations
 
 import argparse
 import difflib
+import contextlib
 import importlib
 import os
+import signal
 import sys
+import threading
 from dataclasses import dataclass
 
 __all__ = ["main", "SCENES", "Scene", "EXIT_CODES", "JSON_HELP", "EX_SOFTWARE", "scene_parser", "version_text"]
@@ -47,6 +54,7 @@ EXIT_CODES = {
     3: "passed what was checked, but some checks were not verified (data missing)",
     EX_SOFTWARE: "internal error: a bug in synth; one line on stderr (SYNTH_DEBUG=1 shows the traceback)",
     130: "interrupted (Ctrl-C)",
+    143: "terminated (SIGTERM): stopped as on Ctrl-C",
 }
 
 #: Help of a ``--json`` flag whose scene gives none.
@@ -180,8 +188,35 @@ def _print_input_error(exc) -> None:
         print(f"  - {problem}", file=sys.stderr)
 
 
+@contextlib.contextmanager
+def _sigterm_as_interrupt():
+    """SIGTERM raises :class:`synth.errors.Terminated` (a :class:`KeyboardInterrupt`) in the main thread for the
+    span of a command, so it stops every scene as Ctrl-C does; the previous handler is restored after."""
+    from synth.errors import Terminated
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def handler(signum, frame):
+        raise Terminated()
+    try:
+        previous = signal.signal(signal.SIGTERM, handler)
+    except (ValueError, OSError):  # pragma: no cover - no signals here (an embedded interpreter)
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run ``synth ARGV``; returns the exit code (:data:`EXIT_CODES`)."""
+    with _sigterm_as_interrupt():
+        return _main(argv)
+
+
+def _main(argv: list[str] | None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     head, name, rest = _split(argv)
     top = _top_parser()
@@ -193,7 +228,8 @@ def main(argv: list[str] | None = None) -> int:
         top.print_usage(sys.stderr)
         print(f"synth: error: {_did_you_mean(name)}", file=sys.stderr)
         return 2
-    from synth.errors import InputError
+    from synth.errors import InputError, Terminated
+    from synth.io.outputs import FS_ERRNOS, os_problem
     try:
         args = scene_parser(name).parse_args(rest)
         if top_args.catalogs:
@@ -206,16 +242,26 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as exc:
         _print_input_error(exc)
         return 2
-    except KeyboardInterrupt:
-        print(f"synth {name}: interrupted", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as exc:
+        terminated = isinstance(exc, Terminated)
+        print(f"synth {name}: {'terminated (SIGTERM)' if terminated else 'interrupted'}", file=sys.stderr)
+        return 143 if terminated else 130
+    except OSError as exc:
+        if exc.errno not in FS_ERRNOS:
+            return _internal(name, exc)
+        _print_input_error(InputError(os_problem(exc, "path" if exc.filename else f"synth {name}", verb="use")))
+        return 2
     except Exception as exc:  # the one place where any error becomes a line, not a traceback
-        if os.environ.get("SYNTH_DEBUG", "") not in ("", "0"):
-            raise
-        message = " ".join(str(exc).split())[:500]
-        print(f"synth: internal error in {name}: {type(exc).__name__}: {message}; please report "
-              "(SYNTH_DEBUG=1 shows the traceback)", file=sys.stderr)
-        return EX_SOFTWARE
+        return _internal(name, exc)
+
+
+def _internal(name: str, exc: Exception) -> int:
+    if os.environ.get("SYNTH_DEBUG", "") not in ("", "0"):
+        raise exc
+    message = " ".join(str(exc).split())[:500]
+    print(f"synth: internal error in {name}: {type(exc).__name__}: {message}; please report "
+          "(SYNTH_DEBUG=1 shows the traceback)", file=sys.stderr)
+    return EX_SOFTWARE
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Problem", "InputError", "CatalogError"]
+__all__ = ["Problem", "InputError", "CatalogError", "Terminated"]
 
 
 @dataclass(frozen=True)
@@ -36,3 +36,7 @@ class InputError(ValueError):
 
 class CatalogError(InputError):
     """An unknown catalog, part or constant; the message lists valid choices."""
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM during a command (``synth.cli`` raises it from its signal handler): stop as on Ctrl-C, exit 143."""

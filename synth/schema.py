@@ -32,6 +32,7 @@ from __future__ import annotations
 import difflib
 import math
 import re
+import sys
 from dataclasses import dataclass, field, fields as dc_fields, make_dataclass
 from pathlib import Path
 from typing import Any
@@ -83,7 +84,8 @@ class Field:
         if self.catalog:
             return "one of " + ", ".join(catalog.keys(self.catalog)) + f" (catalogs/{self.catalog}.csv)"
         if self.kind == "list":
-            bound = f" in (0, {self.hi:g}] {self.unit}" if math.isfinite(self.hi) else f" [{self.unit}]"
+            lo = f"[{self.lo:g}" if self.lo > 0 else "(0"
+            bound = f" in {lo}, {self.hi:g}] {self.unit}" if math.isfinite(self.hi) else f" [{self.unit}]"
             return f"one or two positive numbers{bound}"
         lo = "(" if self.lo_open else "["
         hi = ")" if self.hi_open else "]"
@@ -108,8 +110,15 @@ FIELDS: tuple[Field, ...] = (
     # Pulley
     _f("pulley_shell_type", "Pulley", kind="str", choices=("flat", "toothed"), label="Pulley shell type",
        words=(("Flat", "flat"), ("cylindrical", "flat"), ("Toothed", "toothed"))),
-    _f("pulley_diameter_mm", "Pulley", "mm", **POS, hi=200, label="Pulley diameter"),
-    _f("pulley_max_parallelism_eol_mm", "Pulley", "mm", required=False, **POS, hi=5, label="Pulley max parallelism at EOL"),
+    _f("pulley_diameter_mm", "Pulley", "mm", lo=10.0, hi=200, label="Pulley diameter",
+       basis="manufacturability floor: a pulley runs on a ball bearing pressed into it, and the smallest "
+             "deep-groove ball bearing of ISO 15 that carries a belt hubload (6000: D = 26 mm) is far above 10 mm; "
+             "the pulley must also clear the catalog's smallest bearing with its rim (cross-field rule) and the "
+             "chosen one (registry constraint pulley_over_bearing). A 1e-320 mm pulley passed before"),
+    _f("pulley_max_parallelism_eol_mm", "Pulley", "mm", required=False, lo=0.001, hi=5,
+       label="Pulley max parallelism at EOL",
+       basis="metrology floor: a parallelism tolerance is verified on a coordinate measuring machine whose "
+             "resolution is about 1 um; a tighter limit cannot be checked"),
     # Tensioner geometrical data
     _f("belt_loading_type", "Tensioner geometrical data", kind="str",
        choices=("single_eccentric", "double_eccentric", "double_eccentric_crank_rod"), label="Belt loading type",
@@ -117,29 +126,43 @@ FIELDS: tuple[Field, ...] = (
               ("Single eccentric", "single_eccentric"), ("Double eccentric", "double_eccentric"),
               ("Double eccentric with crank/rod loading system", "double_eccentric_crank_rod"),
               ("Double eccentric crank/rod", "double_eccentric_crank_rod"), ("crank/rod", "double_eccentric_crank_rod"))),
-    _f("working_arm_mm", "Tensioner geometrical data", "mm", **POS, hi=20, label="Working arm length"),
+    _f("working_arm_mm", "Tensioner geometrical data", "mm", lo=0.1, hi=20, label="Working arm length",
+       basis="manufacturability floor: the arm is the eccentricity machined between the bearing seat and the pivot "
+             "bore; 0.1 mm is about the positional tolerance of the two bores (the smallest thesis Table 2 arm is "
+             "2.5 mm; a short arm self-locks, step 3, and fails as a design); a 5e-324 mm arm overflowed the "
+             "hubload lever to infinity"),
     _f("loading_arm_mm", "Tensioner geometrical data", "mm", required=False, **NONNEG, hi=20,
        label="Loading arm length (empty: Table 2 standard)"),
-    _f("differential_angle_deg", "Tensioner geometrical data", "deg", lo=0, hi=180, lo_open=True, hi_open=True,
-       label="Differential angle"),
-    _f("wrap_angle_deg", "Tensioner geometrical data", "deg", required=False, lo=0, hi=360, lo_open=True, hi_open=True,
-       label="Wrap angle"),
+    _f("differential_angle_deg", "Tensioner geometrical data", "deg", lo=0.1, hi=180, hi_open=True,
+       label="Differential angle",
+       basis="measurement floor: a drive layout states belt-span angles to a tenth of a degree; the thesis's "
+             "cases use 85-95 deg, and an angle of 5e-324 deg made the hubload lever zero (an infinite hubload)"),
+    _f("wrap_angle_deg", "Tensioner geometrical data", "deg", required=False, lo=0.1, hi=360, hi_open=True,
+       label="Wrap angle", basis="measurement floor, as the differential angle"),
     _f("nominal_arm_angle_from_EHR_deg", "Tensioner geometrical data", "deg", required=False, lo=-360, hi=360,
        label="Nominal arm angle with respect to E.H.R."),
     # Belt
-    _f("belt_width_mm", "Belt", "mm", **POS, hi=100, label="Belt width"),
-    _f("middle_plane_belt_height_mm", "Belt", "mm", **POS, hi=200, label="Middle plane belt height"),
+    _f("belt_width_mm", "Belt", "mm", lo=6.0, hi=100, label="Belt width",
+       basis="physical minimum: the narrowest standard synchronous belt, ISO 5296 XL 025, is 6.4 mm wide "
+             "(rounded down to 6); automotive camshaft belts are 15-30 mm (thesis cases 16 and 26 mm). A belt "
+             "5e-324 mm wide passed before"),
+    _f("middle_plane_belt_height_mm", "Belt", "mm", lo=1.0, hi=200, label="Middle plane belt height",
+       basis="manufacturability floor: 1 mm, below any pulley half-width"),
     _f("middle_plane_belt_height_increment_worst_mm", "Belt", "mm", required=False, **NONNEG, hi=50,
        label="Middle plane belt height increment (worst case)"),
     # Lock-up pin
-    _f("lockup_pin_position_radius_mm", "Lock-up pin", "mm", required=False, **POS, hi=200, label="Lock-up pin position radius"),
+    _f("lockup_pin_position_radius_mm", "Lock-up pin", "mm", required=False, lo=1.0, hi=200,
+       label="Lock-up pin position radius", basis="manufacturability floor: at least the smallest pin's diameter"),
     _f("lockup_pin_angular_position_deg", "Lock-up pin", "deg", required=False, lo=-360, hi=360,
        label="Lock-up pin angular position"),
-    _f("lockup_pin_diameter_mm", "Lock-up pin", "mm", required=False, **POS, hi=20, label="Lock-up pin diameter"),
+    _f("lockup_pin_diameter_mm", "Lock-up pin", "mm", required=False, lo=1.0, hi=20, label="Lock-up pin diameter",
+       basis="physical minimum: ISO 8734 dowel pins start at 1 mm"),
     # Space constraints
-    _f("max_pivot_height_mm", "Space constraints", "mm", **POS, hi=300, label="Max pivot height"),
-    _f("max_axial_displacement_mm", "Space constraints", "mm", required=False, **POS, hi=300,
-       label="Max axial displacement (N/A: reverse layout, eq. (18))"),
+    _f("max_pivot_height_mm", "Space constraints", "mm", lo=1.0, hi=300, label="Max pivot height",
+       basis="manufacturability floor: 1 mm, below any bushing or bearing width"),
+    _f("max_axial_displacement_mm", "Space constraints", "mm", required=False, lo=1.0, hi=300,
+       label="Max axial displacement (N/A: reverse layout, eq. (18))",
+       basis="manufacturability floor: 1 mm, below any pulley width"),
     _f("min_belt_crankcase_clearance_mm", "Space constraints", "mm", required=False, **NONNEG, hi=50,
        label="Min belt-crankcase clearance, eq. (27); empty: constant reverse_layout_min_crankcase_clearance_mm",
        basis="eq. (27)'s clearance_min; 50 mm is more than any pulley offset of the thesis's cases (belt plane "
@@ -165,7 +188,10 @@ FIELDS: tuple[Field, ...] = (
     _f("durability_frequency_hz", "Durability test", "Hz", required=False, **NONNEG, hi=1000, label="Frequency"),
     _f("durability_duration_h", "Durability test", "h", required=False, **NONNEG, hi=1e5, label="Duration"),
     # Tensioner specifications
-    _f("calculated_torque_target_nm", "Tensioner specifications", "Nm", **POS, hi=100, label="Calculated torque target"),
+    _f("calculated_torque_target_nm", "Tensioner specifications", "Nm", lo=0.01, hi=100,
+       label="Calculated torque target",
+       basis="measurement floor: 0.01 Nm, the resolution of a tensioner torque bench; the thesis's targets are "
+             "1.5-2.5 Nm"),
     _f("damping_typology", "Tensioner specifications", kind="str", required=False,
        choices=("defined", "only_radial", "radial_and_axial"), default="defined",
        words=(("Defined", "defined"), ("Only radial", "only_radial"), ("Radial and Axial", "radial_and_axial"),
@@ -176,7 +202,9 @@ FIELDS: tuple[Field, ...] = (
     _f("damping_eol_limit_nm", "Tensioner specifications", "Nm", required=False, **NONNEG, hi=100,
        label="Damping end-of-life limit"),
     # Main spring
-    _f("spring_stiffness_nm_per_deg", "Main spring", "Nm/deg", **POS, hi=10, label="Spring stiffness"),
+    _f("spring_stiffness_nm_per_deg", "Main spring", "Nm/deg", lo=1e-4, hi=10, label="Spring stiffness",
+       basis="measurement floor: 1e-4 Nm/deg is 0.01 Nm (a torque bench's resolution) over 100 deg of travel; "
+             "the thesis's springs are 0.016-0.02 Nm/deg"),
     _f("spring_torque_tolerance_pct", "Main spring", "%", required=False, **NONNEG, hi=50, label="Spring torque tolerance"),
     _f("arm_travel_nominal_to_installation_deg", "Main spring", "deg", required=False, **NONNEG, hi=180,
        label="Arm travel nominal -> installation (hot stop); empty: constant main_spring_dtheta_inst_nom_deg"),
@@ -190,13 +218,15 @@ FIELDS: tuple[Field, ...] = (
     _f("main_spring_wire_section", "Main spring", kind="str", required=False, choices=("round", "rectangular"),
        label="Wire section (manual)", words=(("Round wire", "round"), ("Flat wire", "rectangular"), ("flat", "rectangular"),
                                              ("rectangular wire", "rectangular"))),
-    _f("main_spring_wire_size_mm", "Main spring", "mm", kind="list", required=False, **POS, hi=20,
-       label="Wire size: [d] or [b, h] (manual)"),  # EN 10270-1 wire: 0.05-20 mm
-    _f("main_spring_mean_body_diameter_mm", "Main spring", "mm", required=False, **POS, hi=200,
-       label="Mean body diameter (manual)"),
+    _f("main_spring_wire_size_mm", "Main spring", "mm", kind="list", required=False, lo=0.05, hi=20,
+       label="Wire size: [d] or [b, h] (manual)", basis="EN 10270-1 spring steel wire: 0.05-20 mm"),
+    _f("main_spring_mean_body_diameter_mm", "Main spring", "mm", required=False, lo=1.0, hi=200,
+       label="Mean body diameter (manual)", basis="manufacturability floor: a coil wound on a 1 mm mandrel"),
     # Bolt
-    _f("tilting_safety_factor", "Bolt", required=False, **POS, hi=20, label="Tilting safety factor (target)"),
-    _f("sliding_safety_factor", "Bolt", required=False, **POS, hi=20, label="Sliding safety factor (target)"),
+    _f("tilting_safety_factor", "Bolt", required=False, lo=1.0, hi=20, label="Tilting safety factor (target)",
+       basis="a safety factor below 1 designs the joint to tilt; the thesis's target is 3"),
+    _f("sliding_safety_factor", "Bolt", required=False, lo=1.0, hi=20, label="Sliding safety factor (target)",
+       basis="a safety factor below 1 designs the joint to slide; the thesis's target is 3"),
     _f("bolt_mode", "Bolt", kind="str", required=False, choices=("automatic", "manual"), default="automatic",
        words=(("Automatic", "automatic"), ("Manual", "manual")),
        label="Bolt (automatic: escalate format and class / manual: verify)"),
@@ -204,21 +234,23 @@ FIELDS: tuple[Field, ...] = (
     _f("bolt_property_class", "Bolt", kind="str", required=False, catalog="bolt_property_classes",
        label="Bolt property class (manual)"),
     # Fixation dimensional features
-    _f("engine_support_internal_diameter_mm", "Fixation dimensional features", "mm", required=False, **POS, hi=100,
-       label="Engine support internal diameter"),
-    _f("engine_support_external_diameter_mm", "Fixation dimensional features", "mm", required=False, **POS, hi=200,
-       label="Engine support external diameter"),
-    _f("contact_angle_deg", "Fixation dimensional features", "deg", required=False, lo=0, hi=360, lo_open=True,
-       label="Contact angle"),
-    _f("bolt_head_contact_external_diameter_mm", "Fixation dimensional features", "mm", required=False, **POS, hi=100,
-       label="Bolt head contact external diameter"),
-    _f("number_of_active_threads", "Fixation dimensional features", required=False, **POS, hi=50,
-       label="Number of active threads"),
+    _f("engine_support_internal_diameter_mm", "Fixation dimensional features", "mm", required=False, lo=1.0, hi=100,
+       label="Engine support internal diameter", basis="manufacturability floor: a bolt hole of at least 1 mm"),
+    _f("engine_support_external_diameter_mm", "Fixation dimensional features", "mm", required=False, lo=1.0, hi=200,
+       label="Engine support external diameter", basis="manufacturability floor, as the internal diameter"),
+    _f("contact_angle_deg", "Fixation dimensional features", "deg", required=False, lo=0.1, hi=360,
+       label="Contact angle", basis="measurement floor, as the belt angles"),
+    _f("bolt_head_contact_external_diameter_mm", "Fixation dimensional features", "mm", required=False, lo=1.0,
+       hi=100, label="Bolt head contact external diameter", basis="manufacturability floor, as the support bore"),
+    _f("number_of_active_threads", "Fixation dimensional features", required=False, lo=1.0, hi=50,
+       label="Number of active threads", basis="physical minimum: a joint carries on at least one engaged thread"),
     # Support strengths
-    _f("support_yield_strength_compression_mpa", "Support strengths", "MPa", required=False, **POS, hi=5000,
-       label="Support yield strength (compression)"),
-    _f("support_yield_strength_traction_mpa", "Support strengths", "MPa", required=False, **POS, hi=5000,
-       label="Support yield strength (traction)"),
+    _f("support_yield_strength_compression_mpa", "Support strengths", "MPa", required=False, lo=10.0, hi=5000,
+       label="Support yield strength (compression)",
+       basis="physical minimum: the softest structural metal, annealed pure aluminium (EN AW-1050A O), yields at "
+             "about 20 MPa; 10 MPa is below every engine support material"),
+    _f("support_yield_strength_traction_mpa", "Support strengths", "MPa", required=False, lo=10.0, hi=5000,
+       label="Support yield strength (traction)", basis="physical minimum, as in compression"),
 )
 
 SECTIONS: tuple[str, ...] = tuple(dict.fromkeys(f.section for f in FIELDS))
@@ -279,7 +311,7 @@ def _coerce(f: Field, value: Any, problems: list[Problem]) -> Any:
         out = []
         for v in items:
             x = _number(v)
-            if x is None or x <= 0 or x > f.hi:
+            if x is None or x < f.lo or x <= 0 or x > f.hi:
                 problems.append(Problem(f.name, shown, f.accepted()))
                 return None
             out.append(x)
@@ -319,16 +351,22 @@ def _coerce(f: Field, value: Any, problems: list[Problem]) -> Any:
 
 
 def _number(value) -> float | None:
-    """A finite float from a number or a cell's text (decimal comma, ``%``), else None (never raises)."""
+    """A finite float from a number or a cell's text (decimal comma, ``%``), else None (never raises).
+
+    A subnormal number (below 2.2e-308 in magnitude, not 0) is no physical value either: None.
+    """
     if isinstance(value, bool) or value is None:
         return None
     if isinstance(value, str):
-        return number_from_text(value)
-    try:
-        number = float(value)
-    except (TypeError, ValueError, OverflowError):  # a 400-digit integer overflows a float
+        number = number_from_text(value)
+    else:
+        try:
+            number = float(value)
+        except (TypeError, ValueError, OverflowError):  # a 400-digit integer overflows a float
+            return None
+    if number is None or not math.isfinite(number) or (number != 0.0 and abs(number) < sys.float_info.min):
         return None
-    return number if math.isfinite(number) else None
+    return number
 
 
 def _require(d: dict, names: tuple[str, ...], why: str, problems: list[Problem]) -> None:
@@ -369,6 +407,15 @@ def _consistency(d: dict, problems: list[Problem]) -> None:
         for n in pin:
             if d.get(n) is None:
                 problems.append(Problem(n, None, "a value: the lock-up pin needs radius, angular position and diameter together"))
+    if d.get("pulley_diameter_mm") is not None and "ball_bearings" in catalog.names():
+        bearings = catalog.load("ball_bearings")
+        i = int(bearings["D_mm"].astype(float).idxmin())
+        floor = float(bearings["D_mm"][i]) + 2.0 * float(catalog.constant("pulley_min_wall_mm"))
+        if d["pulley_diameter_mm"] < floor:
+            problems.append(Problem("pulley_diameter_mm", d["pulley_diameter_mm"],
+                                    f"a pulley larger than the smallest catalog bearing ({bearings.iloc[i, 0]}, "
+                                    f"D = {float(bearings['D_mm'][i]):g} mm) with its rim: at least {floor:g} mm "
+                                    "(constant pulley_min_wall_mm a side)"))
     if d.get("pivot_bushing_radial_thickness_mm") is not None:
         thick = sorted({float(t) for t in catalog.load("pivot_bushings")["radial_thickness_mm"]}) \
             if "pivot_bushings" in catalog.names() else []

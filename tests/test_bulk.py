@@ -159,9 +159,9 @@ def test_broken_rows_reported_others_run(tmp_path, fake_engine):
         assert math.isnan(t.loc[i, "margin_min"]) and t.loc[i, "part_ball_bearing"] is None
     errs = {kind: t.loc[i, "error"] for i, kind in broken.items()}
     assert errs["unknown_choice"].startswith("application_type: got 'wet'; accepted: one of dry, belt_in_oil")
-    assert errs["non_numeric"] == "calculated_torque_target_nm: got 'three'; accepted: a number in (0, 100] Nm"
+    assert errs["non_numeric"] == "calculated_torque_target_nm: got 'three'; accepted: a number in [0.01, 100] Nm"
     assert errs["missing_required"].startswith("differential_angle_deg: missing; expected a value (required)")
-    assert "accepted: a number in (0, 20] mm" in errs["out_of_range"]
+    assert "accepted: a number in [0.1, 20] mm" in errs["out_of_range"]
     ok = [i for i in range(12) if i not in broken]
     assert (t.loc[ok, "status"] != "error").all() and (t.loc[ok, "error"] == "").all()
     # the verdicts are the fake engine's rule on the valid rows

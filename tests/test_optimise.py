@@ -125,7 +125,7 @@ def test_objective_parsing():
     assert Objective.parse("cost,standard").order == ("cost", "standard")
     with pytest.raises(InputError, match="objective"):
         Objective.parse("weight")
-    with pytest.raises(InputError, match="numeric weights"):
+    with pytest.raises(InputError, match="finite, non-negative numbers"):
         Objective.parse("cost=a")
     with pytest.raises(InputError, match="solver"):
         solve(APP, "cost", "simplex")

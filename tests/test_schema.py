@@ -35,7 +35,7 @@ def test_every_problem_reported_once_with_field_value_and_accepted():
         schema.validate(raw)
     by_field = {p.field: p for p in err.value.problems}
     assert set(by_field) == {"differential_angle_deg", "working_arm_mm", "belt_widht_mm", "engine_fuel"}
-    assert "(0, 180)" in by_field["differential_angle_deg"].accepted
+    assert "[0.1, 180)" in by_field["differential_angle_deg"].accepted
     assert "did you mean belt_width_mm" in by_field["belt_widht_mm"].accepted
     assert "gasoline, diesel" in by_field["engine_fuel"].accepted
 

@@ -218,17 +218,21 @@ def arrow_safe(df: pd.DataFrame) -> pd.DataFrame:
 
 
 def write_table(df: pd.DataFrame, path) -> Path:
-    """Write ``df`` as CSV, Excel or Parquet by the extension of ``path`` (folders created)."""
+    """Write ``df`` as CSV, Excel or Parquet by the extension of ``path`` (folders created), through the output
+    gate (:func:`synth.io.outputs.output_file`: a temporary file renamed when complete; CSV text cells made
+    formula-safe by :func:`synth.io.outputs.csv_safe`)."""
+    from synth.io.outputs import output_file, write_csv
     p = Path(path)
     fmt = _format(p, "output")
-    p.parent.mkdir(parents=True, exist_ok=True)
     if fmt == "csv":
-        df.to_csv(p, index=False)
-    elif fmt == "excel":  # text as text, significant figures, print setup (synth.excel.cells)
+        return write_csv(df, p)
+    if fmt == "excel":  # text as text, significant figures, print setup (synth.excel.cells)
         from synth.excel.cells import write_frame
         write_frame(df, p, sheet="portfolio")
-    elif fmt == "ods":  # OpenDocument (odfpy): strings are string cells, never formulas
-        df.to_excel(p, index=False, engine="odf")
-    else:
-        arrow_safe(df).to_parquet(p, index=False)
+        return p
+    with output_file(p) as tmp:
+        if fmt == "ods":  # OpenDocument (odfpy): strings are string cells, never formulas
+            df.to_excel(tmp, index=False, engine="odf")
+        else:
+            arrow_safe(df).to_parquet(tmp, index=False)
     return p

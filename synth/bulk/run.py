@@ -8,8 +8,8 @@ the valid ones go to :func:`synth.bulk.engine.screen_applications` in one
 vectorised call.
 
 Every finished chunk is written at once to ``<RESULT>.chunks/chunk_NNNNN.parquet``
-(a temporary name, then :func:`os.replace`, so a chunk file is complete or
-absent) next to ``manifest.json`` (portfolio hash, objective, fidelity, chunk
+(through :func:`synth.io.outputs.output_file`: a temporary name, then :func:`os.replace`, so a chunk file
+is complete or absent, and never written through a link) next to ``manifest.json`` (portfolio hash, objective, fidelity, chunk
 size, diagnosis, synth version, catalog hash). ``resume=True`` checks the
 manifest against the current settings (a difference is an
 :class:`~synth.errors.InputError` naming the setting) and computes only the
@@ -28,7 +28,7 @@ metadata, the run id, its row range and the SHA-256 of its content.
 them, chunk files of another run, with a bad checksum, or unreadable; before
 assembling the RESULT every chunk is checked again, so a result is never
 assembled from another run's chunks. RESULT is written to a temporary file
-and moved into place.
+and moved into place (:func:`synth.io.outputs.output_file`; removed on any failure).
 
 ``engine="dask"`` submits one task per chunk to a ``dask.distributed``
 cluster (a :class:`~distributed.LocalCluster` of ``workers`` one-thread
@@ -61,6 +61,7 @@ from synth.fingerprint import file_sha256
 from synth.bulk.portfolio import (arrow_safe, column_warnings, field_columns, plain_cell, read_portfolio, row_record,
                                   validate_record, write_table)
 from synth.errors import InputError, Problem
+from synth.io.outputs import output_file, write_text
 from synth.report.progress import Progress
 
 __all__ = ["ENGINES", "FIDELITIES", "DEFAULT_CHUNK_SIZE", "default_chunk_size", "RunReport", "result_columns", "compute_chunk",
@@ -247,9 +248,7 @@ def _check_manifest(old: dict, new: dict, folder: Path) -> None:
 
 
 def _write_atomic_json(path: Path, data: dict) -> None:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(json.dumps(data, indent=2), encoding="utf-8")
-    os.replace(tmp, path)
+    write_text(path, json.dumps(data, indent=2), "--out")
 
 
 def content_sha256(df: pd.DataFrame) -> str:
@@ -274,10 +273,8 @@ def _write_chunk(folder: Path, i: int, start: int, df: pd.DataFrame, run_id: str
                  b"synth_rows": f"{start}:{start + len(df)}".encode(),
                  b"synth_sha256": content_sha256(table.to_pandas()).encode()})
     table = table.replace_schema_metadata(meta)
-    final = _chunk_path(folder, i)
-    tmp = final.with_name(f".{final.name}.{os.getpid()}.tmp")
-    pq.write_table(table, tmp)
-    os.replace(tmp, final)
+    with output_file(_chunk_path(folder, i), "--out") as tmp:  # renamed when complete, removed on failure
+        pq.write_table(table, tmp)
 
 
 def _read_chunk(path: Path) -> tuple[pd.DataFrame, dict]:
@@ -314,7 +311,7 @@ def chunk_state(folder: Path, i: int, start: int, stop: int, run_id: str) -> str
 
 def _clear(folder: Path) -> None:
     """Remove this module's files (chunks, temporaries, manifest) from ``folder``, nothing else (not the lock)."""
-    for p in list(folder.glob("chunk_*.parquet")) + list(folder.glob(".chunk_*.tmp")) + [folder / MANIFEST]:
+    for p in list(folder.glob("chunk_*.parquet")) + list(folder.glob(".chunk_*.tmp*")) + [folder / MANIFEST]:
         with contextlib.suppress(FileNotFoundError):
             p.unlink()
 
@@ -530,9 +527,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
         result = None
         if complete:
             result = assemble(table, folder, len(ranges), run_id=run_id, ranges=ranges)
-            tmp = out.with_name(f".{out.stem}.{run_id[:12]}.tmp{out.suffix}")
-            write_table(result, tmp)
-            os.replace(tmp, out)
+            write_table(result, out)  # through the output gate: a temporary file renamed when complete
         rows_done = sum(b - a for i, (a, b) in enumerate(ranges) if i in todo_set and _chunk_path(folder, i).is_file())
     finally:
         lock.release()
@@ -654,7 +649,7 @@ def dask_client(scheduler: str | None, workers: int | None, connect_timeout_s: f
         if scheduler:
             try:
                 client = stack.enter_context(Client(scheduler, timeout=f"{connect_timeout_s}s"))
-            except (OSError, TimeoutError) as exc:
+            except (OSError, TimeoutError, ValueError) as exc:  # unreachable, or not an address ("tcp://", "foo")
                 raise InputError(Problem("--scheduler", scheduler,
                                          f"the address of a running Dask scheduler ({exc})")) from None
         else:

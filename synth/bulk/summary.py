@@ -194,16 +194,14 @@ def write_summary(s: Summary, folder) -> list[Path]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    d = Path(folder)
-    d.mkdir(parents=True, exist_ok=True)
+    from synth.io.outputs import output_folder, write_csv, write_figure, write_text
+    d = output_folder(folder, "--summary")
     written = []
     tables = {"by_group": s.by_group, "parts": s.parts, "binding": s.binding, "violated": s.violated,
               "relaxed": s.relaxed}
     overall = pd.DataFrame([{"quantity": k, "value": v} for k, v in s.overall.items()])
     for name, df in {"overall": overall, **tables}.items():
-        p = d / f"summary_{name}.csv"
-        df.to_csv(p, index=False)
-        written.append(p)
+        written.append(write_csv(df, d / f"summary_{name}.csv", "--summary"))
     md = ["## Portfolio summary", "", text(s).replace("\n", "  \n"), "", "### Overall", "", markdown_table(overall)]
     titles = {"by_group": "Feasible share by group", "parts": "Parts chosen (feasible applications)",
               "binding": "Binding constraints (feasible applications)",
@@ -211,9 +209,7 @@ def write_summary(s: Summary, folder) -> list[Path]:
               "relaxed": "Inputs changed by the smallest relaxation"}
     for name, df in tables.items():
         md += ["", f"### {titles[name]}", "", markdown_table(df) if len(df) else "(none)"]
-    p = d / "summary.md"
-    p.write_text("\n".join(md) + "\n", encoding="utf-8")
-    written.append(p)
+    written.append(write_text(d / "summary.md", "\n".join(md) + "\n", "--summary"))
 
     plots = []
     if len(s.by_group):
@@ -226,10 +222,7 @@ def write_summary(s: Summary, folder) -> list[Path]:
     for name, labels, values, title, xlabel in plots:
         fig, ax = plt.subplots(figsize=(7, 0.35 * len(labels) + 1.2), layout="constrained")
         _bar(ax, labels, values, title, xlabel)
-        p = d / name
-        fig.savefig(p, dpi=110)
-        plt.close(fig)
-        written.append(p)
+        written.append(write_figure(fig, d / name, "--summary", dpi=110))
     if len(s.parts):
         fams = list(dict.fromkeys(s.parts["family"]))
         ncol = 3
@@ -241,10 +234,7 @@ def write_summary(s: Summary, folder) -> list[Path]:
         for ax in list(axes.flat)[len(fams):]:
             ax.set_visible(False)
         fig.suptitle("Catalog parts chosen (share of feasible applications)")
-        p = d / "parts.png"
-        fig.savefig(p, dpi=110)
-        plt.close(fig)
-        written.append(p)
+        written.append(write_figure(fig, d / "parts.png", "--summary", dpi=110))
     return written
 
 

@@ -172,7 +172,11 @@ def geometry_from(result, inputs=None, *, name: str | None = None) -> TensionerG
         raise InputError([Problem(f"inputs.{k}", None, "a value (needed by the CAD model)") for k in missing])
     v = values
     miss: list = []
-    axial = bool(v.get("axial_damping_present"))
+    # the parts the design has: its axial group (damper pad, endcap spacer, cone spring) when present, whatever the
+    # damping split asks for (a nearest design may lack the group the split needs: that check fails, the model
+    # still draws what the design is; a 20 mm working arm's result was refused for lacking the pad's dimensions)
+    present = v.get("axial_group_present")
+    axial = bool(present) if present is not None else bool(v.get("axial_damping_present"))
     section = str(v.get("main_spring_wire_section") or "")
     size = v.get("main_spring_wire_size_mm")
     if isinstance(size, (int, float)):
@@ -232,6 +236,10 @@ def geometry_from(result, inputs=None, *, name: str | None = None) -> TensionerG
         bolt_hole_diameter_mm=_num(v, "pivot_bolt_hole_diameter_mm", miss),
         bolt_head_diameter_mm=float(head),
     )
+    if kw["pulley_diameter_mm"] <= kw["bearing_outer_diameter_mm"]:  # registry check pulley_over_bearing fails
+        raise InputError(Problem("inputs.pulley_diameter_mm", kw["pulley_diameter_mm"],
+                                 f"a pulley larger than its bearing ({bearing}, D = {kw['bearing_outer_diameter_mm']:g} "
+                                 "mm): a pulley inside its own bearing has no 3D model"))
     # bushing length: the catalog part when the flowchart names one, else the length searched by the optimiser;
     # with no durability test the result has none, and the bushing spans the bearing seat (arm plate + bearing)
     blen = v.get("pivot_bushing_length_mm")

@@ -14,7 +14,6 @@
 
 from __future__ import annotations
 
-import json
 import time
 from pathlib import Path
 
@@ -22,6 +21,7 @@ from synth import catalog
 from synth.cad.assembly import TensionerModel
 from synth.cad.pictures import exploded_parts, exploded_picture, render_png, section_parts, section_picture
 from synth.cad.step import design_values, export_step
+from synth.io.outputs import json_text, output_file, output_folder, write_text
 
 __all__ = ["export_step", "export_stl", "render_png", "exploded_parts", "section_parts", "export_model"]
 
@@ -29,13 +29,13 @@ __all__ = ["export_step", "export_stl", "render_png", "exploded_parts", "section
 def export_stl(model: TensionerModel, folder: str | Path) -> list[Path]:
     """One STL per part in ``folder``."""
     import cadquery as cq
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    folder = output_folder(folder, inside=True)
     tol = catalog.constant("cad_helix_tolerance_mm")
     out = []
     for name, shape in model.parts.items():
         p = folder / f"{name}.stl"
-        cq.exporters.export(shape, str(p), tolerance=tol, angularTolerance=0.2)
+        with output_file(p) as tmp:
+            cq.exporters.export(shape, str(tmp), exportType="STL", tolerance=tol, angularTolerance=0.2)
         out.append(p)
     return out
 
@@ -48,8 +48,7 @@ def export_model(model: TensionerModel, out_dir: str | Path, *, checks=None, ste
     ``application`` names the STEP product (``synth tensioner <application>``, default the result's label);
     ``result`` completes the design values of the STEP header (:func:`synth.cad.step.design_values`).
     """
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_folder(out_dir)
     files, times = [], {"build": model.build_s}
     g = model.geometry
     design = design_values(model, result)
@@ -71,6 +70,5 @@ def export_model(model: TensionerModel, out_dir: str | Path, *, checks=None, ste
               "design": design, "geometry": g.as_dict(), "parts": list(model.parts),
               "files": [str(f.relative_to(out)) for f in files], "timings_s": times,
               "checks": [c.as_dict() for c in (checks or [])]}
-    (out / "cad_report.json").write_text(json.dumps(report, indent=2, default=str), encoding="utf-8")
-    files.append(out / "cad_report.json")
+    files.append(write_text(out / "cad_report.json", json_text(report, indent=2)))
     return {"files": files, "timings_s": times}

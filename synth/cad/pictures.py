@@ -233,11 +233,8 @@ def _frame(ax, points: np.ndarray, extra: np.ndarray | None = None) -> None:
 
 
 def _save(plt, fig, path) -> Path:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path)
-    plt.close(fig)
-    return path
+    from synth.io.outputs import write_figure
+    return write_figure(fig, path)
 
 
 def _pretty(name: str) -> str:

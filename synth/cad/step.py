@@ -92,10 +92,10 @@ def export_step(model: TensionerModel, path: str | Path, *, application: str | N
     from OCP.XSControl import XSControl_WorkSession
     from cadquery.occ_impl.exporters.assembly import toCAF
 
+    from synth.io.outputs import output_file, step_text
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     head = step_header(model, application or model.geometry.name, design or design_values(model))
-    _, doc = toCAF(model.assembly(head["name"]), True)
+    _, doc = toCAF(model.assembly(step_text(head["name"])), True)
     session = XSControl_WorkSession()
     writer = STEPCAFControl_Writer(session, False)
     writer.SetColorMode(True)
@@ -105,23 +105,25 @@ def export_step(model: TensionerModel, path: str | Path, *, application: str | N
     Interface_Static.SetCVal_s("write.step.unit", "MM")
     writer.Transfer(doc, STEPControl_StepModelType.STEPControl_AsIs)
     header = APIHeaderSection_MakeHeader(writer.ChangeWriter().Model())
-    header.SetName(TCollection_HAsciiString(head["name"]))
-    header.SetAuthorValue(1, TCollection_HAsciiString(head["author"]))
-    header.SetOrganizationValue(1, TCollection_HAsciiString(head["organisation"]))
-    header.SetOriginatingSystem(TCollection_HAsciiString(head["author"]))
+    header.SetName(TCollection_HAsciiString(step_text(head["name"])))
+    header.SetAuthorValue(1, TCollection_HAsciiString(step_text(head["author"])))
+    header.SetOrganizationValue(1, TCollection_HAsciiString(step_text(head["organisation"])))
+    header.SetOriginatingSystem(TCollection_HAsciiString(step_text(head["author"])))
     header.SetAuthorisation(TCollection_HAsciiString(""))
     _set_description(header, head["description"])
-    if writer.Write(str(path)) != IFSelect_ReturnStatus.IFSelect_RetDone:
-        raise OSError(f"STEP export failed: {path}")
+    with output_file(path) as tmp:
+        if writer.Write(str(tmp)) != IFSelect_ReturnStatus.IFSelect_RetDone:
+            raise RuntimeError(f"STEP export failed: {path}")
     return path
 
 
 def _set_description(header, lines: list[str]) -> None:
+    from synth.io.outputs import step_text
     from OCP.Interface import Interface_HArray1OfHAsciiString
     from OCP.TCollection import TCollection_HAsciiString
     arr = Interface_HArray1OfHAsciiString(1, len(lines))
     for i, line in enumerate(lines, start=1):
-        arr.SetValue(i, TCollection_HAsciiString(line.replace("'", " ")))
+        arr.SetValue(i, TCollection_HAsciiString(step_text(line)))
     header.SetDescription(arr)
 
 

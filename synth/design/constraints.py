@@ -42,6 +42,10 @@ __all__ = ["Constraint", "REGISTRY", "GROUPS", "REQUIREMENTS", "margin", "normal
 #: a margin above ``-FEAS_TOL`` passes (round-off of equal values)
 FEAS_TOL = 1e-9
 
+#: a limit smaller than this in magnitude (in its unit: mm, N, MPa, Nm...) normalises a margin as a zero limit
+#: does (absolute); no physical limit of the registry is that small
+SCALE_FLOOR = 1e-9
+
 #: evaluation groups, in the thesis's order of the decomposition (see :mod:`synth.design.space`)
 GROUPS = ("input", "core", "bushing", "axial", "spring", "bolt", "cad")
 
@@ -109,17 +113,20 @@ def margin(c: Constraint, value, limit, scale=None) -> np.ndarray:
 
 def normalised_margin(value, limit, sense: str, scale=None) -> np.ndarray:
     """``(limit - value) / scale`` for ``sense`` ``"<="``, ``(value - limit) / scale`` for ``">="`` (positive
-    passes); ``scale`` defaults to ``|limit|``, 1 where it is 0 (the margin is then absolute).
+    passes); ``scale`` defaults to ``|limit|``, 1 where it is 0 (the margin is then absolute), or below
+    :data:`SCALE_FLOOR` (a limit of 1e-300 is a zero limit: dividing by it overflowed margins to infinity).
 
     >>> float(normalised_margin(8.0, 10.0, "<=")), float(normalised_margin(3.0, 0.0, ">="))
     (0.2, 3.0)
+    >>> float(normalised_margin(1.0, 5e-324, "<="))
+    -1.0
     """
     value = np.asarray(value, dtype=float)
     limit = np.asarray(limit, dtype=float)
     if scale is None:
         scale = np.abs(limit)
     scale = np.asarray(scale, dtype=float)
-    scale = np.where(scale > 0, scale, 1.0)
+    scale = np.where(scale > SCALE_FLOOR, scale, 1.0)
     diff = limit - value if sense == "<=" else value - limit
     with np.errstate(invalid="ignore"):
         m = diff / scale
@@ -153,6 +160,9 @@ _ENTRIES = (
     # --- core: bearing, pivot, damping, packaging (steps 1-3, 7) --------------------------------------------
     _c("bearing_load", "hubload within the bearing's Table 1 range", 1, "Table 1", "N", "core",
        "hubload_nominal_n", "bearing_max_hubload_n", "<=", correction="a larger bearing"),
+    _c("pulley_over_bearing", "pulley larger than its bearing (a rim around the outer ring)", 1, "step 1, step 2",
+       "mm", "core", "pulley_diameter_mm", "pulley_min_diameter_mm", ">=", objective=False,
+       correction="a larger pulley (pulley_diameter_mm), or a smaller bearing"),
     _c("working_arm_table2", "working arm within Table 2 for the bearing", 2, "Table 2", "mm", "core",
        "working_arm_mm", "working_arm_max_table2_mm", "<=",
        correction="a bearing whose Table 2 covers the working arm, or a shorter working arm"),

@@ -274,6 +274,8 @@ def core(apps, a, c: dict, settings: Settings = Settings(), detail: bool = False
         v[k] = c[k]
     v["arm_wall_mm"] = s2.arm_wall_mm(c["bearing_inner_diameter_mm"], wa, c["pivot_class_diameter_mm"])
     v["arm_min_wall_mm"] = np.full(n, _const("arm_min_wall_mm"))
+    v["pulley_diameter_mm"] = f["pulley_diameter_mm"]
+    v["pulley_min_diameter_mm"] = c["bearing_outer_diameter_mm"] + 2.0 * _const("pulley_min_wall_mm")
     mu = apps.mu_pivot_bushing[a]
     v["mu_pivot_bushing"] = mu
     rho = s3.lever_ratio(c["pivot_diameter_mm"], mu, wa, alpha, settings.friction_circle)

@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from synth.design.constraints import FEAS_TOL, REGISTRY
+from synth.io.outputs import plain  # JSON-friendly data (NaN and infinities as None, no subnormal number)
 
 __all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "VERDICT_FILLS", "plain",
            "checks_of", "row_verdict", "field_corrections"]
@@ -38,19 +39,6 @@ EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 3}
 VERDICT_FILLS = {PASS: "C6EFCE", FAIL: "FFC7CE", NOT_VERIFIED: "FFD966", WARNING: "FFD8A8", NOT_APPLICABLE: "EDEDED"}
 
 
-def plain(v):
-    """JSON-friendly scalars: numpy to Python; NaN and infinities to None (valid JSON, never ``-Infinity``)."""
-    if isinstance(v, np.ndarray):
-        v = v.tolist() if v.ndim else v.item()
-    if isinstance(v, np.generic):
-        v = v.item()
-    if isinstance(v, (list, tuple)):
-        return [plain(x) for x in v]
-    if isinstance(v, dict):
-        return {str(k): plain(x) for k, x in v.items()}
-    if isinstance(v, float) and not math.isfinite(v):
-        return None
-    return v
 
 
 @dataclass

@@ -54,7 +54,8 @@ from synth import catalog, parts as P
 from synth.errors import InputError, Problem
 from synth.model import packaging as s7, pivot as s2, torsion_spring as s9
 
-__all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "NONE", "Space", "space", "core_rows", "spring_window"]
+__all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "NONE", "CAPACITY", "Space", "space", "core_rows", "spring_window",
+           "table_sizes", "check_capacity"]
 
 SUBSYSTEMS = ("bushing", "axial", "spring", "bolt")
 TABLES = ("core",) + SUBSYSTEMS
@@ -383,8 +384,41 @@ def _bolt(p: P.Parts) -> dict:
     return {k: v[keep] for k, v in t.items()}
 
 
+#: table -> (the most rows the evaluator is given, the catalogs whose rows multiply into it). Capacity bounds,
+#: measured (benchmarks/bench_readers.py, user catalogs): the evaluation grows linearly with each table, about
+#: 0.5 MB and 8 ms per 300 main-spring options (a 1,600-wire spring_wires.csv, 575,535 options: 15.5 s, 0.9 GB;
+#: 50,000 wires ran out of memory). Each bound is about ten times the built-in catalogs' table, where one design
+#: takes about 5 s and 0.4 GB.
+CAPACITY = {"core": (2_000, "ball_bearings.csv, pivot_classes.csv, pivot_bushings.csv, damper_pads.csv"),
+            "bushing": (500, "pivot_bushings.csv"),
+            "axial": (5_000, "endcap_spacers.csv"),
+            "spring": (150_000, "spring_materials.csv, spring_wires.csv (and the bearings' diameters)"),
+            "bolt": (2_000, "bolt_heads.csv, bolt_property_classes.csv")}
+
+
+def table_sizes(p: P.Parts) -> dict:
+    """The rows of each table of the space of parts ``p``, counted before anything is built (upper bounds)."""
+    n_axial = 1 + len(p.endcap_spacer) * int(np.prod([len(g) for g in cone_variants()]))
+    return {"core": len(selectable_bearings(p)) * len(_pivot_classes(p)) * len(p.bushing) * (len(p.damper_pad) + 1),
+            "bushing": int(sum(len(l) for l in p.bushing_lengths)), "axial": n_axial,
+            "spring": len(p.spring_material) * len(p.spring_wire) * len(mbd_grid(p)),
+            "bolt": len(p.bolt_head) * len(p.bolt_class)}
+
+
+def check_capacity(p: P.Parts) -> None:
+    """An :class:`~synth.errors.InputError` naming the catalogs when a table of the space would exceed
+    :data:`CAPACITY` (user catalogs too big for the evaluator), before it is built."""
+    problems = [Problem(f"--catalogs ({CAPACITY[t][1]})", f"{n} {t} options",
+                        f"catalogs whose design space the evaluator can hold: at most {CAPACITY[t][0]} {t} options "
+                        f"(about ten times the built-in catalogs'; give fewer rows)")
+                for t, n in table_sizes(p).items() if n > CAPACITY[t][0]]
+    if problems:
+        raise InputError(problems)
+
+
 def _build_space() -> Space:
     p = P.arrays()
+    check_capacity(p)
     return Space({"core": _core(p), "bushing": _bushing(p), "axial": _axial(p), "spring": _spring(p),
                   "bolt": _bolt(p)}, p)
 

@@ -34,14 +34,13 @@ import datetime as _dt
 import math
 from pathlib import Path
 
+from synth.io.outputs import FORMULA_LEADS, output_file
+
 __all__ = ["SIGNIFICANT_FIGURES", "FORMULA_LEADS", "sig_format", "put", "wrap", "page_setup", "write_frame"]
 
 #: Significant figures displayed for numbers (the value stored keeps full precision). A display choice
 #: (issue 15: "not General 1.71334077115234"), four figures as the thesis's output tables print them.
 SIGNIFICANT_FIGURES = 4
-
-#: Leading characters that make a spreadsheet read typed text as a formula (OWASP "CSV injection" list).
-FORMULA_LEADS = ("=", "+", "-", "@", "\t", "\r")
 
 # Fixed-point formats span these powers of ten; outside, scientific notation.
 _FIXED_DECADES = (-4, 7)
@@ -175,6 +174,6 @@ def write_frame(df, path, *, sheet: str = "Sheet1", title: str | None = None) ->
             put(ws, i, j, value)
     ws.freeze_panes = "A2"
     page_setup(ws, title or p.name, header_rows="1:1")
-    p.parent.mkdir(parents=True, exist_ok=True)
-    wb.save(p)
+    with output_file(p) as tmp:
+        wb.save(tmp)
     return p

@@ -237,7 +237,9 @@ def build_results(result=None, *, cells: dict | None = None, source: str | None 
 
 def write_results(path: str | Path, result=None, **kw) -> Path:
     """Write :func:`build_results` to ``path`` (.xlsx) and return the path."""
+    from synth.io.outputs import output_file
     p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    build_results(result, **kw).save(p)
+    wb = build_results(result, **kw)
+    with output_file(p) as tmp:
+        wb.save(tmp)
     return p

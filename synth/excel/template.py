@@ -285,8 +285,9 @@ def build_workbook(values: dict | None = None, *, title: str = "synth design inp
 
 def write_template(path: str | Path, values: dict | None = None) -> Path:
     """Write the input template to ``path`` (.xlsx); example values of case 1 unless ``values``."""
+    from synth.io.outputs import output_file
     p = Path(path)
     wb, _ = build_workbook(values)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    wb.save(p)
+    with output_file(p) as tmp:
+        wb.save(tmp)
     return p

@@ -14,7 +14,10 @@
 * :mod:`synth.io.tables` -- portfolio tables (CSV, xlsx, ods, Parquet);
 * :mod:`synth.io.results` -- saved ``synth design/flowchart --json`` results,
   shape-checked;
-* :mod:`synth.io.catalogs` -- user catalog folders (``--catalogs DIR``).
+* :mod:`synth.io.catalogs` -- user catalog folders (``--catalogs DIR``);
+* :mod:`synth.io.outputs` -- the output gate: every file synth writes (a
+  temporary file renamed when complete, never through a link), CSV cells
+  formula-safe, JSON always valid, STEP strings escaped.
 
 Every problem is an :class:`~synth.errors.InputError` naming the file,
 sheet, cell, row or column the user wrote; nothing here lets a parser's

@@ -10,8 +10,10 @@ data row (and its line in the file) and the column:
 * the columns: the built-in key column first, every built-in column present,
   a ``source`` column (every row of every catalog says where its values come from);
 * the cells: a number (finite) in every column that is numeric in the
-  built-in catalog, ``true``/``false`` in a boolean column, a key and a
-  source on every row, no key twice.
+  built-in catalog (positive, or not negative, where every built-in value
+  is: a negative stress area is refused naming the file, row, line and
+  column), ``true``/``false`` in a boolean column, a key and a source on
+  every row, no key twice.
 
 :func:`check_user_dir` checks a whole folder at once: that it exists, that
 every CSV in it is named like a built-in catalog (a misspelt file name would
@@ -153,6 +155,9 @@ def read_user_catalog(path, builtin):
             out[col] = vals
         elif kind in "if":
             may_be_empty = bool(builtin[col].isna().any())
+            known = builtin[col].dropna()
+            sign = (">", 0.0) if len(known) and bool((known > 0).all()) else \
+                (">=", 0.0) if len(known) and bool((known >= 0).all()) else None
             vals = []
             for i, v in enumerate(raw[col]):
                 t = str(v).strip()
@@ -168,6 +173,11 @@ def read_user_catalog(path, builtin):
                     x = None
                 if x is None or not math.isfinite(x):
                     problems.append(Problem(at(i, col), short(t), f"a finite number (column {col} is numeric)"))
+                    vals.append(math.nan)
+                elif sign is not None and (x <= sign[1] if sign[0] == ">" else x < sign[1]):
+                    problems.append(Problem(at(i, col), short(t), f"a number {sign[0]} 0 (every value of column {col} "
+                                                                  "in the built-in catalog is; a negative area, "
+                                                                  "length, load or cost is no part)"))
                     vals.append(math.nan)
                 else:
                     vals.append(x)

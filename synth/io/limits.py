@@ -39,8 +39,14 @@ class Limits:
     * ``text_input_bytes``: a design input, shrink-fit case or saved result is
       a few kB (the thesis input table has 60 fields; a ``synth flowchart --json``
       result about 30 kB); 8 MB leaves room for comments and long results.
-    * ``workbook_bytes`` / ``workbook_unpacked_bytes``: the design-input
-      template is about 25 kB (.xlsx) and unpacks to about 150 kB; the
+    * ``workbook_bytes`` / ``workbook_unpacked_bytes`` / ``workbook_part_bytes``:
+      the design-input template is about 25 kB (.xlsx) and unpacks to 70 kB
+      (.xlsx) or 160 kB (.ods saved by LibreOffice), its largest part 106 kB
+      (the .ods ``content.xml``); 2 MB unpacked and 512 kB per part leave room
+      for notes and pasted rows. The XML readers are slow: openpyxl parses
+      shared strings at about 2 s/MB and styles at 1.2 s/MB, odfpy a
+      ``content.xml`` at 1.1 s/MB (measured, ``benchmarks/bench_readers.py``),
+      so a part limit keeps every design workbook under about 2 s; the
       unpacked limit refuses a "zip bomb" before any XML is parsed.
     * ``sheet_rows`` / ``sheet_columns``: the template has about 70 rows and 8
       columns; a sheet whose used range claims more is not read cell by cell.
@@ -59,16 +65,19 @@ class Limits:
       applications (a whole product line's history; about 4-18 h of screening
       at the measured 3-15 applications/s) of 54 fields is a 94 MB CSV, read in
       3 s with a peak of 0.86 GB (measured); 128 MB keeps the peak about 1.2 GB.
-      An .xlsx portfolio is read streaming (openpyxl read-only) up to 256 MB
-      unpacked; an .ods one is parsed whole by odfpy (a DOM about 10-20 times
-      the XML), so it is limited to 32 MB unpacked (about 20,000 rows).
+      An .xlsx or .ods portfolio is read by calamine (Rust; openpyxl took 29 s
+      and odfpy 24 s where calamine takes 3 s and 0.7 s), up to 48 MB unpacked:
+      about 25,000 applications of the 54 fields in an .xlsx (38 MB for 20,000,
+      read in 3.3 s), 7,500 in a pandas-written .ods; a bigger portfolio is a
+      CSV or Parquet file.
     * ``catalog_bytes`` / ``catalog_rows``: a user catalog replaces a
       built-in one of at most a few hundred rows.
     """
 
     text_input_bytes: int = 8 * MB
     workbook_bytes: int = 16 * MB
-    workbook_unpacked_bytes: int = 64 * MB
+    workbook_unpacked_bytes: int = 2 * MB
+    workbook_part_bytes: int = 512 * KB
     sheet_rows: int = 2000
     sheet_columns: int = 64
     nodes: int = 200_000
@@ -76,8 +85,7 @@ class Limits:
     string_chars: int = 10_000
     integer_digits: int = 30
     portfolio_bytes: int = 128 * MB
-    portfolio_unpacked_bytes: int = 256 * MB
-    portfolio_ods_unpacked_bytes: int = 32 * MB
+    portfolio_unpacked_bytes: int = 48 * MB
     portfolio_rows: int = 200_000
     portfolio_columns: int = 500
     catalog_bytes: int = 4 * MB

@@ -6,9 +6,12 @@ formula without a cached value (a workbook written by a program that does
 not compute formulas) can be *explained* ("cell E12 holds a formula without
 a cached value: type the value") instead of read as an empty cell.
 
-Reading .xlsx uses openpyxl (read-only, streaming); .ods uses odfpy, the
-library pandas reads .ods with (pure Python, installed from PyPI). Both are
-bounded: the file size and its unpacked size are checked first, and at most
+Reading .xlsx uses openpyxl (read-only, streaming, one pass; the cached
+results of formula cells, when there are any, from calamine); .ods uses odfpy,
+the library pandas reads .ods with (pure Python, installed from PyPI). Both are
+bounded: the file size, its unpacked size and the unpacked size of each of its
+parts (:attr:`~synth.io.limits.Limits.workbook_part_bytes`) are checked first,
+so no XML the readers would take more than about a second over is parsed; at most
 :attr:`~synth.io.limits.Limits.sheet_rows` rows and
 :attr:`~synth.io.limits.Limits.sheet_columns` columns are read (LibreOffice
 writes a run of a million empty rows as one repeated row: it is not expanded).
@@ -81,7 +84,7 @@ def read_sheet(path, what: str, prefer: str, skip: tuple[str, ...] = ()) -> Shee
     kind = ".ods workbook (LibreOffice)" if suffix == ".ods" else ".xlsx workbook"
     p = existing_file(path, what, f"an existing {kind}")
     check_size(p, what, LIMITS.workbook_bytes, "workbook")
-    check_zip(p, what, LIMITS.workbook_unpacked_bytes, kind)
+    check_zip(p, what, LIMITS.workbook_unpacked_bytes, kind, LIMITS.workbook_part_bytes)
     try:
         sheet = _read_ods(p, prefer, skip) if suffix == ".ods" else _read_xlsx(p, prefer, skip)
     except InputError:
@@ -105,31 +108,62 @@ def _pick(names: list[str], prefer: str, skip: tuple[str, ...]) -> str | None:
 
 
 def _read_xlsx(p: Path, prefer: str, skip: tuple[str, ...]) -> Sheet | None:
+    """One openpyxl pass (read-only, formulas as written); the cached values of formula cells, when there are
+    any, from calamine (which reads values only, in milliseconds): the styles and shared strings are parsed once."""
     from openpyxl import load_workbook
 
-    values = load_workbook(p, data_only=True, read_only=True)
-    formulas = load_workbook(p, data_only=False, read_only=True)
+    wb = load_workbook(p, data_only=False, read_only=True)
     try:
-        name = _pick(values.sheetnames, prefer, skip)
+        name = _pick(wb.sheetnames, prefer, skip)
         if name is None:
             return None
-        sheet = Sheet(title=name, sheetnames=tuple(values.sheetnames))
-        rows_v = values[name].iter_rows(max_row=LIMITS.sheet_rows, max_col=LIMITS.sheet_columns)
-        rows_f = formulas[name].iter_rows(max_row=LIMITS.sheet_rows, max_col=LIMITS.sheet_columns)
-        for r, (row_v, row_f) in enumerate(zip(rows_v, rows_f), start=1):
-            for c, (cv, cf) in enumerate(zip(row_v, row_f), start=1):
-                v = getattr(cv, "value", None)
-                if isinstance(v, (int, float)) and not isinstance(v, bool) and "%" in str(getattr(cv, "number_format", "")):
+        sheet = Sheet(title=name, sheetnames=tuple(wb.sheetnames))
+        percent: dict[str, bool] = {}
+        rows = wb[name].iter_rows(max_row=LIMITS.sheet_rows, max_col=LIMITS.sheet_columns)
+        for r, row in enumerate(rows, start=1):
+            for c, cell in enumerate(row, start=1):
+                v = getattr(cell, "value", None)
+                address = f"{column_letter(c)}{r}"
+                pct = "%" in str(getattr(cell, "number_format", ""))
+                if isinstance(v, str) and v.startswith("=") and getattr(cell, "data_type", "") == "f":
+                    sheet.cells[address] = Cell(None, v)
+                    percent[address] = pct
+                    continue
+                if isinstance(v, (int, float)) and not isinstance(v, bool) and pct:
                     v = v * 100.0  # a cell typed "4%" holds 0.04; the input field is in percent
-                f = getattr(cf, "value", None)
-                formula = f if isinstance(f, str) and f.startswith("=") and getattr(cf, "data_type", "") == "f" else None
-                if v is not None or formula is not None:
-                    sheet.cells[f"{column_letter(c)}{r}"] = Cell(v, formula)
+                if v is not None:
+                    sheet.cells[address] = Cell(v)
             sheet.n_rows = r
-        return sheet
     finally:
-        values.close()
-        formulas.close()
+        wb.close()
+    if percent:
+        _cached_values(p, sheet, percent)
+    return sheet
+
+
+def _cached_values(p: Path, sheet: Sheet, percent: dict[str, bool]) -> None:
+    """The cached results of the formula cells ``percent`` (address -> percent format) of ``sheet``, read with
+    calamine (values only); a formula without a cached result keeps the value None."""
+    from python_calamine import CalamineWorkbook
+
+    wb = CalamineWorkbook.from_path(str(p))
+    try:
+        data = wb.get_sheet_by_name(sheet.title)
+        r0, c0 = data.start or (0, 0)
+        rows = data.to_python(skip_empty_area=False)
+    finally:
+        wb.close()
+    for address, pct in percent.items():
+        col = "".join(ch for ch in address if ch.isalpha())
+        r, c = int(address[len(col):]) - 1 - r0, column_index(col) - 1 - c0
+        v = rows[r][c] if 0 <= r < len(rows) and 0 <= c < len(rows[r]) else None
+        if v == "" or v is None:
+            continue
+        if isinstance(v, float) and v.is_integer() and not pct:
+            v = int(v)
+        if isinstance(v, (int, float)) and not isinstance(v, bool) and pct:
+            v = v * 100.0
+        sheet.cells[address] = Cell(v, sheet.cells[address].formula)
 
 
 def _read_ods(p: Path, prefer: str, skip: tuple[str, ...]) -> Sheet | None:

@@ -31,5 +31,7 @@ def solve(d, objective="standard", solver: str = "enumerate", **kw):
     if solver not in SOLVERS:
         from synth.errors import InputError, Problem
         raise InputError(Problem("solver", solver, "one of " + ", ".join(SOLVERS)))
+    from synth.optimise.objectives import Objective
+    objective = objective if isinstance(objective, Objective) else Objective.parse(objective)  # for every solver
     module, extra = SOLVERS[solver]
     return importlib.import_module(module).solve(d, objective, **extra, **kw)

@@ -743,10 +743,11 @@ def robust(fn, items: list, on_error):
         return robust(fn, items[:half], on_error) + robust(fn, items[half:], on_error)
 
 
-def any_feasible(inputs: list, settings: E.Settings = E.Settings(), *, spring_engine: str = "numba") -> list:
-    """Per input, whether some design of its catalog product meets every constraint (the enumeration's
-    ``is_feasible``; an input the physics refuses is not feasible)."""
+def any_feasible(inputs: list, settings: E.Settings = E.Settings(), *, spring_engine: str = "numba",
+                 pin_inputs: bool = False) -> list:
+    """Per input, whether some design of its catalog product (``pin_inputs``: with the parts it names) meets every
+    constraint (the enumeration's ``is_feasible``; an input the physics refuses is not feasible)."""
     def run(items):
-        return [f is not None for f in Batch(items, settings, spring_engine=spring_engine).optimum({"cost": 1.0},
-                                                                                                  first=True)]
+        return [f is not None for f in Batch(items, settings, spring_engine=spring_engine,
+                                             pin_inputs=pin_inputs).optimum({"cost": 1.0}, first=True)]
     return robust(run, list(inputs), lambda item, exc: False)

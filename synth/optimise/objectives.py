@@ -26,14 +26,18 @@ the minimum.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 
 from synth.errors import InputError, Problem
 
-__all__ = ["OBJECTIVES", "Objective"]
+__all__ = ["OBJECTIVES", "MAX_WEIGHT", "Objective"]
 
 OBJECTIVES = ("standard", "cost", "margin")
+#: the largest weight of a weighted objective: weights are relative, and the lexicographic orders use 1e4 between
+#: levels (:meth:`Objective.additive_weights`); above 1e6 a sum of costs (EUR) loses its cents in float precision
+MAX_WEIGHT = 1e6
 _TIEBREAK = {"standard": ("standard", "cost"), "cost": ("cost", "standard"), "margin": ("margin", "cost")}
 
 
@@ -59,22 +63,32 @@ class Objective:
         text = str(text).strip().lower()
         parts = [p.strip() for p in text.split(",") if p.strip()]
         if not parts:
-            raise InputError(Problem("objective", text, "standard, cost, margin, a lexicographic list or name=weight pairs"))
+            raise InputError(Problem("--objective", text, "standard, cost, margin, a lexicographic list or name=weight pairs"))
         if any("=" in p for p in parts):
             w = {}
+            weights = ("name=weight pairs whose weights are finite, non-negative numbers of at most 1e6, at least "
+                       "one of them positive (a weight of 1e400 is infinite, NaN no number, and a negative weight "
+                       "would maximise what the objective minimises)")
             for p in parts:
                 name, _, val = p.partition("=")
+                name = name.strip()
+                if name not in OBJECTIVES:
+                    raise InputError(Problem("--objective", name, "one of " + ", ".join(OBJECTIVES)))
+                if name in w:
+                    raise InputError(Problem("--objective", text, f"each objective once ({name} is given twice)"))
                 try:
-                    w[name.strip()] = float(val)
+                    x = float(val)
                 except ValueError:
-                    raise InputError(Problem("objective", text, "name=weight pairs with numeric weights")) from None
-            bad = [k for k in w if k not in OBJECTIVES]
-            if bad:
-                raise InputError(Problem("objective", bad[0], "one of " + ", ".join(OBJECTIVES)))
+                    raise InputError(Problem("--objective", text, weights)) from None
+                if not (math.isfinite(x) and 0.0 <= x <= MAX_WEIGHT):
+                    raise InputError(Problem("--objective", p, weights))
+                w[name] = x
+            if not any(x > 0 for x in w.values()):
+                raise InputError(Problem("--objective", text, weights))
             return cls(order=tuple(w), weights=w)
         bad = [p for p in parts if p not in OBJECTIVES]
         if bad:
-            raise InputError(Problem("objective", bad[0], "one of " + ", ".join(OBJECTIVES)))
+            raise InputError(Problem("--objective", bad[0], "one of " + ", ".join(OBJECTIVES)))
         if len(parts) == 1:
             return cls(order=_TIEBREAK[parts[0]])
         return cls(order=tuple(dict.fromkeys(parts)))

@@ -73,5 +73,5 @@ def plot_front(front: list, path) -> None:
     ax.set_title("cost against margin: Pareto front")
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    from synth.io.outputs import write_figure
+    write_figure(fig, path, dpi=120)

@@ -45,4 +45,7 @@ def build_result(ev, pos: int, options: dict, *, status: str, solver: str, objec
     r.stats = dict(stats)
     if r.failed() and status in ("optimal", "feasible"):
         r.notes.append("verification failed: " + ", ".join(f"{c.id} {c.margin:+.3g}" for c in r.failed()))
+    if status == "infeasible" and not r.failed():  # the search said no design meets every constraint
+        raise RuntimeError(f"solver {solver}: status infeasible, but its nearest design passes every check "
+                           "(the search and the verification disagree: a synth bug)")
     return r

@@ -153,10 +153,12 @@ def plot_tradeoff(rows: list, path, kind: str) -> Path:
         ax.set_title("What each extra variant buys")
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
-    path = path if hasattr(path, "write") else Path(path)
-    fig.savefig(path, dpi=110, format="png")
-    plt.close(fig)
-    return path
+    if hasattr(path, "write"):
+        fig.savefig(path, dpi=110, format="png")
+        plt.close(fig)
+        return path
+    from synth.io.outputs import write_figure
+    return write_figure(fig, path, dpi=110, format="png")
 
 
 def plot_families(result, path=None, price: dict | None = None):
@@ -253,20 +255,19 @@ def report_section(result) -> str:
 
 
 def write_all(pf, result, out, tradeoff_rows: list | None = None, kind: str = "margin") -> list:
-    """Write every output file into ``out``; returns the paths."""
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    """Write every output file into ``out`` through the output gate (:mod:`synth.io.outputs`); returns the paths."""
+    from synth.io.outputs import output_folder, write_csv, write_text
+    out = output_folder(out)
     paths = [out / "platform.csv", out / "assignment.csv", out / "summary.md"]
-    platform_table(pf, result).to_csv(paths[0], index=False)
-    assignment_table(result).to_csv(paths[1], index=False)
+    write_csv(platform_table(pf, result), paths[0])
+    write_csv(assignment_table(result), paths[1])
     text = summary_markdown(pf, result)
     if tradeoff_rows:
         text += f"\n## Trade-off ({kind})\n\n" + tradeoff_table(tradeoff_rows)
-        pd.DataFrame(tradeoff_rows).to_csv(out / "tradeoff.csv", index=False)
+        write_csv(pd.DataFrame(tradeoff_rows), out / "tradeoff.csv")
         paths += [out / "tradeoff.csv", plot_tradeoff(tradeoff_rows, out / "tradeoff.png", kind)]
-    paths[2].write_text(text, encoding="utf-8")
+    write_text(paths[2], text)
     if tradeoff_rows and not getattr(result, "tradeoff", None):
         result.tradeoff = tradeoff_rows
-    paths.append(out / "section.html")  # the report's platform section (synth report --platform DIR)
-    paths[-1].write_text(report_section(result), encoding="utf-8")
+    paths.append(write_text(out / "section.html", report_section(result)))  # synth report --platform DIR
     return paths

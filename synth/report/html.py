@@ -31,7 +31,7 @@ check rows ``data-check``, both ``data-verdict``, so tests and scripts find them
 >>> VERDICT_COLOURS["fail"], verdict_class("not verified")
 ('#ffc7ce', 'v-nv')
 >>> css_string('rev "B"\\nA. Person')
-'"rev \\\\"B\\\\"\\\\A A. Person"'
+'"rev \\\\000022B\\\\000022\\\\00000AA. Person"'
 """
 
 from __future__ import annotations
@@ -102,10 +102,18 @@ def verdict_class(verdict) -> str:
     return _CLASSES.get(verdict, "v-none")
 
 
+_CSS_PLAIN = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789 .,_-:")
+
+
 def css_string(text) -> str:
-    """``text`` as a CSS string literal (quotes and backslashes escaped, newlines as ``\\A``)."""
-    s = str(text).replace("\\", "\\\\").replace('"', '\\"').replace("\r", "")
-    return '"' + s.replace("\n", "\\A ") + '"'
+    r"""``text`` as a CSS string literal, safe by construction inside a ``<style>`` element: letters, digits,
+    spaces and ``.,_-:`` as they are, every other character as a six-digit CSS escape (CSS Syntax Level 3,
+    4.3.7: ``<`` is ``\00003C``), so no text can close the string, the rule or the ``<style>`` element.
+
+    >>> css_string('</style><script>x</script> "a" rev. 2')
+    '"\\00003C\\00002Fstyle\\00003E\\00003Cscript\\00003Ex\\00003C\\00002Fscript\\00003E \\000022a\\000022 rev. 2"'
+    """
+    return '"' + "".join(ch if ch in _CSS_PLAIN else f"\\{ord(ch):06X}" for ch in str(text).replace("\r", "")) + '"'
 
 
 def _num(v) -> str:
@@ -212,7 +220,8 @@ def _diagnosis(result):
     if not dg:
         return None
     rel = [", ".join(f"{k} {x['from']:g} -> {x['to']:g}" for k, x in r["inputs"].items())
-           + (" (a specification value)" if r.get("specification") else "") for r in dg.get("relaxations", [])]
+           + (" (a specification value)" if r.get("specification") else "")
+           + (f" ({r['note']})" if r.get("note") else "") for r in dg.get("relaxations", [])]
     return {"message": dg.get("message", ""), "relaxations": rel}
 
 
@@ -390,8 +399,6 @@ def part_label(key: str) -> str:
 
 
 def write_html(path: str | Path, result, graphs, skipped, **kw) -> Path:
-    """Write :func:`render_html` to ``path``."""
-    p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    p.write_text(render_html(result, graphs, skipped, **kw), encoding="utf-8")
-    return p
+    """Write :func:`render_html` to ``path`` (through :func:`synth.io.outputs.write_text`)."""
+    from synth.io.outputs import write_text
+    return write_text(path, render_html(result, graphs, skipped, **kw))

@@ -82,13 +82,18 @@ def write_pdf(html_path: str | Path, pdf_path: str | Path | None = None, *, engi
     if engine not in ENGINES:
         from synth.errors import InputError, Problem
         raise InputError(Problem("--pdf-engine", engine, "one of " + ", ".join(ENGINES)))
+    from synth.errors import InputError
+    from synth.io.outputs import output_file
     tried = []
     for name, fn in (("weasyprint", _weasyprint), ("chromium", _chromium)):
         if engine not in ("auto", name):
             continue
         try:
-            fn(html, pdf)
+            with output_file(pdf) as tmp:  # a temporary file renamed when complete (never through a link)
+                fn(html, tmp)
             return pdf, name, ""
+        except InputError:  # the folder refuses the file (read-only, full): the user's to fix, not an engine's
+            raise
         except Exception as exc:  # noqa: BLE001 - an engine that cannot run here: the next one, then the reason
             tried.append(f"{name}: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}".rstrip(": "))
     return None, "", "; ".join(tried)

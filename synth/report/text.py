@@ -79,6 +79,7 @@ def render(r: Result, *, title: str = "") -> str:
         for rel in r.diagnosis.get("relaxations", []):
             ch = ", ".join(f"{k} {x['from']:g} -> {x['to']:g}" for k, x in rel["inputs"].items())
             tag = " (a specification value)" if rel.get("specification") else ""
+            tag += f" ({rel['note']})" if rel.get("note") else ""
             lines.append(f"  feasible with: {ch}{tag}")
         if "relaxations" in r.diagnosis and not r.diagnosis["relaxations"]:
             lines.append("  no single input relaxation within the searched ranges makes it feasible")

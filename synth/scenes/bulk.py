@@ -13,7 +13,7 @@ folder (a second run on the same ``--out`` is refused while the first runs),
 every chunk carries its run id and a checksum, and ``--resume`` refuses,
 naming them, chunks of another run or with a bad checksum. Exit code 0 when
 the run completed (even with infeasible or broken rows), 2 for a bad command
-line, an unreadable portfolio or a refused folder, 130 when interrupted.
+line, an unreadable portfolio or a refused folder, 130 when interrupted, 143 when terminated (SIGTERM).
 """
 
 from __future__ import annotations
@@ -72,10 +72,12 @@ def _main(args) -> int:
         rep = run_portfolio(args.portfolio, args.out, objective=args.objective, fidelity=args.fidelity,
                             chunk_size=args.chunk_size, resume=args.resume, engine=args.engine,
                             scheduler=args.scheduler, workers=args.workers, diagnose=not args.no_diagnose)
-    except KeyboardInterrupt:
-        print(f"\nsynth bulk: interrupted; finished chunks are kept in {sidecar(args.out)}; "
+    except KeyboardInterrupt as exc:
+        from synth.errors import Terminated
+        how = "terminated (SIGTERM)" if isinstance(exc, Terminated) else "interrupted"
+        print(f"\nsynth bulk: {how}; finished chunks are kept in {sidecar(args.out)}; "
               "rerun the same command with --resume to continue", file=sys.stderr)
-        return 130
+        return 143 if isinstance(exc, Terminated) else 130
     for w in rep.warnings:
         print(f"synth bulk: note: {w}", file=sys.stderr)
     print(f"synth bulk: {args.portfolio} -> {rep.out} | objective {args.objective} | fidelity {args.fidelity}")

@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-import json
-
 from synth.compare import compare_case
+from synth.io.outputs import json_text
 from synth.output_table import format_value
 from synth.scenes._options import add_model_options, settings_from_args
 
@@ -29,7 +28,7 @@ def _main(args) -> int:
     out = compare_case(args.case, settings_from_args(args))
     rows = out["rows"]
     if args.json:
-        print(json.dumps({"name": out["name"], "rows": rows}, indent=2, default=str))
+        print(json_text({"name": out["name"], "rows": rows}, indent=2))
         return 0
     print(f"{out['name']}: synth against the thesis tool and the real tensioner\n")
     print(f"{'key':<40} {'synth':>12} {'thesis':>12} {'err':>9} {'real':>12} {'err':>9}")

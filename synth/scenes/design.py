@@ -8,9 +8,9 @@ without ``--json``.
 
 from __future__ import annotations
 
-import json
 import sys
 
+from synth.io.outputs import json_text
 from synth.report.text import render
 from synth.scenes._options import add_design_options, synthesise
 
@@ -40,7 +40,7 @@ def _main(args) -> int:
     if note:
         r.notes.insert(0, note)
     if args.json:
-        print(json.dumps(r.to_dict(), indent=2))
+        print(json_text(r.to_dict(), indent=2))
     else:
         print(render(r, title=f"synth design: {args.input}"))
     if args.cad:
@@ -77,7 +77,18 @@ def with_drive(d, path):
 
 
 def export_cad(r, out_dir, application: str | None = None) -> list[str]:
-    """Export the design's 3D model (thesis step 11) and return the summary lines."""
+    """Export the design's 3D model (thesis step 11) and return the summary lines.
+
+    A failing design whose geometry cannot exist (a pulley inside its own bearing) is reported, not drawn: the
+    lines say why, and the exit code stays the design's (1).
+    """
     from synth.cad import export_result, summary_lines
-    model, checks, info = export_result(r, out_dir, application=application)
+    from synth.errors import InputError
+    try:
+        model, checks, info = export_result(r, out_dir, application=application)
+    except InputError as exc:
+        if not r.failed() or not any(p.field.startswith("inputs.") for p in exc.problems):
+            raise
+        return ["3D model not drawn (the design fails, and its geometry cannot be built): "
+                + "; ".join(str(p) for p in exc.problems)]
     return [f"3D model written to {out_dir}"] + summary_lines(model, checks, info)

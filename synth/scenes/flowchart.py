@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from synth import flowchart, schema
+from synth.io.outputs import json_text
 from synth.report.text import render
 from synth.scenes._options import add_model_options, load_saved_result, settings_from_args
 
@@ -31,7 +31,7 @@ def _main(args) -> int:
         parts = None
     r = flowchart.run(d, settings_from_args(args), parts=parts)
     if args.json:
-        print(json.dumps(r.to_dict(), indent=2))
+        print(json_text(r.to_dict(), indent=2))
     else:
         print(render(r, title=f"synth flowchart: {args.input}" + (f" (parts of {args.parts})" if args.parts else "")))
     return r.exit_code

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 
 from synth.optimise.pareto import pareto_front, plot_front
 from synth.schema import load_input
@@ -21,11 +20,12 @@ def register(sub) -> None:
 
 def _main(args) -> int:
     from synth.io.limits import check_count
+    from synth.io.outputs import json_text, output_folder, write_text
     from synth.scenes.report import out_folder
     points = check_count("--points", args.points)
     out = out_folder(args.out)  # checked before the work: an existing file is not a folder
     front = pareto_front(load_input(args.input), n_points=points)
-    out.mkdir(parents=True, exist_ok=True)
+    output_folder(out)
     lines = ["| cost [EUR] | margin | non-standard | binding constraint |", "|---|---|---|---|"]
     lines += [f"| {p['cost_eur']:.4f} | {p['margin']:+.4f} | {p['standard']:g} | {p['binding']} |" for p in front]
     inputs = front[0]["inputs"] if front else {}
@@ -34,8 +34,8 @@ def _main(args) -> int:
         from synth.design.constraints import REGISTRY
         lines += [f"- {REGISTRY[k].label}: margin {v:+.4f}" for k, v in inputs.items()]
     table = "\n".join(lines)
-    (out / "front.md").write_text(table + "\n")
-    (out / "front.json").write_text(json.dumps(front, indent=2, default=str))
+    write_text(out / "front.md", table + "\n")
+    write_text(out / "front.json", json_text(front, indent=2))
     if front:
         plot_front(front, out / "front.png")
     print(table if front else "no feasible design: no front (run synth design for the diagnosis)")

@@ -96,7 +96,9 @@ def result_for_report(source, args=None):
                 return flowchart.run(d, settings_from_args(args)), cells, name
             res = synthesise(d, args or _defaults())
     if res.inputs is None:
-        raise InputError(Problem("result", name, "a result that carries its inputs (--json of synth 0.2 or later)"))
+        raise InputError(Problem(f"inputs ({Path(name).name})", None, "the design input the result was made from "
+                                                                     "(a result of synth design/flowchart --json, "
+                                                                     "0.2 or later, carries it under 'inputs')"))
     if not res.curves and res.parts and res.solver != "flowchart":  # re-verify for the curves of the graphs
         fields = {k for k in Settings.__dataclass_fields__}
         settings = Settings(**{k: v for k, v in (res.settings or {}).items() if k in fields})
@@ -126,15 +128,16 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     from synth.excel.results import write_results
     from synth.report.html import write_html
     from synth.report.plots import build_graphs
+    from synth.io.outputs import output_folder
     result, cells, name = result_for_report(source, args)
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_folder(out_dir)
     pictures = list(cad or [])
     cad_note = ""
     if cad_pictures and not pictures and result.parts:
+        cad_dir = output_folder(out / "cad", inside=True)  # never through a link the folder holds
         try:
             from synth.cad import export_result
-            _, _, info = export_result(result, out / "cad", stl=False, pictures=True, interference=False)
+            _, _, info = export_result(result, cad_dir, stl=False, pictures=True, interference=False)
             pictures = [str(f) for f in info["files"] if str(f).endswith(".png")]
             cad_note = f"The model of this design: {out / 'cad'} (STEP assembly and pictures)."
         except InputError as exc:  # a design the CAD model cannot draw: the report says so

@@ -18,8 +18,7 @@ type matplotlib cannot write, a bad case file).
 
 from __future__ import annotations
 
-import json
-
+from synth.io.outputs import json_text
 from synth.shrink_fit.analysis import analyse, format_report
 from synth.shrink_fit.inputs import PAPER_MODEL, load_case
 from synth.shrink_fit.selection import margin_vs_reassemblies, plot_margins, select_fit
@@ -111,7 +110,7 @@ def _main(args) -> int:
     if args.plot:
         plot_margins(curves, args.plot, f"{case.name}: {case.fit or 'input interference'}")
     if args.json:
-        print(json.dumps({**res, "margin_vs_reassemblies": curves}, indent=2))
+        print(json_text({**res, "margin_vs_reassemblies": curves}, indent=2))
     else:
         print(format_report(res))
         print()
@@ -131,7 +130,7 @@ def _select(args) -> int:
     if args.plot:
         plot_margins(curves, args.plot, f"{case.name}: candidate fits")
     if args.json:
-        print(json.dumps({**sel, "model": case.model.__dict__, "margin_vs_reassemblies": curves}, indent=2))
+        print(json_text({**sel, "model": case.model.__dict__, "margin_vs_reassemblies": curves}, indent=2))
         return 0 if sel["fit"] else 1
     print(f"Fit selection for {case.name}: journal {case.journal_outer_diameter_mm:g} mm, {n} re-assemblies "
           f"({2 * n} displacements), design load {sel['design_load_nm']:.4g} Nm x slip safety {sel['slip_safety']:g}")

@@ -30,9 +30,14 @@ from synth.io.limits import short
 #: realistic bounds of the case's numbers: each keeps every array finite and says why
 _E_WHY = ("engineering metals: magnesium alloys about 45 GPa to cemented carbide about 650 GPa; "
           "1e308 would give infinite pressures and margins")
-_HB_WHY = "the Brinell test's range, ISO 6506-1:2005 scope: up to 650 HBW"
-_ISO4288 = "the roughest classes of ISO 4288:1996 Tables 1-3: Ra up to 80 um, Rz up to 200 um, RSm up to 4 mm"
+_HB_WHY = ("the Brinell test's range, ISO 6506-1: up to 650 HBW; at least 3.2 HBW, the softest a Brinell test "
+           "measures (its lowest force-diameter ratio, 1, with the largest indentation, d = 0.6 D: "
+           "0.102 x 2F / (pi D (D - sqrt(D^2 - d^2))) = 3.18)")
+_HB_MIN = 3.2
+_ISO4288 = ("the classes of ISO 4288:1996 Tables 1-3: Ra from 0.006 to 80 um, Rz from 0.025 to 200 um, RSm from "
+            "0.013 to 4 mm (Rp and Rv, the parts of Rz, from 0.0125 um)")
 _RA_MAX, _RZ_MAX, _RSM_MAX = 80.0, 200.0, 4000.0
+_RA_MIN, _RZ_MIN, _RSM_MIN, _RPV_MIN = 0.006, 0.025, 13.0, 0.0125
 _ISO286 = "ten times the largest journal of the catalog's ISO 286-2 fits (50 mm)"
 _U_MAX = 2.0
 _U_WHY = "a diametral interference of 2 mm is 0.4 % of the largest journal: far beyond yield for any steel"
@@ -171,7 +176,8 @@ class _Collector:
             self.problems.append(Problem(name, shown, accepted or "a whole number"))
             return None
         if lo is not None and (x <= lo if lo_open else x < lo):
-            self.problems.append(Problem(name, shown, accepted or f"a number {'>' if lo_open else '>='} {lo:g}"))
+            self.problems.append(Problem(name, shown, (accepted or f"a number {'>' if lo_open else '>='} {lo:g}")
+                                         + (f" ({why})" if why and not accepted else "")))
             return None
         if hi is not None and x > hi:
             self.problems.append(Problem(name, shown, f"a number <= {hi:g}" + (f" ({why})" if why else "")))
@@ -184,11 +190,11 @@ def _roughness(raw, name, problems) -> Roughness | None:
         problems.append(Problem(name, raw, "a mapping with Ra and Rz (and optionally Sm, Rp, Rv) in um"))
         return None
     c = _Collector({str(k).lower(): v for k, v in raw.items()}, name + ".")
-    ra = c.num("ra", lo=0, lo_open=True, accepted="Ra in um, > 0", hi=_RA_MAX, why=_ISO4288)
-    rz = c.num("rz", lo=0, lo_open=True, accepted="Rz in um, > 0", hi=_RZ_MAX, why=_ISO4288)
-    sm = c.num("sm", required=False, lo=0, lo_open=True, accepted="Sm in um, > 0", hi=_RSM_MAX, why=_ISO4288)
-    rp = c.num("rp", required=False, lo=0, lo_open=True, accepted="Rp in um, > 0", hi=_RZ_MAX, why=_ISO4288)
-    rv = c.num("rv", required=False, lo=0, lo_open=True, accepted="Rv in um, > 0", hi=_RZ_MAX, why=_ISO4288)
+    ra = c.num("ra", lo=_RA_MIN, accepted=f"Ra in um, >= {_RA_MIN:g}", hi=_RA_MAX, why=_ISO4288)
+    rz = c.num("rz", lo=_RZ_MIN, accepted=f"Rz in um, >= {_RZ_MIN:g}", hi=_RZ_MAX, why=_ISO4288)
+    sm = c.num("sm", required=False, lo=_RSM_MIN, accepted=f"Sm in um, >= {_RSM_MIN:g}", hi=_RSM_MAX, why=_ISO4288)
+    rp = c.num("rp", required=False, lo=_RPV_MIN, accepted=f"Rp in um, >= {_RPV_MIN:g}", hi=_RZ_MAX, why=_ISO4288)
+    rv = c.num("rv", required=False, lo=_RPV_MIN, accepted=f"Rv in um, >= {_RPV_MIN:g}", hi=_RZ_MAX, why=_ISO4288)
     unknown = set(c.data) - {"ra", "rz", "sm", "rp", "rv"}
     problems.extend(c.problems)
     if unknown:
@@ -251,17 +257,18 @@ def case_from_dict(data: dict) -> ShrinkFitCase:
     unknown = set(inputs) - _INPUT_KEYS - ({"name", "inputs", "model", "thesis_tool", "real_tensioner"} if inputs is data else set())
     problems.extend(Problem(k, inputs[k], "one of the keys " + ", ".join(sorted(_INPUT_KEYS))) for k in sorted(unknown))
     c = _Collector(inputs)
-    d = c.num("journal_outer_diameter_mm", lo=0, lo_open=True, hi=500, why=_ISO286)
+    d = c.num("journal_outer_diameter_mm", lo=1, hi=500, why=_ISO286 + "; ISO 286-2 tabulates from 1 mm")
     dww = c.num("journal_inner_diameter_mm", default=0.0, lo=0, hi=500, why=_ISO286)
-    dzo = c.num("hub_outer_diameter_mm", lo=0, lo_open=True, hi=2000, why="four times the largest journal")
-    length = c.num("bore_length_mm", lo=0, lo_open=True, hi=1000, why="twice the largest journal diameter")
+    dzo = c.num("hub_outer_diameter_mm", lo=1, hi=2000, why="four times the largest journal; at least ISO 286's 1 mm")
+    length = c.num("bore_length_mm", lo=0.1, hi=1000, why="twice the largest journal diameter; at least 0.1 mm, "
+                                                           "a manufacturability floor (a hub has a length)")
     e = c.num("young_modulus_mpa", default=constant("shrink_fit_young_modulus_steel_mpa"), lo=40_000, hi=700_000,
               accepted=f"a number in [40000, 700000] MPa ({_E_WHY})", why=_E_WHY)
     n = c.num("assemblies", default=0, lo=0, integer=True, hi=200,
               accepted="a whole number in [0, 200] (sliding assemblies/disassemblies i of eq. 19; twice the "
                        "largest --reassemblies)")
-    hb_s = c.num("journal_hardness_hb", lo=0, lo_open=True, hi=650, why=_HB_WHY)
-    hb_h = c.num("hub_hardness_hb", lo=0, lo_open=True, hi=650, why=_HB_WHY)
+    hb_s = c.num("journal_hardness_hb", lo=_HB_MIN, hi=650, why=_HB_WHY)
+    hb_h = c.num("hub_hardness_hb", lo=_HB_MIN, hi=650, why=_HB_WHY)
     tau0 = c.num("tau0_mpa", default=constant("shrink_fit_tau0_mpa"), lo=0, hi=10_000,
                  why="a shear strength of the adhesive bonds above that of any steel")
     beta = c.num("beta", default=constant("shrink_fit_beta"), lo=0, hi=1, why="a fraction (eq. 2)")
@@ -320,7 +327,7 @@ def case_from_dict(data: dict) -> ShrinkFitCase:
         ji = rough["journal_initial"]
         cj = _Collector({str(k).lower(): v for k, v in (ji.items() if isinstance(ji, dict) else {}.items())},
                         "roughness.journal_initial.")
-        rz0 = cj.num("rz", lo=0, lo_open=True, accepted="Rz in um, > 0", hi=_RZ_MAX, why=_ISO4288)
+        rz0 = cj.num("rz", lo=_RZ_MIN, accepted=f"Rz in um, >= {_RZ_MIN:g}", hi=_RZ_MAX, why=_ISO4288)
         problems.extend(cj.problems)
 
     model = _model(data.get("model", inputs.get("model")), problems)
@@ -332,7 +339,8 @@ def case_from_dict(data: dict) -> ShrinkFitCase:
     cl = _Collector(lt, "load_torque.")
     mc = cl.num("camshaft_friction_torque_max_nm", required=False, lo=0, hi=5000,
                 why="fifty times the paper's 96 Nm pulley torque")
-    u = cl.num("gear_ratio", required=False, lo=0, lo_open=True, hi=20, why="a belt drive ratio (the paper's is 2)")
+    u = cl.num("gear_ratio", required=False, lo=0.05, hi=20,
+               why="a belt drive ratio (the paper's is 2): from 1:20 to 20:1, pulley diameters within twenty times")
     ncam = cl.num("camshafts", default=1, lo=1, integer=True, hi=8, why="camshafts driven by one belt")
     stated = {}
     for k, v in lt.items():

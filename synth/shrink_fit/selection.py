@@ -104,5 +104,5 @@ def plot_margins(curves: dict, path, title: str = "") -> None:
     ax.legend(fontsize=8)
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    from synth.io.outputs import write_figure
+    write_figure(fig, path, "--plot")

@@ -1,0 +1,265 @@
+r"""The output gate: every file synth writes, and every text that reaches a CSV, JSON or STEP file.
+
+The mirror of the input gate (:mod:`synth.io`): what synth writes is safe by
+construction, whatever the user typed or the folder holds.
+
+* :func:`output_file` -- a file is written under a temporary name beside its
+  final one (created exclusively, never through a link) and renamed onto it
+  when complete: a reader never sees half a file, a symbolic link planted at
+  the final name is *replaced*, never followed (its target is untouched), and
+  on any failure the temporary file is removed. A file-system refusal
+  (read-only folder, full disk, a folder where a file should be...) becomes
+  an :class:`~synth.errors.InputError` naming the option and the path (exit 2):
+  :func:`os_problem`.
+* :func:`output_folder` -- a folder to write into: created when missing,
+  refused when it is a file or (inside the output) a symbolic link.
+* :func:`csv_safe` -- text cells of a CSV that a spreadsheet would run as a
+  formula (``=HYPERLINK(...)``, ``@SUM(...)``, ``=cmd|...``) get the
+  apostrophe prefix (OWASP, "CSV Injection"); every CSV synth writes calls it.
+* :func:`plain` / :func:`json_text` -- JSON that is always valid (RFC 8259: no
+  ``NaN`` or ``Infinity``) and holds no subnormal number.
+* :func:`step_text` -- a text for an ISO 10303-21 (STEP) string.
+
+>>> csv_cell("=HYPERLINK(\"http://x\")"), csv_cell("-3.5"), csv_cell("dry")
+('\'=HYPERLINK("http://x")', '-3.5', 'dry')
+>>> json_text({"margin": float("-inf"), "x": 5e-324, "ok": 1.5})
+'{"margin": null, "x": 0.0, "ok": 1.5}'
+>>> print(step_text("Kia's 1 \u00b5m; x"))
+Kia\X2\0027\X0\s 1 \X2\00B5\X0\m\X2\003B\X0\ x
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import math
+import os
+import secrets
+import sys
+from pathlib import Path
+
+from synth.errors import InputError, Problem
+
+__all__ = ["FORMULA_LEADS", "FS_ERRNOS", "os_problem", "output_file", "output_folder", "write_text", "write_figure", "write_csv", "csv_cell",
+           "csv_safe", "plain", "json_text", "step_text"]
+
+#: Leading characters that make a spreadsheet read typed text as a formula (OWASP "CSV Injection": ``= + - @``,
+#: tab and carriage return).
+FORMULA_LEADS = ("=", "+", "-", "@", "\t", "\r")
+
+#: errno of a file-system refusal that is the environment's, not synth's (exit 2 with the path, never 70)
+FS_ERRNOS = {errno.EACCES: "permission denied (a read-only or protected folder?)",
+             errno.EPERM: "operation not permitted",
+             errno.EROFS: "the file system is read-only",
+             errno.ENOSPC: "no space left on the device (the disk is full)",
+             errno.EDQUOT: "the disk quota is exceeded",
+             errno.EFBIG: "the file would exceed the largest file the file system holds",
+             errno.EISDIR: "it is a folder, where a file is written",
+             errno.ENOTDIR: "a part of the path is a file, where a folder is needed",
+             errno.EEXIST: "a file or folder of that name is in the way",
+             errno.ENAMETOOLONG: "the name is too long",
+             errno.ELOOP: "too many symbolic links",
+             errno.ENXIO: "it is a device or socket, not a file",
+             errno.ETXTBSY: "the file is busy"}
+
+
+def os_problem(exc: OSError, what: str, path=None, verb: str = "write") -> Problem:
+    """A file-system error as a :class:`~synth.errors.Problem`: the option (``what``), the path and why."""
+    why = FS_ERRNOS.get(exc.errno, exc.strerror or type(exc).__name__)
+    where = path if path is not None else (exc.filename or "?")
+    return Problem(what, str(where), f"a path synth can {verb} ({why})")
+
+
+def _refuse_link(p: Path, what: str) -> None:
+    if p.is_symlink():
+        raise InputError(Problem(what, str(p), f"a folder that is not a symbolic link (this one points to "
+                                               f"{os.readlink(p)}; synth never writes through a link an output "
+                                               "folder holds: remove it)"))
+
+
+def output_folder(path, what: str = "--out", *, inside: bool = False) -> Path:
+    """Folder ``path``, created when missing (with its parents); an :class:`InputError` when it cannot be one.
+
+    ``inside=True``: a folder synth makes inside the output folder the user named (``DIR/cad``, ``DIR/stl``):
+    it must not be a symbolic link (the user's own ``--out`` may be one: it is what they named).
+    """
+    p = Path(path)
+    if inside:
+        _refuse_link(p, what)
+    if p.exists() and not p.is_dir():
+        raise InputError(Problem(what, str(p), "a folder (this is an existing file; give a folder name)"))
+    try:
+        p.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:
+        raise InputError(Problem(what, str(p), "a folder (a file of that name is in the way)")) from None
+    except OSError as exc:
+        raise InputError(os_problem(exc, what, p)) from None
+    return p
+
+
+@contextlib.contextmanager
+def output_file(path, what: str = "--out"):
+    """Write file ``path`` through a temporary file beside it; yields the temporary :class:`~pathlib.Path`.
+
+    The caller writes the temporary path (any library: it has the final name's extension); when the block
+    ends without an error it is renamed onto ``path`` (atomic on POSIX; a symbolic link at ``path`` is replaced,
+    its target untouched). On any error the temporary file is removed; an :class:`OSError` of the file system
+    (:data:`FS_ERRNOS`) becomes an :class:`~synth.errors.InputError` naming ``what`` and ``path``.
+    """
+    p = Path(path)
+    if p.is_dir() and not p.is_symlink():
+        raise InputError(Problem(what, str(p), "a file name (this is a folder)"))
+    tmp = None
+    try:
+        output_folder(p.parent, what)
+        tmp = _new_temporary(p)
+        yield tmp
+        os.replace(tmp, p)
+        tmp = None
+    except OSError as exc:
+        if exc.errno in FS_ERRNOS:
+            raise InputError(os_problem(exc, what, p)) from None
+        raise
+    except Exception:
+        full = _disk_full(p.parent)  # a library that reports a failed write without the errno (OCCT's writers)
+        if full is not None:
+            raise InputError(os_problem(full, what, p)) from None
+        raise
+    finally:
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                tmp.unlink()
+
+
+def _new_temporary(p: Path) -> Path:
+    """A new empty file beside ``p`` with ``p``'s extension, created exclusively (``O_EXCL``: never an existing
+    file or link) with the permissions of the user's umask."""
+    for _ in range(100):
+        tmp = p.with_name(f".{p.stem[:60]}.{secrets.token_hex(6)}.tmp{p.suffix}")
+        try:
+            os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
+            return tmp
+        except FileExistsError:
+            continue
+    raise FileExistsError(errno.EEXIST, "no free temporary name", str(p.parent))  # pragma: no cover
+
+
+def _disk_full(folder: Path) -> OSError | None:
+    """An ENOSPC error when the device of ``folder`` has (almost) no space left, else None."""
+    import shutil
+    try:
+        if shutil.disk_usage(folder).free < 64 * 1024:
+            return OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(folder))
+    except OSError:
+        pass
+    return None
+
+
+def write_text(path, text: str, what: str = "--out") -> Path:
+    """Write ``text`` (UTF-8) to ``path`` through :func:`output_file`; returns the path."""
+    with output_file(path, what) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+    return Path(path)
+
+
+def write_figure(fig, path, what: str = "--out", **savefig) -> Path:
+    """Save matplotlib figure ``fig`` to ``path`` (format by its extension) through :func:`output_file`; the
+    figure is closed, written or not."""
+    import matplotlib.pyplot as plt
+    p = Path(path)
+    savefig.setdefault("format", p.suffix.lstrip(".").lower() or "png")
+    try:
+        with output_file(p, what) as tmp:
+            fig.savefig(tmp, **savefig)
+    finally:
+        plt.close(fig)
+    return p
+
+
+def write_csv(df, path, what: str = "--out") -> Path:
+    """Write table ``df`` as CSV (no index) through :func:`output_file`, its text cells :func:`csv_safe`."""
+    with output_file(path, what) as tmp:
+        csv_safe(df).to_csv(tmp, index=False)
+    return Path(path)
+
+
+# ---------------------------------------------------------------- CSV
+def csv_cell(value):
+    """A text cell that a spreadsheet would read as a formula, with the apostrophe prefix; anything else as it is.
+
+    Text that is a plain number (``-3.5``, ``+2``) cannot be a formula and is kept.
+    """
+    if not isinstance(value, str) or not value.startswith(FORMULA_LEADS):
+        return value
+    try:
+        float(value)
+        return value
+    except ValueError:
+        return "'" + value
+
+
+def csv_safe(df):
+    """A copy of table ``df`` whose text cells and column names are :func:`csv_cell`-safe (every CSV writer)."""
+    from pandas.api.types import is_object_dtype, is_string_dtype
+    out = df.copy()
+    out.columns = [csv_cell(str(c)) if isinstance(c, str) else c for c in out.columns]
+    for i in range(out.shape[1]):
+        col = out.iloc[:, i]
+        if is_object_dtype(col.dtype) or is_string_dtype(col.dtype):
+            text = col.astype("object")
+            lead = text.map(lambda v: isinstance(v, str) and v.startswith(FORMULA_LEADS))
+            if lead.any():
+                out.isetitem(i, text.where(~lead, text[lead].map(csv_cell)))
+    return out
+
+
+# ---------------------------------------------------------------- JSON
+def plain(v):
+    """JSON-friendly data: numpy to Python; NaN and infinities to None; subnormal numbers to 0.0.
+
+    A subnormal (below 2.2e-308 in magnitude) is no physical value; it would print as ``5e-324`` and read back
+    as zero on some platforms.
+    """
+    if hasattr(v, "tolist") and not isinstance(v, (str, bytes)):
+        v = v.tolist()
+    if isinstance(v, (list, tuple)):
+        return [plain(x) for x in v]
+    if isinstance(v, dict):
+        return {str(k): plain(x) for k, x in v.items()}
+    if isinstance(v, float):
+        if not math.isfinite(v):
+            return None
+        if v != 0.0 and abs(v) < sys.float_info.min:
+            return 0.0
+    return v
+
+
+def json_text(data, *, indent: int | None = None) -> str:
+    """``data`` as JSON text that every parser reads (:func:`plain` first; ``allow_nan=False`` guards it)."""
+    import json
+    return json.dumps(plain(data), indent=indent, allow_nan=False, default=str)
+
+
+# ---------------------------------------------------------------- STEP
+_STEP_PLAIN = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789 .,_+-/()#=:")
+
+
+def step_text(text) -> str:
+    r"""``text`` for an ISO 10303-21 (STEP) string: letters, digits, spaces and ``.,_+-/()#=:`` as they are; every
+    other character (apostrophe, backslash, semicolon, anything beyond ASCII) as a control directive
+    ``\X2\hhhh\X0\`` (``\X4\hhhhhhhh\X0\`` beyond the basic plane; ISO 10303-21 clause 6.4.3.3); control
+    characters as a space. Nothing a user types can end the string or the section, and readers decode it back
+    (OCCT does: :func:`synth.cad.step.read_step_header`).
+    """
+    out = []
+    for ch in str(text):
+        o = ord(ch)
+        if ch in _STEP_PLAIN:
+            out.append(ch)
+        elif o < 32 or o == 127:
+            out.append(" ")
+        elif o < 0x10000:
+            out.append(f"\\X2\\{o:04X}\\X0\\")
+        else:
+            out.append(f"\\X4\\{o:08X}\\X0\\")
+    return "".join(out)
