@@ -118,7 +118,7 @@ def test_the_scene_refuses_a_bad_input_and_a_busy_port_before_serving(tmp_path, 
     bad = tmp_path / "bad.yaml"
     bad.write_text("pulley_diameter_mm: 500\n", encoding="utf-8")
     assert main(["ui", str(bad)]) == 2
-    assert "pulley_diameter_mm: got 500; accepted: a number in (0, 200] mm" in capsys.readouterr().err
+    assert "pulley_diameter_mm: got 500; accepted: a number in [10, 200] mm" in capsys.readouterr().err
     assert main(["ui", "--port", "0"]) == 2
     assert "--port: got 0; accepted: a TCP port in [1, 65535]" in capsys.readouterr().err
     with socket.socket() as s:

@@ -111,7 +111,7 @@ def test_a_bad_value_shows_the_command_lines_message_next_to_its_field(page, tmp
     bad.write_text(yaml.safe_dump({**default_values(), "pulley_diameter_mm": 500}), encoding="utf-8")
     assert main(["flowchart", str(bad)]) == 2
     cli = [ln.strip()[2:] for ln in capsys.readouterr().err.splitlines() if ln.strip().startswith("- ")]
-    assert cli == ["pulley_diameter_mm: got 500; accepted: a number in (0, 200] mm"]
+    assert cli == ["pulley_diameter_mm: got 500; accepted: a number in [10, 200] mm"]
     pg.locator("[data-field=pulley_diameter_mm] input").fill("500")
     alert = pg.locator("[data-field=pulley_diameter_mm] [role=alert]")
     alert.wait_for()

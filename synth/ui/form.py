@@ -6,17 +6,17 @@ schema appears in ``synth ui`` by itself.
 
 A text box holds what the user typed; :func:`value_of` reads it as one YAML scalar, as the same text in
 an input file would be read, so :func:`synth.schema.validate` reports exactly the message the command
-line gives for that file (``pulley_diameter_mm: got 500; accepted: a number in (0, 200] mm``).
+line gives for that file (``pulley_diameter_mm: got 500; accepted: a number in [10, 200] mm``).
 
 >>> f = schema.field_by_name("pulley_diameter_mm")
 >>> widget(f), label(f), hint(f)
-('text', 'Pulley diameter [mm]', 'a number in (0, 200] mm')
+('text', 'Pulley diameter [mm]', 'a number in [10, 200] mm')
 >>> value_of("62,5"), value_of(" "), value_of("[2.3, 2.3]")
 ('62,5', None, [2.3, 2.3])
 >>> options(schema.field_by_name("belt_loading_type"))["single_eccentric"]
 'single_eccentric (Autosetting)'
->>> problems_by_field(InputError(Problem("pulley_diameter_mm", 500, "a number in (0, 200] mm")))
-({'pulley_diameter_mm': ['pulley_diameter_mm: got 500; accepted: a number in (0, 200] mm']}, [])
+>>> problems_by_field(InputError(Problem("pulley_diameter_mm", 500, "a number in [10, 200] mm")))
+({'pulley_diameter_mm': ['pulley_diameter_mm: got 500; accepted: a number in [10, 200] mm']}, [])
 """
 
 from __future__ import annotations

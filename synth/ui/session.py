@@ -11,7 +11,7 @@ the session's own folder.
 >>> s.synthesise().verdict, s.result.parts["ball_bearing"]
 ('pass', '6006')
 >>> s.edit("pulley_diameter_mm", "500"), s.problems["pulley_diameter_mm"]
-(False, ['pulley_diameter_mm: got 500; accepted: a number in (0, 200] mm'])
+(False, ['pulley_diameter_mm: got 500; accepted: a number in [10, 200] mm'])
 >>> s.edit("pulley_diameter_mm", "62"), s.result.status
 (True, 'verified')
 """
