@@ -117,6 +117,11 @@ class Applications:
         d["layout_reverse"] = ~d["layout_standard"]
         d["pulley_width_mm"] = s0.pulley_width_mm(f["belt_width_mm"])
         d["mu_pivot_bushing"] = parts.mu("pivot_bushing", self.env) if n else np.zeros(0)
+        # the fixation's interfaces (eq. (99), (101)): per application, so that a production-scatter sample
+        # (synth.robust) can give each row its own friction
+        for key, interface in (("mu_crankcase", "pivot_base_crankcase"), ("mu_thread", "thread"),
+                               ("mu_head", "under_head")):
+            d[key] = np.asarray(parts.mu(interface, self.env), dtype=float) if n else np.zeros(0)
         d["mu_plastic"] = p.plastic["mu"][self.env]
         d["k_wear_plastic_mm3_per_n_m"] = p.plastic["k_wear_mm3_per_n_m"][self.env]
         typ = self.text("damping_typology")

@@ -25,12 +25,17 @@ def add_model_options(p) -> None:
     p.add_argument("--bolt-method", choices=("thesis", "vdi2230"), default="thesis",
                    help="fixation bolt: the thesis's elastic check of the nominal preload (default) or VDI 2230-1 "
                         "(permissible assembly preload, tightening factor, embedding)")
+    p.add_argument("--spring-limit", choices=("thesis", "en13906"), default="thesis",
+                   help="design rule of the main spring's installation stress: the thesis's yield check "
+                        "(sigma_y_bend_fraction Rm on the curvature-corrected stress, default) or EN 13906-3's "
+                        "static rule (0.75 Rm on the stress without curvature factor)")
 
 
 def settings_from_args(args):
     from synth.design.evaluate import Settings
     return Settings(fidelity=args.fidelity, friction_circle=not args.linear_friction,
-                    bolt_method=getattr(args, "bolt_method", "thesis"))
+                    bolt_method=getattr(args, "bolt_method", "thesis"),
+                    spring_limit_basis=getattr(args, "spring_limit", "thesis"))
 
 
 def add_design_options(p) -> None:
