@@ -385,7 +385,10 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     di = cv["cone_spring_min_internal_diameter_mm"] + np.asarray(o["cone_spring_di_increase_mm"], dtype=float)
     zeta = np.asarray(o["cone_spring_aspect_ratio"], dtype=float)
     phi = np.asarray(o["cone_spring_deflection_ratio"], dtype=float)
-    act = real & pad & (cv["axial_damping_nm"] > 0) & (de > di) & (zeta > 0) & (phi > 0) & (phi <= 1)
+    # a made cone spring is there whatever the sample's damping split says (its force then decides the band)
+    made_rows = np.isfinite(np.asarray(o[MADE_CONE_SPRING_COLUMNS["thickness_mm"]], dtype=float)) \
+        if MADE_CONE_SPRING_COLUMNS["thickness_mm"] in o else False
+    act = real & pad & ((cv["axial_damping_nm"] > 0) | made_rows) & (de > di) & (zeta > 0) & (phi > 0) & (phi <= 1)
     v["cone_spring_sized"] = act
     keys = ("cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n", "cone_spring_fax_nominal_n",
             "cone_spring_fax_band_n", "cone_spring_force_band_room_n", "cone_spring_gap_band_room_n",
@@ -597,10 +600,13 @@ def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
             if not len(sel):
                 continue
             ua, ia = np.unique(aa_all[sel], return_inverse=True)
-            code = {}
-            ib = np.array([code.setdefault(x, len(code)) for x in zip(fmt[sel].tolist(), cls[sel].tolist())],
-                          dtype=np.int64)
-            pairs = list(code)
+            fs, cs = fmt[sel], cls[sel]
+            if (fs == fs[0]).all() and (cs == cs[0]).all():  # one bolt (the samples of one design): no dictionary
+                ib, pairs = np.zeros(len(sel), dtype=np.int64), [(fs[0], cs[0])]
+            else:
+                code = {}
+                ib = np.array([code.setdefault(x, len(code)) for x in zip(fs.tolist(), cs.tolist())], dtype=np.int64)
+                pairs = list(code)
             env = apps.env[ua]
             r = s10.fixation(
                 apps.hubload_nominal_n[ua], f["middle_plane_belt_height_mm"][ua],

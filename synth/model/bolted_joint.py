@@ -224,6 +224,11 @@ def pivot_base_bending_factor_per_mm3(d_ext_mm, d_int_mm, contact_angle_deg=360.
     """
     D, d, th = _geometry(d_ext_mm, d_int_mm, contact_angle_deg)
     th = np.maximum(th, _MIN_SECTOR_DEG)
+    if D.size > 64 and d.size == D.size and th.size == D.size and (D == D.flat[0]).all() and \
+            (d == d.flat[0]).all() and (th == th.flat[0]).all():
+        # one support repeated (the samples of one design, synth.robust): computed once, broadcast
+        one = pivot_base_bending_factor_per_mm3(D.flat[0], d.flat[0], th.flat[0], model=model)
+        return np.broadcast_to(one, D.shape)
     full = 32.0 * D / (np.pi * (D**4 - d**4))
     if model == "thesis":
         return full * 360.0 / th
