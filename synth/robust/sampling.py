@@ -26,6 +26,7 @@ are set to 0 for the sample (:data:`synth.robust.tolerances.QUANTITIES`).
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -38,7 +39,7 @@ from synth.design.verify import evaluate_design
 from synth.model import torsion_spring as s9
 from synth.robust.tolerances import Scatter, resolve
 
-__all__ = ["Base", "Samples", "base_of", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
+__all__ = ["Base", "Samples", "base_of", "base_of_attributes", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
            "design_checks"]
 
 #: the values a sample keeps besides the margins (the report's histograms): value key -> group
@@ -91,10 +92,16 @@ def design_checks(groups: dict) -> tuple:
 
 def base_of(d, parts: dict, settings: E.Settings = E.Settings(), table: dict | None = None) -> Base:
     """The :class:`Base` of design ``parts`` for input ``d``: its nominal evaluation and its tolerance model."""
+    return base_of_attributes(d, space().design_attributes(parts), settings, table, parts=parts)
+
+
+def base_of_attributes(d, attrs: dict, settings: E.Settings = E.Settings(), table: dict | None = None, *,
+                       apps: Applications | None = None, parts: dict | None = None) -> Base:
+    """:func:`base_of` from the design's one-row attributes per table (the optimiser's rows)."""
     from synth.model import torsion_spring as ts
-    apps = Applications.of([d])
-    attrs = space().design_attributes(parts)
-    groups = evaluate_design(apps, attrs, settings, detail=False)
+    apps = Applications.of([d]) if apps is None else apps
+    with np.errstate(all="ignore"):
+        groups = evaluate_design(apps, attrs, settings, detail=False)
     sp = {k: np.asarray(v)[0] for k, v in attrs["spring"].items()}
     mat = str(sp["main_spring_material"])
     dia = ts.rm_lookup_diameter_mm(sp["b_mm"], sp["h_mm"], bool(sp["round_wire"]))
@@ -112,12 +119,17 @@ def base_of(d, parts: dict, settings: E.Settings = E.Settings(), table: dict | N
                                     float(np.asarray(ax["cone_spring_force_tolerance_minus"])[0])) if cone
            else (np.nan, np.nan), "bolt": bolt}
     sc = resolve(ctx, table)
+    if parts is None:
+        from synth.design.verify import parts_of_attributes
+        parts = parts_of_attributes(attrs, groups)
     return Base(d, dict(parts), settings, apps, attrs, groups, sc, design_checks(groups))
 
 
+@functools.lru_cache(maxsize=8)
 def sobol_u(n: int, d: int, seed: int) -> np.ndarray:
     """``(n, d)`` standard-normal points from a scrambled Sobol sequence (``scipy.stats.qmc.Sobol``, seeded:
-    the same seed gives the same points), mapped through the normal quantile; ``d = 0`` gives ``(n, 0)``."""
+    the same seed gives the same points), mapped through the normal quantile; ``d = 0`` gives ``(n, 0)``.
+    Kept per ``(n, d, seed)`` (read-only)."""
     import warnings
 
     from scipy.special import ndtri
@@ -127,7 +139,9 @@ def sobol_u(n: int, d: int, seed: int) -> np.ndarray:
     with warnings.catch_warnings():  # n need not be a power of two (its balance is then only approximate)
         warnings.simplefilter("ignore", UserWarning)
         p = qmc.Sobol(d, scramble=True, seed=seed).random(n)
-    return ndtri(np.clip(p, 1e-12, 1.0 - 1e-12))
+    u = ndtri(np.clip(p, 1e-12, 1.0 - 1e-12))
+    u.setflags(write=False)
+    return u
 
 
 def _col(dev: dict, name: str, n: int) -> np.ndarray:
@@ -146,9 +160,8 @@ def perturb(base: Base, dev: dict) -> tuple:
         fields["spring_torque_tolerance_pct"] = np.zeros(n)
     if "working_arm" in dev:
         fields["working_arm_mm"] = f0["working_arm_mm"][0] + dev["working_arm"]
-    if "belt_offset" in dev:
-        fields["middle_plane_belt_height_mm"] = f0["middle_plane_belt_height_mm"][0] + dev["belt_offset"]
-        fields["middle_plane_belt_height_increment_worst_mm"] = np.zeros(n)
+    if "belt_offset" in dev:  # the realised offset in the tilting lever of eq. (95), instead of its worst case
+        fields["middle_plane_belt_height_increment_worst_mm"] = dev["belt_offset"]
     if "pulley_diameter" in dev:
         fields["pulley_diameter_mm"] = f0["pulley_diameter_mm"][0] + dev["pulley_diameter"]
     # the design's columns repeated as read-only views (the perturbed ones are replaced, never written)
@@ -204,16 +217,22 @@ def perturb(base: Base, dev: dict) -> tuple:
 
 
 def evaluate_deviations(base: Base, dev: dict, checks=None) -> Samples:
-    """The evaluator's margins and histogram values of the samples ``dev`` (one vectorised call)."""
+    """The evaluator's margins and histogram values of the samples ``dev`` (one vectorised call; checks of the
+    input and core groups alone evaluate those two groups only)."""
     apps, attrs = perturb(base, dev)
+    wanted = base.checks if checks is None else checks
     with np.errstate(all="ignore"):
-        groups = evaluate_design(apps, attrs, base.settings, detail=False)
+        if {REGISTRY[c].group for c in wanted} <= {"input", "core"}:
+            idx = np.arange(len(apps), dtype=np.int64)
+            groups = {"input": E.inputs(apps, idx), "core": E.core(apps, idx, attrs["core"], base.settings)}
+        else:
+            groups = evaluate_design(apps, attrs, base.settings, detail=False)
     margins = {}
     for cid in (base.checks if checks is None else checks):
         margins[cid] = np.asarray(groups[REGISTRY[cid].group].margins[cid], dtype=float)
     values = {}
     for k, g in HISTOGRAM_VALUES.items():
-        if k in groups[g].values:
+        if g in groups and k in groups[g].values:
             values[k] = np.asarray(groups[g].values[k], dtype=float)
     return Samples(margins, values)
 

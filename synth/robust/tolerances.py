@@ -53,7 +53,8 @@ QUANTITIES = {
     "spring_housing_inner_diameter": "spring support diameter (the limit of eq. (86))",
     "pivot_diameter": "pivot diameter (radial damping lever, bushing pressure)",
     "working_arm": "working arm (eccentricity): hubload and radial damping",
-    "belt_offset": "belt plane height; the worst-case increment of eq. (95) set to 0",
+    "belt_offset": "the belt plane's offset in the tilting lever of eq. (95) (the sample instead of the worst-case "
+                   "increment; the design's dimensions keep the nominal belt plane)",
     "pulley_diameter": "pulley diameter (lock-up pin checks, eq. (22)-(25))",
     "pivot_bushing_friction": "pivot bushing friction coefficient (radial damping, eq. (10))",
     "plastic_friction": "plastic elements' friction coefficient (axial damping, eq. (9))",
@@ -119,12 +120,14 @@ class Scatter:
     deviation bounds ``[lo, hi]`` (in ``unit``; normal: ``lo = -hi`` = 3 sigma)."""
 
     names: tuple
+    columns: np.ndarray   # (d,) each quantity's position in the catalog (its column of a shared sample)
     kind: np.ndarray      # (d,) 0 normal, 1 uniform
     lo: np.ndarray        # (d,) lower deviation bound
     hi: np.ndarray        # (d,) upper deviation bound
     unit: tuple
     rows: list = field(default_factory=list)   # one dict per quantity: name, kind, band, unit, source, note
     dropped: list = field(default_factory=list)  # (quantity, why) not in play for this design
+    width: int = 0                               # quantities in the catalog (columns of a shared sample)
 
     def __len__(self) -> int:
         return len(self.names)
@@ -133,7 +136,8 @@ class Scatter:
         """``(N, d)`` deviations of standard-normal points ``u`` (the isoprobabilistic transform: normal
         ``centre + (hi - lo)/6 u``, uniform ``lo + (hi - lo) Phi(u)``).
 
-        >>> s = Scatter(("a", "b"), np.array([0, 1]), np.array([-0.3, 0.0]), np.array([0.3, 2.0]), ("mm", "MPa"))
+        >>> s = Scatter(("a", "b"), np.array([0, 1]), np.array([0, 1]), np.array([-0.3, 0.0]), np.array([0.3, 2.0]),
+        ...             ("mm", "MPa"))
         >>> s.deviations(np.array([[3.0, 0.0]])).round(6).tolist()
         [[0.3, 1.0]]
         """
@@ -200,8 +204,8 @@ def resolve(ctx: dict, table: dict | None = None) -> Scatter:
     ``rm_min``/``rm_max``, ``pivot_diameter_mm``, ``cone`` (a sized cone spring), ``cone_force_tolerance``
     (its DIN EN 16983 fractions), ``bolt`` (the thesis bolt method with fixation data)."""
     table = tolerances() if table is None else table
-    names, kinds, los, his, units, rows, dropped = [], [], [], [], [], [], []
-    for q, tol in table.items():
+    names, cols, kinds, los, his, units, rows, dropped = [], [], [], [], [], [], [], []
+    for col, (q, tol) in enumerate(table.items()):
         if q in _CONE and not ctx["cone"]:
             dropped.append((q, "no cone spring in the design"))
             continue
@@ -224,11 +228,12 @@ def resolve(ctx: dict, table: dict | None = None) -> Scatter:
             dropped.append((q, "zero band"))
             continue
         names.append(q)
+        cols.append(col)
         kinds.append(0 if tol.kind == "normal" else 1)
         los.append(lo)
         his.append(hi)
         units.append(tol.unit)
         rows.append({"quantity": q, "kind": tol.kind, "lo": lo, "hi": hi, "unit": tol.unit, "source": tol.source,
                      "note": tol.note, "enters": QUANTITIES[q]})
-    return Scatter(tuple(names), np.array(kinds, dtype=np.int8), np.array(los, dtype=float),
-                   np.array(his, dtype=float), tuple(units), rows, dropped)
+    return Scatter(tuple(names), np.array(cols, dtype=np.int64), np.array(kinds, dtype=np.int8),
+                   np.array(los, dtype=float), np.array(his, dtype=float), tuple(units), rows, dropped, len(table))
