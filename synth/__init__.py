@@ -102,13 +102,17 @@ def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard"
                **settings_kw) -> "Result":
     """The best catalog design of input ``d`` (what ``synth design`` prints).
 
-    ``objective``: ``standard`` (the most standardised design, cost as tie-break: the default of every
-    scene), ``cost``, ``margin``, a lexicographic ``"a,b"`` or weights ``"cost=1,margin=5"``; ``solver``:
+    ``objective``: ``standard`` (the most standardised design, cost then the margin as tie-breaks: the default
+    of every scene), ``cost`` (standardisation then the margin as tie-breaks), ``margin``, a lexicographic
+    ``"a,b"`` (kept as given) or weights ``"cost=1,margin=5"``; ``solver``:
     ``enumerate`` (exhaustive, exact: the default), ``minlp``, ``milp-highs``, ``milp-cvxpy``,
     ``blackbox`` (``n_trials``) or ``flowchart``. An infeasible input gets the nearest design and a
     ``diagnosis`` (what binds, the smallest input relaxation).
     """
     from synth.optimise import solve
+    from synth.optimise.objectives import with_margin_tiebreak
+    if solver == "enumerate":  # the exact solver: the margin as the last tie-break
+        objective = with_margin_tiebreak(objective)
     kw: dict = {"settings": settings(**settings_kw)}
     if solver not in ("blackbox", "flowchart"):
         kw["pin_inputs"] = pin_inputs

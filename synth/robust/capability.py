@@ -195,7 +195,8 @@ class Capability:
                       "failing": [c.id for c in self.failing()],
                       "windows": {k: list(v) for k, v in self.windows.items()},
                       "tolerances": self.scatter_rows, "not_sampled": [list(x) for x in self.dropped],
-                      "checks": [c.as_dict() for c in self.checks]})
+                      "checks": [{**c.as_dict(), "meets": c.meets(self.settings)} for c in self.checks],
+                      "histograms": self.histograms, "limits": {k: list(v) for k, v in self.limits.items()}})
 
 
 def _linear(base: Base, checks: tuple) -> tuple:
@@ -313,7 +314,7 @@ def _rare(base: Base, out: list, rs: RobustSettings, n: int) -> None:
                                 for cid in ids])
     res = form_is(g, len(base.scatter), n_is=rs.rare_samples, seed=rs.seed)
     for c, r in zip(todo, res):
-        c.method = "importance sampling"
+        c.method = "FORM bound" if r["hits"] == 0 and r["se"] != r["se"] else "importance sampling"
         c.p, c.p_lo, c.p_hi = r["p"], r["p_lo"], r["p_hi"]
         extra = f"FORM beta {r['beta']:.3g} (P_FORM {r['p_form']:.3g}); {r['hits']} of {rs.rare_samples} " \
                 f"importance samples violate"

@@ -196,32 +196,30 @@ def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs
     return r
 
 
-def robust_front(d, *, settings: Settings = Settings(), rs: RobustSettings = RobustSettings(), n_points: int = 12,
-                 capabilities=None) -> list:
-    """Cost against capability: for each Ppk target (``capabilities``, default ``n_points`` from 0.5 to 2), the
-    cheapest design meeting it; the non-dominated points by increasing cost, each with its ppm (the largest
-    violation probability of its targeted checks), binding check and parts."""
+def robust_front(d, *, settings: Settings = Settings(), rs: RobustSettings = RobustSettings(), n_points: int = 8,
+                 step: float = 0.02) -> list:
+    """Cost against capability, exact (the epsilon-constraint method): the cheapest design meeting ``rs``'s
+    target, then the cheapest whose smallest Ppk beats the previous point's by more than ``step``, and so on,
+    up to ``n_points`` points. Each point: ``cost_eur``, ``ppk`` (the smallest of its targeted checks), ``ppm``
+    (their largest probability of violation, upper 95 % end), ``binding`` (the check of that Ppk) and
+    ``parts``. The first target is ``rs.capability`` (0 if only a ppm target is given)."""
     from synth.optimise.evaluate import evaluate
     ev = evaluate(d, settings)
-    targets = np.linspace(0.5, 2.0, n_points) if capabilities is None else np.asarray(capabilities, float)
-    pts, seen = [], set()
-    for c in sorted(targets):
-        rsc = RobustSettings(capability=float(c), ppm=rs.ppm, samples=rs.samples, seed=rs.seed,
-                             rare_samples=rs.rare_samples, rare_min_failures=rs.rare_min_failures)
+    target = rs.capability if rs.capability is not None else 0.0
+    pts = []
+    for _ in range(int(n_points)):
+        rsc = RobustSettings(capability=float(target) if target > 0 else None, ppm=rs.ppm, samples=rs.samples,
+                             seed=rs.seed, rare_samples=rs.rare_samples, rare_min_failures=rs.rare_min_failures)
+        if rsc.capability is None and rsc.ppm is None:
+            rsc = RobustSettings(capability=1e-6, samples=rs.samples, seed=rs.seed)
         value, pos, opts, cap = search(ev, {"cost": 1.0}, rsc)
         if pos is None:
             break
-        key = (pos, tuple(opts.values()))
-        if key in seen:
-            continue
-        seen.add(key)
         worst = min((x for x in cap.checks if x.target), key=lambda x: x.ppk, default=None)
-        pts.append({"target_ppk": float(c), "cost_eur": float(value), "ppk": cap.min_ppk(),
-                    "ppm": cap.max_p() * 1e6, "binding": worst.id if worst else "", "parts": ev.parts(pos, opts)})
-    pts.sort(key=lambda p: (p["cost_eur"], -p["ppk"]))
-    front, best = [], -np.inf
-    for p in pts:
-        if p["ppk"] > best + 1e-12:
-            front.append(p)
-            best = p["ppk"]
-    return front
+        ppk = cap.min_ppk()
+        pts.append({"cost_eur": round(float(value), 6), "ppk": ppk, "ppm": cap.max_p() * 1e6,
+                    "binding": worst.id if worst else "", "parts": ev.parts(pos, opts)})
+        if not np.isfinite(ppk):
+            break
+        target = ppk + step
+    return pts

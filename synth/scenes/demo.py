@@ -24,6 +24,8 @@ def register(sub) -> None:
                    help="folder for the 3D model (tensioner.step, STL, pictures) and the report (default: out)")
     p.add_argument("--no-cad", action="store_true", help="skip the 3D model")
     p.add_argument("--no-report", action="store_true", help="skip the report")
+    p.add_argument("--no-robust", action="store_true",
+                   help="skip the production capability (Ppk >= 1.33 under catalogs/tolerances.csv)")
     p.add_argument("--cad", metavar="DIR", default=None, help=argparse_suppress())
     p.set_defaults(func=_main)
 
@@ -38,7 +40,12 @@ def _main(args) -> int:
     from synth.report.text import render
     out = Path(args.cad or args.out)
     d = default_input()
-    r = solve(d, "standard", "enumerate")
+    from synth.optimise.objectives import with_margin_tiebreak
+    r = solve(d, with_margin_tiebreak("standard"), "enumerate")
+    if not args.no_robust:  # the production capability of the design and the verdicts resting on assumptions
+        from synth.robust.settings import RobustSettings
+        from synth.scenes.report import add_capability
+        add_capability(r, RobustSettings())
     print(render(r, title="synth demo: the most standardised tensioner for the embedded default application"))
     if not args.no_cad:
         from synth.scenes.design import export_cad
