@@ -275,7 +275,7 @@ def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool 
         sd = float(fin.std()) if len(fin) else 0.0
         if sd <= SD_FLOOR * max(1.0, abs(mean)):
             sd = 0.0
-        contrib, r2 = _contributors(u, m, sc.names) if details and d and sd > 0 else ([], float("nan"))
+        contrib, r2 = _contributors(u, m, sc.names) if d and sd > 0 else ([], float("nan"))
         out.append(CheckCapability(
             cid, base.nominal_margin(cid), lin[0][cid] if lin else float("nan"), mean, sd, ppk(m), k / n, lo, hi, k,
             n, "monte carlo" if sd > 0 else "deterministic", lin[1][cid] if lin else float("nan"),
