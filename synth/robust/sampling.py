@@ -39,7 +39,7 @@ from synth.design.verify import evaluate_design
 from synth.model import torsion_spring as s9
 from synth.robust.tolerances import Scatter, resolve
 
-__all__ = ["Base", "Samples", "base_of", "base_of_attributes", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
+__all__ = ["Base", "Samples", "base_of", "base_of_attributes", "context", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
            "design_checks"]
 
 #: the values a sample keeps besides the margins (the report's histograms): value key -> group
@@ -98,31 +98,36 @@ def base_of(d, parts: dict, settings: E.Settings = E.Settings(), table: dict | N
 def base_of_attributes(d, attrs: dict, settings: E.Settings = E.Settings(), table: dict | None = None, *,
                        apps: Applications | None = None, parts: dict | None = None) -> Base:
     """:func:`base_of` from the design's one-row attributes per table (the optimiser's rows)."""
-    from synth.model import torsion_spring as ts
     apps = Applications.of([d]) if apps is None else apps
     with np.errstate(all="ignore"):
         groups = evaluate_design(apps, attrs, settings, detail=False)
-    sp = {k: np.asarray(v)[0] for k, v in attrs["spring"].items()}
-    mat = str(sp["main_spring_material"])
-    dia = ts.rm_lookup_diameter_mm(sp["b_mm"], sp["h_mm"], bool(sp["round_wire"]))
-    ax = groups["axial"].values
-    cone = bool(np.asarray(ax["cone_spring_sized"])[0])
-
-    def fld(name):
-        return float(apps.f[name][0]) if name in apps.f else float("nan")
-
-    bolt = settings.bolt_method == "thesis" and bool(apps.met("fixation")[0])
-    ctx = {"field": fld, "spring": sp, "rm_min": float(ts.material_strength_mpa(mat, dia, "min")),
-           "rm_max": float(ts.material_strength_mpa(mat, dia, "max")),
-           "pivot_diameter_mm": float(np.asarray(attrs["core"]["pivot_diameter_mm"])[0]), "cone": cone,
-           "cone_force_tolerance": (float(np.asarray(ax["cone_spring_force_tolerance_plus"])[0]),
-                                    float(np.asarray(ax["cone_spring_force_tolerance_minus"])[0])) if cone
-           else (np.nan, np.nan), "bolt": bolt}
-    sc = resolve(ctx, table)
+    sc = resolve(context(apps, attrs, groups, settings, 0), table)
     if parts is None:
         from synth.design.verify import parts_of_attributes
         parts = parts_of_attributes(attrs, groups)
     return Base(d, dict(parts), settings, apps, attrs, groups, sc, design_checks(groups))
+
+
+def context(apps: Applications, attrs: dict, groups: dict, settings: E.Settings, k: int) -> dict:
+    """What :func:`synth.robust.tolerances.resolve` reads of design ``k`` of N-row ``apps``/``attrs``/``groups``:
+    its application's fields, its spring option, the strength range of its wire, its pivot, its cone spring."""
+    from synth.model import torsion_spring as ts
+    sp = {key: np.asarray(v)[k] for key, v in attrs["spring"].items()}
+    mat = str(sp["main_spring_material"])
+    dia = ts.rm_lookup_diameter_mm(sp["b_mm"], sp["h_mm"], bool(sp["round_wire"]))
+    ax = groups["axial"].values
+    cone = bool(np.asarray(ax["cone_spring_sized"])[k])
+
+    def fld(name):
+        return float(apps.f[name][k]) if name in apps.f else float("nan")
+
+    return {"field": fld, "spring": sp, "rm_min": float(ts.material_strength_mpa(mat, dia, "min")),
+            "rm_max": float(ts.material_strength_mpa(mat, dia, "max")),
+            "pivot_diameter_mm": float(np.asarray(attrs["core"]["pivot_diameter_mm"])[k]), "cone": cone,
+            "cone_force_tolerance": (float(np.asarray(ax["cone_spring_force_tolerance_plus"])[k]),
+                                     float(np.asarray(ax["cone_spring_force_tolerance_minus"])[k])) if cone
+            else (np.nan, np.nan),
+            "bolt": settings.bolt_method == "thesis" and bool(apps.met("fixation")[k])}
 
 
 @functools.lru_cache(maxsize=8)
@@ -148,24 +153,29 @@ def _col(dev: dict, name: str, n: int) -> np.ndarray:
     return dev[name] if name in dev else np.zeros(n)
 
 
-def perturb(base: Base, dev: dict) -> tuple:
-    """``(apps, attrs)`` of the samples: ``dev`` maps quantities in play to ``(N,)`` deviations (in their
-    units, :class:`~synth.robust.tolerances.Scatter`); see the module docstring for what stays fixed."""
+def perturb(base: Base, dev: dict, rows=None) -> tuple:
+    """``(apps, attrs)`` of the samples: ``dev`` maps quantities to ``(M,)`` deviations (in their units,
+    :class:`~synth.robust.tolerances.Scatter`; 0 for a design the quantity is not in play for), ``rows`` the design
+    of each sample (a :class:`Base` of K designs: K-row apps, attrs and groups; default all design 0). See the
+    module docstring for what stays fixed."""
     n = len(next(iter(dev.values()))) if dev else 1
+    rows = np.zeros(n, dtype=np.int64) if rows is None else np.asarray(rows, dtype=np.int64)
+    one = len(base.apps) == 1
     a0, f0 = base.apps, base.apps.f
-    rows = np.zeros(n, dtype=np.int64)
+
+    def at(a):
+        a = np.asarray(a)
+        return np.broadcast_to(a[:1], (n,)) if one else a[rows]
     fields = {}
     if "spring_torque" in dev:  # the tensioner's torque follows its spring's; eq. (66)'s worst case is the sample
-        fields["calculated_torque_target_nm"] = f0["calculated_torque_target_nm"][0] * (1.0 + dev["spring_torque"] / 100)
+        fields["calculated_torque_target_nm"] = at(f0["calculated_torque_target_nm"]) * (1.0 + dev["spring_torque"] / 100)
         fields["spring_torque_tolerance_pct"] = np.zeros(n)
-    if "working_arm" in dev:
-        fields["working_arm_mm"] = f0["working_arm_mm"][0] + dev["working_arm"]
     if "belt_offset" in dev:  # the realised offset in the tilting lever of eq. (95), instead of its worst case
         fields["middle_plane_belt_height_increment_worst_mm"] = dev["belt_offset"]
     if "pulley_diameter" in dev:
-        fields["pulley_diameter_mm"] = f0["pulley_diameter_mm"][0] + dev["pulley_diameter"]
-    # the design's columns repeated as read-only views (the perturbed ones are replaced, never written)
-    attrs = {t: {k: np.broadcast_to(np.asarray(v), (n,)) for k, v in cols.items()} for t, cols in base.attrs.items()}
+        fields["pulley_diameter_mm"] = at(f0["pulley_diameter_mm"]) + dev["pulley_diameter"]
+    # the design's columns (one design: read-only views; the perturbed ones are replaced, never written)
+    attrs = {t: {k: at(v) for k, v in cols.items()} for t, cols in base.attrs.items()}
     sp = attrs["spring"]
     b0, h0, d0 = sp["b_mm"], sp["h_mm"], sp["main_spring_mean_body_diameter_mm"]
     rnd = sp["round_wire"].astype(bool)
@@ -175,8 +185,9 @@ def perturb(base: Base, dev: dict) -> tuple:
     if "spring_wire_height" in dev:
         sp["h_mm"] = h0 + dev["spring_wire_height"]
         sp["h_tol_mm"] = np.zeros(n)
-        if rnd.all():  # a round wire has one diameter: its width is its height
-            sp["b_mm"], sp["b_tol_mm"] = sp["h_mm"], np.zeros(n)
+        # a round wire has one diameter: its width is its height
+        sp["b_mm"] = np.where(rnd, sp["h_mm"], sp["b_mm"])
+        sp["b_tol_mm"] = np.where(rnd, 0.0, sp["b_tol_mm"])
     if "spring_coil_diameter" in dev:
         sp["main_spring_mean_body_diameter_mm"] = d0 + dev["spring_coil_diameter"]
         sp["mbd_tol_mm"] = np.zeros(n)
@@ -189,7 +200,7 @@ def perturb(base: Base, dev: dict) -> tuple:
     if "spring_housing_inner_diameter" in dev:  # the limit D_s + tol of eq. (86) becomes D_s + deviation
         sp["housing_inner_tol_mm"] = dev["spring_housing_inner_diameter"]
     # the made spring keeps its active coils: its stiffness follows from the made wire and diameter (eq. 64-65)
-    k0 = f0["spring_stiffness_nm_per_deg"][0]
+    k0 = at(f0["spring_stiffness_nm_per_deg"])
     with np.errstate(divide="ignore", invalid="ignore"):
         n_nom = s9.active_coils(sp["E_mpa"], s9.second_moment_mm4(b0, h0, rnd), d0, k0)
         n_made = s9.active_coils(sp["E_mpa"], s9.second_moment_mm4(sp["b_mm"], sp["h_mm"], rnd),
@@ -197,12 +208,13 @@ def perturb(base: Base, dev: dict) -> tuple:
         fields["spring_stiffness_nm_per_deg"] = k0 * n_made / n_nom
     if "pivot_diameter" in dev:
         attrs["core"]["pivot_diameter_mm"] = attrs["core"]["pivot_diameter_mm"] + dev["pivot_diameter"]
-    ax = attrs["axial"]
-    if base.groups["axial"].values["cone_spring_sized"][0]:
-        t0 = float(base.groups["axial"].values["cone_spring_thickness_mm"][0])
+    sized = at(base.groups["axial"].values["cone_spring_sized"]).astype(bool)
+    if sized.any():  # the made cone spring: its thickness, the realised gap stack and its force scatter
+        ax = attrs["axial"]
         gap = (_col(dev, "stack_pivot", n) - _col(dev, "stack_endcap_spacer", n) - _col(dev, "stack_arm", n)
                - _col(dev, "stack_damper_pad", n))
-        ax[E.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.full(n, t0)
+        ax[E.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.where(
+            sized, at(base.groups["axial"].values["cone_spring_thickness_mm"]), np.nan)
         ax[E.MADE_CONE_SPRING_COLUMNS["deflection_offset_mm"]] = -gap  # a smaller gap deflects the spring more
         ax[E.MADE_CONE_SPRING_COLUMNS["force_factor"]] = 1.0 + _col(dev, "cone_spring_force", n) / 100.0
     apps = a0.with_fields(rows, **fields)
@@ -210,16 +222,16 @@ def perturb(base: Base, dev: dict) -> tuple:
                    ("crankcase_friction", "mu_crankcase")):
         if q in dev:
             apps.derived[key] = apps.derived[key] * (1.0 + dev[q] / 100.0)
-    if "bolt_preload" in dev:
-        f_spec = float(base.groups["bolt"].values["bolt_axial_force_n"][0])
+    if "bolt_preload" in dev and base.settings.bolt_method == "thesis":
+        f_spec = at(base.groups["bolt"].values["bolt_axial_force_n"]).astype(float)  # NaN without fixation data
         apps.derived["bolt_clamp_force_n"] = f_spec * (1.0 + dev["bolt_preload"] / 100.0)
     return apps, attrs
 
 
-def evaluate_deviations(base: Base, dev: dict, checks=None) -> Samples:
+def evaluate_deviations(base: Base, dev: dict, checks=None, rows=None) -> Samples:
     """The evaluator's margins and histogram values of the samples ``dev`` (one vectorised call; checks of the
-    input and core groups alone evaluate those two groups only)."""
-    apps, attrs = perturb(base, dev)
+    input and core groups alone evaluate those two groups only); ``rows``: see :func:`perturb`."""
+    apps, attrs = perturb(base, dev, rows)
     wanted = base.checks if checks is None else checks
     with np.errstate(all="ignore"):
         if {REGISTRY[c].group for c in wanted} <= {"input", "core"}:
