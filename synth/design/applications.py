@@ -100,7 +100,8 @@ class Applications:
     def subset(self, idx) -> "Applications":
         """The applications ``idx`` (an index array) as a new :class:`Applications`."""
         idx = np.asarray(idx, dtype=np.int64)
-        a = Applications([self.inputs[i] for i in idx], {k: v[idx] for k, v in self.f.items()},
+        inputs = self.inputs * len(idx) if len(self.inputs) == 1 else [self.inputs[i] for i in idx]
+        a = Applications(inputs, {k: v[idx] for k, v in self.f.items()},
                          {k: v[idx] for k, v in self.given.items()}, self.env[idx], self.fuel[idx])
         a.derived = {k: v[idx] for k, v in self.derived.items()}
         return a

@@ -52,16 +52,20 @@ RARE_PPK_MAX = 2.5
 __all__ = ["CheckCapability", "Capability", "capability", "clopper_pearson", "ppk", "targeted", "windows"]
 
 
-def clopper_pearson(k: int, n: int, level: float = 0.95) -> tuple:
-    """``(lo, hi)``: the exact binomial interval of ``k`` successes in ``n`` trials.
+def clopper_pearson(k, n: int, level: float = 0.95) -> tuple:
+    """``(lo, hi)``: the exact binomial interval of ``k`` successes in ``n`` trials (``k`` an array: arrays).
 
     >>> [round(x, 5) for x in clopper_pearson(0, 10000)]
     [0.0, 0.00037]
     """
-    from scipy.stats import beta
+    from scipy.special import betaincinv
     a = (1.0 - level) / 2.0
-    lo = 0.0 if k == 0 else float(beta.ppf(a, k, n - k + 1))
-    hi = 1.0 if k == n else float(beta.ppf(1.0 - a, k + 1, n - k))
+    kk = np.asarray(k, dtype=float)
+    with np.errstate(all="ignore"):
+        lo = np.where(kk == 0, 0.0, betaincinv(np.maximum(kk, 1e-300), n - kk + 1, a))
+        hi = np.where(kk >= n, 1.0, betaincinv(kk + 1, np.maximum(n - kk, 1e-300), 1.0 - a))
+    if np.ndim(k) == 0:
+        return float(lo), float(hi)
     return lo, hi
 
 
@@ -227,25 +231,34 @@ def _linear(base: Base, checks: tuple) -> tuple:
     return centre, worst, rss
 
 
-def _contributors(u: np.ndarray, m: np.ndarray, names: tuple) -> tuple:
-    """Squared standardised regression coefficients of ``m`` on ``u`` (normalised), largest first, and R^2
-    (least squares by the normal equations: ``d + 1`` unknowns, a tiny well-conditioned system for the
-    near-orthogonal Sobol inputs)."""
-    ok = np.isfinite(m)
-    if ok.sum() < u.shape[1] + 2 or np.std(m[ok]) == 0:
-        return [], float("nan")
-    x = np.column_stack([np.ones(ok.sum()), u[ok]])
-    y = m[ok]
-    coef = np.linalg.solve(x.T @ x, x.T @ y)
-    resid = y - x @ coef
-    var = float(np.var(y))
-    r2 = 1.0 - float(np.var(resid)) / var
-    src2 = (coef[1:] * u[ok].std(axis=0)) ** 2 / var
-    total = float(src2.sum())
-    if total <= 0:
-        return [], r2
-    order = np.argsort(-src2)
-    return [(names[j], float(src2[j] / total)) for j in order if src2[j] / total >= 0.005], r2
+def _contributors(u: np.ndarray, margins: dict, names: tuple) -> dict:
+    """``{check: (contributors, R^2)}``: the squared standardised regression coefficients of each check's margin
+    on the standard-normal inputs ``u``, normalised, largest first (those >= 0.5 %), and the regression's R^2;
+    least squares by the normal equations, every check of finite margins in one matrix product (a check with
+    samples where it does not apply: on its own rows)."""
+    out = {}
+    if not u.shape[1] or not margins:
+        return out
+    full = [c for c, m in margins.items() if np.isfinite(m).all() and np.std(m) > 0]
+    parts = ([(full, np.ones(len(u), dtype=bool))] if full else []) + \
+        [([c], np.isfinite(m)) for c, m in margins.items() if c not in full and np.isfinite(m).sum() > u.shape[1] + 2
+         and np.std(m[np.isfinite(m)]) > 0]
+    for ids, ok in parts:
+        x = u[ok] - u[ok].mean(axis=0)
+        y = np.column_stack([margins[c][ok] for c in ids])
+        y = y - y.mean(axis=0)
+        cov = x.T @ x
+        b = np.linalg.solve(cov, x.T @ y)                      # (d, C)
+        explained = np.einsum("ij,ik,kj->j", b, cov, b)         # b' X'X b per column
+        total = np.einsum("ij,ij->j", y, y)
+        sd_u = x.std(axis=0)
+        src2 = (b * sd_u[:, None]) ** 2 / (total / len(y))[None, :]
+        for j, c in enumerate(ids):
+            tot = float(src2[:, j].sum())
+            order = np.argsort(-src2[:, j])
+            contrib = [(names[i], float(src2[i, j] / tot)) for i in order if tot > 0 and src2[i, j] / tot >= 0.005]
+            out[c] = (contrib, float(explained[j] / total[j]) if total[j] > 0 else float("nan"))
+    return out
 
 
 def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool = True, details: bool = True,
@@ -265,17 +278,19 @@ def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool 
     s = evaluate_u(base, u)
     checks = base.checks
     lin = _linear(base, checks) if details else None
+    contributions = _contributors(u, s.margins, sc.names)
     out = []
-    for cid in checks:
+    counts = np.array([int(np.sum(s.margins[cid] < -FEAS_TOL)) for cid in checks], dtype=np.int64)
+    los, his = clopper_pearson(counts, n)
+    for j, cid in enumerate(checks):
         m = s.margins[cid]
-        k = int(np.sum(m < -FEAS_TOL))
-        lo, hi = clopper_pearson(k, n)
+        k, lo, hi = int(counts[j]), float(los[j]), float(his[j])
         fin = m[np.isfinite(m)]
         mean = float(fin.mean()) if len(fin) else float("inf")
         sd = float(fin.std()) if len(fin) else 0.0
         if sd <= SD_FLOOR * max(1.0, abs(mean)):
             sd = 0.0
-        contrib, r2 = _contributors(u, m, sc.names) if d and sd > 0 else ([], float("nan"))
+        contrib, r2 = contributions.get(cid, ([], float("nan"))) if sd > 0 else ([], float("nan"))
         out.append(CheckCapability(
             cid, base.nominal_margin(cid), lin[0][cid] if lin else float("nan"), mean, sd, ppk(m), k / n, lo, hi, k,
             n, "monte carlo" if sd > 0 else "deterministic", lin[1][cid] if lin else float("nan"),
