@@ -62,28 +62,8 @@ def _robust_front(args, out, points: int) -> int:
     (out / "front.md").write_text(table + "\n")
     (out / "front.json").write_text(json.dumps(front, indent=2, default=str))
     if front:
-        _plot_capability(front, out / "front.png")
+        plot_front(front, out / "front.png", y="ppk", ylabel="smallest Ppk of the checked constraints [-]",
+                   title="cost against production capability", label=lambda p: f"{p['binding']} ({p['ppm']:.2g} ppm)")
     print(table if front else f"no catalog design meets {rs.targets()} (synth design --capability says why)")
     print(f"\nwritten: {out / 'front.md'}, {out / 'front.json'}" + (f", {out / 'front.png'}" if front else ""))
     return 0 if front else 1
-
-
-def _plot_capability(front: list, path) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    c = [p["cost_eur"] for p in front]
-    k = [p["ppk"] for p in front]
-    ax.step(c, k, where="post", color="0.6")
-    ax.plot(c, k, "o", color="C0")
-    for p in front:
-        ax.annotate(f"{p['binding']} ({p['ppm']:.2g} ppm)", (p["cost_eur"], p["ppk"]), fontsize=7, xytext=(3, 3),
-                    textcoords="offset points")
-    ax.set_xlabel("cost [EUR] (catalog unit costs)")
-    ax.set_ylabel("smallest Ppk of the checked constraints [-]")
-    ax.set_title("cost against production capability")
-    ax.grid(True, alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
