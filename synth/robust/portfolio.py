@@ -122,7 +122,7 @@ def _run(args):
 
 
 def portfolio_capability(inputs: list, parts: list, *, settings: E.Settings = E.Settings(),
-                         rs: RobustSettings = RobustSettings(samples=BULK_SAMPLES), chunk: int = 32,
+                         rs: RobustSettings = RobustSettings(samples=BULK_SAMPLES), chunk: int = 64,
                          table: dict | None = None, workers: int = 1) -> list:
     """One dict of :data:`COLUMNS` per design (``parts[i]`` of ``inputs[i]``; None: no design, the columns empty):
     whether it meets ``rs``'s target on every targeted check, its smallest Ppk, its largest probability of

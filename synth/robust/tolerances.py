@@ -29,6 +29,7 @@ part the design does not have drops them) with their deviation bounds.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -157,6 +158,20 @@ class Scatter:
         return np.where(self.kind == 0, (self.hi - self.lo) / 6.0, (self.hi - self.lo) / math.sqrt(12.0))
 
 
+@functools.lru_cache(maxsize=64)
+def _catalog_value(name: str, key: str, column: str, field: str, _dirs: tuple) -> float:
+    """One number of a catalog row (kept per catalog setting: a bulk resolves thousands of designs)."""
+    return float(catalog.row(name, key, field=field)[column])
+
+
+@functools.lru_cache(maxsize=8)
+def _it_grades(_dirs: tuple) -> tuple:
+    """``(over_mm, up_to_mm, {ITn_um: values})`` of ISO 286-1's standard tolerance grades (per catalog setting)."""
+    it = catalog.load("iso286_it_grades")
+    return (it["over_mm"].to_numpy(float), it["up_to_mm"].to_numpy(float),
+            {c: it[c].to_numpy(float) for c in it.columns if c.startswith("IT")})
+
+
 def _band_from(spec: str, ctx: dict, tol: Tolerance):
     """``(lo, hi)`` of a ``band_from`` reference for the design of ``ctx``, or a string saying why none."""
     kind, _, rest = spec.partition(".")
@@ -171,21 +186,20 @@ def _band_from(spec: str, ctx: dict, tol: Tolerance):
         return -v, v
     if kind == "spring_material_strength":
         return 0.0, ctx["rm_max"] - ctx["rm_min"]
-    if kind == "tightening_factors":
-        method, _, column = rest.partition(".")
-        v = float(catalog.row("tightening_factors", method, field=f"tolerances.csv {tol.quantity} band_from")[column])
-        return -v, v
-    if kind == "stackup_tolerances":
-        component, _, column = rest.partition(".")
-        v = float(catalog.row("stackup_tolerances", component, field=f"tolerances.csv {tol.quantity} band_from")[column])
+    if kind in ("tightening_factors", "stackup_tolerances"):
+        key, _, column = rest.partition(".")
+        v = _catalog_value(kind, key, column, f"tolerances.csv {tol.quantity} band_from", tuple(catalog._user_dirs()))
         return -v, v
     if kind == "iso286_it_grades":
-        from synth.shrink_fit.fits import _it_um
-        grade = int(rest.removeprefix("IT").removesuffix("_um"))
-        try:
-            v = _it_um(ctx["pivot_diameter_mm"], grade, "pivot_diameter_mm") / 1000.0 / 2.0
-        except Exception as exc:  # a diameter beyond the table: the quantity is left out, with the reason
-            return f"IT{grade} not tabulated for {ctx['pivot_diameter_mm']:g} mm ({exc})"
+        over, up_to, table = _it_grades(tuple(catalog._user_dirs()))
+        if rest not in table:
+            raise InputError(Problem(f"catalog tolerances.csv, row {tol.quantity}, column band_from", spec,
+                                     "iso286_it_grades." + ", iso286_it_grades.".join(table)))
+        dia = ctx["pivot_diameter_mm"]
+        hit = np.flatnonzero((over < dia) & (dia <= up_to))
+        if not len(hit):
+            return f"{rest} not tabulated for {dia:g} mm (ISO 286-1 rows {over.min():g} to {up_to.max():g} mm)"
+        v = float(table[rest][hit[0]]) / 1000.0 / 2.0
         return -v, v
     if kind == "disc_spring_force_tolerances":
         plus, minus = ctx["cone_force_tolerance"]
