@@ -45,6 +45,8 @@ from synth.robust.settings import RobustSettings
 
 #: a margin whose standard deviation is below this (relative) is a constant: round-off, not scatter
 SD_FLOOR = 1e-9
+#: sample values kept per histogram (the report's 40 bins; the JSON stays small)
+HISTOGRAM_SAMPLES = 1000
 #: above this Ppk (a normal margin 7.5 standard deviations from its limit, P ~ 1e-13) an unresolved probability
 #: keeps the Monte Carlo's Clopper-Pearson bound unless a ppm target needs a smaller one
 RARE_PPK_MAX = 2.5
@@ -339,7 +341,8 @@ def _rare(base: Base, out: list, rs: RobustSettings, n: int) -> None:
 def _histograms(base: Base, s) -> tuple:
     """Thinned sample values for the report's histograms, and each value's window (lower, upper) from the
     nominal evaluation's limits (NaN where one side has no limit)."""
-    hist = {k: v[np.isfinite(v)][:4096].tolist() for k, v in s.values.items() if np.isfinite(v).any()}
+    hist = {k: np.round(v[np.isfinite(v)][:HISTOGRAM_SAMPLES], 6).tolist() for k, v in s.values.items()
+            if np.isfinite(v).any()}
     g = base.groups
     core, ax = g["core"].values, g["axial"].values
     limits = {"damping_nm": (float(core["damping_lower_nm"][0]), float(core["damping_upper_nm"][0])),
