@@ -262,3 +262,12 @@ def test_synth_robust_reports_the_capability_and_exits_1_when_the_target_is_miss
     assert (tmp_path / "capability.csv").is_file() and (tmp_path / "hist_damping_nm.png").is_file()
     rc = cli.main(["robust", str(case), "--samples", "512", "--capability", "0.1", "--no-assumptions"])
     assert rc == 0 and "meets the target" in capsys.readouterr().out
+
+
+def test_the_api_gives_the_scenes_capability(demo):
+    """synth.capability of a result: the same numbers as synth.robust.capability of its design (one estimator)."""
+    import synth
+    d, r = demo
+    got = synth.capability(r, samples=512, seed=3, assumptions=False).robust
+    ref = capability(base_of(d, r.parts), RobustSettings(samples=512, seed=3)).to_dict()
+    assert got["checks"] == ref["checks"] and "assumptions" not in got
