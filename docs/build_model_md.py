@@ -12,7 +12,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 ORDER = ["00_overview", "architecture", "data_sources", "flowchart_rules", "step00_03", "plain_bushing",
          "friction_wear", "stackup", "packaging", "disc_spring", "torsion_spring", "bolted_joint", "cad",
-         "optimisation", "bulk_engine", "kernels", "bulk", "reports", "ui", "shrink_fit", "drive", "validation"]
+         "optimisation", "robust", "bulk_engine", "kernels", "bulk", "reports", "ui", "shrink_fit", "drive",
+         "validation"]
 
 
 def constants_table() -> str:
@@ -28,11 +29,30 @@ def constants_table() -> str:
     return "\n".join(lines) + "\n"
 
 
+def _csv_table(name: str, title: str, intro: str, columns: list) -> str:
+    """A generated appendix: the rows of ``catalogs/<name>.csv`` (the given columns, every row with its source)."""
+    lines = [f"## {title}", "", intro, "", "| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    with (ROOT / "catalogs" / f"{name}.csv").open(newline="", encoding="utf-8") as fh:
+        for row in csv.DictReader(fh):
+            lines.append("| " + " | ".join(str(row.get(c, "") or "").replace("|", "/").replace("\n", " ")
+                                           for c in columns) + " |")
+    return "\n".join(lines) + "\n"
+
+
 def build() -> str:
     sections = {p.stem: p for p in (ROOT / "docs" / "sections").glob("*.md")}
     names = [n for n in ORDER if n in sections] + sorted(n for n in sections if n not in ORDER)
     parts = [sections[n].read_text(encoding="utf-8").strip() + "\n" for n in names]
-    return "\n".join(parts) + "\n" + constants_table()
+    tolerances = _csv_table("tolerances", "Appendix: the tolerance model",
+                            "Generated from `catalogs/tolerances.csv` (section \"Production scatter\"): band in "
+                            "`unit` (half-width), or `band_from` the named catalog column, constant or input.",
+                            ["quantity", "kind", "band", "unit", "band_from", "source", "note"])
+    ranges = _csv_table("assumption_ranges", "Appendix: plausible ranges of the illustrative limits",
+                        "Generated from `catalogs/assumption_ranges.csv`: `low` and `high` are values or factors "
+                        "of the catalog's value (`scale`).",
+                        ["assumption", "catalog", "key", "column", "low", "high", "scale", "applies", "source",
+                         "reason"])
+    return "\n".join(parts) + "\n" + constants_table() + "\n" + tolerances + "\n" + ranges
 
 
 if __name__ == "__main__":

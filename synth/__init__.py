@@ -9,7 +9,8 @@ The Python API (``docs/sections/api.md``); every function imports what it needs 
 * :func:`run_flowchart` - the thesis procedure (``synth flowchart``), or a given design checked;
 * :func:`verify` - one given design (its part keys) checked through every step;
 * :func:`screen` - a whole portfolio, one row per application (``synth bulk``), as a DataFrame;
-* :func:`write_report` - the HTML report, its PDF and the results workbook (``synth report``).
+* :func:`write_report` - the HTML report, its PDF and the results workbook (``synth report``);
+* :func:`capability` - a design's production capability and the verdicts resting on assumptions (``synth robust``).
 
 Each returns a :class:`~synth.design.result.Result` (``.verdict``, ``.parts``, ``.values``,
 ``.checks``, ``.to_frame()``; a notebook shows its digest) except :func:`screen` (a DataFrame) and
@@ -37,7 +38,7 @@ if TYPE_CHECKING:  # pragma: no cover - types only
 
 __version__ = "0.1.0"
 
-__all__ = ["load", "synthesise", "run_flowchart", "verify", "screen", "write_report", "settings",
+__all__ = ["load", "synthesise", "run_flowchart", "verify", "screen", "write_report", "capability", "settings",
            "Result", "DesignInput", "Settings", "InputError", "__version__"]
 
 _LAZY = {"Result": ("synth.design.result", "Result"), "DesignInput": ("synth.schema", "DesignInput"),
@@ -102,19 +103,44 @@ def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard"
                **settings_kw) -> "Result":
     """The best catalog design of input ``d`` (what ``synth design`` prints).
 
-    ``objective``: ``standard`` (the most standardised design, cost as tie-break: the default of every
-    scene), ``cost``, ``margin``, a lexicographic ``"a,b"`` or weights ``"cost=1,margin=5"``; ``solver``:
+    ``objective``: ``standard`` (the most standardised design, cost then the margin as tie-breaks: the default
+    of every scene), ``cost`` (standardisation then the margin as tie-breaks), ``margin``, a lexicographic
+    ``"a,b"`` (kept as given) or weights ``"cost=1,margin=5"``; ``solver``:
     ``enumerate`` (exhaustive, exact: the default), ``minlp``, ``milp-highs``, ``milp-cvxpy``,
     ``blackbox`` (``n_trials``) or ``flowchart``. An infeasible input gets the nearest design and a
     ``diagnosis`` (what binds, the smallest input relaxation).
     """
     from synth.optimise import solve
+    from synth.optimise.objectives import with_margin_tiebreak
+    if solver == "enumerate":  # the exact solver: the margin as the last tie-break
+        objective = with_margin_tiebreak(objective)
     kw: dict = {"settings": settings(**settings_kw), "pin_inputs": pin_inputs}
     if solver == "blackbox":
         kw["n_trials"] = n_trials
     if time_limit_s is not None:
         kw["time_limit_s"] = time_limit_s
     return solve(_input(d), objective, solver, **kw)
+
+
+def capability(source: "Result | DesignInput | str | Path | dict", *, target: float | None = 1.33,
+               ppm: float | None = None, samples: int | None = None, seed: int | None = None,
+               assumptions: bool = True, **settings_kw) -> "Result":
+    """The production capability of a design (``synth robust``): ``source`` a :class:`Result` (its design), or an
+    input (the design :func:`synthesise` returns for it). Returns the result with ``.robust`` set: the tolerance
+    model, per check the probability of violation with its 95 % interval, Ppk, worst case, RSS and contributors,
+    whether every counted check meets ``target`` (Ppk) and ``ppm``, and with ``assumptions`` the verdicts that
+    flip inside the illustrative limits' ranges (``synth.robust``)."""
+    from synth.design.result import Result
+    from synth.robust.settings import RobustSettings
+    from synth.scenes.report import add_capability
+    kw = {k: v for k, v in (("samples", samples), ("seed", seed)) if v is not None}
+    rs = RobustSettings(capability=target, ppm=ppm, **kw)
+    r = source if isinstance(source, Result) else synthesise(source, **settings_kw)
+    if r.parts:
+        add_capability(r, rs)
+        if not assumptions:
+            r.robust.pop("assumptions", None)
+    return r
 
 
 def verify(d: "DesignInput | str | Path | dict", parts: dict, **settings_kw) -> "Result":

@@ -23,6 +23,7 @@ Named constants (friction coefficients, wear constants, tolerances...) live in
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import os
 from pathlib import Path
@@ -31,7 +32,7 @@ import pandas as pd
 
 from synth.errors import CatalogError, InputError, Problem
 
-__all__ = ["builtin_dir", "set_user_dirs", "names", "load", "row", "keys", "constant", "constant_row"]
+__all__ = ["builtin_dir", "set_user_dirs", "overriding", "names", "load", "row", "keys", "constant", "constant_row"]
 
 _USER_DIRS: list[Path] = []
 
@@ -68,6 +69,19 @@ def set_user_dirs(*dirs: str | os.PathLike) -> None:
         raise InputError(problems)
     _USER_DIRS[:] = [Path(d) for d in dirs]
     load.cache_clear()
+
+
+@contextlib.contextmanager
+def overriding(folder):
+    """Use ``folder`` as the first user catalog folder for the duration of the block (synth's own generated
+    CSVs, e.g. an assumption at the end of its range, :mod:`synth.robust.assumptions`: not checked again, and no
+    cache cleared: every cache is keyed by the folders, so the tables without a file in ``folder`` stay parsed)."""
+    before = list(_USER_DIRS)
+    _USER_DIRS[:] = [Path(folder), *before]
+    try:
+        yield
+    finally:
+        _USER_DIRS[:] = before
 
 
 _ENV_CHECKED: dict[str, list[Path]] = {}
@@ -109,6 +123,8 @@ def _load_cached(name: str, user_dirs: tuple[Path, ...]) -> pd.DataFrame:
     path = builtin_dir() / f"{name}.csv"
     if not path.is_file():
         raise CatalogError(Problem("catalog", name, "one of " + ", ".join(names())))
+    if user_dirs and not any((d / f"{name}.csv").is_file() for d in user_dirs):
+        return _load_cached(name, ())  # no user file for it: the built-in table, parsed once
     df = _read(path)
     key = df.columns[0]
     for d in reversed(user_dirs):

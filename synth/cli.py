@@ -75,6 +75,8 @@ SCENES: dict[str, Scene] = {
     "flowchart": Scene("synth.scenes.flowchart", "run the thesis design flowchart (steps 0-10) on a design input"),
     "design": Scene("synth.scenes.design", "optimal tensioner from the catalogs (standardisation, cost or margin)"),
     "pareto": Scene("synth.scenes.pareto", "cost against margin: the Pareto front of the catalog designs"),
+    "robust": Scene("synth.scenes.robust", "production capability of a design: P(violation), Ppk, contributors, "
+                                           "the verdicts resting on illustrative limits"),
     "compare": Scene("synth.scenes.compare", "compare the flowchart with a case file's thesis-tool and real values"),
     "report": Scene("synth.scenes.report",
                     "write the design report (report.html) and results workbook (results.xlsx)"),

@@ -34,3 +34,15 @@ def test_bench_kernels_sample_is_the_engines_keys():
     assert all(0 <= g < len(lists) for g in groups)
     r = mod.K.first_feasible(keys, options, lists, key_group=groups, tol=mod.FEAS_TOL, engine="numpy")
     assert (r.index >= 0).any()
+
+
+def test_bench_robust_quick_runs(capsys):
+    """The capability benchmark's tables (a smoke test: one repeat, 12 applications)."""
+    import os
+
+    import pytest
+    if not os.environ.get("SYNTH_SLOW"):
+        pytest.skip("about 10 s: set SYNTH_SLOW=1 to run")
+    assert _module("bench_robust").main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "capability, 10000 samples" in out and "FORM + importance sampling" in out

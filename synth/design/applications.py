@@ -100,15 +100,36 @@ class Applications:
     def subset(self, idx) -> "Applications":
         """The applications ``idx`` (an index array) as a new :class:`Applications`."""
         idx = np.asarray(idx, dtype=np.int64)
-        a = Applications([self.inputs[i] for i in idx], {k: v[idx] for k, v in self.f.items()},
+        inputs = self.inputs * len(idx) if len(self.inputs) == 1 else [self.inputs[i] for i in idx]
+        a = Applications(inputs, {k: v[idx] for k, v in self.f.items()},
                          {k: v[idx] for k, v in self.given.items()}, self.env[idx], self.fuel[idx])
         a.derived = {k: v[idx] for k, v in self.derived.items()}
         return a
 
-    def _derive(self) -> None:
-        f, p = self.f, parts.arrays()
-        n = len(self.inputs)
-        d = self.derived
+    def with_fields(self, rows, **fields) -> "Applications":
+        """The applications ``rows`` (an index array) with numeric fields replaced by arrays over the rows, and
+        what follows from the inputs alone re-derived (hubload, layout, pulley width): a production-scatter
+        sample (:mod:`synth.robust`) is one application per sample row.
+
+        >>> from synth.data import case_path
+        >>> from synth.schema import load_input
+        >>> a = Applications.of([load_input(case_path("case3"))]).with_fields([0, 0], working_arm_mm=[4.0, 8.0])
+        >>> a.hubload_nominal_n.round(1).tolist()
+        [462.5, 231.2]
+        """
+        a = self.subset(rows)
+        n = len(a)
+        for k, v in fields.items():
+            if k not in a.f:
+                from synth.errors import InputError, Problem
+                raise InputError(Problem("field", k, "a numeric input field"))
+            a.f[k] = np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy()
+        a._derive_numeric()
+        return a
+
+    def _derive_numeric(self) -> None:
+        """The quantities that follow from the numeric fields alone."""
+        f, d = self.f, self.derived
         d["hubload_nominal_n"] = s3.hubload_nominal_n(f["calculated_torque_target_nm"], f["working_arm_mm"],
                                                       f["differential_angle_deg"])
         # eq. (17)-(18); with no axial limit (N/A) the layout is reverse (synth.model.layout.layout_of)
@@ -116,7 +137,18 @@ class Applications:
                                                           f["max_axial_displacement_mm"]) == "standard")
         d["layout_reverse"] = ~d["layout_standard"]
         d["pulley_width_mm"] = s0.pulley_width_mm(f["belt_width_mm"])
+
+    def _derive(self) -> None:
+        f, p = self.f, parts.arrays()
+        n = len(self.inputs)
+        d = self.derived
+        self._derive_numeric()
         d["mu_pivot_bushing"] = parts.mu("pivot_bushing", self.env) if n else np.zeros(0)
+        # the fixation's interfaces (eq. (99), (101)): per application, so that a production-scatter sample
+        # (synth.robust) can give each row its own friction
+        for key, interface in (("mu_crankcase", "pivot_base_crankcase"), ("mu_thread", "thread"),
+                               ("mu_head", "under_head")):
+            d[key] = np.asarray(parts.mu(interface, self.env), dtype=float) if n else np.zeros(0)
         d["mu_plastic"] = p.plastic["mu"][self.env]
         d["k_wear_plastic_mm3_per_n_m"] = p.plastic["k_wear_mm3_per_n_m"][self.env]
         typ = self.text("damping_typology")

@@ -41,13 +41,15 @@ from synth.model import bolted_joint as s10, damping as s3, disc_spring as s8, f
 from synth.model import layout as s0, packaging as s7, pivot as s2, plain_bushing as s4, stackup as s6
 from synth.model import torsion_spring as s9
 
-__all__ = ["Settings", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
+__all__ = ["Settings", "SPRING_LIMIT_BASES", "SPRING_TOLERANCE_COLUMNS", "MADE_CONE_SPRING_COLUMNS", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
            "spring_values", "SPRING_OPTION_COLUMNS", "drive_values", "fixation_values", "pivot_wall_values", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
            "BOLT_CORE_VALUES"]
 
 EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
 FIDELITIES = ("full", "screening")
+#: the design rules a main spring's installation stress may be checked by (:class:`Settings`)
+SPRING_LIMIT_BASES = ("thesis", "en13906")
 _CONSTANT_LIMITS = {"zero": 0.0, "one": 1.0}  # limits (and scales) that are plain numbers
 
 
@@ -75,6 +77,13 @@ class Settings:
     * ``drive``: the belt drive around the tensioner (:class:`synth.drive.inputs.Drive`, ``synth design
       --drive``) or None; with a drive the core group adds the registry's ``drive_belt_slack`` and
       ``drive_arm_lock`` checks at each design's own damping (a saved result's dict form is read back).
+    * ``spring_limit_basis`` (a design rule): what the main spring's installation stress is checked against
+      (constraint ``spring_yield``): ``"thesis"`` (the curvature-corrected stress against the material's
+      ``sigma_y_bend_fraction * Rm``, the thesis tool's yield check, eq. (72)-(77): the default) or
+      ``"en13906"`` (the spring makers' static rule, EN 13906-3 practice: the stress without the curvature
+      factor against ``sigma_perm_static_fraction * Rm``, 0.75 Rm; expressed on the corrected stress as
+      ``0.75 Rm k_f``, the same relative margin). The advisory ``spring_static_permissible`` shows the static
+      rule either way.
     """
 
     fidelity: str = "full"
@@ -83,6 +92,7 @@ class Settings:
     bushing_length_scheme: str = "thesis"
     bolt_method: str = "thesis"
     drive: object = None
+    spring_limit_basis: str = "thesis"
 
     def __post_init__(self):
         from synth.errors import InputError, Problem
@@ -95,6 +105,8 @@ class Settings:
             raise InputError(Problem("bolt_method", self.bolt_method, "thesis or vdi2230"))
         if self.bushing_length_scheme not in ("thesis", "catalog"):
             raise InputError(Problem("bushing_length_scheme", self.bushing_length_scheme, "thesis or catalog"))
+        if self.spring_limit_basis not in SPRING_LIMIT_BASES:
+            raise InputError(Problem("spring_limit_basis", self.spring_limit_basis, " or ".join(SPRING_LIMIT_BASES)))
 
 
 @dataclass
@@ -361,6 +373,12 @@ def bushing(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Gro
 
 
 # --------------------------------------------------------------------------- steps 5-8: the axial damping group
+#: optional axial option columns of a made cone spring -> the argument of synth.model.disc_spring.cone_spring
+MADE_CONE_SPRING_COLUMNS = {"thickness_mm": "cone_spring_made_thickness_mm",
+                            "deflection_offset_mm": "cone_spring_deflection_offset_mm",
+                            "force_factor": "cone_spring_force_factor"}
+
+
 def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_points: int = 0) -> Group:
     """Group ``axial`` (Table 4, belt plane, cone spring, plastic wear) for core rows ``r`` and axial options ``o``.
 
@@ -392,7 +410,10 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     di = cv["cone_spring_min_internal_diameter_mm"] + np.asarray(o["cone_spring_di_increase_mm"], dtype=float)
     zeta = np.asarray(o["cone_spring_aspect_ratio"], dtype=float)
     phi = np.asarray(o["cone_spring_deflection_ratio"], dtype=float)
-    act = real & pad & (cv["axial_damping_nm"] > 0) & (de > di) & (zeta > 0) & (phi > 0) & (phi <= 1)
+    # a made cone spring is there whatever the sample's damping split says (its force then decides the band)
+    made_rows = np.isfinite(np.asarray(o[MADE_CONE_SPRING_COLUMNS["thickness_mm"]], dtype=float)) \
+        if MADE_CONE_SPRING_COLUMNS["thickness_mm"] in o else False
+    act = real & pad & ((cv["axial_damping_nm"] > 0) | made_rows) & (de > di) & (zeta > 0) & (phi > 0) & (phi <= 1)
     v["cone_spring_sized"] = act
     keys = ("cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n", "cone_spring_fax_nominal_n",
             "cone_spring_fax_band_n", "cone_spring_force_band_room_n", "cone_spring_gap_band_room_n",
@@ -411,10 +432,14 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     mu_pl = apps.mu_plastic[a]
     gap = s6.gap_tolerance_mm("worst_case")
     if len(i):
+        # a made cone spring (synth.robust's production-scatter samples): its thickness, the realised deflection
+        # offset of the gap stack and its force factor, per row (see synth.model.disc_spring.cone_spring)
+        made = {k: np.asarray(o[c], dtype=float)[i] for k, c in MADE_CONE_SPRING_COLUMNS.items() if c in o}
         cs = s8.cone_spring(cv["axial_damping_nm"][i], apps.damping_target_or_zero_nm[a][i],
                             np.nan_to_num(tol[i], nan=0.0), cv["radial_damping_nm"][i], mu_pl[i],
                             cv["damper_pad_mean_radius_mm"][i], np.asarray(o["endcap_spacer_mean_radius_mm"])[i],
-                            de[i], di[i], gap, aspect_ratio=zeta[i], deflection_ratio=phi[i], fidelity=settings.fidelity)
+                            de[i], di[i], gap, aspect_ratio=zeta[i], deflection_ratio=phi[i], fidelity=settings.fidelity,
+                            **made)
         for k in keys:
             v[k][i] = cs[k]
     v["cone_spring_gap_tolerance_mm"] = np.full(n, gap)
@@ -475,6 +500,12 @@ SPRING_OPTION_COLUMNS = ("E_mpa", "Rm_mpa", "sigma_y_mpa", "sigma_A0_mpa", "b_mm
                          "supplied_in_section")
 
 
+#: optional option columns of :func:`spring_values`: the worst-case tolerances of eq. (82)-(88) (default: the
+#: constants of ``constants_main_spring.csv``); a production-scatter sample (:mod:`synth.robust`) gives 0, or a
+#: signed deviation of the housing, per row
+SPRING_TOLERANCE_COLUMNS = ("mbd_tol_mm", "housing_outer_tol_mm", "housing_inner_tol_mm")
+
+
 def spring_inputs(apps, keys: dict, k) -> dict:
     """The :data:`SPRING_INPUTS` of rows ``k`` of ``keys`` (:func:`spring_keys`): the key's torque (at least
     1e-6 N m), housing height and diameters, and its application's stiffness, torque tolerance, theta_pp (0 without
@@ -492,7 +523,7 @@ def spring_inputs(apps, keys: dict, k) -> dict:
             "dtheta_nom_free_arm_deg": f["arm_travel_nominal_to_free_deg"][a]}
 
 
-def spring_values(o: dict, x: dict) -> dict:
+def spring_values(o: dict, x: dict, settings: Settings = Settings()) -> dict:
     """The values of group ``spring`` (step 9, eq. (64)-(93)) for options ``o`` (the spring table's columns) and
     per-row inputs ``x`` (:data:`SPRING_INPUTS`, :func:`spring_inputs`), all broadcast to one length.
 
@@ -509,7 +540,7 @@ def spring_values(o: dict, x: dict) -> dict:
             housing_height_mm=x["housing_height_mm"], housing_outer_diameter_mm=x["housing_outer_diameter_mm"],
             housing_inner_diameter_mm=x["housing_inner_diameter_mm"], b_tol_mm=o["b_tol_mm"], h_tol_mm=o["h_tol_mm"],
             dtheta_inst_nom_deg=x["dtheta_inst_nom_deg"], dtheta_nom_free_arm_deg=x["dtheta_nom_free_arm_deg"],
-            sigma_perm_static_mpa=o["sigma_perm_static_mpa"])
+            sigma_perm_static_mpa=o["sigma_perm_static_mpa"], **{k: o[k] for k in SPRING_TOLERANCE_COLUMNS if k in o})
     shape = np.broadcast(r["main_spring_active_coils_free"], np.asarray(x["stiffness_nm_per_deg"])).shape
     v = {}
     for key in ("main_spring_active_coils_free", "main_spring_sigma_a_max_mpa", "main_spring_sigma_a_min_mpa",
@@ -522,7 +553,10 @@ def spring_values(o: dict, x: dict) -> dict:
 
     def full(x_):
         return np.broadcast_to(np.asarray(x_, dtype=float), shape)
-    v.update(main_spring_sigma_permissible_mpa=full(r["sigma_y_limit_mpa"]),
+    # the deciding limit of the installation stress: the design rule of settings.spring_limit_basis
+    limit = r["sigma_y_limit_mpa"] if settings.spring_limit_basis == "thesis" else \
+        np.asarray(r["sigma_perm_static_limit_mpa"]) * np.asarray(r["curvature_factor"])
+    v.update(main_spring_sigma_permissible_mpa=full(limit),
              main_spring_min_safety_factor=np.full(shape, _const("main_spring_min_safety_factor")),
              main_spring_outer_diameter_max_mm=full(r["outer_diameter_max_mm"]),
              spring_housing_outer_diameter_min_mm=full(r["housing_outer_diameter_min_mm"]),
@@ -540,10 +574,16 @@ def spring_values(o: dict, x: dict) -> dict:
     return v
 
 
-def spring(apps, keys: dict, k, o: dict, settings: Settings = Settings()) -> Group:
-    """Group ``spring`` (step 9) for rows pairing key ``k[i]`` of ``keys`` (:func:`spring_keys`) with option ``o``."""
+def spring(apps, keys: dict, k, o: dict, settings: Settings = Settings(), inputs: dict | None = None) -> Group:
+    """Group ``spring`` (step 9) for rows pairing key ``k[i]`` of ``keys`` (:func:`spring_keys`) with option ``o``.
+
+    ``inputs`` (optional): per-row values replacing some of :func:`spring_inputs` (a made spring's stiffness in
+    a production-scatter sample, :mod:`synth.robust`)."""
     a = keys["app"][k]
-    v = {"app": a, **spring_values(o, spring_inputs(apps, keys, k))}
+    x = spring_inputs(apps, keys, k)
+    if inputs:
+        x.update(inputs)
+    v = {"app": a, **spring_values(o, x, settings)}
     return finish("spring", v, apps, a)
 
 
@@ -578,16 +618,20 @@ def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
     head = np.asarray(o["bolt_head_type"], dtype=object)[rows]
     given = apps.given["bolt_head_contact_external_diameter_mm"][aa_all]
     f = apps.f
+    made = apps.derived.get("bolt_clamp_force_n")  # a made joint's clamp force (synth.robust), NaN: sized
     for h in dict.fromkeys(head.tolist()):
         for g in (False, True):
             sel = np.flatnonzero((head == h) & (given == g))
             if not len(sel):
                 continue
             ua, ia = np.unique(aa_all[sel], return_inverse=True)
-            code = {}
-            ib = np.array([code.setdefault(x, len(code)) for x in zip(fmt[sel].tolist(), cls[sel].tolist())],
-                          dtype=np.int64)
-            pairs = list(code)
+            fs, cs = fmt[sel], cls[sel]
+            if (fs == fs[0]).all() and (cs == cs[0]).all():  # one bolt (the samples of one design): no dictionary
+                ib, pairs = np.zeros(len(sel), dtype=np.int64), [(fs[0], cs[0])]
+            else:
+                code = {}
+                ib = np.array([code.setdefault(x, len(code)) for x in zip(fs.tolist(), cs.tolist())], dtype=np.int64)
+                pairs = list(code)
             env = apps.env[ua]
             r = s10.fixation(
                 apps.hubload_nominal_n[ua], f["middle_plane_belt_height_mm"][ua],
@@ -596,17 +640,25 @@ def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
                 f["engine_support_external_diameter_mm"][ua], f["contact_angle_deg"][ua],
                 f["support_yield_strength_compression_mpa"][ua], f["support_yield_strength_traction_mpa"][ua],
                 number_of_active_threads=f["number_of_active_threads"][ua],
-                mu_crankcase=np.asarray(P.mu("pivot_base_crankcase", env), dtype=float),
-                mu_thread=np.asarray(P.mu("thread", env), dtype=float),
-                mu_head=np.asarray(P.mu("under_head", env), dtype=float),
+                mu_crankcase=_mu(apps, "mu_crankcase", "pivot_base_crankcase", ua, env),
+                mu_thread=_mu(apps, "mu_thread", "thread", ua, env), mu_head=_mu(apps, "mu_head", "under_head", ua, env),
                 bolt_head_contact_external_diameter_mm=f["bolt_head_contact_external_diameter_mm"][ua] if g else None,
                 head_type=str(h), candidates=pairs, method=settings.bolt_method,
-                clamp_length_mm=f["max_pivot_height_mm"][ua] if settings.bolt_method == "vdi2230" else None)
+                clamp_length_mm=f["max_pivot_height_mm"][ua] if settings.bolt_method == "vdi2230" else None,
+                clamp_force_n=None if made is None else made[ua])
             ia = np.asarray(ia).reshape(-1)
             for k in _BOLT_VALUES:
                 if k in r:
                     out[k][rows[sel]] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(ua), len(pairs)))[ia, ib]
     return out
+
+
+def _mu(apps, key: str, interface: str, ua, env) -> np.ndarray:
+    """The friction coefficient ``key`` of applications ``ua`` (:class:`~synth.design.applications.Applications`
+    derives it per application; the catalog's value of their environment ``env`` otherwise)."""
+    from synth import parts as P
+    d = apps.derived.get(key)
+    return np.asarray(d[ua] if d is not None else P.mu(interface, env), dtype=float)
 
 
 def pivot_wall_values(pivot_diameter_mm, loading_arm_mm, bolt_d_mm) -> dict:

@@ -103,6 +103,8 @@ class Result:
     settings: dict = field(default_factory=dict)
     steps_run: list = field(default_factory=list)
     curves: dict = field(default_factory=dict)
+    #: production capability (synth.robust): tolerance model, per check P(violation), Ppk, worst case, RSS
+    robust: dict = field(default_factory=dict)
 
     # --- verdicts ------------------------------------------------------------------------------------------
     def failed(self) -> list:
@@ -186,6 +188,7 @@ class Result:
             "checks": [c.as_dict() for c in self.checks], "notes": list(self.notes),
             "objectives": plain(self.objectives), "stats": plain(self.stats), "diagnosis": plain(self.diagnosis),
             "inputs": plain(self.inputs), "settings": plain(self.settings), "steps_run": list(self.steps_run),
+            **({"robust": plain(self.robust)} if self.robust else {}),
         }
 
     @classmethod
@@ -210,7 +213,8 @@ class Result:
                    checks=checks, notes=list(data.get("notes") or []), objectives=dict(data.get("objectives") or {}),
                    stats=dict(data.get("stats") or {}), diagnosis=data.get("diagnosis"),
                    inputs=data.get("inputs"), settings=dict(data.get("settings") or {}),
-                   steps_run=list(data.get("steps_run") or []))
+                   steps_run=list(data.get("steps_run") or []),
+                   robust=dict(data["robust"]) if isinstance(data.get("robust"), dict) else {})
 
 
 def checks_of(groups: dict, apps, row: int = 0) -> list:

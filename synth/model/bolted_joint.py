@@ -224,6 +224,11 @@ def pivot_base_bending_factor_per_mm3(d_ext_mm, d_int_mm, contact_angle_deg=360.
     """
     D, d, th = _geometry(d_ext_mm, d_int_mm, contact_angle_deg)
     th = np.maximum(th, _MIN_SECTOR_DEG)
+    if D.size > 64 and d.size == D.size and th.size == D.size and (D == D.flat[0]).all() and \
+            (d == d.flat[0]).all() and (th == th.flat[0]).all():
+        # one support repeated (the samples of one design, synth.robust): computed once, broadcast
+        one = pivot_base_bending_factor_per_mm3(D.flat[0], d.flat[0], th.flat[0], model=model)
+        return np.broadcast_to(one, D.shape)
     full = 32.0 * D / (np.pi * (D**4 - d**4))
     if model == "thesis":
         return full * 360.0 / th
@@ -1034,7 +1039,8 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
              method="thesis", clamp_length_mm=None, tightening_method=DEFAULT_TIGHTENING_METHOD, alpha_a=None,
              embedding_roughness=DEFAULT_EMBEDDING_ROUGHNESS, embedding_loading=DEFAULT_EMBEDDING_LOADING,
              clamped_interfaces=None, joint_type="tapped", clamped_parts_modulus_mpa=None,
-             free_thread_length_mm=0.0, utilisation=None, tighten_to="permissible", candidates=None):
+             free_thread_length_mm=0.0, utilisation=None, tighten_to="permissible", candidates=None,
+             clamp_force_n=None):
     """Step 10 of the flowchart: bolt preload, bolt choice and all checks (eq. (94)-(111)).
 
     Vectorised over designs: every numeric argument broadcasts. The clamp
@@ -1082,6 +1088,12 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     (``axial``/``transverse``), ``clamped_interfaces``, ``joint_type``
     (``tapped``/``through``), ``clamped_parts_modulus_mpa``,
     ``free_thread_length_mm`` (loaded free thread inside l_K, default 0).
+
+    ``clamp_force_n`` (thesis path only; broadcast like the designs, NaN where not given): a made joint,
+    tightened to this clamp force instead of the one the safety targets need (a production-scatter sample
+    of :mod:`synth.robust`: the specified preload times its tightening scatter); every value then follows
+    from it and ``bolt_clamp_force_required_n`` stays the force the targets need. The VDI path's tightening
+    factor already holds the preload scatter: giving it there is an error.
 
     ``candidates`` (a list of ``(bolt_format, bolt_property_class)`` pairs, with ``bolt_format`` and
     ``bolt_property_class`` left None): every pair is evaluated as the chosen bolt, no escalation, and every
@@ -1145,7 +1157,13 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     f_tilt = bolt_force_tilting_n(hl, tilting_safety_factor_target, lever, d_ext, d_int, contact_angle_deg,
                                   model=contact_model)
     f_slide = bolt_force_sliding_n(hl, sliding_safety_factor_target, mu_cc)
-    force = required_bolt_force_n(f_tilt, f_slide)
+    force = required = required_bolt_force_n(f_tilt, f_slide)
+    if clamp_force_n is not None:
+        if method != "thesis":
+            raise InputError(Problem("clamp_force_n", "given", "the thesis method (VDI 2230's tightening factor "
+                                                               "already holds the preload scatter)"))
+        cf = _arr(clamp_force_n)
+        force = np.where(np.isfinite(cf), cf, required)
     area = pivot_base_contact_area_mm2(d_ext, d_int, contact_angle_deg)
     k = pivot_base_bending_factor_per_mm3(d_ext, d_int, contact_angle_deg, model=contact_model)
     moment = hl * lever
@@ -1257,7 +1275,7 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         "sliding_safety_factor": sf_s,
         "bolt_force_tilting_n": ex(f_tilt),
         "bolt_force_sliding_n": ex(f_slide),
-        "bolt_clamp_force_required_n": ex(force),
+        "bolt_clamp_force_required_n": ex(required),
         "tilting_moment_nmm": ex(moment),
         "pivot_base_max_pressure_mpa": p_max,
         "pivot_base_min_pressure_mpa": residual / ex(area) - ex(moment) * ex(k),

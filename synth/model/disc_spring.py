@@ -563,7 +563,8 @@ def table7_ratios(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_heigh
 def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radial_damping_nm,
                 plastic_friction_coefficient, damper_pad_mean_radius_mm, endcap_spacer_mean_radius_mm,
                 outer_diameter_mm, inner_diameter_mm, gap_tolerance_mm, *, aspect_ratio, deflection_ratio,
-                force_tolerance_plus=None, force_tolerance_minus=None, fidelity: str = "full") -> dict:
+                force_tolerance_plus=None, force_tolerance_minus=None, fidelity: str = "full",
+                thickness_mm=None, deflection_offset_mm=0.0, force_factor=1.0) -> dict:
     """Step 8: size the cone spring of one variant and its force tolerance band (thesis eq. (9), (55)-(63), Fig. 68).
 
     1. nominal axial force from the axial damping of step 3 (eq. (9) inverted);
@@ -581,6 +582,14 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
 
     Inputs broadcast (one call, many designs; valid geometry: ``De > Di > 0``,
     ``zeta > 0``, ``0 < phi <= 1``, a positive nominal force). Forces N, lengths mm, torques N m.
+
+    A made spring (``thickness_mm`` given, finite; a production-scatter sample of :mod:`synth.robust`): it is
+    not sized, its thickness is the given one (``h0 = zeta t``, ``s_n = phi h0`` as designed); it sits at the
+    deflection ``s_n + deflection_offset_mm`` (the realised gap stack: a smaller gap deflects it more) and
+    gives ``force_factor`` times its characteristic's force there (its manufacturing scatter). The band is
+    checked for that one realisation: ``cone_spring_gap_band_room_n`` and ``cone_spring_force_band_room_n``
+    are ``min(F_up - F, F - F_lo)``, ``cone_spring_fax_nominal_n`` is the realised force ``F``,
+    ``cone_spring_nominal_deflection_mm`` and ``cone_spring_max_deflection_mm`` the realised deflection.
 
     Returns the ``thesis_tool`` keys ``cone_spring_fax_max_tolerance_n``,
     ``cone_spring_fax_min_tolerance_n``, the spring's ``cone_spring_internal_diameter_mm`` and
@@ -605,6 +614,10 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
                                    damper_pad_mean_radius_mm, endcap_spacer_mean_radius_mm)
     de, di = _f(outer_diameter_mm), _f(inner_diameter_mm)
     t = disc_spring_thickness_for_force_mm(f_nom, de, di, zeta, phi, fidelity=fidelity)
+    made = None
+    if thickness_mm is not None:  # a made spring: the given thickness where finite
+        made = np.isfinite(_f(thickness_mm))
+        t = np.where(made, _f(thickness_mm), t)
     h0 = zeta * t
     s_n = phi * h0
     dh = _f(gap_tolerance_mm)
@@ -622,6 +635,18 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
                                       endcap_spacer_mean_radius_mm, shifts["force_shift_min_gap_n"],
                                       shifts["force_shift_max_gap_n"], force_tolerance_plus, force_tolerance_minus)
     s_max = s_n + dh
+    if made is not None:
+        s_made = s_n + _f(deflection_offset_mm)
+        with np.errstate(invalid="ignore"):
+            f_made = disc_spring_force_n(s_made, *geo, fidelity=fidelity) * _f(force_factor)
+        room_made = np.minimum(band["fax_damping_upper_n"] - f_made, f_made - band["fax_damping_lower_n"])
+        for key, val in (("band_room_n", room_made), ("gap_room_n", room_made),
+                         ("cone_spring_fax_max_tolerance_n", band["fax_damping_upper_n"]),
+                         ("cone_spring_fax_min_tolerance_n", band["fax_damping_lower_n"])):
+            band[key] = np.where(made, val, band[key])
+        f_nom = np.where(made, f_made, f_nom)
+        s_max = np.where(made, s_made, s_max)
+        s_n = np.where(made, s_made, s_n)
     out = {
         "cone_spring_fax_max_tolerance_n": band["cone_spring_fax_max_tolerance_n"],
         "cone_spring_fax_min_tolerance_n": band["cone_spring_fax_min_tolerance_n"],

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 from synth.errors import InputError, Problem
 
-__all__ = ["OBJECTIVES", "MAX_WEIGHT", "Objective"]
+__all__ = ["OBJECTIVES", "MAX_WEIGHT", "Objective", "with_margin_tiebreak"]
 
 OBJECTIVES = ("standard", "cost", "margin")
 #: the largest weight of a weighted objective: weights are relative, and the lexicographic orders use 1e4 between
@@ -122,3 +122,20 @@ class Objective:
         if self.weights:
             return (self.score(values),)
         return tuple(-values[k] if k == "margin" else values[k] for k in self.order)
+
+
+def with_margin_tiebreak(objective) -> str:
+    """The objective the scenes synthesise for ``objective``: one name (``standard`` or ``cost``) gets the
+    margin as its last tie-break, so that among designs of equal standardisation and cost the one with the
+    largest margin is returned, never a zero-margin design where an equal one with margin exists; an explicit
+    order or weights are kept as given.
+
+    >>> with_margin_tiebreak("standard"), with_margin_tiebreak("cost"), with_margin_tiebreak("cost,standard")
+    ('standard,cost,margin', 'cost,standard,margin', 'cost,standard')
+    """
+    if isinstance(objective, Objective):
+        return objective
+    o = Objective.parse(objective)
+    if o.weights is None and "margin" not in o.order and "," not in str(objective):
+        return ",".join(o.order + ("margin",))
+    return str(objective).strip().lower()

@@ -56,21 +56,24 @@ def pareto_front(d, *, n_points: int = 40, settings: Settings = Settings()) -> l
     return front
 
 
-def plot_front(front: list, path) -> None:
-    """Save the front as a matplotlib step plot, each point labelled with its binding constraint."""
+def plot_front(front: list, path, *, y: str = "margin", ylabel: str = "smallest normalised margin [-]",
+               title: str = "cost against margin: Pareto front", label=None) -> None:
+    """Save the front (cost against ``y``) as a matplotlib step plot, each point labelled with ``label(point)``
+    (default its binding constraint)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    label = label or (lambda p: p["binding"])
     fig, ax = plt.subplots(figsize=(7, 4.5))
     c = [p["cost_eur"] for p in front]
-    m = [p["margin"] for p in front]
+    m = [p[y] for p in front]
     ax.step(c, m, where="post", color="0.6")
     ax.plot(c, m, "o", color="C0")
     for p in front:
-        ax.annotate(p["binding"], (p["cost_eur"], p["margin"]), fontsize=7, xytext=(3, 3), textcoords="offset points")
+        ax.annotate(label(p), (p["cost_eur"], p[y]), fontsize=7, xytext=(3, 3), textcoords="offset points")
     ax.set_xlabel("cost [EUR] (catalog unit costs)")
-    ax.set_ylabel("smallest normalised margin [-]")
-    ax.set_title("cost against margin: Pareto front")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
     from synth.io.outputs import write_figure

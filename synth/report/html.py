@@ -360,12 +360,16 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
     figs = [_figure(g) for g in graphs if not g.id.startswith("cad_")]
     scene_rows = [s for s in (_scene(k, v) for k, v in (scenes or {}).items()) if s]
     plat = platform_section(platform)
+    from synth.report.robust import robust_section
+    robust = robust_section(result)
     digest = digest_context(result)
     toc = [("digest", "Digest"), ("metadata", "Document"), ("model", "Model settings"), ("design", "Design"),
            ("output", "Output table"), ("checks", "Checks")]
     if cad or cad_note:
         toc.append(("cad", "3D model"))
     toc.append(("graphs", "Graphs"))
+    if robust is not None:
+        toc.append(("robust", "Production scatter"))
     if plat is not None:
         toc.append(("platform", "Platform rationalisation"))
     toc += [(f"scene-{s['id']}", s["name"]) for s in scene_rows]
@@ -384,7 +388,7 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
         d=digest, toc=toc, parts=parts, binding=[check_row(c) for c in result.binding(5)],
         settings=settings_in_words(result), output=_output_rows(result), legend_na="grey (not applicable)",
         checks=checks, not_applicable=na, cad=cad, cad_note=cad_note, graphs=figs,
-        skipped=[{"id": s.id, "title": s.title, "reason": s.reason} for s in skipped], platform=plat,
+        skipped=[{"id": s.id, "title": s.title, "reason": s.reason} for s in skipped], platform=plat, robust=robust,
         scenes=scene_rows, notes=list(result.notes), inputs=_inputs(result))
 
 

@@ -86,6 +86,9 @@ def render(r: Result, *, title: str = "") -> str:
     if r.assumptions():
         lines += ["", "Assumed (documented defaults for inputs not given)", "-" * 78]
         lines += [f"  - {a}" for a in r.assumptions()]
+    if getattr(r, "robust", None):
+        from synth.report.robust import text_lines
+        lines += text_lines(r.robust)
     if r.notes:
         lines += ["", "Notes", "-" * 78] + [f"  - {n}" for n in r.notes]
     lines += ["", verdict_line(r)]

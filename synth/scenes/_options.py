@@ -3,14 +3,18 @@
 One place decides what ``synth design``, ``synth report``, ``synth demo`` and
 ``synth design --cad`` run for an input, so they show the same design at the
 same fidelity by default: the exhaustive optimum (``enumerate``) of the most
-standardised design (objective ``standard``, cost as tie-break), full fidelity.
+standardised design (objective ``standard``, then cost, then the margin as
+tie-breaks: :func:`synth.optimise.objectives.with_margin_tiebreak`), full
+fidelity; with ``--capability``/``--ppm`` the robust synthesis
+(:mod:`synth.robust.synthesis`).
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["add_model_options", "settings_from_args", "add_design_options", "synthesise", "load_saved_result",
+__all__ = ["add_model_options", "settings_from_args", "add_design_options", "add_robust_options",
+           "robust_settings_from_args", "synthesise", "load_saved_result",
            "DEFAULT_SOLVER", "DEFAULT_OBJECTIVE"]
 
 DEFAULT_SOLVER = "enumerate"
@@ -25,12 +29,17 @@ def add_model_options(p) -> None:
     p.add_argument("--bolt-method", choices=("thesis", "vdi2230"), default="thesis",
                    help="fixation bolt: the thesis's elastic check of the nominal preload (default) or VDI 2230-1 "
                         "(permissible assembly preload, tightening factor, embedding)")
+    p.add_argument("--spring-limit", choices=("thesis", "en13906"), default="thesis",
+                   help="design rule of the main spring's installation stress: the thesis's yield check "
+                        "(sigma_y_bend_fraction Rm on the curvature-corrected stress, default) or EN 13906-3's "
+                        "static rule (0.75 Rm on the stress without curvature factor)")
 
 
 def settings_from_args(args):
     from synth.design.evaluate import Settings
     return Settings(fidelity=args.fidelity, friction_circle=not args.linear_friction,
-                    bolt_method=getattr(args, "bolt_method", "thesis"), drive=getattr(args, "drive_model", None))
+                    bolt_method=getattr(args, "bolt_method", "thesis"), drive=getattr(args, "drive_model", None),
+                    spring_limit_basis=getattr(args, "spring_limit", "thesis"))
 
 
 def add_design_options(p) -> None:
@@ -46,21 +55,62 @@ def add_design_options(p) -> None:
     add_model_options(p)
 
 
+def add_robust_options(p, *, default_capability=None) -> None:
+    """The capability options (:class:`synth.robust.settings.RobustSettings`): target, ppm, samples, seed."""
+    from synth.robust.settings import DEFAULT_SAMPLES, RobustSettings
+    p.add_argument("--capability", type=float, default=default_capability, metavar="PPK",
+                   help="production capability target: every checked constraint with Ppk >= PPK under the tolerance "
+                        "model (catalogs/tolerances.csv); 1.33 is the usual target")
+    p.add_argument("--ppm", type=float, default=None, metavar="N",
+                   help="production target: every checked constraint violated by at most N parts per million "
+                        "(the upper end of its 95 %% interval)")
+    p.add_argument("--samples", type=int, default=DEFAULT_SAMPLES, metavar="N",
+                   help=f"Monte Carlo samples per design (scrambled Sobol; default {DEFAULT_SAMPLES})")
+    p.add_argument("--seed", type=int, default=RobustSettings().seed, help="seed of the samples (same seed, same numbers)")
+
+
+def robust_settings_from_args(args, *, default_capability=None):
+    """The :class:`~synth.robust.settings.RobustSettings` of the options (checked: a bad value names its option)."""
+    from synth.errors import InputError, Problem
+    from synth.robust.settings import RobustSettings
+    names = {"capability": "--capability", "ppm": "--ppm", "samples": "--samples", "seed": "--seed"}
+    cap = getattr(args, "capability", None)
+    kw = {"capability": default_capability if cap is None and getattr(args, "ppm", None) is None else cap,
+          "ppm": getattr(args, "ppm", None), "samples": getattr(args, "samples", None), "seed": getattr(args, "seed", None)}
+    kw = {k: v for k, v in kw.items() if v is not None or k in ("capability", "ppm")}
+    try:
+        return RobustSettings(**kw)
+    except InputError as exc:
+        raise InputError([Problem(names.get(p.field, p.field), p.value, p.accepted) for p in exc.problems]) from None
+
+
 def synthesise(d, args):
-    """The :class:`~synth.design.result.Result` of the synthesis the options of ``args`` ask for."""
+    """The :class:`~synth.design.result.Result` of the synthesis the options of ``args`` ask for (with
+    ``--capability``/``--ppm``: the robust synthesis of :mod:`synth.robust.synthesis`)."""
     from synth.errors import InputError, Problem
     from synth.optimise import solve
+    from synth.optimise.objectives import with_margin_tiebreak
     if not 1 <= int(getattr(args, "trials", 200)) <= 100_000:
         raise InputError(Problem("--trials", args.trials, "an integer from 1 to 100000"))
     limit = getattr(args, "time_limit", None)
     if limit is not None and not (0 < limit <= 86_400):
         raise InputError(Problem("--time-limit", limit, "seconds in (0, 86400]"))
+    objective = getattr(args, "objective", DEFAULT_OBJECTIVE)
+    if getattr(args, "solver", DEFAULT_SOLVER) == "enumerate":  # the exact solver: the margin as last tie-break
+        objective = with_margin_tiebreak(objective)
+    if getattr(args, "capability", None) is not None or getattr(args, "ppm", None) is not None:
+        if getattr(args, "solver", DEFAULT_SOLVER) != "enumerate":
+            raise InputError(Problem("--solver", args.solver, "enumerate with --capability/--ppm (the robust "
+                                                              "synthesis searches the catalog exhaustively)"))
+        from synth.robust.synthesis import robust_solve
+        return robust_solve(d, objective, settings=settings_from_args(args), rs=robust_settings_from_args(args),
+                            pin_inputs=getattr(args, "pin_inputs", False))
     kw = {"settings": settings_from_args(args), "pin_inputs": getattr(args, "pin_inputs", False)}
     if args.solver == "blackbox":
         kw["n_trials"] = args.trials
     if limit is not None:
         kw["time_limit_s"] = limit
-    return solve(d, getattr(args, "objective", DEFAULT_OBJECTIVE), getattr(args, "solver", DEFAULT_SOLVER), **kw)
+    return solve(d, objective, getattr(args, "solver", DEFAULT_SOLVER), **kw)
 
 
 def load_saved_result(path: str | Path, what: str = "result"):

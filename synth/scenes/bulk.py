@@ -61,7 +61,13 @@ def register(sub) -> None:
                    help="local Dask cluster: worker processes, 1-64 (default 2)")
     p.add_argument("--summary", metavar="DIR", help="write the portfolio summary (markdown, CSV, PNG plots) into DIR")
     p.add_argument("--no-diagnose", action="store_true", help="skip the relaxation search of infeasible applications")
-    p.set_defaults(func=_main)
+    from synth.robust.portfolio import BULK_SAMPLES
+    from synth.scenes._options import add_robust_options
+    add_robust_options(p)
+    for a in p._actions:  # the bulk's own sample count (per application)
+        if a.dest == "samples":
+            a.help = f"Monte Carlo samples per application with --capability/--ppm (default {BULK_SAMPLES})"
+    p.set_defaults(func=_main, samples=BULK_SAMPLES)
 
 
 def _main(args) -> int:
@@ -78,6 +84,8 @@ def _main(args) -> int:
         print(f"\nsynth bulk: {how}; finished chunks are kept in {sidecar(args.out)}; "
               "rerun the same command with --resume to continue", file=sys.stderr)
         return 143 if isinstance(exc, Terminated) else 130
+    if (args.capability is not None or args.ppm is not None) and rep.table is not None:
+        _capability(args, rep)
     for w in rep.warnings:
         print(f"synth bulk: note: {w}", file=sys.stderr)
     print(f"synth bulk: {args.portfolio} -> {rep.out} | objective {args.objective} | fidelity {args.fidelity}")
@@ -88,3 +96,36 @@ def _main(args) -> int:
         paths = write_summary(s, args.summary)
         print(f"summary: {len(paths)} files in {args.summary}")
     return 0
+
+
+def _capability(args, rep) -> None:
+    """``--capability``/``--ppm``: the production capability of each feasible application's chosen design, as
+    columns of the result table (rewritten), through :func:`synth.robust.portfolio.portfolio_capability`."""
+    import time
+
+    import pandas as pd
+
+    from synth.bulk.portfolio import row_record, validate_record, write_table
+    from synth.design.evaluate import Settings
+    from synth.design.space import PART_KEYS
+    from synth.robust.portfolio import COLUMNS, portfolio_capability
+    from synth.scenes._options import robust_settings_from_args
+    rs = robust_settings_from_args(args)
+    t0 = time.perf_counter()
+    table = rep.table
+    inputs, parts = [], []
+    for row in table.to_dict(orient="records"):
+        d, _ = validate_record(row_record(row))
+        ok = d is not None and bool(row.get("feasible")) and all(f"part_{k}" in row for k in PART_KEYS)
+        inputs.append(d)
+        parts.append({k: row[f"part_{k}"] for k in PART_KEYS} if ok else None)
+    rows = portfolio_capability(inputs, parts, settings=Settings(fidelity=args.fidelity), rs=rs,
+                                workers=args.workers or 1)
+    extra = pd.DataFrame(rows, columns=list(COLUMNS), index=table.index)
+    rep.table = pd.concat([table.drop(columns=[c for c in COLUMNS if c in table.columns]), extra], axis=1)
+    write_table(rep.table, rep.out)
+    n = sum(p is not None for p in parts)
+    dt = time.perf_counter() - t0
+    meets = int(sum(bool(r["capability_meets"]) for r in rows if r["capability_meets"] is not None))
+    print(f"synth bulk: capability ({rs.targets()}, {rs.samples} samples per application) of {n} feasible "
+          f"designs in {dt:.3g} s ({n / max(dt, 1e-9):.3g} applications/s): {meets} meet it")

@@ -12,7 +12,7 @@ import sys
 
 from synth.io.outputs import json_text
 from synth.report.text import render
-from synth.scenes._options import add_design_options, synthesise
+from synth.scenes._options import add_design_options, add_robust_options, synthesise
 
 __all__ = ["register"]
 
@@ -21,6 +21,10 @@ def register(sub) -> None:
     p = sub.add_parser("design", help="optimal tensioner from the catalogs (standardisation, cost or margin)")
     p.add_argument("input", help="design input (.yaml, .toml, .json, .xlsx; a case file works)")
     add_design_options(p)
+    add_robust_options(p)
+    p.add_argument("--assumptions", action="store_true",
+                   help="also list the verdicts that flip inside the illustrative limits' plausible ranges "
+                        "(catalogs/assumption_ranges.csv)")
     p.add_argument("--json", action="store_true", help="print the result as one JSON object (exit code as without)")
     p.add_argument("--drive", metavar="DRIVE", default=None,
                    help="the belt drive around the tensioner (.yaml, .toml, .json, .xlsx): theta_pp and f for the "
@@ -39,6 +43,10 @@ def _main(args) -> int:
     r = synthesise(d, args)
     if note:
         r.notes.insert(0, note)
+    if args.assumptions and r.parts:
+        from synth.robust.assumptions import flips
+        from synth.scenes._options import settings_from_args
+        r.robust = {**r.robust, "assumptions": flips(d, r.parts, settings_from_args(args))}
     if args.json:
         print(json_text(r.to_dict(), indent=2))
     else:
@@ -46,6 +54,8 @@ def _main(args) -> int:
     if args.cad:
         from pathlib import Path
         print("\n".join(export_cad(r, args.cad, Path(args.input).stem)), file=sys.stderr if args.json else sys.stdout)
+    if r.robust.get("checks") and not r.robust.get("meets", True):
+        return 1  # the capability target is missed: the design fails it
     return r.exit_code
 
 

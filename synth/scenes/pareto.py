@@ -15,6 +15,8 @@ def register(sub) -> None:
     p.add_argument("--out", default="pareto_out", help="folder for front.md, front.json and front.png")
     p.add_argument("--points", default=40, metavar="N",
                    help="margin thresholds probed, 2-500 (each is one catalog solve; default 40)")
+    from synth.scenes._options import add_robust_options
+    add_robust_options(p)
     p.set_defaults(func=_main)
 
 
@@ -24,6 +26,8 @@ def _main(args) -> int:
     from synth.scenes.report import out_folder
     points = check_count("--points", args.points)
     out = out_folder(args.out)  # checked before the work: an existing file is not a folder
+    if args.capability is not None or args.ppm is not None:
+        return _robust_front(args, out, min(points, 12))
     front = pareto_front(load_input(args.input), n_points=points)
     output_folder(out)
     lines = ["| cost [EUR] | margin | non-standard | binding constraint |", "|---|---|---|---|"]
@@ -39,5 +43,27 @@ def _main(args) -> int:
     if front:
         plot_front(front, out / "front.png")
     print(table if front else "no feasible design: no front (run synth design for the diagnosis)")
+    print(f"\nwritten: {out / 'front.md'}, {out / 'front.json'}" + (f", {out / 'front.png'}" if front else ""))
+    return 0 if front else 1
+
+
+def _robust_front(args, out, points: int) -> int:
+    """``--capability``/``--ppm``: cost against capability (Ppk and ppm), from the target up (one robust search per
+    point: synth.robust.synthesis.robust_front)."""
+    from synth.robust.synthesis import robust_front
+    from synth.scenes._options import robust_settings_from_args
+    rs = robust_settings_from_args(args)
+    front = robust_front(load_input(args.input), rs=rs, n_points=points)
+    out.mkdir(parents=True, exist_ok=True)
+    lines = [f"Cost against capability ({rs.targets()} and better; {rs.samples} samples per design)", "",
+             "| cost [EUR] | smallest Ppk | largest P(violation) [ppm] | binding check |", "|---|---|---|---|"]
+    lines += [f"| {p['cost_eur']:.4f} | {p['ppk']:.3g} | {p['ppm']:.3g} | {p['binding']} |" for p in front]
+    table = "\n".join(lines)
+    (out / "front.md").write_text(table + "\n")
+    (out / "front.json").write_text(json.dumps(front, indent=2, default=str))
+    if front:
+        plot_front(front, out / "front.png", y="ppk", ylabel="smallest Ppk of the checked constraints [-]",
+                   title="cost against production capability", label=lambda p: f"{p['binding']} ({p['ppm']:.2g} ppm)")
+    print(table if front else f"no catalog design meets {rs.targets()} (synth design --capability says why)")
     print(f"\nwritten: {out / 'front.md'}, {out / 'front.json'}" + (f", {out / 'front.png'}" if front else ""))
     return 0 if front else 1

@@ -20,9 +20,9 @@ from pathlib import Path
 
 from synth import schema
 from synth.errors import InputError, Problem
-from synth.scenes._options import add_design_options, load_saved_result, synthesise
+from synth.scenes._options import add_design_options, add_robust_options, load_saved_result, synthesise
 
-__all__ = ["register", "make_report", "read_table", "out_folder"]
+__all__ = ["register", "make_report", "read_table", "out_folder", "add_capability"]
 
 
 def register(sub) -> None:
@@ -41,6 +41,7 @@ def register(sub) -> None:
     p.add_argument("--no-pdf", action="store_true", help="do not write report.pdf beside report.html")
     p.add_argument("--platform", metavar="DIR", help="a rationalisation output (synth rationalise --out) to report")
     add_design_options(p)
+    add_robust_options(p)
     p.set_defaults(func=_main)
 
 
@@ -119,8 +120,12 @@ def _defaults():
 
 def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: list | None = None,
                 show_progress: bool = True, cad_pictures: bool = True, pdf: bool = True, author: str = "",
-                revision: str = "", page: str = "landscape", platform=None) -> dict:
+                revision: str = "", page: str = "landscape", platform=None, robust=None) -> dict:
     """Write ``report.html``, ``report.pdf`` and ``results.xlsx`` of ``source`` (input file, saved result or Result).
+
+    ``robust`` (a :class:`synth.robust.settings.RobustSettings`): add the production-scatter section (the
+    design's capability, unless the result carries it, and the verdicts resting on illustrative limits) and
+    the ``Capability`` and ``Assumptions`` sheets.
 
     Returns ``{"html": Path, "pdf": Path | None, "pdf_note": str, "xlsx": Path, "result": Result,
     "graphs": [...], "skipped": [...]}`` (``pdf_note``: why no PDF was written, when none was).
@@ -130,6 +135,8 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     from synth.report.plots import build_graphs
     from synth.io.outputs import output_folder
     result, cells, name = result_for_report(source, args)
+    if robust is not None and result.parts:
+        add_capability(result, robust)
     out = output_folder(out_dir)
     pictures = list(cad or [])
     cad_note = ""
@@ -152,9 +159,39 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     if pdf:
         from synth.report.pdf import write_pdf
         pdf_path, _, pdf_note = write_pdf(html_path)
-    xlsx_path = write_results(out / "results.xlsx", result, cells=cells, source=name, scenes=scenes)
+    sheets = dict(scenes)
+    if result.robust.get("checks"):
+        from synth.report.robust import capability_rows
+        sheets["Capability"] = capability_rows(result.robust)
+    if result.robust.get("assumptions"):
+        sheets["Assumptions"] = [{"assumption": a["id"], "catalog": a["catalog"], "key": a["key"],
+                                  "column": a["column"], "value": str(a["value"]), "low": a["low"], "high": a["high"],
+                                  "scale": a["scale"], "flips": "; ".join(f"{f['check']}: {f['nominal']} -> "
+                                                                          f"{f['at_low']} / {f['at_high']}"
+                                                                          for f in a["flips"]),
+                                  "reason": a["reason"], "source": a["source"]} for a in result.robust["assumptions"]]
+    xlsx_path = write_results(out / "results.xlsx", result, cells=cells, source=name, scenes=sheets)
     return {"html": html_path, "pdf": pdf_path, "pdf_note": pdf_note if pdf_path is None else "", "xlsx": xlsx_path,
             "result": result, "graphs": graphs, "skipped": skipped}
+
+
+def add_capability(result, rs) -> None:
+    """Set ``result.robust`` (the capability of its design under ``rs``, unless it carries one) and its
+    assumptions' flips, through :mod:`synth.robust`."""
+    from synth import schema
+    from synth.design.evaluate import Settings
+    from synth.robust.assumptions import flips
+    from synth.robust.capability import capability
+    from synth.robust.sampling import base_of
+    fields = set(Settings.__dataclass_fields__)
+    settings = Settings(**{k: v for k, v in (result.settings or {}).items() if k in fields})
+    d = schema.validate({k: v for k, v in (result.inputs or {}).items() if v is not None})
+    robust = dict(result.robust or {})
+    if not robust.get("checks"):
+        robust.update(capability(base_of(d, result.parts, settings), rs).to_dict())
+    if "assumptions" not in robust:
+        robust["assumptions"] = flips(d, result.parts, settings)
+    result.robust = robust
 
 
 def _main(args) -> int:
@@ -166,9 +203,13 @@ def _main(args) -> int:
             raise InputError(Problem("--cad", png, "an existing PNG file"))
     if args.platform and not Path(args.platform).exists():
         raise InputError(Problem("--platform", args.platform, "an existing rationalisation output (synth rationalise --out)"))
+    rs = None
+    if args.capability is not None or args.ppm is not None:
+        from synth.scenes._options import robust_settings_from_args
+        rs = robust_settings_from_args(args)
     r = make_report(args.input, args.out, args, scenes=scenes, cad=args.cad, cad_pictures=not args.no_cad,
                     pdf=not args.no_pdf, author=args.author, revision=args.revision, page=args.page,
-                    platform=Path(args.platform) if args.platform else None)
+                    platform=Path(args.platform) if args.platform else None, robust=rs)
     pdf = f", {r['pdf']}" if r["pdf"] else ""
     print(f"wrote {r['html']} ({len(r['graphs'])} graphs){pdf} and {r['xlsx']}")
     if not args.no_pdf and r["pdf"] is None:

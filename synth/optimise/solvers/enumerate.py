@@ -172,7 +172,9 @@ def solve(d, objective="standard", *, settings: Settings = Settings(), pin_input
     """
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     t0 = time.perf_counter()
-    if not exhaustive and not obj.uses_margin():
+    # the compiled spring kernels of the branch and bound check the thesis's spring limit; another design rule
+    # (Settings.spring_limit_basis) takes the exhaustive path, whose springs go through the numpy evaluator
+    if not exhaustive and not obj.uses_margin() and settings.spring_limit_basis == "thesis":
         from synth.optimise.batch import Batch
         b = Batch([d], settings, pin_inputs=pin_inputs, spring_engine="numpy")
         w = obj.additive_weights()

@@ -1,0 +1,355 @@
+"""Capability of one design: per registry check, how much of a production run violates it, and why.
+
+From the samples of :mod:`synth.robust.sampling` (the evaluator's margins,
+``m >= 0`` passes, scaled by the registry so that the limit is ``m = 0``):
+
+* **P(violation)** = the share of samples with ``m < 0``, with its 95 %
+  Clopper-Pearson interval (binomial; conservative for scrambled Sobol
+  points, whose error is smaller than independent sampling's). Fewer than
+  ``rare_min_failures`` violations: the FORM design point and importance
+  sampling of :mod:`synth.robust.rare` give the probability with its own
+  interval;
+* **Ppk** = ``mean(m) / (3 sd(m))``: the distance of the mean to the limit in
+  units of 3 standard deviations (the margin is a linear rescaling of the
+  checked value, so this is the ISO 22514-2 / AIAG index ``(USL - mu)/(3 sigma)``
+  or ``(mu - LSL)/(3 sigma)`` of the value itself). A window (two checks of one
+  value with opposite senses, e.g. the damping's upper and lower tolerance)
+  has the smaller of its two sides' indices. A simulation has no rational
+  subgroups: its one standard deviation is the overall one, so Cpk = Ppk here;
+* **worst case** (every quantity at the end of its band that hurts the check,
+  the ends chosen from the secant sensitivities over the band; evaluated at
+  that vertex) and **RSS** (the root sum of squares of the band contributions,
+  linearised) beside it;
+* **contributors**: the standardised regression coefficients of the margin on
+  the standard-normal inputs, squared and normalised (for a linear check they
+  are the first-order Sobol indices), with the regression's R^2.
+
+The **target** (:class:`~synth.robust.settings.RobustSettings`) applies to the
+checks the registry counts in the margin objective (``objective=True``; not
+advisory, not input-only, not met by construction such as a preload sized to
+its safety factor): every other check is reported, not required.
+
+Closed-form check (tests): a check linear in normal inputs has
+``Ppk = m0 / (3 sqrt(sum (s_i sigma_i)^2))``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from synth.design.constraints import FEAS_TOL, REGISTRY
+from synth.robust.sampling import Base, evaluate_deviations, evaluate_u, sobol_u
+from synth.robust.settings import RobustSettings
+
+#: a margin whose standard deviation is below this (relative) is a constant: round-off, not scatter
+SD_FLOOR = 1e-9
+#: sample values kept per histogram (the report's 40 bins; the JSON stays small)
+HISTOGRAM_SAMPLES = 1000
+#: above this Ppk (a normal margin 7.5 standard deviations from its limit, P ~ 1e-13) an unresolved probability
+#: keeps the Monte Carlo's Clopper-Pearson bound unless a ppm target needs a smaller one
+RARE_PPK_MAX = 2.5
+
+__all__ = ["CheckCapability", "Capability", "capability", "clopper_pearson", "ppk", "targeted", "windows"]
+
+
+def clopper_pearson(k, n: int, level: float = 0.95) -> tuple:
+    """``(lo, hi)``: the exact binomial interval of ``k`` successes in ``n`` trials (``k`` an array: arrays).
+
+    >>> [round(x, 5) for x in clopper_pearson(0, 10000)]
+    [0.0, 0.00037]
+    """
+    from scipy.special import betaincinv
+    a = (1.0 - level) / 2.0
+    kk = np.asarray(k, dtype=float)
+    with np.errstate(all="ignore"):
+        lo = np.where(kk == 0, 0.0, betaincinv(np.maximum(kk, 1e-300), n - kk + 1, a))
+        hi = np.where(kk >= n, 1.0, betaincinv(kk + 1, np.maximum(n - kk, 1e-300), 1.0 - a))
+    if np.ndim(k) == 0:
+        return float(lo), float(hi)
+    return lo, hi
+
+
+def ppk(m: np.ndarray) -> float:
+    """``mean / (3 sd)`` of the finite margins ``m``; +inf for a passing constant, -inf for a failing one.
+
+    >>> round(ppk(np.array([0.3, 0.5, 0.7])), 4)     # 0.5 / (3 * 0.1633)
+    1.0206
+    """
+    m = np.asarray(m, dtype=float)
+    m = m[np.isfinite(m)]
+    if not len(m):
+        return float("inf")
+    mu, sd = float(m.mean()), float(m.std())
+    if sd <= SD_FLOOR * max(1.0, abs(mu)):
+        return float("inf") if mu >= -FEAS_TOL else float("-inf")
+    return mu / (3.0 * sd)
+
+
+def targeted(cid: str, base: Base) -> bool:
+    """Whether check ``cid`` of the design counts in the capability target: the registry's margin objective
+    (``objective``, not advisory, design-dependent; ``objective_unless`` false for the design)."""
+    c = REGISTRY[cid]
+    if c.advisory or not c.objective or not c.design:
+        return False
+    if c.objective_unless is not None:
+        v = base.groups[c.group].values.get(c.objective_unless)
+        if v is not None and float(np.asarray(v, dtype=float)[0]) > 0:
+            return False
+    return True
+
+
+def windows(checks) -> dict:
+    """``{value key: (check, check)}``: pairs of checks of one group on one value with opposite senses (a
+    window, e.g. ``damping_nm``: ``damping_upper`` and ``damping_lower``), from the registry."""
+    by = {}
+    for cid in checks:
+        c = REGISTRY[cid]
+        by.setdefault((c.group, c.value), {})[c.sense] = cid
+    return {value: (d["<="], d[">="]) for (_, value), d in by.items() if len(d) == 2}
+
+
+@dataclass
+class CheckCapability:
+    """The capability of one check (see the module docstring)."""
+
+    id: str
+    nominal: float          # the registry's nominal margin (its worst-case stacks where the thesis has them)
+    centre: float           # margin with every quantity at the centre of its band
+    mean: float
+    sd: float
+    ppk: float
+    p: float
+    p_lo: float
+    p_hi: float
+    failures: int
+    n: int
+    method: str             # "monte carlo" | "importance sampling" | "deterministic"
+    worst_case: float
+    rss: float
+    contributors: list = field(default_factory=list)   # [(quantity, share)], largest first
+    r2: float = float("nan")
+    target: bool = False
+    note: str = ""
+
+    @property
+    def label(self) -> str:
+        return REGISTRY[self.id].label
+
+    def meets(self, rs: RobustSettings) -> bool:
+        ok = True
+        if rs.capability is not None:
+            ok &= self.ppk >= rs.capability
+        if rs.ppm is not None:
+            ok &= self.p_hi <= rs.ppm * 1e-6
+        return bool(ok)
+
+    def as_dict(self) -> dict:
+        from synth.design.result import plain
+        c = REGISTRY[self.id]
+        return plain({"id": self.id, "label": c.label, "group": c.group, "nominal_margin": self.nominal,
+                      "centre_margin": self.centre, "mean_margin": self.mean, "sd_margin": self.sd, "ppk": self.ppk,
+                      "p_violation": self.p, "p_lo": self.p_lo, "p_hi": self.p_hi, "ppm": self.p * 1e6,
+                      "failures": self.failures, "samples": self.n, "method": self.method,
+                      "worst_case_margin": self.worst_case, "rss_margin": self.rss,
+                      "contributors": [[q, s] for q, s in self.contributors], "r2": self.r2, "target": self.target,
+                      "note": self.note})
+
+
+@dataclass
+class Capability:
+    """The capability of one design: its checks, the settings, the tolerance model and the histograms."""
+
+    checks: list
+    settings: RobustSettings
+    scatter_rows: list
+    dropped: list
+    histograms: dict = field(default_factory=dict)   # value key -> samples (a thinned copy for plots)
+    windows: dict = field(default_factory=dict)      # value key -> (upper check, lower check)
+    limits: dict = field(default_factory=dict)       # value key -> (lower, upper) of the histogram's window
+
+    def check(self, cid: str) -> CheckCapability:
+        for c in self.checks:
+            if c.id == cid:
+                return c
+        raise KeyError(cid)
+
+    def failing(self) -> list:
+        """The targeted checks that miss the target."""
+        return [c for c in self.checks if c.target and not c.meets(self.settings)]
+
+    @property
+    def meets(self) -> bool:
+        return not self.failing()
+
+    def min_ppk(self) -> float:
+        vals = [c.ppk for c in self.checks if c.target]
+        return float(min(vals)) if vals else float("inf")
+
+    def max_p(self) -> float:
+        vals = [c.p_hi for c in self.checks if c.target]
+        return float(max(vals)) if vals else 0.0
+
+    def to_dict(self) -> dict:
+        from synth.design.result import plain
+        return plain({"kind": "synth.capability", "targets": self.settings.targets(),
+                      "settings": {"capability": self.settings.capability, "ppm": self.settings.ppm,
+                                   "samples": self.settings.samples, "seed": self.settings.seed,
+                                   "rare_samples": self.settings.rare_samples},
+                      "meets": self.meets, "min_ppk": self.min_ppk(), "max_p_violation": self.max_p(),
+                      "failing": [c.id for c in self.failing()],
+                      "windows": {k: list(v) for k, v in self.windows.items()},
+                      "tolerances": self.scatter_rows, "not_sampled": [list(x) for x in self.dropped],
+                      "checks": [{**c.as_dict(), "meets": c.meets(self.settings)} for c in self.checks],
+                      "histograms": self.histograms, "limits": {k: list(v) for k, v in self.limits.items()}})
+
+
+def _linear(base: Base, checks: tuple) -> tuple:
+    """``(centre, worst case, rss)`` margins per check: secant sensitivities over each band (2d + 1 rows), then
+    the adverse vertex of each check (one row per check): two evaluator calls."""
+    sc = base.scatter
+    d = len(sc)
+    ctr = sc.centre()
+    rows = np.repeat(ctr[None, :], 2 * d + 1, axis=0)
+    for j in range(d):
+        rows[1 + 2 * j, j], rows[2 + 2 * j, j] = sc.lo[j], sc.hi[j]
+    s = evaluate_deviations(base, {q: rows[:, j] for j, q in enumerate(sc.names)} or {"_n": np.zeros(1)}, checks)
+    centre = {cid: float(s.margins[cid][0]) for cid in checks}
+    vert = np.repeat(ctr[None, :], len(checks), axis=0)
+    rss = {}
+    for i, cid in enumerate(checks):
+        m = s.margins[cid]
+        lo, hi = m[1::2], m[2::2]
+        with np.errstate(invalid="ignore"):
+            sens = np.where(np.isfinite(hi) & np.isfinite(lo), (hi - lo) / 2.0, 0.0)
+        rss[cid] = centre[cid] - float(np.sqrt(np.sum(sens ** 2)))
+        vert[i] = np.where(hi < lo, sc.hi, sc.lo) if d else vert[i]
+    if d and len(checks):
+        v = evaluate_deviations(base, {q: vert[:, j] for j, q in enumerate(sc.names)}, checks)
+        worst = {cid: float(v.margins[cid][i]) for i, cid in enumerate(checks)}
+    else:
+        worst = dict(centre)
+    return centre, worst, rss
+
+
+def _contributors(u: np.ndarray, margins: dict, names: tuple) -> dict:
+    """``{check: (contributors, R^2)}``: the squared standardised regression coefficients of each check's margin
+    on the standard-normal inputs ``u``, normalised, largest first (those >= 0.5 %), and the regression's R^2;
+    least squares by the normal equations, every check of finite margins in one matrix product (a check with
+    samples where it does not apply: on its own rows)."""
+    out = {}
+    if not u.shape[1] or not margins:
+        return out
+    full = [c for c, m in margins.items() if np.isfinite(m).all() and np.std(m) > 0]
+    parts = ([(full, np.ones(len(u), dtype=bool))] if full else []) + \
+        [([c], np.isfinite(m)) for c, m in margins.items() if c not in full and np.isfinite(m).sum() > u.shape[1] + 2
+         and np.std(m[np.isfinite(m)]) > 0]
+    for ids, ok in parts:
+        x = u[ok] - u[ok].mean(axis=0)
+        y = np.column_stack([margins[c][ok] for c in ids])
+        y = y - y.mean(axis=0)
+        cov = x.T @ x
+        b = np.linalg.solve(cov, x.T @ y)                      # (d, C)
+        explained = np.einsum("ij,ik,kj->j", b, cov, b)         # b' X'X b per column
+        total = np.einsum("ij,ij->j", y, y)
+        sd_u = x.std(axis=0)
+        src2 = (b * sd_u[:, None]) ** 2 / (total / len(y))[None, :]
+        for j, c in enumerate(ids):
+            tot = float(src2[:, j].sum())
+            order = np.argsort(-src2[:, j])
+            contrib = [(names[i], float(src2[i, j] / tot)) for i in order if tot > 0 and src2[i, j] / tot >= 0.005]
+            out[c] = (contrib, float(explained[j] / total[j]) if total[j] > 0 else float("nan"))
+    return out
+
+
+def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool = True, details: bool = True,
+               u: np.ndarray | None = None) -> Capability:
+    """The :class:`Capability` of the design of ``base`` under settings ``rs``.
+
+    ``details``: worst case, RSS, contributors and histograms (off in the synthesis, which needs the
+    probabilities and indices only); ``rare``: importance sampling of the targeted checks the Monte Carlo does
+    not resolve; ``u``: given standard-normal points (default: ``rs.samples`` Sobol points of ``rs.seed``).
+    """
+    sc = base.scatter
+    d = len(sc)
+    # one Sobol sample over every quantity of the catalog, each design reading its own quantities' columns: the
+    # same quantity gets the same numbers in every design (common random numbers: candidates compare fairly)
+    u = sobol_u(rs.samples, sc.width, rs.seed)[:, sc.columns] if u is None else u
+    n = len(u)
+    s = evaluate_u(base, u)
+    checks = base.checks
+    lin = _linear(base, checks) if details else None
+    contributions = _contributors(u, s.margins, sc.names)
+    out = []
+    counts = np.array([int(np.sum(s.margins[cid] < -FEAS_TOL)) for cid in checks], dtype=np.int64)
+    los, his = clopper_pearson(counts, n)
+    for j, cid in enumerate(checks):
+        m = s.margins[cid]
+        k, lo, hi = int(counts[j]), float(los[j]), float(his[j])
+        fin = m[np.isfinite(m)]
+        mean = float(fin.mean()) if len(fin) else float("inf")
+        sd = float(fin.std()) if len(fin) else 0.0
+        if sd <= SD_FLOOR * max(1.0, abs(mean)):
+            sd = 0.0
+        contrib, r2 = contributions.get(cid, ([], float("nan"))) if sd > 0 else ([], float("nan"))
+        out.append(CheckCapability(
+            cid, base.nominal_margin(cid), lin[0][cid] if lin else float("nan"), mean, sd, ppk(m), k / n, lo, hi, k,
+            n, "monte carlo" if sd > 0 else "deterministic", lin[1][cid] if lin else float("nan"),
+            lin[2][cid] if lin else float("nan"), contrib, r2, targeted(cid, base)))
+    w = windows(checks)
+    by_id = {c.id: c for c in out}
+    for up, low in w.values():  # a window's index: the smaller side's, on both of its checks
+        both = min(by_id[up].ppk, by_id[low].ppk)
+        by_id[up].note = by_id[low].note = f"window: Ppk {both:.3g} (the smaller side)"
+    if rare and d:
+        _rare(base, out, rs, n)
+    cap = Capability(out, rs, sc.rows, sc.dropped, windows=w)
+    if details:
+        cap.histograms, cap.limits = _histograms(base, s)
+    return cap
+
+
+def _rare(base: Base, out: list, rs: RobustSettings, n: int) -> None:
+    """Importance sampling for the targeted, scattering checks with fewer than ``rs.rare_min_failures``
+    violations among the ``n`` Monte Carlo samples (their interval is then the importance sampling's)."""
+    from synth.robust.rare import form_is
+
+    def needs(c):  # a probability the Monte Carlo does not resolve, and that matters: in the range a target or a
+        # report can use (Ppk <= RARE_PPK_MAX, P above ~1e-13), or below a ppm target the MC bound cannot certify
+        if not (c.target and c.sd > 0 and c.failures < rs.rare_min_failures):
+            return False
+        return c.ppk <= RARE_PPK_MAX or (rs.ppm is not None and c.p_hi > rs.ppm * 1e-6)
+    todo = [c for c in out if needs(c)]
+    if not todo:
+        return
+    ids = tuple(c.id for c in todo)
+
+    def g(pts):
+        s = evaluate_u(base, pts, ids)
+        return np.column_stack([np.where(np.isinf(s.margins[cid]) & (s.margins[cid] > 0), 1e3, s.margins[cid])
+                                for cid in ids])
+    res = form_is(g, len(base.scatter), n_is=rs.rare_samples, seed=rs.seed)
+    for c, r in zip(todo, res):
+        c.method = "FORM bound" if r["hits"] == 0 and r["se"] != r["se"] else "importance sampling"
+        c.p, c.p_lo, c.p_hi = r["p"], r["p_lo"], r["p_hi"]
+        extra = f"FORM beta {r['beta']:.3g} (P_FORM {r['p_form']:.3g}); {r['hits']} of {rs.rare_samples} " \
+                f"importance samples violate"
+        c.note = "; ".join(x for x in (c.note, extra, r["note"]) if x)
+
+
+def _histograms(base: Base, s) -> tuple:
+    """Thinned sample values for the report's histograms, and each value's window (lower, upper) from the
+    nominal evaluation's limits (NaN where one side has no limit)."""
+    hist = {k: np.round(v[np.isfinite(v)][:HISTOGRAM_SAMPLES], 6).tolist() for k, v in s.values.items()
+            if np.isfinite(v).any()}
+    g = base.groups
+    core, ax = g["core"].values, g["axial"].values
+    limits = {"damping_nm": (float(core["damping_lower_nm"][0]), float(core["damping_upper_nm"][0])),
+              "hubload_nominal_n": (float("nan"), float(core["bearing_max_hubload_n"][0])),
+              "damping_eol_nm": (float(ax["damping_eol_limit_nm"][0]), float("nan"))}
+    tol = float(base.apps.f["spring_torque_tolerance_pct"][0]) if "spring_torque_tolerance_pct" in base.apps.f else 0.0
+    t0 = float(core["spring_torque_nominal_nm"][0])
+    if np.isfinite(tol) and tol > 0:
+        limits["spring_torque_nominal_nm"] = (t0 * (1 - tol / 100), t0 * (1 + tol / 100))
+    return hist, {k: v for k, v in limits.items() if k in hist}

@@ -1,0 +1,150 @@
+"""Capability of many designs at once (``synth bulk --capability``): K designs x N samples in one evaluator call.
+
+Each design of a chunk gets the same N standard-normal points (one scrambled
+Sobol sample over every quantity of the tolerance catalog, as for one design:
+:func:`synth.robust.capability.capability`), turned into its own deviations by
+its own bands (:func:`synth.robust.tolerances.resolve`); a quantity not in play
+for a design deviates by 0 there. The K x N rows go through
+:func:`synth.robust.sampling.perturb` and the one evaluator in one call; the
+statistics are the single design's (P(violation) with its Clopper-Pearson
+interval, Ppk), per design and per targeted check, vectorised. The importance
+sampling of small probabilities is not run here: a ppm target below what the
+samples resolve is judged on the Monte Carlo's upper bound, and the columns
+say so (``capability_method``).
+
+>>> from synth.scenes.demo import default_input
+>>> from synth.optimise import solve
+>>> d = default_input()
+>>> rows = portfolio_capability([d, d], [solve(d, "standard,cost,margin").parts, None],
+...                             rs=RobustSettings(samples=256))
+>>> rows[0]["capability_meets"], rows[1]["capability_meets"]
+(False, None)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from synth.design import evaluate as E
+from synth.design.applications import Applications
+from synth.design.constraints import FEAS_TOL, REGISTRY
+from synth.design.space import space
+from synth.design.verify import evaluate_design
+from synth.robust.sampling import Base, context, perturb, sobol_u
+from synth.robust.settings import RobustSettings
+from synth.robust.tolerances import resolve, tolerances
+
+__all__ = ["portfolio_capability", "COLUMNS", "BULK_SAMPLES"]
+
+#: Monte Carlo samples per application in the bulk (2^10): the capability of the bulk's chosen design
+BULK_SAMPLES = 1024
+#: the result columns of :func:`portfolio_capability`
+COLUMNS = ("capability_meets", "capability_min_ppk", "capability_max_ppm", "capability_failing",
+           "capability_binding", "capability_method")
+
+
+def _targeted(groups: dict, cid: str) -> np.ndarray:
+    """``(K,)`` the check counts in the target for each design (see :func:`synth.robust.capability.targeted`)."""
+    c = REGISTRY[cid]
+    g = groups[c.group]
+    on = np.asarray(g.state[cid]) == E.EVALUATED
+    if c.advisory or not c.objective or not c.design:
+        return np.zeros_like(on)
+    if c.objective_unless is not None and c.objective_unless in g.values:
+        on &= ~(np.asarray(g.values[c.objective_unless], dtype=float) > 0)
+    return on
+
+
+def _chunk(inputs: list, parts: list, settings: E.Settings, rs: RobustSettings, table: dict) -> list:
+    from scipy.stats import beta
+    k = len(inputs)
+    sp = space()
+    per = [sp.design_attributes(p) for p in parts]
+    attrs = {t: {c: np.concatenate([np.asarray(a[t][c]) for a in per]) for c in per[0][t]} for t in per[0]}
+    apps = Applications.of(inputs)
+    with np.errstate(all="ignore"):
+        groups = evaluate_design(apps, attrs, settings, detail=False)
+    names = tuple(table)
+    q = len(names)
+    lo, hi = np.zeros((k, q)), np.zeros((k, q))
+    kind = np.array([0 if table[n].kind == "normal" else 1 for n in names])
+    for i in range(k):
+        sc = resolve(context(apps, attrs, groups, settings, i), table)
+        lo[i, sc.columns], hi[i, sc.columns] = sc.lo, sc.hi
+    n = rs.samples
+    u = sobol_u(n, q, rs.seed)
+    rows = np.repeat(np.arange(k), n)
+    from scipy.special import ndtr
+    uu = np.tile(u, (k, 1))
+    l, h = lo[rows], hi[rows]
+    x = np.where(kind[None, :] == 0, (l + h) / 2.0 + (h - l) / 6.0 * uu, l + (h - l) * ndtr(uu))
+    dev = {name: x[:, j] for j, name in enumerate(names) if (hi[:, j] > lo[:, j]).any()}
+    base = Base(inputs, {}, settings, apps, attrs, groups, None, ())
+    a_s, at_s = perturb(base, dev or {"_n": np.zeros(len(rows))}, rows)
+    with np.errstate(all="ignore"):
+        gs = evaluate_design(a_s, at_s, settings, detail=False)
+    out = [{"ppk": np.inf, "p_hi": 0.0, "failing": [], "binding": "", "binding_ppk": np.inf} for _ in range(k)]
+    for cid, c in REGISTRY.items():
+        if c.group == "cad":
+            continue
+        on = _targeted(groups, cid)
+        if not on.any():
+            continue
+        m = np.asarray(gs[c.group].margins[cid], dtype=float).reshape(k, n)
+        fails = (m < -FEAS_TOL).sum(axis=1)
+        ok = np.isfinite(m)
+        cnt = ok.sum(axis=1)
+        with np.errstate(all="ignore"):
+            mu = np.where(ok, m, 0.0).sum(axis=1) / cnt
+            sd = np.sqrt(np.where(ok, (m - mu[:, None]) ** 2, 0.0).sum(axis=1) / cnt)
+            ppk = np.where(sd > 1e-9 * np.maximum(1.0, np.abs(mu)), mu / (3.0 * sd),
+                           np.where(mu >= -FEAS_TOL, np.inf, -np.inf))
+        ppk = np.where(cnt == 0, np.inf, ppk)
+        p_hi = np.where(fails >= n, 1.0, beta.ppf(0.975, fails + 1, np.maximum(n - fails, 1)))
+        for i in np.flatnonzero(on):
+            o = out[i]
+            if ppk[i] < o["binding_ppk"]:
+                o["binding"], o["binding_ppk"] = cid, float(ppk[i])
+            o["ppk"] = min(o["ppk"], float(ppk[i]))
+            o["p_hi"] = max(o["p_hi"], float(p_hi[i]))
+            if (rs.capability is not None and ppk[i] < rs.capability) or (rs.ppm is not None and p_hi[i] > rs.ppm * 1e-6):
+                o["failing"].append(cid)
+    return out
+
+
+def _run(args):
+    """A process pool's task: one chunk (the catalogs of the parent: its user folders are passed along)."""
+    dirs, inputs, parts, settings, rs = args
+    from synth import catalog
+    if dirs:
+        catalog.set_user_dirs(*dirs)
+    return _chunk(inputs, parts, settings, rs, tolerances())
+
+
+def portfolio_capability(inputs: list, parts: list, *, settings: E.Settings = E.Settings(),
+                         rs: RobustSettings = RobustSettings(samples=BULK_SAMPLES), chunk: int = 64,
+                         table: dict | None = None, workers: int = 1) -> list:
+    """One dict of :data:`COLUMNS` per design (``parts[i]`` of ``inputs[i]``; None: no design, the columns empty):
+    whether it meets ``rs``'s target on every targeted check, its smallest Ppk, its largest probability of
+    violation (upper 95 % end, in ppm), the failing checks and the one of smallest Ppk. ``workers > 1``: the
+    chunks in that many processes (the same numbers: every chunk's samples are the same seeded points)."""
+    from synth import catalog
+    table = tolerances() if table is None else table
+    out = [dict.fromkeys(COLUMNS) for _ in inputs]
+    todo = [i for i, p in enumerate(parts) if p]
+    chunks = [todo[s:s + max(1, int(chunk))] for s in range(0, len(todo), max(1, int(chunk)))]
+    if workers > 1 and len(chunks) > 1:
+        from concurrent.futures import ProcessPoolExecutor
+        dirs = [str(d) for d in catalog._USER_DIRS]
+        with ProcessPoolExecutor(max_workers=int(workers)) as pool:
+            results = list(pool.map(_run, [(dirs, [inputs[i] for i in idx], [parts[i] for i in idx], settings, rs)
+                                           for idx in chunks]))
+    else:
+        results = [_chunk([inputs[i] for i in idx], [parts[i] for i in idx], settings, rs, table) for idx in chunks]
+    for idx, res in zip(chunks, results):
+        for i, r in zip(idx, res):
+            out[i] = {"capability_meets": not r["failing"], "capability_min_ppk": r["ppk"],
+                      "capability_max_ppm": r["p_hi"] * 1e6, "capability_failing": " ".join(r["failing"]),
+                      "capability_binding": r["binding"],
+                      "capability_method": f"monte carlo, {rs.samples} samples (upper 95 % ends)"}
+    return out

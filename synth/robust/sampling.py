@@ -1,0 +1,256 @@
+"""Production samples of one design through the one evaluator.
+
+A sample is the design as made and the application as met: the tolerance
+model's deviations (:mod:`synth.robust.tolerances`) applied to the
+evaluator's inputs, N samples evaluated in **one** call of
+:func:`synth.design.verify.evaluate_design` (N aligned rows: one application
+row and one design row per sample). No physics and no margin is computed
+here: every value and every margin is the evaluator's, the registry's.
+
+What the design fixes stays fixed (its drawing): the main spring's active
+coils (its stiffness then follows from the made wire and coil diameter,
+eq. (64)-(65)), the cone spring's thickness and cone height (its force then
+follows from the realised gap stack), the bolt's specified preload (the thesis
+method sizes it; the made joint gets it times its tightening scatter). The
+worst-case tolerances of the nominal model that a sampled quantity replaces
+are set to 0 for the sample (:data:`synth.robust.tolerances.QUANTITIES`).
+
+>>> from synth.scenes.demo import default_input
+>>> from synth.optimise import solve
+>>> d = default_input()
+>>> b = base_of(d, solve(d, "standard,cost,margin").parts)
+>>> s = evaluate_u(b, sobol_u(256, len(b.scatter), seed=1))
+>>> s.margins["damping_upper"].shape, "spring_torque" in b.scatter.names
+((256,), True)
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from synth.design import evaluate as E
+from synth.design.applications import Applications
+from synth.design.constraints import REGISTRY
+from synth.design.space import space
+from synth.design.verify import evaluate_design
+from synth.model import torsion_spring as s9
+from synth.robust.tolerances import Scatter, resolve
+
+__all__ = ["Base", "Samples", "base_of", "base_of_attributes", "context", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
+           "design_checks"]
+
+#: the values a sample keeps besides the margins (the report's histograms): value key -> group
+HISTOGRAM_VALUES = {"damping_nm": "core", "hubload_nominal_n": "core", "spring_torque_nominal_nm": "core",
+                    "damping_eol_nm": "axial", "cone_spring_fax_nominal_n": "axial",
+                    "main_spring_sigma_inst_mpa": "spring", "main_spring_safety_factor": "spring",
+                    "main_spring_coil_gap_min_mm": "spring", "sliding_safety_factor": "bolt"}
+_GROUPS = ("input", "core", "bushing", "axial", "spring", "bolt")
+
+
+@dataclass
+class Base:
+    """One design of one application at nominal: what the samples perturb and what they keep."""
+
+    inputs: object
+    parts: dict
+    settings: E.Settings
+    apps: Applications           # the application (one row)
+    attrs: dict                  # the design's one-row attributes per table
+    groups: dict                 # the nominal evaluation (the registry's verdicts)
+    scatter: Scatter
+    checks: tuple                # registry ids evaluated at nominal (not "not applicable", not "not verified")
+    notes: list = field(default_factory=list)
+
+    def nominal_margin(self, cid: str) -> float:
+        return float(self.groups[REGISTRY[cid].group].margins[cid][0])
+
+
+@dataclass
+class Samples:
+    """The evaluator's margins (``(N,)`` per check; +inf where a check does not apply in a sample) and the
+    :data:`HISTOGRAM_VALUES` of N samples."""
+
+    margins: dict
+    values: dict
+
+    def __len__(self) -> int:
+        return len(next(iter(self.margins.values()))) if self.margins else 0
+
+
+def design_checks(groups: dict) -> tuple:
+    """The registry ids a design's nominal evaluation evaluated (CAD checks aside)."""
+    out = []
+    for cid, c in REGISTRY.items():
+        g = groups.get(c.group)
+        if g is not None and int(g.state[cid][0]) == E.EVALUATED:
+            out.append(cid)
+    return tuple(out)
+
+
+def base_of(d, parts: dict, settings: E.Settings = E.Settings(), table: dict | None = None) -> Base:
+    """The :class:`Base` of design ``parts`` for input ``d``: its nominal evaluation and its tolerance model."""
+    return base_of_attributes(d, space().design_attributes(parts), settings, table, parts=parts)
+
+
+def base_of_attributes(d, attrs: dict, settings: E.Settings = E.Settings(), table: dict | None = None, *,
+                       apps: Applications | None = None, parts: dict | None = None) -> Base:
+    """:func:`base_of` from the design's one-row attributes per table (the optimiser's rows)."""
+    apps = Applications.of([d]) if apps is None else apps
+    with np.errstate(all="ignore"):
+        groups = evaluate_design(apps, attrs, settings, detail=False)
+    sc = resolve(context(apps, attrs, groups, settings, 0), table)
+    if parts is None:
+        from synth.design.verify import parts_of_attributes
+        parts = parts_of_attributes(attrs, groups)
+    return Base(d, dict(parts), settings, apps, attrs, groups, sc, design_checks(groups))
+
+
+def context(apps: Applications, attrs: dict, groups: dict, settings: E.Settings, k: int) -> dict:
+    """What :func:`synth.robust.tolerances.resolve` reads of design ``k`` of N-row ``apps``/``attrs``/``groups``:
+    its application's fields, its spring option, the strength range of its wire, its pivot, its cone spring."""
+    from synth.model import torsion_spring as ts
+    sp = {key: np.asarray(v)[k] for key, v in attrs["spring"].items()}
+    mat = str(sp["main_spring_material"])
+    dia = ts.rm_lookup_diameter_mm(sp["b_mm"], sp["h_mm"], bool(sp["round_wire"]))
+    ax = groups["axial"].values
+    cone = bool(np.asarray(ax["cone_spring_sized"])[k])
+
+    def fld(name):
+        return float(apps.f[name][k]) if name in apps.f else float("nan")
+
+    return {"field": fld, "spring": sp, "rm_min": float(ts.material_strength_mpa(mat, dia, "min")),
+            "rm_max": float(ts.material_strength_mpa(mat, dia, "max")),
+            "pivot_diameter_mm": float(np.asarray(attrs["core"]["pivot_diameter_mm"])[k]), "cone": cone,
+            "cone_force_tolerance": (float(np.asarray(ax["cone_spring_force_tolerance_plus"])[k]),
+                                     float(np.asarray(ax["cone_spring_force_tolerance_minus"])[k])) if cone
+            else (np.nan, np.nan),
+            "bolt": settings.bolt_method == "thesis" and bool(apps.met("fixation")[k])}
+
+
+@functools.lru_cache(maxsize=8)
+def sobol_u(n: int, d: int, seed: int) -> np.ndarray:
+    """``(n, d)`` standard-normal points from a scrambled Sobol sequence (``scipy.stats.qmc.Sobol``, seeded:
+    the same seed gives the same points), mapped through the normal quantile; ``d = 0`` gives ``(n, 0)``.
+    Kept per ``(n, d, seed)`` (read-only)."""
+    import warnings
+
+    from scipy.special import ndtri
+    from scipy.stats import qmc
+    if d == 0:
+        return np.zeros((n, 0))
+    with warnings.catch_warnings():  # n need not be a power of two (its balance is then only approximate)
+        warnings.simplefilter("ignore", UserWarning)
+        p = qmc.Sobol(d, scramble=True, seed=seed).random(n)
+    u = ndtri(np.clip(p, 1e-12, 1.0 - 1e-12))
+    u.setflags(write=False)
+    return u
+
+
+def _col(dev: dict, name: str, n: int) -> np.ndarray:
+    return dev[name] if name in dev else np.zeros(n)
+
+
+def perturb(base: Base, dev: dict, rows=None) -> tuple:
+    """``(apps, attrs)`` of the samples: ``dev`` maps quantities to ``(M,)`` deviations (in their units,
+    :class:`~synth.robust.tolerances.Scatter`; 0 for a design the quantity is not in play for), ``rows`` the design
+    of each sample (a :class:`Base` of K designs: K-row apps, attrs and groups; default all design 0). See the
+    module docstring for what stays fixed."""
+    n = len(next(iter(dev.values()))) if dev else 1
+    rows = np.zeros(n, dtype=np.int64) if rows is None else np.asarray(rows, dtype=np.int64)
+    one = len(base.apps) == 1
+    a0, f0 = base.apps, base.apps.f
+
+    def at(a):
+        a = np.asarray(a)
+        return np.broadcast_to(a[:1], (n,)) if one else a[rows]
+    fields = {}
+    if "spring_torque" in dev:  # the tensioner's torque follows its spring's; eq. (66)'s worst case is the sample
+        fields["calculated_torque_target_nm"] = at(f0["calculated_torque_target_nm"]) * (1.0 + dev["spring_torque"] / 100)
+        fields["spring_torque_tolerance_pct"] = np.zeros(n)
+    if "belt_offset" in dev:  # the realised offset in the tilting lever of eq. (95), instead of its worst case
+        fields["middle_plane_belt_height_increment_worst_mm"] = dev["belt_offset"]
+    if "pulley_diameter" in dev:
+        fields["pulley_diameter_mm"] = at(f0["pulley_diameter_mm"]) + dev["pulley_diameter"]
+    # the design's columns (one design: read-only views; the perturbed ones are replaced, never written)
+    attrs = {t: {k: at(v) for k, v in cols.items()} for t, cols in base.attrs.items()}
+    sp = attrs["spring"]
+    b0, h0, d0 = sp["b_mm"], sp["h_mm"], sp["main_spring_mean_body_diameter_mm"]
+    rnd = sp["round_wire"].astype(bool)
+    if "spring_wire_width" in dev:
+        sp["b_mm"] = b0 + dev["spring_wire_width"]
+        sp["b_tol_mm"] = np.zeros(n)
+    if "spring_wire_height" in dev:
+        sp["h_mm"] = h0 + dev["spring_wire_height"]
+        sp["h_tol_mm"] = np.zeros(n)
+        # a round wire has one diameter: its width is its height
+        sp["b_mm"] = np.where(rnd, sp["h_mm"], sp["b_mm"])
+        sp["b_tol_mm"] = np.where(rnd, 0.0, sp["b_tol_mm"])
+    if "spring_coil_diameter" in dev:
+        sp["main_spring_mean_body_diameter_mm"] = d0 + dev["spring_coil_diameter"]
+        sp["mbd_tol_mm"] = np.zeros(n)
+    if "spring_tensile_strength" in dev:
+        ratio = 1.0 + dev["spring_tensile_strength"] / sp["Rm_mpa"]
+        for k in ("Rm_mpa", "sigma_y_mpa", "sigma_A0_mpa", "sigma_perm_static_mpa"):
+            sp[k] = sp[k] * ratio
+    if "spring_housing_outer_diameter" in dev:  # the limit D_h - tol of eq. (82) becomes D_h + deviation
+        sp["housing_outer_tol_mm"] = -dev["spring_housing_outer_diameter"]
+    if "spring_housing_inner_diameter" in dev:  # the limit D_s + tol of eq. (86) becomes D_s + deviation
+        sp["housing_inner_tol_mm"] = dev["spring_housing_inner_diameter"]
+    # the made spring keeps its active coils: its stiffness follows from the made wire and diameter (eq. 64-65)
+    k0 = at(f0["spring_stiffness_nm_per_deg"])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        n_nom = s9.active_coils(sp["E_mpa"], s9.second_moment_mm4(b0, h0, rnd), d0, k0)
+        n_made = s9.active_coils(sp["E_mpa"], s9.second_moment_mm4(sp["b_mm"], sp["h_mm"], rnd),
+                                 sp["main_spring_mean_body_diameter_mm"], k0)
+        fields["spring_stiffness_nm_per_deg"] = k0 * n_made / n_nom
+    if "pivot_diameter" in dev:
+        attrs["core"]["pivot_diameter_mm"] = attrs["core"]["pivot_diameter_mm"] + dev["pivot_diameter"]
+    sized = at(base.groups["axial"].values["cone_spring_sized"]).astype(bool)
+    if sized.any():  # the made cone spring: its thickness, the realised gap stack and its force scatter
+        ax = attrs["axial"]
+        gap = (_col(dev, "stack_pivot", n) - _col(dev, "stack_endcap_spacer", n) - _col(dev, "stack_arm", n)
+               - _col(dev, "stack_damper_pad", n))
+        ax[E.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.where(
+            sized, at(base.groups["axial"].values["cone_spring_thickness_mm"]), np.nan)
+        ax[E.MADE_CONE_SPRING_COLUMNS["deflection_offset_mm"]] = -gap  # a smaller gap deflects the spring more
+        ax[E.MADE_CONE_SPRING_COLUMNS["force_factor"]] = 1.0 + _col(dev, "cone_spring_force", n) / 100.0
+    apps = a0.with_fields(rows, **fields)
+    for q, key in (("pivot_bushing_friction", "mu_pivot_bushing"), ("plastic_friction", "mu_plastic"),
+                   ("crankcase_friction", "mu_crankcase")):
+        if q in dev:
+            apps.derived[key] = apps.derived[key] * (1.0 + dev[q] / 100.0)
+    if "bolt_preload" in dev and base.settings.bolt_method == "thesis":
+        f_spec = at(base.groups["bolt"].values["bolt_axial_force_n"]).astype(float)  # NaN without fixation data
+        apps.derived["bolt_clamp_force_n"] = f_spec * (1.0 + dev["bolt_preload"] / 100.0)
+    return apps, attrs
+
+
+def evaluate_deviations(base: Base, dev: dict, checks=None, rows=None) -> Samples:
+    """The evaluator's margins and histogram values of the samples ``dev`` (one vectorised call; checks of the
+    input and core groups alone evaluate those two groups only); ``rows``: see :func:`perturb`."""
+    apps, attrs = perturb(base, dev, rows)
+    wanted = base.checks if checks is None else checks
+    with np.errstate(all="ignore"):
+        if {REGISTRY[c].group for c in wanted} <= {"input", "core"}:
+            idx = np.arange(len(apps), dtype=np.int64)
+            groups = {"input": E.inputs(apps, idx), "core": E.core(apps, idx, attrs["core"], base.settings)}
+        else:
+            groups = evaluate_design(apps, attrs, base.settings, detail=False)
+    margins = {}
+    for cid in (base.checks if checks is None else checks):
+        margins[cid] = np.asarray(groups[REGISTRY[cid].group].margins[cid], dtype=float)
+    values = {}
+    for k, g in HISTOGRAM_VALUES.items():
+        if g in groups and k in groups[g].values:
+            values[k] = np.asarray(groups[g].values[k], dtype=float)
+    return Samples(margins, values)
+
+
+def evaluate_u(base: Base, u: np.ndarray, checks=None) -> Samples:
+    """:func:`evaluate_deviations` of standard-normal points ``u`` (``(N, d)``, d = the quantities in play)."""
+    x = base.scatter.deviations(u) if len(base.scatter) else np.zeros((len(u), 0))
+    return evaluate_deviations(base, {q: x[:, j] for j, q in enumerate(base.scatter.names)} or
+                               {"_n": np.zeros(len(u))}, checks)

@@ -1,0 +1,253 @@
+"""The tolerance model: what scatters in production, by how much, in which distribution, and why.
+
+Declared once, as data: ``catalogs/tolerances.csv`` (one row per quantity,
+user-overridable like every catalog: ``synth --catalogs DIR``). A row gives
+the distribution ``kind``, the ``band`` (half-width, in ``unit``: ``mm``,
+``MPa`` or ``%`` of the nominal value) or where the band comes from
+(``band_from``: a catalog column of the chosen part, a named constant, an
+input field of the application, a standard's table), the ``source`` and a
+``note`` saying why this distribution.
+
+* ``normal``: the band is +/-3 standard deviations (a capable, centred
+  process: Cp = 1 on the tolerance, the convention of statistical
+  tolerancing);
+* ``uniform``: every value in the band equally likely (a range with no
+  distribution given: a standard's strength range, a friction range, the
+  acceptance window of a force tolerance).
+
+What each quantity perturbs is fixed in code (:data:`QUANTITIES`): the
+evaluator's inputs it changes, and the worst-case tolerance of the nominal
+model it replaces (a quantity absent from the catalog keeps the nominal
+model's treatment). :func:`resolve` turns the rows into the :class:`Scatter`
+of one design of one application: the quantities in play (a zero band or a
+part the design does not have drops them) with their deviation bounds.
+
+>>> t = tolerances()
+>>> t["spring_wire_width"].kind, t["bolt_preload"].band_from
+('normal', 'tightening_factors.torque_wrench_tested.scatter_max_pct')
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from synth import catalog
+from synth.errors import InputError, Problem
+
+__all__ = ["QUANTITIES", "KINDS", "Tolerance", "Scatter", "tolerances", "resolve"]
+
+KINDS = ("normal", "uniform")
+
+#: quantity -> what it perturbs in the evaluator (the one place that says how a tolerance enters the model)
+QUANTITIES = {
+    "spring_wire_width": "main spring wire width b (spring option b_mm; b_tol_mm of eq. (89)-(93) set to 0)",
+    "spring_wire_height": "main spring wire radial side h (spring option h_mm; h_tol_mm of eq. (83)-(88) set to 0)",
+    "spring_coil_diameter": "main spring mean body diameter (spring option; mbd_tol of eq. (83)-(88) set to 0)",
+    "spring_tensile_strength": "main spring wire tensile strength Rm (and sigma_y, sigma_A0, the static limit with it)",
+    "spring_torque": "spring torque at the nominal position, and so the tensioner's torque (calculated torque "
+                     "target); the one-sided torque tolerance of eq. (66) set to 0",
+    "spring_housing_outer_diameter": "spring housing bore (the limit of eq. (82))",
+    "spring_housing_inner_diameter": "spring support diameter (the limit of eq. (86))",
+    "pivot_diameter": "pivot diameter (radial damping lever, bushing pressure)",
+    "working_arm": "working arm (eccentricity): hubload and radial damping",
+    "belt_offset": "the belt plane's offset in the tilting lever of eq. (95) (the sample instead of the worst-case "
+                   "increment; the design's dimensions keep the nominal belt plane)",
+    "pulley_diameter": "pulley diameter (lock-up pin checks, eq. (22)-(25))",
+    "pivot_bushing_friction": "pivot bushing friction coefficient (radial damping, eq. (10))",
+    "plastic_friction": "plastic elements' friction coefficient (axial damping, eq. (9))",
+    "crankcase_friction": "pivot base-crankcase friction (sliding safety factor, eq. (99))",
+    "bolt_preload": "the made joint's clamp force: the specified (sized) preload times its tightening scatter",
+    "stack_pivot": "cone spring gap: pivot height (Table 6)",
+    "stack_endcap_spacer": "cone spring gap: endcap spacer height (Table 6)",
+    "stack_arm": "cone spring gap: arm hub height (Table 6)",
+    "stack_damper_pad": "cone spring gap: damper pad height (Table 6)",
+    "cone_spring_force": "the made cone spring's force at its deflection (DIN EN 16983 force tolerance)",
+}
+
+#: quantities that need a part or a model path; resolve() drops them where the design has none
+_CONE = ("stack_pivot", "stack_endcap_spacer", "stack_arm", "stack_damper_pad", "cone_spring_force")
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """One row of ``catalogs/tolerances.csv``."""
+
+    quantity: str
+    kind: str
+    band: float | None
+    unit: str
+    band_from: str
+    source: str
+    note: str
+
+
+def tolerances() -> dict:
+    """``{quantity: Tolerance}`` of the tolerance catalog (built-in merged with the user's folders), checked:
+    a quantity synth does not know, a kind other than normal/uniform, or a band that is not a number >= 0
+    (and no ``band_from``) is an error naming the row and column."""
+    df = catalog.load("tolerances")
+    out, problems = {}, []
+    for i, r in df.iterrows():
+        q = str(r["quantity"]).strip()
+        where = f"catalog tolerances.csv, row {q}"
+        if q not in QUANTITIES:
+            problems.append(Problem(f"{where}, column quantity", q, "one of " + ", ".join(QUANTITIES)))
+            continue
+        kind = str(r["kind"]).strip().lower()
+        if kind not in KINDS:
+            problems.append(Problem(f"{where}, column kind", r["kind"], "normal (band = +/-3 sigma) or uniform"))
+        src = "" if (isinstance(r["band_from"], float) and math.isnan(r["band_from"])) else str(r["band_from"]).strip()
+        band = None
+        if not src:
+            try:
+                band = float(r["band"])
+            except (TypeError, ValueError):
+                band = float("nan")
+            if not (math.isfinite(band) and band >= 0):
+                problems.append(Problem(f"{where}, column band", r["band"], "a half-width >= 0 (or a band_from)"))
+        out[q] = Tolerance(q, kind, band, str(r["unit"]).strip(), src, str(r["source"]), str(r.get("note", "")))
+    if problems:
+        raise InputError(problems)
+    return out
+
+
+@dataclass
+class Scatter:
+    """The tolerance model of one design of one application: per quantity in play, its distribution and its
+    deviation bounds ``[lo, hi]`` (in ``unit``; normal: ``lo = -hi`` = 3 sigma)."""
+
+    names: tuple
+    columns: np.ndarray   # (d,) each quantity's position in the catalog (its column of a shared sample)
+    kind: np.ndarray      # (d,) 0 normal, 1 uniform
+    lo: np.ndarray        # (d,) lower deviation bound
+    hi: np.ndarray        # (d,) upper deviation bound
+    unit: tuple
+    rows: list = field(default_factory=list)   # one dict per quantity: name, kind, band, unit, source, note
+    dropped: list = field(default_factory=list)  # (quantity, why) not in play for this design
+    width: int = 0                               # quantities in the catalog (columns of a shared sample)
+
+    def __len__(self) -> int:
+        return len(self.names)
+
+    def deviations(self, u: np.ndarray) -> np.ndarray:
+        """``(N, d)`` deviations of standard-normal points ``u`` (the isoprobabilistic transform: normal
+        ``centre + (hi - lo)/6 u``, uniform ``lo + (hi - lo) Phi(u)``).
+
+        >>> s = Scatter(("a", "b"), np.array([0, 1]), np.array([0, 1]), np.array([-0.3, 0.0]), np.array([0.3, 2.0]),
+        ...             ("mm", "MPa"))
+        >>> s.deviations(np.array([[3.0, 0.0]])).round(6).tolist()
+        [[0.3, 1.0]]
+        """
+        from scipy.special import ndtr
+        u = np.asarray(u, dtype=float)
+        centre, half = (self.lo + self.hi) / 2.0, (self.hi - self.lo) / 2.0
+        normal = centre + half / 3.0 * u
+        uniform = self.lo + (self.hi - self.lo) * ndtr(u)
+        return np.where(self.kind[None, :] == 0, normal, uniform)
+
+    def centre(self) -> np.ndarray:
+        """``(d,)`` the deviations at the centre of every band (the median of every distribution)."""
+        return (self.lo + self.hi) / 2.0
+
+    def sigma(self) -> np.ndarray:
+        """``(d,)`` standard deviation of each quantity (normal: band/3; uniform: range/sqrt(12))."""
+        return np.where(self.kind == 0, (self.hi - self.lo) / 6.0, (self.hi - self.lo) / math.sqrt(12.0))
+
+
+@functools.lru_cache(maxsize=64)
+def _catalog_value(name: str, key: str, column: str, field: str, _dirs: tuple) -> float:
+    """One number of a catalog row (kept per catalog setting: a bulk resolves thousands of designs)."""
+    return float(catalog.row(name, key, field=field)[column])
+
+
+@functools.lru_cache(maxsize=8)
+def _it_grades(_dirs: tuple) -> tuple:
+    """``(over_mm, up_to_mm, {ITn_um: values})`` of ISO 286-1's standard tolerance grades (per catalog setting)."""
+    it = catalog.load("iso286_it_grades")
+    return (it["over_mm"].to_numpy(float), it["up_to_mm"].to_numpy(float),
+            {c: it[c].to_numpy(float) for c in it.columns if c.startswith("IT")})
+
+
+def _band_from(spec: str, ctx: dict, tol: Tolerance):
+    """``(lo, hi)`` of a ``band_from`` reference for the design of ``ctx``, or a string saying why none."""
+    kind, _, rest = spec.partition(".")
+    if kind == "constants":
+        v = catalog.constant(rest)
+        return -v, v
+    if kind == "input":
+        v = ctx["field"](rest)
+        return (-v, v) if np.isfinite(v) else f"{rest} not given"
+    if kind == "spring_wires":
+        v = float(ctx["spring"][rest])
+        return -v, v
+    if kind == "spring_material_strength":
+        return 0.0, ctx["rm_max"] - ctx["rm_min"]
+    if kind in ("tightening_factors", "stackup_tolerances"):
+        key, _, column = rest.partition(".")
+        v = _catalog_value(kind, key, column, f"tolerances.csv {tol.quantity} band_from", tuple(catalog._user_dirs()))
+        return -v, v
+    if kind == "iso286_it_grades":
+        over, up_to, table = _it_grades(tuple(catalog._user_dirs()))
+        if rest not in table:
+            raise InputError(Problem(f"catalog tolerances.csv, row {tol.quantity}, column band_from", spec,
+                                     "iso286_it_grades." + ", iso286_it_grades.".join(table)))
+        dia = ctx["pivot_diameter_mm"]
+        hit = np.flatnonzero((over < dia) & (dia <= up_to))
+        if not len(hit):
+            return f"{rest} not tabulated for {dia:g} mm (ISO 286-1 rows {over.min():g} to {up_to.max():g} mm)"
+        v = float(table[rest][hit[0]]) / 1000.0 / 2.0
+        return -v, v
+    if kind == "disc_spring_force_tolerances":
+        plus, minus = ctx["cone_force_tolerance"]
+        if not (np.isfinite(plus) and np.isfinite(minus)):
+            return "the cone spring's thickness is beyond the DIN EN 16983 groups"
+        return -100.0 * minus, 100.0 * plus
+    raise InputError(Problem(f"catalog tolerances.csv, row {tol.quantity}, column band_from", spec,
+                             "constants.NAME, input.FIELD, spring_wires.COLUMN, spring_material_strength, "
+                             "tightening_factors.METHOD.COLUMN, stackup_tolerances.COMPONENT.COLUMN, "
+                             "iso286_it_grades.ITn_um or disc_spring_force_tolerances"))
+
+
+def resolve(ctx: dict, table: dict | None = None) -> Scatter:
+    """The :class:`Scatter` of one design: ``ctx`` describes it (see :func:`synth.robust.sampling.base_of`):
+    ``field(name)`` (an application input, NaN where not given), ``spring`` (its spring option row),
+    ``rm_min``/``rm_max``, ``pivot_diameter_mm``, ``cone`` (a sized cone spring), ``cone_force_tolerance``
+    (its DIN EN 16983 fractions), ``bolt`` (the thesis bolt method with fixation data)."""
+    table = tolerances() if table is None else table
+    names, cols, kinds, los, his, units, rows, dropped = [], [], [], [], [], [], [], []
+    for col, (q, tol) in enumerate(table.items()):
+        if q in _CONE and not ctx["cone"]:
+            dropped.append((q, "no cone spring in the design"))
+            continue
+        if q == "bolt_preload" and not ctx["bolt"]:
+            dropped.append((q, "not the thesis bolt method with fixation data (VDI 2230's tightening factor holds "
+                               "the preload scatter)"))
+            continue
+        if q == "plastic_friction" and not ctx["cone"]:
+            dropped.append((q, "no axial damping group"))
+            continue
+        if tol.band_from:
+            b = _band_from(tol.band_from, ctx, tol)
+            if isinstance(b, str):
+                dropped.append((q, b))
+                continue
+            lo, hi = b
+        else:
+            lo, hi = -float(tol.band), float(tol.band)
+        if not (hi > lo):
+            dropped.append((q, "zero band"))
+            continue
+        names.append(q)
+        cols.append(col)
+        kinds.append(0 if tol.kind == "normal" else 1)
+        los.append(lo)
+        his.append(hi)
+        units.append(tol.unit)
+        rows.append({"quantity": q, "kind": tol.kind, "lo": lo, "hi": hi, "unit": tol.unit, "source": tol.source,
+                     "note": tol.note, "enters": QUANTITIES[q]})
+    return Scatter(tuple(names), np.array(cols, dtype=np.int64), np.array(kinds, dtype=np.int8),
+                   np.array(los, dtype=float), np.array(his, dtype=float), tuple(units), rows, dropped, len(table))

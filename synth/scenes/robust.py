@@ -1,0 +1,98 @@
+"""``synth robust INPUT|RESULT.json``: how much of a production run a design would lose, and why.
+
+The design is the one ``synth design INPUT`` returns (or a saved result's). For it: the tolerance model
+(``catalogs/tolerances.csv``), per checked constraint the probability of violation with its 95 % interval,
+the process performance index Ppk, the worst case and the RSS of the bands, the contributors, and which
+verdicts rest on an illustrative limit (they flip inside its plausible range, ``catalogs/assumption_ranges.csv``).
+``--out DIR`` also writes ``capability.json``, ``capability.csv`` and the histograms. Exit code 0 when the
+design passes its checks and meets the target, 1 when it does not, 3 when checks were not verified.
+To search the catalog for the best design meeting the target: ``synth design INPUT --capability 1.33``.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from synth.scenes._options import add_design_options, add_robust_options
+
+__all__ = ["register", "robust_result"]
+
+
+def register(sub) -> None:
+    p = sub.add_parser("robust", help="production capability of a design: P(violation), Ppk, contributors, "
+                                      "the verdicts resting on illustrative limits")
+    p.add_argument("input", help="design input (.yaml, .toml, .json, .xlsx) or a saved result (--json of any scene)")
+    add_robust_options(p, default_capability=1.33)
+    add_design_options(p)
+    p.add_argument("--no-assumptions", action="store_true",
+                   help="skip the verdicts that flip inside the illustrative limits' ranges")
+    p.add_argument("--out", metavar="DIR", help="also write capability.json, capability.csv and the histograms here")
+    p.add_argument("--json", action="store_true", help="print the result (with its capability) as one JSON object")
+    p.set_defaults(func=_main)
+
+
+def robust_result(source, args):
+    """The :class:`~synth.design.result.Result` of ``source`` (an input or a saved result) with ``robust`` set."""
+    from synth import schema
+    from synth.design.evaluate import Settings
+    from synth.design.verify import verify
+    from synth.robust.capability import capability
+    from synth.robust.sampling import base_of
+    from synth.scenes._options import robust_settings_from_args, settings_from_args, synthesise
+    from synth.scenes.report import _is_result_file
+    rs = robust_settings_from_args(args, default_capability=1.33)
+    src = Path(source)
+    if _is_result_file(src):
+        from synth.scenes._options import load_saved_result
+        saved = load_saved_result(src, "input")
+        fields = set(Settings.__dataclass_fields__)
+        settings = Settings(**{k: v for k, v in (saved.settings or {}).items() if k in fields})
+        d = schema.validate({k: v for k, v in (saved.inputs or {}).items() if v is not None})
+        r = verify(d, saved.parts, settings, status=saved.status, solver=saved.solver, notes=saved.notes)
+        r.objective, r.objectives, r.stats = saved.objective, saved.objectives, saved.stats
+    else:
+        d = schema.load_input(source)
+        settings = settings_from_args(args)
+        r = synthesise(d, _nominal(args))  # the design synth design returns, then its capability
+    if not r.parts:
+        return r
+    r.robust = capability(base_of(d, r.parts, settings), rs).to_dict()
+    if not getattr(args, "no_assumptions", False):
+        from synth.robust.assumptions import flips
+        r.robust["assumptions"] = flips(d, r.parts, settings)
+    return r
+
+
+def _nominal(args):
+    """The design options of ``args`` without a capability target (``synth robust`` reports the nominal design)."""
+    import copy
+    a = copy.copy(args)
+    a.capability = a.ppm = None
+    return a
+
+
+def _main(args) -> int:
+    from synth.report.robust import capability_rows, histogram_png, HISTOGRAM_TITLES
+    from synth.report.text import render
+    from synth.scenes.report import out_folder
+    out = out_folder(args.out) if args.out else None
+    r = robust_result(args.input, args)
+    if args.json:
+        print(json.dumps(r.to_dict(), indent=2))
+    else:
+        print(render(r, title=f"synth robust: {args.input}"))
+    if out is not None and r.robust.get("checks"):
+        import pandas as pd
+        from synth.bulk.portfolio import write_table
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "capability.json").write_text(json.dumps(r.robust, indent=2))
+        write_table(pd.DataFrame(capability_rows(r.robust)), out / "capability.csv")
+        for key, values in (r.robust.get("histograms") or {}).items():
+            title, unit = HISTOGRAM_TITLES.get(key, (key, ""))
+            (out / f"hist_{key}.png").write_bytes(histogram_png(values, (r.robust.get("limits") or {}).get(key),
+                                                                 title, unit))
+        print(f"\nwritten: {out / 'capability.json'}, {out / 'capability.csv'} and the histograms")
+    if r.exit_code != 0:
+        return r.exit_code
+    return 0 if r.robust.get("meets", True) else 1
