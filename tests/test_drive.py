@@ -7,7 +7,7 @@ import json
 import numpy as np
 import pytest
 
-from synth.drive.inputs import EXAMPLE_PATH, example_drive, load_drive, validate
+from synth.drive.inputs import example_drive, load_drive, validate
 from synth.drive.modes import linear_drive, natural_frequencies
 from synth.drive.response import speed_response, sweep, time_response
 from synth.drive.statics import static_state

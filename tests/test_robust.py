@@ -253,7 +253,6 @@ def test_the_default_objective_breaks_ties_by_the_margin(demo):
 # --------------------------------------------------------------------------------------------- the scene
 def test_synth_robust_reports_the_capability_and_exits_1_when_the_target_is_missed(tmp_path, capsys):
     from synth import cli
-    from synth.data import case_path  # noqa: F401
     from importlib import resources
     case = resources.files("synth").joinpath("data/default_case.yaml")
     rc = cli.main(["robust", str(case), "--samples", "512", "--no-assumptions", "--json", "--out", str(tmp_path)])

@@ -606,7 +606,6 @@ def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
     application's environment passed per application; the rows gather their (application, bolt) entry.
     NaN for applications without their fixation data.
     """
-    from synth import parts as P
     n = len(a)
     out = {k: np.full(n, np.nan) for k in _BOLT_VALUES}
     has = apps.met("fixation")[a]

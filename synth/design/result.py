@@ -23,7 +23,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-import numpy as np
 
 from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.io.outputs import plain  # JSON-friendly data (NaN and infinities as None, no subnormal number)

@@ -15,7 +15,6 @@ import numpy as np
 
 from synth.drive.modes import linear_drive, natural_frequencies
 from synth.drive.response import speed_response, sweep
-from synth.drive.statics import static_state
 from synth.errors import InputError, Problem
 
 __all__ = ["analyse", "durability_point", "tensioner_checks", "require_durability_speed"]

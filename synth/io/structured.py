@@ -222,8 +222,6 @@ def _toml_duplicate(text: str, message: str, where: str) -> Problem:
 
 
 def _yaml12_loader():
-    import yaml
-
     class Loader(_yaml_base()):
         """PyYAML's safe loader (libyaml) with YAML 1.2 core-schema scalars and duplicate keys refused."""
 

@@ -13,7 +13,6 @@ speed, 1 otherwise (or the periodic solution moved more than its tolerance),
 
 from __future__ import annotations
 
-import json
 
 __all__ = ["register"]
 
@@ -44,9 +43,11 @@ def _main(args) -> int:
     ok = not res["slack"]["slack"] and not locked and res["solver"].get("within_tolerance", True)
     if args.plot:
         from synth.report.plots import drive_figure
-        drive_figure(res).savefig(args.plot, dpi=120)
+        from synth.io.outputs import write_figure
+        write_figure(drive_figure(res), args.plot, "--plot", dpi=120)
     if args.json:
-        print(json.dumps({**res, "verdict": "pass" if ok else "fail"}, indent=2))
+        from synth.io.outputs import json_text
+        print(json_text({**res, "verdict": "pass" if ok else "fail"}, indent=2))
     else:
         print(format_report(res))
         if args.plot:

@@ -54,13 +54,14 @@ def _robust_front(args, out, points: int) -> int:
     from synth.scenes._options import robust_settings_from_args
     rs = robust_settings_from_args(args)
     front = robust_front(load_input(args.input), rs=rs, n_points=points)
-    out.mkdir(parents=True, exist_ok=True)
+    from synth.io.outputs import json_text, output_folder, write_text
+    output_folder(out)
     lines = [f"Cost against capability ({rs.targets()} and better; {rs.samples} samples per design)", "",
              "| cost [EUR] | smallest Ppk | largest P(violation) [ppm] | binding check |", "|---|---|---|---|"]
     lines += [f"| {p['cost_eur']:.4f} | {p['ppk']:.3g} | {p['ppm']:.3g} | {p['binding']} |" for p in front]
     table = "\n".join(lines)
-    (out / "front.md").write_text(table + "\n")
-    (out / "front.json").write_text(json.dumps(front, indent=2, default=str))
+    write_text(out / "front.md", table + "\n")
+    write_text(out / "front.json", json_text(front, indent=2))
     if front:
         plot_front(front, out / "front.png", y="ppk", ylabel="smallest Ppk of the checked constraints [-]",
                    title="cost against production capability", label=lambda p: f"{p['binding']} ({p['ppm']:.2g} ppm)")

@@ -11,7 +11,6 @@ To search the catalog for the best design meeting the target: ``synth design INP
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from synth.scenes._options import add_design_options, add_robust_options
@@ -73,25 +72,26 @@ def _nominal(args):
 
 
 def _main(args) -> int:
+    from synth.io.outputs import json_text, output_file, output_folder, write_text
     from synth.report.robust import capability_rows, histogram_png, HISTOGRAM_TITLES
     from synth.report.text import render
     from synth.scenes.report import out_folder
     out = out_folder(args.out) if args.out else None
     r = robust_result(args.input, args)
     if args.json:
-        print(json.dumps(r.to_dict(), indent=2))
+        print(json_text(r.to_dict(), indent=2))
     else:
         print(render(r, title=f"synth robust: {args.input}"))
     if out is not None and r.robust.get("checks"):
         import pandas as pd
         from synth.bulk.portfolio import write_table
-        out.mkdir(parents=True, exist_ok=True)
-        (out / "capability.json").write_text(json.dumps(r.robust, indent=2))
+        output_folder(out)
+        write_text(out / "capability.json", json_text(r.robust, indent=2))
         write_table(pd.DataFrame(capability_rows(r.robust)), out / "capability.csv")
         for key, values in (r.robust.get("histograms") or {}).items():
             title, unit = HISTOGRAM_TITLES.get(key, (key, ""))
-            (out / f"hist_{key}.png").write_bytes(histogram_png(values, (r.robust.get("limits") or {}).get(key),
-                                                                 title, unit))
+            with output_file(out / f"hist_{key}.png") as tmp:
+                tmp.write_bytes(histogram_png(values, (r.robust.get("limits") or {}).get(key), title, unit))
         print(f"\nwritten: {out / 'capability.json'}, {out / 'capability.csv'} and the histograms")
     if r.exit_code != 0:
         return r.exit_code

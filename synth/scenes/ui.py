@@ -9,7 +9,6 @@ Needs the optional dependency NiceGUI: ``pip install "synth[ui]"``.
 from __future__ import annotations
 
 import socket
-import sys
 
 from synth.errors import InputError, Problem
 
