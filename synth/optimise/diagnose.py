@@ -33,7 +33,7 @@ from synth.optimise.evaluate import evaluate
 from synth.schema import field_by_name
 
 __all__ = ["RELAXABLE", "nearest_design", "is_feasible", "relaxations", "relaxations_batch", "probe_batch",
-           "diagnose"]
+           "diagnose", "violated_of"]
 
 #: input field -> (direction: +1 raise / -1 lower, the constraints it relaxes, a specification value?)
 RELAXABLE = {
@@ -245,6 +245,12 @@ def relaxations_batch(ds: list, violated: list, *, settings: Settings = Settings
     return [_order(o) for o in out]
 
 
+def violated_of(res) -> list:
+    """The failed checks of a verified design, smallest margin first, as a diagnosis lists them."""
+    return [{"constraint": c.id, "label": c.label, "step": c.step, "margin": c.margin}
+            for c in sorted(res.failed(), key=lambda c: c.margin)]
+
+
 def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: dict | None = None,
              relax: bool = True, settings: Settings = Settings(), exhaustive: bool = False, batch=None):
     """A :class:`~synth.design.result.Result` with ``status="infeasible"`` and its ``diagnosis``.
@@ -270,8 +276,7 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
                             exhaustive=True)
         res = build_result(b.view(0), near[0], near[1], status="infeasible", solver=solver, objective=obj,
                            stats=stats or {})
-    violated = [c for c in res.failed()]
-    ids = [c.id for c in violated]
+    ids = [c.id for c in res.failed()]
     if not relax:
         rel = []
     elif exhaustive or ev is not None:
@@ -280,8 +285,7 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
         rel = relaxations_batch([d], [ids], settings=settings, probe=probe_batch(settings, spring_engine="numpy"))[0]
     res.diagnosis = {
         "message": "no design of the catalog product meets every constraint; the nearest design is shown",
-        "violated": [{"constraint": c.id, "label": c.label, "step": c.step, "margin": c.margin}
-                     for c in sorted(violated, key=lambda c: c.margin)],
+        "violated": violated_of(res),
         "relaxations": rel,
     }
     res.stats["diagnosis_time_s"] = time.perf_counter() - t0
