@@ -70,6 +70,11 @@ BATCH = 16
 #: samplers of the catalog stage: optuna's TPE with constraints (default), random sampling (the reference the
 #: benchmark measures TPE against)
 SAMPLERS = ("tpe", "random")
+#: share of a round's proposals taken best-first (the cheapest choices not tried yet), the rest the sampler's
+FILL = 0.25
+TPE_LIAR, TPE_EI = True, 24
+#: a subsystem with at most this many choices is covered in one round (optuna's exhaustive sampler)
+EXHAUSTIVE = 128
 _BIG = 1e6   # the value and violation told for a proposal no live core can take
 _RANKS = ("row", "stock", "spacer", "de_step")   # rank parameters: 0 is the cheapest (the warm start's bound)
 
@@ -101,9 +106,10 @@ def _scalar(obj: Objective, vals: dict) -> np.ndarray:
 
 
 def _sampler(kind: str, seed: int, size: int, batch: int, n_params: int):
-    """The study's sampler: optuna's exhaustive sampler for a space of at most two batches, else ``kind``."""
+    """The study's sampler: optuna's exhaustive sampler for a table of at most :data:`EXHAUSTIVE` choices, else
+    ``kind``."""
     import optuna
-    if size <= 2 * batch:
+    if size <= EXHAUSTIVE:
         class Exhaustive(optuna.samplers.BruteForceSampler):
             """Optuna's exhaustive sampler under ask and tell (the search counts the coverage; the base class
             stops a study from inside ``optimize`` once every choice is taken)."""
@@ -116,8 +122,8 @@ def _sampler(kind: str, seed: int, size: int, batch: int, n_params: int):
             return Exhaustive(seed=seed)
     if kind == "random":
         return optuna.samplers.RandomSampler(seed=seed)
-    return optuna.samplers.TPESampler(seed=seed, multivariate=n_params > 1, constant_liar=True,
-                                      n_startup_trials=batch)
+    return optuna.samplers.TPESampler(seed=seed, multivariate=n_params > 1, constant_liar=TPE_LIAR,
+                                      n_startup_trials=batch, n_ei_candidates=TPE_EI)
 
 
 class Search:
@@ -152,6 +158,10 @@ class Search:
         # there; a core where none was evaluated yet counts as +inf: optimistic)
         self.reach = {s: np.full(n, -np.inf) for s in SUBSYSTEMS}
         self.tried = {s: np.zeros(n, dtype=bool) for s in SUBSYSTEMS}
+        # per core, over the passing options evaluated there: the smallest standard and cost, the largest margin
+        self.feas_min = {s: {"standard": np.full(n, np.inf), "cost": np.full(n, np.inf)} for s in SUBSYSTEMS}
+        self.reach_obj = {s: np.full(n, -np.inf) for s in SUBSYSTEMS}
+        self.exact = {s: np.zeros(n, dtype=bool) for s in SUBSYSTEMS}   # every choice evaluated on the core
         self.trials = {s: 0 for s in SUBSYSTEMS}
         self.done = {s: False for s in SUBSYSTEMS}
         self.pairs = 0
@@ -164,6 +174,7 @@ class Search:
         self.done["axial"] = not self.pad.any()
         none = np.flatnonzero(ev.space.tables["axial"]["axial_group_present"] == 0)[:1]
         self._evaluate("axial", ev.space.rows("axial", none), np.flatnonzero(~self.pad))  # not searched: one option
+        self.exact["axial"][~self.pad] = True
 
     # ------------------------------------------------------------------ bounds
     def _bounds(self):
@@ -192,9 +203,20 @@ class Search:
                          for name in ("standard", "cost")}
 
     def _bound_keys(self) -> list:
-        """Per core, the sort key of the best design it could give (lower bounds of the scores, its own margin)."""
-        vals = {"standard": self.lb_total["standard"], "cost": self.lb_total["cost"], "margin": self.u_obj}
-        return [self.obj.key({k: float(v[i]) for k, v in vals.items()}) for i in range(len(self.ev.cores))]
+        """Per core, the sort key of the best design it could give: lower bounds of the scores (a subsystem whose
+        every choice was evaluated on the core counts with its best passing option, the others with their
+        cheapest), the upper bound of the margin."""
+        ev = self.ev
+        vals = {name: ev.score_core[name] + sum(np.where(self.exact[s], self.feas_min[s][name], self.lb[s][name])
+                                                for s in SUBSYSTEMS) for name in ("standard", "cost")}
+        vals["margin"] = np.minimum.reduce([self.u_obj] + [np.where(self.exact[s], self.reach_obj[s], np.inf)
+                                                           for s in SUBSYSTEMS])
+        return [self.obj.key({k: float(v[i]) for k, v in vals.items()}) for i in range(len(ev.cores))]
+
+    def _cap(self) -> np.ndarray:
+        """Per core, the upper bound of the smallest margin of a design on it: its own, and that of every
+        subsystem whose every choice was evaluated on it."""
+        return np.minimum.reduce([self.u_all] + [np.where(self.exact[s], self.reach[s], np.inf) for s in SUBSYSTEMS])
 
     # ------------------------------------------------------------------ the archive
     def _evaluate(self, s: str, cols: dict, rows: np.ndarray) -> SubTable:
@@ -211,6 +233,11 @@ class Search:
         best = np.where(sub.available, sub.min_margin, -np.inf).max(axis=1, initial=-np.inf)
         self.reach[s][rows] = np.maximum(self.reach[s][rows], best)
         self.tried[s][rows] |= sub.available.any(axis=1)
+        sc = option_scores(Space({s: cols}, self.ev.space.parts), s, self.stiffness)
+        for name, lo in self.feas_min[s].items():
+            lo[rows] = np.minimum(lo[rows], np.where(sub.feasible, sc[name][None, :], np.inf).min(axis=1, initial=np.inf))
+        self.reach_obj[s][rows] = np.maximum(self.reach_obj[s][rows], np.where(sub.feasible, sub.margin, -np.inf).max(
+            axis=1, initial=-np.inf))
         self.cols[s].append(cols)
         self.subs[s].append(full)
         self.pairs += pairs
@@ -239,10 +266,12 @@ class Search:
         """Core positions that can still give a better design than the best found (all, before any is found)."""
         if self.best is None:
             return np.arange(len(self.ev.cores))
+        cap = self._cap()
         if not self.best[3]:   # nothing feasible yet: the cores that could be nearer than the nearest found
-            return np.flatnonzero(self.u_all > self.best[2]["min_margin"] + 1e-12)
+            return np.flatnonzero(cap > self.best[2]["min_margin"] + 1e-12)
         inc = self.obj.key(self.best[2])
-        return np.flatnonzero(self.ok_core & np.array([not _worse(k, inc) for k in self._bound_keys()], dtype=bool))
+        better = np.array([not _worse(k, inc) for k in self._bound_keys()], dtype=bool)
+        return np.flatnonzero(self.ok_core & (cap >= -FEAS_TOL) & better)
 
     def warm_start(self, parts: dict | None = None):
         """First proposals: each subsystem's cheapest choice (rank 0: the bound) and, if given, the choices of
@@ -305,34 +334,35 @@ class Search:
         return np.clip(value, -_BIG, _BIG), np.clip(violation, -_BIG, _BIG)
 
     def _shares(self, live: list, rows: np.ndarray, budget: int) -> dict:
-        """Proposals per study this round: a batch where the subsystem limits a live core (the smallest margin
-        there, while nothing is feasible; not at its bound, once something is), a quarter batch otherwise;
-        never more than the choices a study has not proposed, and within ``budget``."""
+        """Proposals per study this round, within its ``budget`` (trials per study): every untried choice of a
+        table of at most :data:`EXHAUSTIVE` (one evaluator call covers it); else a batch where the subsystem
+        limits a live core (has the smallest margin there while nothing is feasible), a quarter batch
+        otherwise."""
         limits = set(live)
         if self.best is not None and not self.best[3] and len(rows):
             m = np.stack([np.where(self.tried[s][rows], self.reach[s][rows], np.inf) for s in SUBSYSTEMS])
             limits = {SUBSYSTEMS[i] for i in np.unique(np.argmin(m, axis=0))}
-        want = {s: (self.batch if s in limits else max(1, self.batch // 4)) for s in live}
-        want = {s: min(n, self.vars[s].size - len(self.seen[s])) for s, n in want.items()}
-        total = sum(want.values())
-        if total > budget:
-            want = {s: max(1, n * budget // total) for s, n in want.items()}
-        return want
+        out = {}
+        for s in live:
+            v = self.vars[s]
+            left = v.size - len(self.seen[s])
+            want = left if v.size <= EXHAUSTIVE else (self.batch if s in limits else max(1, self.batch // 4))
+            out[s] = max(0, min(want, left, budget - self.trials[s]))
+        return out
 
     def round(self, budget: int) -> int:
-        """One round: each live study asks up to its share of ``budget`` proposals, evaluated in one call per
-        subsystem; returns the number of trials told."""
+        """One round: each live study asks its share of proposals (at most ``budget`` trials per study in all),
+        evaluated in one call per subsystem; returns the number of trials told."""
         rows = self.live_cores()
-        live = [s for s in SUBSYSTEMS if not self.done[s] and not (s == "axial" and not self.pad[rows].any())]
-        if not live or budget <= 0:
-            return 0
+        live = sorted((s for s in SUBSYSTEMS if not self.done[s] and not (s == "axial" and not self.pad[rows].any())),
+                      key=lambda s: self.vars[s].size)   # the small tables first: the others' signals see them
         told = 0
-        shares = self._shares(live, rows, budget)
-        for s in live:
+        for s, n in self._shares(live, rows, budget).items():
+            if n <= 0:
+                continue
             v, study = self.vars[s], self.studies[s]
-            trials = [study.ask(v.distributions) for _ in range(min(shares[s], budget - told))]
-            if not trials:
-                break
+            self._fill(s, int(round(FILL * n)) - len(self.queued[s]))
+            trials = [study.ask(v.distributions) for _ in range(n)]
             params = [t.params for t in trials]
             fresh = list({v.key(p): p for p in params if v.key(p) not in self.seen[s]}.values())
             self.queued[s] -= {v.key(p) for p in params}
@@ -348,10 +378,13 @@ class Search:
                 study.tell(t, value)
             self.trials[s] += len(trials)
             told += len(trials)
-            self.done[s] = len(self.seen[s]) >= v.size
+            if len(self.seen[s]) >= v.size:   # every choice evaluated on every core still live
+                self.done[s] = True
+                self.exact[s][rows] = True
             self._fill(s, len(trials) - len(fresh))
-        self.rounds += 1
-        self._combine()
+        if told:
+            self.rounds += 1
+            self._combine()
         return told
 
     def _design(self, ev: Evaluation, core: int, options: dict) -> dict:
@@ -467,9 +500,9 @@ def _snap(res, d, settings) -> dict | None:
 def solve(d, objective="standard", *, n_trials: int = 200, settings: Settings = Settings(), seed: int = 0,
           time_limit_s: float | None = None, continuous: bool = True, refine_trials: int = 32,
           warm_start: bool = True, batch: int = BATCH, sampler: str = "tpe", **_):
-    """Best design found in ``n_trials`` catalog proposals (over the four subsystem studies) or ``time_limit_s``
-    seconds (at least one round), then, with ``continuous``, ``refine_trials`` continuous proposals per
-    subsystem with continuous dimensions; see the module docstring."""
+    """Best design found with at most ``n_trials`` catalog proposals per subsystem study (a subsystem with fewer
+    choices proposes each once) or in ``time_limit_s`` seconds (at least one round), then, with ``continuous``,
+    ``refine_trials`` continuous proposals per subsystem with continuous dimensions; see the module docstring."""
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     t0 = time.perf_counter()
     ev = evaluate(d, settings, subsystems=False, prune=False)
@@ -480,12 +513,10 @@ def solve(d, objective="standard", *, n_trials: int = 200, settings: Settings = 
     search = Search(ev, obj, seed=seed, batch=batch, sampler=sampler)
     search.warm_start(_flowchart_parts(d, settings) if warm_start else None)
     deadline = None if time_limit_s is None else t0 + float(time_limit_s)
-    told = 0
-    while told < n_trials and not search.finished():
-        step = search.round(int(n_trials) - told)
-        told += step
-        if step == 0 or (deadline is not None and time.perf_counter() >= deadline):
+    while not search.finished():
+        if search.round(int(n_trials)) == 0 or (deadline is not None and time.perf_counter() >= deadline):
             break
+    told = sum(search.trials.values())
     proved = search.proved()
     stats = {"trials": told, "trials_by_subsystem": dict(search.trials), "rounds": search.rounds,
              "catalog_stage_s": time.perf_counter() - t0, "sampler": sampler, "seed": seed,

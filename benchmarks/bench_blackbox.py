@@ -1,0 +1,188 @@
+"""The black-box solver against the exact optimum: its speed-accuracy curve; prints markdown tables.
+
+    .venv/bin/python benchmarks/bench_blackbox.py [--apps 200] [--budgets 50,100,200] [--samplers tpe,random]
+                                                  [--objective standard] [--grid] [--seed 0]
+
+For the thesis cases, the embedded default case and generated applications
+(synth.data.generated_applications, seed 0): enumerate's answer (the exact
+optimum, or the nearest design when none is feasible) and, at each trial
+budget, the black-box solver's (``synth.optimise.solvers.blackbox``), run one
+after the other in one process (the machine is shared: compare the times side
+by side, not across runs). Reported:
+
+* objective reached: every tier of the objective no worse than the optimum's
+  beyond 1 % (a part count equal or lower, a cost at most 1 % above); for an
+  application without a feasible design, the nearest design's smallest margin
+  within 1 % of enumerate's (or above it: a continuous design may pass where
+  every grid design fails);
+* feasible found: a feasible design where enumerate finds one;
+* times: the whole ``solve`` call, after one warm-up solve (imports, caches).
+
+``--grid`` adds the runs on the exact solvers' grids only (``continuous=False``); ``--samplers tpe,random``
+measures what the TPE sampler buys against random proposals with the same budget.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+import time
+import warnings
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from synth.data import case_path  # noqa: E402
+from synth.data.generated_applications import generate  # noqa: E402
+from synth.optimise import solve  # noqa: E402
+from synth.schema import load_input  # noqa: E402
+
+LIMIT_S = 2.0
+TOL = 0.01
+
+
+def smallest_margin(r) -> float:
+    """The smallest margin of every checked, non-advisory constraint (what the nearest design maximises)."""
+    return min((c.margin for c in r.checks if c.verdict in ("pass", "fail") and not c.constraint.advisory),
+               default=float("inf"))
+
+
+def reached(ref, r, order) -> bool:
+    """Whether result ``r`` reaches the exact answer ``ref`` within 1 % (see the module docstring)."""
+    if ref.status == "optimal":
+        if r.status not in ("optimal", "feasible"):
+            return False
+        for name in order:
+            a, b = r.objectives[name], ref.objectives[name]
+            if name == "margin":
+                if a < b - TOL * max(abs(b), 1e-9):
+                    return False
+            elif a > b + TOL * max(abs(b), 1e-9):
+                return False
+            elif a < b - TOL * max(abs(b), 1e-9):
+                return True
+        return True
+    if r.status in ("optimal", "feasible"):
+        return True
+    m, mr = smallest_margin(r), smallest_margin(ref)
+    return m >= mr - TOL * abs(mr)
+
+
+def describe(r, order) -> str:
+    if r.status in ("optimal", "feasible"):
+        return " / ".join(f"{r.objectives[k]:.4g}" for k in order)
+    return f"nearest {smallest_margin(r):+.4f}"
+
+
+def timed(d, objective, solver, **kw):
+    t0 = time.perf_counter()
+    r = solve(d, objective, solver, **kw)
+    return r, time.perf_counter() - t0
+
+
+def run(apps, objective, budgets, samplers, modes, seed):
+    from synth.optimise.objectives import Objective
+    order = Objective.parse(objective).order
+    solve(apps[0][1], objective, "blackbox", n_trials=20)   # warm-up: imports, catalog caches
+    rows = []
+    for name, d in apps:
+        ref, t_ref = timed(d, objective, "enumerate", relax=False)
+        row = {"name": name, "ref": ref, "t_ref": t_ref, "bb": {}}
+        for smp in samplers:
+            for cont in modes:
+                for b in budgets:
+                    r, t = timed(d, objective, "blackbox", n_trials=b, sampler=smp, continuous=cont, seed=seed)
+                    row["bb"][(smp, cont, b)] = (r, t)
+        rows.append(row)
+    return rows, order
+
+
+def tables(rows, order, budgets, samplers, modes, thesis):
+    out = []
+    for smp in samplers:
+        for cont in modes:
+            label = f"{smp}, {'continuous' if cont else 'grid'}"
+            out += [f"### sampler {label}: cases", "",
+                    "| case | enumerate | time [s] | " + " | ".join(f"{b} trials | time [s]" for b in budgets) + " |",
+                    "|---|---|---|" + "---|---|" * len(budgets)]
+            for row in rows[:thesis]:
+                cells = [row["name"], describe(row["ref"], order), f"{row['t_ref']:.2f}"]
+                for b in budgets:
+                    r, t = row["bb"][(smp, cont, b)]
+                    cells += [describe(r, order) + ("" if reached(row["ref"], r, order) else " (not reached)"),
+                              f"{t:.2f}"]
+                out.append("| " + " | ".join(cells) + " |")
+            gen = rows[thesis:]
+            if not gen:
+                continue
+            feas = [row for row in gen if row["ref"].status == "optimal"]
+            out += ["", f"### sampler {label}: {len(gen)} generated applications ({len(feas)} feasible by enumerate)",
+                    "", "| trials | objective reached | feasible found (of feasible) | feasible found within "
+                    f"{LIMIT_S:g} s | mean time [s] | p95 time [s] | max time [s] | enumerate mean time [s] |",
+                    "|---|---|---|---|---|---|---|---|"]
+            for b in budgets:
+                res = [row["bb"][(smp, cont, b)] for row in gen]
+                ok = sum(reached(row["ref"], *row["bb"][(smp, cont, b)][:1], order) for row in gen)
+                ff = [row for row in feas if row["bb"][(smp, cont, b)][0].status in ("optimal", "feasible")]
+                fast = [row for row in ff if row["bb"][(smp, cont, b)][1] <= LIMIT_S]
+                ts = sorted(t for _, t in res)
+                out.append(f"| {b} | {ok} of {len(gen)} ({100 * ok / len(gen):.1f} %) | {len(ff)} of {len(feas)} "
+                           f"({100 * len(ff) / max(len(feas), 1):.1f} %) | {len(fast)} of {len(feas)} "
+                           f"({100 * len(fast) / max(len(feas), 1):.1f} %) | {statistics.mean(ts):.2f} | "
+                           f"{ts[int(0.95 * (len(ts) - 1))]:.2f} | {ts[-1]:.2f} | "
+                           f"{statistics.mean(row['t_ref'] for row in gen):.2f} |")
+            b = budgets[-1]
+            miss = [row for row in gen if not reached(row["ref"], row["bb"][(smp, cont, b)][0], order)
+                    or (row in feas and row["bb"][(smp, cont, b)][1] > LIMIT_S)]
+            if miss:
+                out += ["", f"The rest at {b} trials (objective not reached, or feasible found after {LIMIT_S:g} s):", "",
+                        "| application | enumerate | black-box | time [s] |", "|---|---|---|---|"]
+                for row in miss:
+                    r, t = row["bb"][(smp, cont, b)]
+                    out.append(f"| {row['name']} | {describe(row['ref'], order)} | {describe(r, order)} | {t:.2f} |")
+            out.append("")
+    return "\n".join(out)
+
+
+def reproducible(apps, objective, budget, seed) -> list:
+    """Whether two runs with the same seed give the same design (the thesis and default cases)."""
+    out = []
+    for name, d in apps:
+        a = solve(d, objective, "blackbox", n_trials=budget, seed=seed)
+        b = solve(d, objective, "blackbox", n_trials=budget, seed=seed)
+        out.append((name, a.parts == b.parts and a.status == b.status))
+    return out
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--apps", type=int, default=200)
+    p.add_argument("--budgets", default="50,100,200")
+    p.add_argument("--samplers", default="tpe")
+    p.add_argument("--objective", default="standard")
+    p.add_argument("--grid", action="store_true", help="also search the exact solvers' grids only")
+    p.add_argument("--seed", type=int, default=0)
+    a = p.parse_args(argv)
+    warnings.simplefilter("ignore")
+    budgets = [int(x) for x in a.budgets.split(",")]
+    samplers = a.samplers.split(",")
+    modes = [True, False] if a.grid else [True]
+    default = Path(__file__).resolve().parents[1] / "synth" / "data" / "default_case.yaml"
+    apps = [("default case", load_input(default)), ("thesis case 1", load_input(case_path("case1"))),
+            ("thesis case 1 as run", load_input(case_path("case1_as_run"))),
+            ("thesis case 3", load_input(case_path("case3")))]
+    thesis = len(apps)
+    apps += [(f"generated {i}", d) for i, d in enumerate(generate(a.apps, seed=0))]
+    t0 = time.perf_counter()
+    rows, order = run(apps, a.objective, budgets, samplers, modes, a.seed)
+    print(tables(rows, order, budgets, samplers, modes, thesis))
+    rep = reproducible(apps[:thesis], a.objective, budgets[-1], a.seed)
+    print("| case | same design from the same seed |\n|---|---|\n" + "\n".join(f"| {n} | {'yes' if ok else 'NO'} |"
+                                                                          for n, ok in rep))
+    print(f"\n{len(apps)} applications ({thesis} cases + {a.apps} generated, seed 0), objective {a.objective}, "
+          f"black-box seed {a.seed}; total {time.perf_counter() - t0:.0f} s")
+
+
+if __name__ == "__main__":
+    main()
