@@ -105,7 +105,7 @@ def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard"
     ``objective``: ``standard`` (the most standardised design, cost as tie-break: the default of every
     scene), ``cost``, ``margin``, a lexicographic ``"a,b"`` or weights ``"cost=1,margin=5"``; ``solver``:
     ``enumerate`` (exhaustive, exact: the default), ``minlp``, ``milp-highs``, ``milp-cvxpy``,
-    ``blackbox`` (``n_trials``) or ``flowchart``. An infeasible input gets the nearest design and a
+    ``blackbox`` (``n_trials`` per subsystem study) or ``flowchart``. An infeasible input gets the nearest design and a
     ``diagnosis`` (what binds, the smallest input relaxation).
     """
     from synth.optimise import solve

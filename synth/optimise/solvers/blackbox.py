@@ -72,11 +72,9 @@ BATCH = 16
 SAMPLERS = ("tpe", "random")
 #: share of a round's proposals taken best-first (the cheapest choices not tried yet), the rest the sampler's
 FILL = 0.25
-TPE_LIAR, TPE_EI = True, 24
 #: a subsystem with at most this many choices is covered in one round (optuna's exhaustive sampler)
 EXHAUSTIVE = 128
 _BIG = 1e6   # the value and violation told for a proposal no live core can take
-_RANKS = ("row", "stock", "spacer", "de_step")   # rank parameters: 0 is the cheapest (the warm start's bound)
 
 
 def _worse(a: tuple, b: tuple) -> bool:
@@ -122,8 +120,8 @@ def _sampler(kind: str, seed: int, size: int, batch: int, n_params: int):
             return Exhaustive(seed=seed)
     if kind == "random":
         return optuna.samplers.RandomSampler(seed=seed)
-    return optuna.samplers.TPESampler(seed=seed, multivariate=n_params > 1, constant_liar=TPE_LIAR,
-                                      n_startup_trials=batch, n_ei_candidates=TPE_EI)
+    return optuna.samplers.TPESampler(seed=seed, multivariate=n_params > 1, constant_liar=True,
+                                      n_startup_trials=batch)
 
 
 class Search:
@@ -274,9 +272,9 @@ class Search:
         return np.flatnonzero(self.ok_core & (cap >= -FEAS_TOL) & better)
 
     def warm_start(self, parts: dict | None = None):
-        """First proposals: each subsystem's cheapest choice (rank 0: the bound) and, if given, the choices of
-        design ``parts`` (the thesis flowchart's)."""
-        wanted = {s: [{name: 0 for name in v.distributions}] for s, v in self.vars.items()}
+        """First proposals: each subsystem's cheapest choice (its bound) and, if given, the choices of design
+        ``parts`` (the thesis flowchart's)."""
+        wanted = {s: [v.choices[0]] for s, v in self.vars.items()}
         if parts:
             attrs = self.ev.space.design_attributes(parts)
             for s, v in self.vars.items():
@@ -504,6 +502,7 @@ def solve(d, objective="standard", *, n_trials: int = 200, settings: Settings = 
     choices proposes each once) or in ``time_limit_s`` seconds (at least one round), then, with ``continuous``,
     ``refine_trials`` continuous proposals per subsystem with continuous dimensions; see the module docstring."""
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
+    n_trials = max(1, int(n_trials))
     t0 = time.perf_counter()
     ev = evaluate(d, settings, subsystems=False, prune=False)
     if not len(ev.cores):
@@ -514,7 +513,7 @@ def solve(d, objective="standard", *, n_trials: int = 200, settings: Settings = 
     search.warm_start(_flowchart_parts(d, settings) if warm_start else None)
     deadline = None if time_limit_s is None else t0 + float(time_limit_s)
     while not search.finished():
-        if search.round(int(n_trials)) == 0 or (deadline is not None and time.perf_counter() >= deadline):
+        if search.round(n_trials) == 0 or (deadline is not None and time.perf_counter() >= deadline):
             break
     told = sum(search.trials.values())
     proved = search.proved()
