@@ -34,3 +34,11 @@ def test_bench_kernels_sample_is_the_engines_keys():
     assert all(0 <= g < len(lists) for g in groups)
     r = mod.K.first_feasible(keys, options, lists, key_group=groups, tol=mod.FEAS_TOL, engine="numpy")
     assert (r.index >= 0).any()
+
+
+def test_bench_blackbox_runs_and_is_reproducible(capsys):
+    """The black-box benchmark's cases table at a small budget, and its seeded-reproducibility check."""
+    _module("bench_blackbox").main(["--apps", "0", "--budgets", "10"])
+    out = capsys.readouterr().out
+    assert "| thesis case 3 | nearest -0.0427 |" in out and "| default case | 2 / 1.572 |" in out
+    assert out.count("| yes |") == 4
