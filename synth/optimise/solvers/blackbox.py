@@ -77,15 +77,23 @@ EXHAUSTIVE = 128
 _BIG = 1e6   # the value and violation told for a proposal no live core can take
 
 
-def _worse(a: tuple, b: tuple) -> bool:
-    """Whether sort key ``a`` is strictly worse than ``b`` (lexicographic, beyond a relative 1e-9)."""
+def _worse(a: list, b: tuple) -> np.ndarray:
+    """Per entry, whether the sort key ``a`` (one array per tier) is strictly worse than the key ``b``
+    (lexicographic, beyond a relative 1e-9 per tier)."""
+    worse = np.zeros(np.shape(a[0]), dtype=bool)
+    undecided = np.ones(np.shape(a[0]), dtype=bool)
     for x, y in zip(a, b):
         tol = 1e-9 * max(1.0, abs(y))
-        if x > y + tol:
-            return True
-        if x < y - tol:
-            return False
-    return False
+        worse |= undecided & (x > y + tol)
+        undecided &= np.abs(x - y) <= tol
+    return worse
+
+
+def _key(obj: Objective, vals: dict) -> list:
+    """:meth:`Objective.key` of arrays: one array per tier (smaller is better)."""
+    if obj.weights:
+        return [np.asarray(obj.score(vals), dtype=float)]
+    return [np.asarray(-vals[k] if k == "margin" else vals[k], dtype=float) for k in obj.order]
 
 
 def _scalar(obj: Objective, vals: dict) -> np.ndarray:
@@ -201,15 +209,15 @@ class Search:
                          for name in ("standard", "cost")}
 
     def _bound_keys(self) -> list:
-        """Per core, the sort key of the best design it could give: lower bounds of the scores (a subsystem whose
-        every choice was evaluated on the core counts with its best passing option, the others with their
-        cheapest), the upper bound of the margin."""
+        """Per core, the sort key of the best design it could give (one array per tier): lower bounds of the
+        scores (a subsystem whose every choice was evaluated on the core counts with its best passing option, the
+        others with their cheapest), the upper bound of the margin."""
         ev = self.ev
         vals = {name: ev.score_core[name] + sum(np.where(self.exact[s], self.feas_min[s][name], self.lb[s][name])
                                                 for s in SUBSYSTEMS) for name in ("standard", "cost")}
         vals["margin"] = np.minimum.reduce([self.u_obj] + [np.where(self.exact[s], self.reach_obj[s], np.inf)
                                                            for s in SUBSYSTEMS])
-        return [self.obj.key({k: float(v[i]) for k, v in vals.items()}) for i in range(len(ev.cores))]
+        return _key(self.obj, vals)
 
     def _cap(self) -> np.ndarray:
         """Per core, the upper bound of the smallest margin of a design on it: its own, and that of every
@@ -267,8 +275,7 @@ class Search:
         cap = self._cap()
         if not self.best[3]:   # nothing feasible yet: the cores that could be nearer than the nearest found
             return np.flatnonzero(cap > self.best[2]["min_margin"] + 1e-12)
-        inc = self.obj.key(self.best[2])
-        better = np.array([not _worse(k, inc) for k in self._bound_keys()], dtype=bool)
+        better = ~_worse(self._bound_keys(), self.obj.key(self.best[2]))
         return np.flatnonzero(self.ok_core & (cap >= -FEAS_TOL) & better)
 
     def warm_start(self, parts: dict | None = None):
