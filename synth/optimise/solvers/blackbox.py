@@ -534,11 +534,11 @@ def solve(d, objective="standard", *, n_trials: int = 200, settings: Settings = 
     status = ("optimal" if proved else "feasible") if feasible else "infeasible"
     res = build_result(search.archive(), core, options, status=status, solver="blackbox", objective=obj,
                        stats=stats)
-    if not feasible:
+    if not feasible:   # no "relaxations" key: none were searched (an empty list says none was found)
         from synth.optimise.diagnose import violated_of
         res.diagnosis = {"message": f"no feasible design found in {told} trials (not a proof: enumerate proves "
                                     "infeasibility and finds the input relaxations); the nearest design found is shown",
-                         "violated": violated_of(res), "relaxations": []}
+                         "violated": violated_of(res)}
     if continuous:
         snap = _snap(res, d, settings)
         if snap is not None:
