@@ -15,6 +15,10 @@ by side, not across runs). Reported:
   application without a feasible design, the nearest design's smallest margin
   within 1 % of enumerate's (or above it: a continuous design may pass where
   every grid design fails);
+* gap: the relative difference of the last tier (cost) where the tiers before it are equal, or of the nearest
+  design's smallest margin (positive: worse than enumerate; negative: a continuous design beyond the grids),
+  with the number of applications where it compares (a result with another part count has no cost gap: it is
+  counted as not reached);
 * feasible found: a feasible design where enumerate finds one;
 * times: the whole ``solve`` call, after one warm-up solve (imports, caches), wall and CPU seconds of the
   process (on a shared machine the wall time grows with the load; the CPU time is what the call costs).
@@ -67,6 +71,24 @@ def reached(ref, r, order) -> bool:
         return True
     m, mr = smallest_margin(r), smallest_margin(ref)
     return m >= mr - TOL * abs(mr)
+
+
+def gap(ref, r, order) -> float | None:
+    """The relative gap [%] of the last additive tier (cost) where the tiers before it are equal, or of the
+    smallest margin of the nearest design (positive: worse than enumerate); None where not comparable."""
+    if ref.status != "optimal":
+        if r.status in ("optimal", "feasible"):
+            return None
+        m, mr = smallest_margin(r), smallest_margin(ref)
+        return 100.0 * (mr - m) / max(abs(mr), 1e-12)
+    if r.status not in ("optimal", "feasible"):
+        return None
+    for name in order[:-1]:
+        if abs(r.objectives[name] - ref.objectives[name]) > 1e-9 * max(1.0, abs(ref.objectives[name])):
+            return None
+    last = order[-1]
+    sign = -1.0 if last == "margin" else 1.0
+    return 100.0 * sign * (r.objectives[last] - ref.objectives[last]) / max(abs(ref.objectives[last]), 1e-12)
 
 
 def describe(r, order) -> str:
@@ -124,9 +146,9 @@ def tables(rows, order, budgets, samplers, modes, thesis):
                 continue
             feas = [row for row in gen if row["ref"].status == "optimal"]
             out += ["", f"### sampler {label}: {len(gen)} generated applications ({len(feas)} feasible by enumerate)",
-                    "", f"| trials per study | objective reached | feasible found | feasible found within {LIMIT_S:g} s "
-                    f"(wall / CPU) | time mean, p95, max [s] (wall) | time mean, p95, max [s] (CPU) |",
-                    "|---|---|---|---|---|---|"]
+                    "", f"| trials per study | objective reached | gap mean, max [%] (where comparable) | feasible found | feasible found "
+                    f"within {LIMIT_S:g} s (wall / CPU) | time mean, p95, max [s] (wall) | time mean, p95, max [s] (CPU) |",
+                    "|---|---|---|---|---|---|---|"]
             for b in budgets:
                 res = {row["name"]: row["bb"][(smp, cont, b)] for row in gen}
                 ok = sum(reached(row["ref"], res[row["name"]][0], order) for row in gen)
@@ -137,11 +159,14 @@ def tables(rows, order, budgets, samplers, modes, thesis):
                 def spread(i):
                     ts = sorted(x[i] for x in res.values())
                     return f"{statistics.mean(ts):.2f}, {ts[int(0.95 * (len(ts) - 1))]:.2f}, {ts[-1]:.2f}"
-                out.append(f"| {b} | {_pct(ok, len(gen))} | {_pct(len(ff), len(feas))} | {_pct(fast_w, len(feas))} / "
+                gaps = [gap(row["ref"], res[row["name"]][0], order) for row in gen]
+                gaps = [g for g in gaps if g is not None]
+                out.append(f"| {b} | {_pct(ok, len(gen))} | {statistics.mean(gaps):+.2f}, {max(gaps):+.2f} ({len(gaps)}) | "
+                           f"{_pct(len(ff), len(feas))} | {_pct(fast_w, len(feas))} / "
                            f"{_pct(fast_c, len(feas))} | {spread(1)} | {spread(2)} |")
             tw = sorted(row["t_ref"] for row in gen)
             tc = sorted(row["c_ref"] for row in gen)
-            out.append(f"| enumerate | exact | {len(feas)} | | {statistics.mean(tw):.2f}, {tw[int(0.95 * (len(tw) - 1))]:.2f}, "
+            out.append(f"| enumerate | exact | 0 | {len(feas)} | | {statistics.mean(tw):.2f}, {tw[int(0.95 * (len(tw) - 1))]:.2f}, "
                        f"{tw[-1]:.2f} | {statistics.mean(tc):.2f}, {tc[int(0.95 * (len(tc) - 1))]:.2f}, {tc[-1]:.2f} |")
             b = budgets[-1]
             miss = [row for row in gen if not reached(row["ref"], row["bb"][(smp, cont, b)][0], order)

@@ -56,10 +56,7 @@ import numpy as np
 
 from synth.design.space import SUBSYSTEMS, axial_attributes, cone_variants, mbd_grid, spring_attributes, spring_window
 
-__all__ = ["Variables", "Refinement", "variables", "refinements", "snap_parts", "SNAPPED_KEYS"]
-
-#: the part keys a continuous search may set off the exact solvers' grids (snapped by :func:`snap_parts`)
-SNAPPED_KEYS = ("main_spring_mean_body_diameter_mm", "cone_spring_aspect_ratio", "cone_spring_deflection_ratio")
+__all__ = ["Variables", "Refinement", "variables", "refinements", "snap_parts"]
 
 
 @dataclass
@@ -107,9 +104,9 @@ def _weighted(scores: dict, weights: dict) -> np.ndarray:
     return np.asarray(wsum(scores, weights), dtype=float)
 
 
-def _rank(score: np.ndarray, *tiebreak) -> np.ndarray:
-    """Row order by score, then by the tie-breaks (stable)."""
-    return np.lexsort(tuple(reversed((np.asarray(score, float),) + tuple(np.asarray(t, float) for t in tiebreak))))
+def _rank(score: np.ndarray) -> np.ndarray:
+    """Row order by score (stable: ties keep the catalog's order)."""
+    return np.argsort(np.asarray(score, float), kind="stable")
 
 
 def _nearest(grid: np.ndarray, x: float) -> int:
@@ -253,8 +250,8 @@ def refinements(ev) -> dict:
 
 
 def snap_parts(parts: dict) -> dict:
-    """Design ``parts`` with the values a continuous search sets (:data:`SNAPPED_KEYS`) moved to the nearest point
-    of the exact solvers' grids: mean body diameter (``optimise_mbd_step_mm``), cone-spring h0/t and s/h0
+    """Design ``parts`` with the values a continuous search sets (the mean body diameter, the cone spring's h0/t
+    and s/h0: :func:`refinements`) moved to the nearest point of the exact solvers' grids: mean body diameter (``optimise_mbd_step_mm``), cone-spring h0/t and s/h0
     (``optimise_cone_*``). A design without a cone spring keeps its zeros.
 
     >>> snap_parts({"main_spring_mean_body_diameter_mm": 40.4, "endcap_spacer_class": "none",
