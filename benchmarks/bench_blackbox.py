@@ -15,10 +15,9 @@ by side, not across runs). Reported:
   application without a feasible design, the nearest design's smallest margin
   within 1 % of enumerate's (or above it: a continuous design may pass where
   every grid design fails);
-* gap: the relative difference of the last tier (cost) where the tiers before it are equal, or of the nearest
-  design's smallest margin (positive: worse than enumerate; negative: a continuous design beyond the grids),
-  with the number of applications where it compares (a result with another part count has no cost gap: it is
-  counted as not reached);
+* gap: the relative difference of the last tier (cost) where the optimum is feasible and the tiers before it
+  are equal (positive: dearer than the optimum), with the number of applications where it compares (a result
+  with another part count has no cost gap: it is counted as not reached);
 * feasible found: a feasible design where enumerate finds one;
 * times: the whole ``solve`` call, after one warm-up solve (imports, caches), wall and CPU seconds of the
   process (on a shared machine the wall time grows with the load; the CPU time is what the call costs).
@@ -74,14 +73,10 @@ def reached(ref, r, order) -> bool:
 
 
 def gap(ref, r, order) -> float | None:
-    """The relative gap [%] of the last additive tier (cost) where the tiers before it are equal, or of the
-    smallest margin of the nearest design (positive: worse than enumerate); None where not comparable."""
-    if ref.status != "optimal":
-        if r.status in ("optimal", "feasible"):
-            return None
-        m, mr = smallest_margin(r), smallest_margin(ref)
-        return 100.0 * (mr - m) / max(abs(mr), 1e-12)
-    if r.status not in ("optimal", "feasible"):
+    """The relative gap [%] of the last tier (cost) of a feasible result whose tiers before it equal the
+    optimum's (positive: dearer than the optimum); None where not comparable (no feasible optimum or result,
+    another part count)."""
+    if ref.status != "optimal" or r.status not in ("optimal", "feasible"):
         return None
     for name in order[:-1]:
         if abs(r.objectives[name] - ref.objectives[name]) > 1e-9 * max(1.0, abs(ref.objectives[name])):
@@ -146,7 +141,7 @@ def tables(rows, order, budgets, samplers, modes, thesis):
                 continue
             feas = [row for row in gen if row["ref"].status == "optimal"]
             out += ["", f"### sampler {label}: {len(gen)} generated applications ({len(feas)} feasible by enumerate)",
-                    "", f"| trials per study | objective reached | gap mean, max [%] (where comparable) | feasible found | feasible found "
+                    "", f"| trials per study | objective reached | cost gap mean, max [%] (where comparable) | feasible found | feasible found "
                     f"within {LIMIT_S:g} s (wall / CPU) | time mean, p95, max [s] (wall) | time mean, p95, max [s] (CPU) |",
                     "|---|---|---|---|---|---|---|"]
             for b in budgets:
@@ -161,7 +156,8 @@ def tables(rows, order, budgets, samplers, modes, thesis):
                     return f"{statistics.mean(ts):.2f}, {ts[int(0.95 * (len(ts) - 1))]:.2f}, {ts[-1]:.2f}"
                 gaps = [gap(row["ref"], res[row["name"]][0], order) for row in gen]
                 gaps = [g for g in gaps if g is not None]
-                out.append(f"| {b} | {_pct(ok, len(gen))} | {statistics.mean(gaps):+.2f}, {max(gaps):+.2f} ({len(gaps)}) | "
+                gap_cell = f"{statistics.mean(gaps):+.2f}, {max(gaps):+.2f} ({len(gaps)})" if gaps else "-"
+                out.append(f"| {b} | {_pct(ok, len(gen))} | {gap_cell} | "
                            f"{_pct(len(ff), len(feas))} | {_pct(fast_w, len(feas))} / "
                            f"{_pct(fast_c, len(feas))} | {spread(1)} | {spread(2)} |")
             tw = sorted(row["t_ref"] for row in gen)
