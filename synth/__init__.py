@@ -107,7 +107,7 @@ def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard"
     of every scene), ``cost`` (standardisation then the margin as tie-breaks), ``margin``, a lexicographic
     ``"a,b"`` (kept as given) or weights ``"cost=1,margin=5"``; ``solver``:
     ``enumerate`` (exhaustive, exact: the default), ``minlp``, ``milp-highs``, ``milp-cvxpy``,
-    ``blackbox`` (``n_trials``) or ``flowchart``. An infeasible input gets the nearest design and a
+    ``blackbox`` (``n_trials`` per subsystem study) or ``flowchart``. An infeasible input gets the nearest design and a
     ``diagnosis`` (what binds, the smallest input relaxation).
     """
     from synth.optimise import solve

@@ -46,3 +46,9 @@ def test_bench_robust_quick_runs(capsys):
     assert _module("bench_robust").main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "capability, 10000 samples" in out and "FORM + importance sampling" in out
+def test_bench_blackbox_runs_and_is_reproducible(capsys):
+    """The black-box benchmark's cases table at a small budget, and its seeded-reproducibility check."""
+    _module("bench_blackbox").main(["--apps", "0", "--budgets", "10"])
+    out = capsys.readouterr().out
+    assert "| thesis case 3 | nearest -0.0427 |" in out and "| default case | 2 / 1.572 |" in out
+    assert out.count("| yes |") == 4

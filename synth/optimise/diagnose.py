@@ -33,7 +33,7 @@ from synth.optimise.evaluate import evaluate
 from synth.schema import field_by_name
 
 __all__ = ["RELAXABLE", "nearest_design", "is_feasible", "relaxations", "relaxations_batch", "probe_batch",
-           "diagnose", "layout_switch", "reference_probe"]
+           "diagnose", "layout_switch", "reference_probe", "violated_of"]
 
 #: input field -> (direction: +1 raise / -1 lower, the constraints it relaxes, a specification value?)
 RELAXABLE = {
@@ -260,6 +260,10 @@ def _no_core(d):
     return Problem("--pin-inputs", f"pivot class {d.pivot_class_diameter_mm}, bushing thickness "
                                    f"{d.pivot_bushing_radial_thickness_mm}",
                    f"parts the catalogs hold (pivot classes {classes} mm): no design of the catalogs keeps these")
+def violated_of(res) -> list:
+    """The failed checks of a verified design, smallest margin first, as a diagnosis lists them."""
+    return [{"constraint": c.id, "label": c.label, "step": c.step, "margin": c.margin}
+            for c in sorted(res.failed(), key=lambda c: c.margin)]
 
 
 def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: dict | None = None,
@@ -292,8 +296,7 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
                             exhaustive=True, pin_inputs=pin_inputs)
         res = build_result(b.view(0), near[0], near[1], status="infeasible", solver=solver, objective=obj,
                            stats=stats or {})
-    violated = [c for c in res.failed()]
-    ids = [c.id for c in violated]
+    ids = [c.id for c in res.failed()]
     if not relax:
         rel = []
     elif exhaustive or ev is not None:
@@ -303,8 +306,7 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
                                 probe=probe_batch(settings, spring_engine="numpy", pin_inputs=pin_inputs))[0]
     res.diagnosis = {
         "message": "no design of the catalog product meets every constraint; the nearest design is shown",
-        "violated": [{"constraint": c.id, "label": c.label, "step": c.step, "margin": c.margin}
-                     for c in sorted(violated, key=lambda c: c.margin)],
+        "violated": violated_of(res),
         "relaxations": rel,
     }
     switch = layout_switch(d, settings, pin_inputs=pin_inputs) if relax else None

@@ -33,7 +33,7 @@ from synth.design import evaluate as E
 from synth.design.applications import Applications
 from synth.design.space import SUBSYSTEMS, Space, core_rows, space, spring_window
 
-__all__ = ["SubTable", "Evaluation", "evaluate", "SPRING_BLOCK_PAIRS", "design_scores", "evaluate_choice",
+__all__ = ["SubTable", "Evaluation", "evaluate", "subsystem", "SPRING_BLOCK_PAIRS", "design_scores",
            "core_scores", "option_scores"]
 
 #: (key, option) pairs of main springs evaluated per block (bounds the memory of one evaluation)
@@ -174,6 +174,20 @@ def _spring(apps, sp, cg, pos, settings, counter) -> SubTable:
     return SubTable(avail[inv], feas[inv], marg[inv], mmin[inv])
 
 
+def subsystem(apps, sp: Space, cg: E.Group, pos, name: str, settings: E.Settings) -> tuple[SubTable, int]:
+    """Subsystem ``name`` of the core rows ``pos`` of core group ``cg`` against every option of ``sp``'s table
+    ``name`` (the design space's, or any table of option columns: a black-box search's proposals).
+
+    Returns the :class:`SubTable` over ``(len(pos), options)`` and the number of (row, option) pairs the
+    evaluator computed (main springs: per distinct key, within the housings' mean-diameter window).
+    """
+    if name == "spring":
+        counter = [0]
+        return _spring(apps, sp, cg, pos, settings, counter), counter[0]
+    sub = {"bushing": _bushing, "axial": _axial, "bolt": _bolt}[name](apps, sp, cg, pos, settings)
+    return sub, int(sub.available.sum())
+
+
 def _scatter(avail, i, k, g: E.Group) -> SubTable:
     shape = avail.shape
     feas = np.zeros(shape, dtype=bool)
@@ -190,7 +204,7 @@ def evaluate(d, settings: E.Settings = E.Settings(fidelity="full"), *, pin_input
     """Evaluate the design space of input ``d`` (see the module docstring).
 
     ``subsystems=False`` evaluates the inputs and the cores only (a black-box search evaluates its own
-    designs one at a time).
+    proposals with :func:`subsystem`).
     """
     apps = Applications.of([d])
     sp = space()
@@ -203,11 +217,9 @@ def evaluate(d, settings: E.Settings = E.Settings(fidelity="full"), *, pin_input
         counter = [len(cores)]
         subs = {}
         if subsystems:
-            subs = {"bushing": _bushing(apps, sp, cg, pos, settings), "axial": _axial(apps, sp, cg, pos, settings),
-                    "spring": _spring(apps, sp, cg, pos, settings, counter), "bolt": _bolt(apps, sp, cg, pos, settings)}
-    for s in ("bushing", "axial", "bolt"):
-        if s in subs:
-            counter[0] += int(subs[s].available.sum())
+            for s in SUBSYSTEMS:
+                subs[s], n = subsystem(apps, sp, cg, pos, s, settings)
+                counter[0] += n
     score_core = core_scores(sp, cores, cg.values)
     score = {s: option_scores(sp, s, float(apps.spring_stiffness_nm_per_deg[0])) for s in SUBSYSTEMS}
     notes = []
@@ -232,21 +244,3 @@ def design_scores(d, parts: dict, settings: E.Settings = E.Settings()) -> dict:
     std += float(attrs["spring"]["nonstandard"][0])
     cost += float(attrs["spring"]["cost_eur_times_stiffness"][0]) / float(apps.spring_stiffness_nm_per_deg[0])
     return {"standard": std, "cost": round(cost, 6)}
-
-
-def evaluate_choice(ev: Evaluation, pos: int, options: dict) -> tuple[float, float]:
-    """``(smallest margin of all constraints, margin objective)`` of one design of ``ev`` (a black-box trial).
-
-    A bushing option of another supplier than the core's is not a design: ``(-inf, -inf)``.
-    """
-    from synth.design.verify import evaluate_design
-    sp = ev.space
-    core = sp.rows("core", [ev.cores[pos]])
-    if sp.tables["bushing"]["supplier_code"][options["bushing"]] != core["supplier_code"][0]:
-        return -np.inf, -np.inf
-    attrs = {"core": core, **{s: sp.rows(s, [options[s]]) for s in SUBSYSTEMS}}
-    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        groups = evaluate_design(ev.apps, attrs, ev.settings, detail=False)
-    worst = min(float(g.min_margin(objective_only=False)[0]) for g in groups.values())
-    obj = min(float(g.min_margin()[0]) for g in groups.values())
-    return worst, obj

@@ -49,7 +49,7 @@ def add_design_options(p) -> None:
                    help="standard | cost | margin, a lexicographic list 'a,b' or weights 'cost=1,margin=5'")
     p.add_argument("--solver", default=DEFAULT_SOLVER, choices=list(SOLVERS))
     p.add_argument("--pin-inputs", action="store_true", help="keep the part choices the input names")
-    p.add_argument("--trials", type=int, default=200, help="blackbox: number of trials (1 to 100000)")
+    p.add_argument("--trials", type=int, default=200, help="blackbox: trials per subsystem study (1 to 100000)")
     p.add_argument("--time-limit", type=float, default=None, metavar="S",
                    help="seconds for the solver (minlp, milp-*, blackbox): on expiry the best design found so far")
     add_model_options(p)

@@ -35,7 +35,7 @@ def solve(d, objective="standard", *, settings: Settings = Settings(), **_):
         r.objectives = {**design_scores(d, r.parts, settings), "margin": design_margin(r)}
     if r.failed():
         r.status = "infeasible"
+        from synth.optimise.diagnose import violated_of
         r.diagnosis = {"message": "the thesis flowchart's sequential design fails a check",
-                       "violated": [{"constraint": c.id, "label": c.label, "step": c.step, "margin": c.margin}
-                                    for c in sorted(r.failed(), key=lambda c: c.margin)], "relaxations": []}
+                       "violated": violated_of(r)}   # no relaxations searched: no "relaxations" key
     return r
