@@ -109,9 +109,7 @@ def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard"
     ``diagnosis`` (what binds, the smallest input relaxation).
     """
     from synth.optimise import solve
-    kw: dict = {"settings": settings(**settings_kw)}
-    if solver not in ("blackbox", "flowchart"):
-        kw["pin_inputs"] = pin_inputs
+    kw: dict = {"settings": settings(**settings_kw), "pin_inputs": pin_inputs}
     if solver == "blackbox":
         kw["n_trials"] = n_trials
     if time_limit_s is not None:

@@ -29,6 +29,7 @@ per field (name, value, what is accepted), in an :class:`~synth.errors.InputErro
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import math
 import re
@@ -42,7 +43,7 @@ from synth.io.limits import short
 from synth.io.numbers import is_not_given, number_from_text
 from synth.io.numbers import parse_number_list as _parse_number_list
 
-__all__ = ["Field", "FIELDS", "SECTIONS", "DesignInput", "validate", "load_input", "read_mapping", "field_by_name",
+__all__ = ["Field", "FIELDS", "SECTIONS", "OWNERS", "PART_FIELDS", "DesignInput", "validate", "load_input", "read_mapping", "field_by_name",
            "parse_number_list"]
 
 INF = math.inf
@@ -74,6 +75,16 @@ class Field:
     words: tuple[tuple[str, str], ...] = ()
     #: why the bounds are what they are (shown in docs/sections/input_gate.md)
     basis: str = ""
+    #: who controls the value (:data:`OWNERS`): ``designer`` (the tensioner designer: space, parts, pin, housing,
+    #: bolt, materials) or ``specification`` (the belt-drive or engine specification: stiffness, torque and
+    #: damping targets, travels, safety-factor targets, the engine support); "" for application data
+    owner: str = ""
+    #: relaxation: +1 raising the value, -1 lowering it, relaxes the registry constraints ``relaxes`` (0: none)
+    relax: int = 0
+    relaxes: tuple[str, ...] = ()
+    #: a field that names a part or a class: the design-space ``(table, column)`` it selects
+    #: (:func:`synth.design.space.pinned_space`; ``synth design --fix/--free``)
+    pins: tuple[str, str] | tuple = ()
 
     def accepted(self) -> str:
         if self.choices:
@@ -220,6 +231,53 @@ FIELDS: tuple[Field, ...] = (
     _f("support_yield_strength_traction_mpa", "Support strengths", "MPa", required=False, **POS, hi=5000,
        label="Support yield strength (traction)"),
 )
+
+#: who controls an input (:attr:`Field.owner`), in the words the outputs use
+OWNERS = {"designer": "the tensioner designer", "specification": "the belt-drive or engine specification"}
+
+_D, _S = "designer", "specification"
+_SPRING_CHECKS = ("spring_yield", "spring_fatigue", "spring_coil_gap", "spring_inner_contact")
+_BOLT_CHECKS = ("bolt_yield", "under_head", "thread", "pivot_base_pressure")
+#: the control attributes of the fields (:attr:`Field.owner`, ``relax``, ``relaxes``, ``pins``), declared here once
+#: (the diagnosis's relaxation candidates, the fix/free options and the "ask for" lines all read them from the
+#: fields); kept beside :data:`FIELDS` so that each entry reads as one line
+_CONTROL = {
+    # space, pin, bolt and housing: the tensioner designer's
+    "max_pivot_height_mm": dict(owner=_D, relax=+1, relaxes=(
+        "belt_plane", "bushing_length", "bushing_p", "bushing_pv", "bushing_pvt", "bushing_wear", "bushing_parallelism",
+        "spring_cavity", "spring_coil_gap")),
+    "max_axial_displacement_mm": dict(owner=_D, relax=+1, relaxes=("pulley_axial_space",)),
+    "lockup_pin_position_radius_mm": dict(owner=_D, relax=+1, relaxes=("pin_clearance",)),
+    "bolt_head_contact_external_diameter_mm": dict(owner=_D, relax=+1, relaxes=("under_head",)),
+    "number_of_active_threads": dict(owner=_D, relax=+1, relaxes=("thread",)),
+    # the parts and classes an input may name (the designer's choices; --fix/--free)
+    "pivot_class_diameter_mm": dict(owner=_D, pins=("core", "pivot_class_diameter_mm")),
+    "pivot_bushing_radial_thickness_mm": dict(owner=_D, pins=("core", "pivot_bushing_radial_thickness_mm")),
+    "main_spring_material": dict(owner=_D, pins=("spring", "main_spring_material")),
+    "main_spring_wire_section": dict(owner=_D, pins=("spring", "round_wire")),
+    "main_spring_wire_size_mm": dict(owner=_D, pins=("spring", "main_spring_wire")),
+    "main_spring_mean_body_diameter_mm": dict(owner=_D, pins=("spring", "main_spring_mean_body_diameter_mm")),
+    "bolt_format": dict(owner=_D, pins=("bolt", "bolt_format")),
+    "bolt_property_class": dict(owner=_D, pins=("bolt", "bolt_property_class")),
+    # the belt-drive specification (ask for), the engine's support and the safety-factor targets
+    "pulley_max_parallelism_eol_mm": dict(owner=_S, relax=+1, relaxes=("bushing_parallelism",)),
+    "damping_tolerance_nm": dict(owner=_S, relax=+1, relaxes=("damping_upper", "damping_lower", "cone_force_band")),
+    "damping_eol_limit_nm": dict(owner=_S, relax=-1, relaxes=("damping_eol",)),
+    "spring_torque_tolerance_pct": dict(owner=_S, relax=-1, relaxes=_SPRING_CHECKS),
+    "arm_travel_nominal_to_installation_deg": dict(owner=_S, relax=-1, relaxes=(
+        "spring_yield", "spring_coil_gap", "spring_inner_contact")),
+    "arm_travel_nominal_to_free_deg": dict(owner=_S, relax=-1, relaxes=("spring_coil_gap", "spring_outer_contact")),
+    "spring_stiffness_nm_per_deg": dict(owner=_S, relax=+1, relaxes=("spring_coil_gap",)),
+    "middle_plane_belt_height_mm": dict(owner=_S, relax=+1, relaxes=("spring_coil_gap", "spring_cavity")),
+    "tilting_safety_factor": dict(owner=_S, relax=-1, relaxes=_BOLT_CHECKS),
+    "sliding_safety_factor": dict(owner=_S, relax=-1, relaxes=_BOLT_CHECKS),
+    "engine_support_internal_diameter_mm": dict(owner=_S, relax=+1, relaxes=("pivot_bore",)),
+    "engine_support_external_diameter_mm": dict(owner=_S, relax=+1, relaxes=(
+        "pivot_base_pressure", "bolt_yield", "under_head", "thread")),
+}
+FIELDS = tuple(dataclasses.replace(f, **_CONTROL.get(f.name, {})) for f in FIELDS)
+#: the fields that name a part or a class (``synth design --fix/--free``), in the schema's order
+PART_FIELDS: tuple[str, ...] = tuple(f.name for f in FIELDS if f.pins)
 
 SECTIONS: tuple[str, ...] = tuple(dict.fromkeys(f.section for f in FIELDS))
 _BY_NAME = {f.name: f for f in FIELDS}

@@ -60,7 +60,7 @@ import numpy as np
 from synth.design import evaluate as E
 from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, REGISTRY, margin as registry_margin
-from synth.design.space import SUBSYSTEMS, core_rows, space, spring_window
+from synth.design.space import SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, space, space_for, spring_window
 from synth.optimise.evaluate import DURABILITY_NOTE, core_scores, option_scores
 
 __all__ = ["Batch", "wsum", "SLACK", "any_feasible", "robust"]
@@ -150,6 +150,19 @@ def _rounds(pos, seg_end, block: int, may, still=None):
             yield take
 
 
+def _space_of(inputs: list, pin_inputs):
+    """The one design space of a batch: the whole catalog product, or the one keeping the parts the inputs name
+    (``pin_inputs``), which must then be the same parts for every input (a relaxation's probes change other
+    inputs)."""
+    if not pin_inputs or not inputs:
+        return space()
+    first = [(n, getattr(inputs[0], n)) for n in fixed_fields(inputs[0], pin_inputs)]
+    for d in inputs[1:]:
+        if [(n, getattr(d, n)) for n in fixed_fields(d, pin_inputs)] != first:
+            raise ValueError("a batch keeps one set of input parts: every input must name the same ones")
+    return space_for(inputs[0], pin_inputs)
+
+
 class Batch:
     """N applications and their decomposed design space on the applications axis (see the module docstring).
 
@@ -162,10 +175,10 @@ class Batch:
         self.inputs = list(inputs)
         self.settings = settings
         self.engine = spring_engine
-        self.sp = sp = space()
+        self.sp = sp = _space_of(self.inputs, pin_inputs)
         self.apps = apps if apps is not None else Applications.of(self.inputs)
         n = len(self.inputs)
-        per = [core_rows(sp, d, pin_inputs=pin_inputs) for d in self.inputs]
+        per = [core_rows(sp, d) for d in self.inputs]
         counts = np.array([len(c) for c in per], dtype=np.int64)
         self.ptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
         self.A = np.repeat(np.arange(n, dtype=np.int64), counts)
@@ -328,7 +341,7 @@ class Batch:
                 st = self.ptr[:-1][has]
                 lo[has], hi[has] = spring_window(np.minimum.reduceat(inner, st), np.maximum.reduceat(outer, st))
             first, inv = _unique_rows(lo, hi)
-            lists = [np.flatnonzero((mbd >= lo[i]) & (mbd <= hi[i])) for i in first]
+            lists = [np.flatnonzero((mbd >= lo[i]) & (mbd <= hi[i]) | pinned_diameter(sp)) for i in first]
             self._spring_range = (inv, lists)
         return self._spring_range
 
@@ -743,10 +756,11 @@ def robust(fn, items: list, on_error):
         return robust(fn, items[:half], on_error) + robust(fn, items[half:], on_error)
 
 
-def any_feasible(inputs: list, settings: E.Settings = E.Settings(), *, spring_engine: str = "numba") -> list:
-    """Per input, whether some design of its catalog product meets every constraint (the enumeration's
-    ``is_feasible``; an input the physics refuses is not feasible)."""
+def any_feasible(inputs: list, settings: E.Settings = E.Settings(), *, spring_engine: str = "numba",
+                 pin_inputs: bool = False) -> list:
+    """Per input, whether some design of its catalog product (``pin_inputs``: with the parts it names) meets every
+    constraint (the enumeration's ``is_feasible``; an input the physics refuses is not feasible)."""
     def run(items):
-        return [f is not None for f in Batch(items, settings, spring_engine=spring_engine).optimum({"cost": 1.0},
-                                                                                                  first=True)]
+        return [f is not None for f in Batch(items, settings, spring_engine=spring_engine,
+                                             pin_inputs=pin_inputs).optimum({"cost": 1.0}, first=True)]
     return robust(run, list(inputs), lambda item, exc: False)

@@ -30,40 +30,22 @@ from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS
 from synth.errors import InputError
 from synth.optimise.evaluate import evaluate
-from synth.schema import field_by_name
+from synth.schema import FIELDS, field_by_name
 
 __all__ = ["RELAXABLE", "nearest_design", "is_feasible", "relaxations", "relaxations_batch", "probe_batch",
            "diagnose"]
 
-#: input field -> (direction: +1 raise / -1 lower, the constraints it relaxes, a specification value?)
-RELAXABLE = {
-    "max_pivot_height_mm": (+1, ("belt_plane", "bushing_length", "bushing_p", "bushing_pv", "bushing_pvt",
-                                 "bushing_wear", "bushing_parallelism", "spring_cavity", "spring_coil_gap"), False),
-    "max_axial_displacement_mm": (+1, ("pulley_axial_space",), False),
-    "pulley_max_parallelism_eol_mm": (+1, ("bushing_parallelism",), True),
-    "damping_tolerance_nm": (+1, ("damping_upper", "damping_lower", "cone_force_band"), True),
-    "damping_eol_limit_nm": (-1, ("damping_eol",), True),
-    "spring_torque_tolerance_pct": (-1, ("spring_yield", "spring_fatigue", "spring_coil_gap",
-                                         "spring_inner_contact"), True),
-    "arm_travel_nominal_to_installation_deg": (-1, ("spring_yield", "spring_coil_gap", "spring_inner_contact"), False),
-    "arm_travel_nominal_to_free_deg": (-1, ("spring_coil_gap", "spring_outer_contact"), False),
-    "tilting_safety_factor": (-1, ("bolt_yield", "under_head", "thread", "pivot_base_pressure"), True),
-    "sliding_safety_factor": (-1, ("bolt_yield", "under_head", "thread", "pivot_base_pressure"), True),
-    "bolt_head_contact_external_diameter_mm": (+1, ("under_head",), False),
-    "number_of_active_threads": (+1, ("thread",), False),
-    "engine_support_internal_diameter_mm": (+1, ("pivot_bore",), False),
-    "engine_support_external_diameter_mm": (+1, ("pivot_base_pressure", "bolt_yield", "under_head", "thread"), False),
-    "lockup_pin_position_radius_mm": (+1, ("pin_clearance",), False),
-    "middle_plane_belt_height_mm": (+1, ("spring_coil_gap", "spring_cavity"), False),
-    "spring_stiffness_nm_per_deg": (+1, ("spring_coil_gap",), True),
-}
+#: input field -> (direction: +1 raise / -1 lower, the constraints it relaxes, a specification value?), derived from
+#: the fields' own declaration (:attr:`synth.schema.Field.relax`, ``relaxes``, ``owner``)
+RELAXABLE = {f.name: (f.relax, f.relaxes, f.owner == "specification") for f in FIELDS if f.relax}
 
 
-def is_feasible(d, settings: Settings = Settings()) -> bool:
-    """Whether any design of the catalog product meets every constraint for input ``d``."""
+def is_feasible(d, settings: Settings = Settings(), *, pin_inputs: bool = False) -> bool:
+    """Whether any design of the catalog product (``pin_inputs``: with the parts the input names) meets every
+    constraint for input ``d``."""
     from synth.optimise.solvers.enumerate import max_margin, tables
     try:
-        ev = evaluate(d, settings)
+        ev = evaluate(d, settings, pin_inputs=pin_inputs)
     except InputError:
         return False
     return bool(len(ev.rows)) and max_margin(tables(ev, {"cost": 1.0})) > -np.inf
@@ -82,11 +64,14 @@ def nearest_design(ev):
     return int(ev.rows[r]), {s: int(best_k[s][r]) for s in SUBSYSTEMS}, float(core_m[r])
 
 
-def _probe_default(d, changes: dict, settings):
-    try:
-        return is_feasible(dataclasses.replace(d, **changes), settings)
-    except InputError:
-        return False
+def reference_probe(pin_inputs: bool = False):
+    """The reference feasibility probe ``probe(d, changes, settings) -> bool`` (one exhaustive check)."""
+    def probe(d, changes: dict, settings):
+        try:
+            return is_feasible(dataclasses.replace(d, **changes), settings, pin_inputs=pin_inputs)
+        except InputError:
+            return False
+    return probe
 
 
 def _consistent(d, changes: dict) -> bool:
@@ -156,7 +141,8 @@ def _order(out: list) -> list:
     return sorted(out, key=lambda r: (r["specification"], r["relative_change"]))
 
 
-def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: int = 7, probe=None) -> list:
+def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: int = 7, probe=None,
+                pin_inputs: bool = False) -> list:
     """Smallest input changes that make ``d`` feasible, for the inputs that relax ``violated``.
 
     First each input alone (bisection between its value and a far value:
@@ -164,9 +150,9 @@ def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: in
     the relevant inputs together, moved by a common fraction of their range
     (one entry with several ``"inputs"``). Design inputs come before the
     specification values (``"specification": True``). ``probe(d, changes,
-    settings) -> bool`` replaces the feasibility check.
+    settings) -> bool`` replaces the feasibility check; ``pin_inputs`` keeps the parts the input names in it.
     """
-    _probe = probe or _probe_default
+    _probe = probe or reference_probe(pin_inputs)
     out = []
     cands = _candidates(d, violated)
     for name, sign in cands.items():
@@ -195,14 +181,15 @@ def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: in
     return _order(out)
 
 
-def probe_batch(settings: Settings = Settings(), spring_engine: str = "numba"):
+def probe_batch(settings: Settings = Settings(), spring_engine: str = "numba", *, pin_inputs: bool = False):
     """A batched feasibility probe: ``probe([(d, changes), ...]) -> [bool, ...]``, every probe of a bisection
     step in one vectorised feasibility search (:func:`synth.optimise.batch.any_feasible`); the same answers as
     the reference probe (``is_feasible`` of the changed input; an input the physics refuses is not feasible)."""
     from synth.optimise.batch import any_feasible
 
     def probe(items):
-        return any_feasible([dataclasses.replace(d, **ch) for d, ch in items], settings, spring_engine=spring_engine)
+        return any_feasible([dataclasses.replace(d, **ch) for d, ch in items], settings, spring_engine=spring_engine,
+                            pin_inputs=pin_inputs)
     return probe
 
 
@@ -245,29 +232,45 @@ def relaxations_batch(ds: list, violated: list, *, settings: Settings = Settings
     return [_order(o) for o in out]
 
 
+def _no_core(d):
+    """The problem of an input whose pinned parts (``--pin-inputs``) leave no core design of the catalogs."""
+    from synth.design.space import space
+    from synth.errors import Problem
+    t = space().tables["core"]
+    classes = ", ".join(f"{x:g}" for x in sorted(set(map(float, t["pivot_class_diameter_mm"]))))
+    return Problem("--pin-inputs", f"pivot class {d.pivot_class_diameter_mm}, bushing thickness "
+                                   f"{d.pivot_bushing_radial_thickness_mm}",
+                   f"parts the catalogs hold (pivot classes {classes} mm): no design of the catalogs keeps these")
+
+
 def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: dict | None = None,
-             relax: bool = True, settings: Settings = Settings(), exhaustive: bool = False, batch=None):
+             relax: bool = True, settings: Settings = Settings(), exhaustive: bool = False, batch=None,
+             pin_inputs: bool = False):
     """A :class:`~synth.design.result.Result` with ``status="infeasible"`` and its ``diagnosis``.
 
     The nearest design and the relaxations come from the batched searches (:meth:`synth.optimise.batch.Batch.nearest`,
     :func:`relaxations_batch` with the numpy spring twins) unless ``exhaustive=True`` or an evaluation ``ev`` of
     every core is given: then from the exhaustive evaluation and one probe at a time (the reference; the same
-    answer).
+    answer). ``pin_inputs``: the search the solver ran kept the parts the input names, and so do the nearest
+    design and the relaxations (every solver answers the same question).
     """
     from synth.optimise.result import build_result
     t0 = time.perf_counter()
     obj = objective if objective is not None else "standard,cost"
     if exhaustive or ev is not None:
-        ev = ev if ev is not None and len(ev.rows) == len(ev.cores) else evaluate(d, settings, prune=False)
+        ev = ev if ev is not None and len(ev.rows) == len(ev.cores) else evaluate(d, settings, prune=False,
+                                                                                  pin_inputs=pin_inputs)
+        if not len(ev.rows):
+            raise InputError(_no_core(d))
         pos, options, _ = nearest_design(ev)
         res = build_result(ev, pos, options, status="infeasible", solver=solver, objective=obj, stats=stats or {})
     else:
         from synth.optimise.batch import Batch
-        b = batch if batch is not None else Batch([d], settings, spring_engine="numpy")
+        b = batch if batch is not None else Batch([d], settings, spring_engine="numpy", pin_inputs=pin_inputs)
         near = b.nearest([0])[0]
         if near is None:  # no core at all: as the exhaustive search (its argmax of nothing raises)
             return diagnose(d, solver=solver, objective=objective, stats=stats, relax=relax, settings=settings,
-                            exhaustive=True)
+                            exhaustive=True, pin_inputs=pin_inputs)
         res = build_result(b.view(0), near[0], near[1], status="infeasible", solver=solver, objective=obj,
                            stats=stats or {})
     violated = [c for c in res.failed()]
@@ -275,9 +278,10 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
     if not relax:
         rel = []
     elif exhaustive or ev is not None:
-        rel = relaxations(d, ids, settings=settings)
+        rel = relaxations(d, ids, settings=settings, pin_inputs=pin_inputs)
     else:
-        rel = relaxations_batch([d], [ids], settings=settings, probe=probe_batch(settings, spring_engine="numpy"))[0]
+        rel = relaxations_batch([d], [ids], settings=settings,
+                                probe=probe_batch(settings, spring_engine="numpy", pin_inputs=pin_inputs))[0]
     res.diagnosis = {
         "message": "no design of the catalog product meets every constraint; the nearest design is shown",
         "violated": [{"constraint": c.id, "label": c.label, "step": c.step, "margin": c.margin}

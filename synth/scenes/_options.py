@@ -55,9 +55,7 @@ def synthesise(d, args):
     limit = getattr(args, "time_limit", None)
     if limit is not None and not (0 < limit <= 86_400):
         raise InputError(Problem("--time-limit", limit, "seconds in (0, 86400]"))
-    kw = {"settings": settings_from_args(args)}
-    if args.solver not in ("blackbox", "flowchart"):
-        kw["pin_inputs"] = getattr(args, "pin_inputs", False)
+    kw = {"settings": settings_from_args(args), "pin_inputs": getattr(args, "pin_inputs", False)}
     if args.solver == "blackbox":
         kw["n_trials"] = args.trials
     if limit is not None:

@@ -70,13 +70,15 @@ def solve_with(d, objective, run_factory, *, solver: str, settings: Settings = S
     if md.n_cores == 0:
         from synth.optimise.diagnose import diagnose
         stats["time_s"] = time.perf_counter() - t0
-        return diagnose(d, solver=solver, objective=obj, stats=stats, relax=relax, settings=settings)
+        return diagnose(d, solver=solver, objective=obj, stats=stats, relax=relax, settings=settings,
+                        pin_inputs=pin_inputs)
     t1 = time.perf_counter()
     ans, n_stages = staged(md, obj, run_factory(md))
     stats.update(solve_time_s=time.perf_counter() - t1, stages=n_stages, time_s=time.perf_counter() - t0)
     if ans is None:
         from synth.optimise.diagnose import diagnose
-        return diagnose(d, solver=solver, objective=obj, stats=stats, relax=relax, settings=settings)
+        return diagnose(d, solver=solver, objective=obj, stats=stats, relax=relax, settings=settings,
+                        pin_inputs=pin_inputs)
     core = int(cores[ans[0]])
     options = {s: int(opts[s][ans[1][s]]) for s in SUBSYSTEMS}
     proved = (run_status or {}).get("proved", True)

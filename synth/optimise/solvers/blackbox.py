@@ -30,9 +30,10 @@ from synth.optimise.result import build_result
 __all__ = ["solve", "front"]
 
 
-def _space(d, settings) -> Evaluation:
-    """The application's space (no subsystem evaluated: the trials evaluate one design each)."""
-    return evaluate(d, settings, subsystems=False)
+def _space(d, settings, pin_inputs=False) -> Evaluation:
+    """The application's space (no subsystem evaluated: the trials evaluate one design each), with the parts the
+    input names kept (``pin_inputs``, :func:`synth.design.space.space_for`)."""
+    return evaluate(d, settings, subsystems=False, pin_inputs=pin_inputs)
 
 
 def _values(ev: Evaluation, core: int, opts: dict, margin: float) -> dict:
@@ -40,13 +41,13 @@ def _values(ev: Evaluation, core: int, opts: dict, margin: float) -> dict:
 
 
 def solve(d, objective="standard", *, n_trials: int = 200, settings: Settings = Settings(), seed: int = 0,
-          time_limit_s: float | None = None, **_):
+          time_limit_s: float | None = None, pin_inputs=False, **_):
     """Best feasible design found by optuna in ``n_trials`` trials (or ``time_limit_s`` seconds, at least one trial)."""
     import optuna
     optuna.logging.set_verbosity(optuna.logging.WARNING)
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     t0 = time.perf_counter()
-    ev = _space(d, settings)
+    ev = _space(d, settings, pin_inputs)
     multi = False  # one scalar objective (lexicographic orders are scalarised); see front() for NSGA-II
     cache = {}
 

@@ -183,7 +183,7 @@ def solve(d, objective="standard", *, settings: Settings = Settings(), pin_input
         if found is None:
             from synth.optimise.diagnose import diagnose
             return diagnose(d, solver="enumerate", objective=obj, stats=stats, relax=relax, settings=settings,
-                            batch=b)
+                            batch=b, pin_inputs=pin_inputs)
         return build_result(b.view(0), found[0], found[1], status="optimal", solver="enumerate", objective=obj,
                             stats=stats)
     ev = evaluate(d, settings, pin_inputs=pin_inputs)
@@ -194,5 +194,5 @@ def solve(d, objective="standard", *, settings: Settings = Settings(), pin_input
     if core is None:
         from synth.optimise.diagnose import diagnose
         return diagnose(d, solver="enumerate", objective=obj, stats=stats, relax=relax, settings=settings,
-                        exhaustive=True)
+                        exhaustive=True, pin_inputs=pin_inputs)
     return build_result(ev, core, options, status="optimal", solver="enumerate", objective=obj, stats=stats)
