@@ -98,7 +98,7 @@ def run_flowchart(d: "DesignInput | str | Path | dict", parts: dict | None = Non
 
 
 def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard", solver: str = "enumerate", *,
-               pin_inputs: bool = False, time_limit_s: float | None = None, n_trials: int = 200,
+               pin_inputs: bool = False, fix=(), free=(), time_limit_s: float | None = None, n_trials: int = 200,
                **settings_kw) -> "Result":
     """The best catalog design of input ``d`` (what ``synth design`` prints).
 
@@ -107,14 +107,18 @@ def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard"
     ``enumerate`` (exhaustive, exact: the default), ``minlp``, ``milp-highs``, ``milp-cvxpy``,
     ``blackbox`` (``n_trials``) or ``flowchart``. An infeasible input gets the nearest design and a
     ``diagnosis`` (what binds, the smallest input relaxation).
+
+    The parts the input names (pivot class, bushing thickness, main spring, bolt) are kept unless no design with
+    them passes; ``fix`` (field names) keeps them whatever the verdict, ``pin_inputs=True`` keeps every one,
+    ``free`` lets synth choose them. ``Result.changes`` says which the design does not keep, and why.
     """
-    from synth.optimise import solve
-    kw: dict = {"settings": settings(**settings_kw), "pin_inputs": pin_inputs}
+    from synth.optimise.honour import solve_honouring
+    kw: dict = {"settings": settings(**settings_kw), "pin_inputs": pin_inputs, "fix": fix, "free": free}
     if solver == "blackbox":
         kw["n_trials"] = n_trials
     if time_limit_s is not None:
         kw["time_limit_s"] = time_limit_s
-    return solve(_input(d), objective, solver, **kw)
+    return solve_honouring(_input(d), objective, solver, **kw)
 
 
 def verify(d: "DesignInput | str | Path | dict", parts: dict, **settings_kw) -> "Result":

@@ -115,6 +115,11 @@ class Result:
     settings: dict = field(default_factory=dict)
     steps_run: list = field(default_factory=list)
     curves: dict = field(default_factory=dict)
+    #: the parts the input names that the design does not keep, one dict each (field, input, design, how, why:
+    #: :func:`synth.optimise.honour.changes_of`)
+    changes: list = field(default_factory=list)
+    #: which named parts were fixed, free, kept when possible and freed (:func:`synth.optimise.honour.solve_honouring`)
+    control: dict = field(default_factory=dict)
 
     # --- verdicts ------------------------------------------------------------------------------------------
     def failed(self) -> list:
@@ -198,6 +203,7 @@ class Result:
             "checks": [c.as_dict() for c in self.checks], "notes": list(self.notes),
             "objectives": plain(self.objectives), "stats": plain(self.stats), "diagnosis": plain(self.diagnosis),
             "inputs": plain(self.inputs), "settings": plain(self.settings), "steps_run": list(self.steps_run),
+            "changes": plain(self.changes), "control": plain(self.control),
         }
 
     @classmethod
@@ -222,7 +228,8 @@ class Result:
                    checks=checks, notes=list(data.get("notes") or []), objectives=dict(data.get("objectives") or {}),
                    stats=dict(data.get("stats") or {}), diagnosis=data.get("diagnosis"),
                    inputs=data.get("inputs"), settings=dict(data.get("settings") or {}),
-                   steps_run=list(data.get("steps_run") or []))
+                   steps_run=list(data.get("steps_run") or []), changes=list(data.get("changes") or []),
+                   control=dict(data.get("control") or {}))
 
 
 def checks_of(groups: dict, apps, row: int = 0) -> list:

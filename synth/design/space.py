@@ -55,7 +55,8 @@ from synth.errors import InputError, Problem
 from synth.model import packaging as s7, pivot as s2, torsion_spring as s9
 
 __all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "NONE", "Space", "space", "core_rows", "spring_window", "fixed_fields",
-           "space_for", "pinned_space", "pinned_diameter"]
+           "space_for", "pinned_space", "pinned_diameter",
+           "design_inputs", "same_input"]
 
 SUBSYSTEMS = ("bushing", "axial", "spring", "bolt")
 TABLES = ("core",) + SUBSYSTEMS
@@ -505,6 +506,45 @@ def pinned_space(sp: Space, pins: dict) -> Space:
                                  f"parts the catalogs hold together ({empty[0]}: no catalog row has all of them); "
                                  "free one of them (synth design --free FIELD)"))
     return Space(out, p, list(sp.notes) + [f"inputs kept: {', '.join(pins)}"], pinned=tuple(pins))
+
+
+def design_inputs(parts: dict) -> dict:
+    """The part-naming input fields (:data:`synth.schema.PART_FIELDS`) as design ``parts`` has them, in the input
+    file's vocabulary (a wire section as ``round``, a wire size as ``[d]`` or ``[b, h]``, the bushing's radial
+    thickness), for comparing a design with the input that asked for it.
+
+    >>> v = design_inputs({"ball_bearing": "6006", "pivot_class_diameter_mm": 16, "pivot_bushing_supplier": "B",
+    ...     "damper_pad_class": "none", "pivot_bushing_length_mm": 15, "endcap_spacer_class": "none",
+    ...     "cone_spring_aspect_ratio": 0, "cone_spring_deflection_ratio": 0, "cone_spring_external_diameter_mm": 0,
+    ...     "main_spring_material": "VDSiCr", "main_spring_wire": "R3.00", "main_spring_mean_body_diameter_mm": 44,
+    ...     "bolt_format": "M8x1.25", "bolt_property_class": "8.8"})
+    >>> v["main_spring_wire_section"], v["main_spring_wire_size_mm"], v["pivot_class_diameter_mm"]
+    ('round', [3.0], 16.0)
+    """
+    from synth.schema import PART_FIELDS, field_by_name
+    attrs = space().design_attributes(parts)
+    out = {}
+    for name in PART_FIELDS:
+        table, column = field_by_name(name).pins
+        a = attrs[table]
+        if column == "round_wire":
+            out[name] = "round" if bool(a["round_wire"][0]) else "rectangular"
+        elif column == "main_spring_wire":
+            out[name] = [float(a["b_mm"][0])] if bool(a["round_wire"][0]) else [float(a["b_mm"][0]), float(a["h_mm"][0])]
+        else:
+            v = a[column][0]
+            out[name] = float(v) if isinstance(v, (float, np.floating, int, np.integer)) else str(v)
+    return out
+
+
+def same_input(given, designed) -> bool:
+    """Whether an input value and the design's (:func:`design_inputs`) name the same part (numbers to 1e-9)."""
+    if isinstance(given, (list, tuple)):
+        return isinstance(designed, (list, tuple)) and len(given) == len(designed) and \
+            all(abs(float(a) - float(b)) <= 1e-9 * max(1.0, abs(float(a))) for a, b in zip(given, designed))
+    if isinstance(given, (int, float)) and not isinstance(given, bool):
+        return isinstance(designed, (int, float)) and abs(float(given) - float(designed)) <= 1e-9 * max(1.0, abs(given))
+    return str(given).strip() == str(designed).strip()
 
 
 def _field_table(name: str) -> str:

@@ -31,9 +31,13 @@ from dataclasses import dataclass
 
 from synth.errors import InputError, Problem
 
-__all__ = ["OBJECTIVES", "Objective"]
+__all__ = ["OBJECTIVES", "UNITS", "Objective"]
 
 OBJECTIVES = ("standard", "cost", "margin")
+#: each objective's words and unit, for every output that prints a value of it (the margin is a fraction in the
+#: data, shown in percent)
+UNITS = {"standard": ("non-standard parts", "(weighted count)"), "cost": ("cost", "EUR"),
+         "margin": ("smallest margin", "%")}
 _TIEBREAK = {"standard": ("standard", "cost"), "cost": ("cost", "standard"), "margin": ("margin", "cost")}
 
 

@@ -196,28 +196,31 @@ def platform_section(platform) -> str | None:
     return Markup(report_section(platform))
 
 
-def check_row(c) -> dict:
-    """One check as the report shows it (formatted value, limit, margin; verdict and its class; correction)."""
+def check_row(c, result=None) -> dict:
+    """One check as the report shows it (formatted value, limit, margin; verdict and its class; the correction,
+    in agreement with how ``result`` was found: :func:`synth.report.advice.correction`)."""
+    from synth.report.advice import correction
     con = c.constraint
-    extra = con.correction if c.verdict in (FAIL, WARNING) and con.correction else \
+    fix = correction(result, c) if result is not None else con.correction
+    extra = fix if c.verdict in (FAIL, WARNING) and fix else \
         "; ".join(x for x in [c.note, *c.assumed] if x)
     return {"id": c.id, "label": con.label, "step": con.step, "value": _num(c.value),
             "sense": con.sense if c.value is not None else "", "limit": _num(c.limit), "unit": con.unit,
             "margin": _margin(c.margin), "verdict": c.verdict, "cls": verdict_class(c.verdict),
-            "equation": con.equation, "correction": con.correction, "note": c.note, "extra": extra}
+            "equation": con.equation, "correction": fix, "note": c.note, "extra": extra}
 
 
 def _diagnosis(result):
+    from synth.report.advice import relaxation_lines
     dg = result.diagnosis
     if not dg:
         return None
-    rel = [", ".join(f"{k} {x['from']:g} -> {x['to']:g}" for k, x in r["inputs"].items())
-           + (" (a specification value)" if r.get("specification") else "") for r in dg.get("relaxations", [])]
-    return {"message": dg.get("message", ""), "relaxations": rel}
+    return {"message": dg.get("message", ""), "relaxations": relaxation_lines(result)}
 
 
 def digest_context(result) -> dict:
     """What the digest shows, as plain rows (the template's data)."""
+    from synth.report.advice import change_lines, objective_line
     from synth.report.text import verdict_line
     by_margin = sorted(result.failed(), key=lambda c: (c.margin if c.margin is not None else 0.0))
     p = result.parts or {}
@@ -232,9 +235,10 @@ def digest_context(result) -> dict:
     line = verdict_line(result)
     line = line[line.index("(") + 1:-1] if line.endswith(")") and "(" in line else ""
     return {"verdict": result.verdict, "cls": verdict_class(result.verdict), "line": line,
-            "design": design, "failed": [check_row(c) for c in by_margin],
-            "warnings": [check_row(c) for c in sorted(result.warnings(), key=lambda c: c.margin or 0.0)],
-            "not_verified": [check_row(c) for c in result.not_verified()],
+            "design": design, "failed": [check_row(c, result) for c in by_margin],
+            "warnings": [check_row(c, result) for c in sorted(result.warnings(), key=lambda c: c.margin or 0.0)],
+            "not_verified": [check_row(c, result) for c in result.not_verified()], "changes": change_lines(result),
+            "objectives": objective_line(result.objectives) if result.objectives else "",
             "assumed": result.assumptions(), "diagnosis": _diagnosis(result)}
 
 
@@ -282,7 +286,7 @@ def check_steps(result) -> tuple[list, list]:
         if c.verdict == NOT_APPLICABLE:
             na.append(c.constraint.label)
             continue
-        steps.setdefault(c.step, []).append(check_row(c))
+        steps.setdefault(c.step, []).append(check_row(c, result))
     names = {**STEP_NAMES, 11: "3D model"}
     return [{"step": s, "name": names.get(s, ""), "rows": rows} for s, rows in steps.items()], na
 
@@ -372,7 +376,7 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
     return _environment().get_template("report.html.j2").render(
         title=title, css=_CSS, page=page, page_title=title, verdict_text=verdict_text,
         banner_ink=_INK.get(result.verdict, "#222"), title_block=block, meta=meta, meta_rows=meta_rows,
-        d=digest, toc=toc, parts=parts, binding=[check_row(c) for c in result.binding(5)],
+        d=digest, toc=toc, parts=parts, binding=[check_row(c, result) for c in result.binding(5)],
         settings=settings_in_words(result), output=_output_rows(result), legend_na="grey (not applicable)",
         checks=checks, not_applicable=na, cad=cad, cad_note=cad_note, graphs=figs,
         skipped=[{"id": s.id, "title": s.title, "reason": s.reason} for s in skipped], platform=plat,

@@ -39,7 +39,13 @@ def add_design_options(p) -> None:
     p.add_argument("--objective", default=DEFAULT_OBJECTIVE,
                    help="standard | cost | margin, a lexicographic list 'a,b' or weights 'cost=1,margin=5'")
     p.add_argument("--solver", default=DEFAULT_SOLVER, choices=list(SOLVERS))
-    p.add_argument("--pin-inputs", action="store_true", help="keep the part choices the input names")
+    p.add_argument("--pin-inputs", action="store_true",
+                   help="keep every part the input names (pivot class, bushing thickness, main spring, bolt), "
+                        "feasible or not; by default a named part is kept unless no design with it passes")
+    p.add_argument("--fix", nargs="+", metavar="FIELD", default=[],
+                   help="keep these named parts whatever the verdict (fields of synth/schema.py that name a part)")
+    p.add_argument("--free", nargs="+", metavar="FIELD", default=[],
+                   help="let synth choose these parts for the objective, whatever the input names")
     p.add_argument("--trials", type=int, default=200, help="blackbox: number of trials (1 to 100000)")
     p.add_argument("--time-limit", type=float, default=None, metavar="S",
                    help="seconds for the solver (minlp, milp-*, blackbox): on expiry the best design found so far")
@@ -49,18 +55,20 @@ def add_design_options(p) -> None:
 def synthesise(d, args):
     """The :class:`~synth.design.result.Result` of the synthesis the options of ``args`` ask for."""
     from synth.errors import InputError, Problem
-    from synth.optimise import solve
+    from synth.optimise.honour import solve_honouring
     if not 1 <= int(getattr(args, "trials", 200)) <= 100_000:
         raise InputError(Problem("--trials", args.trials, "an integer from 1 to 100000"))
     limit = getattr(args, "time_limit", None)
     if limit is not None and not (0 < limit <= 86_400):
         raise InputError(Problem("--time-limit", limit, "seconds in (0, 86400]"))
-    kw = {"settings": settings_from_args(args), "pin_inputs": getattr(args, "pin_inputs", False)}
+    kw = {"settings": settings_from_args(args), "pin_inputs": getattr(args, "pin_inputs", False),
+          "fix": getattr(args, "fix", ()), "free": getattr(args, "free", ())}
     if args.solver == "blackbox":
         kw["n_trials"] = args.trials
     if limit is not None:
         kw["time_limit_s"] = limit
-    return solve(d, getattr(args, "objective", DEFAULT_OBJECTIVE), getattr(args, "solver", DEFAULT_SOLVER), **kw)
+    return solve_honouring(d, getattr(args, "objective", DEFAULT_OBJECTIVE), getattr(args, "solver", DEFAULT_SOLVER),
+                           **kw)
 
 
 def load_saved_result(path: str | Path, what: str = "result"):

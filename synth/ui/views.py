@@ -75,10 +75,8 @@ def diagnosis_html(result) -> str:
     dg = result.diagnosis
     if not dg:
         return "<p>No diagnosis: the design is feasible (a diagnosis is made when no catalog design is).</p>"
-    rel = []
-    for r in dg.get("relaxations", []):
-        change = ", ".join(f"{k} {x['from']:g} -> {x['to']:g}" for k, x in r.get("inputs", {}).items())
-        rel.append(f"<li>{_e(change)}{' (a specification value)' if r.get('specification') else ''}</li>")
+    from synth.report.advice import relaxation_lines
+    rel = [f"<li>{_e(x)}</li>" for x in relaxation_lines(result)]
     return (f"<p>{_e(dg.get('message', ''))}</p>"
             + (f"<p>Smallest input relaxations that make a design feasible:</p><ul>{''.join(rel)}</ul>" if rel else ""))
 
