@@ -332,8 +332,10 @@ def _figure(g) -> dict:
 
 def render_html(result, graphs, skipped, *, source: str | None = None, title: str | None = None,
                 scenes: dict | None = None, author: str = "", revision: str = "", page: str = "landscape",
-                platform=None, cad_note: str = "", date: str | None = None) -> str:
+                platform=None, cad_note: str = "", date: str | None = None, application: str | None = None) -> str:
     """The report of ``result`` as one HTML string (self-contained; see the module docstring).
+
+    ``application``: the application's name (a case file's ``name``), in the title and the document block.
 
     ``graphs``/``skipped``: :func:`synth.report.plots.build_graphs` (graphs whose id starts with ``cad_``
     go to the 3D model section); ``scenes``: ``{name: rows}`` tables of other scenes; ``page``:
@@ -343,9 +345,11 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
     if page not in ("landscape", "portrait"):
         raise InputError(Problem("--page", page, "landscape or portrait"))
     name = Path(source).name if source not in (None, "", "result") else ""
-    title = title or f"synth design report{': ' + name if name else ''}"
+    shown = " - ".join(x for x in (application, name) if x)
+    title = title or f"synth design report{': ' + shown if shown else ''}"
     meta = metadata(result, source, author=author, revision=revision, date=date)
-    meta_rows = [("synth and catalogs", meta["synth"]), ("Input file", meta["input"]),
+    meta_rows = [("synth and catalogs", meta["synth"])] + ([("Application", application)] if application else []) + [
+                 ("Input file", meta["input"]),
                  ("Input file SHA-256", meta["input_sha256"]), ("Design input SHA-256", meta["inputs_sha256"]),
                  ("Date", meta["date"]), ("Author", meta["author"] or "-"), ("Revision", meta["revision"] or "-")]
     if result.solver and result.solver != "flowchart":
@@ -367,7 +371,7 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
     if result.notes:
         toc.append(("notes", "Notes"))
     toc.append(("inputs", "Design input"))
-    block = "  ".join(x for x in (name or meta["input"], f"rev. {revision}" if revision else "", author,
+    block = "  ".join(x for x in (shown or meta["input"], f"rev. {revision}" if revision else "", author,
                                   meta["date"]) if x)
     block += f"\n{meta['synth']}  inputs sha256 {meta['inputs_sha256'][:16]}"
     verdict_text = f"Verdict: {result.verdict.upper()}"

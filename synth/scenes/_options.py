@@ -11,7 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 
 __all__ = ["add_model_options", "settings_from_args", "add_design_options", "synthesise", "load_saved_result",
-           "DEFAULT_SOLVER", "DEFAULT_OBJECTIVE"]
+           "DEFAULT_SOLVER", "DEFAULT_OBJECTIVE", "default_args"]
 
 DEFAULT_SOLVER = "enumerate"
 DEFAULT_OBJECTIVE = "standard"
@@ -50,6 +50,14 @@ def add_design_options(p) -> None:
     p.add_argument("--time-limit", type=float, default=None, metavar="S",
                    help="seconds for the solver (minlp, milp-*, blackbox): on expiry the best design found so far")
     add_model_options(p)
+
+
+def default_args():
+    """The design options at their defaults (the synthesis every scene runs when not told otherwise)."""
+    import argparse
+    p = argparse.ArgumentParser()
+    add_design_options(p)
+    return p.parse_args([])
 
 
 def synthesise(d, args):

@@ -12,10 +12,19 @@ from synth import schema
 __all__ = ["register", "default_input"]
 
 
+def default_path():
+    """The embedded default application's file (``synth/data/default_case.yaml``)."""
+    return resources.files("synth").joinpath("data/default_case.yaml")
+
+
 def default_input():
     """The embedded default design input (``synth/data/default_case.yaml``)."""
-    text = resources.files("synth").joinpath("data/default_case.yaml").read_text(encoding="utf-8")
-    return schema.validate(yaml.safe_load(text)["inputs"])
+    return schema.validate(yaml.safe_load(default_path().read_text(encoding="utf-8"))["inputs"])
+
+
+def default_name() -> str:
+    """The embedded default application's name (its file's ``name:``)."""
+    return str(yaml.safe_load(default_path().read_text(encoding="utf-8")).get("name") or "default")
 
 
 def register(sub) -> None:
@@ -34,17 +43,20 @@ def argparse_suppress():
 
 
 def _main(args) -> int:
-    from synth.optimise import solve
     from synth.report.text import render
+    from synth.scenes._options import default_args, synthesise
     out = Path(args.cad or args.out)
-    d = default_input()
-    r = solve(d, "standard", "enumerate")
-    print(render(r, title="synth demo: the most standardised tensioner for the embedded default application"))
+    d, path, name = default_input(), default_path(), default_name()
+    r = synthesise(d, default_args())
+    print(render(r, title=f"synth demo: the most standardised tensioner for {name} ({path})"))
+    pictures: list = []
     if not args.no_cad:
         from synth.scenes.design import export_cad
-        print("\n" + "\n".join(export_cad(r, out, "synth demo (thesis case 3, completed)")))
+        lines, pictures = export_cad(r, out, f"synth demo: {name}", pictures=True)
+        print("\n" + "\n".join(lines))
     if not args.no_report:
         from synth.scenes.report import make_report
-        rep = make_report(r, out, show_progress=False)
+        rep = make_report(r, out, show_progress=False, cad=pictures, cad_pictures=False, source_name=str(path),
+                          application=name)
         print(f"\nreport: {rep['html']} and {rep['xlsx']}")
     return r.exit_code

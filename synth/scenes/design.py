@@ -76,8 +76,10 @@ def with_drive(d, path):
     return d, drive, note
 
 
-def export_cad(r, out_dir, application: str | None = None) -> list[str]:
-    """Export the design's 3D model (thesis step 11) and return the summary lines."""
+def export_cad(r, out_dir, application: str | None = None, *, pictures: bool = False):
+    """Export the design's 3D model (thesis step 11) and return the summary lines (``pictures=True``: and the
+    pictures written, for a report that then exports no second model)."""
     from synth.cad import export_result, summary_lines
     model, checks, info = export_result(r, out_dir, application=application)
-    return [f"3D model written to {out_dir}"] + summary_lines(model, checks, info)
+    lines = [f"3D model written to {out_dir}"] + summary_lines(model, checks, info)
+    return (lines, [str(f) for f in info["files"] if str(f).endswith(".png")]) if pictures else lines

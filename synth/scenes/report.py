@@ -20,7 +20,7 @@ from pathlib import Path
 
 from synth import schema
 from synth.errors import InputError, Problem
-from synth.scenes._options import add_design_options, load_saved_result, synthesise
+from synth.scenes._options import add_design_options, default_args, load_saved_result, synthesise
 
 __all__ = ["register", "make_report", "read_table", "out_folder"]
 
@@ -94,7 +94,7 @@ def result_for_report(source, args=None):
                 from synth import flowchart
                 from synth.scenes._options import settings_from_args
                 return flowchart.run(d, settings_from_args(args)), cells, name
-            res = synthesise(d, args or _defaults())
+            res = synthesise(d, args or default_args())
     if res.inputs is None:
         raise InputError(Problem("result", name, "a result that carries its inputs (--json of synth 0.2 or later)"))
     if not res.curves and res.parts and res.solver != "flowchart":  # re-verify for the curves of the graphs
@@ -108,17 +108,17 @@ def result_for_report(source, args=None):
     return res, cells, name
 
 
-def _defaults():
-    import argparse
-    p = argparse.ArgumentParser()
-    add_design_options(p)
-    return p.parse_args([])
 
 
 def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: list | None = None,
                 show_progress: bool = True, cad_pictures: bool = True, pdf: bool = True, author: str = "",
-                revision: str = "", page: str = "landscape", platform=None) -> dict:
+                revision: str = "", page: str = "landscape", platform=None, source_name: str | None = None,
+                application: str | None = None) -> dict:
     """Write ``report.html``, ``report.pdf`` and ``results.xlsx`` of ``source`` (input file, saved result or Result).
+
+    ``source_name``: the input file a given :class:`Result` was made from (the document block names it and its
+    SHA-256); ``application``: the application's name, in the title and the document block; ``cad``: pictures of
+    a model already exported (the report then builds none: one STEP file per run).
 
     Returns ``{"html": Path, "pdf": Path | None, "pdf_note": str, "xlsx": Path, "result": Result,
     "graphs": [...], "skipped": [...]}`` (``pdf_note``: why no PDF was written, when none was).
@@ -127,10 +127,11 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     from synth.report.html import write_html
     from synth.report.plots import build_graphs
     result, cells, name = result_for_report(source, args)
+    name = str(source_name) if source_name else name
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     pictures = list(cad or [])
-    cad_note = ""
+    cad_note = f"The model of this design: {Path(pictures[0]).parent} (STEP assembly and pictures)." if pictures else ""
     if cad_pictures and not pictures and result.parts:
         try:
             from synth.cad import export_result
@@ -144,7 +145,8 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     extra = {"pareto": scenes.get("Pareto"), "solvers": scenes.get("Solvers"), "cad": pictures}
     graphs, skipped = build_graphs(result, extra, show_progress=show_progress)
     html_path = write_html(out / "report.html", result, graphs, skipped, source=name, scenes=scenes,
-                           author=author, revision=revision, page=page, platform=platform, cad_note=cad_note)
+                           author=author, revision=revision, page=page, platform=platform, cad_note=cad_note,
+                           application=application)
     pdf_path, pdf_note = None, "not asked for"
     if pdf:
         from synth.report.pdf import write_pdf
