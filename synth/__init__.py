@@ -98,8 +98,8 @@ def run_flowchart(d: "DesignInput | str | Path | dict", parts: dict | None = Non
 
 
 def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard", solver: str = "enumerate", *,
-               pin_inputs: bool = False, fix=(), free=(), time_limit_s: float | None = None, n_trials: int = 200,
-               **settings_kw) -> "Result":
+               pin_inputs: bool = False, fix=(), free=(), top: int = 1, time_limit_s: float | None = None,
+               n_trials: int = 200, **settings_kw) -> "Result":
     """The best catalog design of input ``d`` (what ``synth design`` prints).
 
     ``objective``: ``standard`` (the most standardised design, cost as tie-break: the default of every
@@ -111,9 +111,12 @@ def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard"
     The parts the input names (pivot class, bushing thickness, main spring, bolt) are kept unless no design with
     them passes; ``fix`` (field names) keeps them whatever the verdict, ``pin_inputs=True`` keeps every one,
     ``free`` lets synth choose them. ``Result.changes`` says which the design does not keep, and why.
+    ``top`` K > 1: ``Result.alternatives``, the K best designs in objective order (rank, parts, objectives,
+    smallest margin and what binds it, what differs from the optimum).
     """
     from synth.optimise.honour import solve_honouring
-    kw: dict = {"settings": settings(**settings_kw), "pin_inputs": pin_inputs, "fix": fix, "free": free}
+    kw: dict = {"settings": settings(**settings_kw), "pin_inputs": pin_inputs, "fix": fix, "free": free,
+                "top": top}
     if solver == "blackbox":
         kw["n_trials"] = n_trials
     if time_limit_s is not None:

@@ -120,6 +120,9 @@ class Result:
     changes: list = field(default_factory=list)
     #: which named parts were fixed, free, kept when possible and freed (:func:`synth.optimise.honour.solve_honouring`)
     control: dict = field(default_factory=dict)
+    #: the K best designs in objective order, the first this one (``--top K``:
+    #: :func:`synth.optimise.alternatives.ranked`): rank, parts, objectives, margin, binding, verdict, differs
+    alternatives: list = field(default_factory=list)
 
     # --- verdicts ------------------------------------------------------------------------------------------
     def failed(self) -> list:
@@ -176,6 +179,15 @@ class Result:
         rows = [c for c in self.checks if c.verdict in (PASS, FAIL) and c.constraint.objective]
         return sorted(rows, key=lambda c: c.margin)[:n]
 
+    #: what a synthesis adds to a verified design (kept when the design is verified again, e.g. for its curves)
+    SYNTHESIS_FIELDS = ("objective", "objectives", "stats", "diagnosis", "changes", "control", "alternatives")
+
+    def carry(self, other: "Result") -> "Result":
+        """This result with the synthesis fields (:attr:`SYNTHESIS_FIELDS`) of ``other``; returns self."""
+        for k in self.SYNTHESIS_FIELDS:
+            setattr(self, k, getattr(other, k))
+        return self
+
     # --- presentation ------------------------------------------------------------------------------------------
     def to_frame(self):
         """The checks as a pandas DataFrame, one row per registry constraint (index: the constraint id).
@@ -203,7 +215,7 @@ class Result:
             "checks": [c.as_dict() for c in self.checks], "notes": list(self.notes),
             "objectives": plain(self.objectives), "stats": plain(self.stats), "diagnosis": plain(self.diagnosis),
             "inputs": plain(self.inputs), "settings": plain(self.settings), "steps_run": list(self.steps_run),
-            "changes": plain(self.changes), "control": plain(self.control),
+            "changes": plain(self.changes), "control": plain(self.control), "alternatives": plain(self.alternatives),
         }
 
     @classmethod
@@ -229,7 +241,7 @@ class Result:
                    stats=dict(data.get("stats") or {}), diagnosis=data.get("diagnosis"),
                    inputs=data.get("inputs"), settings=dict(data.get("settings") or {}),
                    steps_run=list(data.get("steps_run") or []), changes=list(data.get("changes") or []),
-                   control=dict(data.get("control") or {}))
+                   control=dict(data.get("control") or {}), alternatives=list(data.get("alternatives") or []))
 
 
 def checks_of(groups: dict, apps, row: int = 0) -> list:

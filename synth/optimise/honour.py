@@ -77,9 +77,11 @@ def _why_not(d, settings, keep) -> str:
 
 
 def solve_honouring(d, objective="standard", solver: str = "enumerate", *, fix=(), free=(), pin_inputs=False,
-                    **kw):
+                    top: int = 1, **kw):
     """The synthesis of ``d`` (:func:`synth.optimise.solve` with ``solver`` and ``kw``) that keeps the parts the
-    input names as the module docstring says; the result carries :attr:`changes` and :attr:`control`."""
+    input names as the module docstring says; the result carries :attr:`changes` and :attr:`control`, and with
+    ``top`` K > 1 the K best designs (:attr:`alternatives`, :func:`synth.optimise.alternatives.ranked`) in the
+    same space."""
     from synth.design.evaluate import Settings
     from synth.design.space import fixed_fields
     from synth.optimise import solve
@@ -132,8 +134,13 @@ def solve_honouring(d, objective="standard", solver: str = "enumerate", *, fix=(
     else:
         res = solve(d, objective, solver, pin_inputs=tuple(order) if solver != "flowchart" else False, **kw)
     res.control = {"fixed": sorted(fix, key=named.index), "free": sorted(free),
-                   "kept_when_possible": prefer, "freed": list(released), "why": why}
+                   "kept_when_possible": prefer, "freed": list(released), "why": why, "top": top}
     res.changes = changes_of(d, res, free=free, released=released, reasons=reasons)
+    if top != 1:
+        from synth.optimise.alternatives import ranked
+        res.alternatives = ranked(d, res, top, settings=settings, objective=objective,
+                                  pin_inputs=tuple(n for n in order if n not in released) if solver != "flowchart"
+                                  else False)
     return res
 
 

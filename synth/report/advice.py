@@ -12,7 +12,7 @@ The terminal (:mod:`synth.report.text`), the report's digest (:mod:`synth.report
 from __future__ import annotations
 
 __all__ = ["objective_line", "change_lines", "relaxation_lines", "relaxation_text", "correction", "NO_DESIGNER",
-           "margin_pct"]
+           "margin_pct", "alternative_rows"]
 
 #: the header of the relaxations when none is the tensioner designer's
 NO_DESIGNER = ("no change the tensioner designer controls (space, lock-up pin, bolt seat, the parts) makes a design "
@@ -117,3 +117,16 @@ def correction(r, c) -> str:
     searched = ", ".join(k.removesuffix("_mm").replace("_", " ") for k in PART_KEYS_BY_TABLE[con.group])
     head = f"every catalog {searched} was tried with the rest of the design"
     return head + ("; " + "; or ".join(dict.fromkeys(ways)) if ways else "; see the diagnosis for the inputs to relax")
+
+
+def alternative_rows(r) -> list[dict]:
+    """The ranked alternatives (:attr:`Result.alternatives`) as rows of words: ``{"rank", "objectives",
+    "margin", "binding", "verdict", "differs"}`` (``differs``: what differs from the first, the optimum)."""
+    rows = []
+    for a in r.alternatives or []:
+        objs = objective_line({k: v for k, v in a.get("objectives", {}).items() if k != "margin"})
+        diff = ", ".join(f"{k} {_value(x[0])} -> {_value(x[1])}" for k, x in a.get("differs", {}).items())
+        rows.append({"rank": a["rank"], "objectives": objs.removeprefix("objectives: "),
+                     "margin": margin_pct(a.get("margin")), "binding": a.get("binding", ""),
+                     "verdict": a.get("verdict", ""), "differs": diff or ("the optimum" if a["rank"] == 1 else "-")})
+    return rows

@@ -342,6 +342,7 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
     ``landscape`` or ``portrait`` (A4); ``platform``: a rationalisation output (:func:`platform_section`).
     """
     from synth.errors import InputError, Problem
+    from synth.report.advice import alternative_rows
     if page not in ("landscape", "portrait"):
         raise InputError(Problem("--page", page, "landscape or portrait"))
     name = Path(source).name if source not in (None, "", "result") else ""
@@ -384,7 +385,7 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
         settings=settings_in_words(result), output=_output_rows(result), legend_na="grey (not applicable)",
         checks=checks, not_applicable=na, cad=cad, cad_note=cad_note, graphs=figs,
         skipped=[{"id": s.id, "title": s.title, "reason": s.reason} for s in skipped], platform=plat,
-        scenes=scene_rows, notes=list(result.notes), inputs=_inputs(result))
+        scenes=scene_rows, notes=list(result.notes), inputs=_inputs(result), alternatives=alternative_rows(result))
 
 
 def part_label(key: str) -> str:

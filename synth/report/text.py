@@ -10,7 +10,8 @@ from __future__ import annotations
 
 from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Result
 from synth.output_table import ROWS, format_value
-from synth.report.advice import NO_DESIGNER, change_lines, correction, objective_line, relaxation_lines
+from synth.report.advice import NO_DESIGNER, alternative_rows, change_lines, correction, objective_line, \
+    relaxation_lines
 
 __all__ = ["render", "verdict_line", "MARKS"]
 
@@ -73,6 +74,15 @@ def render(r: Result, *, title: str = "") -> str:
     lines += ["", "Checks (margin: the relative distance to the limit; >= 0 passes)", "-" * 78]
     for c in sorted((c for c in r.checks if c.verdict != NOT_APPLICABLE), key=lambda c: c.constraint.step):
         lines += _check_line(c, r)
+    alts = alternative_rows(r)
+    if alts:
+        lines += ["", f"Alternatives: the {len(alts)} best designs in objective order (margin: the smallest, "
+                      "and the check that sets it)", "-" * 78]
+        for a in alts:
+            lines.append(f"  #{a['rank']:<2} {a['objectives']}, margin {a['margin']} ({a['binding']})")
+            lines.append(f"       differs: {a['differs']}")
+    elif r.alternatives == [] and (r.control or {}).get("top", 1) > 1:
+        lines += ["", "Alternatives: none (no feasible design)"]
     binds = r.binding(5)
     if binds:
         lines += ["", "What binds (smallest margins)", "-" * 78]

@@ -46,6 +46,8 @@ def add_design_options(p) -> None:
                    help="keep these named parts whatever the verdict (fields of synth/schema.py that name a part)")
     p.add_argument("--free", nargs="+", metavar="FIELD", default=[],
                    help="let synth choose these parts for the objective, whatever the input names")
+    p.add_argument("--top", type=int, default=1, metavar="K",
+                   help="also the K best designs in objective order, what differs between them and their margins")
     p.add_argument("--trials", type=int, default=200, help="blackbox: number of trials (1 to 100000)")
     p.add_argument("--time-limit", type=float, default=None, metavar="S",
                    help="seconds for the solver (minlp, milp-*, blackbox): on expiry the best design found so far")
@@ -70,7 +72,7 @@ def synthesise(d, args):
     if limit is not None and not (0 < limit <= 86_400):
         raise InputError(Problem("--time-limit", limit, "seconds in (0, 86400]"))
     kw = {"settings": settings_from_args(args), "pin_inputs": getattr(args, "pin_inputs", False),
-          "fix": getattr(args, "fix", ()), "free": getattr(args, "free", ())}
+          "fix": getattr(args, "fix", ()), "free": getattr(args, "free", ()), "top": getattr(args, "top", 1)}
     if args.solver == "blackbox":
         kw["n_trials"] = args.trials
     if limit is not None:

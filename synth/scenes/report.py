@@ -102,9 +102,7 @@ def result_for_report(source, args=None):
         settings = Settings(**{k: v for k, v in (res.settings or {}).items() if k in fields})
         again = verify(schema.validate({k: v for k, v in res.inputs.items() if v is not None}), res.parts, settings,
                        status=res.status, solver=res.solver, time_points=60, notes=res.notes)
-        again.objective, again.objectives, again.stats, again.diagnosis = res.objective, res.objectives, res.stats, \
-            res.diagnosis
-        res = again
+        res = again.carry(res)
     return res, cells, name
 
 
