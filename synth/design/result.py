@@ -69,6 +69,8 @@ class Check:
     verdict: str
     note: str = ""
     assumed: list = field(default_factory=list)
+    #: the margin a design rule requires of this check (``margin`` is then the margin beyond it)
+    required: float = 0.0
 
     @property
     def constraint(self):
@@ -88,7 +90,7 @@ class Check:
                 "sense": c.sense, "value": plain(self.value), "limit": plain(self.limit),
                 "margin": plain(self.margin), "verdict": self.verdict, "advisory": c.advisory,
                 "correction": c.correction if self.verdict == FAIL else "", "note": self.note,
-                "assumed": list(self.assumed)}
+                "assumed": list(self.assumed), "required_margin": self.required}
 
 
 @dataclass
@@ -123,6 +125,8 @@ class Result:
     #: the K best designs in objective order, the first this one (``--top K``:
     #: :func:`synth.optimise.alternatives.ranked`): rank, parts, objectives, margin, binding, verdict, differs
     alternatives: list = field(default_factory=list)
+    #: the design rules the checks were made under (:mod:`synth.design.rules`; {} without rules)
+    rules: dict = field(default_factory=dict)
 
     # --- verdicts ------------------------------------------------------------------------------------------
     def failed(self) -> list:
@@ -216,6 +220,7 @@ class Result:
             "objectives": plain(self.objectives), "stats": plain(self.stats), "diagnosis": plain(self.diagnosis),
             "inputs": plain(self.inputs), "settings": plain(self.settings), "steps_run": list(self.steps_run),
             "changes": plain(self.changes), "control": plain(self.control), "alternatives": plain(self.alternatives),
+            "rules": plain(self.rules),
         }
 
     @classmethod
@@ -234,20 +239,22 @@ class Result:
                 raise InputError(Problem(f"{source}: checks[{i}].id", c.get("id") if isinstance(c, dict) else c,
                                          "a constraint id of synth's registry"))
             checks.append(Check(c["id"], c.get("value"), c.get("limit"), c.get("margin"), c.get("verdict", ""),
-                                c.get("note", ""), list(c.get("assumed") or [])))
+                                c.get("note", ""), list(c.get("assumed") or []), float(c.get("required_margin") or 0.0)))
         return cls(status=str(data.get("status", "verified")), solver=str(data.get("solver", "")),
                    objective=str(data.get("objective", "")), parts=dict(data["parts"]), values=dict(data["values"]),
                    checks=checks, notes=list(data.get("notes") or []), objectives=dict(data.get("objectives") or {}),
                    stats=dict(data.get("stats") or {}), diagnosis=data.get("diagnosis"),
                    inputs=data.get("inputs"), settings=dict(data.get("settings") or {}),
                    steps_run=list(data.get("steps_run") or []), changes=list(data.get("changes") or []),
-                   control=dict(data.get("control") or {}), alternatives=list(data.get("alternatives") or []))
+                   control=dict(data.get("control") or {}), alternatives=list(data.get("alternatives") or []),
+                   rules=dict(data.get("rules") or {}))
 
 
 def checks_of(groups: dict, apps, row: int = 0) -> list:
     """The :class:`Check` records of one design: row ``row`` of each evaluated group (registry order)."""
     from synth.design.applications import DEFAULTS
     from synth.design import evaluate as E
+    from synth.design.rules import active as active_rules
     out = []
     for cid, c in REGISTRY.items():
         g = groups.get(c.group)
@@ -271,7 +278,7 @@ def checks_of(groups: dict, apps, row: int = 0) -> list:
         verdict = (PASS if m >= -FEAS_TOL else (WARNING if c.advisory else FAIL))
         assumed = [] if apps is None else [apps.assumed_note(x, a) for x in c.assumes
                                            if x in DEFAULTS and apps.assumed(x)[a]]
-        out.append(Check(cid, value, limit, m, verdict, assumed=assumed))
+        out.append(Check(cid, value, limit, m, verdict, assumed=assumed, required=active_rules().required(cid)))
     return out
 
 

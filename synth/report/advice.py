@@ -12,7 +12,7 @@ The terminal (:mod:`synth.report.text`), the report's digest (:mod:`synth.report
 from __future__ import annotations
 
 __all__ = ["objective_line", "change_lines", "relaxation_lines", "relaxation_text", "correction", "NO_DESIGNER",
-           "margin_pct", "alternative_rows"]
+           "margin_pct", "alternative_rows", "rule_lines"]
 
 #: the header of the relaxations when none is the tensioner designer's
 NO_DESIGNER = ("no change the tensioner designer controls (space, lock-up pin, bolt seat, the parts) makes a design "
@@ -130,3 +130,9 @@ def alternative_rows(r) -> list[dict]:
                      "margin": margin_pct(a.get("margin")), "binding": a.get("binding", ""),
                      "verdict": a.get("verdict", ""), "differs": diff or ("the optimum" if a["rank"] == 1 else "-")})
     return rows
+
+
+def rule_lines(r) -> list[str]:
+    """The design rules the result's checks were made under (:attr:`Result.rules`), in words; none without."""
+    from synth.design.rules import Rules
+    return Rules.from_mapping(r.rules).lines() if r.rules else []

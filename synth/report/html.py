@@ -342,7 +342,7 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
     ``landscape`` or ``portrait`` (A4); ``platform``: a rationalisation output (:func:`platform_section`).
     """
     from synth.errors import InputError, Problem
-    from synth.report.advice import alternative_rows
+    from synth.report.advice import alternative_rows, rule_lines
     if page not in ("landscape", "portrait"):
         raise InputError(Problem("--page", page, "landscape or portrait"))
     name = Path(source).name if source not in (None, "", "result") else ""
@@ -355,6 +355,9 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
                  ("Date", meta["date"]), ("Author", meta["author"] or "-"), ("Revision", meta["revision"] or "-")]
     if result.solver and result.solver != "flowchart":
         meta_rows.append(("Solver", f"{result.solver}, objective {result.objective or '-'}, status {result.status}"))
+    rules = rule_lines(result)
+    meta_rows.append(("Design rules", "; ".join(x.strip() for x in rules) if rules else
+                      "none given: the catalogs' limits, every check passes at a margin of 0"))
     checks, na = check_steps(result)
     cad = [_figure(g) for g in graphs if g.id.startswith("cad_")]
     figs = [_figure(g) for g in graphs if not g.id.startswith("cad_")]

@@ -11,7 +11,7 @@ from __future__ import annotations
 from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Result
 from synth.output_table import ROWS, format_value
 from synth.report.advice import NO_DESIGNER, alternative_rows, change_lines, correction, objective_line, \
-    relaxation_lines
+    relaxation_lines, rule_lines
 
 __all__ = ["render", "verdict_line", "MARKS"]
 
@@ -37,8 +37,9 @@ def _check_line(c, r=None) -> list[str]:
     mark = MARKS[c.verdict]
     if c.verdict == NOT_VERIFIED:
         return [f"  [{mark}] step {con.step:>2} {con.label}: {c.note}"]
+    need = f" beyond the required {100 * c.required:g} %" if getattr(c, "required", 0.0) else ""
     out = [f"  [{mark}] step {con.step:>2} {con.label}: {c.value:.4g} {con.sense} {c.limit:.4g} {con.unit}"
-           f"  margin {100 * c.margin:+.1f} %  ({con.equation})"]
+           f"  margin {100 * c.margin:+.1f} %{need}  ({con.equation})"]
     fix = correction(r, c) if r is not None else con.correction
     if c.verdict == FAIL and fix:
         out.append(f"           suggested correction: {fix}")
@@ -50,6 +51,7 @@ def _check_line(c, r=None) -> list[str]:
 def render(r: Result, *, title: str = "") -> str:
     """The whole terminal report of ``r``."""
     lines = [title] if title else []
+    lines += rule_lines(r)
     if r.solver and r.solver != "flowchart":
         lines.append(f"solver {r.solver} | objective {r.objective} | status {r.status}")
         if r.objectives:

@@ -18,6 +18,9 @@ DEFAULT_OBJECTIVE = "standard"
 
 
 def add_model_options(p) -> None:
+    p.add_argument("--rules", metavar="FILE", default=None,
+                   help="design rules (required safety factors and limits, minimum margins, spring limit basis, "
+                        "capability targets): a rules file, or the input's own rules: section when not given")
     p.add_argument("--fidelity", choices=("full", "screening"), default="full",
                    help="full: Almen-Laszlo cone spring and its exact wear (default); screening: linear, closed forms")
     p.add_argument("--linear-friction", action="store_true",

@@ -98,10 +98,12 @@ def result_for_report(source, args=None):
     if res.inputs is None:
         raise InputError(Problem("result", name, "a result that carries its inputs (--json of synth 0.2 or later)"))
     if not res.curves and res.parts and res.solver != "flowchart":  # re-verify for the curves of the graphs
+        from synth.design.rules import active, using
         fields = {k for k in Settings.__dataclass_fields__}
         settings = Settings(**{k: v for k, v in (res.settings or {}).items() if k in fields})
-        again = verify(schema.validate({k: v for k, v in res.inputs.items() if v is not None}), res.parts, settings,
-                       status=res.status, solver=res.solver, time_points=60, notes=res.notes)
+        with using(res.rules or active()):  # the result's own rules
+            again = verify(schema.validate({k: v for k, v in res.inputs.items() if v is not None}), res.parts, settings,
+                           status=res.status, solver=res.solver, time_points=60, notes=res.notes)
         res = again.carry(res)
     return res, cells, name
 
