@@ -43,7 +43,7 @@ from synth.io.limits import short
 from synth.io.numbers import is_not_given, number_from_text
 from synth.io.numbers import parse_number_list as _parse_number_list
 
-__all__ = ["Field", "FIELDS", "SECTIONS", "OWNERS", "PART_FIELDS", "DesignInput", "validate", "load_input", "read_mapping", "field_by_name",
+__all__ = ["Field", "FIELDS", "SECTIONS", "OWNERS", "PART_FIELDS", "plausibility", "UNIT_SLIPS", "DesignInput", "validate", "load_input", "read_mapping", "field_by_name",
            "parse_number_list"]
 
 INF = math.inf
@@ -85,6 +85,8 @@ class Field:
     #: a field that names a part or a class: the design-space ``(table, column)`` it selects
     #: (:func:`synth.design.space.pinned_space`; ``synth design --fix/--free``)
     pins: tuple[str, str] | tuple = ()
+    #: the usual range ``(lo, hi)`` of the value (:func:`plausibility`); () none
+    typical: tuple = ()
 
     def accepted(self) -> str:
         if self.choices:
@@ -275,7 +277,27 @@ _CONTROL = {
     "engine_support_external_diameter_mm": dict(owner=_S, relax=+1, relaxes=(
         "pivot_base_pressure", "bolt_yield", "under_head", "thread")),
 }
-FIELDS = tuple(dataclasses.replace(f, **_CONTROL.get(f.name, {})) for f in FIELDS)
+#: the usual range of a field (the thesis's case studies and input tables, Tables 9 and 13, and the generated
+#: applications' engineering ranges, each widened about x2 each way): a value outside it is accepted, but when a
+#: unit slip (:data:`UNIT_SLIPS`) brings it inside, the outputs say so (:func:`plausibility`)
+_TYPICAL = {
+    "pulley_diameter_mm": (40, 120), "working_arm_mm": (1.5, 10), "differential_angle_deg": (30, 150),
+    "wrap_angle_deg": (20, 220), "belt_width_mm": (10, 45), "middle_plane_belt_height_mm": (10, 60),
+    "lockup_pin_position_radius_mm": (10, 80), "max_pivot_height_mm": (15, 80),
+    "max_axial_displacement_mm": (15, 90), "pivot_class_diameter_mm": (12, 30),
+    "durability_theta_peak_to_peak_deg": (1, 40), "calculated_torque_target_nm": (0.5, 10),
+    "damping_target_nm": (0.1, 5), "spring_stiffness_nm_per_deg": (0.005, 0.1),
+    "arm_travel_nominal_to_installation_deg": (5, 90), "arm_travel_nominal_to_free_deg": (5, 90),
+    "main_spring_mean_body_diameter_mm": (20, 70), "engine_support_internal_diameter_mm": (5, 20),
+    "engine_support_external_diameter_mm": (15, 50), "bolt_head_contact_external_diameter_mm": (8, 30),
+    "support_yield_strength_compression_mpa": (100, 1500), "support_yield_strength_traction_mpa": (100, 1500),
+}
+#: unit -> (factor, the unit the value looks like it was given in): ``value x factor`` is the value in the field's
+#: unit had it been typed in the other one
+UNIT_SLIPS = {"mm": ((1000.0, "m"),), "deg": ((180.0 / math.pi, "rad"),), "Nm/deg": ((math.pi / 180.0, "Nm/rad"),),
+              "MPa": ((1000.0, "GPa"), (1e-6, "Pa")), "Nm": ((1e-3, "N mm"),)}
+FIELDS = tuple(dataclasses.replace(f, **_CONTROL.get(f.name, {}), typical=_TYPICAL.get(f.name, ()))
+               for f in FIELDS)
 #: the fields that name a part or a class (``synth design --fix/--free``), in the schema's order
 PART_FIELDS: tuple[str, ...] = tuple(f.name for f in FIELDS if f.pins)
 
@@ -488,6 +510,29 @@ def validate(data: dict, partial: bool = False) -> "DesignInput":
     if problems:
         raise InputError(problems)
     return DesignInput(**out)
+
+
+def plausibility(d) -> list[str]:
+    """Warnings for values that look typed in another unit (rad for deg, Nm/rad for Nm/deg, m for mm, GPa or Pa
+    for MPa, N mm for Nm): outside the field's usual range, inside it once converted. Accepted, never refused.
+
+    >>> plausibility(validate({"spring_stiffness_nm_per_deg": 0.94, "differential_angle_deg": 1.5708}, partial=True))[0]
+    'differential_angle_deg = 1.571 deg is outside the usual 30-150 deg; as rad it would be 90 deg: check the unit'
+    """
+    out = []
+    for f in FIELDS:
+        v = getattr(d, f.name, None)
+        if not f.typical or isinstance(v, (bool, str, list)) or v is None:
+            continue
+        lo, hi = f.typical
+        if lo <= v <= hi:
+            continue
+        for factor, other in UNIT_SLIPS.get(f.unit, ()):
+            if lo <= v * factor <= hi:
+                out.append(f"{f.name} = {v:.4g} {f.unit} is outside the usual {lo:g}-{hi:g} {f.unit}; as {other} it "
+                           f"would be {v * factor:.4g} {f.unit}: check the unit")
+                break
+    return out
 
 
 def read_mapping(path: str | Path) -> dict:

@@ -217,13 +217,17 @@ def arrow_safe(df: pd.DataFrame) -> pd.DataFrame:
     return out
 
 
+#: numbers in the CSV files synth writes: 6 significant figures (a margin to 1e-4 %, a stress to 0.01 MPa)
+CSV_FLOAT = "%.6g"
+
+
 def write_table(df: pd.DataFrame, path) -> Path:
     """Write ``df`` as CSV, Excel or Parquet by the extension of ``path`` (folders created)."""
     p = Path(path)
     fmt = _format(p, "output")
     p.parent.mkdir(parents=True, exist_ok=True)
     if fmt == "csv":
-        df.to_csv(p, index=False)
+        df.to_csv(p, index=False, float_format=CSV_FLOAT)
     elif fmt == "excel":  # text as text, significant figures, print setup (synth.excel.cells)
         from synth.excel.cells import write_frame
         write_frame(df, p, sheet="portfolio")

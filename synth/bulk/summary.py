@@ -194,6 +194,8 @@ def write_summary(s: Summary, folder) -> list[Path]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from synth.bulk.portfolio import CSV_FLOAT
+    from synth.design.constraints import words
     d = Path(folder)
     d.mkdir(parents=True, exist_ok=True)
     written = []
@@ -202,7 +204,7 @@ def write_summary(s: Summary, folder) -> list[Path]:
     overall = pd.DataFrame([{"quantity": k, "value": v} for k, v in s.overall.items()])
     for name, df in {"overall": overall, **tables}.items():
         p = d / f"summary_{name}.csv"
-        df.to_csv(p, index=False)
+        df.to_csv(p, index=False, float_format=CSV_FLOAT)
         written.append(p)
     md = ["## Portfolio summary", "", text(s).replace("\n", "  \n"), "", "### Overall", "", markdown_table(overall)]
     titles = {"by_group": "Feasible share by group", "parts": "Parts chosen (feasible applications)",
@@ -222,7 +224,8 @@ def write_summary(s: Summary, folder) -> list[Path]:
     for name, df, title in (("binding.png", s.binding, "Binding constraint of feasible designs"),
                             ("violated.png", s.violated, "Violated constraints of infeasible applications")):
         if len(df):
-            plots.append((name, list(df["constraint"].head(15)), df["count"].head(15).to_numpy(), title, "applications"))
+            plots.append((name, [words(c, 48) for c in df["constraint"].head(15)], df["count"].head(15).to_numpy(),
+                          title, "applications"))
     for name, labels, values, title, xlabel in plots:
         fig, ax = plt.subplots(figsize=(7, 0.35 * len(labels) + 1.2), layout="constrained")
         _bar(ax, labels, values, title, xlabel)

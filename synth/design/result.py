@@ -38,18 +38,29 @@ EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 3}
 VERDICT_FILLS = {PASS: "C6EFCE", FAIL: "FFC7CE", NOT_VERIFIED: "FFD966", WARNING: "FFD8A8", NOT_APPLICABLE: "EDEDED"}
 
 
-def plain(v):
-    """JSON-friendly scalars: numpy to Python; NaN and infinities to None (valid JSON, never ``-Infinity``)."""
+#: significant figures of the numbers a result exports (JSON): 6, beyond what any input or catalog value carries
+EXPORT_DIGITS = 6
+
+
+def plain(v, digits: int | None = None):
+    """JSON-friendly scalars: numpy to Python; NaN and infinities to None (valid JSON, never ``-Infinity``);
+    ``digits``: floats to that many significant figures.
+
+    >>> plain({"a": np.float64(0.123456789), "b": [np.inf, 2]}, digits=6)
+    {'a': 0.123457, 'b': [None, 2]}
+    """
     if isinstance(v, np.ndarray):
         v = v.tolist() if v.ndim else v.item()
     if isinstance(v, np.generic):
         v = v.item()
     if isinstance(v, (list, tuple)):
-        return [plain(x) for x in v]
+        return [plain(x, digits) for x in v]
     if isinstance(v, dict):
-        return {str(k): plain(x) for k, x in v.items()}
+        return {str(k): plain(x, digits) for k, x in v.items()}
     if isinstance(v, float) and not math.isfinite(v):
         return None
+    if isinstance(v, float) and digits:
+        return float(f"{v:.{digits}g}")
     return v
 
 
@@ -84,11 +95,11 @@ class Check:
     def step(self) -> int:
         return self.constraint.step
 
-    def as_dict(self) -> dict:
+    def as_dict(self, digits: int | None = None) -> dict:
         c = self.constraint
         return {"id": self.id, "label": c.label, "step": c.step, "equation": c.equation, "unit": c.unit,
-                "sense": c.sense, "value": plain(self.value), "limit": plain(self.limit),
-                "margin": plain(self.margin), "verdict": self.verdict, "advisory": c.advisory,
+                "sense": c.sense, "value": plain(self.value, digits), "limit": plain(self.limit, digits),
+                "margin": plain(self.margin, digits), "verdict": self.verdict, "advisory": c.advisory,
                 "correction": c.correction if self.verdict == FAIL else "", "note": self.note,
                 "assumed": list(self.assumed), "required_margin": self.required}
 
@@ -212,14 +223,17 @@ class Result:
         return digest_html(self)
 
     # --- serialisation ---------------------------------------------------------------------------------------
-    def to_dict(self) -> dict:
+    def to_dict(self, digits: int | None = EXPORT_DIGITS) -> dict:
+        """The result as JSON data: margins as fractions, numbers to ``digits`` significant figures (the parts,
+        inputs and settings exactly: a saved design is verified again from them)."""
+        n = digits
         return {
             "kind": "synth.result", "status": self.status, "verdict": self.verdict, "solver": self.solver,
-            "objective": self.objective, "parts": plain(self.parts), "values": plain(self.values),
-            "checks": [c.as_dict() for c in self.checks], "notes": list(self.notes),
-            "objectives": plain(self.objectives), "stats": plain(self.stats), "diagnosis": plain(self.diagnosis),
+            "objective": self.objective, "parts": plain(self.parts), "values": plain(self.values, n),
+            "checks": [c.as_dict(n) for c in self.checks], "notes": list(self.notes),
+            "objectives": plain(self.objectives, n), "stats": plain(self.stats, n), "diagnosis": plain(self.diagnosis, n),
             "inputs": plain(self.inputs), "settings": plain(self.settings), "steps_run": list(self.steps_run),
-            "changes": plain(self.changes), "control": plain(self.control), "alternatives": plain(self.alternatives),
+            "changes": plain(self.changes), "control": plain(self.control), "alternatives": plain(self.alternatives, n),
             "rules": plain(self.rules),
         }
 

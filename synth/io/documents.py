@@ -78,6 +78,12 @@ def read_rules_mapping(path, what: str = "--rules", *, section_only: bool = Fals
     if suffix in WORKBOOK_SUFFIXES:
         return None
     accepted = "a YAML, TOML or JSON file of design rules (or a design input with a rules: section)"
+    if section_only:  # a design input: its own reader reports what is wrong with it, the rules reader nothing
+        try:
+            data = read_document(path, what, accepted=accepted)
+        except InputError:
+            return None
+        return data.get("rules") or None if isinstance(data, dict) else None
     data = read_document(path, what, accepted=accepted)
     if not isinstance(data, dict):
         raise InputError(Problem(what, str(path), accepted))

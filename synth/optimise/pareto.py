@@ -62,14 +62,15 @@ def plot_front(front: list, path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(7, 4.5))
+    from synth.design.constraints import words
     c = [p["cost_eur"] for p in front]
-    m = [p["margin"] for p in front]
+    m = [100 * p["margin"] for p in front]
     ax.step(c, m, where="post", color="0.6")
     ax.plot(c, m, "o", color="C0")
-    for p in front:
-        ax.annotate(p["binding"], (p["cost_eur"], p["margin"]), fontsize=7, xytext=(3, 3), textcoords="offset points")
+    for p, y in zip(front, m):
+        ax.annotate(words(p["binding"], 36), (p["cost_eur"], y), fontsize=6, xytext=(3, 3), textcoords="offset points")
     ax.set_xlabel("cost [EUR] (catalog unit costs)")
-    ax.set_ylabel("smallest normalised margin [-]")
+    ax.set_ylabel("smallest margin [%]")
     ax.set_title("cost against margin: Pareto front")
     ax.grid(True, alpha=0.3)
     fig.tight_layout()

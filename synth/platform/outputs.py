@@ -141,8 +141,8 @@ def plot_tradeoff(rows: list, path, kind: str) -> Path:
     fig, ax = plt.subplots(figsize=(6, 4))
     x = [r["parts"] for r in rows]
     if kind == "margin":
-        ax.plot([r["margin_floor"] for r in rows], x, "o-")
-        ax.set_xlabel("margin floor (every design's smallest margin) [-]")
+        ax.plot([100 * r["margin_floor"] for r in rows], x, "o-")
+        ax.set_xlabel("margin floor (every design's smallest margin) [%]")
         ax.set_ylabel("distinct parts in the platform")
         ax.set_title(f"Platform size against the worst margin ({rows[0]['served']} applications)")
         ax.yaxis.get_major_locator().set_params(integer=True)
@@ -257,12 +257,13 @@ def write_all(pf, result, out, tradeoff_rows: list | None = None, kind: str = "m
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     paths = [out / "platform.csv", out / "assignment.csv", out / "summary.md"]
-    platform_table(pf, result).to_csv(paths[0], index=False)
-    assignment_table(result).to_csv(paths[1], index=False)
+    from synth.bulk.portfolio import CSV_FLOAT
+    platform_table(pf, result).to_csv(paths[0], index=False, float_format=CSV_FLOAT)
+    assignment_table(result).to_csv(paths[1], index=False, float_format=CSV_FLOAT)
     text = summary_markdown(pf, result)
     if tradeoff_rows:
         text += f"\n## Trade-off ({kind})\n\n" + tradeoff_table(tradeoff_rows)
-        pd.DataFrame(tradeoff_rows).to_csv(out / "tradeoff.csv", index=False)
+        pd.DataFrame(tradeoff_rows).to_csv(out / "tradeoff.csv", index=False, float_format=CSV_FLOAT)
         paths += [out / "tradeoff.csv", plot_tradeoff(tradeoff_rows, out / "tradeoff.png", kind)]
     paths[2].write_text(text, encoding="utf-8")
     if tradeoff_rows and not getattr(result, "tradeoff", None):

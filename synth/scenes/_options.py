@@ -80,8 +80,10 @@ def synthesise(d, args):
         kw["n_trials"] = args.trials
     if limit is not None:
         kw["time_limit_s"] = limit
-    return solve_honouring(d, getattr(args, "objective", DEFAULT_OBJECTIVE), getattr(args, "solver", DEFAULT_SOLVER),
-                           **kw)
+    from synth.report.progress import phase
+    solver = getattr(args, "solver", DEFAULT_SOLVER)
+    with phase(f"synth: synthesis ({solver}; an infeasible input is diagnosed)"):  # a terminal only
+        return solve_honouring(d, getattr(args, "objective", DEFAULT_OBJECTIVE), solver, **kw)
 
 
 def load_saved_result(path: str | Path, what: str = "result"):

@@ -26,16 +26,19 @@ def _main(args) -> int:
     out = out_folder(args.out)  # checked before the work: an existing file is not a folder
     front = pareto_front(load_input(args.input), n_points=points)
     out.mkdir(parents=True, exist_ok=True)
-    lines = ["| cost [EUR] | margin | non-standard | binding constraint |", "|---|---|---|---|"]
-    lines += [f"| {p['cost_eur']:.4f} | {p['margin']:+.4f} | {p['standard']:g} | {p['binding']} |" for p in front]
+    from synth.design.constraints import words
+    from synth.design.result import plain
+    lines = ["| cost [EUR] | smallest margin [%] | non-standard parts | binding constraint |", "|---|---|---|---|"]
+    lines += [f"| {p['cost_eur']:.4f} | {100 * p['margin']:+.2f} | {p['standard']:g} | {words(p['binding'])} |"
+              for p in front]
     inputs = front[0]["inputs"] if front else {}
     if inputs:
         lines += ["", "Input-only constraints (no design changes them; not in the margin above):"]
         from synth.design.constraints import REGISTRY
-        lines += [f"- {REGISTRY[k].label}: margin {v:+.4f}" for k, v in inputs.items()]
+        lines += [f"- {REGISTRY[k].label}: margin {100 * v:+.2f} %" for k, v in inputs.items()]
     table = "\n".join(lines)
     (out / "front.md").write_text(table + "\n")
-    (out / "front.json").write_text(json.dumps(front, indent=2, default=str))
+    (out / "front.json").write_text(json.dumps(plain(front, 6), indent=2, default=str))  # margins as fractions
     if front:
         plot_front(front, out / "front.png")
     print(table if front else "no feasible design: no front (run synth design for the diagnosis)")
