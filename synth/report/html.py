@@ -90,9 +90,15 @@ body.synth{font-family:"Segoe UI",Roboto,"Helvetica Neue",Arial,"DejaVu Sans",sa
   .synth thead{display:table-header-group}
   .synth tr,.synth figure,.synth img{break-inside:avoid}
   .synth figure{width:47%}
+  .synth figure.cad{display:block;width:auto;margin:.3em 0;text-align:center}
+  .synth figure.cad img{width:auto;max-width:100%;max-height:@cad_height@mm}
   .synth a{color:inherit;text-decoration:none}
 }
 """
+#: the largest printed height of a CAD picture [mm]: alone across the page (A4 landscape leaves 174 mm between the
+#: margins), its text at 6 pt or more (synth.cad.pictures.DIMENSION_PT, LABEL_PT)
+CAD_PRINT_MAX_HEIGHT_MM = 150.0
+_CSS = _CSS.replace("@cad_height@", f"{CAD_PRINT_MAX_HEIGHT_MM:g}")
 for _verdict, _colour in VERDICT_COLOURS.items():  # the palette's colours into the style sheet
     _CSS = _CSS.replace(f"@{_verdict}@", _colour)
 

@@ -8,6 +8,7 @@ from pathlib import Path
 import yaml
 
 from synth import schema
+from synth.errors import InputError, Problem
 
 __all__ = ["register", "default_input"]
 
@@ -47,6 +48,13 @@ def _main(args) -> int:
     from synth.scenes._options import default_args, synthesise
     out = Path(args.cad or args.out)
     d, path, name = default_input(), default_path(), default_name()
+    if not args.no_cad:  # before the work: the 3D model needs CadQuery (synth[cad])
+        from synth.cad import require_cadquery
+        try:
+            require_cadquery()
+        except InputError as exc:
+            p = exc.problems[0]
+            raise InputError(Problem(p.field, p.value, p.accepted + "; or run synth demo --no-cad")) from None
     r = synthesise(d, default_args())
     print(render(r, title=f"synth demo: the most standardised tensioner for {name} ({path})"))
     pictures: list = []

@@ -32,6 +32,9 @@ def register(sub) -> None:
 
 def _main(args) -> int:
     from synth.schema import load_input
+    if args.cad:  # before the work: the 3D model needs CadQuery (synth[cad])
+        from synth.cad import require_cadquery
+        require_cadquery()
     d = load_input(args.input)
     note = None
     if getattr(args, "drive", None):
