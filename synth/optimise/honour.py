@@ -10,7 +10,8 @@ one of three kinds in a synthesis, after ODOP's *fix* and *free*:
 * **kept when it can be** (every other named part, the default): the design keeps it unless no catalog design
   with it passes every check; then synth frees the fewest parts (the pivot class, the bushing thickness, the
   main spring and the bolt each count as one part, whatever number of fields name them), the set whose optimum
-  is best, and says which and why.
+  is best, and says which and why. When no design passes with them or without them, they are freed and the
+  nearest design of the whole catalog and its relaxations are shown (``--fix`` keeps them there too).
 
 Every part of the design that differs from the input gets one line of :attr:`Result.changes
 <synth.design.result.Result.changes>` (field, the input's value, the design's, why). The feasibility probes are the
@@ -126,11 +127,15 @@ def solve_honouring(d, objective="standard", solver: str = "enumerate", *, fix=(
                     best = (key, rel, r)
             released, res = best[1], best[2]
             # why each freed part: the nearest design that keeps it (and every part kept) and what it fails
-            reasons = {g: _why_not(d, settings, [n for n in order if n not in released or part_of(n) == g])
+            reasons = {g: ("freed: no design keeps it",
+                           _why_not(d, settings, [n for n in order if n not in released or part_of(n) == g]))
                        for g in dict.fromkeys(part_of(n) for n in released)}
-        else:  # nothing feasible even with them freed: keep them (the diagnosis then keeps them too)
-            res = solve(d, objective, solver, pin_inputs=tuple(order), **kw)
-            why = why + "; no catalog design is feasible with them freed either, so they are kept"
+        else:  # no design passes with them or without: the whole catalog's nearest design and relaxations
+            released = tuple(prefer)
+            res = solve(d, objective, solver, pin_inputs=tuple(n for n in order if n in fix), **kw)
+            reasons = {g: ("freed: no design passes either way",
+                           why + "; freed too, none passes: the nearest design of the whole catalog and its "
+                                 "relaxations are shown") for g in dict.fromkeys(part_of(n) for n in released)}
     else:
         res = solve(d, objective, solver, pin_inputs=tuple(order) if solver != "flowchart" else False, **kw)
     res.control = {"fixed": sorted(fix, key=named.index), "free": sorted(free),
@@ -165,8 +170,10 @@ def changes_of(d, r, *, free=(), released=(), reasons: dict | None = None) -> li
         if name in free:
             how, text = "free", "--free: synth chose it for the objective"
         elif name in released:
-            how = "freed: no design keeps it"
-            text = (reasons or {}).get(part_of(name), "") + f"; freed, a design passes (--fix {name} keeps it)"
+            how, text = (reasons or {}).get(part_of(name), ("freed: no design keeps it", ""))
+            if how == "freed: no design keeps it":
+                text += "; freed, a design passes"
+            text += f" (--fix {name} keeps it)"
         else:
             how, text = "not kept", f"the {r.solver} solver chose another part"
         out.append({"field": name, "label": f.label, "unit": f.unit if f.unit != "-" else "",

@@ -89,7 +89,7 @@ class Progress:
         if not self.on:
             return
         now = time.monotonic()
-        if now - self._last < self._min and (self.total is None or self.n < self.total):
+        if self._last and now - self._last < self._min and (self.total is None or self.n < self.total):
             return
         self._last = now
         if self.total:

@@ -81,6 +81,7 @@ def _main(args) -> int:
         raise InputError(Problem("--workers", args.workers, "a whole number >= 1"))
     engine = "dask" if args.scheduler else args.engine
     with Progress(total=None, desc="synth rationalise: feasibility") as bar:
+        bar.update(0, "running")
         pf = load_feasibility(args.portfolio, Settings(fidelity=args.fidelity), engine=engine, workers=args.workers,
                               scheduler=args.scheduler, diagnose=args.diagnose,
                               progress=lambda done, total: bar.update(done - bar.n))
