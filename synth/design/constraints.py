@@ -106,8 +106,9 @@ def words(cid: str, width: int | None = None) -> str:
     """A constraint id in words (its label; ``width``: wrapped to lines of that many characters), for plots and
     tables people read; an id not in the registry stays as it is.
 
-    >>> words("spring_yield", 40)
-    'main spring stress at installation within\nthe permissible bending stress'
+    >>> print(words("spring_yield", 40))
+    main spring stress at installation within
+    the permissible bending stress
     """
     import textwrap
     text = REGISTRY[cid].label if cid in REGISTRY else str(cid)
