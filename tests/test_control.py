@@ -246,10 +246,13 @@ def test_objective_line_has_units_and_exports_have_six_significant_figures(defau
     assert len(nums) > 100 and all(float(f"{x:.6g}") == x for x in nums)  # 6 significant figures at most
     code, out, _ = _run(capsys, "design", DEFAULT)
     assert "objectives: non-standard parts 2 (weighted count), cost 1.572 EUR, smallest margin +0.03 %" in out
-    from synth.bulk.portfolio import write_table
+    from synth.bulk.portfolio import CSV_FLOAT, write_table
     import pandas as pd
-    p = write_table(pd.DataFrame({"margin": [1 / 3]}), Path(os.environ.get("TMPDIR", "/tmp")) / "synth_sig.csv")
-    assert p.read_text().splitlines()[1] == "0.333333"
+    df = pd.DataFrame({"margin": [1 / 3]})
+    tmp = Path(os.environ.get("TMPDIR", "/tmp"))
+    assert write_table(df, tmp / "synth_sig.csv", float_format=CSV_FLOAT).read_text().splitlines()[1] == "0.333333"
+    # a portfolio of inputs keeps every digit (read back exactly)
+    assert write_table(df, tmp / "synth_all.csv").read_text().splitlines()[1] == repr(1 / 3)
 
 
 def test_a_stiffness_typed_in_nm_per_rad_is_named(tmp_path, capsys):

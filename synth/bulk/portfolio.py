@@ -221,13 +221,14 @@ def arrow_safe(df: pd.DataFrame) -> pd.DataFrame:
 CSV_FLOAT = "%.6g"
 
 
-def write_table(df: pd.DataFrame, path) -> Path:
-    """Write ``df`` as CSV, Excel or Parquet by the extension of ``path`` (folders created)."""
+def write_table(df: pd.DataFrame, path, *, float_format: str | None = None) -> Path:
+    """Write ``df`` as CSV, Excel or Parquet by the extension of ``path`` (folders created); ``float_format``: the
+    numbers of a CSV (:data:`CSV_FLOAT` for results; a portfolio of inputs keeps every digit)."""
     p = Path(path)
     fmt = _format(p, "output")
     p.parent.mkdir(parents=True, exist_ok=True)
     if fmt == "csv":
-        df.to_csv(p, index=False, float_format=CSV_FLOAT)
+        df.to_csv(p, index=False, float_format=float_format)
     elif fmt == "excel":  # text as text, significant figures, print setup (synth.excel.cells)
         from synth.excel.cells import write_frame
         write_frame(df, p, sheet="portfolio")

@@ -18,8 +18,9 @@ The title is wrapped to the figure width, so it is never cut.
 >>> from synth.cad.dimensions import geometry_from, _example_values, _example_inputs
 >>> m = build(geometry_from(_example_values(), inputs=_example_inputs()))
 >>> ex = exploded_parts(m)
->>> round(ex["endcap"].BoundingBox().zmin - m.parts["endcap"].BoundingBox().zmin, 1)   # level 10 x 9 mm
-90.0
+>>> bb = {n: s.BoundingBox() for n, s in ex.items()}
+>>> round(bb["pulley"].zmin - bb["ball_bearing"].zmax, 1)   # each level one explode step (9 mm) clear of the last
+9.0
 >>> [(d.label, round(d.value_mm, 2)) for d in section_dimensions(m)][:3]
 [('pulley', 66.0), ('belt plane', 29.5), ('pivot height', 39.7)]
 """
