@@ -226,7 +226,7 @@ def _diagnosis(result):
 
 def digest_context(result) -> dict:
     """What the digest shows, as plain rows (the template's data)."""
-    from synth.report.advice import change_lines, objective_line
+    from synth.report.advice import change_lines, objective_line, rule_lines
     from synth.report.text import verdict_line
     by_margin = sorted(result.failed(), key=lambda c: (c.margin if c.margin is not None else 0.0))
     p = result.parts or {}
@@ -245,6 +245,7 @@ def digest_context(result) -> dict:
             "warnings": [check_row(c, result) for c in sorted(result.warnings(), key=lambda c: c.margin or 0.0)],
             "not_verified": [check_row(c, result) for c in result.not_verified()], "changes": change_lines(result),
             "objectives": objective_line(result.objectives) if result.objectives else "",
+            "rules": "; ".join(x.strip() for x in rule_lines(result)),
             "assumed": result.assumptions(), "diagnosis": _diagnosis(result)}
 
 
