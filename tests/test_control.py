@@ -225,6 +225,9 @@ def test_rules_section_is_applied_and_echoed_everywhere(tmp_path, capsys):
     bad.write_text("min_margins:\n  spring_yld: 0.05\n")
     code, out, err = _run(capsys, "design", DEFAULT, "--rules", bad)
     assert code == 2 and "rules.min_margins.spring_yld" in err.replace("bad_rules.yaml", "rules")
+    bad.write_text("limits:\n  main_spring_min_safety_factor: 1.1\n")  # looser than the catalog's 1.2: refused
+    code, out, err = _run(capsys, "design", DEFAULT, "--rules", bad)
+    assert code == 2 and "at least the catalog's 1.2" in err
 
 
 def test_rules_change_the_design_in_every_solver_and_the_flowchart(tmp_path, capsys):

@@ -14,10 +14,11 @@ file) or a rules file (``--rules FILE``: the same mapping, at the top or under `
       capability:                                  # targets of a production-scatter run (--capability)
         ppk_min: 1.33
 
-* ``limits`` may set the value of every registry limit that is a named catalog constant
-  (:data:`LIMIT_NAMES`, derived from the registry and the catalogs: the Smith-Goodman safety factor, the spring
-  index range, the coil gap, the arm and pivot walls, the cone spring's stress, the spring cavity); the check
-  then compares against the rule's value (shown as its limit).
+* ``limits`` may tighten every registry limit that is a named catalog constant (:data:`LIMIT_NAMES`, derived
+  from the registry and the catalogs: the Smith-Goodman safety factor, the spring index range, the coil gap, the
+  arm and pivot walls, the cone spring's stress, the spring cavity): a minimum raised, a maximum lowered (to
+  change the model's data, a user catalog: ``--catalogs``); the check then compares against the rule's value
+  (shown as its limit).
 * ``min_margins``: a check passes when its margin is at least the rule's; the margin every output shows is then
   the margin *beyond* the rule (``margin >= 0`` passes, everywhere: feasibility, the optimiser, the diagnosis),
   and the check carries the required margin (``required_margin``).
@@ -71,6 +72,28 @@ def __getattr__(name):  # LIMIT_NAMES derived on first use (the registry and the
     if name == "LIMIT_NAMES":
         return _limit_names()
     raise AttributeError(name)
+
+
+def _senses(name: str) -> set:
+    from synth.design.constraints import REGISTRY
+    return {c.sense for c in REGISTRY.values() if c.limit == name}
+
+
+def _tightens(name: str, value: float) -> bool:
+    """Whether a rule's ``value`` of limit ``name`` is at least as strict as the catalog's (a minimum raised, a
+    maximum lowered): a design rule adds a requirement; changing the model's data is a user catalog's work
+    (``--catalogs``), and the search's exact shortcuts (the spring kernels' option bounds) assume it."""
+    from synth import catalog
+    base = catalog.constant(name)
+    senses = _senses(name)
+    return (">=" not in senses or value >= base) and ("<=" not in senses or value <= base)
+
+
+def _tighten_text(name: str) -> str:
+    from synth import catalog
+    word = "at least" if ">=" in _senses(name) else "at most"
+    return (f"a value {word} the catalog's {catalog.constant(name):g} (a design rule tightens a limit; a user "
+            "catalog, --catalogs, changes it)")
 
 
 def _fraction(value, where: str) -> float:
@@ -147,6 +170,8 @@ class Rules:
                 problems.append(Problem(f"{source}.limits.{k}", v, "a limit a rule may set: " + ", ".join(_limit_names())))
             elif isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
                 problems.append(Problem(f"{source}.limits.{k}", v, "a finite number >= 0"))
+            elif not _tightens(k, float(v)):
+                problems.append(Problem(f"{source}.limits.{k}", v, _tighten_text(k)))
             else:
                 limits[k] = float(v)
         margins = {}
