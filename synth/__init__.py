@@ -88,19 +88,38 @@ def _input(d) -> "DesignInput":
     return load(d)
 
 
-def run_flowchart(d: "DesignInput | str | Path | dict", parts: dict | None = None, **settings_kw) -> "Result":
+def _rules(rules, d):
+    """The design rules of an API call: ``rules`` (a mapping, a :class:`~synth.design.rules.Rules` or a rules
+    file), else those of the input file ``d`` (its ``rules:`` section), else the rules in force."""
+    from pathlib import Path
+
+    from synth.design import rules as R
+    if rules is not None:
+        return R.read_rules(rules) if isinstance(rules, (str, Path)) else R.Rules.from_mapping(rules)
+    if isinstance(d, (str, Path)) and str(d).lower().endswith((".yaml", ".yml", ".toml", ".json")):
+        found = R.read_rules(d, "input file", section_only=True)
+        if not found.empty():
+            return found
+    return R.active()
+
+
+def run_flowchart(d: "DesignInput | str | Path | dict", parts: dict | None = None, *, rules=None,
+                  **settings_kw) -> "Result":
     """The thesis procedure (steps 0-10, its selection loops) on input ``d``; with ``parts``, that design checked.
 
     ``d``: a :class:`~synth.schema.DesignInput`, a mapping of fields or a file (as :func:`load`).
-    The result keeps 60 points of the wear histories for the report's graphs.
+    The result keeps 60 points of the wear histories for the report's graphs. ``rules``: design rules (a mapping,
+    :class:`~synth.design.rules.Rules` or a rules file; default: the input file's ``rules:`` section).
     """
     from synth import flowchart
-    return flowchart.run(_input(d), settings(**settings_kw), parts=parts, time_points=60)
+    from synth.design.rules import using
+    with using(_rules(rules, d)):
+        return flowchart.run(_input(d), settings(**settings_kw), parts=parts, time_points=60)
 
 
 def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard", solver: str = "enumerate", *,
-               pin_inputs: bool = False, time_limit_s: float | None = None, n_trials: int = 200,
-               **settings_kw) -> "Result":
+               pin_inputs: bool = False, fix=(), free=(), top: int = 1, time_limit_s: float | None = None,
+               n_trials: int = 200, rules=None, **settings_kw) -> "Result":
     """The best catalog design of input ``d`` (what ``synth design`` prints).
 
     ``objective``: ``standard`` (the most standardised design, cost then the margin as tie-breaks: the default
@@ -109,17 +128,25 @@ def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard"
     ``enumerate`` (exhaustive, exact: the default), ``minlp``, ``milp-highs``, ``milp-cvxpy``,
     ``blackbox`` (``n_trials`` per subsystem study) or ``flowchart``. An infeasible input gets the nearest design and a
     ``diagnosis`` (what binds, the smallest input relaxation).
+
+    The parts the input names (pivot class, bushing thickness, main spring, bolt) are kept unless no design with
+    them passes; ``fix`` (field names) keeps them whatever the verdict, ``pin_inputs=True`` keeps every one,
+    ``free`` lets synth choose them. ``Result.changes`` says which the design does not keep, and why.
+    ``top`` K > 1: ``Result.alternatives``, the K best designs in objective order (rank, parts, objectives,
+    smallest margin and what binds it, what differs from the optimum). ``rules``: design rules (required safety
+    factors and limits, minimum margins; a mapping, :class:`~synth.design.rules.Rules` or a rules file; default:
+    the input file's ``rules:`` section), echoed in ``Result.rules``.
     """
-    from synth.optimise import solve
-    from synth.optimise.objectives import with_margin_tiebreak
-    if solver == "enumerate":  # the exact solver: the margin as the last tie-break
-        objective = with_margin_tiebreak(objective)
-    kw: dict = {"settings": settings(**settings_kw), "pin_inputs": pin_inputs}
+    from synth.optimise.honour import solve_honouring
+    kw: dict = {"settings": settings(**settings_kw), "pin_inputs": pin_inputs, "fix": fix, "free": free,
+                "top": top}
     if solver == "blackbox":
         kw["n_trials"] = n_trials
     if time_limit_s is not None:
         kw["time_limit_s"] = time_limit_s
-    return solve(_input(d), objective, solver, **kw)
+    from synth.design.rules import using
+    with using(_rules(rules, d)):
+        return solve_honouring(_input(d), objective, solver, **kw)
 
 
 def capability(source: "Result | DesignInput | str | Path | dict", *, target: float | None = 1.33,
@@ -143,7 +170,7 @@ def capability(source: "Result | DesignInput | str | Path | dict", *, target: fl
     return r
 
 
-def verify(d: "DesignInput | str | Path | dict", parts: dict, **settings_kw) -> "Result":
+def verify(d: "DesignInput | str | Path | dict", parts: dict, *, rules=None, **settings_kw) -> "Result":
     """Design ``parts`` (every part key: ``synth.design.space.PART_KEYS``, as any result's ``.parts``) checked
     for input ``d`` through every step, with the wear histories for the graphs (60 points)."""
     from synth.design.space import PART_KEYS
@@ -154,7 +181,9 @@ def verify(d: "DesignInput | str | Path | dict", parts: dict, **settings_kw) -> 
     if missing:
         raise InputError(Problem("parts", ", ".join(missing) + " missing", "a dict with every part key: "
                                  + ", ".join(PART_KEYS)))
-    return _verify(_input(d), dict(parts), model, time_points=60)
+    from synth.design.rules import using
+    with using(_rules(rules, d)):
+        return _verify(_input(d), dict(parts), model, time_points=60)
 
 
 def screen(applications, *, objective: str = "standard", fidelity: str = "screening", diagnose: bool = True,

@@ -28,6 +28,8 @@ from synth import catalog, parts as P
 from synth.design import evaluate as E
 from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL
+from synth.design.rules import echo
+from synth.schema import plausibility
 from synth.design.result import NOT_VERIFIED, Check, Result, checks_of, plain
 from synth.design.space import (PART_KEYS, axial_attributes, bolt_attributes, bushing_attributes,
                                 core_attributes, space, spring_attributes)
@@ -306,8 +308,8 @@ def _stopped(walk: _Walk, stop: _Stop) -> Result:
     values = {k: plain(float(v[0])) for k, v in groups["core"].values.items()
               if np.ndim(v) and np.asarray(v).dtype.kind == "f"}
     return Result(status="baseline", solver="flowchart", values=values, checks=checks,
-                  notes=walk.notes + [stop.why], inputs=inputs_of(d), settings=_settings_dict(walk.s),
-                  steps_run=sorted(set(walk.steps)))
+                  notes=plausibility(d) + walk.notes + [stop.why], inputs=inputs_of(d), settings=_settings_dict(walk.s),
+                  steps_run=sorted(set(walk.steps)), rules=echo())
 
 
 def _settings_dict(s: Settings) -> dict:
@@ -350,8 +352,9 @@ def run(design_input, settings: Settings | None = None, parts: dict | None = Non
     values.update(walk.required)
     res = Result(status="baseline", solver="flowchart", objective="thesis procedure",
                  parts=parts_of_attributes(attrs, groups),
-                 values=values, checks=checks_of(groups, walk.apps), notes=walk.notes, inputs=inputs_of(design_input),
-                 settings=_settings_dict(s), steps_run=sorted(set(walk.steps)))
+                 values=values, checks=checks_of(groups, walk.apps), notes=plausibility(design_input) + walk.notes,
+                 inputs=inputs_of(design_input),
+                 settings=_settings_dict(s), steps_run=sorted(set(walk.steps)), rules=echo())
     if "_history" in groups["axial"].values:
         res.curves["plastic_wear"] = {k: np.asarray(v).reshape(-1).tolist()
                                       for k, v in groups["axial"].values["_history"].items()}

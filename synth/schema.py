@@ -29,6 +29,7 @@ per field (name, value, what is accepted), in an :class:`~synth.errors.InputErro
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import math
 import re
@@ -43,7 +44,7 @@ from synth.io.limits import short
 from synth.io.numbers import is_not_given, number_from_text
 from synth.io.numbers import parse_number_list as _parse_number_list
 
-__all__ = ["Field", "FIELDS", "SECTIONS", "DesignInput", "validate", "load_input", "read_mapping", "field_by_name",
+__all__ = ["Field", "FIELDS", "SECTIONS", "OWNERS", "PART_FIELDS", "plausibility", "UNIT_SLIPS", "DesignInput", "validate", "load_input", "read_mapping", "field_by_name",
            "parse_number_list"]
 
 INF = math.inf
@@ -75,6 +76,18 @@ class Field:
     words: tuple[tuple[str, str], ...] = ()
     #: why the bounds are what they are (shown in docs/sections/input_gate.md)
     basis: str = ""
+    #: who controls the value (:data:`OWNERS`): ``designer`` (the tensioner designer: space, parts, pin, housing,
+    #: bolt, materials) or ``specification`` (the belt-drive or engine specification: stiffness, torque and
+    #: damping targets, travels, safety-factor targets, the engine support); "" for application data
+    owner: str = ""
+    #: relaxation: +1 raising the value, -1 lowering it, relaxes the registry constraints ``relaxes`` (0: none)
+    relax: int = 0
+    relaxes: tuple[str, ...] = ()
+    #: a field that names a part or a class: the design-space ``(table, column)`` it selects
+    #: (:func:`synth.design.space.pinned_space`; ``synth design --fix/--free``)
+    pins: tuple[str, str] | tuple = ()
+    #: the usual range ``(lo, hi)`` of the value (:func:`plausibility`); () none
+    typical: tuple = ()
 
     def accepted(self) -> str:
         if self.choices:
@@ -252,6 +265,73 @@ FIELDS: tuple[Field, ...] = (
     _f("support_yield_strength_traction_mpa", "Support strengths", "MPa", required=False, lo=10.0, hi=5000,
        label="Support yield strength (traction)", basis="physical minimum, as in compression"),
 )
+
+#: who controls an input (:attr:`Field.owner`), in the words the outputs use
+OWNERS = {"designer": "the tensioner designer", "specification": "the belt-drive or engine specification"}
+
+_D, _S = "designer", "specification"
+_SPRING_CHECKS = ("spring_yield", "spring_fatigue", "spring_coil_gap", "spring_inner_contact")
+_BOLT_CHECKS = ("bolt_yield", "under_head", "thread", "pivot_base_pressure")
+#: the control attributes of the fields (:attr:`Field.owner`, ``relax``, ``relaxes``, ``pins``), declared here once
+#: (the diagnosis's relaxation candidates, the fix/free options and the "ask for" lines all read them from the
+#: fields); kept beside :data:`FIELDS` so that each entry reads as one line
+_CONTROL = {
+    # space, pin, bolt and housing: the tensioner designer's
+    "max_pivot_height_mm": dict(owner=_D, relax=+1, relaxes=(
+        "belt_plane", "bushing_length", "bushing_p", "bushing_pv", "bushing_pvt", "bushing_wear", "bushing_parallelism",
+        "spring_cavity", "spring_coil_gap")),
+    "max_axial_displacement_mm": dict(owner=_D, relax=+1, relaxes=("pulley_axial_space",)),
+    "lockup_pin_position_radius_mm": dict(owner=_D, relax=+1, relaxes=("pin_clearance",)),
+    "bolt_head_contact_external_diameter_mm": dict(owner=_D, relax=+1, relaxes=("under_head",)),
+    "number_of_active_threads": dict(owner=_D, relax=+1, relaxes=("thread",)),
+    # the parts and classes an input may name (the designer's choices; --fix/--free)
+    "pivot_class_diameter_mm": dict(owner=_D, pins=("core", "pivot_class_diameter_mm")),
+    "pivot_bushing_radial_thickness_mm": dict(owner=_D, pins=("core", "pivot_bushing_radial_thickness_mm")),
+    "main_spring_material": dict(owner=_D, pins=("spring", "main_spring_material")),
+    "main_spring_wire_section": dict(owner=_D, pins=("spring", "round_wire")),
+    "main_spring_wire_size_mm": dict(owner=_D, pins=("spring", "main_spring_wire")),
+    "main_spring_mean_body_diameter_mm": dict(owner=_D, pins=("spring", "main_spring_mean_body_diameter_mm")),
+    "bolt_format": dict(owner=_D, pins=("bolt", "bolt_format")),
+    "bolt_property_class": dict(owner=_D, pins=("bolt", "bolt_property_class")),
+    # the belt-drive specification (ask for), the engine's support and the safety-factor targets
+    "pulley_max_parallelism_eol_mm": dict(owner=_S, relax=+1, relaxes=("bushing_parallelism",)),
+    "damping_tolerance_nm": dict(owner=_S, relax=+1, relaxes=("damping_upper", "damping_lower", "cone_force_band")),
+    "damping_eol_limit_nm": dict(owner=_S, relax=-1, relaxes=("damping_eol",)),
+    "spring_torque_tolerance_pct": dict(owner=_S, relax=-1, relaxes=_SPRING_CHECKS),
+    "arm_travel_nominal_to_installation_deg": dict(owner=_S, relax=-1, relaxes=(
+        "spring_yield", "spring_coil_gap", "spring_inner_contact")),
+    "arm_travel_nominal_to_free_deg": dict(owner=_S, relax=-1, relaxes=("spring_coil_gap", "spring_outer_contact")),
+    "spring_stiffness_nm_per_deg": dict(owner=_S, relax=+1, relaxes=("spring_coil_gap",)),
+    "middle_plane_belt_height_mm": dict(owner=_S, relax=+1, relaxes=("spring_coil_gap", "spring_cavity")),
+    "tilting_safety_factor": dict(owner=_S, relax=-1, relaxes=_BOLT_CHECKS),
+    "sliding_safety_factor": dict(owner=_S, relax=-1, relaxes=_BOLT_CHECKS),
+    "engine_support_internal_diameter_mm": dict(owner=_S, relax=+1, relaxes=("pivot_bore",)),
+    "engine_support_external_diameter_mm": dict(owner=_S, relax=+1, relaxes=(
+        "pivot_base_pressure", "bolt_yield", "under_head", "thread")),
+}
+#: the usual range of a field (the thesis's case studies and input tables, Tables 9 and 13, and the generated
+#: applications' engineering ranges, each widened about x2 each way): a value outside it is accepted, but when a
+#: unit slip (:data:`UNIT_SLIPS`) brings it inside, the outputs say so (:func:`plausibility`)
+_TYPICAL = {
+    "pulley_diameter_mm": (40, 120), "working_arm_mm": (1.5, 10), "differential_angle_deg": (30, 150),
+    "wrap_angle_deg": (20, 220), "belt_width_mm": (10, 45), "middle_plane_belt_height_mm": (10, 60),
+    "lockup_pin_position_radius_mm": (10, 80), "max_pivot_height_mm": (15, 80),
+    "max_axial_displacement_mm": (15, 90), "pivot_class_diameter_mm": (12, 30),
+    "durability_theta_peak_to_peak_deg": (1, 40), "calculated_torque_target_nm": (0.5, 10),
+    "damping_target_nm": (0.1, 5), "spring_stiffness_nm_per_deg": (0.005, 0.1),
+    "arm_travel_nominal_to_installation_deg": (5, 90), "arm_travel_nominal_to_free_deg": (5, 90),
+    "main_spring_mean_body_diameter_mm": (20, 70), "engine_support_internal_diameter_mm": (5, 20),
+    "engine_support_external_diameter_mm": (15, 50), "bolt_head_contact_external_diameter_mm": (8, 30),
+    "support_yield_strength_compression_mpa": (100, 1500), "support_yield_strength_traction_mpa": (100, 1500),
+}
+#: unit -> (factor, the unit the value looks like it was given in): ``value x factor`` is the value in the field's
+#: unit had it been typed in the other one
+UNIT_SLIPS = {"mm": ((1000.0, "m"),), "deg": ((180.0 / math.pi, "rad"),), "Nm/deg": ((math.pi / 180.0, "Nm/rad"),),
+              "MPa": ((1000.0, "GPa"), (1e-6, "Pa")), "Nm": ((1e-3, "N mm"),)}
+FIELDS = tuple(dataclasses.replace(f, **_CONTROL.get(f.name, {}), typical=_TYPICAL.get(f.name, ()))
+               for f in FIELDS)
+#: the fields that name a part or a class (``synth design --fix/--free``), in the schema's order
+PART_FIELDS: tuple[str, ...] = tuple(f.name for f in FIELDS if f.pins)
 
 SECTIONS: tuple[str, ...] = tuple(dict.fromkeys(f.section for f in FIELDS))
 _BY_NAME = {f.name: f for f in FIELDS}
@@ -477,6 +557,29 @@ def validate(data: dict, partial: bool = False) -> "DesignInput":
     if problems:
         raise InputError(problems)
     return DesignInput(**out)
+
+
+def plausibility(d) -> list[str]:
+    """Warnings for values that look typed in another unit (rad for deg, Nm/rad for Nm/deg, m for mm, GPa or Pa
+    for MPa, N mm for Nm): outside the field's usual range, inside it once converted. Accepted, never refused.
+
+    >>> plausibility(validate({"spring_stiffness_nm_per_deg": 0.94, "differential_angle_deg": 1.5708}, partial=True))[0]
+    'differential_angle_deg = 1.571 deg is outside the usual 30-150 deg; as rad it would be 90 deg: check the unit'
+    """
+    out = []
+    for f in FIELDS:
+        v = getattr(d, f.name, None)
+        if not f.typical or isinstance(v, (bool, str, list)) or v is None:
+            continue
+        lo, hi = f.typical
+        if lo <= v <= hi:
+            continue
+        for factor, other in UNIT_SLIPS.get(f.unit, ()):
+            if lo <= v * factor <= hi:
+                out.append(f"{f.name} = {v:.4g} {f.unit} is outside the usual {lo:g}-{hi:g} {f.unit}; as {other} it "
+                           f"would be {v * factor:.4g} {f.unit}: check the unit")
+                break
+    return out
 
 
 def read_mapping(path: str | Path) -> dict:

@@ -108,10 +108,16 @@ def test_every_text_of_a_result_is_escaped_for_html():
     assert "<b>6006" not in out and "<i>binds" not in out
 
 
-def test_alternatives_say_they_are_not_computed_until_a_result_carries_them(designed):
-    assert "issue 23" in views.alternatives_html(designed.result)
-    r = Result("optimal", stats={"alternatives": [{"ball_bearing": "6006", "cost_eur": 3.5}]})
-    assert "<td>1</td><td>6006</td><td>3.5</td>" in views.alternatives_html(r)
+def test_alternatives_list_the_ranked_designs_a_result_carries(designed):
+    assert "No alternatives" in views.alternatives_html(Result("optimal"))
+    r = Result("optimal", alternatives=[
+        {"rank": 1, "objectives": {"standard": 2.0, "cost": 1.5723}, "margin": 0.0003, "binding": "coil gap",
+         "differs": {}},
+        {"rank": 2, "objectives": {"standard": 2.0, "cost": 1.5723}, "margin": 0.0109, "binding": "Goodman",
+         "differs": {"main_spring_mean_body_diameter_mm": [32.0, 36.0]}}])
+    html = views.alternatives_html(r)
+    assert "<td>1</td><td>non-standard parts 2 (weighted count), cost 1.572 EUR</td><td>+0.03 %</td>" in html
+    assert "main_spring_mean_body_diameter_mm 32 -&gt; 36" in html
 
 
 def test_the_scene_refuses_a_bad_input_and_a_busy_port_before_serving(tmp_path, capsys):

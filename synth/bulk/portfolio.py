@@ -217,15 +217,20 @@ def arrow_safe(df: pd.DataFrame) -> pd.DataFrame:
     return out
 
 
-def write_table(df: pd.DataFrame, path) -> Path:
+#: numbers in the CSV files synth writes: 6 significant figures (a margin to 1e-4 %, a stress to 0.01 MPa)
+CSV_FLOAT = "%.6g"
+
+
+def write_table(df: pd.DataFrame, path, *, float_format: str | None = None) -> Path:
     """Write ``df`` as CSV, Excel or Parquet by the extension of ``path`` (folders created), through the output
     gate (:func:`synth.io.outputs.output_file`: a temporary file renamed when complete; CSV text cells made
-    formula-safe by :func:`synth.io.outputs.csv_safe`)."""
+    formula-safe by :func:`synth.io.outputs.csv_safe`); ``float_format``: the numbers of a CSV (:data:`CSV_FLOAT`
+    for results; a portfolio of inputs keeps every digit)."""
     from synth.io.outputs import output_file, write_csv
     p = Path(path)
     fmt = _format(p, "output")
     if fmt == "csv":
-        return write_csv(df, p)
+        return write_csv(df, p, float_format=float_format)
     if fmt == "excel":  # text as text, significant figures, print setup (synth.excel.cells)
         from synth.excel.cells import write_frame
         write_frame(df, p, sheet="portfolio")

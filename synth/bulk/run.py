@@ -58,8 +58,8 @@ import pandas as pd
 
 from synth import __version__, catalog
 from synth.fingerprint import file_sha256
-from synth.bulk.portfolio import (arrow_safe, column_warnings, field_columns, plain_cell, read_portfolio, row_record,
-                                  validate_record, write_table)
+from synth.bulk.portfolio import (CSV_FLOAT, arrow_safe, column_warnings, field_columns, plain_cell, read_portfolio,
+                                  row_record, validate_record, write_table)
 from synth.errors import InputError, Problem
 from synth.io.outputs import output_file, write_text
 from synth.report.progress import Progress
@@ -527,7 +527,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
         result = None
         if complete:
             result = assemble(table, folder, len(ranges), run_id=run_id, ranges=ranges)
-            write_table(result, out)  # through the output gate: a temporary file renamed when complete
+            write_table(result, out, float_format=CSV_FLOAT)  # through the output gate: renamed when complete
         rows_done = sum(b - a for i, (a, b) in enumerate(ranges) if i in todo_set and _chunk_path(folder, i).is_file())
     finally:
         lock.release()

@@ -194,6 +194,8 @@ def write_summary(s: Summary, folder) -> list[Path]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from synth.bulk.portfolio import CSV_FLOAT
+    from synth.design.constraints import words
     from synth.io.outputs import output_folder, write_csv, write_figure, write_text
     d = output_folder(folder, "--summary")
     written = []
@@ -201,7 +203,7 @@ def write_summary(s: Summary, folder) -> list[Path]:
               "relaxed": s.relaxed}
     overall = pd.DataFrame([{"quantity": k, "value": v} for k, v in s.overall.items()])
     for name, df in {"overall": overall, **tables}.items():
-        written.append(write_csv(df, d / f"summary_{name}.csv", "--summary"))
+        written.append(write_csv(df, d / f"summary_{name}.csv", "--summary", float_format=CSV_FLOAT))
     md = ["## Portfolio summary", "", text(s).replace("\n", "  \n"), "", "### Overall", "", markdown_table(overall)]
     titles = {"by_group": "Feasible share by group", "parts": "Parts chosen (feasible applications)",
               "binding": "Binding constraints (feasible applications)",
@@ -218,7 +220,8 @@ def write_summary(s: Summary, folder) -> list[Path]:
     for name, df, title in (("binding.png", s.binding, "Binding constraint of feasible designs"),
                             ("violated.png", s.violated, "Violated constraints of infeasible applications")):
         if len(df):
-            plots.append((name, list(df["constraint"].head(15)), df["count"].head(15).to_numpy(), title, "applications"))
+            plots.append((name, [words(c, 48) for c in df["constraint"].head(15)], df["count"].head(15).to_numpy(),
+                          title, "applications"))
     for name, labels, values, title, xlabel in plots:
         fig, ax = plt.subplots(figsize=(7, 0.35 * len(labels) + 1.2), layout="constrained")
         _bar(ax, labels, values, title, xlabel)

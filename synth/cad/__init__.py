@@ -10,7 +10,21 @@ from __future__ import annotations
 
 from synth.cad.dimensions import TensionerGeometry, geometry_from
 
-__all__ = ["TensionerGeometry", "geometry_from", "export_result", "summary_lines"]
+__all__ = ["TensionerGeometry", "geometry_from", "export_result", "summary_lines", "require_cadquery"]
+
+#: what to install for the 3D model (the core install, ``pip install synth``, runs every other scene without it)
+CAD_EXTRA = 'pip install "synth[cad]"'
+
+
+def require_cadquery() -> None:
+    """Raise :class:`~synth.errors.InputError` (exit 2) naming what to install when CadQuery is not importable."""
+    from synth.errors import InputError, Problem
+    try:
+        import cadquery  # noqa: F401
+    except ImportError as exc:
+        raise InputError(Problem("cadquery", f"not installed ({exc})",
+                                 f"{CAD_EXTRA} for the 3D model (STEP, STL, pictures); every other scene runs "
+                                 "without it")) from None
 
 
 def export_result(result, out_dir, inputs=None, *, stl: bool = True, pictures: bool = True, interference: bool = True,
@@ -23,6 +37,7 @@ def export_result(result, out_dir, inputs=None, *, stl: bool = True, pictures: b
     """
     import time
 
+    require_cadquery()
     from synth.cad.assembly import build
     from synth.cad.export import export_model
     from synth.cad.verify import verify_model

@@ -18,8 +18,9 @@ The title is wrapped to the figure width, so it is never cut.
 >>> from synth.cad.dimensions import geometry_from, _example_values, _example_inputs
 >>> m = build(geometry_from(_example_values(), inputs=_example_inputs()))
 >>> ex = exploded_parts(m)
->>> round(ex["endcap"].BoundingBox().zmin - m.parts["endcap"].BoundingBox().zmin, 1)   # level 10 x 9 mm
-90.0
+>>> bb = {n: s.BoundingBox() for n, s in ex.items()}
+>>> round(bb["pulley"].zmin - bb["ball_bearing"].zmax, 1)   # each level one explode step (9 mm) clear of the last
+9.0
 >>> [(d.label, round(d.value_mm, 2)) for d in section_dimensions(m)][:3]
 [('pulley', 66.0), ('belt plane', 29.5), ('pivot height', 39.7)]
 """
@@ -43,12 +44,20 @@ EXPLODE_LEVEL = {"support_plate": 0, "pivot": 0, "spring_bushing": 1, "main_spri
                  "damper_pad": 4, "pivot_bushing": 5, "arm": 6, "ball_bearing": 7, "pulley": 8, "endcap_spacer": 9,
                  "endcap": 10}
 
+#: text sizes [pt] of the pictures as drawn: dimensions of the section, part labels of the exploded view. The report
+#: prints a picture alone across the page, at most synth.report.html.CAD_PRINT_MAX_HEIGHT_MM high: on A4 the text
+#: stays at 6 pt or more (tests/test_control.py computes it from these numbers)
+DIMENSION_PT = 8.0
+LABEL_PT = 9.0
+
 _HATCH = "////"
 _CUT_TOL_MM = 1e-3
 
 
 def exploded_parts(model: TensionerModel) -> dict:
-    """Parts pulled apart along the pivot axis by stack level (Fig. 75); the bolt lifted above everything.
+    """Parts pulled apart along the pivot axis by stack level (Fig. 75), each level clear of the one below by the
+    explode step (``cad_explode_step_mm``): no part hides inside another (the bearing inside the pulley, the
+    bushing inside the arm); the bolt lifted above everything.
 
     Standard layout: the spring side (support plate) stays, the rest rises; reverse layout: the spring side is on
     top, so the levels rise from the endcap (housing cover) downwards and the support plate end moves down.
@@ -56,17 +65,30 @@ def exploded_parts(model: TensionerModel) -> dict:
     import cadquery as cq
     step = catalog.constant("cad_explode_step_mm")
     sign = 1.0 if model.geometry.layout == "standard" else -1.0
-    out = {}
-    for n, s in model.parts.items():
+    levels: dict = {}
+    for n in model.parts:
         if n == "fixation_bolt":
             continue
         level = EXPLODE_LEVEL.get(n, 0)
         if model.geometry.layout == "reverse" and n in ("support_plate", "endcap"):
             level = 0 if n == "endcap" else 10
-        out[n] = s.translate(cq.Vector(0, 0, sign * level * step))
+        levels.setdefault(level, []).append(n)
+
+    def span(names):  # the parts' extent along the explode direction (sign * z)
+        boxes = [model.parts[n].BoundingBox() for n in names]
+        z = [v for b in boxes for v in (sign * b.zmin, sign * b.zmax)]
+        return min(z), max(z)
+    out, end = {}, None
+    for level in sorted(levels):
+        lo, hi = span(levels[level])
+        shift = 0.0 if end is None else max(0.0, end + step - lo)
+        for n in levels[level]:
+            out[n] = model.parts[n].translate(cq.Vector(0, 0, sign * shift))
+        end = hi + shift if end is None else max(end, hi + shift)
     if "fixation_bolt" in model.parts:
-        up = 12 * step if sign > 0 else 2 * step
-        out["fixation_bolt"] = model.parts["fixation_bolt"].translate(cq.Vector(0, 0, up))
+        lo, _ = span(["fixation_bolt"])
+        shift = max(0.0, (end if end is not None else lo) + step - lo)
+        out["fixation_bolt"] = model.parts["fixation_bolt"].translate(cq.Vector(0, 0, sign * shift))
     return out
 
 
@@ -299,7 +321,7 @@ def exploded_picture(model: TensionerModel, path: str | Path, *, title: str = ""
         y_prev = max(anchors[n][1], y_prev + spacing)
         text_y[n] = y_prev
     for n in order:
-        ax.annotate(_pretty(n), xy=anchors[n], xytext=(x_text, text_y[n]), fontsize=7, va="center", ha="left",
+        ax.annotate(_pretty(n), xy=anchors[n], xytext=(x_text, text_y[n]), fontsize=LABEL_PT, va="center", ha="left",
                     arrowprops=dict(arrowstyle="-", lw=0.5, color="0.3", shrinkA=2, shrinkB=0), zorder=5)
     top = max(text_y.values(), default=hi[1])
     if top > hi[1]:  # labels pushed above the parts: make room
@@ -315,7 +337,7 @@ def _dimension(ax, d: Dimension) -> None:
     for x, y in d.a, d.b:  # extension lines to the measured edge
         ax.plot([x, d.feature] if vertical else [x, x], [y, y] if vertical else [y, d.feature],
                 color="0.35", lw=0.35, zorder=5)
-    kw = dict(fontsize=6.5, zorder=7, color="0.1",
+    kw = dict(fontsize=DIMENSION_PT, zorder=7, color="0.1",
               bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.85))
     if vertical:
         ax.text(x0, 0.5 * (y0 + y1), d.text, rotation=90, ha="center", va="center", **kw)

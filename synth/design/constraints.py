@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Constraint", "REGISTRY", "GROUPS", "REQUIREMENTS", "margin", "normalised_margin", "by_group", "FEAS_TOL"]
+__all__ = ["words", "Constraint", "REGISTRY", "GROUPS", "REQUIREMENTS", "margin", "normalised_margin", "by_group", "FEAS_TOL"]
 
 #: a margin above ``-FEAS_TOL`` passes (round-off of equal values)
 FEAS_TOL = 1e-9
@@ -104,6 +104,19 @@ class Constraint:
         for n in self.needs:
             out += list(REQUIREMENTS[n][0]) if n in REQUIREMENTS else [n]
         return tuple(out)
+
+
+def words(cid: str, width: int | None = None) -> str:
+    """A constraint id in words (its label; ``width``: wrapped to lines of that many characters), for plots and
+    tables people read; an id not in the registry stays as it is.
+
+    >>> print(words("spring_yield", 40))
+    main spring stress at installation within
+    the permissible bending stress
+    """
+    import textwrap
+    text = REGISTRY[cid].label if cid in REGISTRY else str(cid)
+    return textwrap.fill(text, width) if width else text
 
 
 def margin(c: Constraint, value, limit, scale=None) -> np.ndarray:

@@ -40,6 +40,7 @@ from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin
 from synth.model import bolted_joint as s10, damping as s3, disc_spring as s8, friction_wear as s5
 from synth.model import layout as s0, packaging as s7, pivot as s2, plain_bushing as s4, stackup as s6
 from synth.model import torsion_spring as s9
+from synth.design.rules import active as active_rules
 
 __all__ = ["Settings", "SPRING_LIMIT_BASES", "SPRING_TOLERANCE_COLUMNS", "MADE_CONE_SPRING_COLUMNS", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
@@ -155,17 +156,21 @@ def finish(name: str, values: dict, apps, a) -> Group:
     """The registry margins of group ``name`` from its ``values`` for rows of applications ``a``.
 
     ``apps`` may be None (a group measured on a built model, the CAD checks): a constraint that needs an input
-    is then not verified where its limit is NaN.
+    is then not verified where its limit is NaN. The design rules in force (:func:`synth.design.rules.active`)
+    set the limits they name and the margins checks must keep: the margin is then the one beyond the rule's.
     """
     n = len(a)
     margins, state = {}, {}
     met = {}
+    rules = active_rules()
     for c in by_group(name):
+        if c.limit in rules.limits:  # a design rule sets this limit (synth.design.rules)
+            values[c.limit] = np.full(n, rules.limits[c.limit])
         lim = _CONSTANT_LIMITS[c.limit] if c.limit in _CONSTANT_LIMITS else values[c.limit]
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             scale = None if c.scale is None else (_CONSTANT_LIMITS[c.scale] if c.scale in _CONSTANT_LIMITS
                                                   else values[c.scale])
-            m = margin(c, values[c.value], lim, scale)
+            m = margin(c, values[c.value], lim, scale) - rules.required(c.id)  # the margin beyond the rule's
         m = np.broadcast_to(np.where(np.isnan(m), -np.inf, m), (n,))
         st = np.zeros(n, dtype=np.int8)
         if c.applies is not None:

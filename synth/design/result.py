@@ -38,6 +38,8 @@ EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 3}
 VERDICT_FILLS = {PASS: "C6EFCE", FAIL: "FFC7CE", NOT_VERIFIED: "FFD966", WARNING: "FFD8A8", NOT_APPLICABLE: "EDEDED"}
 
 
+#: significant figures of the numbers a result exports (JSON): 6, beyond what any input or catalog value carries
+EXPORT_DIGITS = 6
 
 
 @dataclass
@@ -56,6 +58,8 @@ class Check:
     verdict: str
     note: str = ""
     assumed: list = field(default_factory=list)
+    #: the margin a design rule requires of this check (``margin`` is then the margin beyond it)
+    required: float = 0.0
 
     @property
     def constraint(self):
@@ -69,13 +73,13 @@ class Check:
     def step(self) -> int:
         return self.constraint.step
 
-    def as_dict(self) -> dict:
+    def as_dict(self, digits: int | None = None) -> dict:
         c = self.constraint
         return {"id": self.id, "label": c.label, "step": c.step, "equation": c.equation, "unit": c.unit,
-                "sense": c.sense, "value": plain(self.value), "limit": plain(self.limit),
-                "margin": plain(self.margin), "verdict": self.verdict, "advisory": c.advisory,
+                "sense": c.sense, "value": plain(self.value, digits), "limit": plain(self.limit, digits),
+                "margin": plain(self.margin, digits), "verdict": self.verdict, "advisory": c.advisory,
                 "correction": c.correction if self.verdict == FAIL else "", "note": self.note,
-                "assumed": list(self.assumed)}
+                "assumed": list(self.assumed), "required_margin": self.required}
 
 
 @dataclass
@@ -104,6 +108,16 @@ class Result:
     curves: dict = field(default_factory=dict)
     #: production capability (synth.robust): tolerance model, per check P(violation), Ppk, worst case, RSS
     robust: dict = field(default_factory=dict)
+    #: the parts the input names that the design does not keep, one dict each (field, input, design, how, why:
+    #: :func:`synth.optimise.honour.changes_of`)
+    changes: list = field(default_factory=list)
+    #: which named parts were fixed, free, kept when possible and freed (:func:`synth.optimise.honour.solve_honouring`)
+    control: dict = field(default_factory=dict)
+    #: the K best designs in objective order, the first this one (``--top K``:
+    #: :func:`synth.optimise.alternatives.ranked`): rank, parts, objectives, margin, binding, verdict, differs
+    alternatives: list = field(default_factory=list)
+    #: the design rules the checks were made under (:mod:`synth.design.rules`; {} without rules)
+    rules: dict = field(default_factory=dict)
 
     # --- verdicts ------------------------------------------------------------------------------------------
     def failed(self) -> list:
@@ -160,6 +174,15 @@ class Result:
         rows = [c for c in self.checks if c.verdict in (PASS, FAIL) and c.constraint.objective]
         return sorted(rows, key=lambda c: c.margin)[:n]
 
+    #: what a synthesis adds to a verified design (kept when the design is verified again, e.g. for its curves)
+    SYNTHESIS_FIELDS = ("objective", "objectives", "stats", "diagnosis", "changes", "control", "alternatives")
+
+    def carry(self, other: "Result") -> "Result":
+        """This result with the synthesis fields (:attr:`SYNTHESIS_FIELDS`) of ``other``; returns self."""
+        for k in self.SYNTHESIS_FIELDS:
+            setattr(self, k, getattr(other, k))
+        return self
+
     # --- presentation ------------------------------------------------------------------------------------------
     def to_frame(self):
         """The checks as a pandas DataFrame, one row per registry constraint (index: the constraint id).
@@ -180,14 +203,19 @@ class Result:
         return digest_html(self)
 
     # --- serialisation ---------------------------------------------------------------------------------------
-    def to_dict(self) -> dict:
+    def to_dict(self, digits: int | None = EXPORT_DIGITS) -> dict:
+        """The result as JSON data: margins as fractions, numbers to ``digits`` significant figures (the parts,
+        inputs and settings exactly: a saved design is verified again from them)."""
+        n = digits
         return {
             "kind": "synth.result", "status": self.status, "verdict": self.verdict, "solver": self.solver,
-            "objective": self.objective, "parts": plain(self.parts), "values": plain(self.values),
-            "checks": [c.as_dict() for c in self.checks], "notes": list(self.notes),
-            "objectives": plain(self.objectives), "stats": plain(self.stats), "diagnosis": plain(self.diagnosis),
+            "objective": self.objective, "parts": plain(self.parts), "values": plain(self.values, n),
+            "checks": [c.as_dict(n) for c in self.checks], "notes": list(self.notes),
+            "objectives": plain(self.objectives, n), "stats": plain(self.stats, n), "diagnosis": plain(self.diagnosis, n),
             "inputs": plain(self.inputs), "settings": plain(self.settings), "steps_run": list(self.steps_run),
-            **({"robust": plain(self.robust)} if self.robust else {}),
+            **({"robust": plain(self.robust, n)} if self.robust else {}),
+            "changes": plain(self.changes), "control": plain(self.control), "alternatives": plain(self.alternatives, n),
+            "rules": plain(self.rules),
         }
 
     @classmethod
@@ -206,13 +234,15 @@ class Result:
                 raise InputError(Problem(f"{source}: checks[{i}].id", c.get("id") if isinstance(c, dict) else c,
                                          "a constraint id of synth's registry"))
             checks.append(Check(c["id"], c.get("value"), c.get("limit"), c.get("margin"), c.get("verdict", ""),
-                                c.get("note", ""), list(c.get("assumed") or [])))
+                                c.get("note", ""), list(c.get("assumed") or []), float(c.get("required_margin") or 0.0)))
         return cls(status=str(data.get("status", "verified")), solver=str(data.get("solver", "")),
                    objective=str(data.get("objective", "")), parts=dict(data["parts"]), values=dict(data["values"]),
                    checks=checks, notes=list(data.get("notes") or []), objectives=dict(data.get("objectives") or {}),
                    stats=dict(data.get("stats") or {}), diagnosis=data.get("diagnosis"),
                    inputs=data.get("inputs"), settings=dict(data.get("settings") or {}),
-                   steps_run=list(data.get("steps_run") or []),
+                   steps_run=list(data.get("steps_run") or []), changes=list(data.get("changes") or []),
+                   control=dict(data.get("control") or {}), alternatives=list(data.get("alternatives") or []),
+                   rules=dict(data.get("rules") or {}),
                    robust=dict(data["robust"]) if isinstance(data.get("robust"), dict) else {})
 
 
@@ -220,6 +250,7 @@ def checks_of(groups: dict, apps, row: int = 0) -> list:
     """The :class:`Check` records of one design: row ``row`` of each evaluated group (registry order)."""
     from synth.design.applications import DEFAULTS
     from synth.design import evaluate as E
+    from synth.design.rules import active as active_rules
     out = []
     for cid, c in REGISTRY.items():
         g = groups.get(c.group)
@@ -243,7 +274,7 @@ def checks_of(groups: dict, apps, row: int = 0) -> list:
         verdict = (PASS if m >= -FEAS_TOL else (WARNING if c.advisory else FAIL))
         assumed = [] if apps is None else [apps.assumed_note(x, a) for x in c.assumes
                                            if x in DEFAULTS and apps.assumed(x)[a]]
-        out.append(Check(cid, value, limit, m, verdict, assumed=assumed))
+        out.append(Check(cid, value, limit, m, verdict, assumed=assumed, required=active_rules().required(cid)))
     return out
 
 

@@ -55,7 +55,8 @@ from synth.errors import InputError, Problem
 from synth.model import packaging as s7, pivot as s2, torsion_spring as s9
 
 __all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "NONE", "CAPACITY", "Space", "space", "core_rows", "spring_window",
-           "table_sizes", "check_capacity"]
+           "table_sizes", "check_capacity", "fixed_fields", "space_for", "pinned_space", "pinned_diameter",
+           "design_inputs", "same_input"]
 
 SUBSYSTEMS = ("bushing", "axial", "spring", "bolt")
 TABLES = ("core",) + SUBSYSTEMS
@@ -85,6 +86,8 @@ class Space:
     tables: dict
     parts: P.Parts
     notes: list = field(default_factory=list)
+    #: the part-naming input fields this space keeps (:func:`pinned_space`): () for the whole catalog product
+    pinned: tuple = ()
 
     def n(self, table: str) -> int:
         return len(next(iter(self.tables[table].values())))
@@ -230,8 +233,8 @@ def selectable_bearings(p: P.Parts) -> np.ndarray:
     return np.flatnonzero(ok)
 
 
-def _core(p: P.Parts) -> dict:
-    classes = _pivot_classes(p)
+def _core(p: P.Parts, classes=None) -> dict:
+    classes = _pivot_classes(p) if classes is None else np.asarray(classes, dtype=float)
     bearings = selectable_bearings(p)
     b, c, s, dpad = (a.ravel() for a in np.meshgrid(bearings, np.arange(len(classes)),
                                                      np.arange(len(p.bushing)), np.arange(len(p.damper_pad) + 1) - 1,
@@ -348,9 +351,10 @@ def spring_attributes(p: P.Parts, material, wire, mbd_mm) -> dict:
     }
 
 
-def _spring(p: P.Parts) -> dict:
+def _spring(p: P.Parts, mbd=None) -> dict:
+    mbd = mbd_grid(p) if mbd is None else np.asarray(mbd, dtype=float)
     m, w, d = (a.ravel() for a in np.meshgrid(np.arange(len(p.spring_material)), np.arange(len(p.spring_wire)),
-                                              mbd_grid(p), indexing="ij"))
+                                              mbd, indexing="ij"))
     # a material pairs only with the wire sections it is supplied in (spring_materials.csv wire_sections)
     supplied = _supplied(p)[m, w]
     return spring_attributes(p, m[supplied], w[supplied], d[supplied])
@@ -436,19 +440,155 @@ def space() -> Space:
     return _space_cached(tuple(catalog._user_dirs()))
 
 
-def core_rows(sp: Space, d, *, pin_inputs: bool = False) -> np.ndarray:
-    """The core rows application ``d`` may use: only radial damping excludes pads; ``pin_inputs`` keeps the
-    pivot class, bushing thickness and (manual) parts the input names."""
+def core_rows(sp: Space, d, *, pin_inputs=False) -> np.ndarray:
+    """The core rows application ``d`` may use in space ``sp``: only radial damping excludes pads. The parts the
+    input names are kept by the space itself (:func:`space_for`); ``pin_inputs`` is accepted for the callers that
+    pass it with a space of their own."""
     t = sp.tables["core"]
     ok = np.ones(sp.n("core"), dtype=bool)
     if d.damping_typology == "only_radial":
         ok &= ~t["axial_group_present"]
-    if pin_inputs:
-        if d.pivot_class_diameter_mm is not None:
-            ok &= np.isclose(t["pivot_class_diameter_mm"], float(d.pivot_class_diameter_mm))
-        if d.pivot_bushing_radial_thickness_mm is not None:
-            ok &= np.isclose(t["pivot_bushing_radial_thickness_mm"], float(d.pivot_bushing_radial_thickness_mm))
     return np.flatnonzero(ok)
+
+
+def fixed_fields(d, pin_inputs=False) -> tuple[str, ...]:
+    """The part-naming input fields (:data:`synth.schema.PART_FIELDS`) of ``d`` that the design must keep:
+    ``pin_inputs`` True keeps every one the input gives, False none, a collection of field names those (each must
+    be given: a field to keep needs its value).
+
+    >>> from synth.data import case_path
+    >>> from synth.schema import load_input
+    >>> d = load_input(case_path("case3"))
+    >>> fixed_fields(d, True), fixed_fields(d, ["pivot_class_diameter_mm"])
+    (('pivot_class_diameter_mm', 'pivot_bushing_radial_thickness_mm'), ('pivot_class_diameter_mm',))
+    """
+    from synth.schema import PART_FIELDS
+    if pin_inputs is True:
+        return tuple(n for n in PART_FIELDS if getattr(d, n) is not None)
+    if not pin_inputs:
+        return ()
+    names = tuple(dict.fromkeys(pin_inputs))
+    bad = [n for n in names if n not in PART_FIELDS]
+    if bad:
+        raise InputError(Problem("--fix", bad[0], "a field that names a part or a class: " + ", ".join(PART_FIELDS)))
+    missing = [n for n in names if getattr(d, n) is None]
+    if missing:
+        raise InputError(Problem("--fix", missing[0], "a field the input gives a value to (nothing to keep)"))
+    return tuple(n for n in PART_FIELDS if n in names)
+
+
+def space_for(d, pin_inputs=False) -> Space:
+    """The design space of input ``d`` with the parts it names kept (:func:`fixed_fields`; the whole
+    :func:`space` when none is)."""
+    fixed = fixed_fields(d, pin_inputs)
+    return pinned_space(space(), {n: getattr(d, n) for n in fixed}) if fixed else space()
+
+
+def _wire_rows(p: P.Parts, pins: dict) -> np.ndarray:
+    """The ``spring_wires.csv`` rows a wire section and size select (a size names one wire; an unknown size lists
+    the catalog's)."""
+    w = p.spring_wire
+    section = pins.get("main_spring_wire_section")
+    size = pins.get("main_spring_wire_size_mm")
+    ok = np.ones(len(w), dtype=bool)
+    if section is not None:
+        ok &= w.section == section
+    if size is not None:
+        sec = section or ("round" if len(size) == 1 else "rectangular")
+        b, h = (size[0], size[0]) if len(size) == 1 else (size[0], size[1])
+        hit = ok & (w.section == sec) & np.isclose(w.b_mm, b) & np.isclose(w.h_mm, h)
+        if not hit.any():
+            sizes = ", ".join(f"[{bb:g}]" if s == "round" else f"[{bb:g}, {hh:g}]"
+                              for bb, hh, s in zip(w.b_mm, w.h_mm, w.section) if s == sec)
+            raise InputError(Problem("main_spring_wire_size_mm", size,
+                                     f"a {sec} wire of catalogs/spring_wires.csv: {sizes}"))
+        ok = hit
+    return np.flatnonzero(ok)
+
+
+def pinned_space(sp: Space, pins: dict) -> Space:
+    """``sp`` restricted to the parts ``pins`` (part-naming field -> input value) name: the pivot class (any
+    value, not only the searched grid), the bushing suppliers of a radial thickness, the spring's material, wire
+    section and size, mean body diameter (any value), the bolt's format and property class.
+
+    Every solver reads its catalog product from the space it is given (:func:`space_for`), so one restriction
+    keeps the inputs' parts for all of them, the diagnosis and its relaxation probes included.
+    """
+    p = sp.parts
+    tables = dict(sp.tables)
+    if "pivot_class_diameter_mm" in pins:
+        tables["core"] = _core(p, [float(pins["pivot_class_diameter_mm"])])
+    if "main_spring_mean_body_diameter_mm" in pins:
+        tables["spring"] = _spring(p, [float(pins["main_spring_mean_body_diameter_mm"])])
+    masks = {t: np.ones(len(next(iter(tables[t].values()))), dtype=bool) for t in tables}
+    if "pivot_bushing_radial_thickness_mm" in pins:
+        masks["core"] &= np.isclose(tables["core"]["pivot_bushing_radial_thickness_mm"],
+                                    float(pins["pivot_bushing_radial_thickness_mm"]))
+    if "main_spring_material" in pins:
+        masks["spring"] &= tables["spring"]["main_spring_material"] == str(pins["main_spring_material"])
+    if "main_spring_wire_section" in pins or "main_spring_wire_size_mm" in pins:
+        masks["spring"] &= np.isin(tables["spring"]["wire_code"], _wire_rows(p, pins))
+    for name in ("bolt_format", "bolt_property_class"):
+        if name in pins:
+            masks["bolt"] &= tables["bolt"][name] == str(pins[name])
+    out = {t: ({k: v[masks[t]] for k, v in tables[t].items()} if not masks[t].all() else tables[t]) for t in tables}
+    empty = [t for t in out if not len(next(iter(out[t].values())))]
+    if empty:
+        names = [n for n in pins if _field_table(n) in empty]
+        raise InputError(Problem(names[0] if names else "parts", ", ".join(f"{n} {pins[n]}" for n in names),
+                                 f"parts the catalogs hold together ({empty[0]}: no catalog row has all of them); "
+                                 "free one of them (synth design --free FIELD)"))
+    return Space(out, p, list(sp.notes) + [f"inputs kept: {', '.join(pins)}"], pinned=tuple(pins))
+
+
+def design_inputs(parts: dict) -> dict:
+    """The part-naming input fields (:data:`synth.schema.PART_FIELDS`) as design ``parts`` has them, in the input
+    file's vocabulary (a wire section as ``round``, a wire size as ``[d]`` or ``[b, h]``, the bushing's radial
+    thickness), for comparing a design with the input that asked for it.
+
+    >>> v = design_inputs({"ball_bearing": "6006", "pivot_class_diameter_mm": 16, "pivot_bushing_supplier": "B",
+    ...     "damper_pad_class": "none", "pivot_bushing_length_mm": 15, "endcap_spacer_class": "none",
+    ...     "cone_spring_aspect_ratio": 0, "cone_spring_deflection_ratio": 0, "cone_spring_external_diameter_mm": 0,
+    ...     "main_spring_material": "VDSiCr", "main_spring_wire": "R3.00", "main_spring_mean_body_diameter_mm": 44,
+    ...     "bolt_format": "M8x1.25", "bolt_property_class": "8.8"})
+    >>> v["main_spring_wire_section"], v["main_spring_wire_size_mm"], v["pivot_class_diameter_mm"]
+    ('round', [3.0], 16.0)
+    """
+    from synth.schema import PART_FIELDS, field_by_name
+    attrs = space().design_attributes(parts)
+    out = {}
+    for name in PART_FIELDS:
+        table, column = field_by_name(name).pins
+        a = attrs[table]
+        if column == "round_wire":
+            out[name] = "round" if bool(a["round_wire"][0]) else "rectangular"
+        elif column == "main_spring_wire":
+            out[name] = [float(a["b_mm"][0])] if bool(a["round_wire"][0]) else [float(a["b_mm"][0]), float(a["h_mm"][0])]
+        else:
+            v = a[column][0]
+            out[name] = float(v) if isinstance(v, (float, np.floating, int, np.integer)) else str(v)
+    return out
+
+
+def same_input(given, designed) -> bool:
+    """Whether an input value and the design's (:func:`design_inputs`) name the same part (numbers to 1e-9)."""
+    if isinstance(given, (list, tuple)):
+        return isinstance(designed, (list, tuple)) and len(given) == len(designed) and \
+            all(abs(float(a) - float(b)) <= 1e-9 * max(1.0, abs(float(a))) for a, b in zip(given, designed))
+    if isinstance(given, (int, float)) and not isinstance(given, bool):
+        return isinstance(designed, (int, float)) and abs(float(given) - float(designed)) <= 1e-9 * max(1.0, abs(given))
+    return str(given).strip() == str(designed).strip()
+
+
+def _field_table(name: str) -> str:
+    from synth.schema import field_by_name
+    return field_by_name(name).pins[0]
+
+
+def pinned_diameter(sp: Space) -> bool:
+    """Whether ``sp`` keeps a mean body diameter the input names: its springs are then searched whatever the
+    housing (the spring checks say where it does not fit), not only within :func:`spring_window`."""
+    return "main_spring_mean_body_diameter_mm" in sp.pinned
 
 
 def spring_window(housing_inner_mm, housing_outer_mm):

@@ -148,9 +148,12 @@ def verify(d, parts: dict, settings: E.Settings = E.Settings(), *, status: str =
     attrs = space().design_attributes(parts)
     groups = evaluate_design(apps, attrs, settings, detail=detail, time_points=time_points)
     values = values_of(groups, attrs)
+    from synth.design.rules import echo
+    from synth.schema import plausibility
+    notes = [n for n in plausibility(d) if n not in (notes or [])] + list(notes or [])
     res = Result(status=status, solver=solver, parts=parts_of_attributes(attrs, groups),
-                 values=values, checks=checks_of(groups, apps), notes=list(notes or []), inputs=inputs_of(d),
-                 settings=dataclasses.asdict(settings))
+                 values=values, checks=checks_of(groups, apps), notes=notes, inputs=inputs_of(d),
+                 settings=dataclasses.asdict(settings), rules=echo())
     if time_points and "_history" in groups["axial"].values:
         res.curves["plastic_wear"] = {k: np.asarray(v).reshape(-1).tolist()
                                       for k, v in groups["axial"].values["_history"].items()}

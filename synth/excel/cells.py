@@ -140,7 +140,9 @@ def page_setup(ws, title: str, *, header_rows: str | None = None, subtitle: str 
     ws.sheet_properties.pageSetUpPr.fitToPage = True
     ws.print_options.gridLines = True
     ws.page_margins.left = ws.page_margins.right = 0.4
-    ws.page_margins.top = ws.page_margins.bottom = 0.6
+    # the header and footer (0.3 in from the paper's edge, one 8-9 pt line: about 0.45 in) clear of the table
+    ws.page_margins.top = ws.page_margins.bottom = 0.75
+    ws.page_margins.header = ws.page_margins.footer = 0.3
     if header_rows:
         ws.print_title_rows = header_rows
     for hf in (ws.oddHeader, ws.evenHeader, ws.firstHeader):

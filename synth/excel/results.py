@@ -104,14 +104,17 @@ def _verdict_colours(ws, cells: str, ref: str, *, contains: bool = False) -> Non
 
 
 def _output_sheet(ws, result) -> None:
+    from synth.report.advice import correction, rule_lines
     _title(ws, "Output table (thesis Tables 10/14)", result.verdict)
+    rules = rule_lines(result)
+    put(ws, 3, 1, "; ".join(x.strip() for x in rules) if rules else "design rules: none given (the catalogs' limits)")
     _header(ws, 4, ["Section", "Parameter", "Unit", "Value", "Verdict", "Suggested correction"], [24, 36, 8, 14, 13, 70])
     r = 5
     for section, label, key, unit in ROWS:
         v = result.get(key)
         verdict = row_verdict(result, key)
-        corr = "; ".join(c.constraint.correction for c in result.failed()
-                         if key in (c.constraint.value, c.constraint.limit) and c.constraint.correction)
+        corr = "; ".join(dict.fromkeys(correction(result, c) for c in result.failed()
+                                       if key in (c.constraint.value, c.constraint.limit) and correction(result, c)))
         for j, val in enumerate([section, label, unit, _cell_value(v), verdict or "", corr or None], start=1):
             put(ws, r, j, val)
         r += 1
@@ -122,6 +125,7 @@ def _output_sheet(ws, result) -> None:
 
 def _checks_sheet(ws, result) -> None:
     from synth.flowchart import STEP_NAMES
+    from synth.report.advice import correction
     _title(ws, "Checks (every verdict with its margin)", result.verdict)
     _header(ws, 4, ["Step", "Step name", "Check", "Value", "Relation", "Limit", "Unit", "Margin [%]", "Verdict",
                     "Equation", "Suggested correction", "Note"], [6, 20, 40, 11, 8, 11, 8, 10, 12, 13, 50, 40])
@@ -133,7 +137,7 @@ def _checks_sheet(ws, result) -> None:
         note = "; ".join([c.note] + c.assumed).strip("; ") if (c.note or c.assumed) else None
         row = [con.step, STEP_NAMES.get(con.step, ""), con.label, _cell_value(c.value),
                con.sense if c.value is not None else None, _cell_value(c.limit), con.unit, margin, c.verdict,
-               con.equation, con.correction if c.verdict == FAIL else None, note]
+               con.equation, correction(result, c) if c.verdict == FAIL else None, note]
         for j, val in enumerate(row, start=1):
             put(ws, r, j, val)
     last = max(r, 5)

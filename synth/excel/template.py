@@ -147,16 +147,43 @@ def _fill(key):
     return PatternFill("solid", start_color=FILLS[key], end_color=FILLS[key])
 
 
+def fixed_sets() -> dict[str, list]:
+    """Every field with a fixed set of values, and the values: the choices, the catalog keys, the supplier
+    thicknesses of the pivot bushing (``pivot_bushings.csv``) and the wire sizes of ``spring_wires.csv``.
+
+    >>> s = fixed_sets()
+    >>> s["pivot_bushing_radial_thickness_mm"], "2.3" in s["main_spring_wire_size_mm"], s["bolt_mode"]
+    ([0.5, 1.0], True, ['automatic', 'manual'])
+    """
+    out: dict[str, list] = {}
+    for f in schema.FIELDS:
+        if f.choices:
+            out[f.name] = list(f.choices)
+        elif f.catalog:
+            out[f.name] = [str(k) for k in catalog.keys(f.catalog)]
+    out["pivot_bushing_radial_thickness_mm"] = sorted({float(t) for t in catalog.load("pivot_bushings")["radial_thickness_mm"]})
+    wires = catalog.load("spring_wires")
+    size = schema.field_by_name("main_spring_wire_size_mm")
+    out["main_spring_wire_size_mm"] = [format_cell_value(size, [b] if sec == "round" else [b, h])
+                                       for sec, b, h in zip(wires["section"], wires["b_mm"], wires["h_mm"])]
+    return out
+
+
+def comment_text(f: Field) -> str:
+    """The cell comment of a field: what it means, its unit and what is accepted (and why, where the schema
+    says)."""
+    unit = f" [{f.unit}]" if f.unit not in ("-", "") else ""
+    text = f"{f.label or f.name}{unit}. {'Required' if f.required else 'Optional'}; accepted: {f.accepted()}."
+    if f.basis:
+        text += f" Bounds: {f.basis}."
+    return text[:1000]
+
+
 def _list_ranges(wb) -> dict[str, str]:
     """Write the drop-down lists to the hidden ``Lists`` sheet; return ``{name: range formula}``."""
     from openpyxl.utils import get_column_letter
     ws = wb.create_sheet(LIST_SHEET)
-    lists: dict[str, list[str]] = {"standard/custom": ["standard", "custom"]}
-    for f in schema.FIELDS:
-        if f.choices:
-            lists[f.name] = list(f.choices)
-        elif f.catalog:
-            lists[f.name] = [str(k) for k in catalog.keys(f.catalog)]
+    lists: dict[str, list] = {"standard/custom": ["standard", "custom"], **fixed_sets()}
     out = {}
     for j, (name, items) in enumerate(lists.items(), start=1):
         letter = get_column_letter(j)
@@ -196,6 +223,7 @@ def build_workbook(values: dict | None = None, *, title: str = "synth design inp
     for each field).
     """
     from openpyxl import Workbook
+    from openpyxl.comments import Comment
     from openpyxl.styles import Alignment, Font
     from openpyxl.worksheet.datavalidation import DataValidation
 
@@ -209,8 +237,10 @@ def build_workbook(values: dict | None = None, *, title: str = "synth design inp
     put(ws, 1, 1, title + " (thesis Fig. 22-23)").font = Font(bold=True, size=14, color="FFFFFF")
     for c in COLUMNS:
         ws[f"{c.letter}1"].fill = _fill("title")
-    put(ws, 2, 1, "Fill column E (values) and the drop-downs of column D; leave optional cells empty when unknown. "
-        "Run: synth flowchart THIS.xlsx   or   synth report THIS.xlsx --out DIR").alignment = Alignment(wrap_text=False)
+    put(ws, 2, 1, "Fill column E (values) and the drop-downs of column D; leave optional cells empty when unknown "
+        "(each value cell's comment says what it means, its unit and range). Run: synth design THIS.xlsx (the best "
+        "catalog design)   or   synth report THIS.xlsx --out DIR   or   synth flowchart THIS.xlsx (the thesis "
+        "procedure)").alignment = Alignment(wrap_text=False)
     header_row = 4
     for c in COLUMNS:
         cell = put(ws, header_row, ord(c.letter) - 64, c.header)
@@ -259,7 +289,7 @@ def build_workbook(values: dict | None = None, *, title: str = "synth design inp
                     sel.fill = _fill("info")
                     sel.font = Font(italic=True, color="595959")
                 put(ws, val.row, val.column, format_cell_value(f, value), number_format="General")  # as typed
-                if f.catalog:
+                if f.catalog or f.name in lists:
                     val.fill = _fill("selector")
                     list_dv(f.name).add(val.coordinate)
                 else:
@@ -269,6 +299,9 @@ def build_workbook(values: dict | None = None, *, title: str = "synth design inp
                         dv.add(val.coordinate)
                         ws.add_data_validation(dv)
             cells[f.name] = f"{value_column(f)}{row}"
+            note = Comment(comment_text(f), "synth")
+            note.width, note.height = 320, 140
+            ws[cells[f.name]].comment = note
             row += 1
     # colour legend (Fig. 24), right of the table
     ws.column_dimensions["J"].width = 4

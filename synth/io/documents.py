@@ -67,7 +67,31 @@ def read_design_mapping(path, what: str = "input file") -> dict:
         if not isinstance(data, dict):
             raise InputError(Problem(f"inputs ({Path(path).name})", type(data).__name__,
                                      "a mapping of field names to values"))
-    return dict(data)
+    return {k: v for k, v in data.items() if k != "rules"}  # a flat file's design rules (synth.design.rules)
+
+
+def read_rules_mapping(path, what: str = "--rules", *, section_only: bool = False):
+    """The design-rules mapping of file ``path`` (:mod:`synth.design.rules`): a design input's (or a saved
+    result's) ``rules:`` section, or a rules file's mapping (at the top, or under ``rules:``); None when a design
+    input has none (``section_only``: the ``rules:`` section or None). A workbook has none."""
+    suffix = suffix_of(path)
+    if suffix in WORKBOOK_SUFFIXES:
+        return None
+    accepted = "a YAML, TOML or JSON file of design rules (or a design input with a rules: section)"
+    if section_only:  # a design input: its own reader reports what is wrong with it, the rules reader nothing
+        try:
+            data = read_document(path, what, accepted=accepted)
+        except InputError:
+            return None
+        return data.get("rules") or None if isinstance(data, dict) else None
+    data = read_document(path, what, accepted=accepted)
+    if not isinstance(data, dict):
+        raise InputError(Problem(what, str(path), accepted))
+    if "rules" in data:
+        return data["rules"] or None
+    if section_only or "inputs" in data or any(k in data for k in ("application_type", "pulley_diameter_mm")):
+        return None  # a design input without rules
+    return data
 
 
 def read_rows(path, what: str) -> list[dict]:

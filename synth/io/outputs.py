@@ -176,10 +176,11 @@ def write_figure(fig, path, what: str = "--out", **savefig) -> Path:
     return p
 
 
-def write_csv(df, path, what: str = "--out") -> Path:
-    """Write table ``df`` as CSV (no index) through :func:`output_file`, its text cells :func:`csv_safe`."""
+def write_csv(df, path, what: str = "--out", *, float_format: str | None = None) -> Path:
+    """Write table ``df`` as CSV (no index) through :func:`output_file`, its text cells :func:`csv_safe`;
+    ``float_format`` as pandas takes it (None: every digit)."""
     with output_file(path, what) as tmp:
-        csv_safe(df).to_csv(tmp, index=False)
+        csv_safe(df).to_csv(tmp, index=False, float_format=float_format)
     return Path(path)
 
 
@@ -214,30 +215,38 @@ def csv_safe(df):
 
 
 # ---------------------------------------------------------------- JSON
-def plain(v):
-    """JSON-friendly data: numpy to Python; NaN and infinities to None; subnormal numbers to 0.0.
+def plain(v, digits: int | None = None):
+    """JSON-friendly data: numpy to Python; NaN and infinities to None; subnormal numbers to 0.0; ``digits``: floats
+    to that many significant figures.
 
     A subnormal (below 2.2e-308 in magnitude) is no physical value; it would print as ``5e-324`` and read back
     as zero on some platforms.
+
+    >>> import numpy as np
+    >>> plain({"a": np.float64(0.123456789), "b": [np.inf, 2, 5e-324]}, digits=6)
+    {'a': 0.123457, 'b': [None, 2, 0.0]}
     """
     if hasattr(v, "tolist") and not isinstance(v, (str, bytes)):
         v = v.tolist()
     if isinstance(v, (list, tuple)):
-        return [plain(x) for x in v]
+        return [plain(x, digits) for x in v]
     if isinstance(v, dict):
-        return {str(k): plain(x) for k, x in v.items()}
+        return {str(k): plain(x, digits) for k, x in v.items()}
     if isinstance(v, float):
         if not math.isfinite(v):
             return None
         if v != 0.0 and abs(v) < sys.float_info.min:
             return 0.0
+        if digits:
+            return float(f"{v:.{digits}g}")
     return v
 
 
-def json_text(data, *, indent: int | None = None) -> str:
-    """``data`` as JSON text that every parser reads (:func:`plain` first; ``allow_nan=False`` guards it)."""
+def json_text(data, *, indent: int | None = None, digits: int | None = None) -> str:
+    """``data`` as JSON text that every parser reads (:func:`plain` first, floats to ``digits`` significant figures
+    when given; ``allow_nan=False`` guards it)."""
     import json
-    return json.dumps(plain(data), indent=indent, allow_nan=False, default=str)
+    return json.dumps(plain(data, digits), indent=indent, allow_nan=False, default=str)
 
 
 # ---------------------------------------------------------------- STEP

@@ -60,7 +60,7 @@ import numpy as np
 from synth.design import evaluate as E
 from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, REGISTRY, margin as registry_margin
-from synth.design.space import SUBSYSTEMS, core_rows, space, spring_window
+from synth.design.space import SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, space, space_for, spring_window
 from synth.optimise.evaluate import DURABILITY_NOTE, core_scores, option_scores
 
 __all__ = ["Batch", "wsum", "SLACK", "any_feasible", "robust"]
@@ -150,6 +150,19 @@ def _rounds(pos, seg_end, block: int, may, still=None):
             yield take
 
 
+def _space_of(inputs: list, pin_inputs):
+    """The one design space of a batch: the whole catalog product, or the one keeping the parts the inputs name
+    (``pin_inputs``), which must then be the same parts for every input (a relaxation's probes change other
+    inputs)."""
+    if not pin_inputs or not inputs:
+        return space()
+    first = [(n, getattr(inputs[0], n)) for n in fixed_fields(inputs[0], pin_inputs)]
+    for d in inputs[1:]:
+        if [(n, getattr(d, n)) for n in fixed_fields(d, pin_inputs)] != first:
+            raise ValueError("a batch keeps one set of input parts: every input must name the same ones")
+    return space_for(inputs[0], pin_inputs)
+
+
 class Batch:
     """N applications and their decomposed design space on the applications axis (see the module docstring).
 
@@ -159,13 +172,16 @@ class Batch:
 
     def __init__(self, inputs, settings: E.Settings = E.Settings(), *, pin_inputs: bool = False,
                  spring_engine: str = "numba", apps: Applications | None = None):
+        from synth.design.rules import active
         self.inputs = list(inputs)
         self.settings = settings
-        self.engine = spring_engine
-        self.sp = sp = space()
+        # the compiled spring kernels hold the catalog's limits and no required margin: under design rules the
+        # springs go through their numpy twins, the registry's own finish (synth.design.rules)
+        self.engine = "numpy" if not active().empty() else spring_engine
+        self.sp = sp = _space_of(self.inputs, pin_inputs)
         self.apps = apps if apps is not None else Applications.of(self.inputs)
         n = len(self.inputs)
-        per = [core_rows(sp, d, pin_inputs=pin_inputs) for d in self.inputs]
+        per = [core_rows(sp, d) for d in self.inputs]
         counts = np.array([len(c) for c in per], dtype=np.int64)
         self.ptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
         self.A = np.repeat(np.arange(n, dtype=np.int64), counts)
@@ -328,7 +344,7 @@ class Batch:
                 st = self.ptr[:-1][has]
                 lo[has], hi[has] = spring_window(np.minimum.reduceat(inner, st), np.maximum.reduceat(outer, st))
             first, inv = _unique_rows(lo, hi)
-            lists = [np.flatnonzero((mbd >= lo[i]) & (mbd <= hi[i])) for i in first]
+            lists = [np.flatnonzero((mbd >= lo[i]) & (mbd <= hi[i]) | pinned_diameter(sp)) for i in first]
             self._spring_range = (inv, lists)
         return self._spring_range
 

@@ -22,6 +22,7 @@
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import time
 
 import numpy as np
@@ -30,33 +31,14 @@ from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS
 from synth.errors import InputError
 from synth.optimise.evaluate import evaluate
-from synth.schema import field_by_name
+from synth.schema import FIELDS, field_by_name
 
 __all__ = ["RELAXABLE", "nearest_design", "is_feasible", "relaxations", "relaxations_batch", "probe_batch",
            "diagnose", "layout_switch", "reference_probe", "violated_of"]
 
-#: input field -> (direction: +1 raise / -1 lower, the constraints it relaxes, a specification value?)
-RELAXABLE = {
-    "max_pivot_height_mm": (+1, ("belt_plane", "bushing_length", "bushing_p", "bushing_pv", "bushing_pvt",
-                                 "bushing_wear", "bushing_parallelism", "spring_cavity", "spring_coil_gap"), False),
-    "max_axial_displacement_mm": (+1, ("pulley_axial_space",), False),
-    "pulley_max_parallelism_eol_mm": (+1, ("bushing_parallelism",), True),
-    "damping_tolerance_nm": (+1, ("damping_upper", "damping_lower", "cone_force_band"), True),
-    "damping_eol_limit_nm": (-1, ("damping_eol",), True),
-    "spring_torque_tolerance_pct": (-1, ("spring_yield", "spring_fatigue", "spring_coil_gap",
-                                         "spring_inner_contact"), True),
-    "arm_travel_nominal_to_installation_deg": (-1, ("spring_yield", "spring_coil_gap", "spring_inner_contact"), False),
-    "arm_travel_nominal_to_free_deg": (-1, ("spring_coil_gap", "spring_outer_contact"), False),
-    "tilting_safety_factor": (-1, ("bolt_yield", "under_head", "thread", "pivot_base_pressure"), True),
-    "sliding_safety_factor": (-1, ("bolt_yield", "under_head", "thread", "pivot_base_pressure"), True),
-    "bolt_head_contact_external_diameter_mm": (+1, ("under_head",), False),
-    "number_of_active_threads": (+1, ("thread",), False),
-    "engine_support_internal_diameter_mm": (+1, ("pivot_bore",), False),
-    "engine_support_external_diameter_mm": (+1, ("pivot_base_pressure", "bolt_yield", "under_head", "thread"), False),
-    "lockup_pin_position_radius_mm": (+1, ("pin_clearance",), False),
-    "middle_plane_belt_height_mm": (+1, ("spring_coil_gap", "spring_cavity"), False),
-    "spring_stiffness_nm_per_deg": (+1, ("spring_coil_gap",), True),
-}
+#: input field -> (direction: +1 raise / -1 lower, the constraints it relaxes, a specification value?), derived from
+#: the fields' own declaration (:attr:`synth.schema.Field.relax`, ``relaxes``, ``owner``)
+RELAXABLE = {f.name: (f.relax, f.relaxes, f.owner == "specification") for f in FIELDS if f.relax}
 
 
 def is_feasible(d, settings: Settings = Settings(), *, pin_inputs: bool = False) -> bool:
@@ -141,63 +123,55 @@ def _candidates(d, violated) -> dict:
             if getattr(d, n, None) is not None and set(rel) & set(violated)}
 
 
-def _single(d, name, good, violated) -> dict:
-    cur = getattr(d, name)
-    return {"inputs": {name: {"from": cur, "to": round(float(good), 4)}},
-            "relative_change": round(abs(good - cur) / max(abs(cur), 1e-9), 4),
-            "specification": RELAXABLE[name][2],
-            "relaxes": sorted(set(RELAXABLE[name][1]) & set(violated))}
-
-
-def _joint(d, cands, far, good, violated) -> dict:
-    at = {n: getattr(d, n) + good * (far[n] - getattr(d, n)) for n in cands}
-    return {"inputs": {n: {"from": getattr(d, n), "to": round(float(v), 4)} for n, v in at.items()},
-            "relative_change": round(good, 4),
-            "specification": any(RELAXABLE[n][2] for n in cands), "relaxes": sorted(set(violated))}
+def _entry(d, names, far: dict, lam: float, violated) -> dict:
+    """One relaxation: the inputs ``names`` moved by the fraction ``lam`` of the way to ``far``, each with its unit
+    and who controls it; ``relative_change`` is the largest relative change of its inputs."""
+    out, rel = {}, 0.0
+    for n in names:
+        cur = getattr(d, n)
+        to = round(float(cur + lam * (far[n] - cur)), 4)
+        f = field_by_name(n)
+        out[n] = {"from": cur, "to": to, "unit": f.unit if f.unit != "-" else "", "owner": f.owner}
+        rel = max(rel, abs(to - cur) / max(abs(cur), 1e-9))
+    spec = any(RELAXABLE[n][2] for n in names)
+    return {"inputs": out, "relative_change": round(rel, 4), "specification": spec,
+            "owner": "specification" if spec else "designer",
+            "relaxes": sorted(set().union(*(RELAXABLE[n][1] for n in names)) & set(violated))}
 
 
 def _order(out: list) -> list:
-    return sorted(out, key=lambda r: (r["specification"], r["relative_change"]))
+    """What the tensioner designer controls first, then fewer inputs, then the smaller change."""
+    return sorted(out, key=lambda r: (r["specification"], len(r["inputs"]), r["relative_change"]))
+
+
+def _designer(names) -> bool:
+    return not any(RELAXABLE[n][2] for n in names)
+
+
+def _levels(cands: dict) -> list:
+    """The sets of inputs tried, level by level: each alone, every pair, then the designer's inputs all together
+    and every input together."""
+    names = list(cands)
+    mine = [n for n in names if _designer((n,))]
+    last = [tuple(mine)] if len(mine) > 2 else []
+    last += [tuple(names)] if len(names) > 2 and len(names) > len(mine) else []
+    return [[(n,) for n in names], list(itertools.combinations(names, 2)), last]
 
 
 def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: int = 7, probe=None,
                 pin_inputs: bool = False) -> list:
     """Smallest input changes that make ``d`` feasible, for the inputs that relax ``violated``.
 
-    First each input alone (bisection between its value and a far value:
-    x2 or /4 within the schema's range); when no single input suffices, all
-    the relevant inputs together, moved by a common fraction of their range
-    (one entry with several ``"inputs"``). Design inputs come before the
-    specification values (``"specification": True``). ``probe(d, changes,
-    settings) -> bool`` replaces the feasibility check; ``pin_inputs`` keeps the parts the input names in it.
+    First each input alone (bisection between its value and a far value: x2 or /4 within the schema's range);
+    when no single input suffices, every pair of them, each pair moved by a common fraction of its ranges;
+    when no pair does, all the relevant inputs together (one entry with several ``"inputs"``). What the tensioner
+    designer controls comes before the specification values (``"owner"``, ``"specification": True``; declared
+    on the schema's fields). ``probe(d, changes, settings) -> bool`` replaces the feasibility check (one probe at a
+    time, the reference); ``pin_inputs`` keeps the parts the input names in it.
     """
-    _probe = probe or reference_probe(pin_inputs)
-    out = []
-    cands = _candidates(d, violated)
-    for name, sign in cands.items():
-        cur, far = getattr(d, name), _far(d, name, sign)
-        if not _probe(d, {name: far}, settings):
-            continue
-        good, bad = far, cur
-        for _ in range(steps):
-            mid = 0.5 * (good + bad)
-            if _probe(d, {name: mid}, settings):
-                good = mid
-            else:
-                bad = mid
-        out.append(_single(d, name, good, violated))
-    if not out and len(cands) > 1:
-        far = _far_joint(d, cands)
-
-        def at(lam):
-            return {n: getattr(d, n) + lam * (far[n] - getattr(d, n)) for n in cands}
-        if _probe(d, at(1.0), settings):
-            good, bad = 1.0, 0.0
-            for _ in range(steps):
-                mid = 0.5 * (good + bad)
-                good, bad = (mid, bad) if _probe(d, at(mid), settings) else (good, mid)
-            out.append(_joint(d, cands, far, good, violated))
-    return _order(out)
+    one = probe or reference_probe(pin_inputs)
+    return relaxations_batch([d], [violated], settings=settings, steps=steps,
+                             probe=lambda items: [one(x, ch, settings) for x, ch in items])[0]
 
 
 def probe_batch(settings: Settings = Settings(), spring_engine: str = "numba", *, pin_inputs: bool = False):
@@ -215,39 +189,35 @@ def probe_batch(settings: Settings = Settings(), spring_engine: str = "numba", *
 def relaxations_batch(ds: list, violated: list, *, settings: Settings = Settings(), steps: int = 7,
                       probe=None) -> list:
     """:func:`relaxations` of many applications at once: per application the same candidate inputs, the same
-    far probe and the same bisection, hence the same relaxations; but each step probes every pending
-    (application, input) pair together (``probe``, default :func:`probe_batch`): 1 + ``steps`` probe rounds for
-    the inputs alone, 1 + ``steps`` for the inputs together, whatever the number of applications."""
+    far probes and the same bisections, hence the same relaxations; but each step probes every pending
+    (application, set of inputs) together (``probe``, default :func:`probe_batch`): 1 + ``steps`` probe rounds per
+    level (alone, pairs, all), whatever the number of applications. A level is tried while the tensioner designer
+    has no relaxation of his own: the sets of his inputs until one is found, the sets with a specification value
+    until any is."""
     probe = probe or probe_batch(settings)
     cands = [_candidates(d, v) for d, v in zip(ds, violated)]
+    levels = [_levels(c) for c in cands]
     out: list = [[] for _ in ds]
-    pairs = [(i, name, getattr(ds[i], name), _far(ds[i], name, sign)) for i, c in enumerate(cands)
-             for name, sign in c.items()]
-    ok = probe([(ds[i], {name: far}) for i, name, _, far in pairs]) if pairs else []
-    live = [(i, name, far, cur) for (i, name, cur, far), good in zip(pairs, ok) if good]  # (i, name, good, bad)
-    for _ in range(steps):
-        mids = [0.5 * (good + bad) for _, _, good, bad in live]
-        res = probe([(ds[i], {name: mid}) for (i, name, _, _), mid in zip(live, mids)]) if live else []
-        live = [(i, name, mid, bad) if r else (i, name, good, mid)
-                for (i, name, good, bad), mid, r in zip(live, mids, res)]
-    found = {(i, name): good for i, name, good, _ in live}
-    for i, c in enumerate(cands):  # in the candidates' order, as relaxations() appends
-        for name in c:
-            if (i, name) in found:
-                out[i].append(_single(ds[i], name, found[(i, name)], violated[i]))
-    joint = [i for i, c in enumerate(cands) if not out[i] and len(c) > 1]
-    far = {i: _far_joint(ds[i], cands[i]) for i in joint}
+    for level in range(3):
+        mine = [any(r["owner"] == "designer" for r in o) for o in out]
+        todo = [(i, names) for i in range(len(ds)) if not mine[i] for names in levels[i][level]
+                if not out[i] or _designer(names)]
+        far = [(_far(ds[i], names[0], cands[i][names[0]]) if len(names) == 1 else None) for i, names in todo]
+        far = [{names[0]: f} if f is not None else _far_joint(ds[i], {n: cands[i][n] for n in names})
+               for (i, names), f in zip(todo, far)]
 
-    def at(i, lam):
-        return {n: getattr(ds[i], n) + lam * (far[i][n] - getattr(ds[i], n)) for n in cands[i]}
-    ok = probe([(ds[i], at(i, 1.0)) for i in joint]) if joint else []
-    live = [(i, 1.0, 0.0) for i, good in zip(joint, ok) if good]
-    for _ in range(steps):
-        mids = [0.5 * (good + bad) for _, good, bad in live]
-        res = probe([(ds[i], at(i, mid)) for (i, _, _), mid in zip(live, mids)]) if live else []
-        live = [(i, mid, bad) if r else (i, good, mid) for (i, good, bad), mid, r in zip(live, mids, res)]
-    for i, good, _ in live:
-        out[i].append(_joint(ds[i], cands[i], far[i], good, violated[i]))
+        def at(k, lam):
+            i, names = todo[k]
+            return {n: getattr(ds[i], n) + lam * (far[k][n] - getattr(ds[i], n)) for n in names}
+        ok = probe([(ds[i], far[k]) for k, (i, _) in enumerate(todo)]) if todo else []
+        live = [(k, 1.0, 0.0) for k, good in enumerate(ok) if good]  # (set, good fraction, bad fraction)
+        for _ in range(steps):
+            mids = [0.5 * (good + bad) for _, good, bad in live]
+            res = probe([(ds[todo[k][0]], at(k, mid)) for (k, _, _), mid in zip(live, mids)]) if live else []
+            live = [(k, mid, bad) if r else (k, good, mid) for (k, good, bad), mid, r in zip(live, mids, res)]
+        for k, good, _ in live:  # in the candidates' order
+            i, names = todo[k]
+            out[i].append(_entry(ds[i], names, far[k], good, violated[i]))
     return [_order(o) for o in out]
 
 

@@ -31,7 +31,7 @@ import numpy as np
 from synth import catalog
 from synth.design import evaluate as E
 from synth.design.applications import Applications
-from synth.design.space import SUBSYSTEMS, Space, core_rows, space, spring_window
+from synth.design.space import SUBSYSTEMS, Space, core_rows, pinned_diameter, space, space_for, spring_window
 
 __all__ = ["SubTable", "Evaluation", "evaluate", "subsystem", "SPRING_BLOCK_PAIRS", "design_scores",
            "core_scores", "option_scores"]
@@ -154,7 +154,7 @@ def _spring(apps, sp, cg, pos, settings, counter) -> SubTable:
              "spring_housing_height_mm": uniq[:, 1], "spring_housing_outer_diameter_mm": uniq[:, 2],
              "spring_housing_inner_diameter_mm": uniq[:, 3]}
     lo, hi = spring_window(uniq[:, 3].min(), uniq[:, 2].max())
-    opts_idx = np.flatnonzero((mbd >= lo) & (mbd <= hi))
+    opts_idx = np.flatnonzero((mbd >= lo) & (mbd <= hi) | pinned_diameter(sp))
     shape = (len(uniq), nk)
     feas = np.zeros(shape, dtype=bool)
     marg = np.full(shape, -np.inf)
@@ -207,8 +207,8 @@ def evaluate(d, settings: E.Settings = E.Settings(fidelity="full"), *, pin_input
     proposals with :func:`subsystem`).
     """
     apps = Applications.of([d])
-    sp = space()
-    cores = core_rows(sp, d, pin_inputs=pin_inputs)
+    sp = space_for(d, pin_inputs)
+    cores = core_rows(sp, d)
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
         ig = E.inputs(apps, np.zeros(1, dtype=np.int64))
         cg = E.core(apps, np.zeros(len(cores), dtype=np.int64), sp.rows("core", cores), settings)

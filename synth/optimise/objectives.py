@@ -32,12 +32,16 @@ from dataclasses import dataclass
 
 from synth.errors import InputError, Problem
 
-__all__ = ["OBJECTIVES", "MAX_WEIGHT", "Objective", "with_margin_tiebreak"]
+__all__ = ["OBJECTIVES", "UNITS", "MAX_WEIGHT", "Objective", "with_margin_tiebreak"]
 
 OBJECTIVES = ("standard", "cost", "margin")
 #: the largest weight of a weighted objective: weights are relative, and the lexicographic orders use 1e4 between
 #: levels (:meth:`Objective.additive_weights`); above 1e6 a sum of costs (EUR) loses its cents in float precision
 MAX_WEIGHT = 1e6
+#: each objective's words and unit, for every output that prints a value of it (the margin is a fraction in the
+#: data, shown in percent)
+UNITS = {"standard": ("non-standard parts", "(weighted count)"), "cost": ("cost", "EUR"),
+         "margin": ("smallest margin", "%")}
 _TIEBREAK = {"standard": ("standard", "cost"), "cost": ("cost", "standard"), "margin": ("margin", "cost")}
 
 

@@ -56,21 +56,23 @@ def pareto_front(d, *, n_points: int = 40, settings: Settings = Settings()) -> l
     return front
 
 
-def plot_front(front: list, path, *, y: str = "margin", ylabel: str = "smallest normalised margin [-]",
+def plot_front(front: list, path, *, y: str = "margin", ylabel: str = "smallest margin [%]",
                title: str = "cost against margin: Pareto front", label=None) -> None:
-    """Save the front (cost against ``y``) as a matplotlib step plot, each point labelled with ``label(point)``
-    (default its binding constraint)."""
+    """Save the front (cost against ``y``; the margin, a fraction in the data, in percent) as a matplotlib step
+    plot, each point labelled with ``label(point)`` (default its binding constraint in words)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    label = label or (lambda p: p["binding"])
+    from synth.design.constraints import words
+    label = label or (lambda p: words(p["binding"], 36))
+    scale = 100.0 if y == "margin" else 1.0
     fig, ax = plt.subplots(figsize=(7, 4.5))
     c = [p["cost_eur"] for p in front]
-    m = [p[y] for p in front]
+    m = [scale * p[y] for p in front]
     ax.step(c, m, where="post", color="0.6")
     ax.plot(c, m, "o", color="C0")
-    for p in front:
-        ax.annotate(label(p), (p["cost_eur"], p[y]), fontsize=7, xytext=(3, 3), textcoords="offset points")
+    for p, v in zip(front, m):
+        ax.annotate(label(p), (p["cost_eur"], v), fontsize=6, xytext=(3, 3), textcoords="offset points")
     ax.set_xlabel("cost [EUR] (catalog unit costs)")
     ax.set_ylabel(ylabel)
     ax.set_title(title)

@@ -141,8 +141,8 @@ def plot_tradeoff(rows: list, path, kind: str) -> Path:
     fig, ax = plt.subplots(figsize=(6, 4))
     x = [r["parts"] for r in rows]
     if kind == "margin":
-        ax.plot([r["margin_floor"] for r in rows], x, "o-")
-        ax.set_xlabel("margin floor (every design's smallest margin) [-]")
+        ax.plot([100 * r["margin_floor"] for r in rows], x, "o-")
+        ax.set_xlabel("margin floor (every design's smallest margin) [%]")
         ax.set_ylabel("distinct parts in the platform")
         ax.set_title(f"Platform size against the worst margin ({rows[0]['served']} applications)")
         ax.yaxis.get_major_locator().set_params(integer=True)
@@ -259,12 +259,13 @@ def write_all(pf, result, out, tradeoff_rows: list | None = None, kind: str = "m
     from synth.io.outputs import output_folder, write_csv, write_text
     out = output_folder(out)
     paths = [out / "platform.csv", out / "assignment.csv", out / "summary.md"]
-    write_csv(platform_table(pf, result), paths[0])
-    write_csv(assignment_table(result), paths[1])
+    from synth.bulk.portfolio import CSV_FLOAT
+    write_csv(platform_table(pf, result), paths[0], float_format=CSV_FLOAT)
+    write_csv(assignment_table(result), paths[1], float_format=CSV_FLOAT)
     text = summary_markdown(pf, result)
     if tradeoff_rows:
         text += f"\n## Trade-off ({kind})\n\n" + tradeoff_table(tradeoff_rows)
-        write_csv(pd.DataFrame(tradeoff_rows), out / "tradeoff.csv")
+        write_csv(pd.DataFrame(tradeoff_rows), out / "tradeoff.csv", float_format=CSV_FLOAT)
         paths += [out / "tradeoff.csv", plot_tradeoff(tradeoff_rows, out / "tradeoff.png", kind)]
     write_text(paths[2], text)
     if tradeoff_rows and not getattr(result, "tradeoff", None):

@@ -169,7 +169,7 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
 
 
 def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6, time_limit: float = 30.0,
-             weights: dict | None = None) -> list:
+             weights: dict | None = None, progress=None) -> list:
     """Platform size against worst margin (``kind="margin"``) or against total cost (``"cost"``).
 
     ``margin``: for margin floors from 0 up to the lower quartile of the applications' best
@@ -177,11 +177,13 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
     meet the highest floor (the same applications at every floor, so the curve rises). ``cost``: for part budgets from
     the smallest platform up to the size of the cost-optimal one, the cheapest platform
     (unit cost x volume + per-variant fixed cost) within the budget (an epsilon constraint).
-    Returns rows ``{"parts", "cost_eur", "worst_margin", "served", "status", ...}``.
+    Returns rows ``{"parts", "cost_eur", "worst_margin", "served", "status", ...}``. ``progress(done, total)`` is
+    called after each platform solved.
     """
     if kind not in ("margin", "cost"):
         raise InputError(Problem("trade-off", kind, "margin or cost"))
     rows = []
+    tick = progress or (lambda done, total: None)
 
     def row(r: PlatformResult, **extra):
         ok = [x for x in r.records if x["feasible"]]
@@ -212,10 +214,12 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
         import dataclasses
         pf = dataclasses.replace(pf, apps=[a for b, a in best if b >= top])   # one set of applications for every floor
         base = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False)
+        tick(1, points)
         n_served = len(pf.apps)
         for tau in np.linspace(0.0, top, points):
             r = base if tau == 0.0 else rationalise(pf, "variants", time_limit=time_limit, weights=weights,
                                                     min_margin=float(tau), verify=False)
+            tick(len(rows) + 1, points)
             rows.append(row(r, margin_floor=float(tau)))
             if rows[-1]["served"] < n_served:
                 rows[-1]["status"] += " (fewer served)"
@@ -229,4 +233,5 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
         r = cheap if b >= hi else rationalise(pf, "cost", time_limit=time_limit, weights=weights, budget=float(b),
                                               verify=False)
         rows.append(row(r, budget=float(b)))
+        tick(len(rows), len(budgets))
     return rows

@@ -90,9 +90,15 @@ body.synth{font-family:"Segoe UI",Roboto,"Helvetica Neue",Arial,"DejaVu Sans",sa
   .synth thead{display:table-header-group}
   .synth tr,.synth figure,.synth img{break-inside:avoid}
   .synth figure{width:47%}
+  .synth figure.cad{display:block;width:auto;margin:.3em 0;text-align:center}
+  .synth figure.cad img{width:auto;max-width:100%;max-height:@cad_height@mm}
   .synth a{color:inherit;text-decoration:none}
 }
 """
+#: the largest printed height of a CAD picture [mm]: alone across the page (A4 landscape leaves 174 mm between the
+#: margins), its text at 6 pt or more (synth.cad.pictures.DIMENSION_PT, LABEL_PT)
+CAD_PRINT_MAX_HEIGHT_MM = 150.0
+_CSS = _CSS.replace("@cad_height@", f"{CAD_PRINT_MAX_HEIGHT_MM:g}")
 for _verdict, _colour in VERDICT_COLOURS.items():  # the palette's colours into the style sheet
     _CSS = _CSS.replace(f"@{_verdict}@", _colour)
 
@@ -204,29 +210,31 @@ def platform_section(platform) -> str | None:
     return Markup(report_section(platform))
 
 
-def check_row(c) -> dict:
-    """One check as the report shows it (formatted value, limit, margin; verdict and its class; correction)."""
+def check_row(c, result=None) -> dict:
+    """One check as the report shows it (formatted value, limit, margin; verdict and its class; the correction,
+    in agreement with how ``result`` was found: :func:`synth.report.advice.correction`)."""
+    from synth.report.advice import correction
     con = c.constraint
-    extra = con.correction if c.verdict in (FAIL, WARNING) and con.correction else \
+    fix = correction(result, c) if result is not None else con.correction
+    extra = fix if c.verdict in (FAIL, WARNING) and fix else \
         "; ".join(x for x in [c.note, *c.assumed] if x)
     return {"id": c.id, "label": con.label, "step": con.step, "value": _num(c.value),
             "sense": con.sense if c.value is not None else "", "limit": _num(c.limit), "unit": con.unit,
             "margin": _margin(c.margin), "verdict": c.verdict, "cls": verdict_class(c.verdict),
-            "equation": con.equation, "correction": con.correction, "note": c.note, "extra": extra}
+            "equation": con.equation, "correction": fix, "note": c.note, "extra": extra}
 
 
 def _diagnosis(result):
+    from synth.report.advice import relaxation_lines
     dg = result.diagnosis
     if not dg:
         return None
-    rel = [", ".join(f"{k} {x['from']:g} -> {x['to']:g}" for k, x in r["inputs"].items())
-           + (" (a specification value)" if r.get("specification") else "")
-           + (f" ({r['note']})" if r.get("note") else "") for r in dg.get("relaxations", [])]
-    return {"message": dg.get("message", ""), "relaxations": rel}
+    return {"message": dg.get("message", ""), "relaxations": relaxation_lines(result)}
 
 
 def digest_context(result) -> dict:
     """What the digest shows, as plain rows (the template's data)."""
+    from synth.report.advice import change_lines, objective_line, rule_lines
     from synth.report.text import verdict_line
     by_margin = sorted(result.failed(), key=lambda c: (c.margin if c.margin is not None else 0.0))
     p = result.parts or {}
@@ -241,9 +249,11 @@ def digest_context(result) -> dict:
     line = verdict_line(result)
     line = line[line.index("(") + 1:-1] if line.endswith(")") and "(" in line else ""
     return {"verdict": result.verdict, "cls": verdict_class(result.verdict), "line": line,
-            "design": design, "failed": [check_row(c) for c in by_margin],
-            "warnings": [check_row(c) for c in sorted(result.warnings(), key=lambda c: c.margin or 0.0)],
-            "not_verified": [check_row(c) for c in result.not_verified()],
+            "design": design, "failed": [check_row(c, result) for c in by_margin],
+            "warnings": [check_row(c, result) for c in sorted(result.warnings(), key=lambda c: c.margin or 0.0)],
+            "not_verified": [check_row(c, result) for c in result.not_verified()], "changes": change_lines(result),
+            "objectives": objective_line(result.objectives) if result.objectives else "",
+            "rules": "; ".join(x.strip() for x in rule_lines(result)),
             "assumed": result.assumptions(), "diagnosis": _diagnosis(result)}
 
 
@@ -291,7 +301,7 @@ def check_steps(result) -> tuple[list, list]:
         if c.verdict == NOT_APPLICABLE:
             na.append(c.constraint.label)
             continue
-        steps.setdefault(c.step, []).append(check_row(c))
+        steps.setdefault(c.step, []).append(check_row(c, result))
     names = {**STEP_NAMES, 11: "3D model"}
     return [{"step": s, "name": names.get(s, ""), "rows": rows} for s, rows in steps.items()], na
 
@@ -337,24 +347,32 @@ def _figure(g) -> dict:
 
 def render_html(result, graphs, skipped, *, source: str | None = None, title: str | None = None,
                 scenes: dict | None = None, author: str = "", revision: str = "", page: str = "landscape",
-                platform=None, cad_note: str = "", date: str | None = None) -> str:
+                platform=None, cad_note: str = "", date: str | None = None, application: str | None = None) -> str:
     """The report of ``result`` as one HTML string (self-contained; see the module docstring).
+
+    ``application``: the application's name (a case file's ``name``), in the title and the document block.
 
     ``graphs``/``skipped``: :func:`synth.report.plots.build_graphs` (graphs whose id starts with ``cad_``
     go to the 3D model section); ``scenes``: ``{name: rows}`` tables of other scenes; ``page``:
     ``landscape`` or ``portrait`` (A4); ``platform``: a rationalisation output (:func:`platform_section`).
     """
     from synth.errors import InputError, Problem
+    from synth.report.advice import alternative_rows, rule_lines
     if page not in ("landscape", "portrait"):
         raise InputError(Problem("--page", page, "landscape or portrait"))
     name = Path(source).name if source not in (None, "", "result") else ""
-    title = title or f"synth design report{': ' + name if name else ''}"
+    shown = " - ".join(x for x in (application, name) if x)
+    title = title or f"synth design report{': ' + shown if shown else ''}"
     meta = metadata(result, source, author=author, revision=revision, date=date)
-    meta_rows = [("synth and catalogs", meta["synth"]), ("Input file", meta["input"]),
+    meta_rows = [("synth and catalogs", meta["synth"])] + ([("Application", application)] if application else []) + [
+                 ("Input file", meta["input"]),
                  ("Input file SHA-256", meta["input_sha256"]), ("Design input SHA-256", meta["inputs_sha256"]),
                  ("Date", meta["date"]), ("Author", meta["author"] or "-"), ("Revision", meta["revision"] or "-")]
     if result.solver and result.solver != "flowchart":
         meta_rows.append(("Solver", f"{result.solver}, objective {result.objective or '-'}, status {result.status}"))
+    rules = rule_lines(result)
+    meta_rows.append(("Design rules", "; ".join(x.strip() for x in rules) if rules else
+                      "none given: the catalogs' limits, every check passes at a margin of 0"))
     checks, na = check_steps(result)
     cad = [_figure(g) for g in graphs if g.id.startswith("cad_")]
     figs = [_figure(g) for g in graphs if not g.id.startswith("cad_")]
@@ -376,7 +394,7 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
     if result.notes:
         toc.append(("notes", "Notes"))
     toc.append(("inputs", "Design input"))
-    block = "  ".join(x for x in (name or meta["input"], f"rev. {revision}" if revision else "", author,
+    block = "  ".join(x for x in (shown or meta["input"], f"rev. {revision}" if revision else "", author,
                                   meta["date"]) if x)
     block += f"\n{meta['synth']}  inputs sha256 {meta['inputs_sha256'][:16]}"
     verdict_text = f"Verdict: {result.verdict.upper()}"
@@ -385,11 +403,11 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
     return _environment().get_template("report.html.j2").render(
         title=title, css=_CSS, page=page, page_title=title, verdict_text=verdict_text,
         banner_ink=_INK.get(result.verdict, "#222"), title_block=block, meta=meta, meta_rows=meta_rows,
-        d=digest, toc=toc, parts=parts, binding=[check_row(c) for c in result.binding(5)],
+        d=digest, toc=toc, parts=parts, binding=[check_row(c, result) for c in result.binding(5)],
         settings=settings_in_words(result), output=_output_rows(result), legend_na="grey (not applicable)",
         checks=checks, not_applicable=na, cad=cad, cad_note=cad_note, graphs=figs,
         skipped=[{"id": s.id, "title": s.title, "reason": s.reason} for s in skipped], platform=plat, robust=robust,
-        scenes=scene_rows, notes=list(result.notes), inputs=_inputs(result))
+        scenes=scene_rows, notes=list(result.notes), inputs=_inputs(result), alternatives=alternative_rows(result))
 
 
 def part_label(key: str) -> str:

@@ -28,7 +28,7 @@ import os
 import sys
 import time
 
-__all__ = ["Progress", "progress", "enabled", "in_notebook"]
+__all__ = ["Progress", "progress", "enabled", "in_notebook", "phase"]
 
 
 def in_notebook() -> bool:
@@ -89,7 +89,7 @@ class Progress:
         if not self.on:
             return
         now = time.monotonic()
-        if now - self._last < self._min and (self.total is None or self.n < self.total):
+        if self._last and now - self._last < self._min and (self.total is None or self.n < self.total):
             return
         self._last = now
         if self.total:
@@ -97,7 +97,7 @@ class Progress:
             full = int(round(frac * self.width))
             bar = f"[{'#' * full}{'.' * (self.width - full)}] {self.n}/{self.total}"
         else:
-            bar = f"{self.n}"
+            bar = f"{self.n}" if self.n else ""  # a phase without steps: its time only
         text = f"\r{self.desc}: {bar} {now - self._t0:5.1f} s {note}"[:200]
         self.stream.write(text.ljust(80))
         self.stream.flush()
@@ -129,3 +129,36 @@ def progress(iterable, desc: str = "", total: int | None = None, stream=None):
         for item in iterable:
             yield item
             bar.update(1)
+
+
+class phase:  # noqa: N801 - used as a context manager, like Progress
+    """A phase without steps (a solver call): its name and the elapsed time, redrawn every ``every_s`` seconds
+    while the block runs (on a terminal; quiet elsewhere, as :class:`Progress`)::
+
+        with phase("synth rationalise: platform MILP"):
+            solve()
+    """
+
+    def __init__(self, desc: str, stream=None, every_s: float = 0.5):
+        import threading
+        self.bar = Progress(total=None, desc=desc, stream=stream, min_interval_s=every_s)
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._tick, args=(every_s,), daemon=True)
+
+    def _tick(self, every_s: float) -> None:
+        while not self._stop.wait(every_s):
+            self.bar.update(0, "running")
+
+    def __enter__(self) -> "phase":
+        if self.bar.on or self.bar._tqdm is not None:
+            self.bar.update(0, "running")
+            self._thread.start()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._stop.set()
+        if self._thread.is_alive():
+            self._thread.join()
+        self.bar._last = 0.0
+        self.bar.update(0, "done")
+        self.bar.close()

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Result
 from synth.output_table import ROWS, format_value
+from synth.report.advice import NO_DESIGNER, alternative_rows, change_lines, correction, objective_line, \
+    relaxation_lines, rule_lines
 
 __all__ = ["render", "verdict_line", "MARKS"]
 
@@ -30,15 +32,17 @@ def verdict_line(r: Result) -> str:
     return f"Verdict: {text}" + (f" ({'; '.join(extra)})" if extra else "")
 
 
-def _check_line(c) -> list[str]:
+def _check_line(c, r=None) -> list[str]:
     con = c.constraint
     mark = MARKS[c.verdict]
     if c.verdict == NOT_VERIFIED:
         return [f"  [{mark}] step {con.step:>2} {con.label}: {c.note}"]
+    need = f" beyond the required {100 * c.required:g} %" if getattr(c, "required", 0.0) else ""
     out = [f"  [{mark}] step {con.step:>2} {con.label}: {c.value:.4g} {con.sense} {c.limit:.4g} {con.unit}"
-           f"  margin {100 * c.margin:+.1f} %  ({con.equation})"]
-    if c.verdict == FAIL and con.correction:
-        out.append(f"           suggested correction: {con.correction}")
+           f"  margin {100 * c.margin:+.1f} %{need}  ({con.equation})"]
+    fix = correction(r, c) if r is not None else con.correction
+    if c.verdict == FAIL and fix:
+        out.append(f"           suggested correction: {fix}")
     if c.verdict == WARNING:
         out.append(f"           advisory: {con.correction}")
     return out
@@ -47,12 +51,16 @@ def _check_line(c) -> list[str]:
 def render(r: Result, *, title: str = "") -> str:
     """The whole terminal report of ``r``."""
     lines = [title] if title else []
+    lines += rule_lines(r)
     if r.solver and r.solver != "flowchart":
         lines.append(f"solver {r.solver} | objective {r.objective} | status {r.status}")
         if r.objectives:
-            lines.append("objectives: " + ", ".join(f"{k} {v:.4g}" for k, v in r.objectives.items()
-                                                      if isinstance(v, (int, float))))
+            lines.append(objective_line(r.objectives))
         lines.append("")
+    changes = change_lines(r)
+    if changes:
+        lines += ["Parts the input names (kept unless no design with them passes; --fix keeps, --free frees)",
+                  "-" * 78] + [f"  {x}" for x in changes] + [""]
     lines += ["Design (part keys)", "-" * 78]
     lines += [f"  {k:<36} {format_value(v)}" for k, v in r.parts.items()]
     lines += ["", "Output (thesis Tables 10/14)", "-" * 78]
@@ -67,7 +75,16 @@ def render(r: Result, *, title: str = "") -> str:
         lines.append(f"  {label:<40} [{unit:>4}]  {format_value(v)}")
     lines += ["", "Checks (margin: the relative distance to the limit; >= 0 passes)", "-" * 78]
     for c in sorted((c for c in r.checks if c.verdict != NOT_APPLICABLE), key=lambda c: c.constraint.step):
-        lines += _check_line(c)
+        lines += _check_line(c, r)
+    alts = alternative_rows(r)
+    if alts:
+        lines += ["", f"Alternatives: the {len(alts)} best designs in objective order (margin: the smallest, "
+                      "and the check that sets it)", "-" * 78]
+        for a in alts:
+            lines.append(f"  #{a['rank']:<2} {a['objectives']}, margin {a['margin']} ({a['binding']})")
+            lines.append(f"       differs: {a['differs']}")
+    elif r.alternatives == [] and (r.control or {}).get("top", 1) > 1:
+        lines += ["", "Alternatives: none (no feasible design)"]
     binds = r.binding(5)
     if binds:
         lines += ["", "What binds (smallest margins)", "-" * 78]
@@ -76,13 +93,9 @@ def render(r: Result, *, title: str = "") -> str:
         lines += ["", "Diagnosis", "-" * 78, f"  {r.diagnosis['message']}"]
         for v in r.diagnosis.get("violated", []):
             lines.append(f"  violated: {v['label']} (step {v['step']}) by {-100 * v['margin']:.1f} %")
-        for rel in r.diagnosis.get("relaxations", []):
-            ch = ", ".join(f"{k} {x['from']:g} -> {x['to']:g}" for k, x in rel["inputs"].items())
-            tag = " (a specification value)" if rel.get("specification") else ""
-            tag += f" ({rel['note']})" if rel.get("note") else ""
-            lines.append(f"  feasible with: {ch}{tag}")
-        if "relaxations" in r.diagnosis and not r.diagnosis["relaxations"]:
-            lines.append("  no single input relaxation within the searched ranges makes it feasible")
+        for i, text in enumerate(relaxation_lines(r)):
+            lines.append(f"  {text}" if text == NO_DESIGNER or text.startswith("no relaxation")
+                         else f"  feasible if you {text}")
     if r.assumptions():
         lines += ["", "Assumed (documented defaults for inputs not given)", "-" * 78]
         lines += [f"  - {a}" for a in r.assumptions()]

@@ -15,13 +15,16 @@ from pathlib import Path
 
 __all__ = ["add_model_options", "settings_from_args", "add_design_options", "add_robust_options",
            "robust_settings_from_args", "synthesise", "load_saved_result",
-           "DEFAULT_SOLVER", "DEFAULT_OBJECTIVE"]
+           "DEFAULT_SOLVER", "DEFAULT_OBJECTIVE", "default_args"]
 
 DEFAULT_SOLVER = "enumerate"
 DEFAULT_OBJECTIVE = "standard"
 
 
 def add_model_options(p) -> None:
+    p.add_argument("--rules", metavar="FILE", default=None,
+                   help="design rules (required safety factors and limits, minimum margins, spring limit basis, "
+                        "capability targets): a rules file, or the input's own rules: section when not given")
     p.add_argument("--fidelity", choices=("full", "screening"), default="full",
                    help="full: Almen-Laszlo cone spring and its exact wear (default); screening: linear, closed forms")
     p.add_argument("--linear-friction", action="store_true",
@@ -29,17 +32,21 @@ def add_model_options(p) -> None:
     p.add_argument("--bolt-method", choices=("thesis", "vdi2230"), default="thesis",
                    help="fixation bolt: the thesis's elastic check of the nominal preload (default) or VDI 2230-1 "
                         "(permissible assembly preload, tightening factor, embedding)")
-    p.add_argument("--spring-limit", choices=("thesis", "en13906"), default="thesis",
+    p.add_argument("--spring-limit", choices=("thesis", "en13906"), default=None,
                    help="design rule of the main spring's installation stress: the thesis's yield check "
                         "(sigma_y_bend_fraction Rm on the curvature-corrected stress, default) or EN 13906-3's "
-                        "static rule (0.75 Rm on the stress without curvature factor)")
+                        "static rule (0.75 Rm on the stress without curvature factor); default: the design rules' "
+                        "spring_limit_basis (rules: section or --rules), else thesis")
 
 
 def settings_from_args(args):
+    """The model settings of the options; the spring limit basis from ``--spring-limit``, else the design rules in
+    force (:func:`synth.design.rules.active`)."""
+    from synth.design import rules
     from synth.design.evaluate import Settings
     return Settings(fidelity=args.fidelity, friction_circle=not args.linear_friction,
                     bolt_method=getattr(args, "bolt_method", "thesis"), drive=getattr(args, "drive_model", None),
-                    spring_limit_basis=getattr(args, "spring_limit", "thesis"))
+                    spring_limit_basis=getattr(args, "spring_limit", None) or rules.active().spring_limit_basis)
 
 
 def add_design_options(p) -> None:
@@ -48,7 +55,15 @@ def add_design_options(p) -> None:
     p.add_argument("--objective", default=DEFAULT_OBJECTIVE,
                    help="standard | cost | margin, a lexicographic list 'a,b' or weights 'cost=1,margin=5'")
     p.add_argument("--solver", default=DEFAULT_SOLVER, choices=list(SOLVERS))
-    p.add_argument("--pin-inputs", action="store_true", help="keep the part choices the input names")
+    p.add_argument("--pin-inputs", action="store_true",
+                   help="keep every part the input names (pivot class, bushing thickness, main spring, bolt), "
+                        "feasible or not; by default a named part is kept unless no design with it passes")
+    p.add_argument("--fix", nargs="+", metavar="FIELD", default=[],
+                   help="keep these named parts whatever the verdict (fields of synth/schema.py that name a part)")
+    p.add_argument("--free", nargs="+", metavar="FIELD", default=[],
+                   help="let synth choose these parts for the objective, whatever the input names")
+    p.add_argument("--top", type=int, default=1, metavar="K",
+                   help="also the K best designs in objective order, what differs between them and their margins")
     p.add_argument("--trials", type=int, default=200, help="blackbox: trials per subsystem study (1 to 100000)")
     p.add_argument("--time-limit", type=float, default=None, metavar="S",
                    help="seconds for the solver (minlp, milp-*, blackbox): on expiry the best design found so far")
@@ -70,13 +85,20 @@ def add_robust_options(p, *, default_capability=None) -> None:
 
 
 def robust_settings_from_args(args, *, default_capability=None):
-    """The :class:`~synth.robust.settings.RobustSettings` of the options (checked: a bad value names its option)."""
+    """The :class:`~synth.robust.settings.RobustSettings` of the options (checked: a bad value names its option);
+    without ``--capability`` and ``--ppm``, the design rules' capability targets (``ppk_min``, ``ppm_max``), else
+    ``default_capability``."""
+    from synth.design import rules
     from synth.errors import InputError, Problem
     from synth.robust.settings import RobustSettings
     names = {"capability": "--capability", "ppm": "--ppm", "samples": "--samples", "seed": "--seed"}
-    cap = getattr(args, "capability", None)
-    kw = {"capability": default_capability if cap is None and getattr(args, "ppm", None) is None else cap,
-          "ppm": getattr(args, "ppm", None), "samples": getattr(args, "samples", None), "seed": getattr(args, "seed", None)}
+    cap, ppm = getattr(args, "capability", None), getattr(args, "ppm", None)
+    if cap is None and ppm is None:
+        targets = rules.active().capability
+        cap, ppm = targets.get("ppk_min"), targets.get("ppm_max")
+        if cap is None and ppm is None:
+            cap = default_capability
+    kw = {"capability": cap, "ppm": ppm, "samples": getattr(args, "samples", None), "seed": getattr(args, "seed", None)}
     kw = {k: v for k, v in kw.items() if v is not None or k in ("capability", "ppm")}
     try:
         return RobustSettings(**kw)
@@ -84,33 +106,37 @@ def robust_settings_from_args(args, *, default_capability=None):
         raise InputError([Problem(names.get(p.field, p.field), p.value, p.accepted) for p in exc.problems]) from None
 
 
+def default_args():
+    """The design options at their defaults (the synthesis every scene runs when not told otherwise)."""
+    import argparse
+    p = argparse.ArgumentParser()
+    add_design_options(p)
+    return p.parse_args([])
+
+
 def synthesise(d, args):
     """The :class:`~synth.design.result.Result` of the synthesis the options of ``args`` ask for (with
     ``--capability``/``--ppm``: the robust synthesis of :mod:`synth.robust.synthesis`)."""
     from synth.errors import InputError, Problem
-    from synth.optimise import solve
-    from synth.optimise.objectives import with_margin_tiebreak
+    from synth.optimise.honour import solve_honouring
     if not 1 <= int(getattr(args, "trials", 200)) <= 100_000:
         raise InputError(Problem("--trials", args.trials, "an integer from 1 to 100000"))
     limit = getattr(args, "time_limit", None)
     if limit is not None and not (0 < limit <= 86_400):
         raise InputError(Problem("--time-limit", limit, "seconds in (0, 86400]"))
-    objective = getattr(args, "objective", DEFAULT_OBJECTIVE)
-    if getattr(args, "solver", DEFAULT_SOLVER) == "enumerate":  # the exact solver: the margin as last tie-break
-        objective = with_margin_tiebreak(objective)
-    if getattr(args, "capability", None) is not None or getattr(args, "ppm", None) is not None:
-        if getattr(args, "solver", DEFAULT_SOLVER) != "enumerate":
-            raise InputError(Problem("--solver", args.solver, "enumerate with --capability/--ppm (the robust "
-                                                              "synthesis searches the catalog exhaustively)"))
-        from synth.robust.synthesis import robust_solve
-        return robust_solve(d, objective, settings=settings_from_args(args), rs=robust_settings_from_args(args),
-                            pin_inputs=getattr(args, "pin_inputs", False))
-    kw = {"settings": settings_from_args(args), "pin_inputs": getattr(args, "pin_inputs", False)}
+    kw = {"settings": settings_from_args(args), "pin_inputs": getattr(args, "pin_inputs", False),
+          "fix": getattr(args, "fix", ()), "free": getattr(args, "free", ()), "top": getattr(args, "top", 1)}
+    rs = robust_settings_from_args(args)  # --capability/--ppm, else the design rules' targets
+    if rs.capability is not None or rs.ppm is not None:
+        kw["robust"] = rs
     if args.solver == "blackbox":
         kw["n_trials"] = args.trials
     if limit is not None:
         kw["time_limit_s"] = limit
-    return solve(d, objective, getattr(args, "solver", DEFAULT_SOLVER), **kw)
+    from synth.report.progress import phase
+    solver = getattr(args, "solver", DEFAULT_SOLVER)
+    with phase(f"synth: synthesis ({solver}; an infeasible input is diagnosed)"):  # a terminal only
+        return solve_honouring(d, getattr(args, "objective", DEFAULT_OBJECTIVE), solver, **kw)
 
 
 def load_saved_result(path: str | Path, what: str = "result"):

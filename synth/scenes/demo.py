@@ -14,14 +14,24 @@ from pathlib import Path
 import yaml
 
 from synth import schema
+from synth.errors import InputError, Problem
 
 __all__ = ["register", "default_input"]
 
 
+def default_path():
+    """The embedded default application's file (``synth/data/default_case.yaml``)."""
+    return resources.files("synth").joinpath("data/default_case.yaml")
+
+
 def default_input():
     """The embedded default design input (``synth/data/default_case.yaml``)."""
-    text = resources.files("synth").joinpath("data/default_case.yaml").read_text(encoding="utf-8")
-    return schema.validate(yaml.safe_load(text)["inputs"])
+    return schema.validate(yaml.safe_load(default_path().read_text(encoding="utf-8"))["inputs"])
+
+
+def default_name() -> str:
+    """The embedded default application's name (its file's ``name:``)."""
+    return str(yaml.safe_load(default_path().read_text(encoding="utf-8")).get("name") or "default")
 
 
 def register(sub) -> None:
@@ -43,27 +53,35 @@ def argparse_suppress():
 
 
 def _main(args) -> int:
-    from synth.optimise import solve
     from synth.report.text import render
+    from synth.scenes._options import default_args, synthesise
     out = Path(args.cad or args.out)
-    d = default_input()
-    from synth.optimise.objectives import with_margin_tiebreak
-    if args.no_robust:
-        r = solve(d, with_margin_tiebreak("standard"), "enumerate")
-    else:  # the best design meeting Ppk >= 1.33 (or the nominal one and why none does), its capability, and the
-        # verdicts resting on illustrative limits
+    d, path, name = default_input(), default_path(), default_name()
+    if not args.no_cad:  # before the work: the 3D model needs CadQuery (synth[cad])
+        from synth.cad import require_cadquery
+        try:
+            require_cadquery()
+        except InputError as exc:
+            p = exc.problems[0]
+            raise InputError(Problem(p.field, p.value, p.accepted + "; or run synth demo --no-cad")) from None
+    a = default_args()
+    if not args.no_robust:  # the best design meeting Ppk >= 1.33 (or the nominal one and why none does)
         from synth.robust.settings import RobustSettings
-        from synth.robust.synthesis import robust_solve
-        from synth.scenes.report import add_capability
         rs = RobustSettings()
-        r = robust_solve(d, with_margin_tiebreak("standard"), rs=rs)
+        a.capability = rs.capability
+    r = synthesise(d, a)
+    if not args.no_robust and r.parts:  # its capability and the verdicts resting on illustrative limits
+        from synth.scenes.report import add_capability
         add_capability(r, rs)
-    print(render(r, title="synth demo: the most standardised tensioner for the embedded default application"))
+    print(render(r, title=f"synth demo: the most standardised tensioner for {name} ({path})"))
+    pictures: list = []
     if not args.no_cad:
         from synth.scenes.design import export_cad
-        print("\n" + "\n".join(export_cad(r, out, "synth demo (thesis case 3, completed)")))
+        lines, pictures = export_cad(r, out, f"synth demo: {name}", pictures=True)
+        print("\n" + "\n".join(lines))
     if not args.no_report:
         from synth.scenes.report import make_report
-        rep = make_report(r, out, show_progress=False)
+        rep = make_report(r, out, show_progress=False, cad=pictures, cad_pictures=False, source_name=str(path),
+                          application=name)
         print(f"\nreport: {rep['html']} and {rep['xlsx']}")
     return r.exit_code

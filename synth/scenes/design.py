@@ -36,6 +36,9 @@ def register(sub) -> None:
 
 def _main(args) -> int:
     from synth.schema import load_input
+    if args.cad:  # before the work: the 3D model needs CadQuery (synth[cad])
+        from synth.cad import require_cadquery
+        require_cadquery()
     d = load_input(args.input)
     note = None
     if getattr(args, "drive", None):
@@ -86,8 +89,9 @@ def with_drive(d, path):
     return d, drive, note
 
 
-def export_cad(r, out_dir, application: str | None = None) -> list[str]:
-    """Export the design's 3D model (thesis step 11) and return the summary lines.
+def export_cad(r, out_dir, application: str | None = None, *, pictures: bool = False):
+    """Export the design's 3D model (thesis step 11) and return the summary lines (``pictures=True``: and the
+    pictures written, for a report that then exports no second model).
 
     A failing design whose geometry cannot exist (a pulley inside its own bearing) is reported, not drawn: the
     lines say why, and the exit code stays the design's (1).
@@ -99,6 +103,8 @@ def export_cad(r, out_dir, application: str | None = None) -> list[str]:
     except InputError as exc:
         if not r.failed() or not any(p.field.startswith("inputs.") for p in exc.problems):
             raise
-        return ["3D model not drawn (the design fails, and its geometry cannot be built): "
-                + "; ".join(str(p) for p in exc.problems)]
-    return [f"3D model written to {out_dir}"] + summary_lines(model, checks, info)
+        lines = ["3D model not drawn (the design fails, and its geometry cannot be built): "
+                 + "; ".join(str(p) for p in exc.problems)]
+        return (lines, []) if pictures else lines
+    lines = [f"3D model written to {out_dir}"] + summary_lines(model, checks, info)
+    return (lines, [str(f) for f in info["files"] if str(f).endswith(".png")]) if pictures else lines

@@ -30,16 +30,18 @@ def _main(args) -> int:
         return _robust_front(args, out, min(points, 12))
     front = pareto_front(load_input(args.input), n_points=points)
     output_folder(out)
-    lines = ["| cost [EUR] | margin | non-standard | binding constraint |", "|---|---|---|---|"]
-    lines += [f"| {p['cost_eur']:.4f} | {p['margin']:+.4f} | {p['standard']:g} | {p['binding']} |" for p in front]
+    from synth.design.constraints import words
+    lines = ["| cost [EUR] | smallest margin [%] | non-standard parts | binding constraint |", "|---|---|---|---|"]
+    lines += [f"| {p['cost_eur']:.4f} | {100 * p['margin']:+.2f} | {p['standard']:g} | {words(p['binding'])} |"
+              for p in front]
     inputs = front[0]["inputs"] if front else {}
     if inputs:
         lines += ["", "Input-only constraints (no design changes them; not in the margin above):"]
         from synth.design.constraints import REGISTRY
-        lines += [f"- {REGISTRY[k].label}: margin {v:+.4f}" for k, v in inputs.items()]
+        lines += [f"- {REGISTRY[k].label}: margin {100 * v:+.2f} %" for k, v in inputs.items()]
     table = "\n".join(lines)
     write_text(out / "front.md", table + "\n")
-    write_text(out / "front.json", json_text(front, indent=2))
+    write_text(out / "front.json", json_text(front, indent=2, digits=6))  # margins as fractions
     if front:
         plot_front(front, out / "front.png")
     print(table if front else "no feasible design: no front (run synth design for the diagnosis)")
@@ -54,17 +56,18 @@ def _robust_front(args, out, points: int) -> int:
     from synth.scenes._options import robust_settings_from_args
     rs = robust_settings_from_args(args)
     front = robust_front(load_input(args.input), rs=rs, n_points=points)
+    from synth.design.constraints import words
     from synth.io.outputs import json_text, output_folder, write_text
     output_folder(out)
     lines = [f"Cost against capability ({rs.targets()} and better; {rs.samples} samples per design)", "",
              "| cost [EUR] | smallest Ppk | largest P(violation) [ppm] | binding check |", "|---|---|---|---|"]
-    lines += [f"| {p['cost_eur']:.4f} | {p['ppk']:.3g} | {p['ppm']:.3g} | {p['binding']} |" for p in front]
+    lines += [f"| {p['cost_eur']:.4f} | {p['ppk']:.3g} | {p['ppm']:.3g} | {words(p['binding'])} |" for p in front]
     table = "\n".join(lines)
     write_text(out / "front.md", table + "\n")
     write_text(out / "front.json", json_text(front, indent=2))
     if front:
         plot_front(front, out / "front.png", y="ppk", ylabel="smallest Ppk of the checked constraints [-]",
-                   title="cost against production capability", label=lambda p: f"{p['binding']} ({p['ppm']:.2g} ppm)")
+                   title="cost against production capability", label=lambda p: f"{words(p['binding'], 36)} ({p['ppm']:.2g} ppm)")
     print(table if front else f"no catalog design meets {rs.targets()} (synth design --capability says why)")
     print(f"\nwritten: {out / 'front.md'}, {out / 'front.json'}" + (f", {out / 'front.png'}" if front else ""))
     return 0 if front else 1

@@ -76,17 +76,22 @@ def _main(args) -> int:
     if args.points < 2:
         raise InputError(Problem("--points", args.points, "a whole number >= 2"))
     from synth.design.evaluate import Settings
-    from synth.report.progress import Progress
+    from synth.report.progress import Progress, phase
     if args.workers is not None and args.workers < 1:
         raise InputError(Problem("--workers", args.workers, "a whole number >= 1"))
     engine = "dask" if args.scheduler else args.engine
     with Progress(total=None, desc="synth rationalise: feasibility") as bar:
+        bar.update(0, "running")
         pf = load_feasibility(args.portfolio, Settings(fidelity=args.fidelity), engine=engine, workers=args.workers,
                               scheduler=args.scheduler, diagnose=args.diagnose,
                               progress=lambda done, total: bar.update(done - bar.n))
-    r = rationalise(pf, args.objective, max_variants=caps, time_limit=args.time_limit, solver=args.solver)
-    rows = None if args.tradeoff == "none" else tradeoff(pf, args.tradeoff, points=args.points,
-                                                         time_limit=args.time_limit)
+    with phase(f"synth rationalise: platform ({args.solver} MILP, {len(pf.apps)} applications)"):
+        r = rationalise(pf, args.objective, max_variants=caps, time_limit=args.time_limit, solver=args.solver)
+    rows = None
+    if args.tradeoff != "none":
+        with Progress(total=args.points, desc=f"synth rationalise: trade-off curve ({args.tradeoff})") as bar:
+            rows = tradeoff(pf, args.tradeoff, points=args.points, time_limit=args.time_limit,
+                            progress=lambda done, total: bar.update(done - bar.n))
     r.tradeoff = rows
     paths = write_all(pf, r, args.out, rows, args.tradeoff)
     p = price_of_standardisation(pf, r)

@@ -20,7 +20,7 @@ from pathlib import Path
 
 from synth import schema
 from synth.errors import InputError, Problem
-from synth.scenes._options import add_design_options, add_robust_options, load_saved_result, synthesise
+from synth.scenes._options import add_design_options, add_robust_options, default_args, load_saved_result, synthesise
 
 __all__ = ["register", "make_report", "read_table", "out_folder", "add_capability"]
 
@@ -95,37 +95,36 @@ def result_for_report(source, args=None):
                 from synth import flowchart
                 from synth.scenes._options import settings_from_args
                 return flowchart.run(d, settings_from_args(args)), cells, name
-            res = synthesise(d, args or _defaults())
+            res = synthesise(d, args or default_args())
     if res.inputs is None:
         raise InputError(Problem(f"inputs ({Path(name).name})", None, "the design input the result was made from "
                                                                      "(a result of synth design/flowchart --json, "
                                                                      "0.2 or later, carries it under 'inputs')"))
     if not res.curves and res.parts and res.solver != "flowchart":  # re-verify for the curves of the graphs
+        from synth.design.rules import active, using
         fields = {k for k in Settings.__dataclass_fields__}
         settings = Settings(**{k: v for k, v in (res.settings or {}).items() if k in fields})
-        again = verify(schema.validate({k: v for k, v in res.inputs.items() if v is not None}), res.parts, settings,
-                       status=res.status, solver=res.solver, time_points=60, notes=res.notes)
-        again.objective, again.objectives, again.stats, again.diagnosis = res.objective, res.objectives, res.stats, \
-            res.diagnosis
-        res = again
+        with using(res.rules or active()):  # the result's own rules
+            again = verify(schema.validate({k: v for k, v in res.inputs.items() if v is not None}), res.parts, settings,
+                           status=res.status, solver=res.solver, time_points=60, notes=res.notes)
+        res = again.carry(res)
     return res, cells, name
 
 
-def _defaults():
-    import argparse
-    p = argparse.ArgumentParser()
-    add_design_options(p)
-    return p.parse_args([])
 
 
 def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: list | None = None,
                 show_progress: bool = True, cad_pictures: bool = True, pdf: bool = True, author: str = "",
-                revision: str = "", page: str = "landscape", platform=None, robust=None) -> dict:
+                revision: str = "", page: str = "landscape", platform=None, source_name: str | None = None,
+                application: str | None = None, robust=None) -> dict:
     """Write ``report.html``, ``report.pdf`` and ``results.xlsx`` of ``source`` (input file, saved result or Result).
 
-    ``robust`` (a :class:`synth.robust.settings.RobustSettings`): add the production-scatter section (the
-    design's capability, unless the result carries it, and the verdicts resting on illustrative limits) and
-    the ``Capability`` and ``Assumptions`` sheets.
+    ``source_name``: the input file a given :class:`Result` was made from (the document block names it and its
+    SHA-256); ``application``: the application's name, in the title and the document block; ``cad``: pictures of
+    a model already exported (the report then builds none: one STEP file per run). ``robust`` (a
+    :class:`synth.robust.settings.RobustSettings`): add the production-scatter section (the design's capability,
+    unless the result carries it, and the verdicts resting on illustrative limits) and the ``Capability`` and
+    ``Assumptions`` sheets.
 
     Returns ``{"html": Path, "pdf": Path | None, "pdf_note": str, "xlsx": Path, "result": Result,
     "graphs": [...], "skipped": [...]}`` (``pdf_note``: why no PDF was written, when none was).
@@ -135,11 +134,12 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     from synth.report.plots import build_graphs
     from synth.io.outputs import output_folder
     result, cells, name = result_for_report(source, args)
+    name = str(source_name) if source_name else name
     if robust is not None and result.parts:
         add_capability(result, robust)
     out = output_folder(out_dir)
     pictures = list(cad or [])
-    cad_note = ""
+    cad_note = f"The model of this design: {Path(pictures[0]).parent} (STEP assembly and pictures)." if pictures else ""
     if cad_pictures and not pictures and result.parts:
         cad_dir = output_folder(out / "cad", inside=True)  # never through a link the folder holds
         try:
@@ -154,7 +154,8 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     extra = {"pareto": scenes.get("Pareto"), "solvers": scenes.get("Solvers"), "cad": pictures}
     graphs, skipped = build_graphs(result, extra, show_progress=show_progress)
     html_path = write_html(out / "report.html", result, graphs, skipped, source=name, scenes=scenes,
-                           author=author, revision=revision, page=page, platform=platform, cad_note=cad_note)
+                           author=author, revision=revision, page=page, platform=platform, cad_note=cad_note,
+                           application=application)
     pdf_path, pdf_note = None, "not asked for"
     if pdf:
         from synth.report.pdf import write_pdf

@@ -97,7 +97,7 @@ def _margin_table(curves: dict) -> str:
     lines = ["Slip margin at minimum interference vs re-assemblies",
              f"  {'n':>3}" + "".join(f"{lab:>12}" for lab in labels)]
     for i, n in enumerate(curves["reassemblies"]):
-        lines.append(f"  {n:>3}" + "".join(f"{curves['margins'][lab][i]:>+12.3f}" for lab in labels))
+        lines.append(f"  {n:>3}" + "".join(f"{100 * curves['margins'][lab][i]:>+10.1f} %" for lab in labels))
     return "\n".join(lines)
 
 
@@ -140,9 +140,9 @@ def _select(args) -> int:
     for r in sel["rows"]:
         print(f"  {r['fit']:<10}{r['interference_min_mm']:>8.3f}{r['interference_max_mm']:>8.3f}"
               f"{r['pressure_max_mpa']:>9.1f}{r['yield_pressure_mpa']:>9.1f}{r['torque_min_nm']:>12.1f}"
-              f"{r['slip_margin']:>+9.3f}  {r['reason'] or 'admissible'}")
+              f"{100 * r['slip_margin']:>+7.1f} %  {r['reason'] or 'admissible'}")
     if sel["fit"]:
-        print(f"Best fit: {sel['fit']} (slip margin {sel['margin']:+.3f})")
+        print(f"Best fit: {sel['fit']} (slip margin {100 * sel['margin']:+.1f} %)")
     else:
         print("Best fit: none admissible")
     print()

@@ -223,7 +223,7 @@ def format_report(res: dict) -> str:
     L.append("Checks")
     for c in res["checks"]:
         L.append(f"  [{c['verdict']:>4}] {c['name']}: {c['value']:.4g} {c['kind']} {c['limit']:.4g} {c['unit']} "
-                 f"(margin {c['margin']:+.3f}; {c['note']})")
-    L.append(f"  cautious (elastic eq. 1 friction) slip margin of the worst state: {res['slip_margin_elastic_eq1']:+.3f}")
-    L.append(f"Verdict: {res['verdict'].upper()} (margin {res['margin']:+.3f})")
+                 f"(margin {100 * c['margin']:+.1f} %; {c['note']})")
+    L.append(f"  cautious (elastic eq. 1 friction) slip margin of the worst state: {100 * res['slip_margin_elastic_eq1']:+.1f} %")
+    L.append(f"Verdict: {res['verdict'].upper()} (margin {100 * res['margin']:+.1f} %)")
     return "\n".join(L)

@@ -95,11 +95,11 @@ def plot_margins(curves: dict, path, title: str = "") -> None:
 
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for label, m in curves["margins"].items():
-        ax.plot(curves["reassemblies"], m, marker="o", label=label)
+        ax.plot(curves["reassemblies"], [100 * x for x in m], marker="o", label=label)
     ax.axhline(0.0, color="k", lw=0.8)
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_xlabel("re-assemblies (pull-off + press-on)")
-    ax.set_ylabel("slip margin at minimum interference [-]")
+    ax.set_ylabel("slip margin at minimum interference [%]")
     ax.set_title(title or "Crank pulley shrink fit: slip margin vs re-assembly count")
     ax.legend(fontsize=8)
     ax.grid(True, alpha=0.3)

@@ -30,6 +30,8 @@ from synth.ui import form
 
 __all__ = ["DesignSession", "default_values", "OBJECTIVES", "FIDELITIES"]
 
+#: the alternatives a synthesis in the page lists (``Result.alternatives``)
+TOP = 5
 #: the objectives offered (``synth.synthesise``'s documented ones; a lexicographic or weighted one stays the API's)
 OBJECTIVES = ("standard", "cost", "margin")
 #: the model fidelities (:data:`synth.design.evaluate.FIDELITIES`; ``full`` is every design scene's default)
@@ -138,7 +140,7 @@ class DesignSession:
     def synthesise(self):
         """The optimiser's design for the input (``synth.synthesise``); it becomes the current design."""
         self._require_valid()
-        self.result = synth.synthesise(self.input, self.objective, fidelity=self.fidelity)
+        self.result = synth.synthesise(self.input, self.objective, fidelity=self.fidelity, top=TOP)
         self.seq += 1
         return self.result
 

@@ -75,27 +75,20 @@ def diagnosis_html(result) -> str:
     dg = result.diagnosis
     if not dg:
         return "<p>No diagnosis: the design is feasible (a diagnosis is made when no catalog design is).</p>"
-    rel = []
-    for r in dg.get("relaxations", []):
-        change = ", ".join(f"{k} {x['from']:g} -> {x['to']:g}" for k, x in r.get("inputs", {}).items())
-        rel.append(f"<li>{_e(change)}{' (a specification value)' if r.get('specification') else ''}</li>")
+    from synth.report.advice import relaxation_lines
+    rel = [f"<li>{_e(x)}</li>" for x in relaxation_lines(result)]
     return (f"<p>{_e(dg.get('message', ''))}</p>"
             + (f"<p>Smallest input relaxations that make a design feasible:</p><ul>{''.join(rel)}</ul>" if rel else ""))
 
 
 def alternatives_html(result) -> str:
-    """The ranked alternative designs, where the result carries them.
-
-    Hook for issue 23 (``synthesise --top K``, relaxations split by who controls them): a result that
-    carries ``alternatives`` (a list of part dicts with their objective values) is listed here; today's
-    results carry none, and the page says so.
-    """
-    alts = getattr(result, "alternatives", None) or (result.stats or {}).get("alternatives")
-    if not alts:
-        return ("<p>Ranked alternatives are not computed yet (issue 23: <code>synth design --top K</code>); "
-                "the design above is the optimum of the objective.</p>")
-    cols = list(dict.fromkeys(k for a in alts for k in a))
-    head = "".join(f"<th>{_e(c)}</th>" for c in cols)
-    rows = "".join(f"<tr><td>{i + 1}</td>" + "".join(f"<td>{_e(a.get(c))}</td>" for c in cols) + "</tr>"
-                   for i, a in enumerate(alts))
-    return f"<table class=\"alternatives\"><thead><tr><th>#</th>{head}</tr></thead><tbody>{rows}</tbody></table>"
+    """The ranked alternative designs (``Result.alternatives``, ``synth design --top K``): rank, objectives, the
+    smallest margin and the check that sets it, what differs from the optimum; a line when the result has none."""
+    from synth.report.advice import alternative_rows
+    rows = alternative_rows(result)
+    if not rows:
+        return "<p>No alternatives: the design above is the only one asked for (or no design is feasible).</p>"
+    cols = ("rank", "objectives", "margin", "binding", "differs")
+    head = "".join(f"<th>{_e(c)}</th>" for c in ("#", "objectives", "smallest margin", "set by", "differs from #1"))
+    body = "".join("<tr>" + "".join(f"<td>{_e(a[c])}</td>" for c in cols) + "</tr>" for a in rows)
+    return f"<table class=\"alternatives\"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
