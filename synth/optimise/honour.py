@@ -22,7 +22,7 @@ the design itself is then the chosen solver's, on the space that keeps the chose
 >>> from synth.scenes.demo import default_input    # thesis case 3 at its own travel: pivot class 20 asked
 >>> r = solve_honouring(default_input(), "standard", "enumerate")
 >>> [(c["field"], c["input"], c["design"], c["how"]) for c in r.changes]
-[('pivot_class_diameter_mm', 20.0, 16.0, 'freed: no design keeps it')]
+[('pivot_class_diameter_mm', 20.0, 17.0, 'freed: no design keeps it')]
 """
 
 from __future__ import annotations
