@@ -68,19 +68,35 @@ def change_lines(r) -> list[str]:
     return lines
 
 
+def _distinct(a: float, b: float) -> tuple[str, str]:
+    """``a`` and ``b`` to 4 significant figures, more where 4 would print them alike (40.001 -> 40, not 40 -> 40).
+
+    >>> _distinct(40.001, 40.0), _distinct(0.018, 0.0197)
+    (('40.001', '40'), ('0.018', '0.0197'))
+    """
+    for n in range(4, 12):
+        x, y = f"{a:.{n}g}", f"{b:.{n}g}"
+        if x != y or a == b:
+            return x, y
+    return x, y
+
+
 def relaxation_text(rel: dict) -> str:
     """One relaxation in words: ``change X a -> b unit (+p %)`` for the designer's inputs, ``ask for Y b unit
     instead of a (+p %)`` for a specification value, ``free Z`` for a part the input fixes; its note (a layout
     switch of eq. (17)-(18)) in brackets."""
+    from synth.schema import field_by_name
     mine, ask = [], []
     for name, x in rel.get("inputs", {}).items():
-        unit = x.get("unit", "")
+        unit = x.get("unit") or field_by_name(name).unit or ""
         frm, to = x["from"], x["to"]
-        pct = f"{100 * (to - frm) / frm:+.1f} %" if frm else ""
+        a, b = _distinct(frm, to)
+        pct = f"{100 * (to - frm) / frm:+.1f} %" if frm and abs(to - frm) >= 5e-4 * abs(frm) else \
+            (f"{100 * (to - frm) / frm:+.2g} %" if frm else "")
         if x.get("owner", "specification" if rel.get("specification") else "designer") == "designer":
-            mine.append(f"change {name} {frm:.4g} -> {to:.4g} {unit} ({pct})".replace("  ", " "))
+            mine.append(f"change {name} {a} -> {b} {unit} ({pct})".replace("  ", " "))
         else:
-            ask.append(f"ask for {name} {to:.4g} {unit} instead of {frm:.4g} ({pct})".replace("  ", " "))
+            ask.append(f"ask for {name} {b} {unit} instead of {a} ({pct})".replace("  ", " "))
     for name in rel.get("free", []):
         mine.append(f"free {name} (--free {name})")
     return " and ".join(mine + ask) + (f" ({rel['note']})" if rel.get("note") else "")
