@@ -188,7 +188,7 @@ class _Walk:
                                                  int(attrs_core["supplier_code"][0]), pad)
             first = False
             ax = axial_attributes(p, [spacer], [zeta], [phi], [0.0])
-            g = E.axial(self.apps, cg, _ONE, ax, self.s)
+            g = E.axial(self.apps, cg, _ONE, ax, self.s.judge)  # the loop continues where the judge fails
             eol_fails = g.margins["damping_eol"][0] < -FEAS_TOL
             if eol_fails and pad + 1 < len(p.damper_pad) and spacer + 1 < len(p.endcap_spacer):
                 self.notes.append(f"plastic elements {p.damper_pad.key[pad]}/{p.endcap_spacer.key[spacer]}: end-of-life "
@@ -281,7 +281,7 @@ def _stopped(walk: _Walk, stop: _Stop) -> Result:
     values = {k: plain(float(v[0])) for k, v in groups["core"].values.items()
               if np.ndim(v) and np.asarray(v).dtype.kind == "f"}
     return Result(status="baseline", solver="flowchart", values=values, checks=checks,
-                  notes=walk.notes + [stop.why], inputs=inputs_of(d), settings=_settings_dict(walk.s),
+                  notes=walk.notes + [stop.why] + walk.s.notes(), inputs=inputs_of(d), settings=_settings_dict(walk.s),
                   steps_run=sorted(set(walk.steps)))
 
 
@@ -325,7 +325,8 @@ def run(design_input, settings: Settings | None = None, parts: dict | None = Non
     values.update(walk.required)
     res = Result(status="baseline", solver="flowchart", objective="thesis procedure",
                  parts=parts_of_attributes(attrs, groups),
-                 values=values, checks=checks_of(groups, walk.apps), notes=walk.notes, inputs=inputs_of(design_input),
+                 values=values, checks=checks_of(groups, walk.apps), notes=walk.notes + s.notes(),
+                 inputs=inputs_of(design_input),
                  settings=_settings_dict(s), steps_run=sorted(set(walk.steps)))
     if "_history" in groups["axial"].values:
         res.curves["plastic_wear"] = {k: np.asarray(v).reshape(-1).tolist()

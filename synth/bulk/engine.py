@@ -187,7 +187,7 @@ def _design_attributes(b, rows, options: dict) -> dict:
 
 def _verify(b, idx, rows, options: dict) -> dict:
     """Every group of the chosen designs of applications ``idx`` (one call per group for all of them)."""
-    apps, st = b.apps, b.settings
+    apps, st = b.apps, b.settings.judge  # a design found at screening fidelity is verified at full fidelity
     attrs = _design_attributes(b, rows, options)
     one = np.arange(len(idx))
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
@@ -307,7 +307,7 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
             row[f"margin_{cid}"] = float(marg[j, c]) if ev[j, c] else math.nan  # advisory too, as warnings
         row["violated"] = ";".join(f"{ids[c]}:{marg[j, c]:+.3f}" for c in order) if not feasible else ""
         row["relaxation"] = ""
-        notes = b.notes(i)
+        notes = b.notes(i) + b.settings.notes()
         if status in ("optimal", "feasible") and len(fj):
             notes = notes + ["verification failed: " + ", ".join(f"{ids[c]} {marg[j, c]:+.3g}" for c in fj)]
         row["notes"] = "; ".join(dict.fromkeys([str(x) for x in notes] + nv_notes))

@@ -67,7 +67,7 @@ __all__ = ["ENGINES", "FIDELITIES", "DEFAULT_CHUNK_SIZE", "default_chunk_size", 
            "run_portfolio", "sidecar", "manifest_of", "chunk_ranges", "chunk_state", "RunLock"]
 
 ENGINES = ("inprocess", "dask")
-FIDELITIES = ("screening", "full")
+from synth.design.evaluate import FIDELITIES  # noqa: E402 - one vocabulary (full, screening, screening-only)
 #: applications per chunk when the engine's memory constants are absent (see :func:`default_chunk_size`)
 DEFAULT_CHUNK_SIZE = 250
 MANIFEST = "manifest.json"

@@ -44,10 +44,22 @@ from synth.model import torsion_spring as s9
 __all__ = ["Settings", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
            "spring_values", "SPRING_OPTION_COLUMNS", "fixation_values", "pivot_wall_values", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
-           "BOLT_CORE_VALUES"]
+           "BOLT_CORE_VALUES", "axial_judged", "FIDELITY_TEXT", "UNVERIFIED_NOTE"]
 
 EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
-FIDELITIES = ("full", "screening")
+#: ``full``: the full model everywhere; ``screening``: the searches rank and prune with the screening model and the
+#: full model judges every design they keep (what is reported is valid under the full model); ``screening-only``:
+#: the screening model alone, unverified (every output says so)
+FIDELITIES = ("full", "screening", "screening-only")
+#: the note of every design reported at screening-only fidelity (in its notes, and in every bulk row)
+UNVERIFIED_NOTE = "screening-only fidelity: not verified at full fidelity (the full model may reject this design)"
+#: what a reported design's fidelity means (the reports' and the command lines' words)
+FIDELITY_TEXT = {
+    "full": "full: Almen-Laszlo cone-spring characteristic and its exact plastic wear along it",
+    "screening": "screening, verified: designs searched with the linear cone spring and closed-form plastic wear, "
+                 "every reported design checked at full fidelity (its checks and values are the full model's)",
+    "screening-only": "screening only: linear cone spring and closed-form plastic wear, NOT verified at full "
+                      "fidelity (the full model may reject the design)"}
 _CONSTANT_LIMITS = {"zero": 0.0, "one": 1.0}  # limits (and scales) that are plain numbers
 
 
@@ -56,7 +68,10 @@ class Settings:
     """Model settings: speed against accuracy, and conventions (one set for every consumer).
 
     * ``fidelity``: ``"full"`` (Almen-Laszlo cone spring, exact plastic wear
-      along it) or ``"screening"`` (linear cone spring, closed-form wear);
+      along it), ``"screening"`` (the searches rank and prune with the linear
+      cone spring and closed-form wear; every design they keep is judged by
+      the full model: :attr:`judge`) or ``"screening-only"`` (the screening
+      model alone, unverified);
     * ``friction_circle``: radial friction on ``r_p sin(atan(mu))`` (physics,
       default) or on ``r_p mu`` (the thesis tool's tables);
     * ``bushing_running_in``: integrate the running-in of the pivot clearance in
@@ -88,6 +103,28 @@ class Settings:
             raise InputError(Problem("bolt_method", self.bolt_method, "thesis or vdi2230"))
         if self.bushing_length_scheme not in ("thesis", "catalog"):
             raise InputError(Problem("bushing_length_scheme", self.bushing_length_scheme, "thesis or catalog"))
+
+    @property
+    def model(self) -> str:
+        """The physics the groups compute with these settings: ``"full"`` or ``"screening"``."""
+        return "full" if self.fidelity == "full" else "screening"
+
+    @property
+    def judge(self) -> "Settings":
+        """The settings whose model decides a design's verdict: full fidelity for ``"screening"`` (screen, then
+        verify), these settings otherwise (``"screening-only"`` is not verified).
+
+        >>> Settings(fidelity="screening").judge.fidelity, Settings(fidelity="screening-only").judge.model
+        ('full', 'screening')
+        """
+        if self.fidelity != "screening":
+            return self
+        import dataclasses
+        return dataclasses.replace(self, fidelity="full")
+
+    def notes(self) -> list:
+        """What a reported design's notes say about its fidelity: :data:`UNVERIFIED_NOTE` at screening-only."""
+        return [UNVERIFIED_NOTE] if self.fidelity == "screening-only" else []
 
 
 @dataclass
@@ -125,6 +162,21 @@ class Group:
                 m = np.where(np.asarray(self.values[c.objective_unless], dtype=float) > 0, np.inf, m)
             out = np.minimum(out, m)
         return out
+
+    def put(self, rows, other: "Group") -> "Group":
+        """A copy whose rows ``rows`` are ``other``'s rows (a group of the same function, ``len(rows)`` rows)."""
+        def mix(a: dict, b: dict) -> dict:
+            out = {}
+            for k, v in a.items():
+                if k.startswith("_"):
+                    out[k] = v
+                    continue
+                arr = np.array(v, copy=True)
+                arr[rows] = b[k]
+                out[k] = arr
+            return out
+        return Group(self.name, mix(self.values, other.values), mix(self.margins, other.margins),
+                     mix(self.state, other.state))
 
     def take(self, idx) -> "Group":
         """The rows ``idx`` as a new group."""
@@ -389,7 +441,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
         cs = s8.cone_spring(cv["axial_damping_nm"][i], apps.damping_target_or_zero_nm[a][i],
                             np.nan_to_num(tol[i], nan=0.0), cv["radial_damping_nm"][i], mu_pl[i],
                             cv["damper_pad_mean_radius_mm"][i], np.asarray(o["endcap_spacer_mean_radius_mm"])[i],
-                            de[i], di[i], gap, aspect_ratio=zeta[i], deflection_ratio=phi[i], fidelity=settings.fidelity)
+                            de[i], di[i], gap, aspect_ratio=zeta[i], deflection_ratio=phi[i], fidelity=settings.model)
         for k in keys:
             v[k][i] = cs[k]
     v["cone_spring_gap_tolerance_mm"] = np.full(n, gap)
@@ -412,7 +464,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
                              np.asarray(o["endcap_spacer_mean_radius_mm"])[w], es_h[w], apps.theta_pp_deg[a][w],
                              apps.frequency_hz[a][w], apps.duration_h[a][w], cv["radial_damping_nm"][w],
                              k_wear_mm3_per_n_m=apps.k_wear_plastic_mm3_per_n_m[a][w],
-                             plastic_friction_coefficient=mu_pl[w], fidelity=settings.fidelity,
+                             plastic_friction_coefficient=mu_pl[w], fidelity=settings.model,
                              time_points=time_points)
         for k in ("damping_eol_nm", "axial_damping_eol_nm", "damper_pad_wear_mm", "endcap_spacer_wear_mm",
                   "plastic_wear_total_mm", "cone_spring_force_eol_n", "damper_pad_wear_max_mm",
@@ -424,6 +476,26 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
         g.values["_history_rows"] = w
         g.values["_history"] = history
     return g
+
+
+def axial_judged(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Group:
+    """Group ``axial`` as a search reads it: screen, then judge.
+
+    At fidelity ``screening`` the rows the screening model passes are evaluated again by the full model
+    (:attr:`Settings.judge`) and carry its values, margins and states: a row passes only when both models pass
+    it, and a passing row's margins are the full model's (the rows the screening model rejects keep its
+    margins: they rank nearest designs only, and a reported design is verified again). At the other fidelities
+    :func:`axial` itself.
+    """
+    g = axial(apps, cg, r, o, settings)
+    judge = settings.judge
+    if judge is settings:
+        return g
+    rows = np.flatnonzero(g.ok())
+    if not len(rows):
+        return g
+    full = axial(apps, cg, np.asarray(r)[rows], {k: np.asarray(v)[rows] for k, v in o.items()}, judge)
+    return g.put(rows, full)
 
 
 # --------------------------------------------------------------------------- step 9: the main spring

@@ -126,8 +126,24 @@ def _axial(apps, sp, cg, pos, settings) -> SubTable:
     t = sp.tables["axial"]
     avail = (cg.values["axial_group_present"][pos] > 0)[:, None] == t["axial_group_present"][None, :]
     i, k = np.nonzero(avail)
-    g = E.axial(apps, cg, pos[i], sp.rows("axial", k), settings)
+    g = E.axial_judged(apps, cg, pos[i], sp.rows("axial", k), settings)
     return _scatter(avail, i, k, g)
+
+
+def _judge_undecided(apps, sp, cg, pos, core_ok, settings, subs: dict) -> None:
+    """At fidelity ``screening`` (the axial table screened, then judged: :func:`synth.design.evaluate.axial_judged`),
+    "no design" must be the full model's verdict too: when no core is complete (a feasible option in every
+    subsystem) but some lack only an axial option, the axial table is evaluated again with the full model alone
+    (the screening model may reject options the full model passes), as :meth:`synth.optimise.batch.Batch.optimum`
+    searches such an application again. In place."""
+    judge = settings.judge
+    if judge is settings or not len(pos):
+        return
+    has = {s: t.feasible.any(axis=1) for s, t in subs.items()}
+    if (core_ok & has["bushing"] & has["axial"] & has["spring"] & has["bolt"]).any():
+        return
+    if (core_ok & has["bushing"] & has["spring"] & has["bolt"]).any():
+        subs["axial"] = _axial(apps, sp, cg, pos, judge)
 
 
 def _bolt(apps, sp, cg, pos, settings) -> SubTable:
@@ -205,6 +221,7 @@ def evaluate(d, settings: E.Settings = E.Settings(fidelity="full"), *, pin_input
         if subsystems:
             subs = {"bushing": _bushing(apps, sp, cg, pos, settings), "axial": _axial(apps, sp, cg, pos, settings),
                     "spring": _spring(apps, sp, cg, pos, settings, counter), "bolt": _bolt(apps, sp, cg, pos, settings)}
+            _judge_undecided(apps, sp, cg, pos, ok[pos], settings, subs)
     for s in ("bushing", "axial", "bolt"):
         if s in subs:
             counter[0] += int(subs[s].available.sum())

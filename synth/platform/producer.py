@@ -255,6 +255,7 @@ def chunk_feasibility(inputs: list, ids: list, volumes, settings: E.Settings = E
         st["spring_stage1_pairs"] = st.get("spring_stage1_pairs", 0) + n1
         lap("spring", n1 + n2)
         lap("bolt", _bolt(apps, cat, cg, rep["bolt"], settings, pairs["bolt"]))
+        lap("axial", _judge_undecided(apps, cat, cg, a, pos, gid, rep, pairs, extra["pad_code"], settings))
         lap("reasons", _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings))
         out = _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all_m, all_b, gid, rep, pairs,
                         diagnose, settings)
@@ -280,8 +281,42 @@ def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs):
     op = np.where(pad[gp] < 0, cat.axial_none, cat.axial_option(np.maximum(pad[gp], 0), j))
     for blk in _blocks(len(gp), BLOCK_PAIRS // 4):
         g, o = gp[blk], op[blk]
-        acc.add(g, o, E.axial(apps, cg, rep[g], cat.space.rows("axial", cat.option_row["axial"][o]), settings))
+        acc.add(g, o, E.axial_judged(apps, cg, rep[g], cat.space.rows("axial", cat.option_row["axial"][o]),
+                                     settings))
     return len(gp)
+
+
+def _judge_undecided(apps, cat, cg, a, pos, gid, rep, pairs, pad_code, settings) -> int:
+    """At fidelity ``screening`` (axial options screened, then judged: :func:`synth.design.evaluate.axial_judged`),
+    "no complete design" must be the full model's verdict too: for an application without a complete design some
+    of whose cores lack only an axial option, its axial groups are evaluated again with the full model alone (the
+    screening model may reject options the full model passes). Returns the rows evaluated."""
+    judge = settings.judge
+    if judge is settings or not len(pos):
+        return 0
+    has = {s: np.bincount(np.concatenate(pairs[s].g) if pairs[s].g else np.zeros(0, np.int64),
+                          minlength=len(rep[s])) > 0 for s in SUBSYSTEMS}
+    others = has["bushing"][gid["bushing"]] & has["spring"][gid["spring"]] & has["bolt"][gid["bolt"]]
+    complete = others & has["axial"][gid["axial"]]
+    done = np.zeros(int(a.max()) + 1, bool)
+    done[a[pos[complete]]] = True
+    undecided = np.zeros(len(done), bool)
+    undecided[a[pos[others & ~done[a[pos]]]]] = True
+    groups = np.unique(gid["axial"][undecided[a[pos]]])  # every axial group of those applications
+    if not len(groups):
+        return 0
+    acc = pairs["axial"]
+    keep = [~np.isin(g, groups) for g in acc.g]
+    acc.g, acc.o, acc.m, acc.b = ([x[k] for x, k in zip(xs, keep)] for xs in (acc.g, acc.o, acc.m, acc.b))
+    acc.best[groups], acc.best_b[groups] = -np.inf, _NO_BINDING
+    full = _Pairs(len(groups))
+    n = _axial(apps, cat, cg, rep["axial"][groups], pad_code, judge, full)
+    acc.g.extend(groups[g] for g in full.g)
+    acc.o.extend(full.o)
+    acc.m.extend(full.m)
+    acc.b.extend(full.b)
+    acc.best[groups], acc.best_b[groups] = full.best, full.best_b
+    return n
 
 
 def _spring(apps, cat, cg, rep, settings, acc: _Pairs):

@@ -53,6 +53,10 @@ def render(r: Result, *, title: str = "") -> str:
             lines.append("objectives: " + ", ".join(f"{k} {v:.4g}" for k, v in r.objectives.items()
                                                       if isinstance(v, (int, float))))
         lines.append("")
+    fid = (r.settings or {}).get("fidelity", "full")
+    if fid != "full":
+        from synth.design.evaluate import FIDELITY_TEXT
+        lines += [f"fidelity {FIDELITY_TEXT.get(fid, fid)}", ""]
     lines += ["Design (part keys)", "-" * 78]
     lines += [f"  {k:<36} {format_value(v)}" for k, v in r.parts.items()]
     lines += ["", "Output (thesis Tables 10/14)", "-" * 78]

@@ -50,7 +50,9 @@ def register(sub) -> None:
     p.add_argument("--objective", default="standard",
                    help="standard | cost | margin, a lexicographic list 'a,b' or weights 'cost=1,margin=5'")
     p.add_argument("--fidelity", default="screening", choices=FIDELITIES,
-                   help="screening: closed-form models; full: time-integrated wear")
+                   help="screening (default): designs searched with the closed-form models, every reported design "
+                        "verified at full fidelity; full: the full model throughout; screening-only: closed forms, "
+                        "unverified (every row says so)")
     p.add_argument("--chunk-size", type=_count("--chunk-size"), default=None, metavar="N",
                    help="applications per chunk, 1-10000 (default: the engine's memory budget over its memory per "
                         "application, catalogs/constants_bulk.csv)")
