@@ -137,3 +137,23 @@ def test_no_design_at_screening_is_the_full_model_s_verdict(monkeypatch):
     for kw in ({}, {"exhaustive": True}):
         r = solve(apps[i], "standard", "enumerate", settings=E.Settings(fidelity="screening"), relax=False, **kw)
         assert r.status == "optimal" and r.objectives["standard"] == full.loc[i, "objective_standard"]
+
+
+def test_fidelity_free_constraints_have_the_same_margin_in_both_models():
+    """What :func:`synth.design.evaluate.axial_full` relies on: the axial constraints reading no value the fidelity
+    changes have the same margins at both fidelities (every axial option of every core of 8 applications)."""
+    from synth.design.space import core_rows
+    apps = [d for d in APPS[:40] if d.damping_typology != "only_radial"][:8]
+    a = Applications.of(apps)
+    sp = space()
+    per = [core_rows(sp, d) for d in apps]
+    app = np.repeat(np.arange(len(apps)), [len(c) for c in per])
+    cg = E.core(a, app, sp.rows("core", np.concatenate(per)), FULL)
+    t = sp.tables["axial"]
+    r, k = np.nonzero((cg.values["axial_group_present"] > 0)[:, None] == t["axial_group_present"][None, :])
+    with np.errstate(all="ignore"):
+        g = {m: E.axial(a, cg, r, sp.rows("axial", k), E.Settings(fidelity=m)) for m in ("full", "screening-only")}
+    assert len(r) > 1000 and set(E.FIDELITY_FREE) >= {"belt_plane", "endcap_spacer_capacity"}
+    for cid in E.FIDELITY_FREE:
+        assert np.array_equal(g["full"].margins[cid], g["screening-only"].margins[cid]), cid
+    assert not np.array_equal(g["full"].margins["damping_eol"], g["screening-only"].margins["damping_eol"])

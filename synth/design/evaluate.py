@@ -44,7 +44,8 @@ from synth.model import torsion_spring as s9
 __all__ = ["Settings", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
            "spring_values", "SPRING_OPTION_COLUMNS", "fixation_values", "pivot_wall_values", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
-           "BOLT_CORE_VALUES", "axial_judged", "FIDELITY_TEXT", "UNVERIFIED_NOTE"]
+           "BOLT_CORE_VALUES", "axial_judged", "axial_full", "FIDELITY_TEXT", "UNVERIFIED_NOTE", "FIDELITY_VALUES",
+           "FIDELITY_FREE", "fidelity_free_ok"]
 
 EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
 #: ``full``: the full model everywhere; ``screening``: the searches rank and prune with the screening model and the
@@ -132,13 +133,19 @@ class Group:
     """Values and registry margins of one group's rows (``(n,)`` arrays).
 
     ``margins[id]`` is ``+inf`` where the constraint does not apply or is not
-    verified (``state`` says which), ``-inf`` where its value is NaN.
+    verified (``state`` says which), ``-inf`` where its value is NaN. ``search``: the search model's group
+    this one was judged from (:func:`axial_judged`); its margins rank nearest designs (:meth:`rank`).
     """
 
     name: str
     values: dict
     margins: dict = field(default_factory=dict)
     state: dict = field(default_factory=dict)
+    search: "Group | None" = None
+
+    def rank(self) -> "Group":
+        """The group whose margins rank nearest designs: the search model's (:attr:`search`), else this one."""
+        return self.search if self.search is not None else self
 
     def __len__(self) -> int:
         return len(next(iter(self.values.values()))) if self.values else 0
@@ -388,6 +395,36 @@ def bushing(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Gro
 
 
 # --------------------------------------------------------------------------- steps 5-8: the axial damping group
+#: the cone spring's values (step 8, :func:`synth.model.disc_spring.cone_spring`): the model fidelity changes them
+CONE_SPRING_VALUES = (
+    "cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n", "cone_spring_fax_nominal_n",
+    "cone_spring_fax_band_n", "cone_spring_force_band_room_n", "cone_spring_gap_band_room_n", "cone_spring_thickness_mm",
+    "cone_spring_cone_height_mm", "cone_spring_free_height_mm", "cone_spring_nominal_deflection_mm",
+    "cone_spring_max_deflection_mm", "cone_spring_rate_n_per_mm", "sigma_om_mpa", "sigma_i_mpa", "sigma_ii_mpa",
+    "sigma_iii_mpa", "sigma_iv_mpa", "cone_spring_diameter_ratio", "cone_spring_aspect_ratio", "cone_spring_thinness",
+    "cone_spring_force_tolerance_plus", "cone_spring_force_tolerance_minus")
+#: the plastic wear's values (step 5, :func:`synth.model.friction_wear.plastic_wear`): the fidelity changes them
+PLASTIC_WEAR_VALUES = ("damping_eol_nm", "axial_damping_eol_nm", "damper_pad_wear_mm", "endcap_spacer_wear_mm",
+                       "plastic_wear_total_mm", "cone_spring_force_eol_n", "damper_pad_wear_max_mm",
+                       "endcap_spacer_wear_max_mm")
+#: every value of group ``axial`` the model fidelity may change (those two, and what :func:`axial` derives of them)
+FIDELITY_VALUES = CONE_SPRING_VALUES + PLASTIC_WEAR_VALUES + ("cone_spring_sigma_om_abs_mpa",)
+
+
+def _fidelity_free() -> tuple:
+    """The registry's (non-advisory) axial constraints that read no :data:`FIDELITY_VALUES` value: the screening
+    and the full model give them the same margin (``tests/test_fidelity.py`` checks it)."""
+    out = []
+    for c in by_group("axial"):
+        reads = (c.value, c.limit, c.scale, c.applies, c.objective_unless)
+        if not c.advisory and not any(k in FIDELITY_VALUES for k in reads if k):
+            out.append(c.id)
+    return tuple(out)
+
+
+FIDELITY_FREE = _fidelity_free()
+
+
 def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_points: int = 0) -> Group:
     """Group ``axial`` (Table 4, belt plane, cone spring, plastic wear) for core rows ``r`` and axial options ``o``.
 
@@ -421,13 +458,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     phi = np.asarray(o["cone_spring_deflection_ratio"], dtype=float)
     act = real & pad & (cv["axial_damping_nm"] > 0) & (de > di) & (zeta > 0) & (phi > 0) & (phi <= 1)
     v["cone_spring_sized"] = act
-    keys = ("cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n", "cone_spring_fax_nominal_n",
-            "cone_spring_fax_band_n", "cone_spring_force_band_room_n", "cone_spring_gap_band_room_n",
-            "cone_spring_thickness_mm",
-            "cone_spring_cone_height_mm", "cone_spring_free_height_mm", "cone_spring_nominal_deflection_mm",
-            "cone_spring_max_deflection_mm", "cone_spring_rate_n_per_mm", "sigma_om_mpa", "sigma_i_mpa",
-            "sigma_ii_mpa", "sigma_iii_mpa", "sigma_iv_mpa", "cone_spring_diameter_ratio", "cone_spring_aspect_ratio",
-            "cone_spring_thinness", "cone_spring_force_tolerance_plus", "cone_spring_force_tolerance_minus")
+    keys = CONE_SPRING_VALUES
     for k in keys:
         v[k] = np.full(n, np.nan)
     v["cone_spring_max_external_diameter_mm"] = np.where(real, cv["cone_spring_max_external_diameter_mm"], np.nan)
@@ -451,8 +482,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
         lo, hi = p.cone_ranges[rng]
         v[f"cone_spring_{key}_min"], v[f"cone_spring_{key}_max"] = np.full(n, lo), np.full(n, hi)
     v["damping_eol_limit_nm"] = f["damping_eol_limit_nm"]
-    for k in ("damping_eol_nm", "axial_damping_eol_nm", "damper_pad_wear_mm", "endcap_spacer_wear_mm",
-              "plastic_wear_total_mm", "cone_spring_force_eol_n", "damper_pad_wear_max_mm", "endcap_spacer_wear_max_mm"):
+    for k in PLASTIC_WEAR_VALUES:
         v[k] = np.full(n, np.nan)
     w = i[apps.durability_given[a][i]]
     history = None
@@ -466,9 +496,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
                              k_wear_mm3_per_n_m=apps.k_wear_plastic_mm3_per_n_m[a][w],
                              plastic_friction_coefficient=mu_pl[w], fidelity=settings.model,
                              time_points=time_points)
-        for k in ("damping_eol_nm", "axial_damping_eol_nm", "damper_pad_wear_mm", "endcap_spacer_wear_mm",
-                  "plastic_wear_total_mm", "cone_spring_force_eol_n", "damper_pad_wear_max_mm",
-                  "endcap_spacer_wear_max_mm"):
+        for k in PLASTIC_WEAR_VALUES:
             v[k][w] = pw[k]
         history = pw.get("history")
     g = finish("axial", v, apps, a)
@@ -483,19 +511,49 @@ def axial_judged(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -
 
     At fidelity ``screening`` the rows the screening model passes are evaluated again by the full model
     (:attr:`Settings.judge`) and carry its values, margins and states: a row passes only when both models pass
-    it, and a passing row's margins are the full model's (the rows the screening model rejects keep its
-    margins: they rank nearest designs only, and a reported design is verified again). At the other fidelities
-    :func:`axial` itself.
+    it, and a passing row's margins (the margin objective's) are the full model's. Nearest designs are ranked
+    by the search model (:meth:`Group.rank`: the screening group, kept as ``search``), as the bulk engine ranks
+    them; a reported design is verified again. At the other fidelities :func:`axial` itself.
     """
     g = axial(apps, cg, r, o, settings)
-    judge = settings.judge
-    if judge is settings:
+    if settings.judge is settings:
         return g
-    rows = np.flatnonzero(g.ok())
+    return _judged_rows(apps, cg, r, o, settings, g, g.ok())
+
+
+def axial_full(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Group:
+    """The full model's verdicts of group ``axial`` at the cost of the rows that can pass it (``settings``: the
+    search's, fidelity ``screening``).
+
+    The screening model everywhere, then the full model on the rows that pass every constraint whose margin the
+    fidelity does not change (:data:`FIDELITY_FREE`: the others fail at any fidelity): ``ok()`` is the full
+    model's verdict; nearest designs are ranked by the screening group (:meth:`Group.rank`). At the other
+    fidelities :func:`axial` itself.
+    """
+    g = axial(apps, cg, r, o, settings)
+    if settings.judge is settings:
+        return g
+    return _judged_rows(apps, cg, r, o, settings, g, fidelity_free_ok(g))
+
+
+def fidelity_free_ok(g: Group) -> np.ndarray:
+    """``(n,)`` bool: the rows of an axial group that pass every :data:`FIDELITY_FREE` constraint (the others fail
+    at any fidelity)."""
+    ok = np.ones(len(g), dtype=bool)
+    for cid in FIDELITY_FREE:
+        ok &= g.margins[cid] >= -FEAS_TOL
+    return ok
+
+
+def _judged_rows(apps, cg, r, o, settings, g: Group, which) -> Group:
+    """``g`` (the search model's group) with the rows ``which`` replaced by the judge's, and ``g`` as ``search``."""
+    rows = np.flatnonzero(which)
     if not len(rows):
-        return g
-    full = axial(apps, cg, np.asarray(r)[rows], {k: np.asarray(v)[rows] for k, v in o.items()}, judge)
-    return g.put(rows, full)
+        return Group(g.name, g.values, g.margins, g.state, search=g)
+    full = axial(apps, cg, np.asarray(r)[rows], {k: np.asarray(v)[rows] for k, v in o.items()}, settings.judge)
+    out = g.put(rows, full)
+    out.search = g
+    return out
 
 
 # --------------------------------------------------------------------------- step 9: the main spring

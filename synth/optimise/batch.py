@@ -183,8 +183,8 @@ class Batch:
         self._spring_range = None
         self._memo: dict = {}
         self._spring_opts = None
-        self._axial_scanned = np.zeros(n, dtype=bool)
-        self._full = np.zeros(n, dtype=bool)  # applications searched with the full model alone (optimum)
+        self._axial_undecided = np.zeros(n, dtype=bool)
+        self._screened = None  # the screening settings while optimum() searches with the full model alone
 
     def __len__(self) -> int:
         return len(self.inputs)
@@ -430,34 +430,37 @@ class Batch:
         first, inv = _unique_rows(self.A[rows], *(self.cg.values[k][rows] for k in E.AXIAL_CORE_VALUES))
         return rows[first], inv
 
-    def _axial_eval(self, rr, oo, settings: E.Settings | None = None, judged: bool = False):
-        """The axial group of core rows ``rr`` and options ``oo`` (``judged``: :func:`~synth.design.evaluate.
-        axial_judged`, the margins a nearest design is ranked by, as the enumeration's tables hold them)."""
-        fn = E.axial_judged if judged else E.axial
+    def _axial_eval(self, rr, oo, settings: E.Settings | None = None):
+        """The axial group of core rows ``rr`` and options ``oo`` (at ``settings``, default the search's; in the
+        full model's search of :meth:`optimum`, :func:`~synth.design.evaluate.axial_full`)."""
         with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-            g = fn(self.apps, self.cg, rr, self.sp.rows("axial", oo), settings or self.settings)
+            if settings is None and self._screened is not None:
+                g = E.axial_full(self.apps, self.cg, rr, self.sp.rows("axial", oo), self._screened)
+            else:
+                g = E.axial(self.apps, self.cg, rr, self.sp.rows("axial", oo), settings or self.settings)
         self.evaluations += len(rr)
         return g
 
+    def _undecided(self, rr, g: E.Group, ok) -> None:
+        """Mark the applications of rows ``rr`` (axial group ``g``, its verdicts ``ok`` after the judge) where the
+        screening model may have rejected what the full model passes: a row that passes every constraint the
+        fidelity does not change (:func:`~synth.design.evaluate.fidelity_free_ok`) and is not kept."""
+        if self.settings.judge is not self.settings:
+            self._axial_undecided[self.A[np.asarray(rr)[~np.asarray(ok) & E.fidelity_free_ok(g)]]] = True
+
     def _judged(self, ok: np.ndarray, rr, cols) -> np.ndarray:
-        """``ok`` (rows ``rr`` x axial options ``cols``: the search model's verdicts, in scan order) with each row's
-        first passing option judged by the full model (:attr:`~synth.design.evaluate.Settings.judge`, fidelity
-        ``screening``): where the judge rejects it, the next passing one is judged, until a row's first passing
-        option passes both models or none is left. The screening model orders and prunes; the full model decides."""
+        """``ok`` (rows ``rr`` x axial options ``cols``: the search model's verdicts) judged by the full model
+        (:attr:`~synth.design.evaluate.Settings.judge`, fidelity ``screening``): every passing pair evaluated again,
+        in one call (a full evaluation costs about 10 ms a call and 5 us a row: one call per block of the scan),
+        and kept where the full model passes it too. The screening model orders and prunes; the full model
+        decides."""
         judge = self.settings.judge
-        if judge is self.settings:
+        if judge is self.settings or not ok.any():
             return ok
-        ok = ok.copy()
-        todo = np.arange(len(ok))
-        while len(todo):
-            j = _first_true(ok[todo])
-            todo, j = todo[j >= 0], j[j >= 0]
-            if not len(todo):
-                break
-            bad = ~self._axial_eval(rr[todo], cols[j], judge).ok()
-            ok[todo[bad], j[bad]] = False
-            todo = todo[bad]
-        return ok
+        ri, ci = np.nonzero(ok)
+        out = np.zeros_like(ok)
+        out[ri, ci] = self._axial_eval(np.asarray(rr)[ri], np.asarray(cols)[ci], judge).ok()
+        return out
 
     def _axial_blocks(self):
         from synth import catalog
@@ -481,6 +484,7 @@ class Batch:
         if len(sel):  # one option: none (it may still fail, e.g. the belt plane)
             g = self._axial_eval(rep[sel], np.full(len(sel), none[0]))
             okn = self._judged((g.ok() & (score[none[0]] <= lim[sel]))[:, None], rep[sel], none[:1])[:, 0]
+            self._undecided(rep[sel], g, okn)
             out_v[sel] = np.where(okn, score[none[0]], np.inf)
             out_k[sel] = np.where(okn, none[0], -1)
         active = np.flatnonzero(pad)
@@ -497,6 +501,7 @@ class Batch:
             ok = np.zeros(within.shape, dtype=bool)
             ok[ai, bi] = g.ok()
             ok = self._judged(ok, rep[active], blk)
+            self._undecided(rep[active[ai]], g, ok[ai, bi])
             j = _first_true(ok)
             hit = j >= 0
             out_k[active[hit]] = blk[j[hit]]
@@ -524,7 +529,7 @@ class Batch:
         out_v, out_k = np.full(len(rep), -np.inf), np.zeros(len(rep), dtype=np.int64)
         sel = np.flatnonzero(~pad)
         if len(sel):
-            g = self._axial_eval(rep[sel], np.full(len(sel), none[0]), judged=True)
+            g = self._axial_eval(rep[sel], np.full(len(sel), none[0]))
             v = g.min_margin(objective_only=False)
             out_v[sel], out_k[sel] = v, np.where(v > -np.inf, none[0], 0)
         active = np.flatnonzero(pad)
@@ -532,7 +537,7 @@ class Batch:
         pos, (block, growth) = 0, self._axial_blocks()
         while len(active) and pos < len(real):
             blk = real[pos:pos + block]
-            g = self._axial_eval(np.repeat(rep[active], len(blk)), np.tile(blk, len(active)), judged=True)
+            g = self._axial_eval(np.repeat(rep[active], len(blk)), np.tile(blk, len(active)))
             m = g.min_margin(objective_only=False).reshape(len(active), len(blk))
             j = np.argmax(m, axis=1)
             v = m[np.arange(len(active)), j]
@@ -552,25 +557,26 @@ class Batch:
         smallest additive score ``weights`` (over ``standard``/``cost``), or None when no design is feasible.
         ``first=True``: any feasible design (a feasibility probe), not the best.
 
-        At fidelity ``screening`` the axial options are scanned with the screening model and each row's first
-        passing one judged by the full model (:meth:`_judged`): every design returned passes the full model. An
-        application left without a design where the axial group decided it (some core had feasible bushing,
-        bolt and spring options) is searched again with the full model alone, so that "no design" is the full
-        model's verdict too (the others' cannot depend on the axial model)."""
+        At fidelity ``screening`` the axial options are scanned with the screening model and the passing ones
+        judged by the full model (:meth:`_judged`): every design returned passes the full model, and is the best
+        that both models pass. An
+        application left without a design where the screening model rejected an axial option that passes every
+        constraint the fidelity does not change (:meth:`_undecided`) is searched again with the full model alone,
+        so that "no design" is the full model's verdict too (elsewhere it cannot depend on the model); that search
+        evaluates the full model only where those constraints pass (:func:`~synth.design.evaluate.axial_full`)."""
         out = self._optimum(weights, first=first, which=which)
         judge = self.settings.judge
         if judge is not self.settings:
-            redo = np.flatnonzero(self._axial_scanned & np.array([o is None for o in out], dtype=bool))
+            redo = np.flatnonzero(self._axial_undecided & np.array([o is None for o in out], dtype=bool))
             if len(redo):
-                search = self.settings
+                search = self._screened = self.settings
                 self.settings = judge
                 try:
                     again = self._optimum(weights, first=first, which=redo)
                 finally:
-                    self.settings = search
+                    self.settings, self._screened = search, None
                 for i in redo:
                     out[i] = again[i]
-                self._full[redo] = True
         return out
 
     def _optimum(self, weights: dict, *, first: bool = False, which=None) -> list:
@@ -578,7 +584,7 @@ class Batch:
         want = np.ones(n, dtype=bool) if which is None else np.isin(np.arange(n), which)
         R = np.flatnonzero(self.core_ok & want[self.A])
         out: list = [None] * n
-        self._axial_scanned = np.zeros(n, dtype=bool)
+        self._axial_undecided = np.zeros(n, dtype=bool)
         if not len(R):
             return out
         sp, cg = self.sp, self.cg
@@ -643,7 +649,6 @@ class Batch:
                 if first:
                     lim_a = np.full(len(ta), np.inf)
                 a_sc[ta], a_pk[ta] = self._axial_first(R[ta], np.where(np.isfinite(lim_a), lim_a, np.inf), weights)
-                self._axial_scanned[a_of[ta]] = True
                 total[ta] = ((p0[ta] + a_sc[ta]) + s[go]) + t_sc[ta]
                 fin = ta[np.isfinite(total[ta])]
                 for j in fin[np.lexsort((R[fin], total[fin]))]:  # few: the finite totals of this round
@@ -661,23 +666,8 @@ class Batch:
         the design with the largest smallest margin over every core and option (every non-advisory constraint,
         the input-only ones included), as the enumeration's ``nearest_design``; None without any core.
 
-        At fidelity ``screening`` the axial margins are those of :func:`~synth.design.evaluate.axial_judged`, and
-        the applications :meth:`optimum` searched again with the full model alone are ranked by it alone."""
-        n = len(self)
-        which = np.arange(n) if which is None else np.asarray(which, dtype=np.int64)
-        full = self._full & np.isin(np.arange(n), which)
-        if not full.any() or self.settings.judge is self.settings:
-            return self._nearest(which)
-        out = self._nearest(which[~full[which]])
-        search = self.settings
-        self.settings = search.judge
-        try:
-            again = self._nearest(np.flatnonzero(full))
-        finally:
-            self.settings = search
-        return [again[i] if full[i] else out[i] for i in range(n)]
-
-    def _nearest(self, which) -> list:
+        Nearest designs are ranked by the search model (at fidelity ``screening`` the screening one, as
+        :meth:`synth.design.evaluate.Group.rank`); the design reported is verified by the full model."""
         n = len(self)
         want = np.ones(n, dtype=bool) if which is None else np.isin(np.arange(n), which)
         R = np.flatnonzero(want[self.A])

@@ -171,13 +171,14 @@ class _Pairs:
         sel = np.flatnonzero(ok)
         m, b = margins_and_binding(grp, True, sel)
         self.g.append(gp[sel]); self.o.append(op[sel]); self.m.append(m); self.b.append(b)
+        rank = grp.rank()  # nearest designs: ranked by the search model (fidelity screening: the screening one)
         ma = np.where(ok, np.maximum(grp.min_margin(objective_only=False), 0.0),
-                      np.minimum(grp.min_margin(objective_only=False), -FEAS_TOL))
+                      np.minimum(rank.min_margin(objective_only=False), -FEAS_TOL))
         gg, mm, at = _segment_best(gp, ma)
         upd = mm > self.best[gg]
         if upd.any():
             self.best[gg[upd]] = mm[upd]
-            self.best_b[gg[upd]] = margins_and_binding(grp, False, at[upd])[1]
+            self.best_b[gg[upd]] = margins_and_binding(rank, False, at[upd])[1]
         self.evaluated[gp] = True
 
     def by_group(self, n_groups: int):
@@ -272,7 +273,7 @@ def _bushing(apps, cat, cg, rep, settings, acc: _Pairs):
     return len(gp)
 
 
-def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs):
+def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs, group=E.axial_judged):
     pad = pad_code[rep]
     nr = cat.n_axial_real
     cnt = np.where(pad < 0, 1, nr)
@@ -281,8 +282,7 @@ def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs):
     op = np.where(pad[gp] < 0, cat.axial_none, cat.axial_option(np.maximum(pad[gp], 0), j))
     for blk in _blocks(len(gp), BLOCK_PAIRS // 4):
         g, o = gp[blk], op[blk]
-        acc.add(g, o, E.axial_judged(apps, cg, rep[g], cat.space.rows("axial", cat.option_row["axial"][o]),
-                                     settings))
+        acc.add(g, o, group(apps, cg, rep[g], cat.space.rows("axial", cat.option_row["axial"][o]), settings))
     return len(gp)
 
 
@@ -290,9 +290,9 @@ def _judge_undecided(apps, cat, cg, a, pos, gid, rep, pairs, pad_code, settings)
     """At fidelity ``screening`` (axial options screened, then judged: :func:`synth.design.evaluate.axial_judged`),
     "no complete design" must be the full model's verdict too: for an application without a complete design some
     of whose cores lack only an axial option, its axial groups are evaluated again with the full model alone (the
-    screening model may reject options the full model passes). Returns the rows evaluated."""
-    judge = settings.judge
-    if judge is settings or not len(pos):
+    screening model may reject options the full model passes: :func:`synth.design.evaluate.axial_full`). Returns
+    the rows evaluated."""
+    if settings.judge is settings or not len(pos):
         return 0
     has = {s: np.bincount(np.concatenate(pairs[s].g) if pairs[s].g else np.zeros(0, np.int64),
                           minlength=len(rep[s])) > 0 for s in SUBSYSTEMS}
@@ -310,7 +310,7 @@ def _judge_undecided(apps, cat, cg, a, pos, gid, rep, pairs, pad_code, settings)
     acc.g, acc.o, acc.m, acc.b = ([x[k] for x, k in zip(xs, keep)] for xs in (acc.g, acc.o, acc.m, acc.b))
     acc.best[groups], acc.best_b[groups] = -np.inf, _NO_BINDING
     full = _Pairs(len(groups))
-    n = _axial(apps, cat, cg, rep["axial"][groups], pad_code, judge, full)
+    n = _axial(apps, cat, cg, rep["axial"][groups], pad_code, settings, full, E.axial_full)
     acc.g.extend(groups[g] for g in full.g)
     acc.o.extend(full.o)
     acc.m.extend(full.m)
