@@ -35,7 +35,7 @@ from synth import schema
 from synth.errors import InputError, Problem
 from synth.io.numbers import is_not_given
 
-__all__ = ["FORMATS", "read_portfolio", "check_columns", "write_table", "to_table", "plain_cell", "clean_cell", "row_record", "records",
+__all__ = ["FORMATS", "read_portfolio", "check_columns", "write_table", "write_csv", "to_table", "plain_cell", "clean_cell", "row_record", "records",
            "validate_record", "validate_rows", "field_columns", "column_warnings", "format_problems"]
 
 #: file suffix -> format name
@@ -217,13 +217,20 @@ def arrow_safe(df: pd.DataFrame) -> pd.DataFrame:
     return out
 
 
+def write_csv(df: pd.DataFrame, fh, header: bool = True) -> None:
+    """Write ``df`` as CSV rows to the open text file ``fh`` (``header``: the column names first): the one CSV
+    writer of tables, whole (:func:`write_table`) or chunk by chunk (``synth bulk``'s RESULT)."""
+    df.to_csv(fh, index=False, header=header)
+
+
 def write_table(df: pd.DataFrame, path) -> Path:
     """Write ``df`` as CSV, Excel or Parquet by the extension of ``path`` (folders created)."""
     p = Path(path)
     fmt = _format(p, "output")
     p.parent.mkdir(parents=True, exist_ok=True)
     if fmt == "csv":
-        df.to_csv(p, index=False)
+        with open(p, "w", newline="", encoding="utf-8") as fh:
+            write_csv(df, fh)
     elif fmt == "excel":  # text as text, significant figures, print setup (synth.excel.cells)
         from synth.excel.cells import write_frame
         write_frame(df, p, sheet="portfolio")

@@ -167,27 +167,24 @@ def compute_chunk(recs: list[dict], *, objective: str = "standard", fidelity: st
 
 
 def _typed(df: pd.DataFrame) -> pd.DataFrame:
-    """Result columns with fixed types whatever the chunking: bool, float, object parts (None), text."""
-    out = df.copy()
-    for c in out.columns:
-        k = _kind(c)
+    """Result columns with fixed types whatever the chunking: bool, float, object parts (None), text (column by
+    column, no Python object per cell)."""
+    out = {}
+    for c in df.columns:
+        k, col = _kind(c), df[c]
         if k == "bool":
-            out[c] = out[c].fillna(False).astype(bool)
+            out[c] = col.fillna(False).astype(bool).to_numpy()
         elif k == "float":
-            out[c] = pd.to_numeric(out[c], errors="coerce").astype(float)
+            out[c] = pd.to_numeric(col, errors="coerce").astype(float).to_numpy()
         elif k == "part":
-            out[c] = pd.Series([_plain(v) for v in out[c]], index=out.index, dtype=object)
+            v = np.array(col.to_numpy(dtype=object), dtype=object, copy=True)
+            v[pd.isna(v)] = None
+            out[c] = pd.Series(v, index=df.index, dtype=object)
         else:
-            out[c] = pd.Series(["" if _plain(v) is None else str(v) for v in out[c]], index=out.index, dtype=object)
-    return out
-
-
-def _plain(v):
-    if isinstance(v, np.generic):
-        v = v.item()
-    if v is None or v is pd.NA or (isinstance(v, float) and math.isnan(v)):
-        return None
-    return v
+            v = np.array(col.to_numpy(dtype=object), dtype=object, copy=True)
+            v[pd.isna(v)] = ""
+            out[c] = pd.Series(pd.Series(v).astype(str).to_numpy(dtype=object), index=df.index, dtype=object)
+    return pd.DataFrame(out, index=df.index, columns=list(df.columns))
 
 
 def chunk_ranges(n: int, chunk_size: int) -> list[tuple[int, int]]:
@@ -252,27 +249,114 @@ def _write_atomic_json(path: Path, data: dict) -> None:
     os.replace(tmp, path)
 
 
-def content_sha256(df: pd.DataFrame) -> str:
-    """SHA-256 of a chunk's content: column names and every cell, canonically (order kept)."""
-    payload = json.dumps({"columns": [str(c) for c in df.columns],
-                          "rows": [[plain_cell(v) for v in row] for row in df.itertuples(index=False, name=None)]},
-                         default=str, separators=(",", ":"), allow_nan=True)
-    return hashlib.sha256(payload.encode("utf-8")).hexdigest()
+def _part_is_number(key: str) -> bool:
+    """A part key with a number for value (a dimension or a ratio, by its unit suffix); the others are names."""
+    return key.endswith(("_mm", "_ratio"))
+
+
+def result_schema():
+    """The Arrow schema of a chunk file: ``row`` then :func:`result_columns`, typed by kind (one schema for every
+    chunk, so that chunk files are streamed into one Parquet result)."""
+    import pyarrow as pa
+    fields = [pa.field("row", pa.int64())]
+    for c in result_columns():
+        k = _kind(c)
+        t = (pa.bool_() if k == "bool" else pa.float64() if k == "float" else
+             pa.float64() if k == "part" and _part_is_number(c[len("part_"):]) else pa.string())
+        fields.append(pa.field(c, t))
+    return pa.schema(fields)
+
+
+def _to_arrow(df: pd.DataFrame, start: int):
+    """A chunk's typed result rows (:func:`_typed`) as an Arrow table of :func:`result_schema`."""
+    import pyarrow as pa
+    fields = [pa.field("row", pa.int64())]
+    arrays = [pa.array(np.arange(start, start + len(df), dtype=np.int64))]
+    for f in list(result_schema())[1:]:
+        col = df[f.name]
+        if pa.types.is_string(f.type):
+            arr = pa.array(col.to_numpy(dtype=object), type=pa.string(), from_pandas=True)
+        else:
+            try:
+                arr = pa.array(col.to_numpy(dtype=object) if col.dtype == object else col.to_numpy(), type=f.type,
+                               from_pandas=True)
+            except (pa.ArrowInvalid, pa.ArrowTypeError):  # not numbers (another engine's parts): their text
+                arr = pa.array([None if v is None else str(v) for v in col], type=pa.string())
+        fields.append(pa.field(f.name, arr.type))
+        arrays.append(arr)
+    return pa.Table.from_arrays(arrays, schema=pa.schema(fields))
+
+
+def _from_arrow(table, columns=None) -> pd.DataFrame:
+    """The result columns (or ``columns`` of them) of a chunk table as :func:`_typed` gives them (parts: None where
+    empty; text: "")."""
+    import pyarrow.compute as pc
+    out = {}
+    columns = result_columns() if columns is None else list(columns)
+    for c in columns:
+        col, k = table.column(c), _kind(c)
+        if k == "bool":
+            out[c] = pc.fill_null(col, False).to_numpy()
+        elif k == "float":
+            out[c] = col.to_numpy()
+        elif k == "part":
+            v = np.array(col.to_numpy(zero_copy_only=False), dtype=object, copy=True)
+            v[pd.isna(v)] = None
+            out[c] = pd.Series(v, dtype=object)
+        else:
+            out[c] = pd.Series(pc.fill_null(col, "").to_numpy(zero_copy_only=False), dtype=object)
+    return pd.DataFrame(out, columns=columns)
+
+
+def content_sha256(table) -> str:
+    """SHA-256 of a chunk's content from its Arrow columns: names and types, then per column its null mask and
+    values (fixed-width values as their bytes, text as lengths and bytes). One hash per chunk file, computed
+    on the column buffers (no Python object per cell); the table read back from the Parquet file gives the same
+    hash, any changed cell another. A DataFrame is hashed as its Arrow table (:func:`_to_arrow` layout aside).
+
+    >>> import pyarrow as pa
+    >>> t = pa.table({"a": [1.0, None], "b": ["x", None]})
+    >>> content_sha256(t) == content_sha256(pa.table({"a": [1.0, None], "b": ["x", None]}))
+    True
+    >>> content_sha256(t) == content_sha256(pa.table({"a": [1.0, None], "b": ["y", None]}))
+    False
+    """
+    import pyarrow as pa
+    import pyarrow.compute as pc
+    if isinstance(table, pd.DataFrame):
+        table = pa.Table.from_pandas(arrow_safe(table), preserve_index=False)
+    h = hashlib.sha256()
+    for name, col in zip(table.column_names, table.columns):
+        arr = col.combine_chunks() if isinstance(col, pa.ChunkedArray) else col
+        t = arr.type
+        h.update(f"{name}\x1f{t}\x1e{len(arr)}\x1d".encode())
+        h.update(np.packbits(arr.is_valid().to_numpy(zero_copy_only=False)).tobytes())
+        if pa.types.is_null(t):
+            continue
+        if pa.types.is_dictionary(t) or not (pa.types.is_boolean(t) or pa.types.is_integer(t)
+                                             or pa.types.is_floating(t) or pa.types.is_string(t)
+                                             or pa.types.is_large_string(t) or pa.types.is_binary(t)
+                                             or pa.types.is_large_binary(t)):
+            arr, t = arr.cast(pa.large_string()), pa.large_string()
+        if pa.types.is_boolean(t) or pa.types.is_integer(t) or pa.types.is_floating(t):
+            h.update(np.ascontiguousarray(pc.fill_null(arr, pa.scalar(0, t) if not pa.types.is_boolean(t)
+                                                       else False).to_numpy(zero_copy_only=False)).tobytes())
+        else:
+            b = pc.fill_null(arr, "").cast(pa.large_binary())
+            offs = np.frombuffer(b.buffers()[1], dtype=np.int64)[b.offset:b.offset + len(b) + 1]
+            h.update(np.diff(offs).tobytes())
+            if len(offs) and offs[-1] > offs[0]:
+                h.update(memoryview(b.buffers()[2])[int(offs[0]):int(offs[-1])])
+    return h.hexdigest()
 
 
 def _write_chunk(folder: Path, i: int, start: int, df: pd.DataFrame, run_id: str) -> None:
     """Write chunk ``i`` (rows from ``start``) with its run id, row range and content checksum in its metadata."""
-    import pyarrow as pa
     import pyarrow.parquet as pq
 
-    df = df.copy()
-    df.insert(0, "row", np.arange(start, start + len(df), dtype=np.int64))
-    df = arrow_safe(df)
-    table = pa.Table.from_pandas(df, preserve_index=False)
-    meta = dict(table.schema.metadata or {})
-    meta.update({b"synth_run_id": run_id.encode(), b"synth_chunk": str(i).encode(),
-                 b"synth_rows": f"{start}:{start + len(df)}".encode(),
-                 b"synth_sha256": content_sha256(table.to_pandas()).encode()})
+    table = _to_arrow(df, start)
+    meta = {b"synth_run_id": run_id.encode(), b"synth_chunk": str(i).encode(),
+            b"synth_rows": f"{start}:{start + len(df)}".encode(), b"synth_sha256": content_sha256(table).encode()}
     table = table.replace_schema_metadata(meta)
     final = _chunk_path(folder, i)
     tmp = final.with_name(f".{final.name}.{os.getpid()}.tmp")
@@ -280,12 +364,34 @@ def _write_chunk(folder: Path, i: int, start: int, df: pd.DataFrame, run_id: str
     os.replace(tmp, final)
 
 
-def _read_chunk(path: Path) -> tuple[pd.DataFrame, dict]:
+def _read_chunk(path: Path):
+    """``(Arrow table, synth metadata)`` of a chunk file."""
     import pyarrow.parquet as pq
     table = pq.read_table(path)
     meta = {k.decode(errors="replace"): v.decode(errors="replace") for k, v in (table.schema.metadata or {}).items()
             if k.startswith(b"synth_")}
-    return table.to_pandas(), meta
+    return table, meta
+
+
+def _checked_chunk(folder: Path, i: int, start: int, stop: int, run_id: str):
+    """``(state, table)``: :func:`chunk_state` and the chunk's Arrow table when it is ``"ok"`` (read once)."""
+    p = _chunk_path(folder, i)
+    if not p.is_file():
+        return "missing", None
+    try:
+        table, meta = _read_chunk(p)
+    except Exception as exc:  # noqa: BLE001 - a damaged file is reported, never used
+        return f"unreadable ({type(exc).__name__}: {' '.join(str(exc).split())[:120]})", None
+    if "synth_run_id" not in meta or "synth_sha256" not in meta:
+        return "written without a run id and checksum (by an older synth, or not by synth bulk)", None
+    if meta["synth_run_id"] != run_id:
+        return f"written by another run ({meta['synth_run_id'][:12]}), not by run {run_id[:12]}", None
+    rows = table.column("row").to_numpy() if "row" in table.column_names else None
+    if rows is None or len(rows) != stop - start or not (rows == np.arange(start, stop)).all():
+        return f"rows {meta.get('synth_rows', '?')}, not the chunk's rows {start}:{stop}", None
+    if content_sha256(table.replace_schema_metadata(None)) != meta["synth_sha256"]:
+        return "its content does not match its checksum (changed or damaged since it was written)", None
+    return "ok", table
 
 
 def chunk_state(folder: Path, i: int, start: int, stop: int, run_id: str) -> str:
@@ -294,22 +400,7 @@ def chunk_state(folder: Path, i: int, start: int, stop: int, run_id: str) -> str
     A chunk is usable only when it is readable, was written by run
     ``run_id``, covers exactly those rows and its content matches its checksum.
     """
-    p = _chunk_path(folder, i)
-    if not p.is_file():
-        return "missing"
-    try:
-        df, meta = _read_chunk(p)
-    except Exception as exc:  # noqa: BLE001 - a damaged file is reported, never used
-        return f"unreadable ({type(exc).__name__}: {' '.join(str(exc).split())[:120]})"
-    if "synth_run_id" not in meta or "synth_sha256" not in meta:
-        return "written without a run id and checksum (by an older synth, or not by synth bulk)"
-    if meta["synth_run_id"] != run_id:
-        return f"written by another run ({meta['synth_run_id'][:12]}), not by run {run_id[:12]}"
-    if "row" not in df.columns or len(df) != stop - start or not (df["row"].to_numpy() == np.arange(start, stop)).all():
-        return f"rows {meta.get('synth_rows', '?')}, not the chunk's rows {start}:{stop}"
-    if content_sha256(df) != meta["synth_sha256"]:
-        return "its content does not match its checksum (changed or damaged since it was written)"
-    return "ok"
+    return _checked_chunk(folder, i, start, stop, run_id)[0]
 
 
 def _clear(folder: Path) -> None:
@@ -378,10 +469,10 @@ class RunLock:
 
 @dataclass
 class RunReport:
-    """What a run did: the result table (None while incomplete), chunk counts and timing."""
+    """What a run did: chunk counts and timing; the result table (None while incomplete) is read from the chunk
+    files when asked for (:attr:`table`, in memory; :meth:`columns` reads only some columns)."""
 
     out: Path
-    table: pd.DataFrame | None
     n_rows: int
     n_chunks: int
     computed: int
@@ -393,10 +484,34 @@ class RunReport:
     rows_computed: int = 0
     total_seconds: float = 0.0
     run_id: str = ""
+    _source: tuple | None = field(default=None, repr=False)
+    _table: pd.DataFrame | None = field(default=None, repr=False)
+
+    @property
+    def table(self) -> pd.DataFrame | None:
+        """The whole result table in memory (input columns and result columns), None while incomplete."""
+        if self._table is None and self._source is not None:
+            table, folder, ranges, run_id = self._source
+            self._table = assemble(table, folder, len(ranges), run_id=run_id, ranges=ranges)
+        return self._table
+
+    def columns(self, names) -> pd.DataFrame | None:
+        """The result table restricted to the columns ``names`` (those present; memory for just them)."""
+        if self._source is None:
+            return None
+        if self._table is not None:
+            return self._table[[c for c in names if c in self._table.columns]]
+        table, folder, ranges, run_id = self._source
+        want = [c for c in result_columns() if c in names]
+        res = pd.concat([_from_arrow(t, want) for _, _, t in _checked_chunks(folder, ranges, run_id)],
+                        ignore_index=True) if ranges else pd.DataFrame(columns=want)
+        keep = [c for c in names if c in table.columns and c not in res.columns]
+        return pd.concat([table[keep].reset_index(drop=True), res], axis=1)
 
     @property
     def n_errors(self) -> int:
-        return 0 if self.table is None else int((self.table["status"] == "error").sum())
+        t = self.columns(["status"])
+        return 0 if t is None else int((t["status"] == "error").sum())
 
     @property
     def apps_per_s(self) -> float:
@@ -527,18 +642,17 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
                                      bar, connect_timeout_s)
             seconds = time.monotonic() - t_compute
         complete = all(_chunk_path(folder, i).is_file() for i in range(len(ranges)))
-        result = None
         if complete:
-            result = assemble(table, folder, len(ranges), run_id=run_id, ranges=ranges)
-            tmp = out.with_name(f".{out.stem}.{run_id[:12]}.tmp{out.suffix}")
-            write_table(result, tmp)
-            os.replace(tmp, out)
+            write_result(out, table, folder, ranges, run_id)
         rows_done = sum(b - a for i, (a, b) in enumerate(ranges) if i in todo_set and _chunk_path(folder, i).is_file())
     finally:
         lock.release()
-    return RunReport(out=out, table=result, n_rows=n, n_chunks=len(ranges), computed=computed, reused=len(done),
-                     seconds=seconds, engine=engine, complete=complete, warnings=notes, rows_computed=rows_done,
-                     total_seconds=time.monotonic() - t0, run_id=run_id)
+    rep = RunReport(out=out, n_rows=n, n_chunks=len(ranges), computed=computed, reused=len(done),
+                    seconds=seconds, engine=engine, complete=complete, warnings=notes, rows_computed=rows_done,
+                    total_seconds=time.monotonic() - t0, run_id=run_id)
+    if complete:
+        rep._source = (table, folder, ranges, run_id)
+    return rep
 
 
 def _resumable(folder: Path, ranges: list, run_id: str) -> list[int]:
@@ -562,38 +676,91 @@ def _resumable(folder: Path, ranges: list, run_id: str) -> list[int]:
     return done
 
 
+def _checked_chunks(folder: Path, ranges: list, run_id: str | None):
+    """Yield ``(i, (start, stop), Arrow table)`` of every chunk in order, each read once; with ``run_id``
+    every chunk is checked (:func:`chunk_state`) and a chunk of another run, changed or damaged is an
+    :class:`InputError` naming every such chunk (after the last one: nothing is kept of a failed assembly)."""
+    import pyarrow.parquet as pq
+    problems = []
+    for i, (a, b) in enumerate(ranges):
+        p = _chunk_path(folder, i)
+        if run_id is not None:
+            state, table = _checked_chunk(folder, i, a, b, run_id)
+            if state != "ok":
+                problems.append(Problem(f"chunk {p.name}", state, f"a chunk written by this run ({run_id[:12]}); "
+                                        "another process wrote into the folder? rerun the command"))
+                continue
+        else:
+            table = pq.read_table(p)
+            rows = table.column("row").to_numpy()
+            if len(rows) != b - a or not (rows == np.arange(a, b)).all():
+                problems.append(Problem("chunks", str(folder), f"chunk files covering rows {a}..{b - 1}; rerun "
+                                        "without --resume"))
+                continue
+        if not problems:
+            yield i, (a, b), table
+    if problems:
+        raise InputError(problems)
+
+
 def assemble(table: pd.DataFrame, folder: Path, n_chunks: int, run_id: str | None = None,
              ranges: list | None = None) -> pd.DataFrame:
-    """The input ``table`` plus the result columns read back from the ``n_chunks`` chunk files, in input order.
+    """The input ``table`` plus the result columns read back from the ``n_chunks`` chunk files, in input order,
+    in memory (:func:`write_result` streams the same table into a file).
 
     With ``run_id`` every chunk is checked first (:func:`chunk_state`): a chunk
     of another run, changed or damaged is an :class:`InputError` naming it, and
     no result is assembled.
     """
-    if run_id is not None:
-        if ranges is None or len(ranges) != n_chunks:
-            raise ValueError("assemble(run_id=...) needs the run's chunk ranges")
-        parts, problems = [], []
-        for i in range(n_chunks):
-            p = _chunk_path(folder, i)
-            a, b = ranges[i]
-            state = chunk_state(folder, i, a, b, run_id)
-            if state != "ok":
-                problems.append(Problem(f"chunk {p.name}", state, f"a chunk written by this run ({run_id[:12]}); "
-                                        "another process wrote into the folder? rerun the command"))
-            else:
-                parts.append(_read_chunk(p)[0])
-        if problems:
-            raise InputError(problems)
-    else:
-        parts = [pd.read_parquet(_chunk_path(folder, i)) for i in range(n_chunks)]
-    cols = result_columns()
-    res = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=["row"] + cols)
-    res = res.sort_values("row").reset_index(drop=True)
-    if len(res) != len(table) or not (res["row"].to_numpy() == np.arange(len(table))).all():
+    if run_id is not None and (ranges is None or len(ranges) != n_chunks):
+        raise ValueError("assemble(run_id=...) needs the run's chunk ranges")
+    ranges = ranges if ranges is not None else chunk_ranges(len(table), -(-len(table) // max(n_chunks, 1)) or 1)
+    parts = [_from_arrow(t) for _, _, t in _checked_chunks(folder, ranges, run_id)]
+    res = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=result_columns())
+    if len(res) != len(table):
         raise InputError(Problem("chunks", str(folder), f"chunk files covering rows 0..{len(table) - 1}; rerun without --resume"))
-    res = _typed(res.reindex(columns=cols))
-    return pd.concat([table.reset_index(drop=True), res], axis=1)
+    return pd.concat([table.reset_index(drop=True), _typed(res)], axis=1)
+
+
+def write_result(out: Path, table: pd.DataFrame, folder: Path, ranges: list, run_id: str) -> Path:
+    """Write RESULT (the input ``table`` plus every chunk's result columns, in input order) chunk by chunk: a
+    CSV or Parquet RESULT is streamed (the result columns in memory one chunk at a time, whatever the
+    portfolio's size), an Excel or OpenDocument one collected first (their writers need the whole sheet). Every
+    chunk is checked as :func:`assemble` checks it; RESULT is written to a temporary file and moved into place."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+    from synth.bulk.portfolio import FORMATS, write_csv
+    fmt = FORMATS[out.suffix.lower()]
+    tmp = out.with_name(f".{out.stem}.{run_id[:12]}.tmp{out.suffix}")
+    chunks = _checked_chunks(folder, ranges, run_id)
+    try:
+        if fmt == "parquet":
+            inputs = pa.Table.from_pandas(arrow_safe(table.reset_index(drop=True)), preserve_index=False)
+            # a part column of numbers in one chunk and of text in another (another engine's parts) is text
+            text = {f.name for i in range(len(ranges)) for f in pq.read_schema(_chunk_path(folder, i))
+                    if pa.types.is_string(f.type)}
+            res_fields = [pa.field(f.name, pa.string() if f.name in text else f.type) for f in list(result_schema())[1:]]
+            schema = pa.schema(list(inputs.schema.remove_metadata()) + res_fields)
+            with pq.ParquetWriter(tmp, schema) as w:
+                for _, (a, b), res in chunks:
+                    cols = inputs.slice(a, b - a).columns + [res.column(f.name).cast(f.type) for f in res_fields]
+                    w.write_table(pa.Table.from_arrays(cols, schema=schema))
+        elif fmt == "csv":
+            with open(tmp, "w", newline="", encoding="utf-8") as fh:
+                header = True
+                for _, (a, b), res in chunks:
+                    write_csv(pd.concat([table.iloc[a:b].reset_index(drop=True), _from_arrow(res)], axis=1), fh,
+                              header=header)
+                    header = False
+                if header:  # no rows: the columns alone
+                    write_csv(pd.DataFrame(columns=list(table.columns) + result_columns()), fh, header=True)
+        else:
+            write_table(assemble(table, folder, len(ranges), run_id=run_id, ranges=ranges), tmp)
+        os.replace(tmp, out)
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            tmp.unlink()
+    return out
 
 
 def _run_dask(chunk_records, ranges, todo, write, kw, scheduler, workers, stop_after_chunks, bar,

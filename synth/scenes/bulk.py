@@ -82,7 +82,8 @@ def _main(args) -> int:
         print(f"synth bulk: note: {w}", file=sys.stderr)
     print(f"synth bulk: {args.portfolio} -> {rep.out} | objective {args.objective} | fidelity {args.fidelity}")
     print(rep.message() + (f", {rep.apps_per_s:.3g} applications/s" if rep.computed else ""))
-    s = summarise(rep.table)
+    from synth.bulk.summary import COLUMNS
+    s = summarise(rep.columns(COLUMNS))  # the columns the summary reads, not the whole table
     print(text(s))
     if args.summary:
         paths = write_summary(s, args.summary)
