@@ -12,7 +12,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 ORDER = ["00_overview", "architecture", "data_sources", "step00_03", "plain_bushing", "friction_wear", "stackup",
          "packaging", "disc_spring", "torsion_spring", "bolted_joint", "cad",
-         "optimisation", "bulk_engine", "kernels", "bulk", "reports", "shrink_fit", "validation"]
+         "optimisation", "fidelity", "bulk_engine", "kernels", "bulk", "reports", "shrink_fit", "validation"]
 
 
 def constants_table() -> str:
