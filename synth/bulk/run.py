@@ -58,8 +58,8 @@ import pandas as pd
 
 from synth import __version__, catalog
 from synth.fingerprint import file_sha256
-from synth.bulk.portfolio import (arrow_safe, column_warnings, field_columns, plain_cell, read_portfolio, row_record,
-                                  validate_record, write_table)
+from synth.bulk.portfolio import (arrow_safe, column_warnings, field_columns, read_portfolio, validate_record,
+                                  validate_table, write_table)
 from synth.errors import InputError, Problem
 from synth.report.progress import Progress
 
@@ -130,40 +130,52 @@ def _call_engine(screen, apps, objective, fidelity, diagnose) -> pd.DataFrame:
     return df.reset_index(drop=True)
 
 
-def compute_chunk(recs: list[dict], *, objective: str = "standard", fidelity: str = "screening",
+def compute_chunk(recs, *, objective: str = "standard", fidelity: str = "screening",
                   diagnose: bool = True, screen: Callable | None = None,
                   catalog_dirs: tuple[str, ...] | None = None) -> pd.DataFrame:
-    """Validate and evaluate one chunk of design-input records: one result row per record, in order.
+    """Validate and evaluate one chunk: one result row per record, in order.
 
-    Valid records go to the engine in one call; a record that fails
-    validation gets ``status = "error"`` and its problems in ``error``. If the
-    engine raises on the chunk, the chunk is evaluated one application at a
-    time and only the failing ones get ``error = "engine: ..."``: one bad
-    row never stops a portfolio. ``catalog_dirs`` are the user catalog
-    folders to use (re-applied in a Dask worker process).
+    ``recs``: a table of the chunk's rows (its design-input columns, validated column by column:
+    :func:`synth.bulk.portfolio.validate_table`) or a list of design-input records (validated one by one).
+    Valid rows go to the engine in one call; a row that fails validation gets ``status = "error"`` and its
+    problems in ``error``. If the engine raises on the chunk, the chunk is evaluated one application at a
+    time and only the failing ones get ``error = "engine: ..."``: one bad row never stops a portfolio.
+    ``catalog_dirs`` are the user catalog folders to use (re-applied in a Dask worker process).
     """
     if catalog_dirs is not None and [str(p) for p in catalog._user_dirs()] != list(catalog_dirs):
         catalog.set_user_dirs(*catalog_dirs)
     screen = screen or _screen_default()
     cols = result_columns()
-    checked = [validate_record(r) for r in recs]
-    valid = [i for i, (a, _) in enumerate(checked) if a is not None]
-    apps = [checked[i][0] for i in valid]
-    rows: list[dict] = [_error_row(cols, e) if a is None else {} for a, e in checked]
+    if isinstance(recs, pd.DataFrame):
+        checked, errors = validate_table(recs)
+    else:
+        pairs = [validate_record(r) for r in recs]
+        checked, errors = [a for a, _ in pairs], [e for _, e in pairs]
+    n = len(checked)
+    valid = [i for i, a in enumerate(checked) if a is not None]
+    apps = [checked[i] for i in valid]
+    res = None
     try:
-        res = _call_engine(screen, apps, objective, fidelity, diagnose).to_dict(orient="records")
-        for i, r in zip(valid, res):
-            rows[i] = {**r, "error": ""}
+        res = _call_engine(screen, apps, objective, fidelity, diagnose)
     except InputError:
         raise  # a bad setting (objective...): the same for every row, reported once
     except Exception:
-        for i, a in zip(valid, apps):
+        rows = []
+        for a in apps:
             try:
-                r = _call_engine(screen, [a], objective, fidelity, diagnose).to_dict(orient="records")[0]
-                rows[i] = {**r, "error": ""}
+                rows.append({**_call_engine(screen, [a], objective, fidelity, diagnose).iloc[0].to_dict(),
+                             "error": ""})
             except Exception as exc:  # noqa: BLE001 - reported in the row, never swallowed
-                rows[i] = _error_row(cols, f"engine: {type(exc).__name__}: {exc}")
-    return _typed(pd.DataFrame(rows, columns=cols))
+                rows.append(_error_row(cols, f"engine: {type(exc).__name__}: {exc}"))
+        res = pd.DataFrame(rows, columns=cols)
+    err, out = _error_row(cols, ""), {}
+    for c in cols:  # the engine's rows where valid, an input-error row's cells elsewhere
+        col = np.empty(n, dtype=object)
+        col[:] = errors if c == "error" else [err[c]] * n
+        if valid:
+            col[valid] = res[c].to_numpy(dtype=object) if c in res.columns else ""
+        out[c] = pd.Series(col, dtype=object)
+    return _typed(pd.DataFrame(out, columns=cols))
 
 
 def _typed(df: pd.DataFrame) -> pd.DataFrame:
@@ -620,9 +632,9 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
         computed = 0
         cols = field_columns(table)
 
-        def chunk_records(k: int) -> list[dict]:  # one chunk's records at a time: a big portfolio is not copied whole
+        def chunk_records(k: int) -> pd.DataFrame:  # one chunk's field columns at a time (validated as columns)
             a, b = ranges[k]
-            return [row_record(r) for r in table.iloc[a:b][cols].to_dict(orient="records")]
+            return table.iloc[a:b][cols].reset_index(drop=True)
 
         def write(k: int, df: pd.DataFrame) -> None:
             _write_chunk(folder, k, ranges[k][0], df, run_id)
