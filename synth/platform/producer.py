@@ -130,17 +130,35 @@ def margins_and_binding(g: E.Group, objective_only: bool = True, rows=None) -> t
     return m, np.where(np.isinf(m) & (m > 0), _NO_BINDING, np.asarray(idx)[k]).astype(np.int16)
 
 
+#: constraint id by binding index (the last: "none counted"), to name a whole array of bindings at once
+_NAMES = np.array(_IDS + [""], dtype=object)
+
+
 def _name(b: int) -> str:
     return "" if b >= _NO_BINDING else _IDS[int(b)]
 
 
-def spring_group(apps, keys: dict, k, options: dict, settings: E.Settings) -> E.Group:
-    """The main-spring group for rows pairing key ``k[i]`` with option ``options[i]`` (one line to switch engine).
+def spring_group(apps, keys: dict, k, options, settings: E.Settings, spring_keys=None) -> E.Group:
+    """The main-spring group's registry margins for rows pairing key ``k[i]`` with option ``options[i]``: the
+    compiled kernels (:func:`synth.kernels.torsion_spring.pair_margins`, equal to the registry's spring group,
+    ``tests/test_kernels.py``), 10-15x the numpy group on these pairs.
 
-    Today the numpy group :func:`synth.design.evaluate.spring`; the compiled kernel
-    (:mod:`synth.kernels.torsion_spring`) replaces it here once its margins are the registry's.
-    """
-    return E.spring(apps, keys, k, options, settings)
+    ``options``: rows of the design space's spring table (integers), or the table's columns for each row (a
+    dict, as :func:`synth.design.evaluate.spring` takes them). ``spring_keys``: the keys' kernel table when the
+    caller made it once (:func:`synth.kernels.torsion_spring.keys_of_rows`). The group holds the margins of the
+    non-advisory constraints (feasibility, the margin objective and the nearest design read no other) and the
+    application of each row; a fatigue check without its durability test has the margin ``+inf``, as the
+    registry's "not verified"."""
+    from synth.kernels import torsion_spring as K
+    kk = spring_keys if spring_keys is not None else K.keys_of_rows(apps, keys)
+    k = np.asarray(k, dtype=np.int64)
+    if isinstance(options, dict):
+        opts, rows = K.options_of_space(options, np.arange(len(k))), np.arange(len(k))
+    else:
+        opts, rows = K.options_of_space(), np.asarray(options, dtype=np.int64)
+    m = K.pair_margins(kk, opts, k, rows)
+    return E.Group("spring", {"app": np.asarray(keys["app"])[k]},
+                   {name: m[:, c] for c, name in enumerate(K.MARGIN_NAMES)})
 
 
 # --------------------------------------------------------------------------------------------------------- chunk
@@ -326,7 +344,9 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
     """
     if not len(rep):
         return 0, 0
+    from synth.kernels.torsion_spring import keys_of_rows
     keys = E.spring_keys(cg, rep)
+    kk = keys_of_rows(apps, keys)  # the keys' kernel table, once
     rows = cat.option_row["spring"]
     mbd = cat.space.tables["spring"]["main_spring_mean_body_diameter_mm"][rows]
     lo, hi = spring_window(keys["spring_housing_inner_diameter_mm"], keys["spring_housing_outer_diameter_mm"])
@@ -365,8 +385,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
                 n_stage += len(g)
                 for blk in _blocks(len(g)):
                     gg_, oo = g[blk], o[blk]
-                    m, b = _stage_margin(spring_group(apps, keys, srep[gg_], cat.space.rows("spring", rows[oo]),
-                                                      settings), ids)
+                    m, b = _stage_margin(spring_group(apps, keys, srep[gg_], rows[oo], settings, kk), ids)
                     ok = m >= -FEAS_TOL
                     survive[gg_[ok], oo[ok]] = True
                     bad = ~ok & finite[gg_]
@@ -384,7 +403,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
         g = kb[g]
         n_last += len(g)
         for blk in _blocks(len(g)):
-            acc.add(g[blk], o[blk], spring_group(apps, keys, g[blk], cat.space.rows("spring", rows[o[blk]]), settings))
+            acc.add(g[blk], o[blk], spring_group(apps, keys, g[blk], rows[o[blk]], settings, kk))
     # keys left without a candidate: the first stage that left none in their window says why
     left = np.flatnonzero(~acc.evaluated)
     for of, survive, best, best_b in stages:
@@ -404,6 +423,7 @@ def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, ro
     know the margins of their own constraints over the springs that reached them). Repeated until the nearest
     core's spring is known exactly, so the reason names what that design really misses. Returns the rows
     evaluated."""
+    from synth.kernels.torsion_spring import keys_of_rows
     has = {s: np.bincount(np.concatenate(pairs[s].g) if pairs[s].g else np.zeros(0, np.int64),
                           minlength=len(rep[s])) > 0 for s in SUBSYSTEMS}
     complete = np.ones(len(pos), bool)
@@ -426,11 +446,12 @@ def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, ro
         if not len(groups):
             break
         keys = E.spring_keys(cg, rep["spring"][groups])
+        kk = keys_of_rows(apps, keys)
         lo, hi = spring_window(keys["spring_housing_inner_diameter_mm"], keys["spring_housing_outer_diameter_mm"])
         g, o = np.nonzero((mbd[None, :] >= lo[:, None]) & (mbd[None, :] <= hi[:, None]))
         best = _Pairs(len(groups))
         for blk in _blocks(len(g)):
-            best.add(g[blk], o[blk], spring_group(apps, keys, g[blk], cat.space.rows("spring", rows[o[blk]]), settings))
+            best.add(g[blk], o[blk], spring_group(apps, keys, g[blk], rows[o[blk]], settings, kk))
         acc.best[groups], acc.best_b[groups], acc.evaluated[groups] = best.best, best.best_b, best.evaluated
         refined[groups] = True
         n += len(g)
@@ -494,7 +515,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             ptr, o, m, b = grouped[s]
             feasible[s] = [o[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
             margin[s] = [m[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
-            binding[s] = [np.array([_name(x) for x in b[ptr[g]:ptr[g + 1]]], dtype=object) for g in range(g0, g1)]
+            binding[s] = [_NAMES[np.minimum(b[ptr[g]:ptr[g + 1]], _NO_BINDING)] for g in range(g0, g1)]
             complete &= (np.diff(ptr)[g0:g1] > 0)[group[s]]
         d = inputs[i]
         af = AppFeasibility(
@@ -502,7 +523,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             core_cost_eur=cat.space.tables["core"]["cost_eur"][crow[sel]].astype(float), core_margin=core_m[sel],
             group=group, feasible=feasible, option_margin=margin, volume=float(volumes[i]),
             option_cost_eur={"spring": cat.spring_cost_eur(float(apps.spring_stiffness_nm_per_deg[i]))},
-            core_binding=np.array([_name(x) for x in core_b[sel]], dtype=object), option_binding=binding,
+            core_binding=_NAMES[np.minimum(core_b[sel], _NO_BINDING)], option_binding=binding,
             core_rows=crow[sel])
         if not complete.any():
             af.note = _why(cat, i, a, crow, all_m, all_b, sel, k, gid, first_group, pairs)
