@@ -285,6 +285,8 @@ def test_dask_equals_inprocess(tmp_path):
     pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "a.parquet"), pd.read_parquet(tmp_path / "b.parquet"))
     assert a.n_errors == 3 and 0 < a.table["feasible"].sum() < 57
     assert (c1.computed, c1.complete) == (1, False) and (c2.computed, c2.reused) == (2, 1)
+    # one local worker has no more cores than this process: Dask cannot help, the run says so and runs here
+    assert c1.engine == "inprocess" and any("no more cores than this process" in w for w in c1.warnings)
     pd.testing.assert_frame_equal(a.table, c2.table)
 
 

@@ -64,7 +64,8 @@ from synth.errors import InputError, Problem
 from synth.report.progress import Progress
 
 __all__ = ["ENGINES", "FIDELITIES", "DEFAULT_CHUNK_SIZE", "default_chunk_size", "RunReport", "result_columns", "compute_chunk",
-           "run_portfolio", "sidecar", "manifest_of", "chunk_ranges", "chunk_state", "RunLock"]
+           "run_portfolio", "sidecar", "manifest_of", "chunk_ranges", "chunk_state", "RunLock", "usable_cores",
+           "dask_pointless", "write_result", "result_schema", "content_sha256"]
 
 ENGINES = ("inprocess", "dask")
 from synth.design.evaluate import FIDELITIES  # noqa: E402 - one vocabulary (full, screening, screening-only)
@@ -642,16 +643,26 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
         with Progress(total=n, desc=f"synth bulk ({engine})", stream=stream) as bar:
             bar.update(sum(ranges[i][1] - ranges[i][0] for i in done), note="reused")
             t_compute = time.monotonic()
-            if engine == "inprocess":
+            ran = {"engine": engine}
+
+            def inprocess() -> int:
+                ran["engine"] = "inprocess"
+                done_here = 0
                 for i in todo:
-                    if stop_after_chunks is not None and computed >= stop_after_chunks:
+                    if stop_after_chunks is not None and done_here >= stop_after_chunks:
                         break
                     write(i, compute_chunk(chunk_records(i), **kw))
-                    computed += 1
+                    done_here += 1
                     bar.update(ranges[i][1] - ranges[i][0])
+                return done_here
+            why = dask_pointless(scheduler, workers, len(todo)) if engine == "dask" else None
+            if engine == "inprocess" or why:
+                if why:
+                    notes.append(why)
+                computed = inprocess()
             else:
                 computed = _run_dask(chunk_records, ranges, todo, write, kw, scheduler, workers, stop_after_chunks,
-                                     bar, connect_timeout_s)
+                                     bar, connect_timeout_s, inprocess, notes)
             seconds = time.monotonic() - t_compute
         complete = all(_chunk_path(folder, i).is_file() for i in range(len(ranges)))
         if complete:
@@ -660,7 +671,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
     finally:
         lock.release()
     rep = RunReport(out=out, n_rows=n, n_chunks=len(ranges), computed=computed, reused=len(done),
-                    seconds=seconds, engine=engine, complete=complete, warnings=notes, rows_computed=rows_done,
+                    seconds=seconds, engine=ran["engine"], complete=complete, warnings=notes, rows_computed=rows_done,
                     total_seconds=time.monotonic() - t0, run_id=run_id)
     if complete:
         rep._source = (table, folder, ranges, run_id)
@@ -775,9 +786,44 @@ def write_result(out: Path, table: pd.DataFrame, folder: Path, ranges: list, run
     return out
 
 
+def usable_cores() -> int:
+    """The processors this process may run on (its affinity; the machine's count where that is not known)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
+def dask_pointless(scheduler: str | None, workers: int | None, tasks: int, threads: int | None = None) -> str | None:
+    """Why ``--engine dask`` would not help (the note saying the work runs in this process instead), or None.
+
+    The in-process engine computes a chunk on one core: Dask helps only with more cores than that, and more
+    than one chunk to share among them. A local cluster runs on this machine's usable cores
+    (:func:`usable_cores`), whatever ``--workers`` asks; a scheduler's cluster has its workers' threads
+    (``threads``, known once connected).
+
+    >>> dask_pointless(None, 2, 1).startswith("--engine dask: 1 chunk")
+    True
+    """
+    if tasks <= 1:
+        return f"--engine dask: {tasks} chunk to compute, nothing to share among workers: computed in this process"
+    if scheduler:
+        if threads is not None and threads <= 1:
+            return (f"--engine dask: the cluster at {scheduler} has {threads} thread, no more cores than this "
+                    "process: computed in this process")
+        return None
+    cores = min(int(workers or 2), usable_cores())
+    if cores <= 1:
+        return (f"--engine dask: a local cluster of {int(workers or 2)} worker(s) on {usable_cores()} usable core(s) "
+                "has no more cores than this process: computed in this process")
+    return None
+
+
 def _run_dask(chunk_records, ranges, todo, write, kw, scheduler, workers, stop_after_chunks, bar,
-              connect_timeout_s: float = 20.0) -> int:
-    """Compute chunks ``todo`` on Dask, writing each (``write(k, df)``) as it completes; returns how many were written."""
+              connect_timeout_s: float = 20.0, inprocess=None, notes: list | None = None) -> int:
+    """Compute chunks ``todo`` on Dask, writing each (``write(k, df)``) as it completes; returns how many were written.
+    A scheduler's cluster with no more than one thread computes in this process instead (``inprocess()``, and a
+    note in ``notes``)."""
     try:
         from dask.distributed import as_completed
     except ImportError:  # pragma: no cover - dask[distributed] is a dependency
@@ -788,6 +834,11 @@ def _run_dask(chunk_records, ranges, todo, write, kw, scheduler, workers, stop_a
     with dask_client(scheduler, workers, connect_timeout_s) as client:
         # a bounded number of chunks in flight: the records of a huge portfolio are not all shipped at once
         nthreads = sum(client.nthreads().values()) or 1
+        why = dask_pointless(scheduler, workers, len(todo), nthreads) if inprocess is not None else None
+        if why:
+            if notes is not None:
+                notes.append(why)
+            return inprocess()
         in_flight = max(2 * nthreads, 2)
         pending = list(todo)
         futures: dict = {}

@@ -609,8 +609,9 @@ def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: E
     kw = dict(diagnose=diagnose, catalog_dirs=tuple(str(p) for p in catalog._user_dirs()))
     jobs = [([inputs[i] for i in valid[lo:hi]], [ids[i] for i in valid[lo:hi]], volumes[valid[lo:hi]])
             for lo, hi in ranges]
-    results = _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress)
-    stats = {"engine": engine, "chunks": len(ranges)}
+    run_notes: list = []
+    results = _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress, run_notes)
+    stats = {"engine": "inprocess" if run_notes else engine, "chunks": len(ranges)}
     for _, st in results:
         for k, v in st.items():
             stats[k] = stats.get(k, 0) + v
@@ -628,7 +629,7 @@ def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: E
         option_cost_eur={s: (cat.option_cost_eur[s] if s != "spring" else np.zeros(cat.n_options(s)))
                          for s in SUBSYSTEMS},
         notes=[f"feasibility from the evaluator (synth.design.evaluate, fidelity {settings.fidelity}); "
-               "per-variant fixed costs: illustrative constants (catalogs/constants_platform.csv)"],
+               "per-variant fixed costs: illustrative constants (catalogs/constants_platform.csv)"] + run_notes,
         design_inputs=list(inputs), settings=settings, catalogue=cat,
         stats={"feasibility_s": time.perf_counter() - t0, **stats})
     return validate(pf)
@@ -640,9 +641,15 @@ def _chunk_job(inputs, ids, volumes, settings, **kw) -> tuple:
     return chunk_feasibility(inputs, ids, volumes, settings, stats=stats, **kw), stats
 
 
-def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress) -> list:
+def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress, notes: list | None = None) -> list:
+    """The chunks' results in order, in this process or on Dask (where Dask cannot help, in this process, and
+    ``notes`` says why: :func:`synth.bulk.run.dask_pointless`)."""
+    from synth.bulk.run import dask_pointless
     total = sum(len(j[0]) for j in jobs)
-    if engine == "inprocess":
+    why = dask_pointless(scheduler, workers, len(jobs)) if engine == "dask" else None
+    if why and notes is not None:
+        notes.append(why)
+    if engine == "inprocess" or why:
         out, done = [], 0
         for inp, ids, vol in jobs:
             out.append(_chunk_job(inp, ids, vol, settings, **kw))

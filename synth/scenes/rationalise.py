@@ -85,6 +85,10 @@ def _main(args) -> int:
         pf = load_feasibility(args.portfolio, Settings(fidelity=args.fidelity), engine=engine, workers=args.workers,
                               scheduler=args.scheduler, diagnose=args.diagnose,
                               progress=lambda done, total: bar.update(done - bar.n))
+    import sys
+    for note in pf.notes:
+        if note.startswith("--engine dask"):
+            print(f"synth rationalise: note: {note}", file=sys.stderr)
     r = rationalise(pf, args.objective, max_variants=caps, time_limit=args.time_limit, solver=args.solver)
     rows = None if args.tradeoff == "none" else tradeoff(pf, args.tradeoff, points=args.points,
                                                          time_limit=args.time_limit)
