@@ -80,7 +80,9 @@ def _main(args) -> int:
         return 130
     for w in rep.warnings:
         print(f"synth bulk: note: {w}", file=sys.stderr)
-    print(f"synth bulk: {args.portfolio} -> {rep.out} | objective {args.objective} | fidelity {args.fidelity}")
+    said = {"screening": " (every design reported verified at full fidelity)",
+            "screening-only": " (designs NOT verified at full fidelity)"}.get(args.fidelity, "")
+    print(f"synth bulk: {args.portfolio} -> {rep.out} | objective {args.objective} | fidelity {args.fidelity}{said}")
     print(rep.message() + (f", {rep.apps_per_s:.3g} applications/s" if rep.computed else ""))
     from synth.bulk.summary import COLUMNS
     s = summarise(rep.columns(COLUMNS))  # the columns the summary reads, not the whole table
