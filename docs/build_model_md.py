@@ -12,8 +12,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 ORDER = ["00_overview", "architecture", "data_sources", "flowchart_rules", "step00_03", "plain_bushing",
          "friction_wear", "stackup", "packaging", "disc_spring", "torsion_spring", "bolted_joint", "cad",
-         "optimisation", "robust", "control", "bulk_engine", "kernels", "bulk", "reports", "ui", "shrink_fit",
-         "drive", "validation"]
+         "optimisation", "fidelity", "robust", "control", "bulk_engine", "kernels", "bulk", "reports", "ui",
+         "shrink_fit", "drive", "validation"]
 
 
 def constants_table() -> str:

@@ -188,7 +188,7 @@ class _Walk:
         attempt = 1
         while True:
             ax = axial_attributes(p, [spacer], [zeta], [phi], [0.0])
-            g = E.axial(self.apps, cg, _ONE, ax, self.s)
+            g = E.axial(self.apps, cg, _ONE, ax, self.s.judge)  # the loop continues where the judge fails
             if g.margins["damping_eol"][0] >= -FEAS_TOL:
                 return attrs_core, ax, cg
             # step 5: the EOL damping is below its limit: larger contact surfaces (the next class of each element
@@ -308,8 +308,8 @@ def _stopped(walk: _Walk, stop: _Stop) -> Result:
     values = {k: plain(float(v[0])) for k, v in groups["core"].values.items()
               if np.ndim(v) and np.asarray(v).dtype.kind == "f"}
     return Result(status="baseline", solver="flowchart", values=values, checks=checks,
-                  notes=plausibility(d) + walk.notes + [stop.why], inputs=inputs_of(d), settings=_settings_dict(walk.s),
-                  steps_run=sorted(set(walk.steps)), rules=echo())
+                  notes=plausibility(d) + walk.notes + [stop.why] + walk.s.notes(), inputs=inputs_of(d),
+                  settings=_settings_dict(walk.s), steps_run=sorted(set(walk.steps)), rules=echo())
 
 
 def _settings_dict(s: Settings) -> dict:
@@ -352,8 +352,8 @@ def run(design_input, settings: Settings | None = None, parts: dict | None = Non
     values.update(walk.required)
     res = Result(status="baseline", solver="flowchart", objective="thesis procedure",
                  parts=parts_of_attributes(attrs, groups),
-                 values=values, checks=checks_of(groups, walk.apps), notes=plausibility(design_input) + walk.notes,
-                 inputs=inputs_of(design_input),
+                 values=values, checks=checks_of(groups, walk.apps),
+                 notes=plausibility(design_input) + walk.notes + s.notes(), inputs=inputs_of(design_input),
                  settings=_settings_dict(s), steps_run=sorted(set(walk.steps)), rules=echo())
     if "_history" in groups["axial"].values:
         res.curves["plastic_wear"] = {k: np.asarray(v).reshape(-1).tolist()

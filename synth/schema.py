@@ -531,12 +531,25 @@ def validate(data: dict, partial: bool = False) -> "DesignInput":
             continue
         given_as[name] = key
         out[name] = _coerce(_BY_NAME[name], value, problems)
-    for f in FIELDS:
-        if out.get(f.name) is None and f.default is not None:
+    return _finish(out, problems, partial)
+
+
+_DEFAULTED = tuple(f for f in FIELDS if f.default is not None)
+_REQUIRED = tuple(f for f in FIELDS if f.required)
+
+
+def _finish(out: dict, problems: list[Problem], partial: bool = False) -> "DesignInput":
+    """The rules of :func:`validate` after each field's value is coerced (``out``: field name -> value, None
+    where not given; ``problems`` so far): defaults, required fields, selectors, cross-field consistency. The
+    column validator of portfolios (:func:`synth.bulk.portfolio.validate_table`) coerces whole columns, then
+    calls this per row."""
+    for f in _DEFAULTED:
+        if out.get(f.name) is None:
             out[f.name] = f.default
     if not partial:
-        for f in FIELDS:
-            if f.required and out.get(f.name) is None and not any(p.field == f.name for p in problems):
+        flagged = {p.field for p in problems}
+        for f in _REQUIRED:
+            if out.get(f.name) is None and f.name not in flagged:
                 problems.append(Problem(f.name, None, "a value (required); " + f.accepted()))
         if out.get("durability_test") == "assumed":
             _require(out, ("engine_type",), "durability_test is 'assumed'", problems)

@@ -285,6 +285,8 @@ def test_dask_equals_inprocess(tmp_path):
     pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "a.parquet"), pd.read_parquet(tmp_path / "b.parquet"))
     assert a.n_errors == 3 and 0 < a.table["feasible"].sum() < 57
     assert (c1.computed, c1.complete) == (1, False) and (c2.computed, c2.reused) == (2, 1)
+    # one local worker has no more cores than this process: Dask cannot help, the run says so and runs here
+    assert c1.engine == "inprocess" and any("no more cores than this process" in w for w in c1.warnings)
     pd.testing.assert_frame_equal(a.table, c2.table)
 
 
@@ -453,3 +455,28 @@ def test_dask_default_chunks_feed_every_worker_and_resume_anywhere(tmp_path):
     assert c1.n_chunks == 4 and (c1.computed, c1.complete) == (1, False)       # 40 rows / (2 x 2 workers)
     assert (c2.n_chunks, c2.computed, c2.reused, c2.complete) == (4, 3, 1, True)
     pd.testing.assert_frame_equal(a.table, c2.table)
+
+
+def test_column_validation_equals_row_validation(tmp_path):
+    """``validate_table`` (column by column: issue 19) gives the inputs and error texts of ``validate_rows`` (the
+    validator row by row) on a portfolio with every kind of awkward cell, as text (a CSV) and as typed columns."""
+    from synth.bulk.portfolio import read_portfolio, validate_rows, validate_table
+    table = sample_portfolio(120, seed=19, broken=12).astype(object)
+    odd = {"working_arm_mm": ["3,5", " 4.2 ", "N/A", "1e400", "abc", "-3", "4%", "\u22123", True, 3],
+           "number_of_active_threads": ["3.0", "3.5", "n.a.", 4, "4,0"],
+           "application_type": ["Belt In Oil", " dry ", "wet", None, "BIO", 5],
+           "main_spring_wire_size_mm": ["2.3x4", "[2.3, 4.0]", "2,5", "x", [2.3, 4.0]],
+           "damping_tolerance_nm": ["0,05", "", " ", "-", 0.05]}
+    rng = np.random.default_rng(19)
+    for col, cells in odd.items():
+        for v in cells:
+            table.at[int(rng.integers(len(table))), col] = v
+    typed = (table, "typed")
+    csv = read_portfolio(write_table(table.map(lambda v: v if not isinstance(v, list) else str(v)),
+                                     tmp_path / "p.csv")), "csv"
+    for t, what in (typed, csv):
+        a, e = validate_rows(t)
+        b, f = validate_table(t)
+        assert f == e, what
+        assert a == b, what
+        assert 12 <= sum(x is None for x in b) < len(t)

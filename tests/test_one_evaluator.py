@@ -25,7 +25,7 @@ from synth.design.constraints import REGISTRY
 from synth.design.result import FAIL, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING
 from synth.design.space import SUBSYSTEMS, core_rows, space
 
-SETTINGS = E.Settings(fidelity="screening")
+SETTINGS = E.Settings(fidelity="screening-only")  # the screening model itself, on every path
 APPS = generate(300, seed=11, vary=True)
 TOL = 1e-9
 GROUPS = ("input", "core", "bushing", "axial", "spring", "bolt")
@@ -139,7 +139,7 @@ def test_bulk_engine_margins_equal_the_flowchart_on_the_same_design(designs):
     """The bulk engine's row margins of its design equal the flowchart's fixed-parts verification of it."""
     from synth.bulk.engine import constraint_ids, screen_applications
     sample = [d for d, _, _ in designs[:24]]
-    df = screen_applications(sample, objective="standard", fidelity="screening", diagnose=False)
+    df = screen_applications(sample, objective="standard", fidelity=SETTINGS.fidelity, diagnose=False)
     from synth.design.space import PART_KEYS
     for i, d in enumerate(sample):
         row = df.iloc[i]

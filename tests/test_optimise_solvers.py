@@ -111,3 +111,36 @@ def test_cases_1_and_3_are_infeasible_for_every_solver(evaluated):
     for solver, factory in RUNNERS.items():
         assert solve_evaluated(evaluated["thesis-case3"], Objective.parse("cost"), factory) is None, solver
     assert solve_space(evaluated["thesis-case3"], Objective.parse("cost"))[0] is None
+
+
+@pytest.mark.parametrize("solver", ["milp-cvxpy", "enumerate", "minlp", "milp-highs", "blackbox", "flowchart"])
+def test_design_json_stdout_is_one_json_object(solver, tmp_path, capfd):
+    """``synth design --json`` prints only the JSON object on stdout, whatever the solver prints (HiGHS's banner
+    through cvxpy goes to stderr): the output parses, and its solver and verdict are the result's."""
+    import dataclasses
+    import json
+
+    from synth.cli import main
+    d = generate(2, seed=0)[1]  # feasible: the model solvers run and HiGHS prints its banner
+    path = tmp_path / "app.json"
+    path.write_text(json.dumps({k: v for k, v in dataclasses.asdict(d).items() if v is not None}))
+    code = main(["design", str(path), "--solver", solver, "--json", "--trials", "10"])
+    out = json.loads(capfd.readouterr().out)
+    assert out["solver"] == solver and out["kind"] == "synth.result"
+    assert code == {"pass": 0, "fail": 1, "incomplete": 3}[out["verdict"]]
+
+
+def test_a_native_banner_during_the_stages_goes_to_stderr(capfd):
+    """HiGHS prints its banner once per process, so the --json tests above see it only when they run first: the
+    mechanism itself, a runner writing to file descriptor 1 as a native library does, inside the stages."""
+    import os
+
+    from synth.optimise.solvers._staged import staged
+
+    def run(*_):
+        os.write(1, b"Running NativeSolver 1.0\n")
+        print("a Python-level line")
+        return 0, {}, 0.0, 0.0
+    assert staged(None, Objective.parse("cost"), run)[1] == 1
+    out, err = capfd.readouterr()
+    assert out == "" and "Running NativeSolver" in err and "a Python-level line" in err

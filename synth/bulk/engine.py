@@ -131,6 +131,10 @@ def error_row(exc: Exception) -> dict:
 def frame(rows: list) -> pd.DataFrame:
     """The result DataFrame of ``rows`` (dicts of :func:`columns`), index 0..n-1, fixed dtypes."""
     df = pd.DataFrame(rows, columns=columns()) if rows else pd.DataFrame({c: pd.Series(dtype=object) for c in columns()})
+    return _dtypes(df)
+
+
+def _dtypes(df: pd.DataFrame) -> pd.DataFrame:
     df["feasible"] = df["feasible"].astype(bool)
     for c in df.columns:
         if c.startswith(("objective_", "margin_")) or c == "binding_margin":
@@ -187,7 +191,7 @@ def _design_attributes(b, rows, options: dict) -> dict:
 
 def _verify(b, idx, rows, options: dict) -> dict:
     """Every group of the chosen designs of applications ``idx`` (one call per group for all of them)."""
-    apps, st = b.apps, b.settings
+    apps, st = b.apps, b.settings.judge  # a design found at screening fidelity is verified at full fidelity
     attrs = _design_attributes(b, rows, options)
     one = np.arange(len(idx))
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
@@ -243,9 +247,10 @@ def _notes_of(apps, idx, state, evaluated, cache: dict) -> list:
     return out
 
 
-def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> list:
-    """The result rows (dicts of :func:`columns`) of designs verified by :func:`_verify`: what
-    :func:`row_from_result` gives for :func:`synth.optimise.result.build_result`'s result of each."""
+def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> dict:
+    """The result columns (:func:`columns`, and ``_failed``: the failed constraint ids per row) of designs verified
+    by :func:`_verify`, one array or list per column, built column by column: what :func:`row_from_result` gives
+    for :func:`synth.optimise.result.build_result`'s result of each."""
     from synth.design.evaluate import EVALUATED
     from synth.optimise.evaluate import core_scores, option_scores
     m = len(idx)
@@ -275,44 +280,42 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
         o = option_scores(sp, s, k if s == "spring" else None, options[s])
         std, cost = std + o["standard"], cost + o["cost"]
     std, cost = sc["standard"] + std, sc["cost"] + cost
-    out = []
-    cache: dict = {}
-    notes_nv = _notes_of(b.apps, idx, state, ev, cache)
-    part_cols = _parts(groups["_attrs"], groups["core"].values)
-    ids = [c.id for c in _COLS]
+    ids = np.array([c.id for c in _COLS], dtype=object)
+    any_failed = failed.any(axis=1)
+    feasible = (status == "optimal") & ~any_failed
+    notes_nv = _notes_of(b.apps, idx, state, ev, {})
+    incomplete = np.array([x[1] for x in notes_nv], dtype=bool)
+    # the binding constraint: the most violated when one fails (first of the ties), else the smallest counted
+    # margin of the objective's constraints
+    worst = np.where(failed, marg, np.inf).argmin(axis=1) if len(_COLS) else np.zeros(m, dtype=np.int64)
+    oc = np.where(objective_counted, marg, np.inf)
+    least = oc.argmin(axis=1) if len(_COLS) else np.zeros(m, dtype=np.int64)
+    has_oc = objective_counted.any(axis=1)
+    pick = np.where(any_failed, worst, least)
+    bind_ok = any_failed | has_oc
+    out = {"feasible": feasible, "status": np.where(feasible, "optimal", "infeasible").astype(object),
+           "verdict": np.where(any_failed, "fail", np.where(incomplete, "incomplete", "pass")).astype(object),
+           "objective_standard": std.astype(float), "objective_cost_eur": np.round(cost.astype(float), 6),
+           "objective_margin": obj_margin.astype(float), "margin_min": margin_min.astype(float),
+           "binding_constraint": np.where(bind_ok, ids[pick] if len(_COLS) else "", "").astype(object),
+           "binding_margin": np.where(bind_ok, marg[np.arange(m), pick] if len(_COLS) else np.inf, np.inf)}
+    for key, col in _parts(groups["_attrs"], groups["core"].values).items():
+        out[f"part_{key}"] = col
+    shown = np.where(ev, marg, np.nan)  # advisory constraints too, as warnings
+    for c, cid in enumerate(ids):
+        out[f"margin_{cid}"] = shown[:, c]
+    failed_ids, violated, notes = [], [], []
+    fixed = b.settings.notes()
     for j in range(m):
-        i = int(idx[j])
         fj = np.flatnonzero(failed[j])
-        feasible = status == "optimal" and not len(fj)
-        row = {"feasible": bool(feasible), "status": "optimal" if feasible else "infeasible"}
-        nv_notes, incomplete = notes_nv[j]
-        row["verdict"] = "fail" if len(fj) else ("incomplete" if incomplete else "pass")
-        row["objective_standard"] = float(std[j])
-        row["objective_cost_eur"] = round(float(cost[j]), 6)
-        row["objective_margin"] = float(obj_margin[j])
-        for key, col in part_cols.items():
-            row[f"part_{key}"] = col[j]
-        row["margin_min"] = float(margin_min[j])
         order = fj[np.argsort(marg[j, fj], kind="stable")] if len(fj) else fj
-        if len(order):
-            row["binding_constraint"], row["binding_margin"] = ids[order[0]], float(marg[j, order[0]])
-        else:
-            oc = np.flatnonzero(objective_counted[j])
-            if len(oc):
-                c = oc[np.argmin(marg[j, oc])]
-                row["binding_constraint"], row["binding_margin"] = ids[c], float(marg[j, c])
-            else:
-                row["binding_constraint"], row["binding_margin"] = "", math.inf
-        for c, cid in enumerate(ids):
-            row[f"margin_{cid}"] = float(marg[j, c]) if ev[j, c] else math.nan  # advisory too, as warnings
-        row["violated"] = ";".join(f"{ids[c]}:{marg[j, c]:+.3f}" for c in order) if not feasible else ""
-        row["relaxation"] = ""
-        notes = b.notes(i)
+        violated.append(";".join(f"{ids[c]}:{marg[j, c]:+.3f}" for c in order) if not feasible[j] else "")
+        nt = b.notes(int(idx[j])) + fixed
         if status in ("optimal", "feasible") and len(fj):
-            notes = notes + ["verification failed: " + ", ".join(f"{ids[c]} {marg[j, c]:+.3g}" for c in fj)]
-        row["notes"] = "; ".join(dict.fromkeys([str(x) for x in notes] + nv_notes))
-        row["_failed"] = [ids[c] for c in fj]
-        out.append(row)
+            nt = nt + ["verification failed: " + ", ".join(f"{ids[c]} {marg[j, c]:+.3g}" for c in fj)]
+        notes.append("; ".join(dict.fromkeys([str(x) for x in nt] + notes_nv[j][0])))
+        failed_ids.append([ids[c] for c in fj])
+    out.update(violated=violated, relaxation=[""] * m, notes=notes, _failed=failed_ids)
     return out
 
 
@@ -332,7 +335,8 @@ def _screen_chunk(inputs: list, weights: dict, obj, settings, diagnose: bool) ->
     found = b.optimum(weights)
     bad = [i for i, f in enumerate(found) if f is None]
     near = b.nearest(bad) if bad else [None] * n
-    rows: list = [None] * n
+    cols = {c: np.empty(n, dtype=object) for c in columns()}
+    failed: list = [None] * n
     for status, sel in (("optimal", [i for i in range(n) if found[i] is not None]), ("infeasible", bad)):
         designs = [found[i] if status == "optimal" else near[i] for i in sel]
         if any(d is None for d in designs):  # no core at all: the reference's own answer (or its error)
@@ -343,16 +347,17 @@ def _screen_chunk(inputs: list, weights: dict, obj, settings, diagnose: bool) ->
         core_rows = np.array([d[0] for d in designs], dtype=np.int64)
         options = {s: np.array([d[1][s] for d in designs], dtype=np.int64) for s in SUBSYSTEMS}
         groups = _verify(b, idx, core_rows, options)
-        for i, r in zip(sel, _rows(b, idx, core_rows, options, groups, status, obj)):
-            rows[i] = r
+        part = _rows(b, idx, core_rows, options, groups, status, obj)
+        for c in cols:
+            cols[c][idx] = part[c]
+        for i, f in zip(sel, part["_failed"]):
+            failed[i] = f
     if diagnose and bad:
-        rel = relaxations_batch([inputs[i] for i in bad], [rows[i]["_failed"] for i in bad], settings=settings)
+        rel = relaxations_batch([inputs[i] for i in bad], [failed[i] for i in bad], settings=settings)
         for i, r in zip(bad, rel):
-            if r and not rows[i]["feasible"]:
-                rows[i]["relaxation"] = _fmt_relaxation(r[0])
-    for r in rows:
-        r.pop("_failed", None)
-    return rows
+            if r and not cols["feasible"][i]:
+                cols["relaxation"][i] = _fmt_relaxation(r[0])
+    return cols
 
 
 class _NoSpace(Exception):
@@ -396,14 +401,33 @@ def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity
         return screen_applications_reference([d], objective=obj, fidelity=fidelity,
                                              diagnose=diagnose).to_dict(orient="records")[0]
 
-    def chunk(items):
+    def reference_frame(d, exc=None):
+        row = reference_row(d)
+        return _frame({c: np.array([row[c]], dtype=object) for c in columns()})
+
+    def chunk(items):  # a list of pieces (DataFrames), concatenated in order
         try:
-            return _screen_chunk(items, w, obj, settings, diagnose)
+            return [_frame(_screen_chunk(items, w, obj, settings, diagnose))]
         except _NoSpace as exc:  # rare: those applications alone, by the reference
-            rows = _screen_chunk([d for i, d in enumerate(items) if i not in exc.which], w, obj, settings, diagnose) \
-                if len(exc.which) < len(items) else []
-            out, it = [], iter(rows)
+            rest = [d for i, d in enumerate(items) if i not in exc.which]
+            ok = _frame(_screen_chunk(rest, w, obj, settings, diagnose)) if rest else None
+            pieces, k = [], 0
             for i, d in enumerate(items):
-                out.append(reference_row(d) if i in exc.which else next(it))
-            return out
-    return frame(robust(chunk, apps, reference_row))
+                if i in exc.which:
+                    pieces.append(reference_frame(d))
+                else:
+                    pieces.append(ok.iloc[[k]])
+                    k += 1
+            return [pd.concat(pieces, ignore_index=True)]
+    pieces = robust(chunk, apps, reference_frame)
+    if len(pieces) == 1:
+        return pieces[0]
+    whole = pd.concat(pieces, ignore_index=True) if pieces else frame([])
+    return _frame({c: whole[c].to_numpy(dtype=object) for c in columns()})  # types inferred on the whole
+
+
+def _frame(cols: dict) -> pd.DataFrame:
+    """The result DataFrame of a chunk's columns (:func:`_screen_chunk`), typed as :func:`frame` types rows."""
+    # from lists, as from rows: the same inference (text, numbers with None as NaN)
+    return _dtypes(pd.DataFrame({c: list(cols[c]) for c in columns()}, columns=columns()))
+

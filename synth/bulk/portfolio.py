@@ -36,7 +36,7 @@ from synth.errors import InputError, Problem
 from synth.io.numbers import is_not_given
 
 __all__ = ["FORMATS", "read_portfolio", "check_columns", "write_table", "to_table", "plain_cell", "clean_cell", "row_record", "records",
-           "validate_record", "validate_rows", "field_columns", "column_warnings", "format_problems"]
+           "validate_record", "validate_rows", "validate_table", "field_columns", "column_warnings", "format_problems"]
 
 #: file suffix -> format name
 FORMATS = {".csv": "csv", ".xlsx": "excel", ".xlsm": "excel", ".ods": "ods", ".parquet": "parquet", ".pq": "parquet"}
@@ -186,6 +186,87 @@ def validate_rows(df: pd.DataFrame) -> tuple[list, list[str]]:
     """Validate every row of ``df``: ``(apps, errors)``, ``apps[i]`` None where ``errors[i]`` says why."""
     out = [validate_record(r) for r in records(df)]
     return [a for a, _ in out], [e for _, e in out]
+
+
+def _coerce_column(f, name: str, col: pd.Series, problems: list) -> list:
+    """The values of field ``f`` (column ``name``) as :func:`synth.schema.validate` coerces them, column by column:
+    plain numbers (the text of :data:`synth.io.numbers` ``_NUMBER``, or a numeric column) parsed and range-checked
+    at once, other fields once per distinct cell; any other cell (a decimal comma, a unit, a bad value) goes
+    through the validator's own ``_coerce`` (its problems appended to ``problems[row]``). None: not given."""
+    from synth.io.numbers import _NUMBER, NOT_GIVEN
+    n = len(col)
+    raw = col.to_numpy(dtype=object)
+    out = [None] * n
+    slow = np.zeros(n, dtype=bool)
+    if f.kind in ("float", "int") and not f.choices and not f.catalog:
+        if pd.api.types.is_numeric_dtype(col.dtype) and not pd.api.types.is_bool_dtype(col.dtype):
+            x = col.to_numpy(dtype=float, na_value=np.nan)
+            given = ~np.isnan(x)
+        else:
+            t = col.astype("string").str.strip()
+            given = ~(t.isna() | t.str.lower().str.replace(" ", "", regex=False).isin(NOT_GIVEN)).to_numpy()
+            plain = (t.str.fullmatch(_NUMBER.pattern).fillna(False).to_numpy(dtype=bool)) & given
+            x = np.full(n, np.nan)
+            x[plain] = t[plain].astype(float).to_numpy()
+            slow = given & ~plain
+        ok = given & ~slow & np.isfinite(x)
+        with np.errstate(invalid="ignore"):
+            ok &= ~((x <= f.lo) if f.lo_open else (x < f.lo)) & ~((x >= f.hi) if f.hi_open else (x > f.hi))
+            if f.kind == "int":
+                ok &= x == np.floor(x)
+        slow |= given & ~ok
+        vals = x[ok].astype(int).tolist() if f.kind == "int" else x[ok].tolist()
+        for i, v in zip(np.flatnonzero(ok).tolist(), vals):
+            out[i] = v
+        for i in np.flatnonzero(slow).tolist():
+            found: list = []
+            out[i] = schema._coerce(f, clean_cell(raw[i], name), found)
+            problems[i].extend(found)
+        return out
+    seen: dict = {}
+    for i, v in enumerate(raw):
+        try:
+            hit = seen.get(v)
+        except TypeError:  # an unhashable cell (a list from a typed table): on its own
+            hit = None
+        if hit is None:
+            found = []
+            value = schema._coerce(f, clean_cell(raw[i], name), found)
+            hit = (value, found)
+            try:
+                seen[v] = hit
+            except TypeError:
+                pass
+        value, found = hit
+        out[i] = list(value) if isinstance(value, list) else value
+        if found:
+            problems[i].extend(found)
+    return out
+
+
+def validate_table(df: pd.DataFrame) -> tuple[list, list[str]]:
+    """:func:`validate_rows` column by column: the same inputs and the same error texts.
+
+    Each field column is coerced at once (:func:`_coerce_column`: plain numbers parsed and range-checked as
+    arrays, the other fields once per distinct cell, anything unusual through the validator's own per-value
+    code); then each row takes the validator's rules on its coerced values (defaults, required fields,
+    selectors, cross-field consistency: :func:`synth.schema._finish`, the one copy of them)."""
+    n = len(df)
+    cols = field_columns(df)
+    problems: list = [[] for _ in range(n)]
+    names, columns = [], []
+    for c in cols:
+        name = _ALIASES.get(c, c)
+        names.append(name)
+        columns.append(_coerce_column(schema.field_by_name(name), c, df[c], problems))
+    apps: list = [None] * n
+    errors = [""] * n
+    for i, row in enumerate(zip(*columns) if columns else [()] * n):
+        try:
+            apps[i] = schema._finish(dict(zip(names, row)), problems[i])
+        except InputError as exc:
+            errors[i] = format_problems(exc)
+    return apps, errors
 
 
 def _list_text(v) -> str:

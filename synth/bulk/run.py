@@ -58,17 +58,18 @@ import pandas as pd
 
 from synth import __version__, catalog
 from synth.fingerprint import file_sha256
-from synth.bulk.portfolio import (CSV_FLOAT, arrow_safe, column_warnings, field_columns, plain_cell, read_portfolio,
-                                  row_record, validate_record, write_table)
+from synth.bulk.portfolio import (CSV_FLOAT, arrow_safe, column_warnings, field_columns, read_portfolio,
+                                  validate_record, validate_table, write_table)
 from synth.errors import InputError, Problem
 from synth.io.outputs import output_file, write_text
 from synth.report.progress import Progress
 
 __all__ = ["ENGINES", "FIDELITIES", "DEFAULT_CHUNK_SIZE", "default_chunk_size", "RunReport", "result_columns", "compute_chunk",
-           "run_portfolio", "sidecar", "manifest_of", "chunk_ranges", "chunk_state", "RunLock"]
+           "run_portfolio", "sidecar", "manifest_of", "chunk_ranges", "chunk_state", "RunLock", "usable_cores",
+           "dask_pointless", "write_result", "result_schema", "content_sha256"]
 
 ENGINES = ("inprocess", "dask")
-FIDELITIES = ("screening", "full")
+from synth.design.evaluate import FIDELITIES  # noqa: E402 - one vocabulary (full, screening, screening-only)
 #: applications per chunk when the engine's memory constants are absent (see :func:`default_chunk_size`)
 DEFAULT_CHUNK_SIZE = 250
 MANIFEST = "manifest.json"
@@ -131,64 +132,73 @@ def _call_engine(screen, apps, objective, fidelity, diagnose) -> pd.DataFrame:
     return df.reset_index(drop=True)
 
 
-def compute_chunk(recs: list[dict], *, objective: str = "standard", fidelity: str = "screening",
+def compute_chunk(recs, *, objective: str = "standard", fidelity: str = "screening",
                   diagnose: bool = True, screen: Callable | None = None,
                   catalog_dirs: tuple[str, ...] | None = None) -> pd.DataFrame:
-    """Validate and evaluate one chunk of design-input records: one result row per record, in order.
+    """Validate and evaluate one chunk: one result row per record, in order.
 
-    Valid records go to the engine in one call; a record that fails
-    validation gets ``status = "error"`` and its problems in ``error``. If the
-    engine raises on the chunk, the chunk is evaluated one application at a
-    time and only the failing ones get ``error = "engine: ..."``: one bad
-    row never stops a portfolio. ``catalog_dirs`` are the user catalog
-    folders to use (re-applied in a Dask worker process).
+    ``recs``: a table of the chunk's rows (its design-input columns, validated column by column:
+    :func:`synth.bulk.portfolio.validate_table`) or a list of design-input records (validated one by one).
+    Valid rows go to the engine in one call; a row that fails validation gets ``status = "error"`` and its
+    problems in ``error``. If the engine raises on the chunk, the chunk is evaluated one application at a
+    time and only the failing ones get ``error = "engine: ..."``: one bad row never stops a portfolio.
+    ``catalog_dirs`` are the user catalog folders to use (re-applied in a Dask worker process).
     """
     if catalog_dirs is not None and [str(p) for p in catalog._user_dirs()] != list(catalog_dirs):
         catalog.set_user_dirs(*catalog_dirs)
     screen = screen or _screen_default()
     cols = result_columns()
-    checked = [validate_record(r) for r in recs]
-    valid = [i for i, (a, _) in enumerate(checked) if a is not None]
-    apps = [checked[i][0] for i in valid]
-    rows: list[dict] = [_error_row(cols, e) if a is None else {} for a, e in checked]
+    if isinstance(recs, pd.DataFrame):
+        checked, errors = validate_table(recs)
+    else:
+        pairs = [validate_record(r) for r in recs]
+        checked, errors = [a for a, _ in pairs], [e for _, e in pairs]
+    n = len(checked)
+    valid = [i for i, a in enumerate(checked) if a is not None]
+    apps = [checked[i] for i in valid]
+    res = None
     try:
-        res = _call_engine(screen, apps, objective, fidelity, diagnose).to_dict(orient="records")
-        for i, r in zip(valid, res):
-            rows[i] = {**r, "error": ""}
+        res = _call_engine(screen, apps, objective, fidelity, diagnose)
     except InputError:
         raise  # a bad setting (objective...): the same for every row, reported once
     except Exception:
-        for i, a in zip(valid, apps):
+        rows = []
+        for a in apps:
             try:
-                r = _call_engine(screen, [a], objective, fidelity, diagnose).to_dict(orient="records")[0]
-                rows[i] = {**r, "error": ""}
+                rows.append({**_call_engine(screen, [a], objective, fidelity, diagnose).iloc[0].to_dict(),
+                             "error": ""})
             except Exception as exc:  # noqa: BLE001 - reported in the row, never swallowed
-                rows[i] = _error_row(cols, f"engine: {type(exc).__name__}: {exc}")
-    return _typed(pd.DataFrame(rows, columns=cols))
+                rows.append(_error_row(cols, f"engine: {type(exc).__name__}: {exc}"))
+        res = pd.DataFrame(rows, columns=cols)
+    err, out = _error_row(cols, ""), {}
+    for c in cols:  # the engine's rows where valid, an input-error row's cells elsewhere
+        col = np.empty(n, dtype=object)
+        col[:] = errors if c == "error" else [err[c]] * n
+        if valid:
+            col[valid] = res[c].to_numpy(dtype=object) if c in res.columns else ""
+        out[c] = pd.Series(col, dtype=object)
+    return _typed(pd.DataFrame(out, columns=cols))
 
 
 def _typed(df: pd.DataFrame) -> pd.DataFrame:
-    """Result columns with fixed types whatever the chunking: bool, float, object parts (None), text."""
-    out = df.copy()
-    for c in out.columns:
-        k = _kind(c)
+    """Result columns with fixed types whatever the chunking: bool, float, object parts (None), text (column by
+    column, no Python object per cell)."""
+    out = {}
+    for c in df.columns:
+        k, col = _kind(c), df[c]
         if k == "bool":
-            out[c] = out[c].fillna(False).astype(bool)
+            out[c] = col.fillna(False).astype(bool).to_numpy()
         elif k == "float":
-            out[c] = pd.to_numeric(out[c], errors="coerce").astype(float)
+            out[c] = pd.to_numeric(col, errors="coerce").astype(float).to_numpy()
         elif k == "part":
-            out[c] = pd.Series([_plain(v) for v in out[c]], index=out.index, dtype=object)
+            v = np.array(col.to_numpy(dtype=object), dtype=object, copy=True)
+            v[pd.isna(v)] = None
+            out[c] = pd.Series(v, index=df.index, dtype=object)
         else:
-            out[c] = pd.Series(["" if _plain(v) is None else str(v) for v in out[c]], index=out.index, dtype=object)
-    return out
-
-
-def _plain(v):
-    if isinstance(v, np.generic):
-        v = v.item()
-    if v is None or v is pd.NA or (isinstance(v, float) and math.isnan(v)):
-        return None
-    return v
+            v = np.array(col.to_numpy(dtype=object), dtype=object, copy=True)
+            v[pd.isna(v)] = ""
+            out[c] = pd.Series(pd.Series(v).astype(str).to_numpy(dtype=object), index=df.index, dtype=object)
+    return pd.DataFrame(out, index=df.index, columns=list(df.columns))
 
 
 def chunk_ranges(n: int, chunk_size: int) -> list[tuple[int, int]]:
@@ -251,38 +261,147 @@ def _write_atomic_json(path: Path, data: dict) -> None:
     write_text(path, json.dumps(data, indent=2), "--out")
 
 
-def content_sha256(df: pd.DataFrame) -> str:
-    """SHA-256 of a chunk's content: column names and every cell, canonically (order kept)."""
-    payload = json.dumps({"columns": [str(c) for c in df.columns],
-                          "rows": [[plain_cell(v) for v in row] for row in df.itertuples(index=False, name=None)]},
-                         default=str, separators=(",", ":"), allow_nan=True)
-    return hashlib.sha256(payload.encode("utf-8")).hexdigest()
+def _part_is_number(key: str) -> bool:
+    """A part key with a number for value (a dimension or a ratio, by its unit suffix); the others are names."""
+    return key.endswith(("_mm", "_ratio"))
+
+
+def result_schema():
+    """The Arrow schema of a chunk file: ``row`` then :func:`result_columns`, typed by kind (one schema for every
+    chunk, so that chunk files are streamed into one Parquet result)."""
+    import pyarrow as pa
+    fields = [pa.field("row", pa.int64())]
+    for c in result_columns():
+        k = _kind(c)
+        t = (pa.bool_() if k == "bool" else pa.float64() if k == "float" else
+             pa.float64() if k == "part" and _part_is_number(c[len("part_"):]) else pa.string())
+        fields.append(pa.field(c, t))
+    return pa.schema(fields)
+
+
+def _to_arrow(df: pd.DataFrame, start: int):
+    """A chunk's typed result rows (:func:`_typed`) as an Arrow table of :func:`result_schema`."""
+    import pyarrow as pa
+    fields = [pa.field("row", pa.int64())]
+    arrays = [pa.array(np.arange(start, start + len(df), dtype=np.int64))]
+    for f in list(result_schema())[1:]:
+        col = df[f.name]
+        if pa.types.is_string(f.type):
+            arr = pa.array(col.to_numpy(dtype=object), type=pa.string(), from_pandas=True)
+        else:
+            try:
+                arr = pa.array(col.to_numpy(dtype=object) if col.dtype == object else col.to_numpy(), type=f.type,
+                               from_pandas=True)
+            except (pa.ArrowInvalid, pa.ArrowTypeError):  # not numbers (another engine's parts): their text
+                arr = pa.array([None if v is None else str(v) for v in col], type=pa.string())
+        fields.append(pa.field(f.name, arr.type))
+        arrays.append(arr)
+    return pa.Table.from_arrays(arrays, schema=pa.schema(fields))
+
+
+def _from_arrow(table, columns=None) -> pd.DataFrame:
+    """The result columns (or ``columns`` of them) of a chunk table as :func:`_typed` gives them (parts: None where
+    empty; text: "")."""
+    import pyarrow.compute as pc
+    out = {}
+    columns = result_columns() if columns is None else list(columns)
+    for c in columns:
+        col, k = table.column(c), _kind(c)
+        if k == "bool":
+            out[c] = pc.fill_null(col, False).to_numpy()
+        elif k == "float":
+            out[c] = col.to_numpy()
+        elif k == "part":
+            v = np.array(col.to_numpy(zero_copy_only=False), dtype=object, copy=True)
+            v[pd.isna(v)] = None
+            out[c] = pd.Series(v, dtype=object)
+        else:
+            out[c] = pd.Series(pc.fill_null(col, "").to_numpy(zero_copy_only=False), dtype=object)
+    return pd.DataFrame(out, columns=columns)
+
+
+def content_sha256(table) -> str:
+    """SHA-256 of a chunk's content from its Arrow columns: names and types, then per column its null mask and
+    values (fixed-width values as their bytes, text as lengths and bytes). One hash per chunk file, computed
+    on the column buffers (no Python object per cell); the table read back from the Parquet file gives the same
+    hash, any changed cell another. A DataFrame is hashed as its Arrow table (:func:`_to_arrow` layout aside).
+
+    >>> import pyarrow as pa
+    >>> t = pa.table({"a": [1.0, None], "b": ["x", None]})
+    >>> content_sha256(t) == content_sha256(pa.table({"a": [1.0, None], "b": ["x", None]}))
+    True
+    >>> content_sha256(t) == content_sha256(pa.table({"a": [1.0, None], "b": ["y", None]}))
+    False
+    """
+    import pyarrow as pa
+    import pyarrow.compute as pc
+    if isinstance(table, pd.DataFrame):
+        table = pa.Table.from_pandas(arrow_safe(table), preserve_index=False)
+    h = hashlib.sha256()
+    for name, col in zip(table.column_names, table.columns):
+        arr = col.combine_chunks() if isinstance(col, pa.ChunkedArray) else col
+        t = arr.type
+        h.update(f"{name}\x1f{t}\x1e{len(arr)}\x1d".encode())
+        h.update(np.packbits(arr.is_valid().to_numpy(zero_copy_only=False)).tobytes())
+        if pa.types.is_null(t):
+            continue
+        if pa.types.is_dictionary(t) or not (pa.types.is_boolean(t) or pa.types.is_integer(t)
+                                             or pa.types.is_floating(t) or pa.types.is_string(t)
+                                             or pa.types.is_large_string(t) or pa.types.is_binary(t)
+                                             or pa.types.is_large_binary(t)):
+            arr, t = arr.cast(pa.large_string()), pa.large_string()
+        if pa.types.is_boolean(t) or pa.types.is_integer(t) or pa.types.is_floating(t):
+            h.update(np.ascontiguousarray(pc.fill_null(arr, pa.scalar(0, t) if not pa.types.is_boolean(t)
+                                                       else False).to_numpy(zero_copy_only=False)).tobytes())
+        else:
+            b = pc.fill_null(arr, "").cast(pa.large_binary())
+            offs = np.frombuffer(b.buffers()[1], dtype=np.int64)[b.offset:b.offset + len(b) + 1]
+            h.update(np.diff(offs).tobytes())
+            if len(offs) and offs[-1] > offs[0]:
+                h.update(memoryview(b.buffers()[2])[int(offs[0]):int(offs[-1])])
+    return h.hexdigest()
 
 
 def _write_chunk(folder: Path, i: int, start: int, df: pd.DataFrame, run_id: str) -> None:
     """Write chunk ``i`` (rows from ``start``) with its run id, row range and content checksum in its metadata."""
-    import pyarrow as pa
     import pyarrow.parquet as pq
 
-    df = df.copy()
-    df.insert(0, "row", np.arange(start, start + len(df), dtype=np.int64))
-    df = arrow_safe(df)
-    table = pa.Table.from_pandas(df, preserve_index=False)
-    meta = dict(table.schema.metadata or {})
-    meta.update({b"synth_run_id": run_id.encode(), b"synth_chunk": str(i).encode(),
-                 b"synth_rows": f"{start}:{start + len(df)}".encode(),
-                 b"synth_sha256": content_sha256(table.to_pandas()).encode()})
+    table = _to_arrow(df, start)
+    meta = {b"synth_run_id": run_id.encode(), b"synth_chunk": str(i).encode(),
+            b"synth_rows": f"{start}:{start + len(df)}".encode(), b"synth_sha256": content_sha256(table).encode()}
     table = table.replace_schema_metadata(meta)
     with output_file(_chunk_path(folder, i), "--out") as tmp:  # renamed when complete, removed on failure
         pq.write_table(table, tmp)
 
 
-def _read_chunk(path: Path) -> tuple[pd.DataFrame, dict]:
+def _read_chunk(path: Path):
+    """``(Arrow table, synth metadata)`` of a chunk file."""
     import pyarrow.parquet as pq
     table = pq.read_table(path)
     meta = {k.decode(errors="replace"): v.decode(errors="replace") for k, v in (table.schema.metadata or {}).items()
             if k.startswith(b"synth_")}
-    return table.to_pandas(), meta
+    return table, meta
+
+
+def _checked_chunk(folder: Path, i: int, start: int, stop: int, run_id: str):
+    """``(state, table)``: :func:`chunk_state` and the chunk's Arrow table when it is ``"ok"`` (read once)."""
+    p = _chunk_path(folder, i)
+    if not p.is_file():
+        return "missing", None
+    try:
+        table, meta = _read_chunk(p)
+    except Exception as exc:  # noqa: BLE001 - a damaged file is reported, never used
+        return f"unreadable ({type(exc).__name__}: {' '.join(str(exc).split())[:120]})", None
+    if "synth_run_id" not in meta or "synth_sha256" not in meta:
+        return "written without a run id and checksum (by an older synth, or not by synth bulk)", None
+    if meta["synth_run_id"] != run_id:
+        return f"written by another run ({meta['synth_run_id'][:12]}), not by run {run_id[:12]}", None
+    rows = table.column("row").to_numpy() if "row" in table.column_names else None
+    if rows is None or len(rows) != stop - start or not (rows == np.arange(start, stop)).all():
+        return f"rows {meta.get('synth_rows', '?')}, not the chunk's rows {start}:{stop}", None
+    if content_sha256(table.replace_schema_metadata(None)) != meta["synth_sha256"]:
+        return "its content does not match its checksum (changed or damaged since it was written)", None
+    return "ok", table
 
 
 def chunk_state(folder: Path, i: int, start: int, stop: int, run_id: str) -> str:
@@ -291,22 +410,7 @@ def chunk_state(folder: Path, i: int, start: int, stop: int, run_id: str) -> str
     A chunk is usable only when it is readable, was written by run
     ``run_id``, covers exactly those rows and its content matches its checksum.
     """
-    p = _chunk_path(folder, i)
-    if not p.is_file():
-        return "missing"
-    try:
-        df, meta = _read_chunk(p)
-    except Exception as exc:  # noqa: BLE001 - a damaged file is reported, never used
-        return f"unreadable ({type(exc).__name__}: {' '.join(str(exc).split())[:120]})"
-    if "synth_run_id" not in meta or "synth_sha256" not in meta:
-        return "written without a run id and checksum (by an older synth, or not by synth bulk)"
-    if meta["synth_run_id"] != run_id:
-        return f"written by another run ({meta['synth_run_id'][:12]}), not by run {run_id[:12]}"
-    if "row" not in df.columns or len(df) != stop - start or not (df["row"].to_numpy() == np.arange(start, stop)).all():
-        return f"rows {meta.get('synth_rows', '?')}, not the chunk's rows {start}:{stop}"
-    if content_sha256(df) != meta["synth_sha256"]:
-        return "its content does not match its checksum (changed or damaged since it was written)"
-    return "ok"
+    return _checked_chunk(folder, i, start, stop, run_id)[0]
 
 
 def _clear(folder: Path) -> None:
@@ -375,10 +479,10 @@ class RunLock:
 
 @dataclass
 class RunReport:
-    """What a run did: the result table (None while incomplete), chunk counts and timing."""
+    """What a run did: chunk counts and timing; the result table (None while incomplete) is read from the chunk
+    files when asked for (:attr:`table`, in memory; :meth:`columns` reads only some columns)."""
 
     out: Path
-    table: pd.DataFrame | None
     n_rows: int
     n_chunks: int
     computed: int
@@ -390,10 +494,34 @@ class RunReport:
     rows_computed: int = 0
     total_seconds: float = 0.0
     run_id: str = ""
+    _source: tuple | None = field(default=None, repr=False)
+    _table: pd.DataFrame | None = field(default=None, repr=False)
+
+    @property
+    def table(self) -> pd.DataFrame | None:
+        """The whole result table in memory (input columns and result columns), None while incomplete."""
+        if self._table is None and self._source is not None:
+            table, folder, ranges, run_id = self._source
+            self._table = assemble(table, folder, len(ranges), run_id=run_id, ranges=ranges)
+        return self._table
+
+    def columns(self, names) -> pd.DataFrame | None:
+        """The result table restricted to the columns ``names`` (those present; memory for just them)."""
+        if self._source is None:
+            return None
+        if self._table is not None:
+            return self._table[[c for c in names if c in self._table.columns]]
+        table, folder, ranges, run_id = self._source
+        want = [c for c in result_columns() if c in names]
+        res = pd.concat([_from_arrow(t, want) for _, _, t in _checked_chunks(folder, ranges, run_id)],
+                        ignore_index=True) if ranges else pd.DataFrame(columns=want)
+        keep = [c for c in names if c in table.columns and c not in res.columns]
+        return pd.concat([table[keep].reset_index(drop=True), res], axis=1)
 
     @property
     def n_errors(self) -> int:
-        return 0 if self.table is None else int((self.table["status"] == "error").sum())
+        t = self.columns(["status"])
+        return 0 if t is None else int((t["status"] == "error").sum())
 
     @property
     def apps_per_s(self) -> float:
@@ -502,9 +630,9 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
         computed = 0
         cols = field_columns(table)
 
-        def chunk_records(k: int) -> list[dict]:  # one chunk's records at a time: a big portfolio is not copied whole
+        def chunk_records(k: int) -> pd.DataFrame:  # one chunk's field columns at a time (validated as columns)
             a, b = ranges[k]
-            return [row_record(r) for r in table.iloc[a:b][cols].to_dict(orient="records")]
+            return table.iloc[a:b][cols].reset_index(drop=True)
 
         def write(k: int, df: pd.DataFrame) -> None:
             _write_chunk(folder, k, ranges[k][0], df, run_id)
@@ -512,28 +640,39 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
         with Progress(total=n, desc=f"synth bulk ({engine})", stream=stream) as bar:
             bar.update(sum(ranges[i][1] - ranges[i][0] for i in done), note="reused")
             t_compute = time.monotonic()
-            if engine == "inprocess":
+            ran = {"engine": engine}
+
+            def inprocess() -> int:
+                ran["engine"] = "inprocess"
+                done_here = 0
                 for i in todo:
-                    if stop_after_chunks is not None and computed >= stop_after_chunks:
+                    if stop_after_chunks is not None and done_here >= stop_after_chunks:
                         break
                     write(i, compute_chunk(chunk_records(i), **kw))
-                    computed += 1
+                    done_here += 1
                     bar.update(ranges[i][1] - ranges[i][0])
+                return done_here
+            why = dask_pointless(scheduler, workers, len(todo)) if engine == "dask" else None
+            if engine == "inprocess" or why:
+                if why:
+                    notes.append(why)
+                computed = inprocess()
             else:
                 computed = _run_dask(chunk_records, ranges, todo, write, kw, scheduler, workers, stop_after_chunks,
-                                     bar, connect_timeout_s)
+                                     bar, connect_timeout_s, inprocess, notes)
             seconds = time.monotonic() - t_compute
         complete = all(_chunk_path(folder, i).is_file() for i in range(len(ranges)))
-        result = None
         if complete:
-            result = assemble(table, folder, len(ranges), run_id=run_id, ranges=ranges)
-            write_table(result, out, float_format=CSV_FLOAT)  # through the output gate: renamed when complete
+            write_result(out, table, folder, ranges, run_id)
         rows_done = sum(b - a for i, (a, b) in enumerate(ranges) if i in todo_set and _chunk_path(folder, i).is_file())
     finally:
         lock.release()
-    return RunReport(out=out, table=result, n_rows=n, n_chunks=len(ranges), computed=computed, reused=len(done),
-                     seconds=seconds, engine=engine, complete=complete, warnings=notes, rows_computed=rows_done,
-                     total_seconds=time.monotonic() - t0, run_id=run_id)
+    rep = RunReport(out=out, n_rows=n, n_chunks=len(ranges), computed=computed, reused=len(done),
+                    seconds=seconds, engine=ran["engine"], complete=complete, warnings=notes, rows_computed=rows_done,
+                    total_seconds=time.monotonic() - t0, run_id=run_id)
+    if complete:
+        rep._source = (table, folder, ranges, run_id)
+    return rep
 
 
 def _resumable(folder: Path, ranges: list, run_id: str) -> list[int]:
@@ -557,43 +696,130 @@ def _resumable(folder: Path, ranges: list, run_id: str) -> list[int]:
     return done
 
 
+def _checked_chunks(folder: Path, ranges: list, run_id: str | None):
+    """Yield ``(i, (start, stop), Arrow table)`` of every chunk in order, each read once; with ``run_id``
+    every chunk is checked (:func:`chunk_state`) and a chunk of another run, changed or damaged is an
+    :class:`InputError` naming every such chunk (after the last one: nothing is kept of a failed assembly)."""
+    import pyarrow.parquet as pq
+    problems = []
+    for i, (a, b) in enumerate(ranges):
+        p = _chunk_path(folder, i)
+        if run_id is not None:
+            state, table = _checked_chunk(folder, i, a, b, run_id)
+            if state != "ok":
+                problems.append(Problem(f"chunk {p.name}", state, f"a chunk written by this run ({run_id[:12]}); "
+                                        "another process wrote into the folder? rerun the command"))
+                continue
+        else:
+            table = pq.read_table(p)
+            rows = table.column("row").to_numpy()
+            if len(rows) != b - a or not (rows == np.arange(a, b)).all():
+                problems.append(Problem("chunks", str(folder), f"chunk files covering rows {a}..{b - 1}; rerun "
+                                        "without --resume"))
+                continue
+        if not problems:
+            yield i, (a, b), table
+    if problems:
+        raise InputError(problems)
+
+
 def assemble(table: pd.DataFrame, folder: Path, n_chunks: int, run_id: str | None = None,
              ranges: list | None = None) -> pd.DataFrame:
-    """The input ``table`` plus the result columns read back from the ``n_chunks`` chunk files, in input order.
+    """The input ``table`` plus the result columns read back from the ``n_chunks`` chunk files, in input order,
+    in memory (:func:`write_result` streams the same table into a file).
 
     With ``run_id`` every chunk is checked first (:func:`chunk_state`): a chunk
     of another run, changed or damaged is an :class:`InputError` naming it, and
     no result is assembled.
     """
-    if run_id is not None:
-        if ranges is None or len(ranges) != n_chunks:
-            raise ValueError("assemble(run_id=...) needs the run's chunk ranges")
-        parts, problems = [], []
-        for i in range(n_chunks):
-            p = _chunk_path(folder, i)
-            a, b = ranges[i]
-            state = chunk_state(folder, i, a, b, run_id)
-            if state != "ok":
-                problems.append(Problem(f"chunk {p.name}", state, f"a chunk written by this run ({run_id[:12]}); "
-                                        "another process wrote into the folder? rerun the command"))
-            else:
-                parts.append(_read_chunk(p)[0])
-        if problems:
-            raise InputError(problems)
-    else:
-        parts = [pd.read_parquet(_chunk_path(folder, i)) for i in range(n_chunks)]
-    cols = result_columns()
-    res = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=["row"] + cols)
-    res = res.sort_values("row").reset_index(drop=True)
-    if len(res) != len(table) or not (res["row"].to_numpy() == np.arange(len(table))).all():
+    if run_id is not None and (ranges is None or len(ranges) != n_chunks):
+        raise ValueError("assemble(run_id=...) needs the run's chunk ranges")
+    ranges = ranges if ranges is not None else chunk_ranges(len(table), -(-len(table) // max(n_chunks, 1)) or 1)
+    parts = [_from_arrow(t) for _, _, t in _checked_chunks(folder, ranges, run_id)]
+    res = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=result_columns())
+    if len(res) != len(table):
         raise InputError(Problem("chunks", str(folder), f"chunk files covering rows 0..{len(table) - 1}; rerun without --resume"))
-    res = _typed(res.reindex(columns=cols))
-    return pd.concat([table.reset_index(drop=True), res], axis=1)
+    return pd.concat([table.reset_index(drop=True), _typed(res)], axis=1)
+
+
+def write_result(out: Path, table: pd.DataFrame, folder: Path, ranges: list, run_id: str) -> Path:
+    """Write RESULT (the input ``table`` plus every chunk's result columns, in input order) chunk by chunk: a
+    CSV or Parquet RESULT is streamed (the result columns in memory one chunk at a time, whatever the
+    portfolio's size), an Excel or OpenDocument one collected first (their writers need the whole sheet). Every
+    chunk is checked as :func:`assemble` checks it; RESULT is written through the output gate
+    (:func:`synth.io.outputs.output_file`: a temporary file moved into place; CSV cells by
+    :func:`synth.io.outputs.csv_rows`, numbers to :data:`~synth.bulk.portfolio.CSV_FLOAT`)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+    from synth.bulk.portfolio import FORMATS
+    from synth.io.outputs import csv_rows, output_file
+    fmt = FORMATS[out.suffix.lower()]
+    if fmt not in ("parquet", "csv"):
+        return write_table(assemble(table, folder, len(ranges), run_id=run_id, ranges=ranges), out,
+                           float_format=CSV_FLOAT)
+    chunks = _checked_chunks(folder, ranges, run_id)
+    with output_file(out) as tmp:
+        if fmt == "parquet":
+            inputs = pa.Table.from_pandas(arrow_safe(table.reset_index(drop=True)), preserve_index=False)
+            # a part column of numbers in one chunk and of text in another (another engine's parts) is text
+            text = {f.name for i in range(len(ranges)) for f in pq.read_schema(_chunk_path(folder, i))
+                    if pa.types.is_string(f.type)}
+            res_fields = [pa.field(f.name, pa.string() if f.name in text else f.type) for f in list(result_schema())[1:]]
+            schema = pa.schema(list(inputs.schema.remove_metadata()) + res_fields)
+            with pq.ParquetWriter(tmp, schema) as w:
+                for _, (a, b), res in chunks:
+                    cols = inputs.slice(a, b - a).columns + [res.column(f.name).cast(f.type) for f in res_fields]
+                    w.write_table(pa.Table.from_arrays(cols, schema=schema))
+        else:
+            with open(tmp, "w", newline="", encoding="utf-8") as fh:
+                header = True
+                for _, (a, b), res in chunks:
+                    csv_rows(pd.concat([table.iloc[a:b].reset_index(drop=True), _from_arrow(res)], axis=1), fh,
+                             header=header, float_format=CSV_FLOAT)
+                    header = False
+                if header:  # no rows: the columns alone
+                    csv_rows(pd.DataFrame(columns=list(table.columns) + result_columns()), fh)
+    return out
+
+
+def usable_cores() -> int:
+    """The processors this process may run on (its affinity; the machine's count where that is not known)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
+def dask_pointless(scheduler: str | None, workers: int | None, tasks: int, threads: int | None = None) -> str | None:
+    """Why ``--engine dask`` would not help (the note saying the work runs in this process instead), or None.
+
+    The in-process engine computes a chunk on one core: Dask helps only with more cores than that, and more
+    than one chunk to share among them. A local cluster runs on this machine's usable cores
+    (:func:`usable_cores`), whatever ``--workers`` asks; a scheduler's cluster has its workers' threads
+    (``threads``, known once connected).
+
+    >>> dask_pointless(None, 2, 1).startswith("--engine dask: 1 chunk")
+    True
+    """
+    if tasks <= 1:
+        return f"--engine dask: {tasks} chunk to compute, nothing to share among workers: computed in this process"
+    if scheduler:
+        if threads is not None and threads <= 1:
+            return (f"--engine dask: the cluster at {scheduler} has {threads} thread, no more cores than this "
+                    "process: computed in this process")
+        return None
+    cores = min(int(workers or 2), usable_cores())
+    if cores <= 1:
+        return (f"--engine dask: a local cluster of {int(workers or 2)} worker(s) on {usable_cores()} usable core(s) "
+                "has no more cores than this process: computed in this process")
+    return None
 
 
 def _run_dask(chunk_records, ranges, todo, write, kw, scheduler, workers, stop_after_chunks, bar,
-              connect_timeout_s: float = 20.0) -> int:
-    """Compute chunks ``todo`` on Dask, writing each (``write(k, df)``) as it completes; returns how many were written."""
+              connect_timeout_s: float = 20.0, inprocess=None, notes: list | None = None) -> int:
+    """Compute chunks ``todo`` on Dask, writing each (``write(k, df)``) as it completes; returns how many were written.
+    A scheduler's cluster with no more than one thread computes in this process instead (``inprocess()``, and a
+    note in ``notes``)."""
     try:
         from dask.distributed import as_completed
     except ImportError:  # pragma: no cover - dask[distributed] is a dependency
@@ -604,6 +830,11 @@ def _run_dask(chunk_records, ranges, todo, write, kw, scheduler, workers, stop_a
     with dask_client(scheduler, workers, connect_timeout_s) as client:
         # a bounded number of chunks in flight: the records of a huge portfolio are not all shipped at once
         nthreads = sum(client.nthreads().values()) or 1
+        why = dask_pointless(scheduler, workers, len(todo), nthreads) if inprocess is not None else None
+        if why:
+            if notes is not None:
+                notes.append(why)
+            return inprocess()
         in_flight = max(2 * nthreads, 2)
         pending = list(todo)
         futures: dict = {}

@@ -40,10 +40,14 @@ import pandas as pd
 from synth import schema
 from synth.design.space import PART_KEYS
 
-__all__ = ["Summary", "summarise", "write_summary", "text", "markdown_table", "fidelity_agreement", "GROUPS"]
+__all__ = ["Summary", "summarise", "write_summary", "text", "markdown_table", "fidelity_agreement", "GROUPS",
+           "COLUMNS"]
 
 #: input columns the feasible share is broken down by
 GROUPS = ("application_type", "damping_typology")
+#: every column :func:`summarise` reads
+COLUMNS = (("status", "feasible") + GROUPS + tuple(f"part_{k}" for k in PART_KEYS)
+           + ("binding_constraint", "binding_margin", "violated", "relaxation"))
 _VIOL = re.compile(r"([A-Za-z_0-9]+):([-+]?[0-9.eE+-]+)")
 _RELAX = re.compile(r"([A-Za-z_][A-Za-z_0-9]*)\s+[-+0-9.eE]+\s*->")
 

@@ -45,10 +45,23 @@ from synth.design.rules import active as active_rules
 __all__ = ["Settings", "SPRING_LIMIT_BASES", "SPRING_TOLERANCE_COLUMNS", "MADE_CONE_SPRING_COLUMNS", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
            "spring_values", "SPRING_OPTION_COLUMNS", "drive_values", "fixation_values", "pivot_wall_values", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
-           "BOLT_CORE_VALUES"]
+           "BOLT_CORE_VALUES", "axial_judged", "axial_full", "FIDELITY_TEXT", "UNVERIFIED_NOTE", "FIDELITY_VALUES",
+           "FIDELITY_FREE", "fidelity_free_ok"]
 
 EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
-FIDELITIES = ("full", "screening")
+#: ``full``: the full model everywhere; ``screening``: the searches rank and prune with the screening model and the
+#: full model judges every design they keep (what is reported is valid under the full model); ``screening-only``:
+#: the screening model alone, unverified (every output says so)
+FIDELITIES = ("full", "screening", "screening-only")
+#: the note of every design reported at screening-only fidelity (in its notes, and in every bulk row)
+UNVERIFIED_NOTE = "screening-only fidelity: not verified at full fidelity (the full model may reject this design)"
+#: what a reported design's fidelity means (the reports' and the command lines' words)
+FIDELITY_TEXT = {
+    "full": "full: Almen-Laszlo cone-spring characteristic and its exact plastic wear along it",
+    "screening": "screening, verified: designs searched with the linear cone spring and closed-form plastic wear, "
+                 "every reported design checked at full fidelity (its checks and values are the full model's)",
+    "screening-only": "screening only: linear cone spring and closed-form plastic wear, NOT verified at full "
+                      "fidelity (the full model may reject the design)"}
 #: the design rules a main spring's installation stress may be checked by (:class:`Settings`)
 SPRING_LIMIT_BASES = ("thesis", "en13906")
 _CONSTANT_LIMITS = {"zero": 0.0, "one": 1.0}  # limits (and scales) that are plain numbers
@@ -59,7 +72,10 @@ class Settings:
     """Model settings: speed against accuracy, and conventions (one set for every consumer).
 
     * ``fidelity``: ``"full"`` (Almen-Laszlo cone spring, exact plastic wear
-      along it) or ``"screening"`` (linear cone spring, closed-form wear);
+      along it), ``"screening"`` (the searches rank and prune with the linear
+      cone spring and closed-form wear; every design they keep is judged by
+      the full model: :attr:`judge`) or ``"screening-only"`` (the screening
+      model alone, unverified);
     * ``friction_circle``: radial friction on ``r_p sin(atan(mu))`` (physics,
       default) or on ``r_p mu`` (the thesis tool's tables);
     * ``bushing_running_in``: integrate the running-in of the pivot clearance in
@@ -109,19 +125,47 @@ class Settings:
         if self.spring_limit_basis not in SPRING_LIMIT_BASES:
             raise InputError(Problem("spring_limit_basis", self.spring_limit_basis, " or ".join(SPRING_LIMIT_BASES)))
 
+    @property
+    def model(self) -> str:
+        """The physics the groups compute with these settings: ``"full"`` or ``"screening"``."""
+        return "full" if self.fidelity == "full" else "screening"
+
+    @property
+    def judge(self) -> "Settings":
+        """The settings whose model decides a design's verdict: full fidelity for ``"screening"`` (screen, then
+        verify), these settings otherwise (``"screening-only"`` is not verified).
+
+        >>> Settings(fidelity="screening").judge.fidelity, Settings(fidelity="screening-only").judge.model
+        ('full', 'screening')
+        """
+        if self.fidelity != "screening":
+            return self
+        import dataclasses
+        return dataclasses.replace(self, fidelity="full")
+
+    def notes(self) -> list:
+        """What a reported design's notes say about its fidelity: :data:`UNVERIFIED_NOTE` at screening-only."""
+        return [UNVERIFIED_NOTE] if self.fidelity == "screening-only" else []
+
 
 @dataclass
 class Group:
     """Values and registry margins of one group's rows (``(n,)`` arrays).
 
     ``margins[id]`` is ``+inf`` where the constraint does not apply or is not
-    verified (``state`` says which), ``-inf`` where its value is NaN.
+    verified (``state`` says which), ``-inf`` where its value is NaN. ``search``: the search model's group
+    this one was judged from (:func:`axial_judged`); its margins rank nearest designs (:meth:`rank`).
     """
 
     name: str
     values: dict
     margins: dict = field(default_factory=dict)
     state: dict = field(default_factory=dict)
+    search: "Group | None" = None
+
+    def rank(self) -> "Group":
+        """The group whose margins rank nearest designs: the search model's (:attr:`search`), else this one."""
+        return self.search if self.search is not None else self
 
     def __len__(self) -> int:
         return len(next(iter(self.values.values()))) if self.values else 0
@@ -145,6 +189,21 @@ class Group:
                 m = np.where(np.asarray(self.values[c.objective_unless], dtype=float) > 0, np.inf, m)
             out = np.minimum(out, m)
         return out
+
+    def put(self, rows, other: "Group") -> "Group":
+        """A copy whose rows ``rows`` are ``other``'s rows (a group of the same function, ``len(rows)`` rows)."""
+        def mix(a: dict, b: dict) -> dict:
+            out = {}
+            for k, v in a.items():
+                if k.startswith("_"):
+                    out[k] = v
+                    continue
+                arr = np.array(v, copy=True)
+                arr[rows] = b[k]
+                out[k] = arr
+            return out
+        return Group(self.name, mix(self.values, other.values), mix(self.margins, other.margins),
+                     mix(self.state, other.state))
 
     def take(self, idx) -> "Group":
         """The rows ``idx`` as a new group."""
@@ -382,6 +441,34 @@ def bushing(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Gro
 MADE_CONE_SPRING_COLUMNS = {"thickness_mm": "cone_spring_made_thickness_mm",
                             "deflection_offset_mm": "cone_spring_deflection_offset_mm",
                             "force_factor": "cone_spring_force_factor"}
+#: the cone spring's values (step 8, :func:`synth.model.disc_spring.cone_spring`): the model fidelity changes them
+CONE_SPRING_VALUES = (
+    "cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n", "cone_spring_fax_nominal_n",
+    "cone_spring_fax_band_n", "cone_spring_force_band_room_n", "cone_spring_gap_band_room_n", "cone_spring_thickness_mm",
+    "cone_spring_cone_height_mm", "cone_spring_free_height_mm", "cone_spring_nominal_deflection_mm",
+    "cone_spring_max_deflection_mm", "cone_spring_rate_n_per_mm", "sigma_om_mpa", "sigma_i_mpa", "sigma_ii_mpa",
+    "sigma_iii_mpa", "sigma_iv_mpa", "cone_spring_diameter_ratio", "cone_spring_aspect_ratio", "cone_spring_thinness",
+    "cone_spring_force_tolerance_plus", "cone_spring_force_tolerance_minus")
+#: the plastic wear's values (step 5, :func:`synth.model.friction_wear.plastic_wear`): the fidelity changes them
+PLASTIC_WEAR_VALUES = ("damping_eol_nm", "axial_damping_eol_nm", "damper_pad_wear_mm", "endcap_spacer_wear_mm",
+                       "plastic_wear_total_mm", "cone_spring_force_eol_n", "damper_pad_wear_max_mm",
+                       "endcap_spacer_wear_max_mm")
+#: every value of group ``axial`` the model fidelity may change (those two, and what :func:`axial` derives of them)
+FIDELITY_VALUES = CONE_SPRING_VALUES + PLASTIC_WEAR_VALUES + ("cone_spring_sigma_om_abs_mpa",)
+
+
+def _fidelity_free() -> tuple:
+    """The registry's (non-advisory) axial constraints that read no :data:`FIDELITY_VALUES` value: the screening
+    and the full model give them the same margin (``tests/test_fidelity.py`` checks it)."""
+    out = []
+    for c in by_group("axial"):
+        reads = (c.value, c.limit, c.scale, c.applies, c.objective_unless)
+        if not c.advisory and not any(k in FIDELITY_VALUES for k in reads if k):
+            out.append(c.id)
+    return tuple(out)
+
+
+FIDELITY_FREE = _fidelity_free()
 
 
 def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_points: int = 0) -> Group:
@@ -420,13 +507,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
         if MADE_CONE_SPRING_COLUMNS["thickness_mm"] in o else False
     act = real & pad & ((cv["axial_damping_nm"] > 0) | made_rows) & (de > di) & (zeta > 0) & (phi > 0) & (phi <= 1)
     v["cone_spring_sized"] = act
-    keys = ("cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n", "cone_spring_fax_nominal_n",
-            "cone_spring_fax_band_n", "cone_spring_force_band_room_n", "cone_spring_gap_band_room_n",
-            "cone_spring_thickness_mm",
-            "cone_spring_cone_height_mm", "cone_spring_free_height_mm", "cone_spring_nominal_deflection_mm",
-            "cone_spring_max_deflection_mm", "cone_spring_rate_n_per_mm", "sigma_om_mpa", "sigma_i_mpa",
-            "sigma_ii_mpa", "sigma_iii_mpa", "sigma_iv_mpa", "cone_spring_diameter_ratio", "cone_spring_aspect_ratio",
-            "cone_spring_thinness", "cone_spring_force_tolerance_plus", "cone_spring_force_tolerance_minus")
+    keys = CONE_SPRING_VALUES
     for k in keys:
         v[k] = np.full(n, np.nan)
     v["cone_spring_max_external_diameter_mm"] = np.where(real, cv["cone_spring_max_external_diameter_mm"], np.nan)
@@ -443,7 +524,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
         cs = s8.cone_spring(cv["axial_damping_nm"][i], apps.damping_target_or_zero_nm[a][i],
                             np.nan_to_num(tol[i], nan=0.0), cv["radial_damping_nm"][i], mu_pl[i],
                             cv["damper_pad_mean_radius_mm"][i], np.asarray(o["endcap_spacer_mean_radius_mm"])[i],
-                            de[i], di[i], gap, aspect_ratio=zeta[i], deflection_ratio=phi[i], fidelity=settings.fidelity,
+                            de[i], di[i], gap, aspect_ratio=zeta[i], deflection_ratio=phi[i], fidelity=settings.model,
                             **made)
         for k in keys:
             v[k][i] = cs[k]
@@ -454,8 +535,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
         lo, hi = p.cone_ranges[rng]
         v[f"cone_spring_{key}_min"], v[f"cone_spring_{key}_max"] = np.full(n, lo), np.full(n, hi)
     v["damping_eol_limit_nm"] = f["damping_eol_limit_nm"]
-    for k in ("damping_eol_nm", "axial_damping_eol_nm", "damper_pad_wear_mm", "endcap_spacer_wear_mm",
-              "plastic_wear_total_mm", "cone_spring_force_eol_n", "damper_pad_wear_max_mm", "endcap_spacer_wear_max_mm"):
+    for k in PLASTIC_WEAR_VALUES:
         v[k] = np.full(n, np.nan)
     w = i[apps.durability_given[a][i]]
     history = None
@@ -467,11 +547,9 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
                              np.asarray(o["endcap_spacer_mean_radius_mm"])[w], es_h[w], apps.theta_pp_deg[a][w],
                              apps.frequency_hz[a][w], apps.duration_h[a][w], cv["radial_damping_nm"][w],
                              k_wear_mm3_per_n_m=apps.k_wear_plastic_mm3_per_n_m[a][w],
-                             plastic_friction_coefficient=mu_pl[w], fidelity=settings.fidelity,
+                             plastic_friction_coefficient=mu_pl[w], fidelity=settings.model,
                              time_points=time_points)
-        for k in ("damping_eol_nm", "axial_damping_eol_nm", "damper_pad_wear_mm", "endcap_spacer_wear_mm",
-                  "plastic_wear_total_mm", "cone_spring_force_eol_n", "damper_pad_wear_max_mm",
-                  "endcap_spacer_wear_max_mm"):
+        for k in PLASTIC_WEAR_VALUES:
             v[k][w] = pw[k]
         history = pw.get("history")
     g = finish("axial", v, apps, a)
@@ -479,6 +557,56 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
         g.values["_history_rows"] = w
         g.values["_history"] = history
     return g
+
+
+def axial_judged(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Group:
+    """Group ``axial`` as a search reads it: screen, then judge.
+
+    At fidelity ``screening`` the rows the screening model passes are evaluated again by the full model
+    (:attr:`Settings.judge`) and carry its values, margins and states: a row passes only when both models pass
+    it, and a passing row's margins (the margin objective's) are the full model's. Nearest designs are ranked
+    by the search model (:meth:`Group.rank`: the screening group, kept as ``search``), as the bulk engine ranks
+    them; a reported design is verified again. At the other fidelities :func:`axial` itself.
+    """
+    g = axial(apps, cg, r, o, settings)
+    if settings.judge is settings:
+        return g
+    return _judged_rows(apps, cg, r, o, settings, g, g.ok())
+
+
+def axial_full(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Group:
+    """The full model's verdicts of group ``axial`` at the cost of the rows that can pass it (``settings``: the
+    search's, fidelity ``screening``).
+
+    The screening model everywhere, then the full model on the rows that pass every constraint whose margin the
+    fidelity does not change (:data:`FIDELITY_FREE`: the others fail at any fidelity): ``ok()`` is the full
+    model's verdict; nearest designs are ranked by the screening group (:meth:`Group.rank`). At the other
+    fidelities :func:`axial` itself.
+    """
+    g = axial(apps, cg, r, o, settings)
+    if settings.judge is settings:
+        return g
+    return _judged_rows(apps, cg, r, o, settings, g, fidelity_free_ok(g))
+
+
+def fidelity_free_ok(g: Group) -> np.ndarray:
+    """``(n,)`` bool: the rows of an axial group that pass every :data:`FIDELITY_FREE` constraint (the others fail
+    at any fidelity)."""
+    ok = np.ones(len(g), dtype=bool)
+    for cid in FIDELITY_FREE:
+        ok &= g.margins[cid] >= -FEAS_TOL
+    return ok
+
+
+def _judged_rows(apps, cg, r, o, settings, g: Group, which) -> Group:
+    """``g`` (the search model's group) with the rows ``which`` replaced by the judge's, and ``g`` as ``search``."""
+    rows = np.flatnonzero(which)
+    if not len(rows):
+        return Group(g.name, g.values, g.margins, g.state, search=g)
+    full = axial(apps, cg, np.asarray(r)[rows], {k: np.asarray(v)[rows] for k, v in o.items()}, settings.judge)
+    out = g.put(rows, full)
+    out.search = g
+    return out
 
 
 # --------------------------------------------------------------------------- step 9: the main spring

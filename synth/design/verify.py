@@ -36,7 +36,11 @@ def evaluate_design(apps: Applications, attrs: dict, settings: E.Settings = E.Se
                     time_points: int = 0) -> dict:
     """Every group of N designs (``attrs``: N-row attribute dicts per table), design ``i`` for application ``i``
     of ``apps`` (one design: application 0). The one sequence of the evaluator's groups for given designs:
-    the flowchart, :func:`verify`, the optimiser's winner and the platform's assignments call it."""
+    the flowchart, :func:`verify`, the optimiser's winner and the platform's assignments call it.
+
+    A given design is judged, never screened: at fidelity ``screening`` every group is evaluated at full fidelity
+    (:attr:`~synth.design.evaluate.Settings.judge`); only ``screening-only`` evaluates the screening model."""
+    settings = settings.judge
     idx = np.arange(len(next(iter(attrs["core"].values()))), dtype=np.int64)
     groups = {"input": E.inputs(apps, idx)}
     cg = E.core(apps, idx, attrs["core"], settings, detail=detail)
@@ -152,8 +156,8 @@ def verify(d, parts: dict, settings: E.Settings = E.Settings(), *, status: str =
     from synth.schema import plausibility
     notes = [n for n in plausibility(d) if n not in (notes or [])] + list(notes or [])
     res = Result(status=status, solver=solver, parts=parts_of_attributes(attrs, groups),
-                 values=values, checks=checks_of(groups, apps), notes=notes, inputs=inputs_of(d),
-                 settings=dataclasses.asdict(settings), rules=echo())
+                 values=values, checks=checks_of(groups, apps), notes=list(notes or []) + settings.notes(),
+                 inputs=inputs_of(d), settings=dataclasses.asdict(settings), rules=echo())
     if time_points and "_history" in groups["axial"].values:
         res.curves["plastic_wear"] = {k: np.asarray(v).reshape(-1).tolist()
                                       for k, v in groups["axial"].values["_history"].items()}

@@ -40,7 +40,7 @@ from pathlib import Path
 
 from synth.errors import InputError, Problem
 
-__all__ = ["FORMULA_LEADS", "FS_ERRNOS", "os_problem", "output_file", "output_folder", "write_text", "write_figure", "write_csv", "csv_cell",
+__all__ = ["FORMULA_LEADS", "FS_ERRNOS", "os_problem", "output_file", "output_folder", "write_text", "write_figure", "write_csv", "csv_rows", "csv_cell",
            "csv_safe", "plain", "json_text", "step_text"]
 
 #: Leading characters that make a spreadsheet read typed text as a formula (OWASP "CSV Injection": ``= + - @``,
@@ -177,11 +177,18 @@ def write_figure(fig, path, what: str = "--out", **savefig) -> Path:
 
 
 def write_csv(df, path, what: str = "--out", *, float_format: str | None = None) -> Path:
-    """Write table ``df`` as CSV (no index) through :func:`output_file`, its text cells :func:`csv_safe`;
-    ``float_format`` as pandas takes it (None: every digit)."""
+    """Write table ``df`` as CSV (no index) through :func:`output_file`, by :func:`csv_rows`."""
     with output_file(path, what) as tmp:
-        csv_safe(df).to_csv(tmp, index=False, float_format=float_format)
+        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+            csv_rows(df, fh, float_format=float_format)
     return Path(path)
+
+
+def csv_rows(df, fh, *, header: bool = True, float_format: str | None = None) -> None:
+    """Write ``df`` as CSV rows to the open text file ``fh`` (``header``: the column names first), its text cells
+    :func:`csv_safe`, its numbers by ``float_format`` as pandas takes it (None: every digit): the one CSV writer,
+    of whole tables (:func:`write_csv`) and chunk by chunk (``synth bulk``'s RESULT)."""
+    csv_safe(df).to_csv(fh, index=False, header=header, float_format=float_format)
 
 
 # ---------------------------------------------------------------- CSV

@@ -185,17 +185,30 @@ def _reg(m):
 
 
 @njit(cache=True, error_model="numpy")
+def _pair_margins(keys, i, opts, j, cst, row):
+    """The eight margins of key ``i`` x option ``j`` into ``row`` (order of ``MARGIN_NAMES``)."""
+    row[M_YIELD] = _reg(_yield_margin(keys, i, opts, j))
+    row[M_SECTION] = _reg(opts[j, O_SEC])
+    row[M_FATIGUE] = _reg(_fatigue_margin(keys, i, opts, j, cst))
+    m_out, m_in, m_gap = _geometry_margins(keys, i, opts, j, cst)
+    row[M_OUTER] = _reg(m_out)
+    row[M_INNER] = _reg(m_in)
+    row[M_GAP] = _reg(m_gap)
+    row[M_IDX_MIN] = _reg(opts[j, O_IDX_MIN])
+    row[M_IDX_MAX] = _reg(opts[j, O_IDX_MAX])
+
+
+@njit(cache=True, error_model="numpy")
 def _margins_row(keys, i, opts, cst, out):
     for j in range(opts.shape[0]):
-        out[i, j, M_YIELD] = _reg(_yield_margin(keys, i, opts, j))
-        out[i, j, M_SECTION] = _reg(opts[j, O_SEC])
-        out[i, j, M_FATIGUE] = _reg(_fatigue_margin(keys, i, opts, j, cst))
-        m_out, m_in, m_gap = _geometry_margins(keys, i, opts, j, cst)
-        out[i, j, M_OUTER] = _reg(m_out)
-        out[i, j, M_INNER] = _reg(m_in)
-        out[i, j, M_GAP] = _reg(m_gap)
-        out[i, j, M_IDX_MIN] = _reg(opts[j, O_IDX_MIN])
-        out[i, j, M_IDX_MAX] = _reg(opts[j, O_IDX_MAX])
+        _pair_margins(keys, i, opts, j, cst, out[i, j])
+
+
+@njit(cache=True, error_model="numpy")
+def margins_pairs(keys, opts, cst, ki, oj, out):
+    """(a) for listed pairs: ``out[p, :]`` = the eight margins of key ``ki[p]`` x option ``oj[p]``."""
+    for p in range(ki.shape[0]):
+        _pair_margins(keys, ki[p], opts, oj[p], cst, out[p])
 
 
 @njit(cache=True, error_model="numpy")

@@ -101,7 +101,7 @@ from synth.errors import InputError, Problem
 from synth.model import torsion_spring as s9
 
 __all__ = ["MARGIN_NAMES", "SpringOptions", "SpringKeys", "spring_options", "options_of_space", "spring_keys",
-           "keys_of_rows", "margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin",
+           "keys_of_rows", "margins", "pair_margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin",
            "any_feasible", "FirstFeasible", "MaxMin", "CHUNK_KEYS", "numba_loaded", "load_kernels", "FEAS_TOL"]
 
 #: the margins of (a), in this order: the registry's non-advisory spring constraints (the kernels' layout)
@@ -425,6 +425,32 @@ def margins(keys: SpringKeys, options: SpringOptions, *, engine: str = "numba", 
     elif out.shape != shape or out.dtype != np.float64 or not out.flags.c_contiguous:
         raise InputError(Problem("out", f"{out.dtype} array of shape {out.shape}", f"a C-ordered float64 array {shape}"))
     (jit.margins_table_parallel if parallel else jit.margins_table)(kt, ot, c, out)
+    return out
+
+
+def pair_margins(keys: SpringKeys, options: SpringOptions, key_idx, option_idx, *, engine: str = "numba") -> np.ndarray:
+    """(a) for listed pairs: ``out[p, m]`` = margin ``MARGIN_NAMES[m]`` of key ``key_idx[p]`` x option
+    ``option_idx[p]`` (the rows a caller needs of the product, as :func:`margins` gives the whole product);
+    ``engine="numpy"``: the registry path on those pairs (:func:`synth.design.evaluate.spring_values`,
+    :func:`~synth.design.evaluate.finish`)."""
+    _check_engine(engine)
+    _same_constants(keys, options)
+    ki = np.ascontiguousarray(np.asarray(key_idx, dtype=np.int64).reshape(-1))
+    oj = np.ascontiguousarray(np.asarray(option_idx, dtype=np.int64).reshape(-1))
+    if ki.shape != oj.shape:
+        raise InputError(Problem("option_idx", f"{oj.size} options", f"one per key index ({ki.size})"))
+    if engine == "numpy":
+        x = {k: v[ki] for k, v in keys.raw.items() if k != "fatigue_verified"}
+        o = {k: v[oj] for k, v in options.raw.items()}
+        v = E.spring_values(o, x)
+        req = _Requirements(keys.raw["fatigue_verified"][ki])
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            g = E.finish("spring", {name: np.broadcast_to(val, ki.shape) for name, val in v.items()}, req,
+                         np.arange(ki.size))
+        return np.stack([g.margins[m] for m in MARGIN_NAMES], axis=-1) if ki.size else np.zeros((0, 8))
+    jit, kt, ot, c = _tables(keys, options)
+    out = np.empty((ki.size, jit.N_MARGINS))
+    jit.margins_pairs(kt, ot, c, ki, oj, out)
     return out
 
 

@@ -199,6 +199,8 @@ class Batch:
         self._spring_range = None
         self._memo: dict = {}
         self._spring_opts = None
+        self._axial_undecided = np.zeros(n, dtype=bool)
+        self._screened = None  # the screening settings while optimum() searches with the full model alone
 
     def __len__(self) -> int:
         return len(self.inputs)
@@ -444,11 +446,37 @@ class Batch:
         first, inv = _unique_rows(self.A[rows], *(self.cg.values[k][rows] for k in E.AXIAL_CORE_VALUES))
         return rows[first], inv
 
-    def _axial_eval(self, rr, oo):
+    def _axial_eval(self, rr, oo, settings: E.Settings | None = None):
+        """The axial group of core rows ``rr`` and options ``oo`` (at ``settings``, default the search's; in the
+        full model's search of :meth:`optimum`, :func:`~synth.design.evaluate.axial_full`)."""
         with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-            g = E.axial(self.apps, self.cg, rr, self.sp.rows("axial", oo), self.settings)
+            if settings is None and self._screened is not None:
+                g = E.axial_full(self.apps, self.cg, rr, self.sp.rows("axial", oo), self._screened)
+            else:
+                g = E.axial(self.apps, self.cg, rr, self.sp.rows("axial", oo), settings or self.settings)
         self.evaluations += len(rr)
         return g
+
+    def _undecided(self, rr, g: E.Group, ok) -> None:
+        """Mark the applications of rows ``rr`` (axial group ``g``, its verdicts ``ok`` after the judge) where the
+        screening model may have rejected what the full model passes: a row that passes every constraint the
+        fidelity does not change (:func:`~synth.design.evaluate.fidelity_free_ok`) and is not kept."""
+        if self.settings.judge is not self.settings:
+            self._axial_undecided[self.A[np.asarray(rr)[~np.asarray(ok) & E.fidelity_free_ok(g)]]] = True
+
+    def _judged(self, ok: np.ndarray, rr, cols) -> np.ndarray:
+        """``ok`` (rows ``rr`` x axial options ``cols``: the search model's verdicts) judged by the full model
+        (:attr:`~synth.design.evaluate.Settings.judge`, fidelity ``screening``): every passing pair evaluated again,
+        in one call (a full evaluation costs about 10 ms a call and 5 us a row: one call per block of the scan),
+        and kept where the full model passes it too. The screening model orders and prunes; the full model
+        decides."""
+        judge = self.settings.judge
+        if judge is self.settings or not ok.any():
+            return ok
+        ri, ci = np.nonzero(ok)
+        out = np.zeros_like(ok)
+        out[ri, ci] = self._axial_eval(np.asarray(rr)[ri], np.asarray(cols)[ci], judge).ok()
+        return out
 
     def _axial_blocks(self):
         from synth import catalog
@@ -471,7 +499,8 @@ class Batch:
         sel = np.flatnonzero(~pad)
         if len(sel):  # one option: none (it may still fail, e.g. the belt plane)
             g = self._axial_eval(rep[sel], np.full(len(sel), none[0]))
-            okn = g.ok() & (score[none[0]] <= lim[sel])
+            okn = self._judged((g.ok() & (score[none[0]] <= lim[sel]))[:, None], rep[sel], none[:1])[:, 0]
+            self._undecided(rep[sel], g, okn)
             out_v[sel] = np.where(okn, score[none[0]], np.inf)
             out_k[sel] = np.where(okn, none[0], -1)
         active = np.flatnonzero(pad)
@@ -487,6 +516,8 @@ class Batch:
             g = self._axial_eval(rep[active[ai]], blk[bi])
             ok = np.zeros(within.shape, dtype=bool)
             ok[ai, bi] = g.ok()
+            ok = self._judged(ok, rep[active], blk)
+            self._undecided(rep[active[ai]], g, ok[ai, bi])
             j = _first_true(ok)
             hit = j >= 0
             out_k[active[hit]] = blk[j[hit]]
@@ -540,11 +571,36 @@ class Batch:
     def optimum(self, weights: dict, *, first: bool = False, which=None) -> list:
         """Per application (``which``: a subset, default all): ``(core row, {subsystem: option row})`` of the
         smallest additive score ``weights`` (over ``standard``/``cost``), or None when no design is feasible.
-        ``first=True``: any feasible design (a feasibility probe), not the best."""
+        ``first=True``: any feasible design (a feasibility probe), not the best.
+
+        At fidelity ``screening`` the axial options are scanned with the screening model and the passing ones
+        judged by the full model (:meth:`_judged`): every design returned passes the full model, and is the best
+        that both models pass. An
+        application left without a design where the screening model rejected an axial option that passes every
+        constraint the fidelity does not change (:meth:`_undecided`) is searched again with the full model alone,
+        so that "no design" is the full model's verdict too (elsewhere it cannot depend on the model); that search
+        evaluates the full model only where those constraints pass (:func:`~synth.design.evaluate.axial_full`)."""
+        out = self._optimum(weights, first=first, which=which)
+        judge = self.settings.judge
+        if judge is not self.settings:
+            redo = np.flatnonzero(self._axial_undecided & np.array([o is None for o in out], dtype=bool))
+            if len(redo):
+                search = self._screened = self.settings
+                self.settings = judge
+                try:
+                    again = self._optimum(weights, first=first, which=redo)
+                finally:
+                    self.settings, self._screened = search, None
+                for i in redo:
+                    out[i] = again[i]
+        return out
+
+    def _optimum(self, weights: dict, *, first: bool = False, which=None) -> list:
         n = len(self)
         want = np.ones(n, dtype=bool) if which is None else np.isin(np.arange(n), which)
         R = np.flatnonzero(self.core_ok & want[self.A])
         out: list = [None] * n
+        self._axial_undecided = np.zeros(n, dtype=bool)
         if not len(R):
             return out
         sp, cg = self.sp, self.cg
@@ -624,7 +680,10 @@ class Batch:
     def nearest(self, which=None) -> list:
         """Per application (``which``: a subset, default all): ``(core row, {subsystem: option row}, value)`` of
         the design with the largest smallest margin over every core and option (every non-advisory constraint,
-        the input-only ones included), as the enumeration's ``nearest_design``; None without any core."""
+        the input-only ones included), as the enumeration's ``nearest_design``; None without any core.
+
+        Nearest designs are ranked by the search model (at fidelity ``screening`` the screening one, as
+        :meth:`synth.design.evaluate.Group.rank`); the design reported is verified by the full model."""
         n = len(self)
         want = np.ones(n, dtype=bool) if which is None else np.isin(np.arange(n), which)
         R = np.flatnonzero(want[self.A])

@@ -122,12 +122,27 @@ def _bushing(apps, sp, cg, pos, settings) -> SubTable:
     return _scatter(avail, i, k, g)
 
 
-def _axial(apps, sp, cg, pos, settings) -> SubTable:
+def _axial(apps, sp, cg, pos, settings, group=E.axial_judged) -> SubTable:
     t = sp.tables["axial"]
     avail = (cg.values["axial_group_present"][pos] > 0)[:, None] == t["axial_group_present"][None, :]
     i, k = np.nonzero(avail)
-    g = E.axial(apps, cg, pos[i], sp.rows("axial", k), settings)
+    g = group(apps, cg, pos[i], sp.rows("axial", k), settings)
     return _scatter(avail, i, k, g)
+
+
+def _judge_undecided(apps, sp, cg, pos, core_ok, settings, subs: dict) -> None:
+    """At fidelity ``screening`` (the axial table screened, then judged: :func:`synth.design.evaluate.axial_judged`),
+    "no design" must be the full model's verdict too: when no core is complete (a feasible option in every
+    subsystem) but some lack only an axial option, the axial table takes the full model's verdicts
+    (:func:`synth.design.evaluate.axial_full`: the screening model may reject options the full model passes), as
+    :meth:`synth.optimise.batch.Batch.optimum` searches such an application again. In place."""
+    if settings.judge is settings or not len(pos):
+        return
+    has = {s: t.feasible.any(axis=1) for s, t in subs.items()}
+    if (core_ok & has["bushing"] & has["axial"] & has["spring"] & has["bolt"]).any():
+        return
+    if (core_ok & has["bushing"] & has["spring"] & has["bolt"]).any():
+        subs["axial"] = _axial(apps, sp, cg, pos, settings, E.axial_full)
 
 
 def _bolt(apps, sp, cg, pos, settings) -> SubTable:
@@ -195,7 +210,7 @@ def _scatter(avail, i, k, g: E.Group) -> SubTable:
     mmin = np.full(shape, -np.inf)
     feas[i, k] = g.ok()
     marg[i, k] = g.min_margin()
-    mmin[i, k] = g.min_margin(objective_only=False)
+    mmin[i, k] = g.rank().min_margin(objective_only=False)  # nearest designs: ranked by the search model
     return SubTable(avail, feas & avail, marg, mmin)
 
 
@@ -220,6 +235,7 @@ def evaluate(d, settings: E.Settings = E.Settings(fidelity="full"), *, pin_input
             for s in SUBSYSTEMS:
                 subs[s], n = subsystem(apps, sp, cg, pos, s, settings)
                 counter[0] += n
+            _judge_undecided(apps, sp, cg, pos, ok[pos], settings, subs)
     score_core = core_scores(sp, cores, cg.values)
     score = {s: option_scores(sp, s, float(apps.spring_stiffness_nm_per_deg[0])) for s in SUBSYSTEMS}
     notes = []

@@ -130,17 +130,35 @@ def margins_and_binding(g: E.Group, objective_only: bool = True, rows=None) -> t
     return m, np.where(np.isinf(m) & (m > 0), _NO_BINDING, np.asarray(idx)[k]).astype(np.int16)
 
 
+#: constraint id by binding index (the last: "none counted"), to name a whole array of bindings at once
+_NAMES = np.array(_IDS + [""], dtype=object)
+
+
 def _name(b: int) -> str:
     return "" if b >= _NO_BINDING else _IDS[int(b)]
 
 
-def spring_group(apps, keys: dict, k, options: dict, settings: E.Settings) -> E.Group:
-    """The main-spring group for rows pairing key ``k[i]`` with option ``options[i]`` (one line to switch engine).
+def spring_group(apps, keys: dict, k, options, settings: E.Settings, spring_keys=None) -> E.Group:
+    """The main-spring group's registry margins for rows pairing key ``k[i]`` with option ``options[i]``: the
+    compiled kernels (:func:`synth.kernels.torsion_spring.pair_margins`, equal to the registry's spring group,
+    ``tests/test_kernels.py``), 10-15x the numpy group on these pairs.
 
-    Today the numpy group :func:`synth.design.evaluate.spring`; the compiled kernel
-    (:mod:`synth.kernels.torsion_spring`) replaces it here once its margins are the registry's.
-    """
-    return E.spring(apps, keys, k, options, settings)
+    ``options``: rows of the design space's spring table (integers), or the table's columns for each row (a
+    dict, as :func:`synth.design.evaluate.spring` takes them). ``spring_keys``: the keys' kernel table when the
+    caller made it once (:func:`synth.kernels.torsion_spring.keys_of_rows`). The group holds the margins of the
+    non-advisory constraints (feasibility, the margin objective and the nearest design read no other) and the
+    application of each row; a fatigue check without its durability test has the margin ``+inf``, as the
+    registry's "not verified"."""
+    from synth.kernels import torsion_spring as K
+    kk = spring_keys if spring_keys is not None else K.keys_of_rows(apps, keys)
+    k = np.asarray(k, dtype=np.int64)
+    if isinstance(options, dict):
+        opts, rows = K.options_of_space(options, np.arange(len(k))), np.arange(len(k))
+    else:
+        opts, rows = K.options_of_space(), np.asarray(options, dtype=np.int64)
+    m = K.pair_margins(kk, opts, k, rows)
+    return E.Group("spring", {"app": np.asarray(keys["app"])[k]},
+                   {name: m[:, c] for c, name in enumerate(K.MARGIN_NAMES)})
 
 
 # --------------------------------------------------------------------------------------------------------- chunk
@@ -171,13 +189,14 @@ class _Pairs:
         sel = np.flatnonzero(ok)
         m, b = margins_and_binding(grp, True, sel)
         self.g.append(gp[sel]); self.o.append(op[sel]); self.m.append(m); self.b.append(b)
+        rank = grp.rank()  # nearest designs: ranked by the search model (fidelity screening: the screening one)
         ma = np.where(ok, np.maximum(grp.min_margin(objective_only=False), 0.0),
-                      np.minimum(grp.min_margin(objective_only=False), -FEAS_TOL))
+                      np.minimum(rank.min_margin(objective_only=False), -FEAS_TOL))
         gg, mm, at = _segment_best(gp, ma)
         upd = mm > self.best[gg]
         if upd.any():
             self.best[gg[upd]] = mm[upd]
-            self.best_b[gg[upd]] = margins_and_binding(grp, False, at[upd])[1]
+            self.best_b[gg[upd]] = margins_and_binding(rank, False, at[upd])[1]
         self.evaluated[gp] = True
 
     def by_group(self, n_groups: int):
@@ -255,6 +274,7 @@ def chunk_feasibility(inputs: list, ids: list, volumes, settings: E.Settings = E
         st["spring_stage1_pairs"] = st.get("spring_stage1_pairs", 0) + n1
         lap("spring", n1 + n2)
         lap("bolt", _bolt(apps, cat, cg, rep["bolt"], settings, pairs["bolt"]))
+        lap("axial", _judge_undecided(apps, cat, cg, a, pos, gid, rep, pairs, extra["pad_code"], settings))
         lap("reasons", _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings))
         out = _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all_m, all_b, gid, rep, pairs,
                         diagnose, settings)
@@ -271,7 +291,7 @@ def _bushing(apps, cat, cg, rep, settings, acc: _Pairs):
     return len(gp)
 
 
-def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs):
+def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs, group=E.axial_judged):
     pad = pad_code[rep]
     nr = cat.n_axial_real
     cnt = np.where(pad < 0, 1, nr)
@@ -280,8 +300,41 @@ def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs):
     op = np.where(pad[gp] < 0, cat.axial_none, cat.axial_option(np.maximum(pad[gp], 0), j))
     for blk in _blocks(len(gp), BLOCK_PAIRS // 4):
         g, o = gp[blk], op[blk]
-        acc.add(g, o, E.axial(apps, cg, rep[g], cat.space.rows("axial", cat.option_row["axial"][o]), settings))
+        acc.add(g, o, group(apps, cg, rep[g], cat.space.rows("axial", cat.option_row["axial"][o]), settings))
     return len(gp)
+
+
+def _judge_undecided(apps, cat, cg, a, pos, gid, rep, pairs, pad_code, settings) -> int:
+    """At fidelity ``screening`` (axial options screened, then judged: :func:`synth.design.evaluate.axial_judged`),
+    "no complete design" must be the full model's verdict too: for an application without a complete design some
+    of whose cores lack only an axial option, its axial groups are evaluated again with the full model alone (the
+    screening model may reject options the full model passes: :func:`synth.design.evaluate.axial_full`). Returns
+    the rows evaluated."""
+    if settings.judge is settings or not len(pos):
+        return 0
+    has = {s: np.bincount(np.concatenate(pairs[s].g) if pairs[s].g else np.zeros(0, np.int64),
+                          minlength=len(rep[s])) > 0 for s in SUBSYSTEMS}
+    others = has["bushing"][gid["bushing"]] & has["spring"][gid["spring"]] & has["bolt"][gid["bolt"]]
+    complete = others & has["axial"][gid["axial"]]
+    done = np.zeros(int(a.max()) + 1, bool)
+    done[a[pos[complete]]] = True
+    undecided = np.zeros(len(done), bool)
+    undecided[a[pos[others & ~done[a[pos]]]]] = True
+    groups = np.unique(gid["axial"][undecided[a[pos]]])  # every axial group of those applications
+    if not len(groups):
+        return 0
+    acc = pairs["axial"]
+    keep = [~np.isin(g, groups) for g in acc.g]
+    acc.g, acc.o, acc.m, acc.b = ([x[k] for x, k in zip(xs, keep)] for xs in (acc.g, acc.o, acc.m, acc.b))
+    acc.best[groups], acc.best_b[groups] = -np.inf, _NO_BINDING
+    full = _Pairs(len(groups))
+    n = _axial(apps, cat, cg, rep["axial"][groups], pad_code, settings, full, E.axial_full)
+    acc.g.extend(groups[g] for g in full.g)
+    acc.o.extend(full.o)
+    acc.m.extend(full.m)
+    acc.b.extend(full.b)
+    acc.best[groups], acc.best_b[groups] = full.best, full.best_b
+    return n
 
 
 def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
@@ -291,7 +344,9 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
     """
     if not len(rep):
         return 0, 0
+    from synth.kernels.torsion_spring import keys_of_rows
     keys = E.spring_keys(cg, rep)
+    kk = keys_of_rows(apps, keys)  # the keys' kernel table, once
     rows = cat.option_row["spring"]
     mbd = cat.space.tables["spring"]["main_spring_mean_body_diameter_mm"][rows]
     lo, hi = spring_window(keys["spring_housing_inner_diameter_mm"], keys["spring_housing_outer_diameter_mm"])
@@ -330,8 +385,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
                 n_stage += len(g)
                 for blk in _blocks(len(g)):
                     gg_, oo = g[blk], o[blk]
-                    m, b = _stage_margin(spring_group(apps, keys, srep[gg_], cat.space.rows("spring", rows[oo]),
-                                                      settings), ids)
+                    m, b = _stage_margin(spring_group(apps, keys, srep[gg_], rows[oo], settings, kk), ids)
                     ok = m >= -FEAS_TOL
                     survive[gg_[ok], oo[ok]] = True
                     bad = ~ok & finite[gg_]
@@ -349,7 +403,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
         g = kb[g]
         n_last += len(g)
         for blk in _blocks(len(g)):
-            acc.add(g[blk], o[blk], spring_group(apps, keys, g[blk], cat.space.rows("spring", rows[o[blk]]), settings))
+            acc.add(g[blk], o[blk], spring_group(apps, keys, g[blk], rows[o[blk]], settings, kk))
     # keys left without a candidate: the first stage that left none in their window says why
     left = np.flatnonzero(~acc.evaluated)
     for of, survive, best, best_b in stages:
@@ -369,6 +423,7 @@ def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, ro
     know the margins of their own constraints over the springs that reached them). Repeated until the nearest
     core's spring is known exactly, so the reason names what that design really misses. Returns the rows
     evaluated."""
+    from synth.kernels.torsion_spring import keys_of_rows
     has = {s: np.bincount(np.concatenate(pairs[s].g) if pairs[s].g else np.zeros(0, np.int64),
                           minlength=len(rep[s])) > 0 for s in SUBSYSTEMS}
     complete = np.ones(len(pos), bool)
@@ -391,11 +446,12 @@ def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, ro
         if not len(groups):
             break
         keys = E.spring_keys(cg, rep["spring"][groups])
+        kk = keys_of_rows(apps, keys)
         lo, hi = spring_window(keys["spring_housing_inner_diameter_mm"], keys["spring_housing_outer_diameter_mm"])
         g, o = np.nonzero((mbd[None, :] >= lo[:, None]) & (mbd[None, :] <= hi[:, None]))
         best = _Pairs(len(groups))
         for blk in _blocks(len(g)):
-            best.add(g[blk], o[blk], spring_group(apps, keys, g[blk], cat.space.rows("spring", rows[o[blk]]), settings))
+            best.add(g[blk], o[blk], spring_group(apps, keys, g[blk], rows[o[blk]], settings, kk))
         acc.best[groups], acc.best_b[groups], acc.evaluated[groups] = best.best, best.best_b, best.evaluated
         refined[groups] = True
         n += len(g)
@@ -459,7 +515,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             ptr, o, m, b = grouped[s]
             feasible[s] = [o[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
             margin[s] = [m[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
-            binding[s] = [np.array([_name(x) for x in b[ptr[g]:ptr[g + 1]]], dtype=object) for g in range(g0, g1)]
+            binding[s] = [_NAMES[np.minimum(b[ptr[g]:ptr[g + 1]], _NO_BINDING)] for g in range(g0, g1)]
             complete &= (np.diff(ptr)[g0:g1] > 0)[group[s]]
         d = inputs[i]
         af = AppFeasibility(
@@ -467,7 +523,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             core_cost_eur=cat.space.tables["core"]["cost_eur"][crow[sel]].astype(float), core_margin=core_m[sel],
             group=group, feasible=feasible, option_margin=margin, volume=float(volumes[i]),
             option_cost_eur={"spring": cat.spring_cost_eur(float(apps.spring_stiffness_nm_per_deg[i]))},
-            core_binding=np.array([_name(x) for x in core_b[sel]], dtype=object), option_binding=binding,
+            core_binding=_NAMES[np.minimum(core_b[sel], _NO_BINDING)], option_binding=binding,
             core_rows=crow[sel])
         if not complete.any():
             af.note = _why(cat, i, a, crow, all_m, all_b, sel, k, gid, first_group, pairs)
@@ -553,8 +609,9 @@ def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: E
     kw = dict(diagnose=diagnose, catalog_dirs=tuple(str(p) for p in catalog._user_dirs()))
     jobs = [([inputs[i] for i in valid[lo:hi]], [ids[i] for i in valid[lo:hi]], volumes[valid[lo:hi]])
             for lo, hi in ranges]
-    results = _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress)
-    stats = {"engine": engine, "chunks": len(ranges)}
+    run_notes: list = []
+    results = _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress, run_notes)
+    stats = {"engine": "inprocess" if run_notes else engine, "chunks": len(ranges)}
     for _, st in results:
         for k, v in st.items():
             stats[k] = stats.get(k, 0) + v
@@ -572,7 +629,7 @@ def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: E
         option_cost_eur={s: (cat.option_cost_eur[s] if s != "spring" else np.zeros(cat.n_options(s)))
                          for s in SUBSYSTEMS},
         notes=[f"feasibility from the evaluator (synth.design.evaluate, fidelity {settings.fidelity}); "
-               "per-variant fixed costs: illustrative constants (catalogs/constants_platform.csv)"],
+               "per-variant fixed costs: illustrative constants (catalogs/constants_platform.csv)"] + run_notes,
         design_inputs=list(inputs), settings=settings, catalogue=cat,
         stats={"feasibility_s": time.perf_counter() - t0, **stats})
     return validate(pf)
@@ -584,9 +641,15 @@ def _chunk_job(inputs, ids, volumes, settings, **kw) -> tuple:
     return chunk_feasibility(inputs, ids, volumes, settings, stats=stats, **kw), stats
 
 
-def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress) -> list:
+def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress, notes: list | None = None) -> list:
+    """The chunks' results in order, in this process or on Dask (where Dask cannot help, in this process, and
+    ``notes`` says why: :func:`synth.bulk.run.dask_pointless`)."""
+    from synth.bulk.run import dask_pointless
     total = sum(len(j[0]) for j in jobs)
-    if engine == "inprocess":
+    why = dask_pointless(scheduler, workers, len(jobs)) if engine == "dask" else None
+    if why and notes is not None:
+        notes.append(why)
+    if engine == "inprocess" or why:
         out, done = [], 0
         for inp, ids, vol in jobs:
             out.append(_chunk_job(inp, ids, vol, settings, **kw))

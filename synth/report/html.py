@@ -176,9 +176,8 @@ def settings_in_words(result) -> list[tuple[str, str]]:
     else:
         how = f"a given design verified through the evaluator (status {result.status})"
     rows.append(("Design", how))
-    fid = s.get("fidelity", "full")
-    rows.append(("Fidelity", "full: Almen-Laszlo cone-spring characteristic and its exact plastic wear along it"
-                 if fid == "full" else "screening: linear cone spring and closed-form plastic wear"))
+    from synth.design.evaluate import FIDELITY_TEXT
+    rows.append(("Fidelity", FIDELITY_TEXT.get(s.get("fidelity", "full"), str(s.get("fidelity")))))
     rows.append(("Radial friction", "on the friction circle r_p sin(atan mu) (physics)"
                  if s.get("friction_circle", True) else "on r_p mu, as the thesis tool's tables"))
     rows.append(("Bushing wear", "with the running-in of the pivot clearance integrated (an extension, "

@@ -159,7 +159,8 @@ class _Data:
         from synth.design.evaluate import Settings
         known = set(Settings.__dataclass_fields__)
         self.settings = Settings(**{k: v for k, v in (result.settings or {}).items() if k in known})
-        self.fidelity, self.friction_circle = self.settings.fidelity, self.settings.friction_circle
+        # the model of the result's values: the judge's (full at fidelity screening)
+        self.fidelity, self.friction_circle = self.settings.judge.model, self.settings.friction_circle
         self.d = None
         if isinstance(result.inputs, dict):
             from synth.schema import validate

@@ -57,6 +57,10 @@ def render(r: Result, *, title: str = "") -> str:
         if r.objectives:
             lines.append(objective_line(r.objectives))
         lines.append("")
+    fid = (r.settings or {}).get("fidelity", "full")
+    if fid != "full":
+        from synth.design.evaluate import FIDELITY_TEXT
+        lines += [f"fidelity {FIDELITY_TEXT.get(fid, fid)}", ""]
     changes = change_lines(r)
     if changes:
         lines += ["Parts the input names (kept unless no design with them passes; --fix keeps, --free frees)",

@@ -25,8 +25,10 @@ def add_model_options(p) -> None:
     p.add_argument("--rules", metavar="FILE", default=None,
                    help="design rules (required safety factors and limits, minimum margins, spring limit basis, "
                         "capability targets): a rules file, or the input's own rules: section when not given")
-    p.add_argument("--fidelity", choices=("full", "screening"), default="full",
-                   help="full: Almen-Laszlo cone spring and its exact wear (default); screening: linear, closed forms")
+    from synth.design.evaluate import FIDELITIES
+    p.add_argument("--fidelity", choices=FIDELITIES, default="full",
+                   help="full: Almen-Laszlo cone spring and its exact wear (default); screening: searched with the "
+                        "linear, closed forms, the design verified at full fidelity; screening-only: unverified")
     p.add_argument("--linear-friction", action="store_true",
                    help="radial friction on r_p*mu as the thesis tool did (default: friction circle r_p*sin(atan(mu)))")
     p.add_argument("--bolt-method", choices=("thesis", "vdi2230"), default="thesis",

@@ -50,7 +50,9 @@ def register(sub) -> None:
     p.add_argument("--objective", default="standard",
                    help="standard | cost | margin, a lexicographic list 'a,b' or weights 'cost=1,margin=5'")
     p.add_argument("--fidelity", default="screening", choices=FIDELITIES,
-                   help="screening: closed-form models; full: time-integrated wear")
+                   help="screening (default): designs searched with the closed-form models, every reported design "
+                        "verified at full fidelity; full: the full model throughout; screening-only: closed forms, "
+                        "unverified (every row says so)")
     p.add_argument("--chunk-size", type=_count("--chunk-size"), default=None, metavar="N",
                    help="applications per chunk, 1-10000 (default: the engine's memory budget over its memory per "
                         "application, catalogs/constants_bulk.csv)")
@@ -88,9 +90,12 @@ def _main(args) -> int:
         _capability(args, rep)
     for w in rep.warnings:
         print(f"synth bulk: note: {w}", file=sys.stderr)
-    print(f"synth bulk: {args.portfolio} -> {rep.out} | objective {args.objective} | fidelity {args.fidelity}")
+    said = {"screening": " (every design reported verified at full fidelity)",
+            "screening-only": " (designs NOT verified at full fidelity)"}.get(args.fidelity, "")
+    print(f"synth bulk: {args.portfolio} -> {rep.out} | objective {args.objective} | fidelity {args.fidelity}{said}")
     print(rep.message() + (f", {rep.apps_per_s:.3g} applications/s" if rep.computed else ""))
-    s = summarise(rep.table)
+    from synth.bulk.summary import COLUMNS
+    s = summarise(rep.columns(COLUMNS))  # the columns the summary reads, not the whole table
     print(text(s))
     if args.summary:
         paths = write_summary(s, args.summary)

@@ -56,8 +56,9 @@ def register(sub) -> None:
     p.add_argument("--tradeoff", default="margin", choices=["margin", "cost", "none"],
                    help="trade-off curve: platform size against worst margin or total cost")
     p.add_argument("--points", type=int, default=5, help="points of the trade-off curve")
-    p.add_argument("--fidelity", default="full", choices=["full", "screening"],
-                   help="model fidelity of the feasibility data (full: the design scenes' default)")
+    p.add_argument("--fidelity", default="full", choices=["full", "screening", "screening-only"],
+                   help="model fidelity of the feasibility data (full: the design scenes' default; screening: the "
+                        "options the closed forms pass, judged at full fidelity; screening-only: unverified)")
     p.add_argument("--engine", default="inprocess", choices=["inprocess", "dask"],
                    help="evaluate the chunks of applications in this process or on Dask")
     p.add_argument("--workers", type=int, default=None, metavar="N", help="local Dask cluster: worker processes")
@@ -85,6 +86,10 @@ def _main(args) -> int:
         pf = load_feasibility(args.portfolio, Settings(fidelity=args.fidelity), engine=engine, workers=args.workers,
                               scheduler=args.scheduler, diagnose=args.diagnose,
                               progress=lambda done, total: bar.update(done - bar.n))
+    import sys
+    for note in pf.notes:
+        if note.startswith("--engine dask"):
+            print(f"synth rationalise: note: {note}", file=sys.stderr)
     with phase(f"synth rationalise: platform ({args.solver} MILP, {len(pf.apps)} applications)"):
         r = rationalise(pf, args.objective, max_variants=caps, time_limit=args.time_limit, solver=args.solver)
     rows = None

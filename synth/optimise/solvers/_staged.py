@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import contextlib
+import os
+import sys
 import time
 
 from synth.design.evaluate import Settings
@@ -11,14 +14,47 @@ from synth.optimise.model_data import model_data
 from synth.optimise.objectives import Objective
 from synth.optimise.result import build_result
 
-__all__ = ["staged", "solve_with", "solve_evaluated"]
+__all__ = ["staged", "solve_with", "solve_evaluated", "solver_output_to_stderr"]
 
 _TOL = 1e-7
 
 
+@contextlib.contextmanager
+def solver_output_to_stderr():
+    """What a solver prints goes to stderr for the span of the block: stdout carries synth's output only.
+
+    Native libraries write to file descriptor 1 themselves (HiGHS prints its banner when cvxpy creates the
+    solver, before any option could silence it), so the descriptor is redirected, not only ``sys.stdout``;
+    where the process has no real descriptors (a notebook's streams) ``sys.stdout`` alone is.
+    """
+    sys.stdout.flush()
+    try:
+        out_fd, err_fd = 1, sys.stderr.fileno()
+        saved = os.dup(out_fd)
+    except (AttributeError, OSError, ValueError):
+        with contextlib.redirect_stdout(sys.stderr):
+            yield
+        return
+    try:
+        os.dup2(err_fd, out_fd)
+        with contextlib.redirect_stdout(sys.stderr):
+            yield
+    finally:
+        with contextlib.suppress(OSError, ValueError):
+            sys.stderr.flush()
+        os.dup2(saved, out_fd)
+        os.close(saved)
+
+
 def staged(md, obj: Objective, run):
     """Run ``run(weights, margin_weight, with_margin, t_lb, add_ub) -> (core, opts, additive, t) | None``
-    in the stages of ``obj``; returns the last stage's answer and the number of stages."""
+    in the stages of ``obj``; returns the last stage's answer and the number of stages. What the solver prints
+    goes to stderr (:func:`solver_output_to_stderr`): ``--json`` output stays one JSON object."""
+    with solver_output_to_stderr():
+        return _staged(md, obj, run)
+
+
+def _staged(md, obj: Objective, run):
     if obj.weights:
         w = {k: v for k, v in obj.weights.items() if k != "margin"}
         mw = obj.weights.get("margin", 0.0)
