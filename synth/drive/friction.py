@@ -27,8 +27,9 @@ degree of freedom removed, the belt's torque on the arm is
 
 :func:`den_hartog_amplitude` is the exact steady amplitude of a single mass
 on a spring with Coulomb friction under a harmonic force, for motion without
-stops (Den Hartog 1931, "Forced vibrations with combined Coulomb and viscous
-friction", Trans. ASME APM-53-9 / Phil. Mag. 9, section II):
+stops (J. P. Den Hartog, "Forced vibrations with combined viscous and Coulomb
+damping", Phil. Mag. S. 7, Vol. 9, No. 59 (1930) 801-817, section II "Only
+Coulomb damping"):
 
     x0 / (P/k) = sqrt( V^2 - (F/P)^2 U^2 ),   V = 1 / (1 - b^2),
     U = sin(pi/b) / (b (1 + cos(pi/b))),      b = w / w_n,

@@ -1,4 +1,5 @@
-"""Den Hartog (1931): forced vibration of a mass on a spring with Coulomb friction, motion without stops.
+"""Den Hartog (Phil. Mag. 1930; the file keeps its 1931 name): a mass on a spring with Coulomb friction,
+forced harmonically, motion without stops.
 
 Source: J. P. Den Hartog, "Forced vibrations with combined viscous and Coulomb damping", Phil. Mag. S. 7,
 Vol. 9, No. 59 (1930) 801-817, section II "Only Coulomb damping": the exact steady amplitude
@@ -12,8 +13,9 @@ and the harmonics doubled (the drive's tolerance check).
 
 Why this anchor: the published anchors of issue 26 (Beikmann, Perkins, Ulsoy 1996; Zhu and Parker 2008;
 Long et al. 2019 and 2025) could not be read beyond their abstracts and the first lines of Long et al. 2025's
-Appendix A with the search tools; docs/sections/drive.md says what was searched. Den Hartog's closed form is
-the classical exact solution the dry-friction tensioner literature checks against.
+Appendix A with the search tools, in two searches; docs/sections/drive.md lists source by source what was reached.
+The first page of Den Hartog's paper was reached (a scan): section II, its eq. (1) and the notation used here.
+Den Hartog's closed form is the classical exact solution the dry-friction tensioner literature checks against.
 """
 
 import numpy as np
