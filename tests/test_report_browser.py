@@ -208,4 +208,21 @@ def test_platform_section_hook(case1, tmp_path):
     assert f"{r.n_parts} distinct parts" in text and text.count("data:image/png;base64,") >= 1
     assert 'id="platform"' not in render_html(case1["result"], [], [])
     with pytest.raises(InputError, match="--platform"):
-        render_html(case1["result"], [], [], platform=tmp_path)   # a folder without section.html
+        render_html(case1["result"], [], [], platform=tmp_path)   # a folder without section.html    # the folder is the user's: a section.html edited to carry script reaches the report without it, while
+    # what synth rationalise wrote passes through whole (same text, same tables, same embedded pictures)
+    from synth.platform.outputs import report_section, saved_section
+    written = report_section(r)
+    assert saved_section(written).count("<td>") == written.count("<td>")
+    assert saved_section(written).count("data:image/png;base64,") == written.count("data:image/png;base64,")
+    hostile = tmp_path / "hostile"
+    hostile.mkdir()
+    (hostile / "section.html").write_text(
+        '<section id="platform"><script>alert(1)</script><p onmouseover="alert(2)">served</p>'
+        '<img src="javascript:alert(3)"><iframe src="https://example.org"></iframe>'
+        '<style>body{display:none}</style><a href="javascript:alert(4)">x</a></section>', encoding="utf-8")
+    text = render_html(case1["result"], [], [], platform=hostile)
+    section = text[text.index('<section id="platform">'):]
+    section = section[:section.index("</section>")]
+    assert "served" in section
+    for live in ("<script", "onmouseover", "javascript:", "<iframe", "<style", "<a "):
+        assert live not in section.lower(), live

@@ -24,6 +24,7 @@ import pandas as pd
 
 from synth.platform.assign import platform_parts_used
 from synth.errors import InputError, Problem
+from synth.io.files import read_text
 from synth.platform.data import FAMILIES
 
 __all__ = ["platform_table", "gap_text", "assignment_table", "price_of_standardisation", "summary_markdown",
@@ -202,6 +203,27 @@ def _html_table(header: list, rows: list) -> str:
     return f"<table><tr>{head}</tr>{body}</table>"
 
 
+#: What a saved ``section.html`` may hold when it is read back into a report: the elements and attributes
+#: :func:`report_section` writes, images only as embedded ``data:`` PNG. Anything else (scripts, event handlers,
+#: styles, links, frames) is removed by nh3 (the maintained binding of the Rust ``ammonia`` sanitiser).
+_SECTION_TAGS = {"section", "h2", "h3", "p", "code", "table", "tr", "th", "td", "figure", "figcaption", "img"}
+_SECTION_ATTRIBUTES = {"*": {"id", "class"}, "img": {"src", "alt", "title"}}
+
+
+def saved_section(text: str) -> str:
+    """A ``section.html`` read from a folder, reduced to what :func:`report_section` writes.
+
+    The folder is user-supplied: a hand-edited or hostile file must not put script into the report.
+
+    >>> saved_section('<section id="platform"><p onclick="x()">ok</p><script>alert(1)</script>'
+    ...               '<img src="javascript:alert(1)"></section>')
+    '<section id="platform"><p>ok</p><img></section>'
+    """
+    import nh3
+    return nh3.clean(text, tags=_SECTION_TAGS, attributes=_SECTION_ATTRIBUTES, url_schemes={"data"},
+                     link_rel=None, strip_comments=True)
+
+
 def report_section(result) -> str:
     """The platform for the HTML report: one self-contained ``<section id="platform">`` (the price of
     standardisation, the platform's parts and their use, the solve, and the plots embedded as base64 PNG: parts
@@ -220,7 +242,7 @@ def report_section(result) -> str:
         if not f.is_file():
             raise InputError(Problem("--platform", str(result), "a folder written by synth rationalise --out "
                                      "(with section.html)"))
-        return f.read_text(encoding="utf-8")
+        return saved_section(read_text(f, "--platform", accepted="the section.html synth rationalise --out wrote"))
     p = result.price
     n_bad = len(result.records) - p["applications_served"]
     out = ['<section id="platform">', "<h2>Platform rationalisation</h2>",
