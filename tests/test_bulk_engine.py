@@ -240,3 +240,19 @@ def test_advisory_margins_are_kept_or_dropped_together():
     r = verify(case_input("case1_as_run"), dict(case_flowchart("case1_as_run").parts, cone_spring_aspect_ratio=1.3))
     assert r.check("cone_aspect_ratio_max").verdict == "warning" and r.check("cone_aspect_ratio_min").verdict == "pass"
     assert ("cone_aspect_ratio_max" in r.margins) == ("cone_aspect_ratio_min" in r.margins)
+
+
+def test_layout_switch_is_explained_in_bulk_as_in_design():
+    """Issue 20: loosening the axial space from 40 to 40.001 mm makes eq. (18) select the reverse layout, which has
+    no feasible design for the default application. ``synth design`` says so; a portfolio row says it too (fast
+    engine and reference alike): the first relaxation is back to twice the belt height, the note names eq. (17)."""
+    from synth.scenes.demo import default_input
+    base = default_input()
+    apps = [dataclasses.replace(base, max_axial_displacement_mm=x) for x in (40.0, 40.001)]
+    fast = screen_applications(apps, fidelity="full")
+    ref = screen_applications_reference(apps, fidelity="full")
+    for rows in (fast, ref):
+        assert list(rows["feasible"]) == [True, False]
+        assert rows["relaxation"][1] == "max_axial_displacement_mm 40.001->40"
+        assert "eq. (17) selects the standard layout" in rows["notes"][1]
+        assert "layout" not in rows["notes"][0]

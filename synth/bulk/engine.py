@@ -110,6 +110,8 @@ def row_from_result(res, diagnose: bool = True) -> dict:
         notes.append(_not_verified_note(nv))
     if res.assumptions():
         notes.append("assumed: " + "; ".join(a.replace(" assumed", "") for a in res.assumptions()))
+    if diagnose and not feasible and (res.diagnosis or {}).get("layout"):
+        notes.append(res.diagnosis["layout"]["message"])
     row["notes"] = "; ".join(dict.fromkeys(notes))
     return row
 
@@ -329,7 +331,7 @@ def _parts(attrs: dict, core_values: dict) -> dict:
 def _screen_chunk(inputs: list, weights: dict, obj, settings, diagnose: bool) -> list:
     """The rows of a chunk of applications (see :func:`screen_applications`)."""
     from synth.optimise.batch import Batch
-    from synth.optimise.diagnose import relaxations_batch
+    from synth.optimise.diagnose import layout_switches, probe_batch, relaxations_batch
     n = len(inputs)
     b = Batch(inputs, settings)
     found = b.optimum(weights)
@@ -354,8 +356,14 @@ def _screen_chunk(inputs: list, weights: dict, obj, settings, diagnose: bool) ->
             failed[i] = f
     if diagnose and bad:
         rel = relaxations_batch([inputs[i] for i in bad], [failed[i] for i in bad], settings=settings)
-        for i, r in zip(bad, rel):
-            if r and not cols["feasible"][i]:
+        switches = layout_switches([inputs[i] for i in bad], probe_batch(settings))
+        for i, r, switch in zip(bad, rel, switches):
+            if cols["feasible"][i]:
+                continue
+            if switch is not None:  # as synth design says it: the switch first, its message in the notes
+                r = [switch["relaxation"]] + r
+                cols["notes"][i] = "; ".join(x for x in (cols["notes"][i], switch["message"]) if x)
+            if r:
                 cols["relaxation"][i] = _fmt_relaxation(r[0])
     return cols
 

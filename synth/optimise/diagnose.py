@@ -34,7 +34,7 @@ from synth.optimise.evaluate import evaluate
 from synth.schema import FIELDS, field_by_name
 
 __all__ = ["RELAXABLE", "nearest_design", "is_feasible", "relaxations", "relaxations_batch", "probe_batch",
-           "diagnose", "layout_switch", "reference_probe", "violated_of"]
+           "diagnose", "layout_switch", "layout_switches", "reference_probe", "violated_of"]
 
 #: input field -> (direction: +1 raise / -1 lower, the constraints it relaxes, a specification value?), derived from
 #: the fields' own declaration (:attr:`synth.schema.Field.relax`, ``relaxes``, ``owner``)
@@ -289,28 +289,48 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
 
 
 def layout_switch(d, settings: Settings = Settings(), *, pin_inputs: bool = False) -> dict | None:
-    """The layout switch of eq. (17)-(18) that makes ``d`` infeasible, explained, or None.
+    """The layout switch of eq. (17)-(18) that makes ``d`` infeasible, explained, or None
+    (:func:`layout_switches` of one application with the reference probe)."""
+    single = reference_probe(pin_inputs)
+    return layout_switches([d], lambda items: [single(x, ch, settings) for x, ch in items])[0]
+
+
+def layout_switches(ds: list, probe) -> list:
+    """Per application of ``ds``, the layout switch of eq. (17)-(18) that makes it infeasible, explained, or None.
 
     Eq. (17) selects the standard layout when the middle plane belt height is at least half the maximum axial
     displacement, eq. (18) the reverse one otherwise: *raising* the axial space limit past twice the belt height
     switches to the reverse layout, whose packaging differs (the spring housing under the bearing, eq. (27)'s
-    crankcase clearance), so loosening a limit can lose feasibility (40.0 -> 40.001 mm did, silently). When ``d``
-    is reverse by eq. (18) with a given maximum, and the largest maximum that keeps the standard layout (twice the
-    belt height) has a feasible design, this says so: ``{"message", "layout", "relaxation"}``.
+    crankcase clearance), so loosening a limit can lose feasibility (40.0 -> 40.001 mm did, silently). When an
+    application is reverse by eq. (18) with a given maximum, and the largest maximum that keeps the standard layout
+    (twice the belt height) has a feasible design, this says so: ``{"message", "layout", "relaxation"}``. Every
+    such probe goes to ``probe([(d, changes), ...]) -> [bool, ...]`` at once (:func:`probe_batch` for a portfolio).
     """
     from synth.model.layout import layout_of
-    h, h_max = d.middle_plane_belt_height_mm, d.max_axial_displacement_mm
-    if h is None or h_max is None or layout_of(h, h_max) != "reverse":
-        return None
-    edge = 2.0 * float(h)  # eq. (17) at equality is standard
-    changes = {"max_axial_displacement_mm": edge}
-    if not _consistent(d, changes) or not reference_probe(pin_inputs)(d, changes, settings):
-        return None
-    message = (f"the layout is the reverse one (eq. (18)): the middle plane belt height {h:g} mm is below half the "
-               f"maximum axial displacement {h_max:g} mm (eq. (17)); with max_axial_displacement_mm at most "
-               f"{edge:g} mm (twice the belt height) eq. (17) selects the standard layout, which has a feasible "
-               "design: a larger axial space changed the layout, it did not only loosen a limit")
-    relaxation = {"inputs": {"max_axial_displacement_mm": {"from": h_max, "to": round(edge, 4)}},
-                  "relative_change": round(abs(h_max - edge) / max(abs(h_max), 1e-9), 4), "specification": False,
-                  "relaxes": ["layout (eq. (17)-(18))"], "note": "the standard layout (eq. (17))"}
-    return {"message": message, "layout": "reverse", "standard_up_to_mm": edge, "relaxation": relaxation}
+    todo = []
+    for i, d in enumerate(ds):
+        h, h_max = d.middle_plane_belt_height_mm, d.max_axial_displacement_mm
+        if h is None or h_max is None or layout_of(h, h_max) != "reverse":
+            continue
+        changes = {"max_axial_displacement_mm": 2.0 * float(h)}  # eq. (17) at equality is standard
+        if _consistent(d, changes):
+            todo.append((i, changes))
+    ok = probe([(ds[i], ch) for i, ch in todo]) if todo else []
+    out: list = [None] * len(ds)
+    f = field_by_name("max_axial_displacement_mm")
+    for (i, changes), good in zip(todo, ok):
+        if not good:
+            continue
+        h, h_max, edge = ds[i].middle_plane_belt_height_mm, ds[i].max_axial_displacement_mm, \
+            changes["max_axial_displacement_mm"]
+        message = (f"the layout is the reverse one (eq. (18)): the middle plane belt height {h:g} mm is below half "
+                   f"the maximum axial displacement {h_max:g} mm (eq. (17)); with max_axial_displacement_mm at most "
+                   f"{edge:g} mm (twice the belt height) eq. (17) selects the standard layout, which has a feasible "
+                   "design: a larger axial space changed the layout, it did not only loosen a limit")
+        relaxation = {"inputs": {"max_axial_displacement_mm": {"from": h_max, "to": round(edge, 4), "unit": f.unit,
+                                                               "owner": f.owner}},
+                      "relative_change": round(abs(h_max - edge) / max(abs(h_max), 1e-9), 4),
+                      "specification": False, "owner": f.owner, "relaxes": ["layout (eq. (17)-(18))"],
+                      "note": "the standard layout (eq. (17))"}
+        out[i] = {"message": message, "layout": "reverse", "standard_up_to_mm": edge, "relaxation": relaxation}
+    return out
