@@ -246,6 +246,10 @@ def test_resume_refuses_changed_settings(tmp_path, fake_engine):
         run_portfolio(path, out, chunk_size=2, resume=True, objective="cost")
     with pytest.raises(InputError, match="--chunk-size: got 3"):
         run_portfolio(path, out, chunk_size=3, resume=True)
+    from synth.design.rules import using
+    with using({"name": "ACME", "min_margins": {"spring_yield": "5 %"}}), \
+            pytest.raises(InputError, match="the design rules .*got 'ACME'; accepted: 'no design rules'"):
+        run_portfolio(path, out, chunk_size=2, resume=True)  # judged by other rules: not the same run
     write_table(sample_portfolio(4, seed=9), path)
     with pytest.raises(InputError, match="the portfolio file"):
         run_portfolio(path, out, chunk_size=2, resume=True)
@@ -480,3 +484,36 @@ def test_column_validation_equals_row_validation(tmp_path):
         assert f == e, what
         assert a == b, what
         assert 12 <= sum(x is None for x in b) < len(t)
+
+
+def test_design_rules_judge_every_row_as_synth_design_does(tmp_path, capsys):
+    """Issue 23: ``synth bulk --rules FILE`` judges every application by the rules (the fast engine, as ``synth
+    design --rules`` judges one), echoes them on the terminal, in the summary and in the run's manifest."""
+    import dataclasses
+    import json
+
+    from synth.bulk.portfolio import write_table as write
+    from synth.scenes.demo import default_input, default_path
+    d = default_input()
+    row = {k: v for k, v in dataclasses.asdict(d).items() if v is not None and not isinstance(v, dict)}
+    path = write(pd.DataFrame([{"application_id": "default", **row}]), tmp_path / "p.csv")
+    rules = tmp_path / "rules.yaml"
+    rules.write_text("rules:\n  name: ACME rev C\n  min_margins:\n    spring_yield: 10 %\n", encoding="utf-8")
+    assert main(["bulk", str(path), "--out", str(tmp_path / "free.csv")]) == 0
+    assert "design rules" not in capsys.readouterr().out
+    assert bool(pd.read_csv(tmp_path / "free.csv")["feasible"][0])  # feasible without the rule ...
+    assert main(["bulk", str(path), "--out", str(tmp_path / "r.csv"), "--rules", str(rules),
+                 "--summary", str(tmp_path / "s")]) == 0
+    out = capsys.readouterr().out
+    assert "design rules: ACME rev C (rules.yaml)" in out and "minimum margin spring_yield: 10 %" in out
+    got = pd.read_csv(tmp_path / "r.csv").iloc[0]
+    assert main(["design", str(default_path()), "--rules", str(rules), "--json"]) == 1  # ... and not with it
+    ref = json.loads(capsys.readouterr().out)
+    first = ref["diagnosis"]["relaxations"][0]["inputs"]
+    assert ref["status"] == "infeasible" and not got["feasible"]
+    assert got["relaxation"] == ", ".join(f"{k} {v['from']:g}->{v['to']:g}" for k, v in first.items())
+    assert got["relaxation"] == "arm_travel_nominal_to_installation_deg 28.6->26.7566"  # ask for 6.4 % less travel
+    assert got["violated"].startswith("damping_upper:-0.003;spring_yield:-0.002")
+    assert "ACME rev C" in (tmp_path / "s" / "summary.md").read_text(encoding="utf-8")
+    manifest = json.loads((sidecar(tmp_path / "r.csv") / "manifest.json").read_text(encoding="utf-8"))
+    assert manifest["rules"]["min_margins"] == {"spring_yield": 0.1}

@@ -75,7 +75,7 @@ DEFAULT_CHUNK_SIZE = 250
 MANIFEST = "manifest.json"
 LOCK = "run.lock"
 _MANIFEST_KEYS = ("portfolio_sha256", "n_rows", "objective", "fidelity", "chunk_size", "diagnose",
-                  "synth_version", "catalogs_sha256")
+                  "synth_version", "catalogs_sha256", "rules")
 
 
 def default_chunk_size() -> int:
@@ -134,7 +134,7 @@ def _call_engine(screen, apps, objective, fidelity, diagnose) -> pd.DataFrame:
 
 def compute_chunk(recs, *, objective: str = "standard", fidelity: str = "screening",
                   diagnose: bool = True, screen: Callable | None = None,
-                  catalog_dirs: tuple[str, ...] | None = None) -> pd.DataFrame:
+                  catalog_dirs: tuple[str, ...] | None = None, rules=None) -> pd.DataFrame:
     """Validate and evaluate one chunk: one result row per record, in order.
 
     ``recs``: a table of the chunk's rows (its design-input columns, validated column by column:
@@ -142,8 +142,15 @@ def compute_chunk(recs, *, objective: str = "standard", fidelity: str = "screeni
     Valid rows go to the engine in one call; a row that fails validation gets ``status = "error"`` and its
     problems in ``error``. If the engine raises on the chunk, the chunk is evaluated one application at a
     time and only the failing ones get ``error = "engine: ..."``: one bad row never stops a portfolio.
-    ``catalog_dirs`` are the user catalog folders to use (re-applied in a Dask worker process).
+    ``catalog_dirs`` are the user catalog folders to use (re-applied in a Dask worker process); ``rules`` the
+    design rules to judge by (:class:`synth.design.rules.Rules`, made active here: a Dask worker process does not
+    share the caller's; None: the rules in force).
     """
+    if rules is not None:
+        from synth.design.rules import using
+        with using(rules):
+            return compute_chunk(recs, objective=objective, fidelity=fidelity, diagnose=diagnose, screen=screen,
+                                 catalog_dirs=catalog_dirs)
     if catalog_dirs is not None and [str(p) for p in catalog._user_dirs()] != list(catalog_dirs):
         catalog.set_user_dirs(*catalog_dirs)
     screen = screen or _screen_default()
@@ -234,27 +241,36 @@ def _catalogs_sha256() -> str:
 
 def manifest_of(portfolio_hash: str, n_rows: int, *, objective: str, fidelity: str, chunk_size: int,
                 diagnose: bool) -> dict:
-    """The manifest of a run: what must not change between an interrupted run and its resume."""
+    """The manifest of a run: what must not change between an interrupted run and its resume (the design rules in
+    force included: :func:`synth.design.rules.echo`)."""
+    from synth.design.rules import echo
     return {"portfolio_sha256": portfolio_hash, "n_rows": int(n_rows), "objective": str(objective),
             "fidelity": str(fidelity), "chunk_size": int(chunk_size), "diagnose": bool(diagnose),
-            "synth_version": __version__, "catalogs_sha256": _catalogs_sha256()}
+            "synth_version": __version__, "catalogs_sha256": _catalogs_sha256(), "rules": echo()}
 
 
 def _check_manifest(old: dict, new: dict, folder: Path) -> None:
     labels = {"portfolio_sha256": "the portfolio file (its content changed)", "n_rows": "the number of rows",
               "objective": "--objective", "fidelity": "--fidelity", "chunk_size": "--chunk-size",
               "diagnose": "--no-diagnose", "synth_version": "the synth version",
-              "catalogs_sha256": "the catalogs (a CSV or --catalogs folder changed)"}
+              "catalogs_sha256": "the catalogs (a CSV or --catalogs folder changed)",
+              "rules": "the design rules (--rules)"}
     problems = []
     for k in _MANIFEST_KEYS:
-        if old.get(k) != new[k]:
+        if old.get(k, {} if k == "rules" else None) != new[k]:
             shown_old = old.get(k) if not k.endswith("sha256") else str(old.get(k))[:12]
             shown_new = new[k] if not k.endswith("sha256") else new[k][:12]
+            if k == "rules":  # by name (the whole rules are in the manifest)
+                shown_old, shown_new = (_rules_name(old.get(k)), _rules_name(new[k]))
             problems.append(Problem(f"--resume: {labels[k]}", shown_new,
                                     f"{shown_old!r} as in the interrupted run ({folder / MANIFEST}); "
                                     "rerun without --resume to start again"))
     if problems:
         raise InputError(problems)
+
+
+def _rules_name(rules) -> str:
+    return "no design rules" if not rules else (rules.get("name") or "unnamed design rules")
 
 
 def _write_atomic_json(path: Path, data: dict) -> None:
@@ -625,8 +641,10 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
             _write_atomic_json(folder / MANIFEST, {**manifest, "run_id": run_id})
         todo = [i for i in range(len(ranges)) if i not in set(done)]
         todo_set = set(todo)
+        from synth.design.rules import active
         kw = dict(objective=objective, fidelity=fidelity, diagnose=diagnose, screen=screen,
-                  catalog_dirs=tuple(str(p) for p in catalog._user_dirs()))
+                  catalog_dirs=tuple(str(p) for p in catalog._user_dirs()),
+                  rules=None if active().empty() else active())
         computed = 0
         cols = field_columns(table)
 

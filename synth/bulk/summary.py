@@ -192,8 +192,9 @@ def _bar(ax, labels, values, title, xlabel):
     ax.set_xlabel(xlabel)
 
 
-def write_summary(s: Summary, folder) -> list[Path]:
-    """Write ``summary.md``, one CSV per table and PNG bar charts into ``folder``; returns the paths written."""
+def write_summary(s: Summary, folder, rules=None) -> list[Path]:
+    """Write ``summary.md``, one CSV per table and PNG bar charts into ``folder``; returns the paths written.
+    ``rules``: the design rules the applications were judged by (:class:`synth.design.rules.Rules`), echoed."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -209,6 +210,8 @@ def write_summary(s: Summary, folder) -> list[Path]:
     for name, df in {"overall": overall, **tables}.items():
         written.append(write_csv(df, d / f"summary_{name}.csv", "--summary", float_format=CSV_FLOAT))
     md = ["## Portfolio summary", "", text(s).replace("\n", "  \n"), "", "### Overall", "", markdown_table(overall)]
+    if rules is not None and rules.lines():
+        md[3:3] = ["", "### Design rules", "", *(f"    {line}" for line in rules.lines())]
     titles = {"by_group": "Feasible share by group", "parts": "Parts chosen (feasible applications)",
               "binding": "Binding constraints (feasible applications)",
               "violated": "Violated constraints (infeasible applications, nearest design)",

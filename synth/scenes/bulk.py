@@ -63,6 +63,9 @@ def register(sub) -> None:
                    help="local Dask cluster: worker processes, 1-64 (default 2)")
     p.add_argument("--summary", metavar="DIR", help="write the portfolio summary (markdown, CSV, PNG plots) into DIR")
     p.add_argument("--no-diagnose", action="store_true", help="skip the relaxation search of infeasible applications")
+    p.add_argument("--rules", metavar="FILE", default=None,
+                   help="design rules every application is judged by (required safety factors and limits, minimum "
+                        "margins, spring limit basis, capability targets): a rules file (synth.design.rules)")
     from synth.robust.portfolio import BULK_SAMPLES
     from synth.scenes._options import add_robust_options
     add_robust_options(p)
@@ -93,12 +96,15 @@ def _main(args) -> int:
     said = {"screening": " (every design reported verified at full fidelity)",
             "screening-only": " (designs NOT verified at full fidelity)"}.get(args.fidelity, "")
     print(f"synth bulk: {args.portfolio} -> {rep.out} | objective {args.objective} | fidelity {args.fidelity}{said}")
+    from synth.design.rules import active
+    for line in active().lines():  # the rules every row was judged by (also in the sidecar's manifest)
+        print(line)
     print(rep.message() + (f", {rep.apps_per_s:.3g} applications/s" if rep.computed else ""))
     from synth.bulk.summary import COLUMNS
     s = summarise(rep.columns(COLUMNS))  # the columns the summary reads, not the whole table
     print(text(s))
     if args.summary:
-        paths = write_summary(s, args.summary)
+        paths = write_summary(s, args.summary, rules=active())
         print(f"summary: {len(paths)} files in {args.summary}")
     return 0
 
