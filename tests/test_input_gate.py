@@ -5,9 +5,9 @@ The corpus is ``tests/bad_inputs/manifest.yaml`` (written with its files by
 code it must give, and the texts its stderr must name (the field, file,
 sheet/cell or column the user wrote). Every case also asserts that no
 traceback is printed. Cases marked ``memory`` run in a subprocess under a
-2 GB address-space limit (``resource.setrlimit(RLIMIT_AS)``); cases marked
-``xfail`` wait for the lead's evaluator and verdict code (``strict=False``:
-the lead flips them).
+2 GB address-space limit (``resource.setrlimit(RLIMIT_AS)``); a case marked
+``xfail`` is a known gap, written down before it is mended (``strict=False``;
+none today).
 """
 
 from __future__ import annotations

@@ -731,10 +731,10 @@ def main() -> None:
     header = ("# The bad-input corpus of issues 14 and 20: one case per command line (written by make_corpus.py; "
               "read by tests/test_input_gate.py).\n# id, argv ({dir}: files/, {tmp}: a temporary folder, {cases}: "
               "synth/data/cases), expected exit code, texts stderr must name,\n# texts no output may contain, "
-              "xfail: waits for the lead's code, memory: run in a subprocess under a 2 GB address-space limit.\n")
+              "xfail: a known gap (none today), memory: run in a subprocess under a 2 GB address-space limit.\n")
     (HERE / "manifest.yaml").write_text(header + yaml.safe_dump(CASES, sort_keys=False, width=120, allow_unicode=True),
                                         encoding="utf-8")
-    print(f"{len(CASES)} cases, {sum(1 for c in CASES if c.get('xfail'))} waiting for the lead, "
+    print(f"{len(CASES)} cases, {sum(1 for c in CASES if c.get('xfail'))} marked xfail (known gaps), "
           f"{sum(1 for c in CASES if c.get('memory'))} under the memory limit")
 
 
