@@ -265,7 +265,8 @@ def _deflection_after(s0, target, alpha, beta, gamma, root, params, solver, call
 
 @njit(cache=True, error_model="numpy")
 def plastic_wear_rows(t3_in, t4_in, ln_in, s0_in, de, di, t, h0, a_dp, r_dp, h_dp, a_es, r_es, h_es, theta, freq,
-                      dur, rad, kw, mu, screening, c_e, relax_pct, relax_time_h, wear_frac, passes, solver, callback, out, bad):
+                      dur, rad, kw, mu, screening, c_e, relax_pct, relax_time_h, wear_frac, passes, solver, callback,
+                      out, bad):
     """:func:`synth.model.friction_wear.plastic_wear` row by row (no history): ``out[i, PW_*]``
     (:data:`PLASTIC_WEAR_OUT`); ``bad[i]``: the reference refuses row ``i``. ``relax_*``: the relaxation of
     ``relaxation_factor``; ``wear_frac``: ``plastic_max_wear_fraction``; ``passes``: the screening model's secant

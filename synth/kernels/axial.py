@@ -5,7 +5,8 @@ spend most of their time: :func:`synth.design.evaluate.axial` sizes a cone sprin
 option) row it is given (:func:`synth.model.disc_spring.cone_spring`) and, where the durability test is given,
 follows the plastic wear along its characteristic to the end of the test
 (:func:`synth.model.friction_wear.plastic_wear`: at full fidelity a root per row). The numpy reference costs about
-10 ms a call and 5 us a row at full fidelity (the wear root: scipy's ``find_root``), 3 ms and 2.5 us at screening.
+2-4 ms a call before its first row (validation, catalog reads, scipy's ``find_root``) and 3 us a row at full
+fidelity; the twins 0.2-0.4 ms and 1 us (``benchmarks/bench_axial.py``).
 
 :func:`cone_spring` and :func:`plastic_wear` take the reference's arguments (as the evaluator passes them) and an
 ``engine``: ``"numpy"`` calls the reference itself; ``"numba"`` runs the compiled twin
@@ -13,11 +14,12 @@ follows the plastic wear along its characteristic to the end of the test
 This is the one place the choice is made: the evaluator's axial group calls these two functions without naming an
 engine, and they run on :func:`current_engine`, the reference unless a caller that evaluates many rows chose the
 twin for a block of its work (``with engine("numba"): ...``: the bulk engine's
-:class:`~synth.optimise.batch.Batch` and the platform producer of ``synth rationalise``); the one-application path
-keeps the reference (it never imports numba). The twin hands the call back to the reference where the reference
-is the only definition: a made cone spring (a production-scatter sample of :mod:`synth.robust`), given force
-tolerances, the wear history (``time_points``), or a row the reference refuses (it then raises its own
-:class:`~synth.errors.InputError`).
+:class:`~synth.optimise.batch.Batch`); the one-application path keeps the reference (it never imports numba), and
+so does the platform producer of ``synth rationalise`` (its option margins must equal the optimiser's bit for bit,
+``tests/test_platform_real.py``, and the wear's last bits differ). The twin hands the call back to the reference
+where the reference is the only definition: a made cone spring (a production-scatter sample of
+:mod:`synth.robust`), given force tolerances, the wear history (``time_points``), or a row the reference refuses
+(it then raises its own :class:`~synth.errors.InputError`).
 
 **Equality.** The cone spring's twin equals the reference bit for bit: its steps 1-3 (the nominal force, the
 thickness) are the reference's own functions, ``t ** 3``, ``t ** 4`` and ``ln(De/Di)`` are computed by numpy as the
@@ -36,7 +38,7 @@ at the validity edges, and the verdicts equal.
 >>> args = (1.7129, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 30.0, 16.2, 0.22)
 >>> ref = reference(*args, aspect_ratio=1.2, deflection_ratio=0.75)
 >>> twin = cone_spring(*args, aspect_ratio=1.2, deflection_ratio=0.75, engine="numba")
->>> round(float(twin["cone_spring_thickness_mm"]), 3), bool(np.allclose(twin["sigma_i_mpa"], ref["sigma_i_mpa"], rtol=RTOL))
+>>> round(float(twin["cone_spring_thickness_mm"]), 3), all(np.array_equal(twin[k], ref[k]) for k in ref)
 (0.742, True)
 """
 
