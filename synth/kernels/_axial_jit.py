@@ -36,6 +36,8 @@ from llvmlite import ir
 from numba import carray, cfunc, njit, types
 from numba.extending import intrinsic
 
+from synth.kernels._ieee import _maximum, _minimum
+
 #: outputs of :func:`cone_spring_rows`, in column order (the keys of :func:`synth.model.disc_spring.cone_spring`)
 CONE_SPRING_OUT = (
     "cone_spring_fax_max_tolerance_n", "cone_spring_fax_min_tolerance_n", "cone_spring_fax_nominal_n",
@@ -66,22 +68,6 @@ ROOT_MAXITER = 100
 #: slots of the residual's parameter block (see :data:`wear_residual`)
 P_S0, P_LOG_S0, P_PHI0, P_TARGET, P_ALPHA, P_BETA, P_GAMMA, P_ROOT = range(8)
 N_P = 8
-
-
-@njit(cache=True, error_model="numpy")
-def _maximum(a, b):
-    """``numpy.maximum`` of two floats (a NaN propagates)."""
-    if a > b or a != a:
-        return a
-    return b
-
-
-@njit(cache=True, error_model="numpy")
-def _minimum(a, b):
-    """``numpy.minimum`` of two floats (a NaN propagates)."""
-    if a < b or a != a:
-        return a
-    return b
 
 
 @njit(cache=True, error_model="numpy")
