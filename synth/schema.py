@@ -487,21 +487,51 @@ def _consistency(d: dict, problems: list[Problem]) -> None:
         for n in pin:
             if d.get(n) is None:
                 problems.append(Problem(n, None, "a value: the lock-up pin needs radius, angular position and diameter together"))
-    if d.get("pulley_diameter_mm") is not None and "ball_bearings" in catalog.names():
-        bearings = catalog.load("ball_bearings")
-        i = int(bearings["D_mm"].astype(float).idxmin())
-        floor = float(bearings["D_mm"][i]) + 2.0 * float(catalog.constant("pulley_min_wall_mm"))
+    limits = _catalog_limits()
+    if d.get("pulley_diameter_mm") is not None and limits["pulley"] is not None:
+        name, bore_d, floor = limits["pulley"]
         if d["pulley_diameter_mm"] < floor:
             problems.append(Problem("pulley_diameter_mm", d["pulley_diameter_mm"],
-                                    f"a pulley larger than the smallest catalog bearing ({bearings.iloc[i, 0]}, "
-                                    f"D = {float(bearings['D_mm'][i]):g} mm) with its rim: at least {floor:g} mm "
+                                    f"a pulley larger than the smallest catalog bearing ({name}, "
+                                    f"D = {bore_d:g} mm) with its rim: at least {floor:g} mm "
                                     "(constant pulley_min_wall_mm a side)"))
     if d.get("pivot_bushing_radial_thickness_mm") is not None:
-        thick = sorted({float(t) for t in catalog.load("pivot_bushings")["radial_thickness_mm"]}) \
-            if "pivot_bushings" in catalog.names() else []
+        thick = limits["thicknesses"]
         if thick and not any(abs(d["pivot_bushing_radial_thickness_mm"] - t) < 1e-9 for t in thick):
             problems.append(Problem("pivot_bushing_radial_thickness_mm", d["pivot_bushing_radial_thickness_mm"],
                                     "a supplier thickness: one of " + ", ".join(f"{t:g}" for t in thick) + " mm"))
+
+
+_CATALOG_LIMITS: dict = {}
+
+
+def _catalog_limits() -> dict:
+    """What the consistency rules read of the catalogs, derived once per catalog data (a portfolio validates
+    every row with them: listing the catalog folder and copying two tables per row was most of its cost).
+
+    ``pulley``: ``(designation, D [mm], smallest pulley diameter [mm])`` of the smallest catalog bearing with
+    its rim (``pulley_min_wall_mm`` a side), None without a bearing catalog; ``thicknesses``: the sorted
+    radial thicknesses of the pivot bushings (empty without that catalog). Keyed by the user folders and the
+    parsed tables themselves (a cleared catalog cache parses new ones, and so derives again)."""
+    dirs = tuple(catalog._user_dirs())
+    hit = _CATALOG_LIMITS.get(dirs)
+    if hit is not None:
+        sources, out = hit
+        if all(catalog._load_cached(n, dirs) is src for n, src in sources) \
+                and out["wall"] == catalog.constant("pulley_min_wall_mm"):
+            return out
+    have = set(catalog.names())
+    sources, out = [], {"pulley": None, "thicknesses": [], "wall": catalog.constant("pulley_min_wall_mm")}
+    if "ball_bearings" in have:
+        sources.append(("ball_bearings", catalog._load_cached("ball_bearings", dirs)))
+        bearings = catalog.load("ball_bearings")
+        i = int(bearings["D_mm"].astype(float).idxmin())
+        out["pulley"] = (bearings.iloc[i, 0], float(bearings["D_mm"][i]), float(bearings["D_mm"][i]) + 2.0 * out["wall"])
+    if "pivot_bushings" in have:
+        sources.append(("pivot_bushings", catalog._load_cached("pivot_bushings", dirs)))
+        out["thicknesses"] = sorted({float(t) for t in catalog.load("pivot_bushings")["radial_thickness_mm"]})
+    _CATALOG_LIMITS[dirs] = (tuple(sources), out)
+    return out
 
 
 def validate(data: dict, partial: bool = False) -> "DesignInput":

@@ -478,6 +478,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     a real option, or a core without one with the ``none`` option. ``time_points`` keeps the wear history.
     """
     from synth import parts as P
+    from synth.kernels import axial as physics  # the cone spring and the wear on the caller's engine
     p = P.arrays()
     a = cg.values["app"][r]
     f = _Fields(apps, a)
@@ -521,11 +522,11 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
         # a made cone spring (synth.robust's production-scatter samples): its thickness, the realised deflection
         # offset of the gap stack and its force factor, per row (see synth.model.disc_spring.cone_spring)
         made = {k: np.asarray(o[c], dtype=float)[i] for k, c in MADE_CONE_SPRING_COLUMNS.items() if c in o}
-        cs = s8.cone_spring(cv["axial_damping_nm"][i], apps.damping_target_or_zero_nm[a][i],
-                            np.nan_to_num(tol[i], nan=0.0), cv["radial_damping_nm"][i], mu_pl[i],
-                            cv["damper_pad_mean_radius_mm"][i], np.asarray(o["endcap_spacer_mean_radius_mm"])[i],
-                            de[i], di[i], gap, aspect_ratio=zeta[i], deflection_ratio=phi[i], fidelity=settings.model,
-                            **made)
+        cs = physics.cone_spring(cv["axial_damping_nm"][i], apps.damping_target_or_zero_nm[a][i],
+                                 np.nan_to_num(tol[i], nan=0.0), cv["radial_damping_nm"][i], mu_pl[i],
+                                 cv["damper_pad_mean_radius_mm"][i], np.asarray(o["endcap_spacer_mean_radius_mm"])[i],
+                                 de[i], di[i], gap, aspect_ratio=zeta[i], deflection_ratio=phi[i],
+                                 fidelity=settings.model, **made)
         for k in keys:
             v[k][i] = cs[k]
     v["cone_spring_gap_tolerance_mm"] = np.full(n, gap)
@@ -540,15 +541,16 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     w = i[apps.durability_given[a][i]]
     history = None
     if len(w):
-        pw = s5.plastic_wear(v["cone_spring_nominal_deflection_mm"][w], de[w], di[w], v["cone_spring_thickness_mm"][w],
-                             v["cone_spring_cone_height_mm"][w], cv["damper_pad_contact_area_mm2"][w],
-                             cv["damper_pad_mean_radius_mm"][w], cv["damper_pad_axial_height_mm"][w],
-                             np.asarray(o["endcap_spacer_contact_area_mm2"])[w],
-                             np.asarray(o["endcap_spacer_mean_radius_mm"])[w], es_h[w], apps.theta_pp_deg[a][w],
-                             apps.frequency_hz[a][w], apps.duration_h[a][w], cv["radial_damping_nm"][w],
-                             k_wear_mm3_per_n_m=apps.k_wear_plastic_mm3_per_n_m[a][w],
-                             plastic_friction_coefficient=mu_pl[w], fidelity=settings.model,
-                             time_points=time_points)
+        pw = physics.plastic_wear(v["cone_spring_nominal_deflection_mm"][w], de[w], di[w],
+                                  v["cone_spring_thickness_mm"][w], v["cone_spring_cone_height_mm"][w],
+                                  cv["damper_pad_contact_area_mm2"][w], cv["damper_pad_mean_radius_mm"][w],
+                                  cv["damper_pad_axial_height_mm"][w],
+                                  np.asarray(o["endcap_spacer_contact_area_mm2"])[w],
+                                  np.asarray(o["endcap_spacer_mean_radius_mm"])[w], es_h[w], apps.theta_pp_deg[a][w],
+                                  apps.frequency_hz[a][w], apps.duration_h[a][w], cv["radial_damping_nm"][w],
+                                  k_wear_mm3_per_n_m=apps.k_wear_plastic_mm3_per_n_m[a][w],
+                                  plastic_friction_coefficient=mu_pl[w], fidelity=settings.model,
+                                  time_points=time_points)
         for k in PLASTIC_WEAR_VALUES:
             v[k][w] = pw[k]
         history = pw.get("history")

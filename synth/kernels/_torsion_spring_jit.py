@@ -35,6 +35,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from synth.kernels._ieee import _maximum, _minimum
+
 #: columns of the option table (``spring_options`` computes them by name; the kernels read them by number)
 OPTION_COLUMNS = ("ei", "mbd", "kf", "z", "rm", "sa0", "sy", "sy_scale", "h", "h_tol", "bb", "b_scale", "idx_min",
                   "idx_max", "sec", "ub")
@@ -51,22 +53,6 @@ C_MBD_TOL, C_SF_MIN, C_SF_SCALE, C_MIN_GAP = range(len(CONST_NAMES))
 #: margins of ``margins_table``, in the registry's order of the spring group (``torsion_spring.MARGIN_NAMES``)
 M_YIELD, M_SECTION, M_FATIGUE, M_OUTER, M_INNER, M_GAP, M_IDX_MIN, M_IDX_MAX = range(8)
 N_MARGINS = 8
-
-
-@njit(cache=True, error_model="numpy")
-def _maximum(a, b):
-    """``numpy.maximum`` of two floats (a NaN propagates)."""
-    if a > b or a != a:
-        return a
-    return b
-
-
-@njit(cache=True, error_model="numpy")
-def _minimum(a, b):
-    """``numpy.minimum`` of two floats (a NaN propagates)."""
-    if a < b or a != a:
-        return a
-    return b
 
 
 @njit(cache=True, error_model="numpy")

@@ -61,6 +61,7 @@ from synth.design import evaluate as E
 from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, REGISTRY, margin as registry_margin
 from synth.design.space import SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, space, space_for, spring_window
+from synth.kernels import axial as physics
 from synth.optimise.evaluate import DURABILITY_NOTE, core_scores, option_scores
 
 __all__ = ["Batch", "wsum", "SLACK", "any_feasible", "robust"]
@@ -167,7 +168,8 @@ class Batch:
     """N applications and their decomposed design space on the applications axis (see the module docstring).
 
     ``spring_engine``: ``"numba"`` (the compiled kernels; imports numba on first use) or ``"numpy"`` (their
-    twins, the registry's group on blocks: the one-application path, which must not import numba).
+    twins, the registry's group on blocks: the one-application path, which must not import numba); the axial
+    group's physics runs on the same engine (:mod:`synth.kernels.axial`).
     """
 
     def __init__(self, inputs, settings: E.Settings = E.Settings(), *, pin_inputs: bool = False,
@@ -178,6 +180,7 @@ class Batch:
         # the compiled spring kernels hold the catalog's limits and no required margin: under design rules the
         # springs go through their numpy twins, the registry's own finish (synth.design.rules)
         self.engine = "numpy" if not active().empty() else spring_engine
+        self.axial_engine = spring_engine  # physics only (no limits): design rules do not change it
         self.sp = sp = _space_of(self.inputs, pin_inputs)
         self.apps = apps if apps is not None else Applications.of(self.inputs)
         n = len(self.inputs)
@@ -449,7 +452,7 @@ class Batch:
     def _axial_eval(self, rr, oo, settings: E.Settings | None = None):
         """The axial group of core rows ``rr`` and options ``oo`` (at ``settings``, default the search's; in the
         full model's search of :meth:`optimum`, :func:`~synth.design.evaluate.axial_full`)."""
-        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"), physics.engine(self.axial_engine):
             if settings is None and self._screened is not None:
                 g = E.axial_full(self.apps, self.cg, rr, self.sp.rows("axial", oo), self._screened)
             else:
