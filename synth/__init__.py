@@ -36,7 +36,8 @@ if TYPE_CHECKING:  # pragma: no cover - types only
     from synth.design.result import Result
     from synth.schema import DesignInput
 
-__version__ = "0.1.0"
+from synth import display as _display
+from synth.version import __version__
 
 __all__ = ["load", "synthesise", "run_flowchart", "verify", "screen", "write_report", "capability", "settings",
            "Result", "DesignInput", "Settings", "InputError", "__version__"]
@@ -52,6 +53,15 @@ def __getattr__(name: str) -> Any:
         module, attr = _LAZY[name]
         return getattr(importlib.import_module(module), attr)
     raise AttributeError(f"module 'synth' has no attribute {name!r}")
+
+
+def _result_digest(result) -> str:
+    """A result's view in a notebook: the report's digest (:mod:`synth.display`)."""
+    from synth.report.html import digest_html
+    return digest_html(result)
+
+
+_display.HTML_VIEWS["Result"] = _result_digest
 
 
 def settings(**kw) -> "Settings":
@@ -74,7 +84,8 @@ def load(path: "str | Path") -> "DesignInput":
     from pathlib import Path
 
     from synth import schema
-    data = schema.read_mapping(Path(path))
+    from synth.io import documents
+    data = documents.read_mapping(Path(path))
     return schema.validate({k: v for k, v in data.items() if v is not None})
 
 

@@ -35,7 +35,6 @@ import math
 import re
 import sys
 from dataclasses import dataclass, field, fields as dc_fields, make_dataclass
-from pathlib import Path
 from typing import Any
 
 from synth import catalog
@@ -44,7 +43,7 @@ from synth.io.limits import short
 from synth.io.numbers import is_not_given, number_from_text
 from synth.io.numbers import parse_number_list as _parse_number_list
 
-__all__ = ["Field", "FIELDS", "SECTIONS", "OWNERS", "PART_FIELDS", "plausibility", "UNIT_SLIPS", "DesignInput", "validate", "load_input", "read_mapping", "field_by_name",
+__all__ = ["Field", "FIELDS", "SECTIONS", "OWNERS", "PART_FIELDS", "plausibility", "UNIT_SLIPS", "DesignInput", "validate", "field_by_name",
            "parse_number_list"]
 
 INF = math.inf
@@ -593,22 +592,6 @@ def plausibility(d) -> list[str]:
                            f"would be {v * factor:.4g} {f.unit}: check the unit")
                 break
     return out
-
-
-def read_mapping(path: str | Path) -> dict:
-    """Read a design input (YAML, TOML, JSON, the .xlsx template or a LibreOffice .ods) into a dict.
-
-    The file goes through the input gate (:func:`synth.io.documents.read_design_mapping`):
-    size, encoding, YAML aliases, nesting, huge and non-finite numbers are
-    checked before anything is built; a case file's ``inputs:`` block is read.
-    """
-    from synth.io.documents import read_design_mapping
-    return read_design_mapping(path)
-
-
-def load_input(path: str | Path) -> "DesignInput":
-    """Read and validate a design-input file (YAML, TOML or JSON; a case file works)."""
-    return validate(read_mapping(path))
 
 
 def parse_number_list(value):

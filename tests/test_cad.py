@@ -26,7 +26,7 @@ from synth.cad.verify import failed, verify_model
 from synth.cli import main
 from synth.design.result import FAIL, PASS
 from synth.errors import InputError
-from synth.schema import load_input
+from synth.io.documents import load_input
 
 from synth.data import CASES_DIR
 

@@ -321,7 +321,7 @@ def test_exploded_view_shows_every_part(tmp_path):
     from synth.cad import geometry_from, pictures as P
     from synth.cad.assembly import build
     from synth.optimise import solve
-    from synth.schema import load_input
+    from synth.io.documents import load_input
     model = build(geometry_from(solve(load_input(CASES_DIR / "case1_as_run.yaml"))))
     plt, fig, ax = P._figure("", 6.5, 110, legend=False)
     shapes = P.exploded_parts(model)

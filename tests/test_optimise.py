@@ -26,7 +26,7 @@ from synth.optimise.evaluate import SubTable, evaluate
 from synth.optimise.objectives import Objective
 from synth.optimise.solvers.enumerate import solve_space, tables
 from synth.model import plain_bushing as s4
-from synth.schema import load_input
+from synth.io.documents import load_input
 
 CASE1 = str(case_path("case1"))
 CASE3 = str(case_path("case3"))

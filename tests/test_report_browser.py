@@ -141,7 +141,7 @@ def test_report_structure_digest_first_metadata_and_cad(case1):
     for a in re.findall(r'<a href="#([\w-]+)">', text):          # the table of contents links resolve
         assert f'id="{a}"' in text
     assert "A. Engineer" in text and "revision B" in text
-    from synth.cli import version_text
+    from synth.fingerprint import version_text
     assert version_text() in text
     import hashlib
     sha = hashlib.sha256((CASES / "case1.yaml").read_bytes()).hexdigest()

@@ -192,7 +192,7 @@ def test_a_made_design_at_its_nominal_values_is_the_sized_design():
     from synth.design.space import space
     from synth.design.verify import evaluate_design
     from synth.optimise import solve
-    from synth.schema import load_input
+    from synth.io.documents import load_input
     d = load_input(case_path("case1"))
     parts = solve(d, "standard").parts
     apps = Applications.of([d])

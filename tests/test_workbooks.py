@@ -21,7 +21,8 @@ import pytest
 from hypothesis import given, strategies as st
 from openpyxl import load_workbook
 
-from synth import flowchart, schema
+from synth import flowchart
+from synth.io import documents
 from synth.bulk.portfolio import write_table
 from synth.design.result import FAIL, NOT_VERIFIED, PASS, WARNING
 from synth.data import CASES_DIR
@@ -39,7 +40,7 @@ EVIL = ['=HYPERLINK("http://example.invalid","click")', "+1+2", "-3+4", "@SUM(A1
 
 @pytest.fixture(scope="module")
 def case1_result():
-    return flowchart.run(schema.load_input(CASES_DIR / "case1.yaml"))
+    return flowchart.run(documents.load_input(CASES_DIR / "case1.yaml"))
 
 
 @pytest.fixture(scope="module")

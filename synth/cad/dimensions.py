@@ -139,7 +139,7 @@ def _inputs_dict(inputs) -> dict | None:
     if inputs is None:
         return None
     if isinstance(inputs, (str, Path)):
-        from synth.schema import load_input
+        from synth.io.documents import load_input
         inputs = load_input(inputs)
     if dataclasses.is_dataclass(inputs):
         return dataclasses.asdict(inputs)

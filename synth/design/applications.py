@@ -11,7 +11,7 @@ optimiser, bulk) builds its applications here, so every optional input
 reaches every consumer the same way. One application is ``N = 1``.
 
 >>> from synth.data import case_path
->>> from synth.schema import load_input
+>>> from synth.io.documents import load_input
 >>> a = Applications.of([load_input(case_path("case1_as_run"))])
 >>> round(float(a.hubload_nominal_n[0]), 1), bool(a.layout_standard[0]), bool(a.met("durability")[0])
 (652.5, True, True)
@@ -112,7 +112,7 @@ class Applications:
         sample (:mod:`synth.robust`) is one application per sample row.
 
         >>> from synth.data import case_path
-        >>> from synth.schema import load_input
+        >>> from synth.io.documents import load_input
         >>> a = Applications.of([load_input(case_path("case3"))]).with_fields([0, 0], working_arm_mm=[4.0, 8.0])
         >>> a.hubload_nominal_n.round(1).tolist()
         [462.5, 231.2]
@@ -181,7 +181,7 @@ class Applications:
         application ``i`` left out, with the readable name of the requirement (REQUIREMENTS).
 
         >>> from synth.data import case_path
-        >>> from synth.schema import load_input
+        >>> from synth.io.documents import load_input
         >>> import dataclasses
         >>> d = dataclasses.replace(load_input(case_path("case1_as_run")), tilting_safety_factor=None)
         >>> Applications.of([d]).missing_note("fixation")

@@ -20,7 +20,7 @@ placeholders: rows that cannot be evaluated get NaN values, and a NaN margin is
 ``-inf`` (infeasible), never silently kept.
 
 >>> from synth.data import case_path
->>> from synth.schema import load_input
+>>> from synth.io.documents import load_input
 >>> from synth.design.applications import Applications
 >>> from synth.design.space import space
 >>> apps, sp = Applications.of([load_input(case_path("case3"))]), space()

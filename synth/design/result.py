@@ -24,18 +24,16 @@ import math
 from dataclasses import dataclass, field
 
 
+from synth import display
 from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.io.outputs import plain  # JSON-friendly data (NaN and infinities as None, no subnormal number)
 
-__all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "VERDICT_FILLS", "plain",
+__all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain",
            "checks_of", "row_verdict", "field_corrections"]
 
 PASS, FAIL, INCOMPLETE = "pass", "fail", "incomplete"
 NOT_VERIFIED, NOT_APPLICABLE, WARNING = "not verified", "not applicable", "warning"
 EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 3}
-#: the one verdict palette (RGB hex) of every output, after the thesis's legend (Fig. 24-25): green verified,
-#: red failed, orange not verified; amber an advisory warning, grey not applicable
-VERDICT_FILLS = {PASS: "C6EFCE", FAIL: "FFC7CE", NOT_VERIFIED: "FFD966", WARNING: "FFD8A8", NOT_APPLICABLE: "EDEDED"}
 
 
 #: significant figures of the numbers a result exports (JSON): 6, beyond what any input or catalog value carries
@@ -197,10 +195,10 @@ class Result:
         df = pd.DataFrame(rows, columns=cols).set_index("id")
         return df.astype({k: float for k in ("value", "limit", "margin")})  # an infinite limit stays infinite
 
-    def _repr_html_(self) -> str:
-        """The report's digest (verdict, failing checks, warnings, not verified, assumed): a notebook shows it."""
-        from synth.report.html import digest_html
-        return digest_html(self)
+    def _repr_html_(self) -> str | None:
+        """What a notebook shows: the view the presentation layer registered (:mod:`synth.display`: the report's
+        digest of verdict, failing checks, warnings, not verified, assumed)."""
+        return display.html(self)
 
     # --- serialisation ---------------------------------------------------------------------------------------
     def to_dict(self, digits: int | None = EXPORT_DIGITS) -> dict:

@@ -252,7 +252,7 @@ def bushing_attributes(p: P.Parts, supplier, length_mm) -> dict:
 
 
 def _bushing(p: P.Parts) -> dict:
-    sup = np.concatenate([np.full(len(l), i) for i, l in enumerate(p.bushing_lengths)]).astype(np.int64)
+    sup = np.concatenate([np.full(len(lengths), i) for i, lengths in enumerate(p.bushing_lengths)]).astype(np.int64)
     return bushing_attributes(p, sup, np.concatenate(p.bushing_lengths))
 
 
@@ -404,7 +404,7 @@ def table_sizes(p: P.Parts) -> dict:
     """The rows of each table of the space of parts ``p``, counted before anything is built (upper bounds)."""
     n_axial = 1 + len(p.endcap_spacer) * int(np.prod([len(g) for g in cone_variants()]))
     return {"core": len(selectable_bearings(p)) * len(_pivot_classes(p)) * len(p.bushing) * (len(p.damper_pad) + 1),
-            "bushing": int(sum(len(l) for l in p.bushing_lengths)), "axial": n_axial,
+            "bushing": int(sum(len(lengths) for lengths in p.bushing_lengths)), "axial": n_axial,
             "spring": len(p.spring_material) * len(p.spring_wire) * len(mbd_grid(p)),
             "bolt": len(p.bolt_head) * len(p.bolt_class)}
 
@@ -457,7 +457,7 @@ def fixed_fields(d, pin_inputs=False) -> tuple[str, ...]:
     be given: a field to keep needs its value).
 
     >>> from synth.data import case_path
-    >>> from synth.schema import load_input
+    >>> from synth.io.documents import load_input
     >>> d = load_input(case_path("case3"))
     >>> fixed_fields(d, True), fixed_fields(d, ["pivot_class_diameter_mm"])
     (('pivot_class_diameter_mm', 'pivot_bushing_radial_thickness_mm'), ('pivot_class_diameter_mm',))

@@ -7,7 +7,7 @@ on the optimiser's grids) and :func:`verify` wraps it in a
 solver's answer and the bulk engine's chosen designs are verified here.
 
 >>> from synth.data import case_path
->>> from synth.schema import load_input
+>>> from synth.io.documents import load_input
 >>> r = verify(load_input(case_path("case3")), {"ball_bearing": "6006", "pivot_class_diameter_mm": 19.0,
 ...     "pivot_bushing_supplier": "B", "damper_pad_class": "none", "pivot_bushing_length_mm": 20.0,
 ...     "endcap_spacer_class": "none", "cone_spring_aspect_ratio": 0.0, "cone_spring_deflection_ratio": 0.0,

@@ -116,13 +116,13 @@ def nominal_hubload_n(calculated_torque_nm, working_arm_mm, differential_angle_d
     462.5
     """
     t = _require("calculated_torque_target_nm", calculated_torque_nm)
-    l = _require("working_arm_mm", working_arm_mm)
+    arm = _require("working_arm_mm", working_arm_mm)
     a = _require("differential_angle_deg", differential_angle_deg, low=0.0, high=180.0,
                  accepted="an angle in (0, 180) deg")
     if np.any(a >= 180.0):
         raise InputError(Problem("differential_angle_deg", 180.0, "an angle in (0, 180) deg"))
     from synth.model.damping import hubload_nominal_n  # one implementation of eq. (7)
-    return hubload_nominal_n(t, l, a)
+    return hubload_nominal_n(t, arm, a)
 
 
 # ----------------------------------------------------------------------------------------------

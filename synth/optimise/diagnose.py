@@ -13,7 +13,7 @@
   one exhaustive feasibility check); each relaxation found is verified again.
 
 >>> from synth.data import case_path
->>> from synth.schema import load_input
+>>> from synth.io.documents import load_input
 >>> r = diagnose(load_input(case_path("case1")), relax=False)
 >>> r.status, len(r.diagnosis["violated"]) > 0
 ('infeasible', True)
@@ -44,12 +44,11 @@ RELAXABLE = {f.name: (f.relax, f.relaxes, f.owner == "specification") for f in F
 def is_feasible(d, settings: Settings = Settings(), *, pin_inputs: bool = False) -> bool:
     """Whether any design of the catalog product (``pin_inputs``: with the parts the input names) meets every
     constraint for input ``d``."""
-    from synth.optimise.solvers.enumerate import max_margin, tables
     try:
         ev = evaluate(d, settings, pin_inputs=pin_inputs)
     except InputError:
         return False
-    return bool(len(ev.rows)) and max_margin(tables(ev, {"cost": 1.0})) > -np.inf
+    return ev.any_feasible()
 
 
 def nearest_design(ev):

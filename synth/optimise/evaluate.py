@@ -16,7 +16,7 @@ formula lives here: margins are the registry's, values the evaluator's.
   bound the memory, and only within the mean-diameter range of the housings.
 
 >>> from synth.data import case_path
->>> from synth.schema import load_input
+>>> from synth.io.documents import load_input
 >>> ev = evaluate(load_input(case_path("case1_as_run")))
 >>> ev.core.values["hubload_nominal_n"][0].round(1), sorted(ev.subs)
 (np.float64(652.5), ['axial', 'bolt', 'bushing', 'spring'])
@@ -71,6 +71,14 @@ class Evaluation:
     def core_feasible(self) -> np.ndarray:
         """``(len(cores),)``: the core's own constraints and the input-only ones pass."""
         return self.core.ok() & bool(self.input.ok()[0])
+
+    def any_feasible(self) -> bool:
+        """Whether some design of the evaluated space meets every constraint: a feasible core (evaluated) with a
+        feasible option in every subsystem."""
+        ok = self.core_feasible()[self.rows]
+        for s in SUBSYSTEMS:
+            ok = ok & self.subs[s].feasible.any(axis=1)
+        return bool(ok.any())
 
     def core_margin(self) -> np.ndarray:
         """Smallest margin of the core counted in the margin objective (input-only constraints never are)."""

@@ -13,7 +13,7 @@ built the data are presolved:
   of springs to a few dozen.
 
 >>> from synth.data import case_path
->>> from synth.schema import load_input
+>>> from synth.io.documents import load_input
 >>> from synth.optimise.evaluate import evaluate
 >>> md, cores, opts = model_data(evaluate(load_input(case_path("case3"))), {"cost": 1.0}, False)
 >>> md.n_cores >= 0, sorted(opts)

@@ -188,7 +188,10 @@ class _Pairs:
         ok = grp.ok()
         sel = np.flatnonzero(ok)
         m, b = margins_and_binding(grp, True, sel)
-        self.g.append(gp[sel]); self.o.append(op[sel]); self.m.append(m); self.b.append(b)
+        self.g.append(gp[sel])
+        self.o.append(op[sel])
+        self.m.append(m)
+        self.b.append(b)
         rank = grp.rank()  # nearest designs: ranked by the search model (fidelity screening: the screening one)
         ma = np.where(ok, np.maximum(grp.min_margin(objective_only=False), 0.0),
                       np.minimum(rank.min_margin(objective_only=False), -FEAS_TOL))

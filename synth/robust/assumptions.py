@@ -188,7 +188,7 @@ def flip_lines(items: list) -> list:
             ends = []
             for which in ("low", "high"):
                 if f[f"at_{which}"] != f["nominal"]:
-                    ends.append(f"{f[f'at_' + which]} at {unit}{a[which]:g}")
+                    ends.append(f"{f['at_' + which]} at {unit}{a[which]:g}")
             lines.append(f"{f['check']} ({what}): {f['nominal']} with the catalog's "
                          f"{a['value'] if not isinstance(a['value'], list) else 'values'}; " + "; ".join(ends)
                          + f" [{a['id']}: {a['reason']}]")

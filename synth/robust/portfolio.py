@@ -76,8 +76,8 @@ def _chunk(inputs: list, parts: list, settings: E.Settings, rs: RobustSettings, 
     rows = np.repeat(np.arange(k), n)
     from scipy.special import ndtr
     uu = np.tile(u, (k, 1))
-    l, h = lo[rows], hi[rows]
-    x = np.where(kind[None, :] == 0, (l + h) / 2.0 + (h - l) / 6.0 * uu, l + (h - l) * ndtr(uu))
+    low, high = lo[rows], hi[rows]
+    x = np.where(kind[None, :] == 0, (low + high) / 2.0 + (high - low) / 6.0 * uu, low + (high - low) * ndtr(uu))
     dev = {name: x[:, j] for j, name in enumerate(names) if (hi[:, j] > lo[:, j]).any()}
     base = Base(inputs, {}, settings, apps, attrs, groups, None, ())
     a_s, at_s = perturb(base, dev or {"_n": np.zeros(len(rows))}, rows)

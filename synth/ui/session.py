@@ -25,6 +25,7 @@ from typing import Any
 
 import synth
 from synth import schema
+from synth.io import documents
 from synth.errors import InputError, Problem
 from synth.ui import form
 
@@ -42,7 +43,7 @@ def default_values() -> dict:
     """The embedded default application (``synth/data/default_case.yaml``, what ``synth demo`` designs)."""
     path = resources.files("synth").joinpath("data/default_case.yaml")
     with resources.as_file(path) as p:
-        return schema.read_mapping(p)
+        return documents.read_mapping(p)
 
 
 class DesignSession:
@@ -116,7 +117,7 @@ class DesignSession:
         A file that cannot be read raises :class:`~synth.errors.InputError` (the command line's message);
         a readable one with bad values fills the form and marks the fields.
         """
-        values = schema.read_mapping(Path(path))
+        values = documents.read_mapping(Path(path))
         if self.set_values({k: v for k, v in values.items() if v is not None}, source=Path(path).name):
             self.synthesise()
             return True
