@@ -34,7 +34,7 @@ from synth.design.result import NOT_VERIFIED, Check, Result, checks_of, plain
 from synth.design.space import (PART_KEYS, axial_attributes, bolt_attributes, bushing_attributes,
                                 core_attributes, space, spring_attributes)
 from synth.design.verify import evaluate_design, inputs_of, values_of, verify
-from synth.model import ball_bearing as s1, damping as s3, pivot as s2
+from synth.model import ball_bearing, damping, pivot
 
 __all__ = ["Settings", "run", "STEP_NAMES", "PART_KEYS"]
 
@@ -92,7 +92,7 @@ class _Walk:
         d, p = self.d, self.p
         hl = float(self.apps.hubload_nominal_n[0])
         self.steps.append(1)
-        bearing = p.bearing.code(str(s1.select_bearing(hl, d.engine_fuel)[0]))
+        bearing = p.bearing.code(str(ball_bearing.select_bearing(hl, d.engine_fuel)[0]))
         self.steps.append(2)
         if d.pivot_bushing_radial_thickness_mm is None:
             supplier = int(np.argmax(p.bushing.radial_thickness_mm))
@@ -102,7 +102,7 @@ class _Walk:
             supplier = int(np.flatnonzero(np.isclose(p.bushing.radial_thickness_mm,
                                                      float(d.pivot_bushing_radial_thickness_mm)))[0])
         arms, classes, _ = p.table2[bearing]
-        column, in_table = s2.table2_column(arms, float(d.working_arm_mm)) if len(arms) else (0, False)
+        column, in_table = pivot.table2_column(arms, float(d.working_arm_mm)) if len(arms) else (0, False)
         std = float(classes[column]) if len(arms) else float(d.pivot_class_diameter_mm or 0.0)
         cls = std if d.pivot_class_diameter_mm is None else float(d.pivot_class_diameter_mm)
         if d.pivot_class_diameter_mm is None:
@@ -123,7 +123,7 @@ class _Walk:
         if cg.values["axial_damping_present"][0] > 0:
             # Tables 3-4 are entered with the axial damping of eq. (9) itself (both friction faces)
             dax = float(cg.values["axial_damping_nm"][0])
-            row, within = s3.axial_group_class(dax, p.damper_pad.max_axial_damping_nm)
+            row, within = damping.axial_group_class(dax, p.damper_pad.max_axial_damping_nm)
             pad = int(row)
             if not within:
                 self.notes.append(f"axial damping {dax:.3g} Nm above every damper-pad class of Table 3: the largest "
@@ -182,7 +182,7 @@ class _Walk:
         zeta = catalog.constant("cone_spring_default_aspect_ratio")
         phi = catalog.constant("cone_spring_nominal_deflection_ratio")
         dax = float(cg.values["axial_damping_nm"][0])
-        spacer = int(s3.axial_group_class(dax, p.endcap_spacer.max_axial_damping_nm)[0])
+        spacer = int(damping.axial_group_class(dax, p.endcap_spacer.max_axial_damping_nm)[0])
         self.notes.append(f"plastic elements initialised from Tables 3-4 at the axial damping {dax:.3g} Nm: damper pad "
                           f"{p.damper_pad.key[pad]}, endcap spacer {p.endcap_spacer.key[spacer]}")
         attempt = 1

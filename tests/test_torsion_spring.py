@@ -177,7 +177,7 @@ def step9_margins(r, b_mm):
              "spring_fatigue": ("main_spring_safety_factor", c("main_spring_min_safety_factor")),
              "spring_outer_contact": ("outer_diameter_max_mm", r["housing_outer_diameter_min_mm"]),
              "spring_inner_contact": ("inner_diameter_min_mm", r["housing_inner_diameter_max_mm"]),
-             "spring_coil_gap": ("coil_gap_min_mm", c("main_spring_min_coil_gap_mm")),
+             "spring_coil_gap": ("coil_gap_worst_mm", c("main_spring_min_coil_gap_mm")),
              "spring_index_min": ("spring_index", c("main_spring_index_min")),
              "spring_index_max": ("spring_index", c("main_spring_index_max"))}
     return {cid: margin(REGISTRY[cid], r[v], lim, b_mm if cid == "spring_coil_gap" else None)
@@ -249,7 +249,7 @@ def test_case3_printed_3_mm_wire_is_inconsistent():
     # 3.0 mm needs 2.1786*(3/2.3)^4 = 6.31 coils for 0.0164 N m/deg, and then the coils touch in the 8.8 mm housing
     r, t, args = _case3("R3.00")
     assert float(r["main_spring_active_coils_free"]) == pytest.approx(2.17861 * (3.0 / 2.3) ** 4, rel=1e-4)
-    assert float(r["coil_gap_min_mm"]) < 0 and float(step9_margins(r, args["b_mm"])["spring_coil_gap"]) < 0
+    assert float(r["coil_gap_worst_mm"]) < 0 and float(step9_margins(r, args["b_mm"])["spring_coil_gap"]) < 0
     assert not feasible(r, args["b_mm"])
 
 

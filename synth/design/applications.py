@@ -27,7 +27,7 @@ import numpy as np
 
 from synth import catalog, parts
 from synth.design.constraints import REQUIREMENTS
-from synth.model import damping as s3, layout as s0
+from synth.model import damping, layout
 from synth.schema import FIELDS
 
 __all__ = ["Applications", "DEFAULTS", "NUMERIC_FIELDS"]
@@ -130,13 +130,13 @@ class Applications:
     def _derive_numeric(self) -> None:
         """The quantities that follow from the numeric fields alone."""
         f, d = self.f, self.derived
-        d["hubload_nominal_n"] = s3.hubload_nominal_n(f["calculated_torque_target_nm"], f["working_arm_mm"],
+        d["hubload_nominal_n"] = damping.hubload_nominal_n(f["calculated_torque_target_nm"], f["working_arm_mm"],
                                                       f["differential_angle_deg"])
         # eq. (17)-(18); with no axial limit (N/A) the layout is reverse (synth.model.layout.layout_of)
-        d["layout_standard"] = np.atleast_1d(s0.layout_of(f["middle_plane_belt_height_mm"],
+        d["layout_standard"] = np.atleast_1d(layout.layout_of(f["middle_plane_belt_height_mm"],
                                                           f["max_axial_displacement_mm"]) == "standard")
         d["layout_reverse"] = ~d["layout_standard"]
-        d["pulley_width_mm"] = s0.pulley_width_mm(f["belt_width_mm"])
+        d["pulley_width_mm"] = layout.pulley_width_mm(f["belt_width_mm"])
 
     def _derive(self) -> None:
         f, p = self.f, parts.arrays()

@@ -52,7 +52,7 @@ import numpy as np
 
 from synth import catalog, parts as P
 from synth.errors import InputError, Problem
-from synth.model import packaging as s7, pivot as s2, torsion_spring as s9
+from synth.model import packaging, pivot, torsion_spring
 
 __all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "NONE", "CAPACITY", "Space", "space", "core_rows", "spring_window",
            "table_sizes", "check_capacity", "fixed_fields", "space_for", "pinned_space", "pinned_diameter",
@@ -117,7 +117,7 @@ class Space:
         The cone spring's outer diameter is given absolutely (``cone_spring_external_diameter_mm``) and
         stored as the reduction below the largest one the damper pad allows.
         """
-        from synth.model import disc_spring as s8
+        from synth.model import disc_spring
         p = self.parts
 
         def need(k):
@@ -147,8 +147,8 @@ class Space:
         out["bushing"] = bushing_attributes(p, out["core"]["supplier_code"], [num("pivot_bushing_length_mm")])
         spacer = code(p.endcap_spacer, "endcap_spacer_class", True)
         if spacer >= 0:
-            de_max = float(s8.cone_spring_max_external_diameter_mm(out["core"]["damper_pad_outer_diameter_mm"])[0])
-            di_min = float(s8.cone_spring_min_internal_diameter_mm(out["core"]["pivot_diameter_mm"])[
+            de_max = float(disc_spring.cone_spring_max_external_diameter_mm(out["core"]["damper_pad_outer_diameter_mm"])[0])
+            di_min = float(disc_spring.cone_spring_min_internal_diameter_mm(out["core"]["pivot_diameter_mm"])[
                 "cone_spring_min_internal_diameter_mm"][0])
             red = de_max - num("cone_spring_external_diameter_mm") if pad >= 0 else 0.0
             di = parts.get("cone_spring_internal_diameter_mm")  # absent in older results: the Table 8 minimum
@@ -207,8 +207,8 @@ def core_attributes(p: P.Parts, bearing, pivot_class_mm, supplier, pad) -> dict:
         "bearing_inner_diameter_mm": p.bearing.d_mm[b], "bearing_outer_diameter_mm": p.bearing.D_mm[b],
         "bearing_width_mm": p.bearing.B_mm[b],
         "pivot_bushing_radial_thickness_mm": thick,
-        "pivot_diameter_mm": s2.pivot_diameter_mm(cls, thick),
-        "spring_housing_inner_diameter_mm": s7.spring_housing_inner_diameter_mm(cls),
+        "pivot_diameter_mm": pivot.pivot_diameter_mm(cls, thick),
+        "spring_housing_inner_diameter_mm": packaging.spring_housing_inner_diameter_mm(cls),
         "damper_pad_max_axial_damping_nm": padcol("max_axial_damping_nm", np.inf),
         "damper_pad_contact_area_mm2": padcol("contact_area_mm2"),
         "damper_pad_mean_radius_mm": padcol("mean_radius_mm"),
@@ -309,7 +309,7 @@ def _axial(p: P.Parts) -> dict:
 def mbd_grid(p: P.Parts) -> np.ndarray:
     """Main-spring mean body diameters searched [mm]: the step grid spanning every housing of the catalogs."""
     step = catalog.constant("optimise_mbd_step_mm")
-    lo = float(s7.spring_housing_inner_diameter_mm(catalog.constant("optimise_pivot_class_min_mm")))
+    lo = float(packaging.spring_housing_inner_diameter_mm(catalog.constant("optimise_pivot_class_min_mm")))
     hi = float(np.max(p.bearing.D_mm))
     return np.arange(math.ceil(lo / step) * step, math.floor(hi / step) * step + step / 2, step)
 
@@ -328,11 +328,11 @@ def spring_attributes(p: P.Parts, material, wire, mbd_mm) -> dict:
     wire_t, mat = p.spring_wire, p.spring_material
     rnd = wire_t.round_wire[w]
     rm = np.empty(m.shape)
-    dia = s9.rm_lookup_diameter_mm(wire_t.b_mm[w], wire_t.h_mm[w], rnd)
+    dia = torsion_spring.rm_lookup_diameter_mm(wire_t.b_mm[w], wire_t.h_mm[w], rnd)
     for i in np.unique(m):  # a handful of materials, each with its own strength table (EN 10270)
         sel = m == i
-        rm[sel] = s9.material_strength_mpa(mat.key[int(i)], dia[sel])
-    inertia = s9.second_moment_mm4(wire_t.b_mm[w], wire_t.h_mm[w], rnd)
+        rm[sel] = torsion_spring.material_strength_mpa(mat.key[int(i)], dia[sel])
+    inertia = torsion_spring.second_moment_mm4(wire_t.b_mm[w], wire_t.h_mm[w], rnd)
     area = np.where(rnd, np.pi * wire_t.h_mm[w] ** 2 / 4.0, wire_t.b_mm[w] * wire_t.h_mm[w])
     # wire length x k = pi E I / 180 (eq. 64-65): cost = (per metre + per kg) x length, divided by k per application
     length_times_k_m = np.pi * mat.E_mpa[m] * inertia / (180.0 * 1000.0) / 1000.0

@@ -98,7 +98,7 @@ from synth import catalog
 from synth.design import evaluate as E
 from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin as registry_margin
 from synth.errors import InputError, Problem
-from synth.model import torsion_spring as s9
+from synth.model import torsion_spring
 
 __all__ = ["MARGIN_NAMES", "SpringOptions", "SpringKeys", "spring_options", "options_of_space", "spring_keys",
            "keys_of_rows", "margins", "pair_margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin",
@@ -188,15 +188,15 @@ class SpringOptions:
 
 
 def _options(raw: dict) -> SpringOptions:
-    cst = s9.main_spring_constants()
+    cst = torsion_spring.main_spring_constants()
     b, h, rnd = raw["b_mm"], raw["h_mm"], raw["round_wire"]
     mbd, sy = raw["main_spring_mean_body_diameter_mm"], raw["sigma_y_mpa"]
-    c = s9.spring_index(mbd, b, h, rnd)
+    c = torsion_spring.spring_index(mbd, b, h, rnd)
     reg = REGISTRY
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         d = {
-            "ei": raw["E_mpa"] * s9.second_moment_mm4(b, h, rnd), "mbd": mbd, "kf": s9.curvature_factor(c, "inner"),
-            "z": s9.section_modulus_mm3(b, h, rnd), "rm": raw["Rm_mpa"], "sa0": raw["sigma_A0_mpa"], "sy": sy,
+            "ei": raw["E_mpa"] * torsion_spring.second_moment_mm4(b, h, rnd), "mbd": mbd, "kf": torsion_spring.curvature_factor(c, "inner"),
+            "z": torsion_spring.section_modulus_mm3(b, h, rnd), "rm": raw["Rm_mpa"], "sa0": raw["sigma_A0_mpa"], "sy": sy,
             "sy_scale": _scale(sy), "h": h, "h_tol": raw["h_tol_mm"], "bb": b + raw["b_tol_mm"],
             "b_scale": np.where(b > 0, b, 1.0),
             "idx_min": registry_margin(reg["spring_index_min"], c, cst["main_spring_index_min"]),
@@ -248,7 +248,7 @@ def options_of_space(table: dict | None = None, idx=None) -> SpringOptions:
         table = space().tables["spring"]
     if idx is None:
         hit = _SPACE_OPTIONS.get(id(table))
-        if hit is not None and hit[0] is table and hit[1].constants == s9.main_spring_constants():
+        if hit is not None and hit[0] is table and hit[1].constants == torsion_spring.main_spring_constants():
             return hit[1]
         opts = options_of_space(table, np.arange(len(table["b_mm"])))
         _SPACE_OPTIONS.clear()
@@ -284,16 +284,16 @@ class SpringKeys:
 
 
 def _keys(raw: dict) -> SpringKeys:
-    cst = s9.main_spring_constants()
+    cst = torsion_spring.main_spring_constants()
     k = raw["stiffness_nm_per_deg"]
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        ang = s9.working_angles_deg(raw["spring_torque_nominal_nm"], raw["torque_tolerance_pct"], k,
+        ang = torsion_spring.working_angles_deg(raw["spring_torque_nominal_nm"], raw["torque_tolerance_pct"], k,
                                     raw["theta_pp_deg"], raw["dtheta_inst_nom_deg"], raw["dtheta_nom_free_arm_deg"])
         outer_min = raw["housing_outer_diameter_mm"] - cst["spring_housing_outer_tol_mm"]
         inner_max = raw["housing_inner_diameter_mm"] + cst["spring_housing_inner_tol_mm"]
         d = {
-            "k180": 180.0 * np.maximum(k * 1000.0, 1e-12), "t_plus": s9.torque_nm(ang["theta_plus"], k),
-            "t_minus": s9.torque_nm(ang["theta_minus"], k), "t_inst": s9.torque_nm(ang["theta_inst"], k),
+            "k180": 180.0 * np.maximum(k * 1000.0, 1e-12), "t_plus": torsion_spring.torque_nm(ang["theta_plus"], k),
+            "t_minus": torsion_spring.torque_nm(ang["theta_minus"], k), "t_inst": torsion_spring.torque_nm(ang["theta_inst"], k),
             "inc_inst": 1.0 * ang["theta_inst"] / 360.0, "inc_free_arm": 1.0 * ang["theta_free_arm"] / 360.0,
             "inc_nom": 1.0 * ang["theta_nom"] / 360.0, "height": raw["housing_height_mm"],
             "outer_min": outer_min, "outer_scale": _scale(outer_min), "inner_max": inner_max,
@@ -320,7 +320,7 @@ def spring_keys(*, spring_torque_nominal_nm, housing_height_mm, housing_outer_di
     documented defaults (:data:`synth.design.applications.DEFAULTS`).
     ``fatigue_verified=False``: no durability test, the fatigue margin is ``+inf``.
     """
-    cst = s9.main_spring_constants()
+    cst = torsion_spring.main_spring_constants()
     if dtheta_inst_nom_deg is None:
         dtheta_inst_nom_deg = cst["main_spring_dtheta_inst_nom_deg"]
     if dtheta_nom_free_arm_deg is None:
@@ -368,7 +368,7 @@ def _check_engine(engine):
 
 def _same_constants(keys: SpringKeys, options: SpringOptions):
     """Keys and options must carry the catalog constants the reference reads now (a user catalog may change them)."""
-    cst = s9.main_spring_constants()
+    cst = torsion_spring.main_spring_constants()
     for name, obj in (("keys", keys), ("options", options)):
         if obj.constants != cst:
             changed = sorted(k for k in cst if obj.constants.get(k) != cst[k])

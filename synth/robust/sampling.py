@@ -36,7 +36,7 @@ from synth.design.applications import Applications
 from synth.design.constraints import REGISTRY
 from synth.design.space import space
 from synth.design.verify import evaluate_design
-from synth.model import torsion_spring as s9
+from synth.model import torsion_spring
 from synth.robust.tolerances import Scatter, resolve
 
 __all__ = ["Base", "Samples", "base_of", "base_of_attributes", "context", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
@@ -46,7 +46,7 @@ __all__ = ["Base", "Samples", "base_of", "base_of_attributes", "context", "pertu
 HISTOGRAM_VALUES = {"damping_nm": "core", "hubload_nominal_n": "core", "spring_torque_nominal_nm": "core",
                     "damping_eol_nm": "axial", "cone_spring_fax_nominal_n": "axial",
                     "main_spring_sigma_inst_mpa": "spring", "main_spring_safety_factor": "spring",
-                    "main_spring_coil_gap_min_mm": "spring", "sliding_safety_factor": "bolt"}
+                    "main_spring_coil_gap_worst_mm": "spring", "sliding_safety_factor": "bolt"}
 _GROUPS = ("input", "core", "bushing", "axial", "spring", "bolt")
 
 
@@ -202,8 +202,8 @@ def perturb(base: Base, dev: dict, rows=None) -> tuple:
     # the made spring keeps its active coils: its stiffness follows from the made wire and diameter (eq. 64-65)
     k0 = at(f0["spring_stiffness_nm_per_deg"])
     with np.errstate(divide="ignore", invalid="ignore"):
-        n_nom = s9.active_coils(sp["E_mpa"], s9.second_moment_mm4(b0, h0, rnd), d0, k0)
-        n_made = s9.active_coils(sp["E_mpa"], s9.second_moment_mm4(sp["b_mm"], sp["h_mm"], rnd),
+        n_nom = torsion_spring.active_coils(sp["E_mpa"], torsion_spring.second_moment_mm4(b0, h0, rnd), d0, k0)
+        n_made = torsion_spring.active_coils(sp["E_mpa"], torsion_spring.second_moment_mm4(sp["b_mm"], sp["h_mm"], rnd),
                                  sp["main_spring_mean_body_diameter_mm"], k0)
         fields["spring_stiffness_nm_per_deg"] = k0 * n_made / n_nom
     if "pivot_diameter" in dev:
