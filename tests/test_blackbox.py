@@ -18,7 +18,7 @@ from synth.design.evaluate import Settings
 from synth.design.verify import verify
 from synth.errors import InputError
 from synth.optimise import solve
-from synth.optimise.evaluate import evaluate
+from synth.optimise.product import evaluate
 from synth.optimise.search_space import variables
 from synth.io.documents import load_input
 

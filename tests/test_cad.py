@@ -21,7 +21,7 @@ from synth import catalog, flowchart
 from synth.cad import export_result, geometry_from
 from synth.cad.assembly import build, colour_of, part_names
 from synth.cad.dimensions import _example_inputs, _example_values
-from synth.cad.parts import spring_pitch_mm, stack
+from synth.cad.solids import spring_pitch_mm, stack
 from synth.cad.verify import failed, verify_model
 from synth.cli import main
 from synth.design.result import FAIL, PASS

@@ -167,7 +167,7 @@ def test_fuzz_design_input_text(tmp_path, text, suffix):
 @given(doc=st.dictionaries(st.text(max_size=12), _values, max_size=8))
 def test_fuzz_structured_documents(tmp_path, doc):
     """Any YAML/JSON document a user may write: the case loaders give a value or an InputError."""
-    from synth.io.results import load_result
+    from synth.io.saved_results import load_result
     from synth.shrink_fit.inputs import load_case
 
     for suffix, text in ((".json", json.dumps(doc, default=str)), (".yaml", yaml.safe_dump(doc))):

@@ -10,9 +10,9 @@ import pytest
 
 from synth.data.generated_applications import generate
 from synth.design.verify import verify
-from synth.optimise.evaluate import evaluate
+from synth.optimise.product import evaluate
 from synth.optimise.objectives import Objective
-from synth.optimise.result import design_margin
+from synth.optimise.answer import design_margin
 from synth.optimise.solvers import flowchart, milp_cvxpy, minlp
 from synth.optimise.solvers._staged import solve_evaluated
 from synth.optimise.solvers.enumerate import solve_space

@@ -28,7 +28,7 @@ from synth.design.result import FAIL, NOT_VERIFIED, PASS, WARNING
 from synth.data import CASES_DIR
 from synth.excel import template
 from synth.excel.cells import FORMULA_LEADS, put, sig_format
-from synth.excel.results import row_verdict, write_results
+from synth.excel.results_workbook import row_verdict, write_results
 from synth.excel.template import FILLS
 from synth.output_table import ROWS
 

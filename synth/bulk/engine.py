@@ -33,7 +33,7 @@ from typing import Sequence
 import numpy as np
 import pandas as pd
 
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.design.result import FAIL, PASS, WARNING
 from synth.design.space import PART_KEYS, SUBSYSTEMS
@@ -149,7 +149,7 @@ def screen_applications_reference(apps: Sequence, *, objective: str = "standard"
     evaluation (slow; the right answer, and what the fast path is tested against)."""
     from synth.errors import InputError
     from synth.optimise import solve
-    settings = E.Settings(fidelity=fidelity)
+    settings = evaluate.Settings(fidelity=fidelity)
     rows = []
     for d in apps:
         try:
@@ -195,13 +195,13 @@ def _verify(b, idx, rows, options: dict) -> dict:
     attrs = _design_attributes(b, rows, options)
     one = np.arange(len(idx))
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        groups = {"input": E.inputs(apps, idx)}
-        cg = E.core(apps, idx, attrs["core"], st)
+        groups = {"input": evaluate.inputs(apps, idx)}
+        cg = evaluate.core(apps, idx, attrs["core"], st)
         groups["core"] = cg
-        groups["bushing"] = E.bushing(apps, cg, one, attrs["bushing"], st)
-        groups["axial"] = E.axial(apps, cg, one, attrs["axial"], st)
-        groups["spring"] = E.spring(apps, E.spring_keys(cg, one), one, attrs["spring"], st)
-        groups["bolt"] = E.bolt(apps, cg, one, attrs["bolt"], st)
+        groups["bushing"] = evaluate.bushing(apps, cg, one, attrs["bushing"], st)
+        groups["axial"] = evaluate.axial(apps, cg, one, attrs["axial"], st)
+        groups["spring"] = evaluate.spring(apps, evaluate.spring_keys(cg, one), one, attrs["spring"], st)
+        groups["bolt"] = evaluate.bolt(apps, cg, one, attrs["bolt"], st)
     groups["_attrs"] = attrs
     return groups
 
@@ -250,9 +250,9 @@ def _notes_of(apps, idx, state, evaluated, cache: dict) -> list:
 def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> dict:
     """The result columns (:func:`columns`, and ``_failed``: the failed constraint ids per row) of designs verified
     by :func:`_verify`, one array or list per column, built column by column: what :func:`row_from_result` gives
-    for :func:`synth.optimise.result.build_result`'s result of each."""
+    for :func:`synth.optimise.answer.build_result`'s result of each."""
     from synth.design.evaluate import EVALUATED
-    from synth.optimise.evaluate import core_scores, option_scores
+    from synth.optimise.product import core_scores, option_scores
     m = len(idx)
     state = np.stack([groups[c.group].state[c.id] for c in _COLS], axis=1)
     marg = np.stack([np.asarray(groups[c.group].margins[c.id], dtype=float) for c in _COLS], axis=1)
@@ -390,7 +390,7 @@ def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity
     """
     from synth.optimise.batch import robust
     from synth.optimise.objectives import Objective
-    settings = E.Settings(fidelity=fidelity)
+    settings = evaluate.Settings(fidelity=fidelity)
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     apps = list(apps)
     if obj.uses_margin():

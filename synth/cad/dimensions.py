@@ -124,7 +124,7 @@ def _split(result) -> tuple[dict, dict | None, str, bool, str, str]:
     path."""
     from synth.design.result import Result
     if isinstance(result, (str, Path)):
-        from synth.io.results import load_result
+        from synth.io.saved_results import load_result
         result = load_result(result)  # the input gate's reader: size, encoding, shape
     if isinstance(result, dict):
         result = Result.from_dict(result)

@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from synth import catalog
+from synth import catalog, parts
 from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin
 from synth.model import bolted_joint, damping, disc_spring, friction_wear
 from synth.model import layout, packaging, pivot, plain_bushing, stackup
@@ -324,8 +324,7 @@ def core(apps, a, c: dict, settings: Settings = Settings(), detail: bool = False
     ``c`` holds the core table's columns for the rows (:meth:`synth.design.space.Space.rows`).
     ``detail`` adds the characterisation at nominal (hubloads in loading and unloading, asymmetry).
     """
-    from synth import parts as P
-    p = P.arrays()
+    p = parts.arrays()
     f = _Fields(apps, a)
     n = len(a)
     wa, alpha = f["working_arm_mm"], f["differential_angle_deg"]
@@ -408,8 +407,7 @@ def bushing(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Gro
     ``o``: ``supplier_code`` and ``pivot_bushing_length_mm`` per row (any length); the option's supplier
     must be the core's (the pivot diameter depends on its wall).
     """
-    from synth import parts as P
-    p = P.arrays()
+    p = parts.arrays()
     a = cg.values["app"][r]
     f = _Fields(apps, a)
     sup, env = np.asarray(o["supplier_code"]), apps.env[a]
@@ -477,8 +475,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     ``o``: the axial table's columns (spacer, cone-spring variant). Rows pair a core with a damper pad with
     a real option, or a core without one with the ``none`` option. ``time_points`` keeps the wear history.
     """
-    from synth import parts as P
-    p = P.arrays()
+    p = parts.arrays()
     a = cg.values["app"][r]
     f = _Fields(apps, a)
     n = len(a)
@@ -662,7 +659,7 @@ def spring_values(o: dict, x: dict, settings: Settings = Settings()) -> dict:
 
     The one mapping from the physics (:func:`synth.model.torsion_spring.main_spring_design`) to the values the
     registry's spring constraints compare: :func:`spring` adds the application and the registry margins, the
-    compiled kernels (:mod:`synth.kernels.torsion_spring`) use it as their numpy reference.
+    compiled kernels (:mod:`synth.kernels.main_spring`) use it as their numpy reference.
     """
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         r = torsion_spring.main_spring_design(
@@ -788,9 +785,8 @@ def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
 def _mu(apps, key: str, interface: str, ua, env) -> np.ndarray:
     """The friction coefficient ``key`` of applications ``ua`` (:class:`~synth.design.applications.Applications`
     derives it per application; the catalog's value of their environment ``env`` otherwise)."""
-    from synth import parts as P
     d = apps.derived.get(key)
-    return np.asarray(d[ua] if d is not None else P.mu(interface, env), dtype=float)
+    return np.asarray(d[ua] if d is not None else parts.mu(interface, env), dtype=float)
 
 
 def pivot_wall_values(pivot_diameter_mm, loading_arm_mm, bolt_d_mm) -> dict:

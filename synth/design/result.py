@@ -247,7 +247,7 @@ class Result:
 def checks_of(groups: dict, apps, row: int = 0) -> list:
     """The :class:`Check` records of one design: row ``row`` of each evaluated group (registry order)."""
     from synth.design.applications import DEFAULTS
-    from synth.design import evaluate as E
+    from synth.design import evaluate
     from synth.design.rules import active as active_rules
     out = []
     for cid, c in REGISTRY.items():
@@ -256,10 +256,10 @@ def checks_of(groups: dict, apps, row: int = 0) -> list:
             continue
         st = int(g.state[cid][row])
         a = int(g.values["app"][row]) if "app" in g.values else 0
-        if st == E.NOT_APPLICABLE:
+        if st == evaluate.NOT_APPLICABLE:
             out.append(Check(cid, None, None, None, NOT_APPLICABLE))
             continue
-        if st != E.EVALUATED:
+        if st != evaluate.EVALUATED:
             if apps is None:
                 out.append(Check(cid, None, None, None, NOT_VERIFIED, f"not verified: {c.limit} not given"))
                 continue
@@ -267,7 +267,7 @@ def checks_of(groups: dict, apps, row: int = 0) -> list:
             out.append(Check(cid, None, None, None, NOT_VERIFIED, apps.missing_note(missing[0], a) if missing else ""))
             continue
         value = float(g.values[c.value][row])
-        limit = E._CONSTANT_LIMITS[c.limit] if c.limit in E._CONSTANT_LIMITS else float(g.values[c.limit][row])
+        limit = evaluate._CONSTANT_LIMITS[c.limit] if c.limit in evaluate._CONSTANT_LIMITS else float(g.values[c.limit][row])
         m = float(g.margins[cid][row])
         verdict = (PASS if m >= -FEAS_TOL else (WARNING if c.advisory else FAIL))
         assumed = [] if apps is None else [apps.assumed_note(x, a) for x in c.assumes

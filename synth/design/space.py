@@ -50,7 +50,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from synth import catalog, parts as P
+from synth import catalog
+
+from synth.parts import Parts, Table, arrays
 from synth.errors import InputError, Problem
 from synth.model import packaging, pivot, torsion_spring
 
@@ -84,7 +86,7 @@ class Space:
     """
 
     tables: dict
-    parts: P.Parts
+    parts: Parts
     notes: list = field(default_factory=list)
     #: the part-naming input fields this space keeps (:func:`pinned_space`): () for the whole catalog product
     pinned: tuple = ()
@@ -135,7 +137,7 @@ class Space:
                                          + (f" up to {upper:g}" if upper is not None else "")))
             return x
 
-        def code(table: P.Table, k, none_ok=False):
+        def code(table: Table, k, none_ok=False):
             v = str(need(k)).strip()
             if none_ok and v == NONE:
                 return -1
@@ -179,7 +181,7 @@ def _grid(lo: float, hi: float, count: int) -> np.ndarray:
     return np.round(np.linspace(lo, hi, int(count)), 6) if count > 1 else np.array([round(lo, 6)])
 
 
-def _pivot_classes(p: P.Parts) -> np.ndarray:
+def _pivot_classes(p: Parts) -> np.ndarray:
     lo, hi, step = (catalog.constant(f"optimise_pivot_class_{k}") for k in ("min_mm", "max_mm", "step_mm"))
     classes = set(np.round(np.arange(lo, hi + step / 2, step), 6).tolist())
     for _, cls, _ in p.table2.values():
@@ -187,7 +189,7 @@ def _pivot_classes(p: P.Parts) -> np.ndarray:
     return np.array(sorted(classes))
 
 
-def core_attributes(p: P.Parts, bearing, pivot_class_mm, supplier, pad) -> dict:
+def core_attributes(p: Parts, bearing, pivot_class_mm, supplier, pad) -> dict:
     """The core table's columns for codes (bearing, supplier, pad: -1 = none) and pivot classes (arrays)."""
     b, s, dpad = (np.asarray(x, dtype=np.int64) for x in (bearing, supplier, pad))
     cls = np.asarray(pivot_class_mm, dtype=float)
@@ -222,7 +224,7 @@ def core_attributes(p: P.Parts, bearing, pivot_class_mm, supplier, pad) -> dict:
     return t
 
 
-def selectable_bearings(p: P.Parts) -> np.ndarray:
+def selectable_bearings(p: Parts) -> np.ndarray:
     """Codes of the bearings the thesis method can size: those with thesis Table 1 rows (both fuels) and Table 2
     rows. The catalog holds more (ISO 15, supplier ratings); no rule reproduces Tables 1-2 from their data
     (``tests/validation/test_thesis_tables_1_2.py``), so they wait for Table 1-2 rows (a user catalog can add
@@ -233,7 +235,7 @@ def selectable_bearings(p: P.Parts) -> np.ndarray:
     return np.flatnonzero(ok)
 
 
-def _core(p: P.Parts, classes=None) -> dict:
+def _core(p: Parts, classes=None) -> dict:
     classes = _pivot_classes(p) if classes is None else np.asarray(classes, dtype=float)
     bearings = selectable_bearings(p)
     b, c, s, dpad = (a.ravel() for a in np.meshgrid(bearings, np.arange(len(classes)),
@@ -242,7 +244,7 @@ def _core(p: P.Parts, classes=None) -> dict:
     return core_attributes(p, b, classes[c], s, dpad)
 
 
-def bushing_attributes(p: P.Parts, supplier, length_mm) -> dict:
+def bushing_attributes(p: Parts, supplier, length_mm) -> dict:
     """The bushing table's columns for supplier codes and lengths (any length: the flowchart's trial lengths)."""
     sup = np.asarray(supplier, dtype=np.int64)
     length = np.asarray(length_mm, dtype=float)
@@ -251,7 +253,7 @@ def bushing_attributes(p: P.Parts, supplier, length_mm) -> dict:
             "nonstandard": np.zeros(length.shape)}
 
 
-def _bushing(p: P.Parts) -> dict:
+def _bushing(p: Parts) -> dict:
     sup = np.concatenate([np.full(len(lengths), i) for i, lengths in enumerate(p.bushing_lengths)]).astype(np.int64)
     return bushing_attributes(p, sup, np.concatenate(p.bushing_lengths))
 
@@ -267,7 +269,7 @@ def cone_variants() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return zeta, phi, red
 
 
-def axial_attributes(p: P.Parts, spacer, aspect_ratio, deflection_ratio, de_reduction_mm, di_increase_mm=0.0) -> dict:
+def axial_attributes(p: Parts, spacer, aspect_ratio, deflection_ratio, de_reduction_mm, di_increase_mm=0.0) -> dict:
     """The axial table's columns for spacer codes (-1 = none) and cone-spring variants (arrays).
 
     The cone spring's outer diameter is ``de_reduction_mm`` below the largest the damper pad carries, its inner
@@ -299,14 +301,14 @@ def axial_attributes(p: P.Parts, spacer, aspect_ratio, deflection_ratio, de_redu
     }
 
 
-def _axial(p: P.Parts) -> dict:
+def _axial(p: Parts) -> dict:
     zeta, phi, red = cone_variants()
     e, z, f, r = (a.ravel() for a in np.meshgrid(np.arange(len(p.endcap_spacer)), zeta, phi, red, indexing="ij"))
     return axial_attributes(p, np.concatenate([[-1], e]), np.concatenate([[0.0], z]), np.concatenate([[0.0], f]),
                             np.concatenate([[0.0], r]))
 
 
-def mbd_grid(p: P.Parts) -> np.ndarray:
+def mbd_grid(p: Parts) -> np.ndarray:
     """Main-spring mean body diameters searched [mm]: the step grid spanning every housing of the catalogs."""
     step = catalog.constant("optimise_mbd_step_mm")
     lo = float(packaging.spring_housing_inner_diameter_mm(catalog.constant("optimise_pivot_class_min_mm")))
@@ -314,14 +316,14 @@ def mbd_grid(p: P.Parts) -> np.ndarray:
     return np.arange(math.ceil(lo / step) * step, math.floor(hi / step) * step + step / 2, step)
 
 
-def _supplied(p: P.Parts) -> np.ndarray:
+def _supplied(p: Parts) -> np.ndarray:
     """``(materials, wires)``: the material is supplied in the wire's section (``spring_materials.csv``)."""
     mat, wire = p.spring_material, p.spring_wire
     return np.array([[wire.section[wi] in mat.wire_sections[mi].split() for wi in range(len(wire))]
                      for mi in range(len(mat))], dtype=bool).reshape(len(mat), len(wire))
 
 
-def spring_attributes(p: P.Parts, material, wire, mbd_mm) -> dict:
+def spring_attributes(p: Parts, material, wire, mbd_mm) -> dict:
     """The spring table's columns for material and wire codes and mean body diameters (any diameter)."""
     m, w = np.asarray(material, dtype=np.int64), np.asarray(wire, dtype=np.int64)
     d = np.asarray(mbd_mm, dtype=float)
@@ -351,7 +353,7 @@ def spring_attributes(p: P.Parts, material, wire, mbd_mm) -> dict:
     }
 
 
-def _spring(p: P.Parts, mbd=None) -> dict:
+def _spring(p: Parts, mbd=None) -> dict:
     mbd = mbd_grid(p) if mbd is None else np.asarray(mbd, dtype=float)
     m, w, d = (a.ravel() for a in np.meshgrid(np.arange(len(p.spring_material)), np.arange(len(p.spring_wire)),
                                               mbd, indexing="ij"))
@@ -360,7 +362,7 @@ def _spring(p: P.Parts, mbd=None) -> dict:
     return spring_attributes(p, m[supplied], w[supplied], d[supplied])
 
 
-def bolt_attributes(p: P.Parts, head, property_class) -> dict:
+def bolt_attributes(p: Parts, head, property_class) -> dict:
     """The bolt table's columns for head codes (``bolt_heads.csv``: a format in a head form) and property classes."""
     hd, c = np.asarray(head, dtype=np.int64), np.asarray(property_class, dtype=np.int64)
     bh, bo, cl = p.bolt_head, p.bolt, p.bolt_class
@@ -381,7 +383,7 @@ def bolt_attributes(p: P.Parts, head, property_class) -> dict:
     }
 
 
-def _bolt(p: P.Parts) -> dict:
+def _bolt(p: Parts) -> dict:
     h, c = (a.ravel() for a in np.meshgrid(np.arange(len(p.bolt_head)), np.arange(len(p.bolt_class)), indexing="ij"))
     t = bolt_attributes(p, h, c)
     keep = t["class_defined"]
@@ -400,7 +402,7 @@ CAPACITY = {"core": (2_000, "ball_bearings.csv, pivot_classes.csv, pivot_bushing
             "bolt": (2_000, "bolt_heads.csv, bolt_property_classes.csv")}
 
 
-def table_sizes(p: P.Parts) -> dict:
+def table_sizes(p: Parts) -> dict:
     """The rows of each table of the space of parts ``p``, counted before anything is built (upper bounds)."""
     n_axial = 1 + len(p.endcap_spacer) * int(np.prod([len(g) for g in cone_variants()]))
     return {"core": len(selectable_bearings(p)) * len(_pivot_classes(p)) * len(p.bushing) * (len(p.damper_pad) + 1),
@@ -409,7 +411,7 @@ def table_sizes(p: P.Parts) -> dict:
             "bolt": len(p.bolt_head) * len(p.bolt_class)}
 
 
-def check_capacity(p: P.Parts) -> None:
+def check_capacity(p: Parts) -> None:
     """An :class:`~synth.errors.InputError` naming the catalogs when a table of the space would exceed
     :data:`CAPACITY` (user catalogs too big for the evaluator), before it is built."""
     problems = [Problem(f"--catalogs ({CAPACITY[t][1]})", f"{n} {t} options",
@@ -421,7 +423,7 @@ def check_capacity(p: P.Parts) -> None:
 
 
 def _build_space() -> Space:
-    p = P.arrays()
+    p = arrays()
     check_capacity(p)
     return Space({"core": _core(p), "bushing": _bushing(p), "axial": _axial(p), "spring": _spring(p),
                   "bolt": _bolt(p)}, p)
@@ -484,7 +486,7 @@ def space_for(d, pin_inputs=False) -> Space:
     return pinned_space(space(), {n: getattr(d, n) for n in fixed}) if fixed else space()
 
 
-def _wire_rows(p: P.Parts, pins: dict) -> np.ndarray:
+def _wire_rows(p: Parts, pins: dict) -> np.ndarray:
     """The ``spring_wires.csv`` rows a wire section and size select (a size names one wire; an unknown size lists
     the catalog's)."""
     w = p.spring_wire

@@ -60,7 +60,7 @@ MAIN_SPRING_CONSTANTS = (
 def main_spring_constants() -> dict:
     """The catalog constants :func:`main_spring_design` reads, ``{name: value}`` (one read of each).
 
-    Compiled callers (:mod:`synth.kernels.torsion_spring`) read them here once
+    Compiled callers (:mod:`synth.kernels.main_spring`) read them here once
     and pass them in as scalars, so both paths use the same values.
 
     >>> c = main_spring_constants()

@@ -30,7 +30,7 @@ import numpy as np
 from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS
 from synth.errors import InputError
-from synth.optimise.evaluate import evaluate
+from synth.optimise.product import evaluate
 from synth.schema import FIELDS, field_by_name
 
 __all__ = ["RELAXABLE", "nearest_design", "is_feasible", "relaxations", "relaxations_batch", "probe_batch",
@@ -246,7 +246,7 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
     answer). ``pin_inputs``: the search the solver ran kept the parts the input names, and so do the nearest
     design and the relaxations (every solver answers the same question).
     """
-    from synth.optimise.result import build_result
+    from synth.optimise.answer import build_result
     t0 = time.perf_counter()
     obj = objective if objective is not None else "standard,cost"
     if exhaustive or ev is not None:

@@ -346,7 +346,7 @@ def g_sensitivity_mu_plastic(dt: _Data, ax, verdict):
 def _bushing(dt: _Data, time_points: int = _T) -> dict:
     if "bushing" in dt._cache:
         return dt._cache["bushing"]
-    from synth.design import evaluate as E
+    from synth.design import evaluate
     t_end = dt.durability()[2]
     attrs = dt.attributes()
     t = np.linspace(0.0, t_end, time_points)
@@ -355,8 +355,8 @@ def _bushing(dt: _Data, time_points: int = _T) -> dict:
     rows = np.arange(time_points)
     rep = {tab: {k: np.repeat(np.asarray(v), time_points, axis=0) for k, v in attrs[tab].items()}
            for tab in ("core", "bushing")}
-    cg = E.core(apps, rows, rep["core"], dt.settings)
-    g = E.bushing(apps, cg, rows, rep["bushing"], dt.settings)
+    cg = evaluate.core(apps, rows, rep["core"], dt.settings)
+    g = evaluate.bushing(apps, cg, rows, rep["bushing"], dt.settings)
     if not bool(g.values["bushing_rated"][0]):
         raise _Skip("the bushing supplier has no wear rating for this environment")
     out = {"time_h": t, **{k: np.asarray(v, float) for k, v in g.values.items() if k != "app"}}

@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import REGISTRY
 from synth.design.space import space
@@ -56,7 +56,7 @@ class Base:
 
     inputs: object
     parts: dict
-    settings: E.Settings
+    settings: evaluate.Settings
     apps: Applications           # the application (one row)
     attrs: dict                  # the design's one-row attributes per table
     groups: dict                 # the nominal evaluation (the registry's verdicts)
@@ -85,17 +85,17 @@ def design_checks(groups: dict) -> tuple:
     out = []
     for cid, c in REGISTRY.items():
         g = groups.get(c.group)
-        if g is not None and int(g.state[cid][0]) == E.EVALUATED:
+        if g is not None and int(g.state[cid][0]) == evaluate.EVALUATED:
             out.append(cid)
     return tuple(out)
 
 
-def base_of(d, parts: dict, settings: E.Settings = E.Settings(), table: dict | None = None) -> Base:
+def base_of(d, parts: dict, settings: evaluate.Settings = evaluate.Settings(), table: dict | None = None) -> Base:
     """The :class:`Base` of design ``parts`` for input ``d``: its nominal evaluation and its tolerance model."""
     return base_of_attributes(d, space().design_attributes(parts), settings, table, parts=parts)
 
 
-def base_of_attributes(d, attrs: dict, settings: E.Settings = E.Settings(), table: dict | None = None, *,
+def base_of_attributes(d, attrs: dict, settings: evaluate.Settings = evaluate.Settings(), table: dict | None = None, *,
                        apps: Applications | None = None, parts: dict | None = None) -> Base:
     """:func:`base_of` from the design's one-row attributes per table (the optimiser's rows)."""
     apps = Applications.of([d]) if apps is None else apps
@@ -108,7 +108,7 @@ def base_of_attributes(d, attrs: dict, settings: E.Settings = E.Settings(), tabl
     return Base(d, dict(parts), settings, apps, attrs, groups, sc, design_checks(groups))
 
 
-def context(apps: Applications, attrs: dict, groups: dict, settings: E.Settings, k: int) -> dict:
+def context(apps: Applications, attrs: dict, groups: dict, settings: evaluate.Settings, k: int) -> dict:
     """What :func:`synth.robust.tolerances.resolve` reads of design ``k`` of N-row ``apps``/``attrs``/``groups``:
     its application's fields, its spring option, the strength range of its wire, its pivot, its cone spring."""
     from synth.model import torsion_spring as ts
@@ -213,10 +213,10 @@ def perturb(base: Base, dev: dict, rows=None) -> tuple:
         ax = attrs["axial"]
         gap = (_col(dev, "stack_pivot", n) - _col(dev, "stack_endcap_spacer", n) - _col(dev, "stack_arm", n)
                - _col(dev, "stack_damper_pad", n))
-        ax[E.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.where(
+        ax[evaluate.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.where(
             sized, at(base.groups["axial"].values["cone_spring_thickness_mm"]), np.nan)
-        ax[E.MADE_CONE_SPRING_COLUMNS["deflection_offset_mm"]] = -gap  # a smaller gap deflects the spring more
-        ax[E.MADE_CONE_SPRING_COLUMNS["force_factor"]] = 1.0 + _col(dev, "cone_spring_force", n) / 100.0
+        ax[evaluate.MADE_CONE_SPRING_COLUMNS["deflection_offset_mm"]] = -gap  # a smaller gap deflects the spring more
+        ax[evaluate.MADE_CONE_SPRING_COLUMNS["force_factor"]] = 1.0 + _col(dev, "cone_spring_force", n) / 100.0
     apps = a0.with_fields(rows, **fields)
     for q, key in (("pivot_bushing_friction", "mu_pivot_bushing"), ("plastic_friction", "mu_plastic"),
                    ("crankcase_friction", "mu_crankcase")):
@@ -236,7 +236,7 @@ def evaluate_deviations(base: Base, dev: dict, checks=None, rows=None) -> Sample
     with np.errstate(all="ignore"):
         if {REGISTRY[c].group for c in wanted} <= {"input", "core"}:
             idx = np.arange(len(apps), dtype=np.int64)
-            groups = {"input": E.inputs(apps, idx), "core": E.core(apps, idx, attrs["core"], base.settings)}
+            groups = {"input": evaluate.inputs(apps, idx), "core": evaluate.core(apps, idx, attrs["core"], base.settings)}
         else:
             groups = evaluate_design(apps, attrs, base.settings, detail=False)
     margins = {}

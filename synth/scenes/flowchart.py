@@ -26,7 +26,7 @@ def register(sub) -> None:
 def _main(args) -> int:
     d = documents.load_input(args.input)
     if args.parts:
-        from synth.io.results import parts_of
+        from synth.io.saved_results import parts_of
         parts = parts_of(load_saved_result(args.parts, "--parts").to_dict(), Path(args.parts).name)
     else:
         parts = None

@@ -130,7 +130,7 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     Returns ``{"html": Path, "pdf": Path | None, "pdf_note": str, "xlsx": Path, "result": Result,
     "graphs": [...], "skipped": [...]}`` (``pdf_note``: why no PDF was written, when none was).
     """
-    from synth.excel.results import write_results
+    from synth.excel.results_workbook import write_results
     from synth.report.html import write_html
     from synth.report.plots import build_graphs
     from synth.io.outputs import output_folder

@@ -20,7 +20,7 @@ non-advisory constraints of step 9, thesis eq. (64)-(93), figure 71):
 (d) :func:`any_feasible` -- per key, whether some option is feasible.
 
 Each takes ``engine="numba"`` (compiled loops over keys x options, no
-allocation per pair; :mod:`synth.kernels._torsion_spring_jit`) or
+allocation per pair; :mod:`synth.kernels._main_spring_jit`) or
 ``engine="numpy"`` (the registry's group on blocks of keys x options, the
 same early exits block by block): the benchmark compares both in one run
 and the tests hold them equal to the registry path. Units as in
@@ -95,7 +95,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from synth import catalog
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin as registry_margin
 from synth.errors import InputError, Problem
 from synth.model import torsion_spring
@@ -109,11 +109,11 @@ MARGIN_NAMES = ("spring_yield", "spring_material_section", "spring_fatigue", "sp
                 "spring_inner_contact", "spring_coil_gap", "spring_index_min", "spring_index_max")
 _REGISTERED = tuple(c.id for c in by_group("spring") if not c.advisory)
 if _REGISTERED != MARGIN_NAMES:  # pragma: no cover - a new spring constraint needs its line in the kernels
-    raise ImportError(f"synth.kernels.torsion_spring computes {MARGIN_NAMES}; the registry's spring group is "
+    raise ImportError(f"synth.kernels.main_spring computes {MARGIN_NAMES}; the registry's spring group is "
                       f"{_REGISTERED}: add the new constraint to the kernels (and their tests)")
 ENGINES = ("numba", "numpy")
 #: the option columns the numpy twin reads (the space's spring table names them so)
-OPTION_FIELDS = E.SPRING_OPTION_COLUMNS
+OPTION_FIELDS = evaluate.SPRING_OPTION_COLUMNS
 
 _JIT = None
 
@@ -122,8 +122,8 @@ def load_kernels():
     """The compiled kernels module (imports numba on the first call; later calls are a global lookup)."""
     global _JIT
     if _JIT is None:
-        from synth.kernels import _torsion_spring_jit
-        _JIT = _torsion_spring_jit
+        from synth.kernels import _main_spring_jit
+        _JIT = _main_spring_jit
     return _JIT
 
 
@@ -173,7 +173,7 @@ class SpringOptions:
     the kernels read."""
 
     raw: dict          # the columns of the space's spring table the group reads
-    derived: dict      # the columns of _torsion_spring_jit.OPTION_COLUMNS, by name
+    derived: dict      # the columns of _main_spring_jit.OPTION_COLUMNS, by name
     upper_bound: np.ndarray  # smallest option-only margin (index, section; NaN as -inf): bounds the smallest margin
     constants: dict    # main_spring_constants() when built
     _table: dict = field(default_factory=dict, repr=False)
@@ -269,8 +269,8 @@ class SpringKeys:
     and the key-only quantities the kernels read."""
 
     raw: dict
-    derived: dict      # the columns of _torsion_spring_jit.KEY_COLUMNS, by name
-    consts: dict       # the scalars of _torsion_spring_jit.CONST_NAMES
+    derived: dict      # the columns of _main_spring_jit.KEY_COLUMNS, by name
+    consts: dict       # the scalars of _main_spring_jit.CONST_NAMES
     constants: dict    # main_spring_constants() when built
     _table: dict = field(default_factory=dict, repr=False)
 
@@ -345,7 +345,7 @@ def keys_of_rows(apps, keys: dict, k=None) -> SpringKeys:
     whether the application has its durability test (the fatigue check's requirement)."""
     if k is None:
         k = np.arange(len(keys["app"]))
-    raw = {name: np.ascontiguousarray(np.asarray(v, dtype=float)) for name, v in E.spring_inputs(apps, keys, k).items()}
+    raw = {name: np.ascontiguousarray(np.asarray(v, dtype=float)) for name, v in evaluate.spring_inputs(apps, keys, k).items()}
     raw["fatigue_verified"] = np.asarray(apps.met(REGISTRY["spring_fatigue"].needs[0]))[keys["app"][k]]
     return _keys(raw)
 
@@ -397,11 +397,11 @@ def reference_margins(keys: SpringKeys, options: SpringOptions, key_idx=None, op
     nk, no = len(ki), len(oi)
     x = {k: v[ki][:, None] for k, v in keys.raw.items() if k != "fatigue_verified"}
     o = {k: v[oi][None, :] for k, v in options.raw.items()}
-    v = E.spring_values(o, x)
+    v = evaluate.spring_values(o, x)
     flat = {name: np.broadcast_to(val, (nk, no)).reshape(-1) for name, val in v.items()}
     req = _Requirements(np.repeat(keys.raw["fatigue_verified"][ki], no))
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        g = E.finish("spring", flat, req, np.arange(nk * no))
+        g = evaluate.finish("spring", flat, req, np.arange(nk * no))
     return np.stack([g.margins[m].reshape(nk, no) for m in MARGIN_NAMES], axis=-1)
 
 
@@ -442,10 +442,10 @@ def pair_margins(keys: SpringKeys, options: SpringOptions, key_idx, option_idx, 
     if engine == "numpy":
         x = {k: v[ki] for k, v in keys.raw.items() if k != "fatigue_verified"}
         o = {k: v[oj] for k, v in options.raw.items()}
-        v = E.spring_values(o, x)
+        v = evaluate.spring_values(o, x)
         req = _Requirements(keys.raw["fatigue_verified"][ki])
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            g = E.finish("spring", {name: np.broadcast_to(val, ki.shape) for name, val in v.items()}, req,
+            g = evaluate.finish("spring", {name: np.broadcast_to(val, ki.shape) for name, val in v.items()}, req,
                          np.arange(ki.size))
         return np.stack([g.margins[m] for m in MARGIN_NAMES], axis=-1) if ki.size else np.zeros((0, 8))
     jit, kt, ot, c = _tables(keys, options)
