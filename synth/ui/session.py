@@ -27,14 +27,15 @@ import synth
 from synth import schema
 from synth.io import documents
 from synth.errors import InputError, Problem
+from synth.optimise.objectives import OBJECTIVES
 from synth.ui import form
 
 __all__ = ["DesignSession", "default_values", "OBJECTIVES", "FIDELITIES"]
 
 #: the alternatives a synthesis in the page lists (``Result.alternatives``)
 TOP = 5
-#: the objectives offered (``synth.synthesise``'s documented ones; a lexicographic or weighted one stays the API's)
-OBJECTIVES = ("standard", "cost", "margin")
+#: the objectives offered (``synth.synthesise``'s documented ones; a lexicographic or weighted one stays the API's):
+#: :data:`synth.optimise.objectives.OBJECTIVES`, imported above
 #: the model fidelities (:data:`synth.design.evaluate.FIDELITIES`; ``full`` is every design scene's default)
 FIDELITIES = ("full", "screening")
 
