@@ -9,8 +9,8 @@ use, where it applies, whether it depends on the design or on the inputs
 only, whether it counts in the margin objective (input-only constraints
 never do; ``objective_unless`` names a value that, where true, makes it a
 constant of the design: the damping band is met exactly by the damping split
-when the axial group is present), whether it is advisory, the inputs whose change relaxes it besides those
-it needs or assumes (``relaxed_by``: the diagnosis's candidates, :mod:`synth.optimise.diagnose`) and, for a
+when the axial group is present), whether it is advisory, the inputs whose change in their declared direction
+relaxes it (``relaxed_by``: the diagnosis's candidates, :mod:`synth.optimise.diagnose`) and, for a
 check whose value or limit its group does not compute yet, the physics function that does (``physics``).
 Every field is a keyword: an entry reads as what it declares.
 
@@ -104,7 +104,7 @@ class Constraint:
     advisory: bool = False
     correction: str = ""
     #: input fields whose change in their declared direction (:attr:`synth.schema.Field.relax`) can relax this
-    #: constraint, besides the fields it needs and assumes (:meth:`relaxing_fields`)
+    #: constraint: the diagnosis's relaxation candidates (:func:`synth.optimise.diagnose.relaxable`)
     relaxed_by: tuple[str, ...] = ()
     #: ``physics(**values) -> {key: array}``: computes this check's value and limit (and what else it names) from
     #: the values its parameters name (:func:`physics_inputs`); None: the group's function computes them
@@ -122,11 +122,6 @@ class Constraint:
         for n in self.needs:
             out += list(REQUIREMENTS[n][0]) if n in REQUIREMENTS else [n]
         return tuple(out)
-
-    def relaxing_fields(self) -> tuple[str, ...]:
-        """The input fields whose change may relax this constraint: those it needs, those whose documented default
-        it may use and :attr:`relaxed_by` (once each, in that order)."""
-        return tuple(dict.fromkeys(self.requirement_fields() + self.assumes + self.relaxed_by))
 
     def reads(self) -> tuple[str, ...]:
         """The value keys its margin reads: value, limit, scale, where it applies, when it leaves the objective
@@ -199,7 +194,8 @@ _ENTRIES = (
                equation="eq. (26)", unit="mm", group="input", value="pulley_top_mm",
                limit="max_axial_displacement_mm", sense="<=", needs=("max_axial_displacement_mm",),
                applies="layout_standard", design=False, objective=False,
-               correction="max_axial_displacement_mm >= the pulley top, or a lower belt plane"),
+               correction="max_axial_displacement_mm >= the pulley top, or a lower belt plane",
+               relaxed_by=("max_axial_displacement_mm",)),
     Constraint(id="pulley_crankcase_clearance", label="pulley clear of the crankcase (reverse layout)", step=0,
                equation="eq. (27)", unit="mm", group="input", value="pulley_bottom_mm",
                limit="min_belt_crankcase_clearance_mm", sense=">=", assumes=("min_belt_crankcase_clearance_mm",),
@@ -212,7 +208,8 @@ _ENTRIES = (
     Constraint(id="pin_clearance", label="lock-up pin clearance to the pulley and the belt", step=0,
                equation="eq. (23)-(25)", unit="mm", group="input", value="pin_clearance_mm",
                limit="pin_clearance_required_mm", sense=">=", needs=("lockup_pin", "pin_geometry"), design=False,
-               objective=False, correction="move the lock-up pin out of the belt wrap or further from the belt span"),
+               objective=False, correction="move the lock-up pin out of the belt wrap or further from the belt span",
+               relaxed_by=("lockup_pin_position_radius_mm",)),
     # --- core: bearing, pivot, damping, packaging (steps 1-3, 7) --------------------------------------------
     Constraint(id="bearing_load", label="hubload within the bearing's Table 1 range", step=1, equation="Table 1",
                unit="N", group="core", value="hubload_nominal_n", limit="bearing_max_hubload_n", sense="<=",
@@ -237,11 +234,13 @@ _ENTRIES = (
     Constraint(id="damping_upper", label="damping within the upper tolerance", step=3, equation="eq. (10)-(11)",
                unit="Nm", group="core", value="damping_nm", limit="damping_upper_nm", sense="<=",
                needs=("damping_band",), objective_unless="axial_damping_present",
-               correction="a smaller pivot diameter or a lower-friction bushing (radial damping above the target)"),
+               correction="a smaller pivot diameter or a lower-friction bushing (radial damping above the target)",
+               relaxed_by=("damping_tolerance_nm",)),
     Constraint(id="damping_lower", label="damping within the lower tolerance", step=3, equation="eq. (9)-(11)",
                unit="Nm", group="core", value="damping_nm", limit="damping_lower_nm", sense=">=",
                needs=("damping_band",), objective_unless="axial_damping_present",
-               correction="an axial damping group (damping_typology: radial_and_axial)"),
+               correction="an axial damping group (damping_typology: radial_and_axial)",
+               relaxed_by=("damping_tolerance_nm",)),
     Constraint(id="spring_torque_positive", label="spring torque at nominal positive", step=3,
                equation="eq. (12)-(13)", unit="Nm", group="core", value="spring_torque_nominal_nm", limit="zero",
                sense=">=", correction="a lower damping target or a smaller pivot"),
@@ -275,32 +274,39 @@ _ENTRIES = (
                correction="less damping (a smaller axial damping group or pivot), or a drive that moves the arm more"),
     Constraint(id="spring_cavity", label="spring cavity height", step=7, equation="eq. (52)-(53)", unit="mm",
                group="core", value="spring_housing_height_mm", limit="spring_cavity_min_height_mm", sense=">=",
-               correction="a higher maximum pivot height or a lower belt plane"),
+               correction="a higher maximum pivot height or a lower belt plane",
+               relaxed_by=("middle_plane_belt_height_mm", "max_pivot_height_mm")),
     # --- bushing (step 4) ----------------------------------------------------------------------------------
     Constraint(id="bushing_rated", label="bushing supplier rated for the application type", step=4,
                equation="Table 5", unit="-", group="bushing", value="bushing_rated", limit="one", sense=">=",
                objective=False, correction="a supplier rated for the application type (Table 5)"),
     Constraint(id="bushing_p", label="pivot bushing pressure", step=4, equation="eq. (28), Table 5", unit="MPa",
                group="bushing", value="pivot_bushing_p_mpa", limit="pivot_bushing_p_max_mpa", sense="<=",
-               needs=("durability",), applies="bushing_rated", correction=_LENGTHEN),
+               needs=("durability",), applies="bushing_rated", correction=_LENGTHEN,
+               relaxed_by=("max_pivot_height_mm",)),
     Constraint(id="bushing_pv", label="pivot bushing p*v", step=4, equation="eq. (30), Table 5", unit="MPa m/s",
                group="bushing", value="pivot_bushing_pv_mpa_m_per_s", limit="pivot_bushing_pv_max_mpa_m_per_s",
-               sense="<=", needs=("durability",), applies="bushing_rated", correction=_LENGTHEN),
+               sense="<=", needs=("durability",), applies="bushing_rated", correction=_LENGTHEN,
+               relaxed_by=("max_pivot_height_mm",)),
     Constraint(id="bushing_pvt", label="pivot bushing p*v*t", step=4, equation="eq. (31), Table 5", unit="MPa m/s h",
                group="bushing", value="pivot_bushing_pvt_mpa_m_per_s_h", limit="pivot_bushing_pvt_max_mpa_m_per_s_h",
-               sense="<=", needs=("durability",), applies="bushing_rated", correction=_LENGTHEN),
+               sense="<=", needs=("durability",), applies="bushing_rated", correction=_LENGTHEN,
+               relaxed_by=("max_pivot_height_mm",)),
     Constraint(id="bushing_wear", label="pivot bushing wear (most loaded end) within the sliding layer", step=4,
                equation="eq. (32), (40)-(41)", unit="mm", group="bushing", value="pivot_bushing_wear_max_mm",
                limit="pivot_bushing_sliding_layer_mm", sense="<=", needs=("durability",), applies="bushing_rated",
-               correction=_LENGTHEN),
+               correction=_LENGTHEN,
+               relaxed_by=("max_pivot_height_mm",)),
     Constraint(id="bushing_parallelism", label="pulley parallelism at end of life", step=4, equation="eq. (42)",
                unit="mm", group="bushing", value="pivot_bushing_parallelism_mm",
                limit="pulley_max_parallelism_eol_mm", sense="<=",
                needs=("durability", "pulley_max_parallelism_eol_mm"), applies="bushing_rated",
-               correction="centre the bushing on the belt plane or lengthen it"),
+               correction="centre the bushing on the belt plane or lengthen it",
+               relaxed_by=("pulley_max_parallelism_eol_mm", "max_pivot_height_mm")),
     Constraint(id="bushing_length", label="pivot bushing length fits the pivot", step=4, equation="eq. (33)-(34)",
                unit="mm", group="bushing", value="pivot_bushing_length_mm", limit="pivot_bushing_length_max_mm",
-               sense="<=", correction="a shorter bushing, a higher maximum pivot height or a larger pivot diameter"),
+               sense="<=", correction="a shorter bushing, a higher maximum pivot height or a larger pivot diameter",
+               relaxed_by=("max_pivot_height_mm",)),
     # --- axial damping group (steps 5, 6, 7, 8) ------------------------------------------------------------
     Constraint(id="axial_group_complete", label="damper pad and endcap spacer both present or both absent", step=3,
                equation="Tables 3-4", unit="-", group="axial", value="axial_group_mismatch", limit="zero", sense="<=",
@@ -312,7 +318,8 @@ _ENTRIES = (
     Constraint(id="belt_plane", label="belt plane within the pivot stack", step=7, equation="eq. (50)-(51)",
                unit="mm", group="axial", value="middle_plane_belt_height_mm", limit="belt_plane_limit_mm", sense="<=",
                applies="layout_standard",
-               correction="a lower belt plane, a higher maximum pivot height or a thinner endcap spacer"),
+               correction="a lower belt plane, a higher maximum pivot height or a thinner endcap spacer",
+               relaxed_by=("max_pivot_height_mm",)),
     Constraint(id="belt_plane_reverse", label="belt plane above the pivot stack (reverse layout)", step=7,
                equation="eq. (50)-(51)", unit="mm", group="axial", value="middle_plane_belt_height_mm",
                limit="belt_plane_limit_mm", sense=">=", applies="layout_reverse",
@@ -321,7 +328,8 @@ _ENTRIES = (
                step=8, equation="eq. (9), Fig. 68", unit="N", group="axial", value="cone_spring_gap_band_room_n",
                limit="zero", sense=">=", scale="cone_spring_fax_band_n", needs=("damping_band",),
                applies="cone_spring_sized",
-               correction="a flatter cone spring (higher h0/t, deflection nearer the flat point) or a wider damping tolerance"),
+               correction="a flatter cone spring (higher h0/t, deflection nearer the flat point) or a wider damping tolerance",
+               relaxed_by=("damping_tolerance_nm",)),
     Constraint(id="cone_force_manufacturing",
                label="cone spring band also holds the standard manufacturing force tolerance "
                "(advisory)", step=8, equation="DIN EN 16983 (DIN 2093) force tolerances", unit="N", group="axial",
@@ -359,7 +367,8 @@ _ENTRIES = (
     Constraint(id="damping_eol", label="damping at end of life", step=5, equation="eq. (9), (11), (43)-(49)",
                unit="Nm", group="axial", value="damping_eol_nm", limit="damping_eol_limit_nm", sense=">=",
                needs=("durability", "damping_eol_limit_nm"), applies="cone_spring_sized",
-               correction="the next damper pad / endcap spacer class (larger contact surfaces, Tables 3-4)"),
+               correction="the next damper pad / endcap spacer class (larger contact surfaces, Tables 3-4)",
+               relaxed_by=("damping_eol_limit_nm",)),
     Constraint(id="damper_pad_wear", label="damper pad wear", step=5, equation="eq. (44)-(46)", unit="mm",
                group="axial", value="damper_pad_wear_mm", limit="damper_pad_wear_max_mm", sense="<=",
                needs=("durability",), applies="cone_spring_sized",
@@ -373,7 +382,8 @@ _ENTRIES = (
                step=9, equation="eq. (69), (72)-(77); EN 13906-3", unit="MPa", group="spring",
                value="main_spring_sigma_inst_mpa", limit="main_spring_sigma_permissible_mpa", sense="<=",
                assumes=("arm_travel_nominal_to_installation_deg", "spring_torque_tolerance_pct"),
-               correction="a larger wire, a stronger material or a larger mean diameter"),
+               correction="a larger wire, a stronger material or a larger mean diameter",
+               relaxed_by=("spring_torque_tolerance_pct", "arm_travel_nominal_to_installation_deg")),
     Constraint(id="spring_static_permissible",
                label="main spring stress at installation within the spring makers' static rule "
                "(advisory)", step=9, equation="EN 13906-3 practice: 0.75 Rm without curvature factor", unit="MPa",
@@ -389,22 +399,28 @@ _ENTRIES = (
     Constraint(id="spring_fatigue", label="main spring Smith-Goodman safety factor", step=9, equation="figure 71",
                unit="-", group="spring", value="main_spring_safety_factor", limit="main_spring_min_safety_factor",
                sense=">=", needs=("durability",), assumes=("spring_torque_tolerance_pct",),
-               correction="a larger wire or a stronger (valve-spring) grade"),
+               correction="a larger wire or a stronger (valve-spring) grade",
+               relaxed_by=("spring_torque_tolerance_pct",)),
     Constraint(id="spring_outer_contact", label="main spring outer diameter clear of the housing", step=9,
                equation="eq. (81)-(84)", unit="mm", group="spring", value="main_spring_outer_diameter_max_mm",
                limit="spring_housing_outer_diameter_min_mm", sense="<=", assumes=("arm_travel_nominal_to_free_deg",),
-               correction="a smaller mean diameter or a thinner wire"),
+               correction="a smaller mean diameter or a thinner wire",
+               relaxed_by=("arm_travel_nominal_to_free_deg",)),
     Constraint(id="spring_inner_contact", label="main spring inner diameter clear of its support", step=9,
                equation="eq. (85)-(88)", unit="mm", group="spring", value="main_spring_inner_diameter_min_mm",
                limit="spring_housing_inner_diameter_max_mm", sense=">=",
                assumes=("arm_travel_nominal_to_installation_deg", "spring_torque_tolerance_pct"),
-               correction="a larger mean diameter"),
+               correction="a larger mean diameter",
+               relaxed_by=("spring_torque_tolerance_pct", "arm_travel_nominal_to_installation_deg")),
     Constraint(id="spring_coil_gap", label="main spring coil gap in the housing (worst condition)", step=9,
                equation="eq. (89)-(93)", unit="mm", group="spring", value="main_spring_coil_gap_worst_mm",
                limit="main_spring_min_coil_gap_mm", sense=">=", scale="main_spring_wire_b_mm",
                assumes=("arm_travel_nominal_to_installation_deg", "arm_travel_nominal_to_free_deg",
                "spring_torque_tolerance_pct"),
-               correction="fewer coils (a larger mean diameter or wire), or a higher spring housing"),
+               correction="fewer coils (a larger mean diameter or wire), or a higher spring housing",
+               relaxed_by=("middle_plane_belt_height_mm", "max_pivot_height_mm", "spring_stiffness_nm_per_deg",
+                           "spring_torque_tolerance_pct", "arm_travel_nominal_to_installation_deg",
+                           "arm_travel_nominal_to_free_deg")),
     Constraint(id="spring_index_min", label="main spring index at least the minimum", step=9, equation="EN 13906-3",
                unit="-", group="spring", value="main_spring_index", limit="main_spring_index_min", sense=">=",
                correction="a larger mean diameter or a thinner wire"),
@@ -423,7 +439,8 @@ _ENTRIES = (
                equation="eq. (103)-(107)", unit="MPa", group="bolt", value="bolt_sigma_eqv_mpa",
                limit="bolt_sigma_permissible_mpa", sense="<=", needs=("fixation",),
                assumes=("middle_plane_belt_height_increment_worst_mm",), applies="bolt_method_thesis",
-               correction="a larger bolt format or a higher property class"),
+               correction="a larger bolt format or a higher property class",
+               relaxed_by=("tilting_safety_factor", "sliding_safety_factor", "engine_support_external_diameter_mm")),
     Constraint(id="bolt_preload_vdi", label="bolt maximum assembly preload within the permissible preload (VDI 2230)",
                step=10, equation="VDI 2230-1 R5-R7", unit="N", group="bolt", value="bolt_required_preload_max_n",
                limit="bolt_permissible_preload_n", sense="<=", needs=("fixation",),
@@ -433,20 +450,26 @@ _ENTRIES = (
                equation="eq. (108)-(109)", unit="MPa", group="bolt", value="bolt_under_head_stress_mpa",
                limit="support_yield_strength_compression_mpa", sense="<=", needs=("fixation",),
                assumes=("middle_plane_belt_height_increment_worst_mm",),
-               correction="a larger bolt-head contact diameter (flange head or washer)"),
+               correction="a larger bolt-head contact diameter (flange head or washer)",
+               relaxed_by=("tilting_safety_factor", "sliding_safety_factor", "engine_support_external_diameter_mm",
+                           "bolt_head_contact_external_diameter_mm")),
     Constraint(id="thread", label="thread bearing stress within the support's strength", step=10,
                equation="eq. (110)-(111)", unit="MPa", group="bolt", value="bolt_thread_stress_mpa",
                limit="support_yield_strength_traction_mpa", sense="<=", needs=("fixation",),
-               assumes=("middle_plane_belt_height_increment_worst_mm",), correction="more active threads"),
+               assumes=("middle_plane_belt_height_increment_worst_mm",), correction="more active threads",
+               relaxed_by=("tilting_safety_factor", "sliding_safety_factor", "engine_support_external_diameter_mm",
+                           "number_of_active_threads")),
     Constraint(id="pivot_bore", label="support bore large enough for the bolt", step=10,
                equation="step 2; section 10", unit="mm", group="bolt", value="engine_support_internal_diameter_mm",
                limit="pivot_bore_min_mm", sense=">=", needs=("fixation",), objective=False,
-               correction="a smaller bolt format, or a larger support bore"),
+               correction="a smaller bolt format, or a larger support bore",
+               relaxed_by=("engine_support_internal_diameter_mm",)),
     Constraint(id="pivot_base_pressure", label="pivot base maximum contact pressure", step=10,
                equation="eq. (96), Fig. 74", unit="MPa", group="bolt", value="pivot_base_max_pressure_mpa",
                limit="support_yield_strength_compression_mpa", sense="<=", needs=("fixation",),
                assumes=("middle_plane_belt_height_increment_worst_mm",),
-               correction="a larger pivot base (engine_support_external_diameter_mm)"),
+               correction="a larger pivot base (engine_support_external_diameter_mm)",
+               relaxed_by=("tilting_safety_factor", "sliding_safety_factor", "engine_support_external_diameter_mm")),
     Constraint(id="pivot_wall", label="pivot wall around the bolt hole", step=2, equation="step 2", unit="mm",
                group="bolt", value="pivot_wall_mm", limit="pivot_min_wall_mm", sense=">=",
                correction="a larger pivot diameter, a shorter loading arm or a "
