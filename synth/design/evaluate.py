@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from synth import catalog, parts
-from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin
+from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin, physics_inputs
 from synth.model import bolted_joint, damping, disc_spring, friction_wear
 from synth.model import layout, packaging, pivot, plain_bushing, stackup
 from synth.model import torsion_spring
@@ -222,6 +222,7 @@ def finish(name: str, values: dict, apps, a) -> Group:
     margins, state = {}, {}
     met = {}
     rules = active_rules()
+    add_physics(by_group(name), values, apps, a)
     for c in by_group(name):
         if c.limit in rules.limits:  # a design rule sets this limit (synth.design.rules)
             values[c.limit] = np.full(n, rules.limits[c.limit])
@@ -245,6 +246,16 @@ def finish(name: str, values: dict, apps, a) -> Group:
         margins[c.id] = np.where(st == EVALUATED, m, np.inf)
         state[c.id] = st
     return Group(name, values, margins, state)
+
+
+def add_physics(checks, values: dict, apps, a) -> None:
+    """The values and limits of the ``checks`` that declare a physics function (:attr:`Constraint.physics`), added
+    to ``values`` in place: each parameter is read by its name from the group's values, else from the applications'
+    fields at rows ``a``."""
+    for c in checks:
+        if c.physics is not None:
+            kw = {k: values[k] if k in values else apps.f[k][a] for k in physics_inputs(c)}
+            values.update(c.physics(**kw))
 
 
 def _const(name: str) -> float:

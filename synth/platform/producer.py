@@ -61,7 +61,7 @@ import numpy as np
 from synth import catalog
 from synth.design import evaluate
 from synth.design.applications import Applications
-from synth.design.constraints import FEAS_TOL, REGISTRY
+from synth.design.constraints import FEAS_TOL, REGISTRY, version
 from synth.design.space import SUBSYSTEMS, core_rows, spring_window
 from synth.errors import InputError, Problem
 from synth.platform.data import AppFeasibility, PortfolioFeasibility, default_fixed_costs, validate
@@ -99,8 +99,20 @@ BLOCK_PAIRS = 100_000
 #: applications per chunk (one vectorised evaluation; the unit of work on Dask)
 CHUNK_SIZE = 250
 
-_IDS = list(REGISTRY)
-_NO_BINDING = len(_IDS)             # binding index of "none counted" (an infinite margin)
+#: binding index of "none counted" (an infinite margin); a constraint's index is its place in the registry's order
+#: (:func:`_index`; a check added with ``register`` included)
+_NO_BINDING = np.iinfo(np.int16).max
+_INDEX: dict = {}
+
+
+def _index(cid: str) -> int:
+    """The binding index of constraint ``cid``: its place in the registry's current order."""
+    got = _INDEX.get(version())
+    if got is None:
+        got = {c: i for i, c in enumerate(REGISTRY)}
+        _INDEX.clear()
+        _INDEX[version()] = got
+    return got[cid]
 
 
 def margins_and_binding(g: evaluate.Group, objective_only: bool = True, rows=None) -> tuple[np.ndarray, np.ndarray]:
@@ -108,7 +120,7 @@ def margins_and_binding(g: evaluate.Group, objective_only: bool = True, rows=Non
 
     The smallest margin is :meth:`~synth.design.evaluate.Group.min_margin` (the same constraints: non-advisory,
     and with ``objective_only`` those counted in the margin objective); the binding one is where it is reached
-    (``len(REGISTRY)`` when no constraint counts).
+    (``_NO_BINDING`` when no constraint counts).
     """
     take = (lambda x: x) if rows is None else (lambda x: np.asarray(x)[rows])  # noqa: E731
     n = len(g) if rows is None else len(rows)
@@ -121,7 +133,7 @@ def margins_and_binding(g: evaluate.Group, objective_only: bool = True, rows=Non
         if objective_only and c.objective_unless is not None:
             m = np.where(take(np.asarray(g.values[c.objective_unless], dtype=float)) > 0, np.inf, m)
         stack.append(m)
-        idx.append(_IDS.index(cid))
+        idx.append(_index(cid))
     if not stack:
         return np.full(n, np.inf), np.full(n, _NO_BINDING, np.int16)
     M = np.stack(stack)
@@ -130,12 +142,14 @@ def margins_and_binding(g: evaluate.Group, objective_only: bool = True, rows=Non
     return m, np.where(np.isinf(m) & (m > 0), _NO_BINDING, np.asarray(idx)[k]).astype(np.int16)
 
 
-#: constraint id by binding index (the last: "none counted"), to name a whole array of bindings at once
-_NAMES = np.array(_IDS + [""], dtype=object)
+def _names(b) -> np.ndarray:
+    """The constraint ids of binding indices ``b`` ("" for none counted), a whole array at once."""
+    names = np.array(list(REGISTRY) + [""], dtype=object)
+    return names[np.minimum(b, len(names) - 1)]
 
 
 def _name(b: int) -> str:
-    return "" if b >= _NO_BINDING else _IDS[int(b)]
+    return str(_names(int(b)))
 
 
 def spring_group(apps, keys: dict, k, options, settings: evaluate.Settings, spring_keys=None) -> evaluate.Group:
@@ -467,7 +481,7 @@ def _stage_margin(grp: evaluate.Group, ids: tuple):
     for cid in ids:
         if cid in grp.margins and not REGISTRY[cid].advisory:
             stack.append(grp.margins[cid])
-            idx.append(_IDS.index(cid))
+            idx.append(_index(cid))
     if not stack:
         return np.full(len(grp), np.inf), np.full(len(grp), _NO_BINDING, np.int16)
     M = np.stack(stack)
@@ -518,7 +532,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             ptr, o, m, b = grouped[s]
             feasible[s] = [o[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
             margin[s] = [m[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
-            binding[s] = [_NAMES[np.minimum(b[ptr[g]:ptr[g + 1]], _NO_BINDING)] for g in range(g0, g1)]
+            binding[s] = [_names(b[ptr[g]:ptr[g + 1]]) for g in range(g0, g1)]
             complete &= (np.diff(ptr)[g0:g1] > 0)[group[s]]
         d = inputs[i]
         af = AppFeasibility(
@@ -526,7 +540,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             core_cost_eur=cat.space.tables["core"]["cost_eur"][crow[sel]].astype(float), core_margin=core_m[sel],
             group=group, feasible=feasible, option_margin=margin, volume=float(volumes[i]),
             option_cost_eur={"spring": cat.spring_cost_eur(float(apps.spring_stiffness_nm_per_deg[i]))},
-            core_binding=_NAMES[np.minimum(core_b[sel], _NO_BINDING)], option_binding=binding,
+            core_binding=_names(core_b[sel]), option_binding=binding,
             core_rows=crow[sel])
         if not complete.any():
             af.note = _why(cat, i, a, crow, all_m, all_b, sel, k, gid, first_group, pairs)
