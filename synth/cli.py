@@ -41,7 +41,6 @@ import sys
 import threading
 from dataclasses import dataclass
 
-from synth.fingerprint import version_text
 
 __all__ = ["main", "SCENES", "Scene", "EXIT_CODES", "JSON_HELP", "EX_SOFTWARE", "scene_parser"]
 
@@ -102,6 +101,8 @@ class _VersionAction(argparse.Action):
         super().__init__(option_strings, dest, nargs=0, help="print the synth version and the catalog hash, and exit")
 
     def __call__(self, parser, namespace, values, option_string=None):
+        # imported here: hashing the catalogs (hashlib, pickle) would add about 7 ms to every start-up, --help too
+        from synth.fingerprint import version_text
         print(version_text(getattr(namespace, "catalogs", None) or ()))
         parser.exit(0)
 
