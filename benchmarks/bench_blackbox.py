@@ -40,7 +40,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from synth.data import case_path  # noqa: E402
 from synth.data.generated_applications import generate  # noqa: E402
 from synth.optimise import solve  # noqa: E402
-from synth.schema import load_input  # noqa: E402
+from synth.io.documents import load_input  # noqa: E402
 
 LIMIT_S = 2.0
 TOL = 0.01

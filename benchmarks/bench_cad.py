@@ -14,7 +14,8 @@ import sys
 import time
 from pathlib import Path
 
-from synth import flowchart, schema
+from synth import flowchart
+from synth.io import documents
 from synth.cad import geometry_from
 from synth.cad.assembly import build
 from synth.cad.export import export_model
@@ -24,7 +25,7 @@ from synth.data import CASES_DIR as CASES
 
 
 def families():
-    d1, d3 = (schema.load_input(CASES / f"{c}.yaml") for c in ("case1", "case3"))
+    d1, d3 = (documents.load_input(CASES / f"{c}.yaml") for c in ("case1", "case3"))
     return {
         "case1 (standard, axial, rect. wire, double ecc., toothed)": d1,
         "case3 (standard, radial only, round wire, double ecc., flat)": d3,

@@ -28,29 +28,29 @@ def main(argv=None) -> int:
     ap.add_argument("--workers", type=int, nargs="*", default=[1, 2, 4])
     ap.add_argument("--runs", type=int, default=1)
     args = ap.parse_args(argv)
-    from synth.bulk import run as R
+    from synth.bulk import run
     from synth.bulk.portfolio import write_table
     from synth.bulk.sample import sample_portfolio
-    cores = R.usable_cores()
+    cores = run.usable_cores()
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         path = write_table(sample_portfolio(args.n, seed=0), Path(tmp) / "p.parquet")
-        R.run_portfolio(path, Path(tmp) / "warm.parquet", chunk_size=args.chunk, diagnose=False)  # kernels, caches
+        run.run_portfolio(path, Path(tmp) / "warm.parquet", chunk_size=args.chunk, diagnose=False)  # kernels, caches
 
         def timed(label, **kw):
             t = []
             for r in range(args.runs):
                 t0 = time.perf_counter()
-                rep = R.run_portfolio(path, Path(tmp) / f"r{len(rows)}_{r}.parquet", chunk_size=args.chunk,
+                rep = run.run_portfolio(path, Path(tmp) / f"r{len(rows)}_{r}.parquet", chunk_size=args.chunk,
                                       diagnose=False, **kw)
                 t.append(time.perf_counter() - t0)
                 assert rep.complete
             rows.append((label, statistics.median(t), rep.engine))
 
         timed("in-process")
-        default_choice = {w: R.dask_pointless(None, w, -(-args.n // args.chunk)) for w in args.workers}
-        real = R.dask_pointless
-        R.dask_pointless = lambda *a, **k: None  # measure Dask even where the command would not use it
+        default_choice = {w: run.dask_pointless(None, w, -(-args.n // args.chunk)) for w in args.workers}
+        real = run.dask_pointless
+        run.dask_pointless = lambda *a, **k: None  # measure Dask even where the command would not use it
         try:
             for w in args.workers:
                 timed(f"LocalCluster, {w} worker{'s' if w > 1 else ''}", engine="dask", workers=w)
@@ -58,7 +58,7 @@ def main(argv=None) -> int:
             with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cl:
                 timed("existing cluster (--scheduler), 2 workers", engine="dask", scheduler=cl.scheduler_address)
         finally:
-            R.dask_pointless = real
+            run.dask_pointless = real
     base = rows[0][1]
     print(f"## synth bulk: in-process against Dask ({args.n} generated applications, chunks of {args.chunk}, no "
           f"diagnosis; {cores} usable cores, shared with other jobs)\n")

@@ -24,7 +24,7 @@ import numpy as np
 
 from synth.bulk.engine import screen_applications
 from synth.data.generated_applications import generate
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL
 from synth.design.space import PART_KEYS, space
@@ -49,7 +49,7 @@ def failures_at_full(df, apps, chunk: int = 2000) -> collections.Counter:
         one = [sp.design_attributes({k: df.at[i, f"part_{k}"] for k in PART_KEYS}) for i in sel]
         attrs = {t: {k: np.concatenate([np.asarray(x[t][k]) for x in one]) for k in one[0][t]} for t in one[0]}
         with np.errstate(all="ignore"):
-            groups = evaluate_design(Applications.of([apps[i] for i in sel]), attrs, E.Settings(fidelity="full"),
+            groups = evaluate_design(Applications.of([apps[i] for i in sel]), attrs, evaluate.Settings(fidelity="full"),
                                      detail=False)
         bad = np.zeros(len(sel), dtype=bool)
         for g in groups.values():

@@ -14,7 +14,8 @@ from __future__ import annotations
 import sys
 import time
 
-from synth import flowchart, schema
+from synth import flowchart
+from synth.io import documents
 
 from synth.data import CASES_DIR as CASES
 
@@ -32,7 +33,7 @@ def main(cases=("case1_as_run", "case3")) -> None:
     print("| case | fidelity | time per run [ms] | EOL damping [Nm] | difference to full | verdict |")
     print("|---|---|---|---|---|---|")
     for name in cases:
-        d = schema.load_input(CASES / f"{name}.yaml")
+        d = documents.load_input(CASES / f"{name}.yaml")
         ref = None
         for fid in ("full", "screening-only", "screening"):
             t, r = time_run(d, flowchart.Settings(fidelity=fid))

@@ -38,7 +38,7 @@ sys.path.insert(0, str(ROOT))
 from synth.data.generated_applications import generate  # noqa: E402
 from synth.design.constraints import FEAS_TOL  # noqa: E402
 from synth.design.evaluate import Settings  # noqa: E402
-from synth.kernels import torsion_spring as K  # noqa: E402
+from synth.kernels import main_spring  # noqa: E402
 
 # --------------------------------------------------------------------------------------- 1. numba costs
 
@@ -49,18 +49,18 @@ if sys.argv[1:] == ["bulk"]:
 t0 = time.perf_counter()
 import numpy as np
 t1 = time.perf_counter()
-import synth.kernels.torsion_spring as K
+from synth.kernels import main_spring
 t2 = time.perf_counter()
 out = {"import_numpy_s": t1 - t0, "import_synth_kernels_s": t2 - t1, "numba_after_import": "numba" in sys.modules}
 t = time.perf_counter(); import numba; out["import_numba_s"] = time.perf_counter() - t
-t = time.perf_counter(); K.load_kernels(); out["load_kernel_module_s"] = time.perf_counter() - t
-opts = K.spring_options(E_mpa=206000, Rm_mpa=2004, sigma_y_mpa=1763.5, sigma_A0_mpa=701.4, b_mm=2.3, h_mm=2.3,
+t = time.perf_counter(); main_spring.load_kernels(); out["load_kernel_module_s"] = time.perf_counter() - t
+opts = main_spring.spring_options(E_mpa=206000, Rm_mpa=2004, sigma_y_mpa=1763.5, sigma_A0_mpa=701.4, b_mm=2.3, h_mm=2.3,
                         round_wire=True, mbd_mm=np.arange(30.0, 50.0))
-keys = K.spring_keys(spring_torque_nominal_nm=np.linspace(0.5, 3, 8), housing_height_mm=9.0, housing_outer_diameter_mm=50.0,
+keys = main_spring.spring_keys(spring_torque_nominal_nm=np.linspace(0.5, 3, 8), housing_height_mm=9.0, housing_outer_diameter_mm=50.0,
                      housing_inner_diameter_mm=30.0, stiffness_nm_per_deg=0.02, torque_tolerance_pct=5, theta_pp_deg=16)
-calls = [("margins", lambda p: K.margins(keys, opts, parallel=p)),
-         ("first_feasible", lambda p: K.first_feasible(keys, opts, parallel=p)),
-         ("max_min_margin", lambda p: K.max_min_margin(keys, opts, parallel=p))]
+calls = [("margins", lambda p: main_spring.margins(keys, opts, parallel=p)),
+         ("first_feasible", lambda p: main_spring.first_feasible(keys, opts, parallel=p)),
+         ("max_min_margin", lambda p: main_spring.max_min_margin(keys, opts, parallel=p))]
 for par in (False, True):
     for name, fn in calls:
         t = time.perf_counter(); fn(par); out[name + ("_parallel" if par else "") + "_first_call_s"] = time.perf_counter() - t
@@ -101,7 +101,7 @@ def numba_costs(runs: int) -> None:
           f"{numba_wall:.3f} s. `import synth.kernels` imports numba: {cold['numba_after_import']}.\n")
     print("| step | empty cache (compiles) s | cached, bare process s | cached, after `synth.optimise` (the bulk path) s |")
     print("|---|---|---|---|")
-    label = {"import_synth_kernels_s": "`import synth.kernels.torsion_spring` (pandas, synth.model; not numba)",
+    label = {"import_synth_kernels_s": "`import synth.kernels.main_spring` (pandas, synth.model; not numba)",
              "import_numba_s": "`import numba`", "load_kernel_module_s": "load the kernel module (decorators)"}
     tot = [0.0, 0.0, 0.0]
     for k in keys:
@@ -130,7 +130,7 @@ def sample(n_apps: int, seed: int):
     keys, _ = b._spring_keys(rows)
     lists, list_of, _, _, _ = b._spring_app_lists({"cost": 1.0})
     app = np.asarray(keys["app"], dtype=np.int64)
-    kk = K.keys_of_rows(b.apps, keys)
+    kk = main_spring.keys_of_rows(b.apps, keys)
     grp = list_of[app]
     keep = np.flatnonzero(grp >= 0)   # applications whose range holds springs
     prep = time.perf_counter() - t0
@@ -141,9 +141,9 @@ def _warm(keys, options) -> None:
     """Load every kernel (serial and parallel) once, so no timing below includes numba's load or compile."""
     k = keys.take(np.arange(2))
     for par in (False, True):
-        K.margins(k, options, parallel=par)
-        K.first_feasible(k, options, parallel=par)
-        K.max_min_margin(k, options, parallel=par)
+        main_spring.margins(k, options, parallel=par)
+        main_spring.first_feasible(k, options, parallel=par)
+        main_spring.max_min_margin(k, options, parallel=par)
 
 
 def _best(fn, repeat):
@@ -164,21 +164,21 @@ def pairs_table(keys, options, orders, key_group, repeat: int) -> None:
     rows = []
 
     chunks = [keys.take(np.arange(lo, min(lo + 100, n))) for lo in range(0, n, 100)]  # (a): 56 bytes per pair
-    buf = np.empty((100, len(options), len(K.MARGIN_NAMES)))
+    buf = np.empty((100, len(options), len(main_spring.MARGIN_NAMES)))
 
     def margins_all(engine, parallel=False):
         for sub in chunks:
-            K.margins(sub, options, engine=engine, parallel=parallel, out=buf[:len(sub)] if engine == "numba" else None)
+            main_spring.margins(sub, options, engine=engine, parallel=parallel, out=buf[:len(sub)] if engine == "numba" else None)
         return n * len(options)
 
     _warm(keys, options)
     for label, fn in [
         ("(a) margins (every key x every catalog spring)", lambda e, p: margins_all(e, p)),
-        ("(b) first feasible in cost order", lambda e, p: int(K.first_feasible(
+        ("(b) first feasible in cost order", lambda e, p: int(main_spring.first_feasible(
             keys, options, orders, key_group=key_group, tol=FEAS_TOL, engine=e, parallel=p).visited.sum())),
-        ("(c) max-min margin (nearest design)", lambda e, p: int(K.max_min_margin(
+        ("(c) max-min margin (nearest design)", lambda e, p: int(main_spring.max_min_margin(
             keys, options, orders, key_group=key_group, engine=e, parallel=p).visited.sum())),
-        ("(d) any feasible", lambda e, p: int(K.any_feasible(
+        ("(d) any feasible", lambda e, p: int(main_spring.any_feasible(
             keys, options, orders, key_group=key_group, tol=FEAS_TOL, engine=e, parallel=p).visited.sum())),
     ]:
         t_np, pairs_np = _best(lambda: fn("numpy", False), 1)
@@ -206,14 +206,14 @@ def pairs_table(keys, options, orders, key_group, repeat: int) -> None:
 def apps_table(keys, options, orders, key_group, n_apps, n_numpy, prep, repeat, app) -> None:
     _warm(keys, options)
     rows = []
-    t_nb, r_nb = _best(lambda: K.first_feasible(keys, options, orders, key_group=key_group, tol=FEAS_TOL), repeat)
+    t_nb, r_nb = _best(lambda: main_spring.first_feasible(keys, options, orders, key_group=key_group, tol=FEAS_TOL), repeat)
     rows.append(("numba", n_apps, len(keys), t_nb, int(r_nb.visited.sum())))
-    t_par, r_par = _best(lambda: K.first_feasible(keys, options, orders, key_group=key_group, tol=FEAS_TOL,
+    t_par, r_par = _best(lambda: main_spring.first_feasible(keys, options, orders, key_group=key_group, tol=FEAS_TOL,
                                                   parallel=True), repeat)
     rows.append(("numba parallel=True", n_apps, len(keys), t_par, int(r_par.visited.sum())))
     sel = np.flatnonzero(app < n_numpy)
     sub = keys.take(sel)
-    t_np, r_np = _best(lambda: K.first_feasible(sub, options, orders, key_group=key_group[sel],
+    t_np, r_np = _best(lambda: main_spring.first_feasible(sub, options, orders, key_group=key_group[sel],
                                                 tol=FEAS_TOL, engine="numpy"), 1)
     rows.append(("numpy (reference, blocks)", n_numpy, len(sub), t_np, int(r_np.visited.sum())))
     same = np.array_equal(r_np.index, r_nb.index[sel]) and np.array_equal(r_par.index, r_nb.index)

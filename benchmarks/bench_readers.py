@@ -125,11 +125,11 @@ def wire_catalog(folder: Path, n: int = 50_000) -> Path:
     return d
 
 
-#: hostile design inputs (read by ``synth.schema.load_input``), by name: a function of a folder -> the file
+#: hostile design inputs (read by ``synth.io.documents.load_input``), by name: a function of a folder -> the file
 HOSTILE = {"yaml_flat_list": yaml_flat_list, "json_flat_list": json_flat_list, "toml_many_keys": toml_many_keys,
            "xlsx_shared_strings": xlsx_shared_strings, "xlsx_styles": xlsx_styles, "ods_content": ods_content}
 
-_GATE = "from synth.schema import load_input\ntry:\n    load_input({path!r})\n    print('read')\nexcept Exception as e:\n    print('refused: ' + str(e).splitlines()[0][:90])\n"
+_GATE = "from synth.io.documents import load_input\ntry:\n    load_input({path!r})\n    print('read')\nexcept Exception as e:\n    print('refused: ' + str(e).splitlines()[0][:90])\n"
 _NAIVE = {
     ".yaml": "import yaml\nyaml.safe_load(open({path!r}).read())\nprint('read')\n",
     ".json": "import json\njson.load(open({path!r}))\nprint('read')\n",

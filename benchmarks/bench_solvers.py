@@ -21,7 +21,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from synth.data.generated_applications import generate  # noqa: E402
 from synth.optimise import solve  # noqa: E402
 from synth.data import case_path
-from synth.schema import load_input  # noqa: E402
+from synth.io.documents import load_input  # noqa: E402
 
 SOLVERS = ["enumerate", "milp-highs", "minlp", "milp-cvxpy", "blackbox", "flowchart"]
 

@@ -15,7 +15,7 @@ import sys
 
 import numpy as np
 
-from synth import parts as P
+from synth.parts import mu
 from synth.bulk.engine import screen_applications
 from synth.data.generated_applications import generate
 from synth.model import damping as D
@@ -33,7 +33,7 @@ def violated(df) -> collections.Counter:
 
 
 def spring_share(a, env: str, pivot_mm: float) -> float:
-    rho = D.lever_ratio(pivot_mm, P.mu("pivot_bushing", env), a.working_arm_mm, a.differential_angle_deg)
+    rho = D.lever_ratio(pivot_mm, mu("pivot_bushing", env), a.working_arm_mm, a.differential_angle_deg)
     split = D.damping_split(a.calculated_torque_target_nm, a.damping_target_nm, rho)
     return float(split["spring_torque_nominal_nm"]) / a.calculated_torque_target_nm
 

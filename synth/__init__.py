@@ -36,7 +36,8 @@ if TYPE_CHECKING:  # pragma: no cover - types only
     from synth.design.result import Result
     from synth.schema import DesignInput
 
-__version__ = "0.1.0"
+from synth import display as _display
+from synth.version import __version__
 
 __all__ = ["load", "synthesise", "run_flowchart", "verify", "screen", "write_report", "capability", "settings",
            "Result", "DesignInput", "Settings", "InputError", "__version__"]
@@ -52,6 +53,15 @@ def __getattr__(name: str) -> Any:
         module, attr = _LAZY[name]
         return getattr(importlib.import_module(module), attr)
     raise AttributeError(f"module 'synth' has no attribute {name!r}")
+
+
+def _result_digest(result) -> str:
+    """A result's view in a notebook: the report's digest (:mod:`synth.display`)."""
+    from synth.report.html import digest_html
+    return digest_html(result)
+
+
+_display.HTML_VIEWS["Result"] = _result_digest
 
 
 def settings(**kw) -> "Settings":
@@ -74,7 +84,8 @@ def load(path: "str | Path") -> "DesignInput":
     from pathlib import Path
 
     from synth import schema
-    data = schema.read_mapping(Path(path))
+    from synth.io import documents
+    data = documents.read_mapping(Path(path))
     return schema.validate({k: v for k, v in data.items() if v is not None})
 
 
@@ -93,14 +104,14 @@ def _rules(rules, d):
     file), else those of the input file ``d`` (its ``rules:`` section), else the rules in force."""
     from pathlib import Path
 
-    from synth.design import rules as R
+    from synth.design.rules import Rules, active, read_rules
     if rules is not None:
-        return R.read_rules(rules) if isinstance(rules, (str, Path)) else R.Rules.from_mapping(rules)
+        return read_rules(rules) if isinstance(rules, (str, Path)) else Rules.from_mapping(rules)
     if isinstance(d, (str, Path)) and str(d).lower().endswith((".yaml", ".yml", ".toml", ".json")):
-        found = R.read_rules(d, "input file", section_only=True)
+        found = read_rules(d, "input file", section_only=True)
         if not found.empty():
             return found
-    return R.active()
+    return active()
 
 
 def run_flowchart(d: "DesignInput | str | Path | dict", parts: dict | None = None, *, rules=None,
@@ -198,7 +209,7 @@ def screen(applications, *, objective: str = "standard", fidelity: str = "screen
     """
     import pandas as pd
 
-    from synth.bulk import portfolio as P
+    from synth.bulk.portfolio import read_portfolio, records
     from synth.bulk.run import compute_chunk, default_chunk_size, result_columns
     from synth.errors import InputError, Problem
     from synth.report.progress import Progress
@@ -207,14 +218,14 @@ def screen(applications, *, objective: str = "standard", fidelity: str = "screen
         raise InputError(Problem("chunk_size", chunk_size, "an integer >= 1"))
     if isinstance(applications, pd.DataFrame):
         table = applications.reset_index(drop=True)
-        recs = P.records(table)
+        recs = records(table)
     elif isinstance(applications, (list, tuple)):
         import dataclasses
         recs = [{k: v for k, v in dataclasses.asdict(_input(a)).items() if v is not None} for a in applications]
         table = pd.DataFrame(recs)
     else:
-        table = P.read_portfolio(applications)
-        recs = P.records(table)
+        table = read_portfolio(applications)
+        recs = records(table)
     chunks = []
     bar = Progress(total=len(recs), desc="synth screen") if progress else None
     try:

@@ -41,7 +41,8 @@ import sys
 import threading
 from dataclasses import dataclass
 
-__all__ = ["main", "SCENES", "Scene", "EXIT_CODES", "JSON_HELP", "EX_SOFTWARE", "scene_parser", "version_text"]
+
+__all__ = ["main", "SCENES", "Scene", "EXIT_CODES", "JSON_HELP", "EX_SOFTWARE", "scene_parser"]
 
 #: EX_SOFTWARE of BSD ``sysexits.h``: an internal software error.
 EX_SOFTWARE = 70
@@ -95,27 +96,13 @@ SCENES: dict[str, Scene] = {
 }
 
 
-def version_text(catalog_dirs=()) -> str:
-    """``synth 0.1.0 (catalogs sha256 1a2b3c4d5e6f)``: the package version and a hash of the catalog CSVs in use.
-
-    The hash covers the built-in ``catalogs/*.csv`` and the CSVs of every user folder
-    (``--catalogs``, ``SYNTH_CATALOGS``), file names and bytes: two runs with the same hash read the same data.
-    """
-    from pathlib import Path
-
-    from synth import __version__
-    from synth.fingerprint import catalogs_sha256
-    user = [Path(d) for d in catalog_dirs] + [Path(p) for p in os.environ.get("SYNTH_CATALOGS", "").split(os.pathsep) if p]
-    digest = catalogs_sha256(user)
-    extra = f"; user catalogs: {', '.join(str(d) for d in user)}" if user else ""
-    return f"synth {__version__} (catalogs sha256 {digest[:12]}{extra})"
-
-
 class _VersionAction(argparse.Action):
     def __init__(self, option_strings, dest, **kw):
         super().__init__(option_strings, dest, nargs=0, help="print the synth version and the catalog hash, and exit")
 
     def __call__(self, parser, namespace, values, option_string=None):
+        # imported here: hashing the catalogs (hashlib, pickle) would add about 7 ms to every start-up, --help too
+        from synth.fingerprint import version_text
         print(version_text(getattr(namespace, "catalogs", None) or ()))
         parser.exit(0)
 

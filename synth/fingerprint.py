@@ -1,7 +1,7 @@
 """Fingerprints of the data and code a result depends on, and the on-disk cache they key.
 
 * :func:`catalogs_sha256`: the built-in ``catalogs/*.csv`` and every user folder's CSVs (file names
-  and bytes): two runs with the same hash read the same data (``synth --version`` prints it).
+  and bytes): two runs with the same hash read the same data (``synth --version`` prints it, :func:`version_text`).
 * :func:`cached`: a value built once per fingerprint and kept as a pickle in the user's cache folder
   (``SYNTH_CACHE_DIR``, else ``$XDG_CACHE_HOME/synth``, else ``~/.cache/synth``; ``SYNTH_CACHE_DIR=off``
   disables it). A file that cannot be read or written is rebuilt or skipped silently: the cache only
@@ -18,7 +18,9 @@ import os
 import pickle
 from pathlib import Path
 
-__all__ = ["builtin_catalog_dir", "catalogs_sha256", "file_sha256", "source_stamp", "cached"]
+from synth.version import __version__
+
+__all__ = ["builtin_catalog_dir", "catalogs_sha256", "file_sha256", "source_stamp", "cached", "version_text"]
 
 #: cached versions kept per name (several catalog settings in use side by side)
 _KEEP = 8
@@ -77,7 +79,6 @@ def cached(name: str, key_parts: list, build):
 
     ``key_parts``: strings or paths (a path contributes its bytes: the source files of the builder).
     """
-    from synth import __version__
     h = hashlib.sha256(__version__.encode())
     for k in key_parts:
         h.update(Path(k).read_bytes() if isinstance(k, Path) else str(k).encode())
@@ -104,3 +105,15 @@ def cached(name: str, key_parts: list, build):
         except OSError:
             pass
     return value
+
+
+def version_text(catalog_dirs=()) -> str:
+    """``synth 0.1.0 (catalogs sha256 1a2b3c4d5e6f)``: the package version and a hash of the catalog CSVs in use.
+
+    The hash covers the built-in ``catalogs/*.csv`` and the CSVs of every user folder
+    (``--catalogs``, ``SYNTH_CATALOGS``), file names and bytes: two runs with the same hash read the same data.
+    """
+    user = [Path(d) for d in catalog_dirs] + [Path(p) for p in os.environ.get("SYNTH_CATALOGS", "").split(os.pathsep) if p]
+    digest = catalogs_sha256(user)
+    extra = f"; user catalogs: {', '.join(str(d) for d in user)}" if user else ""
+    return f"synth {__version__} (catalogs sha256 {digest[:12]}{extra})"

@@ -24,8 +24,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from synth import catalog, parts as P
-from synth.design import evaluate as E
+from synth import catalog
+
+from synth.parts import arrays, next_catalog_length_mm
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL
 from synth.design.rules import echo
@@ -34,11 +36,11 @@ from synth.design.result import NOT_VERIFIED, Check, Result, checks_of, plain
 from synth.design.space import (PART_KEYS, axial_attributes, bolt_attributes, bushing_attributes,
                                 core_attributes, space, spring_attributes)
 from synth.design.verify import evaluate_design, inputs_of, values_of, verify
-from synth.model import ball_bearing as s1, damping as s3, pivot as s2
+from synth.model import ball_bearing, damping, pivot
 
 __all__ = ["Settings", "run", "STEP_NAMES", "PART_KEYS"]
 
-Settings = E.Settings
+Settings = evaluate.Settings
 
 STEP_NAMES = {
     0: "Execution selection", 1: "Ball bearing", 2: "Pivot diameter", 3: "Damping", 4: "Pivot bushing",
@@ -78,7 +80,7 @@ class _Walk:
     def __init__(self, d, settings: Settings):
         self.d, self.s = d, settings
         self.apps = Applications.of([d])
-        self.p = P.arrays()
+        self.p = arrays()
         self.notes: list = []
         self.steps: list = [0]
         self.required: dict = {}
@@ -86,13 +88,13 @@ class _Walk:
     # --- steps 1-3 ---------------------------------------------------------------------------------------
     def core_group(self, bearing: int, cls: float, supplier: int, pad: int):
         attrs = core_attributes(self.p, [bearing], [cls], [supplier], [pad])
-        return attrs, E.core(self.apps, _ONE, attrs, self.s, detail=True)
+        return attrs, evaluate.core(self.apps, _ONE, attrs, self.s, detail=True)
 
     def step1_3(self):
         d, p = self.d, self.p
         hl = float(self.apps.hubload_nominal_n[0])
         self.steps.append(1)
-        bearing = p.bearing.code(str(s1.select_bearing(hl, d.engine_fuel)[0]))
+        bearing = p.bearing.code(str(ball_bearing.select_bearing(hl, d.engine_fuel)[0]))
         self.steps.append(2)
         if d.pivot_bushing_radial_thickness_mm is None:
             supplier = int(np.argmax(p.bushing.radial_thickness_mm))
@@ -102,7 +104,7 @@ class _Walk:
             supplier = int(np.flatnonzero(np.isclose(p.bushing.radial_thickness_mm,
                                                      float(d.pivot_bushing_radial_thickness_mm)))[0])
         arms, classes, _ = p.table2[bearing]
-        column, in_table = s2.table2_column(arms, float(d.working_arm_mm)) if len(arms) else (0, False)
+        column, in_table = pivot.table2_column(arms, float(d.working_arm_mm)) if len(arms) else (0, False)
         std = float(classes[column]) if len(arms) else float(d.pivot_class_diameter_mm or 0.0)
         cls = std if d.pivot_class_diameter_mm is None else float(d.pivot_class_diameter_mm)
         if d.pivot_class_diameter_mm is None:
@@ -123,7 +125,7 @@ class _Walk:
         if cg.values["axial_damping_present"][0] > 0:
             # Tables 3-4 are entered with the axial damping of eq. (9) itself (both friction faces)
             dax = float(cg.values["axial_damping_nm"][0])
-            row, within = s3.axial_group_class(dax, p.damper_pad.max_axial_damping_nm)
+            row, within = damping.axial_group_class(dax, p.damper_pad.max_axial_damping_nm)
             pad = int(row)
             if not within:
                 self.notes.append(f"axial damping {dax:.3g} Nm above every damper-pad class of Table 3: the largest "
@@ -139,20 +141,20 @@ class _Walk:
         if not self.apps.met("durability")[0]:
             self.notes.append("step 4: durability test missing, the bushing length cannot be sized; the shortest "
                               "catalog length that fits is taken and its wear checks are not verified")
-            g = E.bushing(self.apps, cg, np.zeros(len(lengths), int),
+            g = evaluate.bushing(self.apps, cg, np.zeros(len(lengths), int),
                           bushing_attributes(p, np.full(len(lengths), sup), lengths), self.s)
             fits = np.flatnonzero(g.margins["bushing_length"] >= -FEAS_TOL)
             return bushing_attributes(p, [sup], [lengths[fits[0] if len(fits) else 0]])
         if self.s.bushing_length_scheme == "thesis":
             start, step = catalog.constant("bush_length_ratio_start"), catalog.constant("bush_length_ratio_step")
             d_p = float(cg.values["pivot_diameter_mm"][0])
-            l_max = float(E.bushing(self.apps, cg, _ONE, bushing_attributes(p, [sup], [d_p]), self.s)
+            l_max = float(evaluate.bushing(self.apps, cg, _ONE, bushing_attributes(p, [sup], [d_p]), self.s)
                           .values["pivot_bushing_length_max_mm"][0])
             count = int(np.clip(np.ceil((l_max / d_p - start) / step) + 1, 1, 64))  # bounded, whatever the input
             cand = (start + step * np.arange(count)) * d_p
         else:
             cand = lengths
-        g = E.bushing(self.apps, cg, np.zeros(len(cand), int), bushing_attributes(p, np.full(len(cand), sup), cand),
+        g = evaluate.bushing(self.apps, cg, np.zeros(len(cand), int), bushing_attributes(p, np.full(len(cand), sup), cand),
                       self.s)
         ok = _passes(g)
         fits = g.margins["bushing_length"] >= -FEAS_TOL
@@ -163,7 +165,7 @@ class _Walk:
             self.notes.append("no bushing length passes every step 4 check: the thesis's next move is a larger pivot "
                               "diameter")
         length = float(cand[i])
-        part = float(P.next_catalog_length_mm(length, lengths))
+        part = float(next_catalog_length_mm(length, lengths))
         self.required["pivot_bushing_length_required_mm"] = length
         if part != length:
             self.notes.append(f"pivot bushing: {length:g} mm required; the next catalog length of supplier "
@@ -182,13 +184,13 @@ class _Walk:
         zeta = catalog.constant("cone_spring_default_aspect_ratio")
         phi = catalog.constant("cone_spring_nominal_deflection_ratio")
         dax = float(cg.values["axial_damping_nm"][0])
-        spacer = int(s3.axial_group_class(dax, p.endcap_spacer.max_axial_damping_nm)[0])
+        spacer = int(damping.axial_group_class(dax, p.endcap_spacer.max_axial_damping_nm)[0])
         self.notes.append(f"plastic elements initialised from Tables 3-4 at the axial damping {dax:.3g} Nm: damper pad "
                           f"{p.damper_pad.key[pad]}, endcap spacer {p.endcap_spacer.key[spacer]}")
         attempt = 1
         while True:
             ax = axial_attributes(p, [spacer], [zeta], [phi], [0.0])
-            g = E.axial(self.apps, cg, _ONE, ax, self.s.judge)  # the loop continues where the judge fails
+            g = evaluate.axial(self.apps, cg, _ONE, ax, self.s.judge)  # the loop continues where the judge fails
             if g.margins["damping_eol"][0] >= -FEAS_TOL:
                 return attrs_core, ax, cg
             # step 5: the EOL damping is below its limit: larger contact surfaces (the next class of each element
@@ -227,7 +229,7 @@ class _Walk:
         m, w, dd = (x.ravel() for x in np.meshgrid(np.arange(len(p.spring_material)), np.arange(len(p.spring_wire)),
                                                    mbd, indexing="ij"))
         opts = spring_attributes(p, m, w, dd)
-        g = E.spring(self.apps, E.spring_keys(cg, _ONE), np.zeros(len(m), int), opts, self.s)
+        g = evaluate.spring(self.apps, evaluate.spring_keys(cg, _ONE), np.zeros(len(m), int), opts, self.s)
         ok = _passes(g)
         cost = opts["cost_eur_times_stiffness"] / float(self.apps.spring_stiffness_nm_per_deg[0])
         rnd = np.asarray(opts["round_wire"], dtype=bool)
@@ -265,7 +267,7 @@ class _Walk:
             self.notes.append("step 10 not run: fixation data missing; the first bolt of the escalation is shown "
                               "and its checks are not verified")
             return {k: v[:1] for k, v in opts.items()}
-        g = E.bolt(self.apps, cg, np.zeros(len(rows), int), opts, self.s)
+        g = evaluate.bolt(self.apps, cg, np.zeros(len(rows), int), opts, self.s)
         ok = g.margins["bolt_yield"] >= -FEAS_TOL
         i = int(np.argmax(ok)) if ok.any() else len(rows) - 1
         return {k: v[[i]] for k, v in opts.items()}
@@ -296,7 +298,7 @@ def _wire_code(p, section: str, size_mm) -> int:
 def _stopped(walk: _Walk, stop: _Stop) -> Result:
     """The result of a run the procedure could not complete: the checks of what ran, the rest not verified."""
     apps, d = walk.apps, walk.d
-    groups = {"input": E.inputs(apps, _ONE), **stop.groups}
+    groups = {"input": evaluate.inputs(apps, _ONE), **stop.groups}
     checks = checks_of(groups, apps)
     done = {c.id for c in checks}
     from synth.design.constraints import REGISTRY

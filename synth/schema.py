@@ -35,7 +35,6 @@ import math
 import re
 import sys
 from dataclasses import dataclass, field, fields as dc_fields, make_dataclass
-from pathlib import Path
 from typing import Any
 
 from synth import catalog
@@ -44,7 +43,7 @@ from synth.io.limits import short
 from synth.io.numbers import is_not_given, number_from_text
 from synth.io.numbers import parse_number_list as _parse_number_list
 
-__all__ = ["Field", "FIELDS", "SECTIONS", "OWNERS", "PART_FIELDS", "plausibility", "UNIT_SLIPS", "DesignInput", "validate", "load_input", "read_mapping", "field_by_name",
+__all__ = ["Field", "FIELDS", "SECTIONS", "OWNERS", "PART_FIELDS", "plausibility", "UNIT_SLIPS", "DesignInput", "validate", "field_by_name",
            "parse_number_list"]
 
 INF = math.inf
@@ -80,9 +79,9 @@ class Field:
     #: bolt, materials) or ``specification`` (the belt-drive or engine specification: stiffness, torque and
     #: damping targets, travels, safety-factor targets, the engine support); "" for application data
     owner: str = ""
-    #: relaxation: +1 raising the value, -1 lowering it, relaxes the registry constraints ``relaxes`` (0: none)
+    #: relaxation: +1 raising the value, -1 lowering it, relaxes the registry constraints that name the field in
+    #: their ``relaxed_by`` (:attr:`synth.design.constraints.Constraint.relaxed_by`; 0: none)
     relax: int = 0
-    relaxes: tuple[str, ...] = ()
     #: a field that names a part or a class: the design-space ``(table, column)`` it selects
     #: (:func:`synth.design.space.pinned_space`; ``synth design --fix/--free``)
     pins: tuple[str, str] | tuple = ()
@@ -270,20 +269,16 @@ FIELDS: tuple[Field, ...] = (
 OWNERS = {"designer": "the tensioner designer", "specification": "the belt-drive or engine specification"}
 
 _D, _S = "designer", "specification"
-_SPRING_CHECKS = ("spring_yield", "spring_fatigue", "spring_coil_gap", "spring_inner_contact")
-_BOLT_CHECKS = ("bolt_yield", "under_head", "thread", "pivot_base_pressure")
-#: the control attributes of the fields (:attr:`Field.owner`, ``relax``, ``relaxes``, ``pins``), declared here once
+#: the control attributes of the fields (:attr:`Field.owner`, ``relax``, ``pins``), declared here once
 #: (the diagnosis's relaxation candidates, the fix/free options and the "ask for" lines all read them from the
 #: fields); kept beside :data:`FIELDS` so that each entry reads as one line
 _CONTROL = {
     # space, pin, bolt and housing: the tensioner designer's
-    "max_pivot_height_mm": dict(owner=_D, relax=+1, relaxes=(
-        "belt_plane", "bushing_length", "bushing_p", "bushing_pv", "bushing_pvt", "bushing_wear", "bushing_parallelism",
-        "spring_cavity", "spring_coil_gap")),
-    "max_axial_displacement_mm": dict(owner=_D, relax=+1, relaxes=("pulley_axial_space",)),
-    "lockup_pin_position_radius_mm": dict(owner=_D, relax=+1, relaxes=("pin_clearance",)),
-    "bolt_head_contact_external_diameter_mm": dict(owner=_D, relax=+1, relaxes=("under_head",)),
-    "number_of_active_threads": dict(owner=_D, relax=+1, relaxes=("thread",)),
+    "max_pivot_height_mm": dict(owner=_D, relax=+1),
+    "max_axial_displacement_mm": dict(owner=_D, relax=+1),
+    "lockup_pin_position_radius_mm": dict(owner=_D, relax=+1),
+    "bolt_head_contact_external_diameter_mm": dict(owner=_D, relax=+1),
+    "number_of_active_threads": dict(owner=_D, relax=+1),
     # the parts and classes an input may name (the designer's choices; --fix/--free)
     "pivot_class_diameter_mm": dict(owner=_D, pins=("core", "pivot_class_diameter_mm")),
     "pivot_bushing_radial_thickness_mm": dict(owner=_D, pins=("core", "pivot_bushing_radial_thickness_mm")),
@@ -294,20 +289,18 @@ _CONTROL = {
     "bolt_format": dict(owner=_D, pins=("bolt", "bolt_format")),
     "bolt_property_class": dict(owner=_D, pins=("bolt", "bolt_property_class")),
     # the belt-drive specification (ask for), the engine's support and the safety-factor targets
-    "pulley_max_parallelism_eol_mm": dict(owner=_S, relax=+1, relaxes=("bushing_parallelism",)),
-    "damping_tolerance_nm": dict(owner=_S, relax=+1, relaxes=("damping_upper", "damping_lower", "cone_force_band")),
-    "damping_eol_limit_nm": dict(owner=_S, relax=-1, relaxes=("damping_eol",)),
-    "spring_torque_tolerance_pct": dict(owner=_S, relax=-1, relaxes=_SPRING_CHECKS),
-    "arm_travel_nominal_to_installation_deg": dict(owner=_S, relax=-1, relaxes=(
-        "spring_yield", "spring_coil_gap", "spring_inner_contact")),
-    "arm_travel_nominal_to_free_deg": dict(owner=_S, relax=-1, relaxes=("spring_coil_gap", "spring_outer_contact")),
-    "spring_stiffness_nm_per_deg": dict(owner=_S, relax=+1, relaxes=("spring_coil_gap",)),
-    "middle_plane_belt_height_mm": dict(owner=_S, relax=+1, relaxes=("spring_coil_gap", "spring_cavity")),
-    "tilting_safety_factor": dict(owner=_S, relax=-1, relaxes=_BOLT_CHECKS),
-    "sliding_safety_factor": dict(owner=_S, relax=-1, relaxes=_BOLT_CHECKS),
-    "engine_support_internal_diameter_mm": dict(owner=_S, relax=+1, relaxes=("pivot_bore",)),
-    "engine_support_external_diameter_mm": dict(owner=_S, relax=+1, relaxes=(
-        "pivot_base_pressure", "bolt_yield", "under_head", "thread")),
+    "pulley_max_parallelism_eol_mm": dict(owner=_S, relax=+1),
+    "damping_tolerance_nm": dict(owner=_S, relax=+1),
+    "damping_eol_limit_nm": dict(owner=_S, relax=-1),
+    "spring_torque_tolerance_pct": dict(owner=_S, relax=-1),
+    "arm_travel_nominal_to_installation_deg": dict(owner=_S, relax=-1),
+    "arm_travel_nominal_to_free_deg": dict(owner=_S, relax=-1),
+    "spring_stiffness_nm_per_deg": dict(owner=_S, relax=+1),
+    "middle_plane_belt_height_mm": dict(owner=_S, relax=+1),
+    "tilting_safety_factor": dict(owner=_S, relax=-1),
+    "sliding_safety_factor": dict(owner=_S, relax=-1),
+    "engine_support_internal_diameter_mm": dict(owner=_S, relax=+1),
+    "engine_support_external_diameter_mm": dict(owner=_S, relax=+1),
 }
 #: the usual range of a field (the thesis's case studies and input tables, Tables 9 and 13, and the generated
 #: applications' engineering ranges, each widened about x2 each way): a value outside it is accepted, but when a
@@ -623,22 +616,6 @@ def plausibility(d) -> list[str]:
                            f"would be {v * factor:.4g} {f.unit}: check the unit")
                 break
     return out
-
-
-def read_mapping(path: str | Path) -> dict:
-    """Read a design input (YAML, TOML, JSON, the .xlsx template or a LibreOffice .ods) into a dict.
-
-    The file goes through the input gate (:func:`synth.io.documents.read_design_mapping`):
-    size, encoding, YAML aliases, nesting, huge and non-finite numbers are
-    checked before anything is built; a case file's ``inputs:`` block is read.
-    """
-    from synth.io.documents import read_design_mapping
-    return read_design_mapping(path)
-
-
-def load_input(path: str | Path) -> "DesignInput":
-    """Read and validate a design-input file (YAML, TOML or JSON; a case file works)."""
-    return validate(read_mapping(path))
 
 
 def parse_number_list(value):

@@ -16,7 +16,8 @@ def load_case(name: str) -> dict:
 
 def case_input(name: str, **changes):
     """The validated :class:`synth.schema.DesignInput` of case ``name``, with ``changes`` to its inputs."""
-    from synth.schema import load_input, validate
+    from synth.io.documents import load_input
+    from synth.schema import validate
     if not changes:
         return load_input(CASES / f"{name}.yaml")
     return validate({**load_case(name)["inputs"], **changes})

@@ -18,9 +18,9 @@ from synth.design.evaluate import Settings
 from synth.design.verify import verify
 from synth.errors import InputError
 from synth.optimise import solve
-from synth.optimise.evaluate import evaluate
+from synth.optimise.product import evaluate
 from synth.optimise.search_space import variables
-from synth.schema import load_input
+from synth.io.documents import load_input
 
 FAST = Settings(fidelity="screening")
 APPS = generate(4, seed=0)

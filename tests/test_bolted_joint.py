@@ -18,7 +18,7 @@ from synth.design.constraints import REGISTRY, margin
 from synth.design.evaluate import Settings
 from synth.design.verify import verify
 from synth.errors import CatalogError, InputError
-from synth.model import bolted_joint as s10
+from synth.model import bolted_joint, vdi2230
 
 from synth.data import CASES_DIR as CASES
 
@@ -38,9 +38,9 @@ def _case(name):
 
 def _run(inputs, hubload_n=None, **kw):
     i = inputs
-    hl = s10.nominal_hubload_n(i["calculated_torque_target_nm"], i["working_arm_mm"], i["differential_angle_deg"]) \
+    hl = bolted_joint.nominal_hubload_n(i["calculated_torque_target_nm"], i["working_arm_mm"], i["differential_angle_deg"]) \
         if hubload_n is None else hubload_n
-    return s10.fixation(
+    return bolted_joint.fixation(
         hl, i["middle_plane_belt_height_mm"], i["middle_plane_belt_height_increment_worst_mm"],
         i["tilting_safety_factor"], i["sliding_safety_factor"], i["engine_support_internal_diameter_mm"],
         i["engine_support_external_diameter_mm"], i["contact_angle_deg"], i["support_yield_strength_compression_mpa"],
@@ -60,7 +60,7 @@ def _base(**over):
 def _fix(kw, **opts):
     opts.setdefault("number_of_active_threads", 2.6)
     opts.setdefault("bolt_head_contact_external_diameter_mm", 11.0)
-    return s10.fixation(kw["hubload_n"], kw["h"], kw["dh"], kw["sft"], kw["sfs"], kw["dint"], kw["dext"],
+    return bolted_joint.fixation(kw["hubload_n"], kw["h"], kw["dh"], kw["sft"], kw["sfs"], kw["dint"], kw["dext"],
                         kw["theta"], kw["scomp"], kw["strac"], **opts)
 
 
@@ -125,7 +125,7 @@ def test_head_catalog_covers_every_format_in_three_forms():
     bolts = catalog.load("bolts").set_index("designation")
     assert len(heads) == 3 * len(bolts) and heads["bolt_head"].is_unique
     for fmt, grp in heads.groupby("bolt_format"):
-        assert set(grp["head_type"]) == set(s10.HEAD_TYPES)
+        assert set(grp["head_type"]) == set(vdi2230.HEAD_TYPES)
         dw = grp.set_index("head_type")["dw_min_mm"]
         d = float(bolts.loc[fmt, "d_mm"])
         # the bearing face clears the thread; flange > socket > hex (ISO 4162 / 4762 / 4017 heads of one d)
@@ -136,7 +136,7 @@ def test_head_catalog_covers_every_format_in_three_forms():
     fine = heads[~heads.index.isin(coarse.index)]
     assert set(fine["product_standard"]) == {"ISO 8676", "ISO 15071", "ISO 12474"}
     # the ISO 4162 flange-head bearing diameters (were flagged 'verify'): M8 14.9, M10 18.7, M12 22.5 mm
-    assert [float(s10.bolt_head(f, "flange")["dw_min_mm"]) for f in ("M8x1.25", "M10x1.5", "M12x1.75")] == \
+    assert [float(bolted_joint.bolt_head(f, "flange")["dw_min_mm"]) for f in ("M8x1.25", "M10x1.5", "M12x1.75")] == \
         [14.9, 18.7, 22.5]
     assert heads["source"].str.len().min() > 40
 
@@ -150,13 +150,13 @@ def test_property_classes_iso_898_1():
 
 
 def test_friction_lookup_and_errors():
-    assert s10.friction_coefficient("pivot_bushing", "belt_in_oil") == 0.055
-    assert s10.friction_coefficient("pivot_bushing", "dry") == 0.15
-    assert s10.friction_coefficient("thread", "dry") == 0.14
+    assert bolted_joint.friction_coefficient("pivot_bushing", "belt_in_oil") == 0.055
+    assert bolted_joint.friction_coefficient("pivot_bushing", "dry") == 0.15
+    assert bolted_joint.friction_coefficient("thread", "dry") == 0.14
     with pytest.raises(CatalogError, match="application_type.*dry, belt_in_oil"):
-        s10.friction_coefficient("thread", "wet")
+        bolted_joint.friction_coefficient("thread", "wet")
     with pytest.raises(CatalogError, match="friction interface.*pivot_base_crankcase"):
-        s10.friction_coefficient("washer", "dry")
+        bolted_joint.friction_coefficient("washer", "dry")
 
 
 # ----------------------------------------------------------------------------------------------
@@ -225,37 +225,37 @@ def test_hand_calculation_case3_bolt():
     # F = 14500 N on M8x1.25 (P 1.25, d2 7.188, d3 6.466, As 36.6), mu_G 0.14, mu_K 0.16, dw 11, hole 8.2
     # thread torque = 7250 * (1.25/pi + 0.14*7.188/cos30) = 7250 * (0.39789 + 1.16201) = 11309.3 N*mm
     # head torque   = 14500 * 0.16 * (11+8.2)/2 / 2 = 11136.0 N*mm  -> 22.445 N*m
-    t = s10.tightening_torque_nm(14500.0, 1.25, 7.188, 0.14, 11.0, 8.2, 0.16)
+    t = bolted_joint.tightening_torque_nm(14500.0, 1.25, 7.188, 0.14, 11.0, 8.2, 0.16)
     assert float(t) == pytest.approx(22.4453, abs=2e-3)
     # tau = 16 * 11309.3 / (pi * 6.466^3) = 213.05 MPa ; sigma = 14500/36.6 = 396.17 MPa
-    tau = s10.bolt_torsion_stress_mpa(s10.thread_torque_nmm(14500.0, 1.25, 7.188, 0.14), 6.466)
+    tau = bolted_joint.bolt_torsion_stress_mpa(bolted_joint.thread_torque_nmm(14500.0, 1.25, 7.188, 0.14), 6.466)
     assert float(tau) == pytest.approx(213.05, abs=0.05)
-    assert float(s10.bolt_normal_stress_mpa(14500.0, 36.6)) == pytest.approx(396.175, abs=1e-2)
+    assert float(bolted_joint.bolt_normal_stress_mpa(14500.0, 36.6)) == pytest.approx(396.175, abs=1e-2)
     # von Mises sqrt(396.17^2 + 3*213.05^2) = 541.40
-    assert float(s10.von_mises_stress_mpa(396.17, 213.05)) == pytest.approx(541.40, abs=0.02)
+    assert float(bolted_joint.von_mises_stress_mpa(396.17, 213.05)) == pytest.approx(541.40, abs=0.02)
     # thread area pi*7.188*1.25*cos30 = 24.445 mm^2; stress 14500/(24.445*2.6) = 228.14 MPa
-    a = s10.thread_area_mm2(8.0, 1.25, 7.188, 6.466, 6.647)
+    a = bolted_joint.thread_area_mm2(8.0, 1.25, 7.188, 6.466, 6.647)
     assert float(a) == pytest.approx(24.4454, abs=1e-3)
-    assert float(s10.thread_bearing_stress_mpa(14500.0, a, 2.6)) == pytest.approx(228.14, abs=0.02)
+    assert float(bolted_joint.thread_bearing_stress_mpa(14500.0, a, 2.6)) == pytest.approx(228.14, abs=0.02)
     # alternatives: engagement H1 = (8-6.647)/2 = 0.6765 -> pi*7.188*0.6765 = 15.277; printed pi/4 (64-41.809) = 17.429
-    assert float(s10.thread_area_mm2(8.0, 1.25, 7.188, 6.466, 6.647, model="engagement")) == pytest.approx(15.277, abs=1e-3)
-    assert float(s10.thread_area_mm2(8.0, 1.25, 7.188, 6.466, 6.647, model="printed")) == pytest.approx(17.429, abs=1e-3)
+    assert float(bolted_joint.thread_area_mm2(8.0, 1.25, 7.188, 6.466, 6.647, model="engagement")) == pytest.approx(15.277, abs=1e-3)
+    assert float(bolted_joint.thread_area_mm2(8.0, 1.25, 7.188, 6.466, 6.647, model="printed")) == pytest.approx(17.429, abs=1e-3)
 
 
 def test_helix_torque_exceeds_linearised_by_about_one_percent():
     # exact: 14500*7.188/2*tan(atan(1.25/(pi*7.188)) + atan(0.14/cos30))
     #      = 52113 * tan(0.055299 + 0.160272) = 52113 * 0.218966 = 11411 N*mm (linearised: 11309)
-    t = s10.thread_torque_nmm(14500.0, 1.25, 7.188, 0.14, model="helix")
+    t = bolted_joint.thread_torque_nmm(14500.0, 1.25, 7.188, 0.14, model="helix")
     assert float(t) == pytest.approx(11411.0, rel=2e-4)
-    assert 1.0 < float(t) / float(s10.thread_torque_nmm(14500.0, 1.25, 7.188, 0.14)) < 1.02
+    assert 1.0 < float(t) / float(bolted_joint.thread_torque_nmm(14500.0, 1.25, 7.188, 0.14)) < 1.02
 
 
 def test_hand_calculation_tilting_case1():
     # I = pi (22.9^4 - 8.2^4)/64 = pi*270484.9/64 = 13277.3 mm^4; k = 11.45/I = 8.6237e-4 /mm^3
-    k = s10.pivot_base_bending_factor_per_mm3(22.9, 8.2)
+    k = bolted_joint.pivot_base_bending_factor_per_mm3(22.9, 8.2)
     assert float(k) == pytest.approx(11.45 / (np.pi * (22.9**4 - 8.2**4) / 64), rel=1e-12)
     # F_tilt = 652.48 * 2.5 * 31.5 * k * 359.06 = 15909 N  (< sliding 16312 N)
-    f = s10.bolt_force_tilting_n(652.48, 2.5, 31.5, 22.9, 8.2)
+    f = bolted_joint.bolt_force_tilting_n(652.48, 2.5, 31.5, 22.9, 8.2)
     assert float(f) == pytest.approx(652.48 * 2.5 * 31.5 * 8.62369e-4 * 359.060, rel=1e-4)
 
 
@@ -273,12 +273,12 @@ def test_sector_geometry_against_numerical_integration():
         xc = (x * dA).sum() / area
         ixx = (y**2 * dA).sum()
         iyy = ((x - xc) ** 2 * dA).sum()
-        assert float(s10.pivot_base_contact_area_mm2(28.0, 8.2, theta)) == pytest.approx(area, rel=1e-5)
+        assert float(bolted_joint.pivot_base_contact_area_mm2(28.0, 8.2, theta)) == pytest.approx(area, rel=1e-5)
         # worst fibre over all hubload directions, on the outer arc and inner corners
         bx = np.concatenate([ro * np.cos(ph), ri * np.cos([-a, a])]) - xc
         by = np.concatenate([ro * np.sin(ph), ri * np.sin([-a, a])])
         k_num = np.sqrt((by / ixx) ** 2 + (bx / iyy) ** 2).max()
-        assert float(s10.pivot_base_bending_factor_per_mm3(28.0, 8.2, theta)) == pytest.approx(k_num, rel=1e-3)
+        assert float(bolted_joint.pivot_base_bending_factor_per_mm3(28.0, 8.2, theta)) == pytest.approx(k_num, rel=1e-3)
 
 
 def test_pressure_field_balances_force_and_moment():
@@ -289,8 +289,8 @@ def test_pressure_field_balances_force_and_moment():
     ph = np.linspace(-a, a, 2001)
     rm, pm = (r[1:] + r[:-1]) / 2, (ph[1:] + ph[:-1]) / 2
     dA = rm[:, None] * np.diff(r)[:, None] * np.diff(ph)[None, :]
-    p_ro = s10.pivot_base_pressure_mpa(np.degrees(pm), f, m, 28.0, 8.2, theta, psi)
-    p_avg = f / float(s10.pivot_base_contact_area_mm2(28.0, 8.2, theta))
+    p_ro = bolted_joint.pivot_base_pressure_mpa(np.degrees(pm), f, m, 28.0, 8.2, theta, psi)
+    p_avg = f / float(bolted_joint.pivot_base_contact_area_mm2(28.0, 8.2, theta))
     X, Y = rm[:, None] * np.cos(pm)[None, :], rm[:, None] * np.sin(pm)[None, :]
     area = dA.sum()
     xc = (X * dA).sum() / area
@@ -309,28 +309,28 @@ def test_pressure_field_balances_force_and_moment():
 def test_full_annulus_pressure_is_the_thesis_sinusoid():
     # case 3: p_avg 25.757, amplitude M k = 462.5*22*4.6745e-4 = 4.7563 MPa
     ang = np.linspace(0.0, 360.0, 13)
-    p = s10.pivot_base_pressure_mpa(ang, 14500.0, 462.5 * 22.0, 28.0, 8.2)
+    p = bolted_joint.pivot_base_pressure_mpa(ang, 14500.0, 462.5 * 22.0, 28.0, 8.2)
     amp = 462.5 * 22.0 * 32 * 28.0 / (np.pi * (28.0**4 - 8.2**4))
     np.testing.assert_allclose(p, 14500.0 / 562.9418 + amp * np.cos(np.radians(ang)), rtol=1e-6)
     # outside a partial contact there is no pressure
-    assert float(s10.pivot_base_pressure_mpa(170.0, 14500.0, 1000.0, 28.0, 8.2, 180.0)) == 0.0
+    assert float(bolted_joint.pivot_base_pressure_mpa(170.0, 14500.0, 1000.0, 28.0, 8.2, 180.0)) == 0.0
 
 
 def test_thesis_partial_contact_option_keeps_force_independent_of_angle():
     # eq. (96) with 360/theta and eq. (97) with theta/360: F_tilt is the full-annulus value
-    f360 = s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, 360.0)
-    f120 = s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, 120.0, model="thesis")
+    f360 = bolted_joint.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, 360.0)
+    f120 = bolted_joint.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, 120.0, model="thesis")
     assert float(f120) == pytest.approx(float(f360), rel=1e-12)
     # the physical sector model needs far more preload on a 120 deg sector
-    assert float(s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, 120.0)) > 2 * float(f360)
+    assert float(bolted_joint.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, 120.0)) > 2 * float(f360)
 
 
 def test_column_g_corrections_are_exact_inverses():
     f, dint = 20000.0, 8.2
-    dw = s10.min_head_contact_diameter_mm(f, dint, 400.0)
-    assert float(s10.under_head_stress_mpa(f, dw, dint)) == pytest.approx(400.0, rel=1e-12)
-    n = s10.min_active_threads(f, 24.445, 400.0)
-    assert float(s10.thread_bearing_stress_mpa(f, 24.445, n)) == pytest.approx(400.0, rel=1e-12)
+    dw = bolted_joint.min_head_contact_diameter_mm(f, dint, 400.0)
+    assert float(bolted_joint.under_head_stress_mpa(f, dw, dint)) == pytest.approx(400.0, rel=1e-12)
+    n = bolted_joint.min_active_threads(f, 24.445, 400.0)
+    assert float(bolted_joint.thread_bearing_stress_mpa(f, 24.445, n)) == pytest.approx(400.0, rel=1e-12)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -411,11 +411,11 @@ def test_invalid_options_and_angles():
     with pytest.raises(InputError, match="application_type"):
         _fix(_base(), application_type="wet")
     with pytest.raises(InputError, match="model.*sector"):
-        s10.pivot_base_bending_factor_per_mm3(28.0, 8.2, model="exact")
+        bolted_joint.pivot_base_bending_factor_per_mm3(28.0, 8.2, model="exact")
     with pytest.raises(InputError, match="differential_angle_deg"):
-        s10.nominal_hubload_n(3.25, 5.0, 180.0)
+        bolted_joint.nominal_hubload_n(3.25, 5.0, 180.0)
     with pytest.raises(InputError, match="bolt_head_contact_external_diameter_mm"):
-        s10.under_head_stress_mpa(14500.0, 8.0, 8.2)
+        bolted_joint.under_head_stress_mpa(14500.0, 8.0, 8.2)
     with pytest.raises(InputError, match="number_of_active_threads"):
         _fix(_base(), number_of_active_threads=0.0)
 
@@ -473,11 +473,11 @@ def test_more_contact_needs_less_tilting_preload(t1, t2, t0):
     200001-point brute-force search while developing).
     """
     lo, hi = sorted((t1, t2))
-    f_lo = s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, lo)
-    f_hi = s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, hi)
+    f_lo = bolted_joint.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, lo)
+    f_hi = bolted_joint.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, hi)
     assert float(f_hi) <= float(f_lo) * (1 + 1e-9)
-    f_full = s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, 360.0)
-    assert float(s10.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, t0)) >= float(f_full) * (1 - 1e-9)
+    f_full = bolted_joint.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, 360.0)
+    assert float(bolted_joint.bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2, t0)) >= float(f_full) * (1 - 1e-9)
 
 
 def test_zero_hubload_gives_infinite_safety_not_nan():
@@ -498,83 +498,83 @@ def test_thesis_form_is_5_to_18_percent_stricter_than_vdi_2230():
     bolts = catalog.load("bolts")
     gaps = {}
     for mu in (0.08, 0.12, 0.16):
-        fv = s10.permissible_assembly_preload_n(bolts["pitch_mm"], bolts["d2_mm"], bolts["d3_mm"], 640.0, mu)
-        ft = s10.elastic_permissible_preload_n(bolts["pitch_mm"], bolts["d2_mm"], bolts["d3_mm"],
+        fv = vdi2230.permissible_assembly_preload_n(bolts["pitch_mm"], bolts["d2_mm"], bolts["d3_mm"], 640.0, mu)
+        ft = vdi2230.elastic_permissible_preload_n(bolts["pitch_mm"], bolts["d2_mm"], bolts["d3_mm"],
                                                bolts["stress_area_mm2"], 640.0, mu)
         gaps[mu] = 1.0 - ft / fv
     assert 0.054 < gaps[0.08].min() and gaps[0.16].max() < 0.178
     assert (gaps[0.08] < gaps[0.12]).all() and (gaps[0.12] < gaps[0.16]).all()
     # hand check M8x1.25, mu 0.14: VDI 36.61*0.9*640/sqrt(1 + 3 (1.5*7.188/6.827*(0.05535 + 0.1617))^2) = 18.13 kN;
     # thesis 576/sqrt((1/36.6)^2 + 3 (8*(0.3979 + 1.1620)/(pi 6.466^3))^2) = 15.43 kN: 14.9 % less
-    fv = float(s10.permissible_assembly_preload_n(1.25, 7.188, 6.466, 640.0, 0.14))
-    ft = float(s10.elastic_permissible_preload_n(1.25, 7.188, 6.466, 36.6, 640.0, 0.14))
+    fv = float(vdi2230.permissible_assembly_preload_n(1.25, 7.188, 6.466, 640.0, 0.14))
+    ft = float(vdi2230.elastic_permissible_preload_n(1.25, 7.188, 6.466, 36.6, 640.0, 0.14))
     assert (round(fv), round(ft), round(100 * (1 - ft / fv), 1)) == (18131, 15426, 14.9)
 
 
 def test_thesis_escalation_at_its_force_matches_the_elastic_permissible_preload():
     """Cross-check: the thesis path raises the class exactly where the required force passes the elastic
     permissible preload at the thesis's utilisation (bolt_yield_utilisation_max = 1.0)."""
-    f88 = float(s10.elastic_permissible_preload_n(1.25, 7.188, 6.466, 36.6, 640.0, 0.14, utilisation=1.0))
+    f88 = float(vdi2230.elastic_permissible_preload_n(1.25, 7.188, 6.466, 36.6, 640.0, 0.14, utilisation=1.0))
     below = _fix(_base(hubload_n=0.999 * f88 * 0.10 / 3.0))
     above = _fix(_base(hubload_n=1.001 * f88 * 0.10 / 3.0))
     assert str(below["bolt_property_class"]) == "8.8" and str(above["bolt_property_class"]) == "9.8"
 
 
 def test_tightening_factor_from_the_scatter_table():
-    assert s10.tightening_factor("torque_wrench_tested") == pytest.approx(1.23 / 0.77)
-    assert s10.tightening_factor("torque_wrench_tested", "min") == pytest.approx(1.17 / 0.83)
-    assert s10.tightening_factor("yield_controlled", "min") == pytest.approx(1.05 / 0.95)
-    assert s10.tightening_factor("power_screwdriver") == pytest.approx(1.43 / 0.57)  # 2.51
-    assert float(s10.tightening_factor_from_scatter(0.0)) == 1.0
+    assert vdi2230.tightening_factor("torque_wrench_tested") == pytest.approx(1.23 / 0.77)
+    assert vdi2230.tightening_factor("torque_wrench_tested", "min") == pytest.approx(1.17 / 0.83)
+    assert vdi2230.tightening_factor("yield_controlled", "min") == pytest.approx(1.05 / 0.95)
+    assert vdi2230.tightening_factor("power_screwdriver") == pytest.approx(1.43 / 0.57)  # 2.51
+    assert float(vdi2230.tightening_factor_from_scatter(0.0)) == 1.0
     with pytest.raises(InputError, match="tightening_method.*torque_wrench_tested"):
-        s10.tightening_factor("impact")
+        vdi2230.tightening_factor("impact")
     with pytest.raises(InputError, match="preload scatter"):
-        s10.tightening_factor_from_scatter(1.0)
+        vdi2230.tightening_factor_from_scatter(1.0)
 
 
 def test_embedding_sums_table_5_4_1_per_surface():
     # Rz 10-40, transverse: thread 3 + head 4.5 + 1 interface 2.5 = 10 um; a through bolt adds the nut face
-    assert s10.embedding_um("rz_10_40", "transverse", interfaces=1) == 10.0
-    assert s10.embedding_um("rz_10_40", "transverse", interfaces=1, joint_type="through") == 14.5
-    assert s10.embedding_um("rz_lt_10", "axial", interfaces=2) == 3.0 + 2.5 + 2 * 1.5
-    assert s10.embedding_um("rz_40_160", "transverse", interfaces=0) == 9.5
+    assert vdi2230.embedding_um("rz_10_40", "transverse", interfaces=1) == 10.0
+    assert vdi2230.embedding_um("rz_10_40", "transverse", interfaces=1, joint_type="through") == 14.5
+    assert vdi2230.embedding_um("rz_lt_10", "axial", interfaces=2) == 3.0 + 2.5 + 2 * 1.5
+    assert vdi2230.embedding_um("rz_40_160", "transverse", interfaces=0) == 9.5
     with pytest.raises(InputError, match="roughness class.*rz_10_40"):
-        s10.embedding_um("rz_5", "axial")
+        vdi2230.embedding_um("rz_5", "axial")
     with pytest.raises(InputError, match="loading.*transverse"):
-        s10.embedding_um("rz_lt_10", "bending")
+        vdi2230.embedding_um("rz_lt_10", "bending")
 
 
 def test_resiliences_by_hand_and_limits():
     # bolt: see the docstring; a socket head (l_SK 0.4 d) and a free thread (A_d3 < A_N) change it as expected
-    hexa = float(s10.bolt_resilience_mm_per_n(8.0, 6.466, 40.0, modulus_mpa=210e3, internal_thread_modulus_mpa=70e3))
-    sock = float(s10.bolt_resilience_mm_per_n(8.0, 6.466, 40.0, head_type="socket", modulus_mpa=210e3,
+    hexa = float(vdi2230.bolt_resilience_mm_per_n(8.0, 6.466, 40.0, modulus_mpa=210e3, internal_thread_modulus_mpa=70e3))
+    sock = float(vdi2230.bolt_resilience_mm_per_n(8.0, 6.466, 40.0, head_type="socket", modulus_mpa=210e3,
                                               internal_thread_modulus_mpa=70e3))
-    free = float(s10.bolt_resilience_mm_per_n(8.0, 6.466, 40.0, free_thread_length_mm=10.0, modulus_mpa=210e3,
+    free = float(vdi2230.bolt_resilience_mm_per_n(8.0, 6.466, 40.0, free_thread_length_mm=10.0, modulus_mpa=210e3,
                                               internal_thread_modulus_mpa=70e3))
     a_n, a_3 = np.pi / 4 * 64, np.pi / 4 * 6.466**2
     assert hexa - sock == pytest.approx(0.8 / (210e3 * a_n))
     assert free - hexa == pytest.approx(10.0 / 210e3 * (1 / a_3 - 1 / a_n))
     # clamped parts: a very wide part is the pure cone (5.1/24), a part no wider than d_W a sleeve
     dw, dh, lk, e = 13.0, 8.2, 40.0, 70e3
-    wide = float(s10.clamped_parts_resilience_mm_per_n(dw, dh, 400.0, lk, modulus_mpa=e))
+    wide = float(vdi2230.clamped_parts_resilience_mm_per_n(dw, dh, 400.0, lk, modulus_mpa=e))
     tan_phi = 0.348 + 0.013 * np.log(lk / dw) + 0.193 * np.log(400.0 / dw)
     dagr = dw + 2 * lk * tan_phi
     cone = 2 * np.log((dw + dh) * (dagr - dh) / ((dw - dh) * (dagr + dh))) / (2 * e * np.pi * dh * tan_phi)
     assert wide == pytest.approx(cone)
-    sleeve = float(s10.clamped_parts_resilience_mm_per_n(dw, dh, 12.0, lk, modulus_mpa=e))
+    sleeve = float(vdi2230.clamped_parts_resilience_mm_per_n(dw, dh, 12.0, lk, modulus_mpa=e))
     assert sleeve == pytest.approx(lk / (e * np.pi / 4 * (12.0**2 - dh**2)))
     # the cone-plus-sleeve form joins both ends continuously
-    just_above = float(s10.clamped_parts_resilience_mm_per_n(dw, dh, dw * (1 + 1e-9), lk, modulus_mpa=e))
+    just_above = float(vdi2230.clamped_parts_resilience_mm_per_n(dw, dh, dw * (1 + 1e-9), lk, modulus_mpa=e))
     assert just_above == pytest.approx(lk / (e * np.pi / 4 * (dw**2 - dh**2)), rel=1e-6)
     tp = 0.348 + 0.013 * np.log(lk / dw) + 0.193 * np.log(60.0 / dw)
     at_gr = dw + 2 * lk * tp
-    below, above = (float(s10.clamped_parts_resilience_mm_per_n(dw, dh, x, lk, modulus_mpa=e))
+    below, above = (float(vdi2230.clamped_parts_resilience_mm_per_n(dw, dh, x, lk, modulus_mpa=e))
                     for x in (at_gr * (1 - 1e-7), at_gr * (1 + 1e-7)))
     assert below == pytest.approx(above, rel=1e-4)
     with pytest.raises(InputError, match="free_thread_length_mm"):
-        s10.bolt_resilience_mm_per_n(8.0, 6.466, 40.0, free_thread_length_mm=41.0)
+        vdi2230.bolt_resilience_mm_per_n(8.0, 6.466, 40.0, free_thread_length_mm=41.0)
     with pytest.raises(InputError, match="joint_type"):
-        s10.clamped_parts_resilience_mm_per_n(dw, dh, 22.9, lk, joint_type="glued")
+        vdi2230.clamped_parts_resilience_mm_per_n(dw, dh, 22.9, lk, joint_type="glued")
 
 
 def test_vdi_path_case1_hand_calculation():
@@ -596,7 +596,7 @@ def test_vdi_path_case1_hand_calculation():
     assert float(r["bolt_required_preload_max_n"]) == pytest.approx(alpha * (16312.07 + fz), rel=1e-6)
     assert (str(r["bolt_format"]), str(r["bolt_property_class"])) == ("M8x1.25", "12.9")
     assert float(r["bolt_permissible_preload_n"]) == pytest.approx(
-        float(s10.permissible_assembly_preload_n(1.25, 7.188, 6.466, 1100.0, 0.14)))
+        float(vdi2230.permissible_assembly_preload_n(1.25, 7.188, 6.466, 1100.0, 0.14)))
     m88 = _run(c["inputs"], method="vdi2230", clamp_length_mm=lk, bolt_format="M8x1.25", bolt_property_class="8.8")
     assert float(_margins(m88, _case_kw(c["inputs"]))["bolt_preload_vdi"]) < 0
     assert float(m88["bolt_residual_clamp_force_n"]) == pytest.approx(18130.9 / alpha - fz, rel=1e-4)
@@ -656,7 +656,7 @@ def test_vdi_path_options_and_errors():
     assert float(r["bolt_required_preload_max_n"]) == pytest.approx(13875.0 + float(r["bolt_embedding_loss_n"]))
     assert float(r["bolt_embedding_um"]) == 5.5
     # a higher tightening factor never allows a weaker bolt
-    ranks = {(c["bolt_format"], c["bolt_property_class"]): i for i, c in enumerate(s10.bolt_candidates())}
+    ranks = {(c["bolt_format"], c["bolt_property_class"]): i for i, c in enumerate(bolted_joint.bolt_candidates())}
     picks = [ranks[(str(x["bolt_format"]), str(x["bolt_property_class"]))] for x in
              (_fix(_base(hubload_n=700.0), method="vdi2230", clamp_length_mm=30.0, alpha_a=a) for a in (1.0, 1.4, 1.8, 2.5))]
     assert picks == sorted(picks) and picks[0] < picks[-1]
@@ -664,7 +664,7 @@ def test_vdi_path_options_and_errors():
 
 def test_head_type_sets_the_default_bearing_diameter():
     kw = _base()
-    out = {h: _fix(kw, head_type=h, bolt_head_contact_external_diameter_mm=None) for h in s10.HEAD_TYPES}
+    out = {h: _fix(kw, head_type=h, bolt_head_contact_external_diameter_mm=None) for h in vdi2230.HEAD_TYPES}
     assert [float(out[h]["bolt_head_contact_diameter_mm"]) for h in ("hex", "socket", "flange")] == [11.63, 12.33, 14.9]
     # larger bearing face: lower head pressure, more under-head friction torque
     assert out["flange"]["bolt_under_head_stress_mpa"] < out["socket"]["bolt_under_head_stress_mpa"] < \
@@ -674,20 +674,20 @@ def test_head_type_sets_the_default_bearing_diameter():
     with pytest.raises(InputError, match="head_type.*hex, flange, socket"):
         _fix(kw, head_type="button")
     with pytest.raises(InputError, match="head_type"):
-        s10.bolt_head("M8x1.25", "pan")
+        bolted_joint.bolt_head("M8x1.25", "pan")
 
 
 @settings(max_examples=60, deadline=None)
 @given(st.floats(0.0, 1.0), st.floats(0.0, 1.0), st.sampled_from(["M6x1", "M8x1", "M10x1.5", "M12x1.25"]))
 def test_permissible_preload_bounded_and_falling_with_friction(mu1, mu2, fmt):
     b = catalog.row("bolts", fmt)
-    f = [float(s10.permissible_assembly_preload_n(b["pitch_mm"], b["d2_mm"], b["d3_mm"], 940.0, m)) for m in (mu1, mu2)]
-    a0 = float(s10.stress_area_mm2(b["d2_mm"], b["d3_mm"]))
+    f = [float(vdi2230.permissible_assembly_preload_n(b["pitch_mm"], b["d2_mm"], b["d3_mm"], 940.0, m)) for m in (mu1, mu2)]
+    a0 = float(vdi2230.stress_area_mm2(b["d2_mm"], b["d3_mm"]))
     assert all(0.0 < x < 0.9 * 940.0 * a0 for x in f)  # torsion always costs some tension
     if mu1 < mu2:
         assert f[0] >= f[1]  # strictly falling; equal only within round-off (mu2 - mu1 ~ 1e-38)
     if mu2 - mu1 > 1e-6:
         assert f[0] > f[1]
     # the thesis form is always the stricter one, at any friction
-    el = float(s10.elastic_permissible_preload_n(b["pitch_mm"], b["d2_mm"], b["d3_mm"], b["stress_area_mm2"], 940.0, mu1))
+    el = float(vdi2230.elastic_permissible_preload_n(b["pitch_mm"], b["d2_mm"], b["d3_mm"], b["stress_area_mm2"], 940.0, mu1))
     assert el < f[0]

@@ -24,7 +24,7 @@ from synth.design.space import PART_KEYS
 from synth.design.verify import verify
 from synth.optimise import solve
 from synth.data import case_path
-from synth.schema import load_input
+from synth.io.documents import load_input
 
 from conftest import case_flowchart, case_input
 

@@ -134,7 +134,7 @@ def test_an_application_the_physics_refuses_gets_its_own_row():
 
 def test_batch_nearest_design_is_the_exhaustive_one():
     from synth.optimise.diagnose import nearest_design
-    from synth.optimise.evaluate import evaluate
+    from synth.optimise.product import evaluate
     st = Settings(fidelity="screening")
     apps = generate(25, seed=37, vary=True)
     b = Batch(apps, st, spring_engine="numpy")

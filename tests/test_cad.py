@@ -21,12 +21,12 @@ from synth import catalog, flowchart
 from synth.cad import export_result, geometry_from
 from synth.cad.assembly import build, colour_of, part_names
 from synth.cad.dimensions import _example_inputs, _example_values
-from synth.cad.parts import spring_pitch_mm, stack
+from synth.cad.solids import spring_pitch_mm, stack
 from synth.cad.verify import failed, verify_model
 from synth.cli import main
 from synth.design.result import FAIL, PASS
 from synth.errors import InputError
-from synth.schema import load_input
+from synth.io.documents import load_input
 
 from synth.data import CASES_DIR
 

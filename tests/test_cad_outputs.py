@@ -15,7 +15,7 @@ from synth.cad.dimensions import _example_inputs, _example_values
 from synth.cad.pictures import _draw, _figure, _visible_anchors, exploded_parts, section_dimensions, section_parts
 from synth.cad.step import DESIGN_KEYS, design_values, read_step_header
 from synth.data import CASES_DIR
-from synth.schema import load_input
+from synth.io.documents import load_input
 
 
 @pytest.fixture(scope="module")

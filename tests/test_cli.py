@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 import synth
-from synth import cli
+from synth import fingerprint
 from synth.cli import EX_SOFTWARE, JSON_HELP, SCENES, main, scene_parser
 
 ROOT = Path(synth.__file__).resolve().parents[1]
@@ -38,11 +38,11 @@ def test_version_matches_pyproject():
 
 
 def test_catalog_hash_follows_user_catalogs(tmp_path):
-    base = cli.version_text()
+    base = fingerprint.version_text()
     (tmp_path / "ball_bearings.csv").write_text("ball_bearing,source\nX,mine\n")
-    assert cli.version_text([tmp_path]) != base
-    assert str(tmp_path) in cli.version_text([tmp_path])
-    assert cli.version_text() == base
+    assert fingerprint.version_text([tmp_path]) != base
+    assert str(tmp_path) in fingerprint.version_text([tmp_path])
+    assert fingerprint.version_text() == base
 
 
 def test_help_imports_no_heavy_library():

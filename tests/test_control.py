@@ -161,8 +161,17 @@ def test_case1_gets_a_combined_relaxation_of_two_inputs_designer_first(capsys):
 
 def test_relaxation_candidates_and_owners_are_declared_once_on_the_fields():
     from synth import schema
-    from synth.optimise.diagnose import RELAXABLE
-    assert RELAXABLE == {f.name: (f.relax, f.relaxes, f.owner == "specification") for f in schema.FIELDS if f.relax}
+    from synth.design.constraints import REGISTRY
+    from synth.optimise.diagnose import relaxable
+    rel = relaxable()
+    assert list(rel) == [f.name for f in schema.FIELDS if f.relax]   # direction and owner: the fields'
+    assert rel["max_pivot_height_mm"][:2] == (1, ("spring_cavity", "bushing_p", "bushing_pv", "bushing_pvt",
+                                                  "bushing_wear", "bushing_parallelism", "bushing_length",
+                                                  "belt_plane", "spring_coil_gap"))
+    assert rel["tilting_safety_factor"] == (-1, ("bolt_yield", "under_head", "thread", "pivot_base_pressure"), True)
+    for name, (_, ids, spec) in rel.items():   # what a field relaxes: the registry's relaxed_by
+        assert ids and all(name in REGISTRY[i].relaxed_by for i in ids)
+        assert spec == (schema.field_by_name(name).owner == "specification")
     assert schema.field_by_name("spring_stiffness_nm_per_deg").owner == "specification"
     assert schema.field_by_name("max_pivot_height_mm").owner == "designer"
     assert schema.PART_FIELDS[:2] == ("pivot_class_diameter_mm", "pivot_bushing_radial_thickness_mm")
@@ -321,7 +330,7 @@ def test_exploded_view_shows_every_part(tmp_path):
     from synth.cad import geometry_from, pictures as P
     from synth.cad.assembly import build
     from synth.optimise import solve
-    from synth.schema import load_input
+    from synth.io.documents import load_input
     model = build(geometry_from(solve(load_input(CASES_DIR / "case1_as_run.yaml"))))
     plt, fig, ax = P._figure("", 6.5, 110, legend=False)
     shapes = P.exploded_parts(model)

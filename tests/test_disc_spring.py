@@ -198,8 +198,8 @@ def test_a_design_without_axial_damping_has_no_cone_spring_checks():
 
 
 def test_table7_boundaries():
-    from synth import parts as P
-    rng = P.arrays().cone_ranges
+    from synth.parts import arrays
+    rng = arrays().cone_ranges
     r = cs.table7_ratios(24.0, 10.0, 1.0, 1.2)    # De/Di 2.4 (max), h0/t 1.2 (max), De/t 24
     assert (float(r["diameter_ratio"]), float(r["aspect_ratio"]), float(r["thinness"])) == (2.4, 1.2, 24.0)
 

@@ -148,7 +148,7 @@ def test_design_with_a_drive_adds_the_registry_checks(tmp_path):
     from synth.design.evaluate import Settings
     from synth.design.verify import verify
     from synth.scenes.design import with_drive
-    from synth.schema import load_input
+    from synth.io.documents import load_input
     small = example_drive().to_dict()
     small["excitation"]["speeds"] = 5
     path = tmp_path / "d.yaml"

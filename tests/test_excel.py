@@ -9,6 +9,7 @@ from openpyxl import load_workbook
 
 from conftest import load_case
 from synth import cli, flowchart, schema
+from synth.io import documents
 from synth.errors import InputError
 from synth.excel import reader, template
 
@@ -89,13 +90,13 @@ def test_template_shape(blank):
 
 
 def test_template_example_is_case1(blank):
-    assert schema.load_input(blank) == schema.validate(load_case("case1")["inputs"])
+    assert documents.load_input(blank) == schema.validate(load_case("case1")["inputs"])
 
 
 def test_filled_with_case3_gives_case3(blank):
     case3 = load_case("case3")["inputs"]
     _fill(blank, case3)
-    from_xlsx = schema.load_input(blank)
+    from_xlsx = documents.load_input(blank)
     assert from_xlsx == schema.validate(case3)
     assert from_xlsx.wrap_angle_deg is None and from_xlsx.pivot_class_diameter_mm == 20
     r1 = flowchart.run(from_xlsx).to_dict()
@@ -110,7 +111,7 @@ def test_standard_selector_reads_empty(blank):
     r = _rows(ws)["pivot_class_diameter_mm"]
     ws[f"D{r}"] = "standard"   # the value 16 in E is then ignored: Table 2 standard
     wb.save(blank)
-    assert schema.load_input(blank).pivot_class_diameter_mm is None
+    assert documents.load_input(blank).pivot_class_diameter_mm is None
 
 
 def _set(path, field, value, col=None):
@@ -126,14 +127,14 @@ def _set(path, field, value, col=None):
 def test_invalid_cell_is_named(blank):
     cell = _set(blank, "differential_angle_deg", 200)
     with pytest.raises(InputError, match=rf"differential_angle_deg \(sheet Input, cell {cell}\): got 200"):
-        schema.load_input(blank)
+        documents.load_input(blank)
 
 
 def test_text_in_number_cell_and_bad_choice_all_reported(blank):
     c1 = _set(blank, "working_arm_mm", "five")
     c2 = _set(blank, "application_type", "wet")
     with pytest.raises(InputError) as exc:
-        schema.read_mapping(blank)
+        documents.read_mapping(blank)
     fields = [p.field for p in exc.value.problems]
     assert f"working_arm_mm (sheet Input, cell {c1})" in fields
     assert f"application_type (sheet Input, cell {c2})" in fields
@@ -144,7 +145,7 @@ def test_missing_required_and_custom_without_value(blank):
     _set(blank, "belt_width_mm", None)
     _set(blank, "loading_arm_mm", None)   # selector stays 'custom'
     with pytest.raises(InputError) as exc:
-        schema.read_mapping(blank)
+        documents.read_mapping(blank)
     msgs = [str(p) for p in exc.value.problems]
     assert any(re.match(r"belt_width_mm \(sheet Input, cell E\d+\): missing", m) for m in msgs)
     assert any(re.match(r"loading_arm_mm \(sheet Input, cell E\d+\): missing; expected a value \(the selector", m)
@@ -158,7 +159,7 @@ def test_unknown_key_named_with_its_cell(blank):
     ws[f"B{r}"] = "working_arm_lenght_mm"
     wb.save(blank)
     with pytest.raises(InputError, match=rf"working_arm_lenght_mm \(sheet Input, cell B{r}\)"):
-        schema.read_mapping(blank)
+        documents.read_mapping(blank)
 
 
 def test_cli_reports_the_cell(blank, capsys):
@@ -174,7 +175,7 @@ def test_cli_template_refuses_overwrite_and_fills_from(blank, tmp_path, capsys):
     import yaml
     src.write_text(yaml.safe_dump({"inputs": load_case("case3")["inputs"]}))
     assert cli.main(["template", str(out), "--from", str(src)]) == 0
-    assert schema.load_input(out) == schema.validate(load_case("case3")["inputs"])
+    assert documents.load_input(out) == schema.validate(load_case("case3")["inputs"])
 
 
 def test_wire_size_list_round_trip(blank):
@@ -189,6 +190,6 @@ def test_not_a_workbook(tmp_path):
     bad = tmp_path / "x.xlsx"
     bad.write_text("not a zip")
     with pytest.raises(InputError, match="a valid .xlsx workbook"):
-        schema.read_mapping(bad)
+        documents.read_mapping(bad)
     with pytest.raises(InputError, match="an existing .xlsx"):
-        schema.read_mapping(tmp_path / "missing.xlsx")
+        documents.read_mapping(tmp_path / "missing.xlsx")

@@ -20,7 +20,7 @@ import pytest
 
 from synth.bulk.engine import screen_applications
 from synth.data.generated_applications import generate
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.space import PART_KEYS, space
 from synth.design.verify import evaluate_design
@@ -28,7 +28,7 @@ from synth.errors import InputError
 from synth.optimise import solve
 
 APPS = generate(500, seed=19, vary=True)
-FULL = E.Settings(fidelity="full")
+FULL = evaluate.Settings(fidelity="full")
 
 
 def failing_at_full(apps: list, parts: list) -> list:
@@ -55,7 +55,7 @@ def reported_feasible(df, apps):
 @pytest.fixture(scope="module")
 def engine():
     return {fid: screen_applications(APPS, objective="standard", fidelity=fid, diagnose=False)
-            for fid in E.FIDELITIES}
+            for fid in evaluate.FIDELITIES}
 
 
 def test_no_design_reported_feasible_fails_at_full_fidelity(engine):
@@ -72,15 +72,15 @@ def test_screening_only_reports_designs_the_full_model_rejects_and_says_so(engin
     df = engine["screening-only"]
     apps, parts = reported_feasible(df, APPS)
     assert len(failing_at_full(apps, parts)) >= 10  # the check above can fail: unverified designs do (19 of 500 here)
-    assert df["notes"].str.contains(E.UNVERIFIED_NOTE, regex=False).all()
+    assert df["notes"].str.contains(evaluate.UNVERIFIED_NOTE, regex=False).all()
 
 
 def test_the_judge_is_the_full_model():
-    assert E.Settings(fidelity="screening").judge == FULL
-    assert E.Settings(fidelity="screening-only").judge.model == "screening"
+    assert evaluate.Settings(fidelity="screening").judge == FULL
+    assert evaluate.Settings(fidelity="screening-only").judge.model == "screening"
     assert FULL.judge is FULL
     with pytest.raises(InputError, match="screening-only"):
-        E.Settings(fidelity="quick")
+        evaluate.Settings(fidelity="quick")
 
 
 @pytest.fixture(scope="module")
@@ -94,7 +94,7 @@ def unverified_failures(engine):
                                           ("milp-highs", {}, 1)])
 def test_single_application_paths_report_designs_valid_at_full_fidelity(unverified_failures, solver, kw, n):
     for d in unverified_failures[:n]:
-        r = solve(d, "standard", solver, settings=E.Settings(fidelity="screening"), relax=False, **kw)
+        r = solve(d, "standard", solver, settings=evaluate.Settings(fidelity="screening"), relax=False, **kw)
         assert r.status == "optimal" and not r.failed(), [c.id for c in r.failed()]
         assert failing_at_full([d], [r.parts]) == []
         assert r.settings["fidelity"] == "screening"  # the search's setting is kept; the checks are the judge's
@@ -105,7 +105,7 @@ def test_single_application_paths_report_designs_valid_at_full_fidelity(unverifi
 def test_platform_feasibility_at_screening_is_judged():
     from synth.platform.producer import feasibility
     apps = APPS[:16]
-    pf = feasibility(apps, None, None, E.Settings(fidelity="screening"))
+    pf = feasibility(apps, None, None, evaluate.Settings(fidelity="screening"))
     full = feasibility(apps, None, None, FULL)
     for a, b in zip(pf.apps, full.apps):
         for k in range(len(a.core_rows)):
@@ -117,15 +117,15 @@ def test_platform_feasibility_at_screening_is_judged():
 def test_no_design_at_screening_is_the_full_model_s_verdict(monkeypatch):
     """A screening model that rejects every axial option: the searches fall back to the full model alone where the
     axial group decides, and find the full model's optimum (bulk engine, branch and bound, exhaustive tables)."""
-    real = E.axial
+    real = evaluate.axial
 
-    def strict(apps, cg, r, o, settings=E.Settings(), time_points=0):
+    def strict(apps, cg, r, o, settings=evaluate.Settings(), time_points=0):
         g = real(apps, cg, r, o, settings, time_points)
         if settings.model == "screening":
             g.margins["damping_eol"] = np.full(len(g), -1.0)
             g.state["damping_eol"] = np.zeros(len(g), dtype=np.int8)
         return g
-    monkeypatch.setattr(E, "axial", strict)
+    monkeypatch.setattr(evaluate, "axial", strict)
     apps = [d for d in APPS[:40] if d.damping_typology != "only_radial"][:12]
     full = screen_applications(apps, objective="standard", fidelity="full", diagnose=False)
     assert full["feasible"].sum() >= 3
@@ -135,7 +135,7 @@ def test_no_design_at_screening_is_the_full_model_s_verdict(monkeypatch):
     assert not only["feasible"][only["part_damper_pad_class"] != "none"].any()
     i = int(np.flatnonzero(full["feasible"].to_numpy() & (full["part_damper_pad_class"] != "none").to_numpy())[0])
     for kw in ({}, {"exhaustive": True}):
-        r = solve(apps[i], "standard", "enumerate", settings=E.Settings(fidelity="screening"), relax=False, **kw)
+        r = solve(apps[i], "standard", "enumerate", settings=evaluate.Settings(fidelity="screening"), relax=False, **kw)
         assert r.status == "optimal" and r.objectives["standard"] == full.loc[i, "objective_standard"]
 
 
@@ -148,12 +148,12 @@ def test_fidelity_free_constraints_have_the_same_margin_in_both_models():
     sp = space()
     per = [core_rows(sp, d) for d in apps]
     app = np.repeat(np.arange(len(apps)), [len(c) for c in per])
-    cg = E.core(a, app, sp.rows("core", np.concatenate(per)), FULL)
+    cg = evaluate.core(a, app, sp.rows("core", np.concatenate(per)), FULL)
     t = sp.tables["axial"]
     r, k = np.nonzero((cg.values["axial_group_present"] > 0)[:, None] == t["axial_group_present"][None, :])
     with np.errstate(all="ignore"):
-        g = {m: E.axial(a, cg, r, sp.rows("axial", k), E.Settings(fidelity=m)) for m in ("full", "screening-only")}
-    assert len(r) > 1000 and set(E.FIDELITY_FREE) >= {"belt_plane", "endcap_spacer_capacity"}
-    for cid in E.FIDELITY_FREE:
+        g = {m: evaluate.axial(a, cg, r, sp.rows("axial", k), evaluate.Settings(fidelity=m)) for m in ("full", "screening-only")}
+    assert len(r) > 1000 and set(evaluate.FIDELITY_FREE) >= {"belt_plane", "endcap_spacer_capacity"}
+    for cid in evaluate.FIDELITY_FREE:
         assert np.array_equal(g["full"].margins[cid], g["screening-only"].margins[cid]), cid
     assert not np.array_equal(g["full"].margins["damping_eol"], g["screening-only"].margins["damping_eol"])

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from synth import flowchart, schema
+from synth.io import documents
 from synth.design.result import FAIL, NOT_VERIFIED
 from synth.cli import main
 from synth.compare import compare_case
@@ -114,7 +115,7 @@ def test_case3_runs_radial_only_and_flags_its_damping():
 
 
 def test_linear_friction_option_reproduces_the_tool_convention():
-    d = schema.load_input(CASES / "case3.yaml")
+    d = documents.load_input(CASES / "case3.yaml")
     r = flowchart.run(d, flowchart.Settings(friction_circle=False))
     assert r.values["radial_damping_nm"] == pytest.approx(1.85 * 10.5 * 0.15 / 4.0, rel=1e-9)  # 0.728
 
@@ -219,7 +220,7 @@ def test_manual_bolt_is_verified_not_escalated():
 def test_screening_eol_damping_is_optimistic_by_a_bounded_amount():
     # screening = linear cone spring (flatter force drop) + closed-form wear: it overstates the
     # end-of-life damping; on case 1 by ~13 % (benchmarks/bench_flowchart.py reports the number)
-    d = schema.load_input(CASES / "case1_as_run.yaml")
+    d = documents.load_input(CASES / "case1_as_run.yaml")
     full = flowchart.run(d, flowchart.Settings(fidelity="full"))
     fast = flowchart.run(d, flowchart.Settings(fidelity="screening-only"))
     assert full.values["damping_eol_nm"] < fast.values["damping_eol_nm"] < 1.15 * full.values["damping_eol_nm"]

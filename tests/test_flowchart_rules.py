@@ -12,7 +12,8 @@ import math
 import numpy as np
 import pytest
 
-from synth import flowchart, parts as P
+from synth import flowchart
+from synth.parts import arrays
 from synth.model import bolted_joint as s10
 
 from conftest import case_input
@@ -122,7 +123,7 @@ def test_iteration_stops_at_the_largest_contact_surfaces():
 
 
 def test_next_class_follows_the_table_bounds():
-    p = P.arrays()
+    p = arrays()
     assert [flowchart._next_class(p.damper_pad, i) for i in range(3)] == [1, 2, 2]
     assert [flowchart._next_class(p.endcap_spacer, i) for i in range(3)] == [1, 2, 2]
 
@@ -175,7 +176,7 @@ def test_case1_bolt_class_by_eq_103_104_as_printed_and_by_the_stress_area():
     eqv_core, eqv_as = math.hypot(core, math.sqrt(3.0) * tau), math.hypot(stress_area, math.sqrt(3.0) * tau)
     assert (eqv_core, eqv_as) == pytest.approx((647.3, 609.0), abs=0.1)   # synth: 609.08 with A_s = 36.6 (3 figures)
     assert r.values["bolt_sigma_eqv_mpa"] == pytest.approx(eqv_as, rel=2e-3)   # catalog A_s 36.6 (3 figures)
-    rp02 = {k: v for k, v in zip(P.arrays().bolt_class.key, P.arrays().bolt_class.rp02_min_mpa)}
+    rp02 = {k: v for k, v in zip(arrays().bolt_class.key, arrays().bolt_class.rp02_min_mpa)}
     assert eqv_core > rp02["8.8"] > eqv_as and eqv_core < rp02["9.8"]
     assert r.get("bolt_property_class") == "8.8"
     # the same two readings through the model's option (normal_stress_area="core" is eq. (103)-(104) as printed)

@@ -26,6 +26,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from synth import catalog, schema
+from synth.io import documents
 from synth.cli import main
 from synth.data import CASES_DIR
 from synth.errors import InputError
@@ -146,7 +147,7 @@ def test_fuzz_design_input_bytes(tmp_path, raw, suffix):
     p = tmp_path / f"in{suffix}"
     p.write_bytes(raw)
     try:
-        schema.load_input(p)
+        documents.load_input(p)
     except InputError:
         pass
 
@@ -157,7 +158,7 @@ def test_fuzz_design_input_text(tmp_path, text, suffix):
     p = tmp_path / f"in{suffix}"
     p.write_text(text, encoding="utf-8")
     try:
-        schema.load_input(p)
+        documents.load_input(p)
     except InputError:
         pass
 
@@ -166,13 +167,13 @@ def test_fuzz_design_input_text(tmp_path, text, suffix):
 @given(doc=st.dictionaries(st.text(max_size=12), _values, max_size=8))
 def test_fuzz_structured_documents(tmp_path, doc):
     """Any YAML/JSON document a user may write: the case loaders give a value or an InputError."""
-    from synth.io.results import load_result
+    from synth.io.saved_results import load_result
     from synth.shrink_fit.inputs import load_case
 
     for suffix, text in ((".json", json.dumps(doc, default=str)), (".yaml", yaml.safe_dump(doc))):
         p = tmp_path / f"doc{suffix}"
         p.write_text(text, encoding="utf-8")
-        for loader in (load_case, schema.load_input):
+        for loader in (load_case, documents.load_input):
             try:
                 loader(p)
             except InputError:
@@ -303,7 +304,7 @@ def test_thesis_table13_as_printed_and_reverse_table():
     d = schema.validate(raw)
     assert (d.application_type, d.pulley_shell_type, d.lockup_pin_diameter_mm, d.spring_torque_tolerance_pct) == \
         ("dry", "flat", None, 8.0)
-    rev = schema.load_input(CORPUS / "files" / "ok_autosetting_reverse_na.yaml")
+    rev = documents.load_input(CORPUS / "files" / "ok_autosetting_reverse_na.yaml")
     assert rev.belt_loading_type == "single_eccentric" and rev.max_axial_displacement_mm is None
     assert rev.min_belt_crankcase_clearance_mm == 2.0 and rev.application_type == "belt_in_oil"
 
@@ -335,10 +336,10 @@ def test_ods_and_libreoffice_xlsx_read_like_synth_xlsx(tmp_path):
     """The template saved by LibreOffice (.ods, its default, and .xlsx) reads like the .xlsx synth writes."""
     src = tmp_path / "case3.xlsx"
     assert main(["template", str(src), "--from", str(CASES_DIR / "case3.yaml")]) == 0
-    ours = schema.load_input(src)
-    assert schema.load_input(CORPUS / "files" / "lo_case3.ods") == ours
-    assert schema.load_input(CORPUS / "files" / "lo_case3_saved_by_libreoffice.xlsx") == ours
-    assert ours == schema.load_input(CASES_DIR / "case3.yaml")
+    ours = documents.load_input(src)
+    assert documents.load_input(CORPUS / "files" / "lo_case3.ods") == ours
+    assert documents.load_input(CORPUS / "files" / "lo_case3_saved_by_libreoffice.xlsx") == ours
+    assert ours == documents.load_input(CASES_DIR / "case3.yaml")
 
 
 def test_formula_cells(tmp_path):
@@ -348,7 +349,7 @@ def test_formula_cells(tmp_path):
     data, cells, _, problems = read_cells(CORPUS / "files" / "lo_formula.ods")
     assert data["working_arm_mm"] == 4 and not [p for p in problems if "working_arm_mm" in p.field]
     with pytest.raises(InputError) as err:
-        schema.load_input(CORPUS / "files" / "w_formula_no_cache.xlsx")
+        documents.load_input(CORPUS / "files" / "w_formula_no_cache.xlsx")
     (p,) = [p for p in err.value.problems if p.field.startswith("working_arm_mm")]
     assert "formula without a cached value" in p.accepted and p.value == "=2+2" and "missing" not in str(p)
 

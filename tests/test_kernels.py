@@ -1,4 +1,4 @@
-"""Compiled main-spring kernels (synth.kernels.torsion_spring) against the registry's spring group.
+"""Compiled main-spring kernels (synth.kernels.main_spring) against the registry's spring group.
 
 Sources: the reference is the registry path itself, synth.design.evaluate.spring (spring_values of thesis step 9,
 eq. (64)-(93), and the registry's margin()); the keys come from generated applications (every optional input
@@ -17,16 +17,16 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from synth.data.generated_applications import generate
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.design.space import core_rows, space
 from synth.errors import InputError
-from synth.kernels import torsion_spring as K
+from synth.kernels import main_spring
 from synth.model import torsion_spring as s9
 
 ROOT = Path(__file__).resolve().parents[1]
-SETTINGS = E.Settings(fidelity="screening")
+SETTINGS = evaluate.Settings(fidelity="screening")
 
 
 # ------------------------------------------------------------------ fixtures: realistic keys and every catalog spring
@@ -41,14 +41,14 @@ def _evaluator_keys(inputs):
     a = np.concatenate([np.full(len(c), i) for i, c in enumerate(per)]).astype(np.int64)
     c = np.concatenate(per)
     with np.errstate(all="ignore"):
-        cg = E.core(apps, a, sp.rows("core", c), SETTINGS)
-    return apps, E.spring_keys(cg, np.arange(len(a))), cg
+        cg = evaluate.core(apps, a, sp.rows("core", c), SETTINGS)
+    return apps, evaluate.spring_keys(cg, np.arange(len(a))), cg
 
 
 @pytest.fixture(scope="module")
 def space_springs():
     """The design space's spring options (every material x wire x mean body diameter the space holds)."""
-    return K.options_of_space()
+    return main_spring.options_of_space()
 
 
 @pytest.fixture(scope="module")
@@ -63,7 +63,7 @@ def realistic():
     _, first = np.unique(stack, axis=0, return_index=True)
     pick = np.concatenate([rng.choice(first[keys["app"][first] == i], size=10, replace=False) for i in range(60)])
     assert len(pick) == 600
-    return apps, keys, pick, K.keys_of_rows(apps, keys, pick)
+    return apps, keys, pick, main_spring.keys_of_rows(apps, keys, pick)
 
 
 def _assert_close(a, ref):
@@ -84,21 +84,21 @@ def _assert_close(a, ref):
 
 def test_margin_names_are_the_registrys_spring_group():
     ids = [c.id for c in REGISTRY.values() if c.group == "spring" and not c.advisory]
-    assert list(K.MARGIN_NAMES) == ids
+    assert list(main_spring.MARGIN_NAMES) == ids
 
 
 def test_reference_margins_are_the_registry_spring_group(realistic, space_springs):
-    # the numpy twin is the registry path: E.spring on (key, option) rows gives the same margins, bit for bit
+    # the numpy twin is the registry path: evaluate.spring on (key, option) rows gives the same margins, bit for bit
     apps, keys, pick, kk = realistic
     rng = np.random.default_rng(2)
     ki = rng.choice(len(pick), 40, replace=False)
     oi = rng.choice(len(space_springs), 300, replace=False)
-    ref = K.reference_margins(kk, space_springs, ki, oi)
+    ref = main_spring.reference_margins(kk, space_springs, ki, oi)
     rows_k = np.repeat(pick[ki], len(oi))
     rows_o = np.tile(oi, len(ki))
     with np.errstate(all="ignore"):
-        g = E.spring(apps, keys, rows_k, space().rows("spring", rows_o), SETTINGS)
-    for m, name in enumerate(K.MARGIN_NAMES):
+        g = evaluate.spring(apps, keys, rows_k, space().rows("spring", rows_o), SETTINGS)
+    for m, name in enumerate(main_spring.MARGIN_NAMES):
         assert np.array_equal(ref[:, :, m].ravel(), g.margins[name]), name
 
 
@@ -111,8 +111,8 @@ def test_margins_equal_the_registry_on_600_generated_keys(realistic, space_sprin
     for lo in range(0, len(keys), 100):  # 100 keys x every option, then 2,000 drawn options for the others
         sub = keys.take(np.arange(lo, min(lo + 100, len(keys))))
         o = opts if lo == 0 else opts.take(np.sort(rng.choice(len(opts), 2000, replace=False)))
-        a = K.margins(sub, o)
-        ref = K.reference_margins(sub, o)
+        a = main_spring.margins(sub, o)
+        ref = main_spring.reference_margins(sub, o)
         _assert_close(a, ref)
         assert (a == ref).mean() > 0.999  # the same operations in the same order: bit-for-bit in practice
         feasible += int(np.all(ref >= -FEAS_TOL, axis=2).sum())
@@ -124,20 +124,20 @@ def test_fatigue_is_not_verified_without_the_durability_test(realistic, space_sp
     _, _, _, keys = realistic
     off = ~keys.raw["fatigue_verified"]
     assert off.any() and (~off).any()  # generate(vary=True) leaves the durability test out of some applications
-    m = K.margins(keys.take(np.flatnonzero(off)[:20]), space_springs.take(np.arange(0, 11000, 50)))
-    assert np.isposinf(m[:, :, K.MARGIN_NAMES.index("spring_fatigue")]).all()
+    m = main_spring.margins(keys.take(np.flatnonzero(off)[:20]), space_springs.take(np.arange(0, 11000, 50)))
+    assert np.isposinf(m[:, :, main_spring.MARGIN_NAMES.index("spring_fatigue")]).all()
 
 
 def test_margins_reproduce_a_hand_calculated_pair():
     # case 3 pair of the module doctest at the registry's upper tolerance:
     # T_inst = 1.56 * 1.08 + 0.0164 * 28.6 = 2.15384 N m, Z = pi 2.3^3 / 32 = 1.194492 mm^3,
     # c = 44 / 2.3 = 19.13043, k_f = (4c^2 - c - 1) / (4c(c - 1)) = 1.040646 -> sigma_inst = 1876.43 MPa
-    opts = K.spring_options(E_mpa=206000, Rm_mpa=2004, sigma_y_mpa=1763.5, sigma_A0_mpa=701.4, b_mm=2.3, h_mm=2.3,
+    opts = main_spring.spring_options(E_mpa=206000, Rm_mpa=2004, sigma_y_mpa=1763.5, sigma_A0_mpa=701.4, b_mm=2.3, h_mm=2.3,
                             round_wire=True, mbd_mm=44.0)
-    keys = K.spring_keys(spring_torque_nominal_nm=1.56, housing_height_mm=8.8, housing_outer_diameter_mm=48.0,
+    keys = main_spring.spring_keys(spring_torque_nominal_nm=1.56, housing_height_mm=8.8, housing_outer_diameter_mm=48.0,
                          housing_inner_diameter_mm=30.0, stiffness_nm_per_deg=0.0164, torque_tolerance_pct=8,
                          theta_pp_deg=16, dtheta_inst_nom_deg=28.6)
-    m = dict(zip(K.MARGIN_NAMES, K.margins(keys, opts)[0, 0]))
+    m = dict(zip(main_spring.MARGIN_NAMES, main_spring.margins(keys, opts)[0, 0]))
     assert 1763.5 * (1 - m["spring_yield"]) == pytest.approx(1876.43, abs=0.01)
     # index margins: (19.1304 - 4) / 4 and (20 - 19.1304) / 20; a supplied material: section margin 0
     assert m["spring_index_min"] == pytest.approx(3.78261, abs=1e-5)
@@ -148,15 +148,15 @@ def test_margins_reproduce_a_hand_calculated_pair():
 def test_a_material_not_supplied_in_the_section_is_never_feasible():
     kw = dict(E_mpa=206000, Rm_mpa=2004, sigma_y_mpa=1763.5, sigma_A0_mpa=701.4, b_mm=2.3, h_mm=2.3, round_wire=True,
               mbd_mm=30.0)
-    opts = K.spring_options(**kw, supplied_in_section=np.array([True, False]))
-    keys = K.spring_keys(spring_torque_nominal_nm=0.3, housing_height_mm=20.0, housing_outer_diameter_mm=40.0,
+    opts = main_spring.spring_options(**kw, supplied_in_section=np.array([True, False]))
+    keys = main_spring.spring_keys(spring_torque_nominal_nm=0.3, housing_height_mm=20.0, housing_outer_diameter_mm=40.0,
                          housing_inner_diameter_mm=20.0, stiffness_nm_per_deg=0.01, torque_tolerance_pct=5,
                          theta_pp_deg=10)
-    m = K.margins(keys, opts)[0]
-    assert m[1, K.MARGIN_NAMES.index("spring_material_section")] == -1.0
+    m = main_spring.margins(keys, opts)[0]
+    assert m[1, main_spring.MARGIN_NAMES.index("spring_material_section")] == -1.0
     assert (m[0] >= 0).all()  # the same spring, supplied: feasible
-    assert K.first_feasible(keys, opts, [1, 0]).index.tolist() == [0]
-    assert K.max_min_margin(keys, opts, [1]).value.tolist() == [-1.0]
+    assert main_spring.first_feasible(keys, opts, [1, 0]).index.tolist() == [0]
+    assert main_spring.max_min_margin(keys, opts, [1]).value.tolist() == [-1.0]
 
 
 _pos = dict(allow_nan=False, allow_infinity=False)
@@ -169,7 +169,7 @@ def _extreme_keys(draw, n=6):
         vals = st.one_of(st.floats(lo, hi, **_pos), st.sampled_from(list(special) or [lo, hi]))
         return np.array(draw(st.lists(vals, min_size=n, max_size=n)))
     outer = arr(1.0, 5000.0, (1.0, 60.0, 5000.0))
-    return K.spring_keys(
+    return main_spring.spring_keys(
         spring_torque_nominal_nm=arr(0.0, 100.0, (0.0, 1e-6, 100.0)),
         housing_height_mm=arr(0.1, 1000.0, (0.1, 9.0, 1000.0)),
         housing_outer_diameter_mm=outer,
@@ -187,14 +187,14 @@ def test_margins_equal_reference_at_the_extremes(space_springs, keys, seed, mbd)
     opts = space_springs.take(rng.choice(len(space_springs), size=40, replace=False))
     raw = {k: v[:3] for k, v in opts.raw.items()}
     raw["main_spring_mean_body_diameter_mm"] = np.full(3, mbd)  # an extreme diameter
-    odd = K._options(raw)
+    odd = main_spring._options(raw)
     for o in (opts, odd):
-        ref = K.reference_margins(keys, o)
-        _assert_close(K.margins(keys, o), ref)
+        ref = main_spring.reference_margins(keys, o)
+        _assert_close(main_spring.margins(keys, o), ref)
         ok, mins = _brute(ref, FEAS_TOL)
         first = np.where(ok.any(axis=1), np.argmax(ok, axis=1), -1)
-        assert np.array_equal(K.first_feasible(keys, o).index, first)
-        assert np.array_equal(K.max_min_margin(keys, o).index, np.argmax(mins, axis=1))
+        assert np.array_equal(main_spring.first_feasible(keys, o).index, first)
+        assert np.array_equal(main_spring.max_min_margin(keys, o).index, np.argmax(mins, axis=1))
 
 
 @pytest.mark.parametrize("tol", [0.0, FEAS_TOL])
@@ -202,8 +202,8 @@ def test_yield_threshold_decides_the_yield_check_exactly(realistic, space_spring
     # the scan of (b) replaces the yield check by T_inst <= threshold: same verdict as the reference on every pair
     keys = realistic[3].take(np.arange(0, 600, 6))
     opts = space_springs.take(np.arange(0, len(space_springs), 3))
-    t_max = K.yield_thresholds(opts, tol)
-    ref = K.reference_margins(keys, opts)[:, :, 0]
+    t_max = main_spring.yield_thresholds(opts, tol)
+    ref = main_spring.reference_margins(keys, opts)[:, :, 0]
     by_threshold = keys.derived["t_inst"][:, None] <= t_max[None, :]
     assert np.array_equal(by_threshold, ref >= -tol)
     assert 0.05 < by_threshold.mean() < 0.95
@@ -231,7 +231,7 @@ def scan_case(realistic, space_springs):
     opts = space_springs.take(np.sort(rng.choice(len(space_springs), size=3000, replace=False)))
     lists = [rng.permutation(3000)[:1500] for _ in range(3)]
     key_group = rng.integers(0, 3, size=len(keys))
-    ref = K.reference_margins(keys, opts)
+    ref = main_spring.reference_margins(keys, opts)
     return keys, opts, lists, key_group, ref
 
 
@@ -240,7 +240,7 @@ def scan_case(realistic, space_springs):
 def test_first_feasible_is_the_first_feasible_option_of_each_list(scan_case, engine, tol):
     keys, opts, lists, kg, ref = scan_case
     ok, _ = _brute(ref, tol)
-    r = K.first_feasible(keys, opts, lists, key_group=kg, tol=tol, engine=engine)
+    r = main_spring.first_feasible(keys, opts, lists, key_group=kg, tol=tol, engine=engine)
     found = 0
     for i in range(len(keys)):
         lst = lists[kg[i]]
@@ -266,7 +266,7 @@ def test_first_feasible_stops_at_the_score_limit(scan_case, engine, per_list):
         order = [lst[np.argsort(s[lst], kind="stable")] for lst in lists]  # score order, as the bulk engine scans
         score, scores = s, [s[lst] for lst in order]
     limit = np.random.default_rng(4).uniform(0, 10, len(keys))
-    r = K.first_feasible(keys, opts, order, key_group=kg, score=score, score_limit=limit, engine=engine)
+    r = main_spring.first_feasible(keys, opts, order, key_group=kg, score=score, score_limit=limit, engine=engine)
     for i in range(len(keys)):
         lst = order[kg[i]][scores[kg[i]] <= limit[i]]
         hits = np.flatnonzero(ok[i, lst])
@@ -277,7 +277,7 @@ def test_first_feasible_stops_at_the_score_limit(scan_case, engine, per_list):
 def test_max_min_margin_is_the_argmax_of_the_smallest_margin(scan_case, engine):
     keys, opts, lists, kg, ref = scan_case
     _, mins = _brute(ref, 0.0)
-    r = K.max_min_margin(keys, opts, lists, key_group=kg, engine=engine)
+    r = main_spring.max_min_margin(keys, opts, lists, key_group=kg, engine=engine)
     for i in range(len(keys)):
         lst = lists[kg[i]]
         best = int(np.argmax(mins[i, lst]))  # first of the ties in list order
@@ -291,7 +291,7 @@ def test_max_min_margin_with_a_cap_is_exact_below_it(scan_case, engine):
     _, mins = _brute(ref, 0.0)
     true = np.array([mins[i, lists[kg[i]]].max() for i in range(len(keys))])
     cap = np.where(np.arange(len(keys)) % 2 == 0, -0.05, 0.0)
-    r = K.max_min_margin(keys, opts, lists, key_group=kg, cap=cap, engine=engine)
+    r = main_spring.max_min_margin(keys, opts, lists, key_group=kg, cap=cap, engine=engine)
     assert np.array_equal(np.minimum(r.value, cap), np.minimum(true, cap))
     assert (mins[np.arange(len(keys)), r.index] == r.value).all()
 
@@ -301,9 +301,9 @@ def test_max_min_margin_ties_at_the_section_margin_go_to_the_lowest_index(space_
     # 0 and argmax (the reference's nearest design) takes the first; the kernel too
     keys = realistic[3].take(np.arange(0, 600, 20))
     opts = space_springs.take(np.arange(0, len(space_springs), 7))
-    mins = _brute(K.reference_margins(keys, opts), 0.0)[1]
+    mins = _brute(main_spring.reference_margins(keys, opts), 0.0)[1]
     assert (mins <= 0).all() and (mins == 0).any()
-    r = K.max_min_margin(keys, opts)
+    r = main_spring.max_min_margin(keys, opts)
     assert np.array_equal(r.index, np.argmax(mins, axis=1))
 
 
@@ -311,7 +311,7 @@ def test_max_min_margin_ties_at_the_section_margin_go_to_the_lowest_index(space_
 def test_any_feasible_matches_brute_force(scan_case, engine):
     keys, opts, lists, kg, ref = scan_case
     ok, _ = _brute(ref, FEAS_TOL)
-    r = K.any_feasible(keys, opts, lists, key_group=kg, tol=FEAS_TOL, engine=engine)
+    r = main_spring.any_feasible(keys, opts, lists, key_group=kg, tol=FEAS_TOL, engine=engine)
     expect = np.array([ok[i, lists[kg[i]]].any() for i in range(len(keys))])
     assert np.array_equal(r.index, expect)
     assert expect.any() and not expect.all()
@@ -320,9 +320,9 @@ def test_any_feasible_matches_brute_force(scan_case, engine):
 def test_parallel_kernels_give_the_serial_answers(scan_case):
     keys, opts, lists, kg, ref = scan_case
     buf = np.full(ref.shape, np.nan)
-    assert K.margins(keys, opts, parallel=True, out=buf) is buf
-    assert np.array_equal(buf, K.margins(keys, opts))
-    for fn in (K.first_feasible, K.max_min_margin, K.any_feasible):
+    assert main_spring.margins(keys, opts, parallel=True, out=buf) is buf
+    assert np.array_equal(buf, main_spring.margins(keys, opts))
+    for fn in (main_spring.first_feasible, main_spring.max_min_margin, main_spring.any_feasible):
         a, b = fn(keys, opts, lists, key_group=kg, parallel=True), fn(keys, opts, lists, key_group=kg)
         for x, y in zip(a, b):
             assert np.array_equal(x, y)
@@ -333,12 +333,12 @@ def test_nan_keys_of_failing_cores_are_infeasible_not_errors(space_springs):
     apps, keys, _ = _evaluator_keys(generate(2, seed=3))
     keys = {k: v.copy() for k, v in keys.items()}
     keys["spring_housing_height_mm"][0] = np.nan
-    kk = K.keys_of_rows(apps, keys, np.array([0, 1]))
+    kk = main_spring.keys_of_rows(apps, keys, np.array([0, 1]))
     opts = space_springs.take(np.arange(0, 11000, 100))
-    m = K.margins(kk, opts)
-    _assert_close(m, K.reference_margins(kk, opts))
-    assert (K.first_feasible(kk, opts).index[:1] == -1).all()
-    assert K.max_min_margin(kk, opts).value[0] == -np.inf
+    m = main_spring.margins(kk, opts)
+    _assert_close(m, main_spring.reference_margins(kk, opts))
+    assert (main_spring.first_feasible(kk, opts).index[:1] == -1).all()
+    assert main_spring.max_min_margin(kk, opts).value[0] == -np.inf
 
 
 # ------------------------------------------------------------------ bad input, lazy import
@@ -348,32 +348,32 @@ def test_bad_inputs_name_the_field():
     good = dict(spring_torque_nominal_nm=1.0, housing_height_mm=9.0, housing_outer_diameter_mm=50.0,
                 housing_inner_diameter_mm=30.0, stiffness_nm_per_deg=0.02, torque_tolerance_pct=5, theta_pp_deg=16)
     with pytest.raises(InputError, match="stiffness_nm_per_deg"):
-        K.spring_keys(**{**good, "stiffness_nm_per_deg": 0.0})
+        main_spring.spring_keys(**{**good, "stiffness_nm_per_deg": 0.0})
     with pytest.raises(InputError, match="housing_outer_diameter_mm"):
-        K.spring_keys(**{**good, "housing_outer_diameter_mm": [50.0, np.nan]})
+        main_spring.spring_keys(**{**good, "housing_outer_diameter_mm": [50.0, np.nan]})
     with pytest.raises(InputError, match="theta_pp_deg.*1 or 3 values"):
-        K.spring_keys(**{**good, "housing_height_mm": [9.0, 9.0, 9.0], "theta_pp_deg": [16.0, 16.0]})
-    keys = K.spring_keys(**good)
-    opts = K.spring_options(E_mpa=206000, Rm_mpa=2000, sigma_y_mpa=1760, sigma_A0_mpa=700, b_mm=2.3, h_mm=2.3,
+        main_spring.spring_keys(**{**good, "housing_height_mm": [9.0, 9.0, 9.0], "theta_pp_deg": [16.0, 16.0]})
+    keys = main_spring.spring_keys(**good)
+    opts = main_spring.spring_options(E_mpa=206000, Rm_mpa=2000, sigma_y_mpa=1760, sigma_A0_mpa=700, b_mm=2.3, h_mm=2.3,
                             round_wire=True, mbd_mm=[40.0, 44.0])
     with pytest.raises(InputError, match="candidates"):
-        K.first_feasible(keys, opts, np.array([0, 2]))
+        main_spring.first_feasible(keys, opts, np.array([0, 2]))
     with pytest.raises(InputError, match="key_group"):
-        K.max_min_margin(keys, opts, [np.array([0]), np.array([1])])
+        main_spring.max_min_margin(keys, opts, [np.array([0]), np.array([1])])
     with pytest.raises(InputError, match="score"):
-        K.first_feasible(keys, opts, [np.array([0, 1])], key_group=np.array([0]), score=[np.array([1.0])])
+        main_spring.first_feasible(keys, opts, [np.array([0, 1])], key_group=np.array([0]), score=[np.array([1.0])])
     with pytest.raises(InputError, match="engine"):
-        K.margins(keys, opts, engine="cuda")
+        main_spring.margins(keys, opts, engine="cuda")
     with pytest.raises(InputError, match="out"):
-        K.margins(keys, opts, out=np.empty((1, 2, 7)))
+        main_spring.margins(keys, opts, out=np.empty((1, 2, 7)))
     with pytest.raises(InputError, match="round_wire"):
-        K.spring_options(E_mpa=206000, Rm_mpa=2000, sigma_y_mpa=1760, sigma_A0_mpa=700, b_mm=2.3, h_mm=2.3,
+        main_spring.spring_options(E_mpa=206000, Rm_mpa=2000, sigma_y_mpa=1760, sigma_A0_mpa=700, b_mm=2.3, h_mm=2.3,
                          round_wire="yes", mbd_mm=44.0)
 
 
 def test_importing_the_kernels_the_model_and_the_cli_does_not_import_numba():
     # the one-application path (synth design) must not pay for numba: only a kernel call loads it
-    code = ("import sys, synth.kernels, synth.model.torsion_spring, synth.cli, synth.kernels.torsion_spring as k\n"
+    code = ("import sys, synth.kernels, synth.model.torsion_spring, synth.cli, synth.kernels.main_spring as k\n"
             "assert 'numba' not in sys.modules and not k.numba_loaded(), 'numba imported'\n")
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
@@ -381,12 +381,12 @@ def test_importing_the_kernels_the_model_and_the_cli_does_not_import_numba():
 
 
 def test_keys_built_before_a_catalog_change_are_refused(monkeypatch):
-    keys = K.spring_keys(spring_torque_nominal_nm=1.0, housing_height_mm=9.0, housing_outer_diameter_mm=50.0,
+    keys = main_spring.spring_keys(spring_torque_nominal_nm=1.0, housing_height_mm=9.0, housing_outer_diameter_mm=50.0,
                          housing_inner_diameter_mm=30.0, stiffness_nm_per_deg=0.02, torque_tolerance_pct=5,
                          theta_pp_deg=16)
-    opts = K.spring_options(E_mpa=206000, Rm_mpa=2000, sigma_y_mpa=1760, sigma_A0_mpa=700, b_mm=2.3, h_mm=2.3,
+    opts = main_spring.spring_options(E_mpa=206000, Rm_mpa=2000, sigma_y_mpa=1760, sigma_A0_mpa=700, b_mm=2.3, h_mm=2.3,
                             round_wire=True, mbd_mm=44.0)
     changed = {**s9.main_spring_constants(), "main_spring_index_max": 18.0}  # e.g. a user catalog folder
     monkeypatch.setattr(s9, "main_spring_constants", lambda: changed)
     with pytest.raises(InputError, match="main_spring_index_max"):
-        K.margins(keys, opts)
+        main_spring.margins(keys, opts)

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, strategies as st
 
 from synth import catalog
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import REGISTRY, margin
 from synth.model import layout as s0, ball_bearing as s1, pivot as s2, damping as s3
@@ -17,7 +17,7 @@ from conftest import case_input
 
 def input_group(name, **changes):
     """The registry's step-0 group (inputs only) of case ``name`` with input ``changes``."""
-    return E.inputs(Applications.of([case_input(name, **changes)]), np.zeros(1, dtype=np.int64))
+    return evaluate.inputs(Applications.of([case_input(name, **changes)]), np.zeros(1, dtype=np.int64))
 
 
 # --- step 0 -------------------------------------------------------------------------------------
@@ -38,7 +38,7 @@ def test_axial_displacement_cases():
     assert input_group("case3").margins["pulley_axial_space"][0] == pytest.approx((36.3 - 35) / 36.3)
     # reverse layout (case 1 at a 10 mm belt plane): 10 - 20/2 = 0 < 2 mm clearance -> fails by 100 % (eq. (27))
     g = input_group("case1_as_run", middle_plane_belt_height_mm=10.0)
-    assert bool(g.values["layout_reverse"][0]) and g.state["pulley_axial_space"][0] == E.NOT_APPLICABLE
+    assert bool(g.values["layout_reverse"][0]) and g.state["pulley_axial_space"][0] == evaluate.NOT_APPLICABLE
     assert g.margins["pulley_crankcase_clearance"][0] == pytest.approx(-1.0)
 
 
@@ -137,8 +137,8 @@ def test_friction_circle_vs_linear_difference():
 
 def test_axial_group_classes_tables_3_4():
     # Tables 3-4 by the axial damping D_ax (both faces): a bound belongs to the lower row, above 2.00 none
-    from synth import parts as P
-    p = P.arrays()
+    from synth.parts import arrays
+    p = arrays()
     for table in (p.damper_pad, p.endcap_spacer):
         row, within = s3.axial_group_class([0.7, 0.71, 1.1, 1.71, 2.0, 2.01], table.max_axial_damping_nm)
         assert table.key[row].tolist() == [table.key[i] for i in (0, 1, 1, 2, 2, 2)]

@@ -19,13 +19,13 @@ import pytest
 
 from synth import flowchart
 from synth.data.generated_applications import generate
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import REGISTRY
 from synth.design.result import FAIL, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING
 from synth.design.space import SUBSYSTEMS, core_rows, space
 
-SETTINGS = E.Settings(fidelity="screening-only")  # the screening model itself, on every path
+SETTINGS = evaluate.Settings(fidelity="screening-only")  # the screening model itself, on every path
 APPS = generate(300, seed=11, vary=True)
 TOL = 1e-9
 GROUPS = ("input", "core", "bushing", "axial", "spring", "bolt")
@@ -53,17 +53,17 @@ def _margin_of(result, cid):
     return c.margin, c.verdict
 
 
-def _compare(result, group: E.Group, row: int, where: str):
+def _compare(result, group: evaluate.Group, row: int, where: str):
     """Every constraint of ``group``: the margin at ``row`` equals the result's check, and so does the verdict."""
     from synth.design.evaluate import EVALUATED
     for cid, m in group.margins.items():
         ref, verdict = _margin_of(result, cid)
         state = int(group.state[cid][row])
         if verdict == NOT_APPLICABLE:
-            assert state == E.NOT_APPLICABLE, (where, cid)
+            assert state == evaluate.NOT_APPLICABLE, (where, cid)
             continue
         if verdict == NOT_VERIFIED:
-            assert state == E.NOT_VERIFIED, (where, cid)
+            assert state == evaluate.NOT_VERIFIED, (where, cid)
             continue
         assert state == EVALUATED, (where, cid, state)
         got = float(m[row])
@@ -92,10 +92,10 @@ def test_product_layout_equals_the_flowchart(designs):
         cores = core_rows(sp, d)
         table = sp.rows("core", cores)
         core_all = _concat([table, attrs["core"]])               # the design's core as the last row
-        cg = E.core(apps, np.zeros(len(cores) + 1, dtype=np.int64), core_all, SETTINGS)
+        cg = evaluate.core(apps, np.zeros(len(cores) + 1, dtype=np.int64), core_all, SETTINGS)
         me = len(cores)
         _compare(r, cg, me, "core")
-        _compare(r, E.inputs(apps, np.zeros(1, dtype=np.int64)), 0, "input")
+        _compare(r, evaluate.inputs(apps, np.zeros(1, dtype=np.int64)), 0, "input")
         for s in SUBSYSTEMS:
             t = sp.tables[s]
             if s == "bushing":
@@ -110,10 +110,10 @@ def test_product_layout_equals_the_flowchart(designs):
             k = len(opts)
             rows = np.full(k + 1, me)
             if s == "spring":
-                keys = E.spring_keys(cg, np.arange(len(cores) + 1))  # every core's key; the design's last
-                g = E.spring(apps, keys, np.full(k + 1, me), o, SETTINGS)
+                keys = evaluate.spring_keys(cg, np.arange(len(cores) + 1))  # every core's key; the design's last
+                g = evaluate.spring(apps, keys, np.full(k + 1, me), o, SETTINGS)
             else:
-                g = getattr(E, s)(apps, cg, rows, o, SETTINGS)
+                g = getattr(evaluate, s)(apps, cg, rows, o, SETTINGS)
             _compare(r, g, k, s)
 
 
@@ -124,12 +124,12 @@ def test_applications_axis_equals_the_flowchart(designs):
     n = len(inputs)
     a = np.arange(n)
     attrs = {t: _concat([x[t] for _, _, x in designs]) for t in ("core",) + SUBSYSTEMS}
-    cg = E.core(apps, a, attrs["core"], SETTINGS)
-    groups = {"input": E.inputs(apps, a), "core": cg,
-              "bushing": E.bushing(apps, cg, a, attrs["bushing"], SETTINGS),
-              "axial": E.axial(apps, cg, a, attrs["axial"], SETTINGS),
-              "spring": E.spring(apps, E.spring_keys(cg, a), a, attrs["spring"], SETTINGS),
-              "bolt": E.bolt(apps, cg, a, attrs["bolt"], SETTINGS)}
+    cg = evaluate.core(apps, a, attrs["core"], SETTINGS)
+    groups = {"input": evaluate.inputs(apps, a), "core": cg,
+              "bushing": evaluate.bushing(apps, cg, a, attrs["bushing"], SETTINGS),
+              "axial": evaluate.axial(apps, cg, a, attrs["axial"], SETTINGS),
+              "spring": evaluate.spring(apps, evaluate.spring_keys(cg, a), a, attrs["spring"], SETTINGS),
+              "bolt": evaluate.bolt(apps, cg, a, attrs["bolt"], SETTINGS)}
     for i, (_, r, _) in enumerate(designs):
         for name, g in groups.items():
             _compare(r, g, i, f"{name} (application {i})")

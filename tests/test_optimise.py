@@ -19,14 +19,14 @@ from synth.design.space import SUBSYSTEMS
 from synth.design.verify import verify
 from synth.data.generated_applications import generate
 from synth.errors import InputError
-from synth import parts as P
+from synth.parts import arrays, env_code
 from synth.optimise import solve
 from synth.optimise.diagnose import diagnose, is_feasible
-from synth.optimise.evaluate import SubTable, evaluate
+from synth.optimise.product import SubTable, evaluate
 from synth.optimise.objectives import Objective
 from synth.optimise.solvers.enumerate import solve_space, tables
 from synth.model import plain_bushing as s4
-from synth.schema import load_input
+from synth.io.documents import load_input
 
 CASE1 = str(case_path("case1"))
 CASE3 = str(case_path("case3"))
@@ -61,8 +61,8 @@ def test_verify_reproduces_hand_calculations_case3():
     # pivot = class + 2 (1 - 0.5) = 20 mm (thinner bushing, step 2)
     assert v.values["pivot_diameter_mm"] == pytest.approx(20.0)
     # the bushing pressure is step 4's own function (one source of truth), against supplier B's dry limit 3 MPa
-    p = P.arrays()
-    b, dry = p.bushing.code("B"), P.env_code("dry")[0]
+    p = arrays()
+    b, dry = p.bushing.code("B"), env_code("dry")[0]
     r = s4.evaluate_bushing(462.5, 20.0, 20.0, 16, 50, 1200, k_w_mm3_per_n_m=p.bushing_limits["k_w_mm3_per_n_m"][b, dry],
                             radial_clearance_mm=p.bushing.radial_clearance_mm[b], belt_plane_height_mm=20.0,
                             max_pivot_height_mm=34.0, axial_damping=False, pulley_diameter_mm=65.5)

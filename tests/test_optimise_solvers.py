@@ -10,14 +10,14 @@ import pytest
 
 from synth.data.generated_applications import generate
 from synth.design.verify import verify
-from synth.optimise.evaluate import evaluate
+from synth.optimise.product import evaluate
 from synth.optimise.objectives import Objective
-from synth.optimise.result import design_margin
+from synth.optimise.answer import design_margin
 from synth.optimise.solvers import flowchart, milp_cvxpy, minlp
 from synth.optimise.solvers._staged import solve_evaluated
 from synth.optimise.solvers.enumerate import solve_space
 from synth.data import case_path
-from synth.schema import load_input
+from synth.io.documents import load_input
 
 CASES = {f"thesis-{c}": load_input(case_path(c)) for c in ("case1", "case1_as_run", "case3")}
 APPS = {**CASES, **{f"generated-{i}": d for i, d in enumerate(generate(20, seed=0))}}

@@ -5,7 +5,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from synth import catalog
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import REGISTRY, margin
 from synth.design.verify import verify
@@ -70,9 +70,9 @@ def test_case_margins_by_hand():
 def test_worst_belt_increment_would_fail_case3():
     # 20 + 2 + 15 = 37 > 36.3 (0.7 mm over): the thesis tool (which passed case 3) used the nominal belt plane,
     # and so does the registry's pulley-top check (eq. (26)); a belt plane at its worst increment fails it
-    nominal = E.inputs(Applications.of([case_input("case3")]), np.zeros(1, int))
+    nominal = evaluate.inputs(Applications.of([case_input("case3")]), np.zeros(1, int))
     assert nominal.margins["pulley_axial_space"][0] == pytest.approx((36.3 - 35.0) / 36.3)
-    worst = E.inputs(Applications.of([case_input("case3", middle_plane_belt_height_mm=22.0)]), np.zeros(1, int))
+    worst = evaluate.inputs(Applications.of([case_input("case3", middle_plane_belt_height_mm=22.0)]), np.zeros(1, int))
     assert float(worst.values["pulley_top_mm"][0] - worst.values["max_axial_displacement_mm"][0]) == pytest.approx(0.7)
     assert worst.margins["pulley_axial_space"][0] == pytest.approx(-0.7 / 36.3)
 

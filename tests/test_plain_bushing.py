@@ -7,8 +7,9 @@ import pytest
 from hypothesis import given, settings, strategies as st
 from scipy.integrate import quad
 
-from synth import catalog, flowchart, parts as P
-from synth.design import evaluate as E
+from synth import catalog, flowchart
+from synth.parts import arrays, env_code
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.space import bushing_attributes
 from synth.design.verify import verify
@@ -26,14 +27,14 @@ def hubload_n(inp):
 
 def supplier_of(inp):
     """Supplier code of the input's radial wall thickness and the environment code."""
-    p = P.arrays()
+    p = arrays()
     sup = int(np.flatnonzero(np.isclose(p.bushing.radial_thickness_mm, inp["pivot_bushing_radial_thickness_mm"]))[0])
-    return sup, int(P.env_code(inp["application_type"])[0])
+    return sup, int(env_code(inp["application_type"])[0])
 
 
 def case_kwargs(inp, axial_damping):
     """The keyword arguments of :func:`evaluate_bushing` for a case: the supplier's k_w and clearance, the geometry."""
-    p = P.arrays()
+    p = arrays()
     sup, env = supplier_of(inp)
     return dict(k_w_mm3_per_n_m=float(p.bushing_limits["k_w_mm3_per_n_m"][sup, env]),
                 radial_clearance_mm=float(p.bushing.radial_clearance_mm[sup]),
@@ -57,10 +58,10 @@ def bushing_group(name, hubload, pivot_diameter_mm, lengths_mm, axial, **changes
                                         np.asarray(lengths_mm, float))
     hl, d, length = hl.ravel(), d.ravel(), length.ravel()
     n = len(hl)
-    cg = E.Group("core", {"app": np.zeros(n, dtype=np.int64), "hubload_nominal_n": hl, "pivot_diameter_mm": d,
+    cg = evaluate.Group("core", {"app": np.zeros(n, dtype=np.int64), "hubload_nominal_n": hl, "pivot_diameter_mm": d,
                           "axial_group_present": np.full(n, float(axial))})
     sup, _ = supplier_of(inp)
-    return E.bushing(apps, cg, np.arange(n), bushing_attributes(P.arrays(), np.full(n, sup), length))
+    return evaluate.bushing(apps, cg, np.arange(n), bushing_attributes(arrays(), np.full(n, sup), length))
 
 
 STEP4 = ("bushing_rated", "bushing_p", "bushing_pv", "bushing_pvt", "bushing_wear", "bushing_parallelism",
@@ -82,10 +83,10 @@ CASES = {
 # --- catalog ----------------------------------------------------------------------------------
 
 def test_table5_limits_in_catalog():
-    p = P.arrays()
+    p = arrays()
     lim = p.bushing_limits
     a, b = p.bushing.code("A"), p.bushing.code("B")
-    dry, bio = P.env_code("dry")[0], P.env_code("belt_in_oil")[0]
+    dry, bio = env_code("dry")[0], env_code("belt_in_oil")[0]
 
     def row(s, e):
         return tuple(float(lim[k][s, e]) for k in ("p_max_mpa", "pv_max_mpa_m_per_s", "pvt_max_mpa_m_per_s_h"))
@@ -104,8 +105,8 @@ def test_catalog_has_source_cost_standard():
 
 def test_supplier_b_not_rated_for_bio():
     # Table 5 has no BIO limits for supplier B: NaN in the arrays, and the registry's rating constraint fails
-    p = P.arrays()
-    b, bio = p.bushing.code("B"), P.env_code("belt_in_oil")[0]
+    p = arrays()
+    b, bio = p.bushing.code("B"), env_code("belt_in_oil")[0]
     assert all(np.isnan(p.bushing_limits[k][b, bio]) for k in p.bushing_limits)
     r = verify(case_input("case1_as_run"), dict(case_flowchart("case1_as_run").parts, pivot_bushing_supplier="B"))
     assert r.check("bushing_rated").verdict == "fail"
@@ -117,7 +118,7 @@ def test_unknown_thickness_and_environment():
     with pytest.raises(InputError, match="pivot_bushing_radial_thickness_mm.*one of"):
         case_input("case1_as_run", pivot_bushing_radial_thickness_mm=0.7)
     with pytest.raises(CatalogError, match="application_type"):
-        P.env_code("wet")
+        env_code("wet")
 
 
 # --- eq. (28)-(32) hand calculations ----------------------------------------------------------
@@ -266,7 +267,7 @@ def test_catalog_scheme_picks_shortest_available_passing(name):
 def test_no_length_fits_fails_pvt_and_suggests_a_larger_pivot():
     # 3 kN on a 16 mm pivot in a 40 mm pivot: no catalog length of supplier A passes p*v*t; the longest that fits
     # (25 mm: L_max = 26 mm) still fails it, and the registry's correction is the thesis's next move
-    lengths = P.arrays().bushing_lengths[P.arrays().bushing.code("A")]
+    lengths = arrays().bushing_lengths[arrays().bushing.code("A")]
     g = bushing_group("case1_as_run", 3000.0, 16.0, lengths, True)
     fits = g.margins["bushing_length"] >= 0
     assert not passes(g).any() and (g.margins["bushing_pvt"] < 0).all()
@@ -279,7 +280,7 @@ def test_vectorised_over_designs():
     # 500 hubloads x the catalog lengths in one call of the evaluator; the shortest passing length per hubload
     n = 500
     hl = np.linspace(200.0, 900.0, n)
-    lengths = P.arrays().bushing_lengths[P.arrays().bushing.code("A")]
+    lengths = arrays().bushing_lengths[arrays().bushing.code("A")]
     g = bushing_group("case1_as_run", hl[:, None], 16.0, lengths[None, :], True)
     assert len(g) == n * len(lengths)
     ok = passes(g).reshape(n, len(lengths))

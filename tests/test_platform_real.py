@@ -14,7 +14,7 @@ import pytest
 
 from synth.bulk.portfolio import records, validate_record
 from synth.bulk.sample import sample_portfolio
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import REGISTRY
 from synth.design.space import SUBSYSTEMS, core_rows
@@ -28,7 +28,7 @@ from synth.platform.rationalise import rationalise
 
 slow = pytest.mark.skipif(not os.environ.get("SYNTH_SLOW"), reason="slow (minutes): set SYNTH_SLOW=1 to run")
 
-SETTINGS = E.Settings()
+SETTINGS = evaluate.Settings()
 
 
 @pytest.fixture(scope="module")
@@ -44,9 +44,9 @@ def platform(sample):
 
 def test_producer_equals_the_optimiser_product(sample):
     """Per application, per feasible core, per subsystem: the feasible options (and their margins) of the
-    producer's grouped, staged evaluation are those of ``synth.optimise.evaluate`` (every core against every
+    producer's grouped, staged evaluation are those of ``synth.optimise.product`` (every core against every
     option of the optimiser's design space, ungrouped)."""
-    from synth.optimise.evaluate import evaluate
+    from synth.optimise.product import evaluate
     _, pf = sample
     cat = catalogue()
     checked = 0
@@ -77,8 +77,8 @@ def test_spring_stages_declare_what_the_margins_read(sample):
     sp = catalogue().space
     rows = core_rows(sp, d)
     with np.errstate(all="ignore"):
-        cg = E.core(apps, np.zeros(len(rows), np.int64), sp.rows("core", rows), SETTINGS)
-    keys = E.spring_keys(cg, np.arange(len(rows))[:1])
+        cg = evaluate.core(apps, np.zeros(len(rows), np.int64), sp.rows("core", rows), SETTINGS)
+    keys = evaluate.spring_keys(cg, np.arange(len(rows))[:1])
     opts = sp.rows("spring", np.arange(0, sp.n("spring"), 7))
     k = np.zeros(len(opts["E_mpa"]), np.int64)
     base = P.spring_group(apps, keys, k, opts, SETTINGS)
@@ -121,7 +121,7 @@ def test_margins_and_binding_is_the_groups_min_margin(sample):
     apps = Applications.of([pf.design_inputs[0]])
     sp = catalogue().space
     with np.errstate(all="ignore"):
-        cg = E.core(apps, np.zeros(sp.n("core"), np.int64), sp.rows("core", np.arange(sp.n("core"))), SETTINGS)
+        cg = evaluate.core(apps, np.zeros(sp.n("core"), np.int64), sp.rows("core", np.arange(sp.n("core"))), SETTINGS)
     for objective_only in (True, False):
         m, b = P.margins_and_binding(cg, objective_only)
         np.testing.assert_array_equal(m, cg.min_margin(objective_only))

@@ -26,6 +26,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from synth import schema
+from synth.io import documents
 from synth.cli import main
 from synth.data import CASES_DIR, case_path
 from synth.errors import InputError
@@ -49,7 +50,7 @@ def _run(argv, capsys) -> tuple[int, str, str]:
 @pytest.fixture(scope="module")
 def pinned_input():
     """The feasible default application with pivot class 20 named: feasible unpinned (pivot 14), not pinned."""
-    return dataclasses.replace(schema.load_input(DEFAULT), pivot_class_diameter_mm=20.0)
+    return dataclasses.replace(documents.load_input(DEFAULT), pivot_class_diameter_mm=20.0)
 
 
 @pytest.mark.parametrize("solver", SOLVERS)
@@ -257,7 +258,7 @@ def test_hostile_files_are_refused_fast(tmp_path, kind):
     path = HOSTILE[kind](tmp_path)
     t0 = time.process_time()
     with pytest.raises(InputError):
-        schema.load_input(path)
+        documents.load_input(path)
     assert time.process_time() - t0 < 2.0
 
 
@@ -267,7 +268,7 @@ def test_duplicate_keys_name_both_lines(tmp_path):
     p.write_text(text)
     line = text.splitlines().index("  belt_width_mm: 30") + 1
     with pytest.raises(InputError, match=f"belt_width_mm.*lines {line - 1} and {line}"):
-        schema.load_input(p)
+        documents.load_input(p)
 
 
 @pytest.mark.parametrize("text", ["1:05", "0x41", "6_5", "0o101", "1_000"])
@@ -275,7 +276,7 @@ def test_yaml_1_1_number_forms_are_not_numbers(tmp_path, text):
     p = tmp_path / "d.yaml"
     p.write_text(DEFAULT.read_text().replace("  working_arm_mm: 4.0\n", f"  working_arm_mm: {text}\n"))
     with pytest.raises(InputError, match=f"working_arm_mm: got '{text}'"):
-        schema.load_input(p)
+        documents.load_input(p)
 
 
 # ---------------------------------------------------------------- extremes (hypothesis)

@@ -141,7 +141,7 @@ def test_report_structure_digest_first_metadata_and_cad(case1):
     for a in re.findall(r'<a href="#([\w-]+)">', text):          # the table of contents links resolve
         assert f'id="{a}"' in text
     assert "A. Engineer" in text and "revision B" in text
-    from synth.cli import version_text
+    from synth.fingerprint import version_text
     assert version_text() in text
     import hashlib
     sha = hashlib.sha256((CASES / "case1.yaml").read_bytes()).hexdigest()
@@ -208,7 +208,8 @@ def test_platform_section_hook(case1, tmp_path):
     assert f"{r.n_parts} distinct parts" in text and text.count("data:image/png;base64,") >= 1
     assert 'id="platform"' not in render_html(case1["result"], [], [])
     with pytest.raises(InputError, match="--platform"):
-        render_html(case1["result"], [], [], platform=tmp_path)   # a folder without section.html    # the folder is the user's: a section.html edited to carry script reaches the report without it, while
+        render_html(case1["result"], [], [], platform=tmp_path)   # a folder without section.html
+    # the folder is the user's: a section.html edited to carry script reaches the report without it, while
     # what synth rationalise wrote passes through whole (same text, same tables, same embedded pictures)
     from synth.platform.outputs import report_section, saved_section
     written = report_section(r)

@@ -142,7 +142,7 @@ def test_robust_synthesis_skips_no_better_design(demo):
     """With a tolerance model some catalog design meets (tight tightening and friction), the robust search's
     design meets Ppk >= 1.33 and every cheaper nominally feasible design of the catalog misses it (each one
     checked by the same estimator)."""
-    from synth.optimise.evaluate import evaluate
+    from synth.optimise.product import evaluate
     from synth.optimise.solvers.enumerate import tables
     from synth.robust import synthesis as S
     d, _ = demo
@@ -187,12 +187,12 @@ def test_a_made_design_at_its_nominal_values_is_the_sized_design():
     """The made joint tightened to the sized clamp force, and the made cone spring with the sized thickness at
     its nominal deflection, give the sized design's values (case 1, an axial design)."""
     from synth.data import case_path
-    from synth.design import evaluate as E
+    from synth.design import evaluate
     from synth.design.applications import Applications
     from synth.design.space import space
     from synth.design.verify import evaluate_design
     from synth.optimise import solve
-    from synth.schema import load_input
+    from synth.io.documents import load_input
     d = load_input(case_path("case1"))
     parts = solve(d, "standard").parts
     apps = Applications.of([d])
@@ -201,9 +201,9 @@ def test_a_made_design_at_its_nominal_values_is_the_sized_design():
     made = Applications.of([d])
     made.derived["bolt_clamp_force_n"] = np.asarray(g0["bolt"].values["bolt_axial_force_n"], dtype=float)
     ax = dict(attrs["axial"])
-    ax[E.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.asarray(g0["axial"].values["cone_spring_thickness_mm"])
-    ax[E.MADE_CONE_SPRING_COLUMNS["deflection_offset_mm"]] = np.zeros(1)
-    ax[E.MADE_CONE_SPRING_COLUMNS["force_factor"]] = np.ones(1)
+    ax[evaluate.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.asarray(g0["axial"].values["cone_spring_thickness_mm"])
+    ax[evaluate.MADE_CONE_SPRING_COLUMNS["deflection_offset_mm"]] = np.zeros(1)
+    ax[evaluate.MADE_CONE_SPRING_COLUMNS["force_factor"]] = np.ones(1)
     g1 = evaluate_design(made, {**attrs, "axial": ax}, detail=False)
     for k in ("sliding_safety_factor", "tilting_safety_factor", "bolt_sigma_eqv_mpa", "bolt_tightening_torque_nm"):
         assert g1["bolt"].values[k][0] == pytest.approx(g0["bolt"].values[k][0], rel=1e-12), k

@@ -5,6 +5,7 @@ import json
 import pytest
 
 from synth import schema
+from synth.io import documents
 from synth.cli import main
 from synth.errors import InputError
 from tests.conftest import CASES, load_case
@@ -12,7 +13,7 @@ from tests.conftest import CASES, load_case
 
 @pytest.mark.parametrize("name", ["case1", "case1_as_run", "case3"])
 def test_case_files_are_valid_inputs(name):
-    d = schema.load_input(CASES / f"{name}.yaml")
+    d = documents.load_input(CASES / f"{name}.yaml")
     raw = load_case(name)["inputs"]
     assert d.differential_angle_deg == pytest.approx(raw["differential_angle_deg"])
     assert d.application_type == raw["application_type"]
@@ -25,7 +26,7 @@ def test_json_and_toml_load_the_same(tmp_path):
     j.write_text(json.dumps(raw))
     t = tmp_path / "in.toml"
     t.write_text("\n".join(f"{k} = {json.dumps(v)}" for k, v in raw.items() if v is not None))
-    assert schema.load_input(j) == schema.load_input(t)
+    assert documents.load_input(j) == documents.load_input(t)
 
 
 def test_every_problem_reported_once_with_field_value_and_accepted():

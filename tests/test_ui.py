@@ -14,7 +14,8 @@ import pytest
 import synth
 from synth import catalog, schema
 from synth.cli import main
-from synth.design.result import VERDICT_FILLS, Check, Result
+from synth.design.result import Check, Result
+from synth.report.palette import VERDICT_FILLS
 from synth.errors import InputError
 from synth.ui import form, views
 from synth.ui.session import DesignSession, default_values

@@ -16,7 +16,7 @@ from synth.report.pdf import chromium_binary
 pytest.importorskip("nicegui")
 sync_api = pytest.importorskip("playwright.sync_api")
 
-from synth.design.result import VERDICT_FILLS  # noqa: E402
+from synth.report.palette import VERDICT_FILLS  # noqa: E402
 from synth.ui.browser import free_port, goto_when_up, is_local, launch_chromium, start_server, stop_server  # noqa: E402
 
 CHROMIUM = chromium_binary()

@@ -21,13 +21,14 @@ import pytest
 from hypothesis import given, strategies as st
 from openpyxl import load_workbook
 
-from synth import flowchart, schema
+from synth import flowchart
+from synth.io import documents
 from synth.bulk.portfolio import write_table
 from synth.design.result import FAIL, NOT_VERIFIED, PASS, WARNING
 from synth.data import CASES_DIR
 from synth.excel import template
 from synth.excel.cells import FORMULA_LEADS, put, sig_format
-from synth.excel.results import row_verdict, write_results
+from synth.excel.results_workbook import row_verdict, write_results
 from synth.excel.template import FILLS
 from synth.output_table import ROWS
 
@@ -39,7 +40,7 @@ EVIL = ['=HYPERLINK("http://example.invalid","click")', "+1+2", "-3+4", "@SUM(A1
 
 @pytest.fixture(scope="module")
 def case1_result():
-    return flowchart.run(schema.load_input(CASES_DIR / "case1.yaml"))
+    return flowchart.run(documents.load_input(CASES_DIR / "case1.yaml"))
 
 
 @pytest.fixture(scope="module")

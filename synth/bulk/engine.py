@@ -33,8 +33,8 @@ from typing import Sequence
 import numpy as np
 import pandas as pd
 
-from synth.design import evaluate as E
-from synth.design.constraints import FEAS_TOL, REGISTRY
+from synth.design import evaluate
+from synth.design.constraints import FEAS_TOL, REGISTRY, version
 from synth.design.result import FAIL, PASS, WARNING
 from synth.design.space import PART_KEYS, SUBSYSTEMS
 
@@ -151,7 +151,7 @@ def screen_applications_reference(apps: Sequence, *, objective: str = "standard"
     evaluation (slow; the right answer, and what the fast path is tested against)."""
     from synth.errors import InputError
     from synth.optimise import solve
-    settings = E.Settings(fidelity=fidelity)
+    settings = evaluate.Settings(fidelity=fidelity)
     rows = []
     for d in apps:
         try:
@@ -166,9 +166,20 @@ def screen_applications_reference(apps: Sequence, *, objective: str = "standard"
 # the fast path
 # --------------------------------------------------------------------------------------------------------------
 
-_COLS = [c for c in REGISTRY.values() if c.group != "cad"]
-_ADVISORY = np.array([c.advisory for c in _COLS])
-_OBJECTIVE = np.array([c.objective for c in _COLS])
+_CHECKS: dict = {}
+
+
+def _checks() -> tuple:
+    """``(constraints, advisory, objective)`` of the bulk row's margin columns (:func:`constraint_ids`), the flags
+    as arrays, per registry version (a check added with ``register`` included)."""
+    got = _CHECKS.get(version())
+    if got is None:
+        cols = [REGISTRY[cid] for cid in constraint_ids()]
+        got = (cols, np.array([c.advisory for c in cols], dtype=bool),
+               np.array([c.objective for c in cols], dtype=bool))
+        _CHECKS.clear()
+        _CHECKS[version()] = got
+    return got
 
 
 def _design_attributes(b, rows, options: dict) -> dict:
@@ -197,13 +208,13 @@ def _verify(b, idx, rows, options: dict) -> dict:
     attrs = _design_attributes(b, rows, options)
     one = np.arange(len(idx))
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        groups = {"input": E.inputs(apps, idx)}
-        cg = E.core(apps, idx, attrs["core"], st)
+        groups = {"input": evaluate.inputs(apps, idx)}
+        cg = evaluate.core(apps, idx, attrs["core"], st)
         groups["core"] = cg
-        groups["bushing"] = E.bushing(apps, cg, one, attrs["bushing"], st)
-        groups["axial"] = E.axial(apps, cg, one, attrs["axial"], st)
-        groups["spring"] = E.spring(apps, E.spring_keys(cg, one), one, attrs["spring"], st)
-        groups["bolt"] = E.bolt(apps, cg, one, attrs["bolt"], st)
+        groups["bushing"] = evaluate.bushing(apps, cg, one, attrs["bushing"], st)
+        groups["axial"] = evaluate.axial(apps, cg, one, attrs["axial"], st)
+        groups["spring"] = evaluate.spring(apps, evaluate.spring_keys(cg, one), one, attrs["spring"], st)
+        groups["bolt"] = evaluate.bolt(apps, cg, one, attrs["bolt"], st)
     groups["_attrs"] = attrs
     return groups
 
@@ -213,9 +224,10 @@ def _notes_of(apps, idx, state, evaluated, cache: dict) -> list:
     writes them from the result), built once per distinct pattern of missing requirements and defaults."""
     from synth.design.applications import DEFAULTS
     from synth.design.evaluate import NOT_VERIFIED
-    reqs = sorted({r for c in _COLS for r in c.needs})
+    cols = _checks()[0]
+    reqs = sorted({r for c in cols for r in c.needs})
     met = np.stack([apps.met(r)[idx] for r in reqs], axis=1) if reqs else np.zeros((len(idx), 0), bool)
-    names = sorted({x for c in _COLS for x in c.assumes if x in DEFAULTS})
+    names = sorted({x for c in cols for x in c.assumes if x in DEFAULTS})
     assumed = np.stack([apps.assumed(x)[idx] for x in names], axis=1) if names else np.zeros((len(idx), 0), bool)
     nv = state == NOT_VERIFIED
     out = []
@@ -229,7 +241,7 @@ def _notes_of(apps, idx, state, evaluated, cache: dict) -> list:
             i = int(idx[j])
             groups: dict = {}
             for c in np.flatnonzero(nv[j]):
-                con = _COLS[c]
+                con = cols[c]
                 missing = [r for r in con.needs if not met[j, reqs.index(r)]]
                 why = why_of[missing[0]] if missing else ""
                 groups.setdefault(why, []).append(con.id)
@@ -238,7 +250,7 @@ def _notes_of(apps, idx, state, evaluated, cache: dict) -> list:
                 notes.append(_not_verified_note(groups))
             seen = []
             for c in np.flatnonzero(evaluated[j]):
-                for x in _COLS[c].assumes:
+                for x in cols[c].assumes:
                     if x in DEFAULTS and assumed[j, names.index(x)]:
                         seen.append(apps.assumed_note(x, i))
             seen = list(dict.fromkeys(seen))
@@ -252,25 +264,26 @@ def _notes_of(apps, idx, state, evaluated, cache: dict) -> list:
 def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> dict:
     """The result columns (:func:`columns`, and ``_failed``: the failed constraint ids per row) of designs verified
     by :func:`_verify`, one array or list per column, built column by column: what :func:`row_from_result` gives
-    for :func:`synth.optimise.result.build_result`'s result of each."""
+    for :func:`synth.optimise.answer.build_result`'s result of each."""
     from synth.design.evaluate import EVALUATED
-    from synth.optimise.evaluate import core_scores, option_scores
+    from synth.optimise.product import core_scores, option_scores
     m = len(idx)
-    state = np.stack([groups[c.group].state[c.id] for c in _COLS], axis=1)
-    marg = np.stack([np.asarray(groups[c.group].margins[c.id], dtype=float) for c in _COLS], axis=1)
+    cols, advisory, objective_flags = _checks()
+    state = np.stack([groups[c.group].state[c.id] for c in cols], axis=1)
+    marg = np.stack([np.asarray(groups[c.group].margins[c.id], dtype=float) for c in cols], axis=1)
     ev = state == EVALUATED
     passed = marg >= -FEAS_TOL
-    failed = ev & ~passed & ~_ADVISORY
-    counted = ev & (passed | ~_ADVISORY)  # the result's margins: verdict pass or fail
-    objective_counted = counted & _OBJECTIVE
+    failed = ev & ~passed & ~advisory
+    counted = ev & (passed | ~advisory)  # the result's margins: verdict pass or fail
+    objective_counted = counted & objective_flags
     # the margin objective: counted, objective, unless the design meets it by construction
     margin_obj = objective_counted.copy()
-    for c, con in enumerate(_COLS):
+    for c, con in enumerate(cols):
         if con.objective_unless is not None and not con.advisory:
             v = np.asarray(groups[con.group].values[con.objective_unless], dtype=float)
             margin_obj[:, c] &= ~(np.isfinite(v) & (v != 0))
     m_counted = np.where(counted, marg, np.inf)
-    margin_min = m_counted.min(axis=1) if len(_COLS) else np.full(m, np.inf)
+    margin_min = m_counted.min(axis=1) if len(cols) else np.full(m, np.inf)
     obj_margin = np.where(margin_obj, marg, np.inf).min(axis=1)
     # objectives as Evaluation.objective_values sums them
     sp = b.sp
@@ -282,16 +295,16 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
         o = option_scores(sp, s, k if s == "spring" else None, options[s])
         std, cost = std + o["standard"], cost + o["cost"]
     std, cost = sc["standard"] + std, sc["cost"] + cost
-    ids = np.array([c.id for c in _COLS], dtype=object)
+    ids = np.array([c.id for c in cols], dtype=object)
     any_failed = failed.any(axis=1)
     feasible = (status == "optimal") & ~any_failed
     notes_nv = _notes_of(b.apps, idx, state, ev, {})
     incomplete = np.array([x[1] for x in notes_nv], dtype=bool)
     # the binding constraint: the most violated when one fails (first of the ties), else the smallest counted
     # margin of the objective's constraints
-    worst = np.where(failed, marg, np.inf).argmin(axis=1) if len(_COLS) else np.zeros(m, dtype=np.int64)
+    worst = np.where(failed, marg, np.inf).argmin(axis=1) if len(cols) else np.zeros(m, dtype=np.int64)
     oc = np.where(objective_counted, marg, np.inf)
-    least = oc.argmin(axis=1) if len(_COLS) else np.zeros(m, dtype=np.int64)
+    least = oc.argmin(axis=1) if len(cols) else np.zeros(m, dtype=np.int64)
     has_oc = objective_counted.any(axis=1)
     pick = np.where(any_failed, worst, least)
     bind_ok = any_failed | has_oc
@@ -299,8 +312,8 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
            "verdict": np.where(any_failed, "fail", np.where(incomplete, "incomplete", "pass")).astype(object),
            "objective_standard": std.astype(float), "objective_cost_eur": np.round(cost.astype(float), 6),
            "objective_margin": obj_margin.astype(float), "margin_min": margin_min.astype(float),
-           "binding_constraint": np.where(bind_ok, ids[pick] if len(_COLS) else "", "").astype(object),
-           "binding_margin": np.where(bind_ok, marg[np.arange(m), pick] if len(_COLS) else np.inf, np.inf)}
+           "binding_constraint": np.where(bind_ok, ids[pick] if len(cols) else "", "").astype(object),
+           "binding_margin": np.where(bind_ok, marg[np.arange(m), pick] if len(cols) else np.inf, np.inf)}
     for key, col in _parts(groups["_attrs"], groups["core"].values).items():
         out[f"part_{key}"] = col
     shown = np.where(ev, marg, np.nan)  # advisory constraints too, as warnings
@@ -398,7 +411,7 @@ def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity
     """
     from synth.optimise.batch import robust
     from synth.optimise.objectives import Objective
-    settings = E.Settings(fidelity=fidelity)
+    settings = evaluate.Settings(fidelity=fidelity)
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     apps = list(apps)
     if obj.uses_margin():

@@ -56,7 +56,8 @@ from typing import Callable
 import numpy as np
 import pandas as pd
 
-from synth import __version__, catalog
+from synth import catalog
+from synth.version import __version__
 from synth.fingerprint import file_sha256
 from synth.bulk.portfolio import (CSV_FLOAT, arrow_safe, column_warnings, field_columns, read_portfolio,
                                   validate_record, validate_table, write_table)

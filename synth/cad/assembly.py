@@ -23,7 +23,7 @@ import cadquery as cq
 
 from synth import catalog
 from synth.cad.dimensions import TensionerGeometry
-from synth.cad.parts import AXIAL_PARTS, PART_FUNCTIONS
+from synth.cad.solids import AXIAL_PARTS, PART_FUNCTIONS
 
 __all__ = ["TensionerModel", "build", "part_names", "colour_of"]
 

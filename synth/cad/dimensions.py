@@ -124,7 +124,7 @@ def _split(result) -> tuple[dict, dict | None, str, bool, str, str]:
     path."""
     from synth.design.result import Result
     if isinstance(result, (str, Path)):
-        from synth.io.results import load_result
+        from synth.io.saved_results import load_result
         result = load_result(result)  # the input gate's reader: size, encoding, shape
     if isinstance(result, dict):
         result = Result.from_dict(result)
@@ -139,7 +139,7 @@ def _inputs_dict(inputs) -> dict | None:
     if inputs is None:
         return None
     if isinstance(inputs, (str, Path)):
-        from synth.schema import load_input
+        from synth.io.documents import load_input
         inputs = load_input(inputs)
     if dataclasses.is_dataclass(inputs):
         return dataclasses.asdict(inputs)

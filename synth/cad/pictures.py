@@ -132,9 +132,9 @@ def section_dimensions(model: TensionerModel) -> list[Dimension]:
     Pulley diameter (above everything), belt-plane height above the crankcase face (right of the
     pulley), pivot height and pivot bushing length (left of the housing), spring housing outer
     diameter (under the crankcase face) and housing height (between the bushing flange and the arm).
-    Values are the geometry's (the stack-up of :func:`synth.cad.parts.stack`), positions the parts' boxes.
+    Values are the geometry's (the stack-up of :func:`synth.cad.solids.stack`), positions the parts' boxes.
     """
-    from synth.cad.parts import stack
+    from synth.cad.solids import stack
     g = model.geometry
     boxes = {n: s.BoundingBox() for n, s in model.parts.items()}
     whole = model.compound().BoundingBox()

@@ -65,7 +65,7 @@ def step_header(model: TensionerModel, application: str, design: dict) -> dict:
     ``name`` (FILE_NAME and the root product) ``synth tensioner <application>``, ``author`` and
     ``organisation`` ``synth <version>``, ``description``: the status and one ``key=value`` per design value.
     """
-    from synth import __version__
+    from synth.version import __version__
     g = model.geometry
     fmt = {k: (f"{v:g}" if isinstance(v, float) else str(v)) for k, v in design.items()}
     status = f"status={g.verdict or g.status} ({g.status})" + ("" if g.feasible else " (infeasible: nearest design)")

@@ -34,7 +34,7 @@ import itertools
 
 from synth import catalog
 from synth.cad.assembly import TensionerModel
-from synth.cad.parts import stack
+from synth.cad.solids import stack
 from synth.design.result import FAIL, Check
 
 __all__ = ["verify_model", "interference_volumes", "failed"]

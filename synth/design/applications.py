@@ -11,7 +11,7 @@ optimiser, bulk) builds its applications here, so every optional input
 reaches every consumer the same way. One application is ``N = 1``.
 
 >>> from synth.data import case_path
->>> from synth.schema import load_input
+>>> from synth.io.documents import load_input
 >>> a = Applications.of([load_input(case_path("case1_as_run"))])
 >>> round(float(a.hubload_nominal_n[0]), 1), bool(a.layout_standard[0]), bool(a.met("durability")[0])
 (652.5, True, True)
@@ -27,7 +27,7 @@ import numpy as np
 
 from synth import catalog, parts
 from synth.design.constraints import REQUIREMENTS
-from synth.model import damping as s3, layout as s0
+from synth.model import damping, layout
 from synth.schema import FIELDS
 
 __all__ = ["Applications", "DEFAULTS", "NUMERIC_FIELDS"]
@@ -112,7 +112,7 @@ class Applications:
         sample (:mod:`synth.robust`) is one application per sample row.
 
         >>> from synth.data import case_path
-        >>> from synth.schema import load_input
+        >>> from synth.io.documents import load_input
         >>> a = Applications.of([load_input(case_path("case3"))]).with_fields([0, 0], working_arm_mm=[4.0, 8.0])
         >>> a.hubload_nominal_n.round(1).tolist()
         [462.5, 231.2]
@@ -130,13 +130,13 @@ class Applications:
     def _derive_numeric(self) -> None:
         """The quantities that follow from the numeric fields alone."""
         f, d = self.f, self.derived
-        d["hubload_nominal_n"] = s3.hubload_nominal_n(f["calculated_torque_target_nm"], f["working_arm_mm"],
+        d["hubload_nominal_n"] = damping.hubload_nominal_n(f["calculated_torque_target_nm"], f["working_arm_mm"],
                                                       f["differential_angle_deg"])
         # eq. (17)-(18); with no axial limit (N/A) the layout is reverse (synth.model.layout.layout_of)
-        d["layout_standard"] = np.atleast_1d(s0.layout_of(f["middle_plane_belt_height_mm"],
+        d["layout_standard"] = np.atleast_1d(layout.layout_of(f["middle_plane_belt_height_mm"],
                                                           f["max_axial_displacement_mm"]) == "standard")
         d["layout_reverse"] = ~d["layout_standard"]
-        d["pulley_width_mm"] = s0.pulley_width_mm(f["belt_width_mm"])
+        d["pulley_width_mm"] = layout.pulley_width_mm(f["belt_width_mm"])
 
     def _derive(self) -> None:
         f, p = self.f, parts.arrays()
@@ -181,7 +181,7 @@ class Applications:
         application ``i`` left out, with the readable name of the requirement (REQUIREMENTS).
 
         >>> from synth.data import case_path
-        >>> from synth.schema import load_input
+        >>> from synth.io.documents import load_input
         >>> import dataclasses
         >>> d = dataclasses.replace(load_input(case_path("case1_as_run")), tilting_safety_factor=None)
         >>> Applications.of([d]).missing_note("fixation")

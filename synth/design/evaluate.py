@@ -20,7 +20,7 @@ placeholders: rows that cannot be evaluated get NaN values, and a NaN margin is
 ``-inf`` (infeasible), never silently kept.
 
 >>> from synth.data import case_path
->>> from synth.schema import load_input
+>>> from synth.io.documents import load_input
 >>> from synth.design.applications import Applications
 >>> from synth.design.space import space
 >>> apps, sp = Applications.of([load_input(case_path("case3"))]), space()
@@ -35,11 +35,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from synth import catalog
-from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin
-from synth.model import bolted_joint as s10, damping as s3, disc_spring as s8, friction_wear as s5
-from synth.model import layout as s0, packaging as s7, pivot as s2, plain_bushing as s4, stackup as s6
-from synth.model import torsion_spring as s9
+from synth import catalog, parts
+from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin, physics_inputs
+from synth.model import bolted_joint, damping, disc_spring
+from synth.model import layout, packaging, pivot, plain_bushing, stackup
+from synth.model import torsion_spring
 from synth.design.rules import active as active_rules
 
 __all__ = ["Settings", "SPRING_LIMIT_BASES", "SPRING_TOLERANCE_COLUMNS", "MADE_CONE_SPRING_COLUMNS", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
@@ -222,6 +222,7 @@ def finish(name: str, values: dict, apps, a) -> Group:
     margins, state = {}, {}
     met = {}
     rules = active_rules()
+    add_physics(by_group(name), values, apps, a)
     for c in by_group(name):
         if c.limit in rules.limits:  # a design rule sets this limit (synth.design.rules)
             values[c.limit] = np.full(n, rules.limits[c.limit])
@@ -245,6 +246,16 @@ def finish(name: str, values: dict, apps, a) -> Group:
         margins[c.id] = np.where(st == EVALUATED, m, np.inf)
         state[c.id] = st
     return Group(name, values, margins, state)
+
+
+def add_physics(checks, values: dict, apps, a) -> None:
+    """The values and limits of the ``checks`` that declare a physics function (:attr:`Constraint.physics`), added
+    to ``values`` in place: each parameter is read by its name from the group's values, else from the applications'
+    fields at rows ``a``."""
+    for c in checks:
+        if c.physics is not None:
+            kw = {k: values[k] if k in values else apps.f[k][a] for k in physics_inputs(c)}
+            values.update(c.physics(**kw))
 
 
 def _const(name: str) -> float:
@@ -289,10 +300,10 @@ def inputs(apps, a) -> Group:
              min_belt_crankcase_clearance_mm=f["min_belt_crankcase_clearance_mm"],
              pulley_radius_mm=f["pulley_diameter_mm"] / 2.0,
              pin_inner_radius_mm=f["lockup_pin_position_radius_mm"] - f["lockup_pin_diameter_mm"] / 2.0)
-    hl = s0.hubload_angle_from_ehr_deg(f["differential_angle_deg"], f["nominal_arm_angle_from_EHR_deg"])
-    tp, tm = s0.wrap_limits_deg(hl, f["wrap_angle_deg"])
+    hl = layout.hubload_angle_from_ehr_deg(f["differential_angle_deg"], f["nominal_arm_angle_from_EHR_deg"])
+    tp, tm = layout.wrap_limits_deg(hl, f["wrap_angle_deg"])
     with np.errstate(invalid="ignore"):
-        c, req = s0.pin_clearance_mm(f["lockup_pin_position_radius_mm"], f["lockup_pin_angular_position_deg"],
+        c, req = layout.pin_clearance_mm(f["lockup_pin_position_radius_mm"], f["lockup_pin_angular_position_deg"],
                                      f["lockup_pin_diameter_mm"], f["pulley_diameter_mm"], tp, tm)
     v.update(hubload_angle_from_EHR_deg=hl, wrap_upper_limit_deg=tp, wrap_lower_limit_deg=tm, pin_clearance_mm=c,
              pin_clearance_required_mm=req)
@@ -313,7 +324,7 @@ def _table2(p, bearing, working_arm_mm):
         arms, classes, max_la = p.table2[int(b)]
         if not len(arms):
             continue
-        i = s2.table2_column(arms, working_arm_mm[sel])[0]
+        i = pivot.table2_column(arms, working_arm_mm[sel])[0]
         cls[sel], la[sel], arm_max[sel] = classes[i], max_la[i], arms[-1]
     return cls, la, arm_max
 
@@ -324,8 +335,7 @@ def core(apps, a, c: dict, settings: Settings = Settings(), detail: bool = False
     ``c`` holds the core table's columns for the rows (:meth:`synth.design.space.Space.rows`).
     ``detail`` adds the characterisation at nominal (hubloads in loading and unloading, asymmetry).
     """
-    from synth import parts as P
-    p = P.arrays()
+    p = parts.arrays()
     f = _Fields(apps, a)
     n = len(a)
     wa, alpha = f["working_arm_mm"], f["differential_angle_deg"]
@@ -348,36 +358,36 @@ def core(apps, a, c: dict, settings: Settings = Settings(), detail: bool = False
               "damper_pad_mean_radius_mm", "damper_pad_outer_diameter_mm", "damper_pad_axial_height_mm",
               "supplier_code"):
         v[k] = c[k]
-    v["arm_wall_mm"] = s2.arm_wall_mm(c["bearing_inner_diameter_mm"], wa, c["pivot_class_diameter_mm"])
+    v["arm_wall_mm"] = pivot.arm_wall_mm(c["bearing_inner_diameter_mm"], wa, c["pivot_class_diameter_mm"])
     v["arm_min_wall_mm"] = np.full(n, _const("arm_min_wall_mm"))
     v["pulley_diameter_mm"] = f["pulley_diameter_mm"]
     v["pulley_min_diameter_mm"] = c["bearing_outer_diameter_mm"] + 2.0 * _const("pulley_min_wall_mm")
     mu = apps.mu_pivot_bushing[a]
     v["mu_pivot_bushing"] = mu
-    rho = s3.lever_ratio(c["pivot_diameter_mm"], mu, wa, alpha, settings.friction_circle)
+    rho = damping.lever_ratio(c["pivot_diameter_mm"], mu, wa, alpha, settings.friction_circle)
     v["lever_ratio"], v["lever_ratio_max"] = rho, np.ones(n)
     target = apps.damping_target_or_zero_nm[a]
-    split = s3.damping_split(f["calculated_torque_target_nm"], target, np.minimum(rho, 0.999), apps.axial_allowed[a])
+    split = damping.damping_split(f["calculated_torque_target_nm"], target, np.minimum(rho, 0.999), apps.axial_allowed[a])
     v.update({k: np.asarray(val, dtype=float) for k, val in split.items()})
     v["damping_upper_nm"] = f["damping_target_nm"] + f["damping_tolerance_nm"]
     v["damping_lower_nm"] = f["damping_target_nm"] - f["damping_tolerance_nm"]
     pad = np.asarray(c["axial_group_present"], dtype=bool)
     v["axial_group_present"] = pad.astype(float)
     v["cone_spring_max_external_diameter_mm"] = np.where(
-        pad, s8.cone_spring_max_external_diameter_mm(c["damper_pad_outer_diameter_mm"]), np.nan)
-    di = s8.cone_spring_min_internal_diameter_mm(c["pivot_diameter_mm"])
+        pad, disc_spring.cone_spring_max_external_diameter_mm(c["damper_pad_outer_diameter_mm"]), np.nan)
+    di = disc_spring.cone_spring_min_internal_diameter_mm(c["pivot_diameter_mm"])
     v["cone_spring_min_internal_diameter_mm"] = di["cone_spring_min_internal_diameter_mm"]
     v["cone_spring_table8_max_mm"] = np.full(n, di["table8_max_mm"])
     mpbh, hmax_p = f["middle_plane_belt_height_mm"], f["max_pivot_height_mm"]
     kw = dict(axial_damping=pad, damper_pad_height_mm=c["damper_pad_axial_height_mm"])
-    h_std = s7.spring_housing_height_mm(mpbh, c["bearing_width_mm"], layout="standard", **kw)
-    h_rev = s7.spring_housing_height_mm(mpbh, c["bearing_width_mm"], layout="reverse", max_pivot_height_mm=hmax_p, **kw)
+    h_std = packaging.spring_housing_height_mm(mpbh, c["bearing_width_mm"], layout="standard", **kw)
+    h_rev = packaging.spring_housing_height_mm(mpbh, c["bearing_width_mm"], layout="reverse", max_pivot_height_mm=hmax_p, **kw)
     v["spring_housing_height_mm"] = np.where(apps.layout_standard[a], h_std, h_rev)
-    v["spring_housing_outer_diameter_mm"] = s7.spring_housing_outer_diameter_mm(c["bearing_outer_diameter_mm"], wa)
+    v["spring_housing_outer_diameter_mm"] = packaging.spring_housing_outer_diameter_mm(c["bearing_outer_diameter_mm"], wa)
     v["spring_cavity_min_height_mm"] = np.full(n, _const("spring_cavity_min_height_mm"))
     v.update(drive_values(settings.drive, v["damping_nm"]))
     if detail:
-        ch = s3.characterisation(v["spring_torque_nominal_nm"], f["spring_stiffness_nm_per_deg"],
+        ch = damping.characterisation(v["spring_torque_nominal_nm"], f["spring_stiffness_nm_per_deg"],
                                  np.where(v["axial_damping_present"] > 0, v["axial_damping_nm"], 0.0), wa, alpha,
                                  c["pivot_diameter_mm"], mu, np.zeros(n), settings.friction_circle)
         for k in ("hubload_loading_n", "hubload_unloading_n", "asymmetry_ratio"):
@@ -408,8 +418,7 @@ def bushing(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Gro
     ``o``: ``supplier_code`` and ``pivot_bushing_length_mm`` per row (any length); the option's supplier
     must be the core's (the pivot diameter depends on its wall).
     """
-    from synth import parts as P
-    p = P.arrays()
+    p = parts.arrays()
     a = cg.values["app"][r]
     f = _Fields(apps, a)
     sup, env = np.asarray(o["supplier_code"]), apps.env[a]
@@ -417,7 +426,7 @@ def bushing(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Gro
     rated = np.isfinite(lim["pvt_max_mpa_m_per_s_h"]) & np.isfinite(lim["k_w_mm3_per_n_m"])
     cv = {k: cg.values[k][r] for k in BUSHING_CORE_VALUES}
     pad = cv["axial_group_present"] > 0
-    res = s4.evaluate_bushing(cv["hubload_nominal_n"], cv["pivot_diameter_mm"],
+    res = plain_bushing.evaluate_bushing(cv["hubload_nominal_n"], cv["pivot_diameter_mm"],
                               o["pivot_bushing_length_mm"], apps.theta_pp_deg[a], apps.frequency_hz[a],
                               apps.duration_h[a], k_w_mm3_per_n_m=np.where(rated, lim["k_w_mm3_per_n_m"], 0.0),
                               radial_clearance_mm=p.bushing.radial_clearance_mm[sup],
@@ -477,9 +486,8 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     ``o``: the axial table's columns (spacer, cone-spring variant). Rows pair a core with a damper pad with
     a real option, or a core without one with the ``none`` option. ``time_points`` keeps the wear history.
     """
-    from synth import parts as P
-    from synth.kernels import axial as physics  # the cone spring and the wear on the caller's engine
-    p = P.arrays()
+    from synth.kernels import axial as axial_engine  # the cone spring and the wear on the caller's engine
+    p = parts.arrays()
     a = cg.values["app"][r]
     f = _Fields(apps, a)
     n = len(a)
@@ -491,9 +499,9 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     v = {"app": a, "layout_standard": std, "layout_reverse": ~std, "axial_group_present": real.astype(float),
          "axial_group_mismatch": (real != pad).astype(float),
          "middle_plane_belt_height_mm": f["middle_plane_belt_height_mm"],
-         "belt_plane_limit_mm": np.where(std, s7.max_belt_plane_height_mm(f["max_pivot_height_mm"],
+         "belt_plane_limit_mm": np.where(std, packaging.max_belt_plane_height_mm(f["max_pivot_height_mm"],
                                                                           cv["bearing_width_mm"], es_h),
-                                         s7.min_belt_plane_height_mm(cv["bearing_width_mm"], es_h)),
+                                         packaging.min_belt_plane_height_mm(cv["bearing_width_mm"], es_h)),
          "endcap_spacer_max_axial_damping_nm": np.asarray(o["endcap_spacer_max_axial_damping_nm"], dtype=float),
          "axial_damping_nm": cv["axial_damping_nm"],
          "cone_spring_min_internal_diameter_mm": cv["cone_spring_min_internal_diameter_mm"],
@@ -517,12 +525,12 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     i = np.flatnonzero(act)
     tol = f["damping_tolerance_nm"]
     mu_pl = apps.mu_plastic[a]
-    gap = s6.gap_tolerance_mm("worst_case")
+    gap = stackup.gap_tolerance_mm("worst_case")
     if len(i):
         # a made cone spring (synth.robust's production-scatter samples): its thickness, the realised deflection
         # offset of the gap stack and its force factor, per row (see synth.model.disc_spring.cone_spring)
         made = {k: np.asarray(o[c], dtype=float)[i] for k, c in MADE_CONE_SPRING_COLUMNS.items() if c in o}
-        cs = physics.cone_spring(cv["axial_damping_nm"][i], apps.damping_target_or_zero_nm[a][i],
+        cs = axial_engine.cone_spring(cv["axial_damping_nm"][i], apps.damping_target_or_zero_nm[a][i],
                                  np.nan_to_num(tol[i], nan=0.0), cv["radial_damping_nm"][i], mu_pl[i],
                                  cv["damper_pad_mean_radius_mm"][i], np.asarray(o["endcap_spacer_mean_radius_mm"])[i],
                                  de[i], di[i], gap, aspect_ratio=zeta[i], deflection_ratio=phi[i],
@@ -541,7 +549,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     w = i[apps.durability_given[a][i]]
     history = None
     if len(w):
-        pw = physics.plastic_wear(v["cone_spring_nominal_deflection_mm"][w], de[w], di[w],
+        pw = axial_engine.plastic_wear(v["cone_spring_nominal_deflection_mm"][w], de[w], di[w],
                                   v["cone_spring_thickness_mm"][w], v["cone_spring_cone_height_mm"][w],
                                   cv["damper_pad_contact_area_mm2"][w], cv["damper_pad_mean_radius_mm"][w],
                                   cv["damper_pad_axial_height_mm"][w],
@@ -664,10 +672,10 @@ def spring_values(o: dict, x: dict, settings: Settings = Settings()) -> dict:
 
     The one mapping from the physics (:func:`synth.model.torsion_spring.main_spring_design`) to the values the
     registry's spring constraints compare: :func:`spring` adds the application and the registry margins, the
-    compiled kernels (:mod:`synth.kernels.torsion_spring`) use it as their numpy reference.
+    compiled kernels (:mod:`synth.kernels.main_spring`) use it as their numpy reference.
     """
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        r = s9.main_spring_design(
+        r = torsion_spring.main_spring_design(
             E_mpa=o["E_mpa"], Rm_mpa=o["Rm_mpa"], sigma_y_mpa=o["sigma_y_mpa"], sigma_A0_mpa=o["sigma_A0_mpa"],
             b_mm=o["b_mm"], h_mm=o["h_mm"], round_wire=o["round_wire"], mbd_mm=o["main_spring_mean_body_diameter_mm"],
             stiffness_nm_per_deg=x["stiffness_nm_per_deg"], spring_torque_nominal_nm=x["spring_torque_nominal_nm"],
@@ -697,7 +705,7 @@ def spring_values(o: dict, x: dict, settings: Settings = Settings()) -> dict:
              spring_housing_outer_diameter_min_mm=full(r["housing_outer_diameter_min_mm"]),
              main_spring_inner_diameter_min_mm=full(r["inner_diameter_min_mm"]),
              spring_housing_inner_diameter_max_mm=full(r["housing_inner_diameter_max_mm"]),
-             main_spring_coil_gap_min_mm=full(r["coil_gap_min_mm"]),
+             main_spring_coil_gap_worst_mm=full(r["coil_gap_worst_mm"]),
              main_spring_min_coil_gap_mm=np.full(shape, _const("main_spring_min_coil_gap_mm")),
              main_spring_wire_b_mm=full(o["b_mm"]),
              main_spring_index_min=np.full(shape, _const("main_spring_index_min")),
@@ -767,7 +775,7 @@ def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
                 ib = np.array([code.setdefault(x, len(code)) for x in zip(fs.tolist(), cs.tolist())], dtype=np.int64)
                 pairs = list(code)
             env = apps.env[ua]
-            r = s10.fixation(
+            r = bolted_joint.fixation(
                 apps.hubload_nominal_n[ua], f["middle_plane_belt_height_mm"][ua],
                 f["middle_plane_belt_height_increment_worst_mm"][ua], f["tilting_safety_factor"][ua],
                 f["sliding_safety_factor"][ua], f["engine_support_internal_diameter_mm"][ua],
@@ -790,9 +798,8 @@ def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
 def _mu(apps, key: str, interface: str, ua, env) -> np.ndarray:
     """The friction coefficient ``key`` of applications ``ua`` (:class:`~synth.design.applications.Applications`
     derives it per application; the catalog's value of their environment ``env`` otherwise)."""
-    from synth import parts as P
     d = apps.derived.get(key)
-    return np.asarray(d[ua] if d is not None else P.mu(interface, env), dtype=float)
+    return np.asarray(d[ua] if d is not None else parts.mu(interface, env), dtype=float)
 
 
 def pivot_wall_values(pivot_diameter_mm, loading_arm_mm, bolt_d_mm) -> dict:
@@ -801,8 +808,8 @@ def pivot_wall_values(pivot_diameter_mm, loading_arm_mm, bolt_d_mm) -> dict:
     The only values of group ``bolt`` that depend on the core (:data:`BOLT_CORE_VALUES`); the bulk engine
     evaluates them per core and bolt diameter, the rest per application and bolt.
     """
-    hole = s2.bolt_hole_diameter_mm(bolt_d_mm)
-    wall = s2.pivot_wall_mm(pivot_diameter_mm, loading_arm_mm, hole)
+    hole = pivot.bolt_hole_diameter_mm(bolt_d_mm)
+    wall = pivot.pivot_wall_mm(pivot_diameter_mm, loading_arm_mm, hole)
     shape = np.shape(wall)
     return {"pivot_bolt_hole_diameter_mm": np.broadcast_to(np.asarray(hole, dtype=float), shape),
             "pivot_wall_mm": np.asarray(wall, dtype=float),

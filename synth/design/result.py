@@ -24,18 +24,16 @@ import math
 from dataclasses import dataclass, field
 
 
+from synth import display
 from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.io.outputs import plain  # JSON-friendly data (NaN and infinities as None, no subnormal number)
 
-__all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "VERDICT_FILLS", "plain",
+__all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain",
            "checks_of", "row_verdict", "field_corrections"]
 
 PASS, FAIL, INCOMPLETE = "pass", "fail", "incomplete"
 NOT_VERIFIED, NOT_APPLICABLE, WARNING = "not verified", "not applicable", "warning"
 EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 3}
-#: the one verdict palette (RGB hex) of every output, after the thesis's legend (Fig. 24-25): green verified,
-#: red failed, orange not verified; amber an advisory warning, grey not applicable
-VERDICT_FILLS = {PASS: "C6EFCE", FAIL: "FFC7CE", NOT_VERIFIED: "FFD966", WARNING: "FFD8A8", NOT_APPLICABLE: "EDEDED"}
 
 
 #: significant figures of the numbers a result exports (JSON): 6, beyond what any input or catalog value carries
@@ -197,10 +195,10 @@ class Result:
         df = pd.DataFrame(rows, columns=cols).set_index("id")
         return df.astype({k: float for k in ("value", "limit", "margin")})  # an infinite limit stays infinite
 
-    def _repr_html_(self) -> str:
-        """The report's digest (verdict, failing checks, warnings, not verified, assumed): a notebook shows it."""
-        from synth.report.html import digest_html
-        return digest_html(self)
+    def _repr_html_(self) -> str | None:
+        """What a notebook shows: the view the presentation layer registered (:mod:`synth.display`: the report's
+        digest of verdict, failing checks, warnings, not verified, assumed)."""
+        return display.html(self)
 
     # --- serialisation ---------------------------------------------------------------------------------------
     def to_dict(self, digits: int | None = EXPORT_DIGITS) -> dict:
@@ -249,7 +247,7 @@ class Result:
 def checks_of(groups: dict, apps, row: int = 0) -> list:
     """The :class:`Check` records of one design: row ``row`` of each evaluated group (registry order)."""
     from synth.design.applications import DEFAULTS
-    from synth.design import evaluate as E
+    from synth.design import evaluate
     from synth.design.rules import active as active_rules
     out = []
     for cid, c in REGISTRY.items():
@@ -258,10 +256,10 @@ def checks_of(groups: dict, apps, row: int = 0) -> list:
             continue
         st = int(g.state[cid][row])
         a = int(g.values["app"][row]) if "app" in g.values else 0
-        if st == E.NOT_APPLICABLE:
+        if st == evaluate.NOT_APPLICABLE:
             out.append(Check(cid, None, None, None, NOT_APPLICABLE))
             continue
-        if st != E.EVALUATED:
+        if st != evaluate.EVALUATED:
             if apps is None:
                 out.append(Check(cid, None, None, None, NOT_VERIFIED, f"not verified: {c.limit} not given"))
                 continue
@@ -269,7 +267,7 @@ def checks_of(groups: dict, apps, row: int = 0) -> list:
             out.append(Check(cid, None, None, None, NOT_VERIFIED, apps.missing_note(missing[0], a) if missing else ""))
             continue
         value = float(g.values[c.value][row])
-        limit = E._CONSTANT_LIMITS[c.limit] if c.limit in E._CONSTANT_LIMITS else float(g.values[c.limit][row])
+        limit = evaluate._CONSTANT_LIMITS[c.limit] if c.limit in evaluate._CONSTANT_LIMITS else float(g.values[c.limit][row])
         m = float(g.margins[cid][row])
         verdict = (PASS if m >= -FEAS_TOL else (WARNING if c.advisory else FAIL))
         assumed = [] if apps is None else [apps.assumed_note(x, a) for x in c.assumes

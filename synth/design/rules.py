@@ -46,10 +46,13 @@ import contextlib
 import functools
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 
 from synth.errors import InputError, Problem
+from synth.io.files import WORKBOOK_SUFFIXES, suffix_of
+from synth.io.structured import read_document
 
-__all__ = ["Rules", "using", "active", "LIMIT_NAMES", "SPRING_LIMIT_BASES", "CAPABILITY_TARGETS", "read_rules",
+__all__ = ["Rules", "using", "active", "LIMIT_NAMES", "SPRING_LIMIT_BASES", "CAPABILITY_TARGETS", "read_rules",  # noqa: F822 (LIMIT_NAMES: module __getattr__)
            "NONE", "echo", "of_args"]
 
 #: the bases of the main spring's installation check (issue 22 adds ``en13906``: the spring makers' static rule)
@@ -230,13 +233,33 @@ def using(rules):
         _ACTIVE.pop()
 
 
+def _read_rules_mapping(path, what: str, *, section_only: bool):
+    """The design-rules mapping of file ``path``: a design input's (or a saved result's) ``rules:`` section, or a
+    rules file's mapping (at the top, or under ``rules:``); None when a design input has none (``section_only``:
+    the ``rules:`` section or None). A workbook has none."""
+    if suffix_of(path) in WORKBOOK_SUFFIXES:
+        return None
+    accepted = "a YAML, TOML or JSON file of design rules (or a design input with a rules: section)"
+    if section_only:  # a design input: its own reader reports what is wrong with it, the rules reader nothing
+        try:
+            data = read_document(path, what, accepted=accepted)
+        except InputError:
+            return None
+        return data.get("rules") or None if isinstance(data, dict) else None
+    data = read_document(path, what, accepted=accepted)
+    if not isinstance(data, dict):
+        raise InputError(Problem(what, str(path), accepted))
+    if "rules" in data:
+        return data["rules"] or None
+    if "inputs" in data or any(k in data for k in ("application_type", "pulley_diameter_mm")):
+        return None  # a design input without rules
+    return data
+
+
 def read_rules(path, what: str = "--rules", *, section_only: bool = False) -> Rules:
     """The rules of a file: a rules file (the mapping at the top, or under ``rules:``) or a design input's (or a
     saved result's) ``rules:`` section (none: :data:`NONE`); through the input gate."""
-    from pathlib import Path
-
-    from synth.io.documents import read_rules_mapping
-    data = read_rules_mapping(path, what, section_only=section_only)
+    data = _read_rules_mapping(path, what, section_only=section_only)
     if data is None:
         return NONE
     return Rules.from_mapping(data, source=data.get("source") if isinstance(data, dict) and data.get("source")
@@ -252,7 +275,6 @@ def of_args(args) -> Rules:
         return read_rules(args.rules)
     src = getattr(args, "input", None)
     if isinstance(src, str) and src.lower().endswith((".yaml", ".yml", ".toml", ".json")):
-        from pathlib import Path
         if Path(src).is_file():
             return read_rules(src, "input file", section_only=True)
     return NONE

@@ -50,9 +50,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from synth import catalog, parts as P
+from synth import catalog
+
+from synth.parts import Parts, Table, arrays
 from synth.errors import InputError, Problem
-from synth.model import packaging as s7, pivot as s2, torsion_spring as s9
+from synth.model import packaging, pivot, torsion_spring
 
 __all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "NONE", "CAPACITY", "Space", "space", "core_rows", "spring_window",
            "table_sizes", "check_capacity", "fixed_fields", "space_for", "pinned_space", "pinned_diameter",
@@ -84,7 +86,7 @@ class Space:
     """
 
     tables: dict
-    parts: P.Parts
+    parts: Parts
     notes: list = field(default_factory=list)
     #: the part-naming input fields this space keeps (:func:`pinned_space`): () for the whole catalog product
     pinned: tuple = ()
@@ -117,7 +119,7 @@ class Space:
         The cone spring's outer diameter is given absolutely (``cone_spring_external_diameter_mm``) and
         stored as the reduction below the largest one the damper pad allows.
         """
-        from synth.model import disc_spring as s8
+        from synth.model import disc_spring
         p = self.parts
 
         def need(k):
@@ -135,7 +137,7 @@ class Space:
                                          + (f" up to {upper:g}" if upper is not None else "")))
             return x
 
-        def code(table: P.Table, k, none_ok=False):
+        def code(table: Table, k, none_ok=False):
             v = str(need(k)).strip()
             if none_ok and v == NONE:
                 return -1
@@ -147,8 +149,8 @@ class Space:
         out["bushing"] = bushing_attributes(p, out["core"]["supplier_code"], [num("pivot_bushing_length_mm")])
         spacer = code(p.endcap_spacer, "endcap_spacer_class", True)
         if spacer >= 0:
-            de_max = float(s8.cone_spring_max_external_diameter_mm(out["core"]["damper_pad_outer_diameter_mm"])[0])
-            di_min = float(s8.cone_spring_min_internal_diameter_mm(out["core"]["pivot_diameter_mm"])[
+            de_max = float(disc_spring.cone_spring_max_external_diameter_mm(out["core"]["damper_pad_outer_diameter_mm"])[0])
+            di_min = float(disc_spring.cone_spring_min_internal_diameter_mm(out["core"]["pivot_diameter_mm"])[
                 "cone_spring_min_internal_diameter_mm"][0])
             red = de_max - num("cone_spring_external_diameter_mm") if pad >= 0 else 0.0
             di = parts.get("cone_spring_internal_diameter_mm")  # absent in older results: the Table 8 minimum
@@ -179,7 +181,7 @@ def _grid(lo: float, hi: float, count: int) -> np.ndarray:
     return np.round(np.linspace(lo, hi, int(count)), 6) if count > 1 else np.array([round(lo, 6)])
 
 
-def _pivot_classes(p: P.Parts) -> np.ndarray:
+def _pivot_classes(p: Parts) -> np.ndarray:
     lo, hi, step = (catalog.constant(f"optimise_pivot_class_{k}") for k in ("min_mm", "max_mm", "step_mm"))
     classes = set(np.round(np.arange(lo, hi + step / 2, step), 6).tolist())
     for _, cls, _ in p.table2.values():
@@ -187,7 +189,7 @@ def _pivot_classes(p: P.Parts) -> np.ndarray:
     return np.array(sorted(classes))
 
 
-def core_attributes(p: P.Parts, bearing, pivot_class_mm, supplier, pad) -> dict:
+def core_attributes(p: Parts, bearing, pivot_class_mm, supplier, pad) -> dict:
     """The core table's columns for codes (bearing, supplier, pad: -1 = none) and pivot classes (arrays)."""
     b, s, dpad = (np.asarray(x, dtype=np.int64) for x in (bearing, supplier, pad))
     cls = np.asarray(pivot_class_mm, dtype=float)
@@ -207,8 +209,8 @@ def core_attributes(p: P.Parts, bearing, pivot_class_mm, supplier, pad) -> dict:
         "bearing_inner_diameter_mm": p.bearing.d_mm[b], "bearing_outer_diameter_mm": p.bearing.D_mm[b],
         "bearing_width_mm": p.bearing.B_mm[b],
         "pivot_bushing_radial_thickness_mm": thick,
-        "pivot_diameter_mm": s2.pivot_diameter_mm(cls, thick),
-        "spring_housing_inner_diameter_mm": s7.spring_housing_inner_diameter_mm(cls),
+        "pivot_diameter_mm": pivot.pivot_diameter_mm(cls, thick),
+        "spring_housing_inner_diameter_mm": packaging.spring_housing_inner_diameter_mm(cls),
         "damper_pad_max_axial_damping_nm": padcol("max_axial_damping_nm", np.inf),
         "damper_pad_contact_area_mm2": padcol("contact_area_mm2"),
         "damper_pad_mean_radius_mm": padcol("mean_radius_mm"),
@@ -222,7 +224,7 @@ def core_attributes(p: P.Parts, bearing, pivot_class_mm, supplier, pad) -> dict:
     return t
 
 
-def selectable_bearings(p: P.Parts) -> np.ndarray:
+def selectable_bearings(p: Parts) -> np.ndarray:
     """Codes of the bearings the thesis method can size: those with thesis Table 1 rows (both fuels) and Table 2
     rows. The catalog holds more (ISO 15, supplier ratings); no rule reproduces Tables 1-2 from their data
     (``tests/validation/test_thesis_tables_1_2.py``), so they wait for Table 1-2 rows (a user catalog can add
@@ -233,7 +235,7 @@ def selectable_bearings(p: P.Parts) -> np.ndarray:
     return np.flatnonzero(ok)
 
 
-def _core(p: P.Parts, classes=None) -> dict:
+def _core(p: Parts, classes=None) -> dict:
     classes = _pivot_classes(p) if classes is None else np.asarray(classes, dtype=float)
     bearings = selectable_bearings(p)
     b, c, s, dpad = (a.ravel() for a in np.meshgrid(bearings, np.arange(len(classes)),
@@ -242,7 +244,7 @@ def _core(p: P.Parts, classes=None) -> dict:
     return core_attributes(p, b, classes[c], s, dpad)
 
 
-def bushing_attributes(p: P.Parts, supplier, length_mm) -> dict:
+def bushing_attributes(p: Parts, supplier, length_mm) -> dict:
     """The bushing table's columns for supplier codes and lengths (any length: the flowchart's trial lengths)."""
     sup = np.asarray(supplier, dtype=np.int64)
     length = np.asarray(length_mm, dtype=float)
@@ -251,8 +253,8 @@ def bushing_attributes(p: P.Parts, supplier, length_mm) -> dict:
             "nonstandard": np.zeros(length.shape)}
 
 
-def _bushing(p: P.Parts) -> dict:
-    sup = np.concatenate([np.full(len(l), i) for i, l in enumerate(p.bushing_lengths)]).astype(np.int64)
+def _bushing(p: Parts) -> dict:
+    sup = np.concatenate([np.full(len(lengths), i) for i, lengths in enumerate(p.bushing_lengths)]).astype(np.int64)
     return bushing_attributes(p, sup, np.concatenate(p.bushing_lengths))
 
 
@@ -267,7 +269,7 @@ def cone_variants() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return zeta, phi, red
 
 
-def axial_attributes(p: P.Parts, spacer, aspect_ratio, deflection_ratio, de_reduction_mm, di_increase_mm=0.0) -> dict:
+def axial_attributes(p: Parts, spacer, aspect_ratio, deflection_ratio, de_reduction_mm, di_increase_mm=0.0) -> dict:
     """The axial table's columns for spacer codes (-1 = none) and cone-spring variants (arrays).
 
     The cone spring's outer diameter is ``de_reduction_mm`` below the largest the damper pad carries, its inner
@@ -299,40 +301,40 @@ def axial_attributes(p: P.Parts, spacer, aspect_ratio, deflection_ratio, de_redu
     }
 
 
-def _axial(p: P.Parts) -> dict:
+def _axial(p: Parts) -> dict:
     zeta, phi, red = cone_variants()
     e, z, f, r = (a.ravel() for a in np.meshgrid(np.arange(len(p.endcap_spacer)), zeta, phi, red, indexing="ij"))
     return axial_attributes(p, np.concatenate([[-1], e]), np.concatenate([[0.0], z]), np.concatenate([[0.0], f]),
                             np.concatenate([[0.0], r]))
 
 
-def mbd_grid(p: P.Parts) -> np.ndarray:
+def mbd_grid(p: Parts) -> np.ndarray:
     """Main-spring mean body diameters searched [mm]: the step grid spanning every housing of the catalogs."""
     step = catalog.constant("optimise_mbd_step_mm")
-    lo = float(s7.spring_housing_inner_diameter_mm(catalog.constant("optimise_pivot_class_min_mm")))
+    lo = float(packaging.spring_housing_inner_diameter_mm(catalog.constant("optimise_pivot_class_min_mm")))
     hi = float(np.max(p.bearing.D_mm))
     return np.arange(math.ceil(lo / step) * step, math.floor(hi / step) * step + step / 2, step)
 
 
-def _supplied(p: P.Parts) -> np.ndarray:
+def _supplied(p: Parts) -> np.ndarray:
     """``(materials, wires)``: the material is supplied in the wire's section (``spring_materials.csv``)."""
     mat, wire = p.spring_material, p.spring_wire
     return np.array([[wire.section[wi] in mat.wire_sections[mi].split() for wi in range(len(wire))]
                      for mi in range(len(mat))], dtype=bool).reshape(len(mat), len(wire))
 
 
-def spring_attributes(p: P.Parts, material, wire, mbd_mm) -> dict:
+def spring_attributes(p: Parts, material, wire, mbd_mm) -> dict:
     """The spring table's columns for material and wire codes and mean body diameters (any diameter)."""
     m, w = np.asarray(material, dtype=np.int64), np.asarray(wire, dtype=np.int64)
     d = np.asarray(mbd_mm, dtype=float)
     wire_t, mat = p.spring_wire, p.spring_material
     rnd = wire_t.round_wire[w]
     rm = np.empty(m.shape)
-    dia = s9.rm_lookup_diameter_mm(wire_t.b_mm[w], wire_t.h_mm[w], rnd)
+    dia = torsion_spring.rm_lookup_diameter_mm(wire_t.b_mm[w], wire_t.h_mm[w], rnd)
     for i in np.unique(m):  # a handful of materials, each with its own strength table (EN 10270)
         sel = m == i
-        rm[sel] = s9.material_strength_mpa(mat.key[int(i)], dia[sel])
-    inertia = s9.second_moment_mm4(wire_t.b_mm[w], wire_t.h_mm[w], rnd)
+        rm[sel] = torsion_spring.material_strength_mpa(mat.key[int(i)], dia[sel])
+    inertia = torsion_spring.second_moment_mm4(wire_t.b_mm[w], wire_t.h_mm[w], rnd)
     area = np.where(rnd, np.pi * wire_t.h_mm[w] ** 2 / 4.0, wire_t.b_mm[w] * wire_t.h_mm[w])
     # wire length x k = pi E I / 180 (eq. 64-65): cost = (per metre + per kg) x length, divided by k per application
     length_times_k_m = np.pi * mat.E_mpa[m] * inertia / (180.0 * 1000.0) / 1000.0
@@ -351,7 +353,7 @@ def spring_attributes(p: P.Parts, material, wire, mbd_mm) -> dict:
     }
 
 
-def _spring(p: P.Parts, mbd=None) -> dict:
+def _spring(p: Parts, mbd=None) -> dict:
     mbd = mbd_grid(p) if mbd is None else np.asarray(mbd, dtype=float)
     m, w, d = (a.ravel() for a in np.meshgrid(np.arange(len(p.spring_material)), np.arange(len(p.spring_wire)),
                                               mbd, indexing="ij"))
@@ -360,7 +362,7 @@ def _spring(p: P.Parts, mbd=None) -> dict:
     return spring_attributes(p, m[supplied], w[supplied], d[supplied])
 
 
-def bolt_attributes(p: P.Parts, head, property_class) -> dict:
+def bolt_attributes(p: Parts, head, property_class) -> dict:
     """The bolt table's columns for head codes (``bolt_heads.csv``: a format in a head form) and property classes."""
     hd, c = np.asarray(head, dtype=np.int64), np.asarray(property_class, dtype=np.int64)
     bh, bo, cl = p.bolt_head, p.bolt, p.bolt_class
@@ -381,7 +383,7 @@ def bolt_attributes(p: P.Parts, head, property_class) -> dict:
     }
 
 
-def _bolt(p: P.Parts) -> dict:
+def _bolt(p: Parts) -> dict:
     h, c = (a.ravel() for a in np.meshgrid(np.arange(len(p.bolt_head)), np.arange(len(p.bolt_class)), indexing="ij"))
     t = bolt_attributes(p, h, c)
     keep = t["class_defined"]
@@ -400,16 +402,16 @@ CAPACITY = {"core": (2_000, "ball_bearings.csv, pivot_classes.csv, pivot_bushing
             "bolt": (2_000, "bolt_heads.csv, bolt_property_classes.csv")}
 
 
-def table_sizes(p: P.Parts) -> dict:
+def table_sizes(p: Parts) -> dict:
     """The rows of each table of the space of parts ``p``, counted before anything is built (upper bounds)."""
     n_axial = 1 + len(p.endcap_spacer) * int(np.prod([len(g) for g in cone_variants()]))
     return {"core": len(selectable_bearings(p)) * len(_pivot_classes(p)) * len(p.bushing) * (len(p.damper_pad) + 1),
-            "bushing": int(sum(len(l) for l in p.bushing_lengths)), "axial": n_axial,
+            "bushing": int(sum(len(lengths) for lengths in p.bushing_lengths)), "axial": n_axial,
             "spring": len(p.spring_material) * len(p.spring_wire) * len(mbd_grid(p)),
             "bolt": len(p.bolt_head) * len(p.bolt_class)}
 
 
-def check_capacity(p: P.Parts) -> None:
+def check_capacity(p: Parts) -> None:
     """An :class:`~synth.errors.InputError` naming the catalogs when a table of the space would exceed
     :data:`CAPACITY` (user catalogs too big for the evaluator), before it is built."""
     problems = [Problem(f"--catalogs ({CAPACITY[t][1]})", f"{n} {t} options",
@@ -421,7 +423,7 @@ def check_capacity(p: P.Parts) -> None:
 
 
 def _build_space() -> Space:
-    p = P.arrays()
+    p = arrays()
     check_capacity(p)
     return Space({"core": _core(p), "bushing": _bushing(p), "axial": _axial(p), "spring": _spring(p),
                   "bolt": _bolt(p)}, p)
@@ -457,7 +459,7 @@ def fixed_fields(d, pin_inputs=False) -> tuple[str, ...]:
     be given: a field to keep needs its value).
 
     >>> from synth.data import case_path
-    >>> from synth.schema import load_input
+    >>> from synth.io.documents import load_input
     >>> d = load_input(case_path("case3"))
     >>> fixed_fields(d, True), fixed_fields(d, ["pivot_class_diameter_mm"])
     (('pivot_class_diameter_mm', 'pivot_bushing_radial_thickness_mm'), ('pivot_class_diameter_mm',))
@@ -484,7 +486,7 @@ def space_for(d, pin_inputs=False) -> Space:
     return pinned_space(space(), {n: getattr(d, n) for n in fixed}) if fixed else space()
 
 
-def _wire_rows(p: P.Parts, pins: dict) -> np.ndarray:
+def _wire_rows(p: Parts, pins: dict) -> np.ndarray:
     """The ``spring_wires.csv`` rows a wire section and size select (a size names one wire; an unknown size lists
     the catalog's)."""
     w = p.spring_wire

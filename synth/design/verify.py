@@ -7,7 +7,7 @@ on the optimiser's grids) and :func:`verify` wraps it in a
 solver's answer and the bulk engine's chosen designs are verified here.
 
 >>> from synth.data import case_path
->>> from synth.schema import load_input
+>>> from synth.io.documents import load_input
 >>> r = verify(load_input(case_path("case3")), {"ball_bearing": "6006", "pivot_class_diameter_mm": 19.0,
 ...     "pivot_bushing_supplier": "B", "damper_pad_class": "none", "pivot_bushing_length_mm": 20.0,
 ...     "endcap_spacer_class": "none", "cone_spring_aspect_ratio": 0.0, "cone_spring_deflection_ratio": 0.0,
@@ -23,7 +23,7 @@ import dataclasses
 
 import numpy as np
 
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.result import Result, checks_of, plain
 from synth.design.space import NONE, PART_KEYS, space
@@ -32,7 +32,7 @@ __all__ = ["evaluate_design", "verify", "values_of", "inputs_of", "wire_size_mm"
 
 
 
-def evaluate_design(apps: Applications, attrs: dict, settings: E.Settings = E.Settings(), *, detail: bool = True,
+def evaluate_design(apps: Applications, attrs: dict, settings: evaluate.Settings = evaluate.Settings(), *, detail: bool = True,
                     time_points: int = 0) -> dict:
     """Every group of N designs (``attrs``: N-row attribute dicts per table), design ``i`` for application ``i``
     of ``apps`` (one design: application 0). The one sequence of the evaluator's groups for given designs:
@@ -42,13 +42,13 @@ def evaluate_design(apps: Applications, attrs: dict, settings: E.Settings = E.Se
     (:attr:`~synth.design.evaluate.Settings.judge`); only ``screening-only`` evaluates the screening model."""
     settings = settings.judge
     idx = np.arange(len(next(iter(attrs["core"].values()))), dtype=np.int64)
-    groups = {"input": E.inputs(apps, idx)}
-    cg = E.core(apps, idx, attrs["core"], settings, detail=detail)
+    groups = {"input": evaluate.inputs(apps, idx)}
+    cg = evaluate.core(apps, idx, attrs["core"], settings, detail=detail)
     groups["core"] = cg
-    groups["bushing"] = E.bushing(apps, cg, idx, attrs["bushing"], settings)
-    groups["axial"] = E.axial(apps, cg, idx, attrs["axial"], settings, time_points=time_points)
-    groups["spring"] = E.spring(apps, E.spring_keys(cg, idx), idx, attrs["spring"], settings)
-    groups["bolt"] = E.bolt(apps, cg, idx, attrs["bolt"], settings)
+    groups["bushing"] = evaluate.bushing(apps, cg, idx, attrs["bushing"], settings)
+    groups["axial"] = evaluate.axial(apps, cg, idx, attrs["axial"], settings, time_points=time_points)
+    groups["spring"] = evaluate.spring(apps, evaluate.spring_keys(cg, idx), idx, attrs["spring"], settings)
+    groups["bolt"] = evaluate.bolt(apps, cg, idx, attrs["bolt"], settings)
     return groups
 
 
@@ -145,7 +145,7 @@ def parts_of_attributes(attrs: dict, groups: dict) -> dict:
     return parts_of_rows(attrs, groups["core"].values)[0]
 
 
-def verify(d, parts: dict, settings: E.Settings = E.Settings(), *, status: str = "verified", solver: str = "",
+def verify(d, parts: dict, settings: evaluate.Settings = evaluate.Settings(), *, status: str = "verified", solver: str = "",
            detail: bool = True, time_points: int = 0, notes: list | None = None) -> Result:
     """The :class:`~synth.design.result.Result` of design ``parts`` (the keys of PART_KEYS) for input ``d``."""
     apps = Applications.of([d])

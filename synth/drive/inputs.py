@@ -375,7 +375,7 @@ def validate(data) -> Drive:
 
 
 def load_drive(path) -> Drive:
-    """Read and validate a drive file: YAML, TOML, JSON (through :func:`synth.io.documents.read_document`) or
+    """Read and validate a drive file: YAML, TOML, JSON (through :func:`synth.io.structured.read_document`) or
     the ``Drive`` sheet of a workbook (:func:`synth.io.workbook.read_sheet`)."""
     from synth.io.files import existing_file, suffix_of
     accepted = "an existing drive file: .yaml, .yml, .toml, .json, or a workbook (.xlsx, .ods) with a Drive sheet"
@@ -385,7 +385,7 @@ def load_drive(path) -> Drive:
         raise InputError(Problem("--drive", str(path), accepted + " (by its extension)"))
     if suffix in (".xlsx", ".xlsm", ".ods"):
         return _from_sheet(path)
-    from synth.io.documents import read_document
+    from synth.io.structured import read_document
     data = read_document(path, "--drive", accepted=accepted)
     if data is None:
         raise InputError(Problem("--drive", str(path), "a drive mapping (the file is empty)"))

@@ -5,7 +5,7 @@
   :data:`synth.schema.FIELDS`;
 * :mod:`synth.excel.reader`: reads a filled workbook into the mapping that
   :func:`synth.schema.validate` takes, with problems pointing to the cell;
-* :mod:`synth.excel.results`: the results workbook (output table of Tables
+* :mod:`synth.excel.results_workbook`: the results workbook (output table of Tables
   10/14 with verdict colours, echo of the data read, suggested corrections,
   one sheet per scene result).
 """

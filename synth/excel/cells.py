@@ -132,7 +132,7 @@ def page_setup(ws, title: str, *, header_rows: str | None = None, subtitle: str 
     ``title`` (left) and ``subtitle`` (right), the footer the date the workbook was
     written and ``page n of N``.
     """
-    from synth import __version__
+    from synth.version import __version__
     ws.page_setup.orientation = "landscape"
     ws.page_setup.paperSize = ws.PAPERSIZE_A4
     ws.page_setup.fitToWidth = 1

@@ -42,7 +42,7 @@ from pathlib import Path
 import yaml
 
 from synth import catalog, schema
-from synth.design.result import VERDICT_FILLS
+from synth.report.palette import VERDICT_FILLS
 from synth.excel.cells import page_setup, put, wrap
 from synth.schema import Field
 

@@ -12,7 +12,7 @@
 * :mod:`synth.io.documents` -- design inputs, shrink-fit cases and scene
   tables as mappings;
 * :mod:`synth.io.tables` -- portfolio tables (CSV, xlsx, ods, Parquet);
-* :mod:`synth.io.results` -- saved ``synth design/flowchart --json`` results,
+* :mod:`synth.io.saved_results` -- saved ``synth design/flowchart --json`` results,
   shape-checked;
 * :mod:`synth.io.catalogs` -- user catalog folders (``--catalogs DIR``);
 * :mod:`synth.io.outputs` -- the output gate: every file synth writes (a

@@ -1,10 +1,9 @@
 """Design inputs, shrink-fit cases and scene tables: a file the user named, as a mapping or rows.
 
-* :func:`read_document` -- a YAML, TOML or JSON file as plain data (limits of
-  :mod:`synth.io.structured`);
 * :func:`read_design_mapping` -- a design input (YAML/TOML/JSON, the .xlsx
   template, or the template saved by LibreOffice as .ods or .xlsx): the
   mapping :func:`synth.schema.validate` takes (a case file's ``inputs:`` block);
+* :func:`load_input` -- a design-input file, read and validated (:func:`read_mapping`: the mapping);
 * :func:`read_rows` -- a scene result table for ``synth report --optimum /
   --pareto / --solvers`` (CSV, JSON or YAML rows).
 
@@ -16,29 +15,18 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 from synth.errors import InputError, Problem
-from synth.io.files import existing_file, read_text, suffix_of
+from synth.io.files import WORKBOOK_SUFFIXES, existing_file, suffix_of
 from synth.io.limits import LIMITS
-from synth.io.structured import FORMAT_OF_SUFFIX, parse
+from synth.io.structured import read_document
+from synth.schema import DesignInput, validate
 
-__all__ = ["DESIGN_SUFFIXES", "WORKBOOK_SUFFIXES", "read_document", "read_design_mapping", "read_rows"]
+__all__ = ["DESIGN_SUFFIXES", "read_design_mapping", "read_mapping", "load_input", "read_rows"]
 
-WORKBOOK_SUFFIXES = (".xlsx", ".xlsm", ".ods")
 DESIGN_SUFFIXES = (".yaml", ".yml", ".toml", ".json") + WORKBOOK_SUFFIXES
 _DESIGN_ACCEPTED = ("an existing design input: .yaml, .yml, .toml, .json, or the Excel template "
                     "(.xlsx, or .ods saved by LibreOffice)")
-
-
-def read_document(path, what: str, *, accepted: str = "an existing .yaml, .yml, .toml or .json file",
-                  allow_nonfinite: bool = False) -> Any:
-    """The data of a YAML, TOML or JSON file (by extension), within the gate's limits."""
-    fmt = FORMAT_OF_SUFFIX.get(suffix_of(path))
-    if fmt is None:
-        raise InputError(Problem(what, str(path), accepted + " (by its extension)"))
-    text = read_text(path, what, accepted=accepted)
-    return parse(text, fmt, Path(path).name, allow_nonfinite=allow_nonfinite, what=what)
 
 
 def read_design_mapping(path, what: str = "input file") -> dict:
@@ -70,30 +58,6 @@ def read_design_mapping(path, what: str = "input file") -> dict:
     return {k: v for k, v in data.items() if k != "rules"}  # a flat file's design rules (synth.design.rules)
 
 
-def read_rules_mapping(path, what: str = "--rules", *, section_only: bool = False):
-    """The design-rules mapping of file ``path`` (:mod:`synth.design.rules`): a design input's (or a saved
-    result's) ``rules:`` section, or a rules file's mapping (at the top, or under ``rules:``); None when a design
-    input has none (``section_only``: the ``rules:`` section or None). A workbook has none."""
-    suffix = suffix_of(path)
-    if suffix in WORKBOOK_SUFFIXES:
-        return None
-    accepted = "a YAML, TOML or JSON file of design rules (or a design input with a rules: section)"
-    if section_only:  # a design input: its own reader reports what is wrong with it, the rules reader nothing
-        try:
-            data = read_document(path, what, accepted=accepted)
-        except InputError:
-            return None
-        return data.get("rules") or None if isinstance(data, dict) else None
-    data = read_document(path, what, accepted=accepted)
-    if not isinstance(data, dict):
-        raise InputError(Problem(what, str(path), accepted))
-    if "rules" in data:
-        return data["rules"] or None
-    if section_only or "inputs" in data or any(k in data for k in ("application_type", "pulley_diameter_mm")):
-        return None  # a design input without rules
-    return data
-
-
 def read_rows(path, what: str) -> list[dict]:
     """Rows of a scene result file: CSV, JSON or YAML (a list of mappings or one mapping)."""
     accepted = "an existing .csv, .json or .yaml file of rows"
@@ -111,3 +75,17 @@ def read_rows(path, what: str) -> list[dict]:
     if isinstance(data, list) and data and all(isinstance(r, dict) for r in data):
         return data
     raise InputError(Problem(what, str(path), "a list of mappings (rows) or one mapping"))
+
+
+def read_mapping(path) -> dict:
+    """Read a design input (YAML, TOML, JSON, the .xlsx template or a LibreOffice .ods) into a dict.
+
+    The file goes through the input gate (:func:`read_design_mapping`): size, encoding, YAML aliases, nesting,
+    huge and non-finite numbers are checked before anything is built; a case file's ``inputs:`` block is read.
+    """
+    return read_design_mapping(path)
+
+
+def load_input(path) -> DesignInput:
+    """Read and validate a design-input file (YAML, TOML or JSON; a case file works; the Excel template)."""
+    return validate(read_mapping(path))

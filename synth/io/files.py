@@ -23,7 +23,10 @@ from pathlib import Path
 from synth.errors import InputError, Problem
 from synth.io.limits import LIMITS, MB
 
-__all__ = ["existing_file", "read_text", "check_size", "check_zip", "suffix_of"]
+__all__ = ["existing_file", "read_text", "check_size", "check_zip", "suffix_of", "WORKBOOK_SUFFIXES"]
+
+#: the workbook files a user may name (the Excel template, or it saved by LibreOffice)
+WORKBOOK_SUFFIXES = (".xlsx", ".xlsm", ".ods")
 
 
 def suffix_of(path: str | os.PathLike) -> str:

@@ -58,12 +58,14 @@ from __future__ import annotations
 import json
 import math
 import re
+from pathlib import Path
 from typing import Any
 
 from synth.errors import InputError, Problem
+from synth.io.files import read_text, suffix_of
 from synth.io.limits import LIMITS, Limits, short
 
-__all__ = ["parse", "check_values", "FORMAT_OF_SUFFIX"]
+__all__ = ["parse", "check_values", "read_document", "FORMAT_OF_SUFFIX"]
 
 #: file suffix -> document format
 FORMAT_OF_SUFFIX = {".yaml": "yaml", ".yml": "yaml", ".toml": "toml", ".json": "json"}
@@ -379,3 +381,13 @@ def check_values(data: Any, where: str, *, limits: Limits = LIMITS, allow_nonfin
             break
     if problems:
         raise InputError(problems)
+
+
+def read_document(path, what: str, *, accepted: str = "an existing .yaml, .yml, .toml or .json file",
+                  allow_nonfinite: bool = False) -> Any:
+    """The data of a YAML, TOML or JSON file (by extension), within the gate's limits."""
+    fmt = FORMAT_OF_SUFFIX.get(suffix_of(path))
+    if fmt is None:
+        raise InputError(Problem(what, str(path), accepted + " (by its extension)"))
+    text = read_text(path, what, accepted=accepted)
+    return parse(text, fmt, Path(path).name, allow_nonfinite=allow_nonfinite, what=what)

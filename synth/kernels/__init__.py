@@ -6,12 +6,12 @@ one-application path keeps its start-up time. Each kernel has a numpy twin
 (``engine="numpy"``) built on the registry's group function, for tests,
 benchmarks and the one-application path.
 
-* :mod:`synth.kernels.torsion_spring` -- the main spring of thesis step 9:
+* :mod:`synth.kernels.main_spring` -- the main spring of thesis step 9:
   the registry's spring-group margins, first feasible option in score order,
   max-min margin, any feasible.
 """
 
-from synth.kernels.torsion_spring import (  # noqa: F401
+from synth.kernels.main_spring import (  # noqa: F401
     MARGIN_NAMES, FirstFeasible, MaxMin, SpringKeys, SpringOptions, any_feasible, first_feasible, keys_of_rows,
     margins, max_min_margin, options_of_space, reference_margins, spring_keys, spring_options,
 )

@@ -13,7 +13,9 @@ stackup        axial tolerance stack of the cone-spring gap 6
 packaging      axial stack, spring housing                  7, eq. (50)-(54)
 disc_spring    cone (disc) spring, Almen-Laszlo / DIN 2092  8, eq. (55)-(63)
 torsion_spring main torsion (leg) spring, EN 13906-3        9, eq. (64)-(93)
-bolted_joint   tilting, sliding, fixation bolt, VDI 2230    10, eq. (94)-(111)
+bolted_joint   tilting, sliding, fixation bolt (thesis)     10, eq. (94)-(111)
+vdi2230        fixation bolt by VDI 2230 Part 1 (2015)      10 (method vdi2230)
+input_guards   range checks of the inputs (InputError)      -
 ============== =========================================== ============
 
 Conventions: pure functions on numpy arrays (scalars broadcast), units in

@@ -41,7 +41,7 @@ __all__ = [
     "disc_spring_thickness_for_force_mm",
     "disc_spring_group",
     "force_tolerance_band_n",
-    
+
     "axial_damping_nm",
     "required_axial_force_n",
     "axial_force_tolerance_band",

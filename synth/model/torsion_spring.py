@@ -60,7 +60,7 @@ MAIN_SPRING_CONSTANTS = (
 def main_spring_constants() -> dict:
     """The catalog constants :func:`main_spring_design` reads, ``{name: value}`` (one read of each).
 
-    Compiled callers (:mod:`synth.kernels.torsion_spring`) read them here once
+    Compiled callers (:mod:`synth.kernels.main_spring`) read them here once
     and pass them in as scalars, so both paths use the same values.
 
     >>> c = main_spring_constants()
@@ -510,7 +510,7 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
     ``hooks_angle_free_state_deg``, ``hooks_angle_nominal_deg``; the angles
     ``theta_*_deg``, torques ``torque_*_nm``, coils ``coils_*``, diameters
     ``mbd_*_mm``, ``outer_diameter_max_mm``, ``inner_diameter_min_mm``,
-    ``coil_gap_min_mm``, ``block_length_max_mm``, ``spring_index``,
+    ``coil_gap_worst_mm``, ``block_length_max_mm``, ``spring_index``,
     ``curvature_factor``, and the limits they are checked against
     (:mod:`synth.design.constraints`): ``sigma_y_limit_mpa`` (installation),
     ``housing_outer_diameter_min_mm`` (eq. 82) and ``housing_inner_diameter_max_mm`` (eq. 86).
@@ -584,7 +584,7 @@ def main_spring_design(*, E_mpa, Rm_mpa, sigma_y_mpa, sigma_A0_mpa, b_mm, h_mm, 
         "curvature_factor": kf,
         "outer_diameter_max_mm": d_out,
         "inner_diameter_min_mm": d_in,
-        "coil_gap_min_mm": gap,
+        "coil_gap_worst_mm": gap,
         "block_length_max_mm": block_length_mm(b_mm, n_worst, b_tol_mm),
         "stiffness_nm_per_deg": k + 0.0 * n_a,
         "sigma_y_limit_mpa": _f(sigma_y_mpa) + 0.0 * n_a,

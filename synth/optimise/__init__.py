@@ -1,7 +1,7 @@
 """Catalog optimisation: one design space, exact and black-box solvers, cost against margin.
 
 :func:`solve` dispatches to the solvers by name (:data:`SOLVERS`); every one
-returns a :class:`~synth.optimise.result.DesignResult`.
+returns a :class:`~synth.optimise.answer.DesignResult`.
 """
 
 from __future__ import annotations

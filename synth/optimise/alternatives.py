@@ -96,9 +96,9 @@ def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None
     ``pin_inputs``: the parts kept in the search (as the synthesis kept them). An infeasible ``result`` has none."""
     from synth.design.evaluate import Settings
     from synth.errors import InputError, Problem
-    from synth.optimise.evaluate import evaluate
+    from synth.optimise.product import evaluate
     from synth.optimise.objectives import Objective
-    from synth.optimise.result import build_result, design_margin
+    from synth.optimise.answer import build_result, design_margin
     if not (isinstance(k, int) and not isinstance(k, bool) and 1 <= k <= MAX_TOP):
         raise InputError(Problem("--top", k, f"an integer from 1 to {MAX_TOP}"))
     if not result.parts or result.status not in ("optimal", "feasible", "baseline"):

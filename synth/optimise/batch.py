@@ -27,7 +27,7 @@ given the core), and its smallest margin the minimum of theirs.
   constraints once per application and bolt, its pivot wall per core and bolt
   diameter (:func:`~synth.design.evaluate.pivot_wall_values`, the only bolt
   value that depends on the core).
-* Springs go through the compiled kernels (:mod:`synth.kernels.torsion_spring`)
+* Springs go through the compiled kernels (:mod:`synth.kernels.main_spring`)
   once per distinct key, the axial group in blocks of its options in score
   order, once per distinct value of what it reads of the core
   (:data:`~synth.design.evaluate.AXIAL_CORE_VALUES`).
@@ -57,12 +57,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, REGISTRY, margin as registry_margin
 from synth.design.space import SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, space, space_for, spring_window
-from synth.kernels import axial as physics
-from synth.optimise.evaluate import DURABILITY_NOTE, core_scores, option_scores
+from synth.kernels import axial as axial_kernels
+from synth.optimise.product import DURABILITY_NOTE, core_scores, option_scores
 
 __all__ = ["Batch", "wsum", "SLACK", "any_feasible", "robust"]
 
@@ -172,7 +172,7 @@ class Batch:
     group's physics runs on the same engine (:mod:`synth.kernels.axial`).
     """
 
-    def __init__(self, inputs, settings: E.Settings = E.Settings(), *, pin_inputs: bool = False,
+    def __init__(self, inputs, settings: evaluate.Settings = evaluate.Settings(), *, pin_inputs: bool = False,
                  spring_engine: str = "numba", apps: Applications | None = None):
         from synth.design.rules import active
         self.inputs = list(inputs)
@@ -191,8 +191,8 @@ class Batch:
         self.C = np.concatenate(per).astype(np.int64) if n else np.zeros(0, dtype=np.int64)
         self.evaluations = len(self.C)
         with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-            self.ig = E.inputs(self.apps, np.arange(n))
-            self.cg = E.core(self.apps, self.A, sp.rows("core", self.C), settings)
+            self.ig = evaluate.inputs(self.apps, np.arange(n))
+            self.cg = evaluate.core(self.apps, self.A, sp.rows("core", self.C), settings)
         self.in_ok = self.ig.ok()
         self.in_min = self.ig.min_margin(objective_only=False)
         self.core_ok = self.cg.ok() & self.in_ok[self.A]
@@ -220,7 +220,7 @@ class Batch:
         if not n_r:
             return out_v, out_k
         sup = cg.values["supplier_code"][rows]
-        first, inv = _unique_rows(self.A[rows], sup, *(cg.values[k][rows] for k in E.BUSHING_CORE_VALUES))
+        first, inv = _unique_rows(self.A[rows], sup, *(cg.values[k][rows] for k in evaluate.BUSHING_CORE_VALUES))
         rep = rows[first]
         score = wsum(option_scores(sp, "bushing"), weights) if weights is not None else None
         res_v = np.empty(len(rep))
@@ -231,7 +231,7 @@ class Batch:
             opts = np.flatnonzero(t["supplier_code"] == s)  # index order
             rr, oo = np.repeat(rep[sel], len(opts)), np.tile(opts, len(sel))
             with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-                g = E.bushing(self.apps, cg, rr, sp.rows("bushing", oo), self.settings)
+                g = evaluate.bushing(self.apps, cg, rr, sp.rows("bushing", oo), self.settings)
             self.evaluations += len(rr)
             if weights is not None:
                 order = np.argsort(score[opts], kind="stable")
@@ -262,8 +262,8 @@ class Batch:
             a, b = which[ai], bolts[bi]
             o = sp.rows("bolt", b)
             with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-                fix = E.fixation_values(self.apps, a, o, self.settings)
-                g = E.bolt(self.apps, self.cg, self.ptr[a], o, self.settings, fixation=fix)
+                fix = evaluate.fixation_values(self.apps, a, o, self.settings)
+                g = evaluate.bolt(self.apps, self.cg, self.ptr[a], o, self.settings, fixation=fix)
             self.evaluations += len(a)
             m = np.full(len(a), np.inf)
             for cid in _BOLT_APP_IDS:
@@ -277,9 +277,9 @@ class Batch:
         if self._wall_d is None:
             self._wall_d = np.unique(sp.tables["bolt"]["bolt_d_mm"], return_inverse=True)
         d, code = self._wall_d
-        cv = [self.cg.values[k][rows][:, None] for k in E.BOLT_CORE_VALUES]
+        cv = [self.cg.values[k][rows][:, None] for k in evaluate.BOLT_CORE_VALUES]
         with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-            v = E.pivot_wall_values(*cv, d[None, :])
+            v = evaluate.pivot_wall_values(*cv, d[None, :])
             m = registry_margin(_WALL, v[_WALL.value], v[_WALL.limit])
         return np.where(np.isnan(m), -np.inf, m), np.asarray(code).reshape(-1)
 
@@ -355,8 +355,8 @@ class Batch:
 
     def _options(self):
         if self._spring_opts is None:
-            from synth.kernels import torsion_spring as K
-            self._spring_opts = K.options_of_space(self.sp.tables["spring"])
+            from synth.kernels import main_spring
+            self._spring_opts = main_spring.options_of_space(self.sp.tables["spring"])
         return self._spring_opts
 
     def _spring_app_lists(self, weights):
@@ -404,23 +404,23 @@ class Batch:
 
     def _spring_keys(self, rows):
         """``(keys dict, inverse)``: the distinct spring keys of core rows (application and what the spring sees)."""
-        kd = E.spring_keys(self.cg, rows)
-        first, inv = _unique_rows(kd["app"], *(kd[k] for k in E.SPRING_KEY_VALUES))
+        kd = evaluate.spring_keys(self.cg, rows)
+        first, inv = _unique_rows(kd["app"], *(kd[k] for k in evaluate.SPRING_KEY_VALUES))
         return {k: v[first] for k, v in kd.items()}, inv
 
     def _spring_first(self, keys, limit, weights):
         """Per key: ``(score, option)`` of the first feasible spring of its application's score-ordered list with
         a score at most ``limit`` (inf, -1: none). The score cut is a position cut in the list (the scores
         grow along it): the kernel's score is the position."""
-        from synth.kernels import torsion_spring as K
+        from synth.kernels import main_spring
         lists, list_of, score_of, _, positions = self._spring_app_lists(weights)
         apps_k = keys["app"]
         grp = list_of[apps_k]
         last = np.full(len(apps_k), np.inf)
         for j in np.flatnonzero(np.isfinite(limit)):
             last[j] = np.searchsorted(score_of[apps_k[j]], limit[j], side="right") - 1.0
-        kk = K.keys_of_rows(self.apps, keys)
-        r = K.first_feasible(kk, self._options(), lists, key_group=grp, score=positions, score_limit=last,
+        kk = main_spring.keys_of_rows(self.apps, keys)
+        r = main_spring.first_feasible(kk, self._options(), lists, key_group=grp, score=positions, score_limit=last,
                              engine=self.engine)
         self.evaluations += int(r.visited.sum())
         out = np.full(len(apps_k), np.inf)
@@ -435,37 +435,37 @@ class Batch:
     def _spring_max(self, keys, cap=None):
         """Per key: ``(value, option)`` of the largest smallest margin over its application's range (index
         order, first of the ties; option 0 when every value is -inf); ``cap``: exact below it."""
-        from synth.kernels import torsion_spring as K
+        from synth.kernels import main_spring
         inv, lists = self._ranges()
         grp = inv[keys["app"]]
-        kk = K.keys_of_rows(self.apps, keys)
-        r = K.max_min_margin(kk, self._options(), lists, key_group=grp, cap=cap, engine=self.engine)
+        kk = main_spring.keys_of_rows(self.apps, keys)
+        r = main_spring.max_min_margin(kk, self._options(), lists, key_group=grp, cap=cap, engine=self.engine)
         self.evaluations += int(r.visited.sum())
         v = np.asarray(r.value, dtype=float)
         return v, np.where((r.index >= 0) & (v > -np.inf), r.index, 0)
 
     # ------------------------------------------------------------------------------------------- axial
     def _axial_rows(self, rows):
-        first, inv = _unique_rows(self.A[rows], *(self.cg.values[k][rows] for k in E.AXIAL_CORE_VALUES))
+        first, inv = _unique_rows(self.A[rows], *(self.cg.values[k][rows] for k in evaluate.AXIAL_CORE_VALUES))
         return rows[first], inv
 
-    def _axial_eval(self, rr, oo, settings: E.Settings | None = None):
+    def _axial_eval(self, rr, oo, settings: evaluate.Settings | None = None):
         """The axial group of core rows ``rr`` and options ``oo`` (at ``settings``, default the search's; in the
         full model's search of :meth:`optimum`, :func:`~synth.design.evaluate.axial_full`)."""
-        with np.errstate(over="ignore", divide="ignore", invalid="ignore"), physics.engine(self.axial_engine):
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"), axial_kernels.engine(self.axial_engine):
             if settings is None and self._screened is not None:
-                g = E.axial_full(self.apps, self.cg, rr, self.sp.rows("axial", oo), self._screened)
+                g = evaluate.axial_full(self.apps, self.cg, rr, self.sp.rows("axial", oo), self._screened)
             else:
-                g = E.axial(self.apps, self.cg, rr, self.sp.rows("axial", oo), settings or self.settings)
+                g = evaluate.axial(self.apps, self.cg, rr, self.sp.rows("axial", oo), settings or self.settings)
         self.evaluations += len(rr)
         return g
 
-    def _undecided(self, rr, g: E.Group, ok) -> None:
+    def _undecided(self, rr, g: evaluate.Group, ok) -> None:
         """Mark the applications of rows ``rr`` (axial group ``g``, its verdicts ``ok`` after the judge) where the
         screening model may have rejected what the full model passes: a row that passes every constraint the
         fidelity does not change (:func:`~synth.design.evaluate.fidelity_free_ok`) and is not kept."""
         if self.settings.judge is not self.settings:
-            self._axial_undecided[self.A[np.asarray(rr)[~np.asarray(ok) & E.fidelity_free_ok(g)]]] = True
+            self._axial_undecided[self.A[np.asarray(rr)[~np.asarray(ok) & evaluate.fidelity_free_ok(g)]]] = True
 
     def _judged(self, ok: np.ndarray, rr, cols) -> np.ndarray:
         """``ok`` (rows ``rr`` x axial options ``cols``: the search model's verdicts) judged by the full model
@@ -764,7 +764,7 @@ class Batch:
         return parts_of_design(self.sp, self.C[core_row], options, self.cg.values, core_row)
 
     def objective_values(self, core_row: int, options: dict) -> dict:
-        """``{standard, cost}`` of a design, summed as :meth:`synth.optimise.evaluate.Evaluation.objective_values`."""
+        """``{standard, cost}`` of a design, summed as :meth:`synth.optimise.product.Evaluation.objective_values`."""
         sp = self.sp
         cv = {k: self.cg.values[k][[core_row]] for k in ("pivot_class_standard_mm", "pivot_class_diameter_mm")}
         sc = core_scores(sp, self.C[[core_row]], cv)
@@ -781,7 +781,7 @@ class Batch:
         return []
 
     def view(self, i: int) -> "_View":
-        """Application ``i`` as :func:`synth.optimise.result.build_result` reads an evaluation."""
+        """Application ``i`` as :func:`synth.optimise.answer.build_result` reads an evaluation."""
         return _View(self, i)
 
     def candidates(self, i: int) -> int:
@@ -791,8 +791,8 @@ class Batch:
 
 
 class _View:
-    """One application of a :class:`Batch` with the attributes :func:`synth.optimise.result.build_result` reads of
-    an :class:`~synth.optimise.evaluate.Evaluation` (positions are core rows of the batch)."""
+    """One application of a :class:`Batch` with the attributes :func:`synth.optimise.answer.build_result` reads of
+    an :class:`~synth.optimise.product.Evaluation` (positions are core rows of the batch)."""
 
     def __init__(self, b: Batch, i: int):
         self.b, self.i = b, i
@@ -821,7 +821,7 @@ def robust(fn, items: list, on_error):
         return robust(fn, items[:half], on_error) + robust(fn, items[half:], on_error)
 
 
-def any_feasible(inputs: list, settings: E.Settings = E.Settings(), *, spring_engine: str = "numba",
+def any_feasible(inputs: list, settings: evaluate.Settings = evaluate.Settings(), *, spring_engine: str = "numba",
                  pin_inputs: bool = False) -> list:
     """Per input, whether some design of its catalog product (``pin_inputs``: with the parts it names) meets every
     constraint (the enumeration's ``is_feasible``; an input the physics refuses is not feasible)."""

@@ -6,14 +6,14 @@
   the least. Its **violated constraints** are listed with their margins (a
   margin of -0.35 on a stress means the stress is 35 % above its limit).
 * **Relaxations**: for every input a designer can change that can relax a
-  violated constraint (:data:`RELAXABLE`: space limits, lock-up pin, head
+  violated constraint (:func:`relaxable`: space limits, lock-up pin, head
   diameter, active threads, travels, tolerances first; the specification
   values last, marked as such), the smallest change that makes the
   application feasible, found by bisection on that one input (each probe is
   one exhaustive feasibility check); each relaxation found is verified again.
 
 >>> from synth.data import case_path
->>> from synth.schema import load_input
+>>> from synth.io.documents import load_input
 >>> r = diagnose(load_input(case_path("case1")), relax=False)
 >>> r.status, len(r.diagnosis["violated"]) > 0
 ('infeasible', True)
@@ -27,29 +27,49 @@ import time
 
 import numpy as np
 
+from synth.design import constraints
 from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS
 from synth.errors import InputError
-from synth.optimise.evaluate import evaluate
+from synth.optimise.product import evaluate
 from synth.schema import FIELDS, field_by_name
 
-__all__ = ["RELAXABLE", "nearest_design", "is_feasible", "relaxations", "relaxations_batch", "probe_batch",
+__all__ = ["relaxable", "nearest_design", "is_feasible", "relaxations", "relaxations_batch", "probe_batch",
            "diagnose", "layout_switch", "layout_switches", "reference_probe", "violated_of"]
 
-#: input field -> (direction: +1 raise / -1 lower, the constraints it relaxes, a specification value?), derived from
-#: the fields' own declaration (:attr:`synth.schema.Field.relax`, ``relaxes``, ``owner``)
-RELAXABLE = {f.name: (f.relax, f.relaxes, f.owner == "specification") for f in FIELDS if f.relax}
+_RELAXABLE: dict = {}
+
+
+def relaxable() -> dict:
+    """Input field -> (direction: +1 raise / -1 lower, the registry constraints it relaxes, a specification value?),
+    in the schema's field order: the constraints that name the field in their ``relaxed_by``
+    (:attr:`synth.design.constraints.Constraint.relaxed_by`, a check added with ``register`` included), the
+    direction and the owner from the field's own declaration (:attr:`synth.schema.Field.relax`, ``owner``).
+
+    >>> relaxable()["number_of_active_threads"]
+    (1, ('thread',), False)
+    """
+    got = _RELAXABLE.get(constraints.version())
+    if got is None:
+        by_field: dict = {}
+        for c in constraints.REGISTRY.values():
+            for n in c.relaxed_by:
+                by_field.setdefault(n, []).append(c.id)
+        got = {f.name: (f.relax, tuple(by_field.get(f.name, ())), f.owner == "specification")
+               for f in FIELDS if f.relax}
+        _RELAXABLE.clear()
+        _RELAXABLE[constraints.version()] = got
+    return got
 
 
 def is_feasible(d, settings: Settings = Settings(), *, pin_inputs: bool = False) -> bool:
     """Whether any design of the catalog product (``pin_inputs``: with the parts the input names) meets every
     constraint for input ``d``."""
-    from synth.optimise.solvers.enumerate import max_margin, tables
     try:
         ev = evaluate(d, settings, pin_inputs=pin_inputs)
     except InputError:
         return False
-    return bool(len(ev.rows)) and max_margin(tables(ev, {"cost": 1.0})) > -np.inf
+    return ev.any_feasible()
 
 
 def nearest_design(ev):
@@ -119,7 +139,7 @@ def _far_joint(d, cands: dict) -> dict:
 
 
 def _candidates(d, violated) -> dict:
-    return {n: sign for n, (sign, rel, _) in RELAXABLE.items()
+    return {n: sign for n, (sign, rel, _) in relaxable().items()
             if getattr(d, n, None) is not None and set(rel) & set(violated)}
 
 
@@ -133,10 +153,10 @@ def _entry(d, names, far: dict, lam: float, violated) -> dict:
         f = field_by_name(n)
         out[n] = {"from": cur, "to": to, "unit": f.unit if f.unit != "-" else "", "owner": f.owner}
         rel = max(rel, abs(to - cur) / max(abs(cur), 1e-9))
-    spec = any(RELAXABLE[n][2] for n in names)
+    spec = any(relaxable()[n][2] for n in names)
     return {"inputs": out, "relative_change": round(rel, 4), "specification": spec,
             "owner": "specification" if spec else "designer",
-            "relaxes": sorted(set().union(*(RELAXABLE[n][1] for n in names)) & set(violated))}
+            "relaxes": sorted(set().union(*(relaxable()[n][1] for n in names)) & set(violated))}
 
 
 def _order(out: list) -> list:
@@ -145,7 +165,7 @@ def _order(out: list) -> list:
 
 
 def _designer(names) -> bool:
-    return not any(RELAXABLE[n][2] for n in names)
+    return not any(relaxable()[n][2] for n in names)
 
 
 def _levels(cands: dict) -> list:
@@ -247,7 +267,7 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
     answer). ``pin_inputs``: the search the solver ran kept the parts the input names, and so do the nearest
     design and the relaxations (every solver answers the same question).
     """
-    from synth.optimise.result import build_result
+    from synth.optimise.answer import build_result
     t0 = time.perf_counter()
     obj = objective if objective is not None else "standard,cost"
     if exhaustive or ev is not None:

@@ -1,7 +1,7 @@
 """The plain data of the selection models (:mod:`formulations.selection`), prepared from one evaluation.
 
 The models never evaluate physics: they read the feasibility, margins and
-scores of an :class:`~synth.optimise.evaluate.Evaluation`. Before a model is
+scores of an :class:`~synth.optimise.product.Evaluation`. Before a model is
 built the data are presolved:
 
 * infeasible cores and infeasible (core, option) pairs are dropped;
@@ -13,8 +13,8 @@ built the data are presolved:
   of springs to a few dozen.
 
 >>> from synth.data import case_path
->>> from synth.schema import load_input
->>> from synth.optimise.evaluate import evaluate
+>>> from synth.io.documents import load_input
+>>> from synth.optimise.product import evaluate
 >>> md, cores, opts = model_data(evaluate(load_input(case_path("case3"))), {"cost": 1.0}, False)
 >>> md.n_cores >= 0, sorted(opts)
 (True, ['axial', 'bolt', 'bushing', 'spring'])

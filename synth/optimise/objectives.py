@@ -22,6 +22,10 @@ the minimum.
 (('standard', 'cost'), None)
 >>> Objective.parse("cost=1,standard=0.5").weights
 {'cost': 1.0, 'standard': 0.5}
+>>> Objective.parse("margin").key({"margin": 0.25, "cost": 12.0, "standard": 1.0})
+(-0.25, 12.0)
+>>> Objective.parse("cost=1,margin=100").score({"margin": 0.25, "cost": 12.0, "standard": 1.0})
+-13.0
 """
 
 from __future__ import annotations
@@ -32,17 +36,48 @@ from dataclasses import dataclass
 
 from synth.errors import InputError, Problem
 
-__all__ = ["OBJECTIVES", "UNITS", "MAX_WEIGHT", "Objective", "with_margin_tiebreak"]
+__all__ = ["Goal", "GOALS", "OBJECTIVES", "UNITS", "MAX_WEIGHT", "Objective", "with_margin_tiebreak"]
 
-OBJECTIVES = ("standard", "cost", "margin")
+
+@dataclass(frozen=True)
+class Goal:
+    """One objective, declared once: every list of objective names, unit, sense and tie-break derives from
+    :data:`GOALS`.
+
+    ``sense`` is +1 for an objective minimised, -1 for one maximised (a sort key and a weighted sum take
+    ``sense * value``); ``additive`` says how a design scores: the sum of its parts' scores (it decomposes over
+    the subsystems, :func:`synth.optimise.product.core_scores` and :func:`~synth.optimise.product.option_scores`)
+    or, when false, the smallest of the design's normalised margins (it combines by the minimum);
+    ``tiebreak`` is the order a single name expands to.
+    """
+
+    name: str
+    words: str
+    unit: str
+    sense: int
+    additive: bool
+    tiebreak: tuple
+    scores: str
+
+
+#: the objectives, in the order the CLI and the pages offer them
+GOALS = (
+    Goal(name="standard", words="non-standard parts", unit="(weighted count)", sense=+1, additive=True,
+         tiebreak=("standard", "cost"),
+         scores="catalog column nonstandard of each part, plus nonstandard_weight_pivot_class for a pivot class "
+                "other than thesis Table 2's"),
+    Goal(name="cost", words="cost", unit="EUR", sense=+1, additive=True, tiebreak=("cost", "standard"),
+         scores="catalog unit costs of the parts (the main spring's from its wire length and mass)"),
+    Goal(name="margin", words="smallest margin", unit="%", sense=-1, additive=False, tiebreak=("margin", "cost"),
+         scores="smallest normalised margin over the constraints not met by construction (a fraction, shown in %)"),
+)
+_BY_NAME = {g.name: g for g in GOALS}
+OBJECTIVES = tuple(_BY_NAME)
 #: the largest weight of a weighted objective: weights are relative, and the lexicographic orders use 1e4 between
 #: levels (:meth:`Objective.additive_weights`); above 1e6 a sum of costs (EUR) loses its cents in float precision
 MAX_WEIGHT = 1e6
-#: each objective's words and unit, for every output that prints a value of it (the margin is a fraction in the
-#: data, shown in percent)
-UNITS = {"standard": ("non-standard parts", "(weighted count)"), "cost": ("cost", "EUR"),
-         "margin": ("smallest margin", "%")}
-_TIEBREAK = {"standard": ("standard", "cost"), "cost": ("cost", "standard"), "margin": ("margin", "cost")}
+#: each objective's words and unit, for every output that prints a value of it
+UNITS = {g.name: (g.words, g.unit) for g in GOALS}
 
 
 @dataclass(frozen=True)
@@ -94,38 +129,39 @@ class Objective:
         if bad:
             raise InputError(Problem("--objective", bad[0], "one of " + ", ".join(OBJECTIVES)))
         if len(parts) == 1:
-            return cls(order=_TIEBREAK[parts[0]])
+            return cls(order=_BY_NAME[parts[0]].tiebreak)
         return cls(order=tuple(dict.fromkeys(parts)))
 
     def additive_weights(self) -> dict:
         """Weights of the additive parts (cost, standard) when the margin is not in play, for a scalar score."""
         if self.weights:
-            return {k: v for k, v in self.weights.items() if k != "margin"}
+            return {k: v for k, v in self.weights.items() if _BY_NAME[k].additive}
         # lexicographic on additive objectives: a big weight on the first (standard counts are integers,
         # costs stay far below 1e4 EUR)
         out, scale = {}, 1.0
         for name in reversed(self.order):
-            if name == "margin":
+            if not _BY_NAME[name].additive:
                 continue
             out[name] = scale
             scale *= 1e4
         return out
 
     def uses_margin(self) -> bool:
-        return "margin" in self.order
+        """Whether an objective that is not additive (the margin) is in play."""
+        return any(not _BY_NAME[k].additive for k in self.order)
 
     def score(self, values: dict) -> float:
         """Scalar to minimise for a dict ``{standard, cost, margin}`` (lexicographic orders with the margin
         are compared with :meth:`key` instead)."""
         if self.weights:
-            return sum(w * (-values[k] if k == "margin" else values[k]) for k, w in self.weights.items())
+            return sum(w * _BY_NAME[k].sense * values[k] for k, w in self.weights.items())
         return sum(w * values[k] for k, w in self.additive_weights().items())
 
     def key(self, values: dict) -> tuple:
         """Lexicographic sort key (smaller is better)."""
         if self.weights:
             return (self.score(values),)
-        return tuple(-values[k] if k == "margin" else values[k] for k in self.order)
+        return tuple(_BY_NAME[k].sense * values[k] for k in self.order)
 
 
 def with_margin_tiebreak(objective) -> str:

@@ -17,8 +17,8 @@ from __future__ import annotations
 import numpy as np
 
 from synth.design.evaluate import Settings
-from synth.optimise.evaluate import evaluate
-from synth.optimise.result import build_result
+from synth.optimise.product import evaluate
+from synth.optimise.answer import build_result
 from synth.optimise.solvers.enumerate import _thresholds, best_additive, tables
 
 __all__ = ["pareto_front", "plot_front"]

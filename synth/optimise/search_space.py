@@ -35,7 +35,7 @@ catalog's per size (EN 10270), and no source gives them between sizes.
 point (the catalog snap a continuous result reports).
 
 >>> from synth.data.generated_applications import generate
->>> from synth.optimise.evaluate import evaluate
+>>> from synth.optimise.product import evaluate
 >>> ev = evaluate(generate(2, seed=0)[1], subsystems=False)
 >>> v = variables(ev, {"cost": 1.0})
 >>> sorted(v), list(v["spring"].distributions), v["bushing"].size
@@ -128,7 +128,7 @@ def _ranked(order: np.ndarray, score: np.ndarray, name: str) -> tuple[list, np.n
 def _table_rows(sp, table: str, weights: dict, match: tuple, axis: tuple) -> Variables:
     """A catalog table searched by the position of its rows along ``axis`` (columns, the first varying slowest):
     the part's size and strength, so that neighbours on the sampler's axis behave alike (bushing, bolt)."""
-    from synth.optimise.evaluate import option_scores
+    from synth.optimise.product import option_scores
     score = _weighted(option_scores(sp, table), weights)
     t = sp.tables[table]
     order = np.lexsort(tuple(np.asarray(t[c], float) for c in reversed(axis)))
@@ -212,7 +212,7 @@ def _window(ev) -> tuple:
 
 def variables(ev, weights: dict) -> dict:
     """The searched variables of every subsystem for the application of ``ev`` (an evaluation of its cores,
-    :func:`synth.optimise.evaluate.evaluate` with ``subsystems=False``), catalog rows ranked by ``weights``
+    :func:`synth.optimise.product.evaluate` with ``subsystems=False``), catalog rows ranked by ``weights``
     (over ``standard``/``cost``); the mean-diameter line spans the housings of the application's cores."""
     sp = ev.space
     w = weights or {"cost": 1.0}
@@ -258,10 +258,10 @@ def snap_parts(parts: dict) -> dict:
     ...             "cone_spring_aspect_ratio": 0.0, "cone_spring_deflection_ratio": 0.0})
     {'main_spring_mean_body_diameter_mm': 40.0, 'endcap_spacer_class': 'none', 'cone_spring_aspect_ratio': 0.0, 'cone_spring_deflection_ratio': 0.0}
     """
-    from synth import parts as P
+    from synth.parts import arrays
     from synth.design.space import NONE
     out = dict(parts)
-    grid = mbd_grid(P.arrays())
+    grid = mbd_grid(arrays())
     out["main_spring_mean_body_diameter_mm"] = float(grid[_nearest(grid, parts["main_spring_mean_body_diameter_mm"])])
     if str(parts.get("endcap_spacer_class", NONE)) != NONE:
         zeta, phi, _ = cone_variants()

@@ -94,7 +94,8 @@ class Work:
         rows, rc = [rows[k] for k in keep], [rc[k] for k in keep]
         ptr = np.zeros(len(self.patterns) + 1, np.int64)
         ptr[1:] = np.cumsum([len(p) for p in self.patterns])
-        cat = (lambda xs, dt: np.concatenate(xs).astype(dt) if xs else np.zeros(0, dt))
+        def cat(xs, dt):
+            return np.concatenate(xs).astype(dt) if xs else np.zeros(0, dt)
         return PlatformInstance(
             family_names=list(FAMILIES), part_family=self.part_family, part_weight=self.part_weight,
             part_fixed_cost=self.part_fixed_cost, pattern_ptr=ptr, pattern_parts=cat(self.patterns, np.int64),
@@ -208,9 +209,14 @@ def compile_portfolio(pf: PortfolioFeasibility, objective: str = "variants", *, 
                     r_cores[r] = np.concatenate([r_cores[r], gl[g == gid]])
                     continue
                 merged[key] = len(r_app)
-                r_app.append(inst_a); r_sub.append(si); r_cores.append(gl[g == gid])
-                r_pats.append(gp[s][gid]); r_cost.append(gc[s][gid])
-    cat = (lambda xs, dt: np.concatenate(xs).astype(dt) if xs else np.zeros(0, dt))
+                r_app.append(inst_a)
+                r_sub.append(si)
+                r_cores.append(gl[g == gid])
+                r_pats.append(gp[s][gid])
+                r_cost.append(gc[s][gid])
+
+    def cat(xs, dt):
+        return np.concatenate(xs).astype(dt) if xs else np.zeros(0, dt)
     work = Work(pf=pf, objective=objective, part_offset=offset, part_family=part_family, part_weight=part_weight,
                 part_fixed_cost=part_fixed, patterns=pats.list, option_pattern=option_pattern,
                 app_index=np.array(app_index, np.int64), core_app=cat(c_app, np.int64), core_local=cat(c_loc, np.int64),

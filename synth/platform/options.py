@@ -48,7 +48,7 @@ import numpy as np
 
 from synth import catalog
 from synth.design.space import Space, space
-from synth.model import disc_spring as s8
+from synth.model import disc_spring
 
 __all__ = ["Catalogue", "catalogue", "family_keys", "NO_PART_KEY"]
 
@@ -170,7 +170,7 @@ def _catalogue(user_dirs: tuple) -> Catalogue:
     real = np.flatnonzero(ax["axial_group_present"])
     none = int(np.flatnonzero(~ax["axial_group_present"])[0])
     n_pads = len(p.damper_pad)
-    de_max = s8.cone_spring_max_external_diameter_mm(p.damper_pad.cols["outer_diameter_mm"])
+    de_max = disc_spring.cone_spring_max_external_diameter_mm(p.damper_pad.cols["outer_diameter_mm"])
     pad = np.repeat(np.arange(n_pads), len(real))
     r = np.tile(real, n_pads)
     de = de_max[pad] - ax["cone_spring_de_reduction_mm"][r]

@@ -59,9 +59,9 @@ from pathlib import Path
 import numpy as np
 
 from synth import catalog
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
-from synth.design.constraints import FEAS_TOL, REGISTRY
+from synth.design.constraints import FEAS_TOL, REGISTRY, version
 from synth.design.space import SUBSYSTEMS, core_rows, spring_window
 from synth.errors import InputError, Problem
 from synth.platform.data import AppFeasibility, PortfolioFeasibility, default_fixed_costs, validate
@@ -71,10 +71,10 @@ __all__ = ["load_feasibility", "feasibility", "from_table", "chunk_feasibility",
            "VOLUME_COLUMNS", "margins_and_binding", "spring_group", "PRODUCER"]
 
 #: subsystem -> the core values its group function reads (besides the application): the group key
-GROUP_KEYS = {"bushing": ("supplier_code", *E.BUSHING_CORE_VALUES),
-              "axial": ("pad_code", *E.AXIAL_CORE_VALUES),
-              "spring": E.SPRING_KEY_VALUES,
-              "bolt": E.BOLT_CORE_VALUES}
+GROUP_KEYS = {"bushing": ("supplier_code", *evaluate.BUSHING_CORE_VALUES),
+              "axial": ("pad_code", *evaluate.AXIAL_CORE_VALUES),
+              "spring": evaluate.SPRING_KEY_VALUES,
+              "bolt": evaluate.BOLT_CORE_VALUES}
 #: spring constraints whose margins depend on the key only through the nominal spring torque (and the
 #: application): the stresses (eq. 69-77, figure 71) and the option-only index range and wire section
 SPRING_TORQUE_ONLY = ("spring_yield", "spring_static_permissible", "spring_fatigue", "spring_index_min",
@@ -99,16 +99,28 @@ BLOCK_PAIRS = 100_000
 #: applications per chunk (one vectorised evaluation; the unit of work on Dask)
 CHUNK_SIZE = 250
 
-_IDS = list(REGISTRY)
-_NO_BINDING = len(_IDS)             # binding index of "none counted" (an infinite margin)
+#: binding index of "none counted" (an infinite margin); a constraint's index is its place in the registry's order
+#: (:func:`_index`; a check added with ``register`` included)
+_NO_BINDING = np.iinfo(np.int16).max
+_INDEX: dict = {}
 
 
-def margins_and_binding(g: E.Group, objective_only: bool = True, rows=None) -> tuple[np.ndarray, np.ndarray]:
+def _index(cid: str) -> int:
+    """The binding index of constraint ``cid``: its place in the registry's current order."""
+    got = _INDEX.get(version())
+    if got is None:
+        got = {c: i for i, c in enumerate(REGISTRY)}
+        _INDEX.clear()
+        _INDEX[version()] = got
+    return got[cid]
+
+
+def margins_and_binding(g: evaluate.Group, objective_only: bool = True, rows=None) -> tuple[np.ndarray, np.ndarray]:
     """``(smallest margin, binding constraint index into the registry order)`` per row of ``g`` (or of ``rows``).
 
     The smallest margin is :meth:`~synth.design.evaluate.Group.min_margin` (the same constraints: non-advisory,
     and with ``objective_only`` those counted in the margin objective); the binding one is where it is reached
-    (``len(REGISTRY)`` when no constraint counts).
+    (``_NO_BINDING`` when no constraint counts).
     """
     take = (lambda x: x) if rows is None else (lambda x: np.asarray(x)[rows])  # noqa: E731
     n = len(g) if rows is None else len(rows)
@@ -121,7 +133,7 @@ def margins_and_binding(g: E.Group, objective_only: bool = True, rows=None) -> t
         if objective_only and c.objective_unless is not None:
             m = np.where(take(np.asarray(g.values[c.objective_unless], dtype=float)) > 0, np.inf, m)
         stack.append(m)
-        idx.append(_IDS.index(cid))
+        idx.append(_index(cid))
     if not stack:
         return np.full(n, np.inf), np.full(n, _NO_BINDING, np.int16)
     M = np.stack(stack)
@@ -130,35 +142,37 @@ def margins_and_binding(g: E.Group, objective_only: bool = True, rows=None) -> t
     return m, np.where(np.isinf(m) & (m > 0), _NO_BINDING, np.asarray(idx)[k]).astype(np.int16)
 
 
-#: constraint id by binding index (the last: "none counted"), to name a whole array of bindings at once
-_NAMES = np.array(_IDS + [""], dtype=object)
+def _names(b) -> np.ndarray:
+    """The constraint ids of binding indices ``b`` ("" for none counted), a whole array at once."""
+    names = np.array(list(REGISTRY) + [""], dtype=object)
+    return names[np.minimum(b, len(names) - 1)]
 
 
 def _name(b: int) -> str:
-    return "" if b >= _NO_BINDING else _IDS[int(b)]
+    return str(_names(int(b)))
 
 
-def spring_group(apps, keys: dict, k, options, settings: E.Settings, spring_keys=None) -> E.Group:
+def spring_group(apps, keys: dict, k, options, settings: evaluate.Settings, spring_keys=None) -> evaluate.Group:
     """The main-spring group's registry margins for rows pairing key ``k[i]`` with option ``options[i]``: the
-    compiled kernels (:func:`synth.kernels.torsion_spring.pair_margins`, equal to the registry's spring group,
+    compiled kernels (:func:`synth.kernels.main_spring.pair_margins`, equal to the registry's spring group,
     ``tests/test_kernels.py``), 10-15x the numpy group on these pairs.
 
     ``options``: rows of the design space's spring table (integers), or the table's columns for each row (a
     dict, as :func:`synth.design.evaluate.spring` takes them). ``spring_keys``: the keys' kernel table when the
-    caller made it once (:func:`synth.kernels.torsion_spring.keys_of_rows`). The group holds the margins of the
+    caller made it once (:func:`synth.kernels.main_spring.keys_of_rows`). The group holds the margins of the
     non-advisory constraints (feasibility, the margin objective and the nearest design read no other) and the
     application of each row; a fatigue check without its durability test has the margin ``+inf``, as the
     registry's "not verified"."""
-    from synth.kernels import torsion_spring as K
-    kk = spring_keys if spring_keys is not None else K.keys_of_rows(apps, keys)
+    from synth.kernels import main_spring
+    kk = spring_keys if spring_keys is not None else main_spring.keys_of_rows(apps, keys)
     k = np.asarray(k, dtype=np.int64)
     if isinstance(options, dict):
-        opts, rows = K.options_of_space(options, np.arange(len(k))), np.arange(len(k))
+        opts, rows = main_spring.options_of_space(options, np.arange(len(k))), np.arange(len(k))
     else:
-        opts, rows = K.options_of_space(), np.asarray(options, dtype=np.int64)
-    m = K.pair_margins(kk, opts, k, rows)
-    return E.Group("spring", {"app": np.asarray(keys["app"])[k]},
-                   {name: m[:, c] for c, name in enumerate(K.MARGIN_NAMES)})
+        opts, rows = main_spring.options_of_space(), np.asarray(options, dtype=np.int64)
+    m = main_spring.pair_margins(kk, opts, k, rows)
+    return evaluate.Group("spring", {"app": np.asarray(keys["app"])[k]},
+                   {name: m[:, c] for c, name in enumerate(main_spring.MARGIN_NAMES)})
 
 
 # --------------------------------------------------------------------------------------------------------- chunk
@@ -183,12 +197,15 @@ class _Pairs:
         self.best_b = np.full(n_groups, _NO_BINDING, np.int16)  # and its most violated constraint
         self.evaluated = np.zeros(n_groups, bool)
 
-    def add(self, gp: np.ndarray, op: np.ndarray, grp: E.Group) -> None:
+    def add(self, gp: np.ndarray, op: np.ndarray, grp: evaluate.Group) -> None:
         """Record the pairs ``(gp[i], op[i])`` evaluated as the rows of ``grp`` (``gp`` sorted)."""
         ok = grp.ok()
         sel = np.flatnonzero(ok)
         m, b = margins_and_binding(grp, True, sel)
-        self.g.append(gp[sel]); self.o.append(op[sel]); self.m.append(m); self.b.append(b)
+        self.g.append(gp[sel])
+        self.o.append(op[sel])
+        self.m.append(m)
+        self.b.append(b)
         rank = grp.rank()  # nearest designs: ranked by the search model (fidelity screening: the screening one)
         ma = np.where(ok, np.maximum(grp.min_margin(objective_only=False), 0.0),
                       np.minimum(rank.min_margin(objective_only=False), -FEAS_TOL))
@@ -226,7 +243,7 @@ def _group_ids(values: dict, pos: np.ndarray, cols: tuple, extra: dict | None = 
     return np.asarray(inv).reshape(-1), pos[first]
 
 
-def chunk_feasibility(inputs: list, ids: list, volumes, settings: E.Settings = E.Settings(), *,
+def chunk_feasibility(inputs: list, ids: list, volumes, settings: evaluate.Settings = evaluate.Settings(), *,
                       diagnose: bool = False, catalog_dirs: tuple | None = None, stats: dict | None = None) -> list:
     """:class:`~synth.platform.data.AppFeasibility` of each validated input (one vectorised evaluation).
 
@@ -250,11 +267,11 @@ def chunk_feasibility(inputs: list, ids: list, volumes, settings: E.Settings = E
         return []
     apps = Applications.of(inputs)
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        ig = E.inputs(apps, np.arange(n))
+        ig = evaluate.inputs(apps, np.arange(n))
         per_app = [core_rows(sp, d) for d in inputs]
         a = np.concatenate([np.full(len(c), i, dtype=np.int64) for i, c in enumerate(per_app)])
         crow = np.concatenate(per_app).astype(np.int64)
-        cg = E.core(apps, a, sp.rows("core", crow), settings)
+        cg = evaluate.core(apps, a, sp.rows("core", crow), settings)
         ok = cg.ok() & ig.ok()[a]
         core_m, core_b = margins_and_binding(cg, True)
         im, ib = margins_and_binding(ig, False)
@@ -287,11 +304,11 @@ def _bushing(apps, cat, cg, rep, settings, acc: _Pairs):
     gp, op = np.nonzero(cg.values["supplier_code"][rep][:, None] == sup[None, :])
     for blk in _blocks(len(gp)):
         g, o = gp[blk], op[blk]
-        acc.add(g, o, E.bushing(apps, cg, rep[g], cat.space.rows("bushing", cat.option_row["bushing"][o]), settings))
+        acc.add(g, o, evaluate.bushing(apps, cg, rep[g], cat.space.rows("bushing", cat.option_row["bushing"][o]), settings))
     return len(gp)
 
 
-def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs, group=E.axial_judged):
+def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs, group=evaluate.axial_judged):
     pad = pad_code[rep]
     nr = cat.n_axial_real
     cnt = np.where(pad < 0, 1, nr)
@@ -328,7 +345,7 @@ def _judge_undecided(apps, cat, cg, a, pos, gid, rep, pairs, pad_code, settings)
     acc.g, acc.o, acc.m, acc.b = ([x[k] for x, k in zip(xs, keep)] for xs in (acc.g, acc.o, acc.m, acc.b))
     acc.best[groups], acc.best_b[groups] = -np.inf, _NO_BINDING
     full = _Pairs(len(groups))
-    n = _axial(apps, cat, cg, rep["axial"][groups], pad_code, settings, full, E.axial_full)
+    n = _axial(apps, cat, cg, rep["axial"][groups], pad_code, settings, full, evaluate.axial_full)
     acc.g.extend(groups[g] for g in full.g)
     acc.o.extend(full.o)
     acc.m.extend(full.m)
@@ -344,8 +361,8 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
     """
     if not len(rep):
         return 0, 0
-    from synth.kernels.torsion_spring import keys_of_rows
-    keys = E.spring_keys(cg, rep)
+    from synth.kernels.main_spring import keys_of_rows
+    keys = evaluate.spring_keys(cg, rep)
     kk = keys_of_rows(apps, keys)  # the keys' kernel table, once
     rows = cat.option_row["spring"]
     mbd = cat.space.tables["spring"]["main_spring_mean_body_diameter_mm"][rows]
@@ -423,7 +440,7 @@ def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, ro
     know the margins of their own constraints over the springs that reached them). Repeated until the nearest
     core's spring is known exactly, so the reason names what that design really misses. Returns the rows
     evaluated."""
-    from synth.kernels.torsion_spring import keys_of_rows
+    from synth.kernels.main_spring import keys_of_rows
     has = {s: np.bincount(np.concatenate(pairs[s].g) if pairs[s].g else np.zeros(0, np.int64),
                           minlength=len(rep[s])) > 0 for s in SUBSYSTEMS}
     complete = np.ones(len(pos), bool)
@@ -445,7 +462,7 @@ def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, ro
         groups = np.array(sorted(g for g in groups if not refined[g]), np.int64)
         if not len(groups):
             break
-        keys = E.spring_keys(cg, rep["spring"][groups])
+        keys = evaluate.spring_keys(cg, rep["spring"][groups])
         kk = keys_of_rows(apps, keys)
         lo, hi = spring_window(keys["spring_housing_inner_diameter_mm"], keys["spring_housing_outer_diameter_mm"])
         g, o = np.nonzero((mbd[None, :] >= lo[:, None]) & (mbd[None, :] <= hi[:, None]))
@@ -458,13 +475,13 @@ def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, ro
     return n
 
 
-def _stage_margin(grp: E.Group, ids: tuple):
+def _stage_margin(grp: evaluate.Group, ids: tuple):
     """Smallest margin of the constraints ``ids`` (non-advisory) per row, and where it is reached."""
     stack, idx = [], []
     for cid in ids:
         if cid in grp.margins and not REGISTRY[cid].advisory:
             stack.append(grp.margins[cid])
-            idx.append(_IDS.index(cid))
+            idx.append(_index(cid))
     if not stack:
         return np.full(len(grp), np.inf), np.full(len(grp), _NO_BINDING, np.int16)
     M = np.stack(stack)
@@ -480,12 +497,12 @@ def _bolt(apps, cat, cg, rep, settings, acc: _Pairs):
     ua, slot = np.unique(cg.values["app"][rep], return_inverse=True)
     slot = np.asarray(slot).reshape(-1)
     fa, fb = (x.ravel() for x in np.meshgrid(ua, np.arange(nb), indexing="ij"))
-    fix = E.fixation_values(apps, fa, cat.space.rows("bolt", rows[fb]), settings)   # per application and bolt
+    fix = evaluate.fixation_values(apps, fa, cat.space.rows("bolt", rows[fb]), settings)   # per application and bolt
     gp, op = (x.ravel() for x in np.meshgrid(np.arange(len(rep)), np.arange(nb), indexing="ij"))
     for blk in _blocks(len(gp)):
         g, o = gp[blk], op[blk]
         idx = slot[g] * nb + o
-        acc.add(g, o, E.bolt(apps, cg, rep[g], cat.space.rows("bolt", rows[o]), settings,
+        acc.add(g, o, evaluate.bolt(apps, cg, rep[g], cat.space.rows("bolt", rows[o]), settings,
                              fixation={k: v[idx] for k, v in fix.items()}))
     return len(gp)
 
@@ -515,7 +532,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             ptr, o, m, b = grouped[s]
             feasible[s] = [o[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
             margin[s] = [m[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
-            binding[s] = [_NAMES[np.minimum(b[ptr[g]:ptr[g + 1]], _NO_BINDING)] for g in range(g0, g1)]
+            binding[s] = [_names(b[ptr[g]:ptr[g + 1]]) for g in range(g0, g1)]
             complete &= (np.diff(ptr)[g0:g1] > 0)[group[s]]
         d = inputs[i]
         af = AppFeasibility(
@@ -523,7 +540,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             core_cost_eur=cat.space.tables["core"]["cost_eur"][crow[sel]].astype(float), core_margin=core_m[sel],
             group=group, feasible=feasible, option_margin=margin, volume=float(volumes[i]),
             option_cost_eur={"spring": cat.spring_cost_eur(float(apps.spring_stiffness_nm_per_deg[i]))},
-            core_binding=_NAMES[np.minimum(core_b[sel], _NO_BINDING)], option_binding=binding,
+            core_binding=_names(core_b[sel]), option_binding=binding,
             core_rows=crow[sel])
         if not complete.any():
             af.note = _why(cat, i, a, crow, all_m, all_b, sel, k, gid, first_group, pairs)
@@ -580,7 +597,7 @@ def _error_app(app_id: str, error: str, cat: Catalogue, volume: float) -> AppFea
                           core_rows=z)
 
 
-def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: E.Settings = E.Settings(), *,
+def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: evaluate.Settings = evaluate.Settings(), *,
                 errors: list | None = None, diagnose: bool = False, chunk_size: int = CHUNK_SIZE,
                 engine: str = "inprocess", workers: int | None = None, scheduler: str | None = None,
                 progress=None) -> PortfolioFeasibility:
@@ -694,7 +711,7 @@ def _volumes(table, n: int):
     return vol, col
 
 
-def from_table(portfolio, settings: E.Settings = E.Settings(), **kw) -> PortfolioFeasibility:
+def from_table(portfolio, settings: evaluate.Settings = evaluate.Settings(), **kw) -> PortfolioFeasibility:
     """Feasibility of a portfolio table (a path or a DataFrame, :mod:`synth.bulk.portfolio`).
 
     Rows are validated one by one; a bad row is reported (``note``: ``input error: ...``) and
@@ -716,7 +733,7 @@ def from_table(portfolio, settings: E.Settings = E.Settings(), **kw) -> Portfoli
     return pf
 
 
-def load_feasibility(portfolio: str, settings: E.Settings | None = None, **kw) -> PortfolioFeasibility:
+def load_feasibility(portfolio: str, settings: evaluate.Settings | None = None, **kw) -> PortfolioFeasibility:
     """The feasibility data of ``portfolio`` (see the module docstring), validated."""
     from synth.bulk.portfolio import FORMATS
     if str(portfolio).startswith("synthetic:"):
@@ -733,7 +750,7 @@ def load_feasibility(portfolio: str, settings: E.Settings | None = None, **kw) -
     if Path(str(portfolio)).suffix.lower() not in FORMATS:
         raise InputError(Problem("PORTFOLIO", portfolio, "synthetic:N[:SEED] with whole numbers N >= 1, SEED >= 0, "
                                  "or a portfolio table (" + ", ".join(sorted(FORMATS)) + ")"))
-    return PRODUCER(portfolio, settings or E.Settings(), **kw)
+    return PRODUCER(portfolio, settings or evaluate.Settings(), **kw)
 
 
 #: ``(portfolio path, settings, **kw) -> PortfolioFeasibility``: the evaluator's producer

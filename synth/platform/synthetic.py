@@ -132,7 +132,9 @@ def synthetic_portfolio(n_apps: int, seed: int = 0, **shape) -> PortfolioFeasibi
             mp, ml = 1.0 - pres, 1.0 - bu_len / l_max
             mrow = np.minimum(mp, ml)
             sel = np.flatnonzero((bu_sup == s[k]) & (mrow >= 0))
-            fe.append(sel); ma.append(mrow[sel]); bi.append(np.where(mp[sel] < ml[sel], "bushing_pressure", "bushing_length"))
+            fe.append(sel)
+            ma.append(mrow[sel])
+            bi.append(np.where(mp[sel] < ml[sel], "bushing_pressure", "bushing_length"))
         feasible["bushing"], margin["bushing"], binding["bushing"] = fe, ma, bi
         # axial: group = damper pad; the no-axial option only without a pad
         g, first = _groups(d[:, None]) if len(idx) else (np.zeros(0, int), np.zeros(0, int))
@@ -140,7 +142,9 @@ def synthetic_portfolio(n_apps: int, seed: int = 0, **shape) -> PortfolioFeasibi
         fe, ma, bi = [], [], []
         for k in first:
             if d[k] < 0:
-                fe.append(np.array([0])); ma.append(np.array([np.inf])); bi.append(np.array([""]))
+                fe.append(np.array([0]))
+                ma.append(np.array([np.inf]))
+                bi.append(np.array([""]))
                 continue
             force = damp * 1e3 / (0.15 * (8 + 2 * d[k]))          # N: damping torque / (mu r_pad)
             sp, co = ax_sp[1:], ax_cs[1:]
@@ -148,7 +152,9 @@ def synthetic_portfolio(n_apps: int, seed: int = 0, **shape) -> PortfolioFeasibi
             m_co = np.minimum(force / cone_lo[co] - 1.0, 1.0 - force / cone_hi[co])
             mrow = np.minimum(m_sp, m_co)
             sel = np.flatnonzero(mrow >= 0)
-            fe.append(sel + 1); ma.append(mrow[sel]); bi.append(np.where(m_sp[sel] < m_co[sel], "spacer_capacity", "cone_force_band"))
+            fe.append(sel + 1)
+            ma.append(mrow[sel])
+            bi.append(np.where(m_sp[sel] < m_co[sel], "spacer_capacity", "cone_force_band"))
         feasible["axial"], margin["axial"], binding["axial"] = fe, ma, bi
         # main spring: group = (housing outer diameter by bearing, inner by pivot, height and torque by pad)
         h_od = 4 * np.round((bear_D[b] * 1.05 + 0.2 * arm) / 4) if len(idx) else np.zeros(0)
@@ -168,7 +174,8 @@ def synthetic_portfolio(n_apps: int, seed: int = 0, **shape) -> PortfolioFeasibi
                                 1.0 - (n_coil + 1.5) * sw * 1.1 / h_ht[k]], axis=1)    # solid height
             mrow = parts_m.min(axis=1)
             sel = np.flatnonzero(mrow >= 0)
-            fe.append(sel); ma.append(mrow[sel])
+            fe.append(sel)
+            ma.append(mrow[sel])
             bi.append(np.array(["spring_stress", "spring_outer_diameter", "spring_inner_diameter", "coil_count",
                                 "solid_height"])[parts_m[sel].argmin(axis=1)])
         feasible["spring"], margin["spring"], binding["spring"] = fe, ma, bi
@@ -181,7 +188,9 @@ def synthetic_portfolio(n_apps: int, seed: int = 0, **shape) -> PortfolioFeasibi
             m_fit = 1.0 - (bo_d + 3.0) / piv_d[p[k]]
             mrow = np.minimum(m_cap, m_fit)
             sel = np.flatnonzero(mrow >= 0)
-            fe.append(sel); ma.append(mrow[sel]); bi.append(np.where(m_cap[sel] < m_fit[sel], "bolt_capacity", "pivot_wall"))
+            fe.append(sel)
+            ma.append(mrow[sel])
+            bi.append(np.where(m_cap[sel] < m_fit[sel], "bolt_capacity", "pivot_wall"))
         feasible["bolt"], margin["bolt"], binding["bolt"] = fe, ma, bi
         spring_cost = option_cost["spring"] * n_coil / 6.0
         apps.append(AppFeasibility(

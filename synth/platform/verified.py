@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.space import SUBSYSTEMS
 from synth.design.result import Result, checks_of
@@ -52,7 +52,7 @@ def design_parts(pf, items: list) -> list:
     attrs = {t: sp.rows(t, r) for t, r in rows.items()}
     apps = Applications.of([pf.design_inputs[i] for i, _, _ in items])
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        cg = E.core(apps, np.arange(len(items)), attrs["core"], pf.settings or E.Settings())
+        cg = evaluate.core(apps, np.arange(len(items)), attrs["core"], pf.settings or evaluate.Settings())
     return parts_of_rows(attrs, cg.values)
 
 
@@ -65,7 +65,7 @@ def verify_records(pf, records: list) -> list:
     """
     if pf.design_inputs is None or pf.catalogue is None:
         return records
-    settings = pf.settings or E.Settings()
+    settings = pf.settings or evaluate.Settings()
     todo = [i for i, r in enumerate(records) if r["feasible"]]
     if not todo:
         return records

@@ -8,7 +8,7 @@ Built from a :class:`synth.design.result.Result` with the Jinja2 templates of
    input, the warnings (advisory checks), the checks not verified with what is
    missing, and the documented defaults assumed;
 2. the table of contents and the **document** block: synth version and
-   catalog hash (:func:`synth.cli.version_text`), input file and its SHA-256,
+   catalog hash (:func:`synth.fingerprint.version_text`), input file and its SHA-256,
    the design input's own SHA-256 (the same for a YAML file and the saved
    result of it), date, author and revision;
 3. the design (parts, what binds), the model settings in words, the output
@@ -43,9 +43,10 @@ import json
 import os
 from pathlib import Path
 
-from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, PASS, VERDICT_FILLS, WARNING, \
-    field_corrections, row_verdict
+from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, field_corrections, \
+    row_verdict
 from synth.fingerprint import file_sha256
+from synth.report.palette import VERDICT_FILLS
 from synth.output_table import ROWS, format_value
 
 __all__ = ["render_html", "write_html", "digest_html", "metadata", "settings_in_words", "platform_section",
@@ -149,7 +150,7 @@ def metadata(result, source=None, *, author: str = "", revision: str = "", date:
     ``inputs_sha256`` hashes the design input itself (canonical JSON of ``result.inputs``): a YAML file
     and the saved result of it give the same value.
     """
-    from synth.cli import version_text
+    from synth.fingerprint import version_text
     src = Path(source) if source not in (None, "", "result") else None
     inputs = {k: v for k, v in (result.inputs or {}).items() if v is not None}
     return {

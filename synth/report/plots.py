@@ -270,13 +270,13 @@ def _png(fig) -> bytes:
 
 # ------------------------------------------------------------------------------------------ graphs
 def _characterisation(dt: _Data):
-    from synth.model import damping as s3
+    from synth.model import damping
     try:
         half = dt.durability()[0] / 2.0 or 10.0
     except _Skip:
         half = 10.0
     theta = np.linspace(-half, half, _N)
-    ch = s3.characterisation(dt.need("spring_torque_nominal_nm"), dt.need("spring_stiffness_nm_per_deg"),
+    ch = damping.characterisation(dt.need("spring_torque_nominal_nm"), dt.need("spring_stiffness_nm_per_deg"),
                              dt.get("axial_damping_nm", 0.0) or 0.0, dt.need("working_arm_mm"),
                              dt.need("differential_angle_deg"), dt.need("pivot_diameter_mm"),
                              dt.need("mu_pivot_bushing"), theta, dt.friction_circle)
@@ -305,14 +305,14 @@ def g_hysteresis_torque(dt: _Data, ax, verdict):
 
 
 def _sensitivity(dt: _Data, ax, parameter, values, xlabel):
-    from synth.model import damping as s3
+    from synth.model import damping
     kw = dict(spring_torque_nominal_nm=dt.need("spring_torque_nominal_nm"),
               axial_damping_nm=dt.get("axial_damping_nm", 0.0) or 0.0, working_arm_mm=dt.need("working_arm_mm"),
               differential_angle_deg=dt.need("differential_angle_deg"), pivot_diameter_mm=dt.need("pivot_diameter_mm"),
               mu_pivot_bushing=dt.need("mu_pivot_bushing"), friction_circle=dt.friction_circle)
     if parameter == "mu_plastic":
         kw["mu_plastic"] = dt.mu_plastic()
-    s = s3.sensitivity(parameter, values, **kw)
+    s = damping.sensitivity(parameter, values, **kw)
     ax.plot(values, s["calculated_torque_nm"], color=COLOURS["nominal"], label="calculated torque [Nm]")
     ax.plot(values, s["damping_nm"], color=COLOURS["other"], label="damping [Nm]")
     target, tol = dt.get("damping_target_nm"), dt.get("damping_tolerance_nm")
@@ -346,7 +346,7 @@ def g_sensitivity_mu_plastic(dt: _Data, ax, verdict):
 def _bushing(dt: _Data, time_points: int = _T) -> dict:
     if "bushing" in dt._cache:
         return dt._cache["bushing"]
-    from synth.design import evaluate as E
+    from synth.design import evaluate
     t_end = dt.durability()[2]
     attrs = dt.attributes()
     t = np.linspace(0.0, t_end, time_points)
@@ -355,8 +355,8 @@ def _bushing(dt: _Data, time_points: int = _T) -> dict:
     rows = np.arange(time_points)
     rep = {tab: {k: np.repeat(np.asarray(v), time_points, axis=0) for k, v in attrs[tab].items()}
            for tab in ("core", "bushing")}
-    cg = E.core(apps, rows, rep["core"], dt.settings)
-    g = E.bushing(apps, cg, rows, rep["bushing"], dt.settings)
+    cg = evaluate.core(apps, rows, rep["core"], dt.settings)
+    g = evaluate.bushing(apps, cg, rows, rep["bushing"], dt.settings)
     if not bool(g.values["bushing_rated"][0]):
         raise _Skip("the bushing supplier has no wear rating for this environment")
     out = {"time_h": t, **{k: np.asarray(v, float) for k, v in g.values.items() if k != "app"}}
@@ -406,14 +406,14 @@ def g_damping_decay(dt: _Data, ax, verdict):
 
 
 def _characteristic(dt: _Data):
-    from synth.model import disc_spring as s8
+    from synth.model import disc_spring
     c = dt.cone()
     geo = (c["cone_spring_external_diameter_mm"], c["cone_spring_internal_diameter_mm"],
            c["cone_spring_thickness_mm"], c["cone_spring_cone_height_mm"])
     s = np.linspace(0.0, geo[3], _N)
-    f = s8.disc_spring_force_n(s, *geo, fidelity=dt.fidelity)
+    f = disc_spring.disc_spring_force_n(s, *geo, fidelity=dt.fidelity)
     s_n = c["cone_spring_nominal_deflection_mm"]
-    f_n = float(s8.disc_spring_force_n(s_n, *geo, fidelity=dt.fidelity))
+    f_n = float(disc_spring.disc_spring_force_n(s_n, *geo, fidelity=dt.fidelity))
     return c, geo, s, np.asarray(f, float), s_n, f_n
 
 
@@ -489,7 +489,7 @@ def g_goodman(dt: _Data, ax, verdict):
 
 
 def g_pivot_base_pressure(dt: _Data, ax, verdict):
-    from synth.model import bolted_joint as s10
+    from synth.model import bolted_joint
     force = float(dt.need("bolt_axial_force_n"))
     hl = float(dt.need("hubload_nominal_n"))
     h = float(dt.need("middle_plane_belt_height_mm"))
@@ -497,8 +497,8 @@ def g_pivot_base_pressure(dt: _Data, ax, verdict):
     d_ext, d_int = dt.need("engine_support_external_diameter_mm", "engine_support_internal_diameter_mm")
     theta = float(dt.need("contact_angle_deg"))
     ang = np.linspace(-180.0, 180.0, 2 * _N + 1) if theta >= 360.0 else np.linspace(-theta / 2, theta / 2, _N)
-    nominal = s10.pivot_base_pressure_mpa(ang, force, hl * float(s10.tilting_lever_mm(h, 0.0)), d_ext, d_int, theta)
-    worst = s10.pivot_base_pressure_mpa(ang, force, hl * float(s10.tilting_lever_mm(h, inc)), d_ext, d_int, theta)
+    nominal = bolted_joint.pivot_base_pressure_mpa(ang, force, hl * float(bolted_joint.tilting_lever_mm(h, 0.0)), d_ext, d_int, theta)
+    worst = bolted_joint.pivot_base_pressure_mpa(ang, force, hl * float(bolted_joint.tilting_lever_mm(h, inc)), d_ext, d_int, theta)
     ax.plot(ang, nominal, color=COLOURS["nominal"], label="nominal")
     ax.plot(ang, worst, color=_colour(verdict), lw=2, label="worst condition")
     ax.axhline(0.0, ls="--", color=COLOURS["limit"], label="lift-off (tilting)")

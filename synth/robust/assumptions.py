@@ -120,14 +120,14 @@ def _verdicts(d, parts: dict, settings) -> dict:
     """``{check: (verdict, margin)}`` of the design under the current catalogs (the evaluator and the registry's
     verdicts, as :func:`synth.design.verify.verify`; the part attributes from the parts tables alone, without
     building the whole design space)."""
-    from synth import parts as P
+    from synth.parts import arrays
     from synth.design.applications import Applications
     from synth.design.result import checks_of
     from synth.design.space import Space
     from synth.design.verify import evaluate_design
     import numpy as np
     apps = Applications.of([d])
-    attrs = Space({}, P.arrays()).design_attributes(parts)
+    attrs = Space({}, arrays()).design_attributes(parts)
     with np.errstate(all="ignore"):
         groups = evaluate_design(apps, attrs, settings, detail=False)
     return {c.id: (c.verdict, c.margin) for c in checks_of(groups, apps)}
@@ -188,7 +188,7 @@ def flip_lines(items: list) -> list:
             ends = []
             for which in ("low", "high"):
                 if f[f"at_{which}"] != f["nominal"]:
-                    ends.append(f"{f[f'at_' + which]} at {unit}{a[which]:g}")
+                    ends.append(f"{f['at_' + which]} at {unit}{a[which]:g}")
             lines.append(f"{f['check']} ({what}): {f['nominal']} with the catalog's "
                          f"{a['value'] if not isinstance(a['value'], list) else 'values'}; " + "; ".join(ends)
                          + f" [{a['id']}: {a['reason']}]")

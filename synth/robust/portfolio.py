@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.design.space import space
@@ -47,7 +47,7 @@ def _targeted(groups: dict, cid: str) -> np.ndarray:
     """``(K,)`` the check counts in the target for each design (see :func:`synth.robust.capability.targeted`)."""
     c = REGISTRY[cid]
     g = groups[c.group]
-    on = np.asarray(g.state[cid]) == E.EVALUATED
+    on = np.asarray(g.state[cid]) == evaluate.EVALUATED
     if c.advisory or not c.objective or not c.design:
         return np.zeros_like(on)
     if c.objective_unless is not None and c.objective_unless in g.values:
@@ -55,7 +55,7 @@ def _targeted(groups: dict, cid: str) -> np.ndarray:
     return on
 
 
-def _chunk(inputs: list, parts: list, settings: E.Settings, rs: RobustSettings, table: dict) -> list:
+def _chunk(inputs: list, parts: list, settings: evaluate.Settings, rs: RobustSettings, table: dict) -> list:
     from scipy.stats import beta
     k = len(inputs)
     sp = space()
@@ -76,8 +76,8 @@ def _chunk(inputs: list, parts: list, settings: E.Settings, rs: RobustSettings, 
     rows = np.repeat(np.arange(k), n)
     from scipy.special import ndtr
     uu = np.tile(u, (k, 1))
-    l, h = lo[rows], hi[rows]
-    x = np.where(kind[None, :] == 0, (l + h) / 2.0 + (h - l) / 6.0 * uu, l + (h - l) * ndtr(uu))
+    low, high = lo[rows], hi[rows]
+    x = np.where(kind[None, :] == 0, (low + high) / 2.0 + (high - low) / 6.0 * uu, low + (high - low) * ndtr(uu))
     dev = {name: x[:, j] for j, name in enumerate(names) if (hi[:, j] > lo[:, j]).any()}
     base = Base(inputs, {}, settings, apps, attrs, groups, None, ())
     a_s, at_s = perturb(base, dev or {"_n": np.zeros(len(rows))}, rows)
@@ -121,7 +121,7 @@ def _run(args):
     return _chunk(inputs, parts, settings, rs, tolerances())
 
 
-def portfolio_capability(inputs: list, parts: list, *, settings: E.Settings = E.Settings(),
+def portfolio_capability(inputs: list, parts: list, *, settings: evaluate.Settings = evaluate.Settings(),
                          rs: RobustSettings = RobustSettings(samples=BULK_SAMPLES), chunk: int = 64,
                          table: dict | None = None, workers: int = 1) -> list:
     """One dict of :data:`COLUMNS` per design (``parts[i]`` of ``inputs[i]``; None: no design, the columns empty):

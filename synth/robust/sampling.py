@@ -31,12 +31,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import REGISTRY
 from synth.design.space import space
 from synth.design.verify import evaluate_design
-from synth.model import torsion_spring as s9
+from synth.model import torsion_spring
 from synth.robust.tolerances import Scatter, resolve
 
 __all__ = ["Base", "Samples", "base_of", "base_of_attributes", "context", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
@@ -46,7 +46,7 @@ __all__ = ["Base", "Samples", "base_of", "base_of_attributes", "context", "pertu
 HISTOGRAM_VALUES = {"damping_nm": "core", "hubload_nominal_n": "core", "spring_torque_nominal_nm": "core",
                     "damping_eol_nm": "axial", "cone_spring_fax_nominal_n": "axial",
                     "main_spring_sigma_inst_mpa": "spring", "main_spring_safety_factor": "spring",
-                    "main_spring_coil_gap_min_mm": "spring", "sliding_safety_factor": "bolt"}
+                    "main_spring_coil_gap_worst_mm": "spring", "sliding_safety_factor": "bolt"}
 _GROUPS = ("input", "core", "bushing", "axial", "spring", "bolt")
 
 
@@ -56,7 +56,7 @@ class Base:
 
     inputs: object
     parts: dict
-    settings: E.Settings
+    settings: evaluate.Settings
     apps: Applications           # the application (one row)
     attrs: dict                  # the design's one-row attributes per table
     groups: dict                 # the nominal evaluation (the registry's verdicts)
@@ -85,17 +85,17 @@ def design_checks(groups: dict) -> tuple:
     out = []
     for cid, c in REGISTRY.items():
         g = groups.get(c.group)
-        if g is not None and int(g.state[cid][0]) == E.EVALUATED:
+        if g is not None and int(g.state[cid][0]) == evaluate.EVALUATED:
             out.append(cid)
     return tuple(out)
 
 
-def base_of(d, parts: dict, settings: E.Settings = E.Settings(), table: dict | None = None) -> Base:
+def base_of(d, parts: dict, settings: evaluate.Settings = evaluate.Settings(), table: dict | None = None) -> Base:
     """The :class:`Base` of design ``parts`` for input ``d``: its nominal evaluation and its tolerance model."""
     return base_of_attributes(d, space().design_attributes(parts), settings, table, parts=parts)
 
 
-def base_of_attributes(d, attrs: dict, settings: E.Settings = E.Settings(), table: dict | None = None, *,
+def base_of_attributes(d, attrs: dict, settings: evaluate.Settings = evaluate.Settings(), table: dict | None = None, *,
                        apps: Applications | None = None, parts: dict | None = None) -> Base:
     """:func:`base_of` from the design's one-row attributes per table (the optimiser's rows)."""
     apps = Applications.of([d]) if apps is None else apps
@@ -108,7 +108,7 @@ def base_of_attributes(d, attrs: dict, settings: E.Settings = E.Settings(), tabl
     return Base(d, dict(parts), settings, apps, attrs, groups, sc, design_checks(groups))
 
 
-def context(apps: Applications, attrs: dict, groups: dict, settings: E.Settings, k: int) -> dict:
+def context(apps: Applications, attrs: dict, groups: dict, settings: evaluate.Settings, k: int) -> dict:
     """What :func:`synth.robust.tolerances.resolve` reads of design ``k`` of N-row ``apps``/``attrs``/``groups``:
     its application's fields, its spring option, the strength range of its wire, its pivot, its cone spring."""
     from synth.model import torsion_spring as ts
@@ -202,8 +202,8 @@ def perturb(base: Base, dev: dict, rows=None) -> tuple:
     # the made spring keeps its active coils: its stiffness follows from the made wire and diameter (eq. 64-65)
     k0 = at(f0["spring_stiffness_nm_per_deg"])
     with np.errstate(divide="ignore", invalid="ignore"):
-        n_nom = s9.active_coils(sp["E_mpa"], s9.second_moment_mm4(b0, h0, rnd), d0, k0)
-        n_made = s9.active_coils(sp["E_mpa"], s9.second_moment_mm4(sp["b_mm"], sp["h_mm"], rnd),
+        n_nom = torsion_spring.active_coils(sp["E_mpa"], torsion_spring.second_moment_mm4(b0, h0, rnd), d0, k0)
+        n_made = torsion_spring.active_coils(sp["E_mpa"], torsion_spring.second_moment_mm4(sp["b_mm"], sp["h_mm"], rnd),
                                  sp["main_spring_mean_body_diameter_mm"], k0)
         fields["spring_stiffness_nm_per_deg"] = k0 * n_made / n_nom
     if "pivot_diameter" in dev:
@@ -213,10 +213,10 @@ def perturb(base: Base, dev: dict, rows=None) -> tuple:
         ax = attrs["axial"]
         gap = (_col(dev, "stack_pivot", n) - _col(dev, "stack_endcap_spacer", n) - _col(dev, "stack_arm", n)
                - _col(dev, "stack_damper_pad", n))
-        ax[E.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.where(
+        ax[evaluate.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.where(
             sized, at(base.groups["axial"].values["cone_spring_thickness_mm"]), np.nan)
-        ax[E.MADE_CONE_SPRING_COLUMNS["deflection_offset_mm"]] = -gap  # a smaller gap deflects the spring more
-        ax[E.MADE_CONE_SPRING_COLUMNS["force_factor"]] = 1.0 + _col(dev, "cone_spring_force", n) / 100.0
+        ax[evaluate.MADE_CONE_SPRING_COLUMNS["deflection_offset_mm"]] = -gap  # a smaller gap deflects the spring more
+        ax[evaluate.MADE_CONE_SPRING_COLUMNS["force_factor"]] = 1.0 + _col(dev, "cone_spring_force", n) / 100.0
     apps = a0.with_fields(rows, **fields)
     for q, key in (("pivot_bushing_friction", "mu_pivot_bushing"), ("plastic_friction", "mu_plastic"),
                    ("crankcase_friction", "mu_crankcase")):
@@ -236,7 +236,7 @@ def evaluate_deviations(base: Base, dev: dict, checks=None, rows=None) -> Sample
     with np.errstate(all="ignore"):
         if {REGISTRY[c].group for c in wanted} <= {"input", "core"}:
             idx = np.arange(len(apps), dtype=np.int64)
-            groups = {"input": E.inputs(apps, idx), "core": E.core(apps, idx, attrs["core"], base.settings)}
+            groups = {"input": evaluate.inputs(apps, idx), "core": evaluate.core(apps, idx, attrs["core"], base.settings)}
         else:
             groups = evaluate_design(apps, attrs, base.settings, detail=False)
     margins = {}

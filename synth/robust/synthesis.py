@@ -162,8 +162,8 @@ def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs
     """The :class:`~synth.design.result.Result` of the robust synthesis (see the module docstring): the best
     design meeting ``rs``'s target with its capability in ``result.robust``; when none does, the nominal
     optimum with its capability and a note saying which checks no design meets and what drives them."""
-    from synth.optimise.evaluate import evaluate
-    from synth.optimise.result import build_result
+    from synth.optimise.product import evaluate
+    from synth.optimise.answer import build_result
     from synth.optimise.solvers.enumerate import solve as enumerate_solve
     from synth.robust.sampling import base_of
     t0 = time.perf_counter()
@@ -203,7 +203,7 @@ def robust_front(d, *, settings: Settings = Settings(), rs: RobustSettings = Rob
     up to ``n_points`` points. Each point: ``cost_eur``, ``ppk`` (the smallest of its targeted checks), ``ppm``
     (their largest probability of violation, upper 95 % end), ``binding`` (the check of that Ppk) and
     ``parts``. The first target is ``rs.capability`` (0 if only a ppm target is given)."""
-    from synth.optimise.evaluate import evaluate
+    from synth.optimise.product import evaluate
     ev = evaluate(d, settings)
     target = rs.capability if rs.capability is not None else 0.0
     pts = []

@@ -143,7 +143,7 @@ def synthesise(d, args):
 
 def load_saved_result(path: str | Path, what: str = "result"):
     """A :class:`~synth.design.result.Result` saved with ``--json`` (any scene), read through the input gate
-    (:func:`synth.io.results.load_result`: size, encoding, shape, carried inputs); errors name the file."""
+    (:func:`synth.io.saved_results.load_result`: size, encoding, shape, carried inputs); errors name the file."""
     from synth.design.result import Result
-    from synth.io.results import load_result
+    from synth.io.saved_results import load_result
     return Result.from_dict(load_result(path, what), source=str(Path(path).name))

@@ -29,7 +29,7 @@ def register(sub) -> None:
 
 def _main(args) -> int:
     from synth.cad import export_result, summary_lines
-    from synth.io.results import load_result
+    from synth.io.saved_results import load_result
     result = load_result(args.result, "result")  # the gate: size, encoding, shape, carried inputs
     model, checks, info = export_result(result, args.out, args.input,
                                         stl=not args.no_stl, pictures=not args.no_pictures)

@@ -35,7 +35,7 @@ def register(sub) -> None:
 
 
 def _main(args) -> int:
-    from synth.schema import load_input
+    from synth.io.documents import load_input
     if args.cad:  # before the work: the 3D model needs CadQuery (synth[cad])
         from synth.cad import require_cadquery
         require_cadquery()

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from synth import flowchart, schema
+from synth import flowchart
+from synth.io import documents
 from synth.io.outputs import json_text
 from synth.report.text import render
 from synth.scenes._options import add_model_options, load_saved_result, settings_from_args
@@ -23,9 +24,9 @@ def register(sub) -> None:
 
 
 def _main(args) -> int:
-    d = schema.load_input(args.input)
+    d = documents.load_input(args.input)
     if args.parts:
-        from synth.io.results import parts_of
+        from synth.io.saved_results import parts_of
         parts = parts_of(load_saved_result(args.parts, "--parts").to_dict(), Path(args.parts).name)
     else:
         parts = None

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 
 from synth.optimise.pareto import pareto_front, plot_front
-from synth.schema import load_input
+from synth.io.documents import load_input
 
 __all__ = ["register"]
 

@@ -19,6 +19,7 @@ import sys
 from pathlib import Path
 
 from synth import schema
+from synth.io import documents
 from synth.errors import InputError, Problem
 from synth.scenes._options import add_design_options, add_robust_options, default_args, load_saved_result, synthesise
 
@@ -85,7 +86,7 @@ def result_for_report(source, args=None):
         if _is_result_file(src):
             res, name = load_saved_result(src, "input"), str(src)
         else:
-            data = schema.read_mapping(src)
+            data = documents.read_mapping(src)
             if src.suffix.lower() in (".xlsx", ".xlsm"):
                 from synth.excel.reader import read_cells
                 cells = read_cells(src)[1]
@@ -129,7 +130,7 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     Returns ``{"html": Path, "pdf": Path | None, "pdf_note": str, "xlsx": Path, "result": Result,
     "graphs": [...], "skipped": [...]}`` (``pdf_note``: why no PDF was written, when none was).
     """
-    from synth.excel.results import write_results
+    from synth.excel.results_workbook import write_results
     from synth.report.html import write_html
     from synth.report.plots import build_graphs
     from synth.io.outputs import output_folder

@@ -34,6 +34,7 @@ def register(sub) -> None:
 def robust_result(source, args):
     """The :class:`~synth.design.result.Result` of ``source`` (an input or a saved result) with ``robust`` set."""
     from synth import schema
+    from synth.io import documents
     from synth.design.evaluate import Settings
     from synth.design.verify import verify
     from synth.robust.capability import capability
@@ -51,7 +52,7 @@ def robust_result(source, args):
         r = verify(d, saved.parts, settings, status=saved.status, solver=saved.solver, notes=saved.notes)
         r.objective, r.objectives, r.stats = saved.objective, saved.objectives, saved.stats
     else:
-        d = schema.load_input(source)
+        d = documents.load_input(source)
         settings = settings_from_args(args)
         r = synthesise(d, _nominal(args))  # the design synth design returns, then its capability
     if not r.parts:

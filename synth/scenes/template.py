@@ -5,6 +5,7 @@ from __future__ import annotations
 import sys
 
 from synth import schema
+from synth.io import documents
 from synth.excel import template
 
 __all__ = ["register"]
@@ -29,7 +30,7 @@ def _main(args) -> int:
         raise InputError(Problem("template file", str(out), "a new file (or --force to overwrite)"))
     values = None
     if args.source:
-        values = schema.validate(schema.read_mapping(args.source)).as_dict()
+        values = schema.validate(documents.read_mapping(args.source)).as_dict()
     template.write_template(out, values)
     print(f"wrote {out}", file=sys.stderr)
     return 0

@@ -43,10 +43,11 @@ def _main(args) -> int:
     from pathlib import Path
 
     from synth import schema
+    from synth.io import documents
     if importlib.util.find_spec("nicegui") is None:
         raise InputError(Problem("synth ui", "NiceGUI not installed", 'pip install "synth[ui]" (or nicegui>=3)'))
     if args.input:
-        values = schema.read_mapping(Path(args.input))
+        values = documents.read_mapping(Path(args.input))
         schema.validate({k: v for k, v in values.items() if v is not None})  # refused here as by every scene
         source = Path(args.input).name
     else:

@@ -134,7 +134,7 @@ class ShrinkFitCase:
 
 def _read_file(path: Path) -> dict:
     """The parsed case file, through the input gate (size, UTF-8, YAML aliases, nesting, huge numbers)."""
-    from synth.io.documents import read_document
+    from synth.io.structured import read_document
     data = read_document(path, "INPUT", accepted="an existing YAML, JSON or TOML file")
     if not isinstance(data, dict):
         raise InputError(Problem("INPUT", str(path), "a mapping with an 'inputs:' section"))

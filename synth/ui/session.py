@@ -25,15 +25,17 @@ from typing import Any
 
 import synth
 from synth import schema
+from synth.io import documents
 from synth.errors import InputError, Problem
+from synth.optimise.objectives import OBJECTIVES
 from synth.ui import form
 
 __all__ = ["DesignSession", "default_values", "OBJECTIVES", "FIDELITIES"]
 
 #: the alternatives a synthesis in the page lists (``Result.alternatives``)
 TOP = 5
-#: the objectives offered (``synth.synthesise``'s documented ones; a lexicographic or weighted one stays the API's)
-OBJECTIVES = ("standard", "cost", "margin")
+#: the objectives offered (``synth.synthesise``'s documented ones; a lexicographic or weighted one stays the API's):
+#: :data:`synth.optimise.objectives.OBJECTIVES`, imported above
 #: the model fidelities (:data:`synth.design.evaluate.FIDELITIES`; ``full`` is every design scene's default)
 FIDELITIES = ("full", "screening")
 
@@ -42,7 +44,7 @@ def default_values() -> dict:
     """The embedded default application (``synth/data/default_case.yaml``, what ``synth demo`` designs)."""
     path = resources.files("synth").joinpath("data/default_case.yaml")
     with resources.as_file(path) as p:
-        return schema.read_mapping(p)
+        return documents.read_mapping(p)
 
 
 class DesignSession:
@@ -116,7 +118,7 @@ class DesignSession:
         A file that cannot be read raises :class:`~synth.errors.InputError` (the command line's message);
         a readable one with bad values fills the form and marks the fields.
         """
-        values = schema.read_mapping(Path(path))
+        values = documents.read_mapping(Path(path))
         if self.set_values({k: v for k, v in values.items() if v is not None}, source=Path(path).name):
             self.synthesise()
             return True

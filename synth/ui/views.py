@@ -1,7 +1,7 @@
 """HTML fragments of a :class:`~synth.design.result.Result` for ``synth ui`` (every text escaped for HTML).
 
 The rows are the report's own (:func:`synth.report.html.check_steps`, :func:`synth.report.html.digest_html`),
-coloured with the one verdict palette :data:`synth.design.result.VERDICT_FILLS`; each check row carries
+coloured with the one verdict palette :data:`synth.report.palette.VERDICT_FILLS`; each check row carries
 ``data-check`` and ``data-verdict`` as the report's rows do, so a test reads the verdict and the colour
 the browser computes.
 
@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from html import escape
 
-from synth.design.result import VERDICT_FILLS
+from synth.report.palette import VERDICT_FILLS
 
 __all__ = ["checks_table", "parts_table", "binding_table", "diagnosis_html", "alternatives_html", "fill"]
 

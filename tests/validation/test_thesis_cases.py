@@ -25,7 +25,7 @@ from synth import catalog, flowchart
 from synth.data import case_path
 from synth.design.evaluate import Settings
 from synth.optimise import solve
-from synth.schema import load_input
+from synth.io.documents import load_input
 
 TRAVEL = {"case1_as_run": 50.0, "case3": 28.6}
 _BOLT = {"bolt_format": "M8x1.25", "bolt_head_type": "hex", "bolt_property_class": "8.8"}

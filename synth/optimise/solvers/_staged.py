@@ -9,10 +9,10 @@ import time
 
 from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS
-from synth.optimise.evaluate import evaluate
+from synth.optimise.product import evaluate
 from synth.optimise.model_data import model_data
 from synth.optimise.objectives import Objective
-from synth.optimise.result import build_result
+from synth.optimise.answer import build_result
 
 __all__ = ["staged", "solve_with", "solve_evaluated", "solver_output_to_stderr"]
 

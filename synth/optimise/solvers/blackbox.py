@@ -12,7 +12,7 @@ The search is cut as the exact model is (:mod:`synth.design.space`):
   of its dimensions that change no score: the spring's mean diameters, the
   cone spring's h0/t and s/h0), the evaluator's group computes the whole batch
   against every live core in one call
-  (:func:`synth.optimise.evaluate.subsystem`), and each proposal is told the
+  (:func:`synth.optimise.product.subsystem`), and each proposal is told the
   bound of the best design through it (objective) and its largest margin over
   the cores as the constraint ``-margin <= 0``
   (:meth:`optuna.trial.Trial.set_constraint`), which the TPE sampler ranks
@@ -58,9 +58,9 @@ from synth.design.constraints import FEAS_TOL
 from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS, Space
 from synth.optimise.batch import wsum
-from synth.optimise.evaluate import Evaluation, SubTable, evaluate, option_scores, subsystem
+from synth.optimise.product import Evaluation, SubTable, evaluate, option_scores, subsystem
 from synth.optimise.objectives import Objective
-from synth.optimise.result import build_result
+from synth.optimise.answer import build_result
 from synth.optimise.search_space import refinements, snap_parts, variables
 
 __all__ = ["solve", "Search", "BATCH", "SAMPLERS"]
@@ -135,7 +135,7 @@ def _sampler(kind: str, seed: int, size: int, batch: int, n_params: int):
 class Search:
     """One search: the cores, one study per subsystem, the archive of evaluated (core, option) pairs.
 
-    ``ev``: the application's inputs and cores (:func:`synth.optimise.evaluate.evaluate` with
+    ``ev``: the application's inputs and cores (:func:`synth.optimise.product.evaluate` with
     ``subsystems=False, prune=False``).
     """
 
@@ -251,7 +251,7 @@ class Search:
         return sub
 
     def archive(self) -> Evaluation:
-        """The evaluated pairs as an :class:`~synth.optimise.evaluate.Evaluation` (rows: every core; options: the
+        """The evaluated pairs as an :class:`~synth.optimise.product.Evaluation` (rows: every core; options: the
         columns evaluated): the exact combination and the nearest design run on it unchanged."""
         if self._archive is None:
             ev = self.ev
@@ -491,8 +491,8 @@ def _flowchart_parts(d, settings):
 def _snap(res, d, settings) -> dict | None:
     """The catalog snap of a continuous result: the design on the exact solvers' grids, verified."""
     from synth.design.verify import verify
-    from synth.optimise.evaluate import design_scores
-    from synth.optimise.result import design_margin
+    from synth.optimise.product import design_scores
+    from synth.optimise.answer import design_margin
     snapped = snap_parts(res.parts)
     moved = {k: [res.parts[k], snapped[k]] for k in snapped if snapped[k] != res.parts[k]}
     if not moved:

@@ -1,7 +1,7 @@
 """Exhaustive, vectorised evaluation of the catalog product: the exact reference solver.
 
 The margins of the core and of each subsystem are evaluated once
-(:func:`synth.optimise.evaluate.evaluate`); because subsystems share no
+(:func:`synth.optimise.product.evaluate`); because subsystems share no
 constraint given the core (:mod:`synth.optimise.space`), every design of
 the catalog product is covered by combining the tables: for an additive
 objective the best design of a core is its own score plus each subsystem's
@@ -27,9 +27,9 @@ import numpy as np
 from synth.design.evaluate import Settings
 from synth.design.result import Result
 from synth.design.space import SUBSYSTEMS
-from synth.optimise.evaluate import Evaluation, evaluate
+from synth.optimise.product import Evaluation, evaluate
 from synth.optimise.objectives import Objective
-from synth.optimise.result import build_result
+from synth.optimise.answer import build_result
 
 __all__ = ["Tables", "tables", "best_additive", "additive_curve", "max_margin", "solve", "solve_space"]
 
@@ -168,7 +168,7 @@ def solve(d, objective="standard", *, settings: Settings = Settings(), pin_input
     with branch and bound (:class:`synth.optimise.batch.Batch` with one application and the numpy spring
     twins: no numba on this path): the same optimum as the exhaustive evaluation, proved by bounds. Objectives
     with the margin, and ``exhaustive=True`` (the reference the tests compare with), evaluate every core and
-    option (:func:`synth.optimise.evaluate.evaluate`) and combine the tables.
+    option (:func:`synth.optimise.product.evaluate`) and combine the tables.
     """
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     t0 = time.perf_counter()

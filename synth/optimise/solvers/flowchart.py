@@ -18,7 +18,7 @@ from __future__ import annotations
 import time
 
 from synth.design.evaluate import Settings
-from synth.optimise.result import design_margin
+from synth.optimise.answer import design_margin
 
 __all__ = ["solve"]
 
@@ -31,7 +31,7 @@ def solve(d, objective="standard", *, settings: Settings = Settings(), **_):
     r.stats = {"time_s": time.perf_counter() - t0}
     r.objective = "thesis procedure"
     if r.parts:
-        from synth.optimise.evaluate import design_scores
+        from synth.optimise.product import design_scores
         r.objectives = {**design_scores(d, r.parts, settings), "margin": design_margin(r)}
     if r.failed():
         r.status = "infeasible"

@@ -4,7 +4,7 @@ Both read precomputed, presolved per-choice coefficients
 (:mod:`synth.optimise.model_data`, models in :mod:`formulations.selection`); SCIP is called through Pyomo's
 ``scip_direct`` interface (PySCIPOpt), HiGHS through ``appsi_highs`` (highspy).
 
->>> from synth.schema import load_input
+>>> from synth.io.documents import load_input
 >>> from synth.data.generated_applications import generate
 >>> r = solve(generate(3, seed=0)[1], "cost", variant="milp-highs")
 >>> r.solver

@@ -20,7 +20,7 @@ non-advisory constraints of step 9, thesis eq. (64)-(93), figure 71):
 (d) :func:`any_feasible` -- per key, whether some option is feasible.
 
 Each takes ``engine="numba"`` (compiled loops over keys x options, no
-allocation per pair; :mod:`synth.kernels._torsion_spring_jit`) or
+allocation per pair; :mod:`synth.kernels._main_spring_jit`) or
 ``engine="numpy"`` (the registry's group on blocks of keys x options, the
 same early exits block by block): the benchmark compares both in one run
 and the tests hold them equal to the registry path. Units as in
@@ -95,10 +95,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from synth import catalog
-from synth.design import evaluate as E
+from synth.design import evaluate
 from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin as registry_margin
 from synth.errors import InputError, Problem
-from synth.model import torsion_spring as s9
+from synth.model import torsion_spring
 
 __all__ = ["MARGIN_NAMES", "SpringOptions", "SpringKeys", "spring_options", "options_of_space", "spring_keys",
            "keys_of_rows", "margins", "pair_margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin",
@@ -109,11 +109,11 @@ MARGIN_NAMES = ("spring_yield", "spring_material_section", "spring_fatigue", "sp
                 "spring_inner_contact", "spring_coil_gap", "spring_index_min", "spring_index_max")
 _REGISTERED = tuple(c.id for c in by_group("spring") if not c.advisory)
 if _REGISTERED != MARGIN_NAMES:  # pragma: no cover - a new spring constraint needs its line in the kernels
-    raise ImportError(f"synth.kernels.torsion_spring computes {MARGIN_NAMES}; the registry's spring group is "
+    raise ImportError(f"synth.kernels.main_spring computes {MARGIN_NAMES}; the registry's spring group is "
                       f"{_REGISTERED}: add the new constraint to the kernels (and their tests)")
 ENGINES = ("numba", "numpy")
 #: the option columns the numpy twin reads (the space's spring table names them so)
-OPTION_FIELDS = E.SPRING_OPTION_COLUMNS
+OPTION_FIELDS = evaluate.SPRING_OPTION_COLUMNS
 
 _JIT = None
 
@@ -122,8 +122,8 @@ def load_kernels():
     """The compiled kernels module (imports numba on the first call; later calls are a global lookup)."""
     global _JIT
     if _JIT is None:
-        from synth.kernels import _torsion_spring_jit
-        _JIT = _torsion_spring_jit
+        from synth.kernels import _main_spring_jit
+        _JIT = _main_spring_jit
     return _JIT
 
 
@@ -173,7 +173,7 @@ class SpringOptions:
     the kernels read."""
 
     raw: dict          # the columns of the space's spring table the group reads
-    derived: dict      # the columns of _torsion_spring_jit.OPTION_COLUMNS, by name
+    derived: dict      # the columns of _main_spring_jit.OPTION_COLUMNS, by name
     upper_bound: np.ndarray  # smallest option-only margin (index, section; NaN as -inf): bounds the smallest margin
     constants: dict    # main_spring_constants() when built
     _table: dict = field(default_factory=dict, repr=False)
@@ -188,15 +188,15 @@ class SpringOptions:
 
 
 def _options(raw: dict) -> SpringOptions:
-    cst = s9.main_spring_constants()
+    cst = torsion_spring.main_spring_constants()
     b, h, rnd = raw["b_mm"], raw["h_mm"], raw["round_wire"]
     mbd, sy = raw["main_spring_mean_body_diameter_mm"], raw["sigma_y_mpa"]
-    c = s9.spring_index(mbd, b, h, rnd)
+    c = torsion_spring.spring_index(mbd, b, h, rnd)
     reg = REGISTRY
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         d = {
-            "ei": raw["E_mpa"] * s9.second_moment_mm4(b, h, rnd), "mbd": mbd, "kf": s9.curvature_factor(c, "inner"),
-            "z": s9.section_modulus_mm3(b, h, rnd), "rm": raw["Rm_mpa"], "sa0": raw["sigma_A0_mpa"], "sy": sy,
+            "ei": raw["E_mpa"] * torsion_spring.second_moment_mm4(b, h, rnd), "mbd": mbd, "kf": torsion_spring.curvature_factor(c, "inner"),
+            "z": torsion_spring.section_modulus_mm3(b, h, rnd), "rm": raw["Rm_mpa"], "sa0": raw["sigma_A0_mpa"], "sy": sy,
             "sy_scale": _scale(sy), "h": h, "h_tol": raw["h_tol_mm"], "bb": b + raw["b_tol_mm"],
             "b_scale": np.where(b > 0, b, 1.0),
             "idx_min": registry_margin(reg["spring_index_min"], c, cst["main_spring_index_min"]),
@@ -248,7 +248,7 @@ def options_of_space(table: dict | None = None, idx=None) -> SpringOptions:
         table = space().tables["spring"]
     if idx is None:
         hit = _SPACE_OPTIONS.get(id(table))
-        if hit is not None and hit[0] is table and hit[1].constants == s9.main_spring_constants():
+        if hit is not None and hit[0] is table and hit[1].constants == torsion_spring.main_spring_constants():
             return hit[1]
         opts = options_of_space(table, np.arange(len(table["b_mm"])))
         _SPACE_OPTIONS.clear()
@@ -269,8 +269,8 @@ class SpringKeys:
     and the key-only quantities the kernels read."""
 
     raw: dict
-    derived: dict      # the columns of _torsion_spring_jit.KEY_COLUMNS, by name
-    consts: dict       # the scalars of _torsion_spring_jit.CONST_NAMES
+    derived: dict      # the columns of _main_spring_jit.KEY_COLUMNS, by name
+    consts: dict       # the scalars of _main_spring_jit.CONST_NAMES
     constants: dict    # main_spring_constants() when built
     _table: dict = field(default_factory=dict, repr=False)
 
@@ -284,16 +284,16 @@ class SpringKeys:
 
 
 def _keys(raw: dict) -> SpringKeys:
-    cst = s9.main_spring_constants()
+    cst = torsion_spring.main_spring_constants()
     k = raw["stiffness_nm_per_deg"]
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        ang = s9.working_angles_deg(raw["spring_torque_nominal_nm"], raw["torque_tolerance_pct"], k,
+        ang = torsion_spring.working_angles_deg(raw["spring_torque_nominal_nm"], raw["torque_tolerance_pct"], k,
                                     raw["theta_pp_deg"], raw["dtheta_inst_nom_deg"], raw["dtheta_nom_free_arm_deg"])
         outer_min = raw["housing_outer_diameter_mm"] - cst["spring_housing_outer_tol_mm"]
         inner_max = raw["housing_inner_diameter_mm"] + cst["spring_housing_inner_tol_mm"]
         d = {
-            "k180": 180.0 * np.maximum(k * 1000.0, 1e-12), "t_plus": s9.torque_nm(ang["theta_plus"], k),
-            "t_minus": s9.torque_nm(ang["theta_minus"], k), "t_inst": s9.torque_nm(ang["theta_inst"], k),
+            "k180": 180.0 * np.maximum(k * 1000.0, 1e-12), "t_plus": torsion_spring.torque_nm(ang["theta_plus"], k),
+            "t_minus": torsion_spring.torque_nm(ang["theta_minus"], k), "t_inst": torsion_spring.torque_nm(ang["theta_inst"], k),
             "inc_inst": 1.0 * ang["theta_inst"] / 360.0, "inc_free_arm": 1.0 * ang["theta_free_arm"] / 360.0,
             "inc_nom": 1.0 * ang["theta_nom"] / 360.0, "height": raw["housing_height_mm"],
             "outer_min": outer_min, "outer_scale": _scale(outer_min), "inner_max": inner_max,
@@ -320,7 +320,7 @@ def spring_keys(*, spring_torque_nominal_nm, housing_height_mm, housing_outer_di
     documented defaults (:data:`synth.design.applications.DEFAULTS`).
     ``fatigue_verified=False``: no durability test, the fatigue margin is ``+inf``.
     """
-    cst = s9.main_spring_constants()
+    cst = torsion_spring.main_spring_constants()
     if dtheta_inst_nom_deg is None:
         dtheta_inst_nom_deg = cst["main_spring_dtheta_inst_nom_deg"]
     if dtheta_nom_free_arm_deg is None:
@@ -345,7 +345,7 @@ def keys_of_rows(apps, keys: dict, k=None) -> SpringKeys:
     whether the application has its durability test (the fatigue check's requirement)."""
     if k is None:
         k = np.arange(len(keys["app"]))
-    raw = {name: np.ascontiguousarray(np.asarray(v, dtype=float)) for name, v in E.spring_inputs(apps, keys, k).items()}
+    raw = {name: np.ascontiguousarray(np.asarray(v, dtype=float)) for name, v in evaluate.spring_inputs(apps, keys, k).items()}
     raw["fatigue_verified"] = np.asarray(apps.met(REGISTRY["spring_fatigue"].needs[0]))[keys["app"][k]]
     return _keys(raw)
 
@@ -368,7 +368,7 @@ def _check_engine(engine):
 
 def _same_constants(keys: SpringKeys, options: SpringOptions):
     """Keys and options must carry the catalog constants the reference reads now (a user catalog may change them)."""
-    cst = s9.main_spring_constants()
+    cst = torsion_spring.main_spring_constants()
     for name, obj in (("keys", keys), ("options", options)):
         if obj.constants != cst:
             changed = sorted(k for k in cst if obj.constants.get(k) != cst[k])
@@ -397,11 +397,11 @@ def reference_margins(keys: SpringKeys, options: SpringOptions, key_idx=None, op
     nk, no = len(ki), len(oi)
     x = {k: v[ki][:, None] for k, v in keys.raw.items() if k != "fatigue_verified"}
     o = {k: v[oi][None, :] for k, v in options.raw.items()}
-    v = E.spring_values(o, x)
+    v = evaluate.spring_values(o, x)
     flat = {name: np.broadcast_to(val, (nk, no)).reshape(-1) for name, val in v.items()}
     req = _Requirements(np.repeat(keys.raw["fatigue_verified"][ki], no))
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        g = E.finish("spring", flat, req, np.arange(nk * no))
+        g = evaluate.finish("spring", flat, req, np.arange(nk * no))
     return np.stack([g.margins[m].reshape(nk, no) for m in MARGIN_NAMES], axis=-1)
 
 
@@ -442,10 +442,10 @@ def pair_margins(keys: SpringKeys, options: SpringOptions, key_idx, option_idx, 
     if engine == "numpy":
         x = {k: v[ki] for k, v in keys.raw.items() if k != "fatigue_verified"}
         o = {k: v[oj] for k, v in options.raw.items()}
-        v = E.spring_values(o, x)
+        v = evaluate.spring_values(o, x)
         req = _Requirements(keys.raw["fatigue_verified"][ki])
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            g = E.finish("spring", {name: np.broadcast_to(val, ki.shape) for name, val in v.items()}, req,
+            g = evaluate.finish("spring", {name: np.broadcast_to(val, ki.shape) for name, val in v.items()}, req,
                          np.arange(ki.size))
         return np.stack([g.margins[m] for m in MARGIN_NAMES], axis=-1) if ki.size else np.zeros((0, 8))
     jit, kt, ot, c = _tables(keys, options)

@@ -48,7 +48,7 @@ def result_kind(data) -> str | None:
 
 def load_result(path, what: str = "result") -> dict:
     """The parsed, shape-checked result file ``path`` (see the module doc)."""
-    from synth.io.documents import read_document
+    from synth.io.structured import read_document
 
     if Path(path).suffix.lower() != ".json":
         from synth.io.files import existing_file

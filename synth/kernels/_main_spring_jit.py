@@ -1,7 +1,7 @@
-"""numba kernels of the main-spring margins (thesis step 9); imported only by :mod:`synth.kernels.torsion_spring`.
+"""numba kernels of the main-spring margins (thesis step 9); imported only by :mod:`synth.kernels.main_spring`.
 
 This module imports numba at import time, so nothing imports it except the
-lazy loader of :mod:`synth.kernels.torsion_spring` (the one-application path
+lazy loader of :mod:`synth.kernels.main_spring` (the one-application path
 never pays for numba). Every arithmetic line repeats one line of
 :func:`synth.model.torsion_spring.main_spring_design` and of the registry's
 :func:`synth.design.constraints.margin`, in the same order of operations, so

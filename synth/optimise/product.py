@@ -16,7 +16,7 @@ formula lives here: margins are the registry's, values the evaluator's.
   bound the memory, and only within the mean-diameter range of the housings.
 
 >>> from synth.data import case_path
->>> from synth.schema import load_input
+>>> from synth.io.documents import load_input
 >>> ev = evaluate(load_input(case_path("case1_as_run")))
 >>> ev.core.values["hubload_nominal_n"][0].round(1), sorted(ev.subs)
 (np.float64(652.5), ['axial', 'bolt', 'bushing', 'spring'])
@@ -29,7 +29,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from synth import catalog
-from synth.design import evaluate as E
+from synth.design.evaluate import (SPRING_OPTION_COLUMNS, Group, Settings, axial_full, axial_judged, bolt, bushing,
+                                   core, fixation_values, inputs, spring, spring_keys)
 from synth.design.applications import Applications
 from synth.design.space import SUBSYSTEMS, Space, core_rows, pinned_diameter, space, space_for, spring_window
 
@@ -57,10 +58,10 @@ class Evaluation:
     inputs: object
     apps: Applications
     space: Space
-    settings: E.Settings
+    settings: Settings
     cores: np.ndarray           # core table rows the application may use
-    input: E.Group              # the input-only group (one row): a failure there makes every design infeasible
-    core: E.Group               # the core group over ``cores``
+    input: Group              # the input-only group (one row): a failure there makes every design infeasible
+    core: Group               # the core group over ``cores``
     rows: np.ndarray            # positions in ``cores`` whose subsystems were evaluated
     subs: dict                  # subsystem -> SubTable over (rows, options)
     score_core: dict            # "standard"/"cost" -> (len(cores),)
@@ -71,6 +72,14 @@ class Evaluation:
     def core_feasible(self) -> np.ndarray:
         """``(len(cores),)``: the core's own constraints and the input-only ones pass."""
         return self.core.ok() & bool(self.input.ok()[0])
+
+    def any_feasible(self) -> bool:
+        """Whether some design of the evaluated space meets every constraint: a feasible core (evaluated) with a
+        feasible option in every subsystem."""
+        ok = self.core_feasible()[self.rows]
+        for s in SUBSYSTEMS:
+            ok = ok & self.subs[s].feasible.any(axis=1)
+        return bool(ok.any())
 
     def core_margin(self) -> np.ndarray:
         """Smallest margin of the core counted in the margin objective (input-only constraints never are)."""
@@ -118,11 +127,11 @@ def _bushing(apps, sp, cg, pos, settings) -> SubTable:
     t = sp.tables["bushing"]
     avail = cg.values["supplier_code"][pos][:, None] == t["supplier_code"][None, :]
     i, k = np.nonzero(avail)
-    g = E.bushing(apps, cg, pos[i], sp.rows("bushing", k), settings)
+    g = bushing(apps, cg, pos[i], sp.rows("bushing", k), settings)
     return _scatter(avail, i, k, g)
 
 
-def _axial(apps, sp, cg, pos, settings, group=E.axial_judged) -> SubTable:
+def _axial(apps, sp, cg, pos, settings, group=axial_judged) -> SubTable:
     t = sp.tables["axial"]
     avail = (cg.values["axial_group_present"][pos] > 0)[:, None] == t["axial_group_present"][None, :]
     i, k = np.nonzero(avail)
@@ -142,21 +151,21 @@ def _judge_undecided(apps, sp, cg, pos, core_ok, settings, subs: dict) -> None:
     if (core_ok & has["bushing"] & has["axial"] & has["spring"] & has["bolt"]).any():
         return
     if (core_ok & has["bushing"] & has["spring"] & has["bolt"]).any():
-        subs["axial"] = _axial(apps, sp, cg, pos, settings, E.axial_full)
+        subs["axial"] = _axial(apps, sp, cg, pos, settings, axial_full)
 
 
 def _bolt(apps, sp, cg, pos, settings) -> SubTable:
     nk = sp.n("bolt")
     opts = sp.rows("bolt", np.arange(nk))
-    fix = E.fixation_values(apps, np.zeros(nk, dtype=np.int64), opts, settings)  # per bolt row: no core dependence
+    fix = fixation_values(apps, np.zeros(nk, dtype=np.int64), opts, settings)  # per bolt row: no core dependence
     i, k = (x.ravel() for x in np.meshgrid(np.arange(len(pos)), np.arange(nk), indexing="ij"))
-    g = E.bolt(apps, cg, pos[i], sp.rows("bolt", k), settings, fixation={key: v[k] for key, v in fix.items()})
+    g = bolt(apps, cg, pos[i], sp.rows("bolt", k), settings, fixation={key: v[k] for key, v in fix.items()})
     return _scatter(np.ones((len(pos), nk), dtype=bool), i, k, g)
 
 
 def _spring(apps, sp, cg, pos, settings, counter) -> SubTable:
     nk = sp.n("spring")
-    keys = E.spring_keys(cg, pos)
+    keys = spring_keys(cg, pos)
     stack = np.stack([keys[k] for k in ("spring_torque_nominal_nm", "spring_housing_height_mm",
                                          "spring_housing_outer_diameter_mm", "spring_housing_inner_diameter_mm")], axis=1)
     uniq, inv = np.unique(stack, axis=0, return_inverse=True)
@@ -181,7 +190,7 @@ def _spring(apps, sp, cg, pos, settings, counter) -> SubTable:
         oi = opts_idx[start:start + block]
         kk, oo = (x.ravel() for x in np.meshgrid(np.arange(len(uniq)), oi, indexing="ij"))
         t = sp.tables["spring"]
-        g = E.spring(apps, ukeys, kk, {c: t[c][oo] for c in E.SPRING_OPTION_COLUMNS}, settings)
+        g = spring(apps, ukeys, kk, {c: t[c][oo] for c in SPRING_OPTION_COLUMNS}, settings)
         feas[kk, oo] = g.ok()
         marg[kk, oo] = g.min_margin()
         mmin[kk, oo] = g.min_margin(objective_only=False)
@@ -189,7 +198,7 @@ def _spring(apps, sp, cg, pos, settings, counter) -> SubTable:
     return SubTable(avail[inv], feas[inv], marg[inv], mmin[inv])
 
 
-def subsystem(apps, sp: Space, cg: E.Group, pos, name: str, settings: E.Settings) -> tuple[SubTable, int]:
+def subsystem(apps, sp: Space, cg: Group, pos, name: str, settings: Settings) -> tuple[SubTable, int]:
     """Subsystem ``name`` of the core rows ``pos`` of core group ``cg`` against every option of ``sp``'s table
     ``name`` (the design space's, or any table of option columns: a black-box search's proposals).
 
@@ -203,7 +212,7 @@ def subsystem(apps, sp: Space, cg: E.Group, pos, name: str, settings: E.Settings
     return sub, int(sub.available.sum())
 
 
-def _scatter(avail, i, k, g: E.Group) -> SubTable:
+def _scatter(avail, i, k, g: Group) -> SubTable:
     shape = avail.shape
     feas = np.zeros(shape, dtype=bool)
     marg = np.full(shape, -np.inf)
@@ -214,7 +223,7 @@ def _scatter(avail, i, k, g: E.Group) -> SubTable:
     return SubTable(avail, feas & avail, marg, mmin)
 
 
-def evaluate(d, settings: E.Settings = E.Settings(fidelity="full"), *, pin_inputs: bool = False,
+def evaluate(d, settings: Settings = Settings(fidelity="full"), *, pin_inputs: bool = False,
              prune: bool = True, subsystems: bool = True) -> Evaluation:
     """Evaluate the design space of input ``d`` (see the module docstring).
 
@@ -225,8 +234,8 @@ def evaluate(d, settings: E.Settings = E.Settings(fidelity="full"), *, pin_input
     sp = space_for(d, pin_inputs)
     cores = core_rows(sp, d)
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        ig = E.inputs(apps, np.zeros(1, dtype=np.int64))
-        cg = E.core(apps, np.zeros(len(cores), dtype=np.int64), sp.rows("core", cores), settings)
+        ig = inputs(apps, np.zeros(1, dtype=np.int64))
+        cg = core(apps, np.zeros(len(cores), dtype=np.int64), sp.rows("core", cores), settings)
         ok = cg.ok() & bool(ig.ok()[0])
         pos = np.flatnonzero(ok) if prune else np.arange(len(cores))
         counter = [len(cores)]
@@ -244,12 +253,12 @@ def evaluate(d, settings: E.Settings = E.Settings(fidelity="full"), *, pin_input
     return Evaluation(d, apps, sp, settings, cores, ig, cg, pos, subs, score_core, score, notes, counter[0])
 
 
-def design_scores(d, parts: dict, settings: E.Settings = E.Settings()) -> dict:
+def design_scores(d, parts: dict, settings: Settings = Settings()) -> dict:
     """``{standard, cost}`` of the design ``parts`` of input ``d`` (the optimiser's additive objectives)."""
     sp = space()
     attrs = sp.design_attributes(parts)
     apps = Applications.of([d])
-    cg = E.core(apps, np.zeros(1, dtype=np.int64), attrs["core"], settings)
+    cg = core(apps, np.zeros(1, dtype=np.int64), attrs["core"], settings)
     std_class = cg.values["pivot_class_standard_mm"][0]
     std = float(attrs["core"]["nonstandard"][0]) + catalog.constant("nonstandard_weight_pivot_class") * float(
         not np.isclose(attrs["core"]["pivot_class_diameter_mm"][0], std_class))
