@@ -71,7 +71,12 @@ SLACK = 1e-9
 _WALL = REGISTRY["pivot_wall"]
 if _WALL.needs or _WALL.applies or _WALL.group != "bolt":  # pragma: no cover - the wall shortcut assumes this
     raise ImportError("synth.optimise.batch evaluates pivot_wall apart: it must stay an always-evaluated bolt check")
-_BOLT_APP_IDS = tuple(c.id for c in REGISTRY.values() if c.group == "bolt" and c.id != "pivot_wall" and not c.advisory)
+
+
+def _bolt_app_ids() -> tuple:
+    """The bolt group's per-application checks (pivot_wall apart), as the registry holds them now (a check added
+    with ``register`` included; read per batch, never frozen at import)."""
+    return tuple(c.id for c in REGISTRY.values() if c.group == "bolt" and c.id != "pivot_wall" and not c.advisory)
 
 
 def wsum(scores: dict, weights: dict):
@@ -181,6 +186,7 @@ class Batch:
         # springs go through their numpy twins, the registry's own finish (synth.design.rules)
         self.engine = "numpy" if not active().empty() else spring_engine
         self.axial_engine = spring_engine  # physics only (no limits): design rules do not change it
+        self._bolt_ids = _bolt_app_ids()
         self.sp = sp = _space_of(self.inputs, pin_inputs)
         self.apps = apps if apps is not None else Applications.of(self.inputs)
         n = len(self.inputs)
@@ -266,7 +272,7 @@ class Batch:
                 g = evaluate.bolt(self.apps, self.cg, self.ptr[a], o, self.settings, fixation=fix)
             self.evaluations += len(a)
             m = np.full(len(a), np.inf)
-            for cid in _BOLT_APP_IDS:
+            for cid in self._bolt_ids:
                 m = np.minimum(m, g.margins[cid])
             ok[a, b], mn[a, b], done[a, b] = m >= -FEAS_TOL, m, True
         return ok, mn
