@@ -32,7 +32,7 @@ def test_bench_kernels_sample_is_the_engines_keys():
     keys, options, lists, groups, _, app = mod.sample(6, 0)
     assert len(keys) == len(groups) == len(app) > 0 and len(options) >= 10000
     assert all(0 <= g < len(lists) for g in groups)
-    r = mod.K.first_feasible(keys, options, lists, key_group=groups, tol=mod.FEAS_TOL, engine="numpy")
+    r = mod.main_spring.first_feasible(keys, options, lists, key_group=groups, tol=mod.FEAS_TOL, engine="numpy")
     assert (r.index >= 0).any()
 
 

@@ -14,7 +14,7 @@ import pytest
 
 from synth import flowchart
 from synth.parts import arrays
-from synth.model import bolted_joint as s10
+from synth.model import bolted_joint
 
 from conftest import case_input
 
@@ -183,5 +183,5 @@ def test_case1_bolt_class_by_eq_103_104_as_printed_and_by_the_stress_area():
     args = (r.values["hubload_nominal_n"], 29.5, 2.0, 2.5, 2.5, 8.2, 22.9, 360, 400, 400)   # case1_as_run inputs
     kw = dict(number_of_active_threads=2.3, mu_crankcase=0.10, mu_thread=0.14, mu_head=0.08,
               bolt_head_contact_external_diameter_mm=13.0, candidates=[("M8x1.25", "8.8")])
-    printed = s10.fixation(*args, **kw, normal_stress_area="core")
+    printed = bolted_joint.fixation(*args, **kw, normal_stress_area="core")
     assert float(np.ravel(printed["bolt_sigma_eqv_mpa"])[0]) == pytest.approx(eqv_core, rel=2e-3)

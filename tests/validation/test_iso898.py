@@ -14,7 +14,7 @@ import pandas as pd
 import pytest
 
 from synth import catalog
-from synth.model import bolted_joint as s10
+from synth.model import bolted_joint, vdi2230
 
 DATA = Path(__file__).resolve().parent / "data"
 AREAS = pd.read_csv(DATA / "iso898_stress_areas.csv", comment="#", dtype={"stress_area_mm2": str})
@@ -23,17 +23,17 @@ CLASSES = pd.read_csv(DATA / "iso898_property_classes.csv", comment="#", dtype={
 
 @pytest.mark.parametrize("row", list(AREAS.itertuples()), ids=lambda r: r.thread)
 def test_stress_area_from_iso724_diameters(row):
-    d2, d3, _ = s10.iso724_diameters_mm(row.d_mm, row.pitch_mm)
+    d2, d3, _ = vdi2230.iso724_diameters_mm(row.d_mm, row.pitch_mm)
     decimals = len(row.stress_area_mm2.split(".")[1])
-    assert abs(float(s10.stress_area_mm2(d2, d3)) - float(row.stress_area_mm2)) <= 0.5 * 10.0 ** -decimals + 1e-9
+    assert abs(float(vdi2230.stress_area_mm2(d2, d3)) - float(row.stress_area_mm2)) <= 0.5 * 10.0 ** -decimals + 1e-9
 
 
 def test_catalog_stress_areas_are_the_iso_898_1_values_to_three_figures():
     bolts = catalog.load("bolts")
     for b in bolts.itertuples():
-        d2, d3, d1 = s10.iso724_diameters_mm(b.d_mm, b.pitch_mm)
+        d2, d3, d1 = vdi2230.iso724_diameters_mm(b.d_mm, b.pitch_mm)
         assert (round(float(d2), 3), round(float(d3), 3), round(float(d1), 3)) == (b.d2_mm, b.d3_mm, b.D1_mm)
-        a_s = float(s10.stress_area_mm2(d2, d3))
+        a_s = float(vdi2230.stress_area_mm2(d2, d3))
         assert b.stress_area_mm2 == float(f"{a_s:.3g}")
 
 
@@ -49,7 +49,7 @@ def test_property_classes_iso_898_1_table_3(row):
 
 
 def test_class_strengths_reach_the_escalation_candidates():
-    cands = s10.bolt_candidates("M8x1.25")
+    cands = bolted_joint.bolt_candidates("M8x1.25")
     got = {c["bolt_property_class"]: (c["rm_mpa"], c["rp02_mpa"]) for c in cands}
     table = {r.property_class: (r.rm_min_mpa, r.rp02_min_mpa) for r in CLASSES.itertuples() if r.d_range != "d>16"}
     assert got == table
