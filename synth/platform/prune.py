@@ -72,16 +72,27 @@ def _live_rows(w: Work, si: int | None = None) -> list:
     return [i for i, a in enumerate(w.row_alive) if a and (si is None or w.row_sub[i] == si)]
 
 
+def _overlaps(sets: list) -> tuple[np.ndarray, np.ndarray]:
+    """``(inter, lens)`` of integer arrays ``sets``: ``inter[a, b]`` counts the entries of ``sets[a]`` that
+    ``sets[b]`` holds (multiplicities multiply, as in the product of their indicator rows), ``lens[a]`` the entries
+    of ``sets[a]``. Dense over the values present: the handful of sets of one application, where building a sparse
+    matrix cost 20x the product; the counts are exact integers (as floats), so every comparison is the sparse
+    product's."""
+    n = len(sets)
+    lens = np.array([len(x) for x in sets], dtype=np.int64)
+    if not lens.sum():
+        return np.zeros((n, n)), lens
+    vals, col = np.unique(np.concatenate(sets), return_inverse=True)
+    m = np.zeros((n, len(vals)))
+    np.add.at(m, (np.repeat(np.arange(n), lens), col.ravel()), 1.0)
+    return m @ m.T, lens
+
+
 def _subset_matrix(w: Work, pats: np.ndarray) -> np.ndarray:
     """``S[i, j]``: pattern ``pats[i]`` is a subset of pattern ``pats[j]``."""
-    n = len(pats)
-    if n == 0:
+    if len(pats) == 0:
         return np.zeros((0, 0), bool)
-    lens = np.array([len(w.patterns[k]) for k in pats])
-    rows = np.repeat(np.arange(n), lens)
-    cols = np.concatenate([w.patterns[k] for k in pats]) if lens.sum() else np.zeros(0, int)
-    M = sp.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, w.n_parts))
-    inter = (M @ M.T).toarray()
+    inter, lens = _overlaps([w.patterns[k] for k in pats])
     return inter >= lens[:, None] - 0.5
 
 
@@ -254,9 +265,7 @@ def dominated_cores(w: Work) -> int:
             live = ur[ur >= 0]
             sup = np.ones((len(ur), len(ur)), bool)            # sup[a, b]: row a holds row b's options
             if len(live):
-                M = _row_matrix(w, live.tolist(), np.unique(np.concatenate([w.row_pats[i] for i in live])))
-                inter = (M @ M.T).toarray()
-                lens = np.asarray(M.sum(axis=1)).ravel()
+                inter, lens = _overlaps([w.row_pats[i] for i in live])
                 off = len(ur) - len(live)                      # -1 sorts first
                 sup[off:, off:] = inter >= lens[None, :] - 0.5
                 if off:
