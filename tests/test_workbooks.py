@@ -82,7 +82,7 @@ def test_bulk_tables_write_text_as_text(tmp_path):
     assert [ws.cell(row=r, column=1).value for r in range(2, 7)] == EVIL
     assert ws["B5"].number_format == "0.000" and ws["B5"].value == 1.71334077115234
     assert ws.page_setup.orientation == "landscape" and ws.print_title_rows.replace("$", "") == "1:1"
-    back = pd.read_excel(p)
+    back = pd.read_excel(p, engine="openpyxl")
     assert back["application"].tolist() == EVIL
 
 
