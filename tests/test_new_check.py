@@ -4,10 +4,10 @@ touched.
 
 Each probe check reads one value its group computes (``v``) and returns ``value = |v| + 1`` against
 ``limit = 2 (|v| + 1)``: a margin of exactly 0.5 (``(limit - value) / |limit|``) wherever the group runs, so every
-surface must show 0.5. The main spring's group is the one exception left: its compiled kernel
-(:mod:`synth.kernels.main_spring`, the bulk engine's and the platform's spring search) computes a fixed list of
-margins and refuses to import beside a spring group with another one (the xfail below says so until the kernel
-hands the checks it does not know to the numpy path).
+surface must show 0.5. The main spring's compiled kernel (:mod:`synth.kernels.main_spring`, the bulk engine's and
+the platform's spring search) computes its own fixed margins: while the registry holds a spring check it does not
+know, every kernel call runs on the numpy twin (the registry's own group), so the spring group takes a new check
+like the others.
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ def probe(group: str, value_factor: float = 1.0, limit_factor: float = 2.0) -> C
                       sense="<=", physics=physics)
 
 
-GROUPS = ("core", "bushing", "axial", "bolt")
+GROUPS = ("core", "bushing", "axial", "bolt", "spring")
 IDS = [f"probe_{g}" for g in GROUPS]
 
 
@@ -57,7 +57,7 @@ def test_a_new_check_reaches_flowchart_design_bulk_and_report(inputs, tmp_path):
         design = synth.synthesise(d3)
         assert {i: design.margins[i] for i in IDS} == {i: 0.5 for i in IDS}
         bulk = synth.screen([d1, d3], diagnose=False, progress=False)
-        assert bulk[[f"margin_{i}" for i in IDS]].to_numpy().tolist() == [[0.5] * 4] * 2
+        assert bulk[[f"margin_{i}" for i in IDS]].to_numpy().tolist() == [[0.5] * len(IDS)] * 2
         out = synth.write_report(design, tmp_path, pdf=False, cad_pictures=False)
         html = open(out["html"], encoding="utf-8").read()
         assert all(f"probe check of the {g} group" in html for g in GROUPS)
@@ -78,12 +78,22 @@ def test_a_new_check_that_fails_is_diagnosed_and_binds_in_the_platform(inputs):
         assert bindings == {"probe_bolt"}
 
 
-@pytest.mark.xfail(strict=True,
-                   reason="issue 21 remains: synth/kernels/main_spring.py computes the fixed MARGIN_NAMES (and refuses "
-                          "to import beside a spring group with another check) instead of handing the checks it does "
-                          "not know to the numpy path")
-def test_the_compiled_spring_kernel_computes_every_spring_check():
+def test_a_spring_check_runs_the_kernels_on_their_numpy_twin_and_binds_in_the_platform():
+    """The compiled kernels know their own margins only: a registered spring check sends every kernel call to the
+    numpy twin (its column after theirs), the platform's spring search binds on it; unregistered, the kernels run."""
     from synth.design.constraints import by_group
     from synth.kernels import main_spring
-    with registered(probe("spring")):
-        assert main_spring.MARGIN_NAMES == tuple(c.id for c in by_group("spring") if not c.advisory)
+    from synth.platform.producer import feasibility
+    from synth.scenes.demo import default_input
+    d = default_input()  # cases 1 and 3 have no feasible spring option to bind
+    assert main_spring.compiled_covers() and main_spring.checks() == main_spring.MARGIN_NAMES
+    with registered(probe("spring", limit_factor=1.0 + 1e-9)):                  # passes by 1e-9: it binds
+        assert not main_spring.compiled_covers()
+        assert main_spring.checks() == tuple(c.id for c in by_group("spring") if not c.advisory)
+        assert main_spring._check_engine("numba") == "numpy"
+        pf = feasibility([d])
+        assert {str(b) for g in pf.apps[0].option_binding["spring"] for b in g} == {"probe_spring"}
+    assert main_spring._check_engine("numba") == "numba"
+    pf = feasibility([d])   # the kernels again: the step-9 checks bind
+    assert {str(b) for g in pf.apps[0].option_binding["spring"] for b in g} == {
+        "spring_coil_gap", "spring_fatigue", "spring_index_max", "spring_outer_contact"}

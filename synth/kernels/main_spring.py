@@ -10,7 +10,7 @@ applications) x thousands of options, the margins of the registry's spring
 group (:func:`synth.design.evaluate.spring`: :data:`MARGIN_NAMES`, the
 non-advisory constraints of step 9, thesis eq. (64)-(93), figure 71):
 
-(a) :func:`margins` -- every margin, ``(n_keys, n_options, 8)``;
+(a) :func:`margins` -- every margin, ``(n_keys, n_options, len(checks()))``;
 (b) :func:`first_feasible` -- per key, the first feasible option of a list
     in score order (options sorted by the objective), early exit, an optional
     score limit (branch and bound), and how many options were examined;
@@ -100,17 +100,35 @@ from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin as reg
 from synth.errors import InputError, Problem
 from synth.model import torsion_spring
 
-__all__ = ["MARGIN_NAMES", "SpringOptions", "SpringKeys", "spring_options", "options_of_space", "spring_keys",
+__all__ = ["MARGIN_NAMES", "checks", "compiled_covers", "SpringOptions", "SpringKeys", "spring_options", "options_of_space", "spring_keys",
            "keys_of_rows", "margins", "pair_margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin",
            "any_feasible", "FirstFeasible", "MaxMin", "CHUNK_KEYS", "numba_loaded", "load_kernels", "FEAS_TOL"]
 
-#: the margins of (a), in this order: the registry's non-advisory spring constraints (the kernels' layout)
+#: the margins the compiled kernels compute, in their layout: the registry's non-advisory spring constraints of
+#: step 9 as declared (a check added later with ``register`` is not among them: see :func:`checks`)
 MARGIN_NAMES = ("spring_yield", "spring_material_section", "spring_fatigue", "spring_outer_contact",
                 "spring_inner_contact", "spring_coil_gap", "spring_index_min", "spring_index_max")
-_REGISTERED = tuple(c.id for c in by_group("spring") if not c.advisory)
-if _REGISTERED != MARGIN_NAMES:  # pragma: no cover - a new spring constraint needs its line in the kernels
+_DECLARED = tuple(c.id for c in by_group("spring") if not c.advisory)
+if not set(MARGIN_NAMES) <= set(_DECLARED):  # pragma: no cover - a kernel margin the registry no longer declares
     raise ImportError(f"synth.kernels.main_spring computes {MARGIN_NAMES}; the registry's spring group is "
-                      f"{_REGISTERED}: add the new constraint to the kernels (and their tests)")
+                      f"{_DECLARED}: remove the constraint from the kernels (and their tests)")
+
+
+def checks() -> tuple:
+    """The margins every function of this module returns, in their column order: :data:`MARGIN_NAMES`, then each
+    non-advisory spring check the registry holds beyond them (one added with ``register``), read now.
+
+    The compiled kernels compute :data:`MARGIN_NAMES` only; while the registry holds another spring check every
+    call runs on the numpy twin (the registry's own group, :func:`compiled_covers`), so a new check needs a
+    registry entry and a physics function, never a kernel edit (it costs the kernels' speed until they learn it).
+    """
+    extra = tuple(c.id for c in by_group("spring") if not c.advisory and c.id not in MARGIN_NAMES)
+    return MARGIN_NAMES + extra
+
+
+def compiled_covers() -> bool:
+    """Whether the compiled kernels compute every margin of :func:`checks` (else the numpy twin runs)."""
+    return len(checks()) == len(MARGIN_NAMES)
 ENGINES = ("numba", "numpy")
 #: the option columns the numpy twin reads (the space's spring table names them so)
 OPTION_FIELDS = evaluate.SPRING_OPTION_COLUMNS
@@ -361,9 +379,12 @@ def _tables(keys: SpringKeys, options: SpringOptions):
     return jit, keys._table["t"], options._table["t"], keys._table["c"]
 
 
-def _check_engine(engine):
+def _check_engine(engine) -> str:
+    """The engine a call runs on: ``engine`` (validated), or the numpy twin when the registry holds a spring check
+    the compiled kernels do not compute (:func:`compiled_covers`)."""
     if engine not in ENGINES:
         raise InputError(Problem("engine", engine, " or ".join(ENGINES)))
+    return engine if engine == "numpy" or compiled_covers() else "numpy"
 
 
 def _same_constants(keys: SpringKeys, options: SpringOptions):
@@ -389,7 +410,7 @@ class _Requirements:
 
 
 def reference_margins(keys: SpringKeys, options: SpringOptions, key_idx=None, option_idx=None) -> np.ndarray:
-    """Margins ``(n_keys, n_options, 8)`` by the registry path itself: :func:`synth.design.evaluate.spring_values`
+    """Margins ``(n_keys, n_options, len(checks()))`` by the registry path itself: :func:`synth.design.evaluate.spring_values`
     on keys x options broadcast and :func:`synth.design.evaluate.finish` (optionally for the keys ``key_idx`` and
     the options ``option_idx``)."""
     ki = np.arange(len(keys)) if key_idx is None else np.asarray(key_idx)
@@ -402,19 +423,19 @@ def reference_margins(keys: SpringKeys, options: SpringOptions, key_idx=None, op
     req = _Requirements(np.repeat(keys.raw["fatigue_verified"][ki], no))
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         g = evaluate.finish("spring", flat, req, np.arange(nk * no))
-    return np.stack([g.margins[m].reshape(nk, no) for m in MARGIN_NAMES], axis=-1)
+    return np.stack([g.margins[m].reshape(nk, no) for m in checks()], axis=-1)
 
 
 def margins(keys: SpringKeys, options: SpringOptions, *, engine: str = "numba", parallel: bool = False,
             out: np.ndarray | None = None) -> np.ndarray:
-    """(a) Every margin, ``out[i, j, m]`` for key ``i``, option ``j`` and margin ``MARGIN_NAMES[m]`` (>= 0 passes).
+    """(a) Every margin, ``out[i, j, m]`` for key ``i``, option ``j`` and margin ``checks()[m]`` (>= 0 passes).
 
     ``engine="numpy"`` is :func:`reference_margins` itself. The array holds
     ``8 * 8`` bytes per pair: call it on chunks of keys for large tables, and
     pass ``out`` (float64, C order, ``(n_keys, n_options, 8)``) to reuse one
     buffer (numba engine).
     """
-    _check_engine(engine)
+    engine = _check_engine(engine)
     _same_constants(keys, options)
     if engine == "numpy":
         return reference_margins(keys, options)
@@ -429,11 +450,11 @@ def margins(keys: SpringKeys, options: SpringOptions, *, engine: str = "numba", 
 
 
 def pair_margins(keys: SpringKeys, options: SpringOptions, key_idx, option_idx, *, engine: str = "numba") -> np.ndarray:
-    """(a) for listed pairs: ``out[p, m]`` = margin ``MARGIN_NAMES[m]`` of key ``key_idx[p]`` x option
+    """(a) for listed pairs: ``out[p, m]`` = margin ``checks()[m]`` of key ``key_idx[p]`` x option
     ``option_idx[p]`` (the rows a caller needs of the product, as :func:`margins` gives the whole product);
     ``engine="numpy"``: the registry path on those pairs (:func:`synth.design.evaluate.spring_values`,
     :func:`~synth.design.evaluate.finish`)."""
-    _check_engine(engine)
+    engine = _check_engine(engine)
     _same_constants(keys, options)
     ki = np.ascontiguousarray(np.asarray(key_idx, dtype=np.int64).reshape(-1))
     oj = np.ascontiguousarray(np.asarray(option_idx, dtype=np.int64).reshape(-1))
@@ -447,7 +468,8 @@ def pair_margins(keys: SpringKeys, options: SpringOptions, key_idx, option_idx, 
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             g = evaluate.finish("spring", {name: np.broadcast_to(val, ki.shape) for name, val in v.items()}, req,
                          np.arange(ki.size))
-        return np.stack([g.margins[m] for m in MARGIN_NAMES], axis=-1) if ki.size else np.zeros((0, 8))
+        names = checks()
+        return np.stack([g.margins[m] for m in names], axis=-1) if ki.size else np.zeros((0, len(names)))
     jit, kt, ot, c = _tables(keys, options)
     out = np.empty((ki.size, jit.N_MARGINS))
     jit.margins_pairs(kt, ot, c, ki, oj, out)
@@ -538,7 +560,7 @@ def first_feasible(keys: SpringKeys, options: SpringOptions, order=None, *, key_
     Returns :class:`FirstFeasible` ``(index, visited)``: ``index[i] = -1`` when no option qualifies;
     ``visited`` counts the options the kernel examined (numpy: the pairs evaluated, whole blocks).
     """
-    _check_engine(engine)
+    engine = _check_engine(engine)
     n = len(keys)
     ptr, idx, kg = _groups(n, len(options), order, key_group)
     sc = _candidate_scores(score, ptr, idx, len(options))
@@ -699,7 +721,7 @@ def any_feasible(keys: SpringKeys, options: SpringOptions, candidates=None, *, k
     decreasing index margins on the generated portfolio). Returns
     :class:`FirstFeasible` ``(found, visited)`` with ``found`` boolean.
     """
-    _check_engine(engine)
+    engine = _check_engine(engine)
     ptr, idx, kg = _groups(len(keys), len(options), candidates, key_group)
     keep = options.upper_bound[idx] >= -tol
     grp = np.repeat(np.arange(len(ptr) - 1), np.diff(ptr))[keep]
@@ -734,7 +756,7 @@ def max_min_margin(keys: SpringKeys, options: SpringOptions, candidates=None, *,
     key with no candidate; ``visited``: the pairs whose margins were
     evaluated (at least the yield margin; numpy: whole blocks).
     """
-    _check_engine(engine)
+    engine = _check_engine(engine)
     _same_constants(keys, options)
     n = len(keys)
     ptr, idx, kg = _groups(n, len(options), candidates, key_group)

@@ -172,7 +172,7 @@ def spring_group(apps, keys: dict, k, options, settings: evaluate.Settings, spri
         opts, rows = main_spring.options_of_space(), np.asarray(options, dtype=np.int64)
     m = main_spring.pair_margins(kk, opts, k, rows)
     return evaluate.Group("spring", {"app": np.asarray(keys["app"])[k]},
-                   {name: m[:, c] for c, name in enumerate(main_spring.MARGIN_NAMES)})
+                   {name: m[:, c] for c, name in enumerate(main_spring.checks())})
 
 
 # --------------------------------------------------------------------------------------------------------- chunk
