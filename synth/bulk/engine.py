@@ -280,8 +280,7 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
     margin_obj = objective_counted.copy()
     for c, con in enumerate(cols):
         if con.objective_unless is not None and not con.advisory:
-            v = np.asarray(groups[con.group].values[con.objective_unless], dtype=float)
-            margin_obj[:, c] &= ~(np.isfinite(v) & (v != 0))
+            margin_obj[:, c] &= con.counts_in_objective(groups[con.group].values)
     m_counted = np.where(counted, marg, np.inf)
     margin_min = m_counted.min(axis=1) if len(cols) else np.full(m, np.inf)
     obj_margin = np.where(margin_obj, marg, np.inf).min(axis=1)

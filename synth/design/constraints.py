@@ -123,6 +123,25 @@ class Constraint:
             out += list(REQUIREMENTS[n][0]) if n in REQUIREMENTS else [n]
         return tuple(out)
 
+    def counts_in_objective(self, values: dict, rows=None):
+        """Where this check counts in the margin objective: an objective, non-advisory check, except where its
+        ``objective_unless`` value is positive (the design meets it by construction; NaN or 0: it counts), for the
+        rows of ``values`` (or ``rows`` of them). The one rule every consumer of the margin objective applies
+        (the evaluator's groups, ``Result``, the bulk rows, the platform, the capability targets).
+
+        >>> c = REGISTRY["damping_upper"]
+        >>> c.counts_in_objective({"axial_damping_present": np.array([0.0, 1.0, np.nan])}).tolist()
+        [True, False, True]
+        >>> REGISTRY["spring_index_min"].counts_in_objective({})
+        True
+        """
+        if self.advisory or not self.objective:
+            return False
+        if self.objective_unless is None or self.objective_unless not in values:
+            return True
+        v = np.asarray(values[self.objective_unless], dtype=float)
+        return ~((v if rows is None else v[rows]) > 0)
+
     def reads(self) -> tuple[str, ...]:
         """The value keys its margin reads: value, limit, scale, where it applies, when it leaves the objective
         and its physics function's parameters."""

@@ -183,11 +183,10 @@ class Group:
         out = np.full(len(self), np.inf)
         for cid, m in self.margins.items():
             c = REGISTRY[cid]
-            if c.advisory or (objective_only and not c.objective):
+            on = (not c.advisory) if not objective_only else c.counts_in_objective(self.values)
+            if on is False:
                 continue
-            if objective_only and c.objective_unless is not None:
-                m = np.where(np.asarray(self.values[c.objective_unless], dtype=float) > 0, np.inf, m)
-            out = np.minimum(out, m)
+            out = np.minimum(out, np.where(on, m, np.inf))
         return out
 
     def put(self, rows, other: "Group") -> "Group":

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from synth.design.result import FAIL, PASS, Result
 from synth.design.verify import verify
 
@@ -20,9 +22,7 @@ def design_margin(r: Result) -> float:
     vals = []
     for c in r.checks:
         con = c.constraint
-        if c.verdict not in (PASS, FAIL) or not con.objective or con.advisory:
-            continue
-        if con.objective_unless and r.values.get(con.objective_unless):
+        if c.verdict not in (PASS, FAIL) or not bool(np.all(con.counts_in_objective(r.values))):
             continue
         vals.append(c.margin)
     return float(min(vals)) if vals else math.inf

@@ -127,12 +127,10 @@ def margins_and_binding(g: evaluate.Group, objective_only: bool = True, rows=Non
     stack, idx = [], []
     for cid, m in g.margins.items():
         c = REGISTRY[cid]
-        if c.advisory or (objective_only and not c.objective):
+        on = (not c.advisory) if not objective_only else c.counts_in_objective(g.values, rows)
+        if on is False:
             continue
-        m = take(m)
-        if objective_only and c.objective_unless is not None:
-            m = np.where(take(np.asarray(g.values[c.objective_unless], dtype=float)) > 0, np.inf, m)
-        stack.append(m)
+        stack.append(np.where(on, take(m), np.inf))
         idx.append(_index(cid))
     if not stack:
         return np.full(n, np.inf), np.full(n, _NO_BINDING, np.int16)

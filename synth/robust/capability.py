@@ -91,13 +91,9 @@ def targeted(cid: str, base: Base) -> bool:
     """Whether check ``cid`` of the design counts in the capability target: the registry's margin objective
     (``objective``, not advisory, design-dependent; ``objective_unless`` false for the design)."""
     c = REGISTRY[cid]
-    if c.advisory or not c.objective or not c.design:
+    if not c.design:
         return False
-    if c.objective_unless is not None:
-        v = base.groups[c.group].values.get(c.objective_unless)
-        if v is not None and float(np.asarray(v, dtype=float)[0]) > 0:
-            return False
-    return True
+    return bool(np.asarray(c.counts_in_objective(base.groups[c.group].values), dtype=bool).reshape(-1)[0])
 
 
 def windows(checks) -> dict:

@@ -50,9 +50,7 @@ def _targeted(groups: dict, cid: str) -> np.ndarray:
     on = np.asarray(g.state[cid]) == evaluate.EVALUATED
     if c.advisory or not c.objective or not c.design:
         return np.zeros_like(on)
-    if c.objective_unless is not None and c.objective_unless in g.values:
-        on &= ~(np.asarray(g.values[c.objective_unless], dtype=float) > 0)
-    return on
+    return on & c.counts_in_objective(g.values)
 
 
 def _chunk(inputs: list, parts: list, settings: evaluate.Settings, rs: RobustSettings, table: dict) -> list:
