@@ -62,6 +62,7 @@ from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, REGISTRY, margin as registry_margin
 from synth.design.space import SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, space, space_for, spring_window
 from synth.kernels import axial as axial_kernels
+from synth.optimise.objectives import weighted_sum
 from synth.optimise.product import DURABILITY_NOTE, core_scores, option_scores
 
 __all__ = ["Batch", "wsum", "SLACK", "any_feasible", "robust"]
@@ -79,14 +80,8 @@ def _bolt_app_ids() -> tuple:
     return tuple(c.id for c in REGISTRY.values() if c.group == "bolt" and c.id != "pivot_wall" and not c.advisory)
 
 
-def wsum(scores: dict, weights: dict):
-    """``sum_k w_k score_k`` over ``standard``/``cost`` (any shapes that broadcast), in the order and with the
-    operations of :func:`synth.optimise.solvers.enumerate.weights_vec`: the same doubles."""
-    out = 0.0
-    for k, w in weights.items():
-        if k != "margin":
-            out = out + w * scores[k]
-    return out
+#: the additive score of many designs (:func:`synth.optimise.objectives.weighted_sum`)
+wsum = weighted_sum
 
 
 def _first_true(mask: np.ndarray) -> np.ndarray:

@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 from synth.errors import InputError, Problem
 
-__all__ = ["Goal", "GOALS", "OBJECTIVES", "UNITS", "MAX_WEIGHT", "Objective", "with_margin_tiebreak"]
+__all__ = ["Goal", "GOALS", "OBJECTIVES", "UNITS", "MAX_WEIGHT", "Objective", "with_margin_tiebreak", "weighted_sum"]
 
 
 @dataclass(frozen=True)
@@ -162,6 +162,21 @@ class Objective:
         if self.weights:
             return (self.score(values),)
         return tuple(_BY_NAME[k].sense * values[k] for k in self.order)
+
+
+def weighted_sum(scores: dict, weights: dict):
+    """``sum_k w_k score_k`` over the additive goals of ``weights`` (a design's or many designs' scores: arrays of
+    any shapes that broadcast), in the weights' order: the one scalar score the exact solvers and the bulk engine
+    compare (the same doubles everywhere).
+
+    >>> weighted_sum({"standard": 2, "cost": 1.5}, {"standard": 1e6, "cost": 1.0, "margin": 3.0})
+    2000001.5
+    """
+    out = 0.0
+    for k, w in weights.items():
+        if _BY_NAME[k].additive:
+            out = out + w * scores[k]
+    return out
 
 
 def with_margin_tiebreak(objective) -> str:

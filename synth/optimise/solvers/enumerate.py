@@ -28,7 +28,7 @@ from synth.design.evaluate import Settings
 from synth.design.result import Result
 from synth.design.space import SUBSYSTEMS
 from synth.optimise.product import Evaluation, evaluate
-from synth.optimise.objectives import Objective
+from synth.optimise.objectives import Objective, weighted_sum
 from synth.optimise.answer import build_result
 
 __all__ = ["Tables", "tables", "best_additive", "additive_curve", "max_margin", "solve", "solve_space"]
@@ -54,12 +54,8 @@ class Tables:
 
 
 def weights_vec(scores: dict, weights: dict) -> np.ndarray:
-    """``sum_k w_k score_k`` over ``standard``/``cost`` of a score dict (one array per name)."""
-    out = np.zeros(len(scores["cost"]))
-    for k, w in weights.items():
-        if k != "margin":
-            out = out + w * scores[k]
-    return out
+    """:func:`synth.optimise.objectives.weighted_sum` of a score dict (one array per name), as an array."""
+    return np.zeros(len(scores["cost"])) + weighted_sum(scores, weights)
 
 
 def tables(ev: Evaluation, weights: dict) -> Tables:
