@@ -223,7 +223,8 @@ def compile_portfolio(pf: PortfolioFeasibility, objective: str = "variants", *, 
             for p, cst, mar in pre.groups[ai][s]:
                 keep = mar >= tau
                 p, cst = p[keep], cst[keep]
-                first = np.r_[True, p[1:] != p[:-1]] if len(p) else np.zeros(0, bool)
+                first = np.ones(len(p), bool)                     # per pattern the cheapest kept
+                first[1:] = p[1:] != p[:-1]
                 gp[s].append(p[first])
                 gc[s].append(cst[first])
             g = np.asarray(a.group[s], np.int64)

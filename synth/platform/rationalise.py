@@ -175,7 +175,7 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
 
 
 def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6, time_limit: float = 30.0,
-             weights: dict | None = None, progress=None) -> list:
+             weights: dict | None = None, progress=None, share: bool = True) -> list:
     """Platform size against worst margin (``kind="margin"``) or against total cost (``"cost"``).
 
     ``margin``: for margin floors from 0 up to the lower quartile of the applications' best
@@ -184,7 +184,9 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
     the smallest platform up to the size of the cost-optimal one, the cheapest platform
     (unit cost x volume + per-variant fixed cost) within the budget (an epsilon constraint).
     Returns rows ``{"parts", "cost_eur", "worst_margin", "served", "status", ...}``. ``progress(done, total)`` is
-    called after each platform solved.
+    called after each platform solved. ``share``: the rounds compile the portfolio once
+    (:func:`~synth.platform.compile.precompile`) and leave out the reports' details; ``False`` solves each round
+    afresh (the same rows, slower: the benchmark's and the tests' yardstick).
     """
     if kind not in ("margin", "cost"):
         raise InputError(Problem("trade-off", kind, "margin or cost"))
@@ -219,28 +221,28 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
         top = float(np.quantile(np.minimum(pos, 1e6), 0.25)) if pos else 0.0
         import dataclasses
         pf = dataclasses.replace(pf, apps=[a for b, a in best if b >= top])   # one set of applications for every floor
-        pre = precompile(pf)                      # compiled once: each floor keeps a subset of its options
+        pre = precompile(pf) if share else None   # compiled once: each floor keeps a subset of its options
         base = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False, pre=pre,
-                           details=False)
+                           details=not share)
         tick(1, points)
         n_served = len(pf.apps)
         for tau in np.linspace(0.0, top, points):
             r = base if tau == 0.0 else rationalise(pf, "variants", time_limit=time_limit, weights=weights,
-                                                    min_margin=float(tau), verify=False, pre=pre, details=False)
+                                                    min_margin=float(tau), verify=False, pre=pre, details=not share)
             tick(len(rows) + 1, points)
             rows.append(row(r, margin_floor=float(tau)))
             if rows[-1]["served"] < n_served:
                 rows[-1]["status"] += " (fewer served)"
         return rows
-    pre = precompile(pf)
-    small = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False, pre=pre, details=False)
-    cheap = rationalise(pf, "cost", time_limit=time_limit, weights=weights, verify=False, pre=pre, details=False)
+    pre = precompile(pf) if share else None
+    small = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False, pre=pre, details=not share)
+    cheap = rationalise(pf, "cost", time_limit=time_limit, weights=weights, verify=False, pre=pre, details=not share)
     lo, hi = sum(small.weights[f] * len(c) for f, c in small.platform.items()), \
         sum(cheap.weights[f] * len(c) for f, c in cheap.platform.items())
     budgets = np.unique(np.round(np.linspace(lo, max(hi, lo), points), 6))
     for b in budgets:
         r = cheap if b >= hi else rationalise(pf, "cost", time_limit=time_limit, weights=weights, budget=float(b),
-                                              verify=False, pre=pre, details=False)
+                                              verify=False, pre=pre, details=not share)
         rows.append(row(r, budget=float(b)))
         tick(len(rows), len(budgets))
     return rows
