@@ -20,6 +20,12 @@ applications); their feasibility comes from the evaluator
 illustrative data the model was first built on). ``--plot`` writes the margin trade-off
 curve of the largest size (the README's figure). The machine's load average is printed
 with the table: the 2 cores are shared, and the times are wall-clock.
+
+``--tradeoff margin|cost`` adds a second table: the trade-off sweep (``--points``) with its
+rounds sharing one compile (:func:`synth.platform.rationalise.tradeoff`, ``share=True``)
+against each round solved afresh (``share=False``, as before), alternating ``--repeat``
+times on the same feasibility data; wall and process CPU seconds (medians), their ratios,
+and whether the rows are identical.
 """
 
 from __future__ import annotations
@@ -50,6 +56,9 @@ def main(argv=None) -> None:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--synthetic", action="store_true", help="synthetic feasibility data instead of real portfolios")
     ap.add_argument("--plot", help="write the margin trade-off plot of the largest size to this PNG")
+    ap.add_argument("--tradeoff", choices=["margin", "cost"], help="also time the trade-off sweep, shared vs afresh")
+    ap.add_argument("--points", type=int, default=5, help="points of the trade-off sweep (the CLI's default)")
+    ap.add_argument("--repeat", type=int, default=3, help="alternating runs of each trade-off variant")
     args = ap.parse_args(argv)
     from synth.bulk.sample import sample_portfolio
     from synth.design.evaluate import Settings
@@ -65,7 +74,7 @@ def main(argv=None) -> None:
           "| MILP vars / bin / cons / nnz | build+solve [s] | status | gap | parts (platform / union of optima) "
           "| greedy gap | verify [s] | total [s] |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    notes, last = [], None
+    notes, last, sweeps = [], None, []
     for n in args.sizes:
         t0 = time.perf_counter()
         if args.synthetic:
@@ -84,9 +93,18 @@ def main(argv=None) -> None:
                          + ", ".join(f"{g} {st[g + '_s']:.1f} s ({st[g + '_pairs']:,} rows)" for g in groups)
                          + f"; main-spring stages {st.get('spring_stage1_pairs', 0):,} rows")
         last = (pf, r)
+        if args.tradeoff:
+            sweeps.append((n, _sweep(pf, args)))
     print(f"\nload average after: {os.getloadavg()[0]:.1f}")
     if notes:
         print("\n" + "\n".join(notes))
+    if sweeps:
+        print(f"\ntrade-off sweep ({args.tradeoff}, {args.points} points), rounds sharing one compile (B) against "
+              f"each round afresh (A), {args.repeat} alternating runs, medians:\n")
+        print("| apps | A wall [s] | B wall [s] | B/A wall | A CPU [s] | B CPU [s] | B/A CPU | rows identical |")
+        print("|---|---|---|---|---|---|---|---|")
+        for n, (wa, wb, ca, cb, same) in sweeps:
+            print(f"| {n:,} | {wa:.1f} | {wb:.1f} | {wb / wa:.2f} | {ca:.1f} | {cb:.1f} | {cb / ca:.2f} | {same} |")
     if args.plot and last:
         from synth.platform.outputs import plot_tradeoff
         from synth.platform.rationalise import tradeoff
@@ -95,6 +113,21 @@ def main(argv=None) -> None:
         print(f"\ntrade-off ({len(last[0].apps)} applications): "
               + "; ".join(f"floor {x['margin_floor']:.3f}: {x['parts']} parts, {x['served']} served" for x in rows)
               + f" -> {args.plot}")
+
+
+def _sweep(pf, args) -> tuple:
+    """Median wall and CPU seconds of the trade-off sweep afresh (A) and shared (B), alternating."""
+    import statistics
+    from synth.platform.rationalise import tradeoff
+    wall, cpu, rows = {False: [], True: []}, {False: [], True: []}, {}
+    for _ in range(args.repeat):
+        for share in (False, True):
+            t0, c0 = time.perf_counter(), time.process_time()
+            rows[share] = tradeoff(pf, args.tradeoff, points=args.points, time_limit=args.time_limit, share=share)
+            wall[share].append(time.perf_counter() - t0)
+            cpu[share].append(time.process_time() - c0)
+    med = statistics.median
+    return med(wall[False]), med(wall[True]), med(cpu[False]), med(cpu[True]), rows[False] == rows[True]
 
 
 if __name__ == "__main__":

@@ -275,3 +275,34 @@ def test_unservable_application_says_why():
     assert bad and all(x["reason"] for x in bad)
     assert any("no feasible core" in x["reason"] or "no core passes" in x["reason"] for x in bad)
     assert any("missing: " in x["reason"] for x in bad)
+
+
+def test_precompiled_compile_equals_a_fresh_one():
+    """One precompile serves every floor and objective: compiling from it equals compiling afresh (a floor
+    must not edit the shared arrays; the reductions edit the Work in place, so prune each before the next)."""
+    from synth.platform.compile import precompile
+    pf = synthetic_portfolio(40, seed=5)
+    pre = precompile(pf)
+    margins = np.concatenate([a.core_margin for a in pf.apps])
+    floors = [None, 0.0, *np.quantile(margins[margins > 0], [0.25, 0.5, 0.9])]
+    sizes = []
+    for floor in floors:
+        for objective in ("variants", "cost"):
+            a = compile_portfolio(pf, objective, min_margin=floor)
+            b = compile_portfolio(pf, objective, min_margin=floor, pre=pre)
+            prune(compile_portfolio(pf, objective, min_margin=floor, pre=pre))
+            assert a.unservable == b.unservable
+            ia, ib = a.instance(), b.instance()
+            for k, v in vars(ia).items():
+                assert np.array_equal(v, vars(ib)[k]) if isinstance(v, np.ndarray) else v == vars(ib)[k], (floor, k)
+        sizes.append(a.sizes()["row_options"])
+    assert sizes[2] > 0 and sizes[-1] < sizes[0]     # the floors keep some options and remove others
+
+
+@pytest.mark.parametrize("kind", ["margin", "cost"])
+def test_tradeoff_rounds_equal_fresh_rationalise(kind):
+    from synth.platform.rationalise import tradeoff
+    pf = synthetic_portfolio(40 if kind == "margin" else 15, seed=3)
+    shared = tradeoff(pf, kind, points=3, time_limit=30)
+    fresh = tradeoff(pf, kind, points=3, time_limit=30, share=False)   # each round compiled afresh, in full
+    assert len(shared) >= 2 and shared == fresh

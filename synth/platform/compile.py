@@ -32,7 +32,7 @@ from formulations.platform import PlatformInstance
 from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility, \
     default_weights
 
-__all__ = ["Work", "compile_portfolio", "app_option_cost"]
+__all__ = ["Work", "Precompiled", "precompile", "compile_portfolio", "app_option_cost"]
 
 
 def app_option_cost(pf: PortfolioFeasibility, app, s: str) -> np.ndarray:
@@ -140,23 +140,72 @@ def _why_unservable(a, dead_by: dict, n_cores: int, floor: bool) -> str:
     return "no core has a feasible option of every subsystem; missing: " + ", ".join(parts)
 
 
-def compile_portfolio(pf: PortfolioFeasibility, objective: str = "variants", *, min_margin: float | None = None,
-                      weights: dict | None = None) -> Work:
-    """Compile ``pf`` for ``objective`` (``variants`` or ``cost``); ``weights``: per-family weights
-    (defaults :func:`~synth.platform.data.default_weights`); ``min_margin``: the margin floor."""
-    w = {**default_weights(), **(weights or {})}
+@dataclass
+class Precompiled:
+    """What :func:`compile_portfolio` computes whatever the margin floor and objective: the options'
+    patterns and, per application, subsystem and group, the feasible options sorted by (pattern, cost) with
+    their margins (a floor then keeps a subsequence: the sort of the kept options is the same). The trade-off
+    sweep compiles a portfolio once with :func:`precompile` and each floor from it."""
+
+    pf: PortfolioFeasibility
+    offset: dict
+    part_family: np.ndarray
+    part_fixed: np.ndarray
+    patterns: _Patterns          # after the empty pattern and every option's pattern
+    option_pattern: dict
+    groups: list                 # per app: {subsystem: [(patterns, costs x volume, margins) per group]}
+
+
+def precompile(pf: PortfolioFeasibility) -> Precompiled:
+    """The floor- and objective-independent part of :func:`compile_portfolio` (see :class:`Precompiled`)."""
     offset, j = {}, 0
     for f in FAMILIES:
         offset[f] = j
         j += len(pf.parts[f])
     part_family = np.concatenate([np.full(len(pf.parts[f]), i) for i, f in enumerate(FAMILIES)]).astype(np.int64)
-    part_weight = np.concatenate([np.full(len(pf.parts[f]), float(w[f])) for f in FAMILIES])
     part_fixed = np.concatenate([np.asarray(pf.part_cost_eur[f], float) for f in FAMILIES])
     pats = _Patterns()
     pats.get(np.zeros(0))  # pattern 0: the empty pattern
-    glob = lambda f, codes: np.where(np.asarray(codes) < 0, -1, np.asarray(codes) + offset[f])  # noqa: E731
-    option_pattern = {s: pats.many(np.stack([glob(f, pf.options[s][f]) for f in fams], axis=1))
+    option_pattern = {s: pats.many(np.stack([_glob(offset, f, pf.options[s][f]) for f in fams], axis=1))
                       for s, fams in SUBSYSTEM_FAMILIES.items()}
+    groups = []
+    for a in pf.apps:
+        ga = {}
+        for s in SUBSYSTEMS:
+            cost = app_option_cost(pf, a, s) * float(a.volume)
+            ga[s] = []
+            for idx, mar in zip(a.feasible[s], a.option_margin[s]):
+                idx = np.asarray(idx, np.int64)
+                p, cst = option_pattern[s][idx], cost[idx]
+                order = np.lexsort((cst, p))                      # per pattern the cheapest first (stable)
+                ga[s].append((p[order], cst[order], np.asarray(mar, float)[order]))
+        groups.append(ga)
+    return Precompiled(pf=pf, offset=offset, part_family=part_family, part_fixed=part_fixed, patterns=pats,
+                       option_pattern=option_pattern, groups=groups)
+
+
+def _glob(offset: dict, f: str, codes) -> np.ndarray:
+    codes = np.asarray(codes)
+    return np.where(codes < 0, -1, codes + offset[f])
+
+
+def compile_portfolio(pf: PortfolioFeasibility, objective: str = "variants", *, min_margin: float | None = None,
+                      weights: dict | None = None, pre: Precompiled | None = None) -> Work:
+    """Compile ``pf`` for ``objective`` (``variants`` or ``cost``); ``weights``: per-family weights
+    (defaults :func:`~synth.platform.data.default_weights`); ``min_margin``: the margin floor; ``pre``: the
+    :func:`precompile` of ``pf`` when compiling it for several floors (the same result, faster)."""
+    if pre is None:
+        pre = precompile(pf)
+    elif pre.pf is not pf:
+        raise ValueError("compile_portfolio: pre was precompiled from another portfolio")
+    w = {**default_weights(), **(weights or {})}
+    offset = pre.offset
+    part_family = pre.part_family
+    part_weight = np.concatenate([np.full(len(pf.parts[f]), float(w[f])) for f in FAMILIES])
+    part_fixed = pre.part_fixed
+    pats = _Patterns()
+    pats.ids, pats.list = dict(pre.patterns.ids), list(pre.patterns.list)
+    option_pattern = pre.option_pattern
     tau = -np.inf if min_margin is None else float(min_margin)
     app_index, c_app, c_loc, c_pat, c_cost = [], [], [], [], []
     r_app, r_sub, r_cores, r_pats, r_cost = [], [], [], [], []
@@ -170,14 +219,12 @@ def compile_portfolio(pf: PortfolioFeasibility, objective: str = "variants", *, 
         gp, gc = {}, {}
         dead_by = {}
         for s in SUBSYSTEMS:
-            cost = app_option_cost(pf, a, s) * float(a.volume)
             gp[s], gc[s] = [], []
-            for idx, mar in zip(a.feasible[s], a.option_margin[s]):
-                idx = np.asarray(idx, np.int64)[np.asarray(mar, float) >= tau]
-                p, cst = option_pattern[s][idx], cost[idx]
-                order = np.lexsort((cst, p))                      # per pattern the cheapest first
-                p, cst = p[order], cst[order]
-                first = np.r_[True, p[1:] != p[:-1]] if len(p) else np.zeros(0, bool)
+            for p, cst, mar in pre.groups[ai][s]:
+                keep = mar >= tau
+                p, cst = p[keep], cst[keep]
+                first = np.ones(len(p), bool)                     # per pattern the cheapest kept
+                first[1:] = p[1:] != p[:-1]
                 gp[s].append(p[first])
                 gc[s].append(cst[first])
             g = np.asarray(a.group[s], np.int64)
@@ -192,7 +239,7 @@ def compile_portfolio(pf: PortfolioFeasibility, objective: str = "variants", *, 
         inst_a = len(app_index)
         app_index.append(ai)
         loc = np.flatnonzero(ok)
-        codes = np.stack([glob(f, np.asarray(a.core_parts[f])[loc]) for f in CORE_FAMILIES], axis=1)
+        codes = np.stack([_glob(offset, f, np.asarray(a.core_parts[f])[loc]) for f in CORE_FAMILIES], axis=1)
         c_app.append(np.full(len(loc), inst_a))
         c_loc.append(loc)
         c_pat.append(pats.many(codes))

@@ -260,8 +260,12 @@ def dominated_cores(w: Work) -> int:
         upat, inv = np.unique(w.core_pattern[cs], return_inverse=True)
         better = _subset_matrix(w, upat)[np.ix_(inv, inv)]      # better[a, b]: parts(a) <= parts(b)
         for si in range(len(SUBSYSTEMS)):
+            if np.count_nonzero(better) == len(cs):
+                break                                          # only the diagonal left: no core dominates another
             r = cr[cs, si]
             ur, rinv = np.unique(r, return_inverse=True)
+            if len(ur) == 1:
+                continue                                       # one row for every core: holds its own options
             live = ur[ur >= 0]
             sup = np.ones((len(ur), len(ur)), bool)            # sup[a, b]: row a holds row b's options
             if len(live):

@@ -20,7 +20,7 @@ import numpy as np
 from formulations.platform import solve as solve_milp
 from synth.errors import InputError, Problem
 from synth.platform.assign import assign, full_platform, objective_value, platform_from_y
-from synth.platform.compile import compile_portfolio
+from synth.platform.compile import Precompiled, compile_portfolio, precompile
 from synth.platform.data import FAMILIES, PortfolioFeasibility, default_weights
 from synth.platform.greedy import greedy
 from synth.platform.prune import prune as prune_work
@@ -93,7 +93,8 @@ def _check(objective, max_variants, time_limit, weights):
 
 def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_variants: dict | None = None,
                 time_limit: float = 60.0, weights: dict | None = None, solver: str = "highs", prune: bool = True,
-                min_margin: float | None = None, budget: float | None = None, verify: bool = True) -> PlatformResult:
+                min_margin: float | None = None, budget: float | None = None, verify: bool = True,
+                pre: Precompiled | None = None, details: bool = True) -> PlatformResult:
     """The platform of ``pf`` minimising ``objective`` (``variants``: weighted count of distinct
     parts; ``cost``: unit cost x volume plus per-variant fixed cost).
 
@@ -101,12 +102,15 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     reported, not an error); ``min_margin``: only cores and options with at least this
     margin; ``budget``: a ceiling on the weighted part count (the trade-off sweep);
     ``verify``: check every assigned design again through the evaluator
-    (:func:`synth.platform.verified.verify_records`, real data only).
+    (:func:`synth.platform.verified.verify_records`, real data only); ``pre``: ``pf``'s
+    :func:`~synth.platform.compile.precompile` (several solves of one portfolio compile it once);
+    ``details=False`` leaves out what only the platform's own report reads (the per-application optima on the
+    full catalog, ``price`` and ``table``): the trade-off rows do not need them.
     """
     _check(objective, max_variants, time_limit, weights)
     w_all = {**default_weights(), **(weights or {})}
     t0 = time.perf_counter()
-    work = compile_portfolio(pf, objective, min_margin=min_margin, weights=w_all)
+    work = compile_portfolio(pf, objective, min_margin=min_margin, weights=w_all, pre=pre)
     before = work.sizes()
     t1 = time.perf_counter()
     capped = bool(max_variants) or budget is not None
@@ -149,7 +153,7 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
                 if code >= 0:
                     used[f].add(code)
     platform = {f: platform[f] & used[f] for f in FAMILIES}
-    per_app = assign(pf, full_platform(pf), min_margin=min_margin)
+    per_app = assign(pf, full_platform(pf), min_margin=min_margin) if details else []
     t5 = time.perf_counter()
     obj = sol.objective if sol.y is not None else g_val
     res = PlatformResult(
@@ -162,6 +166,8 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
                "solve_s": sol.time_s, "milp_s": t4 - t3, "assign_s": t5 - t4 - t_v, "verify_s": t_v,
                "total_s": t5 - t0},
         per_app_optima=per_app, weights=w_all, max_variants=dict(max_variants or {}), notes=notes)
+    if not details:
+        return res
     from synth.platform.outputs import platform_table, price_of_standardisation
     res.price = price_of_standardisation(pf, res)
     res.table = platform_table(pf, res).to_dict(orient="records")
@@ -169,7 +175,7 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
 
 
 def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6, time_limit: float = 30.0,
-             weights: dict | None = None, progress=None) -> list:
+             weights: dict | None = None, progress=None, share: bool = True) -> list:
     """Platform size against worst margin (``kind="margin"``) or against total cost (``"cost"``).
 
     ``margin``: for margin floors from 0 up to the lower quartile of the applications' best
@@ -178,7 +184,9 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
     the smallest platform up to the size of the cost-optimal one, the cheapest platform
     (unit cost x volume + per-variant fixed cost) within the budget (an epsilon constraint).
     Returns rows ``{"parts", "cost_eur", "worst_margin", "served", "status", ...}``. ``progress(done, total)`` is
-    called after each platform solved.
+    called after each platform solved. ``share``: the rounds compile the portfolio once
+    (:func:`~synth.platform.compile.precompile`) and leave out the reports' details; ``False`` solves each round
+    afresh (the same rows, slower: the benchmark's and the tests' yardstick).
     """
     if kind not in ("margin", "cost"):
         raise InputError(Problem("trade-off", kind, "margin or cost"))
@@ -213,25 +221,28 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
         top = float(np.quantile(np.minimum(pos, 1e6), 0.25)) if pos else 0.0
         import dataclasses
         pf = dataclasses.replace(pf, apps=[a for b, a in best if b >= top])   # one set of applications for every floor
-        base = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False)
+        pre = precompile(pf) if share else None   # compiled once: each floor keeps a subset of its options
+        base = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False, pre=pre,
+                           details=not share)
         tick(1, points)
         n_served = len(pf.apps)
         for tau in np.linspace(0.0, top, points):
             r = base if tau == 0.0 else rationalise(pf, "variants", time_limit=time_limit, weights=weights,
-                                                    min_margin=float(tau), verify=False)
+                                                    min_margin=float(tau), verify=False, pre=pre, details=not share)
             tick(len(rows) + 1, points)
             rows.append(row(r, margin_floor=float(tau)))
             if rows[-1]["served"] < n_served:
                 rows[-1]["status"] += " (fewer served)"
         return rows
-    small = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False)
-    cheap = rationalise(pf, "cost", time_limit=time_limit, weights=weights, verify=False)
+    pre = precompile(pf) if share else None
+    small = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False, pre=pre, details=not share)
+    cheap = rationalise(pf, "cost", time_limit=time_limit, weights=weights, verify=False, pre=pre, details=not share)
     lo, hi = sum(small.weights[f] * len(c) for f, c in small.platform.items()), \
         sum(cheap.weights[f] * len(c) for f, c in cheap.platform.items())
     budgets = np.unique(np.round(np.linspace(lo, max(hi, lo), points), 6))
     for b in budgets:
         r = cheap if b >= hi else rationalise(pf, "cost", time_limit=time_limit, weights=weights, budget=float(b),
-                                              verify=False)
+                                              verify=False, pre=pre, details=not share)
         rows.append(row(r, budget=float(b)))
         tick(len(rows), len(budgets))
     return rows
