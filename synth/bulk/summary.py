@@ -211,7 +211,8 @@ def write_summary(s: Summary, folder, rules=None) -> list[Path]:
         written.append(write_csv(df, d / f"summary_{name}.csv", "--summary", float_format=CSV_FLOAT))
     md = ["## Portfolio summary", "", text(s).replace("\n", "  \n"), "", "### Overall", "", markdown_table(overall)]
     if rules is not None and rules.lines():
-        md[3:3] = ["", "### Design rules", "", *(f"    {line}" for line in rules.lines())]
+        # a code block, one line per rule: a name holding a newline cannot leave it
+        md[3:3] = ["", "### Design rules", "", *("    " + " ".join(line.splitlines()) for line in rules.lines())]
     titles = {"by_group": "Feasible share by group", "parts": "Parts chosen (feasible applications)",
               "binding": "Binding constraints (feasible applications)",
               "violated": "Violated constraints (infeasible applications, nearest design)",

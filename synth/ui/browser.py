@@ -21,7 +21,9 @@ from urllib.parse import urlparse
 
 __all__ = ["CHROMIUM_FLAGS", "free_port", "start_server", "stop_server", "launch_chromium", "goto_when_up", "is_local"]
 
-ROOT = Path(__file__).resolve().parents[2]
+#: the folder this ``synth`` package was imported from (a clone's checkout, or site-packages): the server process
+#: is given it first on its path so that it runs this same code, never another installed copy
+PACKAGE_HOME = Path(sys.modules["synth"].__file__).resolve().parent.parent
 
 #: headless, no GPU, no sandbox (containers), and none of Chromium's own traffic (updates, sync, first run)
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
@@ -38,7 +40,7 @@ def free_port() -> int:
 def start_server(port: int, *args: str, env: dict | None = None) -> tuple[subprocess.Popen, str]:
     """``python -m synth ui --port PORT ARGS`` as a process; returns it and the first line it printed."""
     e = {**os.environ, **(env or {}), "PYTHONUNBUFFERED": "1"}
-    e["PYTHONPATH"] = str(ROOT) + os.pathsep + e.get("PYTHONPATH", "")
+    e["PYTHONPATH"] = str(PACKAGE_HOME) + os.pathsep + e.get("PYTHONPATH", "")
     e.pop("PYTEST_CURRENT_TEST", None)  # NiceGUI would take its own test mode (and port) for a test's child
     proc = subprocess.Popen([sys.executable, "-m", "synth", "ui", "--port", str(port), *args], env=e,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
