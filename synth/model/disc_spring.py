@@ -55,7 +55,6 @@ __all__ = [
 #: ``screening``: linear (secant) characteristic; ``full``: Almen-Laszlo.
 FIDELITIES = ("screening", "full")
 
-_TINY = np.finfo(float).tiny
 
 
 def _f(x):
