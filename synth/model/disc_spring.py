@@ -56,7 +56,6 @@ __all__ = [
 FIDELITIES = ("screening", "full")
 
 
-
 def _f(x):
     return np.asarray(x, dtype=float)
 
