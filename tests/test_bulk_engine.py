@@ -114,8 +114,8 @@ def test_column_contract(ref_standard):
     assert cols[:6] == ["feasible", "status", "verdict", "objective_standard", "objective_cost_eur",
                         "objective_margin"]
     assert [f"part_{k}" for k in PART_KEYS] == cols[6:6 + len(PART_KEYS)]
-    # one margin column per registry constraint but the 3D model's, in registry order
-    assert [f"margin_{n}" for n in REGISTRY if REGISTRY[n].group != "cad"] == \
+    # one margin column per registry constraint but the 3D model's and the shrink fit's, in registry order
+    assert [f"margin_{n}" for n in REGISTRY if REGISTRY[n].group not in ("cad", "shrink_fit")] == \
         [c for c in cols if c.startswith("margin_") and c != "margin_min"]
     assert cols[-3:] == ["violated", "relaxation", "notes"]
     assert ref_standard["feasible"].dtype == bool
