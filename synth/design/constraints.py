@@ -48,6 +48,8 @@ from typing import Callable
 
 import numpy as np
 
+from synth.model import pivot
+
 __all__ = ["words", "Constraint", "REGISTRY", "GROUPS", "EVALUATED_GROUPS", "TENSIONER_GROUPS", "REQUIREMENTS", "margin", "normalised_margin", "by_group",
            "FEAS_TOL", "register", "unregister", "registered", "version", "physics_inputs"]
 
@@ -495,10 +497,13 @@ _ENTRIES = (
                assumes=("middle_plane_belt_height_increment_worst_mm",),
                correction="a larger pivot base (engine_support_external_diameter_mm)",
                relaxed_by=("tilting_safety_factor", "sliding_safety_factor", "engine_support_external_diameter_mm")),
+    # step 2's wall around the bolt hole depends on the bolt's diameter: judged when the bolt is chosen; the one
+    # bolt check that reads the core (its physics' parameters), so the bulk engine evaluates it per core and
+    # bolt diameter, the others per application and bolt (synth.optimise.batch)
     Constraint(id="pivot_wall", label="pivot wall around the bolt hole", step=2, equation="step 2", unit="mm",
                group="bolt", value="pivot_wall_mm", limit="pivot_min_wall_mm", sense=">=",
-               correction="a larger pivot diameter, a shorter loading arm or a "
-               "smaller bolt"),
+               physics=pivot.pivot_wall_values,
+               correction="a larger pivot diameter, a shorter loading arm or a smaller bolt"),
 )
 
 _CAD = (
