@@ -46,7 +46,7 @@ __all__ = ["Settings", "SPRING_LIMIT_BASES", "SPRING_TOLERANCE_COLUMNS", "MADE_C
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
            "spring_values", "SPRING_OPTION_COLUMNS", "drive_values", "fixation_values", "bolt_core", "bolt_core_checks", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
            "BOLT_CORE_VALUES", "axial_judged", "axial_full", "FIDELITY_TEXT", "UNVERIFIED_NOTE", "FIDELITY_VALUES",
-           "FIDELITY_FREE", "fidelity_free_ok"]
+           "fidelity_free_ok"]  # FIDELITY_FREE: read at call time (__getattr__)
 
 EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
 #: ``full``: the full model everywhere; ``screening``: the searches rank and prune with the screening model and the
