@@ -29,7 +29,7 @@ from synth import catalog
 from synth.parts import arrays, next_catalog_length_mm
 from synth.design import evaluate
 from synth.design.applications import Applications
-from synth.design.constraints import FEAS_TOL
+from synth.design.constraints import FEAS_TOL, TENSIONER_GROUPS
 from synth.design.rules import echo
 from synth.schema import plausibility
 from synth.design.result import NOT_VERIFIED, Check, Result, checks_of, plain
@@ -302,8 +302,8 @@ def _stopped(walk: _Walk, stop: _Stop) -> Result:
     checks = checks_of(groups, apps)
     done = {c.id for c in checks}
     from synth.design.constraints import REGISTRY
-    for cid in REGISTRY:
-        if cid not in done:
+    for cid, c in REGISTRY.items():
+        if cid not in done and c.group in TENSIONER_GROUPS:
             checks.append(Check(cid, None, None, None, NOT_VERIFIED, f"not run: the flowchart stopped at step {stop.step}"))
     order = {cid: i for i, cid in enumerate(REGISTRY)}
     checks.sort(key=lambda c: order[c.id])

@@ -83,6 +83,23 @@ def test_margin_objective_rows_are_the_max_min_design():
                                                           settings=Settings(fidelity="screening")).objectives["margin"])
 
 
+def test_fast_equals_reference_under_a_pivot_wall_rule():
+    """A design rule on the pivot wall (a 2 mm minimum wall and 20 % margin beyond it, :mod:`synth.design.rules`)
+    reaches the fast path's per-core bolt checks as every other check (the registry's ``finish``): the nearest
+    designs of the two infeasible applications equal the enumeration's (pivot classes 17 and 16 mm, smallest
+    margins -0.074 and -0.067; the fast path judged the wall without the rule before issue 21's mend and chose
+    15 and 14 mm at -0.5) and the feasible one's optimum too."""
+    from synth.design.rules import using
+    pool = generate(6, seed=5)
+    apps = [pool[0], pool[5], pool[1]]
+    with using({"limits": {"pivot_min_wall_mm": 2.0}, "min_margins": {"pivot_wall": 0.2}}):
+        fast = screen_applications(apps, diagnose=False)
+        ref = screen_applications_reference(apps, diagnose=False)
+    _assert_same(fast, ref)
+    assert fast["feasible"].tolist() == [False, False, True]
+    assert fast["part_pivot_class_diameter_mm"].astype(float).tolist()[:2] == [17.0, 16.0]
+
+
 def test_fast_equals_reference_full_fidelity():
     apps = generate(3, seed=2)
     fast = screen_applications(apps, fidelity="full", diagnose=False)
@@ -114,8 +131,8 @@ def test_column_contract(ref_standard):
     assert cols[:6] == ["feasible", "status", "verdict", "objective_standard", "objective_cost_eur",
                         "objective_margin"]
     assert [f"part_{k}" for k in PART_KEYS] == cols[6:6 + len(PART_KEYS)]
-    # one margin column per registry constraint but the 3D model's, in registry order
-    assert [f"margin_{n}" for n in REGISTRY if REGISTRY[n].group != "cad"] == \
+    # one margin column per registry constraint but the 3D model's and the shrink fit's, in registry order
+    assert [f"margin_{n}" for n in REGISTRY if REGISTRY[n].group not in ("cad", "shrink_fit")] == \
         [c for c in cols if c.startswith("margin_") and c != "margin_min"]
     assert cols[-3:] == ["violated", "relaxation", "notes"]
     assert ref_standard["feasible"].dtype == bool

@@ -15,6 +15,7 @@ from __future__ import annotations
 import inspect
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import synth
@@ -97,3 +98,31 @@ def test_a_spring_check_runs_the_kernels_on_their_numpy_twin_and_binds_in_the_pl
     pf = feasibility([d])   # the kernels again: the step-9 checks bind
     assert {str(b) for g in pf.apps[0].option_binding["spring"] for b in g} == {
         "spring_coil_gap", "spring_fatigue", "spring_index_max", "spring_outer_contact"}
+
+
+def test_a_bolt_check_reading_the_core_is_judged_per_core_in_the_bulk_fast_path():
+    """A bolt check whose physics reads a core value, as the pivot wall's does, is judged per core row and bolt
+    by the bulk engine's fast path (:func:`synth.design.evaluate.bolt_core_checks`), never per application: a
+    pivot of at most 18 mm (margin ``(18 - d_p) / 18``, failing for the 19-25 mm pivots) gives the answers of
+    the exhaustive enumeration (before issue 21's mend such a check was evaluated with the application's first
+    core, or not found: a KeyError)."""
+    from synth.bulk.engine import screen_applications, screen_applications_reference
+    from synth.data.generated_applications import generate
+    from synth.design.evaluate import bolt_core_checks
+
+    def physics(pivot_diameter_mm, bolt_d_mm):
+        d = np.asarray(pivot_diameter_mm, dtype=float) + 0.0 * np.asarray(bolt_d_mm, dtype=float)
+        return {"probe_pivot_value": d, "probe_pivot_limit": np.full(np.shape(d), 18.0)}
+    probe_pivot = Constraint(id="probe_pivot", label="probe: pivot at most 18 mm", step=2, equation="test",
+                             unit="mm", group="bolt", value="probe_pivot_value", limit="probe_pivot_limit",
+                             sense="<=", physics=physics)
+    apps = generate(4, seed=3)
+    with registered(probe_pivot):
+        assert [c.id for c in bolt_core_checks()] == ["pivot_wall", "probe_pivot"]
+        fast = screen_applications(apps, diagnose=False)
+        ref = screen_applications_reference(apps, diagnose=False)
+    pd.testing.assert_frame_equal(fast, ref, check_exact=False, rtol=1e-9, atol=1e-12)
+    # every chosen pivot passes (the feasible designs) and one sits on the limit: the check bound the choice
+    pivots = 18.0 - 18.0 * fast["margin_probe_pivot"].to_numpy()
+    assert fast["feasible"].all() and (pivots <= 18.0 + 1e-9).all() and np.isclose(pivots, 18.0).any()
+    assert set(np.round(pivots, 9)) <= {float(d) for d in range(14, 26)}                 # pivot diameters [mm]

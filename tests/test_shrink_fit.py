@@ -125,3 +125,23 @@ def test_margin_vs_reassemblies_and_plot(tmp_path):
     out = tmp_path / "m.png"
     selection.plot_margins(curves, out)
     assert out.stat().st_size > 1000
+
+
+# ---------------------------------------------------------------- one check type (issue 21)
+def test_checks_are_the_registry_group_judged_by_its_rule(physics):
+    """The four checks are the registry's group ``shrink_fit`` (one ``Check`` type, one margin, one verdict rule):
+    the hub check by hand (107.8 MPa against the Lame limit 155.11 MPa: (155.11 - p)/155.11), and a margin
+    within the shared round-off tolerance (-FEAS_TOL < m < 0) passes as every tensioner check does."""
+    from synth.design.constraints import FEAS_TOL, by_group
+    from synth.design.result import Check
+    assert [c["id"] for c in physics["checks"]] == [c.id for c in by_group("shrink_fit")] == [
+        "shrink_fit_slip_new", "shrink_fit_slip_worn", "shrink_fit_hub_elastic", "shrink_fit_journal_elastic"]
+    hub = next(c for c in physics["checks"] if c["id"] == "shrink_fit_hub_elastic")
+    assert hub["sense"] == "<=" and hub["margin"] == pytest.approx((hub["limit"] - hub["value"]) / hub["limit"], rel=1e-12)
+    assert hub["limit"] == pytest.approx(155.11, abs=0.01)
+    worn = next(c for c in physics["checks"] if c["id"] == "shrink_fit_slip_worn")
+    assert worn["verdict"] == "fail" and worn["correction"]           # a failed check says what to change
+    assert physics["margin"] == min(c["margin"] for c in physics["checks"])
+    limit = 180.0
+    assert Check.judged("shrink_fit_slip_worn", limit * (1 - FEAS_TOL / 2), limit).verdict == "pass"
+    assert Check.judged("shrink_fit_slip_worn", limit * (1 - 2 * FEAS_TOL), limit).verdict == "fail"

@@ -34,7 +34,7 @@ import numpy as np
 import pandas as pd
 
 from synth.design import evaluate
-from synth.design.constraints import FEAS_TOL, REGISTRY, version
+from synth.design.constraints import EVALUATED_GROUPS, FEAS_TOL, REGISTRY, version
 from synth.design.result import FAIL, PASS, WARNING
 from synth.design.space import PART_KEYS, SUBSYSTEMS
 
@@ -42,8 +42,9 @@ __all__ = ["columns", "constraint_ids", "screen_applications", "screen_applicati
 
 
 def constraint_ids() -> list:
-    """The registry constraints a bulk row reports a margin for (every group but the 3D model's)."""
-    return [cid for cid, c in REGISTRY.items() if c.group != "cad"]
+    """The registry constraints a bulk row reports a margin for (the evaluator's groups: not the 3D model's, not
+    the shrink fit's)."""
+    return [cid for cid, c in REGISTRY.items() if c.group in EVALUATED_GROUPS]
 
 
 def columns() -> list:

@@ -48,7 +48,9 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["words", "Constraint", "REGISTRY", "GROUPS", "REQUIREMENTS", "margin", "normalised_margin", "by_group",
+from synth.model import pivot
+
+__all__ = ["words", "Constraint", "REGISTRY", "GROUPS", "EVALUATED_GROUPS", "TENSIONER_GROUPS", "REQUIREMENTS", "margin", "normalised_margin", "by_group",
            "FEAS_TOL", "register", "unregister", "registered", "version", "physics_inputs"]
 
 #: a margin above ``-FEAS_TOL`` passes (round-off of equal values)
@@ -58,8 +60,14 @@ FEAS_TOL = 1e-9
 #: does (absolute); no physical limit of the registry is that small
 SCALE_FLOOR = 1e-9
 
-#: evaluation groups, in the thesis's order of the decomposition (see :mod:`synth.design.space`)
-GROUPS = ("input", "core", "bushing", "axial", "spring", "bolt", "cad")
+#: the groups the tensioner's evaluator computes for a design (:mod:`synth.design.evaluate`: the flowchart, the
+#: optimisers, the bulk engine, the platform), in the thesis's order of the decomposition (:mod:`synth.design.space`)
+EVALUATED_GROUPS = ("input", "core", "bushing", "axial", "spring", "bolt")
+#: the tensioner's groups: the evaluator's and its 3D model's (``cad``: measured on the built solids, step 11)
+TENSIONER_GROUPS = (*EVALUATED_GROUPS, "cad")
+#: every group: the tensioner's and the crankshaft pulley's shrink fit (``shrink_fit``: its own scene,
+#: :mod:`synth.shrink_fit.analysis`, never a tensioner design's check)
+GROUPS = (*TENSIONER_GROUPS, "shrink_fit")
 
 #: named requirements: name -> (the input fields, readable description). A requirement is met when every
 #: field is given, except ``durability`` (also met by ``durability_test: assumed`` with an ``engine_type``).
@@ -489,10 +497,13 @@ _ENTRIES = (
                assumes=("middle_plane_belt_height_increment_worst_mm",),
                correction="a larger pivot base (engine_support_external_diameter_mm)",
                relaxed_by=("tilting_safety_factor", "sliding_safety_factor", "engine_support_external_diameter_mm")),
+    # step 2's wall around the bolt hole depends on the bolt's diameter: judged when the bolt is chosen; the one
+    # bolt check that reads the core (its physics' parameters), so the bulk engine evaluates it per core and
+    # bolt diameter, the others per application and bolt (synth.optimise.batch)
     Constraint(id="pivot_wall", label="pivot wall around the bolt hole", step=2, equation="step 2", unit="mm",
                group="bolt", value="pivot_wall_mm", limit="pivot_min_wall_mm", sense=">=",
-               correction="a larger pivot diameter, a shorter loading arm or a "
-               "smaller bolt"),
+               physics=pivot.pivot_wall_values,
+               correction="a larger pivot diameter, a shorter loading arm or a smaller bolt"),
 )
 
 _CAD = (
@@ -524,6 +535,29 @@ _CAD = (
     Constraint(id="cad_collar", label="spring-bushing collar height not negative (3D model)", step=11,
                equation="step 6 stack", unit="mm", group="cad", value="cad_collar_height_mm", limit="zero",
                sense=">=", objective=False, correction="a shorter pivot bushing or a taller spring housing"),
+)
+
+_SHRINK_FIT = (
+    # --- the crankshaft pulley's shrink fit (its own scene: Siczek et al. 2025, synth.shrink_fit) -----------
+    # values and limits computed by synth.shrink_fit.analysis.analyse; step 0: not a step of the thesis
+    Constraint(id="shrink_fit_slip_new", label="shrink fit: no slip, new joint, minimum interference", step=0,
+               equation="paper eq. (1) sec. 3.3, eq. (17)", unit="Nm", group="shrink_fit",
+               value="torque_new_min_nm", limit="slip_torque_required_nm", sense=">=",
+               correction="a tighter fit (larger minimum interference) or a longer bore"),
+    Constraint(id="shrink_fit_slip_worn",
+               label="shrink fit: no slip after the case's displacements, minimum interference", step=0,
+               equation="paper eq. (1) sec. 3.3, eq. (19)", unit="Nm", group="shrink_fit",
+               value="torque_worn_min_nm", limit="slip_torque_required_nm", sense=">=",
+               correction="fewer displacements (re-assemblies), smoother surfaces or a tighter fit"),
+    Constraint(id="shrink_fit_hub_elastic", label="shrink fit: hub bore stays elastic at maximum interference",
+               step=0, equation="Lame + von Mises", unit="MPa", group="shrink_fit", value="pressure_peak_mpa",
+               limit="hub_yield_pressure_mpa", sense="<=",
+               correction="a looser fit (smaller maximum interference), a larger hub or a stronger hub material"),
+    Constraint(id="shrink_fit_journal_elastic", label="shrink fit: journal stays elastic at maximum interference",
+               step=0, equation="Lame + von Mises", unit="MPa", group="shrink_fit", value="pressure_peak_mpa",
+               limit="journal_yield_pressure_mpa", sense="<=",
+               correction="a looser fit (smaller maximum interference), a smaller bore in the journal or a "
+               "stronger journal material"),
 )
 
 #: id -> :class:`Constraint`, in the thesis's step order within each group (entries added by :func:`register` last)
@@ -577,4 +611,4 @@ def by_group(group: str) -> tuple[Constraint, ...]:
     return hit
 
 
-register(*_ENTRIES, *_CAD)
+register(*_ENTRIES, *_CAD, *_SHRINK_FIT)

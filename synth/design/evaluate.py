@@ -44,9 +44,9 @@ from synth.design.rules import active as active_rules
 
 __all__ = ["Settings", "SPRING_LIMIT_BASES", "SPRING_TOLERANCE_COLUMNS", "MADE_CONE_SPRING_COLUMNS", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
-           "spring_values", "SPRING_OPTION_COLUMNS", "drive_values", "fixation_values", "pivot_wall_values", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
+           "spring_values", "SPRING_OPTION_COLUMNS", "drive_values", "fixation_values", "bolt_core", "bolt_core_checks", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
            "BOLT_CORE_VALUES", "axial_judged", "axial_full", "FIDELITY_TEXT", "UNVERIFIED_NOTE", "FIDELITY_VALUES",
-           "FIDELITY_FREE", "fidelity_free_ok"]
+           "fidelity_free_ok"]  # FIDELITY_FREE: read at call time (__getattr__)
 
 EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
 #: ``full``: the full model everywhere; ``screening``: the searches rank and prune with the screening model and the
@@ -210,19 +210,21 @@ class Group:
                      {k: v[idx] for k, v in self.margins.items()}, {k: v[idx] for k, v in self.state.items()})
 
 
-def finish(name: str, values: dict, apps, a) -> Group:
-    """The registry margins of group ``name`` from its ``values`` for rows of applications ``a``.
+def finish(name: str, values: dict, apps, a, checks: tuple | None = None) -> Group:
+    """The registry margins of group ``name`` (or of its ``checks`` only) from its ``values`` for rows of
+    applications ``a`` (an array of any shape: every value broadcasts to it).
 
     ``apps`` may be None (a group measured on a built model, the CAD checks): a constraint that needs an input
     is then not verified where its limit is NaN. The design rules in force (:func:`synth.design.rules.active`)
     set the limits they name and the margins checks must keep: the margin is then the one beyond the rule's.
     """
-    n = len(a)
+    n = np.shape(a)  # the rows' shape: 1-D, or the bulk engine's 2-D grid of core rows x bolt diameters
     margins, state = {}, {}
     met = {}
     rules = active_rules()
-    add_physics(by_group(name), values, apps, a)
-    for c in by_group(name):
+    checks = by_group(name) if checks is None else checks
+    add_physics(checks, values, apps, a)
+    for c in checks:
         if c.limit in rules.limits:  # a design rule sets this limit (synth.design.rules)
             values[c.limit] = np.full(n, rules.limits[c.limit])
         lim = _CONSTANT_LIMITS[c.limit] if c.limit in _CONSTANT_LIMITS else values[c.limit]
@@ -230,13 +232,13 @@ def finish(name: str, values: dict, apps, a) -> Group:
             scale = None if c.scale is None else (_CONSTANT_LIMITS[c.scale] if c.scale in _CONSTANT_LIMITS
                                                   else values[c.scale])
             m = margin(c, values[c.value], lim, scale) - rules.required(c.id)  # the margin beyond the rule's
-        m = np.broadcast_to(np.where(np.isnan(m), -np.inf, m), (n,))
+        m = np.broadcast_to(np.where(np.isnan(m), -np.inf, m), n)
         st = np.zeros(n, dtype=np.int8)
         if c.applies is not None:
             st[~np.asarray(values[c.applies], dtype=bool)] = NOT_APPLICABLE
         if apps is None:
             if c.needs:
-                st[(st == EVALUATED) & np.isnan(np.broadcast_to(np.asarray(lim, dtype=float), (n,)))] = NOT_VERIFIED
+                st[(st == EVALUATED) & np.isnan(np.broadcast_to(np.asarray(lim, dtype=float), n))] = NOT_VERIFIED
         else:
             for req in c.needs:
                 if req not in met:
@@ -283,7 +285,8 @@ AXIAL_CORE_VALUES = ("axial_damping_nm", "radial_damping_nm",
                      "cone_spring_table8_max_mm", "damper_pad_mean_radius_mm", "damper_pad_contact_area_mm2",
                      "damper_pad_axial_height_mm", "bearing_width_mm", "axial_group_present",
                      "damper_pad_outer_diameter_mm")
-#: what the bolt group reads of its core row (besides the application): the pivot wall around the bolt hole
+#: what the bolt group's checks may read of its core row (besides the application and the bolt): the pivot wall's
+#: (registry ``pivot_wall``); :func:`bolt_core_checks` are the checks that read them
 BOLT_CORE_VALUES = ("pivot_diameter_mm", "loading_arm_mm")
 
 
@@ -476,7 +479,10 @@ def _fidelity_free() -> tuple:
     return tuple(out)
 
 
-FIDELITY_FREE = _fidelity_free()
+def __getattr__(name):  # FIDELITY_FREE read from the registry as it is now (a check added with register included)
+    if name == "FIDELITY_FREE":
+        return _fidelity_free()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_points: int = 0) -> Group:
@@ -602,7 +608,7 @@ def fidelity_free_ok(g: Group) -> np.ndarray:
     """``(n,)`` bool: the rows of an axial group that pass every :data:`FIDELITY_FREE` constraint (the others fail
     at any fidelity)."""
     ok = np.ones(len(g), dtype=bool)
-    for cid in FIDELITY_FREE:
+    for cid in _fidelity_free():  # the registry now, never a list frozen at import (a check registered since)
         ok &= g.margins[cid] >= -FEAS_TOL
     return ok
 
@@ -801,18 +807,27 @@ def _mu(apps, key: str, interface: str, ua, env) -> np.ndarray:
     return np.asarray(d[ua] if d is not None else parts.mu(interface, env), dtype=float)
 
 
-def pivot_wall_values(pivot_diameter_mm, loading_arm_mm, bolt_d_mm) -> dict:
-    """The values of constraint ``pivot_wall`` (step 2): the bolt hole and the pivot wall around it, and its limit.
+def bolt_core_checks() -> tuple:
+    """The checks of group ``bolt`` that read the core (a :data:`BOLT_CORE_VALUES` key among what their margin
+    reads, :meth:`~synth.design.constraints.Constraint.reads`: the pivot wall of step 2, a check added with
+    ``register``); the others depend on the application and the bolt only."""
+    core = set(BOLT_CORE_VALUES)
+    return tuple(c for c in by_group("bolt") if core.intersection(c.reads()))
 
-    The only values of group ``bolt`` that depend on the core (:data:`BOLT_CORE_VALUES`); the bulk engine
-    evaluates them per core and bolt diameter, the rest per application and bolt.
-    """
-    hole = pivot.bolt_hole_diameter_mm(bolt_d_mm)
-    wall = pivot.pivot_wall_mm(pivot_diameter_mm, loading_arm_mm, hole)
-    shape = np.shape(wall)
-    return {"pivot_bolt_hole_diameter_mm": np.broadcast_to(np.asarray(hole, dtype=float), shape),
-            "pivot_wall_mm": np.asarray(wall, dtype=float),
-            "pivot_min_wall_mm": np.full(shape, _const("pivot_min_wall_mm"))}
+
+def _bolt_design_values(a, core: dict, o: dict) -> dict:
+    """What every check of group ``bolt`` may read of its design besides the application: the core's
+    :data:`BOLT_CORE_VALUES` and the bolt's nominal diameter."""
+    return {"app": a, **{k: core[k] for k in BOLT_CORE_VALUES}, "bolt_d_mm": np.asarray(o["bolt_d_mm"], dtype=float)}
+
+
+def bolt_core(apps, a, core: dict, o: dict) -> Group:
+    """The checks of group ``bolt`` that read the core (:func:`bolt_core_checks`) for rows of applications ``a``
+    with core values ``core`` (:data:`BOLT_CORE_VALUES`) and bolt columns ``o`` (``bolt_d_mm`` and what else
+    they read), broadcasting to ``a``'s shape (the bulk engine: core rows x bolt diameters): the registry's
+    margins, state and design rules as :func:`bolt` gives them, without the fixation (the per-core part of the
+    bolt group)."""
+    return finish("bolt", _bolt_design_values(a, core, o), apps, a, checks=bolt_core_checks())
 
 
 def bolt(apps, cg: Group, r, o: dict, settings: Settings = Settings(), fixation: dict | None = None) -> Group:
@@ -825,10 +840,9 @@ def bolt(apps, cg: Group, r, o: dict, settings: Settings = Settings(), fixation:
     f = _Fields(apps, a)
     n = len(a)
     fix = fixation if fixation is not None else fixation_values(apps, a, o, settings)
-    v = {"app": a, **fix}
+    v = {**_bolt_design_values(a, {k: cg.values[k][r] for k in BOLT_CORE_VALUES}, o), **fix}
     v["bolt_method_thesis"] = np.full(n, settings.bolt_method == "thesis")
     v["bolt_method_vdi"] = ~v["bolt_method_thesis"]
-    v.update(pivot_wall_values(*(cg.values[k][r] for k in BOLT_CORE_VALUES), o["bolt_d_mm"]))
     v["bolt_sigma_permissible_mpa"] = _const("bolt_yield_utilisation_max") * np.asarray(o["rp02_mpa"], dtype=float)
     v["pivot_bore_min_mm"] = np.asarray(o["pivot_bore_min_mm"], dtype=float)
     for k in ("tilting_safety_factor", "sliding_safety_factor"):

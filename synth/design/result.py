@@ -25,10 +25,10 @@ from dataclasses import dataclass, field
 
 
 from synth import display
-from synth.design.constraints import FEAS_TOL, REGISTRY
+from synth.design.constraints import FEAS_TOL, REGISTRY, margin as registry_margin
 from synth.io.outputs import plain  # JSON-friendly data (NaN and infinities as None, no subnormal number)
 
-__all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain",
+__all__ = ["Check", "Result", "verdict_of", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain",
            "checks_of", "row_verdict", "field_corrections"]
 
 PASS, FAIL, INCOMPLETE = "pass", "fail", "incomplete"
@@ -38,6 +38,16 @@ EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 3}
 
 #: significant figures of the numbers a result exports (JSON): 6, beyond what any input or catalog value carries
 EXPORT_DIGITS = 6
+
+
+def verdict_of(c, m: float) -> str:
+    """The verdict of constraint ``c`` at margin ``m``: ``pass`` above ``-FEAS_TOL`` (round-off of equal values),
+    else ``warning`` for an advisory constraint and ``fail`` for the others; every check of every scene.
+
+    >>> verdict_of(REGISTRY["spring_yield"], -1e-12), verdict_of(REGISTRY["spring_yield"], -0.01)
+    ('pass', 'fail')
+    """
+    return PASS if m >= -FEAS_TOL else (WARNING if c.advisory else FAIL)
 
 
 @dataclass
@@ -58,6 +68,23 @@ class Check:
     assumed: list = field(default_factory=list)
     #: the margin a design rule requires of this check (``margin`` is then the margin beyond it)
     required: float = 0.0
+
+    @classmethod
+    def judged(cls, cid: str, value, limit, note: str = "") -> "Check":
+        """The check of constraint ``cid`` from its value and limit, for a scene that computes them apart from the
+        evaluator's groups (the shrink fit, :mod:`synth.shrink_fit.analysis`): the registry's margin
+        (:func:`~synth.design.constraints.margin`) and verdict (:func:`verdict_of`); a value or limit None is not
+        verified.
+
+        >>> c = Check.judged("shrink_fit_hub_elastic", 107.8, 155.1)
+        >>> round(c.margin, 3), c.verdict
+        (0.305, 'pass')
+        """
+        if value is None or limit is None:
+            return cls(cid, None, None, None, NOT_VERIFIED, note)
+        c = REGISTRY[cid]
+        m = float(registry_margin(c, value, limit))
+        return cls(cid, float(value), float(limit), m, verdict_of(c, m), note)
 
     @property
     def constraint(self):
@@ -269,7 +296,7 @@ def checks_of(groups: dict, apps, row: int = 0) -> list:
         value = float(g.values[c.value][row])
         limit = evaluate._CONSTANT_LIMITS[c.limit] if c.limit in evaluate._CONSTANT_LIMITS else float(g.values[c.limit][row])
         m = float(g.margins[cid][row])
-        verdict = (PASS if m >= -FEAS_TOL else (WARNING if c.advisory else FAIL))
+        verdict = verdict_of(c, m)
         assumed = [] if apps is None else [apps.assumed_note(x, a) for x in c.assumes
                                            if x in DEFAULTS and apps.assumed(x)[a]]
         out.append(Check(cid, value, limit, m, verdict, assumed=assumed, required=active_rules().required(cid)))

@@ -149,7 +149,7 @@ class Rules:
     def from_mapping(cls, data, source: str = "rules") -> "Rules":
         """Rules of a mapping; every problem names the key (``rules.min_margins.spring_yld``), the value and what
         is accepted."""
-        from synth.design.constraints import REGISTRY
+        from synth.design.constraints import EVALUATED_GROUPS, REGISTRY
         if data is None:
             return NONE
         if isinstance(data, Rules):
@@ -180,9 +180,9 @@ class Rules:
         margins = {}
         for k, v in mapping("min_margins").items():
             c = REGISTRY.get(k)
-            if c is None or c.group in ("input", "cad") or c.advisory:
+            if c is None or c.group == "input" or c.group not in EVALUATED_GROUPS or c.advisory:
                 problems.append(Problem(f"{source}.min_margins.{k}", v, "the id of a design check of the registry "
-                                        "(not an input-only, advisory or 3D-model one)"))
+                                        "(not an input-only, advisory, 3D-model or shrink-fit one)"))
                 continue
             try:
                 margins[k] = _fraction(v, f"{source}.min_margins.{k}")

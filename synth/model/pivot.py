@@ -24,7 +24,7 @@ from synth.errors import InputError, Problem
 
 __all__ = [
     "table2_column", "standard_pivot_class", "pivot_diameter_mm", "bolt_hole_diameter_mm", "arm_wall_mm", "pivot_wall_mm",
-    "max_pivot_class_for_wall_mm",
+    "max_pivot_class_for_wall_mm", "pivot_wall_values",
 ]
 
 
@@ -120,3 +120,24 @@ def pivot_wall_mm(pivot_diameter_mm_, loading_arm_mm, bolt_hole_diameter_mm_):
     """
     return np.asarray(pivot_diameter_mm_, float) / 2.0 - np.asarray(loading_arm_mm, float) \
         - np.asarray(bolt_hole_diameter_mm_, float) / 2.0
+
+
+def pivot_wall_values(pivot_diameter_mm, loading_arm_mm, bolt_d_mm) -> dict:
+    """The physics of constraint ``pivot_wall`` (step 2, judged with the bolt, group ``bolt``): the bolt hole
+    ``d_h = d + 0.2 mm``, the pivot wall around it ``d_p/2 - e_l - d_h/2`` [mm] and its limit, the minimum wall
+    (``pivot_min_wall_mm``, 1 mm: ``catalogs/constants_execution.csv``). Parameters are value keys of the
+    group (the core's pivot diameter and loading arm, the bolt option's nominal diameter), arrays broadcast;
+    valid for any pivot, arm and bolt size (a negative wall: the hole breaks out of the pivot).
+
+    By hand: a 16 mm pivot, a 2.5 mm loading arm and an M8 bolt (8.2 mm hole, thesis step 2): 8 - 2.5 - 4.1 = 1.4 mm.
+
+    >>> v = pivot_wall_values(16.0, 2.5, 8.0)
+    >>> round(float(v["pivot_bolt_hole_diameter_mm"]), 2), round(float(v["pivot_wall_mm"]), 2), float(v["pivot_min_wall_mm"])
+    (8.2, 1.4, 1.0)
+    """
+    hole = bolt_hole_diameter_mm(bolt_d_mm)
+    wall = pivot_wall_mm(pivot_diameter_mm, loading_arm_mm, hole)
+    shape = np.shape(wall)
+    return {"pivot_bolt_hole_diameter_mm": np.broadcast_to(np.asarray(hole, dtype=float), shape),
+            "pivot_wall_mm": np.asarray(wall, dtype=float),
+            "pivot_min_wall_mm": np.full(shape, constant("pivot_min_wall_mm"))}

@@ -23,10 +23,10 @@ given the core), and its smallest margin the minimum of theirs.
 
 * Bushing and bolt are cheap and evaluated for every candidate core: the
   bushing once per distinct value of what it reads of the core
-  (:data:`~synth.design.evaluate.BUSHING_CORE_VALUES`); the bolt's step-10
-  constraints once per application and bolt, its pivot wall per core and bolt
-  diameter (:func:`~synth.design.evaluate.pivot_wall_values`, the only bolt
-  value that depends on the core).
+  (:data:`~synth.design.evaluate.BUSHING_CORE_VALUES`); the bolt's checks
+  once per application and bolt, but those that read the core (the pivot wall
+  of step 2: :func:`~synth.design.evaluate.bolt_core_checks`) per core and
+  distinct value of the bolt columns they read (the diameter).
 * Springs go through the compiled kernels (:mod:`synth.kernels.main_spring`)
   once per distinct key, the axial group in blocks of its options in score
   order, once per distinct value of what it reads of the core
@@ -59,7 +59,7 @@ import numpy as np
 
 from synth.design import evaluate
 from synth.design.applications import Applications
-from synth.design.constraints import FEAS_TOL, REGISTRY, margin as registry_margin
+from synth.design.constraints import FEAS_TOL, by_group, physics_inputs
 from synth.design.space import SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, space, space_for, spring_window
 from synth.kernels import axial as axial_kernels
 from synth.optimise.objectives import weighted_sum
@@ -69,15 +69,15 @@ __all__ = ["Batch", "wsum", "SLACK", "any_feasible", "robust"]
 
 #: relative slack of the score cuts (a cut never removes a design within 1e-9 of the best: rounding is far below)
 SLACK = 1e-9
-_WALL = REGISTRY["pivot_wall"]
-if _WALL.needs or _WALL.applies or _WALL.group != "bolt":  # pragma: no cover - the wall shortcut assumes this
-    raise ImportError("synth.optimise.batch evaluates pivot_wall apart: it must stay an always-evaluated bolt check")
 
 
-def _bolt_app_ids() -> tuple:
-    """The bolt group's per-application checks (pivot_wall apart), as the registry holds them now (a check added
-    with ``register`` included; read per batch, never frozen at import)."""
-    return tuple(c.id for c in REGISTRY.values() if c.group == "bolt" and c.id != "pivot_wall" and not c.advisory)
+def _bolt_ids() -> tuple[tuple, tuple]:
+    """The bolt group's non-advisory checks as the registry holds them now (a check added with ``register``
+    included; read per batch, never frozen at import): ``(per application and bolt, per core and bolt)``, the
+    second those that read the core (:func:`~synth.design.evaluate.bolt_core_checks`: the pivot wall)."""
+    core = {c.id for c in evaluate.bolt_core_checks()}
+    ids = [c.id for c in by_group("bolt") if not c.advisory]
+    return tuple(i for i in ids if i not in core), tuple(i for i in ids if i in core)
 
 
 #: the additive score of many designs (:func:`synth.optimise.objectives.weighted_sum`)
@@ -181,7 +181,7 @@ class Batch:
         # springs go through their numpy twins, the registry's own finish (synth.design.rules)
         self.engine = "numpy" if not active().empty() else spring_engine
         self.axial_engine = spring_engine  # physics only (no limits): design rules do not change it
-        self._bolt_ids = _bolt_app_ids()
+        self._bolt_ids, self._bolt_core_ids = _bolt_ids()
         self.sp = sp = _space_of(self.inputs, pin_inputs)
         self.apps = apps if apps is not None else Applications.of(self.inputs)
         n = len(self.inputs)
@@ -273,16 +273,27 @@ class Batch:
         return ok, mn
 
     def _wall(self, rows):
-        """``(margins (len(rows), n_diameters), diameter code per bolt)`` of the pivot wall (step 2)."""
+        """``(margins (len(rows), n_codes), code per bolt)``: the smallest margin of the bolt checks that read the
+        core (the pivot wall of step 2) per core row and distinct value of the bolt columns they read (the
+        diameter), and each bolt's code."""
         sp = self.sp
         if self._wall_d is None:
-            self._wall_d = np.unique(sp.tables["bolt"]["bolt_d_mm"], return_inverse=True)
-        d, code = self._wall_d
-        cv = [self.cg.values[k][rows][:, None] for k in evaluate.BOLT_CORE_VALUES]
-        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-            v = evaluate.pivot_wall_values(*cv, d[None, :])
-            m = registry_margin(_WALL, v[_WALL.value], v[_WALL.limit])
-        return np.where(np.isnan(m), -np.inf, m), np.asarray(code).reshape(-1)
+            t = sp.tables["bolt"]
+            cols = ["bolt_d_mm", *sorted({k for c in by_group("bolt") if c.id in self._bolt_core_ids
+                                          for k in physics_inputs(c) if k in t and k != "bolt_d_mm"})]
+            first, code = _unique_rows(*(t[k] for k in cols))
+            self._wall_d = ({k: np.asarray(t[k])[first] for k in cols}, code)
+        o, code = self._wall_d
+        nd, nr = len(o["bolt_d_mm"]), len(rows)
+        m = np.full((nr, nd), np.inf)
+        if self._bolt_core_ids and nr and nd:
+            with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+                g = evaluate.bolt_core(self.apps, np.broadcast_to(self.A[rows][:, None], (nr, nd)),
+                                       {k: self.cg.values[k][rows][:, None] for k in evaluate.BOLT_CORE_VALUES},
+                                       {k: v[None, :] for k, v in o.items()})
+            for cid in self._bolt_core_ids:
+                m = np.minimum(m, g.margins[cid])
+        return m, code
 
     def _bolt(self, rows, weights=None):
         """Per core row, as :meth:`_bushing` for the bolt: the first feasible bolt in score order (with

@@ -27,7 +27,7 @@ import numpy as np
 
 from synth.design import evaluate
 from synth.design.applications import Applications
-from synth.design.constraints import FEAS_TOL, REGISTRY
+from synth.design.constraints import EVALUATED_GROUPS, FEAS_TOL, REGISTRY
 from synth.design.space import space
 from synth.design.verify import evaluate_design
 from synth.robust.sampling import Base, context, perturb, sobol_u
@@ -83,7 +83,7 @@ def _chunk(inputs: list, parts: list, settings: evaluate.Settings, rs: RobustSet
         gs = evaluate_design(a_s, at_s, settings, detail=False)
     out = [{"ppk": np.inf, "p_hi": 0.0, "failing": [], "binding": "", "binding_ppk": np.inf} for _ in range(k)]
     for cid, c in REGISTRY.items():
-        if c.group == "cad":
+        if c.group not in EVALUATED_GROUPS:
             continue
         on = _targeted(groups, cid)
         if not on.any():

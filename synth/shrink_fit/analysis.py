@@ -13,7 +13,8 @@ from dataclasses import asdict
 
 import numpy as np
 
-from synth.shrink_fit.check import Check
+from synth.design.constraints import by_group
+from synth.design.result import FAIL, PASS, Check
 from synth.shrink_fit.fits import fit_limits
 from synth.shrink_fit.friction import friction_coefficient
 from synth.shrink_fit.inputs import ShrinkFitCase
@@ -137,17 +138,17 @@ def analyse(case: ShrinkFitCase) -> dict:
                                              case.journal_yield_mpa))
     p_peak = _f(grid["new"]["max"]["pressure_mpa"])
     mu_note = f"friction model '{m.friction_model}'"
-    checks = [
-        Check("shrink fit: no slip, new joint, minimum interference", 0, _f(grid["new"]["min"]["torque_nm"]), sf * mh,
-              ">=", "Nm", "paper eq. (1) sec. 3.3, eq. (17)", note=f"{mu_note}; limit = slip safety {sf:g} x {mh:g} Nm"),
-        Check(f"shrink fit: no slip after {case.assemblies} displacements, minimum interference", 0,
-              _f(grid["worn"]["min"]["torque_nm"]), sf * mh, ">=", "Nm", "paper eq. (1) sec. 3.3, eq. (19)",
-              note=f"{mu_note}; {SMOOTHING_TEXT[m.smoothing_rule]}"),
-        Check("shrink fit: hub bore stays elastic at maximum interference", 0, p_peak, p_hub, "<=", "MPa",
-              "Lame + von Mises", note=f"hub {case.hub_material}, Re {case.hub_yield_mpa:g} MPa"),
-        Check("shrink fit: journal stays elastic at maximum interference", 0, p_peak, p_jou, "<=", "MPa",
-              "Lame + von Mises", note=f"journal {case.journal_material}, Re {case.journal_yield_mpa:g} MPa"),
-    ]
+    # the values the registry's shrink-fit checks compare (group "shrink_fit", synth.design.constraints)
+    values = {"torque_new_min_nm": _f(grid["new"]["min"]["torque_nm"]),
+              "torque_worn_min_nm": _f(grid["worn"]["min"]["torque_nm"]), "slip_torque_required_nm": sf * mh,
+              "pressure_peak_mpa": p_peak, "hub_yield_pressure_mpa": p_hub, "journal_yield_pressure_mpa": p_jou}
+    notes = {"shrink_fit_slip_new": f"{mu_note}; limit = slip safety {sf:g} x {mh:g} Nm",
+             "shrink_fit_slip_worn": f"after {case.assemblies} displacements; {mu_note}; "
+                                     f"{SMOOTHING_TEXT[m.smoothing_rule]}",
+             "shrink_fit_hub_elastic": f"hub {case.hub_material}, Re {case.hub_yield_mpa:g} MPa",
+             "shrink_fit_journal_elastic": f"journal {case.journal_material}, Re {case.journal_yield_mpa:g} MPa"}
+    checks = [Check.judged(c.id, values[c.value], values[c.limit], notes.get(c.id, ""))
+              for c in by_group("shrink_fit")]
     worst = grid["worn"]["min"] if case.assemblies >= 1 else grid["new"]["min"]
     margin = min(c.margin for c in checks)
     return {
@@ -165,7 +166,7 @@ def analyse(case: ShrinkFitCase) -> dict:
         "plasticity": {"hub_yield_pressure_mpa": p_hub, "journal_yield_pressure_mpa": p_jou,
                        "peak_pressure_mpa": p_peak},
         "checks": [c.as_dict() for c in checks],
-        "verdict": "pass" if all(c.verdict == "pass" for c in checks) else "fail",
+        "verdict": PASS if all(c.verdict == PASS for c in checks) else FAIL,
         "margin": margin,
     }
 
@@ -222,7 +223,7 @@ def format_report(res: dict) -> str:
     L.append("")
     L.append("Checks")
     for c in res["checks"]:
-        L.append(f"  [{c['verdict']:>4}] {c['name']}: {c['value']:.4g} {c['kind']} {c['limit']:.4g} {c['unit']} "
+        L.append(f"  [{c['verdict']:>4}] {c['label']}: {c['value']:.4g} {c['sense']} {c['limit']:.4g} {c['unit']} "
                  f"(margin {100 * c['margin']:+.1f} %; {c['note']})")
     L.append(f"  cautious (elastic eq. 1 friction) slip margin of the worst state: {100 * res['slip_margin_elastic_eq1']:+.1f} %")
     L.append(f"Verdict: {res['verdict'].upper()} (margin {100 * res['margin']:+.1f} %)")

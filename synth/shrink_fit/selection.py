@@ -9,7 +9,9 @@ interference is positive, its maximum interference on new surfaces (the
 highest pressure ever reached) keeps the hub and the journal elastic (Lame,
 von Mises; see :mod:`~synth.shrink_fit.pressure`), and its slip margin after
 the planned re-assemblies is not negative (a fit that slips is never
-labelled admissible).
+labelled admissible): the analysis's checks (the registry's group
+``shrink_fit``) with the registry's verdict rule (a margin above
+``-FEAS_TOL``, round-off of equal values, passes).
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from synth.design.result import FAIL, Check
 from synth.shrink_fit.analysis import design_load_torque_nm, evaluate
 from synth.shrink_fit.fits import candidate_fits, fit_limits
 from synth.shrink_fit.inputs import ShrinkFitCase
@@ -58,8 +61,9 @@ def select_fit(case: ShrinkFitCase, reassemblies: int = 1, hole_grade: int = 7, 
     """
     d = case.journal_outer_diameter_mm
     load = design_load_torque_nm(case)["design_load_nm"]
-    p_yield = min(float(hub_yield_pressure_mpa(d, case.hub_outer_diameter_mm, case.hub_yield_mpa)),
-                  float(journal_yield_pressure_mpa(d, case.journal_inner_diameter_mm, case.journal_yield_mpa)))
+    p_hub = float(hub_yield_pressure_mpa(d, case.hub_outer_diameter_mm, case.hub_yield_mpa))
+    p_jou = float(journal_yield_pressure_mpa(d, case.journal_inner_diameter_mm, case.journal_yield_mpa))
+    p_yield = min(p_hub, p_jou)
     rows = []
     for fit in candidate_fits(d, hole_grade, shaft_grade):
         lim = fit_limits(fit)
@@ -67,13 +71,17 @@ def select_fit(case: ShrinkFitCase, reassemblies: int = 1, hole_grade: int = 7, 
                     interference_max_mm=lim["interference_max_mm"])
         p_max = float(evaluate(c, lim["interference_max_mm"], 0)["pressure_mpa"])
         worst = evaluate(c, max(lim["interference_min_mm"], 0.0), 2 * reassemblies)
-        margin = float(slip_margin(worst["torque_nm"], load, case.slip_safety))
+        # the analysis's checks (the registry's group "shrink_fit"), judged by the registry's verdict rule
+        elastic = [Check.judged("shrink_fit_hub_elastic", p_max, p_hub),
+                   Check.judged("shrink_fit_journal_elastic", p_max, p_jou)]
+        slip = Check.judged("shrink_fit_slip_worn", float(worst["torque_nm"]), case.slip_safety * load)
+        margin = slip.margin
         reason = ""
         if lim["interference_min_mm"] <= 0:
             reason = "transition fit: may be loose"
-        elif p_max > p_yield:
+        elif any(x.verdict == FAIL for x in elastic):
             reason = f"plasticises at maximum interference ({p_max:.1f} > {p_yield:.1f} MPa)"
-        elif not margin >= 0:
+        elif slip.verdict == FAIL:
             reason = f"slips after {reassemblies} re-assemblies (margin {margin:+.3f} < 0)"
         rows.append({"fit": fit, "interference_min_mm": lim["interference_min_mm"],
                      "interference_max_mm": lim["interference_max_mm"], "pressure_max_mpa": p_max,

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from synth.shrink_fit.check import margin_lower
+from synth.design.constraints import REGISTRY, margin
 
 __all__ = ["LOAD_RULES", "friction_torque_nm", "pulley_load_torque_nm", "slip_margin"]
 
@@ -58,9 +58,11 @@ def pulley_load_torque_nm(camshaft_torque_nm, gear_ratio, camshafts=1, rule="pow
 
 
 def slip_margin(friction_torque_nm, load_torque_nm, slip_safety=1.0):
-    """Normalised slip margin ``(M - S M_h) / (S M_h)`` [-] (>= 0: the pulley does not slip).
+    """Normalised slip margin ``(M - S M_h) / (S M_h)`` [-] (>= 0: the pulley does not slip): the margin of the
+    registry's slip check (``shrink_fit_slip_worn``, :func:`synth.design.constraints.margin`).
 
     >>> round(float(slip_margin(150.0, 96.0, 1.5)), 4)
     0.0417
     """
-    return margin_lower(friction_torque_nm, np.asarray(slip_safety, dtype=float) * np.asarray(load_torque_nm, dtype=float))
+    return margin(REGISTRY["shrink_fit_slip_worn"], friction_torque_nm,
+                  np.asarray(slip_safety, dtype=float) * np.asarray(load_torque_nm, dtype=float))

@@ -153,7 +153,8 @@ def test_load_torque_rules():
 def test_paper_verdict(paper):
     ld = paper["load"]
     assert ld["computed_nm"] == 120.0 and ld["design_load_nm"] == 120.0   # 60 Nm * u at 350 rpm camshaft
-    worn = next(c for c in paper["checks"] if "after 2 displacements" in c["name"])
+    worn = next(c for c in paper["checks"] if c["id"] == "shrink_fit_slip_worn")
+    assert worn["note"].startswith("after 2 displacements")
     # 251.17 Nm against 1.5 * 120 Nm: margin 251.17/180 - 1 = 0.395
     assert worn["margin"] == pytest.approx(251.17 / 180 - 1, rel=1e-3)
     assert paper["verdict"] == "pass"
