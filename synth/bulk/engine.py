@@ -265,25 +265,11 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
     """The result columns (:func:`columns`, and ``_failed``: the failed constraint ids per row) of designs verified
     by :func:`_verify`, one array or list per column, built column by column: what :func:`row_from_result` gives
     for :func:`synth.optimise.answer.build_result`'s result of each."""
-    from synth.design.evaluate import EVALUATED
+    from synth.design.assessment import assess
     from synth.optimise.product import core_scores, option_scores
     m = len(idx)
-    cols, advisory, objective_flags = _checks()
-    state = np.stack([groups[c.group].state[c.id] for c in cols], axis=1)
-    marg = np.stack([np.asarray(groups[c.group].margins[c.id], dtype=float) for c in cols], axis=1)
-    ev = state == EVALUATED
-    passed = marg >= -FEAS_TOL
-    failed = ev & ~passed & ~advisory
-    counted = ev & (passed | ~advisory)  # the result's margins: verdict pass or fail
-    objective_counted = counted & objective_flags
-    # the margin objective: counted, objective, unless the design meets it by construction
-    margin_obj = objective_counted.copy()
-    for c, con in enumerate(cols):
-        if con.objective_unless is not None and not con.advisory:
-            margin_obj[:, c] &= con.counts_in_objective(groups[con.group].values)
-    m_counted = np.where(counted, marg, np.inf)
-    margin_min = m_counted.min(axis=1) if len(cols) else np.full(m, np.inf)
-    obj_margin = np.where(margin_obj, marg, np.inf).min(axis=1)
+    a = assess(groups, b.apps, app=idx)  # the one judgement of the margins (columns: constraint_ids())
+    marg, ev, failed = a.margins, a.evaluated, a.failed
     # objectives as Evaluation.objective_values sums them
     sp = b.sp
     cv = {k: b.cg.values[k][rows] for k in ("pivot_class_standard_mm", "pivot_class_diameter_mm")}
@@ -294,25 +280,14 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
         o = option_scores(sp, s, k if s == "spring" else None, options[s])
         std, cost = std + o["standard"], cost + o["cost"]
     std, cost = sc["standard"] + std, sc["cost"] + cost
-    ids = np.array([c.id for c in cols], dtype=object)
-    any_failed = failed.any(axis=1)
-    feasible = (status == "optimal") & ~any_failed
-    notes_nv = _notes_of(b.apps, idx, state, ev, {})
-    incomplete = np.array([x[1] for x in notes_nv], dtype=bool)
-    # the binding constraint: the most violated when one fails (first of the ties), else the smallest counted
-    # margin of the objective's constraints
-    worst = np.where(failed, marg, np.inf).argmin(axis=1) if len(cols) else np.zeros(m, dtype=np.int64)
-    oc = np.where(objective_counted, marg, np.inf)
-    least = oc.argmin(axis=1) if len(cols) else np.zeros(m, dtype=np.int64)
-    has_oc = objective_counted.any(axis=1)
-    pick = np.where(any_failed, worst, least)
-    bind_ok = any_failed | has_oc
+    ids = a.columns.ids
+    feasible = (status == "optimal") & a.ok
+    notes_nv = _notes_of(b.apps, idx, a.state, ev, {})
     out = {"feasible": feasible, "status": np.where(feasible, "optimal", "infeasible").astype(object),
-           "verdict": np.where(any_failed, "fail", np.where(incomplete, "incomplete", "pass")).astype(object),
+           "verdict": a.verdict,
            "objective_standard": std.astype(float), "objective_cost_eur": np.round(cost.astype(float), 6),
-           "objective_margin": obj_margin.astype(float), "margin_min": margin_min.astype(float),
-           "binding_constraint": np.where(bind_ok, ids[pick] if len(cols) else "", "").astype(object),
-           "binding_margin": np.where(bind_ok, marg[np.arange(m), pick] if len(cols) else np.inf, np.inf)}
+           "objective_margin": a.objective_margin.astype(float), "margin_min": a.margin_min.astype(float),
+           "binding_constraint": a.binding_ids(), "binding_margin": a.binding_margin}
     for key, col in _parts(groups["_attrs"], groups["core"].values).items():
         out[f"part_{key}"] = col
     shown = np.where(ev, marg, np.nan)  # advisory constraints too, as warnings

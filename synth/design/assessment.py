@@ -81,6 +81,8 @@ class Columns:
     #: the columns of the non-advisory checks, and of the objective ones (lists, for the per-design reductions)
     decisive: tuple
     objective_columns: tuple
+    #: the checks that depend on the design (:attr:`Constraint.design`)
+    design: np.ndarray
 
 
 _COLUMNS: dict = {}
@@ -100,7 +102,8 @@ def columns_of(ids: tuple) -> Columns:
             cons, np.array(ids, dtype=object), np.array([c.advisory for c in cons], dtype=bool), objective,
             np.array([pos[i] for i in ids], dtype=np.int64),
             tuple((j, c.objective_unless) for j, c in enumerate(cons) if objective[j] and c.objective_unless),
-            tuple(j for j, c in enumerate(cons) if not c.advisory), tuple(np.flatnonzero(objective).tolist()))
+            tuple(j for j, c in enumerate(cons) if not c.advisory), tuple(np.flatnonzero(objective).tolist()),
+            np.array([c.design for c in cons], dtype=bool))
     return got
 
 
@@ -181,6 +184,12 @@ class Assessment:
             for j, v in self.unless.items():
                 out[:, j] &= _counts(v)
         return out
+
+    @cached_property
+    def targeted(self) -> np.ndarray:
+        """``(n, k)`` the checks a production capability targets (:mod:`synth.robust`): those counted in the margin
+        objective (:attr:`counts_in_objective`) that depend on the design."""
+        return self.counts_in_objective & self.columns.design
 
     @cached_property
     def in_objective(self) -> np.ndarray:
@@ -317,9 +326,10 @@ def assess(groups: dict, apps=None, rows=None, app=None) -> Assessment:
     return _assess(gs, ids, apps, rows, app)
 
 
-def assess_group(g) -> Assessment:
-    """The assessment of one group's rows over its own margins (a compiled kernel's group may hold only some)."""
-    return _assess({g.name: g}, tuple(g.margins), None, None, None)
+def assess_group(g, rows=None) -> Assessment:
+    """The assessment of one group's rows (or rows ``rows``) over its own margins, in their order (a compiled
+    kernel's group may hold only some, in its own order)."""
+    return _assess({g.name: g}, tuple(g.margins), None, rows, None)
 
 
 def _assess(gs: dict, ids: tuple, apps, rows, app) -> Assessment:
