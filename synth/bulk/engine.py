@@ -34,7 +34,7 @@ import numpy as np
 import pandas as pd
 
 from synth.design import evaluate
-from synth.design.constraints import FEAS_TOL, REGISTRY, version
+from synth.design.constraints import REGISTRY, version
 from synth.design.result import FAIL, PASS, WARNING
 from synth.design.space import PART_KEYS, SUBSYSTEMS
 
@@ -82,20 +82,16 @@ def row_from_result(res, diagnose: bool = True) -> dict:
     verified or do not apply have no margin (NaN); ``notes`` says why.
     """
     feasible = res.status in ("optimal", "feasible") and not res.failed()
-    m = res.margins
     row = {"feasible": bool(feasible), "status": "optimal" if feasible else "infeasible", "verdict": res.verdict,
            "objective_standard": _num(res.objectives.get("standard")),
            "objective_cost_eur": _num(res.objectives.get("cost")),
            "objective_margin": _num(res.objectives.get("margin"))}
     for k in PART_KEYS:
         row[f"part_{k}"] = res.parts.get(k)
-    row["margin_min"] = float(min(m.values())) if m else math.inf
+    a = res.assessment()  # the one judgement (:mod:`synth.design.assessment`), as the fast path's rows
+    row["margin_min"] = float(a.margin_min[0])
+    row["binding_constraint"], row["binding_margin"] = str(a.binding_ids()[0]), float(a.binding_margin[0])
     failed = sorted(res.failed(), key=lambda c: c.margin)
-    binds = failed[:1] if failed else res.binding(1)
-    if binds:
-        row["binding_constraint"], row["binding_margin"] = binds[0].id, float(binds[0].margin)
-    else:
-        row["binding_constraint"], row["binding_margin"] = "", math.inf
     every = {c.id: c.margin for c in res.checks if c.margin is not None and c.verdict in (PASS, FAIL, WARNING)}
     for n in constraint_ids():  # advisory constraints carry their margin, passing or warning
         row[f"margin_{n}"] = float(every[n]) if n in every else math.nan

@@ -231,13 +231,14 @@ class Assessment:
         return self._least(self._objective_column(j) for j in self.columns.objective_columns)
 
     def smallest(self, mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """``((n,) smallest margin, (n,) its column)`` over the checks ``mask`` (first of ties; ``+inf`` and column 0
-        where none)."""
+        """``((n,) smallest margin, (n,) its column)`` over the checks ``mask`` (the first of ties, a check of
+        ``mask`` when all its margins are ``+inf``; ``+inf`` and column 0 where ``mask`` holds none)."""
         if not len(self.columns.ids):
             return np.full(self.n, np.inf), np.zeros(self.n, np.int64)
         m = np.where(mask, self.margins, np.inf)
         col = m.argmin(axis=1)
-        return np.take_along_axis(m, col[:, None], axis=1)[:, 0], col
+        best = np.take_along_axis(m, col[:, None], axis=1)[:, 0]
+        return best, np.where(np.isposinf(best), np.argmax(mask, axis=1), col)
 
     @cached_property
     def binding(self) -> np.ndarray:
