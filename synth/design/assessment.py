@@ -327,10 +327,11 @@ def assess(groups: dict, apps=None, rows=None, app=None) -> Assessment:
     return _assess(gs, ids, apps, rows, app)
 
 
-def assess_group(g, rows=None) -> Assessment:
+def assess_group(g, rows=None, only: tuple | None = None) -> Assessment:
     """The assessment of one group's rows (or rows ``rows``) over its own margins, in their order (a compiled
-    kernel's group may hold only some, in its own order)."""
-    return _assess({g.name: g}, tuple(g.margins), None, rows, None)
+    kernel's group may hold only some, in its own order), or over those of constraints ``only`` it holds."""
+    ids = tuple(g.margins) if only is None else tuple(c for c in only if c in g.margins)
+    return _assess({g.name: g}, ids, None, rows, None)
 
 
 def _assess(gs: dict, ids: tuple, apps, rows, app) -> Assessment:

@@ -37,7 +37,7 @@ import numpy as np
 
 from synth import catalog, parts
 from synth.design.assessment import EVALUATED, NOT_APPLICABLE, NOT_VERIFIED_STATE as NOT_VERIFIED, assess_group
-from synth.design.constraints import FEAS_TOL, by_group, margin, physics_inputs
+from synth.design.constraints import by_group, margin, physics_inputs
 from synth.model import bolted_joint, damping, disc_spring
 from synth.model import layout, packaging, pivot, plain_bushing, stackup
 from synth.model import torsion_spring
@@ -595,10 +595,7 @@ def axial_full(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> 
 def fidelity_free_ok(g: Group) -> np.ndarray:
     """``(n,)`` bool: the rows of an axial group that pass every :data:`FIDELITY_FREE` constraint (the others fail
     at any fidelity)."""
-    ok = np.ones(len(g), dtype=bool)
-    for cid in FIDELITY_FREE:
-        ok &= g.margins[cid] >= -FEAS_TOL
-    return ok
+    return assess_group(g, only=FIDELITY_FREE).ok
 
 
 def _judged_rows(apps, cg, r, o, settings, g: Group, which) -> Group:
