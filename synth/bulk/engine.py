@@ -165,14 +165,12 @@ def screen_applications_reference(apps: Sequence, *, objective: str = "standard"
 _CHECKS: dict = {}
 
 
-def _checks() -> tuple:
-    """``(constraints, advisory, objective)`` of the bulk row's margin columns (:func:`constraint_ids`), the flags
-    as arrays, per registry version (a check added with ``register`` included)."""
+def _checks() -> list:
+    """The constraints of the bulk row's margin columns (:func:`constraint_ids`), per registry version (a check
+    added with ``register`` included)."""
     got = _CHECKS.get(version())
     if got is None:
-        cols = [REGISTRY[cid] for cid in constraint_ids()]
-        got = (cols, np.array([c.advisory for c in cols], dtype=bool),
-               np.array([c.objective for c in cols], dtype=bool))
+        got = [REGISTRY[cid] for cid in constraint_ids()]
         _CHECKS.clear()
         _CHECKS[version()] = got
     return got
@@ -220,7 +218,7 @@ def _notes_of(apps, idx, state, evaluated, cache: dict) -> list:
     writes them from the result), built once per distinct pattern of missing requirements and defaults."""
     from synth.design.applications import DEFAULTS
     from synth.design.evaluate import NOT_VERIFIED
-    cols = _checks()[0]
+    cols = _checks()
     reqs = sorted({r for c in cols for r in c.needs})
     met = np.stack([apps.met(r)[idx] for r in reqs], axis=1) if reqs else np.zeros((len(idx), 0), bool)
     names = sorted({x for c in cols for x in c.assumes if x in DEFAULTS})
@@ -264,7 +262,7 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
     from synth.design.assessment import assess
     from synth.optimise.product import core_scores, option_scores
     m = len(idx)
-    a = assess(groups, b.apps, app=idx)  # the one judgement of the margins (columns: constraint_ids())
+    a = assess(groups, b.apps, app=idx, ids=tuple(c.id for c in _checks()))  # the one judgement of the margins
     marg, ev, failed = a.margins, a.evaluated, a.failed
     # objectives as Evaluation.objective_values sums them
     sp = b.sp

@@ -155,7 +155,7 @@ class Assessment:
     def below(self) -> np.ndarray:
         """Checks whose margin is below ``-FEAS_TOL`` (round-off of equal values passes; a check not evaluated has
         ``+inf``): ``failed``, or a ``warning`` for an advisory check (the thesis's Table 7 ranges never fail a design)."""
-        return ~(self.margins >= -FEAS_TOL)
+        return ~_passes(self.margins)
 
     @cached_property
     def failed(self) -> np.ndarray:
@@ -213,7 +213,7 @@ class Assessment:
         """``(n,)`` no check fails (:attr:`failed`; not verified and not applicable ones have ``+inf``)."""
         out = np.ones(self.n, dtype=bool)
         for j in self.columns.decisive:
-            out &= self._m[j] >= -FEAS_TOL
+            out &= _passes(self._m[j])
         return out
 
     @property
@@ -303,6 +303,11 @@ class Assessment:
         return cls(cols, m, st, unless, n=1)
 
 
+def _passes(margin) -> np.ndarray:
+    """Where a margin passes: at least ``-FEAS_TOL`` (round-off of equal values; NaN never passes)."""
+    return margin >= -FEAS_TOL
+
+
 def _counts(v) -> np.ndarray:
     """Where an ``objective_unless`` value keeps its check in the margin objective: not positive (NaN, 0)."""
     return ~(np.asarray(v, dtype=float) > 0)
@@ -313,17 +318,19 @@ def _take(x, rows):
     return x if rows is None else x[rows]
 
 
-def assess(groups: dict, apps=None, rows=None, app=None) -> Assessment:
+def assess(groups: dict, apps=None, rows=None, app=None, ids=None) -> Assessment:
     """The assessment of the designs whose evaluated groups are ``groups`` (``{name: Group}``, row ``i`` of every
     group one design; keys that are not registry groups ignored), over the registry's constraints of those
     groups (registry order), for rows ``rows`` (default all).
 
     ``apps`` (optional :class:`~synth.design.applications.Applications`): the ``assumed`` checks (an evaluated
     check whose :attr:`~Constraint.assumes` input took its documented default); ``app``: the application of each
-    row (default: each group's ``app`` values; row ``i`` is application ``i`` in a group without them).
+    row (default: each group's ``app`` values; row ``i`` is application ``i`` in a group without them); ``ids``:
+    the constraints to assess, in that order (default: every registry constraint the groups hold).
     """
     gs = {k: g for k, g in groups.items() if k in GROUPS}
-    ids = tuple(cid for cid, c in REGISTRY.items() if c.group in gs and cid in gs[c.group].margins)
+    if ids is None:
+        ids = tuple(cid for cid, c in REGISTRY.items() if c.group in gs and cid in gs[c.group].margins)
     return _assess(gs, ids, apps, rows, app)
 
 
@@ -348,7 +355,7 @@ def _assess(gs: dict, ids: tuple, apps, rows, app) -> Assessment:
         v = gs[cons[j].group].values
         if key in v:
             unless[j] = _take(v[key], rows)
-    n = len(m[0]) if m else sum(1 for _ in _take(np.arange(max((len(g) for g in gs.values()), default=0)), rows))
+    n = len(m[0]) if m else len(_take(np.arange(max((len(g) for g in gs.values()), default=0)), rows))
     out = Assessment(cols, m, st, unless, n=n)
     if apps is not None:
         out.assumed = _assumed(out, gs, apps, rows, app)
