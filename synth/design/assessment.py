@@ -97,7 +97,7 @@ def columns_of(ids: tuple) -> Columns:
             _COLUMNS.clear()
         cons = tuple(REGISTRY[i] for i in ids)
         pos = {c: i for i, c in enumerate(REGISTRY)}
-        objective = np.array([c.objective and not c.advisory for c in cons], dtype=bool)
+        objective = np.array([c.counts_in_objective({}) for c in cons], dtype=bool)  # no objective_unless value
         got = _COLUMNS[key] = Columns(
             cons, np.array(ids, dtype=object), np.array([c.advisory for c in cons], dtype=bool), objective,
             np.array([pos[i] for i in ids], dtype=np.int64),
@@ -181,8 +181,8 @@ class Assessment:
         out = np.broadcast_to(self.columns.objective, (self.n, len(self.columns.ids)))
         if self.unless:
             out = out.copy()
-            for j, v in self.unless.items():
-                out[:, j] &= _counts(v)
+            for j in self.unless:
+                out[:, j] &= self._counts(j)
         return out
 
     @cached_property
@@ -197,10 +197,16 @@ class Assessment:
         return self.evaluated & self.counts_in_objective
 
     # --- per design --------------------------------------------------------------------------------------------
+    def _counts(self, j: int) -> np.ndarray:
+        """``(n,)`` where column ``j`` counts in the margin objective given its ``objective_unless`` values (the
+        registry's rule, :meth:`Constraint.counts_in_objective`)."""
+        c = self.columns.constraints[j]
+        return np.broadcast_to(c.counts_in_objective({c.objective_unless: self.unless[j]}), (self.n,))
+
     def _objective_column(self, j: int) -> np.ndarray:
         """Column ``j``'s margins where it counts in the margin objective, ``+inf`` elsewhere."""
         m = self._m[j]
-        return np.where(_counts(self.unless[j]), m, np.inf) if j in self.unless else m
+        return np.where(self._counts(j), m, np.inf) if j in self.unless else m
 
     def _least(self, cols) -> np.ndarray:
         out = np.full(self.n, np.inf)
@@ -306,11 +312,6 @@ class Assessment:
 def _passes(margin) -> np.ndarray:
     """Where a margin passes: at least ``-FEAS_TOL`` (round-off of equal values; NaN never passes)."""
     return margin >= -FEAS_TOL
-
-
-def _counts(v) -> np.ndarray:
-    """Where an ``objective_unless`` value keeps its check in the margin objective: not positive (NaN, 0)."""
-    return ~(np.asarray(v, dtype=float) > 0)
 
 
 def _take(x, rows):
