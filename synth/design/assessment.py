@@ -113,7 +113,7 @@ class Assessment:
     Built from the columns' ``(n,)`` margins and states (:func:`assess`, :meth:`of_checks`): a margin is ``+inf``
     where its check does not apply or is not verified (the evaluator's contract, :func:`synth.design.evaluate.finish`),
     ``-inf`` where its value is NaN; a state :data:`EVALUATED`, :data:`NOT_APPLICABLE` or
-    :data:`NOT_VERIFIED_STATE` (None: evaluated, a compiled kernel's group); ``unless``: per objective column with
+    :data:`NOT_VERIFIED_STATE` (None: evaluated, a compiled kernel's group; the list, or a function giving it); ``unless``: per objective column with
     an ``objective_unless`` value, its ``(n,)`` values (positive: the design meets the check by construction, it
     leaves the margin objective); ``assumed`` ``(n, k)`` or None (no applications).
 
@@ -122,7 +122,7 @@ class Assessment:
     without stacking them (the optimisers call them in their inner loops).
     """
 
-    def __init__(self, columns: Columns, margin_columns: list, state_columns: list, unless: dict,
+    def __init__(self, columns: Columns, margin_columns: list, state_columns, unless: dict,
                  assumed: np.ndarray | None = None, n: int = 0):
         self.columns, self._m, self._s = columns, margin_columns, state_columns
         self.unless, self.assumed = unless, assumed
@@ -140,7 +140,8 @@ class Assessment:
     @cached_property
     def state(self) -> np.ndarray:
         """``(n, k)`` the states."""
-        cols = [np.zeros(self.n, np.int8) if s is None else s for s in self._s]
+        states = self._s() if callable(self._s) else self._s  # a group's states are gathered on first use
+        cols = [np.zeros(self.n, np.int8) if s is None else s for s in states]
         return (np.stack(cols) if cols else np.zeros((0, self.n), np.int8)).T
 
     @cached_property
@@ -347,7 +348,8 @@ def _assess(gs: dict, ids: tuple, apps, rows, app) -> Assessment:
     cons = cols.constraints
     if rows is None:  # the group's own arrays (the optimisers' inner loops: no copy)
         m = [gs[c.group].margins[c.id] for c in cons]
-        st = [gs[c.group].state.get(c.id) for c in cons]
+        def st():
+            return [gs[c.group].state.get(c.id) for c in cons]
     else:
         m = [np.asarray(gs[c.group].margins[c.id])[rows] for c in cons]
         st = [np.asarray(gs[c.group].state[c.id])[rows] if c.id in gs[c.group].state else None for c in cons]
