@@ -24,10 +24,12 @@ TIMED = ((evaluate.Group, "ok", "Group.ok"), (evaluate.Group, "min_margin", "Gro
          (evaluate, "fidelity_free_ok", "evaluate.fidelity_free_ok"), (engine, "_rows", "bulk engine _rows"))
 
 
-def _timed(acc: dict, calls: collections.Counter):
-    """Wrap each of :data:`TIMED` to add its seconds and calls to ``acc`` and ``calls``."""
+def _timed(acc: dict, calls: collections.Counter) -> list:
+    """Wrap each of :data:`TIMED` to add its seconds and calls to ``acc`` and ``calls``; returns the originals."""
+    kept = []
     for owner, name, label in TIMED:
         f = getattr(owner, name)
+        kept.append((owner, name, f))
 
         def w(*a, _f=f, _label=label, **k):
             t = time.perf_counter()
@@ -37,6 +39,7 @@ def _timed(acc: dict, calls: collections.Counter):
                 acc[_label] += time.perf_counter() - t
                 calls[_label] += 1
         setattr(owner, name, w)
+    return kept
 
 
 def main(argv=None) -> int:
@@ -48,14 +51,18 @@ def main(argv=None) -> int:
     apps = generate(args.n, seed=args.seed)
     acc: dict = collections.defaultdict(float)
     calls: collections.Counter = collections.Counter()
-    _timed(acc, calls)
-    engine.screen_applications(apps[:20], diagnose=False)  # load the kernels and the design space
-    acc.clear()
-    calls.clear()
-    t0 = time.perf_counter()
-    for _ in range(args.runs):
-        engine.screen_applications(apps, diagnose=False)
-    total = (time.perf_counter() - t0) / args.runs
+    kept = _timed(acc, calls)
+    try:
+        engine.screen_applications(apps[:20], diagnose=False)  # load the kernels and the design space
+        acc.clear()
+        calls.clear()
+        t0 = time.perf_counter()
+        for _ in range(args.runs):
+            engine.screen_applications(apps, diagnose=False)
+        total = (time.perf_counter() - t0) / args.runs
+    finally:
+        for owner, name, f in kept:
+            setattr(owner, name, f)
     print(f"## The assessment in the bulk engine ({args.n} generated applications, seed {args.seed}, "
           f"screening fidelity, no diagnosis; per run, {args.runs} runs)\n")
     print("| function | calls | ms | share of the engine |")
