@@ -59,21 +59,6 @@ class _Stop(Exception):
         self.step, self.why, self.groups = step, why, groups
 
 
-def _passes(g, rows=None, only: tuple = ()) -> np.ndarray:
-    """Rows of group ``g`` whose evaluated constraints (all, or those of ``only``) pass."""
-    ids = only or tuple(g.margins)
-    ok = np.ones(len(g), dtype=bool)
-    for cid in ids:
-        if cid in g.margins and not _advisory(cid):
-            ok &= g.margins[cid] >= -FEAS_TOL
-    return ok if rows is None else ok[rows]
-
-
-def _advisory(cid: str) -> bool:
-    from synth.design.constraints import REGISTRY
-    return REGISTRY[cid].advisory
-
-
 class _Walk:
     """The state of one run of the procedure: the application, the choices so far, notes and steps run."""
 
@@ -156,7 +141,7 @@ class _Walk:
             cand = lengths
         g = evaluate.bushing(self.apps, cg, np.zeros(len(cand), int), bushing_attributes(p, np.full(len(cand), sup), cand),
                       self.s)
-        ok = _passes(g)
+        ok = g.ok()
         fits = g.margins["bushing_length"] >= -FEAS_TOL
         if ok.any():
             i = int(np.argmax(ok))
@@ -230,7 +215,7 @@ class _Walk:
                                                    mbd, indexing="ij"))
         opts = spring_attributes(p, m, w, dd)
         g = evaluate.spring(self.apps, evaluate.spring_keys(cg, _ONE), np.zeros(len(m), int), opts, self.s)
-        ok = _passes(g)
+        ok = g.ok()
         cost = opts["cost_eur_times_stiffness"] / float(self.apps.spring_stiffness_nm_per_deg[0])
         rnd = np.asarray(opts["round_wire"], dtype=bool)
         if ok.any():

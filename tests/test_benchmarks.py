@@ -19,6 +19,14 @@ def _module(name: str):
     return mod
 
 
+def test_bench_assessment_runs_and_leaves_the_functions_it_times(capsys):
+    from synth.design import evaluate
+    ok = evaluate.Group.ok
+    assert _module("bench_assessment").main(["--n", "30", "--runs", "1"]) == 0
+    assert "| Group.ok |" in capsys.readouterr().out
+    assert evaluate.Group.ok is ok
+
+
 def test_bench_bulk_quick_runs_and_the_engine_equals_the_reference(capsys):
     assert _module("bench_bulk").main(["--quick", "--no-command"]) == 0
     out = capsys.readouterr().out

@@ -34,7 +34,7 @@ import numpy as np
 import pandas as pd
 
 from synth.design import evaluate
-from synth.design.constraints import EVALUATED_GROUPS, FEAS_TOL, REGISTRY, version
+from synth.design.constraints import EVALUATED_GROUPS, REGISTRY, version
 from synth.design.result import FAIL, PASS, WARNING
 from synth.design.space import PART_KEYS, SUBSYSTEMS
 
@@ -83,20 +83,16 @@ def row_from_result(res, diagnose: bool = True) -> dict:
     verified or do not apply have no margin (NaN); ``notes`` says why.
     """
     feasible = res.status in ("optimal", "feasible") and not res.failed()
-    m = res.margins
     row = {"feasible": bool(feasible), "status": "optimal" if feasible else "infeasible", "verdict": res.verdict,
            "objective_standard": _num(res.objectives.get("standard")),
            "objective_cost_eur": _num(res.objectives.get("cost")),
            "objective_margin": _num(res.objectives.get("margin"))}
     for k in PART_KEYS:
         row[f"part_{k}"] = res.parts.get(k)
-    row["margin_min"] = float(min(m.values())) if m else math.inf
+    a = res.assessment()  # the one judgement (:mod:`synth.design.assessment`), as the fast path's rows
+    row["margin_min"] = float(a.margin_min[0])
+    row["binding_constraint"], row["binding_margin"] = str(a.binding_ids()[0]), float(a.binding_margin[0])
     failed = sorted(res.failed(), key=lambda c: c.margin)
-    binds = failed[:1] if failed else res.binding(1)
-    if binds:
-        row["binding_constraint"], row["binding_margin"] = binds[0].id, float(binds[0].margin)
-    else:
-        row["binding_constraint"], row["binding_margin"] = "", math.inf
     every = {c.id: c.margin for c in res.checks if c.margin is not None and c.verdict in (PASS, FAIL, WARNING)}
     for n in constraint_ids():  # advisory constraints carry their margin, passing or warning
         row[f"margin_{n}"] = float(every[n]) if n in every else math.nan
@@ -170,14 +166,12 @@ def screen_applications_reference(apps: Sequence, *, objective: str = "standard"
 _CHECKS: dict = {}
 
 
-def _checks() -> tuple:
-    """``(constraints, advisory, objective)`` of the bulk row's margin columns (:func:`constraint_ids`), the flags
-    as arrays, per registry version (a check added with ``register`` included)."""
+def _checks() -> list:
+    """The constraints of the bulk row's margin columns (:func:`constraint_ids`), per registry version (a check
+    added with ``register`` included)."""
     got = _CHECKS.get(version())
     if got is None:
-        cols = [REGISTRY[cid] for cid in constraint_ids()]
-        got = (cols, np.array([c.advisory for c in cols], dtype=bool),
-               np.array([c.objective for c in cols], dtype=bool))
+        got = [REGISTRY[cid] for cid in constraint_ids()]
         _CHECKS.clear()
         _CHECKS[version()] = got
     return got
@@ -225,7 +219,7 @@ def _notes_of(apps, idx, state, evaluated, cache: dict) -> list:
     writes them from the result), built once per distinct pattern of missing requirements and defaults."""
     from synth.design.applications import DEFAULTS
     from synth.design.evaluate import NOT_VERIFIED
-    cols = _checks()[0]
+    cols = _checks()
     reqs = sorted({r for c in cols for r in c.needs})
     met = np.stack([apps.met(r)[idx] for r in reqs], axis=1) if reqs else np.zeros((len(idx), 0), bool)
     names = sorted({x for c in cols for x in c.assumes if x in DEFAULTS})
@@ -266,25 +260,11 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
     """The result columns (:func:`columns`, and ``_failed``: the failed constraint ids per row) of designs verified
     by :func:`_verify`, one array or list per column, built column by column: what :func:`row_from_result` gives
     for :func:`synth.optimise.answer.build_result`'s result of each."""
-    from synth.design.evaluate import EVALUATED
+    from synth.design.assessment import assess
     from synth.optimise.product import core_scores, option_scores
     m = len(idx)
-    cols, advisory, objective_flags = _checks()
-    state = np.stack([groups[c.group].state[c.id] for c in cols], axis=1)
-    marg = np.stack([np.asarray(groups[c.group].margins[c.id], dtype=float) for c in cols], axis=1)
-    ev = state == EVALUATED
-    passed = marg >= -FEAS_TOL
-    failed = ev & ~passed & ~advisory
-    counted = ev & (passed | ~advisory)  # the result's margins: verdict pass or fail
-    objective_counted = counted & objective_flags
-    # the margin objective: counted, objective, unless the design meets it by construction
-    margin_obj = objective_counted.copy()
-    for c, con in enumerate(cols):
-        if con.objective_unless is not None and not con.advisory:
-            margin_obj[:, c] &= con.counts_in_objective(groups[con.group].values)
-    m_counted = np.where(counted, marg, np.inf)
-    margin_min = m_counted.min(axis=1) if len(cols) else np.full(m, np.inf)
-    obj_margin = np.where(margin_obj, marg, np.inf).min(axis=1)
+    a = assess(groups, b.apps, app=idx, ids=tuple(c.id for c in _checks()))  # the one judgement of the margins
+    marg, ev, failed = a.margins, a.evaluated, a.failed
     # objectives as Evaluation.objective_values sums them
     sp = b.sp
     cv = {k: b.cg.values[k][rows] for k in ("pivot_class_standard_mm", "pivot_class_diameter_mm")}
@@ -295,25 +275,14 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
         o = option_scores(sp, s, k if s == "spring" else None, options[s])
         std, cost = std + o["standard"], cost + o["cost"]
     std, cost = sc["standard"] + std, sc["cost"] + cost
-    ids = np.array([c.id for c in cols], dtype=object)
-    any_failed = failed.any(axis=1)
-    feasible = (status == "optimal") & ~any_failed
-    notes_nv = _notes_of(b.apps, idx, state, ev, {})
-    incomplete = np.array([x[1] for x in notes_nv], dtype=bool)
-    # the binding constraint: the most violated when one fails (first of the ties), else the smallest counted
-    # margin of the objective's constraints
-    worst = np.where(failed, marg, np.inf).argmin(axis=1) if len(cols) else np.zeros(m, dtype=np.int64)
-    oc = np.where(objective_counted, marg, np.inf)
-    least = oc.argmin(axis=1) if len(cols) else np.zeros(m, dtype=np.int64)
-    has_oc = objective_counted.any(axis=1)
-    pick = np.where(any_failed, worst, least)
-    bind_ok = any_failed | has_oc
+    ids = a.columns.ids
+    feasible = (status == "optimal") & a.ok
+    notes_nv = _notes_of(b.apps, idx, a.state, ev, {})
     out = {"feasible": feasible, "status": np.where(feasible, "optimal", "infeasible").astype(object),
-           "verdict": np.where(any_failed, "fail", np.where(incomplete, "incomplete", "pass")).astype(object),
+           "verdict": a.verdict,
            "objective_standard": std.astype(float), "objective_cost_eur": np.round(cost.astype(float), 6),
-           "objective_margin": obj_margin.astype(float), "margin_min": margin_min.astype(float),
-           "binding_constraint": np.where(bind_ok, ids[pick] if len(cols) else "", "").astype(object),
-           "binding_margin": np.where(bind_ok, marg[np.arange(m), pick] if len(cols) else np.inf, np.inf)}
+           "objective_margin": a.objective_margin.astype(float), "margin_min": a.margin_min.astype(float),
+           "binding_constraint": a.binding_ids(), "binding_margin": a.binding_margin}
     for key, col in _parts(groups["_attrs"], groups["core"].values).items():
         out[f"part_{key}"] = col
     shown = np.where(ev, marg, np.nan)  # advisory constraints too, as warnings

@@ -134,8 +134,8 @@ class Constraint:
     def counts_in_objective(self, values: dict, rows=None):
         """Where this check counts in the margin objective: an objective, non-advisory check, except where its
         ``objective_unless`` value is positive (the design meets it by construction; NaN or 0: it counts), for the
-        rows of ``values`` (or ``rows`` of them). The one rule every consumer of the margin objective applies
-        (the evaluator's groups, ``Result``, the bulk rows, the platform, the capability targets).
+        rows of ``values`` (or ``rows`` of them). The one rule of the margin objective: the assessment
+        (:mod:`synth.design.assessment`) applies it for every consumer.
 
         >>> c = REGISTRY["damping_upper"]
         >>> c.counts_in_objective({"axial_damping_present": np.array([0.0, 1.0, np.nan])}).tolist()

@@ -36,7 +36,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from synth import catalog, parts
-from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin, physics_inputs
+from synth.design.assessment import EVALUATED, NOT_APPLICABLE, NOT_VERIFIED_STATE as NOT_VERIFIED, assess_group
+from synth.design.constraints import by_group, margin, physics_inputs
 from synth.model import bolted_joint, damping, disc_spring
 from synth.model import layout, packaging, pivot, plain_bushing, stackup
 from synth.model import torsion_spring
@@ -48,7 +49,6 @@ __all__ = ["Settings", "SPRING_LIMIT_BASES", "SPRING_TOLERANCE_COLUMNS", "MADE_C
            "BOLT_CORE_VALUES", "axial_judged", "axial_full", "FIDELITY_TEXT", "UNVERIFIED_NOTE", "FIDELITY_VALUES",
            "fidelity_free_ok"]  # FIDELITY_FREE: read at call time (__getattr__)
 
-EVALUATED, NOT_APPLICABLE, NOT_VERIFIED = 0, 1, 2
 #: ``full``: the full model everywhere; ``screening``: the searches rank and prune with the screening model and the
 #: full model judges every design they keep (what is reported is valid under the full model); ``screening-only``:
 #: the screening model alone, unverified (every output says so)
@@ -170,24 +170,18 @@ class Group:
     def __len__(self) -> int:
         return len(next(iter(self.values.values()))) if self.values else 0
 
+    def assessment(self):
+        """The :class:`~synth.design.assessment.Assessment` of this group's rows (the one judgement of margins)."""
+        return assess_group(self)
+
     def ok(self) -> np.ndarray:
         """``(n,)`` bool: every (non-advisory) constraint of the group passes."""
-        out = np.ones(len(self), dtype=bool)
-        for cid, m in self.margins.items():
-            if not REGISTRY[cid].advisory:
-                out &= m >= -FEAS_TOL
-        return out
+        return self.assessment().ok
 
     def min_margin(self, objective_only: bool = True) -> np.ndarray:
         """``(n,)`` smallest margin of the constraints counted in the margin objective (or all non-advisory)."""
-        out = np.full(len(self), np.inf)
-        for cid, m in self.margins.items():
-            c = REGISTRY[cid]
-            on = (not c.advisory) if not objective_only else c.counts_in_objective(self.values)
-            if on is False:
-                continue
-            out = np.minimum(out, np.where(on, m, np.inf))
-        return out
+        a = self.assessment()
+        return a.objective_margin if objective_only else a.margin_min
 
     def put(self, rows, other: "Group") -> "Group":
         """A copy whose rows ``rows`` are ``other``'s rows (a group of the same function, ``len(rows)`` rows)."""
@@ -607,10 +601,7 @@ def axial_full(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> 
 def fidelity_free_ok(g: Group) -> np.ndarray:
     """``(n,)`` bool: the rows of an axial group that pass every :data:`FIDELITY_FREE` constraint (the others fail
     at any fidelity)."""
-    ok = np.ones(len(g), dtype=bool)
-    for cid in _fidelity_free():  # the registry now, never a list frozen at import (a check registered since)
-        ok &= g.margins[cid] >= -FEAS_TOL
-    return ok
+    return assess_group(g, only=_fidelity_free()).ok  # the registry now, never a list frozen at import
 
 
 def _judged_rows(apps, cg, r, o, settings, g: Group, which) -> Group:

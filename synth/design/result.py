@@ -25,29 +25,21 @@ from dataclasses import dataclass, field
 
 
 from synth import display
-from synth.design.constraints import FEAS_TOL, REGISTRY, margin as registry_margin
+from synth.design.assessment import (EVALUATED, EVALUATED_VERDICTS, FAIL, INCOMPLETE, NOT_APPLICABLE as NOT_APPLICABLE_STATE,
+                                     NOT_APPLICABLE_VERDICT as NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Assessment,
+                                     assess, check_verdict, verdict_of)
+from synth.design.constraints import GROUPS as REGISTRY_GROUPS, REGISTRY, margin as registry_margin
 from synth.io.outputs import plain  # JSON-friendly data (NaN and infinities as None, no subnormal number)
 
-__all__ = ["Check", "Result", "verdict_of", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain",
+__all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain",
            "checks_of", "row_verdict", "field_corrections"]
 
-PASS, FAIL, INCOMPLETE = "pass", "fail", "incomplete"
-NOT_VERIFIED, NOT_APPLICABLE, WARNING = "not verified", "not applicable", "warning"
 EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 3}
 
 
 #: significant figures of the numbers a result exports (JSON): 6, beyond what any input or catalog value carries
 EXPORT_DIGITS = 6
 
-
-def verdict_of(c, m: float) -> str:
-    """The verdict of constraint ``c`` at margin ``m``: ``pass`` above ``-FEAS_TOL`` (round-off of equal values),
-    else ``warning`` for an advisory constraint and ``fail`` for the others; every check of every scene.
-
-    >>> verdict_of(REGISTRY["spring_yield"], -1e-12), verdict_of(REGISTRY["spring_yield"], -0.01)
-    ('pass', 'fail')
-    """
-    return PASS if m >= -FEAS_TOL else (WARNING if c.advisory else FAIL)
 
 
 @dataclass
@@ -73,7 +65,7 @@ class Check:
     def judged(cls, cid: str, value, limit, note: str = "") -> "Check":
         """The check of constraint ``cid`` from its value and limit, for a scene that computes them apart from the
         evaluator's groups (the shrink fit, :mod:`synth.shrink_fit.analysis`): the registry's margin
-        (:func:`~synth.design.constraints.margin`) and verdict (:func:`verdict_of`); a value or limit None is not
+        (:func:`~synth.design.constraints.margin`) and verdict (:func:`~synth.design.assessment.check_verdict`); a value or limit None is not
         verified.
 
         >>> c = Check.judged("shrink_fit_hub_elastic", 107.8, 155.1)
@@ -84,7 +76,7 @@ class Check:
             return cls(cid, None, None, None, NOT_VERIFIED, note)
         c = REGISTRY[cid]
         m = float(registry_margin(c, value, limit))
-        return cls(cid, float(value), float(limit), m, verdict_of(c, m), note)
+        return cls(cid, float(value), float(limit), m, check_verdict(c, m), note)
 
     @property
     def constraint(self):
@@ -156,15 +148,16 @@ class Result:
 
     def assumptions(self) -> list:
         """The documented defaults used by evaluated checks, once each."""
-        return list(dict.fromkeys(a for c in self.checks if c.verdict in (PASS, FAIL, WARNING) for a in c.assumed))
+        return list(dict.fromkeys(a for c in self.checks if c.verdict in EVALUATED_VERDICTS for a in c.assumed))
+
+    def assessment(self) -> Assessment:
+        """The one-design :class:`~synth.design.assessment.Assessment` of the checks (what the margins mean)."""
+        return Assessment.of_checks(self.checks, self.values)
 
     @property
     def verdict(self) -> str:
-        if self.failed():
-            return FAIL
-        if self.not_verified() or self.assumptions():
-            return INCOMPLETE
-        return PASS
+        """:func:`~synth.design.assessment.verdict_of` the failed checks and the not verified or assumed ones."""
+        return verdict_of(bool(self.failed()), bool(self.not_verified() or self.assumptions()))
 
     @property
     def exit_code(self) -> int:
@@ -179,8 +172,8 @@ class Result:
     def margins(self) -> dict:
         """``{constraint id: margin}`` of the evaluated non-advisory checks (an advisory check's margin is on the
         check itself, :meth:`check`; it never enters feasibility)."""
-        return {c.id: c.margin for c in self.checks
-                if c.verdict in (PASS, FAIL) and not c.constraint.advisory and c.margin is not None}
+        on = self.assessment().counted[0]
+        return {c.id: c.margin for c, x in zip(self.checks, on) if x and c.margin is not None}
 
     def check(self, cid: str) -> Check:
         for c in self.checks:
@@ -195,9 +188,11 @@ class Result:
         return self.values.get(key, default)
 
     def binding(self, n: int = 8) -> list:
-        """The ``n`` smallest margins of the checks counted in the margin objective (what binds)."""
-        rows = [c for c in self.checks if c.verdict in (PASS, FAIL) and c.constraint.objective]
-        return sorted(rows, key=lambda c: c.margin)[:n]
+        """The ``n`` smallest margins of the binding candidates (the assessment's: evaluated objective checks)."""
+        a = self.assessment()
+        on = a.binding_candidates[0]
+        order = sorted((j for j in range(len(self.checks)) if on[j]), key=lambda j: a.margins[0, j])
+        return [self.checks[j] for j in order[:n]]
 
     #: what a synthesis adds to a verified design (kept when the design is verified again, e.g. for its curves)
     SYNTHESIS_FIELDS = ("objective", "objectives", "stats", "diagnosis", "changes", "control", "alternatives")
@@ -271,35 +266,40 @@ class Result:
                    robust=dict(data["robust"]) if isinstance(data.get("robust"), dict) else {})
 
 
-def checks_of(groups: dict, apps, row: int = 0) -> list:
-    """The :class:`Check` records of one design: row ``row`` of each evaluated group (registry order)."""
+def checks_of(groups: dict, apps, row: int = 0, assessment: Assessment | None = None) -> list:
+    """The :class:`Check` records of one design: row ``row`` of each evaluated group (registry order), judged by
+    the assessment of the groups (:func:`synth.design.assessment.assess`; ``assessment``: one the caller made of
+    every row, then ``row`` indexes it)."""
     from synth.design.applications import DEFAULTS
-    from synth.design import evaluate
+    from synth.design.evaluate import _CONSTANT_LIMITS as CONSTANT_LIMITS
     from synth.design.rules import active as active_rules
+    a = assessment if assessment is not None else assess(groups, apps, rows=slice(row, row + 1))
+    j = row if assessment is not None else 0
+    app = {}
+    for name, g in groups.items():  # the application of the row in each group (row i is application i without)
+        if name in REGISTRY_GROUPS:
+            app[name] = int(g.values["app"][row]) if "app" in g.values else row
     out = []
-    for cid, c in REGISTRY.items():
-        g = groups.get(c.group)
-        if g is None:
-            continue
-        st = int(g.state[cid][row])
-        a = int(g.values["app"][row]) if "app" in g.values else 0
-        if st == evaluate.NOT_APPLICABLE:
+    rules = active_rules()
+    for k, c in enumerate(a.columns.constraints):
+        cid, g, st, aa = c.id, groups[c.group], int(a.state[j, k]), app[c.group]
+        if st == NOT_APPLICABLE_STATE:
             out.append(Check(cid, None, None, None, NOT_APPLICABLE))
             continue
-        if st != evaluate.EVALUATED:
+        if st != EVALUATED:
             if apps is None:
                 out.append(Check(cid, None, None, None, NOT_VERIFIED, f"not verified: {c.limit} not given"))
                 continue
-            missing = [r for r in c.needs if not apps.met(r)[a]]
-            out.append(Check(cid, None, None, None, NOT_VERIFIED, apps.missing_note(missing[0], a) if missing else ""))
+            missing = [r for r in c.needs if not apps.met(r)[aa]]
+            out.append(Check(cid, None, None, None, NOT_VERIFIED, apps.missing_note(missing[0], aa) if missing else ""))
             continue
         value = float(g.values[c.value][row])
-        limit = evaluate._CONSTANT_LIMITS[c.limit] if c.limit in evaluate._CONSTANT_LIMITS else float(g.values[c.limit][row])
-        m = float(g.margins[cid][row])
-        verdict = verdict_of(c, m)
-        assumed = [] if apps is None else [apps.assumed_note(x, a) for x in c.assumes
-                                           if x in DEFAULTS and apps.assumed(x)[a]]
-        out.append(Check(cid, value, limit, m, verdict, assumed=assumed, required=active_rules().required(cid)))
+        limit = CONSTANT_LIMITS[c.limit] if c.limit in CONSTANT_LIMITS else float(g.values[c.limit][row])
+        m = float(a.margins[j, k])
+        verdict = FAIL if a.failed[j, k] else (WARNING if a.warning[j, k] else PASS)
+        assumed = [] if apps is None or not a.assumed[j, k] else [
+            apps.assumed_note(x, aa) for x in c.assumes if x in DEFAULTS and apps.assumed(x)[aa]]
+        out.append(Check(cid, value, limit, m, verdict, assumed=assumed, required=rules.required(cid)))
     return out
 
 

@@ -7,25 +7,16 @@ checks as the flowchart) and attaches the objective values and statistics.
 
 from __future__ import annotations
 
-import math
-
-import numpy as np
-
-from synth.design.result import FAIL, PASS, Result
+from synth.design.result import Result
 from synth.design.verify import verify
 
 __all__ = ["build_result", "design_margin", "objective_name"]
 
 
 def design_margin(r: Result) -> float:
-    """The margin objective of a verified design: the smallest margin counted in it (registry flags)."""
-    vals = []
-    for c in r.checks:
-        con = c.constraint
-        if c.verdict not in (PASS, FAIL) or not bool(np.all(con.counts_in_objective(r.values))):
-            continue
-        vals.append(c.margin)
-    return float(min(vals)) if vals else math.inf
+    """The margin objective of a verified design: its assessment's (:attr:`~synth.design.assessment.Assessment.
+    objective_margin`, the smallest margin counted in it)."""
+    return float(r.assessment().objective_margin[0])
 
 
 def objective_name(obj) -> str:

@@ -191,9 +191,8 @@ def _spring(apps, sp, cg, pos, settings, counter) -> SubTable:
         kk, oo = (x.ravel() for x in np.meshgrid(np.arange(len(uniq)), oi, indexing="ij"))
         t = sp.tables["spring"]
         g = spring(apps, ukeys, kk, {c: t[c][oo] for c in SPRING_OPTION_COLUMNS}, settings)
-        feas[kk, oo] = g.ok()
-        marg[kk, oo] = g.min_margin()
-        mmin[kk, oo] = g.min_margin(objective_only=False)
+        a = g.assessment()
+        feas[kk, oo], marg[kk, oo], mmin[kk, oo] = a.ok, a.objective_margin, a.margin_min
         counter[0] += len(kk)
     return SubTable(avail[inv], feas[inv], marg[inv], mmin[inv])
 
@@ -217,9 +216,9 @@ def _scatter(avail, i, k, g: Group) -> SubTable:
     feas = np.zeros(shape, dtype=bool)
     marg = np.full(shape, -np.inf)
     mmin = np.full(shape, -np.inf)
-    feas[i, k] = g.ok()
-    marg[i, k] = g.min_margin()
-    mmin[i, k] = g.rank().min_margin(objective_only=False)  # nearest designs: ranked by the search model
+    a = g.assessment()
+    feas[i, k], marg[i, k] = a.ok, a.objective_margin
+    mmin[i, k] = (a if g.rank() is g else g.rank().assessment()).margin_min  # nearest: ranked by the search model
     return SubTable(avail, feas & avail, marg, mmin)
 
 

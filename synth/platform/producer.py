@@ -61,6 +61,7 @@ import numpy as np
 from synth import catalog
 from synth.design import evaluate
 from synth.design.applications import Applications
+from synth.design.assessment import assess_group
 from synth.design.constraints import FEAS_TOL, REGISTRY, version
 from synth.design.space import SUBSYSTEMS, core_rows, spring_window
 from synth.errors import InputError, Problem
@@ -118,26 +119,12 @@ def _index(cid: str) -> int:
 def margins_and_binding(g: evaluate.Group, objective_only: bool = True, rows=None) -> tuple[np.ndarray, np.ndarray]:
     """``(smallest margin, binding constraint index into the registry order)`` per row of ``g`` (or of ``rows``).
 
-    The smallest margin is :meth:`~synth.design.evaluate.Group.min_margin` (the same constraints: non-advisory,
-    and with ``objective_only`` those counted in the margin objective); the binding one is where it is reached
-    (``_NO_BINDING`` when no constraint counts).
+    The group's assessment (:meth:`synth.design.assessment.Assessment.objective_binding`): the smallest margin of
+    the checks counted in the margin objective (with ``objective_only``) or of every counted check, and where it
+    is reached (``_NO_BINDING`` when none counts; ties: the first in the group's order).
     """
-    take = (lambda x: x) if rows is None else (lambda x: np.asarray(x)[rows])  # noqa: E731
-    n = len(g) if rows is None else len(rows)
-    stack, idx = [], []
-    for cid, m in g.margins.items():
-        c = REGISTRY[cid]
-        on = (not c.advisory) if not objective_only else c.counts_in_objective(g.values, rows)
-        if on is False:
-            continue
-        stack.append(np.where(on, take(m), np.inf))
-        idx.append(_index(cid))
-    if not stack:
-        return np.full(n, np.inf), np.full(n, _NO_BINDING, np.int16)
-    M = np.stack(stack)
-    k = np.argmin(M, axis=0)
-    m = M[k, np.arange(n)]
-    return m, np.where(np.isinf(m) & (m > 0), _NO_BINDING, np.asarray(idx)[k]).astype(np.int16)
+    m, b = assess_group(g, rows).objective_binding(objective_only)
+    return m, np.where(b < 0, _NO_BINDING, b).astype(np.int16)
 
 
 def _names(b) -> np.ndarray:

@@ -32,6 +32,7 @@ import numpy as np
 
 from synth.design import evaluate
 from synth.design.applications import Applications
+from synth.design.assessment import assess
 from synth.design.space import SUBSYSTEMS
 from synth.design.result import Result, checks_of
 from synth.design.verify import evaluate_design, parts_of_rows
@@ -76,9 +77,10 @@ def verify_records(pf, records: list) -> list:
     apps = Applications.of([pf.design_inputs[i] for i in todo])
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
         groups = evaluate_design(apps, attrs, settings, detail=False)
+    judged = assess(groups, apps)  # every design's assessment at once; each row's checks read it
     for row, (i, p) in enumerate(zip(todo, parts)):
         rec = records[i]
-        res = Result(status="verified", parts=p, checks=checks_of(groups, apps, row))
+        res = Result(status="verified", parts=p, checks=checks_of(groups, apps, row, judged))
         rec["design"] = p
         rec["verdict"] = res.verdict
         failed = res.failed()

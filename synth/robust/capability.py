@@ -39,6 +39,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from synth.design.assessment import assess
 from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.robust.sampling import Base, evaluate_deviations, evaluate_u, sobol_u
 from synth.robust.settings import RobustSettings
@@ -88,12 +89,11 @@ def ppk(m: np.ndarray) -> float:
 
 
 def targeted(cid: str, base: Base) -> bool:
-    """Whether check ``cid`` of the design counts in the capability target: the registry's margin objective
-    (``objective``, not advisory, design-dependent; ``objective_unless`` false for the design)."""
+    """Whether check ``cid`` of the design counts in the capability target: its assessment's
+    (:attr:`synth.design.assessment.Assessment.targeted`: the margin objective's checks that depend on the design)."""
     c = REGISTRY[cid]
-    if not c.design:
-        return False
-    return bool(np.asarray(c.counts_in_objective(base.groups[c.group].values), dtype=bool).reshape(-1)[0])
+    a = assess({c.group: base.groups[c.group]}, rows=slice(0, 1))
+    return bool(a.targeted[0, list(a.columns.ids).index(cid)])
 
 
 def windows(checks) -> dict:

@@ -27,6 +27,7 @@ import numpy as np
 
 from synth.design import evaluate
 from synth.design.applications import Applications
+from synth.design.assessment import assess
 from synth.design.constraints import EVALUATED_GROUPS, FEAS_TOL, REGISTRY
 from synth.design.space import space
 from synth.design.verify import evaluate_design
@@ -41,16 +42,6 @@ BULK_SAMPLES = 1024
 #: the result columns of :func:`portfolio_capability`
 COLUMNS = ("capability_meets", "capability_min_ppk", "capability_max_ppm", "capability_failing",
            "capability_binding", "capability_method")
-
-
-def _targeted(groups: dict, cid: str) -> np.ndarray:
-    """``(K,)`` the check counts in the target for each design (see :func:`synth.robust.capability.targeted`)."""
-    c = REGISTRY[cid]
-    g = groups[c.group]
-    on = np.asarray(g.state[cid]) == evaluate.EVALUATED
-    if c.advisory or not c.objective or not c.design:
-        return np.zeros_like(on)
-    return on & c.counts_in_objective(g.values)
 
 
 def _chunk(inputs: list, parts: list, settings: evaluate.Settings, rs: RobustSettings, table: dict) -> list:
@@ -82,10 +73,13 @@ def _chunk(inputs: list, parts: list, settings: evaluate.Settings, rs: RobustSet
     with np.errstate(all="ignore"):
         gs = evaluate_design(a_s, at_s, settings, detail=False)
     out = [{"ppk": np.inf, "p_hi": 0.0, "failing": [], "binding": "", "binding_ppk": np.inf} for _ in range(k)]
-    for cid, c in REGISTRY.items():
+    judged = assess(groups)  # the checks each design's capability targets: evaluated ones only
+    targeted = judged.targeted & judged.evaluated
+    for j, cid in enumerate(judged.columns.ids):
+        c = REGISTRY[cid]
         if c.group not in EVALUATED_GROUPS:
             continue
-        on = _targeted(groups, cid)
+        on = targeted[:, j]
         if not on.any():
             continue
         m = np.asarray(gs[c.group].margins[cid], dtype=float).reshape(k, n)
