@@ -15,6 +15,8 @@ equal process capability).
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from synth import catalog
@@ -33,9 +35,16 @@ def component_tolerances_mm() -> dict[str, float]:
     >>> component_tolerances_mm()["pivot"]
     0.07
     """
+    return dict(_component_tolerances(tuple(catalog._user_dirs())))
+
+
+@functools.lru_cache(maxsize=8)
+def _component_tolerances(user_dirs: tuple) -> tuple:
+    """``((component, tolerance), ...)`` of these catalogs, read once per user-folder setting (as
+    :func:`synth.parts.arrays`): the evaluator asks for the gap tolerance at every axial evaluation."""
     df = catalog.load("stackup_tolerances")
     tol = dict(zip(df["component"], df["tolerance_mm"].astype(float)))
-    return {c: tol[c] for c in _COMPONENTS}
+    return tuple((c, float(tol[c])) for c in _COMPONENTS)
 
 
 def gap_tolerance_mm(method: str = "worst_case", tolerances_mm: dict | None = None) -> float:
