@@ -390,3 +390,33 @@ def test_keys_built_before_a_catalog_change_are_refused(monkeypatch):
     monkeypatch.setattr(s9, "main_spring_constants", lambda: changed)
     with pytest.raises(InputError, match="main_spring_index_max"):
         main_spring.margins(keys, opts)
+
+
+# --------------------------------------------------------------------------- the spring lists' scores (issue 19)
+@pytest.mark.parametrize("weights", [{"cost": 1.0, "standard": 1e4}, {"standard": 1e4, "cost": 1.0}, {"cost": 1.0},
+                                     {"standard": 0.5, "cost": 3.0, "margin": 2.0}])
+def test_list_scores_are_numpys_weighted_sums_bit_for_bit(weights):
+    """The compiled scores and order checks of the spring lists equal numpy's weighted sums (``np.diff`` of each
+    row) for every weight order, at extreme stiffnesses (zero, NaN, tiny, huge) and on the springs of the space."""
+    from synth.data.generated_applications import generate
+    from synth.optimise.batch import Batch
+    apps = generate(40, seed=5)
+    fast, ref = Batch(apps, spring_engine="numba"), Batch(apps, spring_engine="numpy")
+    rng = np.random.default_rng(0)
+    from synth.optimise.batch import wsum
+    from synth.optimise.product import option_scores
+    order = np.argsort(wsum(option_scores(fast.sp, "spring", 1.0), weights), kind="stable")  # the base order
+    cand = order[np.isin(order, rng.choice(len(order), size=min(300, len(order)), replace=False))]
+    stiff = np.r_[0.0, np.nan, 1e-300, 1e300, -1.0, rng.uniform(0.01, 5.0, 60)]
+    s_fast, g_fast = fast._list_scores(weights, stiff, cand)
+    s_ref, g_ref = ref._list_scores(weights, stiff, cand)
+    assert s_fast.shape == s_ref.shape == (len(stiff), len(cand))
+    np.testing.assert_array_equal(s_fast, s_ref)  # NaN where NaN, every other double the same
+    np.testing.assert_array_equal(g_fast, g_ref)
+    assert not g_fast[1] and g_fast[5:].any()  # a NaN stiffness keeps no order; real ones do
+    lists_f, of_f, sc_f, smin_f, _ = fast._spring_app_lists(weights)
+    lists_r, of_r, sc_r, smin_r, _ = ref._spring_app_lists(weights)
+    np.testing.assert_array_equal(of_f, of_r)
+    np.testing.assert_array_equal(smin_f, smin_r)
+    assert all(np.array_equal(a, b) for a, b in zip(lists_f, lists_r)) and len(lists_f) == len(lists_r)
+    assert all(np.array_equal(np.asarray(a), np.asarray(b)) for a, b in zip(sc_f, sc_r))

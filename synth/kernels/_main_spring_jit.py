@@ -375,3 +375,31 @@ def max_min_scan_parallel(keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr,
     for c in prange(len(kptr) - 1):
         _max_min_chunk(c, keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kperm, cap, pick, value, visited,
                        best_rank, work)
+
+
+@njit(cache=True, error_model="numpy")
+def list_scores(pre, unit_cost, w_cost, post, stiffness, cand, out, good):
+    """The additive scores of one spring list for many applications, and whether each keeps the list's order.
+
+    ``out[a, j] = ((pre[j] + w_cost * (unit_cost[j] / max(stiffness[a], 1e-12))) + post[0, j]) + ...``: the
+    weighted sum of :func:`synth.optimise.objectives.weighted_sum` over the goals of the score, in its order of
+    operations (``pre``: the goals before the cost, summed from 0.0; ``post``: those after it, one row each), the
+    cost per unit compliance over the stiffness (:meth:`synth.design.space.Space.spring_cost_eur`);
+    ``good[a]``: every adjacent pair of candidates ``cand`` is in order (the score grows, or ties with a growing
+    index), as ``numpy.diff`` of the row tells it. One pass over applications x candidates, no temporaries.
+    """
+    n_post = post.shape[0]
+    for a in range(len(stiffness)):
+        k = _maximum(stiffness[a], 1e-12)
+        ok = True
+        prev = 0.0
+        for j in range(len(cand)):
+            x = pre[j] + w_cost * (unit_cost[j] / k)
+            for p in range(n_post):
+                x = x + post[p, j]
+            out[a, j] = x
+            if j > 0 and ok:
+                d = x - prev
+                ok = d > 0 or (d == 0 and cand[j] > cand[j - 1])
+            prev = x
+        good[a] = ok

@@ -62,7 +62,7 @@ from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, REGISTRY, margin as registry_margin
 from synth.design.space import SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, space, space_for, spring_window
 from synth.kernels import axial as axial_kernels
-from synth.optimise.objectives import weighted_sum
+from synth.optimise.objectives import weighted_sum, weighted_sum_around
 from synth.optimise.product import DURABILITY_NOTE, core_scores, option_scores
 
 __all__ = ["Batch", "wsum", "SLACK", "any_feasible", "robust"]
@@ -181,6 +181,7 @@ class Batch:
         # springs go through their numpy twins, the registry's own finish (synth.design.rules)
         self.engine = "numpy" if not active().empty() else spring_engine
         self.axial_engine = spring_engine  # physics only (no limits): design rules do not change it
+        self.score_engine = spring_engine  # the spring lists' scores (no limits either)
         self._bolt_ids = _bolt_app_ids()
         self.sp = sp = _space_of(self.inputs, pin_inputs)
         self.apps = apps if apps is not None else Applications.of(self.inputs)
@@ -384,10 +385,7 @@ class Batch:
             in_rng = np.zeros(sp.n("spring"), dtype=bool)
             in_rng[lst] = True
             cand = order_all[in_rng[order_all]]  # the range's options in the base order
-            sc = np.broadcast_to(wsum(option_scores(sp, "spring", k[apps_g][:, None], cand[None, :]), weights),
-                                 (len(apps_g), len(cand)))
-            d = np.diff(sc, axis=1)
-            good = ((d > 0) | ((d == 0) & (np.diff(cand) > 0)[None, :])).all(axis=1)
+            sc, good = self._list_scores(weights, k[apps_g], cand)
             lid = len(lists)
             lists.append(cand)
             for j, i in enumerate(apps_g):
@@ -402,6 +400,31 @@ class Batch:
         positions = [np.arange(len(x), dtype=float) for x in lists]
         self._memo[key] = (lists, list_of, score_of, smin, positions)
         return self._memo[key]
+
+    def _list_scores(self, weights, stiffness, cand):
+        """``(scores, good)`` of the springs ``cand`` (a list in the base order) for applications of ``stiffness``:
+        ``scores[a, j]`` the additive score (:func:`~synth.optimise.objectives.weighted_sum`), ``good[a]`` whether
+        the list keeps its order for that application (every adjacent pair: the score grows, or ties with a
+        growing index). The compiled engine computes both in one pass (the score's per-option terms once,
+        :func:`~synth.kernels._main_spring_jit.list_scores`), the same doubles as numpy's."""
+        sp = self.sp
+        if self.score_engine == "numba" and "cost" in weights:
+            from synth.kernels import main_spring
+            n = len(cand)
+            before, w, after = weighted_sum_around(option_scores(sp, "spring", 1.0, cand), weights, "cost")
+            pre = np.ascontiguousarray(np.broadcast_to(np.asarray(before, dtype=float), (n,)))
+            post = np.array([np.broadcast_to(np.asarray(t, dtype=float), (n,)) for t in after],
+                            dtype=float).reshape(len(after), n)
+            unit = np.ascontiguousarray(sp.tables["spring"]["cost_eur_times_stiffness"][cand], dtype=float)
+            out, good = np.empty((len(stiffness), n)), np.empty(len(stiffness), dtype=bool)
+            main_spring.load_kernels().list_scores(pre, unit, float(w), post,
+                                                   np.ascontiguousarray(stiffness, dtype=float),
+                                                   np.ascontiguousarray(cand, dtype=np.int64), out, good)
+            return out, good
+        sc = np.broadcast_to(wsum(option_scores(sp, "spring", stiffness[:, None], cand[None, :]), weights),
+                             (len(stiffness), len(cand)))
+        d = np.diff(sc, axis=1)
+        return sc, ((d > 0) | ((d == 0) & (np.diff(cand) > 0)[None, :])).all(axis=1)
 
     def _spring_keys(self, rows):
         """``(keys dict, inverse)``: the distinct spring keys of core rows (application and what the spring sees)."""
