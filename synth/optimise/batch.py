@@ -478,9 +478,9 @@ class Batch:
         full model's search of :meth:`optimum`, :func:`~synth.design.evaluate.axial_full`)."""
         with np.errstate(over="ignore", divide="ignore", invalid="ignore"), axial_kernels.engine(self.axial_engine):
             if settings is None and self._screened is not None:
-                g = evaluate.axial_full(self.apps, self.cg, rr, self.sp.rows("axial", oo), self._screened)
+                g = evaluate.axial_full(self.apps, self.cg, rr, self.sp.rows_read("axial", oo), self._screened)
             else:
-                g = evaluate.axial(self.apps, self.cg, rr, self.sp.rows("axial", oo), settings or self.settings)
+                g = evaluate.axial(self.apps, self.cg, rr, self.sp.rows_read("axial", oo), settings or self.settings)
         self.evaluations += len(rr)
         return g
 
