@@ -15,8 +15,6 @@ equal process capability).
 
 from __future__ import annotations
 
-import functools
-
 import numpy as np
 
 from synth import catalog
@@ -35,14 +33,12 @@ def component_tolerances_mm() -> dict[str, float]:
     >>> component_tolerances_mm()["pivot"]
     0.07
     """
-    return dict(_component_tolerances(tuple(catalog._user_dirs())))
+    return dict(catalog.parsed("stackup_tolerances", _component_tolerances))
 
 
-@functools.lru_cache(maxsize=8)
-def _component_tolerances(user_dirs: tuple) -> tuple:
-    """``((component, tolerance), ...)`` of these catalogs, read once per user-folder setting (as
-    :func:`synth.parts.arrays`): the evaluator asks for the gap tolerance at every axial evaluation."""
-    df = catalog.load("stackup_tolerances")
+def _component_tolerances(df) -> tuple:
+    """``((component, tolerance), ...)`` of the table (parsed once per table: the evaluator asks for the gap
+    tolerance at every axial evaluation)."""
     tol = dict(zip(df["component"], df["tolerance_mm"].astype(float)))
     return tuple((c, float(tol[c])) for c in _COMPONENTS)
 
