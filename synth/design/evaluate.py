@@ -233,8 +233,10 @@ def finish(name: str, values: dict, apps, a) -> Group:
             kept = rules.required(c.id)
             if kept:  # the margin beyond the rule's (x - 0.0 is x: no copy without a rule)
                 m = m - kept
-        m = np.where(np.isnan(m), -np.inf, m)
-        own = m.shape == (n,)  # a fresh array of the group's rows (else a scalar or a broadcast margin)
+        undefined = np.isnan(m)
+        if undefined.any():
+            m = np.where(undefined, -np.inf, m)
+        own = m.shape == (n,)  # an array of the group's rows, new (the margin's), else a scalar or a broadcast
         m = m if own else np.broadcast_to(m, (n,))
         st = np.zeros(n, dtype=np.int8)
         if c.applies is not None:
