@@ -377,16 +377,18 @@ def max_min_scan_parallel(keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr,
                        best_rank, work)
 
 
-@njit(cache=True, error_model="numpy")
-def list_scores(pre, unit_cost, w_cost, post, stiffness, cand, out, good):
-    """The additive scores of one spring list for many applications, and whether each keeps the list's order.
 
-    ``out[a, j] = ((pre[j] + w_cost * (unit_cost[j] / max(stiffness[a], 1e-12))) + post[0, j]) + ...``: the
-    weighted sum of :func:`synth.optimise.objectives.weighted_sum` over the goals of the score, in its order of
-    operations (``pre``: the goals before the cost, summed from 0.0; ``post``: those after it, one row each), the
-    cost per unit compliance over the stiffness (:meth:`synth.design.space.Space.spring_cost_eur`);
-    ``good[a]``: every adjacent pair of candidates ``cand`` is in order (the score grows, or ties with a growing
-    index), as ``numpy.diff`` of the row tells it. One pass over applications x candidates, no temporaries.
+@njit(cache=True, error_model="numpy")
+def list_order(pre, unit_cost, w_cost, post, stiffness, cand, first, good):
+    """Whether a spring list keeps its order for each of many applications, and its first score.
+
+    The score of application ``a`` and candidate ``j`` is ``((pre[j] + w_cost * (unit_cost[j] / max(stiffness[a],
+    1e-12))) + post[0, j]) + ...``: the weighted sum of :func:`synth.optimise.objectives.weighted_sum` over the
+    goals of the score, in its order of operations (``pre``: the goals before the cost, summed from 0.0; ``post``:
+    those after it, one row each), the cost per unit compliance over the stiffness
+    (:meth:`synth.design.space.Space.spring_cost_eur`). ``good[a]``: every adjacent pair of candidates ``cand`` is
+    in order (the score grows, or ties with a growing index), as ``numpy.diff`` of the row tells it;
+    ``first[a]``: the score of ``cand[0]``. One pass over applications x candidates, nothing stored per pair.
     """
     n_post = post.shape[0]
     for a in range(len(stiffness)):
@@ -397,9 +399,12 @@ def list_scores(pre, unit_cost, w_cost, post, stiffness, cand, out, good):
             x = pre[j] + w_cost * (unit_cost[j] / k)
             for p in range(n_post):
                 x = x + post[p, j]
-            out[a, j] = x
-            if j > 0 and ok:
+            if j == 0:
+                first[a] = x
+            else:
                 d = x - prev
                 ok = d > 0 or (d == 0 and cand[j] > cand[j - 1])
+                if not ok:
+                    break
             prev = x
         good[a] = ok

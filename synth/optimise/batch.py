@@ -121,6 +121,23 @@ def _unique_rows(*cols):
     return order[new].astype(np.int64), inv
 
 
+class _ScoreRows:
+    """Per application (an index), the scores along its spring list: given, or computed by ``row(i)`` when first
+    read, then kept."""
+
+    def __init__(self, row):
+        self._row, self._rows = row, {}
+
+    def __getitem__(self, i):
+        i = int(i)
+        if i not in self._rows:
+            self._rows[i] = self._row(i)
+        return self._rows[i]
+
+    def __setitem__(self, i, scores) -> None:
+        self._rows[int(i)] = scores
+
+
 def _segments(starts, counts):
     """Concatenated ``arange(start, start + count)`` of every segment."""
     counts = np.asarray(counts, dtype=np.int64)
@@ -376,7 +393,8 @@ class Batch:
         order_all = np.argsort(base, kind="stable")
         lists: list = []
         list_of = np.full(len(self), -1, dtype=np.int64)
-        score_of: list = [None] * len(self)
+        # an application's scores along its list, computed when first read (most applications never read theirs)
+        score_of = _ScoreRows(lambda i: wsum(option_scores(sp, "spring", k[i], lists[list_of[i]]), weights))
         smin = np.full(len(self), np.inf)
         for g, lst in enumerate(ranges):
             apps_g = np.flatnonzero(inv == g)
@@ -385,28 +403,29 @@ class Batch:
             in_rng = np.zeros(sp.n("spring"), dtype=bool)
             in_rng[lst] = True
             cand = order_all[in_rng[order_all]]  # the range's options in the base order
-            sc, good = self._list_scores(weights, k[apps_g], cand)
+            first, good = self._list_order(weights, k[apps_g], cand)
             lid = len(lists)
             lists.append(cand)
             for j, i in enumerate(apps_g):
                 if good[j]:
-                    list_of[i], score_of[i] = lid, sc[j]
+                    list_of[i], smin[i] = lid, first[j]
                 else:  # this stiffness reorders (rounding ties): its own stable sort
                     s_i = wsum(option_scores(sp, "spring", k[i], lst), weights)
                     o = np.argsort(s_i, kind="stable")
                     list_of[i], score_of[i] = len(lists), s_i[o]
                     lists.append(lst[o])
-                smin[i] = score_of[i][0]
+                    smin[i] = score_of[i][0]
         positions = [np.arange(len(x), dtype=float) for x in lists]
         self._memo[key] = (lists, list_of, score_of, smin, positions)
         return self._memo[key]
 
-    def _list_scores(self, weights, stiffness, cand):
-        """``(scores, good)`` of the springs ``cand`` (a list in the base order) for applications of ``stiffness``:
-        ``scores[a, j]`` the additive score (:func:`~synth.optimise.objectives.weighted_sum`), ``good[a]`` whether
-        the list keeps its order for that application (every adjacent pair: the score grows, or ties with a
-        growing index). The compiled engine computes both in one pass (the score's per-option terms once,
-        :func:`~synth.kernels._main_spring_jit.list_scores`), the same doubles as numpy's."""
+    def _list_order(self, weights, stiffness, cand):
+        """``(first, good)`` of the springs ``cand`` (a list in the base order) for applications of ``stiffness``:
+        ``good[a]`` whether the list keeps its order for that application (the additive score of
+        :func:`~synth.optimise.objectives.weighted_sum` grows along it, or ties with a growing index: every
+        adjacent pair), ``first[a]`` the score of its first spring. The compiled engine computes both in one pass
+        with nothing stored per pair (the score's per-option terms once,
+        :func:`~synth.kernels._main_spring_jit.list_order`), the same doubles as numpy's scores."""
         sp = self.sp
         if self.score_engine == "numba" and "cost" in weights:
             from synth.kernels import main_spring
@@ -416,15 +435,15 @@ class Batch:
             post = np.array([np.broadcast_to(np.asarray(t, dtype=float), (n,)) for t in after],
                             dtype=float).reshape(len(after), n)
             unit = np.ascontiguousarray(sp.tables["spring"]["cost_eur_times_stiffness"][cand], dtype=float)
-            out, good = np.empty((len(stiffness), n)), np.empty(len(stiffness), dtype=bool)
-            main_spring.load_kernels().list_scores(pre, unit, float(w), post,
-                                                   np.ascontiguousarray(stiffness, dtype=float),
-                                                   np.ascontiguousarray(cand, dtype=np.int64), out, good)
-            return out, good
+            first, good = np.full(len(stiffness), np.nan), np.empty(len(stiffness), dtype=bool)
+            main_spring.load_kernels().list_order(pre, unit, float(w), post,
+                                                  np.ascontiguousarray(stiffness, dtype=float),
+                                                  np.ascontiguousarray(cand, dtype=np.int64), first, good)
+            return first, good
         sc = np.broadcast_to(wsum(option_scores(sp, "spring", stiffness[:, None], cand[None, :]), weights),
                              (len(stiffness), len(cand)))
         d = np.diff(sc, axis=1)
-        return sc, ((d > 0) | ((d == 0) & (np.diff(cand) > 0)[None, :])).all(axis=1)
+        return sc[:, 0].copy(), ((d > 0) | ((d == 0) & (np.diff(cand) > 0)[None, :])).all(axis=1)
 
     def _spring_keys(self, rows):
         """``(keys dict, inverse)``: the distinct spring keys of core rows (application and what the spring sees)."""
