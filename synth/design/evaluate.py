@@ -546,8 +546,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
                                  sized(np.asarray(o["endcap_spacer_mean_radius_mm"])), sized(de), sized(di), gap,
                                  aspect_ratio=sized(zeta), deflection_ratio=sized(phi), fidelity=settings.model,
                                  **made)
-        for k in keys:
-            v[k][slice(None) if every else i] = cs[k]
+        _put_columns(v, keys, cs, None if every else i)
     v["cone_spring_gap_tolerance_mm"] = np.full(n, gap)
     v["cone_spring_sigma_om_abs_mpa"] = np.abs(v["sigma_om_mpa"])
     v["cone_spring_sigma_om_max_mpa"] = np.full(n, _const("cone_spring_sigma_om_max_mpa"))
@@ -573,14 +572,24 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
                                   k_wear_mm3_per_n_m=at(apps.k_wear_plastic_mm3_per_n_m[a]),
                                   plastic_friction_coefficient=at(mu_pl), fidelity=settings.model,
                                   time_points=time_points)
-        for k in PLASTIC_WEAR_VALUES:
-            v[k][slice(None) if worn else w] = pw[k]
+        _put_columns(v, PLASTIC_WEAR_VALUES, pw, None if worn else w)
         history = pw.get("history")
     g = finish("axial", v, apps, a)
     if history is not None:
         g.values["_history_rows"] = w
         g.values["_history"] = history
     return g
+
+
+def _put_columns(v: dict, keys, got: dict, rows) -> None:
+    """``v[k][rows] = got[k]`` for each of ``keys``; ``rows`` None: every row, a value of the right length and type
+    taken as it is (the compiled twins return each value as a column of its own: no copy)."""
+    for k in keys:
+        col = got[k]
+        if rows is None and isinstance(col, np.ndarray) and col.shape == v[k].shape and col.dtype == v[k].dtype:
+            v[k] = col
+        else:
+            v[k][slice(None) if rows is None else rows] = col
 
 
 def axial_judged(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Group:
