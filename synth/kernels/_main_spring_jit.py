@@ -27,7 +27,9 @@ Kernels (loops over keys x options, no allocation per pair):
   upper bound (index margins) and stopping when that bound, or the key's cap,
   says no later option can win; the keys of a list walk it together in
   increasing installation torque, so one yield margin below the smallest
-  best value settles an option for the rest of them.
+  best value settles an option for the rest of them;
+* :func:`list_order` -- per application, whether a spring list keeps its score order at its stiffness, and its
+  first score (the bulk engine's score-ordered lists, :meth:`synth.optimise.batch.Batch._spring_app_lists`).
 """
 
 from __future__ import annotations
