@@ -34,11 +34,11 @@ from synth.data.generated_applications import generate
 n, seed, fid, out = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3], sys.argv[4]
 apps = generate(n, seed=seed)
 screen_applications(apps[:20], fidelity=fid, diagnose=False)   # kernels and design space loaded, not timed
-t0 = time.perf_counter()
+t0, c0 = time.perf_counter(), time.process_time()
 df = screen_applications(apps, fidelity=fid, diagnose=False)
-dt = time.perf_counter() - t0
+dt, cpu = time.perf_counter() - t0, time.process_time() - c0
 df.to_pickle(out)
-print(json.dumps({"seconds": dt, "feasible": float(df["feasible"].mean())}))
+print(json.dumps({"seconds": dt, "cpu": cpu, "feasible": float(df["feasible"].mean())}))
 """
 
 
@@ -103,11 +103,11 @@ def engine_table(n: int, runs: int, seed: int, base: Path) -> None:
     print(f"## Bulk engine (`screen_applications`, {n} generated applications, no diagnosis): this tree (A) against "
           f"{base} (B), fresh processes in turn, warm inside each\n")
     print("| fidelity | A s (median) | B s (median) | A apps/s | B apps/s | speed-up B/A (median of pairs) | "
-          "results equal |")
-    print("|---|---|---|---|---|---|---|")
+          "A apps per CPU s | B apps per CPU s | CPU B/A (median of pairs) | results equal |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
         for fid in ("screening", "full"):
-            ta, tb, equal = [], [], True
+            ta, tb, ca, cb, equal = [], [], [], [], True
             for r in range(runs):
                 res = {}
                 for label, tree in (("A", ROOT), ("B", base)):
@@ -115,13 +115,18 @@ def engine_table(n: int, runs: int, seed: int, base: Path) -> None:
                     env = {**os.environ, "PYTHONPATH": str(tree)}
                     p = subprocess.run([sys.executable, "-c", _CHILD, str(n), str(seed), fid, str(out)], env=env,
                                        capture_output=True, text=True, check=True, cwd=tree)
-                    res[label] = (json.loads(p.stdout.strip().splitlines()[-1])["seconds"], pd.read_pickle(out))
+                    got = json.loads(p.stdout.strip().splitlines()[-1])
+                    res[label] = (got["seconds"], pd.read_pickle(out), got["cpu"])
                 ta.append(res["A"][0])
                 tb.append(res["B"][0])
+                ca.append(res["A"][2])
+                cb.append(res["B"][2])
                 equal &= _same(res["A"][1], res["B"][1])
             ratio = statistics.median(b / a for a, b in zip(ta, tb))
             a, b = statistics.median(ta), statistics.median(tb)
+            cpu_ratio = statistics.median(y / x for x, y in zip(ca, cb))
             print(f"| {fid} | {a:.2f} | {b:.2f} | {n / a:.0f} | {n / b:.0f} | {ratio:.2f} | "
+                  f"{n / statistics.median(ca):.0f} | {n / statistics.median(cb):.0f} | {cpu_ratio:.2f} | "
                   f"{'yes' if equal else 'NO'} |")
     print()
 

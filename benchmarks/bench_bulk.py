@@ -2,7 +2,7 @@
 the relaxation diagnosis, the agreement between fidelities, the reference (``solve`` per application), one
 optimum inside a process, and the whole ``synth bulk`` command on a ``synth portfolio-sample``.
 
-    .venv/bin/python benchmarks/bench_bulk.py [--n 2000] [--quick] [--seed 0] [--no-command]
+    .venv/bin/python benchmarks/bench_bulk.py [--n 2000] [--quick] [--seed 0] [--no-command] [--base CHECKOUT]
 
 Prints markdown tables. ``--quick`` runs a small portfolio (for a smoke test). The aims of issue 13: the
 engine >= 1,000 applications/s and the whole command >= 300/s at screening fidelity without diagnosis,
@@ -92,7 +92,14 @@ def main(argv=None) -> int:
     ap.add_argument("--quick", action="store_true", help="small portfolio and reference sample")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--objective", default="standard")
+    ap.add_argument("--base", type=Path, help="a checkout of the base commit: only the engine, this tree against it "
+                    "side by side (fresh processes in turn, benchmarks/bench_axial.py's table)")
     args = ap.parse_args(argv)
+    if args.base is not None:
+        sys.path.insert(0, str(Path(__file__).resolve().parent))
+        from bench_axial import engine_table
+        engine_table(args.n, args.runs, args.seed, args.base.resolve())
+        return 0
     n = 12 if args.quick else args.n
     args.runs = 1 if args.quick else max(args.runs, 1)
     n_ref = 4 if args.quick else 12

@@ -141,6 +141,27 @@ def load(name: str) -> pd.DataFrame:
     return _load_cached(name, tuple(_user_dirs())).copy()
 
 
+_PARSED: dict = {}
+
+
+def parsed(name: str, build):
+    """``build(table)`` of catalog ``name`` (``table``: :func:`load`'s copy), computed once per loaded table: a
+    user folder or a cleared catalog cache gives a new table, and so a new value. For what a hot path derives
+    from a small table (a lookup array, a sum) every call.
+
+    >>> parsed("stackup_tolerances", len) == len(load("stackup_tolerances"))
+    True
+    """
+    dirs = tuple(_user_dirs())
+    src = _load_cached(name, dirs)
+    hit = _PARSED.get((name, build, dirs))
+    if hit is not None and hit[0] is src:
+        return hit[1]
+    value = build(src.copy())
+    _PARSED[(name, build, dirs)] = (src, value)
+    return value
+
+
 @functools.lru_cache(maxsize=None)
 def _index_cached(name: str, user_dirs: tuple[Path, ...]) -> dict:
     """``{key: row position}`` of catalog ``name`` (first occurrence wins, as :func:`row` always did)."""

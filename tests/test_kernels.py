@@ -390,3 +390,34 @@ def test_keys_built_before_a_catalog_change_are_refused(monkeypatch):
     monkeypatch.setattr(s9, "main_spring_constants", lambda: changed)
     with pytest.raises(InputError, match="main_spring_index_max"):
         main_spring.margins(keys, opts)
+
+
+# --------------------------------------------------------------------------- the spring lists' order (issue 19)
+@pytest.mark.parametrize("weights", [{"cost": 1.0, "standard": 1e4}, {"standard": 1e4, "cost": 1.0}, {"cost": 1.0},
+                                     {"standard": 0.5, "cost": 3.0, "margin": 2.0}])
+def test_list_order_is_numpys_weighted_sums_bit_for_bit(weights):
+    """The compiled order checks and first scores of the spring lists equal numpy's weighted sums (``np.diff`` of
+    each row) for every weight order, at extreme stiffnesses (zero, NaN, tiny, huge, negative) and on the springs
+    of the space; the applications' lists and scores (computed when read) are the numpy engine's."""
+    from synth.data.generated_applications import generate
+    from synth.optimise.batch import Batch, wsum
+    from synth.optimise.product import option_scores
+    apps = generate(40, seed=5)
+    fast, ref = Batch(apps, spring_engine="numba"), Batch(apps, spring_engine="numpy")
+    rng = np.random.default_rng(0)
+    order = np.argsort(wsum(option_scores(fast.sp, "spring", 1.0), weights), kind="stable")  # the base order
+    cand = order[np.isin(order, rng.choice(len(order), size=min(300, len(order)), replace=False))]
+    stiff = np.r_[0.0, np.nan, 1e-300, 1e300, -1.0, rng.uniform(0.01, 5.0, 60)]
+    first_f, good_f = fast._list_order(weights, stiff, cand)
+    first_r, good_r = ref._list_order(weights, stiff, cand)
+    np.testing.assert_array_equal(first_f, first_r)  # NaN where NaN, every other double the same
+    np.testing.assert_array_equal(good_f, good_r)
+    assert not good_f[1] and good_f[5:].any()  # a NaN stiffness keeps no order; real ones do
+    lists_f, of_f, sc_f, smin_f, _ = fast._spring_app_lists(weights)
+    lists_r, of_r, sc_r, smin_r, _ = ref._spring_app_lists(weights)
+    np.testing.assert_array_equal(of_f, of_r)
+    np.testing.assert_array_equal(smin_f, smin_r)
+    assert len(lists_f) == len(lists_r) and all(np.array_equal(a, b) for a, b in zip(lists_f, lists_r))
+    for i in np.flatnonzero(of_f >= 0):  # each application's scores along its list: growing, the first smin
+        np.testing.assert_array_equal(sc_f[i], sc_r[i])
+        assert sc_f[i][0] == smin_f[i] and (np.diff(sc_f[i]) >= 0).all()

@@ -204,12 +204,17 @@ def normalised_margin(value, limit, sense: str, scale=None) -> np.ndarray:
     if scale is None:
         scale = np.abs(limit)
     scale = np.asarray(scale, dtype=float)
-    scale = np.where(scale > SCALE_FLOOR, scale, 1.0)
+    big = scale > SCALE_FLOOR
+    if not big.all():  # (the evaluator's hot path: most limits need no floor, and then no copy is made)
+        scale = np.where(big, scale, 1.0)
     diff = limit - value if sense == "<=" else value - limit
     with np.errstate(invalid="ignore"):
-        m = diff / scale
+        m = np.asarray(diff / scale)
     # an infinite limit (no upper bound, e.g. the last Table 1 row) is an infinite margin, never NaN
-    return np.where(np.isinf(limit) & np.isfinite(value), np.where(diff > 0, np.inf, -np.inf), m)
+    unbounded = np.isinf(limit)
+    if unbounded.any():
+        return np.where(unbounded & np.isfinite(value), np.where(diff > 0, np.inf, -np.inf), m)
+    return m
 
 
 _LENGTHEN = "lengthen the bushing; at the longest that fits, a larger pivot diameter"

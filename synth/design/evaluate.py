@@ -225,8 +225,15 @@ def finish(name: str, values: dict, apps, a, checks: tuple | None = None) -> Gro
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             scale = None if c.scale is None else (_CONSTANT_LIMITS[c.scale] if c.scale in _CONSTANT_LIMITS
                                                   else values[c.scale])
-            m = margin(c, values[c.value], lim, scale) - rules.required(c.id)  # the margin beyond the rule's
-        m = np.broadcast_to(np.where(np.isnan(m), -np.inf, m), n)
+            m = margin(c, values[c.value], lim, scale)
+            kept = rules.required(c.id)
+            if kept:  # the margin beyond the rule's (x - 0.0 is x: no copy without a rule)
+                m = m - kept
+        undefined = np.isnan(m)
+        if undefined.any():
+            m = np.where(undefined, -np.inf, m)
+        own = m.shape == n  # an array of the group's rows, new (the margin's), else a scalar or a broadcast
+        m = m if own else np.broadcast_to(m, n)
         st = np.zeros(n, dtype=np.int8)
         if c.applies is not None:
             st[~np.asarray(values[c.applies], dtype=bool)] = NOT_APPLICABLE
@@ -238,7 +245,8 @@ def finish(name: str, values: dict, apps, a, checks: tuple | None = None) -> Gro
                 if req not in met:
                     met[req] = apps.met(req)[a]
                 st[(st == EVALUATED) & ~met[req]] = NOT_VERIFIED
-        margins[c.id] = np.where(st == EVALUATED, m, np.inf)
+        # every row evaluated (the usual case): the margins as they are, in an array of their own
+        margins[c.id] = m if own and not st.any() else np.where(st == EVALUATED, m, np.inf)
         state[c.id] = st
     return Group(name, values, margins, state)
 
@@ -516,26 +524,29 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     act = real & pad & ((cv["axial_damping_nm"] > 0) | made_rows) & (de > di) & (zeta > 0) & (phi > 0) & (phi <= 1)
     v["cone_spring_sized"] = act
     keys = CONE_SPRING_VALUES
+    i = np.flatnonzero(act)
+    # every row sized (the usual block of options): whole columns, not a gather and a scatter per value
+    every = len(i) == n
+    sized = (lambda x: x) if every else (lambda x: x[i])
     for k in keys:
-        v[k] = np.full(n, np.nan)
+        v[k] = np.empty(n) if every else np.full(n, np.nan)
     v["cone_spring_max_external_diameter_mm"] = np.where(real, cv["cone_spring_max_external_diameter_mm"], np.nan)
     v["cone_spring_external_diameter_mm"] = np.where(real, de, np.nan)
     v["cone_spring_internal_diameter_mm"] = np.where(real, di, np.nan)
-    i = np.flatnonzero(act)
     tol = f["damping_tolerance_nm"]
     mu_pl = apps.mu_plastic[a]
     gap = stackup.gap_tolerance_mm("worst_case")
     if len(i):
         # a made cone spring (synth.robust's production-scatter samples): its thickness, the realised deflection
         # offset of the gap stack and its force factor, per row (see synth.model.disc_spring.cone_spring)
-        made = {k: np.asarray(o[c], dtype=float)[i] for k, c in MADE_CONE_SPRING_COLUMNS.items() if c in o}
-        cs = axial_engine.cone_spring(cv["axial_damping_nm"][i], apps.damping_target_or_zero_nm[a][i],
-                                 np.nan_to_num(tol[i], nan=0.0), cv["radial_damping_nm"][i], mu_pl[i],
-                                 cv["damper_pad_mean_radius_mm"][i], np.asarray(o["endcap_spacer_mean_radius_mm"])[i],
-                                 de[i], di[i], gap, aspect_ratio=zeta[i], deflection_ratio=phi[i],
-                                 fidelity=settings.model, **made)
-        for k in keys:
-            v[k][i] = cs[k]
+        made = {k: sized(np.asarray(o[c], dtype=float)) for k, c in MADE_CONE_SPRING_COLUMNS.items() if c in o}
+        cs = axial_engine.cone_spring(sized(cv["axial_damping_nm"]), sized(apps.damping_target_or_zero_nm[a]),
+                                 np.nan_to_num(sized(tol), nan=0.0), sized(cv["radial_damping_nm"]), sized(mu_pl),
+                                 sized(cv["damper_pad_mean_radius_mm"]),
+                                 sized(np.asarray(o["endcap_spacer_mean_radius_mm"])), sized(de), sized(di), gap,
+                                 aspect_ratio=sized(zeta), deflection_ratio=sized(phi), fidelity=settings.model,
+                                 **made)
+        _put_columns(v, keys, cs, None if every else i)
     v["cone_spring_gap_tolerance_mm"] = np.full(n, gap)
     v["cone_spring_sigma_om_abs_mpa"] = np.abs(v["sigma_om_mpa"])
     v["cone_spring_sigma_om_max_mpa"] = np.full(n, _const("cone_spring_sigma_om_max_mpa"))
@@ -543,29 +554,42 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
         lo, hi = p.cone_ranges[rng]
         v[f"cone_spring_{key}_min"], v[f"cone_spring_{key}_max"] = np.full(n, lo), np.full(n, hi)
     v["damping_eol_limit_nm"] = f["damping_eol_limit_nm"]
-    for k in PLASTIC_WEAR_VALUES:
-        v[k] = np.full(n, np.nan)
     w = i[apps.durability_given[a][i]]
+    worn = len(w) == n  # every row worn: whole columns, as above
+    at = (lambda x: x) if worn else (lambda x: x[w])
+    for k in PLASTIC_WEAR_VALUES:
+        v[k] = np.empty(n) if worn else np.full(n, np.nan)
     history = None
     if len(w):
-        pw = axial_engine.plastic_wear(v["cone_spring_nominal_deflection_mm"][w], de[w], di[w],
-                                  v["cone_spring_thickness_mm"][w], v["cone_spring_cone_height_mm"][w],
-                                  cv["damper_pad_contact_area_mm2"][w], cv["damper_pad_mean_radius_mm"][w],
-                                  cv["damper_pad_axial_height_mm"][w],
-                                  np.asarray(o["endcap_spacer_contact_area_mm2"])[w],
-                                  np.asarray(o["endcap_spacer_mean_radius_mm"])[w], es_h[w], apps.theta_pp_deg[a][w],
-                                  apps.frequency_hz[a][w], apps.duration_h[a][w], cv["radial_damping_nm"][w],
-                                  k_wear_mm3_per_n_m=apps.k_wear_plastic_mm3_per_n_m[a][w],
-                                  plastic_friction_coefficient=mu_pl[w], fidelity=settings.model,
+        pw = axial_engine.plastic_wear(at(v["cone_spring_nominal_deflection_mm"]), at(de), at(di),
+                                  at(v["cone_spring_thickness_mm"]), at(v["cone_spring_cone_height_mm"]),
+                                  at(cv["damper_pad_contact_area_mm2"]), at(cv["damper_pad_mean_radius_mm"]),
+                                  at(cv["damper_pad_axial_height_mm"]),
+                                  at(np.asarray(o["endcap_spacer_contact_area_mm2"])),
+                                  at(np.asarray(o["endcap_spacer_mean_radius_mm"])), at(es_h),
+                                  at(apps.theta_pp_deg[a]), at(apps.frequency_hz[a]), at(apps.duration_h[a]),
+                                  at(cv["radial_damping_nm"]),
+                                  k_wear_mm3_per_n_m=at(apps.k_wear_plastic_mm3_per_n_m[a]),
+                                  plastic_friction_coefficient=at(mu_pl), fidelity=settings.model,
                                   time_points=time_points)
-        for k in PLASTIC_WEAR_VALUES:
-            v[k][w] = pw[k]
+        _put_columns(v, PLASTIC_WEAR_VALUES, pw, None if worn else w)
         history = pw.get("history")
     g = finish("axial", v, apps, a)
     if history is not None:
         g.values["_history_rows"] = w
         g.values["_history"] = history
     return g
+
+
+def _put_columns(v: dict, keys, got: dict, rows) -> None:
+    """``v[k][rows] = got[k]`` for each of ``keys``; ``rows`` None: every row, a value of the right length and type
+    taken as it is (the compiled twins return each value as a column of its own: no copy)."""
+    for k in keys:
+        col = got[k]
+        if rows is None and isinstance(col, np.ndarray) and col.shape == v[k].shape and col.dtype == v[k].dtype:
+            v[k] = col
+        else:
+            v[k][slice(None) if rows is None else rows] = col
 
 
 def axial_judged(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Group:

@@ -46,6 +46,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -74,6 +75,27 @@ PART_KEYS_BY_TABLE = {
     "bolt": ("bolt_format", "bolt_head_type", "bolt_property_class"),
 }
 PART_KEYS = tuple(k for t in TABLES for k in PART_KEYS_BY_TABLE[t])
+
+
+class RowsRead(Mapping):
+    """The columns of a table at rows ``idx``, as :meth:`Space.rows` gives them, each gathered on first access."""
+
+    def __init__(self, table: dict, idx):
+        self._table, self._idx, self._got = table, idx, {}
+
+    def __getitem__(self, key):
+        if key not in self._got:
+            self._got[key] = self._table[key][self._idx]
+        return self._got[key]
+
+    def __contains__(self, key) -> bool:  # a column of the table, gathered or not (no gather to answer)
+        return key in self._table
+
+    def __iter__(self):
+        return iter(self._table)
+
+    def __len__(self) -> int:
+        return len(self._table)
 
 
 @dataclass
@@ -111,6 +133,11 @@ class Space:
     def rows(self, table: str, idx) -> dict:
         """The columns of ``table`` at rows ``idx`` (gathered arrays)."""
         return {k: v[idx] for k, v in self.tables[table].items()}
+
+    def rows_read(self, table: str, idx) -> "RowsRead":
+        """:meth:`rows` for a reader of a few of the columns: each column gathered when first read (a search
+        evaluates a group on many blocks of options and reads a handful of the table's columns)."""
+        return RowsRead(self.tables[table], idx)
 
     def design_attributes(self, parts: dict, field_prefix: str = "parts") -> dict:
         """One-row attribute dicts, per table, of the design ``parts`` (its part keys; any pivot class, length,

@@ -208,15 +208,18 @@ def csv_cell(value):
 
 def csv_safe(df):
     """A copy of table ``df`` whose text cells and column names are :func:`csv_cell`-safe (every CSV writer)."""
+    import numpy as np
     from pandas.api.types import is_object_dtype, is_string_dtype
     out = df.copy()
     out.columns = [csv_cell(str(c)) if isinstance(c, str) else c for c in out.columns]
     for i in range(out.shape[1]):
         col = out.iloc[:, i]
         if is_object_dtype(col.dtype) or is_string_dtype(col.dtype):
-            text = col.astype("object")
-            lead = text.map(lambda v: isinstance(v, str) and v.startswith(FORMULA_LEADS))
+            cells = col.to_numpy(dtype=object)  # one pass over the cells, no pandas per-cell call
+            lead = np.fromiter((isinstance(v, str) and v.startswith(FORMULA_LEADS) for v in cells), dtype=bool,
+                               count=len(cells))
             if lead.any():
+                text = col.astype("object")
                 out.isetitem(i, text.where(~lead, text[lead].map(csv_cell)))
     return out
 

@@ -27,7 +27,9 @@ Kernels (loops over keys x options, no allocation per pair):
   upper bound (index margins) and stopping when that bound, or the key's cap,
   says no later option can win; the keys of a list walk it together in
   increasing installation torque, so one yield margin below the smallest
-  best value settles an option for the rest of them.
+  best value settles an option for the rest of them;
+* :func:`list_order` -- per application, whether a spring list keeps its score order at its stiffness, and its
+  first score (the bulk engine's score-ordered lists, :meth:`synth.optimise.batch.Batch._spring_app_lists`).
 """
 
 from __future__ import annotations
@@ -375,3 +377,36 @@ def max_min_scan_parallel(keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr,
     for c in prange(len(kptr) - 1):
         _max_min_chunk(c, keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kperm, cap, pick, value, visited,
                        best_rank, work)
+
+
+
+@njit(cache=True, error_model="numpy")
+def list_order(pre, unit_cost, w_cost, post, stiffness, cand, first, good):
+    """Whether a spring list keeps its order for each of many applications, and its first score.
+
+    The score of application ``a`` and candidate ``j`` is ``((pre[j] + w_cost * (unit_cost[j] / max(stiffness[a],
+    1e-12))) + post[0, j]) + ...``: the weighted sum of :func:`synth.optimise.objectives.weighted_sum` over the
+    goals of the score, in its order of operations (``pre``: the goals before the cost, summed from 0.0; ``post``:
+    those after it, one row each), the cost per unit compliance over the stiffness
+    (:meth:`synth.design.space.Space.spring_cost_eur`). ``good[a]``: every adjacent pair of candidates ``cand`` is
+    in order (the score grows, or ties with a growing index), as ``numpy.diff`` of the row tells it;
+    ``first[a]``: the score of ``cand[0]``. One pass over applications x candidates, nothing stored per pair.
+    """
+    n_post = post.shape[0]
+    for a in range(len(stiffness)):
+        k = _maximum(stiffness[a], 1e-12)
+        ok = True
+        prev = 0.0
+        for j in range(len(cand)):
+            x = pre[j] + w_cost * (unit_cost[j] / k)
+            for p in range(n_post):
+                x = x + post[p, j]
+            if j == 0:
+                first[a] = x
+            else:
+                d = x - prev
+                ok = d > 0 or (d == 0 and cand[j] > cand[j - 1])
+                if not ok:
+                    break
+            prev = x
+        good[a] = ok

@@ -160,7 +160,7 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
     t = s8.disc_spring_thickness_for_force_mm(f_nom, de, di, zeta, phi, fidelity=fidelity)
     jit = load_kernels()
     tab, lo, hi, inc_lo, inc_hi = s8._tolerance_rows()
-    out = np.empty((len(ad), len(jit.CONE_SPRING_OUT)))
+    out = np.empty((len(ad), len(jit.CONE_SPRING_OUT)), order="F")  # each value a contiguous column
     bad = np.zeros(len(ad), dtype=bool)
     jit.cone_spring_rows(f_nom, t, t ** 3, t ** 4, np.log(de / di), *cols[1:], fidelity == "screening",
                          _elastic_scale(), np.ascontiguousarray(lo, float), np.ascontiguousarray(hi, float),
@@ -197,7 +197,7 @@ def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, th
     n = len(cols[0])
     jit = load_kernels()
     solver, callback = _addresses()
-    out = np.empty((n, len(jit.PLASTIC_WEAR_OUT)))
+    out = np.empty((n, len(jit.PLASTIC_WEAR_OUT)), order="F")  # each value a contiguous column
     bad = np.zeros(n, dtype=bool)
     t, de, di = cols[3], cols[1], cols[2]
     jit.plastic_wear_rows(t ** 3, t ** 4, np.log(de / di), *cols, fidelity == "screening", _elastic_scale(),

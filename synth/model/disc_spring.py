@@ -510,8 +510,7 @@ def cone_spring_min_internal_diameter_mm(pivot_diameter_mm) -> dict:
     ([16.2, 17.95, 18.2, 22.1, 30.4], 28.0)
     """
     d = _f(pivot_diameter_mm)
-    tab = catalog.load("cone_spring_clearances").sort_values("di_min_mm")
-    lo, hi, c = (tab[k].to_numpy(float) for k in ("di_min_mm", "di_max_mm", "clearance_mm"))
+    lo, hi, c = catalog.parsed("cone_spring_clearances", _clearance_rows)
     clearance = np.full(d.shape, c[-1])
     chosen = np.zeros(d.shape, dtype=bool)
     for lo_i, hi_i, c_i in zip(lo, hi, c):  # loop over the 3 table rows, not over designs
@@ -521,6 +520,12 @@ def cone_spring_min_internal_diameter_mm(pivot_diameter_mm) -> dict:
         chosen |= hit
     return {"cone_spring_min_internal_diameter_mm": d + clearance, "pivot_clearance_mm": clearance,
             "table8_max_mm": float(hi[-1])}
+
+
+def _clearance_rows(tab) -> tuple:
+    """``(di_min, di_max, clearance)`` arrays of thesis Table 8, by increasing ``di_min``."""
+    tab = tab.sort_values("di_min_mm")
+    return tuple(tab[k].to_numpy(float) for k in ("di_min_mm", "di_max_mm", "clearance_mm"))
 
 
 def cone_spring_max_external_diameter_mm(damper_pad_outer_diameter_mm):

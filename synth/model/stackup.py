@@ -33,9 +33,14 @@ def component_tolerances_mm() -> dict[str, float]:
     >>> component_tolerances_mm()["pivot"]
     0.07
     """
-    df = catalog.load("stackup_tolerances")
+    return dict(catalog.parsed("stackup_tolerances", _component_tolerances))
+
+
+def _component_tolerances(df) -> tuple:
+    """``((component, tolerance), ...)`` of the table (parsed once per table: the evaluator asks for the gap
+    tolerance at every axial evaluation)."""
     tol = dict(zip(df["component"], df["tolerance_mm"].astype(float)))
-    return {c: tol[c] for c in _COMPONENTS}
+    return tuple((c, float(tol[c])) for c in _COMPONENTS)
 
 
 def gap_tolerance_mm(method: str = "worst_case", tolerances_mm: dict | None = None) -> float:

@@ -62,7 +62,7 @@ from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, by_group, physics_inputs
 from synth.design.space import SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, space, space_for, spring_window
 from synth.kernels import axial as axial_kernels
-from synth.optimise.objectives import weighted_sum
+from synth.optimise.objectives import weighted_sum, weighted_sum_around
 from synth.optimise.product import DURABILITY_NOTE, core_scores, option_scores
 
 __all__ = ["Batch", "wsum", "SLACK", "any_feasible", "robust"]
@@ -119,6 +119,23 @@ def _unique_rows(*cols):
     inv = np.empty(len(srt), dtype=np.int64)
     inv[order] = np.cumsum(new) - 1
     return order[new].astype(np.int64), inv
+
+
+class _ScoreRows:
+    """Per application (an index), the scores along its spring list: given, or computed by ``row(i)`` when first
+    read, then kept."""
+
+    def __init__(self, row):
+        self._row, self._rows = row, {}
+
+    def __getitem__(self, i):
+        i = int(i)
+        if i not in self._rows:
+            self._rows[i] = self._row(i)
+        return self._rows[i]
+
+    def __setitem__(self, i, scores) -> None:
+        self._rows[int(i)] = scores
 
 
 def _segments(starts, counts):
@@ -182,6 +199,7 @@ class Batch:
         self.engine = "numpy" if not active().empty() else spring_engine
         self.axial_engine = spring_engine  # physics only (no limits): design rules do not change it
         self._bolt_ids, self._bolt_core_ids = _bolt_ids()
+        self.score_engine = spring_engine  # the spring lists' scores (no limits either)
         self.sp = sp = _space_of(self.inputs, pin_inputs)
         self.apps = apps if apps is not None else Applications.of(self.inputs)
         n = len(self.inputs)
@@ -386,7 +404,8 @@ class Batch:
         order_all = np.argsort(base, kind="stable")
         lists: list = []
         list_of = np.full(len(self), -1, dtype=np.int64)
-        score_of: list = [None] * len(self)
+        # an application's scores along its list, computed when first read (most applications never read theirs)
+        score_of = _ScoreRows(lambda i: wsum(option_scores(sp, "spring", k[i], lists[list_of[i]]), weights))
         smin = np.full(len(self), np.inf)
         for g, lst in enumerate(ranges):
             apps_g = np.flatnonzero(inv == g)
@@ -395,24 +414,47 @@ class Batch:
             in_rng = np.zeros(sp.n("spring"), dtype=bool)
             in_rng[lst] = True
             cand = order_all[in_rng[order_all]]  # the range's options in the base order
-            sc = np.broadcast_to(wsum(option_scores(sp, "spring", k[apps_g][:, None], cand[None, :]), weights),
-                                 (len(apps_g), len(cand)))
-            d = np.diff(sc, axis=1)
-            good = ((d > 0) | ((d == 0) & (np.diff(cand) > 0)[None, :])).all(axis=1)
+            first, good = self._list_order(weights, k[apps_g], cand)
             lid = len(lists)
             lists.append(cand)
             for j, i in enumerate(apps_g):
                 if good[j]:
-                    list_of[i], score_of[i] = lid, sc[j]
+                    list_of[i], smin[i] = lid, first[j]
                 else:  # this stiffness reorders (rounding ties): its own stable sort
                     s_i = wsum(option_scores(sp, "spring", k[i], lst), weights)
                     o = np.argsort(s_i, kind="stable")
                     list_of[i], score_of[i] = len(lists), s_i[o]
                     lists.append(lst[o])
-                smin[i] = score_of[i][0]
+                    smin[i] = score_of[i][0]
         positions = [np.arange(len(x), dtype=float) for x in lists]
         self._memo[key] = (lists, list_of, score_of, smin, positions)
         return self._memo[key]
+
+    def _list_order(self, weights, stiffness, cand):
+        """``(first, good)`` of the springs ``cand`` (a list in the base order) for applications of ``stiffness``:
+        ``good[a]`` whether the list keeps its order for that application (the additive score of
+        :func:`~synth.optimise.objectives.weighted_sum` grows along it, or ties with a growing index: every
+        adjacent pair), ``first[a]`` the score of its first spring. The compiled engine computes both in one pass
+        with nothing stored per pair (the score's per-option terms once,
+        :func:`~synth.kernels._main_spring_jit.list_order`), the same doubles as numpy's scores."""
+        sp = self.sp
+        if self.score_engine == "numba" and "cost" in weights:
+            from synth.kernels import main_spring
+            n = len(cand)
+            before, w, after = weighted_sum_around(option_scores(sp, "spring", 1.0, cand), weights, "cost")
+            pre = np.ascontiguousarray(np.broadcast_to(np.asarray(before, dtype=float), (n,)))
+            post = np.array([np.broadcast_to(np.asarray(t, dtype=float), (n,)) for t in after],
+                            dtype=float).reshape(len(after), n)
+            unit = np.ascontiguousarray(sp.tables["spring"]["cost_eur_times_stiffness"][cand], dtype=float)
+            first, good = np.full(len(stiffness), np.nan), np.empty(len(stiffness), dtype=bool)
+            main_spring.load_kernels().list_order(pre, unit, float(w), post,
+                                                  np.ascontiguousarray(stiffness, dtype=float),
+                                                  np.ascontiguousarray(cand, dtype=np.int64), first, good)
+            return first, good
+        sc = np.broadcast_to(wsum(option_scores(sp, "spring", stiffness[:, None], cand[None, :]), weights),
+                             (len(stiffness), len(cand)))
+        d = np.diff(sc, axis=1)
+        return sc[:, 0].copy(), ((d > 0) | ((d == 0) & (np.diff(cand) > 0)[None, :])).all(axis=1)
 
     def _spring_keys(self, rows):
         """``(keys dict, inverse)``: the distinct spring keys of core rows (application and what the spring sees)."""
@@ -466,9 +508,9 @@ class Batch:
         full model's search of :meth:`optimum`, :func:`~synth.design.evaluate.axial_full`)."""
         with np.errstate(over="ignore", divide="ignore", invalid="ignore"), axial_kernels.engine(self.axial_engine):
             if settings is None and self._screened is not None:
-                g = evaluate.axial_full(self.apps, self.cg, rr, self.sp.rows("axial", oo), self._screened)
+                g = evaluate.axial_full(self.apps, self.cg, rr, self.sp.rows_read("axial", oo), self._screened)
             else:
-                g = evaluate.axial(self.apps, self.cg, rr, self.sp.rows("axial", oo), settings or self.settings)
+                g = evaluate.axial(self.apps, self.cg, rr, self.sp.rows_read("axial", oo), settings or self.settings)
         self.evaluations += len(rr)
         return g
 

@@ -179,6 +179,29 @@ def weighted_sum(scores: dict, weights: dict):
     return out
 
 
+def weighted_sum_around(scores: dict, weights: dict, goal: str) -> tuple:
+    """:func:`weighted_sum` split around one goal ``goal`` (whose score ``scores`` need not hold), for a caller that
+    adds that goal's term itself: ``(before, w, after)``, with the sum ``before`` of the terms ahead of it (from
+    0.0), its weight ``w`` (0.0 without it: the sum is then ``before``) and the terms ``after`` it, in order.
+    ``((before + w * s) + after[0]) + ...`` is :func:`weighted_sum` to the last bit.
+
+    >>> before, w, after = weighted_sum_around({"standard": 2.0}, {"cost": 1.0, "standard": 1e4}, "cost")
+    >>> (before + w * 1.5) + after[0] == weighted_sum({"standard": 2.0, "cost": 1.5}, {"cost": 1.0, "standard": 1e4})
+    True
+    """
+    before, w_goal, after, seen = 0.0, 0.0, [], False
+    for k, w in weights.items():
+        if not _BY_NAME[k].additive:
+            continue
+        if k == goal:
+            w_goal, seen = w, True
+        elif seen:
+            after.append(w * scores[k])
+        else:
+            before = before + w * scores[k]
+    return before, w_goal, after
+
+
 def with_margin_tiebreak(objective) -> str:
     """The objective the scenes synthesise for ``objective``: one name (``standard`` or ``cost``) gets the
     margin as its last tie-break, so that among designs of equal standardisation and cost the one with the
