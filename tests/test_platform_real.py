@@ -45,7 +45,9 @@ def platform(sample):
 def test_producer_equals_the_optimiser_product(sample):
     """Per application, per feasible core, per subsystem: the feasible options (and their margins) of the
     producer's grouped, staged evaluation are those of ``synth.optimise.product`` (every core against every
-    option of the optimiser's design space, ungrouped)."""
+    option of the optimiser's design space, ungrouped). The sets are equal; the margins equal bit for bit except the
+    axial group's, which the producer evaluates on the compiled wear (:mod:`synth.kernels.axial`, within
+    :data:`synth.kernels.axial.RTOL` of the reference): within :data:`synth.platform.producer.MARGIN_TOL`."""
     from synth.optimise.product import evaluate
     _, pf = sample
     cat = catalogue()
@@ -64,7 +66,10 @@ def test_producer_equals_the_optimiser_product(sample):
                 theirs = np.flatnonzero(sub.feasible[r_idx])
                 assert set(mine) == set(theirs.tolist()), (a.app_id, s, int(row))
                 for k in theirs[:50]:
-                    assert mine[int(k)] == sub.margin[r_idx, k]
+                    if s == "axial":
+                        assert abs(mine[int(k)] - sub.margin[r_idx, k]) <= P.MARGIN_TOL
+                    else:
+                        assert mine[int(k)] == sub.margin[r_idx, k]
                 checked += len(theirs)
     assert checked > 500
 
