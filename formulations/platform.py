@@ -72,8 +72,8 @@ import numpy as np
 import pyomo.environ as pyo
 from pyomo.core.expr.numeric_expr import LinearExpression
 
-__all__ = ["PlatformInstance", "PlatformSolution", "MilpArrays", "build_model", "build_arrays", "highs_model", "solve", "SOLVERS",
-           "BUILDS"]
+__all__ = ["PlatformInstance", "PlatformSolution", "MilpArrays", "build_model", "build_arrays", "highs_model", "solve",
+           "SOLVERS", "BUILDS"]
 
 #: solver name -> Pyomo solver (HiGHS through appsi, SCIP through PySCIPOpt)
 SOLVERS = {"highs": "appsi_highs", "scip": "scip_direct"}

@@ -315,16 +315,12 @@ def test_200_platform_no_larger_than_the_union_of_per_application_optima(big):
     assert r.n_parts <= sum(len(v) for v in union.values())
 
 
-def test_array_build_and_pyomo_build_choose_the_same_platform(monkeypatch):
+def test_array_build_and_pyomo_build_choose_the_same_platform():
     """A 60-application ``portfolio-sample``: the MILP built from arrays for highspy (the default) and built through
     Pyomo (the reference) give the same objective, platform and assignment, design by design."""
-    import functools
-    import synth.platform.rationalise as R
-    from formulations.platform import solve
     pf = P.from_table(sample_portfolio(60, seed=1), SETTINGS)
     fast = rationalise(pf, "variants", time_limit=60, details=False)
-    monkeypatch.setattr(R, "solve_milp", functools.partial(solve, build="pyomo"))
-    ref = rationalise(pf, "variants", time_limit=60, details=False)
+    ref = rationalise(pf, "variants", time_limit=60, details=False, build="pyomo")
     assert fast.status == ref.status == "optimal" and fast.n_parts >= 5
     assert (fast.objective_value, fast.platform, fast.size) == (ref.objective_value, ref.platform, ref.size)
     assert fast.records == ref.records and sum(r["feasible"] for r in fast.records) >= 20

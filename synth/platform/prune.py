@@ -218,28 +218,38 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
         np.minimum.at(cmin, (cls, pcol), cost[has])
         np.maximum.at(cmax, (cls, pcol), cost[has])
         in_app = sp.csc_matrix((np.ones(len(cls), bool), (cls, pcol)), shape=(n_app, nc))
+    # per part j: its smallest token (the first in its column on ties: a dominator is in it), and the parts of that
+    # token as candidate dominators k, kept when no worse on count, weight and fixed cost and when j's tokens are
+    # all k's (bit sets, in blocks of pairs); the pairs at once rather than a Python loop over the parts
+    col = np.repeat(np.arange(nc), cnt)
+    tl = tok_len[by_part.indices]
+    low = np.flatnonzero(tl == np.minimum.reduceat(tl, by_part.indptr[:-1])[col])
+    t0 = by_part.indices[low[np.unique(col[low], return_index=True)[1]]]
+    n_k = tok_len[t0]
+    pj = np.repeat(np.arange(nc), n_k)
+    pk = by_tok.indices[np.repeat(by_tok.indptr[t0], n_k) + np.arange(len(pj)) - np.repeat(np.cumsum(n_k) - n_k, n_k)]
+    keep = (pk != pj) & (cnt[pk] >= cnt[pj]) & (weight[pk] <= weight[pj]) & (fixed[pk] <= fixed[pj])
+    pj, pk = pj[keep], pk[keep]
+    keep = np.empty(len(pj), bool)
+    step = max(1, (1 << 22) // bits.shape[1])
+    for lo in range(0, len(pj), step):
+        keep[lo:lo + step] = ~np.any(bits[pj[lo:lo + step]] & ~bits[pk[lo:lo + step]], axis=1)
+    pj, pk = pj[keep], pk[keep]
+    same = (cnt[pk] == cnt[pj]) & (weight[pk] == weight[pj]) & (fixed[pk] == fixed[pj])
     dom = np.zeros(nc, bool)
-    for j in range(nc):
-        tj = by_part.indices[by_part.indptr[j]:by_part.indptr[j + 1]]
-        t0 = tj[np.argmin(tok_len[tj])]                  # a dominator is in j's smallest token
-        ks = by_tok.indices[by_tok.indptr[t0]:by_tok.indptr[t0 + 1]]
-        ks = ks[(ks != j) & (cnt[ks] >= cnt[j]) & (weight[ks] <= weight[j]) & (fixed[ks] <= fixed[j])]
-        if not len(ks):
-            continue
-        ks = ks[~np.any(bits[j][None, :] & ~bits[ks], axis=1)]          # j's tokens are all k's
-        if not len(ks):
-            continue
-        same = (cnt[ks] == cnt[j]) & (weight[ks] == weight[j]) & (fixed[ks] == fixed[j])
-        if not cost_obj:
-            # strict order with index tie-break: a mutual substitute of higher index does not remove j
-            dom[j] = bool(np.any(~same | (ks < j)))
-            continue
-        apps_j = in_app.indices[in_app.indptr[j]:in_app.indptr[j + 1]]
-        hi_k, lo_j = cmax[np.ix_(apps_j, ks)], cmin[apps_j, j][:, None]
-        ok = np.all(hi_k <= lo_j + 1e-9, axis=0)
-        same &= np.all((cmin[np.ix_(apps_j, ks)] >= lo_j - 1e-9) & (hi_k <= lo_j + 1e-9)
-                       & (cmax[apps_j, j][:, None] <= lo_j + 1e-9), axis=0)
-        dom[j] = bool(np.any(ok & (~same | (ks < j))))
+    if not cost_obj:
+        # strict order with index tie-break: a mutual substitute of higher index does not remove j
+        dom[pj[~same | (pk < pj)]] = True
+    else:
+        starts = np.flatnonzero(np.r_[True, pj[1:] != pj[:-1]]) if len(pj) else np.zeros(0, np.int64)
+        for lo, hi in zip(starts, np.append(starts[1:], len(pj)).astype(np.int64)):
+            j, ks, sm = int(pj[lo]), pk[lo:hi], same[lo:hi]
+            apps_j = in_app.indices[in_app.indptr[j]:in_app.indptr[j + 1]]
+            hi_k, lo_j = cmax[np.ix_(apps_j, ks)], cmin[apps_j, j][:, None]
+            ok = np.all(hi_k <= lo_j + 1e-9, axis=0)
+            sm = sm & np.all((cmin[np.ix_(apps_j, ks)] >= lo_j - 1e-9) & (hi_k <= lo_j + 1e-9)
+                             & (cmax[apps_j, j][:, None] <= lo_j + 1e-9), axis=0)
+            dom[j] = bool(np.any(ok & (~sm | (ks < j))))
     gone = cand[dom]
     bad_pat = np.zeros(len(w.patterns), bool)
     bad_pat[upat[np.isin(part_u, gone)]] = True
