@@ -113,19 +113,11 @@ def main(argv=None) -> None:
     if notes:
         print("\n" + "\n".join(notes))
     if sweeps:
-        print(f"\ntrade-off sweep ({args.tradeoff}, {args.points} points), rounds sharing one compile (B) against "
-              f"each round afresh (A), {args.repeat} alternating runs, medians:\n")
-        print("| apps | A wall [s] | B wall [s] | B/A wall | A CPU [s] | B CPU [s] | B/A CPU | rows identical |")
-        print("|---|---|---|---|---|---|---|---|")
-        for n, (wa, wb, ca, cb, same) in sweeps:
-            print(f"| {n:,} | {wa:.1f} | {wb:.1f} | {wb / wa:.2f} | {ca:.1f} | {cb:.1f} | {cb / ca:.2f} | {same} |")
+        _ab_table(f"trade-off sweep ({args.tradeoff}, {args.points} points), rounds sharing one compile (B) against "
+                  f"each round afresh (A), {args.repeat} alternating runs, medians:", sweeps, "rows identical")
     if builds:
-        print(f"\nrationalise with the margin trade-off ({args.points} points), MILP through Pyomo (A) against from arrays "
-              f"through highspy (B), {args.repeat} alternating runs, medians:\n")
-        print("| apps | A wall [s] | B wall [s] | B/A wall | A CPU [s] | B CPU [s] | B/A CPU | results identical |")
-        print("|---|---|---|---|---|---|---|---|")
-        for n, (wa, wb, ca, cb, same) in builds:
-            print(f"| {n:,} | {wa:.1f} | {wb:.1f} | {wb / wa:.2f} | {ca:.1f} | {cb:.1f} | {cb / ca:.2f} | {same} |")
+        _ab_table(f"rationalise with the margin trade-off ({args.points} points), MILP through Pyomo (A) against from "
+                  f"arrays through highspy (B), {args.repeat} alternating runs, medians:", builds, "results identical")
     if axial:
         print(f"\nfeasibility data, the axial group on the numpy wear (A) against the compiled wear (B), engine "
               f"{args.engine}, {args.repeat} alternating runs, medians (axial: the group's own seconds):\n")
@@ -145,37 +137,46 @@ def main(argv=None) -> None:
               + f" -> {args.plot}")
 
 
+def _ab_table(title: str, results: list, same: str) -> None:
+    print(f"\n{title}\n")
+    print(f"| apps | A wall [s] | B wall [s] | B/A wall | A CPU [s] | B CPU [s] | B/A CPU | {same} |")
+    print("|---|---|---|---|---|---|---|---|")
+    for n, (wa, wb, ca, cb, eq) in results:
+        print(f"| {n:,} | {wa:.1f} | {wb:.1f} | {wb / wa:.2f} | {ca:.1f} | {cb:.1f} | {cb / ca:.2f} | {eq} |")
+
+
+def _alternate(repeat: int, a, b) -> tuple:
+    """``a()`` and ``b()`` in turn ``repeat`` times: median wall and CPU seconds of each, and whether their last
+    answers are equal."""
+    import statistics
+    wall, cpu, out = ([], []), ([], []), [None, None]
+    for _ in range(repeat):
+        for i, fn in enumerate((a, b)):
+            t0, c0 = time.perf_counter(), time.process_time()
+            out[i] = fn()
+            wall[i].append(time.perf_counter() - t0)
+            cpu[i].append(time.process_time() - c0)
+    med = statistics.median
+    return med(wall[0]), med(wall[1]), med(cpu[0]), med(cpu[1]), out[0] == out[1]
+
+
 def _sweep(pf, args) -> tuple:
     """Median wall and CPU seconds of the trade-off sweep afresh (A) and shared (B), alternating."""
-    import statistics
     from synth.platform.rationalise import tradeoff
-    wall, cpu, rows = {False: [], True: []}, {False: [], True: []}, {}
-    for _ in range(args.repeat):
-        for share in (False, True):
-            t0, c0 = time.perf_counter(), time.process_time()
-            rows[share] = tradeoff(pf, args.tradeoff, points=args.points, time_limit=args.time_limit, share=share)
-            wall[share].append(time.perf_counter() - t0)
-            cpu[share].append(time.process_time() - c0)
-    med = statistics.median
-    return med(wall[False]), med(wall[True]), med(cpu[False]), med(cpu[True]), rows[False] == rows[True]
+    return _alternate(args.repeat, *(lambda share=share: tradeoff(pf, args.tradeoff, points=args.points,
+                                                                   time_limit=args.time_limit, share=share)
+                                     for share in (False, True)))
 
 
 def _builds(pf, args) -> tuple:
     """Median wall and CPU seconds of rationalise + margin sweep through Pyomo (A) and from arrays (B), alternating."""
-    import statistics
     from synth.platform.rationalise import rationalise, tradeoff
-    wall, cpu, out = {"pyomo": [], "arrays": []}, {"pyomo": [], "arrays": []}, {}
-    for _ in range(args.repeat):
-        for build in ("pyomo", "arrays"):
-            t0, c0 = time.perf_counter(), time.process_time()
-            r = rationalise(pf, args.objective, time_limit=args.time_limit, build=build)
-            rows = tradeoff(pf, "margin", points=args.points, time_limit=args.time_limit, build=build)
-            wall[build].append(time.perf_counter() - t0)
-            cpu[build].append(time.process_time() - c0)
-            out[build] = (r.objective_value, r.platform, r.records, rows)
-    med = statistics.median
-    return (med(wall["pyomo"]), med(wall["arrays"]), med(cpu["pyomo"]), med(cpu["arrays"]),
-            out["pyomo"] == out["arrays"])
+
+    def run(build):
+        r = rationalise(pf, args.objective, time_limit=args.time_limit, build=build)
+        return (r.objective_value, r.platform, r.records,
+                tradeoff(pf, "margin", points=args.points, time_limit=args.time_limit, build=build))
+    return _alternate(args.repeat, lambda: run("pyomo"), lambda: run("arrays"))
 
 
 def _axial(n, args) -> tuple:
