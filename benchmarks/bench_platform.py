@@ -26,6 +26,14 @@ rounds sharing one compile (:func:`synth.platform.rationalise.tradeoff`, ``share
 against each round solved afresh (``share=False``, as before), alternating ``--repeat``
 times on the same feasibility data; wall and process CPU seconds (medians), their ratios,
 and whether the rows are identical.
+
+``--builds`` adds a table: the rationalisation with its default trade-off (the whole ``synth rationalise`` after the
+feasibility data: the platform, then the margin sweep) with the MILP built from arrays for highspy (B, the default)
+against built through Pyomo and appsi (A, the reference), alternating ``--repeat`` times; and whether the results
+(objective, platform, assignment, trade-off rows) are identical. ``--axial`` adds one for the feasibility data:
+the producer's axial group on the compiled wear (B, :data:`synth.platform.producer.AXIAL_ENGINE`) against the
+numpy reference (A), alternating, with the largest option-margin difference and whether the feasible options are
+the same.
 """
 
 from __future__ import annotations
@@ -59,6 +67,8 @@ def main(argv=None) -> None:
     ap.add_argument("--tradeoff", choices=["margin", "cost"], help="also time the trade-off sweep, shared vs afresh")
     ap.add_argument("--points", type=int, default=5, help="points of the trade-off sweep (the CLI's default)")
     ap.add_argument("--repeat", type=int, default=3, help="alternating runs of each trade-off variant")
+    ap.add_argument("--builds", action="store_true", help="also time the MILP built from arrays against Pyomo")
+    ap.add_argument("--axial", action="store_true", help="also time the feasibility data's axial engines")
     args = ap.parse_args(argv)
     from synth.bulk.sample import sample_portfolio
     from synth.design.evaluate import Settings
@@ -74,7 +84,7 @@ def main(argv=None) -> None:
           "| MILP vars / bin / cons / nnz | build+solve [s] | status | gap | parts (platform / union of optima) "
           "| greedy gap | verify [s] | total [s] |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    notes, last, sweeps = [], None, []
+    notes, last, sweeps, builds, axial = [], None, [], [], []
     for n in args.sizes:
         t0 = time.perf_counter()
         if args.synthetic:
@@ -95,16 +105,28 @@ def main(argv=None) -> None:
         last = (pf, r)
         if args.tradeoff:
             sweeps.append((n, _sweep(pf, args)))
+        if args.builds:
+            builds.append((n, _builds(pf, args)))
+        if args.axial and not args.synthetic:
+            axial.append((n, _axial(n, args)))
     print(f"\nload average after: {os.getloadavg()[0]:.1f}")
     if notes:
         print("\n" + "\n".join(notes))
     if sweeps:
-        print(f"\ntrade-off sweep ({args.tradeoff}, {args.points} points), rounds sharing one compile (B) against "
-              f"each round afresh (A), {args.repeat} alternating runs, medians:\n")
-        print("| apps | A wall [s] | B wall [s] | B/A wall | A CPU [s] | B CPU [s] | B/A CPU | rows identical |")
-        print("|---|---|---|---|---|---|---|---|")
-        for n, (wa, wb, ca, cb, same) in sweeps:
-            print(f"| {n:,} | {wa:.1f} | {wb:.1f} | {wb / wa:.2f} | {ca:.1f} | {cb:.1f} | {cb / ca:.2f} | {same} |")
+        _ab_table(f"trade-off sweep ({args.tradeoff}, {args.points} points), rounds sharing one compile (B) against "
+                  f"each round afresh (A), {args.repeat} alternating runs, medians:", sweeps, "rows identical")
+    if builds:
+        _ab_table(f"rationalise with the margin trade-off ({args.points} points), MILP through Pyomo (A) against from "
+                  f"arrays through highspy (B), {args.repeat} alternating runs, medians:", builds, "results identical")
+    if axial:
+        print(f"\nfeasibility data, the axial group on the numpy wear (A) against the compiled wear (B), engine "
+              f"{args.engine}, {args.repeat} alternating runs, medians (axial: the group's own seconds):\n")
+        print("| apps | A data [s] | B data [s] | B/A | A axial [s] | B axial [s] | B/A axial | largest margin difference "
+              "| feasible options identical |")
+        print("|---|---|---|---|---|---|---|---|---|")
+        for n, (da, db, xa, xb, diff, same) in axial:
+            print(f"| {n:,} | {da:.1f} | {db:.1f} | {db / da:.2f} | {xa:.1f} | {xb:.1f} | {xb / xa:.2f} | {diff:.1e} "
+                  f"| {same} |")
     if args.plot and last:
         from synth.platform.outputs import plot_tradeoff
         from synth.platform.rationalise import tradeoff
@@ -115,19 +137,78 @@ def main(argv=None) -> None:
               + f" -> {args.plot}")
 
 
+def _ab_table(title: str, results: list, same: str) -> None:
+    print(f"\n{title}\n")
+    print(f"| apps | A wall [s] | B wall [s] | B/A wall | A CPU [s] | B CPU [s] | B/A CPU | {same} |")
+    print("|---|---|---|---|---|---|---|---|")
+    for n, (wa, wb, ca, cb, eq) in results:
+        print(f"| {n:,} | {wa:.1f} | {wb:.1f} | {wb / wa:.2f} | {ca:.1f} | {cb:.1f} | {cb / ca:.2f} | {eq} |")
+
+
+def _alternate(repeat: int, a, b) -> tuple:
+    """``a()`` and ``b()`` in turn ``repeat`` times: median wall and CPU seconds of each, and whether their last
+    answers are equal."""
+    import statistics
+    wall, cpu, out = ([], []), ([], []), [None, None]
+    for _ in range(repeat):
+        for i, fn in enumerate((a, b)):
+            t0, c0 = time.perf_counter(), time.process_time()
+            out[i] = fn()
+            wall[i].append(time.perf_counter() - t0)
+            cpu[i].append(time.process_time() - c0)
+    med = statistics.median
+    return med(wall[0]), med(wall[1]), med(cpu[0]), med(cpu[1]), out[0] == out[1]
+
+
 def _sweep(pf, args) -> tuple:
     """Median wall and CPU seconds of the trade-off sweep afresh (A) and shared (B), alternating."""
-    import statistics
     from synth.platform.rationalise import tradeoff
-    wall, cpu, rows = {False: [], True: []}, {False: [], True: []}, {}
-    for _ in range(args.repeat):
-        for share in (False, True):
-            t0, c0 = time.perf_counter(), time.process_time()
-            rows[share] = tradeoff(pf, args.tradeoff, points=args.points, time_limit=args.time_limit, share=share)
-            wall[share].append(time.perf_counter() - t0)
-            cpu[share].append(time.process_time() - c0)
+    return _alternate(args.repeat, *(lambda share=share: tradeoff(pf, args.tradeoff, points=args.points,
+                                                                   time_limit=args.time_limit, share=share)
+                                     for share in (False, True)))
+
+
+def _builds(pf, args) -> tuple:
+    """Median wall and CPU seconds of rationalise + margin sweep through Pyomo (A) and from arrays (B), alternating."""
+    from synth.platform.rationalise import rationalise, tradeoff
+
+    def run(build):
+        r = rationalise(pf, args.objective, time_limit=args.time_limit, build=build)
+        return (r.objective_value, r.platform, r.records,
+                tradeoff(pf, "margin", points=args.points, time_limit=args.time_limit, build=build))
+    return _alternate(args.repeat, lambda: run("pyomo"), lambda: run("arrays"))
+
+
+def _axial(n, args) -> tuple:
+    """Median data and axial-group seconds on the numpy wear (A) and the compiled wear (B), alternating; the largest
+    option-margin difference and whether every application's feasible options are the same."""
+    import statistics
+    import numpy as np
+    from synth.bulk.sample import sample_portfolio
+    from synth.design.evaluate import Settings
+    from synth.platform import producer
+    table = sample_portfolio(n, seed=args.seed)
+    data, ax, pfs = {"numpy": [], "numba": []}, {"numpy": [], "numba": []}, {}
+    try:
+        for _ in range(args.repeat):
+            for eng in ("numpy", "numba"):
+                producer.AXIAL_ENGINE = eng
+                t0 = time.perf_counter()
+                pfs[eng] = producer.from_table(table, Settings(fidelity=args.fidelity), engine=args.engine,
+                                               workers=args.workers)
+                data[eng].append(time.perf_counter() - t0)
+                ax[eng].append(pfs[eng].stats.get("axial_s", np.nan))
+    finally:
+        producer.AXIAL_ENGINE = "numba"
+    diff, same = 0.0, True
+    for a, b in zip(pfs["numpy"].apps, pfs["numba"].apps):
+        for s in a.feasible:
+            for fa, fb, ma, mb in zip(a.feasible[s], b.feasible[s], a.option_margin[s], b.option_margin[s]):
+                same &= np.array_equal(fa, fb)
+                if same and len(ma):
+                    diff = max(diff, float(np.max(np.abs(np.asarray(ma) - np.asarray(mb)))))
     med = statistics.median
-    return med(wall[False]), med(wall[True]), med(cpu[False]), med(cpu[True]), rows[False] == rows[True]
+    return med(data["numpy"]), med(data["numba"]), med(ax["numpy"]), med(ax["numba"]), diff, same
 
 
 if __name__ == "__main__":

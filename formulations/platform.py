@@ -72,10 +72,14 @@ import numpy as np
 import pyomo.environ as pyo
 from pyomo.core.expr.numeric_expr import LinearExpression
 
-__all__ = ["PlatformInstance", "PlatformSolution", "build_model", "solve", "SOLVERS"]
+__all__ = ["PlatformInstance", "PlatformSolution", "MilpArrays", "build_model", "build_arrays", "highs_model", "solve",
+           "SOLVERS", "BUILDS"]
 
 #: solver name -> Pyomo solver (HiGHS through appsi, SCIP through PySCIPOpt)
 SOLVERS = {"highs": "appsi_highs", "scip": "scip_direct"}
+#: how the HiGHS model is built: ``arrays`` (:func:`build_arrays` handed to highspy, HiGHS's own Python API) or
+#: ``pyomo`` (:func:`build_model` through Pyomo's appsi interface: the reference, and SCIP's only path)
+BUILDS = ("arrays", "pyomo")
 
 
 @dataclass
@@ -247,6 +251,200 @@ def build_model(inst: PlatformInstance, objective: str = "variants", *, max_vari
     return m
 
 
+@dataclass
+class MilpArrays:
+    """The MILP of :func:`build_model` as plain arrays, in the form HiGHS receives it from Pyomo's appsi interface
+    (so both builds hand HiGHS the same model, column for column): columns in the order of their first appearance
+    in the constraints, rows in the order of the constraint components, each row's entries in the order of its
+    expression; rows as CSR (``row_start`` holds ``n_rows + 1`` offsets)."""
+
+    col_lower: np.ndarray
+    col_upper: np.ndarray
+    col_cost: np.ndarray
+    col_integer: np.ndarray      # bool per column (the ``y_j``)
+    row_lower: np.ndarray
+    row_upper: np.ndarray
+    row_start: np.ndarray
+    row_index: np.ndarray        # column of each entry
+    row_value: np.ndarray
+    y_col: np.ndarray            # (J,) column of ``y_j``, -1 for a part without a variable
+    e_col: np.ndarray | None     # (n_apps,) column of ``e_a`` (``allow_unserved`` only)
+    size: dict
+
+
+def _group_rows(keys: np.ndarray):
+    """``(order, ptr)``: the members of each distinct key (as :func:`_groups`, in one CSR)."""
+    order = np.argsort(keys, kind="stable")
+    _, start = np.unique(keys[order], return_index=True)
+    return order, np.append(start, len(order)).astype(np.int64)
+
+
+def _rows(ptr1, idx1, val1, ptr2, idx2, val2):
+    """Row-wise concatenation of two CSR blocks of as many rows: each row's entries of the first, then the second."""
+    n1, n2 = np.diff(ptr1), np.diff(ptr2)
+    start = np.concatenate([[0], np.cumsum(n1 + n2)]).astype(np.int64)
+    idx, val = np.empty(start[-1], np.int64), np.empty(start[-1])
+    r1, r2 = np.repeat(np.arange(len(n1)), n1), np.repeat(np.arange(len(n2)), n2)
+    p1 = start[r1] + np.arange(len(r1)) - ptr1[r1]
+    p2 = start[r2] + n1[r2] + np.arange(len(r2)) - ptr2[r2]
+    idx[p1], val[p1], idx[p2], val[p2] = idx1, val1, idx2, val2
+    return start, idx, val
+
+
+def build_arrays(inst: PlatformInstance, objective: str = "variants", *, max_variants: dict | None = None,
+                 budget: float | None = None, allow_unserved: bool = False) -> MilpArrays:
+    """The model of :func:`build_model` (the same variables, constraints, coefficients and ``size``) built from
+    ``inst``'s arrays without Pyomo: for a 1,000-application portfolio Pyomo's build and appsi's translation cost
+    several times HiGHS's own solve. ``tests/test_platform.py`` holds the two builds to the same HiGHS model.
+
+    >>> inst = PlatformInstance(family_names=["f"], part_family=np.array([0, 0]), part_weight=np.ones(2),
+    ...     part_fixed_cost=np.zeros(2), pattern_ptr=np.array([0, 1, 2]), pattern_parts=np.array([0, 1]), n_apps=1,
+    ...     core_app=np.array([0]), core_pattern=np.array([0]), core_cost=np.zeros(1), row_app=np.array([0]),
+    ...     row_sub=np.array([0]), row_core_ptr=np.array([0, 1]), row_core=np.array([0]),
+    ...     row_opt_ptr=np.array([0, 1]), row_opt_pattern=np.array([1]), row_opt_cost=np.zeros(1))
+    >>> a = build_arrays(inst)            # columns x0 z0 y0 y1; rows assign, flow, core_link, option_link
+    >>> a.y_col.tolist(), a.row_start.tolist(), a.row_index.tolist(), a.row_value.tolist()
+    ([2, 3], [0, 1, 3, 5, 7], [0, 0, 1, 0, 2, 1, 3], [1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -1.0])
+    """
+    if objective not in ("variants", "cost"):
+        raise ValueError(f"objective must be 'variants' or 'cost', got {objective!r}")
+    J, C, R, A = inst.n_parts, len(inst.core_app), len(inst.row_app), int(inst.n_apps)
+    n_z = int(inst.row_opt_ptr[-1])
+    X0, Z0, Y0, E0 = 0, C, C + n_z, C + n_z + J       # variable keys: x_c, z_i, y_j, e_a
+    c_item, c_part = _expand(inst.pattern_ptr, inst.pattern_parts, inst.core_pattern)
+    z_item, z_part = _expand(inst.pattern_ptr, inst.pattern_parts, inst.row_opt_pattern)
+    in_use = np.zeros(J, bool)
+    in_use[c_part] = True
+    in_use[z_part] = True
+    ar = np.arange
+    blocks = []                                       # (ptr, keys, values, lower, upper) per constraint family
+    nnz = 0
+    # assign: the cores of a, then e_a
+    app_ptr = np.searchsorted(inst.core_app, ar(A + 1)).astype(np.int64)
+    e_ptr = ar(A + 1) if allow_unserved else np.zeros(A + 1, np.int64)
+    e_key = E0 + ar(A) if allow_unserved else np.zeros(0, np.int64)
+    blocks.append((*_rows(app_ptr, X0 + ar(C), np.ones(C), e_ptr, e_key, np.ones(len(e_key))), 1.0, 1.0))
+    nnz += C + (A if allow_unserved else 0)
+    # flow: the cores of r (+1), then its options (-1)
+    blocks.append((*_rows(np.asarray(inst.row_core_ptr, np.int64), X0 + np.asarray(inst.row_core, np.int64),
+                          np.ones(len(inst.row_core)), np.asarray(inst.row_opt_ptr, np.int64), Z0 + ar(n_z),
+                          -np.ones(n_z)), 0.0, 0.0))
+    nnz += int(inst.row_core_ptr[-1]) + n_z
+    # core_link and option_link: the members of a group (+1), then the group's y (-1)
+    z_row = np.repeat(ar(R), np.diff(inst.row_opt_ptr))[z_item]
+    for keys, item, part, base in ((inst.core_app[c_item].astype(np.int64) * J + c_part, c_item, c_part, X0),
+                                   ((inst.row_app[z_row].astype(np.int64) * 64 + inst.row_sub[z_row]) * J + z_part,
+                                    z_item, z_part, Z0)):
+        order, ptr = _group_rows(keys)
+        g = len(ptr) - 1
+        blocks.append((*_rows(ptr, base + item[order], np.ones(len(order)), ar(g + 1),
+                              Y0 + part[order[ptr[:-1]]], -np.ones(g)), -np.inf, 0.0))
+        nnz += len(item) + g
+    fam_idx = {n: i for i, n in enumerate(inst.family_names)}
+    for f, n in (max_variants or {}).items():
+        if f not in fam_idx:
+            raise ValueError(f"max_variants: unknown family {f!r}; families: {list(inst.family_names)}")
+        js = np.flatnonzero((inst.part_family == fam_idx[f]) & in_use)
+        nnz += len(js)
+        if len(js) > int(n):
+            blocks.append((np.array([0, len(js)]), Y0 + js, np.ones(len(js)), -np.inf, float(int(n))))
+    if budget is not None:
+        js = np.flatnonzero(in_use)
+        blocks.append((np.array([0, len(js)]), Y0 + js, inst.part_weight[js].astype(float), -np.inf, float(budget)))
+        nnz += len(js)
+    starts = np.cumsum([0] + [int(b[0][-1]) for b in blocks])
+    row_start = np.concatenate([b[0][:-1] + s for b, s in zip(blocks, starts)] + [starts[-1:]]).astype(np.int64)
+    keys = np.concatenate([b[1] for b in blocks]).astype(np.int64)
+    values = np.concatenate([b[2] for b in blocks]).astype(float)
+    n_rows = [len(b[0]) - 1 for b in blocks]
+    row_lower = np.repeat([b[3] for b in blocks], n_rows).astype(float)
+    row_upper = np.repeat([b[4] for b in blocks], n_rows).astype(float)
+    # objective, by variable key
+    cost = np.zeros(E0 + (A if allow_unserved else 0))
+    if objective == "variants":
+        cost[Y0:E0] = np.where(in_use, inst.part_weight, 0.0)
+        pen = float(np.sum(inst.part_weight[in_use])) + 1.0
+    else:
+        cost[Y0:E0] = np.where(in_use, inst.part_fixed_cost, 0.0)
+        cost[X0:Z0], cost[Z0:Y0] = inst.core_cost, inst.row_opt_cost
+        pen = float(np.sum(inst.part_fixed_cost[in_use]) + np.sum(np.abs(inst.core_cost))
+                    + np.sum(np.abs(inst.row_opt_cost))) + 1.0
+    if allow_unserved:
+        cost[E0:] = pen
+    # columns in the order of first appearance (appsi's), then variables only the objective names
+    uniq, first = np.unique(keys, return_index=True)
+    order = uniq[np.argsort(first, kind="stable")]
+    rest = np.setdiff1d(np.flatnonzero(cost), order)
+    order = np.concatenate([order, rest]).astype(np.int64)
+    col_of = np.full(len(cost), -1, np.int64)
+    col_of[order] = ar(len(order))
+    y_col = np.where(in_use, col_of[Y0:E0], -1)
+    n_var = int(in_use.sum()) + C + n_z + (A if allow_unserved else 0)
+    return MilpArrays(
+        col_lower=np.zeros(len(order)), col_upper=np.ones(len(order)), col_cost=cost[order],
+        col_integer=(order >= Y0) & (order < E0), row_lower=row_lower, row_upper=row_upper, row_start=row_start,
+        row_index=col_of[keys], row_value=values, y_col=y_col, e_col=col_of[E0:] if allow_unserved else None,
+        size={"variables": n_var, "binaries": int(in_use.sum()), "constraints": int(sum(n_rows)),
+              "nonzeros": int(nnz)})
+
+
+def highs_model(arr: MilpArrays):
+    """A silent ``highspy.Highs`` holding ``arr``, loaded by the calls appsi's HiGHS interface makes (variables,
+    their integrality, the rows, the objective), so it holds the model appsi would hand over."""
+    import highspy
+    from pyomo.common.tee import capture_output
+    with capture_output(capture_fd=True):           # HiGHS prints its banner on stdout when the first one is made
+        h = highspy.Highs()
+    h.setOptionValue("output_flag", False)
+    n = len(arr.col_cost)
+    kind = highspy.HighsVarType
+    h.addVars(n, arr.col_lower, arr.col_upper)
+    h.changeColsIntegrality(n, np.arange(n), np.array([kind.kInteger if b else kind.kContinuous
+                                                       for b in arr.col_integer]))
+    h.addRows(len(arr.row_lower), arr.row_lower, arr.row_upper, len(arr.row_index), arr.row_start[:-1],
+              arr.row_index, arr.row_value)
+    h.changeObjectiveOffset(0.0)
+    h.changeObjectiveSense(highspy.ObjSense.kMinimize)
+    h.changeColsCost(n, np.arange(n), arr.col_cost)
+    return h
+
+
+def _highs_arrays(arr: MilpArrays, time_limit: float, mip_gap: float, warm_start: np.ndarray | None):
+    """Solve ``arr`` with highspy, with appsi's options and MIP start; returns ``(status, has a solution,
+    objective, bound, column values)``, read as appsi's ``_postsolve`` reads them."""
+    import highspy
+    h = highs_model(arr)
+    n = len(arr.col_cost)
+    h.setOptionValue("time_limit", float(time_limit))
+    h.setOptionValue("mip_rel_gap", float(mip_gap))
+    if warm_start is not None:
+        col = np.zeros(n)
+        has = arr.y_col >= 0
+        col[arr.y_col[has]] = np.asarray(warm_start, bool)[has].astype(float)
+        start = highspy.HighsSolution()
+        start.col_value = col
+        start.value_valid = True
+        start.dual_valid = False
+        h.setSolution(start)
+    h.HandleKeyboardInterrupt = True
+    h.run()
+    ms = highspy.HighsModelStatus
+    st = h.getModelStatus()
+    status = {ms.kOptimal: "optimal", ms.kTimeLimit: "time_limit", ms.kInfeasible: "infeasible",
+              ms.kUnboundedOrInfeasible: "infeasible"}.get(st, "error")
+    sol = h.getSolution()
+    limits = {ms.kObjectiveBound, ms.kObjectiveTarget, ms.kTimeLimit, ms.kIterationLimit,
+              getattr(ms, "kSolutionLimit", ms.kIterationLimit)}
+    has = st == ms.kOptimal or (st in limits and sol.value_valid)
+    info = h.getInfo()
+    obj = float(info.objective_function_value) if has else np.nan
+    if info.mip_node_count == -1:
+        bound = obj
+    else:
+        bound = float(info.mip_dual_bound)
+    return status, has, obj, bound, np.asarray(sol.col_value) if has else None
+
+
 def _result_values(res):
     bound = getattr(res, "best_objective_bound", None)
     feas = getattr(res, "best_feasible_objective", None)
@@ -255,18 +453,36 @@ def _result_values(res):
 
 def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = "highs", time_limit: float = 60.0,
           mip_gap: float = 0.0, max_variants: dict | None = None, budget: float | None = None,
-          allow_unserved: bool = False, warm_start: np.ndarray | None = None, model=None) -> PlatformSolution:
+          allow_unserved: bool = False, warm_start: np.ndarray | None = None, model=None,
+          build: str = "arrays") -> PlatformSolution:
     """Build (unless ``model`` is given) and solve; ``warm_start``: a bool platform (e.g. the greedy one).
 
     ``status`` is ``optimal`` (gap within ``mip_gap``), ``time_limit`` (best platform found,
-    gap reported), ``infeasible`` or ``error``.
+    gap reported), ``infeasible`` or ``error``. ``build`` (:data:`BUILDS`): HiGHS gets the model from
+    :func:`build_arrays` through highspy (``arrays``, the default) or from :func:`build_model` through Pyomo
+    (``pyomo``: the reference; SCIP and a given ``model`` always take it). Both hand HiGHS the same model.
     """
     if solver not in SOLVERS:
         raise ValueError(f"solver must be one of {sorted(SOLVERS)}, got {solver!r}")
+    if build not in BUILDS:
+        raise ValueError(f"build must be one of {list(BUILDS)}, got {build!r}")
     t0 = time.perf_counter()
     if inst.n_apps == 0:                       # nothing to serve: the empty platform
         return PlatformSolution("optimal", np.zeros(inst.n_parts, bool), 0.0, 0.0, 0.0, 0.0, 0.0,
                                 {"variables": 0, "binaries": 0, "constraints": 0, "nonzeros": 0}, solver)
+    if solver == "highs" and build == "arrays" and model is None:
+        arr = build_arrays(inst, objective, max_variants=max_variants, budget=budget, allow_unserved=allow_unserved)
+        t1 = time.perf_counter()
+        status, has, obj, bound, col = _highs_arrays(arr, time_limit, mip_gap, warm_start)
+        y = unserved = None
+        if has:
+            y = np.zeros(inst.n_parts, bool)
+            y[arr.y_col >= 0] = col[arr.y_col[arr.y_col >= 0]] > 0.5
+            if allow_unserved:
+                unserved = col[arr.e_col] > 0.5
+        return PlatformSolution(status=status, y=y, objective=obj, bound=bound, gap=_gap(has, obj, bound, status),
+                                time_s=time.perf_counter() - t1, build_s=t1 - t0, size=dict(arr.size),
+                                solver=solver, unserved=unserved)
     m = model if model is not None else build_model(inst, objective, max_variants=max_variants, budget=budget,
                                                     allow_unserved=allow_unserved)
     build_s = time.perf_counter() - t0
@@ -312,9 +528,12 @@ def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = 
     unserved = None
     if has and allow_unserved:
         unserved = np.array([(pyo.value(m.e[a]) or 0.0) > 0.5 for a in range(inst.n_apps)], bool)
+    return PlatformSolution(status=status, y=y, objective=obj, bound=bound, gap=_gap(has, obj, bound, status),
+                            time_s=solve_s, build_s=build_s, size=dict(m.size), solver=solver, unserved=unserved)
+
+
+def _gap(has: bool, obj: float, bound: float, status: str) -> float:
+    """Relative gap between the platform found and the bound (0 for an optimum without a bound, else NaN)."""
     if has and np.isfinite(obj) and np.isfinite(bound):
-        gap = abs(obj - bound) / max(abs(obj), 1e-9)
-    else:
-        gap = 0.0 if status == "optimal" else np.nan
-    return PlatformSolution(status=status, y=y, objective=obj, bound=bound, gap=gap, time_s=solve_s, build_s=build_s,
-                            size=dict(m.size), solver=solver, unserved=unserved)
+        return abs(obj - bound) / max(abs(obj), 1e-9)
+    return 0.0 if status == "optimal" else np.nan

@@ -306,3 +306,44 @@ def test_tradeoff_rounds_equal_fresh_rationalise(kind):
     shared = tradeoff(pf, kind, points=3, time_limit=30)
     fresh = tradeoff(pf, kind, points=3, time_limit=30, share=False)   # each round compiled afresh, in full
     assert len(shared) >= 2 and shared == fresh
+
+
+def _highs_lp(h) -> dict:
+    """The model a ``highspy.Highs`` holds, as arrays (matrix, bounds, costs, integrality, sense)."""
+    lp = h.getLp()
+    a = lp.a_matrix_
+    return {"start": np.array(a.start_), "index": np.array(a.index_), "value": np.array(a.value_),
+            "format": str(a.format_), "cost": np.array(lp.col_cost_), "col_lower": np.array(lp.col_lower_),
+            "col_upper": np.array(lp.col_upper_), "row_lower": np.array(lp.row_lower_),
+            "row_upper": np.array(lp.row_upper_), "integrality": [int(x) for x in lp.integrality_],
+            "sense": str(lp.sense_), "offset": lp.offset_}
+
+
+@pytest.mark.parametrize("objective", ["variants", "cost"])
+@pytest.mark.parametrize("kw", [{}, {"allow_unserved": True, "budget": 7.5,
+                                     "max_variants": {"main_spring": 2, "bolt": 1}}])
+def test_array_build_hands_highs_the_pyomo_model(objective, kw):
+    """``synthetic:40``: HiGHS receives from :func:`build_arrays` exactly the model appsi translates from
+    :func:`build_model` (every column, row, coefficient, bound, cost and integrality in the same place), and the two
+    builds' solves return the same platform, objective, bound and unserved applications (the variants objective:
+    the others take HiGHS 10-60 s a solve, and the same model is the same solve)."""
+    from pyomo.contrib.appsi.solvers import Highs
+    from formulations.platform import build_arrays, build_model, highs_model
+    w = compile_portfolio(synthetic_portfolio(40, seed=0), objective)
+    prune(w, allow_unserved=bool(kw))
+    inst = w.instance()
+    m = build_model(inst, objective, **kw)
+    ref = Highs()
+    ref.set_instance(m)
+    arr = build_arrays(inst, objective, **kw)
+    want, got = _highs_lp(ref._solver_model), _highs_lp(highs_model(arr))
+    assert len(got["cost"]) > 1000 and len(got["index"]) > 3000
+    for k in want:
+        assert np.array_equal(got[k], want[k]) if isinstance(want[k], np.ndarray) else got[k] == want[k], k
+    assert arr.size == m.size
+    if kw or objective != "variants":
+        return
+    a, b = solve_milp(inst, objective, time_limit=60, **kw), solve_milp(inst, objective, time_limit=60, model=m, **kw)
+    assert a.status == b.status == "optimal" and (a.objective, a.bound, a.size) == (b.objective, b.bound, b.size)
+    assert np.array_equal(a.y, b.y) and a.y.any()
+    assert a.unserved is None and b.unserved is None

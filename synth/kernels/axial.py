@@ -14,9 +14,10 @@ fidelity; the twins 0.2-0.4 ms and 1 us (``benchmarks/bench_axial.py``).
 This is the one place the choice is made: the evaluator's axial group calls these two functions without naming an
 engine, and they run on :func:`current_engine`, the reference unless a caller that evaluates many rows chose the
 twin for a block of its work (``with engine("numba"): ...``: the bulk engine's
-:class:`~synth.optimise.batch.Batch`); the one-application path keeps the reference (it never imports numba), and
-so does the platform producer of ``synth rationalise`` (its option margins must equal the optimiser's bit for bit,
-``tests/test_platform_real.py``, and the wear's last bits differ). The twin hands the call back to the reference
+:class:`~synth.optimise.batch.Batch`, and the platform producer of ``synth rationalise``,
+:data:`synth.platform.producer.AXIAL_ENGINE`: its option margins stand within
+:data:`synth.platform.producer.MARGIN_TOL` of the optimiser's, with the same feasible options,
+``tests/test_platform_real.py``); the one-application path keeps the reference (it never imports numba). The twin hands the call back to the reference
 where the reference is the only definition: a made cone spring (a production-scatter sample of
 :mod:`synth.robust`), given force tolerances, the wear history (``time_points``), or a row the reference refuses
 (it then raises its own :class:`~synth.errors.InputError`).

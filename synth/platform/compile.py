@@ -153,7 +153,8 @@ class Precompiled:
     part_fixed: np.ndarray
     patterns: _Patterns          # after the empty pattern and every option's pattern
     option_pattern: dict
-    groups: list                 # per app: {subsystem: [(patterns, costs x volume, margins) per group]}
+    groups: list                 # per app: {subsystem: (patterns, costs x volume, margins, group, n_groups)}, the
+    #                              groups' options one after the other (``group``: the group of each)
 
 
 def precompile(pf: PortfolioFeasibility) -> Precompiled:
@@ -173,12 +174,17 @@ def precompile(pf: PortfolioFeasibility) -> Precompiled:
         ga = {}
         for s in SUBSYSTEMS:
             cost = app_option_cost(pf, a, s) * float(a.volume)
-            ga[s] = []
+            parts = []
             for idx, mar in zip(a.feasible[s], a.option_margin[s]):
                 idx = np.asarray(idx, np.int64)
                 p, cst = option_pattern[s][idx], cost[idx]
                 order = np.lexsort((cst, p))                      # per pattern the cheapest first (stable)
-                ga[s].append((p[order], cst[order], np.asarray(mar, float)[order]))
+                parts.append((p[order], cst[order], np.asarray(mar, float)[order]))
+            n_g = len(parts)
+            ga[s] = (np.concatenate([x[0] for x in parts]).astype(np.int64) if n_g else np.zeros(0, np.int64),
+                     np.concatenate([x[1] for x in parts]).astype(float) if n_g else np.zeros(0),
+                     np.concatenate([x[2] for x in parts]).astype(float) if n_g else np.zeros(0),
+                     np.repeat(np.arange(n_g), [len(x[0]) for x in parts]).astype(np.int64), n_g)
         groups.append(ga)
     return Precompiled(pf=pf, offset=offset, part_family=part_family, part_fixed=part_fixed, patterns=pats,
                        option_pattern=option_pattern, groups=groups)
@@ -219,16 +225,17 @@ def compile_portfolio(pf: PortfolioFeasibility, objective: str = "variants", *, 
         gp, gc = {}, {}
         dead_by = {}
         for s in SUBSYSTEMS:
-            gp[s], gc[s] = [], []
-            for p, cst, mar in pre.groups[ai][s]:
-                keep = mar >= tau
-                p, cst = p[keep], cst[keep]
-                first = np.ones(len(p), bool)                     # per pattern the cheapest kept
-                first[1:] = p[1:] != p[:-1]
-                gp[s].append(p[first])
-                gc[s].append(cst[first])
+            p, cst, mar, grp, n_g = pre.groups[ai][s]
+            keep = mar >= tau
+            p, cst, grp = p[keep], cst[keep], grp[keep]
+            first = np.ones(len(p), bool)                         # per group and pattern the cheapest kept
+            first[1:] = (p[1:] != p[:-1]) | (grp[1:] != grp[:-1])
+            p, cst, grp = p[first], cst[first], grp[first]
+            cut = np.searchsorted(grp, np.arange(n_g + 1))
+            gp[s] = [p[cut[i]:cut[i + 1]] for i in range(n_g)]
+            gc[s] = [cst[cut[i]:cut[i + 1]] for i in range(n_g)]
             g = np.asarray(a.group[s], np.int64)
-            empty = np.array([len(x) == 0 for x in gp[s]], bool)
+            empty = cut[1:] == cut[:-1]
             dead = empty[g] if nc else np.zeros(0, bool)
             dead_by[s] = int(np.sum(dead & ok0))
             ok &= ~dead

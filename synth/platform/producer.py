@@ -65,6 +65,7 @@ from synth.design.assessment import assess_group
 from synth.design.constraints import FEAS_TOL, REGISTRY, version
 from synth.design.space import SUBSYSTEMS, core_rows, spring_window
 from synth.errors import InputError, Problem
+from synth.kernels import axial as axial_kernels
 from synth.platform.data import AppFeasibility, PortfolioFeasibility, default_fixed_costs, validate
 from synth.platform.options import Catalogue, catalogue
 
@@ -97,6 +98,14 @@ SPRING_STAGES = ((("spring_torque_nominal_nm",), SPRING_TORQUE_ONLY, ("spring_to
 VOLUME_COLUMNS = ("annual_volume", "volume")
 #: (group, option) pairs per group-function call (bounds the memory of a chunk)
 BLOCK_PAIRS = 100_000
+#: the axial group's engine (:func:`synth.kernels.axial.engine`): the compiled wear, about 3x the numpy reference's
+#: speed on the feasibility data (``benchmarks/bench_platform.py``); ``"numpy"`` gives the design path's margins
+#: bit for bit
+AXIAL_ENGINE = "numba"
+#: how far an option margin may stand from the design path's (``synth.optimise.product``, the numpy reference):
+#: the compiled wear agrees within :data:`synth.kernels.axial.RTOL` (1e-12) relative; the feasible options, the
+#: binding constraints and the chosen parts are the same (``tests/test_platform_real.py``)
+MARGIN_TOL = 1e-9
 #: applications per chunk (one vectorised evaluation; the unit of work on Dask)
 CHUNK_SIZE = 250
 
@@ -300,9 +309,10 @@ def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs, group=evaluate.a
     gp = np.repeat(np.arange(len(rep)), cnt)
     j = np.arange(len(gp)) - np.repeat(np.cumsum(cnt) - cnt, cnt)
     op = np.where(pad[gp] < 0, cat.axial_none, cat.axial_option(np.maximum(pad[gp], 0), j))
-    for blk in _blocks(len(gp), BLOCK_PAIRS // 4):
-        g, o = gp[blk], op[blk]
-        acc.add(g, o, group(apps, cg, rep[g], cat.space.rows("axial", cat.option_row["axial"][o]), settings))
+    with axial_kernels.engine(AXIAL_ENGINE):
+        for blk in _blocks(len(gp), BLOCK_PAIRS // 4):
+            g, o = gp[blk], op[blk]
+            acc.add(g, o, group(apps, cg, rep[g], cat.space.rows("axial", cat.option_row["axial"][o]), settings))
     return len(gp)
 
 

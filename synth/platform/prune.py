@@ -154,6 +154,22 @@ def dominated_variants(w: Work) -> int:
     return removed
 
 
+def _unique_ints(x: np.ndarray, bound: int) -> tuple[np.ndarray, np.ndarray]:
+    """``np.unique(x, return_inverse=True)`` of whole numbers ``0 <= x < bound``: by a table of ``bound`` flags when
+    it is not much longer than ``x`` (one pass instead of a sort), else by ``np.unique``; the same arrays either way.
+
+    >>> [a.tolist() for a in _unique_ints(np.array([5, 2, 5, 9]), 10)]
+    [[2, 5, 9], [1, 0, 1, 2]]
+    """
+    x = np.asarray(x, np.int64)
+    if bound > 4 * len(x) + 65536:
+        u, inv = np.unique(x, return_inverse=True)
+        return u, np.asarray(inv).reshape(-1)
+    present = np.zeros(bound, bool)
+    present[x] = True
+    return np.flatnonzero(present), (np.cumsum(present) - 1)[x]
+
+
 def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     rows = _live_rows(w, si)
     if not rows:
@@ -162,8 +178,7 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     cost = np.concatenate([w.row_cost[i] for i in rows])
     r_of = np.repeat(np.arange(len(rows)), [len(w.row_pats[i]) for i in rows])
     # per option: its part of family fi (-1: none) and the pattern of its other parts ("rest")
-    upat, inv = np.unique(pats, return_inverse=True)
-    inv = np.asarray(inv).reshape(-1)
+    upat, inv = _unique_ints(pats, len(w.patterns))
     part_u = np.full(len(upat), -1)
     rest_key = []
     for n, k in enumerate(upat):
@@ -178,10 +193,9 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     if not has.any():
         return 0
     # tokens: (row, rest); part j "is in" token t when the option rest + j is in the row (each (row, pattern) once)
-    tok_ids, tok = np.unique(r_of[has].astype(np.int64) * (int(rest.max()) + 1) + rest[has], return_inverse=True)
-    tok = np.asarray(tok).reshape(-1)
-    cand, pcol = np.unique(part[has], return_inverse=True)
-    pcol = np.asarray(pcol).reshape(-1)
+    tok_ids, tok = _unique_ints(r_of[has].astype(np.int64) * (int(rest.max()) + 1) + rest[has],
+                                len(rows) * (int(rest.max()) + 1))
+    cand, pcol = _unique_ints(part[has], len(w.part_family))
     if len(cand) < 2:
         return 0
     nt, nc = len(tok_ids), len(cand)
@@ -204,28 +218,38 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
         np.minimum.at(cmin, (cls, pcol), cost[has])
         np.maximum.at(cmax, (cls, pcol), cost[has])
         in_app = sp.csc_matrix((np.ones(len(cls), bool), (cls, pcol)), shape=(n_app, nc))
+    # per part j: its smallest token (the first in its column on ties: a dominator is in it), and the parts of that
+    # token as candidate dominators k, kept when no worse on count, weight and fixed cost and when j's tokens are
+    # all k's (bit sets, in blocks of pairs); the pairs at once rather than a Python loop over the parts
+    col = np.repeat(np.arange(nc), cnt)
+    tl = tok_len[by_part.indices]
+    low = np.flatnonzero(tl == np.minimum.reduceat(tl, by_part.indptr[:-1])[col])
+    t0 = by_part.indices[low[np.unique(col[low], return_index=True)[1]]]
+    n_k = tok_len[t0]
+    pj = np.repeat(np.arange(nc), n_k)
+    pk = by_tok.indices[np.repeat(by_tok.indptr[t0], n_k) + np.arange(len(pj)) - np.repeat(np.cumsum(n_k) - n_k, n_k)]
+    keep = (pk != pj) & (cnt[pk] >= cnt[pj]) & (weight[pk] <= weight[pj]) & (fixed[pk] <= fixed[pj])
+    pj, pk = pj[keep], pk[keep]
+    keep = np.empty(len(pj), bool)
+    step = max(1, (1 << 22) // bits.shape[1])
+    for lo in range(0, len(pj), step):
+        keep[lo:lo + step] = ~np.any(bits[pj[lo:lo + step]] & ~bits[pk[lo:lo + step]], axis=1)
+    pj, pk = pj[keep], pk[keep]
+    same = (cnt[pk] == cnt[pj]) & (weight[pk] == weight[pj]) & (fixed[pk] == fixed[pj])
     dom = np.zeros(nc, bool)
-    for j in range(nc):
-        tj = by_part.indices[by_part.indptr[j]:by_part.indptr[j + 1]]
-        t0 = tj[np.argmin(tok_len[tj])]                  # a dominator is in j's smallest token
-        ks = by_tok.indices[by_tok.indptr[t0]:by_tok.indptr[t0 + 1]]
-        ks = ks[(ks != j) & (cnt[ks] >= cnt[j]) & (weight[ks] <= weight[j]) & (fixed[ks] <= fixed[j])]
-        if not len(ks):
-            continue
-        ks = ks[~np.any(bits[j][None, :] & ~bits[ks], axis=1)]          # j's tokens are all k's
-        if not len(ks):
-            continue
-        same = (cnt[ks] == cnt[j]) & (weight[ks] == weight[j]) & (fixed[ks] == fixed[j])
-        if not cost_obj:
-            # strict order with index tie-break: a mutual substitute of higher index does not remove j
-            dom[j] = bool(np.any(~same | (ks < j)))
-            continue
-        apps_j = in_app.indices[in_app.indptr[j]:in_app.indptr[j + 1]]
-        hi_k, lo_j = cmax[np.ix_(apps_j, ks)], cmin[apps_j, j][:, None]
-        ok = np.all(hi_k <= lo_j + 1e-9, axis=0)
-        same &= np.all((cmin[np.ix_(apps_j, ks)] >= lo_j - 1e-9) & (hi_k <= lo_j + 1e-9)
-                       & (cmax[apps_j, j][:, None] <= lo_j + 1e-9), axis=0)
-        dom[j] = bool(np.any(ok & (~same | (ks < j))))
+    if not cost_obj:
+        # strict order with index tie-break: a mutual substitute of higher index does not remove j
+        dom[pj[~same | (pk < pj)]] = True
+    else:
+        starts = np.flatnonzero(np.r_[True, pj[1:] != pj[:-1]]) if len(pj) else np.zeros(0, np.int64)
+        for lo, hi in zip(starts, np.append(starts[1:], len(pj)).astype(np.int64)):
+            j, ks, sm = int(pj[lo]), pk[lo:hi], same[lo:hi]
+            apps_j = in_app.indices[in_app.indptr[j]:in_app.indptr[j + 1]]
+            hi_k, lo_j = cmax[np.ix_(apps_j, ks)], cmin[apps_j, j][:, None]
+            ok = np.all(hi_k <= lo_j + 1e-9, axis=0)
+            sm = sm & np.all((cmin[np.ix_(apps_j, ks)] >= lo_j - 1e-9) & (hi_k <= lo_j + 1e-9)
+                             & (cmax[apps_j, j][:, None] <= lo_j + 1e-9), axis=0)
+            dom[j] = bool(np.any(ok & (~sm | (ks < j))))
     gone = cand[dom]
     bad_pat = np.zeros(len(w.patterns), bool)
     bad_pat[upat[np.isin(part_u, gone)]] = True

@@ -94,7 +94,7 @@ def _check(objective, max_variants, time_limit, weights):
 def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_variants: dict | None = None,
                 time_limit: float = 60.0, weights: dict | None = None, solver: str = "highs", prune: bool = True,
                 min_margin: float | None = None, budget: float | None = None, verify: bool = True,
-                pre: Precompiled | None = None, details: bool = True) -> PlatformResult:
+                pre: Precompiled | None = None, details: bool = True, build: str = "arrays") -> PlatformResult:
     """The platform of ``pf`` minimising ``objective`` (``variants``: weighted count of distinct
     parts; ``cost``: unit cost x volume plus per-variant fixed cost).
 
@@ -105,7 +105,8 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     (:func:`synth.platform.verified.verify_records`, real data only); ``pre``: ``pf``'s
     :func:`~synth.platform.compile.precompile` (several solves of one portfolio compile it once);
     ``details=False`` leaves out what only the platform's own report reads (the per-application optima on the
-    full catalog, ``price`` and ``table``): the trade-off rows do not need them.
+    full catalog, ``price`` and ``table``): the trade-off rows do not need them. ``build``: how HiGHS gets the MILP
+    (:data:`formulations.platform.BUILDS`: from arrays through highspy, or through Pyomo, the reference).
     """
     _check(objective, max_variants, time_limit, weights)
     w_all = {**default_weights(), **(weights or {})}
@@ -123,7 +124,7 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     t3 = time.perf_counter()
     warm = y_g if not capped else None   # the uncapped greedy platform may break a cap
     sol = solve_milp(inst, objective, solver=solver, time_limit=time_limit, max_variants=max_variants,
-                     budget=budget, allow_unserved=capped, warm_start=warm)
+                     budget=budget, allow_unserved=capped, warm_start=warm, build=build)
     t4 = time.perf_counter()
     notes = list(pf.notes)
     if sol.y is not None:
@@ -175,7 +176,7 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
 
 
 def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6, time_limit: float = 30.0,
-             weights: dict | None = None, progress=None, share: bool = True) -> list:
+             weights: dict | None = None, progress=None, share: bool = True, build: str = "arrays") -> list:
     """Platform size against worst margin (``kind="margin"``) or against total cost (``"cost"``).
 
     ``margin``: for margin floors from 0 up to the lower quartile of the applications' best
@@ -186,7 +187,7 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
     Returns rows ``{"parts", "cost_eur", "worst_margin", "served", "status", ...}``. ``progress(done, total)`` is
     called after each platform solved. ``share``: the rounds compile the portfolio once
     (:func:`~synth.platform.compile.precompile`) and leave out the reports' details; ``False`` solves each round
-    afresh (the same rows, slower: the benchmark's and the tests' yardstick).
+    afresh (the same rows, slower: the benchmark's and the tests' yardstick). ``build``: as in :func:`rationalise`.
     """
     if kind not in ("margin", "cost"):
         raise InputError(Problem("trade-off", kind, "margin or cost"))
@@ -223,26 +224,29 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
         pf = dataclasses.replace(pf, apps=[a for b, a in best if b >= top])   # one set of applications for every floor
         pre = precompile(pf) if share else None   # compiled once: each floor keeps a subset of its options
         base = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False, pre=pre,
-                           details=not share)
+                           details=not share, build=build)
         tick(1, points)
         n_served = len(pf.apps)
         for tau in np.linspace(0.0, top, points):
             r = base if tau == 0.0 else rationalise(pf, "variants", time_limit=time_limit, weights=weights,
-                                                    min_margin=float(tau), verify=False, pre=pre, details=not share)
+                                                    min_margin=float(tau), verify=False, pre=pre, details=not share,
+                                                    build=build)
             tick(len(rows) + 1, points)
             rows.append(row(r, margin_floor=float(tau)))
             if rows[-1]["served"] < n_served:
                 rows[-1]["status"] += " (fewer served)"
         return rows
     pre = precompile(pf) if share else None
-    small = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False, pre=pre, details=not share)
-    cheap = rationalise(pf, "cost", time_limit=time_limit, weights=weights, verify=False, pre=pre, details=not share)
+    small = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False, pre=pre,
+                        details=not share, build=build)
+    cheap = rationalise(pf, "cost", time_limit=time_limit, weights=weights, verify=False, pre=pre,
+                        details=not share, build=build)
     lo, hi = sum(small.weights[f] * len(c) for f, c in small.platform.items()), \
         sum(cheap.weights[f] * len(c) for f, c in cheap.platform.items())
     budgets = np.unique(np.round(np.linspace(lo, max(hi, lo), points), 6))
     for b in budgets:
         r = cheap if b >= hi else rationalise(pf, "cost", time_limit=time_limit, weights=weights, budget=float(b),
-                                              verify=False, pre=pre, details=not share)
+                                              verify=False, pre=pre, details=not share, build=build)
         rows.append(row(r, budget=float(b)))
         tick(len(rows), len(budgets))
     return rows
