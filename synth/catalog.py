@@ -31,6 +31,9 @@ from pathlib import Path
 import pandas as pd
 
 from synth.errors import CatalogError, InputError, Problem
+from synth.io.catalogs import check_user_dir
+from synth.fingerprint import cached, catalogs_sha256, source_stamp
+from synth.io.catalogs import read_user_catalog
 
 __all__ = ["builtin_dir", "set_user_dirs", "overriding", "names", "load", "row", "keys", "constant", "constant_row"]
 
@@ -55,7 +58,6 @@ def set_user_dirs(*dirs: str | os.PathLike) -> None:
     in a number column, a missing ``source`` column are each an
     :class:`~synth.errors.InputError` naming the file, row and column.
     """
-    from synth.io.catalogs import check_user_dir
 
     _USER_DIRS[:] = []
     load.cache_clear()
@@ -91,7 +93,6 @@ def _user_dirs() -> list[Path]:
     env = os.environ.get("SYNTH_CATALOGS", "")
     dirs = _ENV_CHECKED.get(env)
     if dirs is None:  # checked once per value of the variable, like --catalogs (see set_user_dirs)
-        from synth.io.catalogs import check_user_dir
         dirs = [Path(p) for p in env.split(os.pathsep) if p]
         problems = []
         for d in dirs:
@@ -130,7 +131,6 @@ def _load_cached(name: str, user_dirs: tuple[Path, ...]) -> pd.DataFrame:
     for d in reversed(user_dirs):
         upath = d / f"{name}.csv"
         if upath.is_file():
-            from synth.io.catalogs import read_user_catalog
             udf = read_user_catalog(upath, df if not user_dirs else _load_cached(name, ()))
             df = pd.concat([df[~df[key].isin(udf[key])], udf], ignore_index=True)
     return df
@@ -247,7 +247,6 @@ def constant(name: str) -> float:
 @functools.lru_cache(maxsize=None)
 def _constant_values(user_dirs: tuple[Path, ...]) -> dict:
     """``{name: value}`` of every constant, read once per catalog data (:func:`synth.fingerprint.cached`)."""
-    from synth.fingerprint import cached, catalogs_sha256, source_stamp
 
     def build():
         df, index = _constants_cached(user_dirs)

@@ -37,6 +37,9 @@ from synth.design.space import (PART_KEYS, axial_attributes, bolt_attributes, bu
                                 core_attributes, space, spring_attributes)
 from synth.design.verify import evaluate_design, inputs_of, values_of, verify
 from synth.model import ball_bearing, damping, pivot
+from synth.errors import InputError, Problem
+from synth.design.constraints import REGISTRY
+from synth.design.verify import parts_of_attributes
 
 __all__ = ["Settings", "run", "STEP_NAMES", "PART_KEYS"]
 
@@ -268,7 +271,6 @@ def _next_class(table, row: int) -> int:
 
 def _wire_code(p, section: str, size_mm) -> int:
     """The ``spring_wires.csv`` row of a section and size; an unknown size lists the catalog's."""
-    from synth.errors import InputError, Problem
     w = p.spring_wire
     b, h = (size_mm[0], size_mm[0]) if section == "round" else (size_mm[0], size_mm[1])
     hit = np.flatnonzero((w.section == section) & np.isclose(w.b_mm, b) & np.isclose(w.h_mm, h))
@@ -286,7 +288,6 @@ def _stopped(walk: _Walk, stop: _Stop) -> Result:
     groups = {"input": evaluate.inputs(apps, _ONE), **stop.groups}
     checks = checks_of(groups, apps)
     done = {c.id for c in checks}
-    from synth.design.constraints import REGISTRY
     for cid, c in REGISTRY.items():
         if cid not in done and c.group in TENSIONER_GROUPS:
             checks.append(Check(cid, None, None, None, NOT_VERIFIED, f"not run: the flowchart stopped at step {stop.step}"))
@@ -316,7 +317,6 @@ def run(design_input, settings: Settings | None = None, parts: dict | None = Non
     if parts:
         missing = [k for k in PART_KEYS if k not in parts]
         if missing:
-            from synth.errors import InputError, Problem
             raise InputError(Problem("parts", sorted(parts), "a dict with the keys " + ", ".join(PART_KEYS)))
         r = verify(design_input, dict(parts), s, status="verified", solver="flowchart", time_points=time_points,
                    notes=["fixed-parts verification: every catalog choice is given; the flowchart checks it and "
@@ -333,7 +333,6 @@ def run(design_input, settings: Settings | None = None, parts: dict | None = Non
     spr = walk.step9(cg)
     bolt = walk.step10(cg)
     attrs = {"core": core_attrs, "bushing": bush, "axial": ax, "spring": spr, "bolt": bolt}
-    from synth.design.verify import parts_of_attributes
     groups = evaluate_design(walk.apps, attrs, s, detail=True, time_points=time_points)
     values = values_of(groups, attrs)
     values.update(walk.required)

@@ -28,6 +28,7 @@ import numpy as np
 
 from synth import catalog
 from synth.errors import CatalogError, Problem
+from synth.fingerprint import cached, catalogs_sha256, source_stamp
 
 __all__ = ["ENVIRONMENTS", "FUELS", "Table", "Parts", "arrays", "mu", "env_code", "fuel_code",
            "next_catalog_length_mm"]
@@ -131,7 +132,6 @@ class Parts:
 def _arrays_cached(user_dirs: tuple) -> Parts:
     """The parts of these catalogs, read once per catalog data and synth source (the on-disk cache of
     :func:`synth.fingerprint.cached`)."""
-    from synth.fingerprint import cached, catalogs_sha256, source_stamp
     return cached("parts", [catalogs_sha256(user_dirs), source_stamp()], _read_parts)
 
 

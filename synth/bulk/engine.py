@@ -37,6 +37,18 @@ from synth.design import evaluate
 from synth.design.constraints import EVALUATED_GROUPS, REGISTRY, version
 from synth.design.result import FAIL, PASS, WARNING
 from synth.design.space import PART_KEYS, SUBSYSTEMS
+from synth.errors import InputError
+from synth.optimise import solve
+from synth.design.space import axial_attributes
+from synth.design.applications import DEFAULTS
+from synth.design.evaluate import NOT_VERIFIED
+from synth.design.assessment import assess
+from synth.optimise.product import core_scores, option_scores
+from synth.design.verify import parts_of_rows
+from synth.optimise.batch import Batch
+from synth.optimise.diagnose import layout_switches, probe_batch, relaxations_batch
+from synth.optimise.batch import robust
+from synth.optimise.objectives import Objective
 
 __all__ = ["columns", "constraint_ids", "screen_applications", "screen_applications_reference", "row_from_result"]
 
@@ -146,8 +158,6 @@ def screen_applications_reference(apps: Sequence, *, objective: str = "standard"
     """Reference engine: ``solve(d, objective, "enumerate", exhaustive=True)`` per application: every core and
     option of its catalog product evaluated, the nearest design and each relaxation probe by the exhaustive
     evaluation (slow; the right answer, and what the fast path is tested against)."""
-    from synth.errors import InputError
-    from synth.optimise import solve
     settings = evaluate.Settings(fidelity=fidelity)
     rows = []
     for d in apps:
@@ -180,7 +190,6 @@ def _checks() -> list:
 def _design_attributes(b, rows, options: dict) -> dict:
     """One-row attributes of the chosen designs, as :func:`synth.design.verify.verify` builds them from their part
     keys (the cone spring's outer diameter made absolute and back: the same doubles)."""
-    from synth.design.space import axial_attributes
     sp = b.sp
     attrs = {"core": sp.rows("core", b.C[rows])}
     for s in ("bushing", "spring", "bolt"):
@@ -217,8 +226,6 @@ def _verify(b, idx, rows, options: dict) -> dict:
 def _notes_of(apps, idx, state, evaluated, cache: dict) -> list:
     """Per application: the "not verified: ..." and "assumed: ..." notes of its checks (as :func:`row_from_result`
     writes them from the result), built once per distinct pattern of missing requirements and defaults."""
-    from synth.design.applications import DEFAULTS
-    from synth.design.evaluate import NOT_VERIFIED
     cols = _checks()
     reqs = sorted({r for c in cols for r in c.needs})
     met = np.stack([apps.met(r)[idx] for r in reqs], axis=1) if reqs else np.zeros((len(idx), 0), bool)
@@ -260,8 +267,6 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
     """The result columns (:func:`columns`, and ``_failed``: the failed constraint ids per row) of designs verified
     by :func:`_verify`, one array or list per column, built column by column: what :func:`row_from_result` gives
     for :func:`synth.optimise.answer.build_result`'s result of each."""
-    from synth.design.assessment import assess
-    from synth.optimise.product import core_scores, option_scores
     m = len(idx)
     a = assess(groups, b.apps, app=idx, ids=tuple(c.id for c in _checks()))  # the one judgement of the margins
     marg, ev, failed = a.margins, a.evaluated, a.failed
@@ -305,15 +310,12 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
 
 def _parts(attrs: dict, core_values: dict) -> dict:
     """The part columns (:data:`PART_KEYS`) of verified designs: :func:`synth.design.verify.parts_of_rows`."""
-    from synth.design.verify import parts_of_rows
     rows = parts_of_rows(attrs, core_values)
     return {k: [r[k] for r in rows] for k in PART_KEYS}
 
 
 def _screen_chunk(inputs: list, weights: dict, obj, settings, diagnose: bool) -> list:
     """The rows of a chunk of applications (see :func:`screen_applications`)."""
-    from synth.optimise.batch import Batch
-    from synth.optimise.diagnose import layout_switches, probe_batch, relaxations_batch
     n = len(inputs)
     b = Batch(inputs, settings)
     found = b.optimum(weights)
@@ -378,8 +380,6 @@ def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity
     >>> list(df.index), df.loc[1, "status"]
     ([0, 1], 'optimal')
     """
-    from synth.optimise.batch import robust
-    from synth.optimise.objectives import Objective
     settings = evaluate.Settings(fidelity=fidelity)
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     apps = list(apps)

@@ -34,6 +34,11 @@ import pandas as pd
 from synth import schema
 from synth.errors import InputError, Problem
 from synth.io.numbers import is_not_given
+from synth.io.tables import read_table
+from synth.io.tables import duplicate_columns
+from synth.io.numbers import _NUMBER, NOT_GIVEN
+from synth.io.outputs import output_file, write_csv
+from synth.excel.cells import write_frame
 
 __all__ = ["FORMATS", "read_portfolio", "check_columns", "write_table", "to_table", "plain_cell", "clean_cell", "row_record", "records",
            "validate_record", "validate_rows", "validate_table", "field_columns", "column_warnings", "format_problems"]
@@ -68,7 +73,6 @@ def read_portfolio(path) -> pd.DataFrame:
     any design-input column, or one that names a field twice (a repeated
     column, or a field and its alias: ``application`` and ``application_type``).
     """
-    from synth.io.tables import read_table
 
     p = Path(path)
     _format(p, "portfolio")
@@ -79,7 +83,6 @@ def read_portfolio(path) -> pd.DataFrame:
 
 def check_columns(df: pd.DataFrame, where: str = "portfolio") -> None:
     """A Problem for a table without design-input columns or naming one field twice."""
-    from synth.io.tables import duplicate_columns
 
     problems = []
     for first, again in duplicate_columns(df):
@@ -193,7 +196,6 @@ def _coerce_column(f, name: str, col: pd.Series, problems: list) -> list:
     plain numbers (the text of :data:`synth.io.numbers` ``_NUMBER``, or a numeric column) parsed and range-checked
     at once, other fields once per distinct cell; any other cell (a decimal comma, a unit, a bad value) goes
     through the validator's own ``_coerce`` (its problems appended to ``problems[row]``). None: not given."""
-    from synth.io.numbers import _NUMBER, NOT_GIVEN
     n = len(col)
     raw = col.to_numpy(dtype=object)
     out = [None] * n
@@ -307,13 +309,11 @@ def write_table(df: pd.DataFrame, path, *, float_format: str | None = None) -> P
     gate (:func:`synth.io.outputs.output_file`: a temporary file renamed when complete; CSV text cells made
     formula-safe by :func:`synth.io.outputs.csv_safe`); ``float_format``: the numbers of a CSV (:data:`CSV_FLOAT`
     for results; a portfolio of inputs keeps every digit)."""
-    from synth.io.outputs import output_file, write_csv
     p = Path(path)
     fmt = _format(p, "output")
     if fmt == "csv":
         return write_csv(df, p, float_format=float_format)
     if fmt == "excel":  # text as text, significant figures, print setup (synth.excel.cells)
-        from synth.excel.cells import write_frame
         write_frame(df, p, sheet="portfolio")
         return p
     with output_file(p) as tmp:

@@ -64,6 +64,14 @@ from synth.bulk.portfolio import (CSV_FLOAT, arrow_safe, column_warnings, field_
 from synth.errors import InputError, Problem
 from synth.io.outputs import output_file, write_text
 from synth.report.progress import Progress
+from synth.bulk.engine import columns
+from synth.fingerprint import catalogs_sha256
+from synth.design.rules import echo
+from synth.optimise.objectives import Objective
+from synth.io.limits import check_count
+from synth.bulk.portfolio import FORMATS, check_columns
+from synth.io.outputs import csv_rows
+from synth.design.rules import using
 
 __all__ = ["ENGINES", "FIDELITIES", "DEFAULT_CHUNK_SIZE", "default_chunk_size", "RunReport", "result_columns", "compute_chunk",
            "run_portfolio", "sidecar", "manifest_of", "chunk_ranges", "chunk_state", "RunLock", "usable_cores",
@@ -96,7 +104,6 @@ def default_chunk_size() -> int:
 
 def result_columns() -> list[str]:
     """The engine's result columns (:func:`synth.bulk.engine.columns`) followed by ``error``."""
-    from synth.bulk.engine import columns
     return list(columns()) + ["error"]
 
 
@@ -148,7 +155,6 @@ def compute_chunk(recs, *, objective: str = "standard", fidelity: str = "screeni
     share the caller's; None: the rules in force).
     """
     if rules is not None:
-        from synth.design.rules import using
         with using(rules):
             return compute_chunk(recs, objective=objective, fidelity=fidelity, diagnose=diagnose, screen=screen,
                                  catalog_dirs=catalog_dirs)
@@ -236,7 +242,6 @@ def _sha256_frame(df: pd.DataFrame) -> str:
 
 def _catalogs_sha256() -> str:
     """Hash of every catalog CSV in use (built-in and user folders): a changed catalog invalidates a resume."""
-    from synth.fingerprint import catalogs_sha256
     return catalogs_sha256(catalog._user_dirs())
 
 
@@ -244,7 +249,6 @@ def manifest_of(portfolio_hash: str, n_rows: int, *, objective: str, fidelity: s
                 diagnose: bool) -> dict:
     """The manifest of a run: what must not change between an interrupted run and its resume (the design rules in
     force included: :func:`synth.design.rules.echo`)."""
-    from synth.design.rules import echo
     return {"portfolio_sha256": portfolio_hash, "n_rows": int(n_rows), "objective": str(objective),
             "fidelity": str(fidelity), "chunk_size": int(chunk_size), "diagnose": bool(diagnose),
             "synth_version": __version__, "catalogs_sha256": _catalogs_sha256(), "rules": echo()}
@@ -553,13 +557,11 @@ class RunReport:
 
 
 def _validate_settings(objective, fidelity, chunk_size, engine, workers) -> None:
-    from synth.optimise.objectives import Objective
     Objective.parse(objective)
     if fidelity not in FIDELITIES:
         raise InputError(Problem("--fidelity", fidelity, "one of " + ", ".join(FIDELITIES)))
     if engine not in ENGINES:
         raise InputError(Problem("--engine", engine, "one of " + ", ".join(ENGINES)))
-    from synth.io.limits import check_count
     check_count("--chunk-size", chunk_size)
     if workers is not None:
         check_count("--workers", workers)
@@ -580,7 +582,6 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
     it is a terminal. ``connect_timeout_s`` bounds the wait for a ``scheduler``.
     The run holds the lock of ``<out>.chunks`` from start to end (see the module doc).
     """
-    from synth.bulk.portfolio import FORMATS, check_columns
 
     given = chunk_size is not None
     chunk_size = default_chunk_size() if chunk_size is None else chunk_size
@@ -770,8 +771,6 @@ def write_result(out: Path, table: pd.DataFrame, folder: Path, ranges: list, run
     :func:`synth.io.outputs.csv_rows`, numbers to :data:`~synth.bulk.portfolio.CSV_FLOAT`)."""
     import pyarrow as pa
     import pyarrow.parquet as pq
-    from synth.bulk.portfolio import FORMATS
-    from synth.io.outputs import csv_rows, output_file
     fmt = FORMATS[out.suffix.lower()]
     if fmt not in ("parquet", "csv"):
         return write_table(assemble(table, folder, len(ranges), run_id=run_id, ranges=ranges), out,

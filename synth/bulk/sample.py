@@ -19,6 +19,7 @@ import pandas as pd
 
 from synth.bulk.portfolio import to_table
 from synth.data.generated_applications import generate
+from synth.io.limits import check_count
 
 __all__ = ["BREAKAGES", "sample_portfolio", "break_rows"]
 
@@ -36,7 +37,6 @@ def break_rows(table: pd.DataFrame, k: int, seed: int = 0) -> tuple[pd.DataFrame
 
     Returns the table and ``{row position: kind}``.
     """
-    from synth.io.limits import check_count
     k = check_count("--broken", k, hi=len(table))
     rng = np.random.default_rng(seed + 7919)
     rows = sorted(int(i) for i in rng.choice(len(table), size=k, replace=False))
@@ -57,7 +57,6 @@ def sample_portfolio(n: int, seed: int = 0, broken: int = 0) -> pd.DataFrame:
     Columns: ``application_id`` (``APP-00001``...) then every design-input
     field. The same ``(n, seed, broken)`` gives the same table.
     """
-    from synth.io.limits import check_count
     n, seed = check_count("N", n), check_count("--seed", seed)
     table = to_table(generate(n, seed=seed))
     table.insert(0, "application_id", [f"APP-{i + 1:05d}" for i in range(len(table))])

@@ -39,6 +39,9 @@ import pandas as pd
 
 from synth import schema
 from synth.design.space import PART_KEYS
+from synth.bulk.portfolio import CSV_FLOAT
+from synth.design.constraints import words
+from synth.io.outputs import output_folder, write_csv, write_figure, write_text
 
 __all__ = ["Summary", "summarise", "write_summary", "text", "markdown_table", "fidelity_agreement", "GROUPS",
            "COLUMNS"]
@@ -199,9 +202,6 @@ def write_summary(s: Summary, folder, rules=None) -> list[Path]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from synth.bulk.portfolio import CSV_FLOAT
-    from synth.design.constraints import words
-    from synth.io.outputs import output_folder, write_csv, write_figure, write_text
     d = output_folder(folder, "--summary")
     written = []
     tables = {"by_group": s.by_group, "parts": s.parts, "binding": s.binding, "violated": s.violated,

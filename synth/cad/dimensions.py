@@ -30,6 +30,9 @@ from pathlib import Path
 
 from synth import catalog
 from synth.errors import InputError, Problem
+from synth.design.result import Result
+from synth.io.saved_results import load_result
+from synth.io.documents import load_input
 
 __all__ = ["TensionerGeometry", "geometry_from"]
 
@@ -122,9 +125,7 @@ _INPUT_KEYS = ("middle_plane_belt_height_mm", "max_pivot_height_mm", "pulley_dia
 def _split(result) -> tuple[dict, dict | None, str, bool, str, str]:
     """``(parts and values, inputs, status, feasible, name, verdict)`` of a result, its JSON dict or its JSON
     path."""
-    from synth.design.result import Result
     if isinstance(result, (str, Path)):
-        from synth.io.saved_results import load_result
         result = load_result(result)  # the input gate's reader: size, encoding, shape
     if isinstance(result, dict):
         result = Result.from_dict(result)
@@ -139,7 +140,6 @@ def _inputs_dict(inputs) -> dict | None:
     if inputs is None:
         return None
     if isinstance(inputs, (str, Path)):
-        from synth.io.documents import load_input
         inputs = load_input(inputs)
     if dataclasses.is_dataclass(inputs):
         return dataclasses.asdict(inputs)

@@ -35,6 +35,8 @@ import numpy as np
 
 from synth import catalog
 from synth.cad.assembly import TensionerModel, colour_of
+from synth.cad.solids import stack
+from synth.io.outputs import write_figure
 
 __all__ = ["EXPLODE_LEVEL", "exploded_parts", "section_parts", "Dimension", "section_dimensions", "render_png",
            "exploded_picture", "section_picture"]
@@ -134,7 +136,6 @@ def section_dimensions(model: TensionerModel) -> list[Dimension]:
     diameter (under the crankcase face) and housing height (between the bushing flange and the arm).
     Values are the geometry's (the stack-up of :func:`synth.cad.solids.stack`), positions the parts' boxes.
     """
-    from synth.cad.solids import stack
     g = model.geometry
     boxes = {n: s.BoundingBox() for n, s in model.parts.items()}
     whole = model.compound().BoundingBox()
@@ -255,7 +256,6 @@ def _frame(ax, points: np.ndarray, extra: np.ndarray | None = None) -> None:
 
 
 def _save(plt, fig, path) -> Path:
-    from synth.io.outputs import write_figure
     return write_figure(fig, path)
 
 

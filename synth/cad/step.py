@@ -20,6 +20,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from synth.cad.assembly import TensionerModel
+from synth.version import __version__
+from synth.io.outputs import output_file, step_text
 
 __all__ = ["DESIGN_KEYS", "design_values", "step_header", "export_step", "read_step_header"]
 
@@ -65,7 +67,6 @@ def step_header(model: TensionerModel, application: str, design: dict) -> dict:
     ``name`` (FILE_NAME and the root product) ``synth tensioner <application>``, ``author`` and
     ``organisation`` ``synth <version>``, ``description``: the status and one ``key=value`` per design value.
     """
-    from synth.version import __version__
     g = model.geometry
     fmt = {k: (f"{v:g}" if isinstance(v, float) else str(v)) for k, v in design.items()}
     status = f"status={g.verdict or g.status} ({g.status})" + ("" if g.feasible else " (infeasible: nearest design)")
@@ -92,7 +93,6 @@ def export_step(model: TensionerModel, path: str | Path, *, application: str | N
     from OCP.XSControl import XSControl_WorkSession
     from cadquery.occ_impl.exporters.assembly import toCAF
 
-    from synth.io.outputs import output_file, step_text
     path = Path(path)
     head = step_header(model, application or model.geometry.name, design or design_values(model))
     _, doc = toCAF(model.assembly(step_text(head["name"])), True)
@@ -118,7 +118,6 @@ def export_step(model: TensionerModel, path: str | Path, *, application: str | N
 
 
 def _set_description(header, lines: list[str]) -> None:
-    from synth.io.outputs import step_text
     from OCP.Interface import Interface_HArray1OfHAsciiString
     from OCP.TCollection import TCollection_HAsciiString
     arr = Interface_HArray1OfHAsciiString(1, len(lines))

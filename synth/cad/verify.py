@@ -36,6 +36,8 @@ from synth import catalog
 from synth.cad.assembly import TensionerModel
 from synth.cad.solids import stack
 from synth.design.result import FAIL, Check
+from synth.design.evaluate import finish
+from synth.design.result import checks_of
 
 __all__ = ["verify_model", "interference_volumes", "failed"]
 
@@ -61,8 +63,6 @@ def verify_model(model: TensionerModel, *, interference: bool = True) -> list[Ch
     """The step-11 checks of ``model`` (see the module docstring), as registry :class:`Check` records."""
     import numpy as np
 
-    from synth.design.evaluate import finish
-    from synth.design.result import checks_of
     g, p = model.geometry, model.parts
     bb = {n: s.BoundingBox() for n, s in p.items()}
     sp = bb["main_spring"]

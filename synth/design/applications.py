@@ -29,6 +29,7 @@ from synth import catalog, parts
 from synth.design.constraints import REQUIREMENTS
 from synth.model import damping, layout
 from synth.schema import FIELDS
+from synth.errors import InputError, Problem
 
 __all__ = ["Applications", "DEFAULTS", "NUMERIC_FIELDS"]
 
@@ -121,7 +122,6 @@ class Applications:
         n = len(a)
         for k, v in fields.items():
             if k not in a.f:
-                from synth.errors import InputError, Problem
                 raise InputError(Problem("field", k, "a numeric input field"))
             a.f[k] = np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy()
         a._derive_numeric()

@@ -40,6 +40,7 @@ from functools import cached_property
 import numpy as np
 
 from synth.design.constraints import FEAS_TOL, GROUPS, REGISTRY, version
+from synth.design.applications import DEFAULTS
 
 __all__ = ["Assessment", "Columns", "assess", "assess_group", "columns_of", "verdict_of",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED_STATE", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED",
@@ -378,7 +379,6 @@ def _assess(gs: dict, ids: tuple, apps, rows, app) -> Assessment:
 
 def _assumed(a: Assessment, gs: dict, apps, rows, app) -> np.ndarray:
     """``(n, k)`` the evaluated checks that used a documented default of their application's inputs."""
-    from synth.design.applications import DEFAULTS
     out = np.zeros((len(a), len(a.columns.ids)), dtype=bool)
     seen: dict = {}
     for j, c in enumerate(a.columns.constraints):

@@ -42,6 +42,9 @@ from synth.model import bolted_joint, damping, disc_spring
 from synth.model import layout, packaging, pivot, plain_bushing, stackup
 from synth.model import torsion_spring
 from synth.design.rules import active as active_rules
+from synth.drive.analysis import tensioner_checks
+from synth.errors import InputError, Problem
+from synth.drive.inputs import drive_from_mapping
 
 __all__ = ["Settings", "SPRING_LIMIT_BASES", "SPRING_TOLERANCE_COLUMNS", "MADE_CONE_SPRING_COLUMNS", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
@@ -112,9 +115,7 @@ class Settings:
     spring_limit_basis: str = "thesis"
 
     def __post_init__(self):
-        from synth.errors import InputError, Problem
         if isinstance(self.drive, dict):
-            from synth.drive.inputs import drive_from_mapping
             object.__setattr__(self, "drive", drive_from_mapping(self.drive))
         if self.fidelity not in FIDELITIES:
             raise InputError(Problem("fidelity", self.fidelity, "one of " + ", ".join(FIDELITIES)))
@@ -407,7 +408,6 @@ def drive_values(drive, damping_nm) -> dict:
         return {"drive_given": np.zeros(n, dtype=bool),
                 **{k: np.full(n, np.nan) for k in ("drive_min_span_tension_n", "drive_belt_min_tension_n",
                                                    "drive_static_tension_n", "drive_critical_friction_nm")}}
-    from synth.drive.analysis import tensioner_checks
     t = tensioner_checks(drive, damping_nm)
     return {"drive_given": np.ones(n, dtype=bool), "drive_min_span_tension_n": t["min_span_tension_n"],
             "drive_belt_min_tension_n": np.full(n, t["belt_min_tension_n"]),

@@ -30,6 +30,11 @@ from synth.design.assessment import (EVALUATED, EVALUATED_VERDICTS, FAIL, INCOMP
                                      assess, check_verdict, verdict_of)
 from synth.design.constraints import GROUPS as REGISTRY_GROUPS, REGISTRY, margin as registry_margin
 from synth.io.outputs import plain  # JSON-friendly data (NaN and infinities as None, no subnormal number)
+from synth.design.applications import DEFAULTS
+from synth.design.evaluate import _CONSTANT_LIMITS as CONSTANT_LIMITS
+from synth.design.rules import active as active_rules
+from synth.schema import FIELDS
+from synth.errors import InputError, Problem
 
 __all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain",
            "checks_of", "row_verdict", "field_corrections"]
@@ -241,7 +246,6 @@ class Result:
     @classmethod
     def from_dict(cls, data: dict, source: str = "result") -> "Result":
         """A result from :meth:`to_dict`'s output (a saved ``--json``); wrong shapes name the key."""
-        from synth.errors import InputError, Problem
         if not isinstance(data, dict):
             raise InputError(Problem(source, type(data).__name__, "a JSON object written by synth (--json)"))
         for key, kind in (("parts", dict), ("values", dict), ("checks", list)):
@@ -270,9 +274,6 @@ def checks_of(groups: dict, apps, row: int = 0, assessment: Assessment | None = 
     """The :class:`Check` records of one design: row ``row`` of each evaluated group (registry order), judged by
     the assessment of the groups (:func:`synth.design.assessment.assess`; ``assessment``: one the caller made of
     every row, then ``row`` indexes it)."""
-    from synth.design.applications import DEFAULTS
-    from synth.design.evaluate import _CONSTANT_LIMITS as CONSTANT_LIMITS
-    from synth.design.rules import active as active_rules
     a = assessment if assessment is not None else assess(groups, apps, rows=slice(row, row + 1))
     j = row if assessment is not None else 0
     app = {}
@@ -346,7 +347,6 @@ def field_corrections(result: Result) -> dict:
     A failed check suggests its correction for the input fields its value or limit is (or the smallest
     relaxation of the diagnosis names); a not-verified check asks for the fields it needs.
     """
-    from synth.schema import FIELDS
     names = {f.name for f in FIELDS}
     out: dict = {}
     for c in result.checks:

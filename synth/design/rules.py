@@ -51,6 +51,7 @@ from pathlib import Path
 from synth.errors import InputError, Problem
 from synth.io.files import WORKBOOK_SUFFIXES, suffix_of
 from synth.io.structured import read_document
+from synth.io.numbers import number_from_text
 
 __all__ = ["Rules", "using", "active", "LIMIT_NAMES", "SPRING_LIMIT_BASES", "CAPABILITY_TARGETS", "read_rules",  # noqa: F822 (LIMIT_NAMES: module __getattr__)
            "NONE", "echo", "of_args"]
@@ -101,7 +102,6 @@ def _tighten_text(name: str) -> str:
 
 def _fraction(value, where: str) -> float:
     """A margin: a fraction (0.05) or a percentage (``5 %``, ``"5%"``), in [0, 1)."""
-    from synth.io.numbers import number_from_text
     x = number_from_text(value) if isinstance(value, str) else value
     if isinstance(value, str) and "%" in value and x is not None and abs(x) > 1.0:
         x = x / 100.0  # "5 %" read as 5 by a reader that keeps the number

@@ -56,6 +56,10 @@ from synth import catalog
 from synth.parts import Parts, Table, arrays
 from synth.errors import InputError, Problem
 from synth.model import packaging, pivot, torsion_spring
+from synth.fingerprint import cached, catalogs_sha256, source_stamp
+from synth.schema import PART_FIELDS
+from synth.schema import field_by_name
+from synth.model import disc_spring
 
 __all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "NONE", "CAPACITY", "Space", "space", "core_rows", "spring_window",
            "table_sizes", "check_capacity", "fixed_fields", "space_for", "pinned_space", "pinned_diameter",
@@ -146,7 +150,6 @@ class Space:
         The cone spring's outer diameter is given absolutely (``cone_spring_external_diameter_mm``) and
         stored as the reduction below the largest one the damper pad allows.
         """
-        from synth.model import disc_spring
         p = self.parts
 
         def need(k):
@@ -460,7 +463,6 @@ def _build_space() -> Space:
 def _space_cached(user_dirs: tuple) -> Space:
     """The space of these catalogs, built once per catalog data and builder source (the on-disk cache of
     :func:`synth.fingerprint.cached`: about 5 ms to check and load against about 0.1 s to build)."""
-    from synth.fingerprint import cached, catalogs_sha256, source_stamp
     return cached("space", [catalogs_sha256(user_dirs), source_stamp()], _build_space)
 
 
@@ -491,7 +493,6 @@ def fixed_fields(d, pin_inputs=False) -> tuple[str, ...]:
     >>> fixed_fields(d, True), fixed_fields(d, ["pivot_class_diameter_mm"])
     (('pivot_class_diameter_mm', 'pivot_bushing_radial_thickness_mm'), ('pivot_class_diameter_mm',))
     """
-    from synth.schema import PART_FIELDS
     if pin_inputs is True:
         return tuple(n for n in PART_FIELDS if getattr(d, n) is not None)
     if not pin_inputs:
@@ -583,7 +584,6 @@ def design_inputs(parts: dict) -> dict:
     >>> v["main_spring_wire_section"], v["main_spring_wire_size_mm"], v["pivot_class_diameter_mm"]
     ('round', [3.0], 16.0)
     """
-    from synth.schema import PART_FIELDS, field_by_name
     attrs = space().design_attributes(parts)
     out = {}
     for name in PART_FIELDS:
@@ -610,7 +610,6 @@ def same_input(given, designed) -> bool:
 
 
 def _field_table(name: str) -> str:
-    from synth.schema import field_by_name
     return field_by_name(name).pins[0]
 
 

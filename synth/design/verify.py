@@ -27,6 +27,9 @@ from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.result import Result, checks_of, plain
 from synth.design.space import NONE, PART_KEYS, space
+from synth.design.space import SUBSYSTEMS
+from synth.design.rules import echo
+from synth.schema import plausibility
 
 __all__ = ["evaluate_design", "verify", "values_of", "inputs_of", "wire_size_mm"]
 
@@ -133,7 +136,6 @@ def parts_of_rows(attrs: dict, core_values: dict) -> list:
 def parts_of_design(sp, core: int, options: dict, core_values: dict, row: int) -> dict:
     """The part keys of one design: core ``core`` and option rows ``options`` of space ``sp``, its core group's
     values at row ``row`` of ``core_values`` (the evaluated core rows of an optimiser)."""
-    from synth.design.space import SUBSYSTEMS
     attrs = {"core": sp.rows("core", [core])}
     attrs.update({s: sp.rows(s, [options[s]]) for s in SUBSYSTEMS})
     cone = {k: np.asarray(v)[[row]] for k, v in core_values.items() if k.startswith("cone_spring_")}
@@ -152,8 +154,6 @@ def verify(d, parts: dict, settings: evaluate.Settings = evaluate.Settings(), *,
     attrs = space().design_attributes(parts)
     groups = evaluate_design(apps, attrs, settings, detail=detail, time_points=time_points)
     values = values_of(groups, attrs)
-    from synth.design.rules import echo
-    from synth.schema import plausibility
     notes = [n for n in plausibility(d) if n not in (notes or [])] + list(notes or [])
     res = Result(status=status, solver=solver, parts=parts_of_attributes(attrs, groups),
                  values=values, checks=checks_of(groups, apps), notes=list(notes or []) + settings.notes(),

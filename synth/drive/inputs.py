@@ -29,6 +29,11 @@ from synth.errors import InputError, Problem
 from synth.io.limits import short
 from synth.io.numbers import is_not_given, number_from_text
 from synth.schema import Field
+from synth.drive.statics import static_state
+from synth.io.files import existing_file, suffix_of
+from synth.io.structured import read_document
+from synth.io.workbook import read_sheet
+from synth.io.workbook import column_letter
 
 __all__ = ["FIELDS", "ROLES", "Pulley", "Tensioner", "Order", "Drive", "validate", "load_drive", "example_drive",
            "EXAMPLE_PATH", "DRIVE_SUFFIXES", "drive_from_mapping"]
@@ -369,7 +374,6 @@ def validate(data) -> Drive:
                   durability_speed_rpm=exc.get("durability_speed_rpm"), belt_min_tension_n=belt["min_tension_n"],
                   belt_friction_coefficient=belt.get("friction_coefficient"), harmonics=solver["harmonics"],
                   regularisation=solver["regularisation"], tolerance=solver["tolerance"])
-    from synth.drive.statics import static_state
     static_state(drive)  # a belt path that cannot exist is an input error now, not later
     return drive
 
@@ -377,7 +381,6 @@ def validate(data) -> Drive:
 def load_drive(path) -> Drive:
     """Read and validate a drive file: YAML, TOML, JSON (through :func:`synth.io.structured.read_document`) or
     the ``Drive`` sheet of a workbook (:func:`synth.io.workbook.read_sheet`)."""
-    from synth.io.files import existing_file, suffix_of
     accepted = "an existing drive file: .yaml, .yml, .toml, .json, or a workbook (.xlsx, .ods) with a Drive sheet"
     suffix = suffix_of(path)
     if suffix not in DRIVE_SUFFIXES:
@@ -385,7 +388,6 @@ def load_drive(path) -> Drive:
         raise InputError(Problem("--drive", str(path), accepted + " (by its extension)"))
     if suffix in (".xlsx", ".xlsm", ".ods"):
         return _from_sheet(path)
-    from synth.io.structured import read_document
     data = read_document(path, "--drive", accepted=accepted)
     if data is None:
         raise InputError(Problem("--drive", str(path), "a drive mapping (the file is empty)"))
@@ -396,7 +398,6 @@ def load_drive(path) -> Drive:
 
 def _from_sheet(path) -> Drive:
     """The ``Drive`` sheet as a drive mapping; problems name the sheet and cell."""
-    from synth.io.workbook import read_sheet
     ws = read_sheet(path, "--drive", "Drive")
     data: dict = {"name": Path(path).stem}
     cell_of: dict[str, str] = {}
@@ -410,7 +411,6 @@ def _from_sheet(path) -> Drive:
             header_row = r + 1
             cols = []
             c = 2 if ws.value(f"A{header_row}") is None else 1
-            from synth.io.workbook import column_letter
             while ws.value(f"{column_letter(c)}{header_row}") is not None:
                 cols.append((column_letter(c), str(ws.value(f"{column_letter(c)}{header_row}")).strip()))
                 c += 1

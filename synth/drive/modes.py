@@ -31,6 +31,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from synth.drive.statics import static_state
 
 __all__ = ["LinearDrive", "linear_drive", "natural_frequencies"]
 
@@ -62,7 +63,6 @@ def linear_drive(drive, static: dict | None = None) -> LinearDrive:
     >>> m.dofs, m.K.shape
     (('TEN', 'CAM', 'IDL', 'WP', 'arm'), (5, 5))
     """
-    from synth.drive.statics import static_state
     s = static if static is not None else static_state(drive)
     p = drive.pulleys
     n = len(p)

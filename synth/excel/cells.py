@@ -35,6 +35,7 @@ import math
 from pathlib import Path
 
 from synth.io.outputs import FORMULA_LEADS, output_file
+from synth.version import __version__
 
 __all__ = ["SIGNIFICANT_FIGURES", "FORMULA_LEADS", "sig_format", "put", "wrap", "page_setup", "write_frame"]
 
@@ -132,7 +133,6 @@ def page_setup(ws, title: str, *, header_rows: str | None = None, subtitle: str 
     ``title`` (left) and ``subtitle`` (right), the footer the date the workbook was
     written and ``page n of N``.
     """
-    from synth.version import __version__
     ws.page_setup.orientation = "landscape"
     ws.page_setup.paperSize = ws.PAPERSIZE_A4
     ws.page_setup.fitToWidth = 1

@@ -34,6 +34,9 @@ from synth.design.result import FAIL, NOT_VERIFIED, PASS, WARNING, field_correct
 from synth.excel.cells import page_setup, put, wrap
 from synth.excel.template import FILLS
 from synth.output_table import ROWS, format_value
+from synth.report.advice import correction, rule_lines
+from synth.flowchart import STEP_NAMES
+from synth.io.outputs import output_file
 
 __all__ = ["build_results", "write_results"]
 
@@ -104,7 +107,6 @@ def _verdict_colours(ws, cells: str, ref: str, *, contains: bool = False) -> Non
 
 
 def _output_sheet(ws, result) -> None:
-    from synth.report.advice import correction, rule_lines
     _title(ws, "Output table (thesis Tables 10/14)", result.verdict)
     rules = rule_lines(result)
     put(ws, 3, 1, "; ".join(x.strip() for x in rules) if rules else "design rules: none given (the catalogs' limits)")
@@ -124,8 +126,6 @@ def _output_sheet(ws, result) -> None:
 
 
 def _checks_sheet(ws, result) -> None:
-    from synth.flowchart import STEP_NAMES
-    from synth.report.advice import correction
     _title(ws, "Checks (every verdict with its margin)", result.verdict)
     _header(ws, 4, ["Step", "Step name", "Check", "Value", "Relation", "Limit", "Unit", "Margin [%]", "Verdict",
                     "Equation", "Suggested correction", "Note"], [6, 20, 40, 11, 8, 11, 8, 10, 12, 13, 50, 40])
@@ -241,7 +241,6 @@ def build_results(result=None, *, cells: dict | None = None, source: str | None 
 
 def write_results(path: str | Path, result=None, **kw) -> Path:
     """Write :func:`build_results` to ``path`` (.xlsx) and return the path."""
-    from synth.io.outputs import output_file
     p = Path(path)
     wb = build_results(result, **kw)
     with output_file(p) as tmp:

@@ -45,6 +45,7 @@ from synth import catalog, schema
 from synth.report.palette import VERDICT_FILLS
 from synth.excel.cells import page_setup, put, wrap
 from synth.schema import Field
+from synth.io.outputs import output_file
 
 __all__ = ["COLUMNS", "COL", "STANDARD_CUSTOM", "FILLS", "LEGEND", "SHEET", "LIST_SHEET", "selector_kind",
            "value_column", "example_values", "format_cell_value", "build_workbook", "write_template"]
@@ -318,7 +319,6 @@ def build_workbook(values: dict | None = None, *, title: str = "synth design inp
 
 def write_template(path: str | Path, values: dict | None = None) -> Path:
     """Write the input template to ``path`` (.xlsx); example values of case 1 unless ``values``."""
-    from synth.io.outputs import output_file
     p = Path(path)
     wb, _ = build_workbook(values)
     with output_file(p) as tmp:

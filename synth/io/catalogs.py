@@ -30,6 +30,7 @@ from pathlib import Path
 from synth.errors import InputError, Problem
 from synth.io.files import read_text
 from synth.io.limits import LIMITS, short
+from synth.io.tables import _parser_problem, check_field_counts
 
 __all__ = ["check_user_dir", "read_user_catalog", "read_catalog_text"]
 
@@ -68,7 +69,6 @@ def read_catalog_text(text: str, path: Path):
     """Parse catalog CSV text (comments ``#``, key column as text, spaces stripped); raise a Problem on error."""
     import pandas as pd
 
-    from synth.io.tables import _parser_problem, check_field_counts
 
     check_field_counts(text, path, "catalog", comment="#")
     try:

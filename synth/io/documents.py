@@ -21,6 +21,7 @@ from synth.io.files import WORKBOOK_SUFFIXES, existing_file, suffix_of
 from synth.io.limits import LIMITS
 from synth.io.structured import read_document
 from synth.schema import DesignInput, validate
+from synth.io.tables import read_csv_text
 
 __all__ = ["DESIGN_SUFFIXES", "read_design_mapping", "read_mapping", "load_input", "read_rows"]
 
@@ -63,7 +64,6 @@ def read_rows(path, what: str) -> list[dict]:
     accepted = "an existing .csv, .json or .yaml file of rows"
     suffix = suffix_of(path)
     if suffix == ".csv":
-        from synth.io.tables import read_csv_text
         p = existing_file(path, what, accepted)
         df = read_csv_text(p, what, limit=LIMITS.text_input_bytes, max_rows=LIMITS.sheet_rows, typed=True)
         return df.to_dict(orient="records")

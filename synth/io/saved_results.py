@@ -25,6 +25,8 @@ from pathlib import Path
 
 from synth.errors import InputError, Problem
 from synth.io.limits import short
+from synth.io.structured import read_document
+from synth.io.files import existing_file
 
 __all__ = ["load_result", "check_result", "result_kind", "parts_of"]
 
@@ -48,10 +50,8 @@ def result_kind(data) -> str | None:
 
 def load_result(path, what: str = "result") -> dict:
     """The parsed, shape-checked result file ``path`` (see the module doc)."""
-    from synth.io.structured import read_document
 
     if Path(path).suffix.lower() != ".json":
-        from synth.io.files import existing_file
         existing_file(path, what, _ACCEPTED)
         raise InputError(Problem(what, str(path), _ACCEPTED + " (a .json file)"))
     # non-finite numbers are allowed in a saved result (a margin of -Infinity); a string "inf" too

@@ -99,6 +99,7 @@ from synth.design import evaluate
 from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin as registry_margin
 from synth.errors import InputError, Problem
 from synth.model import torsion_spring
+from synth.design.space import space
 
 __all__ = ["MARGIN_NAMES", "checks", "compiled_covers", "SpringOptions", "SpringKeys", "spring_options", "options_of_space", "spring_keys",
            "keys_of_rows", "margins", "pair_margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin",
@@ -262,7 +263,6 @@ def options_of_space(table: dict | None = None, idx=None) -> SpringOptions:
     ``idx``: a subset of its rows). The whole table's is kept per table and catalog constants (its yield
     thresholds too)."""
     if table is None:
-        from synth.design.space import space
         table = space().tables["spring"]
     if idx is None:
         hit = _SPACE_OPTIONS.get(id(table))

@@ -47,6 +47,9 @@ from synth.model.vdi2230 import (DEFAULT_EMBEDDING_LOADING, DEFAULT_EMBEDDING_RO
                                  HEAD_TYPES, assembly_torque_nm, bolt_resilience_mm_per_n,
                                  clamped_parts_resilience_mm_per_n, embedding_preload_loss_n, embedding_um,
                                  head_mean_diameter_mm, permissible_assembly_preload_n, tightening_factor)
+from synth import parts
+from synth.model.damping import hubload_nominal_n
+from synth import catalog as _catalog
 
 __all__ = [
     "friction_coefficient", "nominal_hubload_n",
@@ -83,7 +86,6 @@ def friction_coefficient(interface: str, environment: str) -> float:
     >>> friction_coefficient("under_head", "belt_in_oil")
     0.08
     """
-    from synth import parts
     return parts.mu(str(interface).strip(), str(environment).strip())
 
 
@@ -105,7 +107,6 @@ def nominal_hubload_n(calculated_torque_nm, working_arm_mm, differential_angle_d
                  accepted="an angle in (0, 180) deg")
     if np.any(a >= 180.0):
         raise InputError(Problem("differential_angle_deg", 180.0, "an angle in (0, 180) deg"))
-    from synth.model.damping import hubload_nominal_n  # one implementation of eq. (7)
     return hubload_nominal_n(t, arm, a)
 
 
@@ -599,7 +600,6 @@ def _candidates_memo(key, args) -> tuple:
     catalog cache, gives new tables and so a new list). A named format and class is read from the table of every
     (format, class) of its head form, built in one pass; anything else (automatic mode, an unknown name: its
     error) by :func:`_bolt_candidates`."""
-    from synth import catalog as _catalog
     dirs = tuple(_catalog._user_dirs())
     tables = tuple(_catalog._load_cached(n, dirs) for n in ("bolts", "bolt_property_classes", "bolt_heads"))
     hit = _CANDIDATES.get((key, dirs))

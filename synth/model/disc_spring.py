@@ -30,6 +30,8 @@ import numpy as np
 
 from synth import catalog
 from synth.errors import InputError, Problem
+from synth.model.damping import axial_damping_nm as eq9
+from synth.model.damping import axial_force_required_n as eq9_inverse
 
 __all__ = [
     "FIDELITIES",
@@ -374,7 +376,6 @@ def axial_damping_nm(axial_force_n, plastic_friction_coefficient, damper_pad_mea
     >>> round(float(axial_damping_nm(508.95, 0.1294, 12.5, 13.5)), 3)
     1.712
     """
-    from synth.model.damping import axial_damping_nm as eq9  # one implementation of eq. (9)
     return eq9(np.maximum(_f(axial_force_n), 0.0), plastic_friction_coefficient, damper_pad_mean_radius_mm,
                endcap_spacer_mean_radius_mm)
 
@@ -394,7 +395,6 @@ def required_axial_force_n(axial_damping_nm_, plastic_friction_coefficient, damp
     r = _f(damper_pad_mean_radius_mm) + _f(endcap_spacer_mean_radius_mm)
     _require(mu > 0, "plastic_friction_coefficient", mu, "> 0")
     _require(r > 0, "damper_pad_mean_radius_mm + endcap_spacer_mean_radius_mm", r, "> 0")
-    from synth.model.damping import axial_force_required_n as eq9_inverse
     return eq9_inverse(np.maximum(_f(axial_damping_nm_), 0.0), mu, damper_pad_mean_radius_mm,
                        endcap_spacer_mean_radius_mm)
 

@@ -36,6 +36,7 @@ import numpy as np
 
 from synth import catalog
 from synth.errors import InputError, Problem
+from synth.model.friction_wear import sliding_speed_m_per_s as at_radius
 
 __all__ = [
     "ENVIRONMENTS", "FIDELITIES", "PRESSURE_MODELS",
@@ -79,7 +80,6 @@ def sliding_speed_m_per_s(theta_peak_to_peak_deg, frequency_hz, sliding_diameter
     >>> round(float(sliding_speed_m_per_s(16.0, 50.0, 16.0)), 5)
     0.22340
     """
-    from synth.model.friction_wear import sliding_speed_m_per_s as at_radius
     return at_radius(theta_peak_to_peak_deg, 0.5 * np.asarray(sliding_diameter_mm, dtype=float), frequency_hz)
 
 

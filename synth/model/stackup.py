@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from synth import catalog
+from synth.errors import InputError, Problem
 
 __all__ = ["component_tolerances_mm", "gap_tolerance_mm", "gap_stackup", "STACKUP_METHODS"]
 
@@ -57,7 +58,6 @@ def gap_tolerance_mm(method: str = "worst_case", tolerances_mm: dict | None = No
     if tolerances_mm:
         unknown = set(tolerances_mm) - set(tol)
         if unknown:
-            from synth.errors import InputError, Problem
             raise InputError(Problem("tolerances_mm", sorted(unknown), "keys among " + ", ".join(_COMPONENTS)))
         tol.update({k: float(v) for k, v in tolerances_mm.items()})
     t = np.array(list(tol.values()), dtype=float)
@@ -65,7 +65,6 @@ def gap_tolerance_mm(method: str = "worst_case", tolerances_mm: dict | None = No
         return float(round(t.sum(), 12))
     if method == "rss":
         return float(np.sqrt(np.sum(t * t)))
-    from synth.errors import InputError, Problem
     raise InputError(Problem("stackup_method", method, " or ".join(STACKUP_METHODS)))
 
 

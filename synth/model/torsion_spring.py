@@ -38,6 +38,7 @@ import numpy as np
 from synth import catalog
 from synth.errors import InputError, Problem
 from synth.model.packaging import spring_housing_height_mm, spring_housing_outer_diameter_mm  # noqa: F401  (re-exported: eq. 52, 54 live in step 7)
+from synth import parts
 
 __all__ = [
     "second_moment_mm4", "section_modulus_mm3", "equivalent_diameter_mm", "spring_index",
@@ -386,7 +387,6 @@ def material_strength_mpa(material, d_mm, which="min"):
     >>> material_strength_mpa("VDSiCr", [2.0, 2.0001, 2.595]).tolist()
     [2010.0, 1960.0, 1910.0]
     """
-    from synth import parts
     if which not in ("min", "max"):
         raise InputError(Problem("which", which, "'min' or 'max'"))
     p = parts.arrays()
@@ -441,7 +441,6 @@ def material_properties(material, b_mm, h_mm, round_wire):
     >>> float(p["E_mpa"]), float(p["Rm_mpa"]), round(float(p["sigma_y_mpa"]), 1), float(p["sigma_perm_static_mpa"])
     (206000.0, 1960.0, 1724.8, 1470.0)
     """
-    from synth import parts
     mat = parts.arrays().spring_material
     i = mat.code(material, "main_spring_material")
     rm = material_strength_mpa(material, rm_lookup_diameter_mm(b_mm, h_mm, round_wire))

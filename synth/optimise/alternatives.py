@@ -29,6 +29,12 @@ import math
 import numpy as np
 
 from synth.design.space import SUBSYSTEMS
+from synth.optimise.solvers.enumerate import weights_vec
+from synth.design.evaluate import Settings
+from synth.errors import InputError, Problem
+from synth.optimise.product import evaluate
+from synth.optimise.objectives import Objective
+from synth.optimise.answer import build_result, design_margin
 
 __all__ = ["ranked", "MAX_TOP"]
 
@@ -49,7 +55,6 @@ def _best(lists: list, k: int, combine, reverse: bool) -> list:
 def _pool(ev, weights: dict, k: int) -> set:
     """``{(core position, options tuple)}``: the ``k`` best designs of ``ev`` by the additive score ``weights``
     (ties: the larger margin) and the ``k`` best by the smallest (objective) margin, over the evaluated cores."""
-    from synth.optimise.solvers.enumerate import weights_vec
     ok_core = ev.core_feasible()[ev.rows]
     score = {s: weights_vec(ev.score[s], weights) for s in SUBSYSTEMS}
     core_score = weights_vec(ev.score_core, weights)
@@ -94,11 +99,6 @@ def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None
     ``{"rank", "parts", "objectives", "margin", "binding", "verdict", "differs"}`` (``margin``: the smallest
     margin, a fraction; ``binding``: the check that sets it; ``differs``: part -> [the optimum's, this one's]).
     ``pin_inputs``: the parts kept in the search (as the synthesis kept them). An infeasible ``result`` has none."""
-    from synth.design.evaluate import Settings
-    from synth.errors import InputError, Problem
-    from synth.optimise.product import evaluate
-    from synth.optimise.objectives import Objective
-    from synth.optimise.answer import build_result, design_margin
     if not (isinstance(k, int) and not isinstance(k, bool) and 1 <= k <= MAX_TOP):
         raise InputError(Problem("--top", k, f"an integer from 1 to {MAX_TOP}"))
     if not result.parts or result.status not in ("optimal", "feasible", "baseline"):

@@ -64,6 +64,11 @@ from synth.design.space import SUBSYSTEMS, core_rows, fixed_fields, pinned_diame
 from synth.kernels import axial as axial_kernels
 from synth.optimise.objectives import weighted_sum, weighted_sum_around
 from synth.optimise.product import DURABILITY_NOTE, core_scores, option_scores
+from synth.errors import InputError
+from synth.design.rules import active
+from synth.kernels import main_spring
+from synth import catalog
+from synth.design.verify import parts_of_design
 
 __all__ = ["Batch", "wsum", "SLACK", "any_feasible", "robust"]
 
@@ -191,7 +196,6 @@ class Batch:
 
     def __init__(self, inputs, settings: evaluate.Settings = evaluate.Settings(), *, pin_inputs: bool = False,
                  spring_engine: str = "numba", apps: Applications | None = None):
-        from synth.design.rules import active
         self.inputs = list(inputs)
         self.settings = settings
         # the compiled spring kernels hold the catalog's limits and no required margin: under design rules the
@@ -385,7 +389,6 @@ class Batch:
 
     def _options(self):
         if self._spring_opts is None:
-            from synth.kernels import main_spring
             self._spring_opts = main_spring.options_of_space(self.sp.tables["spring"])
         return self._spring_opts
 
@@ -439,7 +442,6 @@ class Batch:
         :func:`~synth.kernels._main_spring_jit.list_order`), the same doubles as numpy's scores."""
         sp = self.sp
         if self.score_engine == "numba" and "cost" in weights:
-            from synth.kernels import main_spring
             n = len(cand)
             before, w, after = weighted_sum_around(option_scores(sp, "spring", 1.0, cand), weights, "cost")
             pre = np.ascontiguousarray(np.broadcast_to(np.asarray(before, dtype=float), (n,)))
@@ -466,7 +468,6 @@ class Batch:
         """Per key: ``(score, option)`` of the first feasible spring of its application's score-ordered list with
         a score at most ``limit`` (inf, -1: none). The score cut is a position cut in the list (the scores
         grow along it): the kernel's score is the position."""
-        from synth.kernels import main_spring
         lists, list_of, score_of, _, positions = self._spring_app_lists(weights)
         apps_k = keys["app"]
         grp = list_of[apps_k]
@@ -489,7 +490,6 @@ class Batch:
     def _spring_max(self, keys, cap=None):
         """Per key: ``(value, option)`` of the largest smallest margin over its application's range (index
         order, first of the ties; option 0 when every value is -inf); ``cap``: exact below it."""
-        from synth.kernels import main_spring
         inv, lists = self._ranges()
         grp = inv[keys["app"]]
         kk = main_spring.keys_of_rows(self.apps, keys)
@@ -536,7 +536,6 @@ class Batch:
         return out
 
     def _axial_blocks(self):
-        from synth import catalog
         return int(catalog.constant("bulk_axial_first_block")), max(int(catalog.constant("bulk_axial_block_growth")), 1)
 
     def _axial_first(self, rows, limit, weights):
@@ -814,7 +813,6 @@ class Batch:
     # ------------------------------------------------------------------------------------------- designs
     def parts(self, i: int, core_row: int, options: dict) -> dict:
         """The part keys of a design of application ``i`` (core row of this batch, option rows of the space)."""
-        from synth.design.verify import parts_of_design
         return parts_of_design(self.sp, self.C[core_row], options, self.cg.values, core_row)
 
     def objective_values(self, core_row: int, options: dict) -> dict:
@@ -863,7 +861,6 @@ def robust(fn, items: list, on_error):
     """``fn(items)`` (a list, one entry per item); where it raises :class:`~synth.errors.InputError` (one item's
     data the physics refuses), the halves again, down to single items, whose entry is ``on_error(item, exc)``:
     one bad application never decides the others' answers."""
-    from synth.errors import InputError
     if not items:
         return []
     try:

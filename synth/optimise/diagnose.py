@@ -33,6 +33,13 @@ from synth.design.space import SUBSYSTEMS
 from synth.errors import InputError
 from synth.optimise.product import evaluate
 from synth.schema import FIELDS, field_by_name
+from synth.schema import _consistency
+from synth.optimise.batch import any_feasible
+from synth.design.space import space
+from synth.errors import Problem
+from synth.optimise.answer import build_result
+from synth.model.layout import layout_of
+from synth.optimise.batch import Batch
 
 __all__ = ["relaxable", "nearest_design", "is_feasible", "relaxations", "relaxations_batch", "probe_batch",
            "diagnose", "layout_switch", "layout_switches", "reference_probe", "violated_of"]
@@ -99,7 +106,6 @@ def _consistent(d, changes: dict) -> bool:
     """Whether input ``d`` with ``changes`` still meets the schema's cross-field rules (a bolt head wider than
     the support's bore, a support bore narrower than its outer diameter, ...): a probe outside them is not an
     input a user could give."""
-    from synth.schema import _consistency
     problems: list = []
     _consistency({**vars(d), **changes}, problems)
     return not problems
@@ -198,7 +204,6 @@ def probe_batch(settings: Settings = Settings(), spring_engine: str = "numba", *
     """A batched feasibility probe: ``probe([(d, changes), ...]) -> [bool, ...]``, every probe of a bisection
     step in one vectorised feasibility search (:func:`synth.optimise.batch.any_feasible`); the same answers as
     the reference probe (``is_feasible`` of the changed input; an input the physics refuses is not feasible)."""
-    from synth.optimise.batch import any_feasible
 
     def probe(items):
         return any_feasible([dataclasses.replace(d, **ch) for d, ch in items], settings, spring_engine=spring_engine,
@@ -243,8 +248,6 @@ def relaxations_batch(ds: list, violated: list, *, settings: Settings = Settings
 
 def _no_core(d):
     """The problem of an input whose pinned parts (``--pin-inputs``) leave no core design of the catalogs."""
-    from synth.design.space import space
-    from synth.errors import Problem
     t = space().tables["core"]
     classes = ", ".join(f"{x:g}" for x in sorted(set(map(float, t["pivot_class_diameter_mm"]))))
     return Problem("--pin-inputs", f"pivot class {d.pivot_class_diameter_mm}, bushing thickness "
@@ -267,7 +270,6 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
     answer). ``pin_inputs``: the search the solver ran kept the parts the input names, and so do the nearest
     design and the relaxations (every solver answers the same question).
     """
-    from synth.optimise.answer import build_result
     t0 = time.perf_counter()
     obj = objective if objective is not None else "standard,cost"
     if exhaustive or ev is not None:
@@ -278,7 +280,6 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
         pos, options, _ = nearest_design(ev)
         res = build_result(ev, pos, options, status="infeasible", solver=solver, objective=obj, stats=stats or {})
     else:
-        from synth.optimise.batch import Batch
         b = batch if batch is not None else Batch([d], settings, spring_engine="numpy", pin_inputs=pin_inputs)
         near = b.nearest([0])[0]
         if near is None:  # no core at all: as the exhaustive search (its argmax of nothing raises)
@@ -326,7 +327,6 @@ def layout_switches(ds: list, probe) -> list:
     (twice the belt height) has a feasible design, this says so: ``{"message", "layout", "relaxation"}``. Every
     such probe goes to ``probe([(d, changes), ...]) -> [bool, ...]`` at once (:func:`probe_batch` for a portfolio).
     """
-    from synth.model.layout import layout_of
     todo = []
     for i, d in enumerate(ds):
         h, h_max = d.middle_plane_belt_height_mm, d.max_axial_displacement_mm

@@ -30,6 +30,8 @@ from __future__ import annotations
 import itertools
 
 from synth.errors import InputError, Problem
+from synth.optimise import solve as solve_nominal
+from synth.optimise.objectives import Objective, with_margin_tiebreak
 
 __all__ = ["solve_honouring", "changes_of", "parse_fields", "part_of"]
 
@@ -89,8 +91,6 @@ def solve_honouring(d, objective="standard", solver: str = "enumerate", *, fix=(
     same parts."""
     from synth.design.evaluate import Settings
     from synth.design.space import fixed_fields
-    from synth.optimise import solve as solve_nominal
-    from synth.optimise.objectives import Objective, with_margin_tiebreak
     settings = kw.get("settings") or Settings()
     if solver == "enumerate":
         objective = with_margin_tiebreak(objective)

@@ -27,6 +27,7 @@ import numpy as np
 from formulations.selection import SelectionData
 from synth import catalog
 from synth.design.space import SUBSYSTEMS
+from synth.optimise.solvers.enumerate import tables, weights_vec
 
 __all__ = ["model_data"]
 
@@ -54,7 +55,6 @@ def model_data(ev, weights: dict, uses_margin: bool, *, presolve: bool = True):
     ``weights``: the additive weights (``standard``, ``cost``) of the objective; ``uses_margin``: whether the
     margin is in play (then dominance also needs a margin at least as large).
     """
-    from synth.optimise.solvers.enumerate import tables, weights_vec
     t = tables(ev, {"cost": 1.0})
     lo, hi = catalog.constant("optimise_margin_floor"), catalog.constant("optimise_margin_ceiling")
     keep = np.isfinite(t.core_score)

@@ -20,6 +20,8 @@ from synth.design.evaluate import Settings
 from synth.optimise.product import evaluate
 from synth.optimise.answer import build_result
 from synth.optimise.solvers.enumerate import _thresholds, best_additive, tables
+from synth.design.constraints import words
+from synth.io.outputs import write_figure
 
 __all__ = ["pareto_front", "plot_front"]
 
@@ -63,7 +65,6 @@ def plot_front(front: list, path, *, y: str = "margin", ylabel: str = "smallest 
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from synth.design.constraints import words
     label = label or (lambda p: words(p["binding"], 36))
     scale = 100.0 if y == "margin" else 1.0
     fig, ax = plt.subplots(figsize=(7, 4.5))
@@ -78,5 +79,4 @@ def plot_front(front: list, path, *, y: str = "margin", ylabel: str = "smallest 
     ax.set_title(title)
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
-    from synth.io.outputs import write_figure
     write_figure(fig, path, dpi=120)

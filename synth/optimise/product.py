@@ -33,6 +33,7 @@ from synth.design.evaluate import (SPRING_OPTION_COLUMNS, Group, Settings, axial
                                    core, fixation_values, inputs, spring, spring_keys)
 from synth.design.applications import Applications
 from synth.design.space import SUBSYSTEMS, Space, core_rows, pinned_diameter, space, space_for, spring_window
+from synth.design.verify import parts_of_design
 
 __all__ = ["SubTable", "Evaluation", "evaluate", "subsystem", "SPRING_BLOCK_PAIRS", "design_scores",
            "core_scores", "option_scores"]
@@ -91,7 +92,6 @@ class Evaluation:
 
     def parts(self, pos: int, options: dict) -> dict:
         """The part keys of core position ``pos`` (in ``cores``) and option rows ``options``."""
-        from synth.design.verify import parts_of_design
         return parts_of_design(self.space, self.cores[pos], options, self.core.values, pos)
 
     def objective_values(self, pos: int, options: dict, margin: float) -> dict:

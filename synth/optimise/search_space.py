@@ -55,6 +55,10 @@ from typing import Callable
 import numpy as np
 
 from synth.design.space import SUBSYSTEMS, axial_attributes, cone_variants, mbd_grid, spring_attributes, spring_window
+from synth.optimise.batch import wsum
+from synth.optimise.product import option_scores
+from synth.parts import arrays
+from synth.design.space import NONE
 
 __all__ = ["Variables", "Refinement", "variables", "refinements", "snap_parts"]
 
@@ -100,7 +104,6 @@ class Refinement:
 
 
 def _weighted(scores: dict, weights: dict) -> np.ndarray:
-    from synth.optimise.batch import wsum
     return np.asarray(wsum(scores, weights), dtype=float)
 
 
@@ -128,7 +131,6 @@ def _ranked(order: np.ndarray, score: np.ndarray, name: str) -> tuple[list, np.n
 def _table_rows(sp, table: str, weights: dict, match: tuple, axis: tuple) -> Variables:
     """A catalog table searched by the position of its rows along ``axis`` (columns, the first varying slowest):
     the part's size and strength, so that neighbours on the sampler's axis behave alike (bushing, bolt)."""
-    from synth.optimise.product import option_scores
     score = _weighted(option_scores(sp, table), weights)
     t = sp.tables[table]
     order = np.lexsort(tuple(np.asarray(t[c], float) for c in reversed(axis)))
@@ -258,8 +260,6 @@ def snap_parts(parts: dict) -> dict:
     ...             "cone_spring_aspect_ratio": 0.0, "cone_spring_deflection_ratio": 0.0})
     {'main_spring_mean_body_diameter_mm': 40.0, 'endcap_spacer_class': 'none', 'cone_spring_aspect_ratio': 0.0, 'cone_spring_deflection_ratio': 0.0}
     """
-    from synth.parts import arrays
-    from synth.design.space import NONE
     out = dict(parts)
     grid = mbd_grid(arrays())
     out["main_spring_mean_body_diameter_mm"] = float(grid[_nearest(grid, parts["main_spring_mean_body_diameter_mm"])])

@@ -26,6 +26,9 @@ from synth.platform.assign import platform_parts_used
 from synth.errors import InputError, Problem
 from synth.io.files import read_text
 from synth.platform.data import FAMILIES
+from synth.io.outputs import write_figure
+from synth.io.outputs import output_folder, write_csv, write_text
+from synth.bulk.portfolio import CSV_FLOAT
 
 __all__ = ["platform_table", "gap_text", "assignment_table", "price_of_standardisation", "summary_markdown",
            "tradeoff_table", "plot_tradeoff", "plot_families", "write_all", "report_section"]
@@ -158,7 +161,6 @@ def plot_tradeoff(rows: list, path, kind: str) -> Path:
         fig.savefig(path, dpi=110, format="png")
         plt.close(fig)
         return path
-    from synth.io.outputs import write_figure
     return write_figure(fig, path, dpi=110, format="png")
 
 
@@ -278,10 +280,8 @@ def report_section(result) -> str:
 
 def write_all(pf, result, out, tradeoff_rows: list | None = None, kind: str = "margin") -> list:
     """Write every output file into ``out`` through the output gate (:mod:`synth.io.outputs`); returns the paths."""
-    from synth.io.outputs import output_folder, write_csv, write_text
     out = output_folder(out)
     paths = [out / "platform.csv", out / "assignment.csv", out / "summary.md"]
-    from synth.bulk.portfolio import CSV_FLOAT
     write_csv(platform_table(pf, result), paths[0], float_format=CSV_FLOAT)
     write_csv(assignment_table(result), paths[1], float_format=CSV_FLOAT)
     text = summary_markdown(pf, result)

@@ -68,6 +68,15 @@ from synth.errors import InputError, Problem
 from synth.kernels import axial as axial_kernels
 from synth.platform.data import AppFeasibility, PortfolioFeasibility, default_fixed_costs, validate
 from synth.platform.options import Catalogue, catalogue
+from synth.kernels import main_spring
+from synth.kernels.main_spring import keys_of_rows
+from synth.optimise.diagnose import diagnose
+from synth.bulk.run import ENGINES, chunk_ranges
+from synth.bulk.run import dask_pointless
+from synth.bulk.run import dask_client
+from synth.bulk.portfolio import read_portfolio, records, validate_record
+from synth.bulk.portfolio import FORMATS
+from synth.platform.synthetic import synthetic_portfolio
 
 __all__ = ["load_feasibility", "feasibility", "from_table", "chunk_feasibility", "GROUP_KEYS", "SPRING_TORQUE_ONLY", "SPRING_STAGES",
            "VOLUME_COLUMNS", "margins_and_binding", "spring_group", "PRODUCER"]
@@ -157,7 +166,6 @@ def spring_group(apps, keys: dict, k, options, settings: evaluate.Settings, spri
     non-advisory constraints (feasibility, the margin objective and the nearest design read no other) and the
     application of each row; a fatigue check without its durability test has the margin ``+inf``, as the
     registry's "not verified"."""
-    from synth.kernels import main_spring
     kk = spring_keys if spring_keys is not None else main_spring.keys_of_rows(apps, keys)
     k = np.asarray(k, dtype=np.int64)
     if isinstance(options, dict):
@@ -356,7 +364,6 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
     """
     if not len(rep):
         return 0, 0
-    from synth.kernels.main_spring import keys_of_rows
     keys = evaluate.spring_keys(cg, rep)
     kk = keys_of_rows(apps, keys)  # the keys' kernel table, once
     rows = cat.option_row["spring"]
@@ -435,7 +442,6 @@ def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, ro
     know the margins of their own constraints over the springs that reached them). Repeated until the nearest
     core's spring is known exactly, so the reason names what that design really misses. Returns the rows
     evaluated."""
-    from synth.kernels.main_spring import keys_of_rows
     has = {s: np.bincount(np.concatenate(pairs[s].g) if pairs[s].g else np.zeros(0, np.int64),
                           minlength=len(rep[s])) > 0 for s in SUBSYSTEMS}
     complete = np.ones(len(pos), bool)
@@ -570,7 +576,6 @@ def _why(cat, i, a, crow, all_m, all_b, sel, k, gid, first_group, pairs) -> str:
 
 
 def _diagnosed(d, settings, fallback: str) -> str:
-    from synth.optimise.diagnose import diagnose
     try:
         r = diagnose(d, relax=False, settings=settings)
     except InputError as exc:  # pragma: no cover - a validated input evaluates
@@ -603,7 +608,6 @@ def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: e
     ``inprocess`` or ``dask`` (see the module docstring). ``progress(done, total)`` is called
     after each chunk.
     """
-    from synth.bulk.run import ENGINES, chunk_ranges
     if engine not in ENGINES:
         raise InputError(Problem("--engine", engine, " or ".join(ENGINES)))
     if not (isinstance(chunk_size, (int, np.integer)) and chunk_size >= 1):
@@ -656,7 +660,6 @@ def _chunk_job(inputs, ids, volumes, settings, **kw) -> tuple:
 def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress, notes: list | None = None) -> list:
     """The chunks' results in order, in this process or on Dask (where Dask cannot help, in this process, and
     ``notes`` says why: :func:`synth.bulk.run.dask_pointless`)."""
-    from synth.bulk.run import dask_pointless
     total = sum(len(j[0]) for j in jobs)
     why = dask_pointless(scheduler, workers, len(jobs)) if engine == "dask" else None
     if why and notes is not None:
@@ -669,7 +672,6 @@ def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress, notes:
             if progress:
                 progress(done, total)
         return out
-    from synth.bulk.run import dask_client
     try:
         from dask.distributed import as_completed
     except ImportError:  # pragma: no cover - dask[distributed] is a dependency
@@ -715,7 +717,6 @@ def from_table(portfolio, settings: evaluate.Settings = evaluate.Settings(), **k
     weighs every application alike).
     """
     import pandas as pd
-    from synth.bulk.portfolio import read_portfolio, records, validate_record
     table = portfolio.reset_index(drop=True) if isinstance(portfolio, pd.DataFrame) else read_portfolio(portfolio)
     checked = [validate_record(r) for r in records(table)]
     n = len(checked)
@@ -730,9 +731,7 @@ def from_table(portfolio, settings: evaluate.Settings = evaluate.Settings(), **k
 
 def load_feasibility(portfolio: str, settings: evaluate.Settings | None = None, **kw) -> PortfolioFeasibility:
     """The feasibility data of ``portfolio`` (see the module docstring), validated."""
-    from synth.bulk.portfolio import FORMATS
     if str(portfolio).startswith("synthetic:"):
-        from synth.platform.synthetic import synthetic_portfolio
         parts = str(portfolio).split(":")[1:]
         try:
             n, seed = int(parts[0]), int(parts[1]) if len(parts) > 1 else 0

@@ -62,6 +62,7 @@ import scipy.sparse as sp
 
 from synth.platform.compile import Work
 from synth.platform.data import SUBSYSTEMS
+from synth.platform.data import SUBSYSTEM_FAMILIES, FAMILIES
 
 __all__ = ["prune", "dominated_options", "dominated_variants", "dominated_cores", "implied_rows", "merge_rows"]
 
@@ -145,7 +146,6 @@ def _row_matrix(w: Work, rows: list, pats: np.ndarray) -> sp.csr_matrix:
 
 def dominated_variants(w: Work) -> int:
     """R2 (part substitution, family by family). Returns the number of parts removed."""
-    from synth.platform.data import SUBSYSTEM_FAMILIES, FAMILIES
     removed = 0
     cost_obj = w.objective == "cost"
     for si, s in enumerate(SUBSYSTEMS):

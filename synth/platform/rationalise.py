@@ -25,6 +25,7 @@ from synth.platform.data import FAMILIES, PortfolioFeasibility, default_weights
 from synth.platform.greedy import greedy
 from synth.platform.prune import prune as prune_work
 from synth.platform.verified import verify_records
+from synth.platform.outputs import platform_table, price_of_standardisation
 
 __all__ = ["PlatformResult", "rationalise", "tradeoff", "OBJECTIVES"]
 
@@ -169,7 +170,6 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
         per_app_optima=per_app, weights=w_all, max_variants=dict(max_variants or {}), notes=notes)
     if not details:
         return res
-    from synth.platform.outputs import platform_table, price_of_standardisation
     res.price = price_of_standardisation(pf, res)
     res.table = platform_table(pf, res).to_dict(orient="records")
     return res

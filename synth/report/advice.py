@@ -10,6 +10,8 @@ The terminal (:mod:`synth.report.text`), the report's digest (:mod:`synth.report
 """
 
 from __future__ import annotations
+from synth.optimise.objectives import UNITS
+from synth.design.rules import Rules
 
 __all__ = ["objective_line", "change_lines", "relaxation_lines", "relaxation_text", "correction", "NO_DESIGNER",
            "margin_pct", "alternative_rows", "rule_lines"]
@@ -26,7 +28,6 @@ def margin_pct(m) -> str:
 
 def objective_line(objectives: dict) -> str:
     """The objective values with their units (:data:`synth.optimise.objectives.UNITS`)."""
-    from synth.optimise.objectives import UNITS
     parts = []
     for k, v in objectives.items():
         if not isinstance(v, (int, float)) or isinstance(v, bool):
@@ -151,5 +152,4 @@ def alternative_rows(r) -> list[dict]:
 
 def rule_lines(r) -> list[str]:
     """The design rules the result's checks were made under (:attr:`Result.rules`), in words; none without."""
-    from synth.design.rules import Rules
     return Rules.from_mapping(r.rules).lines() if r.rules else []

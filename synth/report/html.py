@@ -48,6 +48,19 @@ from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, 
 from synth.fingerprint import file_sha256
 from synth.report.palette import VERDICT_FILLS
 from synth.output_table import ROWS, format_value
+from synth.fingerprint import version_text
+from synth.design.evaluate import FIDELITY_TEXT
+from synth.report.advice import correction
+from synth.report.advice import relaxation_lines
+from synth.report.advice import change_lines, objective_line, rule_lines
+from synth.report.text import verdict_line
+from synth.flowchart import STEP_NAMES
+from synth import schema
+from synth.report.plots import GRAPH_CHECKS
+from synth.errors import InputError, Problem
+from synth.report.advice import alternative_rows
+from synth.report.robust import robust_section
+from synth.io.outputs import write_text
 
 __all__ = ["render_html", "write_html", "digest_html", "metadata", "settings_in_words", "platform_section",
            "VERDICT_COLOURS", "verdict_class", "css_string", "check_steps", "check_row", "part_label"]
@@ -150,7 +163,6 @@ def metadata(result, source=None, *, author: str = "", revision: str = "", date:
     ``inputs_sha256`` hashes the design input itself (canonical JSON of ``result.inputs``): a YAML file
     and the saved result of it give the same value.
     """
-    from synth.fingerprint import version_text
     src = Path(source) if source not in (None, "", "result") else None
     inputs = {k: v for k, v in (result.inputs or {}).items() if v is not None}
     return {
@@ -177,7 +189,6 @@ def settings_in_words(result) -> list[tuple[str, str]]:
     else:
         how = f"a given design verified through the evaluator (status {result.status})"
     rows.append(("Design", how))
-    from synth.design.evaluate import FIDELITY_TEXT
     rows.append(("Fidelity", FIDELITY_TEXT.get(s.get("fidelity", "full"), str(s.get("fidelity")))))
     rows.append(("Radial friction", "on the friction circle r_p sin(atan mu) (physics)"
                  if s.get("friction_circle", True) else "on r_p mu, as the thesis tool's tables"))
@@ -213,7 +224,6 @@ def platform_section(platform) -> str | None:
 def check_row(c, result=None) -> dict:
     """One check as the report shows it (formatted value, limit, margin; verdict and its class; the correction,
     in agreement with how ``result`` was found: :func:`synth.report.advice.correction`)."""
-    from synth.report.advice import correction
     con = c.constraint
     fix = correction(result, c) if result is not None else con.correction
     extra = fix if c.verdict in (FAIL, WARNING) and fix else \
@@ -225,7 +235,6 @@ def check_row(c, result=None) -> dict:
 
 
 def _diagnosis(result):
-    from synth.report.advice import relaxation_lines
     dg = result.diagnosis
     if not dg:
         return None
@@ -234,8 +243,6 @@ def _diagnosis(result):
 
 def digest_context(result) -> dict:
     """What the digest shows, as plain rows (the template's data)."""
-    from synth.report.advice import change_lines, objective_line, rule_lines
-    from synth.report.text import verdict_line
     by_margin = sorted(result.failed(), key=lambda c: (c.margin if c.margin is not None else 0.0))
     p = result.parts or {}
     design = ""
@@ -294,7 +301,6 @@ def check_steps(result) -> tuple[list, list]:
     """The checks as the report lists them: ``([{"step", "name", "rows"}], labels not applicable)``, each row
     formatted (value, limit, margin, verdict and its CSS class, equation, correction or note); ``synth ui``
     shows the same rows."""
-    from synth.flowchart import STEP_NAMES
     steps: dict = {}
     na = []
     for c in sorted(result.checks, key=lambda c: c.constraint.step):
@@ -307,7 +313,6 @@ def check_steps(result) -> tuple[list, list]:
 
 
 def _inputs(result) -> list:
-    from synth import schema
     d = result.inputs or {}
     corr = field_corrections(result)
     out = []
@@ -338,7 +343,6 @@ def _scene(name: str, rows) -> dict | None:
 
 
 def _figure(g) -> dict:
-    from synth.report.plots import GRAPH_CHECKS
     n = max((len(v) for v in g.series.values()), default=0)
     return {"id": g.id, "title": g.title, "figure": g.figure, "verdict": g.verdict or "",
             "cls": verdict_class(g.verdict) if g.verdict else "", "points": n,
@@ -356,8 +360,6 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
     go to the 3D model section); ``scenes``: ``{name: rows}`` tables of other scenes; ``page``:
     ``landscape`` or ``portrait`` (A4); ``platform``: a rationalisation output (:func:`platform_section`).
     """
-    from synth.errors import InputError, Problem
-    from synth.report.advice import alternative_rows, rule_lines
     if page not in ("landscape", "portrait"):
         raise InputError(Problem("--page", page, "landscape or portrait"))
     name = Path(source).name if source not in (None, "", "result") else ""
@@ -378,7 +380,6 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
     figs = [_figure(g) for g in graphs if not g.id.startswith("cad_")]
     scene_rows = [s for s in (_scene(k, v) for k, v in (scenes or {}).items()) if s]
     plat = platform_section(platform)
-    from synth.report.robust import robust_section
     robust = robust_section(result)
     digest = digest_context(result)
     toc = [("digest", "Digest"), ("metadata", "Document"), ("model", "Model settings"), ("design", "Design"),
@@ -412,7 +413,6 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
 
 def part_label(key: str) -> str:
     """A part key in words: its input field's label, else the key itself in words."""
-    from synth import schema
     try:
         f = schema.field_by_name(key)
         return f.label or key
@@ -422,5 +422,4 @@ def part_label(key: str) -> str:
 
 def write_html(path: str | Path, result, graphs, skipped, **kw) -> Path:
     """Write :func:`render_html` to ``path`` (through :func:`synth.io.outputs.write_text`)."""
-    from synth.io.outputs import write_text
     return write_text(path, render_html(result, graphs, skipped, **kw))

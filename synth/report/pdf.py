@@ -20,6 +20,7 @@ import subprocess
 import tempfile
 import zlib
 from pathlib import Path
+from synth.io.outputs import output_file
 
 __all__ = ["write_pdf", "page_count", "chromium_binary", "ENGINES"]
 
@@ -83,7 +84,6 @@ def write_pdf(html_path: str | Path, pdf_path: str | Path | None = None, *, engi
         from synth.errors import InputError, Problem
         raise InputError(Problem("--pdf-engine", engine, "one of " + ", ".join(ENGINES)))
     from synth.errors import InputError
-    from synth.io.outputs import output_file
     tried = []
     for name, fn in (("weasyprint", _weasyprint), ("chromium", _chromium)):
         if engine not in ("auto", name):

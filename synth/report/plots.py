@@ -45,6 +45,17 @@ import numpy as np
 
 from synth.design.constraints import REGISTRY
 from synth.design.result import FAIL, PASS, WARNING
+from synth.model import damping
+from synth.design import evaluate
+from synth.model import disc_spring
+from synth.model import bolted_joint
+from synth.drive.analysis import _model, _sweep
+from synth.drive.analysis import durability_point
+from synth.report.progress import progress
+from synth.design.evaluate import Settings
+from synth.schema import validate
+from synth.design.applications import Applications
+from synth.design.space import space
 
 __all__ = ["Graph", "Skipped", "CATALOG", "GRAPH_CHECKS", "build_graphs", "graph_png", "COLOURS", "graph_verdict",
            "drive_figure"]
@@ -156,14 +167,12 @@ class _Data:
         self.r, self.v = result, {**result.values, **result.parts}
         self.extra = extra or {}
         self._cache: dict = {}
-        from synth.design.evaluate import Settings
         known = set(Settings.__dataclass_fields__)
         self.settings = Settings(**{k: v for k, v in (result.settings or {}).items() if k in known})
         # the model of the result's values: the judge's (full at fidelity screening)
         self.fidelity, self.friction_circle = self.settings.judge.model, self.settings.friction_circle
         self.d = None
         if isinstance(result.inputs, dict):
-            from synth.schema import validate
             self.d = validate({k: v for k, v in result.inputs.items() if v is not None})
         elif result.inputs is not None:
             self.d = result.inputs
@@ -174,7 +183,6 @@ class _Data:
         if "apps" not in self._cache:
             if self.d is None:
                 raise _Skip("the result carries no design input")
-            from synth.design.applications import Applications
             self._cache["apps"] = Applications.of([self.d])
         return self._cache["apps"]
 
@@ -214,7 +222,6 @@ class _Data:
         if "attrs" not in self._cache:
             if not self.r.parts or any(v is None for v in self.r.parts.values()):
                 raise _Skip("the result has no complete design (parts)")
-            from synth.design.space import space
             self._cache["attrs"] = space().design_attributes(self.r.parts)
         return self._cache["attrs"]
 
@@ -270,7 +277,6 @@ def _png(fig) -> bytes:
 
 # ------------------------------------------------------------------------------------------ graphs
 def _characterisation(dt: _Data):
-    from synth.model import damping
     try:
         half = dt.durability()[0] / 2.0 or 10.0
     except _Skip:
@@ -305,7 +311,6 @@ def g_hysteresis_torque(dt: _Data, ax, verdict):
 
 
 def _sensitivity(dt: _Data, ax, parameter, values, xlabel):
-    from synth.model import damping
     kw = dict(spring_torque_nominal_nm=dt.need("spring_torque_nominal_nm"),
               axial_damping_nm=dt.get("axial_damping_nm", 0.0) or 0.0, working_arm_mm=dt.need("working_arm_mm"),
               differential_angle_deg=dt.need("differential_angle_deg"), pivot_diameter_mm=dt.need("pivot_diameter_mm"),
@@ -346,7 +351,6 @@ def g_sensitivity_mu_plastic(dt: _Data, ax, verdict):
 def _bushing(dt: _Data, time_points: int = _T) -> dict:
     if "bushing" in dt._cache:
         return dt._cache["bushing"]
-    from synth.design import evaluate
     t_end = dt.durability()[2]
     attrs = dt.attributes()
     t = np.linspace(0.0, t_end, time_points)
@@ -406,7 +410,6 @@ def g_damping_decay(dt: _Data, ax, verdict):
 
 
 def _characteristic(dt: _Data):
-    from synth.model import disc_spring
     c = dt.cone()
     geo = (c["cone_spring_external_diameter_mm"], c["cone_spring_internal_diameter_mm"],
            c["cone_spring_thickness_mm"], c["cone_spring_cone_height_mm"])
@@ -489,7 +492,6 @@ def g_goodman(dt: _Data, ax, verdict):
 
 
 def g_pivot_base_pressure(dt: _Data, ax, verdict):
-    from synth.model import bolted_joint
     force = float(dt.need("bolt_axial_force_n"))
     hl = float(dt.need("hubload_nominal_n"))
     h = float(dt.need("middle_plane_belt_height_mm"))
@@ -512,7 +514,6 @@ def _drive_sweep(dt: _Data):
     drive = dt.settings.drive
     if drive is None:
         raise _Skip("the design was not run with a drive (synth design --drive)")
-    from synth.drive.analysis import _model, _sweep
     damping = dt.get("damping_nm")
     if damping is None:
         raise _Skip("the design has no damping value")
@@ -544,7 +545,6 @@ def g_drive_hysteresis_loop(dt: _Data, ax, verdict):
     drive, _, _, damping = _drive_sweep(dt)
     if drive.durability_speed_rpm is None:
         raise _Skip("the drive gives no durability speed")
-    from synth.drive.analysis import durability_point
     p = durability_point(drive, damping)
     ang = np.degrees(p["psi_rad"])
     tq = drive.tensioner.nominal_torque_nm - drive.tensioner.stiffness_nm_per_deg * ang - p["friction_nm_t"]
@@ -670,7 +670,6 @@ def build_graphs(result, extra: dict | None = None, *, show_progress: bool = Tru
     ``extra``: ``{"pareto": rows, "solvers": rows, "cad": [png paths]}`` from
     other scenes. Returns ``(graphs, skipped)``.
     """
-    from synth.report.progress import progress
     dt = _Data(result, extra)
     graphs, skipped = [], []
     ids = [gid for gid, _, _ in CATALOG if not gid.startswith("drive_") or dt.settings.drive is not None]

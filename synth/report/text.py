@@ -12,6 +12,8 @@ from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, 
 from synth.output_table import ROWS, format_value
 from synth.report.advice import NO_DESIGNER, alternative_rows, change_lines, correction, objective_line, \
     relaxation_lines, rule_lines
+from synth.design.evaluate import FIDELITY_TEXT
+from synth.report.robust import text_lines
 
 __all__ = ["render", "verdict_line", "MARKS"]
 
@@ -59,7 +61,6 @@ def render(r: Result, *, title: str = "") -> str:
         lines.append("")
     fid = (r.settings or {}).get("fidelity", "full")
     if fid != "full":
-        from synth.design.evaluate import FIDELITY_TEXT
         lines += [f"fidelity {FIDELITY_TEXT.get(fid, fid)}", ""]
     changes = change_lines(r)
     if changes:
@@ -104,7 +105,6 @@ def render(r: Result, *, title: str = "") -> str:
         lines += ["", "Assumed (documented defaults for inputs not given)", "-" * 78]
         lines += [f"  - {a}" for a in r.assumptions()]
     if getattr(r, "robust", None):
-        from synth.report.robust import text_lines
         lines += text_lines(r.robust)
     if r.notes:
         lines += ["", "Notes", "-" * 78] + [f"  - {n}" for n in r.notes]

@@ -29,6 +29,13 @@ from pathlib import Path
 
 from synth import catalog
 from synth.errors import InputError, Problem
+from synth.parts import arrays
+from synth.design.applications import Applications
+from synth.design.result import checks_of
+from synth.design.space import Space
+from synth.design.verify import evaluate_design
+from synth.design.constraints import REGISTRY
+from synth.design.evaluate import Settings
 
 __all__ = ["Assumption", "assumptions", "flips", "flip_lines", "APPLIES"]
 
@@ -120,11 +127,6 @@ def _verdicts(d, parts: dict, settings) -> dict:
     """``{check: (verdict, margin)}`` of the design under the current catalogs (the evaluator and the registry's
     verdicts, as :func:`synth.design.verify.verify`; the part attributes from the parts tables alone, without
     building the whole design space)."""
-    from synth.parts import arrays
-    from synth.design.applications import Applications
-    from synth.design.result import checks_of
-    from synth.design.space import Space
-    from synth.design.verify import evaluate_design
     import numpy as np
     apps = Applications.of([d])
     attrs = Space({}, arrays()).design_attributes(parts)
@@ -151,8 +153,6 @@ def flips(d, parts: dict, settings=None) -> list:
     from the catalog's: one dict per assumption (``id``, ``catalog``, ``key``, ``column``, ``value`` (the
     catalog's), ``low``, ``high``, ``scale``, ``reason``, ``source``, ``flips``: ``[{check, label, nominal,
     at_low, at_high, margin_low, margin_high}]``)."""
-    from synth.design.constraints import REGISTRY
-    from synth.design.evaluate import Settings
     settings = Settings() if settings is None else settings
     nominal = _verdicts(d, parts, settings)
     met = {"axial": nominal.get("cone_force_band", ("not applicable",))[0] != "not applicable",

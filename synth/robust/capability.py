@@ -43,6 +43,7 @@ from synth.design.assessment import assess
 from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.robust.sampling import Base, evaluate_deviations, evaluate_u, sobol_u
 from synth.robust.settings import RobustSettings
+from synth.design.result import plain
 
 #: a margin whose standard deviation is below this (relative) is a constant: round-off, not scatter
 SD_FLOOR = 1e-9
@@ -142,7 +143,6 @@ class CheckCapability:
         return bool(ok)
 
     def as_dict(self) -> dict:
-        from synth.design.result import plain
         c = REGISTRY[self.id]
         return plain({"id": self.id, "label": c.label, "group": c.group, "nominal_margin": self.nominal,
                       "centre_margin": self.centre, "mean_margin": self.mean, "sd_margin": self.sd, "ppk": self.ppk,
@@ -188,7 +188,6 @@ class Capability:
         return float(max(vals)) if vals else 0.0
 
     def to_dict(self) -> dict:
-        from synth.design.result import plain
         return plain({"kind": "synth.capability", "targets": self.settings.targets(),
                       "settings": {"capability": self.settings.capability, "ppm": self.settings.ppm,
                                    "samples": self.settings.samples, "seed": self.settings.seed,

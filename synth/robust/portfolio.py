@@ -34,6 +34,7 @@ from synth.design.verify import evaluate_design
 from synth.robust.sampling import Base, context, perturb, sobol_u
 from synth.robust.settings import RobustSettings
 from synth.robust.tolerances import resolve, tolerances
+from synth import catalog
 
 __all__ = ["portfolio_capability", "COLUMNS", "BULK_SAMPLES"]
 
@@ -107,7 +108,6 @@ def _chunk(inputs: list, parts: list, settings: evaluate.Settings, rs: RobustSet
 def _run(args):
     """A process pool's task: one chunk (the catalogs of the parent: its user folders are passed along)."""
     dirs, inputs, parts, settings, rs = args
-    from synth import catalog
     if dirs:
         catalog.set_user_dirs(*dirs)
     return _chunk(inputs, parts, settings, rs, tolerances())
@@ -120,7 +120,6 @@ def portfolio_capability(inputs: list, parts: list, *, settings: evaluate.Settin
     whether it meets ``rs``'s target on every targeted check, its smallest Ppk, its largest probability of
     violation (upper 95 % end, in ppm), the failing checks and the one of smallest Ppk. ``workers > 1``: the
     chunks in that many processes (the same numbers: every chunk's samples are the same seeded points)."""
-    from synth import catalog
     table = tolerances() if table is None else table
     out = [dict.fromkeys(COLUMNS) for _ in inputs]
     todo = [i for i, p in enumerate(parts) if p]

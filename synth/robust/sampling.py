@@ -38,6 +38,8 @@ from synth.design.space import space
 from synth.design.verify import evaluate_design
 from synth.model import torsion_spring
 from synth.robust.tolerances import Scatter, resolve
+from synth.model import torsion_spring as ts
+from synth.design.verify import parts_of_attributes
 
 __all__ = ["Base", "Samples", "base_of", "base_of_attributes", "context", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
            "design_checks"]
@@ -103,7 +105,6 @@ def base_of_attributes(d, attrs: dict, settings: evaluate.Settings = evaluate.Se
         groups = evaluate_design(apps, attrs, settings, detail=False)
     sc = resolve(context(apps, attrs, groups, settings, 0), table)
     if parts is None:
-        from synth.design.verify import parts_of_attributes
         parts = parts_of_attributes(attrs, groups)
     return Base(d, dict(parts), settings, apps, attrs, groups, sc, design_checks(groups))
 
@@ -111,7 +112,6 @@ def base_of_attributes(d, attrs: dict, settings: evaluate.Settings = evaluate.Se
 def context(apps: Applications, attrs: dict, groups: dict, settings: evaluate.Settings, k: int) -> dict:
     """What :func:`synth.robust.tolerances.resolve` reads of design ``k`` of N-row ``apps``/``attrs``/``groups``:
     its application's fields, its spring option, the strength range of its wire, its pivot, its cone spring."""
-    from synth.model import torsion_spring as ts
     sp = {key: np.asarray(v)[k] for key, v in attrs["spring"].items()}
     mat = str(sp["main_spring_material"])
     dia = ts.rm_lookup_diameter_mm(sp["b_mm"], sp["h_mm"], bool(sp["round_wire"]))

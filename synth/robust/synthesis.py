@@ -41,6 +41,13 @@ from synth.optimise.objectives import Objective
 from synth.robust.capability import capability
 from synth.robust.sampling import base_of_attributes
 from synth.robust.settings import RobustSettings
+from synth.optimise.solvers.enumerate import tables
+from synth.robust.tolerances import tolerances
+from synth.optimise.product import evaluate
+from synth.optimise.answer import build_result
+from synth.optimise.solvers.enumerate import solve as enumerate_solve
+from synth.robust.sampling import base_of
+from synth.errors import InputError, Problem
 
 __all__ = ["robust_solve", "robust_front", "SearchReport"]
 
@@ -104,8 +111,6 @@ def search(ev, weights: dict, rs: RobustSettings, *, report: SearchReport | None
     """The best robust design of evaluation ``ev`` for the additive ``weights``: ``(value, core position,
     options, capability)`` or ``(inf, None, None, None)``; ``min_margin``: options' objective margins must be at
     least this (the Pareto front's thresholds)."""
-    from synth.optimise.solvers.enumerate import tables
-    from synth.robust.tolerances import tolerances
     table = tolerances() if table is None else table
     rep = SearchReport() if report is None else report
     t = tables(ev, weights)
@@ -162,14 +167,9 @@ def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs
     """The :class:`~synth.design.result.Result` of the robust synthesis (see the module docstring): the best
     design meeting ``rs``'s target with its capability in ``result.robust``; when none does, the nominal
     optimum with its capability and a note saying which checks no design meets and what drives them."""
-    from synth.optimise.product import evaluate
-    from synth.optimise.answer import build_result
-    from synth.optimise.solvers.enumerate import solve as enumerate_solve
-    from synth.robust.sampling import base_of
     t0 = time.perf_counter()
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     if obj.weights and "margin" in obj.weights or obj.order[0] == "margin":
-        from synth.errors import InputError, Problem
         raise InputError(Problem("objective", objective, "an objective led by standard or cost with --capability/"
                                                          "--ppm (the margin is its last tie-break)"))
     ev = evaluate(d, settings, pin_inputs=pin_inputs)
@@ -203,7 +203,6 @@ def robust_front(d, *, settings: Settings = Settings(), rs: RobustSettings = Rob
     up to ``n_points`` points. Each point: ``cost_eur``, ``ppk`` (the smallest of its targeted checks), ``ppm``
     (their largest probability of violation, upper 95 % end), ``binding`` (the check of that Ppk) and
     ``parts``. The first target is ``rs.capability`` (0 if only a ppm target is given)."""
-    from synth.optimise.product import evaluate
     ev = evaluate(d, settings)
     target = rs.capability if rs.capability is not None else 0.0
     pts = []

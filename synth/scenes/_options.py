@@ -12,6 +12,13 @@ fidelity; with ``--capability``/``--ppm`` the robust synthesis
 from __future__ import annotations
 
 from pathlib import Path
+from synth.design import rules
+from synth.optimise import SOLVERS
+from synth.robust.settings import DEFAULT_SAMPLES, RobustSettings
+from synth.errors import InputError, Problem
+from synth.optimise.honour import solve_honouring
+from synth.report.progress import phase
+from synth.io.saved_results import load_result
 
 __all__ = ["add_model_options", "settings_from_args", "add_design_options", "add_robust_options",
            "robust_settings_from_args", "synthesise", "load_saved_result",
@@ -44,7 +51,6 @@ def add_model_options(p) -> None:
 def settings_from_args(args):
     """The model settings of the options; the spring limit basis from ``--spring-limit``, else the design rules in
     force (:func:`synth.design.rules.active`)."""
-    from synth.design import rules
     from synth.design.evaluate import Settings
     return Settings(fidelity=args.fidelity, friction_circle=not args.linear_friction,
                     bolt_method=getattr(args, "bolt_method", "thesis"), drive=getattr(args, "drive_model", None),
@@ -53,7 +59,6 @@ def settings_from_args(args):
 
 def add_design_options(p) -> None:
     """The synthesis options (objective, solver, pinning, trials, time limit) and the model options."""
-    from synth.optimise import SOLVERS
     p.add_argument("--objective", default=DEFAULT_OBJECTIVE,
                    help="standard | cost | margin, a lexicographic list 'a,b' or weights 'cost=1,margin=5'")
     p.add_argument("--solver", default=DEFAULT_SOLVER, choices=list(SOLVERS))
@@ -74,7 +79,6 @@ def add_design_options(p) -> None:
 
 def add_robust_options(p, *, default_capability=None) -> None:
     """The capability options (:class:`synth.robust.settings.RobustSettings`): target, ppm, samples, seed."""
-    from synth.robust.settings import DEFAULT_SAMPLES, RobustSettings
     p.add_argument("--capability", type=float, default=default_capability, metavar="PPK",
                    help="production capability target: every checked constraint with Ppk >= PPK under the tolerance "
                         "model (catalogs/tolerances.csv); 1.33 is the usual target")
@@ -90,9 +94,6 @@ def robust_settings_from_args(args, *, default_capability=None):
     """The :class:`~synth.robust.settings.RobustSettings` of the options (checked: a bad value names its option);
     without ``--capability`` and ``--ppm``, the design rules' capability targets (``ppk_min``, ``ppm_max``), else
     ``default_capability``."""
-    from synth.design import rules
-    from synth.errors import InputError, Problem
-    from synth.robust.settings import RobustSettings
     names = {"capability": "--capability", "ppm": "--ppm", "samples": "--samples", "seed": "--seed"}
     cap, ppm = getattr(args, "capability", None), getattr(args, "ppm", None)
     if cap is None and ppm is None:
@@ -119,8 +120,6 @@ def default_args():
 def synthesise(d, args):
     """The :class:`~synth.design.result.Result` of the synthesis the options of ``args`` ask for (with
     ``--capability``/``--ppm``: the robust synthesis of :mod:`synth.robust.synthesis`)."""
-    from synth.errors import InputError, Problem
-    from synth.optimise.honour import solve_honouring
     if not 1 <= int(getattr(args, "trials", 200)) <= 100_000:
         raise InputError(Problem("--trials", args.trials, "an integer from 1 to 100000"))
     limit = getattr(args, "time_limit", None)
@@ -135,7 +134,6 @@ def synthesise(d, args):
         kw["n_trials"] = args.trials
     if limit is not None:
         kw["time_limit_s"] = limit
-    from synth.report.progress import phase
     solver = getattr(args, "solver", DEFAULT_SOLVER)
     with phase(f"synth: synthesis ({solver}; an infeasible input is diagnosed)"):  # a terminal only
         return solve_honouring(d, getattr(args, "objective", DEFAULT_OBJECTIVE), solver, **kw)
@@ -145,5 +143,4 @@ def load_saved_result(path: str | Path, what: str = "result"):
     """A :class:`~synth.design.result.Result` saved with ``--json`` (any scene), read through the input gate
     (:func:`synth.io.saved_results.load_result`: size, encoding, shape, carried inputs); errors name the file."""
     from synth.design.result import Result
-    from synth.io.saved_results import load_result
     return Result.from_dict(load_result(path, what), source=str(Path(path).name))

@@ -21,6 +21,17 @@ from __future__ import annotations
 import sys
 
 from synth.bulk.run import ENGINES, FIDELITIES, run_portfolio, sidecar
+from synth.errors import InputError
+from synth.io.limits import check_count
+from synth.robust.portfolio import BULK_SAMPLES
+from synth.scenes._options import add_robust_options
+from synth.bulk.summary import summarise, text, write_summary
+from synth.design.rules import active
+from synth.bulk.portfolio import row_record, validate_record, write_table
+from synth.design.evaluate import Settings
+from synth.design.space import PART_KEYS
+from synth.scenes._options import robust_settings_from_args
+from synth.errors import Terminated
 
 __all__ = ["register"]
 
@@ -29,8 +40,6 @@ def _count(option: str):
     """An argparse type: an integer within the documented bounds of ``option`` (:data:`synth.io.limits.COUNTS`)."""
     import argparse
 
-    from synth.errors import InputError
-    from synth.io.limits import check_count
 
     def parse(text: str) -> int:
         try:
@@ -66,8 +75,6 @@ def register(sub) -> None:
     p.add_argument("--rules", metavar="FILE", default=None,
                    help="design rules every application is judged by (required safety factors and limits, minimum "
                         "margins, spring limit basis, capability targets): a rules file (synth.design.rules)")
-    from synth.robust.portfolio import BULK_SAMPLES
-    from synth.scenes._options import add_robust_options
     add_robust_options(p)
     for a in p._actions:  # the bulk's own sample count (per application)
         if a.dest == "samples":
@@ -76,7 +83,6 @@ def register(sub) -> None:
 
 
 def _main(args) -> int:
-    from synth.bulk.summary import summarise, text, write_summary
     if args.scheduler and args.engine != "dask":
         args.engine = "dask"
     try:
@@ -84,7 +90,6 @@ def _main(args) -> int:
                             chunk_size=args.chunk_size, resume=args.resume, engine=args.engine,
                             scheduler=args.scheduler, workers=args.workers, diagnose=not args.no_diagnose)
     except KeyboardInterrupt as exc:
-        from synth.errors import Terminated
         how = "terminated (SIGTERM)" if isinstance(exc, Terminated) else "interrupted"
         print(f"\nsynth bulk: {how}; finished chunks are kept in {sidecar(args.out)}; "
               "rerun the same command with --resume to continue", file=sys.stderr)
@@ -96,7 +101,6 @@ def _main(args) -> int:
     said = {"screening": " (every design reported verified at full fidelity)",
             "screening-only": " (designs NOT verified at full fidelity)"}.get(args.fidelity, "")
     print(f"synth bulk: {args.portfolio} -> {rep.out} | objective {args.objective} | fidelity {args.fidelity}{said}")
-    from synth.design.rules import active
     for line in active().lines():  # the rules every row was judged by (also in the sidecar's manifest)
         print(line)
     print(rep.message() + (f", {rep.apps_per_s:.3g} applications/s" if rep.computed else ""))
@@ -116,11 +120,7 @@ def _capability(args, rep) -> None:
 
     import pandas as pd
 
-    from synth.bulk.portfolio import row_record, validate_record, write_table
-    from synth.design.evaluate import Settings
-    from synth.design.space import PART_KEYS
     from synth.robust.portfolio import COLUMNS, portfolio_capability
-    from synth.scenes._options import robust_settings_from_args
     rs = robust_settings_from_args(args)
     t0 = time.perf_counter()
     table = rep.table

@@ -9,6 +9,8 @@ checks. Exit code 1 if a geometric check fails, else 0.
 from __future__ import annotations
 
 from synth.design.result import FAIL
+from synth.cad import export_result, summary_lines
+from synth.io.saved_results import load_result
 
 __all__ = ["register", "add_cad_options"]
 
@@ -28,8 +30,6 @@ def register(sub) -> None:
 
 
 def _main(args) -> int:
-    from synth.cad import export_result, summary_lines
-    from synth.io.saved_results import load_result
     result = load_result(args.result, "result")  # the gate: size, encoding, shape, carried inputs
     model, checks, info = export_result(result, args.out, args.input,
                                         stl=not args.no_stl, pictures=not args.no_pictures)

@@ -15,6 +15,13 @@ import yaml
 
 from synth import schema
 from synth.errors import InputError, Problem
+from synth.report.text import render
+from synth.scenes._options import default_args, synthesise
+from synth.cad import require_cadquery
+from synth.robust.settings import RobustSettings
+from synth.scenes.report import add_capability
+from synth.scenes.design import export_cad
+from synth.scenes.report import make_report
 
 __all__ = ["register", "default_input"]
 
@@ -53,12 +60,9 @@ def argparse_suppress():
 
 
 def _main(args) -> int:
-    from synth.report.text import render
-    from synth.scenes._options import default_args, synthesise
     out = Path(args.cad or args.out)
     d, path, name = default_input(), default_path(), default_name()
     if not args.no_cad:  # before the work: the 3D model needs CadQuery (synth[cad])
-        from synth.cad import require_cadquery
         try:
             require_cadquery()
         except InputError as exc:
@@ -66,21 +70,17 @@ def _main(args) -> int:
             raise InputError(Problem(p.field, p.value, p.accepted + "; or run synth demo --no-cad")) from None
     a = default_args()
     if not args.no_robust:  # the best design meeting Ppk >= 1.33 (or the nominal one and why none does)
-        from synth.robust.settings import RobustSettings
         rs = RobustSettings()
         a.capability = rs.capability
     r = synthesise(d, a)
     if not args.no_robust and r.parts:  # its capability and the verdicts resting on illustrative limits
-        from synth.scenes.report import add_capability
         add_capability(r, rs)
     print(render(r, title=f"synth demo: the most standardised tensioner for {name} ({path})"))
     pictures: list = []
     if not args.no_cad:
-        from synth.scenes.design import export_cad
         lines, pictures = export_cad(r, out, f"synth demo: {name}", pictures=True)
         print("\n" + "\n".join(lines))
     if not args.no_report:
-        from synth.scenes.report import make_report
         rep = make_report(r, out, show_progress=False, cad=pictures, cad_pictures=False, source_name=str(path),
                           application=name)
         print(f"\nreport: {rep['html']} and {rep['xlsx']}")

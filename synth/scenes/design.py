@@ -13,6 +13,15 @@ import sys
 from synth.io.outputs import json_text
 from synth.report.text import render
 from synth.scenes._options import add_design_options, add_robust_options, synthesise
+from synth.io.documents import load_input
+from synth.drive.analysis import durability_point
+from synth.drive.inputs import load_drive
+from synth.cad import export_result, summary_lines
+from synth.errors import InputError
+from synth.cad import require_cadquery
+from synth.robust.assumptions import flips
+from synth.scenes._options import settings_from_args
+from synth import parts
 
 __all__ = ["register"]
 
@@ -35,9 +44,7 @@ def register(sub) -> None:
 
 
 def _main(args) -> int:
-    from synth.io.documents import load_input
     if args.cad:  # before the work: the 3D model needs CadQuery (synth[cad])
-        from synth.cad import require_cadquery
         require_cadquery()
     d = load_input(args.input)
     note = None
@@ -47,8 +54,6 @@ def _main(args) -> int:
     if note:
         r.notes.insert(0, note)
     if args.assumptions and r.parts:
-        from synth.robust.assumptions import flips
-        from synth.scenes._options import settings_from_args
         r.robust = {**r.robust, "assumptions": flips(d, r.parts, settings_from_args(args))}
     if args.json:
         print(json_text(r.to_dict(), indent=2))
@@ -67,8 +72,6 @@ def with_drive(d, path):
     drive with the design input's tensioner (arm, spring, calculated torque, damping target), and a note."""
     import dataclasses
 
-    from synth.drive.analysis import durability_point
-    from synth.drive.inputs import load_drive
     drive = load_drive(path)
     ten = {"arm_length_mm": d.working_arm_mm, "stiffness_nm_per_deg": d.spring_stiffness_nm_per_deg,
            "nominal_torque_nm": d.calculated_torque_target_nm}
@@ -78,7 +81,6 @@ def with_drive(d, path):
     p = durability_point(drive)
     duration = d.durability_duration_h
     if d.durability_test == "assumed" and d.engine_type:
-        from synth import parts
         arr = parts.arrays().durability
         duration = float(arr.cols["duration_h"][arr.code(d.engine_type, "engine_type")])
     d = dataclasses.replace(d, durability_test="defined", durability_theta_peak_to_peak_deg=p["theta_pp_deg"],
@@ -96,8 +98,6 @@ def export_cad(r, out_dir, application: str | None = None, *, pictures: bool = F
     A failing design whose geometry cannot exist (a pulley inside its own bearing) is reported, not drawn: the
     lines say why, and the exit code stays the design's (1).
     """
-    from synth.cad import export_result, summary_lines
-    from synth.errors import InputError
     try:
         model, checks, info = export_result(r, out_dir, application=application)
     except InputError as exc:

@@ -12,6 +12,9 @@ speed, 1 otherwise (or the periodic solution moved more than its tolerance),
 """
 
 from __future__ import annotations
+from synth.errors import InputError, Problem
+from synth.io.outputs import write_figure
+from synth.io.outputs import json_text
 
 
 __all__ = ["register"]
@@ -30,7 +33,6 @@ def register(sub) -> None:
 def _main(args) -> int:
     from synth.drive.analysis import analyse
     from synth.drive.inputs import load_drive
-    from synth.errors import InputError, Problem
     from synth.scenes.shrink_fit import plot_path
     plot_path(args.plot)
     drive = load_drive(args.input)
@@ -43,10 +45,8 @@ def _main(args) -> int:
     ok = not res["slack"]["slack"] and not locked and res["solver"].get("within_tolerance", True)
     if args.plot:
         from synth.report.plots import drive_figure
-        from synth.io.outputs import write_figure
         write_figure(drive_figure(res), args.plot, "--plot", dpi=120)
     if args.json:
-        from synth.io.outputs import json_text
         print(json_text({**res, "verdict": "pass" if ok else "fail"}, indent=2))
     else:
         print(format_report(res))

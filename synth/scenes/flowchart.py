@@ -9,6 +9,7 @@ from synth.io import documents
 from synth.io.outputs import json_text
 from synth.report.text import render
 from synth.scenes._options import add_model_options, load_saved_result, settings_from_args
+from synth.io.saved_results import parts_of
 
 __all__ = ["register"]
 
@@ -26,7 +27,6 @@ def register(sub) -> None:
 def _main(args) -> int:
     d = documents.load_input(args.input)
     if args.parts:
-        from synth.io.saved_results import parts_of
         parts = parts_of(load_saved_result(args.parts, "--parts").to_dict(), Path(args.parts).name)
     else:
         parts = None

@@ -5,6 +5,14 @@ from __future__ import annotations
 
 from synth.optimise.pareto import pareto_front, plot_front
 from synth.io.documents import load_input
+from synth.scenes._options import add_robust_options
+from synth.io.limits import check_count
+from synth.io.outputs import json_text, output_folder, write_text
+from synth.scenes.report import out_folder
+from synth.design.constraints import words
+from synth.robust.synthesis import robust_front
+from synth.scenes._options import robust_settings_from_args
+from synth.design.constraints import REGISTRY
 
 __all__ = ["register"]
 
@@ -15,29 +23,23 @@ def register(sub) -> None:
     p.add_argument("--out", default="pareto_out", help="folder for front.md, front.json and front.png")
     p.add_argument("--points", default=40, metavar="N",
                    help="margin thresholds probed, 2-500 (each is one catalog solve; default 40)")
-    from synth.scenes._options import add_robust_options
     add_robust_options(p)
     p.set_defaults(func=_main)
 
 
 def _main(args) -> int:
-    from synth.io.limits import check_count
-    from synth.io.outputs import json_text, output_folder, write_text
-    from synth.scenes.report import out_folder
     points = check_count("--points", args.points)
     out = out_folder(args.out)  # checked before the work: an existing file is not a folder
     if args.capability is not None or args.ppm is not None:
         return _robust_front(args, out, min(points, 12))
     front = pareto_front(load_input(args.input), n_points=points)
     output_folder(out)
-    from synth.design.constraints import words
     lines = ["| cost [EUR] | smallest margin [%] | non-standard parts | binding constraint |", "|---|---|---|---|"]
     lines += [f"| {p['cost_eur']:.4f} | {100 * p['margin']:+.2f} | {p['standard']:g} | {words(p['binding'])} |"
               for p in front]
     inputs = front[0]["inputs"] if front else {}
     if inputs:
         lines += ["", "Input-only constraints (no design changes them; not in the margin above):"]
-        from synth.design.constraints import REGISTRY
         lines += [f"- {REGISTRY[k].label}: margin {100 * v:+.2f} %" for k, v in inputs.items()]
     table = "\n".join(lines)
     write_text(out / "front.md", table + "\n")
@@ -52,12 +54,8 @@ def _main(args) -> int:
 def _robust_front(args, out, points: int) -> int:
     """``--capability``/``--ppm``: cost against capability (Ppk and ppm), from the target up (one robust search per
     point: synth.robust.synthesis.robust_front)."""
-    from synth.robust.synthesis import robust_front
-    from synth.scenes._options import robust_settings_from_args
     rs = robust_settings_from_args(args)
     front = robust_front(load_input(args.input), rs=rs, n_points=points)
-    from synth.design.constraints import words
-    from synth.io.outputs import json_text, output_folder, write_text
     output_folder(out)
     lines = [f"Cost against capability ({rs.targets()} and better; {rs.samples} samples per design)", "",
              "| cost [EUR] | smallest Ppk | largest P(violation) [ppm] | binding check |", "|---|---|---|---|"]

@@ -11,6 +11,9 @@ from __future__ import annotations
 
 from synth.bulk.portfolio import write_table
 from synth.bulk.sample import sample_portfolio
+from synth.bulk.portfolio import FORMATS
+from synth.errors import InputError, Problem
+from synth.io.limits import check_count
 
 __all__ = ["register"]
 
@@ -27,9 +30,6 @@ def register(sub) -> None:
 def _main(args) -> int:
     from pathlib import Path
 
-    from synth.bulk.portfolio import FORMATS
-    from synth.errors import InputError, Problem
-    from synth.io.limits import check_count
     n = check_count("N", args.n)
     seed = check_count("--seed", args.seed)
     broken = check_count("--broken", args.broken, hi=n)

@@ -16,6 +16,8 @@ chunks); ``synthetic:N[:SEED]`` gives illustrative data of the same shape.
 from __future__ import annotations
 
 from synth.errors import InputError, Problem
+from synth.platform.data import FAMILIES
+from synth.report.progress import Progress, phase
 
 __all__ = ["register", "parse_max_variants"]
 
@@ -26,7 +28,6 @@ def parse_max_variants(items: list) -> dict:
     >>> parse_max_variants(["ball_bearing=3", "main_spring=12"])
     {'ball_bearing': 3, 'main_spring': 12}
     """
-    from synth.platform.data import FAMILIES
     out, probs = {}, []
     for it in items or []:
         fam, _, n = str(it).partition("=")
@@ -77,7 +78,6 @@ def _main(args) -> int:
     if args.points < 2:
         raise InputError(Problem("--points", args.points, "a whole number >= 2"))
     from synth.design.evaluate import Settings
-    from synth.report.progress import Progress, phase
     if args.workers is not None and args.workers < 1:
         raise InputError(Problem("--workers", args.workers, "a whole number >= 1"))
     engine = "dask" if args.scheduler else args.engine

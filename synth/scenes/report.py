@@ -22,6 +22,22 @@ from synth import schema
 from synth.io import documents
 from synth.errors import InputError, Problem
 from synth.scenes._options import add_design_options, add_robust_options, default_args, load_saved_result, synthesise
+from synth.io.documents import read_rows
+from synth.design.result import Result
+from synth.design.verify import verify
+from synth.design.evaluate import Settings
+from synth.report.html import write_html
+from synth.report.plots import build_graphs
+from synth.io.outputs import output_folder
+from synth.robust.assumptions import flips
+from synth.robust.capability import capability
+from synth.robust.sampling import base_of
+from synth.design.rules import active, using
+from synth.report.pdf import write_pdf
+from synth.report.robust import capability_rows
+from synth.scenes._options import robust_settings_from_args
+from synth import flowchart
+from synth.scenes._options import settings_from_args
 
 __all__ = ["register", "make_report", "read_table", "out_folder", "add_capability"]
 
@@ -48,7 +64,6 @@ def register(sub) -> None:
 
 def read_table(path: str | Path, option: str = "scene result file"):
     """Rows of a scene result file: CSV, JSON or YAML (a list of mappings or one mapping), through the input gate."""
-    from synth.io.documents import read_rows
     return read_rows(path, option)
 
 
@@ -75,9 +90,6 @@ def _is_result_file(path: Path) -> bool:
 
 def result_for_report(source, args=None):
     """``(result, cells, source name)`` of an input file, a saved result file or a :class:`Result`."""
-    from synth.design.result import Result
-    from synth.design.verify import verify
-    from synth.design.evaluate import Settings
     if isinstance(source, Result):
         res, cells, name = source, None, "result"
     else:
@@ -93,8 +105,6 @@ def result_for_report(source, args=None):
             d = schema.validate(data)
             name = str(src)
             if args is not None and getattr(args, "flowchart", False):
-                from synth import flowchart
-                from synth.scenes._options import settings_from_args
                 return flowchart.run(d, settings_from_args(args)), cells, name
             res = synthesise(d, args or default_args())
     if res.inputs is None:
@@ -102,7 +112,6 @@ def result_for_report(source, args=None):
                                                                      "(a result of synth design/flowchart --json, "
                                                                      "0.2 or later, carries it under 'inputs')"))
     if not res.curves and res.parts and res.solver != "flowchart":  # re-verify for the curves of the graphs
-        from synth.design.rules import active, using
         fields = {k for k in Settings.__dataclass_fields__}
         settings = Settings(**{k: v for k, v in (res.settings or {}).items() if k in fields})
         with using(res.rules or active()):  # the result's own rules
@@ -131,9 +140,6 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     "graphs": [...], "skipped": [...]}`` (``pdf_note``: why no PDF was written, when none was).
     """
     from synth.excel.results_workbook import write_results
-    from synth.report.html import write_html
-    from synth.report.plots import build_graphs
-    from synth.io.outputs import output_folder
     result, cells, name = result_for_report(source, args)
     name = str(source_name) if source_name else name
     if robust is not None and result.parts:
@@ -159,11 +165,9 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
                            application=application)
     pdf_path, pdf_note = None, "not asked for"
     if pdf:
-        from synth.report.pdf import write_pdf
         pdf_path, _, pdf_note = write_pdf(html_path)
     sheets = dict(scenes)
     if result.robust.get("checks"):
-        from synth.report.robust import capability_rows
         sheets["Capability"] = capability_rows(result.robust)
     if result.robust.get("assumptions"):
         sheets["Assumptions"] = [{"assumption": a["id"], "catalog": a["catalog"], "key": a["key"],
@@ -180,11 +184,6 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
 def add_capability(result, rs) -> None:
     """Set ``result.robust`` (the capability of its design under ``rs``, unless it carries one) and its
     assumptions' flips, through :mod:`synth.robust`."""
-    from synth import schema
-    from synth.design.evaluate import Settings
-    from synth.robust.assumptions import flips
-    from synth.robust.capability import capability
-    from synth.robust.sampling import base_of
     fields = set(Settings.__dataclass_fields__)
     settings = Settings(**{k: v for k, v in (result.settings or {}).items() if k in fields})
     d = schema.validate({k: v for k, v in (result.inputs or {}).items() if v is not None})
@@ -207,7 +206,6 @@ def _main(args) -> int:
         raise InputError(Problem("--platform", args.platform, "an existing rationalisation output (synth rationalise --out)"))
     rs = None
     if args.capability is not None or args.ppm is not None:
-        from synth.scenes._options import robust_settings_from_args
         rs = robust_settings_from_args(args)
     r = make_report(args.input, args.out, args, scenes=scenes, cad=args.cad, cad_pictures=not args.no_cad,
                     pdf=not args.no_pdf, author=args.author, revision=args.revision, page=args.page,

@@ -14,6 +14,10 @@ from __future__ import annotations
 from pathlib import Path
 
 from synth.scenes._options import add_design_options, add_robust_options
+from synth.scenes._options import robust_settings_from_args, settings_from_args, synthesise
+from synth.io.outputs import json_text, output_file, output_folder, write_text
+from synth.report.robust import capability_rows, histogram_png, HISTOGRAM_TITLES
+from synth.scenes._options import load_saved_result
 
 __all__ = ["register", "robust_result"]
 
@@ -39,12 +43,10 @@ def robust_result(source, args):
     from synth.design.verify import verify
     from synth.robust.capability import capability
     from synth.robust.sampling import base_of
-    from synth.scenes._options import robust_settings_from_args, settings_from_args, synthesise
     from synth.scenes.report import _is_result_file
     rs = robust_settings_from_args(args, default_capability=1.33)
     src = Path(source)
     if _is_result_file(src):
-        from synth.scenes._options import load_saved_result
         saved = load_saved_result(src, "input")
         fields = set(Settings.__dataclass_fields__)
         settings = Settings(**{k: v for k, v in (saved.settings or {}).items() if k in fields})
@@ -73,8 +75,6 @@ def _nominal(args):
 
 
 def _main(args) -> int:
-    from synth.io.outputs import json_text, output_file, output_folder, write_text
-    from synth.report.robust import capability_rows, histogram_png, HISTOGRAM_TITLES
     from synth.report.text import render
     from synth.scenes.report import out_folder
     out = out_folder(args.out) if args.out else None

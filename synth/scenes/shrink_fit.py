@@ -22,6 +22,8 @@ from synth.io.outputs import json_text
 from synth.shrink_fit.analysis import analyse, format_report
 from synth.shrink_fit.inputs import PAPER_MODEL, load_case
 from synth.shrink_fit.selection import margin_vs_reassemblies, plot_margins, select_fit
+from synth.io.limits import check_count
+from synth.errors import InputError, Problem
 
 __all__ = ["register"]
 
@@ -65,7 +67,6 @@ def _case(args):
 
 
 def _reassemblies(args, case) -> int:
-    from synth.io.limits import check_count
     if args.reassemblies is not None:
         return check_count("--reassemblies", args.reassemblies)
     return min(max(1, (case.assemblies + 1) // 2), 100)
@@ -79,7 +80,6 @@ def plot_path(path: str | None):
 
     from matplotlib.backend_bases import FigureCanvasBase
 
-    from synth.errors import InputError, Problem
     types = sorted(FigureCanvasBase.get_supported_filetypes())
     p = Path(path)
     ext = p.suffix.lower().lstrip(".")

@@ -7,6 +7,7 @@ import sys
 from synth import schema
 from synth.io import documents
 from synth.excel import template
+from synth.errors import InputError, Problem
 
 __all__ = ["register"]
 
@@ -22,7 +23,6 @@ def register(sub) -> None:
 
 def _main(args) -> int:
     from pathlib import Path
-    from synth.errors import InputError, Problem
     out = Path(args.file)
     if out.suffix.lower() != ".xlsx":
         raise InputError(Problem("template file", str(out), "a file name ending in .xlsx"))

@@ -11,6 +11,7 @@ from __future__ import annotations
 import socket
 
 from synth.errors import InputError, Problem
+from synth.ui import LOCAL_HOSTS, serve
 
 __all__ = ["register"]
 
@@ -54,7 +55,6 @@ def _main(args) -> int:
         from synth.ui.session import default_values
         values, source = default_values(), "default application (synth/data/default_case.yaml)"
     _check_port(args.host, args.port)
-    from synth.ui import LOCAL_HOSTS, serve
     shown = f"[{args.host}]" if ":" in args.host else args.host
     where = ("this machine only" if args.host in LOCAL_HOSTS
              else "REACHABLE FROM OTHER MACHINES, no authentication")

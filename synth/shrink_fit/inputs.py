@@ -26,6 +26,9 @@ from pathlib import Path
 from synth.catalog import constant, row
 from synth.errors import CatalogError, InputError, Problem
 from synth.io.limits import short
+from synth.io.structured import read_document
+from synth.shrink_fit.fits import fit_limits
+from synth.shrink_fit.roughness import surface
 
 #: realistic bounds of the case's numbers: each keeps every array finite and says why
 _E_WHY = ("engineering metals: magnesium alloys about 45 GPa to cemented carbide about 650 GPa; "
@@ -134,7 +137,6 @@ class ShrinkFitCase:
 
 def _read_file(path: Path) -> dict:
     """The parsed case file, through the input gate (size, UTF-8, YAML aliases, nesting, huge numbers)."""
-    from synth.io.structured import read_document
     data = read_document(path, "INPUT", accepted="an existing YAML, JSON or TOML file")
     if not isinstance(data, dict):
         raise InputError(Problem("INPUT", str(path), "a mapping with an 'inputs:' section"))
@@ -291,7 +293,6 @@ def case_from_dict(data: dict) -> ShrinkFitCase:
 
     fit = inputs.get("fit")
     if fit is not None:
-        from synth.shrink_fit.fits import fit_limits
         try:
             lim = fit_limits(fit)
         except CatalogError as exc:
@@ -365,7 +366,6 @@ def case_from_dict(data: dict) -> ShrinkFitCase:
 
     # surfaces the roughness formulas cannot describe (eq. 4-6 domains)
     if not problems:
-        from synth.shrink_fit.roughness import surface
         for key, s in surfaces.items():
             der = surface(s.ra_um, s.rz_um, s.sm_um, s.rp_um, s.rv_um, t_m, model.rp_rv_from_rz, sm_ra)
             if not (float(der["v"]) > 0 and math.isfinite(float(der["asperity_radius_um"]))):

@@ -26,6 +26,7 @@ from synth.shrink_fit.fits import candidate_fits, fit_limits
 from synth.shrink_fit.inputs import ShrinkFitCase
 from synth.shrink_fit.pressure import hub_yield_pressure_mpa, journal_yield_pressure_mpa
 from synth.shrink_fit.torque import slip_margin
+from synth.io.outputs import write_figure
 
 __all__ = ["margin_vs_reassemblies", "select_fit", "plot_margins"]
 
@@ -112,5 +113,4 @@ def plot_margins(curves: dict, path, title: str = "") -> None:
     ax.legend(fontsize=8)
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
-    from synth.io.outputs import write_figure
     write_figure(fig, path, "--plot")

@@ -31,6 +31,8 @@ from synth.errors import InputError
 from synth.ui import form, views
 from synth.ui.portfolio import PortfolioSession
 from synth.ui.session import FIDELITIES, OBJECTIVES, DesignSession
+from synth.report.html import digest_html
+from synth.report.plots import build_graphs
 
 __all__ = ["setup", "FILES_URL"]
 
@@ -257,7 +259,6 @@ class DesignPage:
                 self.model_note = ui.label().classes("text-caption")
 
     def show_result(self) -> None:
-        from synth.report.html import digest_html
         r = self.s.result
         if r is None:
             self.status.text = "no design yet: complete the input"
@@ -312,7 +313,6 @@ class DesignPage:
         self.show_result()
 
     async def draw_graphs(self) -> None:
-        from synth.report.plots import build_graphs
         seq, r = self.s.seq, self.s.result
         if r is None or seq == self.graphs_seq:
             return

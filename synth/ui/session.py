@@ -29,6 +29,8 @@ from synth.io import documents
 from synth.errors import InputError, Problem
 from synth.optimise.objectives import OBJECTIVES
 from synth.ui import form
+from synth.excel.template import write_template
+from synth.cad import export_result
 
 __all__ = ["DesignSession", "default_values", "OBJECTIVES", "FIDELITIES"]
 
@@ -129,7 +131,6 @@ class DesignSession:
 
     def write_template(self, path: str | Path) -> Path:
         """The Excel input template filled with the (valid) input: ``synth template --from``."""
-        from synth.excel.template import write_template
         self._require_valid()
         return write_template(path, self.input.as_dict())
 
@@ -166,7 +167,6 @@ class DesignSession:
         seq, result = self.seq, self.result  # an edit while the model is built makes a new result, not this one
         key = ("cad", seq)
         if key not in self._files:
-            from synth.cad import export_result
             out = self._folder("cad", seq)
             model, checks, info = export_result(result, out, application=self.source or None)
             self._files[key] = {"step": out / "tensioner.step", "section": out / "section.png",

@@ -18,6 +18,11 @@ from __future__ import annotations
 from html import escape
 
 from synth.report.palette import VERDICT_FILLS
+from synth.report.html import check_steps
+from synth.report.html import part_label
+from synth.report.html import check_row
+from synth.report.advice import relaxation_lines
+from synth.report.advice import alternative_rows
 
 __all__ = ["checks_table", "parts_table", "binding_table", "diagnosis_html", "alternatives_html", "fill"]
 
@@ -32,7 +37,6 @@ def _e(x) -> str:
 
 def checks_table(result) -> str:
     """Every check, by thesis step: value, sense, limit, unit, margin, verdict, equation, correction or note."""
-    from synth.report.html import check_steps
     steps, not_applicable = check_steps(result)
     head = ("<tr><th>check</th><th>value</th><th></th><th>limit</th><th>unit</th><th>margin</th><th>verdict</th>"
             "<th>equation</th><th>correction / note</th></tr>")
@@ -55,14 +59,12 @@ def checks_table(result) -> str:
 
 def parts_table(result) -> str:
     """The design's parts (part key, in words, value)."""
-    from synth.report.html import part_label
     rows = "".join(f"<tr><th>{_e(part_label(k))}</th><td>{_e(v)}</td></tr>" for k, v in (result.parts or {}).items())
     return f'<table class="kv parts"><tbody>{rows}</tbody></table>'
 
 
 def binding_table(result, n: int = 8) -> str:
     """What binds: the ``n`` smallest margins of the checks the margin objective counts (``Result.binding``)."""
-    from synth.report.html import check_row
     rows = "".join(f'<tr style="background:{fill(r["verdict"])}"><td>{_e(r["label"])}</td>'
                    f'<td class="num">{_e(r["margin"])}</td><td>{_e(r["correction"])}</td></tr>'
                    for r in map(check_row, result.binding(n)))
@@ -75,7 +77,6 @@ def diagnosis_html(result) -> str:
     dg = result.diagnosis
     if not dg:
         return "<p>No diagnosis: the design is feasible (a diagnosis is made when no catalog design is).</p>"
-    from synth.report.advice import relaxation_lines
     rel = [f"<li>{_e(x)}</li>" for x in relaxation_lines(result)]
     return (f"<p>{_e(dg.get('message', ''))}</p>"
             + (f"<p>Smallest input relaxations that make a design feasible:</p><ul>{''.join(rel)}</ul>" if rel else ""))
@@ -84,7 +85,6 @@ def diagnosis_html(result) -> str:
 def alternatives_html(result) -> str:
     """The ranked alternative designs (``Result.alternatives``, ``synth design --top K``): rank, objectives, the
     smallest margin and the check that sets it, what differs from the optimum; a line when the result has none."""
-    from synth.report.advice import alternative_rows
     rows = alternative_rows(result)
     if not rows:
         return "<p>No alternatives: the design above is the only one asked for (or no design is feasible).</p>"

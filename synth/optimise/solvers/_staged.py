@@ -13,6 +13,7 @@ from synth.optimise.product import evaluate
 from synth.optimise.model_data import model_data
 from synth.optimise.objectives import Objective
 from synth.optimise.answer import build_result
+from synth.optimise.diagnose import diagnose
 
 __all__ = ["staged", "solve_with", "solve_evaluated", "solver_output_to_stderr"]
 
@@ -104,7 +105,6 @@ def solve_with(d, objective, run_factory, *, solver: str, settings: Settings = S
     stats = {"evaluation_time_s": t_eval, "cores": md.n_cores,
              "options": {s: int(len(opts[s])) for s in SUBSYSTEMS}}
     if md.n_cores == 0:
-        from synth.optimise.diagnose import diagnose
         stats["time_s"] = time.perf_counter() - t0
         return diagnose(d, solver=solver, objective=obj, stats=stats, relax=relax, settings=settings,
                         pin_inputs=pin_inputs)
@@ -112,7 +112,6 @@ def solve_with(d, objective, run_factory, *, solver: str, settings: Settings = S
     ans, n_stages = staged(md, obj, run_factory(md))
     stats.update(solve_time_s=time.perf_counter() - t1, stages=n_stages, time_s=time.perf_counter() - t0)
     if ans is None:
-        from synth.optimise.diagnose import diagnose
         return diagnose(d, solver=solver, objective=obj, stats=stats, relax=relax, settings=settings,
                         pin_inputs=pin_inputs)
     core = int(cores[ans[0]])

@@ -62,6 +62,15 @@ from synth.optimise.product import Evaluation, SubTable, evaluate, option_scores
 from synth.optimise.objectives import Objective
 from synth.optimise.answer import build_result
 from synth.optimise.search_space import refinements, snap_parts, variables
+from synth.flowchart import run
+from synth.design.verify import verify
+from synth.optimise.product import design_scores
+from synth.optimise.answer import design_margin
+from synth.errors import InputError, Problem
+from synth.optimise.diagnose import nearest_design
+from synth.optimise.solvers.enumerate import solve_space
+from synth.optimise.diagnose import diagnose
+from synth.optimise.diagnose import violated_of
 
 __all__ = ["solve", "Search", "BATCH", "SAMPLERS"]
 
@@ -142,7 +151,6 @@ class Search:
     def __init__(self, ev: Evaluation, objective: Objective, *, seed: int = 0, batch: int = BATCH,
                  sampler: str = "tpe"):
         import optuna
-        from synth.errors import InputError, Problem
         if sampler not in SAMPLERS:
             raise InputError(Problem("sampler", sampler, "one of " + ", ".join(SAMPLERS)))
         optuna.logging.set_verbosity(optuna.logging.WARNING)
@@ -401,8 +409,6 @@ class Search:
 
     def _combine(self):
         """The best design over the archive (exact combination), and the studies that reached their bounds."""
-        from synth.optimise.diagnose import nearest_design
-        from synth.optimise.solvers.enumerate import solve_space
         ev = self.archive()
         core, options, _ = solve_space(ev, self.obj)
         feasible = core is not None
@@ -480,7 +486,6 @@ class Search:
 
 def _flowchart_parts(d, settings):
     """The thesis flowchart's design (a warm start), or None when it builds none."""
-    from synth.flowchart import run
     try:
         r = run(d, settings, time_points=0)
     except Exception:  # noqa: BLE001 - the warm start is a hint only; the search goes on without it
@@ -490,9 +495,6 @@ def _flowchart_parts(d, settings):
 
 def _snap(res, d, settings) -> dict | None:
     """The catalog snap of a continuous result: the design on the exact solvers' grids, verified."""
-    from synth.design.verify import verify
-    from synth.optimise.product import design_scores
-    from synth.optimise.answer import design_margin
     snapped = snap_parts(res.parts)
     moved = {k: [res.parts[k], snapped[k]] for k in snapped if snapped[k] != res.parts[k]}
     if not moved:
@@ -515,7 +517,6 @@ def solve(d, objective="standard", *, n_trials: int = 200, settings: Settings = 
     t0 = time.perf_counter()
     ev = evaluate(d, settings, subsystems=False, prune=False, pin_inputs=pin_inputs)
     if not len(ev.cores):
-        from synth.optimise.diagnose import diagnose
         return diagnose(d, solver="blackbox", objective=obj, stats={"time_s": time.perf_counter() - t0},
                         settings=settings, relax=False, exhaustive=True, pin_inputs=pin_inputs)
     search = Search(ev, obj, seed=seed, batch=batch, sampler=sampler)
@@ -537,7 +538,6 @@ def solve(d, objective="standard", *, n_trials: int = 200, settings: Settings = 
     res = build_result(search.archive(), core, options, status=status, solver="blackbox", objective=obj,
                        stats=stats)
     if not feasible:   # no "relaxations" key: none were searched (an empty list says none was found)
-        from synth.optimise.diagnose import violated_of
         res.diagnosis = {"message": f"no feasible design found in {told} trials (not a proof: enumerate proves "
                                     "infeasibility and finds the input relaxations); the nearest design found is shown",
                          "violated": violated_of(res)}

@@ -30,6 +30,8 @@ from synth.design.space import SUBSYSTEMS
 from synth.optimise.product import Evaluation, evaluate
 from synth.optimise.objectives import Objective, weighted_sum
 from synth.optimise.answer import build_result
+from synth.optimise.batch import Batch
+from synth.optimise.diagnose import diagnose
 
 __all__ = ["Tables", "tables", "best_additive", "additive_curve", "max_margin", "solve", "solve_space"]
 
@@ -171,7 +173,6 @@ def solve(d, objective="standard", *, settings: Settings = Settings(), pin_input
     # the compiled spring kernels of the branch and bound check the thesis's spring limit; another design rule
     # (Settings.spring_limit_basis) takes the exhaustive path, whose springs go through the numpy evaluator
     if not exhaustive and not obj.uses_margin() and settings.spring_limit_basis == "thesis":
-        from synth.optimise.batch import Batch
         b = Batch([d], settings, pin_inputs=pin_inputs, spring_engine="numpy")
         w = obj.additive_weights()
         found = b.optimum(w if w else {"cost": 1.0})[0]
@@ -179,7 +180,6 @@ def solve(d, objective="standard", *, settings: Settings = Settings(), pin_input
                  "method": "branch and bound"}
         stats["candidates_per_s"] = stats["candidates"] / max(stats["time_s"], 1e-9)
         if found is None:
-            from synth.optimise.diagnose import diagnose
             return diagnose(d, solver="enumerate", objective=obj, stats=stats, relax=relax, settings=settings,
                             batch=b, pin_inputs=pin_inputs)
         return build_result(b.view(0), found[0], found[1], status="optimal", solver="enumerate", objective=obj,
@@ -190,7 +190,6 @@ def solve(d, objective="standard", *, settings: Settings = Settings(), pin_input
     stats.update(evaluation_time_s=t_eval, time_s=time.perf_counter() - t0)
     stats["candidates_per_s"] = stats["candidates"] / max(stats["time_s"], 1e-9)
     if core is None:
-        from synth.optimise.diagnose import diagnose
         return diagnose(d, solver="enumerate", objective=obj, stats=stats, relax=relax, settings=settings,
                         exhaustive=True, pin_inputs=pin_inputs)
     return build_result(ev, core, options, status="optimal", solver="enumerate", objective=obj, stats=stats)

@@ -19,23 +19,23 @@ import time
 
 from synth.design.evaluate import Settings
 from synth.optimise.answer import design_margin
+from synth.flowchart import run
+from synth.optimise.product import design_scores
+from synth.optimise.diagnose import violated_of
 
 __all__ = ["solve"]
 
 
 def solve(d, objective="standard", *, settings: Settings = Settings(), **_):
     """The thesis flowchart's design (status ``baseline``, or ``infeasible`` when a check fails)."""
-    from synth.flowchart import run
     t0 = time.perf_counter()
     r = run(d, settings, time_points=0)
     r.stats = {"time_s": time.perf_counter() - t0}
     r.objective = "thesis procedure"
     if r.parts:
-        from synth.optimise.product import design_scores
         r.objectives = {**design_scores(d, r.parts, settings), "margin": design_margin(r)}
     if r.failed():
         r.status = "infeasible"
-        from synth.optimise.diagnose import violated_of
         r.diagnosis = {"message": "the thesis flowchart's sequential design fails a check",
                        "violated": violated_of(r)}   # no relaxations searched: no "relaxations" key
     return r
