@@ -477,17 +477,10 @@ def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, ro
 
 
 def _stage_margin(grp: evaluate.Group, ids: tuple):
-    """Smallest margin of the constraints ``ids`` (non-advisory) per row, and where it is reached."""
-    stack, idx = [], []
-    for cid in ids:
-        if cid in grp.margins and not REGISTRY[cid].advisory:
-            stack.append(grp.margins[cid])
-            idx.append(_index(cid))
-    if not stack:
-        return np.full(len(grp), np.inf), np.full(len(grp), _NO_BINDING, np.int16)
-    M = np.stack(stack)
-    k = np.argmin(M, axis=0)
-    return M[k, np.arange(M.shape[1])], np.asarray(idx, np.int16)[k]
+    """Smallest margin of the (non-advisory) constraints ``ids`` per row, and where it is reached: the group's
+    assessment over those checks (:func:`margins_and_binding`)."""
+    m, b = assess_group(grp, only=ids).objective_binding(False)
+    return m, np.where(b < 0, _NO_BINDING, b).astype(np.int16)
 
 
 def _bolt(apps, cat, cg, rep, settings, acc: _Pairs):
