@@ -27,9 +27,10 @@ import numpy as np
 from synth import catalog
 
 from synth.parts import arrays, next_catalog_length_mm
+from synth.design.assessment import passes
 from synth.design import evaluate
 from synth.design.applications import Applications
-from synth.design.constraints import FEAS_TOL, TENSIONER_GROUPS
+from synth.design.constraints import TENSIONER_GROUPS
 from synth.design.rules import echo
 from synth.schema import plausibility
 from synth.design.result import NOT_VERIFIED, Check, Result, checks_of, plain
@@ -106,7 +107,7 @@ class _Walk:
             raise _Stop(2, f"step 2 has no Table 2 pivot class for bearing {p.bearing.key[bearing]} and working arm "
                            f"{d.working_arm_mm:g} mm; later steps are not run", {"core": cg})
         self.steps.append(3)
-        if cg.margins["self_locking"][0] < -FEAS_TOL:
+        if not passes(cg.margins["self_locking"][0]):
             raise _Stop(3, "the arm self-locks: the friction circle exceeds the lever; later steps are not run",
                         {"core": cg})
         pad = -1
@@ -131,7 +132,7 @@ class _Walk:
                               "catalog length that fits is taken and its wear checks are not verified")
             g = evaluate.bushing(self.apps, cg, np.zeros(len(lengths), int),
                           bushing_attributes(p, np.full(len(lengths), sup), lengths), self.s)
-            fits = np.flatnonzero(g.margins["bushing_length"] >= -FEAS_TOL)
+            fits = np.flatnonzero(passes(g.margins["bushing_length"]))
             return bushing_attributes(p, [sup], [lengths[fits[0] if len(fits) else 0]])
         if self.s.bushing_length_scheme == "thesis":
             start, step = catalog.constant("bush_length_ratio_start"), catalog.constant("bush_length_ratio_step")
@@ -145,7 +146,7 @@ class _Walk:
         g = evaluate.bushing(self.apps, cg, np.zeros(len(cand), int), bushing_attributes(p, np.full(len(cand), sup), cand),
                       self.s)
         ok = g.ok()
-        fits = g.margins["bushing_length"] >= -FEAS_TOL
+        fits = passes(g.margins["bushing_length"])
         if ok.any():
             i = int(np.argmax(ok))
         else:
@@ -179,7 +180,7 @@ class _Walk:
         while True:
             ax = axial_attributes(p, [spacer], [zeta], [phi], [0.0])
             g = evaluate.axial(self.apps, cg, _ONE, ax, self.s.judge)  # the loop continues where the judge fails
-            if g.margins["damping_eol"][0] >= -FEAS_TOL:
+            if passes(g.margins["damping_eol"][0]):
                 return attrs_core, ax, cg
             # step 5: the EOL damping is below its limit: larger contact surfaces (the next class of each element
             # not yet at its largest), the cone spring resized for the same axial damping, the wear run again
@@ -256,7 +257,7 @@ class _Walk:
                               "and its checks are not verified")
             return {k: v[:1] for k, v in opts.items()}
         g = evaluate.bolt(self.apps, cg, np.zeros(len(rows), int), opts, self.s)
-        ok = g.margins["bolt_yield"] >= -FEAS_TOL
+        ok = passes(g.margins["bolt_yield"])
         i = int(np.argmax(ok)) if ok.any() else len(rows) - 1
         return {k: v[[i]] for k, v in opts.items()}
 

@@ -42,7 +42,7 @@ import numpy as np
 from synth.design.constraints import FEAS_TOL, GROUPS, REGISTRY, version
 from synth.design.applications import DEFAULTS
 
-__all__ = ["Assessment", "Columns", "assess", "assess_group", "columns_of", "verdict_of",
+__all__ = ["Assessment", "Columns", "assess", "assess_group", "columns_of", "verdict_of", "passes", "check_verdict",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED_STATE", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED",
            "NOT_APPLICABLE_VERDICT", "WARNING", "EVALUATED_VERDICTS"]
 
@@ -68,13 +68,13 @@ def verdict_of(failed, incomplete):
 
 def check_verdict(c, margin: float) -> str:
     """The verdict of one evaluated check of constraint ``c`` at ``margin``: ``pass`` where it passes
-    (:func:`_passes`), else ``warning`` for an advisory constraint and ``fail`` for the others; the checks a scene
+    (:func:`passes`), else ``warning`` for an advisory constraint and ``fail`` for the others; the checks a scene
     computes apart from the evaluator's groups (the shrink fit) are judged by it too.
 
     >>> check_verdict(REGISTRY["spring_yield"], -1e-12), check_verdict(REGISTRY["spring_yield"], -0.01)
     ('pass', 'fail')
     """
-    return PASS if bool(_passes(margin)) else (WARNING if c.advisory else FAIL)
+    return PASS if bool(passes(margin)) else (WARNING if c.advisory else FAIL)
 
 
 @dataclass(frozen=True)
@@ -168,7 +168,7 @@ class Assessment:
     def below(self) -> np.ndarray:
         """Checks whose margin is below ``-FEAS_TOL`` (round-off of equal values passes; a check not evaluated has
         ``+inf``): ``failed``, or a ``warning`` for an advisory check (the thesis's Table 7 ranges never fail a design)."""
-        return ~_passes(self.margins)
+        return ~passes(self.margins)
 
     @cached_property
     def failed(self) -> np.ndarray:
@@ -232,7 +232,7 @@ class Assessment:
         """``(n,)`` no check fails (:attr:`failed`; not verified and not applicable ones have ``+inf``)."""
         out = np.ones(self.n, dtype=bool)
         for j in self.columns.decisive:
-            out &= _passes(self._m[j])
+            out &= passes(self._m[j])
         return out
 
     @property
@@ -322,8 +322,13 @@ class Assessment:
         return cls(cols, m, st, unless, n=1)
 
 
-def _passes(margin) -> np.ndarray:
-    """Where a margin passes: at least ``-FEAS_TOL`` (round-off of equal values; NaN never passes)."""
+def passes(margin) -> np.ndarray:
+    """Where a margin passes: at least ``-FEAS_TOL`` (round-off of equal values; NaN never passes). The one pass
+    rule: the assessment, the flowchart's choices, the searches and the capability counts read it.
+
+    >>> passes(np.array([0.0, -1e-12, -1e-6, np.nan])).tolist()
+    [True, True, False, False]
+    """
     return margin >= -FEAS_TOL
 
 

@@ -57,9 +57,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from synth.design.assessment import passes
 from synth.design import evaluate
 from synth.design.applications import Applications
-from synth.design.constraints import FEAS_TOL, by_group, physics_inputs
+from synth.design.constraints import by_group, physics_inputs
 from synth.design.space import SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, space, space_for, spring_window
 from synth.kernels import axial as axial_kernels
 from synth.optimise.objectives import weighted_sum, weighted_sum_around
@@ -291,7 +292,7 @@ class Batch:
             m = np.full(len(a), np.inf)
             for cid in self._bolt_ids:
                 m = np.minimum(m, g.margins[cid])
-            ok[a, b], mn[a, b], done[a, b] = m >= -FEAS_TOL, m, True
+            ok[a, b], mn[a, b], done[a, b] = passes(m), m, True
         return ok, mn
 
     def _wall(self, rows):
@@ -350,7 +351,7 @@ class Batch:
         while len(active) and pos < nb:
             blk = order[pos:pos + block]
             ok_app, _ = self._bolt_app(np.unique(a[active]), blk)
-            feas = ok_app[a[active]][:, blk] & (wall[active][:, code[blk]] >= -FEAS_TOL)
+            feas = ok_app[a[active]][:, blk] & passes(wall[active][:, code[blk]])
             j = _first_true(feas)
             hit = j >= 0
             k[active[hit]] = blk[j[hit]]

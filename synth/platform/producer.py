@@ -61,7 +61,7 @@ import numpy as np
 from synth import catalog
 from synth.design import evaluate
 from synth.design.applications import Applications
-from synth.design.assessment import assess_group
+from synth.design.assessment import assess_group, passes
 from synth.design.constraints import FEAS_TOL, REGISTRY, version
 from synth.design.space import SUBSYSTEMS, core_rows, spring_window
 from synth.errors import InputError, Problem
@@ -405,7 +405,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
                 for blk in _blocks(len(g)):
                     gg_, oo = g[blk], o[blk]
                     m, b = _stage_margin(spring_group(apps, keys, srep[gg_], rows[oo], settings, kk), ids)
-                    ok = m >= -FEAS_TOL
+                    ok = passes(m)
                     survive[gg_[ok], oo[ok]] = True
                     bad = ~ok & finite[gg_]
                     failed[line[gg_[bad]], oo[bad]] = True

@@ -39,8 +39,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from synth.design.assessment import assess
-from synth.design.constraints import FEAS_TOL, REGISTRY
+from synth.design.assessment import assess, passes
+from synth.design.constraints import REGISTRY
 from synth.robust.sampling import Base, evaluate_deviations, evaluate_u, sobol_u
 from synth.robust.settings import RobustSettings
 from synth.design.result import plain
@@ -85,7 +85,7 @@ def ppk(m: np.ndarray) -> float:
         return float("inf")
     mu, sd = float(m.mean()), float(m.std())
     if sd <= SD_FLOOR * max(1.0, abs(mu)):
-        return float("inf") if mu >= -FEAS_TOL else float("-inf")
+        return float("inf") if passes(mu) else float("-inf")
     return mu / (3.0 * sd)
 
 
@@ -277,7 +277,7 @@ def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool 
     lin = _linear(base, checks) if details else None
     contributions = _contributors(u, s.margins, sc.names)
     out = []
-    counts = np.array([int(np.sum(s.margins[cid] < -FEAS_TOL)) for cid in checks], dtype=np.int64)
+    counts = np.array([int(np.sum(~passes(s.margins[cid]))) for cid in checks], dtype=np.int64)
     los, his = clopper_pearson(counts, n)
     for j, cid in enumerate(checks):
         m = s.margins[cid]

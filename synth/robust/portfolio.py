@@ -27,8 +27,8 @@ import numpy as np
 
 from synth.design import evaluate
 from synth.design.applications import Applications
-from synth.design.assessment import assess
-from synth.design.constraints import EVALUATED_GROUPS, FEAS_TOL, REGISTRY
+from synth.design.assessment import assess, passes
+from synth.design.constraints import EVALUATED_GROUPS, REGISTRY
 from synth.design.space import space
 from synth.design.verify import evaluate_design
 from synth.robust.sampling import Base, context, perturb, sobol_u
@@ -84,14 +84,14 @@ def _chunk(inputs: list, parts: list, settings: evaluate.Settings, rs: RobustSet
         if not on.any():
             continue
         m = np.asarray(gs[c.group].margins[cid], dtype=float).reshape(k, n)
-        fails = (m < -FEAS_TOL).sum(axis=1)
+        fails = (~passes(m)).sum(axis=1)
         ok = np.isfinite(m)
         cnt = ok.sum(axis=1)
         with np.errstate(all="ignore"):
             mu = np.where(ok, m, 0.0).sum(axis=1) / cnt
             sd = np.sqrt(np.where(ok, (m - mu[:, None]) ** 2, 0.0).sum(axis=1) / cnt)
             ppk = np.where(sd > 1e-9 * np.maximum(1.0, np.abs(mu)), mu / (3.0 * sd),
-                           np.where(mu >= -FEAS_TOL, np.inf, -np.inf))
+                           np.where(passes(mu), np.inf, -np.inf))
         ppk = np.where(cnt == 0, np.inf, ppk)
         p_hi = np.where(fails >= n, 1.0, beta.ppf(0.975, fails + 1, np.maximum(n - fails, 1)))
         for i in np.flatnonzero(on):

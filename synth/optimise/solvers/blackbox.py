@@ -54,6 +54,7 @@ import time
 import numpy as np
 
 from synth import catalog
+from synth.design.assessment import passes
 from synth.design.constraints import FEAS_TOL
 from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS, Space
@@ -284,7 +285,7 @@ class Search:
         if not self.best[3]:   # nothing feasible yet: the cores that could be nearer than the nearest found
             return np.flatnonzero(cap > self.best[2]["min_margin"] + 1e-12)
         better = ~_worse(self._bound_keys(), self.obj.key(self.best[2]))
-        return np.flatnonzero(self.ok_core & (cap >= -FEAS_TOL) & better)
+        return np.flatnonzero(self.ok_core & passes(cap) & better)
 
     def warm_start(self, parts: dict | None = None):
         """First proposals: each subsystem's cheapest choice (its bound) and, if given, the choices of design
@@ -331,7 +332,7 @@ class Search:
         others = np.minimum.reduce([self.u_all[rows]] + [np.where(self.tried[o][rows], self.reach[o][rows], np.inf)
                                                          for o in SUBSYSTEMS if o != s])
         cap = np.where(sub.available, np.minimum(others[:, None], sub.min_margin), -np.inf)
-        feas = sub.feasible & self.ok_core[rows][:, None] & (others[:, None] >= -FEAS_TOL)
+        feas = sub.feasible & self.ok_core[rows][:, None] & passes(others[:, None])
         col_best = cap.max(axis=0, initial=-np.inf)
         col_feas = np.where(feas, score, np.inf).min(axis=0, initial=np.inf)
         col_any = np.where(sub.available, score, np.inf).min(axis=0, initial=np.inf)
