@@ -27,13 +27,15 @@ import contextlib
 import functools
 import os
 from pathlib import Path
-
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from synth.errors import CatalogError, InputError, Problem
 from synth.io.catalogs import check_user_dir
 from synth.fingerprint import cached, catalogs_sha256, source_stamp
 from synth.io.catalogs import read_user_catalog
+
+if TYPE_CHECKING:  # annotations only: pandas is imported where a table is read (start-up: about 60 ms)
+    import pandas as pd
 
 __all__ = ["builtin_dir", "set_user_dirs", "overriding", "names", "load", "row", "keys", "constant", "constant_row"]
 
@@ -112,6 +114,7 @@ def names() -> list[str]:
 
 
 def _read(path: Path) -> pd.DataFrame:
+    import pandas as pd
     df = pd.read_csv(path, comment="#", skipinitialspace=True, dtype={0: str})
     df.columns = [c.strip() for c in df.columns]
     key = df.columns[0]
@@ -121,6 +124,7 @@ def _read(path: Path) -> pd.DataFrame:
 
 @functools.lru_cache(maxsize=None)
 def _load_cached(name: str, user_dirs: tuple[Path, ...]) -> pd.DataFrame:
+    import pandas as pd
     path = builtin_dir() / f"{name}.csv"
     if not path.is_file():
         raise CatalogError(Problem("catalog", name, "one of " + ", ".join(names())))
@@ -202,6 +206,7 @@ def row(name: str, key: str, field: str | None = None) -> pd.Series:
 
 @functools.lru_cache(maxsize=None)
 def _constants_cached(user_dirs: tuple[Path, ...]) -> tuple[pd.DataFrame, dict]:
+    import pandas as pd
     """Every ``constants*.csv`` merged, and ``{name: row position}`` (first occurrence wins)."""
     frames = [_load_cached(n, user_dirs) for n in names() if n == "constants" or n.startswith("constants_")]
     df = pd.concat(frames, ignore_index=True)
