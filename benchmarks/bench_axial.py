@@ -96,10 +96,25 @@ def group_table(n_rows: int, runs: int, seed: int) -> None:
     print()
 
 
+def same_table(a, b) -> bool:
+    """Every column equal (floats to 1e-9, NaN equal to NaN), the same columns in the same order."""
+    if list(a.columns) != list(b.columns) or len(a) != len(b):
+        return False
+    for c in a.columns:
+        x, y = a[c].to_numpy(), b[c].to_numpy()
+        if a[c].dtype == float:
+            with np.errstate(invalid="ignore"):
+                ok = ((np.isnan(x) & np.isnan(y)) | (x == y) | (np.abs(x - y) <= 1e-9)).all()
+            if not ok:
+                return False
+        elif [str(v) for v in x] != [str(v) for v in y]:
+            return False
+    return True
+
+
 def engine_table(n: int, runs: int, seed: int, base: Path) -> None:
     import pandas as pd
     sys.path.insert(0, str(Path(__file__).resolve().parent))
-    from bench_bulk import _same   # every column equal, floats to 1e-9
     print(f"## Bulk engine (`screen_applications`, {n} generated applications, no diagnosis): this tree (A) against "
           f"{base} (B), fresh processes in turn, warm inside each\n")
     print("| fidelity | A s (median) | B s (median) | A apps/s | B apps/s | speed-up B/A (median of pairs) | "
@@ -121,7 +136,7 @@ def engine_table(n: int, runs: int, seed: int, base: Path) -> None:
                 tb.append(res["B"][0])
                 ca.append(res["A"][2])
                 cb.append(res["B"][2])
-                equal &= _same(res["A"][1], res["B"][1])
+                equal &= same_table(res["A"][1], res["B"][1])
             ratio = statistics.median(b / a for a, b in zip(ta, tb))
             a, b = statistics.median(ta), statistics.median(tb)
             cpu_ratio = statistics.median(y / x for x, y in zip(ca, cb))

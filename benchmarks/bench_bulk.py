@@ -20,9 +20,11 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
 
 from synth.bulk.engine import screen_applications, screen_applications_reference
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_axial import engine_table, same_table  # noqa: E402  (a sibling script: the engine table, the comparison)
 from synth.data.generated_applications import generate
 
 
@@ -34,21 +36,6 @@ def _time(fn, runs: int = 1):
         out = fn()
         times.append(time.perf_counter() - t0)
     return out, statistics.median(times)
-
-
-def _same(a, b) -> bool:
-    if list(a.columns) != list(b.columns) or len(a) != len(b):
-        return False
-    for c in a.columns:
-        x, y = a[c].to_numpy(), b[c].to_numpy()
-        if a[c].dtype == float:
-            with np.errstate(invalid="ignore"):
-                ok = ((np.isnan(x) & np.isnan(y)) | (x == y) | (np.abs(x - y) <= 1e-9)).all()
-            if not ok:
-                return False
-        elif [str(v) for v in x] != [str(v) for v in y]:
-            return False
-    return True
 
 
 def _optimum_ms(apps, runs: int = 20) -> tuple:
@@ -96,8 +83,6 @@ def main(argv=None) -> int:
                     "side by side (fresh processes in turn, benchmarks/bench_axial.py's table)")
     args = ap.parse_args(argv)
     if args.base is not None:
-        sys.path.insert(0, str(Path(__file__).resolve().parent))
-        from bench_axial import engine_table
         engine_table(args.n, args.runs, args.seed, args.base.resolve())
         return 0
     n = 12 if args.quick else args.n
@@ -123,7 +108,7 @@ def main(argv=None) -> int:
     ref_apps = apps[:n_ref]
     ref, dt_ref = _time(lambda: screen_applications_reference(ref_apps, objective=args.objective, diagnose=False))
     rows.append(("screening (reference: solve per app)", "off", n_ref, dt_ref, n_ref / dt_ref, ref["feasible"].mean()))
-    equal = _same(results["screening"].iloc[:n_ref].reset_index(drop=True), ref)
+    equal = same_table(results["screening"].iloc[:n_ref].reset_index(drop=True), ref)
 
     print(f"## Bulk engine benchmark (objective {args.objective}, generated applications seed {args.seed}; "
           f"engine rows: median of {args.runs} warm runs)\n")
