@@ -96,6 +96,33 @@ def _in(platform: dict, f: str, codes: np.ndarray) -> np.ndarray:
     return (codes < 0) | np.isin(codes, allowed)
 
 
+def _cheapest(cost: np.ndarray, usable: np.ndarray, feasible: list, margin: list, tau: float):
+    """Per group of options (``feasible[g]``: option indices, ``margin[g]``: their margins) the cheapest usable
+    option with a margin of at least ``tau`` (the first of equal costs) and its cost: ``(choice, cost)``, ``-1`` and
+    ``inf`` for a group with none. The groups at once (one sort), not a loop over them.
+
+    >>> c, g = _cheapest(np.array([3.0, 1.0, 1.0, 2.0]), np.array([True, True, True, False]),
+    ...                  [[0, 2, 1], [3], [0]], [[1, 1, 1], [1], [-1]], 0.0)
+    >>> c.tolist(), g.tolist()
+    ([2, -1, -1], [1.0, inf, inf])
+    """
+    n_g = len(feasible)
+    choice, best = np.full(n_g, -1, np.int64), np.full(n_g, np.inf)
+    if not n_g:
+        return choice, best
+    lens = [len(x) for x in feasible]
+    idx = np.concatenate([np.asarray(x, np.int64).reshape(-1) for x in feasible]).astype(np.int64)
+    mar = np.concatenate([np.asarray(x, float).reshape(-1) for x in margin]).astype(float)
+    grp = np.repeat(np.arange(n_g), lens)
+    m = usable[idx] & (mar >= tau)
+    idx, grp = idx[m], grp[m]
+    c = cost[idx]
+    order = np.lexsort((c, grp))                       # stable: per group the cheapest, the first of equal costs
+    first = order[np.r_[True, grp[order][1:] != grp[order][:-1]]] if len(order) else order
+    choice[grp[first]], best[grp[first]] = idx[first], c[first]
+    return choice, best
+
+
 def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None = None) -> list:
     """One record per application of ``pf``: its cheapest design built only from ``platform`` parts.
 
@@ -123,18 +150,7 @@ def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None
         best_opt = {}
         missing = {}
         for s in SUBSYSTEMS:
-            cost = app_option_cost(pf, a, s)
-            choice = []
-            gbest = np.full(len(a.feasible[s]), np.inf)
-            for gi, (idx, mar) in enumerate(zip(a.feasible[s], a.option_margin[s])):
-                idx = np.asarray(idx, np.int64)
-                sel = idx[opt_ok[s][idx] & (np.asarray(mar, float) >= tau)]
-                if len(sel):
-                    k = sel[np.argmin(cost[sel])]
-                    gbest[gi] = cost[k]
-                    choice.append(int(k))
-                else:
-                    choice.append(-1)
+            choice, gbest = _cheapest(app_option_cost(pf, a, s), opt_ok[s], a.feasible[s], a.option_margin[s], tau)
             g = np.asarray(a.group[s], np.int64)
             missing[s] = int(np.sum(ok & ~np.isfinite(gbest[g])))
             total += gbest[g]
@@ -153,7 +169,7 @@ def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None
         margins = [(float(a.core_margin[c]), "" if a.core_binding is None else str(a.core_binding[c]))]
         for s in SUBSYSTEMS:
             gi = int(a.group[s][c])
-            k = best_opt[s][gi]
+            k = int(best_opt[s][gi])
             rec["options"][s] = k
             rec["codes"].update({f: int(pf.options[s][f][k]) for f in SUBSYSTEM_FAMILIES[s]})
             pos = int(np.flatnonzero(np.asarray(a.feasible[s][gi]) == k)[0])

@@ -170,6 +170,47 @@ def _unique_ints(x: np.ndarray, bound: int) -> tuple[np.ndarray, np.ndarray]:
     return np.flatnonzero(present), (np.cumsum(present) - 1)[x]
 
 
+def _token_bits(part: np.ndarray, tok: np.ndarray, n_parts: int, n_tok: int) -> np.ndarray:
+    """``(n_parts, ceil(n_tok / 64))`` bit sets: bit ``tok`` of row ``part`` set for each pair (the pairs distinct).
+    The bits of one word are distinct powers of two: their OR over a sorted run of words is a ``reduceat``.
+
+    >>> _token_bits(np.array([0, 1, 0]), np.array([3, 64, 0]), 2, 65).tolist()
+    [[9, 0], [0, 1]]
+    """
+    n_w = (n_tok + 63) // 64
+    bits = np.zeros(n_parts * n_w, np.uint64)
+    if len(part):
+        word = np.asarray(part, np.int64) * n_w + np.asarray(tok, np.int64) // 64
+        order = np.argsort(word, kind="stable")
+        word = word[order]
+        val = np.left_shift(np.uint64(1), (np.asarray(tok, np.int64)[order] % 64).astype(np.uint64))
+        start = np.flatnonzero(np.r_[True, word[1:] != word[:-1]])
+        bits[word[start]] = np.bitwise_or.reduceat(val, start)
+    return bits.reshape(n_parts, n_w)
+
+
+def _subsets(bits: np.ndarray, pj: np.ndarray, pk: np.ndarray, block: int = 8) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs ``(pj, pk)`` whose bit set ``bits[pj]`` lies inside ``bits[pk]``, in their order: compared a block
+    of words at a time, the pairs a block refutes leaving the later blocks (most pairs fail early; the same pairs
+    as comparing every word at once).
+
+    >>> b = np.array([[1, 2], [3, 2], [1, 0]], np.uint64)
+    >>> [x.tolist() for x in _subsets(b, np.array([0, 0, 2, 1]), np.array([1, 2, 0, 0]), block=1)]
+    [[0, 2], [1, 0]]
+    """
+    alive = np.arange(len(pj))
+    for lo in range(0, bits.shape[1], block):
+        if not len(alive):
+            break
+        a, b = pj[alive], pk[alive]
+        step = max(1, (1 << 22) // block)
+        ok = np.empty(len(alive), bool)
+        for s in range(0, len(alive), step):
+            ok[s:s + step] = ~np.any(bits[a[s:s + step], lo:lo + block] & ~bits[b[s:s + step], lo:lo + block], axis=1)
+        alive = alive[ok]
+    return pj[alive], pk[alive]
+
+
 def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     rows = _live_rows(w, si)
     if not rows:
@@ -203,8 +244,7 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     by_tok = by_part.tocsr()
     cnt = np.diff(by_part.indptr)
     tok_len = np.diff(by_tok.indptr)
-    bits = np.zeros((nc, (nt + 63) // 64), np.uint64)                          # the token set of each part
-    np.bitwise_or.at(bits, (pcol, tok // 64), np.left_shift(np.uint64(1), (tok % 64).astype(np.uint64)))
+    bits = _token_bits(pcol, tok, nc, nt)                                      # the token set of each part
     weight, fixed = w.part_weight[cand], w.part_fixed_cost[cand]
     if cost_obj:
         # per (application, rest, part) the lowest and highest cost over the application's tokens with that rest:
@@ -230,17 +270,20 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     pk = by_tok.indices[np.repeat(by_tok.indptr[t0], n_k) + np.arange(len(pj)) - np.repeat(np.cumsum(n_k) - n_k, n_k)]
     keep = (pk != pj) & (cnt[pk] >= cnt[pj]) & (weight[pk] <= weight[pj]) & (fixed[pk] <= fixed[pj])
     pj, pk = pj[keep], pk[keep]
-    keep = np.empty(len(pj), bool)
-    step = max(1, (1 << 22) // bits.shape[1])
-    for lo in range(0, len(pj), step):
-        keep[lo:lo + step] = ~np.any(bits[pj[lo:lo + step]] & ~bits[pk[lo:lo + step]], axis=1)
-    pj, pk = pj[keep], pk[keep]
     same = (cnt[pk] == cnt[pj]) & (weight[pk] == weight[pj]) & (fixed[pk] == fixed[pj])
     dom = np.zeros(nc, bool)
     if not cost_obj:
-        # strict order with index tie-break: a mutual substitute of higher index does not remove j
-        dom[pj[~same | (pk < pj)]] = True
+        # strict order with index tie-break: a mutual substitute of higher index does not remove j. One dominator
+        # is enough: each j's first candidate is tried alone, the others only for the j it does not settle
+        q = ~same | (pk < pj)
+        pj, pk = pj[q], pk[q]
+        first = np.r_[True, pj[1:] != pj[:-1]] if len(pj) else np.zeros(0, bool)
+        dom[_subsets(bits, pj[first], pk[first])[0]] = True
+        later = ~first & ~dom[pj]
+        dom[_subsets(bits, pj[later], pk[later])[0]] = True
     else:
+        pj, pk = _subsets(bits, pj, pk)
+        same = (cnt[pk] == cnt[pj]) & (weight[pk] == weight[pj]) & (fixed[pk] == fixed[pj])
         starts = np.flatnonzero(np.r_[True, pj[1:] != pj[:-1]]) if len(pj) else np.zeros(0, np.int64)
         for lo, hi in zip(starts, np.append(starts[1:], len(pj)).astype(np.int64)):
             j, ks, sm = int(pj[lo]), pk[lo:hi], same[lo:hi]
