@@ -25,7 +25,7 @@ from formulations.platform import PlatformInstance
 from synth.platform.compile import app_option_cost
 from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility
 
-__all__ = ["serve", "objective_value", "assign", "full_platform", "platform_from_y", "platform_parts_used"]
+__all__ = ["serve", "objective_value", "assign", "option_groups", "full_platform", "platform_from_y", "platform_parts_used"]
 
 
 def _pattern_ok(inst: PlatformInstance, y: np.ndarray) -> np.ndarray:
@@ -96,47 +96,75 @@ def _in(platform: dict, f: str, codes: np.ndarray) -> np.ndarray:
     return (codes < 0) | np.isin(codes, allowed)
 
 
-def _cheapest(cost: np.ndarray, usable: np.ndarray, feasible: list, margin: list, tau: float):
-    """Per group of options (``feasible[g]``: option indices, ``margin[g]``: their margins) the cheapest usable
-    option with a margin of at least ``tau`` (the first of equal costs) and its cost: ``(choice, cost)``, ``-1`` and
-    ``inf`` for a group with none. The groups at once (one sort), not a loop over them.
+def _flat_groups(pf: PortfolioFeasibility, s: str):
+    """Every application's option groups of subsystem ``s`` one after the other: ``(idx, margin, cost, group,
+    gptr)``, the options' indices, margins and unit costs (each application's own), the group of each (numbered over
+    the whole portfolio) and where each application's groups start (``gptr[i]:gptr[i + 1]``)."""
+    feas = [x for a in pf.apps for x in a.feasible[s]]
+    gptr = np.r_[0, np.cumsum([len(a.feasible[s]) for a in pf.apps])].astype(np.int64)
+    if not feas:
+        z = np.zeros(0, np.int64)
+        return z, np.zeros(0), np.zeros(0), z, gptr
+    lens = [len(x) for x in feas]
+    idx = np.concatenate([np.asarray(x, np.int64).reshape(-1) for x in feas]).astype(np.int64)
+    mar = np.concatenate([np.asarray(x, float).reshape(-1) for x in (m for a in pf.apps for m in a.option_margin[s])])
+    grp = np.repeat(np.arange(len(feas)), lens)
+    optr = np.r_[0, np.cumsum(lens)][gptr]
+    cost = np.concatenate([app_option_cost(pf, a, s)[idx[optr[i]:optr[i + 1]]] for i, a in enumerate(pf.apps)])
+    return idx, mar.astype(float), cost.astype(float), grp, gptr
 
-    >>> c, g = _cheapest(np.array([3.0, 1.0, 1.0, 2.0]), np.array([True, True, True, False]),
-    ...                  [[0, 2, 1], [3], [0]], [[1, 1, 1], [1], [-1]], 0.0)
+
+def _cheapest(idx: np.ndarray, mar: np.ndarray, cost: np.ndarray, grp: np.ndarray, n_groups: int,
+              usable: np.ndarray, tau: float):
+    """Per group of options (option ``idx[i]`` of group ``grp[i]``, margin ``mar[i]``, unit cost ``cost[i]``) the
+    cheapest usable option with a margin of at least ``tau`` (the first of equal costs) and its cost: ``(choice,
+    cost)``, ``-1`` and ``inf`` for a group with none. Every group at once (one sort), not a loop over them.
+
+    >>> c, g = _cheapest(np.array([0, 2, 1, 3, 0]), np.array([1, 1, 1, 1, -1]), np.array([3.0, 1, 1, 2, 3]),
+    ...                  np.array([0, 0, 0, 1, 2]), 3, np.array([True, True, True, False]), 0.0)
     >>> c.tolist(), g.tolist()
     ([2, -1, -1], [1.0, inf, inf])
     """
-    n_g = len(feasible)
-    choice, best = np.full(n_g, -1, np.int64), np.full(n_g, np.inf)
-    if not n_g:
-        return choice, best
-    lens = [len(x) for x in feasible]
-    idx = np.concatenate([np.asarray(x, np.int64).reshape(-1) for x in feasible]).astype(np.int64)
-    mar = np.concatenate([np.asarray(x, float).reshape(-1) for x in margin]).astype(float)
-    grp = np.repeat(np.arange(n_g), lens)
+    choice, best = np.full(n_groups, -1, np.int64), np.full(n_groups, np.inf)
     m = usable[idx] & (mar >= tau)
-    idx, grp = idx[m], grp[m]
-    c = cost[idx]
-    order = np.lexsort((c, grp))                       # stable: per group the cheapest, the first of equal costs
-    first = order[np.r_[True, grp[order][1:] != grp[order][:-1]]] if len(order) else order
+    idx, grp, c = idx[m], grp[m], cost[m]
+    if not len(idx):
+        return choice, best
+    start = np.flatnonzero(np.r_[True, grp[1:] != grp[:-1]])   # the groups' runs (grp ascends)
+    low = np.minimum.reduceat(c, start)
+    hit = np.flatnonzero(c == np.repeat(low, np.diff(np.r_[start, len(c)])))
+    first = hit[np.r_[True, grp[hit][1:] != grp[hit][:-1]]]    # the first of equal costs
     choice[grp[first]], best[grp[first]] = idx[first], c[first]
     return choice, best
 
 
-def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None = None) -> list:
+def option_groups(pf: PortfolioFeasibility) -> dict:
+    """``{subsystem: _flat_groups(pf, subsystem)}``: what :func:`assign` reads of ``pf``'s options whatever the
+    platform (several assignments of one portfolio compute it once)."""
+    return {s: _flat_groups(pf, s) for s in SUBSYSTEMS}
+
+
+def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None = None,
+           groups: dict | None = None) -> list:
     """One record per application of ``pf``: its cheapest design built only from ``platform`` parts.
 
     Record keys: ``app_id``, ``feasible``, ``core`` (index into the application's cores or
     None), ``options`` (``{subsystem: option index}``), ``parts`` (``{family: part key}``),
     ``codes`` (``{family: part code}``, ``-1`` none), ``unit_cost_eur``, ``margin`` (the smallest of the core's and the options' margins),
     ``binding`` (the constraint with that margin, when the data name it), ``reason`` (why
-    not feasible). ``min_margin`` ignores cores and options with a smaller margin.
+    not feasible). ``min_margin`` ignores cores and options with a smaller margin. ``groups``: ``pf``'s
+    :func:`option_groups` when already computed (the same records).
     """
     tau = -np.inf if min_margin is None else float(min_margin)
     opt_ok = {s: np.all([_in(platform, f, pf.options[s][f]) for f in fams], axis=0)
               for s, fams in SUBSYSTEM_FAMILIES.items()}
+    cheap = {}
+    groups = groups if groups is not None else option_groups(pf)
+    for s in SUBSYSTEMS:
+        idx, mar, cost, grp, gptr = groups[s]
+        cheap[s] = (*_cheapest(idx, mar, cost, grp, int(gptr[-1]), opt_ok[s], tau), gptr)
     out = []
-    for a in pf.apps:
+    for ai, a in enumerate(pf.apps):
         rec = {"app_id": a.app_id, "feasible": False, "core": None, "options": {}, "parts": {}, "codes": {},
                "unit_cost_eur": np.nan, "margin": np.nan, "binding": "", "reason": ""}
         out.append(rec)
@@ -150,7 +178,8 @@ def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None
         best_opt = {}
         missing = {}
         for s in SUBSYSTEMS:
-            choice, gbest = _cheapest(app_option_cost(pf, a, s), opt_ok[s], a.feasible[s], a.option_margin[s], tau)
+            ch, cb, gptr = cheap[s]
+            choice, gbest = ch[gptr[ai]:gptr[ai + 1]], cb[gptr[ai]:gptr[ai + 1]]
             g = np.asarray(a.group[s], np.int64)
             missing[s] = int(np.sum(ok & ~np.isfinite(gbest[g])))
             total += gbest[g]

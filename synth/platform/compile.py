@@ -155,6 +155,7 @@ class Precompiled:
     option_pattern: dict
     groups: list                 # per app: {subsystem: (patterns, costs x volume, margins, group, n_groups)}, the
     #                              groups' options one after the other (``group``: the group of each)
+    assign_groups: dict | None = None   # synth.platform.assign.option_groups(pf), filled by the first assignment
 
 
 def precompile(pf: PortfolioFeasibility) -> Precompiled:

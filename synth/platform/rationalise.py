@@ -19,7 +19,7 @@ import numpy as np
 
 from formulations.platform import solve as solve_milp
 from synth.errors import InputError, Problem
-from synth.platform.assign import assign, full_platform, objective_value, platform_from_y
+from synth.platform.assign import assign, full_platform, objective_value, option_groups, platform_from_y
 from synth.platform.compile import Precompiled, compile_portfolio, precompile
 from synth.platform.data import FAMILIES, PortfolioFeasibility, default_weights
 from synth.platform.greedy import greedy
@@ -136,7 +136,10 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     else:
         y, status = np.zeros(inst.n_parts, bool), sol.status
     platform = platform_from_y(work, y)
-    records = assign(pf, platform, min_margin=min_margin)
+    if pre is not None and pre.assign_groups is None:
+        pre.assign_groups = option_groups(pf)
+    groups = pre.assign_groups if pre is not None else option_groups(pf)   # the two assignments below share them
+    records = assign(pf, platform, min_margin=min_margin, groups=groups)
     t_v = time.perf_counter()
     if verify:
         verify_records(pf, records)
@@ -155,7 +158,7 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
                 if code >= 0:
                     used[f].add(code)
     platform = {f: platform[f] & used[f] for f in FAMILIES}
-    per_app = assign(pf, full_platform(pf), min_margin=min_margin) if details else []
+    per_app = assign(pf, full_platform(pf), min_margin=min_margin, groups=groups) if details else []
     t5 = time.perf_counter()
     obj = sol.objective if sol.y is not None else g_val
     res = PlatformResult(
