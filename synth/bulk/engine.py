@@ -258,7 +258,7 @@ def _notes_of(apps, idx, state, evaluated, cache: dict) -> list:
             seen = list(dict.fromkeys(seen))
             if seen:
                 notes.append("assumed: " + "; ".join(a.replace(" assumed", "") for a in seen))
-            hit = cache[key] = (notes, bool(groups or seen))
+            hit = cache[key] = notes
         out.append(hit)
     return out
 
@@ -302,7 +302,7 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
         nt = b.notes(int(idx[j])) + fixed
         if status in ("optimal", "feasible") and len(fj):
             nt = nt + ["verification failed: " + ", ".join(f"{ids[c]} {marg[j, c]:+.3g}" for c in fj)]
-        notes.append("; ".join(dict.fromkeys([str(x) for x in nt] + notes_nv[j][0])))
+        notes.append("; ".join(dict.fromkeys([str(x) for x in nt] + notes_nv[j])))
         failed_ids.append([ids[c] for c in fj])
     out.update(violated=violated, relaxation=[""] * m, notes=notes, _failed=failed_ids)
     return out

@@ -525,9 +525,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     v["cone_spring_sized"] = act
     keys = CONE_SPRING_VALUES
     i = np.flatnonzero(act)
-    # every row sized (the usual block of options): whole columns, not a gather and a scatter per value
-    every = len(i) == n
-    sized = (lambda x: x) if every else (lambda x: x[i])
+    every, sized = _rows_of(i, n)  # every row sized (the usual block of options): whole columns
     for k in keys:
         v[k] = np.empty(n) if every else np.full(n, np.nan)
     v["cone_spring_max_external_diameter_mm"] = np.where(real, cv["cone_spring_max_external_diameter_mm"], np.nan)
@@ -555,8 +553,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
         v[f"cone_spring_{key}_min"], v[f"cone_spring_{key}_max"] = np.full(n, lo), np.full(n, hi)
     v["damping_eol_limit_nm"] = f["damping_eol_limit_nm"]
     w = i[apps.durability_given[a][i]]
-    worn = len(w) == n  # every row worn: whole columns, as above
-    at = (lambda x: x) if worn else (lambda x: x[w])
+    worn, at = _rows_of(w, n)  # every row worn: whole columns, as above
     for k in PLASTIC_WEAR_VALUES:
         v[k] = np.empty(n) if worn else np.full(n, np.nan)
     history = None
@@ -579,6 +576,13 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
         g.values["_history_rows"] = w
         g.values["_history"] = history
     return g
+
+
+def _rows_of(idx: np.ndarray, n: int):
+    """``(every, take)``: whether the rows ``idx`` are all ``n`` rows, and the function giving a column's values at
+    them (the column itself when they are: no gather and scatter per value)."""
+    every = len(idx) == n
+    return every, ((lambda x: x) if every else (lambda x: x[idx]))
 
 
 def _put_columns(v: dict, keys, got: dict, rows) -> None:
