@@ -35,11 +35,9 @@ from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import REGISTRY
 from synth.design.space import space
-from synth.design.verify import evaluate_design
+from synth.design.verify import evaluate_design, parts_of_attributes
 from synth.model import torsion_spring
 from synth.robust.tolerances import Scatter, resolve
-from synth.model import torsion_spring as ts
-from synth.design.verify import parts_of_attributes
 
 __all__ = ["Base", "Samples", "base_of", "base_of_attributes", "context", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
            "design_checks"]
@@ -49,7 +47,6 @@ HISTOGRAM_VALUES = {"damping_nm": "core", "hubload_nominal_n": "core", "spring_t
                     "damping_eol_nm": "axial", "cone_spring_fax_nominal_n": "axial",
                     "main_spring_sigma_inst_mpa": "spring", "main_spring_safety_factor": "spring",
                     "main_spring_coil_gap_worst_mm": "spring", "sliding_safety_factor": "bolt"}
-_GROUPS = ("input", "core", "bushing", "axial", "spring", "bolt")
 
 
 @dataclass
@@ -114,15 +111,15 @@ def context(apps: Applications, attrs: dict, groups: dict, settings: evaluate.Se
     its application's fields, its spring option, the strength range of its wire, its pivot, its cone spring."""
     sp = {key: np.asarray(v)[k] for key, v in attrs["spring"].items()}
     mat = str(sp["main_spring_material"])
-    dia = ts.rm_lookup_diameter_mm(sp["b_mm"], sp["h_mm"], bool(sp["round_wire"]))
+    dia = torsion_spring.rm_lookup_diameter_mm(sp["b_mm"], sp["h_mm"], bool(sp["round_wire"]))
     ax = groups["axial"].values
     cone = bool(np.asarray(ax["cone_spring_sized"])[k])
 
     def fld(name):
         return float(apps.f[name][k]) if name in apps.f else float("nan")
 
-    return {"field": fld, "spring": sp, "rm_min": float(ts.material_strength_mpa(mat, dia, "min")),
-            "rm_max": float(ts.material_strength_mpa(mat, dia, "max")),
+    return {"field": fld, "spring": sp, "rm_min": float(torsion_spring.material_strength_mpa(mat, dia, "min")),
+            "rm_max": float(torsion_spring.material_strength_mpa(mat, dia, "max")),
             "pivot_diameter_mm": float(np.asarray(attrs["core"]["pivot_diameter_mm"])[k]), "cone": cone,
             "cone_force_tolerance": (float(np.asarray(ax["cone_spring_force_tolerance_plus"])[k]),
                                      float(np.asarray(ax["cone_spring_force_tolerance_minus"])[k])) if cone
