@@ -227,6 +227,9 @@ class Batch:
         self._memo: dict = {}
         self._spring_opts = None
         self._axial_undecided = np.zeros(n, dtype=bool)
+        self._ax_slot: dict = {}  # the search model's axial smallest margins, kept (:meth:`_axial_kept`)
+        self._ax_mm = np.zeros((0, sp.n("axial")))
+        self._ax_known = np.zeros((0, sp.n("axial")), dtype=bool)
         self._screened = None  # the screening settings while optimum() searches with the full model alone
 
     def __len__(self) -> int:
@@ -504,6 +507,28 @@ class Batch:
         first, inv = _unique_rows(self.A[rows], *(self.cg.values[k][rows] for k in evaluate.AXIAL_CORE_VALUES))
         return rows[first], inv
 
+    def _axial_slots(self, rep) -> np.ndarray:
+        """Per representative core row (:meth:`_axial_rows`), its row in the kept axial margins: one per distinct
+        application and value of what the axial group reads of the core, whichever call met it first."""
+        vals = np.stack([self.A[rep], *(self.cg.values[k][rep] for k in evaluate.AXIAL_CORE_VALUES)], axis=1)
+        vals = np.where(np.isnan(vals), np.finfo(float).max, vals) + 0.0  # as _unique_rows: NaN equal, -0.0 = 0.0
+        slot = self._ax_slot
+        out = np.array([slot.setdefault(k, len(slot)) for k in
+                        np.ascontiguousarray(vals).view(np.dtype((np.void, 8 * vals.shape[1]))).ravel().tolist()],
+                       dtype=np.int64)
+        if len(slot) > len(self._ax_mm):  # grow (doubling)
+            m = max(len(slot), 2 * len(self._ax_mm))
+            self._ax_mm = np.concatenate([self._ax_mm, np.zeros((m - len(self._ax_mm), self._ax_mm.shape[1]))])
+            self._ax_known = np.concatenate([self._ax_known, np.zeros((m - len(self._ax_known),
+                                                                       self._ax_known.shape[1]), dtype=bool)])
+        return out
+
+    def _axial_keep(self, slots, cols, g: evaluate.Group) -> None:
+        """Keep the smallest margins of an axial group of the search model (slots x options, pairwise)."""
+        if self._screened is None:
+            self._ax_mm[slots, cols] = g.min_margin(objective_only=False)
+            self._ax_known[slots, cols] = True
+
     def _axial_eval(self, rr, oo, settings: evaluate.Settings | None = None):
         """The axial group of core rows ``rr`` and options ``oo`` (at ``settings``, default the search's; in the
         full model's search of :meth:`optimum`, :func:`~synth.design.evaluate.axial_full`)."""
@@ -546,6 +571,7 @@ class Batch:
         t = sp.tables["axial"]
         score = wsum(option_scores(sp, "axial"), weights)
         rep, inv = self._axial_rows(rows)
+        slots = self._axial_slots(rep) if self._screened is None else None
         lim = np.full(len(rep), -np.inf)
         np.maximum.at(lim, inv, limit)
         out_v, out_k = np.full(len(rep), np.inf), np.full(len(rep), -1, dtype=np.int64)
@@ -571,6 +597,8 @@ class Batch:
                 break
             ai, bi = np.nonzero(within)
             g = self._axial_eval(rep[active[ai]], blk[bi])
+            if slots is not None:
+                self._axial_keep(slots[active[ai]], blk[bi], g)
             ok = np.zeros(within.shape, dtype=bool)
             ok[ai, bi] = g.ok()
             ok = self._judged(ok, rep[active], blk)
@@ -608,10 +636,18 @@ class Batch:
         active = np.flatnonzero(pad)
         best_pos = np.full(len(rep), len(real), dtype=np.int64)
         pos, (block, growth) = 0, self._axial_blocks()
+        slots = self._axial_slots(rep)
         while len(active) and pos < len(real):
             blk = real[pos:pos + block]
-            g = self._axial_eval(np.repeat(rep[active], len(blk)), np.tile(blk, len(active)))
-            m = g.min_margin(objective_only=False).reshape(len(active), len(blk))
+            # the pairs the optimum's scan (or an earlier call) evaluated are read back; the others evaluated, kept
+            sl = slots[active]
+            known = self._ax_known[sl[:, None], blk[None, :]]
+            m = self._ax_mm[sl[:, None], blk[None, :]]
+            ai, bi = np.nonzero(~known)
+            if len(ai):
+                g = self._axial_eval(rep[active[ai]], blk[bi])
+                m[ai, bi] = g.min_margin(objective_only=False)
+                self._axial_keep(sl[ai], blk[bi], g)
             j = np.argmax(m, axis=1)
             v = m[np.arange(len(active)), j]
             better = v > out_v[active]  # strictly: an earlier option keeps a tie (argmax's first index)
@@ -757,6 +793,7 @@ class Batch:
         keys, kinv = self._spring_keys(R)
         k_val = np.full(len(keys["app"]), np.nan)
         k_cap = np.full(len(keys["app"]), -np.inf)
+        k_pk = np.zeros(len(keys["app"]), dtype=np.int64)
         val = np.full(len(R), -np.inf)
         best_v = np.full(n, -np.inf)
         best = np.full(n, -1, dtype=np.int64)
@@ -783,7 +820,7 @@ class Batch:
             kt = kt[np.isnan(k_val[kt]) | (k_cap[kt] < need[kt])]
             if len(kt):  # the springs of these keys, exact up to the largest bound of their rows
                 sub = {k: v[kt] for k, v in keys.items()}
-                v, _ = self._spring_max(sub, need[kt])
+                v, k_pk[kt] = self._spring_max(sub, need[kt])
                 k_val[kt], k_cap[kt] = np.minimum(v, need[kt]), need[kt]
             v2 = np.minimum(v1[take], k_val[kt_all])
             go = could_win_value(v2, take)
@@ -801,8 +838,12 @@ class Batch:
             return out
         jw = best[win]
         rows_w = R[jw]
-        sk = {k: v[kinv[jw]] for k, v in keys.items()}
-        _, ps = self._spring_max(sk)
+        # a key whose scan ended below its cap was scanned whole: its option is the argmax already
+        kw = kinv[jw]
+        ps = k_pk[kw]
+        redo = np.flatnonzero(~(k_val[kw] < k_cap[kw]))
+        if len(redo):
+            _, ps[redo] = self._spring_max({k: v[kw[redo]] for k, v in keys.items()})
         _, pa = self._axial_max(rows_w)
         pt = self._bolt_pick(rows_w)
         for t, i in enumerate(win):
