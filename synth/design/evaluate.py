@@ -794,10 +794,8 @@ def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
             fs, cs = fmt[sel], cls[sel]
             if (fs == fs[0]).all() and (cs == cs[0]).all():  # one bolt (the samples of one design): no dictionary
                 ib, pairs = np.zeros(len(sel), dtype=np.int64), [(fs[0], cs[0])]
-            else:
-                code = {}
-                ib = np.array([code.setdefault(x, len(code)) for x in zip(fs.tolist(), cs.tolist())], dtype=np.int64)
-                pairs = list(code)
+            else:  # the distinct (format, class) pairs in order of first appearance, and each row's
+                ib, pairs = _pair_codes(fs, cs)
             env = apps.env[ua]
             r = bolted_joint.fixation(
                 apps.hubload_nominal_n[ua], f["middle_plane_belt_height_mm"][ua],
@@ -817,6 +815,21 @@ def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
                 if k in r:
                     out[k][rows[sel]] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(ua), len(pairs)))[ia, ib]
     return out
+
+
+def _pair_codes(x, y) -> tuple:
+    """``(codes, pairs)``: the distinct pairs ``(x[i], y[i])`` in order of first appearance, and each row's index
+    among them (a hash factorisation of each column, then of the pairs of codes: no Python tuple per row).
+
+    >>> c, p = _pair_codes(np.array(["M8", "M10", "M8"], dtype=object), np.array(["8.8", "8.8", "8.8"], dtype=object))
+    >>> c.tolist(), p
+    ([0, 1, 0], [('M8', '8.8'), ('M10', '8.8')])
+    """
+    import pandas as pd  # loaded already wherever many rows come (the bulk engine)
+    cx, ux = pd.factorize(x)
+    cy, uy = pd.factorize(y)
+    codes, uniq = pd.factorize(cx.astype(np.int64) * len(uy) + cy)
+    return codes.astype(np.int64), [(ux[int(k) // len(uy)], uy[int(k) % len(uy)]) for k in uniq]
 
 
 def _mu(apps, key: str, interface: str, ua, env) -> np.ndarray:

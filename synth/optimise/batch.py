@@ -287,7 +287,7 @@ class Batch:
         ai, bi = np.nonzero(~done[np.ix_(which, bolts)])
         if len(ai):
             a, b = which[ai], bolts[bi]
-            o = sp.rows("bolt", b)
+            o = sp.rows_read("bolt", b)
             with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
                 fix = evaluate.fixation_values(self.apps, a, o, self.settings)
                 g = evaluate.bolt(self.apps, self.cg, self.ptr[a], o, self.settings, fixation=fix)
@@ -354,7 +354,7 @@ class Batch:
         while len(active) and pos < nb:
             blk = order[pos:pos + block]
             ok_app, _ = self._bolt_app(np.unique(a[active]), blk)
-            feas = ok_app[a[active]][:, blk] & passes(wall[active][:, code[blk]])
+            feas = ok_app[a[active][:, None], blk[None, :]] & passes(wall[active[:, None], code[blk][None, :]])
             j = _first_true(feas)
             hit = j >= 0
             k[active[hit]] = blk[j[hit]]
