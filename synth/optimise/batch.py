@@ -540,6 +540,14 @@ class Batch:
         self.evaluations += len(rr)
         return g
 
+    def _axial_passes_before_physics(self, rr, oo) -> np.ndarray:
+        """Per pair of core rows ``rr`` and axial options ``oo``: whether it passes the axial checks that read
+        nothing of the physics (:func:`~synth.design.evaluate.axial_before_physics`: Table 4's spacer, the belt
+        plane, the cone spring's diameters; most pairs of a scan fail one). A pair that fails one fails at any
+        fidelity, and its smallest margin is at most that check's: a search need not size its cone spring."""
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            return evaluate.axial_before_physics(self.apps, self.cg, rr, self.sp.rows_read("axial", oo)).ok()
+
     def _undecided(self, rr, g: evaluate.Group, ok) -> None:
         """Mark the applications of rows ``rr`` (axial group ``g``, its verdicts ``ok`` after the judge) where the
         screening model may have rejected what the full model passes: a row that passes every constraint the
@@ -596,13 +604,16 @@ class Batch:
             if not len(active):
                 break
             ai, bi = np.nonzero(within)
-            g = self._axial_eval(rep[active[ai]], blk[bi])
-            if slots is not None:
-                self._axial_keep(slots[active[ai]], blk[bi], g)
+            pre = self._axial_passes_before_physics(rep[active[ai]], blk[bi])  # the others fail: no physics
+            ai, bi = ai[pre], bi[pre]
             ok = np.zeros(within.shape, dtype=bool)
-            ok[ai, bi] = g.ok()
-            ok = self._judged(ok, rep[active], blk)
-            self._undecided(rep[active[ai]], g, ok[ai, bi])
+            if len(ai):
+                g = self._axial_eval(rep[active[ai]], blk[bi])
+                if slots is not None:
+                    self._axial_keep(slots[active[ai]], blk[bi], g)
+                ok[ai, bi] = g.ok()
+                ok = self._judged(ok, rep[active], blk)
+                self._undecided(rep[active[ai]], g, ok[ai, bi])
             j = _first_true(ok)
             hit = j >= 0
             out_k[active[hit]] = blk[j[hit]]
