@@ -127,23 +127,6 @@ def _unique_rows(*cols):
     return order[new].astype(np.int64), inv
 
 
-class _ScoreRows:
-    """Per application (an index), the scores along its spring list: given, or computed by ``row(i)`` when first
-    read, then kept."""
-
-    def __init__(self, row):
-        self._row, self._rows = row, {}
-
-    def __getitem__(self, i):
-        i = int(i)
-        if i not in self._rows:
-            self._rows[i] = self._row(i)
-        return self._rows[i]
-
-    def __setitem__(self, i, scores) -> None:
-        self._rows[int(i)] = scores
-
-
 def _segments(starts, counts):
     """Concatenated ``arange(start, start + count)`` of every segment."""
     counts = np.asarray(counts, dtype=np.int64)
@@ -398,7 +381,7 @@ class Batch:
 
     def _spring_app_lists(self, weights):
         """The spring candidates of every application in its own score order (ties by index), shared: ``(lists,
-        list_of_app, scores_of_app, smallest score)``. The scores follow each application's stiffness (the cost is
+        list_of_app, smallest score, positions, (the lists end to end, where each starts))``. The scores follow each application's stiffness (the cost is
         per unit compliance over it); the applications of one mean-diameter range share the range's order when
         their scores keep it (checked per application, every adjacent pair), else get their own stable sort."""
         key = ("spring", tuple(sorted(weights.items())))
@@ -411,8 +394,6 @@ class Batch:
         order_all = np.argsort(base, kind="stable")
         lists: list = []
         list_of = np.full(len(self), -1, dtype=np.int64)
-        # an application's scores along its list, computed when first read (most applications never read theirs)
-        score_of = _ScoreRows(lambda i: wsum(option_scores(sp, "spring", k[i], lists[list_of[i]]), weights))
         smin = np.full(len(self), np.inf)
         for g, lst in enumerate(ranges):
             apps_g = np.flatnonzero(inv == g)
@@ -430,11 +411,13 @@ class Batch:
                 else:  # this stiffness reorders (rounding ties): its own stable sort
                     s_i = wsum(option_scores(sp, "spring", k[i], lst), weights)
                     o = np.argsort(s_i, kind="stable")
-                    list_of[i], score_of[i] = len(lists), s_i[o]
+                    list_of[i] = len(lists)
                     lists.append(lst[o])
-                    smin[i] = score_of[i][0]
+                    smin[i] = s_i[o][0]
         positions = [np.arange(len(x), dtype=float) for x in lists]
-        self._memo[key] = (lists, list_of, score_of, smin, positions)
+        flat = np.concatenate(lists) if lists else np.zeros(0, dtype=np.int64)
+        start = np.concatenate([[0], np.cumsum([len(x) for x in lists])]).astype(np.int64)
+        self._memo[key] = (lists, list_of, smin, positions, (flat, start))
         return self._memo[key]
 
     def _list_order(self, weights, stiffness, cand):
@@ -472,24 +455,37 @@ class Batch:
         """Per key: ``(score, option)`` of the first feasible spring of its application's score-ordered list with
         a score at most ``limit`` (inf, -1: none). The score cut is a position cut in the list (the scores
         grow along it): the kernel's score is the position."""
-        lists, list_of, score_of, _, positions = self._spring_app_lists(weights)
+        lists, list_of, _, positions, (flat, start) = self._spring_app_lists(weights)
         apps_k = keys["app"]
         grp = list_of[apps_k]
         last = np.full(len(apps_k), np.inf)
-        for j in np.flatnonzero(np.isfinite(limit)):
-            last[j] = np.searchsorted(score_of[apps_k[j]], limit[j], side="right") - 1.0
+        # the last position whose score is at most the limit (``searchsorted(scores, limit, "right") - 1`` of the
+        # list's scores, which never decrease along it), bisected for all keys at once: log2(list) scores a key
+        fin = np.flatnonzero(np.isfinite(limit))
+        lo, hi = np.zeros(len(fin), dtype=np.int64), start[grp[fin] + 1] - start[grp[fin]]
+        act = np.flatnonzero(lo < hi)
+        while len(act):
+            j, mid = fin[act], (lo[act] + hi[act]) // 2
+            right = self._spring_scores(weights, apps_k[j], flat[start[grp[j]] + mid]) <= limit[j]
+            lo[act[right]] = mid[right] + 1
+            hi[act[~right]] = mid[~right]
+            act = act[lo[act] < hi[act]]
+        last[fin] = lo - 1.0
         kk = main_spring.keys_of_rows(self.apps, keys)
         r = main_spring.first_feasible(kk, self._options(), lists, key_group=grp, score=positions, score_limit=last,
                              engine=self.engine)
         self.evaluations += int(r.visited.sum())
         out = np.full(len(apps_k), np.inf)
-        for j in np.flatnonzero(r.index >= 0):  # the chosen option's score (numba: at position visited - 1)
-            lst = lists[grp[j]]
-            p = int(r.visited[j]) - 1 if self.engine == "numba" else -1
-            if not (0 <= p < len(lst) and lst[p] == r.index[j]):
-                p = int(np.flatnonzero(lst == r.index[j])[0])
-            out[j] = score_of[apps_k[j]][p]
+        hit = np.flatnonzero(r.index >= 0)
+        out[hit] = self._spring_scores(weights, apps_k[hit], r.index[hit])  # the chosen option's score
         return out, np.where(r.index >= 0, r.index, -1)
+
+    def _spring_scores(self, weights, apps_i, options) -> np.ndarray:
+        """The additive scores of springs ``options`` for applications ``apps_i`` (pairwise): the doubles of the
+        lists' scores (the cost per unit compliance over each application's stiffness, summed as
+        :func:`~synth.optimise.objectives.weighted_sum`)."""
+        return np.asarray(wsum(option_scores(self.sp, "spring", self.apps.spring_stiffness_nm_per_deg[apps_i],
+                                             options), weights), dtype=float)
 
     def _spring_max(self, keys, cap=None):
         """Per key: ``(value, option)`` of the largest smallest margin over its application's range (index
@@ -715,7 +711,7 @@ class Batch:
         ax_sc = wsum(option_scores(sp, "axial"), weights)
         real = sp.tables["axial"]["axial_group_present"]
         min_a = np.where(self.pad[R], ax_sc[real].min() if real.any() else np.inf, ax_sc[~real].min())
-        smin = self._spring_app_lists(weights)[3]
+        smin = self._spring_app_lists(weights)[2]
         a_of = self.A[R]
         p0 = cs + b_sc
         lb = ((p0 + min_a) + smin[a_of]) + t_sc
