@@ -199,7 +199,7 @@ class Batch:
         self.evaluations = len(self.C)
         with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
             self.ig = evaluate.inputs(self.apps, np.arange(n))
-            self.cg = evaluate.core(self.apps, self.A, sp.rows("core", self.C), settings)
+            self.cg = evaluate.core(self.apps, self.A, sp.rows_read("core", self.C), settings)
         self.in_ok = self.ig.ok()
         self.in_min = self.ig.min_margin(objective_only=False)
         self.core_ok = self.cg.ok() & self.in_ok[self.A]
@@ -336,12 +336,20 @@ class Batch:
         pos, block = 0, nb if len(self) <= 16 else 8
         while len(active) and pos < nb:
             blk = order[pos:pos + block]
-            ok_app, _ = self._bolt_app(np.unique(a[active]), blk)
-            feas = ok_app[a[active][:, None], blk[None, :]] & passes(wall[active[:, None], code[blk][None, :]])
+            ua = np.unique(a[active])
+            ok_app, _ = self._bolt_app(ua, blk)
+            # only the rows of an application with a bolt of the block that passes its step-10 checks can hit
+            some = np.zeros(len(self), dtype=bool)
+            some[ua] = ok_app[ua[:, None], blk[None, :]].any(axis=1)
+            cand = np.flatnonzero(some[a[active]])
+            rows_c = active[cand]
+            feas = ok_app[a[rows_c][:, None], blk[None, :]] & passes(wall[rows_c[:, None], code[blk][None, :]])
             j = _first_true(feas)
             hit = j >= 0
-            k[active[hit]] = blk[j[hit]]
-            active = active[~hit]
+            k[rows_c[hit]] = blk[j[hit]]
+            keep = np.ones(len(active), dtype=bool)
+            keep[cand[hit]] = False
+            active = active[keep]
             pos += len(blk)
             block *= 4
         return np.where(k >= 0, score[np.maximum(k, 0)], np.inf), k
