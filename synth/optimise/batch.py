@@ -463,22 +463,10 @@ class Batch:
         """Per key: ``(score, option)`` of the first feasible spring of its application's score-ordered list with
         a score at most ``limit`` (inf, -1: none). The score cut is a position cut in the list (the scores
         grow along it): the kernel's score is the position."""
-        lists, list_of, _, positions, (flat, start) = self._spring_app_lists(weights)
+        lists, list_of, _, positions, _ = self._spring_app_lists(weights)
         apps_k = keys["app"]
         grp = list_of[apps_k]
-        last = np.full(len(apps_k), np.inf)
-        # the last position whose score is at most the limit (``searchsorted(scores, limit, "right") - 1`` of the
-        # list's scores, which never decrease along it), bisected for all keys at once: log2(list) scores a key
-        fin = np.flatnonzero(np.isfinite(limit))
-        lo, hi = np.zeros(len(fin), dtype=np.int64), start[grp[fin] + 1] - start[grp[fin]]
-        act = np.flatnonzero(lo < hi)
-        while len(act):
-            j, mid = fin[act], (lo[act] + hi[act]) // 2
-            right = self._spring_scores(weights, apps_k[j], flat[start[grp[j]] + mid]) <= limit[j]
-            lo[act[right]] = mid[right] + 1
-            hi[act[~right]] = mid[~right]
-            act = act[lo[act] < hi[act]]
-        last[fin] = lo - 1.0
+        last = self._last_within(weights, apps_k, limit)
         kk = main_spring.keys_of_rows(self.apps, keys)
         r = main_spring.first_feasible(kk, self._options(), lists, key_group=grp, score=positions, score_limit=last,
                              engine=self.engine)
@@ -487,6 +475,25 @@ class Batch:
         hit = np.flatnonzero(r.index >= 0)
         out[hit] = self._spring_scores(weights, apps_k[hit], r.index[hit])  # the chosen option's score
         return out, np.where(r.index >= 0, r.index, -1)
+
+    def _last_within(self, weights, apps_i, limit) -> np.ndarray:
+        """Per application of ``apps_i``: the last position of its spring list whose score is at most ``limit``
+        (``searchsorted(scores, limit, "right") - 1`` of the list's scores, which never decrease along it; -1 when
+        none, inf where the limit is not finite), bisected for all at once: log2(list) scores each."""
+        _, list_of, _, _, (flat, start) = self._spring_app_lists(weights)
+        grp = list_of[apps_i]
+        last = np.full(len(apps_i), np.inf)
+        fin = np.flatnonzero(np.isfinite(limit))
+        lo, hi = np.zeros(len(fin), dtype=np.int64), start[grp[fin] + 1] - start[grp[fin]]
+        act = np.flatnonzero(lo < hi)
+        while len(act):
+            j, mid = fin[act], (lo[act] + hi[act]) // 2
+            right = self._spring_scores(weights, apps_i[j], flat[start[grp[j]] + mid]) <= limit[j]
+            lo[act[right]] = mid[right] + 1
+            hi[act[~right]] = mid[~right]
+            act = act[lo[act] < hi[act]]
+        last[fin] = lo - 1.0
+        return last
 
     def _spring_scores(self, weights, apps_i, options) -> np.ndarray:
         """The additive scores of springs ``options`` for applications ``apps_i`` (pairwise): the doubles of the
