@@ -19,6 +19,7 @@ import pytest
 
 from synth.data.generated_applications import generate
 from synth.design import evaluate as E
+from synth.design.constraints import REGISTRY
 from synth.design.applications import Applications
 from synth.design.space import core_rows, space
 from synth.errors import InputError
@@ -79,6 +80,24 @@ def axial_rows():
         rr, oo = rng.choice(pad, 4000), rng.choice(real, 4000)
         out[fidelity] = (apps, cg, rr, sp.rows("axial", oo), st)
     return out
+
+
+def test_checks_before_the_physics_are_the_groups_own(axial_rows):
+    """The axial checks a search evaluates before the physics (evaluate.axial_before_physics, the bulk engine's
+    cut) carry the full group's margins and states bit for bit, read nothing the fidelity changes, and reject
+    rows here (else the cut would be untested)."""
+    apps, cg, rr, o, st = axial_rows["screening"]
+    with np.errstate(all="ignore"):
+        full = E.axial(apps, cg, rr, o, st)
+        pre = E.axial_before_physics(apps, cg, rr, o)
+    assert {"endcap_spacer_capacity", "belt_plane", "cone_outer_on_pad"} <= set(pre.margins)
+    assert set(pre.margins) < set(full.margins)
+    for k, m in pre.margins.items():
+        assert np.array_equal(m, full.margins[k]), k
+        assert np.array_equal(pre.state[k], full.state[k]), k
+    assert set(pre.margins) <= set(E._fidelity_free()) | {c for c in pre.margins if REGISTRY[c].advisory}
+    ok = pre.ok()
+    assert not ok.all() and not (full.ok() & ~ok).any()  # a row the cut rejects the group rejects
 
 
 @pytest.mark.parametrize("fidelity", ["screening", "full"])

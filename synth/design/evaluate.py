@@ -495,27 +495,9 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     """
     from synth.kernels import axial as axial_engine  # the cone spring and the wear on the caller's engine
     p = parts.arrays()
-    a = cg.values["app"][r]
-    f = _Fields(apps, a)
+    v, a, f, cv, real, es_h, de, di = _axial_base(apps, cg, r, o)
     n = len(a)
-    cv = {k: cg.values[k][r] for k in AXIAL_CORE_VALUES}
-    real = np.asarray(o["axial_group_present"], dtype=bool)
-    std = apps.layout_standard[a]
-    es_h = np.asarray(o["endcap_spacer_axial_height_mm"], dtype=float)
     pad = cv["axial_group_present"] > 0
-    v = {"app": a, "layout_standard": std, "layout_reverse": ~std, "axial_group_present": real.astype(float),
-         "axial_group_mismatch": (real != pad).astype(float),
-         "middle_plane_belt_height_mm": f["middle_plane_belt_height_mm"],
-         "belt_plane_limit_mm": np.where(std, packaging.max_belt_plane_height_mm(f["max_pivot_height_mm"],
-                                                                          cv["bearing_width_mm"], es_h),
-                                         packaging.min_belt_plane_height_mm(cv["bearing_width_mm"], es_h)),
-         "endcap_spacer_max_axial_damping_nm": np.asarray(o["endcap_spacer_max_axial_damping_nm"], dtype=float),
-         "axial_damping_nm": cv["axial_damping_nm"],
-         "cone_spring_min_internal_diameter_mm": cv["cone_spring_min_internal_diameter_mm"],
-         "cone_spring_table8_max_mm": cv["cone_spring_table8_max_mm"],
-         "damper_pad_outer_diameter_mm": cv["damper_pad_outer_diameter_mm"]}
-    de = cv["cone_spring_max_external_diameter_mm"] - np.asarray(o["cone_spring_de_reduction_mm"], dtype=float)
-    di = cv["cone_spring_min_internal_diameter_mm"] + np.asarray(o["cone_spring_di_increase_mm"], dtype=float)
     zeta = np.asarray(o["cone_spring_aspect_ratio"], dtype=float)
     phi = np.asarray(o["cone_spring_deflection_ratio"], dtype=float)
     # a made cone spring is there whatever the sample's damping split says (its force then decides the band)
@@ -528,9 +510,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
     every, sized = _rows_of(i, n)  # every row sized (the usual block of options): whole columns
     for k in keys:
         v[k] = np.empty(n) if every else np.full(n, np.nan)
-    v["cone_spring_max_external_diameter_mm"] = np.where(real, cv["cone_spring_max_external_diameter_mm"], np.nan)
-    v["cone_spring_external_diameter_mm"] = np.where(real, de, np.nan)
-    v["cone_spring_internal_diameter_mm"] = np.where(real, di, np.nan)
+    v.update(_cone_diameters(cv, real, de, di))
     tol = f["damping_tolerance_nm"]
     mu_pl = apps.mu_plastic[a]
     gap = stackup.gap_tolerance_mm("worst_case")
@@ -576,6 +556,52 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
         g.values["_history_rows"] = w
         g.values["_history"] = history
     return g
+
+
+def _axial_base(apps, cg: Group, r, o: dict) -> tuple:
+    """What group ``axial`` reads and derives before its physics (the cone spring, the wear): ``(values, a, fields,
+    core values, real, spacer height, De, Di)``: Table 4's spacer, the belt plane, the cone spring's diameters."""
+    a = cg.values["app"][r]
+    f = _Fields(apps, a)
+    cv = {k: cg.values[k][r] for k in AXIAL_CORE_VALUES}
+    real = np.asarray(o["axial_group_present"], dtype=bool)
+    std = apps.layout_standard[a]
+    es_h = np.asarray(o["endcap_spacer_axial_height_mm"], dtype=float)
+    pad = cv["axial_group_present"] > 0
+    v = {"app": a, "layout_standard": std, "layout_reverse": ~std, "axial_group_present": real.astype(float),
+         "axial_group_mismatch": (real != pad).astype(float),
+         "middle_plane_belt_height_mm": f["middle_plane_belt_height_mm"],
+         "belt_plane_limit_mm": np.where(std, packaging.max_belt_plane_height_mm(f["max_pivot_height_mm"],
+                                                                          cv["bearing_width_mm"], es_h),
+                                         packaging.min_belt_plane_height_mm(cv["bearing_width_mm"], es_h)),
+         "endcap_spacer_max_axial_damping_nm": np.asarray(o["endcap_spacer_max_axial_damping_nm"], dtype=float),
+         "axial_damping_nm": cv["axial_damping_nm"],
+         "cone_spring_min_internal_diameter_mm": cv["cone_spring_min_internal_diameter_mm"],
+         "cone_spring_table8_max_mm": cv["cone_spring_table8_max_mm"],
+         "damper_pad_outer_diameter_mm": cv["damper_pad_outer_diameter_mm"]}
+    de = cv["cone_spring_max_external_diameter_mm"] - np.asarray(o["cone_spring_de_reduction_mm"], dtype=float)
+    di = cv["cone_spring_min_internal_diameter_mm"] + np.asarray(o["cone_spring_di_increase_mm"], dtype=float)
+    return v, a, f, cv, real, es_h, de, di
+
+
+def _cone_diameters(cv: dict, real, de, di) -> dict:
+    """The cone spring's largest, outer and inner diameters of the axial rows (NaN without an axial group)."""
+    return {"cone_spring_max_external_diameter_mm": np.where(real, cv["cone_spring_max_external_diameter_mm"], np.nan),
+            "cone_spring_external_diameter_mm": np.where(real, de, np.nan),
+            "cone_spring_internal_diameter_mm": np.where(real, di, np.nan)}
+
+
+def axial_before_physics(apps, cg: Group, r, o: dict) -> Group:
+    """The checks of group ``axial`` that read only what it derives before its physics (:func:`_axial_base`: no
+    cone spring, no wear; so none the fidelity changes), at their cost: the same margins as :func:`axial` gives
+    them (a search discards the rows that fail one before the physics). A check added with ``register`` that reads
+    a value of the physics is left out (the registry as it is now)."""
+    v, a, _, cv, real, _, de, di = _axial_base(apps, cg, r, o)
+    v.update(_cone_diameters(cv, real, de, di))
+    checks = tuple(c for c in by_group("axial") if c.physics is None
+                   and all(k in v or k in _CONSTANT_LIMITS for k in (c.value, c.limit, c.scale, c.applies,
+                                                                     c.objective_unless) if k))
+    return finish("axial", v, apps, a, checks=checks)
 
 
 def _rows_of(idx: np.ndarray, n: int):
@@ -794,10 +820,8 @@ def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
             fs, cs = fmt[sel], cls[sel]
             if (fs == fs[0]).all() and (cs == cs[0]).all():  # one bolt (the samples of one design): no dictionary
                 ib, pairs = np.zeros(len(sel), dtype=np.int64), [(fs[0], cs[0])]
-            else:
-                code = {}
-                ib = np.array([code.setdefault(x, len(code)) for x in zip(fs.tolist(), cs.tolist())], dtype=np.int64)
-                pairs = list(code)
+            else:  # the distinct (format, class) pairs in order of first appearance, and each row's
+                ib, pairs = _pair_codes(fs, cs)
             env = apps.env[ua]
             r = bolted_joint.fixation(
                 apps.hubload_nominal_n[ua], f["middle_plane_belt_height_mm"][ua],
@@ -817,6 +841,21 @@ def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
                 if k in r:
                     out[k][rows[sel]] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(ua), len(pairs)))[ia, ib]
     return out
+
+
+def _pair_codes(x, y) -> tuple:
+    """``(codes, pairs)``: the distinct pairs ``(x[i], y[i])`` in order of first appearance, and each row's index
+    among them (a hash factorisation of each column, then of the pairs of codes: no Python tuple per row).
+
+    >>> c, p = _pair_codes(np.array(["M8", "M10", "M8"], dtype=object), np.array(["8.8", "8.8", "8.8"], dtype=object))
+    >>> c.tolist(), p
+    ([0, 1, 0], [('M8', '8.8'), ('M10', '8.8')])
+    """
+    import pandas as pd  # loaded already wherever many rows come (the bulk engine)
+    cx, ux = pd.factorize(x)
+    cy, uy = pd.factorize(y)
+    codes, uniq = pd.factorize(cx.astype(np.int64) * len(uy) + cy)
+    return codes.astype(np.int64), [(ux[int(k) // len(uy)], uy[int(k) % len(uy)]) for k in uniq]
 
 
 def _mu(apps, key: str, interface: str, ua, env) -> np.ndarray:

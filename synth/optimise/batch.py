@@ -127,23 +127,6 @@ def _unique_rows(*cols):
     return order[new].astype(np.int64), inv
 
 
-class _ScoreRows:
-    """Per application (an index), the scores along its spring list: given, or computed by ``row(i)`` when first
-    read, then kept."""
-
-    def __init__(self, row):
-        self._row, self._rows = row, {}
-
-    def __getitem__(self, i):
-        i = int(i)
-        if i not in self._rows:
-            self._rows[i] = self._row(i)
-        return self._rows[i]
-
-    def __setitem__(self, i, scores) -> None:
-        self._rows[int(i)] = scores
-
-
 def _segments(starts, counts):
     """Concatenated ``arange(start, start + count)`` of every segment."""
     counts = np.asarray(counts, dtype=np.int64)
@@ -216,7 +199,7 @@ class Batch:
         self.evaluations = len(self.C)
         with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
             self.ig = evaluate.inputs(self.apps, np.arange(n))
-            self.cg = evaluate.core(self.apps, self.A, sp.rows("core", self.C), settings)
+            self.cg = evaluate.core(self.apps, self.A, sp.rows_read("core", self.C), settings)
         self.in_ok = self.ig.ok()
         self.in_min = self.ig.min_margin(objective_only=False)
         self.core_ok = self.cg.ok() & self.in_ok[self.A]
@@ -227,6 +210,9 @@ class Batch:
         self._memo: dict = {}
         self._spring_opts = None
         self._axial_undecided = np.zeros(n, dtype=bool)
+        self._ax_slot: dict = {}  # the search model's axial smallest margins, kept (:meth:`_axial_kept`)
+        self._ax_mm = np.zeros((0, sp.n("axial")))
+        self._ax_known = np.zeros((0, sp.n("axial")), dtype=bool)
         self._screened = None  # the screening settings while optimum() searches with the full model alone
 
     def __len__(self) -> int:
@@ -284,7 +270,7 @@ class Batch:
         ai, bi = np.nonzero(~done[np.ix_(which, bolts)])
         if len(ai):
             a, b = which[ai], bolts[bi]
-            o = sp.rows("bolt", b)
+            o = sp.rows_read("bolt", b)
             with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
                 fix = evaluate.fixation_values(self.apps, a, o, self.settings)
                 g = evaluate.bolt(self.apps, self.cg, self.ptr[a], o, self.settings, fixation=fix)
@@ -350,12 +336,20 @@ class Batch:
         pos, block = 0, nb if len(self) <= 16 else 8
         while len(active) and pos < nb:
             blk = order[pos:pos + block]
-            ok_app, _ = self._bolt_app(np.unique(a[active]), blk)
-            feas = ok_app[a[active]][:, blk] & passes(wall[active][:, code[blk]])
+            ua = np.unique(a[active])
+            ok_app, _ = self._bolt_app(ua, blk)
+            # only the rows of an application with a bolt of the block that passes its step-10 checks can hit
+            some = np.zeros(len(self), dtype=bool)
+            some[ua] = ok_app[ua[:, None], blk[None, :]].any(axis=1)
+            cand = np.flatnonzero(some[a[active]])
+            rows_c = active[cand]
+            feas = ok_app[a[rows_c][:, None], blk[None, :]] & passes(wall[rows_c[:, None], code[blk][None, :]])
             j = _first_true(feas)
             hit = j >= 0
-            k[active[hit]] = blk[j[hit]]
-            active = active[~hit]
+            k[rows_c[hit]] = blk[j[hit]]
+            keep = np.ones(len(active), dtype=bool)
+            keep[cand[hit]] = False
+            active = active[keep]
             pos += len(blk)
             block *= 4
         return np.where(k >= 0, score[np.maximum(k, 0)], np.inf), k
@@ -395,7 +389,7 @@ class Batch:
 
     def _spring_app_lists(self, weights):
         """The spring candidates of every application in its own score order (ties by index), shared: ``(lists,
-        list_of_app, scores_of_app, smallest score)``. The scores follow each application's stiffness (the cost is
+        list_of_app, smallest score, positions, (the lists end to end, where each starts))``. The scores follow each application's stiffness (the cost is
         per unit compliance over it); the applications of one mean-diameter range share the range's order when
         their scores keep it (checked per application, every adjacent pair), else get their own stable sort."""
         key = ("spring", tuple(sorted(weights.items())))
@@ -408,8 +402,6 @@ class Batch:
         order_all = np.argsort(base, kind="stable")
         lists: list = []
         list_of = np.full(len(self), -1, dtype=np.int64)
-        # an application's scores along its list, computed when first read (most applications never read theirs)
-        score_of = _ScoreRows(lambda i: wsum(option_scores(sp, "spring", k[i], lists[list_of[i]]), weights))
         smin = np.full(len(self), np.inf)
         for g, lst in enumerate(ranges):
             apps_g = np.flatnonzero(inv == g)
@@ -427,11 +419,13 @@ class Batch:
                 else:  # this stiffness reorders (rounding ties): its own stable sort
                     s_i = wsum(option_scores(sp, "spring", k[i], lst), weights)
                     o = np.argsort(s_i, kind="stable")
-                    list_of[i], score_of[i] = len(lists), s_i[o]
+                    list_of[i] = len(lists)
                     lists.append(lst[o])
-                    smin[i] = score_of[i][0]
+                    smin[i] = s_i[o][0]
         positions = [np.arange(len(x), dtype=float) for x in lists]
-        self._memo[key] = (lists, list_of, score_of, smin, positions)
+        flat = np.concatenate(lists) if lists else np.zeros(0, dtype=np.int64)
+        start = np.concatenate([[0], np.cumsum([len(x) for x in lists])]).astype(np.int64)
+        self._memo[key] = (lists, list_of, smin, positions, (flat, start))
         return self._memo[key]
 
     def _list_order(self, weights, stiffness, cand):
@@ -469,24 +463,44 @@ class Batch:
         """Per key: ``(score, option)`` of the first feasible spring of its application's score-ordered list with
         a score at most ``limit`` (inf, -1: none). The score cut is a position cut in the list (the scores
         grow along it): the kernel's score is the position."""
-        lists, list_of, score_of, _, positions = self._spring_app_lists(weights)
+        lists, list_of, _, positions, _ = self._spring_app_lists(weights)
         apps_k = keys["app"]
         grp = list_of[apps_k]
-        last = np.full(len(apps_k), np.inf)
-        for j in np.flatnonzero(np.isfinite(limit)):
-            last[j] = np.searchsorted(score_of[apps_k[j]], limit[j], side="right") - 1.0
+        last = self._last_within(weights, apps_k, limit)
         kk = main_spring.keys_of_rows(self.apps, keys)
         r = main_spring.first_feasible(kk, self._options(), lists, key_group=grp, score=positions, score_limit=last,
                              engine=self.engine)
         self.evaluations += int(r.visited.sum())
         out = np.full(len(apps_k), np.inf)
-        for j in np.flatnonzero(r.index >= 0):  # the chosen option's score (numba: at position visited - 1)
-            lst = lists[grp[j]]
-            p = int(r.visited[j]) - 1 if self.engine == "numba" else -1
-            if not (0 <= p < len(lst) and lst[p] == r.index[j]):
-                p = int(np.flatnonzero(lst == r.index[j])[0])
-            out[j] = score_of[apps_k[j]][p]
+        hit = np.flatnonzero(r.index >= 0)
+        out[hit] = self._spring_scores(weights, apps_k[hit], r.index[hit])  # the chosen option's score
         return out, np.where(r.index >= 0, r.index, -1)
+
+    def _last_within(self, weights, apps_i, limit) -> np.ndarray:
+        """Per application of ``apps_i``: the last position of its spring list whose score is at most ``limit``
+        (``searchsorted(scores, limit, "right") - 1`` of the list's scores, which never decrease along it; -1 when
+        none, inf where the limit is not finite), bisected for all at once: log2(list) scores each."""
+        _, list_of, _, _, (flat, start) = self._spring_app_lists(weights)
+        grp = list_of[apps_i]
+        last = np.full(len(apps_i), np.inf)
+        fin = np.flatnonzero(np.isfinite(limit))
+        lo, hi = np.zeros(len(fin), dtype=np.int64), start[grp[fin] + 1] - start[grp[fin]]
+        act = np.flatnonzero(lo < hi)
+        while len(act):
+            j, mid = fin[act], (lo[act] + hi[act]) // 2
+            right = self._spring_scores(weights, apps_i[j], flat[start[grp[j]] + mid]) <= limit[j]
+            lo[act[right]] = mid[right] + 1
+            hi[act[~right]] = mid[~right]
+            act = act[lo[act] < hi[act]]
+        last[fin] = lo - 1.0
+        return last
+
+    def _spring_scores(self, weights, apps_i, options) -> np.ndarray:
+        """The additive scores of springs ``options`` for applications ``apps_i`` (pairwise): the doubles of the
+        lists' scores (the cost per unit compliance over each application's stiffness, summed as
+        :func:`~synth.optimise.objectives.weighted_sum`)."""
+        return np.asarray(wsum(option_scores(self.sp, "spring", self.apps.spring_stiffness_nm_per_deg[apps_i],
+                                             options), weights), dtype=float)
 
     def _spring_max(self, keys, cap=None):
         """Per key: ``(value, option)`` of the largest smallest margin over its application's range (index
@@ -504,6 +518,28 @@ class Batch:
         first, inv = _unique_rows(self.A[rows], *(self.cg.values[k][rows] for k in evaluate.AXIAL_CORE_VALUES))
         return rows[first], inv
 
+    def _axial_slots(self, rep) -> np.ndarray:
+        """Per representative core row (:meth:`_axial_rows`), its row in the kept axial margins: one per distinct
+        application and value of what the axial group reads of the core, whichever call met it first."""
+        vals = np.stack([self.A[rep], *(self.cg.values[k][rep] for k in evaluate.AXIAL_CORE_VALUES)], axis=1)
+        vals = np.where(np.isnan(vals), np.finfo(float).max, vals) + 0.0  # as _unique_rows: NaN equal, -0.0 = 0.0
+        slot = self._ax_slot
+        out = np.array([slot.setdefault(k, len(slot)) for k in
+                        np.ascontiguousarray(vals).view(np.dtype((np.void, 8 * vals.shape[1]))).ravel().tolist()],
+                       dtype=np.int64)
+        if len(slot) > len(self._ax_mm):  # grow (doubling)
+            m = max(len(slot), 2 * len(self._ax_mm))
+            self._ax_mm = np.concatenate([self._ax_mm, np.zeros((m - len(self._ax_mm), self._ax_mm.shape[1]))])
+            self._ax_known = np.concatenate([self._ax_known, np.zeros((m - len(self._ax_known),
+                                                                       self._ax_known.shape[1]), dtype=bool)])
+        return out
+
+    def _axial_keep(self, slots, cols, g: evaluate.Group) -> None:
+        """Keep the smallest margins of an axial group of the search model (slots x options, pairwise)."""
+        if self._screened is None:
+            self._ax_mm[slots, cols] = g.min_margin(objective_only=False)
+            self._ax_known[slots, cols] = True
+
     def _axial_eval(self, rr, oo, settings: evaluate.Settings | None = None):
         """The axial group of core rows ``rr`` and options ``oo`` (at ``settings``, default the search's; in the
         full model's search of :meth:`optimum`, :func:`~synth.design.evaluate.axial_full`)."""
@@ -514,6 +550,14 @@ class Batch:
                 g = evaluate.axial(self.apps, self.cg, rr, self.sp.rows_read("axial", oo), settings or self.settings)
         self.evaluations += len(rr)
         return g
+
+    def _axial_passes_before_physics(self, rr, oo) -> np.ndarray:
+        """Per pair of core rows ``rr`` and axial options ``oo``: whether it passes the axial checks that read
+        nothing of the physics (:func:`~synth.design.evaluate.axial_before_physics`: Table 4's spacer, the belt
+        plane, the cone spring's diameters; most pairs of a scan fail one). A pair that fails one fails at any
+        fidelity, and its smallest margin is at most that check's: a search need not size its cone spring."""
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            return evaluate.axial_before_physics(self.apps, self.cg, rr, self.sp.rows_read("axial", oo)).ok()
 
     def _undecided(self, rr, g: evaluate.Group, ok) -> None:
         """Mark the applications of rows ``rr`` (axial group ``g``, its verdicts ``ok`` after the judge) where the
@@ -546,6 +590,7 @@ class Batch:
         t = sp.tables["axial"]
         score = wsum(option_scores(sp, "axial"), weights)
         rep, inv = self._axial_rows(rows)
+        slots = self._axial_slots(rep) if self._screened is None else None
         lim = np.full(len(rep), -np.inf)
         np.maximum.at(lim, inv, limit)
         out_v, out_k = np.full(len(rep), np.inf), np.full(len(rep), -1, dtype=np.int64)
@@ -570,11 +615,16 @@ class Batch:
             if not len(active):
                 break
             ai, bi = np.nonzero(within)
-            g = self._axial_eval(rep[active[ai]], blk[bi])
+            pre = self._axial_passes_before_physics(rep[active[ai]], blk[bi])  # the others fail: no physics
+            ai, bi = ai[pre], bi[pre]
             ok = np.zeros(within.shape, dtype=bool)
-            ok[ai, bi] = g.ok()
-            ok = self._judged(ok, rep[active], blk)
-            self._undecided(rep[active[ai]], g, ok[ai, bi])
+            if len(ai):
+                g = self._axial_eval(rep[active[ai]], blk[bi])
+                if slots is not None:
+                    self._axial_keep(slots[active[ai]], blk[bi], g)
+                ok[ai, bi] = g.ok()
+                ok = self._judged(ok, rep[active], blk)
+                self._undecided(rep[active[ai]], g, ok[ai, bi])
             j = _first_true(ok)
             hit = j >= 0
             out_k[active[hit]] = blk[j[hit]]
@@ -608,10 +658,18 @@ class Batch:
         active = np.flatnonzero(pad)
         best_pos = np.full(len(rep), len(real), dtype=np.int64)
         pos, (block, growth) = 0, self._axial_blocks()
+        slots = self._axial_slots(rep)
         while len(active) and pos < len(real):
             blk = real[pos:pos + block]
-            g = self._axial_eval(np.repeat(rep[active], len(blk)), np.tile(blk, len(active)))
-            m = g.min_margin(objective_only=False).reshape(len(active), len(blk))
+            # the pairs the optimum's scan (or an earlier call) evaluated are read back; the others evaluated, kept
+            sl = slots[active]
+            known = self._ax_known[sl[:, None], blk[None, :]]
+            m = self._ax_mm[sl[:, None], blk[None, :]]
+            ai, bi = np.nonzero(~known)
+            if len(ai):
+                g = self._axial_eval(rep[active[ai]], blk[bi])
+                m[ai, bi] = g.min_margin(objective_only=False)
+                self._axial_keep(sl[ai], blk[bi], g)
             j = np.argmax(m, axis=1)
             v = m[np.arange(len(active)), j]
             better = v > out_v[active]  # strictly: an earlier option keeps a tie (argmax's first index)
@@ -668,7 +726,7 @@ class Batch:
         ax_sc = wsum(option_scores(sp, "axial"), weights)
         real = sp.tables["axial"]["axial_group_present"]
         min_a = np.where(self.pad[R], ax_sc[real].min() if real.any() else np.inf, ax_sc[~real].min())
-        smin = self._spring_app_lists(weights)[3]
+        smin = self._spring_app_lists(weights)[2]
         a_of = self.A[R]
         p0 = cs + b_sc
         lb = ((p0 + min_a) + smin[a_of]) + t_sc
@@ -757,6 +815,7 @@ class Batch:
         keys, kinv = self._spring_keys(R)
         k_val = np.full(len(keys["app"]), np.nan)
         k_cap = np.full(len(keys["app"]), -np.inf)
+        k_pk = np.zeros(len(keys["app"]), dtype=np.int64)
         val = np.full(len(R), -np.inf)
         best_v = np.full(n, -np.inf)
         best = np.full(n, -1, dtype=np.int64)
@@ -783,7 +842,7 @@ class Batch:
             kt = kt[np.isnan(k_val[kt]) | (k_cap[kt] < need[kt])]
             if len(kt):  # the springs of these keys, exact up to the largest bound of their rows
                 sub = {k: v[kt] for k, v in keys.items()}
-                v, _ = self._spring_max(sub, need[kt])
+                v, k_pk[kt] = self._spring_max(sub, need[kt])
                 k_val[kt], k_cap[kt] = np.minimum(v, need[kt]), need[kt]
             v2 = np.minimum(v1[take], k_val[kt_all])
             go = could_win_value(v2, take)
@@ -801,8 +860,12 @@ class Batch:
             return out
         jw = best[win]
         rows_w = R[jw]
-        sk = {k: v[kinv[jw]] for k, v in keys.items()}
-        _, ps = self._spring_max(sk)
+        # a key whose scan ended below its cap was scanned whole: its option is the argmax already
+        kw = kinv[jw]
+        ps = k_pk[kw]
+        redo = np.flatnonzero(~(k_val[kw] < k_cap[kw]))
+        if len(redo):
+            _, ps[redo] = self._spring_max({k: v[kw[redo]] for k, v in keys.items()})
         _, pa = self._axial_max(rows_w)
         pt = self._bolt_pick(rows_w)
         for t, i in enumerate(win):
