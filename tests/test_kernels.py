@@ -421,3 +421,29 @@ def test_list_order_is_numpys_weighted_sums_bit_for_bit(weights):
     for i in np.flatnonzero(of_f >= 0):  # each application's scores along its list: growing, the first smin
         np.testing.assert_array_equal(sc_f[i], sc_r[i])
         assert sc_f[i][0] == smin_f[i] and (np.diff(sc_f[i]) >= 0).all()
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 2**32 - 1), limit=st.integers(1, 40), conditions=st.booleans())
+def test_window_pairs_are_numpys_nonzero_of_the_mask_in_its_order(seed, limit, conditions):
+    """The compiled candidate enumeration is ``np.nonzero`` of the dense window-and-conditions mask (groups in the
+    given order, options ascending), whatever the block size; NaN bounds admit nothing."""
+    rng = np.random.default_rng(seed)
+    n_g, n_o = int(rng.integers(0, 12)), int(rng.integers(1, 30))
+    mbd = rng.choice([20.0, 30.0, 40.0, 50.0, np.nan], n_o)
+    lo, hi = rng.choice([15.0, 25.0, 35.0, np.nan], n_g), rng.choice([25.0, 45.0, 60.0, np.nan, -np.inf], n_g)
+    groups = rng.permutation(n_g)[: int(rng.integers(0, n_g + 1))]
+    mask = (mbd[None, :] >= lo[groups, None]) & (mbd[None, :] <= hi[groups, None])
+    kw = {}
+    if conditions:
+        ex, nd = rng.random((3, n_o)) < 0.3, rng.random((4, n_o)) < 0.7
+        er, nr = rng.integers(-1, 3, n_g), rng.integers(-1, 4, n_g)
+        mask &= ~np.where(er[groups, None] >= 0, ex[er[groups]], False)
+        mask &= np.where(nr[groups, None] >= 0, nd[nr[groups]], True)
+        kw = dict(exclude=ex, exclude_row=er, need=nd, need_row=nr)
+    gi, want_o = np.nonzero(mask)
+    got = list(main_spring.window_pairs(groups, lo, hi, mbd, limit=limit, **kw))
+    got_g = np.concatenate([g for g, _ in got]) if got else np.zeros(0, np.int64)
+    got_o = np.concatenate([o for _, o in got]) if got else np.zeros(0, np.int64)
+    assert got_g.tolist() == groups[gi].tolist() and got_o.tolist() == want_o.tolist()
+    assert all(len(g) < limit + n_o and len(g) > 0 for g, _ in got)

@@ -29,7 +29,10 @@ Kernels (loops over keys x options, no allocation per pair):
   increasing installation torque, so one yield margin below the smallest
   best value settles an option for the rest of them;
 * :func:`list_order` -- per application, whether a spring list keeps its score order at its stiffness, and its
-  first score (the bulk engine's score-ordered lists, :meth:`synth.optimise.batch.Batch._spring_app_lists`).
+  first score (the bulk engine's score-ordered lists, :meth:`synth.optimise.batch.Batch._spring_app_lists`);
+* :func:`window_pairs` -- the (group, option) pairs of many groups whose option lies in the group's housing window
+  and passes a per-group row of two boolean tables, flat (``numpy.nonzero``'s order), a block at a time (the
+  platform producer's main-spring rounds, :func:`synth.platform.producer._spring`).
 """
 
 from __future__ import annotations
@@ -410,3 +413,29 @@ def list_order(pre, unit_cost, w_cost, post, stiffness, cand, first, good):
                     break
             prev = x
         good[a] = ok
+
+
+@njit(cache=True, error_model="numpy")
+def window_pairs(groups, lo, hi, mbd, excl, excl_row, need, need_row, start, limit, out_g, out_o):
+    """The (group, option) pairs of ``groups[start:]`` whose option's mean body diameter lies in the group's window
+    (``lo[g] <= mbd[o] <= hi[g]``, a NaN bound admits nothing), not excluded (``excl[excl_row[g], o]``, row ``-1``:
+    none) and admitted (``need[need_row[g], o]``, row ``-1``: every option); groups in the given order, options
+    ascending (``numpy.nonzero`` of the mask). Whole groups only: stops after the group at which ``limit`` pairs
+    are reached (``out_*`` hold at least ``limit + len(mbd)``). Returns the pairs written and the next ``start``."""
+    n = 0
+    n_opt = len(mbd)
+    for t in range(start, len(groups)):
+        g = groups[t]
+        a = lo[g]
+        b = hi[g]
+        er = excl_row[g]
+        nr = need_row[g]
+        for o in range(n_opt):
+            x = mbd[o]
+            if x >= a and x <= b and (er < 0 or not excl[er, o]) and (nr < 0 or need[nr, o]):
+                out_g[n] = g
+                out_o[n] = o
+                n += 1
+        if n >= limit:
+            return n, t + 1
+    return n, len(groups)
