@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from formulations.platform import PlatformInstance
-from synth.platform.compile import app_option_cost
+from synth.platform.compile import flat_groups
 from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility
 
 __all__ = ["serve", "objective_value", "assign", "option_groups", "full_platform", "platform_from_y", "platform_parts_used"]
@@ -96,24 +96,6 @@ def _in(platform: dict, f: str, codes: np.ndarray) -> np.ndarray:
     return (codes < 0) | np.isin(codes, allowed)
 
 
-def _flat_groups(pf: PortfolioFeasibility, s: str):
-    """Every application's option groups of subsystem ``s`` one after the other: ``(idx, margin, cost, group,
-    gptr)``, the options' indices, margins and unit costs (each application's own), the group of each (numbered over
-    the whole portfolio) and where each application's groups start (``gptr[i]:gptr[i + 1]``)."""
-    feas = [x for a in pf.apps for x in a.feasible[s]]
-    gptr = np.r_[0, np.cumsum([len(a.feasible[s]) for a in pf.apps])].astype(np.int64)
-    if not feas:
-        z = np.zeros(0, np.int64)
-        return z, np.zeros(0), np.zeros(0), z, gptr
-    lens = [len(x) for x in feas]
-    idx = np.concatenate([np.asarray(x, np.int64).reshape(-1) for x in feas]).astype(np.int64)
-    mar = np.concatenate([np.asarray(x, float).reshape(-1) for x in (m for a in pf.apps for m in a.option_margin[s])])
-    grp = np.repeat(np.arange(len(feas)), lens)
-    optr = np.r_[0, np.cumsum(lens)][gptr]
-    cost = np.concatenate([app_option_cost(pf, a, s)[idx[optr[i]:optr[i + 1]]] for i, a in enumerate(pf.apps)])
-    return idx, mar.astype(float), cost.astype(float), grp, gptr
-
-
 def _cheapest(idx: np.ndarray, mar: np.ndarray, cost: np.ndarray, grp: np.ndarray, n_groups: int,
               usable: np.ndarray, tau: float):
     """Per group of options (option ``idx[i]`` of group ``grp[i]``, margin ``mar[i]``, unit cost ``cost[i]``) the
@@ -139,9 +121,9 @@ def _cheapest(idx: np.ndarray, mar: np.ndarray, cost: np.ndarray, grp: np.ndarra
 
 
 def option_groups(pf: PortfolioFeasibility) -> dict:
-    """``{subsystem: _flat_groups(pf, subsystem)}``: what :func:`assign` reads of ``pf``'s options whatever the
+    """``{subsystem: flat_groups(pf, subsystem)}``: what :func:`assign` reads of ``pf``'s options whatever the
     platform (several assignments of one portfolio compute it once)."""
-    return {s: _flat_groups(pf, s) for s in SUBSYSTEMS}
+    return {s: flat_groups(pf, s) for s in SUBSYSTEMS}
 
 
 def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None = None,

@@ -32,7 +32,7 @@ from formulations.platform import PlatformInstance
 from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility, \
     default_weights
 
-__all__ = ["Work", "Precompiled", "precompile", "compile_portfolio", "app_option_cost"]
+__all__ = ["Work", "Precompiled", "precompile", "compile_portfolio", "app_option_cost", "flat_groups"]
 
 
 def app_option_cost(pf: PortfolioFeasibility, app, s: str) -> np.ndarray:
@@ -140,6 +140,24 @@ def _why_unservable(a, dead_by: dict, n_cores: int, floor: bool) -> str:
     return "no core has a feasible option of every subsystem; missing: " + ", ".join(parts)
 
 
+def flat_groups(pf: PortfolioFeasibility, s: str):
+    """Every application's option groups of subsystem ``s`` one after the other: ``(idx, margin, cost, group,
+    gptr)``, the options' indices, margins and unit costs (each application's own), the group of each (numbered over
+    the whole portfolio) and where each application's groups start (``gptr[i]:gptr[i + 1]``)."""
+    feas = [x for a in pf.apps for x in a.feasible[s]]
+    gptr = np.r_[0, np.cumsum([len(a.feasible[s]) for a in pf.apps])].astype(np.int64)
+    if not feas:
+        z = np.zeros(0, np.int64)
+        return z, np.zeros(0), np.zeros(0), z, gptr
+    lens = [len(x) for x in feas]
+    idx = np.concatenate([np.asarray(x, np.int64).reshape(-1) for x in feas]).astype(np.int64)
+    mar = np.concatenate([np.asarray(x, float).reshape(-1) for x in (m for a in pf.apps for m in a.option_margin[s])])
+    grp = np.repeat(np.arange(len(feas)), lens)
+    optr = np.r_[0, np.cumsum(lens)][gptr]
+    cost = np.concatenate([app_option_cost(pf, a, s)[idx[optr[i]:optr[i + 1]]] for i, a in enumerate(pf.apps)])
+    return idx, mar.astype(float), cost.astype(float), grp, gptr
+
+
 @dataclass
 class Precompiled:
     """What :func:`compile_portfolio` computes whatever the margin floor and objective: the options' patterns and,
@@ -156,7 +174,7 @@ class Precompiled:
     option_pattern: dict
     options: dict                # subsystem -> (patterns, costs x volume, margins, group, n_groups, app of each group)
     cores: dict                  # app, local, margin, cost (x volume), codes (global parts), group (subsystem -> group)
-    assign_groups: dict | None = None   # synth.platform.assign.option_groups(pf), filled by the first assignment
+    assign_groups: dict | None = None   # synth.platform.assign.option_groups(pf)
 
 
 def _by_key_then_cost(key: np.ndarray, cost: np.ndarray) -> np.ndarray:
@@ -194,22 +212,17 @@ def precompile(pf: PortfolioFeasibility) -> Precompiled:
                       for s, fams in SUBSYSTEM_FAMILIES.items()}
     apps = pf.apps
     cat = (lambda xs, dt: np.concatenate(xs).astype(dt) if len(xs) else np.zeros(0, dt))  # noqa: E731
+    groups = {s: flat_groups(pf, s) for s in SUBSYSTEMS}      # also what the assignments read
+    vol = np.array([float(a.volume) for a in apps])
     options, first_group = {}, {}
     for s in SUBSYSTEMS:
-        n_g = [len(a.feasible[s]) for a in apps]
-        lens = [len(x) for a in apps for x in a.feasible[s]]
-        idx = cat([x for a in apps for x in a.feasible[s]], np.int64)
-        mar = cat([x for a in apps for x in a.option_margin[s]], float)
-        ptr = np.r_[0, np.cumsum(np.bincount(np.repeat(np.arange(len(apps)), n_g), weights=lens,
-                                             minlength=len(apps)))].astype(np.int64)
-        cst = cat([app_option_cost(pf, a, s)[idx[ptr[i]:ptr[i + 1]]] * float(a.volume) for i, a in enumerate(apps)],
-                  float)
-        first_group[s] = np.r_[0, np.cumsum(n_g)].astype(np.int64)
+        idx, mar, cost, grp, first_group[s] = groups[s]
         n = int(first_group[s][-1])
-        grp = np.repeat(np.arange(n), lens).astype(np.int64)
+        group_app = np.repeat(np.arange(len(apps)), np.diff(first_group[s])).astype(np.int64)
+        cst = cost * vol[group_app[grp]]
         p = option_pattern[s][idx].astype(np.int64)
         order = _by_key_then_cost(grp * (int(p.max(initial=0)) + 1) + p, cst)   # per group and pattern the cheapest first
-        options[s] = (p[order], cst[order], mar[order], grp, n, np.repeat(np.arange(len(apps)), n_g).astype(np.int64))
+        options[s] = (p[order], cst[order], mar[order], grp, n, group_app)
     n_c = [a.n_cores for a in apps]
     cores = {"app": np.repeat(np.arange(len(apps)), n_c).astype(np.int64),
              "local": cat([np.arange(n) for n in n_c], np.int64),
@@ -220,7 +233,8 @@ def precompile(pf: PortfolioFeasibility) -> Precompiled:
              "group": {s: cat([np.asarray(a.group[s], np.int64) + first_group[s][i] for i, a in enumerate(apps)],
                               np.int64) for s in SUBSYSTEMS}}
     return Precompiled(pf=pf, offset=offset, part_family=part_family, part_fixed=part_fixed, patterns=pats,
-                       option_pattern=option_pattern, options=options, cores=cores)
+                       option_pattern=option_pattern, options=options, cores=cores,
+                       assign_groups=groups)
 
 
 def _glob(offset: dict, f: str, codes) -> np.ndarray:

@@ -498,6 +498,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
               diagnose, settings) -> list:
     n = len(inputs)
     grouped = {s: pairs[s].by_group(len(rep[s])) for s in SUBSYSTEMS}
+    grouped = {s: (ptr, o, m, _names(b)) for s, (ptr, o, m, b) in grouped.items()}   # binding names, at once
     app_of_group = {s: a[rep[s]] for s in SUBSYSTEMS}
     first_group = {s: np.searchsorted(app_of_group[s], np.arange(n + 1)) for s in SUBSYSTEMS}
     pos_app = a[pos]
@@ -513,7 +514,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             ptr, o, m, b = grouped[s]
             feasible[s] = [o[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
             margin[s] = [m[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
-            binding[s] = [_names(b[ptr[g]:ptr[g + 1]]) for g in range(g0, g1)]
+            binding[s] = [b[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
             complete &= (np.diff(ptr)[g0:g1] > 0)[group[s]]
         d = inputs[i]
         af = AppFeasibility(

@@ -70,7 +70,11 @@ _AX = SUBSYSTEMS.index("axial")
 
 
 def _live_rows(w: Work, si: int | None = None) -> list:
-    return [i for i, a in enumerate(w.row_alive) if a and (si is None or w.row_sub[i] == si)]
+    """The live rows (of subsystem ``si``), ascending."""
+    live = np.fromiter(w.row_alive, bool, len(w.row_alive))
+    if si is not None:
+        live &= np.fromiter(w.row_sub, np.int64, len(w.row_sub)) == si
+    return np.flatnonzero(live).tolist()
 
 
 def _overlaps(sets: list) -> tuple[np.ndarray, np.ndarray]:
