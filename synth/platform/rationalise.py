@@ -112,6 +112,7 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     _check(objective, max_variants, time_limit, weights)
     w_all = {**default_weights(), **(weights or {})}
     t0 = time.perf_counter()
+    pre = pre if pre is not None else precompile(pf)   # the compilation and the assignments share its groups
     work = compile_portfolio(pf, objective, min_margin=min_margin, weights=w_all, pre=pre)
     before = work.sizes()
     t1 = time.perf_counter()
@@ -136,9 +137,9 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     else:
         y, status = np.zeros(inst.n_parts, bool), sol.status
     platform = platform_from_y(work, y)
-    if pre is not None and pre.assign_groups is None:
+    if pre.assign_groups is None:
         pre.assign_groups = option_groups(pf)
-    groups = pre.assign_groups if pre is not None else option_groups(pf)   # the two assignments below share them
+    groups = pre.assign_groups   # the two assignments below share them
     records = assign(pf, platform, min_margin=min_margin, groups=groups)
     t_v = time.perf_counter()
     if verify:
