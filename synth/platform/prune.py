@@ -333,10 +333,18 @@ def dominated_cores(w: Work) -> int:
     if not len(alive):
         return 0
     bounds = np.flatnonzero(np.r_[True, np.diff(w.core_app[alive]) != 0, True])
+    # an application whose cores have distinct patterns of one size has no core whose parts are among another's
+    # (a subset of equal size is equal): nothing to test there
+    seg = np.repeat(np.arange(len(bounds) - 1), np.diff(bounds))
+    pat = w.core_pattern[alive].astype(np.int64)
+    n_pat = np.bincount(np.unique(seg * (int(pat.max()) + 1) + pat) // (int(pat.max()) + 1), minlength=len(bounds) - 1)
+    up, at = np.unique(pat, return_inverse=True)
+    size = np.fromiter((len(w.patterns[k]) for k in up), np.int64, len(up))[np.asarray(at).reshape(-1)]
+    plain = (n_pat == np.diff(bounds)) & (np.minimum.reduceat(size, bounds[:-1]) == np.maximum.reduceat(size, bounds[:-1]))
     removed = 0
-    for b0, b1 in zip(bounds[:-1], bounds[1:]):
+    for b0, b1, skip in zip(bounds[:-1], bounds[1:], plain):
         cs = alive[b0:b1]
-        if len(cs) < 2:
+        if len(cs) < 2 or skip:
             continue
         upat, inv = np.unique(w.core_pattern[cs], return_inverse=True)
         better = _subset_matrix(w, upat)[np.ix_(inv, inv)]      # better[a, b]: parts(a) <= parts(b)
