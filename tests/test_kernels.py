@@ -447,3 +447,33 @@ def test_window_pairs_are_numpys_nonzero_of_the_mask_in_its_order(seed, limit, c
     got_o = np.concatenate([o for _, o in got]) if got else np.zeros(0, np.int64)
     assert got_g.tolist() == groups[gi].tolist() and got_o.tolist() == want_o.tolist()
     assert all(len(g) < limit + n_o and len(g) > 0 for g, _ in got)
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 2**32 - 1))
+def test_record_stage_is_the_numpy_bookkeeping(seed):
+    """The compiled stage bookkeeping of the platform producer equals its numpy statement: survivors, failures along
+    the line of a finite group value, and per group the largest margin (NaN-propagating, ``np.maximum.reduceat``)
+    with the binding of the first pair reaching it, kept when strictly larger."""
+    from synth.platform.producer import _segment_best
+    rng = np.random.default_rng(seed)
+    n_g, n_o, n = int(rng.integers(1, 6)), int(rng.integers(1, 8)), int(rng.integers(0, 30))
+    gg = np.sort(rng.integers(0, n_g, n))
+    oo = rng.integers(0, n_o, n)
+    m = rng.choice([-0.5, -0.1, 0.0, 0.2, 0.2, np.nan, -np.inf], n)
+    b = rng.integers(0, 9, n).astype(np.int16)
+    ok = m >= 0
+    finite, line = rng.random(n_g) < 0.7, rng.integers(0, 3, n_g).astype(np.int64)
+    best0, bb0 = rng.choice([-np.inf, -0.2, 0.1], n_g), rng.integers(0, 9, n_g).astype(np.int16)
+    want_s, want_f = np.zeros((n_g, n_o), bool), np.zeros((3, n_o), bool)
+    want_s[gg[ok], oo[ok]] = True
+    bad = ~ok & finite[gg]
+    want_f[line[gg[bad]], oo[bad]] = True
+    want_b, want_bb = best0.copy(), bb0.copy()
+    g, mm, at = _segment_best(gg, m)
+    upd = mm > want_b[g]
+    want_b[g[upd]], want_bb[g[upd]] = mm[upd], b[at[upd]]
+    got_s, got_f, got_b, got_bb = np.zeros_like(want_s), np.zeros_like(want_f), best0.copy(), bb0.copy()
+    main_spring.load_kernels().record_stage(gg, oo, ok, m, b, finite, line, got_s, got_f, got_b, got_bb)
+    assert (got_s == want_s).all() and (got_f == want_f).all()
+    assert np.array_equal(got_b, want_b, equal_nan=True) and (got_bb == want_bb).all()

@@ -32,7 +32,9 @@ Kernels (loops over keys x options, no allocation per pair):
   first score (the bulk engine's score-ordered lists, :meth:`synth.optimise.batch.Batch._spring_app_lists`);
 * :func:`window_pairs` -- the (group, option) pairs of many groups whose option lies in the group's housing window
   and passes a per-group row of two boolean tables, flat (``numpy.nonzero``'s order), a block at a time (the
-  platform producer's main-spring rounds, :func:`synth.platform.producer._spring`).
+  platform producer's main-spring rounds, :func:`synth.platform.producer._spring`);
+* :func:`record_stage` -- a block of those rounds' verdicts written into the survivor and failed tables and the
+  groups' best margins, one pass.
 """
 
 from __future__ import annotations
@@ -439,3 +441,33 @@ def window_pairs(groups, lo, hi, mbd, excl, excl_row, need, need_row, start, lim
         if n >= limit:
             return n, t + 1
     return n, len(groups)
+
+
+@njit(cache=True, error_model="numpy")
+def record_stage(gg, oo, ok, m, b, finite, line, survive, failed, best, best_b):
+    """Record a block of stage verdicts, pairs ``(gg[i], oo[i])`` with ``gg`` ascending: a passing pair survives
+    (``survive[g, o]``), a failing one of a finite group value fails along its line (``failed[line[g], o]``); per
+    run of one group, its largest margin ``m`` (NaN if any is: ``numpy.maximum.reduceat``) replaces ``best[g]``
+    when larger, with the binding ``b`` of the first pair reaching it."""
+    n = len(gg)
+    i = 0
+    while i < n:
+        g = gg[i]
+        j = i
+        mx = m[i]
+        while j < n and gg[j] == g:
+            if ok[j]:
+                survive[g, oo[j]] = True
+            elif finite[g]:
+                failed[line[g], oo[j]] = True
+            x = m[j]
+            if np.isnan(x) or x > mx:
+                mx = x
+            j += 1
+        if mx > best[g]:
+            for k in range(i, j):
+                if m[k] == mx:
+                    best[g] = mx
+                    best_b[g] = b[k]
+                    break
+        i = j

@@ -366,6 +366,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
         return 0, 0
     keys = evaluate.spring_keys(cg, rep)
     kk = keys_of_rows(apps, keys)  # the keys' kernel table, once
+    jit = main_spring.load_kernels()
     rows = cat.option_row["spring"]
     mbd = cat.space.tables["spring"]["main_spring_mean_body_diameter_mm"][rows]
     lo, hi = spring_window(keys["spring_housing_inner_diameter_mm"], keys["spring_housing_outer_diameter_mm"])
@@ -390,6 +391,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
         rank = np.empty(ng, np.int64)
         rank[order] = np.arange(ng) - np.searchsorted(line[order], line[order])
         failed = np.zeros((int(line.max()) + 1 if ng else 0, len(rows)), bool)
+        line = np.ascontiguousarray(line, np.int64)
         finite = np.isfinite(val)
         for rk in range(int(rank.max()) + 1 if ng else 0):
             # a round's candidates at once (a line has one group per round: what fails now is for later rounds)
@@ -397,13 +399,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
                                                     exclude_row=line, need=prev, need_row=parent, limit=BLOCK_PAIRS):
                 n_stage += len(gg_)
                 m, b = _stage_margin(spring_group(apps, keys, srep[gg_], rows[oo], settings, kk), ids)
-                ok = passes(m)
-                survive[gg_[ok], oo[ok]] = True
-                bad = ~ok & finite[gg_]
-                failed[line[gg_[bad]], oo[bad]] = True
-                gg, mm, at = _segment_best(gg_, m)
-                upd = mm > best[gg]
-                best[gg[upd]], best_b[gg[upd]] = mm[upd], b[at[upd]]
+                jit.record_stage(gg_, oo, passes(m), m, b, finite, line, survive, failed, best, best_b)
         stages.append((of, survive, best, best_b))
         prev_of, prev = of, survive
     # every key against the survivors of its last-stage group, in its own window: the exact group
