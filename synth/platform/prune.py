@@ -105,10 +105,9 @@ def dominated_options(w: Work) -> int:
     """R1 (and the empty-pattern rows). Returns the number of (row, option) entries removed."""
     removed = 0
     cost_obj = w.objective == "cost"
-    multi = {si for si in range(len(SUBSYSTEMS))
-             if any(len(w.patterns[k]) != 1 for k in np.unique(np.concatenate(
-                 [w.row_pats[i] for i in _live_rows(w, si)] or [np.zeros(0, int)])))}
-    plen = np.array([len(x) for x in w.patterns])
+    plen = np.fromiter((len(x) for x in w.patterns), np.int64, len(w.patterns))
+    multi = {si for si in range(len(SUBSYSTEMS))   # subsystems with an option of other than one part
+             if (plen[np.concatenate([w.row_pats[i] for i in _live_rows(w, si)] or [np.zeros(0, np.int64)])] != 1).any()}
     for i in _live_rows(w):
         if w.row_sub[i] not in multi:
             continue
