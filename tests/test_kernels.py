@@ -431,3 +431,59 @@ def test_list_order_is_numpys_weighted_sums_bit_for_bit(weights):
         got = fast._last_within(weights, np.full(len(lim), i), lim)
         np.testing.assert_array_equal(got[:-1], np.searchsorted(sc_f, lim[:-1], side="right") - 1.0)
         assert got[-1] == np.inf
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 2**32 - 1), limit=st.integers(1, 40), conditions=st.booleans())
+def test_window_pairs_are_numpys_nonzero_of_the_mask_in_its_order(seed, limit, conditions):
+    """The compiled candidate enumeration is ``np.nonzero`` of the dense window-and-conditions mask (groups in the
+    given order, options ascending), whatever the block size; NaN bounds admit nothing."""
+    rng = np.random.default_rng(seed)
+    n_g, n_o = int(rng.integers(0, 12)), int(rng.integers(1, 30))
+    mbd = rng.choice([20.0, 30.0, 40.0, 50.0, np.nan], n_o)
+    lo, hi = rng.choice([15.0, 25.0, 35.0, np.nan], n_g), rng.choice([25.0, 45.0, 60.0, np.nan, -np.inf], n_g)
+    groups = rng.permutation(n_g)[: int(rng.integers(0, n_g + 1))]
+    mask = (mbd[None, :] >= lo[groups, None]) & (mbd[None, :] <= hi[groups, None])
+    kw = {}
+    if conditions:
+        ex, nd = rng.random((3, n_o)) < 0.3, rng.random((4, n_o)) < 0.7
+        er, nr = rng.integers(-1, 3, n_g), rng.integers(-1, 4, n_g)
+        mask &= ~np.where(er[groups, None] >= 0, ex[er[groups]], False)
+        mask &= np.where(nr[groups, None] >= 0, nd[nr[groups]], True)
+        kw = dict(exclude=ex, exclude_row=er, need=nd, need_row=nr)
+    gi, want_o = np.nonzero(mask)
+    got = list(main_spring.window_pairs(groups, lo, hi, mbd, limit=limit, **kw))
+    got_g = np.concatenate([g for g, _ in got]) if got else np.zeros(0, np.int64)
+    got_o = np.concatenate([o for _, o in got]) if got else np.zeros(0, np.int64)
+    assert got_g.tolist() == groups[gi].tolist() and got_o.tolist() == want_o.tolist()
+    assert all(len(g) < limit + n_o and len(g) > 0 for g, _ in got)
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 2**32 - 1))
+def test_record_stage_is_the_numpy_bookkeeping(seed):
+    """The compiled stage bookkeeping of the platform producer equals its numpy statement: survivors, failures along
+    the line of a finite group value, and per group the largest margin (NaN-propagating, ``np.maximum.reduceat``)
+    with the binding of the first pair reaching it, kept when strictly larger."""
+    from synth.platform.producer import _segment_best
+    rng = np.random.default_rng(seed)
+    n_g, n_o, n = int(rng.integers(1, 6)), int(rng.integers(1, 8)), int(rng.integers(0, 30))
+    gg = np.sort(rng.integers(0, n_g, n))
+    oo = rng.integers(0, n_o, n)
+    m = rng.choice([-0.5, -0.1, 0.0, 0.2, 0.2, np.nan, -np.inf], n)
+    b = rng.integers(0, 9, n).astype(np.int16)
+    ok = m >= 0
+    finite, line = rng.random(n_g) < 0.7, rng.integers(0, 3, n_g).astype(np.int64)
+    best0, bb0 = rng.choice([-np.inf, -0.2, 0.1], n_g), rng.integers(0, 9, n_g).astype(np.int16)
+    want_s, want_f = np.zeros((n_g, n_o), bool), np.zeros((3, n_o), bool)
+    want_s[gg[ok], oo[ok]] = True
+    bad = ~ok & finite[gg]
+    want_f[line[gg[bad]], oo[bad]] = True
+    want_b, want_bb = best0.copy(), bb0.copy()
+    g, mm, at = _segment_best(gg, m)
+    upd = mm > want_b[g]
+    want_b[g[upd]], want_bb[g[upd]] = mm[upd], b[at[upd]]
+    got_s, got_f, got_b, got_bb = np.zeros_like(want_s), np.zeros_like(want_f), best0.copy(), bb0.copy()
+    main_spring.load_kernels().record_stage(gg, oo, ok, m, b, finite, line, got_s, got_f, got_b, got_bb)
+    assert (got_s == want_s).all() and (got_f == want_f).all()
+    assert np.array_equal(got_b, want_b, equal_nan=True) and (got_bb == want_bb).all()

@@ -29,7 +29,12 @@ Kernels (loops over keys x options, no allocation per pair):
   increasing installation torque, so one yield margin below the smallest
   best value settles an option for the rest of them;
 * :func:`list_order` -- per application, whether a spring list keeps its score order at its stiffness, and its
-  first score (the bulk engine's score-ordered lists, :meth:`synth.optimise.batch.Batch._spring_app_lists`).
+  first score (the bulk engine's score-ordered lists, :meth:`synth.optimise.batch.Batch._spring_app_lists`);
+* :func:`window_pairs` -- the (group, option) pairs of many groups whose option lies in the group's housing window
+  and passes a per-group row of two boolean tables, flat (``numpy.nonzero``'s order), a block at a time (the
+  platform producer's main-spring rounds, :func:`synth.platform.producer._spring`);
+* :func:`record_stage` -- a block of those rounds' verdicts written into the survivor and failed tables and the
+  groups' best margins, one pass.
 """
 
 from __future__ import annotations
@@ -410,3 +415,59 @@ def list_order(pre, unit_cost, w_cost, post, stiffness, cand, first, good):
                     break
             prev = x
         good[a] = ok
+
+
+@njit(cache=True, error_model="numpy")
+def window_pairs(groups, lo, hi, mbd, excl, excl_row, need, need_row, start, limit, out_g, out_o):
+    """The (group, option) pairs of ``groups[start:]`` whose option's mean body diameter lies in the group's window
+    (``lo[g] <= mbd[o] <= hi[g]``, a NaN bound admits nothing), not excluded (``excl[excl_row[g], o]``, row ``-1``:
+    none) and admitted (``need[need_row[g], o]``, row ``-1``: every option); groups in the given order, options
+    ascending (``numpy.nonzero`` of the mask). Whole groups only: stops after the group at which ``limit`` pairs
+    are reached (``out_*`` hold at least ``limit + len(mbd)``). Returns the pairs written and the next ``start``."""
+    n = 0
+    n_opt = len(mbd)
+    for t in range(start, len(groups)):
+        g = groups[t]
+        a = lo[g]
+        b = hi[g]
+        er = excl_row[g]
+        nr = need_row[g]
+        for o in range(n_opt):
+            x = mbd[o]
+            if x >= a and x <= b and (er < 0 or not excl[er, o]) and (nr < 0 or need[nr, o]):
+                out_g[n] = g
+                out_o[n] = o
+                n += 1
+        if n >= limit:
+            return n, t + 1
+    return n, len(groups)
+
+
+@njit(cache=True, error_model="numpy")
+def record_stage(gg, oo, ok, m, b, finite, line, survive, failed, best, best_b):
+    """Record a block of stage verdicts, pairs ``(gg[i], oo[i])`` with ``gg`` ascending: a passing pair survives
+    (``survive[g, o]``), a failing one of a finite group value fails along its line (``failed[line[g], o]``); per
+    run of one group, its largest margin ``m`` (NaN if any is: ``numpy.maximum.reduceat``) replaces ``best[g]``
+    when larger, with the binding ``b`` of the first pair reaching it."""
+    n = len(gg)
+    i = 0
+    while i < n:
+        g = gg[i]
+        j = i
+        mx = m[i]
+        while j < n and gg[j] == g:
+            if ok[j]:
+                survive[g, oo[j]] = True
+            elif finite[g]:
+                failed[line[g], oo[j]] = True
+            x = m[j]
+            if np.isnan(x) or x > mx:
+                mx = x
+            j += 1
+        if mx > best[g]:
+            for k in range(i, j):
+                if m[k] == mx:
+                    best[g] = mx
+                    best_b[g] = b[k]
+                    break
+        i = j

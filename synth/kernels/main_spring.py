@@ -798,3 +798,35 @@ def _max_min_numpy(keys, options, ptr, idx, ub, rank, kg, cap):
             if lo_g + hi < hi_g:
                 active[a] &= ~(ub[lo_g + hi] < value[ka])
     return pick, value, visited
+
+
+# --------------------------------------------------------------------------------------- window pairs
+
+
+def window_pairs(groups, lo, hi, mbd, *, exclude=None, exclude_row=None, need=None, need_row=None,
+                 limit: int = 100_000):
+    """Blocks ``(g, o)`` of the candidate pairs of ``groups`` (in that order) x options ``o`` ascending: the option's
+    mean body diameter ``mbd[o]`` in the group's window ``[lo[g], hi[g]]`` (:func:`synth.design.space.spring_window`),
+    ``exclude[exclude_row[g], o]`` false and ``need[need_row[g], o]`` true (a row ``-1``, or no table: no
+    condition). One compiled pass per block of about ``limit`` pairs (whole groups), nothing of size groups x
+    options; the pairs are those of ``numpy.nonzero`` of the window mask with the conditions, in its order.
+
+    >>> [(g.tolist(), o.tolist()) for g, o in window_pairs(np.array([1, 0]), np.array([1.0, 2.0]),
+    ...                                                     np.array([2.0, 3.0]), np.array([3.0, 1.5, 2.0]))]
+    [([1, 1, 0, 0], [0, 2, 1, 2])]
+    """
+    jit = load_kernels()
+    groups = np.ascontiguousarray(groups, dtype=np.int64)
+    lo, hi, mbd = (np.ascontiguousarray(x, dtype=float) for x in (lo, hi, mbd))
+    none_t, none_r = np.zeros((1, len(mbd)), bool), np.full(len(lo), -1, np.int64)
+    ex = none_t if exclude is None else np.ascontiguousarray(exclude, dtype=bool)
+    er = none_r if exclude is None else np.ascontiguousarray(exclude_row, dtype=np.int64)
+    nd = none_t if need is None else np.ascontiguousarray(need, dtype=bool)
+    nr = none_r if need is None else np.ascontiguousarray(need_row, dtype=np.int64)
+    limit = max(int(limit), 1)
+    out_g, out_o = np.empty(limit + len(mbd), np.int64), np.empty(limit + len(mbd), np.int64)
+    start = 0
+    while start < len(groups):
+        n, start = jit.window_pairs(groups, lo, hi, mbd, ex, er, nd, nr, start, limit, out_g, out_o)
+        if n:
+            yield out_g[:n].copy(), out_o[:n].copy()

@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from formulations.platform import PlatformInstance
-from synth.platform.compile import app_option_cost
+from synth.platform.compile import flat_groups
 from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility
 
 __all__ = ["serve", "objective_value", "assign", "option_groups", "full_platform", "platform_from_y", "platform_parts_used"]
@@ -96,24 +96,6 @@ def _in(platform: dict, f: str, codes: np.ndarray) -> np.ndarray:
     return (codes < 0) | np.isin(codes, allowed)
 
 
-def _flat_groups(pf: PortfolioFeasibility, s: str):
-    """Every application's option groups of subsystem ``s`` one after the other: ``(idx, margin, cost, group,
-    gptr)``, the options' indices, margins and unit costs (each application's own), the group of each (numbered over
-    the whole portfolio) and where each application's groups start (``gptr[i]:gptr[i + 1]``)."""
-    feas = [x for a in pf.apps for x in a.feasible[s]]
-    gptr = np.r_[0, np.cumsum([len(a.feasible[s]) for a in pf.apps])].astype(np.int64)
-    if not feas:
-        z = np.zeros(0, np.int64)
-        return z, np.zeros(0), np.zeros(0), z, gptr
-    lens = [len(x) for x in feas]
-    idx = np.concatenate([np.asarray(x, np.int64).reshape(-1) for x in feas]).astype(np.int64)
-    mar = np.concatenate([np.asarray(x, float).reshape(-1) for x in (m for a in pf.apps for m in a.option_margin[s])])
-    grp = np.repeat(np.arange(len(feas)), lens)
-    optr = np.r_[0, np.cumsum(lens)][gptr]
-    cost = np.concatenate([app_option_cost(pf, a, s)[idx[optr[i]:optr[i + 1]]] for i, a in enumerate(pf.apps)])
-    return idx, mar.astype(float), cost.astype(float), grp, gptr
-
-
 def _cheapest(idx: np.ndarray, mar: np.ndarray, cost: np.ndarray, grp: np.ndarray, n_groups: int,
               usable: np.ndarray, tau: float):
     """Per group of options (option ``idx[i]`` of group ``grp[i]``, margin ``mar[i]``, unit cost ``cost[i]``) the
@@ -139,9 +121,9 @@ def _cheapest(idx: np.ndarray, mar: np.ndarray, cost: np.ndarray, grp: np.ndarra
 
 
 def option_groups(pf: PortfolioFeasibility) -> dict:
-    """``{subsystem: _flat_groups(pf, subsystem)}``: what :func:`assign` reads of ``pf``'s options whatever the
+    """``{subsystem: flat_groups(pf, subsystem)}``: what :func:`assign` reads of ``pf``'s options whatever the
     platform (several assignments of one portfolio compute it once)."""
-    return {s: _flat_groups(pf, s) for s in SUBSYSTEMS}
+    return {s: flat_groups(pf, s) for s in SUBSYSTEMS}
 
 
 def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None = None,
@@ -163,42 +145,50 @@ def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None
     for s in SUBSYSTEMS:
         idx, mar, cost, grp, gptr = groups[s]
         cheap[s] = (*_cheapest(idx, mar, cost, grp, int(gptr[-1]), opt_ok[s], tau), gptr)
+    # every application's cores one after the other: which the platform builds, and their cheapest designs' costs
+    apps = pf.apps
+    n_c = np.array([a.n_cores for a in apps], np.int64)
+    cptr = np.r_[0, np.cumsum(n_c)]
+    app_of = np.repeat(np.arange(len(apps)), n_c)
+    cat = (lambda xs, dt: np.concatenate(xs).astype(dt, copy=False) if xs else np.zeros(0, dt))  # noqa: E731
+    ok = cat([np.asarray(a.core_margin, float) for a in apps], float) >= tau
+    for f in CORE_FAMILIES:
+        ok &= _in(platform, f, cat([np.asarray(a.core_parts[f]).reshape(-1) for a in apps], np.int64))
+    total = cat([np.asarray(a.core_cost_eur, float) for a in apps], float).copy()
+    missing, best_opt = {}, {}
+    for s in SUBSYSTEMS:
+        ch, cb, gptr = cheap[s]
+        g = cat([np.asarray(a.group[s], np.int64).reshape(-1) for a in apps], np.int64) + gptr[:-1][app_of]
+        missing[s] = np.bincount(app_of[ok & ~np.isfinite(cb[g])], minlength=len(apps))
+        total += cb[g]
+        best_opt[s] = ch[g]                                       # per core: its group's cheapest usable option
+    total[~ok] = np.inf
+    any_ok = np.bincount(app_of[ok], minlength=len(apps)) > 0
+    any_finite = np.bincount(app_of[np.isfinite(total)], minlength=len(apps)) > 0
     out = []
-    for ai, a in enumerate(pf.apps):
+    for ai, a in enumerate(apps):
         rec = {"app_id": a.app_id, "feasible": False, "core": None, "options": {}, "parts": {}, "codes": {},
                "unit_cost_eur": np.nan, "margin": np.nan, "binding": "", "reason": ""}
         out.append(rec)
         if a.n_cores == 0:
             rec["reason"] = a.note or "no feasible core"
             continue
-        ok = np.asarray(a.core_margin, float) >= tau
-        for f in CORE_FAMILIES:
-            ok &= _in(platform, f, a.core_parts[f])
-        total = np.asarray(a.core_cost_eur, float).copy()
-        best_opt = {}
-        missing = {}
-        for s in SUBSYSTEMS:
-            ch, cb, gptr = cheap[s]
-            choice, gbest = ch[gptr[ai]:gptr[ai + 1]], cb[gptr[ai]:gptr[ai + 1]]
-            g = np.asarray(a.group[s], np.int64)
-            missing[s] = int(np.sum(ok & ~np.isfinite(gbest[g])))
-            total += gbest[g]
-            best_opt[s] = choice
-        total[~ok] = np.inf
-        if not np.isfinite(total).any():
-            if not ok.any():
+        if not any_finite[ai]:
+            if not any_ok[ai]:
                 rec["reason"] = "no core built from platform parts" + ("" if tau == -np.inf else f" with margin >= {tau:g}")
             else:
-                miss = ", ".join(f"{s} ({n} cores)" for s, n in sorted(missing.items(), key=lambda t: -t[1]) if n)
+                miss = ", ".join(f"{s} ({n} cores)" for s, n in sorted(((s, int(missing[s][ai])) for s in SUBSYSTEMS),
+                                                                      key=lambda t: -t[1]) if n)
                 rec["reason"] = f"no platform option for every subsystem of a platform core; missing: {miss}"
             continue
-        c = int(np.argmin(total))
-        rec.update(feasible=True, core=c, unit_cost_eur=float(total[c]))
+        lo = cptr[ai]
+        c = int(np.argmin(total[lo:cptr[ai + 1]]))
+        rec.update(feasible=True, core=c, unit_cost_eur=float(total[lo + c]))
         rec["codes"] = {f: int(a.core_parts[f][c]) for f in CORE_FAMILIES}
         margins = [(float(a.core_margin[c]), "" if a.core_binding is None else str(a.core_binding[c]))]
         for s in SUBSYSTEMS:
             gi = int(a.group[s][c])
-            k = int(best_opt[s][gi])
+            k = int(best_opt[s][lo + c])
             rec["options"][s] = k
             rec["codes"].update({f: int(pf.options[s][f][k]) for f in SUBSYSTEM_FAMILIES[s]})
             pos = int(np.flatnonzero(np.asarray(a.feasible[s][gi]) == k)[0])

@@ -32,7 +32,7 @@ from formulations.platform import PlatformInstance
 from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility, \
     default_weights
 
-__all__ = ["Work", "Precompiled", "precompile", "compile_portfolio", "app_option_cost"]
+__all__ = ["Work", "Precompiled", "precompile", "compile_portfolio", "app_option_cost", "flat_groups"]
 
 
 def app_option_cost(pf: PortfolioFeasibility, app, s: str) -> np.ndarray:
@@ -140,12 +140,31 @@ def _why_unservable(a, dead_by: dict, n_cores: int, floor: bool) -> str:
     return "no core has a feasible option of every subsystem; missing: " + ", ".join(parts)
 
 
+def flat_groups(pf: PortfolioFeasibility, s: str):
+    """Every application's option groups of subsystem ``s`` one after the other: ``(idx, margin, cost, group,
+    gptr)``, the options' indices, margins and unit costs (each application's own), the group of each (numbered over
+    the whole portfolio) and where each application's groups start (``gptr[i]:gptr[i + 1]``)."""
+    feas = [x for a in pf.apps for x in a.feasible[s]]
+    gptr = np.r_[0, np.cumsum([len(a.feasible[s]) for a in pf.apps])].astype(np.int64)
+    if not feas:
+        z = np.zeros(0, np.int64)
+        return z, np.zeros(0), np.zeros(0), z, gptr
+    lens = [len(x) for x in feas]
+    idx = np.concatenate([np.asarray(x, np.int64).reshape(-1) for x in feas]).astype(np.int64)
+    mar = np.concatenate([np.asarray(x, float).reshape(-1) for x in (m for a in pf.apps for m in a.option_margin[s])])
+    grp = np.repeat(np.arange(len(feas)), lens)
+    optr = np.r_[0, np.cumsum(lens)][gptr]
+    cost = np.concatenate([app_option_cost(pf, a, s)[idx[optr[i]:optr[i + 1]]] for i, a in enumerate(pf.apps)])
+    return idx, mar.astype(float), cost.astype(float), grp, gptr
+
+
 @dataclass
 class Precompiled:
-    """What :func:`compile_portfolio` computes whatever the margin floor and objective: the options'
-    patterns and, per application, subsystem and group, the feasible options sorted by (pattern, cost) with
-    their margins (a floor then keeps a subsequence: the sort of the kept options is the same). The trade-off
-    sweep compiles a portfolio once with :func:`precompile` and each floor from it."""
+    """What :func:`compile_portfolio` computes whatever the margin floor and objective: the options' patterns and,
+    per subsystem, the feasible options of every (application, group) sorted by (pattern, cost) with their margins,
+    the groups numbered across the portfolio one application after the other (a floor then keeps a subsequence:
+    the sort of the kept options is the same); and the cores of every application, one after the other. The
+    trade-off sweep compiles a portfolio once with :func:`precompile` and each floor from it."""
 
     pf: PortfolioFeasibility
     offset: dict
@@ -153,9 +172,30 @@ class Precompiled:
     part_fixed: np.ndarray
     patterns: _Patterns          # after the empty pattern and every option's pattern
     option_pattern: dict
-    groups: list                 # per app: {subsystem: (patterns, costs x volume, margins, group, n_groups)}, the
-    #                              groups' options one after the other (``group``: the group of each)
-    assign_groups: dict | None = None   # synth.platform.assign.option_groups(pf), filled by the first assignment
+    options: dict                # subsystem -> (patterns, costs x volume, margins, group, n_groups, app of each group)
+    cores: dict                  # app, local, margin, cost (x volume), codes (global parts), group (subsystem -> group)
+    assign_groups: dict | None = None   # synth.platform.assign.option_groups(pf)
+
+
+def _by_key_then_cost(key: np.ndarray, cost: np.ndarray) -> np.ndarray:
+    """``np.lexsort((cost, key))`` (by key, then cost, then position), by one stable sort of the keys and a
+    lexsort of the runs of equal keys only (most keys are distinct: a group holds a pattern once).
+
+    >>> _by_key_then_cost(np.array([3, 1, 3, 1, 2]), np.array([5.0, 2.0, 1.0, 2.0, 0.0])).tolist()
+    [1, 3, 4, 2, 0]
+    """
+    order = np.argsort(key, kind="stable")
+    k = key[order]
+    dup = np.zeros(len(k), bool)
+    if len(k) > 1:
+        same = k[1:] == k[:-1]
+        dup[1:] |= same
+        dup[:-1] |= same
+    at = np.flatnonzero(dup)
+    if len(at):
+        sub = order[at]
+        order[at] = sub[np.lexsort((cost[sub], key[sub]))]
+    return order
 
 
 def precompile(pf: PortfolioFeasibility) -> Precompiled:
@@ -170,30 +210,52 @@ def precompile(pf: PortfolioFeasibility) -> Precompiled:
     pats.get(np.zeros(0))  # pattern 0: the empty pattern
     option_pattern = {s: pats.many(np.stack([_glob(offset, f, pf.options[s][f]) for f in fams], axis=1))
                       for s, fams in SUBSYSTEM_FAMILIES.items()}
-    groups = []
-    for a in pf.apps:
-        ga = {}
-        for s in SUBSYSTEMS:
-            cost = app_option_cost(pf, a, s) * float(a.volume)
-            parts = []
-            for idx, mar in zip(a.feasible[s], a.option_margin[s]):
-                idx = np.asarray(idx, np.int64)
-                p, cst = option_pattern[s][idx], cost[idx]
-                order = np.lexsort((cst, p))                      # per pattern the cheapest first (stable)
-                parts.append((p[order], cst[order], np.asarray(mar, float)[order]))
-            n_g = len(parts)
-            ga[s] = (np.concatenate([x[0] for x in parts]).astype(np.int64) if n_g else np.zeros(0, np.int64),
-                     np.concatenate([x[1] for x in parts]).astype(float) if n_g else np.zeros(0),
-                     np.concatenate([x[2] for x in parts]).astype(float) if n_g else np.zeros(0),
-                     np.repeat(np.arange(n_g), [len(x[0]) for x in parts]).astype(np.int64), n_g)
-        groups.append(ga)
+    apps = pf.apps
+    cat = (lambda xs, dt: np.concatenate(xs).astype(dt) if len(xs) else np.zeros(0, dt))  # noqa: E731
+    groups = {s: flat_groups(pf, s) for s in SUBSYSTEMS}      # also what the assignments read
+    vol = np.array([float(a.volume) for a in apps])
+    options, first_group = {}, {}
+    for s in SUBSYSTEMS:
+        idx, mar, cost, grp, first_group[s] = groups[s]
+        n = int(first_group[s][-1])
+        group_app = np.repeat(np.arange(len(apps)), np.diff(first_group[s])).astype(np.int64)
+        cst = cost * vol[group_app[grp]]
+        p = option_pattern[s][idx].astype(np.int64)
+        order = _by_key_then_cost(grp * (int(p.max(initial=0)) + 1) + p, cst)   # per group and pattern the cheapest first
+        options[s] = (p[order], cst[order], mar[order], grp, n, group_app)
+    n_c = [a.n_cores for a in apps]
+    cores = {"app": np.repeat(np.arange(len(apps)), n_c).astype(np.int64),
+             "local": cat([np.arange(n) for n in n_c], np.int64),
+             "margin": cat([np.asarray(a.core_margin, float) for a in apps], float),
+             "cost": cat([np.asarray(a.core_cost_eur, float) * float(a.volume) for a in apps], float),
+             "codes": np.stack([_glob(offset, f, cat([np.asarray(a.core_parts[f]) for a in apps], np.int64))
+                                for f in CORE_FAMILIES], axis=1).reshape(-1, len(CORE_FAMILIES)).astype(np.int64),
+             "group": {s: cat([np.asarray(a.group[s], np.int64) + first_group[s][i] for i, a in enumerate(apps)],
+                              np.int64) for s in SUBSYSTEMS}}
     return Precompiled(pf=pf, offset=offset, part_family=part_family, part_fixed=part_fixed, patterns=pats,
-                       option_pattern=option_pattern, groups=groups)
+                       option_pattern=option_pattern, options=options, cores=cores,
+                       assign_groups=groups)
 
 
 def _glob(offset: dict, f: str, codes) -> np.ndarray:
     codes = np.asarray(codes)
     return np.where(codes < 0, -1, codes + offset[f])
+
+
+def _core_patterns(pats: _Patterns, codes: np.ndarray, app: np.ndarray) -> np.ndarray:
+    """Pattern id of each core (rows of ``codes``, grouped by application ``app``), new patterns numbered as
+    :meth:`_Patterns.many` application by application numbers them: in order of first appearance, an application's
+    own in the order of their sorted rows."""
+    if not len(codes):
+        return np.zeros(0, np.int64)
+    uniq, inv = np.unique(codes, axis=0, return_inverse=True)
+    inv = np.asarray(inv).reshape(-1)
+    seq = np.unique(app * len(uniq) + inv) % len(uniq)             # the rows met, application by application
+    u, at = np.unique(seq, return_index=True)
+    ids = np.empty(len(uniq), np.int64)
+    for k in u[np.argsort(at, kind="stable")]:
+        ids[k] = pats.get(uniq[k])
+    return ids[inv]
 
 
 def compile_portfolio(pf: PortfolioFeasibility, objective: str = "variants", *, min_margin: float | None = None,
@@ -214,68 +276,67 @@ def compile_portfolio(pf: PortfolioFeasibility, objective: str = "variants", *, 
     pats.ids, pats.list = dict(pre.patterns.ids), list(pre.patterns.list)
     option_pattern = pre.option_pattern
     tau = -np.inf if min_margin is None else float(min_margin)
-    app_index, c_app, c_loc, c_pat, c_cost = [], [], [], [], []
-    r_app, r_sub, r_cores, r_pats, r_cost = [], [], [], [], []
-    unservable = []
-    n_c = 0
-    for ai, a in enumerate(pf.apps):
-        nc = a.n_cores
-        ok = np.asarray(a.core_margin, float) >= tau
-        ok0 = ok.copy()
-        # options per group after the margin floor
-        gp, gc = {}, {}
-        dead_by = {}
-        for s in SUBSYSTEMS:
-            p, cst, mar, grp, n_g = pre.groups[ai][s]
-            keep = mar >= tau
-            p, cst, grp = p[keep], cst[keep], grp[keep]
-            first = np.ones(len(p), bool)                         # per group and pattern the cheapest kept
-            first[1:] = (p[1:] != p[:-1]) | (grp[1:] != grp[:-1])
-            p, cst, grp = p[first], cst[first], grp[first]
-            cut = np.searchsorted(grp, np.arange(n_g + 1))
-            gp[s] = [p[cut[i]:cut[i + 1]] for i in range(n_g)]
-            gc[s] = [cst[cut[i]:cut[i + 1]] for i in range(n_g)]
-            g = np.asarray(a.group[s], np.int64)
-            empty = cut[1:] == cut[:-1]
-            dead = empty[g] if nc else np.zeros(0, bool)
-            dead_by[s] = int(np.sum(dead & ok0))
-            ok &= ~dead
-        if not ok.any():
-            unservable.append((ai, _why_unservable(a, dead_by, int(np.sum(np.asarray(a.core_margin) >= tau)),
-                                              min_margin is not None)))
-            continue
-        inst_a = len(app_index)
-        app_index.append(ai)
-        loc = np.flatnonzero(ok)
-        codes = np.stack([_glob(offset, f, np.asarray(a.core_parts[f])[loc]) for f in CORE_FAMILIES], axis=1)
-        c_app.append(np.full(len(loc), inst_a))
-        c_loc.append(loc)
-        c_pat.append(pats.many(codes))
-        c_cost.append(np.asarray(a.core_cost_eur, float)[loc] * float(a.volume))
-        gl = np.arange(n_c, n_c + len(loc))
-        n_c += len(loc)
-        for si, s in enumerate(SUBSYSTEMS):
-            g = np.asarray(a.group[s], np.int64)[loc]
-            merged: dict = {}
-            for gid in np.unique(g):
-                key = gp[s][gid].tobytes()
-                if key in merged:
-                    r = merged[key]
-                    r_cores[r] = np.concatenate([r_cores[r], gl[g == gid]])
-                    continue
-                merged[key] = len(r_app)
-                r_app.append(inst_a)
-                r_sub.append(si)
-                r_cores.append(gl[g == gid])
-                r_pats.append(gp[s][gid])
-                r_cost.append(gc[s][gid])
+    n_apps, cores = len(pf.apps), pre.cores
+    ok0 = cores["margin"] >= tau
+    ok = ok0.copy()
+    kept, dead_by = {}, {}
+    for s in SUBSYSTEMS:                                          # options per group after the margin floor
+        p, cst, mar, grp, n_g, _ = pre.options[s]
+        keep = mar >= tau
+        p, cst, grp = p[keep], cst[keep], grp[keep]
+        first = np.ones(len(p), bool)                             # per group and pattern the cheapest kept
+        first[1:] = (p[1:] != p[:-1]) | (grp[1:] != grp[:-1])
+        p, cst, grp = p[first], cst[first], grp[first]
+        cut = np.searchsorted(grp, np.arange(n_g + 1))
+        kept[s] = (p, cst, cut)
+        dead = (cut[1:] == cut[:-1])[cores["group"][s]]
+        dead_by[s] = np.bincount(cores["app"][dead & ok0], minlength=n_apps)
+        ok &= ~dead
+    served = np.bincount(cores["app"][ok], minlength=n_apps) > 0
+    n_ok0 = np.bincount(cores["app"][ok0], minlength=n_apps)
+    unservable = [(int(ai), _why_unservable(pf.apps[ai], {s: int(dead_by[s][ai]) for s in SUBSYSTEMS},
+                                            int(n_ok0[ai]), min_margin is not None))
+                  for ai in np.flatnonzero(~served)]
+    app_index = np.flatnonzero(served).astype(np.int64)
+    inst = np.cumsum(served) - 1                                  # instance application of each application
+    live = np.flatnonzero(ok)                                     # the cores kept, application by application
+    c_app = inst[cores["app"][live]].astype(np.int64)
+    gl = np.arange(len(live), dtype=np.int64)
+    # rows: per application and subsystem one row per distinct option list of its cores' groups (in the order of
+    # the first group holding it; the cores of merged groups one group after the other)
+    r_a, r_s, r_rep, r_cores = [], [], [], []
+    for si, s in enumerate(SUBSYSTEMS):
+        p, cst, cut = kept[s]
+        gg = cores["group"][s][live]
+        ug = np.unique(gg)
+        ids: dict = {}
+        kid = np.array([ids.setdefault(p[cut[g]:cut[g + 1]].tobytes(), len(ids)) for g in ug], np.int64)
+        ga = inst[pre.options[s][5][ug]]
+        _, first, rinv = np.unique(ga * max(len(ids), 1) + kid, return_index=True, return_inverse=True)
+        rinv = np.asarray(rinv).reshape(-1)
+        core_row = rinv[np.searchsorted(ug, gg)]
+        order = np.lexsort((gg, core_row))
+        if len(first):
+            r_cores.extend(np.split(gl[order], np.cumsum(np.bincount(core_row, minlength=len(first)))[:-1]))
+        r_a.append(ga[first])
+        r_s.append(np.full(len(first), si, np.int64))
+        r_rep.append(ug[first])
+    r_a, r_s, r_rep = (np.concatenate(x) for x in (r_a, r_s, r_rep))
+    order = np.lexsort((r_rep, r_s, r_a))
+    r_cores = [r_cores[i] for i in order]
+    r_app, r_sub, r_rep = r_a[order].tolist(), r_s[order].tolist(), r_rep[order]
+    r_pats, r_cost = [], []
+    for si, g in zip(r_sub, r_rep.tolist()):
+        p, cst, cut = kept[SUBSYSTEMS[si]]
+        r_pats.append(p[cut[g]:cut[g + 1]])
+        r_cost.append(cst[cut[g]:cut[g + 1]])
+    c_pat = _core_patterns(pats, cores["codes"][live], c_app)
+    n_c = len(live)
+    c_loc, c_cost = cores["local"][live], cores["cost"][live]
 
-    def cat(xs, dt):
-        return np.concatenate(xs).astype(dt) if xs else np.zeros(0, dt)
     work = Work(pf=pf, objective=objective, part_offset=offset, part_family=part_family, part_weight=part_weight,
                 part_fixed_cost=part_fixed, patterns=pats.list, option_pattern=option_pattern,
-                app_index=np.array(app_index, np.int64), core_app=cat(c_app, np.int64), core_local=cat(c_loc, np.int64),
-                core_pattern=cat(c_pat, np.int64), core_cost=cat(c_cost, float),
+                app_index=app_index, core_app=c_app, core_local=c_loc, core_pattern=c_pat, core_cost=c_cost,
                 core_alive=np.ones(n_c, bool), row_app=r_app, row_sub=r_sub, row_cores=r_cores, row_pats=r_pats,
                 row_cost=r_cost, row_alive=[True] * len(r_app), unservable=unservable)
     return work

@@ -366,6 +366,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
         return 0, 0
     keys = evaluate.spring_keys(cg, rep)
     kk = keys_of_rows(apps, keys)  # the keys' kernel table, once
+    jit = main_spring.load_kernels()
     rows = cat.option_row["spring"]
     mbd = cat.space.tables["spring"]["main_spring_mean_body_diameter_mm"][rows]
     lo, hi = spring_window(keys["spring_housing_inner_diameter_mm"], keys["spring_housing_outer_diameter_mm"])
@@ -390,39 +391,21 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
         rank = np.empty(ng, np.int64)
         rank[order] = np.arange(ng) - np.searchsorted(line[order], line[order])
         failed = np.zeros((int(line.max()) + 1 if ng else 0, len(rows)), bool)
+        line = np.ascontiguousarray(line, np.int64)
         finite = np.isfinite(val)
-        step = max(1, 4 * BLOCK_PAIRS // max(len(rows), 1))
         for rk in range(int(rank.max()) + 1 if ng else 0):
-            in_round = np.flatnonzero(rank == rk)
-            for g0 in range(0, len(in_round), step):
-                gb = in_round[g0:g0 + step]
-                cand = window(g_lo[gb], g_hi[gb]) & ~failed[line[gb]]
-                if parent is not None:
-                    cand &= prev[parent[gb]]
-                g, o = np.nonzero(cand)
-                g = gb[g]
-                n_stage += len(g)
-                for blk in _blocks(len(g)):
-                    gg_, oo = g[blk], o[blk]
-                    m, b = _stage_margin(spring_group(apps, keys, srep[gg_], rows[oo], settings, kk), ids)
-                    ok = passes(m)
-                    survive[gg_[ok], oo[ok]] = True
-                    bad = ~ok & finite[gg_]
-                    failed[line[gg_[bad]], oo[bad]] = True
-                    gg, mm, at = _segment_best(gg_, m)
-                    upd = mm > best[gg]
-                    best[gg[upd]], best_b[gg[upd]] = mm[upd], b[at[upd]]
+            # a round's candidates at once (a line has one group per round: what fails now is for later rounds)
+            for gg_, oo in main_spring.window_pairs(np.flatnonzero(rank == rk), g_lo, g_hi, mbd, exclude=failed,
+                                                    exclude_row=line, need=prev, need_row=parent, limit=BLOCK_PAIRS):
+                n_stage += len(gg_)
+                m, b = _stage_margin(spring_group(apps, keys, srep[gg_], rows[oo], settings, kk), ids)
+                jit.record_stage(gg_, oo, passes(m), m, b, finite, line, survive, failed, best, best_b)
         stages.append((of, survive, best, best_b))
         prev_of, prev = of, survive
     # every key against the survivors of its last-stage group, in its own window: the exact group
-    step = max(1, 4 * BLOCK_PAIRS // max(len(rows), 1))
-    for k0 in range(0, nk, step):
-        kb = np.arange(k0, min(k0 + step, nk))
-        g, o = np.nonzero(prev[prev_of[kb]] & window(lo[kb], hi[kb]))
-        g = kb[g]
+    for g, o in main_spring.window_pairs(kpos, lo, hi, mbd, need=prev, need_row=prev_of, limit=BLOCK_PAIRS):
         n_last += len(g)
-        for blk in _blocks(len(g)):
-            acc.add(g[blk], o[blk], spring_group(apps, keys, g[blk], rows[o[blk]], settings, kk))
+        acc.add(g, o, spring_group(apps, keys, g, rows[o], settings, kk))
     # keys left without a candidate: the first stage that left none in their window says why
     left = np.flatnonzero(~acc.evaluated)
     for of, survive, best, best_b in stages:
@@ -511,6 +494,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
               diagnose, settings) -> list:
     n = len(inputs)
     grouped = {s: pairs[s].by_group(len(rep[s])) for s in SUBSYSTEMS}
+    grouped = {s: (ptr, o, m, _names(b)) for s, (ptr, o, m, b) in grouped.items()}   # binding names, at once
     app_of_group = {s: a[rep[s]] for s in SUBSYSTEMS}
     first_group = {s: np.searchsorted(app_of_group[s], np.arange(n + 1)) for s in SUBSYSTEMS}
     pos_app = a[pos]
@@ -526,7 +510,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             ptr, o, m, b = grouped[s]
             feasible[s] = [o[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
             margin[s] = [m[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
-            binding[s] = [_names(b[ptr[g]:ptr[g + 1]]) for g in range(g0, g1)]
+            binding[s] = [b[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
             complete &= (np.diff(ptr)[g0:g1] > 0)[group[s]]
         d = inputs[i]
         af = AppFeasibility(

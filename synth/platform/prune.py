@@ -70,7 +70,11 @@ _AX = SUBSYSTEMS.index("axial")
 
 
 def _live_rows(w: Work, si: int | None = None) -> list:
-    return [i for i, a in enumerate(w.row_alive) if a and (si is None or w.row_sub[i] == si)]
+    """The live rows (of subsystem ``si``), ascending."""
+    live = np.fromiter(w.row_alive, bool, len(w.row_alive))
+    if si is not None:
+        live &= np.fromiter(w.row_sub, np.int64, len(w.row_sub)) == si
+    return np.flatnonzero(live).tolist()
 
 
 def _overlaps(sets: list) -> tuple[np.ndarray, np.ndarray]:
@@ -101,10 +105,9 @@ def dominated_options(w: Work) -> int:
     """R1 (and the empty-pattern rows). Returns the number of (row, option) entries removed."""
     removed = 0
     cost_obj = w.objective == "cost"
-    multi = {si for si in range(len(SUBSYSTEMS))
-             if any(len(w.patterns[k]) != 1 for k in np.unique(np.concatenate(
-                 [w.row_pats[i] for i in _live_rows(w, si)] or [np.zeros(0, int)])))}
-    plen = np.array([len(x) for x in w.patterns])
+    plen = np.fromiter((len(x) for x in w.patterns), np.int64, len(w.patterns))
+    multi = {si for si in range(len(SUBSYSTEMS))   # subsystems with an option of other than one part
+             if (plen[np.concatenate([w.row_pats[i] for i in _live_rows(w, si)] or [np.zeros(0, np.int64)])] != 1).any()}
     for i in _live_rows(w):
         if w.row_sub[i] not in multi:
             continue
@@ -171,44 +174,62 @@ def _unique_ints(x: np.ndarray, bound: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _token_bits(part: np.ndarray, tok: np.ndarray, n_parts: int, n_tok: int) -> np.ndarray:
-    """``(n_parts, ceil(n_tok / 64))`` bit sets: bit ``tok`` of row ``part`` set for each pair (the pairs distinct).
-    The bits of one word are distinct powers of two: their OR over a sorted run of words is a ``reduceat``.
+    """``(n_parts, ceil(n_tok / 64))`` bit sets: bit ``tok`` of row ``part`` set for each pair (compiled:
+    :func:`synth.kernels._bitsets_jit.set_bits`).
 
     >>> _token_bits(np.array([0, 1, 0]), np.array([3, 64, 0]), 2, 65).tolist()
     [[9, 0], [0, 1]]
     """
-    n_w = (n_tok + 63) // 64
-    bits = np.zeros(n_parts * n_w, np.uint64)
-    if len(part):
-        word = np.asarray(part, np.int64) * n_w + np.asarray(tok, np.int64) // 64
-        order = np.argsort(word, kind="stable")
-        word = word[order]
-        val = np.left_shift(np.uint64(1), (np.asarray(tok, np.int64)[order] % 64).astype(np.uint64))
-        start = np.flatnonzero(np.r_[True, word[1:] != word[:-1]])
-        bits[word[start]] = np.bitwise_or.reduceat(val, start)
-    return bits.reshape(n_parts, n_w)
+    from synth.kernels import _bitsets_jit
+    bits = np.zeros((n_parts, (n_tok + 63) // 64), np.uint64)
+    _bitsets_jit.set_bits(np.ascontiguousarray(part, np.int64), np.ascontiguousarray(tok, np.int64), bits)
+    return bits
 
 
-def _subsets(bits: np.ndarray, pj: np.ndarray, pk: np.ndarray, block: int = 8) -> tuple[np.ndarray, np.ndarray]:
-    """The pairs ``(pj, pk)`` whose bit set ``bits[pj]`` lies inside ``bits[pk]``, in their order: compared a block
-    of words at a time, the pairs a block refutes leaving the later blocks (most pairs fail early; the same pairs
-    as comparing every word at once).
+def _subsets(bits: np.ndarray, pj: np.ndarray, pk: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs ``(pj, pk)`` whose bit set ``bits[pj]`` lies inside ``bits[pk]``, in their order (compiled, each pair
+    stopping at the first word that refutes it: :func:`synth.kernels._bitsets_jit.subset_pairs`).
 
     >>> b = np.array([[1, 2], [3, 2], [1, 0]], np.uint64)
-    >>> [x.tolist() for x in _subsets(b, np.array([0, 0, 2, 1]), np.array([1, 2, 0, 0]), block=1)]
+    >>> [x.tolist() for x in _subsets(b, np.array([0, 0, 2, 1]), np.array([1, 2, 0, 0]))]
     [[0, 2], [1, 0]]
     """
-    alive = np.arange(len(pj))
-    for lo in range(0, bits.shape[1], block):
-        if not len(alive):
-            break
-        a, b = pj[alive], pk[alive]
-        step = max(1, (1 << 22) // block)
-        ok = np.empty(len(alive), bool)
-        for s in range(0, len(alive), step):
-            ok[s:s + step] = ~np.any(bits[a[s:s + step], lo:lo + block] & ~bits[b[s:s + step], lo:lo + block], axis=1)
-        alive = alive[ok]
-    return pj[alive], pk[alive]
+    from synth.kernels import _bitsets_jit
+    ok = np.empty(len(pj), bool)
+    _bitsets_jit.subset_pairs(np.ascontiguousarray(bits), np.ascontiguousarray(pj, np.int64),
+                              np.ascontiguousarray(pk, np.int64), ok)
+    return pj[ok], pk[ok]
+
+
+def _split_patterns(w: Work, upat: np.ndarray, fi: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per pattern ``upat[n]``: its part of family ``fi`` (the first; -1: none) and the id of the pattern of its other
+    parts ("rest", numbered in order of first appearance), every pattern at once: the rests are the rows of a
+    table padded with -1 (parts are >= 0, so two rows are equal exactly when the part lists are).
+
+    >>> from types import SimpleNamespace
+    >>> w = SimpleNamespace(patterns=[np.array([0, 3]), np.array([1, 3]), np.array([3]), np.array([1, 2])],
+    ...                     part_family=np.array([0, 0, 1, 1]))
+    >>> [x.tolist() for x in _split_patterns(w, np.array([0, 1, 2, 3]), 0)]
+    [[0, 1, -1, 1], [0, 0, 0, 1]]
+    """
+    n_u = len(upat)
+    lens = np.fromiter((len(w.patterns[k]) for k in upat), np.int64, n_u)
+    flat = np.concatenate([w.patterns[k] for k in upat]).astype(np.int64) if lens.sum() else np.zeros(0, np.int64)
+    pid = np.repeat(np.arange(n_u), lens)
+    mine = np.asarray(w.part_family)[flat] == fi
+    part_u = np.full(n_u, -1, np.int64)
+    at = np.flatnonzero(mine)
+    first = np.unique(pid[at], return_index=True)[1]
+    part_u[pid[at[first]]] = flat[at[first]]
+    other = np.flatnonzero(~mine)
+    o_pid = pid[other]
+    col = np.arange(len(other)) - np.searchsorted(o_pid, o_pid)
+    table = np.full((n_u, int(col.max()) + 2 if len(col) else 1), -1, np.int64)
+    table[o_pid, col] = flat[other]
+    _, first_at, inv = np.unique(table, axis=0, return_index=True, return_inverse=True)
+    order = np.empty(len(first_at), np.int64)
+    order[np.argsort(first_at, kind="stable")] = np.arange(len(first_at))
+    return part_u, order[np.asarray(inv).reshape(-1)]
 
 
 def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
@@ -220,15 +241,7 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     r_of = np.repeat(np.arange(len(rows)), [len(w.row_pats[i]) for i in rows])
     # per option: its part of family fi (-1: none) and the pattern of its other parts ("rest")
     upat, inv = _unique_ints(pats, len(w.patterns))
-    part_u = np.full(len(upat), -1)
-    rest_key = []
-    for n, k in enumerate(upat):
-        ps = w.patterns[k]
-        mine = ps[w.part_family[ps] == fi]
-        part_u[n] = mine[0] if len(mine) else -1
-        rest_key.append(tuple(ps[w.part_family[ps] != fi].tolist()))
-    rest_ids = {key: n for n, key in enumerate(dict.fromkeys(rest_key))}
-    rest_u = np.array([rest_ids[key] for key in rest_key], np.int64)
+    part_u, rest_u = _split_patterns(w, upat, fi)
     part, rest = part_u[inv], rest_u[inv]
     has = part >= 0
     if not has.any():
@@ -260,7 +273,7 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
         in_app = sp.csc_matrix((np.ones(len(cls), bool), (cls, pcol)), shape=(n_app, nc))
     # per part j: its smallest token (the first in its column on ties: a dominator is in it), and the parts of that
     # token as candidate dominators k, kept when no worse on count, weight and fixed cost and when j's tokens are
-    # all k's (bit sets, in blocks of pairs); the pairs at once rather than a Python loop over the parts
+    # all k's (bit sets, a compiled test per pair stopping at the first word refuting it); no Python loop over j
     col = np.repeat(np.arange(nc), cnt)
     tl = tok_len[by_part.indices]
     low = np.flatnonzero(tl == np.minimum.reduceat(tl, by_part.indptr[:-1])[col])
@@ -296,10 +309,10 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     gone = cand[dom]
     bad_pat = np.zeros(len(w.patterns), bool)
     bad_pat[upat[np.isin(part_u, gone)]] = True
-    for i in rows:
+    for n in np.unique(r_of[bad_pat[pats]]):                                  # the rows that lose an option
+        i = rows[n]
         keep = ~bad_pat[w.row_pats[i]]
-        if not keep.all():
-            w.row_pats[i], w.row_cost[i] = w.row_pats[i][keep], w.row_cost[i][keep]
+        w.row_pats[i], w.row_cost[i] = w.row_pats[i][keep], w.row_cost[i][keep]
     return int(dom.sum())
 
 
@@ -319,10 +332,18 @@ def dominated_cores(w: Work) -> int:
     if not len(alive):
         return 0
     bounds = np.flatnonzero(np.r_[True, np.diff(w.core_app[alive]) != 0, True])
+    # an application whose cores have distinct patterns of one size has no core whose parts are among another's
+    # (a subset of equal size is equal): nothing to test there
+    seg = np.repeat(np.arange(len(bounds) - 1), np.diff(bounds))
+    pat = w.core_pattern[alive].astype(np.int64)
+    n_pat = np.bincount(np.unique(seg * (int(pat.max()) + 1) + pat) // (int(pat.max()) + 1), minlength=len(bounds) - 1)
+    up, at = np.unique(pat, return_inverse=True)
+    size = np.fromiter((len(w.patterns[k]) for k in up), np.int64, len(up))[np.asarray(at).reshape(-1)]
+    plain = (n_pat == np.diff(bounds)) & (np.minimum.reduceat(size, bounds[:-1]) == np.maximum.reduceat(size, bounds[:-1]))
     removed = 0
-    for b0, b1 in zip(bounds[:-1], bounds[1:]):
+    for b0, b1, skip in zip(bounds[:-1], bounds[1:], plain):
         cs = alive[b0:b1]
-        if len(cs) < 2:
+        if len(cs) < 2 or skip:
             continue
         upat, inv = np.unique(w.core_pattern[cs], return_inverse=True)
         better = _subset_matrix(w, upat)[np.ix_(inv, inv)]      # better[a, b]: parts(a) <= parts(b)

@@ -112,7 +112,12 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     _check(objective, max_variants, time_limit, weights)
     w_all = {**default_weights(), **(weights or {})}
     t0 = time.perf_counter()
+    pre = pre if pre is not None else precompile(pf)   # the compilation and the assignments share its groups
     work = compile_portfolio(pf, objective, min_margin=min_margin, weights=w_all, pre=pre)
+    if pre.assign_groups is None:
+        pre.assign_groups = option_groups(pf)
+    groups = pre.assign_groups   # the two assignments below share them
+    pre = None                   # what is left of it is not needed (one solve: its memory back for the MILP)
     before = work.sizes()
     t1 = time.perf_counter()
     capped = bool(max_variants) or budget is not None
@@ -136,9 +141,6 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     else:
         y, status = np.zeros(inst.n_parts, bool), sol.status
     platform = platform_from_y(work, y)
-    if pre is not None and pre.assign_groups is None:
-        pre.assign_groups = option_groups(pf)
-    groups = pre.assign_groups if pre is not None else option_groups(pf)   # the two assignments below share them
     records = assign(pf, platform, min_margin=min_margin, groups=groups)
     t_v = time.perf_counter()
     if verify:
