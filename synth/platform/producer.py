@@ -370,7 +370,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
     rows = cat.option_row["spring"]
     mbd = cat.space.tables["spring"]["main_spring_mean_body_diameter_mm"][rows]
     lo, hi = spring_window(keys["spring_housing_inner_diameter_mm"], keys["spring_housing_outer_diameter_mm"])
-    nk, kpos = len(rep), np.arange(len(rep))
+    kpos = np.arange(len(rep))
     window = (lambda lo_, hi_: (mbd[None, :] >= lo_[:, None]) & (mbd[None, :] <= hi_[:, None]))  # noqa: E731
     n_stage = n_last = 0
     stages, prev_of, prev = [], None, None
