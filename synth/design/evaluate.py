@@ -852,8 +852,8 @@ def _pair_codes(x, y) -> tuple:
     ([0, 1, 0], [('M8', '8.8'), ('M10', '8.8')])
     """
     import pandas as pd  # loaded already wherever many rows come (the bulk engine)
-    cx, ux = pd.factorize(x)
-    cy, uy = pd.factorize(y)
+    cx, ux = pd.factorize(x, use_na_sentinel=False)  # a missing value is a value of its own, as in a dictionary
+    cy, uy = pd.factorize(y, use_na_sentinel=False)
     codes, uniq = pd.factorize(cx.astype(np.int64) * len(uy) + cy)
     return codes.astype(np.int64), [(ux[int(k) // len(uy)], uy[int(k) % len(uy)]) for k in uniq]
 
