@@ -137,9 +137,10 @@ def _far(d, name, sign):
     return cur + _within_rules(d, {name: far}) * (far - cur)
 
 
-def _far_joint(d, cands: dict) -> dict:
-    """The far probe of all inputs ``cands`` moved together (each :func:`_far`), short of the cross-field rules."""
-    far = {n: _far(d, n, s) for n, s in cands.items()}
+def _far_joint(d, cands: dict, each=None) -> dict:
+    """The far probe of all inputs ``cands`` moved together (each :func:`_far`; ``each``: their far values, in
+    ``cands``' order, when known), short of the cross-field rules."""
+    far = dict(zip(cands, each)) if each is not None else {n: _far(d, n, s) for n, s in cands.items()}
     lam = _within_rules(d, far)
     return {n: getattr(d, n) + lam * (v - getattr(d, n)) for n, v in far.items()}
 
@@ -214,36 +215,71 @@ def probe_batch(settings: Settings = Settings(), spring_engine: str = "numba", *
 def relaxations_batch(ds: list, violated: list, *, settings: Settings = Settings(), steps: int = 7,
                       probe=None) -> list:
     """:func:`relaxations` of many applications at once: per application the same candidate inputs, the same
-    far probes and the same bisections, hence the same relaxations; but each step probes every pending
-    (application, set of inputs) together (``probe``, default :func:`probe_batch`): 1 + ``steps`` probe rounds per
-    level (alone, pairs, all), whatever the number of applications. A level is tried while the tensioner designer
-    has no relaxation of his own: the sets of his inputs until one is found, the sets with a specification value
-    until any is."""
+    far probes and the same bisections, hence the same relaxations; but each round probes every pending
+    (application, set of inputs) together (``probe``, default :func:`probe_batch`), the levels (alone, pairs,
+    all) overlapped: a level is tried while the tensioner designer has no relaxation of his own (the sets of his
+    inputs until one is found, the sets with a specification value until any is), which its far probes already
+    decide (every set whose far probe passes gives one relaxation, its bisection only says how far), so the next
+    level's far probes go with the previous level's first bisection step: 3 + ``steps`` probe rounds in all,
+    whatever the number of applications (not 3 x (1 + ``steps``))."""
     probe = probe or probe_batch(settings)
     cands = [_candidates(d, v) for d, v in zip(ds, violated)]
     levels = [_levels(c) for c in cands]
-    out: list = [[] for _ in ds]
-    for level in range(3):
-        mine = [any(r["owner"] == "designer" for r in o) for o in out]
-        todo = [(i, names) for i in range(len(ds)) if not mine[i] for names in levels[i][level]
-                if not out[i] or _designer(names)]
-        far = [(_far(ds[i], names[0], cands[i][names[0]]) if len(names) == 1 else None) for i, names in todo]
-        far = [{names[0]: f} if f is not None else _far_joint(ds[i], {n: cands[i][n] for n in names})
-               for (i, names), f in zip(todo, far)]
+    far_of: dict = {}  # (application, input) -> its far value (:func:`_far`), shared by the levels
 
-        def at(k, lam):
-            i, names = todo[k]
-            return {n: getattr(ds[i], n) + lam * (far[k][n] - getattr(ds[i], n)) for n in names}
-        ok = probe([(ds[i], far[k]) for k, (i, _) in enumerate(todo)]) if todo else []
-        live = [(k, 1.0, 0.0) for k, good in enumerate(ok) if good]  # (set, good fraction, bad fraction)
-        for _ in range(steps):
-            mids = [0.5 * (good + bad) for _, good, bad in live]
-            res = probe([(ds[todo[k][0]], at(k, mid)) for (k, _, _), mid in zip(live, mids)]) if live else []
-            live = [(k, mid, bad) if r else (k, good, mid) for (k, good, bad), mid, r in zip(live, mids, res)]
-        for k, good, _ in live:  # in the candidates' order
-            i, names = todo[k]
-            out[i].append(_entry(ds[i], names, far[k], good, violated[i]))
-    return [_order(o) for o in out]
+    def far1(i, n):
+        if (i, n) not in far_of:
+            far_of[i, n] = _far(ds[i], n, cands[i][n])
+        return far_of[i, n]
+    found: list = [[] for _ in ds]  # per application, the sets whose far probe passed (each a relaxation)
+    got: list = [[[] for _ in ds] for _ in range(3)]  # per level and application, its relaxations
+    jobs: list = []  # per level under way: [level, todo, far, live (set, good fraction, bad fraction), step]
+    level = 0
+    while True:
+        new = None
+        while new is None and level < 3:
+            todo = [(i, names) for i in range(len(ds)) if not any(_designer(n) for n in found[i])
+                    for names in levels[i][level] if not found[i] or _designer(names)]
+            if todo:
+                far = [{names[0]: far1(i, names[0])} if len(names) == 1
+                       else _far_joint(ds[i], {n: cands[i][n] for n in names}, [far1(i, n) for n in names])
+                       for i, names in todo]
+                new = [level, todo, far, [], 0]
+            level += 1
+        items, asked = [], []
+        if new is not None:
+            items += [(ds[i], new[2][k]) for k, (i, _) in enumerate(new[1])]
+        for job in jobs:
+            _, todo, far, live, _ = job
+            for k, good, bad in live:
+                i, names = todo[k]
+                mid = 0.5 * (good + bad)
+                items.append((ds[i], {n: getattr(ds[i], n) + mid * (far[k][n] - getattr(ds[i], n)) for n in names}))
+                asked.append(mid)
+        if not items and new is None:
+            break
+        res = list(probe(items)) if items else []
+        if new is not None:
+            ok, res = res[:len(new[1])], res[len(new[1]):]
+            new[3] = [(k, 1.0, 0.0) for k, good in enumerate(ok) if good]
+            for k, _, _ in new[3]:
+                found[new[1][k][0]].append(new[1][k][1])
+        at = 0
+        for job in jobs:
+            live = job[3]
+            r, mids = res[at:at + len(live)], asked[at:at + len(live)]
+            at += len(live)
+            job[3] = [(k, mid, bad) if y else (k, good, mid) for (k, good, bad), mid, y in zip(live, mids, r)]
+            job[4] += 1
+        if new is not None:
+            jobs.append(new)
+        for job in [j for j in jobs if j[4] >= steps]:
+            lv, todo, far, live, _ = job
+            for k, good, _ in live:  # in the candidates' order
+                i, names = todo[k]
+                got[lv][i].append(_entry(ds[i], names, far[k], good, violated[i]))
+            jobs.remove(job)
+    return [_order(got[0][i] + got[1][i] + got[2][i]) for i in range(len(ds))]
 
 
 def _no_core(d):
