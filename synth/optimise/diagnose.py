@@ -34,7 +34,7 @@ from synth.errors import InputError
 from synth.optimise.product import evaluate
 from synth.schema import FIELDS, field_by_name
 from synth.schema import _consistency
-from synth.optimise.batch import any_feasible
+from synth.optimise.batch import any_feasible, designs_pass
 from synth.design.space import space
 from synth.errors import Problem
 from synth.optimise.answer import build_result
@@ -209,6 +209,26 @@ def probe_batch(settings: Settings = Settings(), spring_engine: str = "numba", *
     def probe(items):
         return any_feasible([dataclasses.replace(d, **ch) for d, ch in items], settings, spring_engine=spring_engine,
                             pin_inputs=pin_inputs)
+
+    def designs(items, hints):
+        """``(answers, designs)`` of ``items``: where ``hints[k]`` (a design found feasible for the same
+        application nearby, or None) passes at item ``k`` (:func:`~synth.optimise.batch.designs_pass`), yes with
+        that design; the others searched (:func:`~synth.optimise.batch.any_feasible`, its design or None)."""
+        xs = [dataclasses.replace(d, **ch) for d, ch in items]
+        out: list = [None] * len(xs)
+        h = [k for k, x in enumerate(hints) if x is not None]
+        if h:
+            for k, y in zip(h, designs_pass([xs[k] for k in h], [hints[k] for k in h], settings)):
+                out[k] = hints[k] if y else None
+        rest = [k for k in range(len(xs)) if out[k] is None]
+        probe.counts["reused"] += len(xs) - len(rest)
+        probe.counts["searched"] += len(rest)
+        for k, f in zip(rest, any_feasible([xs[k] for k in rest], settings, spring_engine=spring_engine,
+                                           pin_inputs=pin_inputs, designs=True)):
+            out[k] = f
+        return [f is not None for f in out], out
+    probe.designs = designs
+    probe.counts = {"reused": 0, "searched": 0}  # probes answered by a reused design, and searched
     return probe
 
 
@@ -223,6 +243,8 @@ def relaxations_batch(ds: list, violated: list, *, settings: Settings = Settings
     level's far probes go with the previous level's first bisection step: 3 + ``steps`` probe rounds in all,
     whatever the number of applications (not 3 x (1 + ``steps``))."""
     probe = probe or probe_batch(settings)
+    reuse = getattr(probe, "designs", None)  # a probe that returns its designs (:func:`probe_batch`)
+    last: dict = {}  # (level, set) -> the design its last feasible probe found
     cands = [_candidates(d, v) for d, v in zip(ds, violated)]
     levels = [_levels(c) for c in cands]
     far_of: dict = {}  # (application, input) -> its far value (:func:`_far`), shared by the levels
@@ -246,11 +268,12 @@ def relaxations_batch(ds: list, violated: list, *, settings: Settings = Settings
                        for i, names in todo]
                 new = [level, todo, far, [], 0]
             level += 1
-        items, asked = [], []
+        items, asked, keys = [], [], []
         if new is not None:
             items += [(ds[i], new[2][k]) for k, (i, _) in enumerate(new[1])]
         for job in jobs:
-            _, todo, far, live, _ = job
+            lv, todo, far, live, _ = job
+            keys += [(lv, k) for k, _, _ in live]
             for k, good, bad in live:
                 i, names = todo[k]
                 mid = 0.5 * (good + bad)
@@ -258,7 +281,12 @@ def relaxations_batch(ds: list, violated: list, *, settings: Settings = Settings
                 asked.append(mid)
         if not items and new is None:
             break
-        res = list(probe(items)) if items else []
+        if reuse is None:
+            res = list(probe(items)) if items else []
+        else:  # each bisection step first tries the design its set's last feasible probe found
+            heads = [(new[0], k) for k in range(len(new[1]))] if new is not None else []
+            res, des = reuse(items, [None] * len(heads) + [last.get(key) for key in keys]) if items else ([], [])
+            last.update((key, f) for key, f in zip(heads + keys, des) if f is not None)
         if new is not None:
             ok, res = res[:len(new[1])], res[len(new[1]):]
             new[3] = [(k, 1.0, 0.0) for k, good in enumerate(ok) if good]
