@@ -204,7 +204,9 @@ def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: in
 def probe_batch(settings: Settings = Settings(), spring_engine: str = "numba", *, pin_inputs: bool = False):
     """A batched feasibility probe: ``probe([(d, changes), ...]) -> [bool, ...]``, every probe of a bisection
     step in one vectorised feasibility search (:func:`synth.optimise.batch.any_feasible`); the same answers as
-    the reference probe (``is_feasible`` of the changed input; an input the physics refuses is not feasible)."""
+    the reference probe (``is_feasible`` of the changed input; an input the physics refuses is not feasible).
+    ``probe.designs(items, hints)`` answers the same, trying the designs ``hints`` first (:func:`relaxations_batch`);
+    ``probe.counts``: how many of its probes a reused design answered and how many were searched."""
 
     def probe(items):
         return any_feasible([dataclasses.replace(d, **ch) for d, ch in items], settings, spring_engine=spring_engine,
@@ -241,7 +243,9 @@ def relaxations_batch(ds: list, violated: list, *, settings: Settings = Settings
     inputs until one is found, the sets with a specification value until any is), which its far probes already
     decide (every set whose far probe passes gives one relaxation, its bisection only says how far), so the next
     level's far probes go with the previous level's first bisection step: 3 + ``steps`` probe rounds in all,
-    whatever the number of applications (not 3 x (1 + ``steps``))."""
+    whatever the number of applications (not 3 x (1 + ``steps``)). With a probe that returns its designs
+    (:func:`probe_batch`), each bisection step first verifies, at its new point, the design its set's last
+    feasible probe found (a pass proves the yes; only the others are searched): the same answers."""
     probe = probe or probe_batch(settings)
     reuse = getattr(probe, "designs", None)  # a probe that returns its designs (:func:`probe_batch`)
     last: dict = {}  # (level, set) -> the design its last feasible probe found
