@@ -71,7 +71,7 @@ from synth.kernels import main_spring
 from synth import catalog
 from synth.design.verify import parts_of_design
 
-__all__ = ["Batch", "wsum", "SLACK", "any_feasible", "robust"]
+__all__ = ["Batch", "wsum", "SLACK", "any_feasible", "designs_pass", "robust"]
 
 #: relative slack of the score cuts (a cut never removes a design within 1e-9 of the best: rounding is far below)
 SLACK = 1e-9
@@ -937,10 +937,44 @@ def robust(fn, items: list, on_error):
 
 
 def any_feasible(inputs: list, settings: evaluate.Settings = evaluate.Settings(), *, spring_engine: str = "numba",
-                 pin_inputs: bool = False) -> list:
+                 pin_inputs: bool = False, designs: bool = False) -> list:
     """Per input, whether some design of its catalog product (``pin_inputs``: with the parts it names) meets every
-    constraint (the enumeration's ``is_feasible``; an input the physics refuses is not feasible)."""
+    constraint (the enumeration's ``is_feasible``; an input the physics refuses is not feasible).
+
+    ``designs=True``: per input the design found instead (``(space, core row, {subsystem: option row})``, for
+    :func:`designs_pass`), or None where there is none: the same verdicts (``is not None``). Every design found
+    passes the judge (:attr:`~synth.design.evaluate.Settings.judge`), and a "no" is the judge's too (the screening
+    model only orders and bounds the search: :meth:`Batch.optimum`)."""
     def run(items):
-        return [f is not None for f in Batch(items, settings, spring_engine=spring_engine,
-                                             pin_inputs=pin_inputs).optimum({"cost": 1.0}, first=True)]
-    return robust(run, list(inputs), lambda item, exc: False)
+        b = Batch(items, settings, spring_engine=spring_engine, pin_inputs=pin_inputs)
+        found = b.optimum({"cost": 1.0}, first=True)
+        if not designs:
+            return [f is not None for f in found]
+        return [None if f is None else (b.sp, int(b.C[f[0]]), f[1]) for f in found]
+    return robust(run, list(inputs), lambda item, exc: None if designs else False)
+
+
+def designs_pass(inputs: list, found: list, settings: evaluate.Settings = evaluate.Settings()) -> np.ndarray:
+    """Per input, whether design ``found[i]`` (an :func:`any_feasible` design, usually of another input) meets
+    every constraint at input ``inputs[i]``: all of them evaluated at once by the judge
+    (:func:`synth.design.verify.evaluate_design`, one row per design). A pass proves :func:`any_feasible`'s yes
+    (which is the judge's verdict of some design); a fail proves nothing (another design may pass). An input the
+    physics refuses does not pass."""
+    from synth.design.assessment import assess
+    from synth.design.verify import evaluate_design
+
+    out = np.zeros(len(inputs), dtype=bool)
+    by_space: dict = {}
+    for i, (sp, core, opts) in enumerate(found):
+        by_space.setdefault(id(sp), (sp, []))[1].append(i)
+    for sp, idx in by_space.values():
+        def run(rows):
+            attrs = {"core": sp.rows("core", np.array([found[i][1] for i in rows], dtype=np.int64))}
+            attrs.update({s: sp.rows(s, np.array([found[i][2][s] for i in rows], dtype=np.int64))
+                          for s in SUBSYSTEMS})
+            apps = Applications.of([inputs[i] for i in rows])
+            with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+                groups = evaluate_design(apps, attrs, settings, detail=False)
+            return list(assess(groups, apps).ok)
+        out[idx] = robust(run, idx, lambda item, exc: False)
+    return out

@@ -34,7 +34,7 @@ from synth.errors import InputError
 from synth.optimise.product import evaluate
 from synth.schema import FIELDS, field_by_name
 from synth.schema import _consistency
-from synth.optimise.batch import any_feasible
+from synth.optimise.batch import any_feasible, designs_pass
 from synth.design.space import space
 from synth.errors import Problem
 from synth.optimise.answer import build_result
@@ -137,9 +137,10 @@ def _far(d, name, sign):
     return cur + _within_rules(d, {name: far}) * (far - cur)
 
 
-def _far_joint(d, cands: dict) -> dict:
-    """The far probe of all inputs ``cands`` moved together (each :func:`_far`), short of the cross-field rules."""
-    far = {n: _far(d, n, s) for n, s in cands.items()}
+def _far_joint(d, cands: dict, each=None) -> dict:
+    """The far probe of all inputs ``cands`` moved together (each :func:`_far`; ``each``: their far values, in
+    ``cands``' order, when known), short of the cross-field rules."""
+    far = dict(zip(cands, each)) if each is not None else {n: _far(d, n, s) for n, s in cands.items()}
     lam = _within_rules(d, far)
     return {n: getattr(d, n) + lam * (v - getattr(d, n)) for n, v in far.items()}
 
@@ -203,47 +204,114 @@ def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: in
 def probe_batch(settings: Settings = Settings(), spring_engine: str = "numba", *, pin_inputs: bool = False):
     """A batched feasibility probe: ``probe([(d, changes), ...]) -> [bool, ...]``, every probe of a bisection
     step in one vectorised feasibility search (:func:`synth.optimise.batch.any_feasible`); the same answers as
-    the reference probe (``is_feasible`` of the changed input; an input the physics refuses is not feasible)."""
+    the reference probe (``is_feasible`` of the changed input; an input the physics refuses is not feasible).
+    ``probe.designs(items, hints)`` answers the same, trying the designs ``hints`` first (:func:`relaxations_batch`);
+    ``probe.counts``: how many of its probes a reused design answered and how many were searched."""
 
     def probe(items):
         return any_feasible([dataclasses.replace(d, **ch) for d, ch in items], settings, spring_engine=spring_engine,
                             pin_inputs=pin_inputs)
+
+    def designs(items, hints):
+        """``(answers, designs)`` of ``items``: where ``hints[k]`` (a design found feasible for the same
+        application nearby, or None) passes at item ``k`` (:func:`~synth.optimise.batch.designs_pass`), yes with
+        that design; the others searched (:func:`~synth.optimise.batch.any_feasible`, its design or None)."""
+        xs = [dataclasses.replace(d, **ch) for d, ch in items]
+        out: list = [None] * len(xs)
+        h = [k for k, x in enumerate(hints) if x is not None]
+        if h:
+            for k, y in zip(h, designs_pass([xs[k] for k in h], [hints[k] for k in h], settings)):
+                out[k] = hints[k] if y else None
+        rest = [k for k in range(len(xs)) if out[k] is None]
+        probe.counts["reused"] += len(xs) - len(rest)
+        probe.counts["searched"] += len(rest)
+        for k, f in zip(rest, any_feasible([xs[k] for k in rest], settings, spring_engine=spring_engine,
+                                           pin_inputs=pin_inputs, designs=True)):
+            out[k] = f
+        return [f is not None for f in out], out
+    probe.designs = designs
+    probe.counts = {"reused": 0, "searched": 0}  # probes answered by a reused design, and searched
     return probe
 
 
 def relaxations_batch(ds: list, violated: list, *, settings: Settings = Settings(), steps: int = 7,
                       probe=None) -> list:
     """:func:`relaxations` of many applications at once: per application the same candidate inputs, the same
-    far probes and the same bisections, hence the same relaxations; but each step probes every pending
-    (application, set of inputs) together (``probe``, default :func:`probe_batch`): 1 + ``steps`` probe rounds per
-    level (alone, pairs, all), whatever the number of applications. A level is tried while the tensioner designer
-    has no relaxation of his own: the sets of his inputs until one is found, the sets with a specification value
-    until any is."""
+    far probes and the same bisections, hence the same relaxations; but each round probes every pending
+    (application, set of inputs) together (``probe``, default :func:`probe_batch`), the levels (alone, pairs,
+    all) overlapped: a level is tried while the tensioner designer has no relaxation of his own (the sets of his
+    inputs until one is found, the sets with a specification value until any is), which its far probes already
+    decide (every set whose far probe passes gives one relaxation, its bisection only says how far), so the next
+    level's far probes go with the previous level's first bisection step: 3 + ``steps`` probe rounds in all,
+    whatever the number of applications (not 3 x (1 + ``steps``)). With a probe that returns its designs
+    (:func:`probe_batch`), each bisection step first verifies, at its new point, the design its set's last
+    feasible probe found (a pass proves the yes; only the others are searched): the same answers."""
     probe = probe or probe_batch(settings)
+    reuse = getattr(probe, "designs", None)  # a probe that returns its designs (:func:`probe_batch`)
+    last: dict = {}  # (level, set) -> the design its last feasible probe found
     cands = [_candidates(d, v) for d, v in zip(ds, violated)]
     levels = [_levels(c) for c in cands]
-    out: list = [[] for _ in ds]
-    for level in range(3):
-        mine = [any(r["owner"] == "designer" for r in o) for o in out]
-        todo = [(i, names) for i in range(len(ds)) if not mine[i] for names in levels[i][level]
-                if not out[i] or _designer(names)]
-        far = [(_far(ds[i], names[0], cands[i][names[0]]) if len(names) == 1 else None) for i, names in todo]
-        far = [{names[0]: f} if f is not None else _far_joint(ds[i], {n: cands[i][n] for n in names})
-               for (i, names), f in zip(todo, far)]
+    far_of: dict = {}  # (application, input) -> its far value (:func:`_far`), shared by the levels
 
-        def at(k, lam):
-            i, names = todo[k]
-            return {n: getattr(ds[i], n) + lam * (far[k][n] - getattr(ds[i], n)) for n in names}
-        ok = probe([(ds[i], far[k]) for k, (i, _) in enumerate(todo)]) if todo else []
-        live = [(k, 1.0, 0.0) for k, good in enumerate(ok) if good]  # (set, good fraction, bad fraction)
-        for _ in range(steps):
-            mids = [0.5 * (good + bad) for _, good, bad in live]
-            res = probe([(ds[todo[k][0]], at(k, mid)) for (k, _, _), mid in zip(live, mids)]) if live else []
-            live = [(k, mid, bad) if r else (k, good, mid) for (k, good, bad), mid, r in zip(live, mids, res)]
-        for k, good, _ in live:  # in the candidates' order
-            i, names = todo[k]
-            out[i].append(_entry(ds[i], names, far[k], good, violated[i]))
-    return [_order(o) for o in out]
+    def far1(i, n):
+        if (i, n) not in far_of:
+            far_of[i, n] = _far(ds[i], n, cands[i][n])
+        return far_of[i, n]
+    found: list = [[] for _ in ds]  # per application, the sets whose far probe passed (each a relaxation)
+    got: list = [[[] for _ in ds] for _ in range(3)]  # per level and application, its relaxations
+    jobs: list = []  # per level under way: [level, todo, far, live (set, good fraction, bad fraction), step]
+    level = 0
+    while True:
+        new = None
+        while new is None and level < 3:
+            todo = [(i, names) for i in range(len(ds)) if not any(_designer(n) for n in found[i])
+                    for names in levels[i][level] if not found[i] or _designer(names)]
+            if todo:
+                far = [{names[0]: far1(i, names[0])} if len(names) == 1
+                       else _far_joint(ds[i], {n: cands[i][n] for n in names}, [far1(i, n) for n in names])
+                       for i, names in todo]
+                new = [level, todo, far, [], 0]
+            level += 1
+        items, asked, keys = [], [], []
+        if new is not None:
+            items += [(ds[i], new[2][k]) for k, (i, _) in enumerate(new[1])]
+        for job in jobs:
+            lv, todo, far, live, _ = job
+            keys += [(lv, k) for k, _, _ in live]
+            for k, good, bad in live:
+                i, names = todo[k]
+                mid = 0.5 * (good + bad)
+                items.append((ds[i], {n: getattr(ds[i], n) + mid * (far[k][n] - getattr(ds[i], n)) for n in names}))
+                asked.append(mid)
+        if not items and new is None:
+            break
+        if reuse is None:
+            res = list(probe(items)) if items else []
+        else:  # each bisection step first tries the design its set's last feasible probe found
+            heads = [(new[0], k) for k in range(len(new[1]))] if new is not None else []
+            res, des = reuse(items, [None] * len(heads) + [last.get(key) for key in keys]) if items else ([], [])
+            last.update((key, f) for key, f in zip(heads + keys, des) if f is not None)
+        if new is not None:
+            ok, res = res[:len(new[1])], res[len(new[1]):]
+            new[3] = [(k, 1.0, 0.0) for k, good in enumerate(ok) if good]
+            for k, _, _ in new[3]:
+                found[new[1][k][0]].append(new[1][k][1])
+        at = 0
+        for job in jobs:
+            live = job[3]
+            r, mids = res[at:at + len(live)], asked[at:at + len(live)]
+            at += len(live)
+            job[3] = [(k, mid, bad) if y else (k, good, mid) for (k, good, bad), mid, y in zip(live, mids, r)]
+            job[4] += 1
+        if new is not None:
+            jobs.append(new)
+        for job in [j for j in jobs if j[4] >= steps]:
+            lv, todo, far, live, _ = job
+            for k, good, _ in live:  # in the candidates' order
+                i, names = todo[k]
+                got[lv][i].append(_entry(ds[i], names, far[k], good, violated[i]))
+            jobs.remove(job)
+    return [_order(got[0][i] + got[1][i] + got[2][i]) for i in range(len(ds))]
 
 
 def _no_core(d):
