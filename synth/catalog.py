@@ -30,9 +30,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from synth.errors import CatalogError, InputError, Problem
-from synth.io.catalogs import check_user_dir
+from synth.io.catalogs import check_user_dir, read_user_catalog
 from synth.fingerprint import cached, catalogs_sha256, source_stamp
-from synth.io.catalogs import read_user_catalog
 
 if TYPE_CHECKING:  # annotations only: pandas is imported where a table is read (start-up: about 60 ms)
     import pandas as pd

@@ -36,18 +36,16 @@ import pandas as pd
 from synth.design import evaluate
 from synth.design.constraints import EVALUATED_GROUPS, REGISTRY, version
 from synth.design.result import FAIL, PASS, WARNING
-from synth.design.space import PART_KEYS, SUBSYSTEMS
+from synth.design.space import PART_KEYS, SUBSYSTEMS, axial_attributes
 from synth.errors import InputError
 from synth.optimise import solve
-from synth.design.space import axial_attributes
 from synth.design.applications import DEFAULTS
 from synth.design.evaluate import NOT_VERIFIED
 from synth.design.assessment import assess
 from synth.optimise.product import core_scores, option_scores
 from synth.design.verify import parts_of_rows
-from synth.optimise.batch import Batch
+from synth.optimise.batch import Batch, robust
 from synth.optimise.diagnose import layout_switches, probe_batch, relaxations_batch
-from synth.optimise.batch import robust
 from synth.optimise.objectives import Objective
 
 __all__ = ["columns", "constraint_ids", "screen_applications", "screen_applications_reference", "row_from_result"]

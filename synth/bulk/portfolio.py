@@ -33,10 +33,8 @@ import pandas as pd
 
 from synth import schema
 from synth.errors import InputError, Problem
-from synth.io.numbers import is_not_given
-from synth.io.tables import read_table
-from synth.io.tables import duplicate_columns
-from synth.io.numbers import _NUMBER, NOT_GIVEN
+from synth.io.numbers import is_not_given, _NUMBER, NOT_GIVEN
+from synth.io.tables import read_table, duplicate_columns
 from synth.io.outputs import output_file, write_csv
 from synth.excel.cells import write_frame
 

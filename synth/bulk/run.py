@@ -58,20 +58,17 @@ import pandas as pd
 
 from synth import catalog
 from synth.version import __version__
-from synth.fingerprint import file_sha256
+from synth.fingerprint import file_sha256, catalogs_sha256
 from synth.bulk.portfolio import (CSV_FLOAT, arrow_safe, column_warnings, field_columns, read_portfolio,
                                   validate_record, validate_table, write_table)
 from synth.errors import InputError, Problem
-from synth.io.outputs import output_file, write_text
+from synth.io.outputs import output_file, write_text, csv_rows
 from synth.report.progress import Progress
 from synth.bulk.engine import columns
-from synth.fingerprint import catalogs_sha256
-from synth.design.rules import echo
+from synth.design.rules import echo, using
 from synth.optimise.objectives import Objective
 from synth.io.limits import check_count
 from synth.bulk.portfolio import FORMATS, check_columns
-from synth.io.outputs import csv_rows
-from synth.design.rules import using
 
 __all__ = ["ENGINES", "FIDELITIES", "DEFAULT_CHUNK_SIZE", "default_chunk_size", "RunReport", "result_columns", "compute_chunk",
            "run_portfolio", "sidecar", "manifest_of", "chunk_ranges", "chunk_state", "RunLock", "usable_cores",

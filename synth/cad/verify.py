@@ -35,9 +35,8 @@ import itertools
 from synth import catalog
 from synth.cad.assembly import TensionerModel
 from synth.cad.solids import stack
-from synth.design.result import FAIL, Check
+from synth.design.result import FAIL, Check, checks_of
 from synth.design.evaluate import finish
-from synth.design.result import checks_of
 
 __all__ = ["verify_model", "interference_volumes", "failed"]
 

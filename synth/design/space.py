@@ -55,11 +55,9 @@ from synth import catalog
 
 from synth.parts import Parts, Table, arrays
 from synth.errors import InputError, Problem
-from synth.model import packaging, pivot, torsion_spring
+from synth.model import packaging, pivot, torsion_spring, disc_spring
 from synth.fingerprint import cached, catalogs_sha256, source_stamp
-from synth.schema import PART_FIELDS
-from synth.schema import field_by_name
-from synth.model import disc_spring
+from synth.schema import PART_FIELDS, field_by_name
 
 __all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "NONE", "CAPACITY", "Space", "space", "core_rows", "spring_window",
            "table_sizes", "check_capacity", "fixed_fields", "space_for", "pinned_space", "pinned_diameter",

@@ -32,8 +32,7 @@ from synth.schema import Field
 from synth.drive.statics import static_state
 from synth.io.files import existing_file, suffix_of
 from synth.io.structured import read_document
-from synth.io.workbook import read_sheet
-from synth.io.workbook import column_letter
+from synth.io.workbook import read_sheet, column_letter
 
 __all__ = ["FIELDS", "ROLES", "Pulley", "Tensioner", "Order", "Drive", "validate", "load_drive", "example_drive",
            "EXAMPLE_PATH", "DRIVE_SUFFIXES", "drive_from_mapping"]

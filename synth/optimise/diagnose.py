@@ -29,17 +29,13 @@ import numpy as np
 
 from synth.design import constraints
 from synth.design.evaluate import Settings
-from synth.design.space import SUBSYSTEMS
-from synth.errors import InputError
+from synth.design.space import SUBSYSTEMS, space
+from synth.errors import InputError, Problem
 from synth.optimise.product import evaluate
-from synth.schema import FIELDS, field_by_name
-from synth.schema import _consistency
-from synth.optimise.batch import any_feasible, designs_pass
-from synth.design.space import space
-from synth.errors import Problem
+from synth.schema import FIELDS, field_by_name, _consistency
+from synth.optimise.batch import any_feasible, designs_pass, Batch
 from synth.optimise.answer import build_result
 from synth.model.layout import layout_of
-from synth.optimise.batch import Batch
 
 __all__ = ["relaxable", "nearest_design", "is_feasible", "relaxations", "relaxations_batch", "probe_batch",
            "diagnose", "layout_switch", "layout_switches", "reference_probe", "violated_of"]

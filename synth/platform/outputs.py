@@ -26,8 +26,7 @@ from synth.platform.assign import platform_parts_used
 from synth.errors import InputError, Problem
 from synth.io.files import read_text
 from synth.platform.data import FAMILIES
-from synth.io.outputs import write_figure
-from synth.io.outputs import output_folder, write_csv, write_text
+from synth.io.outputs import write_figure, output_folder, write_csv, write_text
 from synth.bulk.portfolio import CSV_FLOAT
 
 __all__ = ["platform_table", "gap_text", "assignment_table", "price_of_standardisation", "summary_markdown",

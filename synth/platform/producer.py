@@ -71,11 +71,8 @@ from synth.platform.options import Catalogue, catalogue
 from synth.kernels import main_spring
 from synth.kernels.main_spring import keys_of_rows
 from synth.optimise.diagnose import diagnose
-from synth.bulk.run import ENGINES, chunk_ranges
-from synth.bulk.run import dask_pointless
-from synth.bulk.run import dask_client
-from synth.bulk.portfolio import read_portfolio, records, validate_record
-from synth.bulk.portfolio import FORMATS
+from synth.bulk.run import ENGINES, chunk_ranges, dask_pointless, dask_client
+from synth.bulk.portfolio import read_portfolio, records, validate_record, FORMATS
 from synth.platform.synthetic import synthetic_portfolio
 
 __all__ = ["load_feasibility", "feasibility", "from_table", "chunk_feasibility", "GROUP_KEYS", "SPRING_TORQUE_ONLY", "SPRING_STAGES",

@@ -61,8 +61,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from synth.platform.compile import Work
-from synth.platform.data import SUBSYSTEMS
-from synth.platform.data import SUBSYSTEM_FAMILIES, FAMILIES
+from synth.platform.data import SUBSYSTEMS, SUBSYSTEM_FAMILIES, FAMILIES
 
 __all__ = ["prune", "dominated_options", "dominated_variants", "dominated_cores", "implied_rows", "merge_rows"]
 

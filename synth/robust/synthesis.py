@@ -39,14 +39,13 @@ from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS
 from synth.optimise.objectives import Objective
 from synth.robust.capability import capability
-from synth.robust.sampling import base_of_attributes
+from synth.robust.sampling import base_of_attributes, base_of
 from synth.robust.settings import RobustSettings
 from synth.optimise.solvers.enumerate import tables
 from synth.robust.tolerances import tolerances
 from synth.optimise.product import evaluate
 from synth.optimise.answer import build_result
 from synth.optimise.solvers.enumerate import solve as enumerate_solve
-from synth.robust.sampling import base_of
 from synth.errors import InputError, Problem
 
 __all__ = ["robust_solve", "robust_front", "SearchReport"]

@@ -21,17 +21,15 @@ from __future__ import annotations
 import sys
 
 from synth.bulk.run import ENGINES, FIDELITIES, run_portfolio, sidecar
-from synth.errors import InputError
+from synth.errors import InputError, Terminated
 from synth.io.limits import check_count
 from synth.robust.portfolio import BULK_SAMPLES
-from synth.scenes._options import add_robust_options
+from synth.scenes._options import add_robust_options, robust_settings_from_args
 from synth.bulk.summary import summarise, text, write_summary
 from synth.design.rules import active
 from synth.bulk.portfolio import row_record, validate_record, write_table
 from synth.design.evaluate import Settings
 from synth.design.space import PART_KEYS
-from synth.scenes._options import robust_settings_from_args
-from synth.errors import Terminated
 
 __all__ = ["register"]
 

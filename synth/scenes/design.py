@@ -12,15 +12,13 @@ import sys
 
 from synth.io.outputs import json_text
 from synth.report.text import render
-from synth.scenes._options import add_design_options, add_robust_options, synthesise
+from synth.scenes._options import add_design_options, add_robust_options, synthesise, settings_from_args
 from synth.io.documents import load_input
 from synth.drive.analysis import durability_point
 from synth.drive.inputs import load_drive
-from synth.cad import export_result, summary_lines
+from synth.cad import export_result, summary_lines, require_cadquery
 from synth.errors import InputError
-from synth.cad import require_cadquery
 from synth.robust.assumptions import flips
-from synth.scenes._options import settings_from_args
 from synth import parts
 
 __all__ = ["register"]

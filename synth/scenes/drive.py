@@ -13,8 +13,7 @@ speed, 1 otherwise (or the periodic solution moved more than its tolerance),
 
 from __future__ import annotations
 from synth.errors import InputError, Problem
-from synth.io.outputs import write_figure
-from synth.io.outputs import json_text
+from synth.io.outputs import write_figure, json_text
 
 
 __all__ = ["register"]

@@ -5,14 +5,12 @@ from __future__ import annotations
 
 from synth.optimise.pareto import pareto_front, plot_front
 from synth.io.documents import load_input
-from synth.scenes._options import add_robust_options
+from synth.scenes._options import add_robust_options, robust_settings_from_args
 from synth.io.limits import check_count
 from synth.io.outputs import json_text, output_folder, write_text
 from synth.scenes.report import out_folder
-from synth.design.constraints import words
+from synth.design.constraints import words, REGISTRY
 from synth.robust.synthesis import robust_front
-from synth.scenes._options import robust_settings_from_args
-from synth.design.constraints import REGISTRY
 
 __all__ = ["register"]
 

@@ -18,7 +18,7 @@ import json
 import sys
 from pathlib import Path
 
-from synth import schema
+from synth import schema, flowchart
 from synth.io import documents
 from synth.errors import InputError, Problem
 from synth.scenes._options import add_design_options, add_robust_options, default_args, load_saved_result, synthesise
@@ -36,7 +36,6 @@ from synth.design.rules import active, using
 from synth.report.pdf import write_pdf
 from synth.report.robust import capability_rows
 from synth.scenes._options import robust_settings_from_args
-from synth import flowchart
 from synth.scenes._options import settings_from_args
 
 __all__ = ["register", "make_report", "read_table", "out_folder", "add_capability"]

@@ -13,11 +13,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from synth.scenes._options import add_design_options, add_robust_options
+from synth.scenes._options import add_design_options, add_robust_options, load_saved_result
 from synth.scenes._options import robust_settings_from_args, settings_from_args, synthesise
 from synth.io.outputs import json_text, output_file, output_folder, write_text
 from synth.report.robust import capability_rows, histogram_png, HISTOGRAM_TITLES
-from synth.scenes._options import load_saved_result
 
 __all__ = ["register", "robust_result"]
 

@@ -18,11 +18,8 @@ from __future__ import annotations
 from html import escape
 
 from synth.report.palette import VERDICT_FILLS
-from synth.report.html import check_steps
-from synth.report.html import part_label
-from synth.report.html import check_row
-from synth.report.advice import relaxation_lines
-from synth.report.advice import alternative_rows
+from synth.report.html import check_steps, part_label, check_row
+from synth.report.advice import relaxation_lines, alternative_rows
 
 __all__ = ["checks_table", "parts_table", "binding_table", "diagnosis_html", "alternatives_html", "fill"]
 

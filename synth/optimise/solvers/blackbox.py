@@ -59,19 +59,15 @@ from synth.design.constraints import FEAS_TOL
 from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS, Space
 from synth.optimise.batch import wsum
-from synth.optimise.product import Evaluation, SubTable, evaluate, option_scores, subsystem
+from synth.optimise.product import Evaluation, SubTable, evaluate, option_scores, subsystem, design_scores
 from synth.optimise.objectives import Objective
-from synth.optimise.answer import build_result
+from synth.optimise.answer import build_result, design_margin
 from synth.optimise.search_space import refinements, snap_parts, variables
 from synth.flowchart import run
 from synth.design.verify import verify
-from synth.optimise.product import design_scores
-from synth.optimise.answer import design_margin
 from synth.errors import InputError, Problem
-from synth.optimise.diagnose import nearest_design
+from synth.optimise.diagnose import nearest_design, diagnose, violated_of
 from synth.optimise.solvers.enumerate import solve_space
-from synth.optimise.diagnose import diagnose
-from synth.optimise.diagnose import violated_of
 
 __all__ = ["solve", "Search", "BATCH", "SAMPLERS"]
 
