@@ -43,7 +43,7 @@ from synth.design.applications import DEFAULTS
 from synth.design.evaluate import NOT_VERIFIED
 from synth.design.assessment import assess
 from synth.optimise.product import core_scores, option_scores
-from synth.design.verify import parts_of_rows
+from synth.design.verify import evaluate_design, parts_of_rows
 from synth.optimise.batch import Batch, robust
 from synth.optimise.diagnose import layout_switches, probe_batch, relaxations_batch
 from synth.optimise.objectives import Objective
@@ -206,17 +206,9 @@ def _design_attributes(b, rows, options: dict) -> dict:
 
 def _verify(b, idx, rows, options: dict) -> dict:
     """Every group of the chosen designs of applications ``idx`` (one call per group for all of them)."""
-    apps, st = b.apps, b.settings.judge  # a design found at screening fidelity is verified at full fidelity
     attrs = _design_attributes(b, rows, options)
-    one = np.arange(len(idx))
-    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        groups = {"input": evaluate.inputs(apps, idx)}
-        cg = evaluate.core(apps, idx, attrs["core"], st)
-        groups["core"] = cg
-        groups["bushing"] = evaluate.bushing(apps, cg, one, attrs["bushing"], st)
-        groups["axial"] = evaluate.axial(apps, cg, one, attrs["axial"], st)
-        groups["spring"] = evaluate.spring(apps, evaluate.spring_keys(cg, one), one, attrs["spring"], st)
-        groups["bolt"] = evaluate.bolt(apps, cg, one, attrs["bolt"], st)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # judged: at full fidelity from screening
+        groups = evaluate_design(b.apps, attrs, b.settings, detail=False, of=idx)
     groups["_attrs"] = attrs
     return groups
 

@@ -36,22 +36,25 @@ __all__ = ["evaluate_design", "verify", "values_of", "inputs_of", "wire_size_mm"
 
 
 def evaluate_design(apps: Applications, attrs: dict, settings: evaluate.Settings = evaluate.Settings(), *, detail: bool = True,
-                    time_points: int = 0) -> dict:
+                    time_points: int = 0, of=None) -> dict:
     """Every group of N designs (``attrs``: N-row attribute dicts per table), design ``i`` for application ``i``
-    of ``apps`` (one design: application 0). The one sequence of the evaluator's groups for given designs:
-    the flowchart, :func:`verify`, the optimiser's winner and the platform's assignments call it.
+    of ``apps`` (one design: application 0), or for application ``of[i]`` when ``of`` is given. The one sequence
+    of the evaluator's groups for given designs: the flowchart, :func:`verify`, the optimiser's winner, the
+    platform's assignments and the bulk engine's verification call it.
 
     A given design is judged, never screened: at fidelity ``screening`` every group is evaluated at full fidelity
     (:attr:`~synth.design.evaluate.Settings.judge`); only ``screening-only`` evaluates the screening model."""
     settings = settings.judge
-    idx = np.arange(len(next(iter(attrs["core"].values()))), dtype=np.int64)
-    groups = {"input": evaluate.inputs(apps, idx)}
-    cg = evaluate.core(apps, idx, attrs["core"], settings, detail=detail)
+    n = len(next(iter(attrs["core"].values())))
+    a = np.arange(n, dtype=np.int64) if of is None else np.asarray(of, dtype=np.int64)
+    one = np.arange(n, dtype=np.int64)  # design i is row i of the core group
+    groups = {"input": evaluate.inputs(apps, a)}
+    cg = evaluate.core(apps, a, attrs["core"], settings, detail=detail)
     groups["core"] = cg
-    groups["bushing"] = evaluate.bushing(apps, cg, idx, attrs["bushing"], settings)
-    groups["axial"] = evaluate.axial(apps, cg, idx, attrs["axial"], settings, time_points=time_points)
-    groups["spring"] = evaluate.spring(apps, evaluate.spring_keys(cg, idx), idx, attrs["spring"], settings)
-    groups["bolt"] = evaluate.bolt(apps, cg, idx, attrs["bolt"], settings)
+    groups["bushing"] = evaluate.bushing(apps, cg, one, attrs["bushing"], settings)
+    groups["axial"] = evaluate.axial(apps, cg, one, attrs["axial"], settings, time_points=time_points)
+    groups["spring"] = evaluate.spring(apps, evaluate.spring_keys(cg, one), one, attrs["spring"], settings)
+    groups["bolt"] = evaluate.bolt(apps, cg, one, attrs["bolt"], settings)
     return groups
 
 
