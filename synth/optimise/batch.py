@@ -57,7 +57,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from synth.design.assessment import passes
+from synth.design.assessment import assess, passes
 from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import by_group, physics_inputs
@@ -69,7 +69,7 @@ from synth.errors import InputError
 from synth.design.rules import active
 from synth.kernels import main_spring
 from synth import catalog
-from synth.design.verify import parts_of_design
+from synth.design.verify import evaluate_design, parts_of_design
 
 __all__ = ["Batch", "wsum", "SLACK", "any_feasible", "designs_pass", "robust"]
 
@@ -960,9 +960,6 @@ def designs_pass(inputs: list, found: list, settings: evaluate.Settings = evalua
     (:func:`synth.design.verify.evaluate_design`, one row per design). A pass proves :func:`any_feasible`'s yes
     (which is the judge's verdict of some design); a fail proves nothing (another design may pass). An input the
     physics refuses does not pass."""
-    from synth.design.assessment import assess
-    from synth.design.verify import evaluate_design
-
     out = np.zeros(len(inputs), dtype=bool)
     by_space: dict = {}
     for i, (sp, core, opts) in enumerate(found):
