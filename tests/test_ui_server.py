@@ -92,8 +92,8 @@ def raw(port: int, head: list[str], body: bytes = b"", timeout: float = 30.0) ->
         for ln in lines[1:]:
             k, _, v = ln.partition(":")
             headers.setdefault(k.strip().lower(), v.strip())
-        n = int(headers.get("content-length", 0) or 0)
-        while len(rest) < n:
+        n = headers.get("content-length")
+        while (n is None and status != 101) or len(rest) < int(n or 0):  # no length: until the server closes
             chunk = s.recv(65536)
             if not chunk:
                 break

@@ -705,9 +705,11 @@ def _check_event(msg) -> None:
     client = Client.instances.get(msg["client_id"])
     if client is None:
         return  # NiceGUI ignores it
-    el = client.elements.get(msg.get("id")) if isinstance(msg.get("id"), int) else None
-    if el is None:
+    if isinstance(msg.get("id"), bool) or not isinstance(msg.get("id"), int):
         raise InputError(Problem("event id", short(msg.get("id")), "the id of an element of the page"))
+    el = client.elements.get(msg["id"])
+    if el is None:
+        return  # an element just removed (a notification dismissed, a plot replaced): NiceGUI ignores its events
     listener = getattr(el, "_event_listeners", {}).get(msg.get("listener_id"))
     if listener is None:
         raise InputError(Problem("event listener_id", short(msg.get("listener_id")), "a listener of that element"))
