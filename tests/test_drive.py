@@ -40,9 +40,9 @@ def test_three_pulley_hand_calculation_of_the_first_mode():
     in series, f = sqrt((EA/(L1 + L2) + EA/L3) r^2 / J) / 2 pi."""
     d = validate({"belt": {"stiffness_n": 1e5}, "pulleys": [
         {"name": "C", "role": "crank", "x_mm": 0, "y_mm": 0, "radius_mm": 30},
-        {"name": "T", "role": "tensioner", "radius_mm": 20, "inertia_kg_m2": 1e-12, "backside": True},
+        {"name": "T", "role": "tensioner", "radius_mm": 20, "inertia_kg_m2": 1e-9, "backside": True},
         {"name": "A", "x_mm": 0, "y_mm": 300, "radius_mm": 40, "inertia_kg_m2": 0.002}],
-        "tensioner": {"pivot_x_mm": 70, "pivot_y_mm": 146, "arm_length_mm": 4, "arm_angle_deg": 90,
+        "tensioner": {"pivot_x_mm": 30, "pivot_y_mm": 146, "arm_length_mm": 4, "arm_angle_deg": 90,
                       "inertia_kg_m2": 1e-5, "stiffness_nm_per_deg": 0.02, "nominal_torque_nm": 2,
                       "friction_torque_nm": 0.5},
         "excitation": {"speed_min_rpm": 1000, "speed_max_rpm": 2000, "orders": [{"order": 2, "amplitude_deg": 1}]}})
