@@ -180,3 +180,34 @@ def test_bench_drive_quick_runs(capsys):
     spec.loader.exec_module(mod)
     assert mod.main(["--quick"]) == 0
     assert "| default (24 harmonics" in capsys.readouterr().out
+
+
+def test_synth_design_takes_the_travels_and_hub_load_from_the_drive(tmp_path, capsys):
+    """``synth design case3 --drive D``: the drive states its tensioner by its free-arm stop (120 deg), preload and
+    the calculated torque 1.85 Nm, the spring 0.0164 Nm/deg. By hand, the arm turns from the free arm to nominal by
+    (1.85 - preload) / 0.0164 = 30 deg (the belt loads it clockwise: nominal 90 deg) and on to the installation
+    stop at 40 deg: 50 deg. The design's inputs take both travels, the differential and wrap angles, and theta_pp and
+    f; the note names them, and a verdict comes back."""
+    import yaml
+    from synth.cli import main
+    from synth.data import case_path
+    data = example_drive().to_dict()
+    ten = data["tensioner"]
+    ten.pop("arm_angle_deg")
+    ten.update(free_arm_angle_deg=120.0, preload_nm=1.85 - 0.0164 * 30.0, installation_angle_deg=40.0)
+    data["belt"].update(length_tolerance_mm=0.5, wear_pct=0.05)
+    data["excitation"]["speeds"] = 3
+    path = tmp_path / "drive.yaml"
+    path.write_text(yaml.safe_dump(data))
+    code = main(["design", str(case_path("case3")), "--drive", str(path), "--solver", "flowchart", "--json"])
+    r = json.loads(capsys.readouterr().out)
+    assert code in (0, 1) and r["verdict"] in ("pass", "fail")
+    inputs = r["inputs"]
+    assert inputs["arm_travel_nominal_to_free_deg"] == pytest.approx((1.85 - (1.85 - 0.0164 * 30.0)) / 0.0164)
+    assert inputs["arm_travel_nominal_to_installation_deg"] == pytest.approx(90.0 - 40.0)
+    s = static_state(validate(data))
+    assert inputs["differential_angle_deg"] == pytest.approx(s["differential_angle_deg"])
+    note = r["notes"][0]
+    for name in ("arm_travel_nominal_to_free_deg = 30.00", "arm_travel_nominal_to_installation_deg = 50.00",
+                 "differential_angle_deg", "wrap_angle_deg", "theta_pp", "working range"):
+        assert name in note, note

@@ -203,9 +203,9 @@ def _state_row(fr, ten, sense, phi, name, t_nom=None):
     wrap = float(st["wrap_deg"][0])
     c = st["centres"][0, fr["t"]]
     return {"position": name, "arm_angle_deg": float(np.mod(phi, 360.0)),
-            "from_free_arm_deg": (float(sense * _wrap180(phi - ten.free_arm_angle_deg))
+            "from_free_arm_deg": (float(sense * _wrap180(phi - ten.free_arm_angle_deg)) + 0.0
                                   if ten.free_arm_angle_deg is not None else None),
-            "from_nominal_deg": float(sense * _wrap180(phi - ten.arm_angle_deg)),
+            "from_nominal_deg": float(sense * _wrap180(phi - ten.arm_angle_deg)) + 0.0,
             "centre_x_mm": float(c[0]), "centre_y_mm": float(c[1]), "beta_deg": float(st["beta_deg"][0]),
             "hub_direction_deg": float(st["hub_direction_deg"][0]),
             "hub_load_n": 2.0 * tension * np.sin(np.radians(wrap) / 2.0), "tension_n": tension, "wrap_deg": wrap,
