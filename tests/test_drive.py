@@ -211,3 +211,74 @@ def test_synth_design_takes_the_travels_and_hub_load_from_the_drive(tmp_path, ca
     for name in ("arm_travel_nominal_to_free_deg = 30.00", "arm_travel_nominal_to_installation_deg = 50.00",
                  "differential_angle_deg", "wrap_angle_deg", "theta_pp", "working range"):
         assert name in note, note
+
+
+def _gates(name="gates_ag00686"):
+    from pathlib import Path
+    return load_drive(Path(__file__).resolve().parents[1] / "synth" / "data" / "drives" / f"{name}.yaml")
+
+
+def test_a_duty_torque_is_the_power_at_the_pulleys_speed():
+    """A duty point's load as a torque Q gives the tension step of the power P = Q omega, omega = v / r."""
+    from synth.drive.inputs import DutyPoint
+    from synth.drive.positions import duty_table
+    d = _gates()
+    v = 2 * np.pi * 1500 / 60 * d.pulleys[0].radius_mm / 1000
+    q = 5500.0 / (v / (d.pulleys[2].radius_mm / 1000))      # the A/C's 5.5 kW as a torque [N m]
+    by_power = dataclasses.replace(d, duty=(DutyPoint(1500.0, None, (("A_C", 5.5),)),))
+    by_torque = dataclasses.replace(d, duty=(DutyPoint(1500.0, None, (), (("A_C", q),)),))
+    np.testing.assert_allclose(duty_table(by_torque)["tension_n"], duty_table(by_power)["tension_n"], rtol=1e-12)
+    t = duty_table(by_power)["tension_n"][0]
+    assert t[2] - t[1] == pytest.approx(5500.0 / v)          # across the A/C: P / v
+    assert t[0] == pytest.approx(t[-1] - 5500.0 / v)        # the crank gives it back
+
+
+def test_the_nominal_angle_from_the_belt_length_is_the_one_from_the_torque():
+    """A belt of exactly the required length (the drive length less the elongation at the nominal tension) puts the
+    arm where the spring's nominal torque does."""
+    from synth.drive.positions import positions
+    d = _gates()
+    table = positions(d)
+    nominal = next(r for r in table["rows"] if r["position"] == "nominal")
+    data = d.to_dict()
+    data["tensioner"].pop("nominal_torque_nm")
+    data["belt"]["length_mm"] = nominal["required_belt_length_mm"]
+    from_length = validate(data)
+    assert from_length.tensioner.nominal_from == "belt"
+    # (the elongation scales with the belt's length: 1475 mm there, the required 1474.99 mm here)
+    assert from_length.tensioner.arm_angle_deg == pytest.approx(d.tensioner.arm_angle_deg, abs=1e-4)
+    assert from_length.tensioner.nominal_torque_nm == pytest.approx(24.54, abs=1e-4)
+
+
+def test_thermal_change_widens_the_working_range_and_a_belt_beyond_a_stop_is_a_finding(capsys):
+    from synth.drive.positions import positions, travels
+    d = _gates()
+    cold = travels(d)["working_range_deg"]
+    hot = travels(dataclasses.replace(d, belt_thermal_change_pct=-0.2))["working_range_deg"]  # it shrinks hot
+    assert hot > cold + 4.0                                   # 0.2 % of 1475 mm at about 0.5 mm/deg
+    worn = dataclasses.replace(d, belt_wear_pct=2.0)           # 29.6 mm of wear: past the free arm
+    row = next(r for r in positions(worn)["rows"] if r["position"] == "worn")
+    assert not row["found"] and row["stop"] == "free arm" and row["beyond_mm"] > 10.0
+
+
+def test_stops_on_the_wrong_side_and_two_statements_of_the_nominal_are_refused():
+    data = _gates().to_dict()
+    data["tensioner"]["installation_angle_deg"] = 50.0       # before the nominal 75 deg: the free arm's side
+    with pytest.raises(InputError, match="installation_angle_deg: got 50"):
+        validate(data)
+    data = _gates().to_dict()
+    data["tensioner"]["arm_angle_deg"] = 75.0
+    with pytest.raises(InputError, match="either arm_angle_deg or preload_nm"):
+        validate(data)
+
+
+def test_synth_drive_prints_a_reports_tables_and_draws_the_layout(tmp_path, capsys):
+    from pathlib import Path
+    from synth.cli import main
+    path = Path(__file__).resolve().parents[1] / "synth" / "data" / "drives" / "gates_ag00686.yaml"
+    assert main(["drive", str(path), "--layout", str(tmp_path / "layout.png")]) == 0
+    out = capsys.readouterr().out
+    for text in ("Free Arm", "Replace", "Load", "arm to hub load [deg]", "required belt length [mm]", "Hub load [N]",
+                 "free system", "travels: nominal to installation 29.3 deg"):
+        assert text in out, text
+    assert (tmp_path / "layout.png").stat().st_size > 10_000
