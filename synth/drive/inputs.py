@@ -416,7 +416,7 @@ def _value(f: Field, raw, where: str, problems: list):
     below = x <= f.lo if f.lo_open else x < f.lo
     above = x >= f.hi if f.hi_open else x > f.hi
     if below or above or (f.kind == "int" and x != int(x)):
-        problems.append(Problem(where, short(raw), f.accepted() + (f" ({f.basis})" if f.basis and above else "")))
+        problems.append(Problem(where, short(raw), f.accepted() + (f" ({f.basis})" if f.basis and (above or below) else "")))
         return None
     return int(x) if f.kind == "int" else x
 
