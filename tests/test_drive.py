@@ -282,3 +282,16 @@ def test_synth_drive_prints_a_reports_tables_and_draws_the_layout(tmp_path, caps
                  "free system", "travels: nominal to installation 29.3 deg"):
         assert text in out, text
     assert (tmp_path / "layout.png").stat().st_size > 10_000
+
+
+def test_bench_drive_reports_quick_runs(capsys):
+    """The ten-pulley benchmark's drive is valid and its six positions all lie between the stops."""
+    import importlib.util
+    from pathlib import Path
+    spec = importlib.util.spec_from_file_location("bench_drive_reports", Path(__file__).resolve().parents[1]
+                                                  / "benchmarks" / "bench_drive_reports.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    assert mod.main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "| ten-pulley | 10 | 6 | 6 | positions + duty table |" in out
