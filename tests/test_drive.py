@@ -295,3 +295,36 @@ def test_bench_drive_reports_quick_runs(capsys):
     assert mod.main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert "| ten-pulley | 10 | 6 | 6 | positions + duty table |" in out
+
+
+def test_a_reports_drive_reads_from_a_workbook_with_its_duty_table(tmp_path):
+    """A duty table in the Drive sheet: one row per point, a pulley's power as a ``power_kw.NAME`` column."""
+    from openpyxl import Workbook
+    drive = _gates()
+    data = drive.to_dict()
+    wb = Workbook()
+    ws = wb.active
+    ws.title = "Drive"
+    ws.append(["name", drive.name])
+    for sec in ("belt", "tensioner"):
+        for k, v in data[sec].items():
+            ws.append([f"{sec}.{k}", v])
+    cols = list(dict.fromkeys(k for p in data["pulleys"] for k in p))
+    ws.append([])
+    ws.append(["pulleys"])
+    ws.append([None, *cols])
+    for p in data["pulleys"]:
+        ws.append([None, *(p.get(k) for k in cols)])
+    loads = list(dict.fromkeys(n for p in data["duty"] for n in p["power_kw"]))
+    ws.append([])
+    ws.append(["duty"])
+    ws.append([None, "speed_rpm", "time_pct", *(f"power_kw.{n}" for n in loads)])
+    for p in data["duty"]:
+        ws.append([None, p["speed_rpm"], p["time_pct"], *(p["power_kw"].get(n) for n in loads)])
+    path = tmp_path / "drive.xlsx"
+    wb.save(path)
+    assert load_drive(path) == drive
+    ws[f"E{ws.max_row}"] = "lots"                                     # the last point's A_C power
+    wb.save(path)
+    with pytest.raises(InputError, match=r"duty\[5\]\.power_kw\.A_C \(Drive!E\d+\): got 'lots'"):
+        load_drive(path)
