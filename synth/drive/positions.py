@@ -210,7 +210,9 @@ def _state_row(fr, ten, sense, phi, name, t_nom=None):
             "hub_direction_deg": float(st["hub_direction_deg"][0]),
             "hub_load_n": 2.0 * tension * np.sin(np.radians(wrap) / 2.0), "tension_n": tension, "wrap_deg": wrap,
             "drive_length_mm": float(st["drive_length_mm"][0]), "spring_torque_nm": m,
-            "take_up_mm_per_deg": dl * np.pi / 180.0, "found": True}
+            "take_up_mm_per_deg": dl * np.pi / 180.0, "found": True,
+            "span_length_mm": st["geometry"]["length_mm"][0].tolist(),
+            "pulley_wrap_deg": np.degrees(st["geometry"]["wrap_rad"][0]).tolist()}
 
 
 def positions(drive) -> dict:

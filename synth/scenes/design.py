@@ -79,6 +79,10 @@ def with_drive(d, path):
     from synth.drive.statics import static_state
 
     drive = load_drive(path)
+    arm_note = ""
+    if abs(drive.tensioner.arm_length_mm - d.working_arm_mm) > 0.01 * drive.tensioner.arm_length_mm:
+        arm_note = (f" (the design's working arm {d.working_arm_mm:g} mm replaces the drive's arm "
+                    f"{drive.tensioner.arm_length_mm:g} mm: the pulley's centre, and with it the drive, is the design's)")
     ten = {"arm_length_mm": d.working_arm_mm, "stiffness_nm_per_deg": d.spring_stiffness_nm_per_deg,
            "nominal_torque_nm": d.calculated_torque_target_nm}
     if d.damping_target_nm is not None:
@@ -115,7 +119,7 @@ def with_drive(d, path):
                      + (" (the arm locks there: theta_pp 0)" if p["locked"] else ""))
         checks_drive = drive
     d = dataclasses.replace(d, **changes)
-    note = f"from the drive '{drive.name}': " + "; ".join(taken) + extra
+    note = f"from the drive '{drive.name}'{arm_note}: " + "; ".join(taken) + extra
     return d, checks_drive, note
 
 
