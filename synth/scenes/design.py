@@ -66,27 +66,61 @@ def _main(args) -> int:
 
 
 def with_drive(d, path):
-    """The design input with the durability test's theta_pp and f from the drive at its durability speed, the
-    drive with the design input's tensioner (arm, spring, calculated torque, damping target), and a note."""
+    """The design input with what the drive gives it, the drive with the design input's tensioner (arm, spring,
+    calculated torque, damping target; the drive's nominal arm angle and stops kept), and a note naming each input
+    taken from the drive: the arm travels from the drive's positions (nominal to installation, to the free arm),
+    the differential and wrap angles of its nominal position (the hub load's direction and size), and, for a drive
+    with an excitation, theta_pp and f at its durability speed. The drive returned is None when it has no
+    excitation (the registry's drive checks need the response)."""
     import dataclasses
 
+    from synth.drive.analysis import states_positions
+    from synth.drive.positions import positions, travels
+    from synth.drive.statics import static_state
+
     drive = load_drive(path)
+    arm_note = ""
+    if abs(drive.tensioner.arm_length_mm - d.working_arm_mm) > 0.01 * drive.tensioner.arm_length_mm:
+        arm_note = (f" (the design's working arm {d.working_arm_mm:g} mm replaces the drive's arm "
+                    f"{drive.tensioner.arm_length_mm:g} mm: the pulley's centre, and with it the drive, is the design's)")
     ten = {"arm_length_mm": d.working_arm_mm, "stiffness_nm_per_deg": d.spring_stiffness_nm_per_deg,
            "nominal_torque_nm": d.calculated_torque_target_nm}
     if d.damping_target_nm is not None:
         ten["friction_torque_nm"] = d.damping_target_nm
     drive = drive.with_tensioner(**ten)
-    p = durability_point(drive)
-    duration = d.durability_duration_h
-    if d.durability_test == "assumed" and d.engine_type:
-        arr = parts.arrays().durability
-        duration = float(arr.cols["duration_h"][arr.code(d.engine_type, "engine_type")])
-    d = dataclasses.replace(d, durability_test="defined", durability_theta_peak_to_peak_deg=p["theta_pp_deg"],
-                            durability_frequency_hz=p["frequency_hz"], durability_duration_h=duration)
-    note = (f"durability: theta_pp = {p['theta_pp_deg']:.3g} deg and f = {p['frequency_hz']:.3g} Hz from the drive "
-            f"'{drive.name}' at {p['speed_rpm']:g} rpm with the damping target {p['friction_nm']:g} Nm"
-            + (" (the arm locks there: theta_pp 0)" if p["locked"] else ""))
-    return d, drive, note
+    changes, taken = {}, []
+    st = static_state(drive)
+    wrap = float(st["wrap_deg"][drive.tensioner_index])
+    changes.update(differential_angle_deg=float(st["differential_angle_deg"]), wrap_angle_deg=wrap)
+    taken += [f"differential_angle_deg = {changes['differential_angle_deg']:.2f} deg and wrap_angle_deg = "
+              f"{wrap:.2f} deg (hub load {st['hub_load_n'][drive.tensioner_index]:.0f} N at nominal)"]
+    extra = ""
+    if states_positions(drive):
+        tr = travels(drive, positions(drive))
+        for key, field in (("nominal_to_installation_deg", "arm_travel_nominal_to_installation_deg"),
+                           ("nominal_to_free_deg", "arm_travel_nominal_to_free_deg")):
+            if key in tr:
+                changes[field] = tr[key]
+                taken.append(f"{field} = {tr[key]:.2f} deg")
+        if "working_range_deg" in tr:
+            extra = (f"; the arm's working range over the belt's tolerance, wear and thermal change (shortest to worn) "
+                     f"is {tr['working_range_deg']:.2f} deg (no design input takes it)")
+    checks_drive = None
+    if drive.dynamic:
+        p = durability_point(drive)
+        duration = d.durability_duration_h
+        if d.durability_test == "assumed" and d.engine_type:
+            arr = parts.arrays().durability
+            duration = float(arr.cols["duration_h"][arr.code(d.engine_type, "engine_type")])
+        changes.update(durability_test="defined", durability_theta_peak_to_peak_deg=p["theta_pp_deg"],
+                       durability_frequency_hz=p["frequency_hz"], durability_duration_h=duration)
+        taken.append(f"durability: theta_pp = {p['theta_pp_deg']:.3g} deg and f = {p['frequency_hz']:.3g} Hz at "
+                     f"{p['speed_rpm']:g} rpm with the damping target {p['friction_nm']:g} Nm"
+                     + (" (the arm locks there: theta_pp 0)" if p["locked"] else ""))
+        checks_drive = drive
+    d = dataclasses.replace(d, **changes)
+    note = f"from the drive '{drive.name}'{arm_note}: " + "; ".join(taken) + extra
+    return d, checks_drive, note
 
 
 def export_cad(r, out_dir, application: str | None = None, *, pictures: bool = False):

@@ -709,6 +709,45 @@ def round_two():
                                                                 "--scheduler", address], 2, ["--scheduler"])
 
 
+# ---------------------------------------------------------------- issue 39: drive inputs (synth drive, design --drive)
+def drive_inputs():
+    """A drive file with a subnormal or absurd number, the largest counts and solver settings past their bounds
+    (they ran for minutes), loads naming no pulley, and a workbook without the Drive sheet (a design input's)."""
+    drive = yaml.safe_load((ROOT / "synth" / "data" / "drives" / "example_timing_drive.yaml").read_text())
+
+    def drive_file(name, change):
+        d = json.loads(json.dumps(drive))
+        change(d)
+        return write(name, yaml.safe_dump(d, sort_keys=False))
+
+    f = drive_file("drv_subnormal_stiffness.yaml", lambda d: d["belt"].update(stiffness_n=5e-324))
+    case("drive_subnormal_belt_stiffness", ["drive", f], 2, ["belt.stiffness_n", "subnormal"])
+    f = drive_file("drv_subnormal_radius.yaml", lambda d: d["pulleys"][2].update(radius_mm=5e-324))
+    case("drive_subnormal_pulley_radius", ["drive", f], 2, ["pulleys[2].radius_mm", "subnormal"])
+    f = drive_file("drv_subnormal_inertia.yaml", lambda d: d["tensioner"].update(inertia_kg_m2=5e-324))
+    case("drive_subnormal_arm_inertia", ["drive", f], 2, ["tensioner.inertia_kg_m2", "subnormal"])
+    f = drive_file("drv_tiny_radius.yaml", lambda d: d["pulleys"][2].update(radius_mm=1e-300))
+    case("drive_tiny_pulley_radius", ["drive", f], 2, ["pulleys[2].radius_mm", "1 mm is a floor"])
+    f = drive_file("drv_harmonics_400.yaml", lambda d: d.update(solver={"harmonics": 400}))
+    case("drive_harmonics_400", ["drive", f], 2, ["solver.harmonics", "[4, 32]"],
+         note="400 harmonics ran for 265 s CPU and 1.41 GB; 32 (checked at 64) is the bound: docs/sections/drive.md")
+    f = drive_file("drv_speeds_1000.yaml", lambda d: d["excitation"].update(speeds=1000))
+    case("drive_speeds_1000", ["drive", f], 2, ["excitation.speeds", "[2, 60]"])
+    f = drive_file("drv_regularisation_tiny.yaml", lambda d: d.update(solver={"regularisation": 1e-300}))
+    case("drive_regularisation_tiny", ["drive", f], 2, ["solver.regularisation", "0.001"])
+    f = drive_file("drv_duty_unknown_pulley.yaml",
+                   lambda d: d.update(duty=[{"speed_rpm": 1000, "power_kw": {"ALT": 3.0}}]))
+    case("drive_duty_unknown_pulley", ["drive", f], 2, ["duty[0].power_kw.ALT", "a pulley name"])
+    f = drive_file("drv_duty_too_many.yaml", lambda d: d.update(duty=[{"speed_rpm": 1000} for _ in range(201)]))
+    case("drive_duty_too_many_points", ["drive", f], 2, ["duty", "1 to 200"])
+    f = drive_file("drv_two_nominals.yaml", lambda d: d["tensioner"].update(preload_nm=1.0, free_arm_angle_deg=120))
+    case("drive_nominal_stated_twice", ["drive", f], 2, ["tensioner.preload_nm", "either arm_angle_deg or preload_nm"])
+    case("drive_design_template_workbook", ["drive", "{dir}/ok_w_decimal_comma.xlsx"], 2,
+         ["sheet named 'Drive'", "'Input'", "synth design"])
+    case("design_drive_is_a_design_template", ["design", "{cases}/case3.yaml", "--drive",
+                                               "{dir}/ok_w_decimal_comma.xlsx"], 2, ["--drive", "sheet named 'Drive'"])
+
+
 def schema_positive_fields() -> list[str]:
     """The number fields that must be positive (a subnormal value overflowed margins to infinity)."""
     from synth import schema
@@ -724,7 +763,8 @@ def main() -> None:
     FILES.mkdir(parents=True)
     for name, data in keep.items():
         (FILES / name).write_bytes(data)
-    for part in (design_yaml, design_toml_json, workbooks, results, catalogs, portfolios, counts_and_scenes, round_two):
+    for part in (design_yaml, design_toml_json, workbooks, results, catalogs, portfolios, counts_and_scenes, round_two,
+                 drive_inputs):
         part()
     ids = [c["id"] for c in CASES]
     assert len(ids) == len(set(ids)), "case ids must be unique"
