@@ -16,6 +16,7 @@ import numpy as np
 from synth.drive.modes import linear_drive, natural_frequencies
 from synth.drive.response import speed_response, sweep
 from synth.errors import InputError, Problem
+from synth.threads import limits
 
 __all__ = ["analyse", "durability_point", "tensioner_checks", "require_durability_speed"]
 
@@ -38,6 +39,7 @@ def _sweep(drive, friction_nm: float):
     return sweep(_model(drive), drive, friction_nm, drive.speeds_rpm())
 
 
+@limits("small")  # small dense solves: one BLAS thread (synth.threads)
 def durability_point(drive, friction_nm: float | None = None) -> dict:
     """theta_pp [deg] and f [Hz] of the arm at the durability speed (the drive's friction unless given).
 
@@ -55,6 +57,7 @@ def durability_point(drive, friction_nm: float | None = None) -> dict:
             "tension_min_n": r["tension_min_n"], "tension_max_n": r["tension_max_n"]}
 
 
+@limits("small")
 def tensioner_checks(drive, friction_nm) -> dict:
     """Per friction torque (array, N m): the lowest effective span tension over the sweep [N], and the drive's
     critical friction at the durability speed, its slack limit and static tensioner tension (for the margins).
@@ -69,6 +72,7 @@ def tensioner_checks(drive, friction_nm) -> dict:
             "static_tension_n": float(_model(drive).static["tensioner_tension_n"])}
 
 
+@limits("small")
 def analyse(drive, *, check: bool = True) -> dict:
     """Everything ``synth drive`` reports, as plain data (numbers, lists)."""
     model = _model(drive)
