@@ -1,12 +1,16 @@
 """Every scene beside a competing load (issue 36): whole commands quiet and with busy processes, in turn.
 
-Run: ``.venv/bin/python benchmarks/bench_load.py [--busy 2] [--runs 1] [--only NAME ...] [--base CHECKOUT]``
-(prints a markdown table). Each command runs as a fresh process, first on the machine as it is ("quiet": other
-users' work shows, so the load average is printed), then with ``--busy`` processes ``python -c "while 1: pass"``
-started just before it and killed just after; ``--runs`` such pairs, the ratio loaded/quiet taken pair by pair
-(median), so a drift of the machine's speed between pairs cancels. Wall seconds, and the command's own CPU
-seconds (``os.wait4``: the process and the children it waited for). ``--base CHECKOUT`` runs each command of the
-checkout too (``PYTHONPATH=CHECKOUT``, e.g. a worktree of the commit before a change), in the same turn.
+Run: ``.venv/bin/python benchmarks/bench_load.py [--busy 2] [--runs 1] [--only NAME ...] [--base CHECKOUT]
+[--same-session]`` (prints a markdown table). Each command runs as a fresh process, first on the machine as it is
+("quiet": other users' work shows, so the load average is printed), then with ``--busy`` processes ``python -c
+"while 1: pass"`` started just before it and killed just after. They start in a session of their own, as another
+program's would (Linux's autogroup then schedules them as a group of their own, beside the command's);
+``--same-session`` starts them in the benchmark's session, so that they share the command's group. ``--runs``
+such pairs, the ratio loaded/quiet taken pair by pair (median), so a drift of the machine's speed between pairs
+cancels. Wall seconds, and the command's own CPU seconds (``os.wait4``: the process and the children it waited
+for): a CPU ratio near 1 says the command waited for a core and wasted nothing; above 1, threads that spin or
+fight (the drive's BLAS before issue 36). ``--base CHECKOUT`` runs each command of the checkout too
+(``PYTHONPATH=CHECKOUT``, e.g. a worktree of the commit before a change), in the same turn.
 
 Commands (:data:`COMMANDS`): ``synth drive`` of the example drive; ``synth design`` of thesis case 3 with that
 drive (``--drive``); ``synth design`` and ``synth robust`` of the embedded default application; ``synth bulk`` of a
@@ -32,10 +36,16 @@ import urllib.request
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from synth.ui.browser import stop_server  # noqa: E402
 DRIVE = ROOT / "synth" / "data" / "drives" / "example_timing_drive.yaml"
 DEFAULT = ROOT / "synth" / "data" / "default_case.yaml"
 CASE3 = ROOT / "synth" / "data" / "cases" / "case3.yaml"
 BUSY = [sys.executable, "-c", "while 1: pass"]
+#: the commands' working folder: ``python -m`` puts it first on the path, so it must hold no synth (PYTHONPATH
+#: then says which tree runs)
+NEUTRAL = tempfile.gettempdir()
 
 #: name -> the command's arguments after ``python -m synth`` ({bulk}, {rat}, {out}: the run's files)
 COMMANDS = {
@@ -68,7 +78,7 @@ def _proc_cpu_s(pid: int) -> float:
 def run_command(args: list[str], env: dict) -> tuple[float, float, int]:
     """(wall s, CPU s, exit code) of ``python -m synth ARGS`` as a whole process."""
     t = time.perf_counter()
-    proc = subprocess.Popen([sys.executable, "-m", "synth", *args], env=env, stdout=subprocess.DEVNULL,
+    proc = subprocess.Popen([sys.executable, "-m", "synth", *args], env=env, cwd=NEUTRAL, stdout=subprocess.DEVNULL,
                             stderr=subprocess.DEVNULL)
     _, status, ru = os.wait4(proc.pid, 0)
     wall = time.perf_counter() - t
@@ -83,7 +93,7 @@ def web_cold_start(env: dict, timeout_s: float = 300.0) -> tuple[float, float, i
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
     t = time.perf_counter()
-    proc = subprocess.Popen([sys.executable, "-m", "synth", "ui", "--port", str(port)], env=env,
+    proc = subprocess.Popen([sys.executable, "-m", "synth", "ui", "--port", str(port)], env=env, cwd=NEUTRAL,
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     ok = 1
     try:
@@ -99,23 +109,20 @@ def web_cold_start(env: dict, timeout_s: float = 300.0) -> tuple[float, float, i
                 time.sleep(0.05)
         wall, cpu = time.perf_counter() - t, _proc_cpu_s(proc.pid)
     finally:
-        proc.terminate()
-        try:
-            proc.wait(15)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
+        stop_server(proc)
     return wall, cpu, ok
 
 
 class Busy:
-    """``n`` busy processes for the span of a ``with`` block (started before, killed and reaped after)."""
+    """``n`` busy processes for the span of a ``with`` block (started before, killed and reaped after), in a session
+    of their own (``same_session=False``: as another program, under Linux's autogroup a scheduling group of their
+    own) or in the benchmark's (sharing the command's group)."""
 
-    def __init__(self, n: int):
-        self.n, self.procs = n, []
+    def __init__(self, n: int, same_session: bool = False):
+        self.n, self.same, self.procs = n, same_session, []
 
     def __enter__(self):
-        self.procs = [subprocess.Popen(BUSY) for _ in range(self.n)]
+        self.procs = [subprocess.Popen(BUSY, start_new_session=not self.same) for _ in range(self.n)]
         time.sleep(0.2)  # running before the command starts
         return self
 
@@ -150,6 +157,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--n-bulk", type=int, default=10000)
     ap.add_argument("--n-rationalise", type=int, default=1000)
     ap.add_argument("--base", type=Path, default=None, help="a second checkout measured in the same turns")
+    ap.add_argument("--same-session", action="store_true",
+                    help="start the busy processes in the benchmark's session (one scheduling group with the command)")
     a = ap.parse_args(argv)
     trees = {"this tree": ROOT} | ({f"base {a.base.name}": a.base.resolve()} if a.base else {})
     names = a.only or list(COMMANDS)
@@ -172,22 +181,23 @@ def main(argv: list[str] | None = None) -> int:
                 quiet, loaded = [], []
                 for _ in range(a.runs):
                     quiet.append(measure(name, env, files))
-                    with Busy(a.busy):
+                    with Busy(a.busy, a.same_session):
                         loaded.append(measure(name, env, files))
                 ratio = statistics.median(lo[0] / q[0] for q, lo in zip(quiet, loaded))
+                cpu_ratio = statistics.median(lo[1] / q[1] for q, lo in zip(quiet, loaded))
                 row = (name, label, statistics.median(q[0] for q in quiet), statistics.median(q[1] for q in quiet),
                        statistics.median(lo[0] for lo in loaded), statistics.median(lo[1] for lo in loaded), ratio,
-                       sorted({c for q in quiet + loaded for c in [q[2]]}))
+                       cpu_ratio, sorted({q[2] for q in quiet + loaded}))
                 rows.append(row)
                 print(f"  {name} ({label}): quiet {row[2]:.1f} s, loaded {row[4]:.1f} s, {ratio:.2f}x "
                       f"(load {_load()})", file=sys.stderr, flush=True)
     print(f"load average after: {_load()}")
     print()
-    print("| command | tree | quiet wall [s] | quiet CPU [s] | loaded wall [s] | loaded CPU [s] | loaded / quiet | "
-          "exit |")
-    print("|---|---|---|---|---|---|---|---|")
-    for name, label, qw, qc, lw, lc, ratio, codes in rows:
-        print(f"| {name} | {label} | {qw:.1f} | {qc:.1f} | {lw:.1f} | {lc:.1f} | {ratio:.2f} | "
+    print("| command | tree | quiet wall [s] | quiet CPU [s] | loaded wall [s] | loaded CPU [s] | loaded / quiet "
+          "(wall) | loaded / quiet (CPU) | exit |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for name, label, qw, qc, lw, lc, ratio, cpu_ratio, codes in rows:
+        print(f"| {name} | {label} | {qw:.1f} | {qc:.1f} | {lw:.1f} | {lc:.1f} | {ratio:.2f} | {cpu_ratio:.2f} | "
               f"{', '.join(map(str, codes))} |")
     return 0
 
