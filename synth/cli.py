@@ -112,12 +112,15 @@ def _top_parser() -> argparse.ArgumentParser:
     commands = "\n".join(f"  {name:<{width}}{s.help}" for name, s in SCENES.items())
     codes = "\n".join(f"  {code:<4}{text}" for code, text in EXIT_CODES.items())
     p = argparse.ArgumentParser(
-        prog="synth", usage="synth [--catalogs DIR] [--version] COMMAND [ARGS ...]", allow_abbrev=False,
+        prog="synth", usage="synth [--catalogs DIR] [--threads N] [--version] COMMAND [ARGS ...]", allow_abbrev=False,
         description="Timing-belt tensioner design synthesiser.",
         epilog=f"commands (synth COMMAND --help for the options of one):\n{commands}\n\nexit codes:\n{codes}",
         formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--catalogs", metavar="DIR", action="append", default=[],
                    help="a folder of user catalogs overriding the built-in CSVs (repeatable)")
+    p.add_argument("--threads", metavar="N", default=None,
+                   help="threads synth may use for big batches (default: SYNTH_THREADS, else the processors this "
+                        "process may use: affinity and CPU quota; never more); small dense algebra uses 1")
     p.add_argument("--version", action=_VersionAction)
     return p
 
@@ -162,7 +165,7 @@ def _split(argv: list[str]) -> tuple[list[str], str | None, list[str]]:
     i = 0
     while i < len(argv):
         a = argv[i]
-        if a == "--catalogs":
+        if a in ("--catalogs", "--threads"):
             i += 2
         elif a.startswith("-"):
             i += 1
@@ -219,7 +222,10 @@ def _main(argv: list[str] | None) -> int:
         return 2
     from synth.errors import InputError, Terminated
     from synth.io.outputs import FS_ERRNOS, os_problem
+    from synth import threads
+    pools = contextlib.ExitStack()
     try:
+        pools.enter_context(threads.scene(top_args.threads))  # the scene's thread pools, before its imports load BLAS
         args = scene_parser(name).parse_args(rest)
         if top_args.catalogs:
             from synth import catalog
@@ -244,6 +250,8 @@ def _main(argv: list[str] | None) -> int:
         return 2
     except Exception as exc:  # the one place where any error becomes a line, not a traceback
         return _internal(name, exc)
+    finally:
+        pools.close()
 
 
 def _internal(name: str, exc: Exception) -> int:

@@ -62,6 +62,7 @@ from synth.fingerprint import file_sha256, catalogs_sha256
 from synth.bulk.portfolio import (CSV_FLOAT, arrow_safe, column_warnings, field_columns, read_portfolio,
                                   validate_record, validate_table, write_table)
 from synth.errors import InputError, Problem
+from synth.threads import usable_cores, worker_environ
 from synth.io.outputs import output_file, write_text, csv_rows
 from synth.report.progress import Progress
 from synth.bulk.engine import columns
@@ -797,14 +798,6 @@ def write_result(out: Path, table: pd.DataFrame, folder: Path, ranges: list, run
     return out
 
 
-def usable_cores() -> int:
-    """The processors this process may run on (its affinity; the machine's count where that is not known)."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):  # pragma: no cover - not Linux
-        return os.cpu_count() or 1
-
-
 def dask_pointless(scheduler: str | None, workers: int | None, tasks: int, threads: int | None = None) -> str | None:
     """Why ``--engine dask`` would not help (the note saying the work runs in this process instead), or None.
 
@@ -886,6 +879,7 @@ def dask_client(scheduler: str | None, workers: int | None, connect_timeout_s: f
     distributed starts its workers with ``MALLOC_TRIM_THRESHOLD_=65536``: glibc then returns every large numpy
     temporary to the system and faults it back in, and the group functions (arrays of 10^5 rows) run 3-4x
     slower than in a plain process (measured by the platform producer); the local workers keep glibc's default.
+    Their BLAS and numba pools are those of one-thread processes (:func:`synth.threads.worker_environ`).
     """
     import dask
     from dask.distributed import Client, LocalCluster
@@ -900,7 +894,7 @@ def dask_client(scheduler: str | None, workers: int | None, connect_timeout_s: f
                                          f"the address of a running Dask scheduler ({exc})")) from None
         else:
             cluster = stack.enter_context(LocalCluster(n_workers=int(workers or 2), threads_per_worker=1,
-                                                       processes=True, dashboard_address=None,
+                                                       processes=True, dashboard_address=None, env=worker_environ(1),
                                                        silence_logs=logging.ERROR))
             client = stack.enter_context(Client(cluster))
         yield client
