@@ -39,6 +39,7 @@ arrives; the table is the same as in-process.
 from __future__ import annotations
 
 import contextlib
+import errno
 import gc
 import hashlib
 import json
@@ -63,7 +64,7 @@ from synth.bulk.portfolio import (CSV_FLOAT, arrow_safe, column_warnings, field_
                                   validate_record, validate_table, write_table)
 from synth.errors import InputError, Problem
 from synth.threads import usable_cores, worker_environ
-from synth.io.outputs import output_file, write_text, csv_rows
+from synth.io.outputs import csv_rows, output_file, output_folder, write_text
 from synth.report.progress import Progress
 from synth.bulk.engine import columns
 from synth.design.rules import echo, using
@@ -260,11 +261,17 @@ def _check_manifest(old: dict, new: dict, folder: Path) -> None:
               "rules": "the design rules (--rules)"}
     problems = []
     for k in _MANIFEST_KEYS:
-        if old.get(k, {} if k == "rules" else None) != new[k]:
+        if k == "rules":  # by content: the same rules in a renamed or copied file are the same rules
+            changes = _rules_changes(old.get(k) or {}, new[k] or {})
+            if changes:
+                problems.append(Problem(f"--resume: {labels[k]}", _rules_name(new[k]),
+                                        f"{_rules_name(old.get(k))!r} as in the interrupted run "
+                                        f"({folder / MANIFEST}), by content; they differ: {'; '.join(changes)}; "
+                                        "give the run's rules, or rerun without --resume to start again"))
+            continue
+        if old.get(k) != new[k]:
             shown_old = old.get(k) if not k.endswith("sha256") else str(old.get(k))[:12]
             shown_new = new[k] if not k.endswith("sha256") else new[k][:12]
-            if k == "rules":  # by name (the whole rules are in the manifest)
-                shown_old, shown_new = (_rules_name(old.get(k)), _rules_name(new[k]))
             problems.append(Problem(f"--resume: {labels[k]}", shown_new,
                                     f"{shown_old!r} as in the interrupted run ({folder / MANIFEST}); "
                                     "rerun without --resume to start again"))
@@ -272,8 +279,37 @@ def _check_manifest(old: dict, new: dict, folder: Path) -> None:
         raise InputError(problems)
 
 
+#: what of a set of design rules judges a design (its name and source file are labels: a copy of the rules file
+#: under another name judges every row the same)
+_RULES_CONTENT = ("limits", "min_margins", "spring_limit_basis", "capability")
+
+
+def _rules_changes(old: dict, new: dict) -> list[str]:
+    """What differs between two manifests' design rules, by content (``min_margins.spring_yield 1 % in the run,
+    2 % now``); [] when they judge alike."""
+    def flat(rules: dict) -> dict:
+        out = {}
+        for k in _RULES_CONTENT:
+            v = rules.get(k, "thesis" if k == "spring_limit_basis" else {})
+            if isinstance(v, dict):
+                out.update({f"{k}.{kk}": vv for kk, vv in v.items()})
+            else:
+                out[k] = v
+        return out
+
+    def shown(key: str, v) -> str:
+        if v is None:
+            return "not set"
+        return f"{100 * v:g} %" if key.startswith("min_margins.") and isinstance(v, (int, float)) else f"{v}"
+    a, b = flat(old), flat(new)
+    return [f"{k} {shown(k, a.get(k))} in the run, {shown(k, b.get(k))} now"
+            for k in sorted(set(a) | set(b)) if a.get(k) != b.get(k)]
+
+
 def _rules_name(rules) -> str:
-    return "no design rules" if not rules else (rules.get("name") or "unnamed design rules")
+    if not rules:
+        return "no design rules"
+    return rules.get("name") or "unnamed design rules"
 
 
 def _write_atomic_json(path: Path, data: dict) -> None:
@@ -457,8 +493,14 @@ class RunLock:
         self._fd: int | None = None
 
     def acquire(self) -> "RunLock":
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+        output_folder(self.path.parent, "--out", inside=True)
+        try:  # never through a link planted at run.lock (O_NOFOLLOW: ELOOP)
+            fd = os.open(self.path, os.O_RDWR | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0), 0o644)
+        except OSError as exc:
+            if exc.errno == errno.ELOOP:
+                raise InputError(Problem("--out", str(self.path), "a lock file that is not a symbolic link (synth "
+                                                                  "never writes through a link: remove it)")) from None
+            raise
         try:
             import fcntl
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -607,7 +649,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
     if not given and engine == "dask":  # at least two chunks per worker, so that every worker has work
         chunk_size = max(1, min(int(chunk_size), -(-n // (2 * int(workers or 2)))))
     ranges = chunk_ranges(n, int(chunk_size))
-    folder = sidecar(out)
+    folder = output_folder(sidecar(out), "--out", inside=True)  # never a link: chunks, manifest, lock go in it
     manifest = manifest_of(p_hash, n, objective=objective, fidelity=fidelity, chunk_size=int(chunk_size),
                            diagnose=diagnose)
     run_id = uuid.uuid4().hex

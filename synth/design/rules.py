@@ -50,8 +50,9 @@ from pathlib import Path
 
 from synth.errors import InputError, Problem
 from synth.io.files import WORKBOOK_SUFFIXES, suffix_of
+from synth.io.limits import short
 from synth.io.structured import read_document
-from synth.io.numbers import number_from_text
+from synth.io.numbers import percentage
 
 __all__ = ["Rules", "using", "active", "LIMIT_NAMES", "SPRING_LIMIT_BASES", "CAPABILITY_TARGETS", "read_rules",  # noqa: F822 (LIMIT_NAMES: module __getattr__)
            "NONE", "echo", "of_args"]
@@ -101,13 +102,13 @@ def _tighten_text(name: str) -> str:
 
 
 def _fraction(value, where: str) -> float:
-    """A margin: a fraction (0.05) or a percentage (``5 %``, ``"5%"``), in [0, 1)."""
-    x = number_from_text(value) if isinstance(value, str) else value
-    if isinstance(value, str) and "%" in value and x is not None and abs(x) > 1.0:
-        x = x / 100.0  # "5 %" read as 5 by a reader that keeps the number
-    if isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x) or not 0.0 <= x < 1.0:
-        raise InputError(Problem(where, value, "a margin from 0 to 1 (a fraction, 0.05) or a percentage (5 %)"))
-    return float(x)
+    """A margin in [0, 1): a fraction (0.05) or a percentage (``"5 %"``, ``5%``, ``"0.5 %"`` is 0.005), read by the
+    one percentage parser (:func:`synth.io.numbers.percentage`)."""
+    x = percentage(value, "fraction")
+    if x is None or not 0.0 <= x < 1.0:
+        raise InputError(Problem(where, value, "a margin in [0, 1): a fraction (0.05) or a percentage below 100 % "
+                                               "(5 %, 5%; \"0.5 %\" is 0.005)"))
+    return x
 
 
 @dataclass(frozen=True)
@@ -233,26 +234,43 @@ def using(rules):
         _ACTIVE.pop()
 
 
+#: what ``--rules`` accepts (every refusal of a rules file says it)
+_RULES_ACCEPTED = ("a YAML, TOML or JSON file of design rules (keys " + ", ".join(_KEYS) + ", at the top or under "
+                   "rules:), or a design input or saved result with a rules: section")
+
+
 def _read_rules_mapping(path, what: str, *, section_only: bool):
     """The design-rules mapping of file ``path``: a design input's (or a saved result's) ``rules:`` section, or a
-    rules file's mapping (at the top, or under ``rules:``); None when a design input has none (``section_only``:
-    the ``rules:`` section or None). A workbook has none."""
-    if suffix_of(path) in WORKBOOK_SUFFIXES:
-        return None
-    accepted = "a YAML, TOML or JSON file of design rules (or a design input with a rules: section)"
-    if section_only:  # a design input: its own reader reports what is wrong with it, the rules reader nothing
+    rules file's mapping (at the top, or under ``rules:``).
+
+    ``section_only`` (a design input read for its own rules): the ``rules:`` section or None (a workbook has
+    none; the input's own reader reports what is wrong with the file). Otherwise (``--rules FILE``) the file must
+    hold rules, judged by its content: a workbook, a design input or saved result without a ``rules:`` section,
+    or a mapping with none of the rules' keys is refused naming the file, what it is and what is accepted.
+    """
+    if section_only:
+        if suffix_of(path) in WORKBOOK_SUFFIXES:
+            return None
         try:
-            data = read_document(path, what, accepted=accepted)
+            data = read_document(path, what, accepted=_RULES_ACCEPTED)
         except InputError:
             return None
         return data.get("rules") or None if isinstance(data, dict) else None
-    data = read_document(path, what, accepted=accepted)
+    data = read_document(path, what, accepted=_RULES_ACCEPTED)  # a workbook, PDF, binary...: refused by content
     if not isinstance(data, dict):
-        raise InputError(Problem(what, str(path), accepted))
-    if "rules" in data:
-        return data["rules"] or None
-    if "inputs" in data or any(k in data for k in ("application_type", "pulley_diameter_mm")):
-        return None  # a design input without rules
+        held = "nothing (it is empty)" if data is None else f"a {type(data).__name__}, not a mapping"
+        raise InputError(Problem(what, str(path), f"{_RULES_ACCEPTED}; this file holds {held}"))
+    if data.get("rules"):
+        return data["rules"]
+    result = data.get("kind") == "synth.result" or "checks" in data
+    if "rules" in data or result or "inputs" in data or not any(k in _KEYS and k != "name" for k in data):
+        what_it_is = ("a saved result made without design rules" if result
+                      else "a design input without a rules: section" if "inputs" in data or "application_type" in data
+                      else "a file whose rules: section is empty" if "rules" in data
+                      else "a file without design rules")
+        keys = ", ".join(sorted(map(str, data))[:6]) or "none"
+        raise InputError(Problem(what, str(path), f"{_RULES_ACCEPTED}; this is {what_it_is} (its keys: "
+                                                  f"{short(keys, 100)})"))
     return data
 
 

@@ -30,6 +30,7 @@ from pathlib import Path
 from synth.errors import InputError, Problem
 from synth.io.files import read_text
 from synth.io.limits import LIMITS, short
+from synth.io.numbers import percentage
 from synth.io.tables import _parser_problem, check_field_counts
 
 __all__ = ["check_user_dir", "read_user_catalog", "read_catalog_text"]
@@ -167,12 +168,19 @@ def read_user_catalog(path, builtin):
                                                                   "built-in catalog)"))
                     vals.append(math.nan)
                     continue
-                try:
-                    x = float(t)
-                except ValueError:
-                    x = None
+                in_percent = col.endswith("_pct") or (col == "value" and "unit" in raw.columns
+                                                      and str(raw["unit"].iloc[i]).strip() == "%")
+                if in_percent:  # a value in percent: 8, "8 %" or 8% (the one percentage parser)
+                    x = percentage(t, "%")
+                else:
+                    try:
+                        x = float(t)
+                    except ValueError:
+                        x = None
                 if x is None or not math.isfinite(x):
-                    problems.append(Problem(at(i, col), short(t), f"a finite number (column {col} is numeric)"))
+                    problems.append(Problem(at(i, col), short(t), f"a finite number (column {col} is numeric"
+                                                                  + (", in percent: 8 or 8 %)" if in_percent
+                                                                     else ")")))
                     vals.append(math.nan)
                 elif sign is not None and (x <= sign[1] if sign[0] == ">" else x < sign[1]):
                     problems.append(Problem(at(i, col), short(t), f"a number {sign[0]} 0 (every value of column {col} "

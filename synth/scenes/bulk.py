@@ -20,8 +20,9 @@ from __future__ import annotations
 
 import sys
 
-from synth.bulk.run import ENGINES, FIDELITIES, run_portfolio, sidecar
+from synth.bulk.run import ENGINES, FIDELITIES, run_portfolio, sidecar, usable_cores
 from synth.errors import InputError, Terminated
+from synth.io.outputs import output_files
 from synth.io.limits import check_count
 from synth.robust.portfolio import BULK_SAMPLES
 from synth.scenes._options import add_robust_options, robust_settings_from_args
@@ -83,6 +84,10 @@ def register(sub) -> None:
 def _main(args) -> int:
     if args.scheduler and args.engine != "dask":
         args.engine = "dask"
+    if args.capability is not None or args.ppm is not None:  # checked before the run, not after it
+        robust_settings_from_args(args, samples="bulk --samples")
+    if args.workers is not None and not args.scheduler:  # a local cluster: no more worker processes than cores
+        check_count("--workers", args.workers, hi=max(1, usable_cores()))
     try:
         rep = run_portfolio(args.portfolio, args.out, objective=args.objective, fidelity=args.fidelity,
                             chunk_size=args.chunk_size, resume=args.resume, engine=args.engine,
@@ -106,7 +111,8 @@ def _main(args) -> int:
     s = summarise(rep.columns(COLUMNS))  # the columns the summary reads, not the whole table
     print(text(s))
     if args.summary:
-        paths = write_summary(s, args.summary, rules=active())
+        with output_files(args.summary, "--summary") as stage:  # one output: every file, or none
+            paths = write_summary(s, stage, rules=active())
         print(f"summary: {len(paths)} files in {args.summary}")
     return 0
 
@@ -119,7 +125,7 @@ def _capability(args, rep) -> None:
     import pandas as pd
 
     from synth.robust.portfolio import COLUMNS, portfolio_capability
-    rs = robust_settings_from_args(args)
+    rs = robust_settings_from_args(args, samples="bulk --samples")
     t0 = time.perf_counter()
     table = rep.table
     inputs, parts = [], []
@@ -129,9 +135,9 @@ def _capability(args, rep) -> None:
         inputs.append(d)
         parts.append({k: row[f"part_{k}"] for k in PART_KEYS} if ok else None)
     rows = portfolio_capability(inputs, parts, settings=Settings(fidelity=args.fidelity), rs=rs,
-                                workers=args.workers or 1)
+                                workers=min(args.workers or 1, max(1, usable_cores())))
     extra = pd.DataFrame(rows, columns=list(COLUMNS), index=table.index)
-    rep.table = pd.concat([table.drop(columns=[c for c in COLUMNS if c in table.columns]), extra], axis=1)
+    rep._table = pd.concat([table.drop(columns=[c for c in COLUMNS if c in table.columns]), extra], axis=1)
     write_table(rep.table, rep.out)
     n = sum(p is not None for p in parts)
     dt = time.perf_counter() - t0

@@ -9,8 +9,10 @@ without ``--json``.
 from __future__ import annotations
 
 import sys
+from dataclasses import dataclass, field
 
 from synth.io.outputs import json_text
+from synth.design.result import FAIL
 from synth.report.text import render
 from synth.scenes._options import add_design_options, add_robust_options, synthesise, settings_from_args
 from synth.io.documents import load_input
@@ -57,11 +59,14 @@ def _main(args) -> int:
         print(json_text(r.to_dict(), indent=2))
     else:
         print(render(r, title=f"synth design: {args.input}"))
+    cad_failed = False
     if args.cad:
         from pathlib import Path
-        print("\n".join(export_cad(r, args.cad, Path(args.input).stem)), file=sys.stderr if args.json else sys.stdout)
-    if r.robust.get("checks") and not r.robust.get("meets", True):
-        return 1  # the capability target is missed: the design fails it
+        cad = export_cad(r, args.cad, Path(args.input).stem)
+        print("\n".join(cad.lines), file=sys.stderr if args.json else sys.stdout)
+        cad_failed = cad.failed
+    if (r.robust.get("checks") and not r.robust.get("meets", True)) or cad_failed:
+        return 1  # the capability target is missed, or a geometric check of the 3D model fails: the design fails it
     return r.exit_code
 
 
@@ -123,20 +128,30 @@ def with_drive(d, path):
     return d, checks_drive, note
 
 
-def export_cad(r, out_dir, application: str | None = None, *, pictures: bool = False):
-    """Export the design's 3D model (thesis step 11) and return the summary lines (``pictures=True``: and the
-    pictures written, for a report that then exports no second model).
+@dataclass
+class CadExport:
+    """What :func:`export_cad` did: the lines to print, the pictures written, whether a geometric check failed."""
+
+    lines: list
+    pictures: list = field(default_factory=list)
+    failed: bool = False
+
+
+def export_cad(r, out_dir, application: str | None = None, *, what: str = "--cad") -> CadExport:
+    """Export the design's 3D model (thesis step 11) into ``out_dir`` (option ``what``): the summary lines, the
+    pictures written (for a report that then exports no second model) and whether a geometric check failed (a
+    part the CAD kernel could not build fails ``cad_solids``: exit 1, never 70).
 
     A failing design whose geometry cannot exist (a pulley inside its own bearing) is reported, not drawn: the
     lines say why, and the exit code stays the design's (1).
     """
     try:
-        model, checks, info = export_result(r, out_dir, application=application)
+        model, checks, info = export_result(r, out_dir, application=application, what=what)
     except InputError as exc:
         if not r.failed() or not any(p.field.startswith("inputs.") for p in exc.problems):
             raise
-        lines = ["3D model not drawn (the design fails, and its geometry cannot be built): "
-                 + "; ".join(str(p) for p in exc.problems)]
-        return (lines, []) if pictures else lines
+        return CadExport(["3D model not drawn (the design fails, and its geometry cannot be built): "
+                          + "; ".join(str(p) for p in exc.problems)], [], True)
     lines = [f"3D model written to {out_dir}"] + summary_lines(model, checks, info)
-    return (lines, [str(f) for f in info["files"] if str(f).endswith(".png")]) if pictures else lines
+    return CadExport(lines, [str(f) for f in info["files"] if str(f).endswith(".png")],
+                     any(c.verdict == FAIL for c in checks))

@@ -28,7 +28,8 @@ from synth.design.verify import verify
 from synth.design.evaluate import Settings
 from synth.report.html import write_html
 from synth.report.plots import build_graphs
-from synth.io.outputs import output_folder
+from synth.io.outputs import output_files, refuse_link
+from synth.io.saved_results import INPUTS_ACCEPTED
 from synth.robust.assumptions import flips
 from synth.robust.capability import capability
 from synth.robust.sampling import base_of
@@ -107,9 +108,7 @@ def result_for_report(source, args=None):
                 return flowchart.run(d, settings_from_args(args)), cells, name
             res = synthesise(d, args or default_args())
     if res.inputs is None:
-        raise InputError(Problem(f"inputs ({Path(name).name})", None, "the design input the result was made from "
-                                                                     "(a result of synth design/flowchart --json, "
-                                                                     "0.2 or later, carries it under 'inputs')"))
+        raise InputError(Problem(f"inputs ({Path(name).name})", None, INPUTS_ACCEPTED))
     if not res.curves and res.parts and res.solver != "flowchart":  # re-verify for the curves of the graphs
         fields = {k for k in Settings.__dataclass_fields__}
         settings = Settings(**{k: v for k, v in (res.settings or {}).items() if k in fields})
@@ -143,39 +142,44 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     name = str(source_name) if source_name else name
     if robust is not None and result.parts:
         add_capability(result, robust)
-    out = output_folder(out_dir)
-    pictures = list(cad or [])
-    cad_note = f"The model of this design: {Path(pictures[0]).parent} (STEP assembly and pictures)." if pictures else ""
-    if cad_pictures and not pictures and result.parts:
-        cad_dir = output_folder(out / "cad", inside=True)  # never through a link the folder holds
-        try:
-            from synth.cad import export_result
-            _, _, info = export_result(result, cad_dir, stl=False, pictures=True, interference=False)
-            pictures = [str(f) for f in info["files"] if str(f).endswith(".png")]
-            cad_note = f"The model of this design: {out / 'cad'} (STEP assembly and pictures)."
-        except InputError as exc:  # a design the CAD model cannot draw: the report says so
-            cad_note = f"3D model not drawn: {exc}"
-            result.notes.append(cad_note)
-    scenes = {k: v for k, v in (scenes or {}).items() if v is not None}
-    extra = {"pareto": scenes.get("Pareto"), "solvers": scenes.get("Solvers"), "cad": pictures}
-    graphs, skipped = build_graphs(result, extra, show_progress=show_progress)
-    html_path = write_html(out / "report.html", result, graphs, skipped, source=name, scenes=scenes,
-                           author=author, revision=revision, page=page, platform=platform, cad_note=cad_note,
-                           application=application)
-    pdf_path, pdf_note = None, "not asked for"
-    if pdf:
-        pdf_path, _, pdf_note = write_pdf(html_path)
-    sheets = dict(scenes)
-    if result.robust.get("checks"):
-        sheets["Capability"] = capability_rows(result.robust)
-    if result.robust.get("assumptions"):
-        sheets["Assumptions"] = [{"assumption": a["id"], "catalog": a["catalog"], "key": a["key"],
-                                  "column": a["column"], "value": str(a["value"]), "low": a["low"], "high": a["high"],
-                                  "scale": a["scale"], "flips": "; ".join(f"{f['check']}: {f['nominal']} -> "
-                                                                          f"{f['at_low']} / {f['at_high']}"
-                                                                          for f in a["flips"]),
-                                  "reason": a["reason"], "source": a["source"]} for a in result.robust["assumptions"]]
-    xlsx_path = write_results(out / "results.xlsx", result, cells=cells, source=name, scenes=sheets)
+    if cad_pictures and not cad:
+        refuse_link(Path(out_dir) / "cad", "--out")  # before the work: never through a link the folder holds
+    with output_files(out_dir, "--out") as out:  # one output: every file, or none (a full disk)
+        final = Path(out_dir)
+        pictures = list(cad or [])
+        cad_note = (f"The model of this design: {Path(pictures[0]).parent} (STEP assembly and pictures)." if pictures
+                    else "")
+        if cad_pictures and not pictures and result.parts:
+            try:
+                from synth.cad import export_result
+                _, _, info = export_result(result, out / "cad", stl=False, pictures=True, interference=False)
+                pictures = [str(f) for f in info["files"] if str(f).endswith(".png")]
+                cad_note = f"The model of this design: {final / 'cad'} (STEP assembly and pictures)."
+            except InputError as exc:  # a design the CAD model cannot draw: the report says so
+                cad_note = f"3D model not drawn: {exc}"
+                result.notes.append(cad_note)
+        scenes = {k: v for k, v in (scenes or {}).items() if v is not None}
+        extra = {"pareto": scenes.get("Pareto"), "solvers": scenes.get("Solvers"), "cad": pictures}
+        graphs, skipped = build_graphs(result, extra, show_progress=show_progress)
+        html_path = write_html(out / "report.html", result, graphs, skipped, source=name, scenes=scenes,
+                               author=author, revision=revision, page=page, platform=platform, cad_note=cad_note,
+                               application=application)
+        pdf_path, pdf_note = None, "not asked for"
+        if pdf:
+            pdf_path, _, pdf_note = write_pdf(html_path)
+        sheets = dict(scenes)
+        if result.robust.get("checks"):
+            sheets["Capability"] = capability_rows(result.robust)
+        if result.robust.get("assumptions"):
+            sheets["Assumptions"] = [{"assumption": a["id"], "catalog": a["catalog"], "key": a["key"],
+                                      "column": a["column"], "value": str(a["value"]), "low": a["low"], "high": a["high"],
+                                      "scale": a["scale"], "flips": "; ".join(f"{f['check']}: {f['nominal']} -> "
+                                                                              f"{f['at_low']} / {f['at_high']}"
+                                                                              for f in a["flips"]),
+                                      "reason": a["reason"], "source": a["source"]} for a in result.robust["assumptions"]]
+        xlsx_path = write_results(out / "results.xlsx", result, cells=cells, source=name, scenes=sheets)
+        html_path, xlsx_path = final / html_path.relative_to(out), final / xlsx_path.relative_to(out)
+        pdf_path = None if pdf_path is None else final / pdf_path.relative_to(out)
     return {"html": html_path, "pdf": pdf_path, "pdf_note": pdf_note if pdf_path is None else "", "xlsx": xlsx_path,
             "result": result, "graphs": graphs, "skipped": skipped}
 
