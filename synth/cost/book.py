@@ -38,6 +38,8 @@ __all__ = ["Priced", "PriceBook", "build", "book_for", "volume_of", "PLASTIC"]
 #: ``plastic_wear.csv`` that :mod:`synth.parts` reads
 PLASTIC = "PPA_CF10_AR10_PTFE"
 WHERE = "catalogs/prices.csv"
+#: the process terms of the made parts (``process:<name>`` rows)
+PROCESSES = ("main_spring", "main_spring_coiling", "cone_spring", "damper_pad", "endcap_spacer", "pivot_bushing")
 
 
 @dataclass(frozen=True)
@@ -167,6 +169,11 @@ def _relational(ctx: _Ctx, family: str, table, size: np.ndarray, factor: np.ndar
                                  "from)"))
     ref = refs[0]
     i_ref = table(ref.name)
+    for r in ctx.rows.values():  # a quote of a part no catalog has would price nothing: name it
+        if r.family == family and r.name not in keys and not r.reference:
+            shown = ", ".join(keys[:12]) + (", ..." if len(keys) > 12 else "")
+            raise InputError(Problem(f"{WHERE}, item {r.item}", r.name, f"a {family} of the catalogs, as they name "
+                                     f"it: {shown}"))
     p_ref = ctx.price(ref.item, f"the {family} reference")
     qf, q_sigma = ctx.quantity(ref.at(ctx.volume)[1])
     f_val, f_sig = factor
@@ -260,7 +267,10 @@ def _moulded(ctx: _Ctx, family: str, table) -> tuple:
 def _check_items(ctx: _Ctx, p) -> None:
     """Every part a row names exists in the catalogs (a misspelt quote would otherwise price nothing)."""
     problems = []
-    known = {"damper_pad": set(map(str, p.damper_pad.key)), "endcap_spacer": set(map(str, p.endcap_spacer.key))}
+    known = {"damper_pad": set(map(str, p.damper_pad.key)), "endcap_spacer": set(map(str, p.endcap_spacer.key)),
+             "material": set(map(str, p.spring_material.key)) | set(catalog.keys("plastic_wear"))
+             | {"cone_spring_steel"} | {f"pivot_bushing_{k}" for k in p.bushing.key},
+             "process": set(PROCESSES)}
     for r in ctx.rows.values():
         if r.family in known and r.name not in known[r.family]:
             problems.append(Problem(f"{WHERE}, item {r.item}", r.name, f"a {r.family} of the catalogs: "

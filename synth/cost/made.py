@@ -10,7 +10,7 @@ main spring     wire length x section x density; the length per unit     per spr
                 and wire (a rectangular wire: ``cost_wire_rectangular_   the length over its feed rate)
                 factor`` on its material price)
 cone spring     annulus ``pi/4 (De^2 - Di^2) t`` of the nominal cone     per part (``process:cone_spring``)
-                spring (Table 7's middle ratios: about 2 % of its price)
+                spring (Table 7's middle ratios: about 5 % of its price)
 damper pad,     contact area x axial height x the compound's density     per part (``process:damper_pad``,
 endcap spacer   (``cost_plastic_density_kg_m3``)                         ``process:endcap_spacer``)
 pivot bushing   wrapped wall ``pi D t L`` at the nominal pivot diameter  per part (``process:pivot_bushing``)

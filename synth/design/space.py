@@ -522,7 +522,8 @@ def priced_for(sp: Space, inputs) -> Space:
     vols = {getattr(d, "annual_volume", None) for d in inputs}
     if vols <= {None}:
         return sp
-    books = {id(b): b for b in (book_for(sp.parts, volume_of(d)) for d in inputs)}
+    default = volume_of(None)
+    books = {id(b): b for b in (book_for(sp.parts, default if v is None else v) for v in vols)}
     if len(books) > 1:
         return Space(sp.tables, sp.parts, list(sp.notes) + ["annual volumes of different price breaks in one "
                      "batch: priced at the default volume"], pinned=sp.pinned)

@@ -32,7 +32,7 @@ from synth import catalog
 from synth.design.evaluate import (SPRING_OPTION_COLUMNS, Group, Settings, axial_full, axial_judged, bolt, bushing,
                                    core, fixation_values, inputs, spring, spring_keys)
 from synth.design.applications import Applications
-from synth.design.space import SUBSYSTEMS, Space, core_rows, pinned_diameter, space, space_for, spring_window
+from synth.design.space import SUBSYSTEMS, Space, core_rows, pinned_diameter, space_for, spring_window
 from synth.design.verify import parts_of_design
 from synth.cost.breakdown import attributes
 
