@@ -219,5 +219,12 @@ def cost_report(d, r, *, sensitivity: bool = False, settings=None) -> dict:
     if sensitivity and r.status in ("optimal", "feasible") and not r.failed():
         pool, rivals = price_pool(d, r, int(catalog.constant("cost_sensitivity_pool")), settings=settings)
         if len(pool) > 1:
-            out["decision"] = decide(d, pool, rivals=rivals)
+            out["decision"] = dec = decide(d, pool, rivals=rivals)
+            sets = [frozenset(x.key for x in lines(d, p)) for p in pool]
+            dec["alternatives"] = []  # the --top K designs: each one's set of priced parts in the pool, if it is
+            for a in r.alternatives[1:]:
+                keys = frozenset(x.key for x in lines(d, a["parts"]))
+                j = sets.index(keys) if keys in sets else None
+                dec["alternatives"].append({"rank": a["rank"], "pool_rank": None if j is None else j + 1,
+                                            "p_cheapest": None if j is None else dec["designs"][j]["p_cheapest"]})
     return out

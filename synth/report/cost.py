@@ -7,7 +7,7 @@ the prices (:attr:`synth.design.result.Result.cost`, :func:`synth.cost.decision.
 ...                   {"part": "cone_spring", "label": "cone spring", "price_eur": 0.5, "status": "modelled",
 ...                    "basis": "blank + process", "band_pct": 40.0}]}
 >>> text_lines(cost)[3]
-'  ball bearing 6006                           1.0000  quoted    +/- 5 %  quoted by ACME 2026-01-05 at 1,000'
+'  ball bearing 6006                               1.0000  quoted    +/- 5 %  quoted by ACME 2026-01-05 at 1,000'
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ def text_lines(cost: dict) -> list:
                f"{c['quoted']}, modelled {c['modelled']}, assumed {c['assumed']}; band: one standard deviation)",
            "-" * 78]
     for x in cost["lines"]:
-        out.append(f"  {x['label']:<42} {x['price_eur']:7.4f}  {x['status']:<9} +/- {x['band_pct']:g} %  {x['basis']}")
+        out.append(f"  {x['label']:<46} {x['price_eur']:7.4f}  {x['status']:<9} +/- {x['band_pct']:g} %  {x['basis']}")
     out += [f"  note: {n}" for n in cost.get("notes", [])]
     dec = cost.get("decision")
     if dec:
@@ -38,14 +38,18 @@ def text_lines(cost: dict) -> list:
             lo, hi = x["band_eur"]
             out.append(f"  #{x['rank']:<2} {x['cost_eur']:.4f} EUR (90 % band {lo:.4f}-{hi:.4f})  "
                        f"P(cheapest) {x['p_cheapest']:.3f}")
+        for a in dec.get("alternatives", []):
+            where = f"the priced parts of #{a['pool_rank']} above: P(cheapest) {a['p_cheapest']:.3f}" \
+                if a["pool_rank"] else "priced parts outside the pool above"
+            out.append(f"  --top alternative #{a['rank']}: {where}")
         out += ["", "Price ranges over which #1 stays the cheapest (the other prices as they are)", "-" * 78]
         for r in dec["ranges"]:
             if r["in_optimum"]:
                 hi = "any price" if r["high_eur"] is None else \
                     f"up to {r['high_eur']:.4f} EUR ({100 * (r['high_eur'] / r['price_eur'] - 1):+.1f} %)"
-                out.append(f"  {r['label']:<42} {r['price_eur']:7.4f}  {hi}")
+                out.append(f"  {r['label']:<46} {r['price_eur']:7.4f}  {hi}")
             elif r["low_eur"] is not None:
-                out.append(f"  {r['label']:<42} {r['price_eur']:7.4f}  (not in #1) down to {r['low_eur']:.4f} EUR "
+                out.append(f"  {r['label']:<46} {r['price_eur']:7.4f}  (not in #1) down to {r['low_eur']:.4f} EUR "
                            f"({100 * (r['low_eur'] / r['price_eur'] - 1):+.1f} %)")
     return out
 
