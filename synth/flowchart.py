@@ -225,7 +225,7 @@ class _Walk:
         if ok.any():
             # step 9: "Round wire is preferred due to the lower cost ... if it is not sufficient, the rectangular
             # wire is implemented": a feasible round-wire spring whenever one exists; within the section the text
-            # gives no order, the cheapest (catalog costs, illustrative) is taken
+            # gives no order, the cheapest (synth.cost prices at the default volume) is taken
             section = rnd if (ok & rnd).any() else ~rnd
             pool = ok & section
             order = np.lexsort((-g.values["main_spring_safety_factor"], cost, ~pool))

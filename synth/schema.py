@@ -119,6 +119,10 @@ FIELDS: tuple[Field, ...] = (
                                         ("lubricated", "belt_in_oil"), ("Dry", "dry"))),
     _f("engine_fuel", "Application", kind="str", choices=("gasoline", "diesel"), label="Engine fuel",
        words=(("Gasoline", "gasoline"), ("petrol", "gasoline"), ("Diesel", "diesel"))),
+    _f("annual_volume", "Application", "1/year", kind="int", required=False, lo=1, hi=1e9,
+       label="Annual volume (pieces a year; selects the price breaks; empty: constant cost_annual_volume_default)",
+       basis="a count of pieces, at least one a year; 1e9 is far above any engine programme (a few tens of millions "
+             "of engines a year worldwide)"),
     # Pulley
     _f("pulley_shell_type", "Pulley", kind="str", choices=("flat", "toothed"), label="Pulley shell type",
        words=(("Flat", "flat"), ("cylindrical", "flat"), ("Toothed", "toothed"))),

@@ -387,11 +387,11 @@ def test_formula_cells(tmp_path):
 def test_user_catalog_override_is_typed_like_builtin(tmp_path):
     header, *rows = (Path(catalog.builtin_dir()) / "bolts.csv").read_text().splitlines()
     row = rows[1].split(",")
-    row[header.split(",").index("unit_cost_eur")] = "0.99"
+    row[header.split(",").index("pivot_bore_min_mm")] = "8.99"
     (tmp_path / "bolts.csv").write_text(header + "\n" + ",".join(row) + "\n")
     catalog.set_user_dirs(tmp_path)
     r = catalog.row("bolts", row[0])
-    assert r["unit_cost_eur"] == 0.99 and isinstance(r["d_mm"], float) and r["standard"] in (True, False)
+    assert r["pivot_bore_min_mm"] == 8.99 and isinstance(r["d_mm"], float) and r["standard"] in (True, False)
     assert len(catalog.keys("bolts")) == len(rows)
 
 

@@ -138,6 +138,9 @@ class Result:
     #: the K best designs in objective order, the first this one (``--top K``:
     #: :func:`synth.optimise.alternatives.ranked`): rank, parts, objectives, margin, binding, verdict, differs
     alternatives: list = field(default_factory=list)
+    #: the design's price lines (quoted, modelled, assumed) and, for the cost objective, how much the choice
+    #: depends on the prices (:func:`synth.cost.decision.cost_report`)
+    cost: dict = field(default_factory=dict)
     #: the design rules the checks were made under (:mod:`synth.design.rules`; {} without rules)
     rules: dict = field(default_factory=dict)
 
@@ -200,7 +203,7 @@ class Result:
         return [self.checks[j] for j in order[:n]]
 
     #: what a synthesis adds to a verified design (kept when the design is verified again, e.g. for its curves)
-    SYNTHESIS_FIELDS = ("objective", "objectives", "stats", "diagnosis", "changes", "control", "alternatives")
+    SYNTHESIS_FIELDS = ("objective", "objectives", "stats", "diagnosis", "changes", "control", "alternatives", "cost")
 
     def carry(self, other: "Result") -> "Result":
         """This result with the synthesis fields (:attr:`SYNTHESIS_FIELDS`) of ``other``; returns self."""
@@ -240,6 +243,7 @@ class Result:
             "inputs": plain(self.inputs), "settings": plain(self.settings), "steps_run": list(self.steps_run),
             **({"robust": plain(self.robust, n)} if self.robust else {}),
             "changes": plain(self.changes), "control": plain(self.control), "alternatives": plain(self.alternatives, n),
+            **({"cost": plain(self.cost, n)} if self.cost else {}),
             "rules": plain(self.rules),
         }
 
@@ -267,7 +271,8 @@ class Result:
                    steps_run=list(data.get("steps_run") or []), changes=list(data.get("changes") or []),
                    control=dict(data.get("control") or {}), alternatives=list(data.get("alternatives") or []),
                    rules=dict(data.get("rules") or {}),
-                   robust=dict(data["robust"]) if isinstance(data.get("robust"), dict) else {})
+                   robust=dict(data["robust"]) if isinstance(data.get("robust"), dict) else {},
+                   cost=dict(data["cost"]) if isinstance(data.get("cost"), dict) else {})
 
 
 def checks_of(groups: dict, apps, row: int = 0, assessment: Assessment | None = None) -> list:

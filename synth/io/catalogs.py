@@ -23,6 +23,7 @@ otherwise be ignored silently), and every file as above.
 from __future__ import annotations
 
 import difflib
+import importlib
 import io
 import math
 from pathlib import Path
@@ -36,6 +37,8 @@ from synth.io.tables import _parser_problem, check_field_counts
 __all__ = ["check_user_dir", "read_user_catalog", "read_catalog_text"]
 
 _TRUE = ("true", "1", "yes", "y")
+#: catalogs whose rows have rules beyond their cells' types: file stem -> "module:function(table, at) -> problems"
+_ROW_CHECKS = {"prices": "synth.cost.prices:check_rows"}
 _FALSE = ("false", "0", "no", "n")
 
 
@@ -143,7 +146,7 @@ def read_user_catalog(path, builtin):
                 problems.append(Problem(at(i, "source"), None, "the source of the row's values (standard and "
                                                                "clause, data sheet, or 'illustrative')"))
     for col in builtin.columns[1:]:
-        kind = builtin[col].dtype.kind
+        kind = builtin[col].dtype.kind if builtin[col].notna().any() else "O"  # an empty column: text
         if kind == "b":
             vals = []
             for i, v in enumerate(raw[col]):
@@ -194,6 +197,9 @@ def read_user_catalog(path, builtin):
             out[col] = raw[col].astype(str).str.strip().replace("", math.nan)
         if len(problems) >= 50:
             break
+    if not problems and p.stem in _ROW_CHECKS:  # a catalog with rules beyond its cells' types
+        module, name = _ROW_CHECKS[p.stem].split(":")
+        problems = getattr(importlib.import_module(module), name)(out, at)
     if problems:
         raise InputError(problems)
     return out

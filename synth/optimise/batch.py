@@ -61,7 +61,8 @@ from synth.design.assessment import assess, passes
 from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import by_group, physics_inputs
-from synth.design.space import SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, space, space_for, spring_window
+from synth.design.space import (SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, priced_for, space, space_for,
+                                spring_window)
 from synth.kernels import axial as axial_kernels
 from synth.optimise.objectives import weighted_sum, weighted_sum_around
 from synth.optimise.product import DURABILITY_NOTE, core_scores, option_scores
@@ -162,12 +163,12 @@ def _space_of(inputs: list, pin_inputs):
     (``pin_inputs``), which must then be the same parts for every input (a relaxation's probes change other
     inputs)."""
     if not pin_inputs or not inputs:
-        return space()
+        return priced_for(space(), inputs)
     first = [(n, getattr(inputs[0], n)) for n in fixed_fields(inputs[0], pin_inputs)]
     for d in inputs[1:]:
         if [(n, getattr(d, n)) for n in fixed_fields(d, pin_inputs)] != first:
             raise ValueError("a batch keeps one set of input parts: every input must name the same ones")
-    return space_for(inputs[0], pin_inputs)
+    return space_for(inputs[0], pin_inputs, inputs)
 
 
 class Batch:

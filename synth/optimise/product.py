@@ -32,8 +32,9 @@ from synth import catalog
 from synth.design.evaluate import (SPRING_OPTION_COLUMNS, Group, Settings, axial_full, axial_judged, bolt, bushing,
                                    core, fixation_values, inputs, spring, spring_keys)
 from synth.design.applications import Applications
-from synth.design.space import SUBSYSTEMS, Space, core_rows, pinned_diameter, space, space_for, spring_window
+from synth.design.space import SUBSYSTEMS, Space, core_rows, pinned_diameter, space_for, spring_window
 from synth.design.verify import parts_of_design
+from synth.cost.breakdown import attributes
 
 __all__ = ["SubTable", "Evaluation", "evaluate", "subsystem", "SPRING_BLOCK_PAIRS", "design_scores",
            "core_scores", "option_scores"]
@@ -254,8 +255,7 @@ def evaluate(d, settings: Settings = Settings(fidelity="full"), *, pin_inputs: b
 
 def design_scores(d, parts: dict, settings: Settings = Settings()) -> dict:
     """``{standard, cost}`` of the design ``parts`` of input ``d`` (the optimiser's additive objectives)."""
-    sp = space()
-    attrs = sp.design_attributes(parts)
+    attrs = attributes(d, parts)[1]  # priced at the input's annual volume
     apps = Applications.of([d])
     cg = core(apps, np.zeros(1, dtype=np.int64), attrs["core"], settings)
     std_class = cg.values["pivot_class_standard_mm"][0]

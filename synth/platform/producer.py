@@ -665,7 +665,8 @@ def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress, notes:
 
 
 def _volumes(table, n: int):
-    col = next((c for c in VOLUME_COLUMNS if c in table.columns), None)
+    # an empty column is no column (the design input's field annual_volume, left empty: synth.schema)
+    col = next((c for c in VOLUME_COLUMNS if c in table.columns and table[c].notna().any()), None)
     if col is None:
         return np.ones(n), None
     probs, vol = [], np.ones(n)

@@ -22,6 +22,7 @@ from synth.cad import export_result, summary_lines, require_cadquery
 from synth.errors import InputError
 from synth.robust.assumptions import flips
 from synth import parts
+from synth.cost.decision import cost_report
 
 __all__ = ["register"]
 
@@ -50,7 +51,7 @@ def _main(args) -> int:
     note = None
     if getattr(args, "drive", None):
         d, args.drive_model, note = with_drive(d, args.drive)
-    r = synthesise(d, args)
+    r = with_cost(d, args, synthesise)
     if note:
         r.notes.insert(0, note)
     if args.assumptions and r.parts:
@@ -68,6 +69,16 @@ def _main(args) -> int:
     if (r.robust.get("checks") and not r.robust.get("meets", True)) or cad_failed:
         return 1  # the capability target is missed, or a geometric check of the 3D model fails: the design fails it
     return r.exit_code
+
+
+def with_cost(d, args, synthesise):
+    """The synthesis of ``args`` with the design's price lines (:attr:`Result.cost`); for the cost objective also
+    how much the choice depends on the prices (:func:`synth.cost.decision.cost_report`)."""
+    from synth.optimise.objectives import Objective
+    r = synthesise(d, args)
+    cost_first = Objective.parse(args.objective).primary == "cost"
+    r.cost = cost_report(d, r, sensitivity=cost_first and not r.robust, settings=settings_from_args(args))
+    return r
 
 
 def with_drive(d, path):

@@ -11,6 +11,8 @@ from synth.io.outputs import json_text, output_files, write_text
 from synth.scenes.report import out_folder
 from synth.design.constraints import words, REGISTRY
 from synth.robust.synthesis import robust_front
+from synth.cost.decision import band_of
+from synth.cost.book import volume_of
 
 __all__ = ["register"]
 
@@ -30,10 +32,15 @@ def _main(args) -> int:
     out = out_folder(args.out)  # checked before the work: an existing file is not a folder
     if args.capability is not None or args.ppm is not None:
         return _robust_front(args, out, min(points, 12))
-    front = pareto_front(load_input(args.input), n_points=points)
-    lines = ["| cost [EUR] | smallest margin [%] | non-standard parts | binding constraint |", "|---|---|---|---|"]
-    lines += [f"| {p['cost_eur']:.4f} | {100 * p['margin']:+.2f} | {p['standard']:g} | {words(p['binding'])} |"
-              for p in front]
+    d = load_input(args.input)
+    front = pareto_front(d, n_points=points)
+    for p in front:  # the cost axis with its band: the 5 % and 95 % quantiles under the price bands
+        p["cost_band_eur"] = band_of(d, p["parts"])
+    lines = [f"Cost at {volume_of(d):,.0f} a year, its 90 % band under the price bands (synth.cost.decision)", "",
+             "| cost [EUR] | 90 % band [EUR] | smallest margin [%] | non-standard parts | binding constraint |",
+             "|---|---|---|---|---|"]
+    lines += [f"| {p['cost_eur']:.4f} | {p['cost_band_eur'][0]:.4f}-{p['cost_band_eur'][1]:.4f} | "
+              f"{100 * p['margin']:+.2f} | {p['standard']:g} | {words(p['binding'])} |" for p in front]
     inputs = front[0]["inputs"] if front else {}
     if inputs:
         lines += ["", "Input-only constraints (no design changes them; not in the margin above):"]

@@ -22,6 +22,7 @@ from synth import schema, flowchart
 from synth.io import documents
 from synth.errors import InputError, Problem
 from synth.scenes._options import add_design_options, add_robust_options, default_args, load_saved_result, synthesise
+from synth.scenes.design import with_cost
 from synth.io.documents import read_rows
 from synth.design.result import Result
 from synth.design.verify import verify
@@ -106,7 +107,7 @@ def result_for_report(source, args=None):
             name = str(src)
             if args is not None and getattr(args, "flowchart", False):
                 return flowchart.run(d, settings_from_args(args)), cells, name
-            res = synthesise(d, args or default_args())
+            res = with_cost(d, args or default_args(), synthesise)
     if res.inputs is None:
         raise InputError(Problem(f"inputs ({Path(name).name})", None, INPUTS_ACCEPTED))
     if not res.curves and res.parts and res.solver != "flowchart":  # re-verify for the curves of the graphs
