@@ -106,7 +106,7 @@ _MAGIC = ((b"%PDF-", "a PDF document, not text"), (b"\x89PNG", "a PNG picture, n
 
 
 def content_kind(data: bytes) -> str | None:
-    """What the bytes of a file are when they are not UTF-8 text of an input, judged by content (never by the
+    r"""What the bytes of a file are when they are not UTF-8 text of an input, judged by content (never by the
     file's name), else None.
 
     >>> content_kind(b"PK\x03\x04" + bytes(40)), content_kind(b"%PDF-1.7"), content_kind(b"name: x\n")
