@@ -103,8 +103,7 @@ def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None
         raise InputError(Problem("--top", k, f"an integer from 1 to {MAX_TOP}"))
     if not result.parts or result.status not in ("optimal", "feasible", "baseline"):
         return []
-    settings = settings or Settings(**{f: v for f, v in (result.settings or {}).items()
-                                       if f in Settings.__dataclass_fields__})
+    settings = settings or Settings.from_saved(result.settings, result.rules)
     obj = objective or Objective.parse(result.objective or "standard")
     obj = obj if isinstance(obj, Objective) else Objective.parse(obj)
     ev = evaluate(d, settings, pin_inputs=pin_inputs)
