@@ -29,6 +29,7 @@ import numpy as np
 
 from synth.design import constraints
 from synth.design.evaluate import DEFAULT, Settings
+from synth.design.combine import combine
 from synth.design.space import SUBSYSTEMS, space
 from synth.errors import InputError, Problem
 from synth.optimise.product import evaluate
@@ -78,14 +79,15 @@ def is_feasible(d, settings: Settings = DEFAULT, *, pin_inputs: bool = False) ->
 def nearest_design(ev):
     """``(core position, options, min_margin)`` of the design with the largest smallest margin (all constraints)."""
     core_m = np.where(np.ones(len(ev.cores), bool), ev.core_min_margin(), -np.inf)[ev.rows]
-    best_k = {}
+    best_k, best_m = {}, []
     for s in SUBSYSTEMS:
         sub = ev.subs[s]
         m = np.where(sub.available, sub.min_margin, -np.inf)
         best_k[s] = np.argmax(m, axis=1)
-        core_m = np.minimum(core_m, m[np.arange(len(m)), best_k[s]])
-    r = int(np.argmax(core_m))
-    return int(ev.rows[r]), {s: int(best_k[s][r]) for s in SUBSYSTEMS}, float(core_m[r])
+        best_m.append(m[np.arange(len(m)), best_k[s]])
+    design_m = combine(core_m, best_m)
+    r = int(np.argmax(design_m))
+    return int(ev.rows[r]), {s: int(best_k[s][r]) for s in SUBSYSTEMS}, float(design_m[r])
 
 
 def reference_probe(pin_inputs: bool = False):

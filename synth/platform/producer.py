@@ -63,7 +63,8 @@ from synth import catalog
 from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.assessment import assess_group, passes
-from synth.design.constraints import FEAS_TOL, REGISTRY, version
+from synth.design.combine import combine, nearest_rank
+from synth.design.constraints import REGISTRY, version
 from synth.design.space import SUBSYSTEMS, core_rows, spring_window
 from synth.errors import InputError, Problem
 from synth.platform.data import AppFeasibility, PortfolioFeasibility, default_fixed_costs, validate
@@ -212,8 +213,7 @@ class _Pairs:
         self.m.append(m)
         self.b.append(b)
         rank = grp.rank()  # nearest designs: ranked by the search model (fidelity screening: the screening one)
-        ma = np.where(ok, np.maximum(grp.min_margin(objective_only=False), 0.0),
-                      np.minimum(rank.min_margin(objective_only=False), -FEAS_TOL))
+        ma = nearest_rank(ok, grp.min_margin(objective_only=False), rank.min_margin(objective_only=False))
         gg, mm, at = _segment_best(gp, ma)
         upd = mm > self.best[gg]
         if upd.any():
@@ -447,9 +447,7 @@ def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, ro
     mbd = cat.space.tables["spring"]["main_spring_mean_body_diameter_mm"][rows]
     n = 0
     for _ in range(rounds):
-        val = all_m[pos].copy()
-        for s in SUBSYSTEMS:
-            val = np.minimum(val, np.where(has[s][gid[s]], np.inf, pairs[s].best[gid[s]]))
+        val = combine(all_m[pos], [np.where(has[s][gid[s]], np.inf, pairs[s].best[gid[s]]) for s in SUBSYSTEMS])
         groups = {int(gid["spring"][k[int(np.argmax(val[k]))]]) for k in todo}
         todo = [k for k in todo if not refined[gid["spring"][k[int(np.argmax(val[k]))]]]]
         groups = np.array(sorted(g for g in groups if not refined[g]), np.int64)
@@ -546,9 +544,7 @@ def _why(cat, i, a, crow, all_m, all_b, sel, k, gid, first_group, pairs) -> str:
         j = rows[int(np.argmax(all_m[rows]))]
         return (f"no feasible core: the nearest ({_core_text(cat, int(crow[j]))}) misses {_name(all_b[j])} "
                 f"(margin {all_m[j]:+.3f})")
-    val = all_m[sel].copy()
-    for s in SUBSYSTEMS:
-        val = np.minimum(val, pairs[s].best[gid[s][k]])
+    val = combine(all_m[sel], [pairs[s].best[gid[s][k]] for s in SUBSYSTEMS])
     c = int(np.argmax(val))
     miss = []
     for s in SUBSYSTEMS:
