@@ -209,3 +209,33 @@ def test_a_spring_check_reading_an_application_field_is_judged_on_every_path(dem
         assert df["margin_probe_spring_height"].iloc[0] == pytest.approx(want, rel=1e-12)
         pf = feasibility([demo])
         assert any(len(x) for x in pf.apps[0].feasible["spring"])
+
+
+# ------------------------------------------------------------------------------------------------ user catalogs
+def test_user_catalogs_are_per_call_and_reach_every_worker(tmp_path, demo):
+    """``catalogs=`` is the call's, not the process's: a thread verifying with a user catalog (a 0.2 mm minimum
+    coil gap) and one without, at once, each read their own; the bulk run hands the folders to its chunks."""
+    folder = tmp_path / "cat"
+    folder.mkdir()
+    (folder / "constants_main_spring.csv").write_text(
+        "name,value,unit,source,note\nmain_spring_min_coil_gap_mm,0.2,mm,test,stricter\n", encoding="utf-8")
+    parts = synth.synthesise(demo).parts
+    gate = threading.Barrier(2)
+    got: dict = {"user": [], "plain": []}
+
+    def work(name, kw):
+        for _ in range(4):
+            gate.wait()
+            got[name].append(synth.verify(demo, parts, **kw).check("spring_coil_gap").limit)
+    threads = [threading.Thread(target=work, args=("user", {"catalogs": [folder]})),
+               threading.Thread(target=work, args=("plain", {}))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert got == {"user": [0.2] * 4, "plain": [0.0] * 4}
+    from synth import catalog
+    assert catalog.user_dirs() == []
+    df = synth.screen([demo], diagnose=False, progress=False, catalogs=[folder])
+    plain = synth.screen([demo], diagnose=False, progress=False)
+    assert df["margin_spring_coil_gap"].iloc[0] != plain["margin_spring_coil_gap"].iloc[0]
