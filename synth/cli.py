@@ -255,9 +255,7 @@ def _main(argv: list[str] | None) -> int:
         if top_args.catalogs:
             from synth import catalog
             catalog.set_user_dirs(*top_args.catalogs)
-        from synth.design import rules
-        with rules.using(rules.of_args(args)):  # --rules, or the input's rules: section, for the whole scene
-            code = int(args.func(args) or 0)
+        code = int(args.func(args) or 0)  # the scene resolves its configuration (synth.scenes._options)
         sys.stdout.flush()  # a failed write of the output (a full disk) is reported here, not at exit unnoticed
         return code
     except BrokenPipeError:  # output piped into head & co.

@@ -214,7 +214,7 @@ def _read_parts() -> Parts:
 
 def arrays() -> Parts:
     """The catalogs of the current user-folder setting as :class:`Parts` (cached; do not modify)."""
-    return _arrays_cached(tuple(catalog._user_dirs()))
+    return _arrays_cached(tuple(catalog.user_dirs()))
 
 
 def mu(interface: str, environment) -> float | np.ndarray:

@@ -33,7 +33,10 @@ and moved into place (:func:`synth.io.outputs.output_file`; removed on any failu
 ``engine="dask"`` submits one task per chunk to a ``dask.distributed``
 cluster (a :class:`~distributed.LocalCluster` of ``workers`` one-thread
 processes, or the scheduler at ``scheduler``) and writes each chunk as it
-arrives; the table is the same as in-process.
+arrives; the table is the same as in-process. Every chunk, in this process or on
+a worker, is computed under the run's one configuration
+(:class:`~synth.design.settings.Settings`: fidelity, design rules and spring limit
+basis, user catalogs, engine), an argument of the task.
 """
 
 from __future__ import annotations
@@ -67,7 +70,8 @@ from synth.threads import usable_cores, worker_environ
 from synth.io.outputs import csv_rows, output_file, output_folder, write_text
 from synth.report.progress import Progress
 from synth.bulk.engine import columns
-from synth.design.rules import echo, using
+from synth.design.rules import echo
+from synth.design.settings import Settings
 from synth.optimise.objectives import Objective
 from synth.io.limits import check_count
 from synth.bulk.portfolio import FORMATS, check_columns
@@ -132,16 +136,23 @@ def _screen_default():
     return screen_applications
 
 
-def _call_engine(screen, apps, objective, fidelity, diagnose) -> pd.DataFrame:
-    df = screen(apps, objective=objective, fidelity=fidelity, diagnose=diagnose)
+def _call_engine(screen, apps, objective, settings, diagnose) -> pd.DataFrame:
+    df = screen(apps, objective=objective, fidelity=settings.fidelity, diagnose=diagnose, settings=settings)
     if len(df) != len(apps):
         raise RuntimeError(f"engine returned {len(df)} rows for {len(apps)} applications")
     return df.reset_index(drop=True)
 
 
-def compute_chunk(recs, *, objective: str = "standard", fidelity: str = "screening",
+def _run_settings(settings: Settings | None, fidelity: str | None) -> Settings:
+    """The configuration of a run: ``settings`` (default: no rules, this process's catalogs) at ``fidelity`` when
+    given (the bulk's default: ``screening``)."""
+    s = settings if settings is not None else Settings(fidelity="screening")
+    return s if fidelity is None or fidelity == s.fidelity else s.replace(fidelity=fidelity)
+
+
+def compute_chunk(recs, *, objective: str = "standard", fidelity: str | None = None,
                   diagnose: bool = True, screen: Callable | None = None,
-                  catalog_dirs: tuple[str, ...] | None = None, rules=None) -> pd.DataFrame:
+                  settings: Settings | None = None) -> pd.DataFrame:
     """Validate and evaluate one chunk: one result row per record, in order.
 
     ``recs``: a table of the chunk's rows (its design-input columns, validated column by column:
@@ -149,16 +160,16 @@ def compute_chunk(recs, *, objective: str = "standard", fidelity: str = "screeni
     Valid rows go to the engine in one call; a row that fails validation gets ``status = "error"`` and its
     problems in ``error``. If the engine raises on the chunk, the chunk is evaluated one application at a
     time and only the failing ones get ``error = "engine: ..."``: one bad row never stops a portfolio.
-    ``catalog_dirs`` are the user catalog folders to use (re-applied in a Dask worker process); ``rules`` the
-    design rules to judge by (:class:`synth.design.rules.Rules`, made active here: a Dask worker process does not
-    share the caller's; None: the rules in force).
+    ``settings``: the run's configuration (:class:`~synth.design.settings.Settings`: the design rules and spring
+    limit basis every row is judged by, the user catalog folders read here, in a Dask worker process too);
+    ``fidelity`` (default ``screening``) sets its fidelity.
     """
-    if rules is not None:
-        with using(rules):
-            return compute_chunk(recs, objective=objective, fidelity=fidelity, diagnose=diagnose, screen=screen,
-                                 catalog_dirs=catalog_dirs)
-    if catalog_dirs is not None and [str(p) for p in catalog._user_dirs()] != list(catalog_dirs):
-        catalog.set_user_dirs(*catalog_dirs)
+    settings = _run_settings(settings, fidelity)
+    with catalog.using(settings.catalogs):
+        return _compute_chunk(recs, objective, diagnose, screen, settings)
+
+
+def _compute_chunk(recs, objective, diagnose, screen, settings) -> pd.DataFrame:
     screen = screen or _screen_default()
     cols = result_columns()
     if isinstance(recs, pd.DataFrame):
@@ -171,14 +182,14 @@ def compute_chunk(recs, *, objective: str = "standard", fidelity: str = "screeni
     apps = [checked[i] for i in valid]
     res = None
     try:
-        res = _call_engine(screen, apps, objective, fidelity, diagnose)
+        res = _call_engine(screen, apps, objective, settings, diagnose)
     except InputError:
         raise  # a bad setting (objective...): the same for every row, reported once
     except Exception:
         rows = []
         for a in apps:
             try:
-                rows.append({**_call_engine(screen, [a], objective, fidelity, diagnose).iloc[0].to_dict(),
+                rows.append({**_call_engine(screen, [a], objective, settings, diagnose).iloc[0].to_dict(),
                              "error": ""})
             except Exception as exc:  # noqa: BLE001 - reported in the row, never swallowed
                 rows.append(_error_row(cols, f"engine: {type(exc).__name__}: {exc}"))
@@ -239,18 +250,21 @@ def _sha256_frame(df: pd.DataFrame) -> str:
     return h.hexdigest()
 
 
-def _catalogs_sha256() -> str:
-    """Hash of every catalog CSV in use (built-in and user folders): a changed catalog invalidates a resume."""
-    return catalogs_sha256(catalog._user_dirs())
+def _catalogs_sha256(settings: Settings | None = None) -> str:
+    """Hash of every catalog CSV in use (built-in and the user folders of ``settings``, default this process's): a
+    changed catalog invalidates a resume."""
+    dirs = None if settings is None else settings.catalogs
+    return catalogs_sha256(catalog.user_dirs() if dirs is None else [Path(p) for p in dirs])
 
 
 def manifest_of(portfolio_hash: str, n_rows: int, *, objective: str, fidelity: str, chunk_size: int,
-                diagnose: bool) -> dict:
-    """The manifest of a run: what must not change between an interrupted run and its resume (the design rules in
-    force included: :func:`synth.design.rules.echo`)."""
+                diagnose: bool, settings: Settings | None = None) -> dict:
+    """The manifest of a run: what must not change between an interrupted run and its resume (the configuration's
+    design rules included: :func:`synth.design.rules.echo`, and its catalogs' hash)."""
+    s = settings if settings is not None else Settings()
     return {"portfolio_sha256": portfolio_hash, "n_rows": int(n_rows), "objective": str(objective),
             "fidelity": str(fidelity), "chunk_size": int(chunk_size), "diagnose": bool(diagnose),
-            "synth_version": __version__, "catalogs_sha256": _catalogs_sha256(), "rules": echo()}
+            "synth_version": __version__, "catalogs_sha256": _catalogs_sha256(s), "rules": echo(s.rules)}
 
 
 def _check_manifest(old: dict, new: dict, folder: Path) -> None:
@@ -611,7 +625,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
                   chunk_size: int | None = None, resume: bool = False, engine: str = "inprocess",
                   scheduler: str | None = None, workers: int | None = None, diagnose: bool = True,
                   stop_after_chunks: int | None = None, screen: Callable | None = None,
-                  stream=None, connect_timeout_s: float = 20.0) -> RunReport:
+                  stream=None, connect_timeout_s: float = 20.0, settings: Settings | None = None) -> RunReport:
     """Evaluate every application of ``portfolio`` (a path or a DataFrame) and write ``out``.
 
     ``stop_after_chunks=k`` stops after ``k`` chunks computed in this run (a
@@ -620,12 +634,15 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
     signature as :func:`synth.bulk.engine.screen_applications`; on Dask it
     must be picklable). Progress is drawn on ``stream`` (default stderr) when
     it is a terminal. ``connect_timeout_s`` bounds the wait for a ``scheduler``.
-    The run holds the lock of ``<out>.chunks`` from start to end (see the module doc).
+    The run holds the lock of ``<out>.chunks`` from start to end (see the module doc). ``settings``: the run's
+    configuration (:class:`~synth.design.settings.Settings`: design rules, spring limit basis, user catalogs,
+    engine; its fidelity is ``fidelity``), resolved here once and given to every chunk.
     """
 
     given = chunk_size is not None
     chunk_size = default_chunk_size() if chunk_size is None else chunk_size
     _validate_settings(objective, fidelity, chunk_size, engine, workers)
+    settings = _run_settings(settings, fidelity).resolved()  # the catalogs fixed: chunks may run elsewhere
     t0 = time.monotonic()
     out = Path(out)
     if out.suffix.lower() not in FORMATS:
@@ -651,7 +668,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
     ranges = chunk_ranges(n, int(chunk_size))
     folder = output_folder(sidecar(out), "--out", inside=True)  # never a link: chunks, manifest, lock go in it
     manifest = manifest_of(p_hash, n, objective=objective, fidelity=fidelity, chunk_size=int(chunk_size),
-                           diagnose=diagnose)
+                           diagnose=diagnose, settings=settings)
     run_id = uuid.uuid4().hex
     lock = RunLock(folder, run_id, out).acquire()  # before anything in the folder is read or cleared
     try:
@@ -669,7 +686,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
                 chunk_size = old["chunk_size"]
                 ranges = chunk_ranges(n, chunk_size)
                 manifest = manifest_of(p_hash, n, objective=objective, fidelity=fidelity, chunk_size=chunk_size,
-                                       diagnose=diagnose)
+                                       diagnose=diagnose, settings=settings)
             _check_manifest(old, manifest, folder)
             if not isinstance(old.get("run_id"), str) or not old["run_id"]:
                 raise InputError(Problem("--resume", str(folder / MANIFEST), "the manifest of a run with a run id "
@@ -683,10 +700,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
             _write_atomic_json(folder / MANIFEST, {**manifest, "run_id": run_id})
         todo = [i for i in range(len(ranges)) if i not in set(done)]
         todo_set = set(todo)
-        from synth.design.rules import active
-        kw = dict(objective=objective, fidelity=fidelity, diagnose=diagnose, screen=screen,
-                  catalog_dirs=tuple(str(p) for p in catalog._user_dirs()),
-                  rules=None if active().empty() else active())
+        kw = dict(objective=objective, diagnose=diagnose, screen=screen, settings=settings)
         computed = 0
         cols = field_columns(table)
 

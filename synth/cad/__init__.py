@@ -47,7 +47,8 @@ def export_result(result, out_dir, inputs=None, *, stl: bool = True, pictures: b
     g = geometry_from(result, inputs)
     model = build(g)
     t = time.perf_counter()
-    checks = verify_model(model, interference=interference)
+    rules = result.get("rules") if isinstance(result, dict) else getattr(result, "rules", None)
+    checks = verify_model(model, interference=interference, rules=rules)  # under the result's own rules
     t_verify = time.perf_counter() - t
     info = export_model(model, out_dir, checks=checks, stl=stl, pictures=pictures,
                         application=application or _application_name(result, inputs), result=result, what=what)

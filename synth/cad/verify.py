@@ -70,8 +70,10 @@ _BUT = {"cad_axial_space": ("fixation_bolt",), "cad_crankcase_face": ("fixation_
         "cad_interference": ()}
 
 
-def verify_model(model: TensionerModel, *, interference: bool = True) -> list[Check]:
-    """The step-11 checks of ``model`` (see the module docstring), as registry :class:`Check` records."""
+def verify_model(model: TensionerModel, *, interference: bool = True, rules=None) -> list[Check]:
+    """The step-11 checks of ``model`` (see the module docstring), as registry :class:`Check` records, under the
+    design ``rules`` of the result it was built from (:class:`synth.design.rules.Rules` or their mapping)."""
+    from synth.design.rules import Rules
     import numpy as np
 
     g, p = model.geometry, model.parts
@@ -105,7 +107,8 @@ def verify_model(model: TensionerModel, *, interference: bool = True) -> list[Ch
                if vol > v["cad_interference_tolerance_mm3"]]
         note = (f"{len(vols)} overlapping bounding boxes of {len(p) * (len(p) - 1) // 2} pairs"
                 + (("; interfering: " + ", ".join(bad)) if bad else ""))
-    group = finish("cad", {k: np.atleast_1d(np.asarray(x, dtype=float)) for k, x in v.items()}, None, np.zeros(1, int))
+    group = finish("cad", {k: np.atleast_1d(np.asarray(x, dtype=float)) for k, x in v.items()}, None, np.zeros(1, int),
+                   rules=Rules.from_mapping(rules or None))
     checks = [c for c in checks_of({"cad": group}, None) if c.verdict != "not applicable" or c.id != "cad_interference"]
     for c in checks:
         if c.id == "cad_interference":

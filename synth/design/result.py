@@ -32,7 +32,6 @@ from synth.design.constraints import GROUPS as REGISTRY_GROUPS, REGISTRY, margin
 from synth.io.outputs import plain  # JSON-friendly data (NaN and infinities as None, no subnormal number)
 from synth.design.applications import DEFAULTS
 from synth.design.evaluate import _CONSTANT_LIMITS as CONSTANT_LIMITS
-from synth.design.rules import active as active_rules
 from synth.schema import FIELDS
 from synth.errors import InputError, Problem
 
@@ -286,7 +285,6 @@ def checks_of(groups: dict, apps, row: int = 0, assessment: Assessment | None = 
         if name in REGISTRY_GROUPS:
             app[name] = int(g.values["app"][row]) if "app" in g.values else row
     out = []
-    rules = active_rules()
     for k, c in enumerate(a.columns.constraints):
         cid, g, st, aa = c.id, groups[c.group], int(a.state[j, k]), app[c.group]
         if st == NOT_APPLICABLE_STATE:
@@ -305,7 +303,7 @@ def checks_of(groups: dict, apps, row: int = 0, assessment: Assessment | None = 
         verdict = FAIL if a.failed[j, k] else (WARNING if a.warning[j, k] else PASS)
         assumed = [] if apps is None or not a.assumed[j, k] else [
             apps.assumed_note(x, aa) for x in c.assumes if x in DEFAULTS and apps.assumed(x)[aa]]
-        out.append(Check(cid, value, limit, m, verdict, assumed=assumed, required=rules.required(cid)))
+        out.append(Check(cid, value, limit, m, verdict, assumed=assumed, required=g.rules.required(cid)))
     return out
 
 

@@ -23,26 +23,26 @@ file) or a rules file (``--rules FILE``: the same mapping, at the top or under `
   the margin *beyond* the rule (``margin >= 0`` passes, everywhere: feasibility, the optimiser, the diagnosis),
   and the check carries the required margin (``required_margin``).
 * ``spring_limit_basis`` and ``capability`` are the settings of the production-scatter and limit-basis work
-  (issue 22): recorded, validated and echoed here; the evaluator reads them from the active rules.
+  (issue 22): recorded, validated and echoed here; the spring limit basis lives here only
+  (:attr:`synth.design.settings.Settings.spring_limit_basis` reads it).
 
-The rules are active for a run (:func:`using`; the command line activates those of ``--rules`` or of the input
-file for the whole scene), applied in :func:`synth.design.evaluate.finish`, and carried by every result
-(``Result.rules``), so a saved result is re-verified under its own rules.
+Rules are part of a run's configuration (:class:`synth.design.settings.Settings`, its ``rules``): resolved once
+where the run starts (the command line from ``--rules`` or the input file's section, the Python API from its
+``rules=`` keyword or the input's section), passed as an argument to every search and worker, applied in
+:func:`synth.design.evaluate.finish` and carried by every result (``Result.rules``), so a saved result is
+re-verified under its own rules. No process-wide state: two threads judging under two sets of rules each get
+their own.
 
 >>> r = Rules.from_mapping({"name": "ACME", "min_margins": {"spring_yield": "5 %"},
 ...                         "limits": {"main_spring_min_safety_factor": 1.3}})
 >>> r.min_margins, r.limits
 ({'spring_yield': 0.05}, {'main_spring_min_safety_factor': 1.3})
->>> with using(r):
-...     active().min_margins["spring_yield"]
-0.05
->>> active().empty()
-True
+>>> echo(r)["name"], echo(NONE)
+('ACME', {})
 """
 
 from __future__ import annotations
 
-import contextlib
 import functools
 import math
 from dataclasses import dataclass, field
@@ -54,7 +54,7 @@ from synth.io.limits import short
 from synth.io.structured import read_document
 from synth.io.numbers import percentage
 
-__all__ = ["Rules", "using", "active", "LIMIT_NAMES", "SPRING_LIMIT_BASES", "CAPABILITY_TARGETS", "read_rules",  # noqa: F822 (LIMIT_NAMES: module __getattr__)
+__all__ = ["Rules", "LIMIT_NAMES", "SPRING_LIMIT_BASES", "CAPABILITY_TARGETS", "read_rules",  # noqa: F822 (LIMIT_NAMES: module __getattr__)
            "NONE", "echo", "of_args"]
 
 #: the bases of the main spring's installation check (issue 22 adds ``en13906``: the spring makers' static rule)
@@ -121,6 +121,11 @@ class Rules:
     min_margins: dict = field(default_factory=dict)
     spring_limit_basis: str = "thesis"
     capability: dict = field(default_factory=dict)
+
+    def __hash__(self) -> int:  # frozen, of mappings: hashed by their items (a configuration is a cache key)
+        return hash((self.name, self.source, tuple(sorted(self.limits.items())),
+                     tuple(sorted(self.min_margins.items())), self.spring_limit_basis,
+                     tuple(sorted(self.capability.items()))))
 
     def empty(self) -> bool:
         return not (self.limits or self.min_margins or self.capability or self.spring_limit_basis != "thesis")
@@ -210,28 +215,11 @@ class Rules:
 
 
 NONE = Rules()
-_ACTIVE: list = [NONE]
 
 
-def active() -> Rules:
-    """The rules in force (:data:`NONE` outside :func:`using`)."""
-    return _ACTIVE[-1]
-
-
-def echo() -> dict:
-    """The rules in force as a result carries them (``Result.rules``; {} without rules)."""
-    return {} if active().empty() else active().as_dict()
-
-
-@contextlib.contextmanager
-def using(rules):
-    """Make ``rules`` (a :class:`Rules`, a mapping or None) the rules in force for the block."""
-    r = Rules.from_mapping(rules) if not isinstance(rules, Rules) else rules
-    _ACTIVE.append(r)
-    try:
-        yield r
-    finally:
-        _ACTIVE.pop()
+def echo(rules: Rules) -> dict:
+    """``rules`` as a result and a run's manifest carry them (``Result.rules``; {} without rules)."""
+    return {} if rules.empty() else rules.as_dict()
 
 
 #: what ``--rules`` accepts (every refusal of a rules file says it)

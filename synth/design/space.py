@@ -466,7 +466,7 @@ def _space_cached(user_dirs: tuple) -> Space:
 
 def space() -> Space:
     """The design space of the current catalog setting (cached; do not modify its arrays)."""
-    return _space_cached(tuple(catalog._user_dirs()))
+    return _space_cached(tuple(catalog.user_dirs()))
 
 
 def core_rows(sp: Space, d, *, pin_inputs=False) -> np.ndarray:

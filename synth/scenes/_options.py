@@ -21,7 +21,7 @@ from synth.optimise.honour import solve_honouring
 from synth.report.progress import phase
 from synth.io.saved_results import load_result
 
-__all__ = ["add_model_options", "settings_from_args", "add_design_options", "add_robust_options",
+__all__ = ["add_model_options", "settings_from_args", "rules_of", "add_design_options", "add_robust_options",
            "robust_settings_from_args", "synthesise", "load_saved_result",
            "DEFAULT_SOLVER", "DEFAULT_OBJECTIVE", "default_args"]
 
@@ -49,13 +49,24 @@ def add_model_options(p) -> None:
                         "spring_limit_basis (rules: section or --rules), else thesis")
 
 
+def rules_of(args):
+    """The design rules of a scene's command line (:func:`synth.design.rules.of_args`: ``--rules FILE``, else the
+    input file's ``rules:`` section), read once per command line."""
+    got = getattr(args, "_synth_rules", None)
+    if got is None:
+        got = rules.of_args(args)
+        setattr(args, "_synth_rules", got)
+    return got
+
+
 def settings_from_args(args):
-    """The model settings of the options; the spring limit basis from ``--spring-limit``, else the design rules in
-    force (:func:`synth.design.rules.active`)."""
-    from synth.design.evaluate import Settings
+    """The run's configuration (:class:`~synth.design.settings.Settings`) of the options, resolved once: the model
+    settings, the design rules (:func:`rules_of`) and the spring limit basis of ``--spring-limit``, else the
+    rules'."""
+    from synth.design.settings import Settings
     return Settings(fidelity=args.fidelity, friction_circle=not args.linear_friction,
                     bolt_method=getattr(args, "bolt_method", "thesis"), drive=getattr(args, "drive_model", None),
-                    spring_limit_basis=getattr(args, "spring_limit", None) or rules.active().spring_limit_basis)
+                    spring_limit_basis=getattr(args, "spring_limit", None), rules=rules_of(args))
 
 
 def add_design_options(p) -> None:
@@ -103,7 +114,7 @@ def robust_settings_from_args(args, *, default_capability=None, samples: str = "
     names = {"capability": "--capability", "ppm": "--ppm", "samples": "--samples", "seed": "--seed"}
     cap, ppm = getattr(args, "capability", None), getattr(args, "ppm", None)
     if cap is None and ppm is None:
-        targets = rules.active().capability
+        targets = rules_of(args).capability
         cap, ppm = targets.get("ppk_min"), targets.get("ppm_max")
         if cap is None and ppm is None:
             cap = default_capability

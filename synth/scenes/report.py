@@ -34,11 +34,10 @@ from synth.io.saved_results import INPUTS_ACCEPTED
 from synth.robust.assumptions import flips
 from synth.robust.capability import capability
 from synth.robust.sampling import base_of
-from synth.design.rules import active, using
 from synth.report.pdf import write_pdf
 from synth.report.robust import capability_rows
 from synth.scenes._options import robust_settings_from_args
-from synth.scenes._options import settings_from_args
+from synth.scenes._options import rules_of, settings_from_args
 
 __all__ = ["register", "make_report", "read_table", "out_folder", "add_capability"]
 
@@ -111,11 +110,11 @@ def result_for_report(source, args=None):
     if res.inputs is None:
         raise InputError(Problem(f"inputs ({Path(name).name})", None, INPUTS_ACCEPTED))
     if not res.curves and res.parts and res.solver != "flowchart":  # re-verify for the curves of the graphs
-        fields = {k for k in Settings.__dataclass_fields__}
-        settings = Settings(**{k: v for k, v in (res.settings or {}).items() if k in fields})
-        with using(res.rules or active()):  # the result's own rules
-            again = verify(schema.validate({k: v for k, v in res.inputs.items() if v is not None}), res.parts, settings,
-                           status=res.status, solver=res.solver, time_points=60, notes=res.notes)
+        given = rules_of(args) if args is not None else None  # --rules, for a result without its own
+        settings = Settings.from_saved(res.settings, res.rules or (given.as_dict() if given and not given.empty()
+                                                                   else None))  # the result's own configuration
+        again = verify(schema.validate({k: v for k, v in res.inputs.items() if v is not None}), res.parts, settings,
+                       status=res.status, solver=res.solver, time_points=60, notes=res.notes)
         res = again.carry(res)
     return res, cells, name
 
@@ -188,8 +187,7 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
 def add_capability(result, rs) -> None:
     """Set ``result.robust`` (the capability of its design under ``rs``, unless it carries one) and its
     assumptions' flips, through :mod:`synth.robust`."""
-    fields = set(Settings.__dataclass_fields__)
-    settings = Settings(**{k: v for k, v in (result.settings or {}).items() if k in fields})
+    settings = Settings.from_saved(result.settings, result.rules)  # the result's own configuration
     d = schema.validate({k: v for k, v in (result.inputs or {}).items() if v is not None})
     robust = dict(result.robust or {})
     if not robust.get("checks"):

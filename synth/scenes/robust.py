@@ -47,8 +47,7 @@ def robust_result(source, args):
     src = Path(source)
     if _is_result_file(src):
         saved = load_saved_result(src, "input", needs_inputs=True)  # re-verified: its inputs are needed
-        fields = set(Settings.__dataclass_fields__)
-        settings = Settings(**{k: v for k, v in (saved.settings or {}).items() if k in fields})
+        settings = Settings.from_saved(saved.settings, saved.rules)  # the result's own configuration
         d = schema.validate({k: v for k, v in (saved.inputs or {}).items() if v is not None})
         r = verify(d, saved.parts, settings, status=saved.status, solver=saved.solver, notes=saved.notes)
         r.objective, r.objectives, r.stats = saved.objective, saved.objectives, saved.stats
