@@ -189,19 +189,24 @@ def test_synth_design_objective_cost_prints_the_probability_and_the_ranges(capsy
     assert "Price ranges over which #1 stays the cheapest" in out and "ball bearing 6006" in out
 
 
-#: catalogs whose prices are not this model's yet: the platform's per-variant fixed costs (issue 38's platform
-#: round) and the head-form cost factor of bolt_heads.csv (no longer read: the head enters the bolt's mass)
-NOT_YET = {"constants_platform.csv", "bolt_heads.csv"}
-
-
 def test_no_price_in_the_catalogs_is_labelled_illustrative():
     bad = []
     for path in sorted(Path(catalog.builtin_dir()).glob("*.csv")):
-        if path.name in NOT_YET:
-            continue
         with path.open(newline="", encoding="utf-8") as fh:
             for row in csv.DictReader(fh, skipinitialspace=True):
                 text = " ".join(str(v) for v in row.values())
                 if re.search(r"(cost|price)[^;,()]*illustrative|illustrative[^;,()]*(cost|price)", text, re.I):
                     bad.append(f"{path.name}: {next(iter(row.values()))}")
+    assert not bad, bad
+
+
+def test_every_assumed_price_names_its_currency_and_date():
+    """A price with no relation behind it is a named assumption: its currency and the date it was set (issue 38)."""
+    bad = []
+    for path in sorted(Path(catalog.builtin_dir()).glob("constants*.csv")):
+        with path.open(newline="", encoding="utf-8") as fh:
+            for row in csv.DictReader(fh, skipinitialspace=True):
+                if "cost" in row["name"] and row["unit"] == "EUR" and row["source"].startswith("assumed"):
+                    if not re.search(r"\bEUR\b.*\b20\d\d-\d\d\b", row["source"]):
+                        bad.append(row["name"])
     assert not bad, bad
