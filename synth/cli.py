@@ -103,15 +103,37 @@ class _VersionAction(argparse.Action):
     def __call__(self, parser, namespace, values, option_string=None):
         # imported here: hashing the catalogs (hashlib, pickle) would add about 7 ms to every start-up, --help too
         from synth.fingerprint import version_text
-        print(version_text(getattr(namespace, "catalogs", None) or ()))
+        parser._print_message(version_text(getattr(namespace, "catalogs", None) or ()) + "\n", sys.stdout)
         parser.exit(0)
+
+
+class _HelpNotWritten(Exception):
+    """argparse's help or usage text could not be written (argparse swallows the OSError)."""
+
+    def __init__(self, prog: str, error: OSError):
+        super().__init__(prog)
+        self.prog, self.error = prog, error
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, except that a help text that cannot be written (a full device) is an error, not silence."""
+
+    def _print_message(self, message, file=None):
+        if not message:
+            return
+        try:
+            (file or sys.stderr).write(message)
+            (file or sys.stderr).flush()
+        except OSError as exc:
+            if file is sys.stdout:
+                raise _HelpNotWritten(self.prog, exc) from None
 
 
 def _top_parser() -> argparse.ArgumentParser:
     width = max(len(n) for n in SCENES) + 2
     commands = "\n".join(f"  {name:<{width}}{s.help}" for name, s in SCENES.items())
     codes = "\n".join(f"  {code:<4}{text}" for code, text in EXIT_CODES.items())
-    p = argparse.ArgumentParser(
+    p = _Parser(
         prog="synth", usage="synth [--catalogs DIR] [--threads N] [--version] COMMAND [ARGS ...]", allow_abbrev=False,
         description="Timing-belt tensioner design synthesiser.",
         epilog=f"commands (synth COMMAND --help for the options of one):\n{commands}\n\nexit codes:\n{codes}",
@@ -125,7 +147,7 @@ def _top_parser() -> argparse.ArgumentParser:
     return p
 
 
-class _SceneParser(argparse.ArgumentParser):
+class _SceneParser(_Parser):
     """A scene's own parser: ``--json`` gets :data:`JSON_HELP` when the scene gives no help."""
 
     def add_argument(self, *names, **kw):
@@ -228,7 +250,13 @@ def _sigterm_as_interrupt():
 def main(argv: list[str] | None = None) -> int:
     """Run ``synth ARGV``; returns the exit code (:data:`EXIT_CODES`)."""
     with _sigterm_as_interrupt():
-        return _main(argv)
+        try:
+            return _main(argv)
+        except _HelpNotWritten as exc:  # synth --help > /dev/full: said, not swallowed as argparse does
+            from synth.errors import InputError
+            _print_input_error(InputError(_stdout_problem(exc.error, exc.prog.removeprefix("synth").strip(), [],
+                                                          what="help text")))
+            return 2
 
 
 def _main(argv: list[str] | None) -> int:
@@ -277,13 +305,15 @@ def _main(argv: list[str] | None) -> int:
             problem = _stdout_problem(exc, name, rest)
         _print_input_error(InputError(problem))
         return 2
+    except _HelpNotWritten:
+        raise
     except Exception as exc:  # the one place where any error becomes a line, not a traceback
         return _internal(name, exc)
     finally:
         pools.close()
 
 
-def _stdout_problem(exc: OSError, name: str, rest: list):
+def _stdout_problem(exc: OSError, name: str, rest: list, what: str | None = None):
     """A failed write of the standard output as a Problem: which output (``--json``'s or the report's), where it
     goes (the file or device it is redirected to) and why; the output is then incomplete."""
     from synth.errors import Problem
@@ -292,10 +322,10 @@ def _stdout_problem(exc: OSError, name: str, rest: list):
         target = os.readlink("/proc/self/fd/1")  # Linux: the file or device the output is redirected to
     except (OSError, ValueError):
         target = "standard output"
-    what = f"synth {name}{' --json' if '--json' in rest else ''}: standard output"
-    return Problem(what, target, f"an output synth can write ({FS_ERRNOS.get(exc.errno, exc.strerror)}); the "
-                                 f"{'JSON' if '--json' in rest else 'report'} written there is incomplete: redirect "
-                                 "it to a file on a device with space")
+    where = f"{f'synth {name}'.strip()}{' --json' if '--json' in rest else ''}: standard output"
+    what = what or ("JSON" if "--json" in rest else "report")
+    return Problem(where, target, f"an output synth can write ({FS_ERRNOS.get(exc.errno, exc.strerror)}); the "
+                                  f"{what} written there is incomplete: redirect it to a file on a device with space")
 
 
 def _internal(name: str, exc: Exception) -> int:

@@ -443,6 +443,20 @@ def test_output_to_a_full_device_names_the_output_and_why():
     assert "got '?'" not in r.stderr and "Traceback" not in r.stderr
 
 
+@pytest.mark.skipif(not Path("/dev/full").exists(), reason="no /dev/full")
+@pytest.mark.parametrize("argv", [["--help"], ["design", "--help"], ["--version"], []])
+def test_help_to_a_full_device_is_said_not_swallowed(argv):
+    """argparse swallows the failed write of its help text: ``synth --help > /dev/full`` exited 0 with nothing
+    written and nothing said."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    with open("/dev/full", "w") as full:
+        r = subprocess.run([sys.executable, "-m", "synth", *argv], stdout=full, stderr=subprocess.PIPE, text=True,
+                           env=env, timeout=120)
+    assert r.returncode == 2, r.stderr
+    assert "help text written there is incomplete" in r.stderr and "/dev/full" in r.stderr
+    assert "Traceback" not in r.stderr and "internal error" not in r.stderr
+
+
 def test_resume_compares_the_rules_by_content(tmp_path, capsys):
     """A content-identical copy of the rules file under another name resumes the run; changed rules are refused
     saying what changed (it read "got 'bulk rules A'; accepted: 'bulk rules A'")."""
