@@ -475,3 +475,13 @@ def test_resume_compares_the_rules_by_content(tmp_path, capsys):
     code, _, err = _run(argv + ["--rules", changed, "--resume"], capsys)
     assert code == 2 and "got 'bulk rules A'; accepted: 'bulk rules A' as in the interrupted run" in err, err
     assert "min_margins.spring_yield 1 % in the run, 2 % now" in err
+
+
+def test_the_python_api_takes_the_command_lines_sample_bound():
+    """RobustSettings accepted 1,048,576 samples (about 4 GB) where --samples stops at 262,144 (about 1.1 GB)."""
+    from synth.errors import InputError
+    from synth.io.limits import COUNTS
+    from synth.robust.settings import RobustSettings
+    assert RobustSettings(samples=COUNTS["--samples"].hi).samples == 262_144
+    with pytest.raises(InputError, match="samples: got 1048576; accepted: an integer from 64 to 262144"):
+        RobustSettings(samples=1_048_576)

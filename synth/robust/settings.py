@@ -29,6 +29,7 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 
 from synth.errors import InputError, Problem
+from synth.io.limits import COUNTS  # one bound for the command line's --samples and the Python API
 
 __all__ = ["RobustSettings", "DEFAULT_SAMPLES", "SEARCH_SAMPLES"]
 
@@ -41,7 +42,7 @@ SEARCH_SAMPLES = 2048
 _RANGES = {
     "capability": (0.0, 10.0, "a process performance index Ppk in (0, 10] (1.33 is the usual target)"),
     "ppm": (0.0, 1e6, "parts per million in (0, 1000000]"),
-    "samples": (64, 1_048_576, "an integer from 64 to 1048576 (a power of two keeps the Sobol balance)"),
+    "samples": (64, COUNTS["--samples"].hi, f"an integer from 64 to {COUNTS['--samples'].hi} (a power of two keeps the Sobol balance)"),
     "seed": (0, 2**32 - 1, "an integer from 0 to 4294967295"),
     "rare_samples": (100, 1_000_000, "an integer from 100 to 1000000"),
     "rare_min_failures": (1, 10_000, "an integer from 1 to 10000"),
