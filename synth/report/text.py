@@ -8,7 +8,7 @@ infeasible input, the assumptions and notes, and the verdict.
 
 from __future__ import annotations
 
-from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Result
+from synth.design.result import FAIL, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Result
 from synth.output_table import ROWS, format_value
 from synth.report.advice import NO_DESIGNER, alternative_rows, change_lines, correction, objective_line, \
     relaxation_lines, rule_lines
@@ -21,17 +21,10 @@ MARKS = {PASS: "PASS", FAIL: "FAIL", WARNING: "WARN", NOT_VERIFIED: "N/V "}
 
 
 def verdict_line(r: Result) -> str:
-    """``Verdict: PASS``, ``Verdict: FAIL (2 checks failed)`` or ``Verdict: INCOMPLETE (...)``."""
-    failed, nv, assumed = r.failed(), r.not_verified(), r.assumptions()
-    extra = []
-    if failed:
-        extra.append(f"{len(failed)} check(s) failed")
-    if nv:
-        extra.append(f"{len(nv)} not verified")
-    if assumed:
-        extra.append(f"{len(assumed)} input(s) assumed")
-    text = {PASS: "PASS", FAIL: "FAIL", INCOMPLETE: "INCOMPLETE: passed what was checked, not everything was"}[r.verdict]
-    return f"Verdict: {text}" + (f" ({'; '.join(extra)})" if extra else "")
+    """The last line of every scene that judges a design: ``Verdict: PASS``, ``Verdict: FAIL (...)`` or ``Verdict:
+    INCOMPLETE (...)``, with why (the result's one verdict, :attr:`Result.judgement`: failed checks, a capability
+    target missed or not assessed, checks not verified, inputs assumed)."""
+    return r.judgement.line()
 
 
 def _check_line(c, r=None) -> list[str]:
@@ -50,8 +43,9 @@ def _check_line(c, r=None) -> list[str]:
     return out
 
 
-def render(r: Result, *, title: str = "") -> str:
-    """The whole terminal report of ``r``."""
+def render(r: Result, *, title: str = "", verdict: bool = True) -> str:
+    """The whole terminal report of ``r``, ending with its verdict line (``verdict=False``: without it, for a scene
+    that prints more before its last line, :func:`verdict_line`)."""
     lines = [title] if title else []
     lines += rule_lines(r)
     if r.solver and r.solver != "flowchart":
@@ -108,5 +102,6 @@ def render(r: Result, *, title: str = "") -> str:
         lines += text_lines(r.robust)
     if r.notes:
         lines += ["", "Notes", "-" * 78] + [f"  - {n}" for n in r.notes]
-    lines += ["", verdict_line(r)]
+    if verdict:
+        lines += ["", verdict_line(r)]
     return "\n".join(lines)

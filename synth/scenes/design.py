@@ -11,7 +11,7 @@ from __future__ import annotations
 import sys
 
 from synth.io.outputs import json_text
-from synth.report.text import render
+from synth.report.text import render, verdict_line
 from synth.scenes._options import add_design_options, add_robust_options, synthesise, settings_from_args
 from synth.io.documents import load_input
 from synth.drive.analysis import durability_point
@@ -53,16 +53,20 @@ def _main(args) -> int:
         r.notes.insert(0, note)
     if args.assumptions and r.parts:
         r.robust = {**r.robust, "assumptions": flips(d, r.parts, settings_from_args(args))}
+    cad_lines = []
+    if args.cad:  # before the print: the 3D model's geometric checks are checks of the design (its verdict)
+        from pathlib import Path
+        cad_lines = export_cad(r, args.cad, Path(args.input).stem)
     if args.json:
         print(json_text(r.to_dict(), indent=2))
-    else:
-        print(render(r, title=f"synth design: {args.input}"))
-    if args.cad:
-        from pathlib import Path
-        print("\n".join(export_cad(r, args.cad, Path(args.input).stem)), file=sys.stderr if args.json else sys.stdout)
-    if r.robust.get("checks") and not r.robust.get("meets", True):
-        return 1  # the capability target is missed: the design fails it
-    return r.exit_code
+        if cad_lines:
+            print("\n".join(cad_lines), file=sys.stderr)
+        return r.exit_code
+    print(render(r, title=f"synth design: {args.input}", verdict=False))
+    if cad_lines:
+        print("\n" + "\n".join(cad_lines))
+    print("\n" + verdict_line(r))
+    return r.exit_code  # the one verdict: a capability target missed fails (Result.judgement)
 
 
 def with_drive(d, path):
@@ -127,8 +131,9 @@ def export_cad(r, out_dir, application: str | None = None, *, pictures: bool = F
     """Export the design's 3D model (thesis step 11) and return the summary lines (``pictures=True``: and the
     pictures written, for a report that then exports no second model).
 
-    A failing design whose geometry cannot exist (a pulley inside its own bearing) is reported, not drawn: the
-    lines say why, and the exit code stays the design's (1).
+    The model's geometric checks (thesis step 11, registry group ``cad``) are added to ``r.checks``: the design's
+    verdict includes them. A failing design whose geometry cannot exist (a pulley inside its own bearing) is
+    reported, not drawn: the lines say why, and the exit code stays the design's (1).
     """
     try:
         model, checks, info = export_result(r, out_dir, application=application)
@@ -139,4 +144,6 @@ def export_cad(r, out_dir, application: str | None = None, *, pictures: bool = F
                  + "; ".join(str(p) for p in exc.problems)]
         return (lines, []) if pictures else lines
     lines = [f"3D model written to {out_dir}"] + summary_lines(model, checks, info)
+    known = {c.id for c in r.checks}  # the geometric checks (step 11) join the design's: its verdict includes them
+    r.checks = list(r.checks) + [c for c in checks if c.id not in known]
     return (lines, [str(f) for f in info["files"] if str(f).endswith(".png")]) if pictures else lines
