@@ -379,7 +379,7 @@ def test_core_install_runs_without_cadquery_and_a_cad_scene_says_what_to_install
     assert r.returncode == 2 and 'pip install "synth[cad]"' in r.stderr and "Traceback" not in r.stderr
     r = run("demo", "--out", tmp_path / "demo")
     assert r.returncode == 2 and "synth demo --no-cad" in r.stderr
-    r = run("demo", "--out", tmp_path / "demo", "--no-cad", "--no-report")
+    r = run("demo", "--out", tmp_path / "demo", "--no-cad", "--no-report", "--no-robust")
     assert r.returncode == 0, r.stderr
     text = (ROOT / "pyproject.toml").read_text()
     assert 'cad = ["cadquery' in text and '"cadquery>=2.4",\n' not in text.split("[project.optional")[0]
@@ -389,7 +389,8 @@ def test_core_install_runs_without_cadquery_and_a_cad_scene_says_what_to_install
 
 @pytest.mark.skipif(not os.environ.get("SYNTH_SLOW"), reason="slow (CAD and report): set SYNTH_SLOW=1 to run")
 def test_demo_writes_one_step_file_and_names_the_application(tmp_path, capsys):
-    code, out, _ = _run(capsys, "demo", "--out", tmp_path)
-    assert code == 0 and "synth demo: the most standardised tensioner for default (thesis case 3, completed)" in out
+    code, out, _ = _run(capsys, "demo", "--out", tmp_path)  # no catalog design reaches its Ppk 1.33: FAIL (issue 35)
+    assert code == 1 and "synth demo: the most standardised tensioner for default (thesis case 3, completed)" in out
+    assert out.rstrip().splitlines()[-1].startswith("Verdict: FAIL (production capability Ppk >= 1.33 missed")
     assert [p.name for p in tmp_path.rglob("*.step")] == ["tensioner.step"]
     assert math.isfinite(len((tmp_path / "report.html").read_text()))
