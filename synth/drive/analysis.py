@@ -19,6 +19,7 @@ from synth.drive.positions import duty_table, positions, travels
 from synth.drive.response import speed_response, sweep
 from synth.drive.statics import static_state
 from synth.errors import InputError, Problem
+from synth.threads import limits
 
 __all__ = ["analyse", "durability_point", "tensioner_checks", "require_durability_speed", "states_positions"]
 
@@ -41,6 +42,7 @@ def _sweep(drive, friction_nm: float):
     return sweep(_model(drive), drive, friction_nm, drive.speeds_rpm())
 
 
+@limits("small")  # small dense solves: one BLAS thread (synth.threads)
 def durability_point(drive, friction_nm: float | None = None) -> dict:
     """theta_pp [deg] and f [Hz] of the arm at the durability speed (the drive's friction unless given).
 
@@ -58,6 +60,7 @@ def durability_point(drive, friction_nm: float | None = None) -> dict:
             "tension_min_n": r["tension_min_n"], "tension_max_n": r["tension_max_n"]}
 
 
+@limits("small")
 def tensioner_checks(drive, friction_nm) -> dict:
     """Per friction torque (array, N m): the lowest effective span tension over the sweep [N], and the drive's
     critical friction at the durability speed, its slack limit and static tensioner tension (for the margins).
@@ -72,6 +75,7 @@ def tensioner_checks(drive, friction_nm) -> dict:
             "static_tension_n": float(_model(drive).static["tensioner_tension_n"])}
 
 
+@limits("small")
 def analyse(drive, *, check: bool = True) -> dict:
     """Everything ``synth drive`` reports, as plain data (numbers, lists): the static state; the tensioner's
     positions and the duty table when the drive states them (a report's tables); the modes when every inertia is

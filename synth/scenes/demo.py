@@ -79,7 +79,8 @@ def _main(args) -> int:
     pictures: list = []
     cad_lines: list = []
     if not args.no_cad:  # before the print: the 3D model's geometric checks are checks of the design
-        cad_lines, pictures = export_cad(r, out, f"synth demo: {name}", pictures=True)
+        cad = export_cad(r, out, f"synth demo: {name}", what="--out")
+        cad_lines, pictures = cad.lines, cad.pictures
     print(render(r, title=f"synth demo: the most standardised tensioner for {name} ({path})", verdict=False))
     if cad_lines:
         print("\n" + "\n".join(cad_lines))
@@ -90,4 +91,4 @@ def _main(args) -> int:
         print("\nreport: " + ", ".join(str(p) for p in written)
               + (f" (PDF not written: {rep['pdf_note']})" if rep["pdf"] is None and rep["pdf_note"] else ""))
     print("\n" + verdict_line(r))
-    return r.exit_code
+    return r.exit_code  # the one verdict: the design's checks, its 3D model's and the capability target

@@ -9,8 +9,10 @@ without ``--json``.
 from __future__ import annotations
 
 import sys
+from dataclasses import dataclass, field
 
 from synth.io.outputs import json_text
+from synth.design.result import FAIL
 from synth.report.text import render, verdict_line
 from synth.scenes._options import add_design_options, add_robust_options, synthesise, settings_from_args
 from synth.io.documents import load_input
@@ -20,6 +22,7 @@ from synth.cad import export_result, summary_lines, require_cadquery
 from synth.errors import InputError
 from synth.robust.assumptions import flips
 from synth import parts
+from synth.cost.decision import cost_report
 
 __all__ = ["register"]
 
@@ -48,7 +51,7 @@ def _main(args) -> int:
     note = None
     if getattr(args, "drive", None):
         d, args.drive_model, note = with_drive(d, args.drive)
-    r = synthesise(d, args)
+    r = with_cost(d, args, synthesise)
     if note:
         r.notes.insert(0, note)
     if args.assumptions and r.parts:
@@ -56,7 +59,7 @@ def _main(args) -> int:
     cad_lines = []
     if args.cad:  # before the print: the 3D model's geometric checks are checks of the design (its verdict)
         from pathlib import Path
-        cad_lines = export_cad(r, args.cad, Path(args.input).stem)
+        cad_lines = export_cad(r, args.cad, Path(args.input).stem).lines
     if args.json:
         print(json_text(r.to_dict(), indent=2))
         if cad_lines:
@@ -67,6 +70,16 @@ def _main(args) -> int:
         print("\n" + "\n".join(cad_lines))
     print("\n" + verdict_line(r))
     return r.exit_code  # the one verdict: a capability target missed fails (Result.judgement)
+
+
+def with_cost(d, args, synthesise):
+    """The synthesis of ``args`` with the design's price lines (:attr:`Result.cost`); for the cost objective also
+    how much the choice depends on the prices (:func:`synth.cost.decision.cost_report`)."""
+    from synth.optimise.objectives import Objective
+    r = synthesise(d, args)
+    cost_first = Objective.parse(args.objective).primary == "cost"
+    r.cost = cost_report(d, r, sensitivity=cost_first and not r.robust, settings=settings_from_args(args))
+    return r
 
 
 def with_drive(d, path):
@@ -127,23 +140,33 @@ def with_drive(d, path):
     return d, checks_drive, note
 
 
-def export_cad(r, out_dir, application: str | None = None, *, pictures: bool = False):
-    """Export the design's 3D model (thesis step 11) and return the summary lines (``pictures=True``: and the
-    pictures written, for a report that then exports no second model).
+@dataclass
+class CadExport:
+    """What :func:`export_cad` did: the lines to print, the pictures written, whether a geometric check failed."""
+
+    lines: list
+    pictures: list = field(default_factory=list)
+    failed: bool = False
+
+
+def export_cad(r, out_dir, application: str | None = None, *, what: str = "--cad") -> CadExport:
+    """Export the design's 3D model (thesis step 11) into ``out_dir`` (option ``what``): the summary lines, the
+    pictures written (for a report that then exports no second model) and whether a geometric check failed (a
+    part the CAD kernel could not build fails ``cad_solids``: exit 1, never 70).
 
     The model's geometric checks (thesis step 11, registry group ``cad``) are added to ``r.checks``: the design's
     verdict includes them. A failing design whose geometry cannot exist (a pulley inside its own bearing) is
     reported, not drawn: the lines say why, and the exit code stays the design's (1).
     """
     try:
-        model, checks, info = export_result(r, out_dir, application=application)
+        model, checks, info = export_result(r, out_dir, application=application, what=what)
     except InputError as exc:
         if not r.failed() or not any(p.field.startswith("inputs.") for p in exc.problems):
             raise
-        lines = ["3D model not drawn (the design fails, and its geometry cannot be built): "
-                 + "; ".join(str(p) for p in exc.problems)]
-        return (lines, []) if pictures else lines
+        return CadExport(["3D model not drawn (the design fails, and its geometry cannot be built): "
+                          + "; ".join(str(p) for p in exc.problems)], [], True)
     lines = [f"3D model written to {out_dir}"] + summary_lines(model, checks, info)
     known = {c.id for c in r.checks}  # the geometric checks (step 11) join the design's: its verdict includes them
     r.checks = list(r.checks) + [c for c in checks if c.id not in known]
-    return (lines, [str(f) for f in info["files"] if str(f).endswith(".png")]) if pictures else lines
+    return CadExport(lines, [str(f) for f in info["files"] if str(f).endswith(".png")],
+                     any(c.verdict == FAIL for c in checks))

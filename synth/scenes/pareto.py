@@ -13,10 +13,12 @@ from synth.optimise.pareto import pareto_front
 from synth.io.documents import load_input
 from synth.scenes._options import add_robust_options, robust_settings_from_args
 from synth.io.limits import check_count
-from synth.io.outputs import json_text, output_folder, write_text
+from synth.io.outputs import json_text, output_files, write_text
 from synth.scenes.report import out_folder
 from synth.design.constraints import words, REGISTRY
 from synth.robust.synthesis import robust_front
+from synth.cost.decision import band_of
+from synth.cost.book import volume_of
 
 __all__ = ["register", "front_verdict"]
 
@@ -55,21 +57,25 @@ def _main(args) -> int:
     if args.capability is not None or args.ppm is not None:
         return _robust_front(args, d, out, min(points, 12))
     front = pareto_front(d, n_points=points)
-    output_folder(out)
-    lines = ["| point | cost [EUR] | smallest margin | non-standard parts | what binds | design |",
-             "|---|---|---|---|---|---|"]
-    lines += [f"| {i} | {fmt.number(p['cost_eur'])} | {fmt.percent(p['margin'])} | {fmt.number(p['standard'])} | "
+    for p in front:  # the cost axis with its band: the 5 % and 95 % quantiles under the price bands
+        p["cost_band_eur"] = band_of(d, p["parts"])
+    lines = [f"Cost at {volume_of(d):,.0f} a year, its 90 % band under the price bands (synth.cost.decision)", "",
+             "| point | cost [EUR] | 90 % band [EUR] | smallest margin | non-standard parts | what binds | design |",
+             "|---|---|---|---|---|---|---|"]
+    lines += [f"| {i} | {fmt.number(p['cost_eur'])} | {fmt.number(p['cost_band_eur'][0])}-"
+              f"{fmt.number(p['cost_band_eur'][1])} | {fmt.percent(p['margin'])} | {fmt.number(p['standard'])} | "
               f"{words(p['binding'])} | {fmt.design_label(p['parts'])} |" for i, p in enumerate(front, start=1)]
     inputs = front[0]["inputs"] if front else {}
     if inputs:
         lines += ["", "Input-only constraints (no design changes them; not in the margin above):"]
         lines += [f"- {REGISTRY[k].label}: margin {fmt.percent(v)}" for k, v in inputs.items()]
     table = "\n".join(lines)
-    write_text(out / "front.md", table + "\n")
-    write_text(out / "front.json", json_text(front, indent=2, digits=6))  # margins as fractions
-    if front:
-        from synth.report.plots import pareto_figure
-        pareto_figure(front, out / "front.png")
+    with output_files(out, "--out") as stage:  # one output: every file, or none
+        write_text(stage / "front.md", table + "\n")
+        write_text(stage / "front.json", json_text(front, indent=2, digits=6))  # margins as fractions
+        if front:
+            from synth.report.plots import pareto_figure
+            pareto_figure(front, stage / "front.png")
     print(table if front else "no feasible design: no front (run synth design for the diagnosis)")
     print(f"\nwritten: {out / 'front.md'}, {out / 'front.json'}" + (f", {out / 'front.png'}" if front else ""))
     line, code = front_verdict(d, front, "no feasible design: synth design INPUT diagnoses it")
@@ -82,7 +88,6 @@ def _robust_front(args, d, out, points: int) -> int:
     point: synth.robust.synthesis.robust_front)."""
     rs = robust_settings_from_args(args)
     front = robust_front(d, rs=rs, n_points=points)
-    output_folder(out)
     lines = [f"Cost against capability ({rs.targets()} and better; {rs.samples} samples per design)", "",
              "| point | cost [EUR] | smallest Ppk | largest P(violation) | lowest Ppk of | design |",
              "|---|---|---|---|---|---|"]
@@ -90,13 +95,14 @@ def _robust_front(args, d, out, points: int) -> int:
               f"{fmt.probability(p['ppm'] * 1e-6)} | {words(p['binding'])} | {fmt.design_label(p['parts'])} |"
               for i, p in enumerate(front, start=1)]
     table = "\n".join(lines)
-    write_text(out / "front.md", table + "\n")
-    write_text(out / "front.json", json_text(front, indent=2))
-    if front:
-        from synth.report.plots import pareto_figure
-        pareto_figure(front, out / "front.png", y="ppk", ylabel="smallest Ppk of the checked constraints [-]",
-                      title="cost against production capability",
-                      note=lambda p: f"lowest: {words(p['binding'])}, up to {fmt.probability(p['ppm'] * 1e-6)}")
+    with output_files(out, "--out") as stage:  # one output: every file, or none
+        write_text(stage / "front.md", table + "\n")
+        write_text(stage / "front.json", json_text(front, indent=2))
+        if front:
+            from synth.report.plots import pareto_figure
+            pareto_figure(front, stage / "front.png", y="ppk", ylabel="smallest Ppk of the checked constraints [-]",
+                          title="cost against production capability",
+                          note=lambda p: f"lowest: {words(p['binding'])}, up to {fmt.probability(p['ppm'] * 1e-6)}")
     print(table if front else f"no catalog design meets {rs.targets()} (synth design --capability says why)")
     print(f"\nwritten: {out / 'front.md'}, {out / 'front.json'}" + (f", {out / 'front.png'}" if front else ""))
     line, code = front_verdict(d, front, f"no catalog design meets {rs.targets()}: synth design --capability says "
