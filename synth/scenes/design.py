@@ -23,6 +23,7 @@ from synth.errors import InputError
 from synth.robust.assumptions import flips
 from synth import parts
 from synth.cost.decision import cost_report
+from synth.design.derivation import check_names, derive_result
 
 __all__ = ["register"]
 
@@ -41,10 +42,17 @@ def register(sub) -> None:
                         "wear and spring checks come from it, and the registry adds belt-slack and arm-lock checks")
     p.add_argument("--cad", metavar="DIR", default=None,
                    help="also export the 3D model of the design (STEP, STL, pictures, geometric checks) into DIR")
+    p.add_argument("--explain", nargs="+", metavar="CHECK", default=[],
+                   help="also print the derivation of these checks (registry ids, e.g. self_locking bolt_yield): the "
+                        "margin with its numbers, the value and the limit traced through the physics functions "
+                        "(equation, numbers substituted, intermediate values with units) and the source of each "
+                        "input, constant and catalog row")
     p.set_defaults(func=_main)
 
 
 def _main(args) -> int:
+    if args.explain:  # before the work: a bad check id is refused with the accepted ids
+        check_names(args.explain, "--explain")
     if args.cad:  # before the work: the 3D model needs CadQuery (synth[cad])
         require_cadquery()
     d = load_input(args.input)
@@ -60,14 +68,22 @@ def _main(args) -> int:
     if args.cad:  # before the print: the 3D model's geometric checks are checks of the design (its verdict)
         from pathlib import Path
         cad_lines = export_cad(r, args.cad, Path(args.input).stem).lines
+    explained = derive_result(r, args.explain) if args.explain and r.parts else []
     if args.json:
-        print(json_text(r.to_dict(), indent=2))
+        data = r.to_dict()
+        if args.explain:
+            data["derivations"] = [x.as_dict() for x in explained]
+        print(json_text(data, indent=2))
         if cad_lines:
             print("\n".join(cad_lines), file=sys.stderr)
         return r.exit_code
     print(render(r, title=f"synth design: {args.input}", verdict=False))
     if cad_lines:
         print("\n" + "\n".join(cad_lines))
+    if args.explain:
+        print("\nDerivations" + ("" if explained else ": none (no design to derive; the diagnosis above says why)"))
+        for x in explained:
+            print("\n" + x.text())
     print("\n" + verdict_line(r))
     return r.exit_code  # the one verdict: a capability target missed fails (Result.judgement)
 
