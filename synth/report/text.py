@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from synth.design.result import FAIL, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Result
 from synth.output_table import ROWS, format_value
-from synth.report.advice import NO_DESIGNER, alternative_rows, change_lines, correction, objective_line, \
+from synth.report.advice import alternative_rows, change_lines, correction, is_header, objective_line, \
     relaxation_lines, rule_lines
 from synth.design.evaluate import FIDELITY_TEXT
 from synth.report.robust import text_lines
@@ -94,9 +94,8 @@ def render(r: Result, *, title: str = "", verdict: bool = True) -> str:
         lines += ["", "Diagnosis", "-" * 78, f"  {r.diagnosis['message']}"]
         for v in r.diagnosis.get("violated", []):
             lines.append(f"  violated: {v['label']} (step {v['step']}) by {-100 * v['margin']:.1f} %")
-        for i, text in enumerate(relaxation_lines(r)):
-            lines.append(f"  {text}" if text == NO_DESIGNER or text.startswith("no relaxation")
-                         else f"  feasible if you {text}")
+        for text in relaxation_lines(r):
+            lines.append(f"  {text}" if is_header(text) else f"  feasible if you {text}")
     if r.assumptions():
         lines += ["", "Assumed (documented defaults for inputs not given)", "-" * 78]
         lines += [f"  - {a}" for a in r.assumptions()]
