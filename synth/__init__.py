@@ -10,7 +10,9 @@ The Python API (``docs/sections/api.md``); every function imports what it needs 
 * :func:`verify` - one given design (its part keys) checked through every step;
 * :func:`screen` - a whole portfolio, one row per application (``synth bulk``), as a DataFrame;
 * :func:`write_report` - the HTML report, its PDF and the results workbook (``synth report``);
-* :func:`capability` - a design's production capability and the verdicts resting on assumptions (``synth robust``).
+* :func:`capability` - a design's production capability and the verdicts resting on assumptions (``synth robust``);
+* :func:`derive` - each check's derivation: the margin with its numbers, the value and the limit traced through the
+  physics functions, the source of every input, constant and catalog row (``synth design --explain CHECK``).
 
 Each returns a :class:`~synth.design.result.Result` (``.verdict``, ``.parts``, ``.values``,
 ``.checks``, ``.to_frame()``; a notebook shows its digest) except :func:`screen` (a DataFrame) and
@@ -42,7 +44,7 @@ if TYPE_CHECKING:  # pragma: no cover - types only
 from synth import display as _display
 from synth.version import __version__
 
-__all__ = ["load", "synthesise", "run_flowchart", "verify", "screen", "write_report", "capability", "settings",
+__all__ = ["load", "synthesise", "run_flowchart", "verify", "screen", "write_report", "capability", "derive", "settings",
            "Result", "DesignInput", "Settings", "InputError", "__version__"]
 
 _LAZY = {"Result": ("synth.design.result", "Result"), "DesignInput": ("synth.schema", "DesignInput"),
@@ -204,6 +206,34 @@ def verify(d: "DesignInput | str | Path | dict", parts: dict, *, rules=None, **s
                                  + ", ".join(PART_KEYS)))
     with catalog.using(s.catalogs):
         return _verify(_input(d), dict(parts), s, time_points=60)
+
+
+def derive(source: "Result | DesignInput | str | Path | dict", check: "str | list | None" = None, *,
+           parts: dict | None = None, rules=None, **settings_kw):
+    """The derivation of ``check`` (a registry id; a list of ids: a list; None: every evaluated check, a list) of a
+    design: a :class:`~synth.design.result.Result` (its design, inputs and configuration), or input ``source`` with
+    the design ``parts`` (every part key, as :func:`verify`) under ``rules`` and the settings keywords.
+
+    Each :class:`~synth.design.derivation.Derivation` holds the margin with its numbers, the value and the limit
+    traced through the physics functions (each call's equation, arguments and result) and the source of every
+    input, constant and catalog row; ``.text()`` is the terminal's, ``.as_dict()`` plain data. A bad id raises
+    :class:`~synth.errors.InputError` listing the accepted ones.
+    """
+    from synth import catalog
+    from synth.design.derivation import check_names, derivations, derive_result
+    from synth.design.result import Result
+    from synth.errors import InputError, Problem
+    ids = None if check is None else check_names(check)
+    if isinstance(source, Result):
+        out = derive_result(source, ids)
+    else:
+        if parts is None:
+            raise InputError(Problem("parts", None, "the design's parts (a result's .parts) with an input; or pass "
+                                     "a Result"))
+        s = _configure(source, rules, settings_kw)
+        with catalog.using(s.catalogs):
+            out = derivations(_input(source), dict(parts), ids, s)
+    return out[0] if isinstance(check, str) else out
 
 
 def screen(applications, *, objective: str = "standard", fidelity: str = "screening", diagnose: bool = True,

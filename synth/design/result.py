@@ -27,18 +27,18 @@ from dataclasses import dataclass, field
 from synth import display
 from synth.design.assessment import (EVALUATED, EVALUATED_VERDICTS, FAIL, INCOMPLETE, NOT_APPLICABLE as NOT_APPLICABLE_STATE,
                                      NOT_APPLICABLE_VERDICT as NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Assessment,
-                                     assess, check_verdict, verdict_of)
+                                     assess, check_verdict)
 from synth.design.constraints import GROUPS as REGISTRY_GROUPS, REGISTRY, margin as registry_margin
 from synth.io.outputs import plain  # JSON-friendly data (NaN and infinities as None, no subnormal number)
 from synth.design.applications import DEFAULTS
 from synth.design.evaluate import _CONSTANT_LIMITS as CONSTANT_LIMITS
+from synth.design.verdict import Verdict, judge
 from synth.schema import FIELDS
 from synth.errors import InputError, Problem
 
 __all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain",
            "checks_of", "row_verdict", "field_corrections"]
 
-EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 3}
 
 
 #: significant figures of the numbers a result exports (JSON): 6, beyond what any input or catalog value carries
@@ -162,13 +162,19 @@ class Result:
         return Assessment.of_checks(self.checks, self.values)
 
     @property
+    def judgement(self) -> Verdict:
+        """The one :class:`~synth.design.verdict.Verdict` of this result: its checks, every target the user set
+        (the capability target of :attr:`robust`, the design rules'), what was not verified or assumed, and why."""
+        return judge(self.checks, self.robust, self.rules)
+
+    @property
     def verdict(self) -> str:
-        """:func:`~synth.design.assessment.verdict_of` the failed checks and the not verified or assumed ones."""
-        return verdict_of(bool(self.failed()), bool(self.not_verified() or self.assumptions()))
+        """``pass``, ``fail`` or ``incomplete``: :attr:`judgement`'s state (a capability target missed fails)."""
+        return self.judgement.state
 
     @property
     def exit_code(self) -> int:
-        return EXIT_CODES[self.verdict]
+        return self.judgement.exit_code
 
     @property
     def feasible(self) -> bool:
@@ -235,7 +241,8 @@ class Result:
         inputs and settings exactly: a saved design is verified again from them)."""
         n = digits
         return {
-            "kind": "synth.result", "status": self.status, "verdict": self.verdict, "solver": self.solver,
+            "kind": "synth.result", "status": self.status, "verdict": self.verdict,
+            "verdict_detail": self.judgement.as_dict(), "solver": self.solver,
             "objective": self.objective, "parts": plain(self.parts), "values": plain(self.values, n),
             "checks": [c.as_dict(n) for c in self.checks], "notes": list(self.notes),
             "objectives": plain(self.objectives, n), "stats": plain(self.stats, n), "diagnosis": plain(self.diagnosis, n),

@@ -13,12 +13,17 @@ from __future__ import annotations
 from synth.optimise.objectives import UNITS
 from synth.design.rules import Rules
 
-__all__ = ["objective_line", "change_lines", "relaxation_lines", "relaxation_text", "correction", "NO_DESIGNER",
-           "margin_pct", "alternative_rows", "rule_lines"]
+__all__ = ["objective_line", "change_lines", "relaxation_lines", "relaxation_text", "relaxation_kind", "correction",
+           "search_lines", "is_header", "NO_DESIGNER", "ASK_SPECIFICATION", "TOGETHER", "margin_pct",
+           "alternative_rows", "rule_lines"]
 
-#: the header of the relaxations when none is the tensioner designer's
-NO_DESIGNER = ("no change the tensioner designer controls (space, lock-up pin, bolt seat, the parts) makes a design "
-               "feasible; ask the belt-drive or engine specification for one of:")
+#: the header of the relaxations when none is the tensioner designer's alone
+NO_DESIGNER = ("no change the tensioner designer controls alone (space, lock-up pin, bolt seat, the parts) makes a "
+               "design feasible")
+#: the header of the relaxations of the belt-drive or engine specification alone
+ASK_SPECIFICATION = "ask the belt-drive or engine specification for one of:"
+#: the header of the relaxations that need a change of the designer's and one of the specification together
+TOGETHER = "a change of yours that works only together with a change of the specification, one of:"
 
 
 def margin_pct(m) -> str:
@@ -82,10 +87,29 @@ def _distinct(a: float, b: float) -> tuple[str, str]:
     return x, y
 
 
+def _owner(rel: dict, x: dict) -> str:
+    return x.get("owner", "specification" if rel.get("specification") else "designer")
+
+
+def relaxation_kind(rel: dict) -> str:
+    """``designer`` (only inputs the tensioner designer controls, or parts to free), ``specification`` (only values
+    of the belt-drive or engine specification) or ``both``."""
+    owners = {_owner(rel, x) for x in rel.get("inputs", {}).values()} | ({"designer"} if rel.get("free") else set())
+    return "both" if len(owners) > 1 else (owners.pop() if owners else "designer")
+
+
 def relaxation_text(rel: dict) -> str:
     """One relaxation in words: ``change X a -> b unit (+p %)`` for the designer's inputs, ``ask for Y b unit
     instead of a (+p %)`` for a specification value, ``free Z`` for a part the input fixes; its note (a layout
-    switch of eq. (17)-(18)) in brackets."""
+    switch of eq. (17)-(18)) in brackets. The designer's changes and the specification's are never one sentence: a
+    relaxation that needs both says the designer's, then ``Ask the specification for ...``.
+
+    >>> relaxation_text({"inputs": {"bolt_head_contact_external_diameter_mm": {"from": 11.0, "to": 12.03,
+    ...     "owner": "designer"}, "spring_stiffness_nm_per_deg": {"from": 0.018, "to": 0.0197,
+    ...     "owner": "specification"}}})
+    'change bolt_head_contact_external_diameter_mm 11 -> 12.03 mm (+9.4 %). Ask the specification for \
+spring_stiffness_nm_per_deg 0.0197 Nm/deg instead of 0.018 (+9.4 %)'
+    """
     from synth.schema import field_by_name
     mine, ask = [], []
     for name, x in rel.get("inputs", {}).items():
@@ -94,34 +118,75 @@ def relaxation_text(rel: dict) -> str:
         a, b = _distinct(frm, to)
         pct = f"{100 * (to - frm) / frm:+.1f} %" if frm and abs(to - frm) >= 5e-4 * abs(frm) else \
             (f"{100 * (to - frm) / frm:+.2g} %" if frm else "")
-        if x.get("owner", "specification" if rel.get("specification") else "designer") == "designer":
+        if _owner(rel, x) == "designer":
             mine.append(f"change {name} {a} -> {b} {unit} ({pct})".replace("  ", " "))
         else:
-            ask.append(f"ask for {name} {b} {unit} instead of {a} ({pct})".replace("  ", " "))
+            ask.append(f"{name} {b} {unit} instead of {a} ({pct})".replace("  ", " "))
     for name in rel.get("free", []):
         mine.append(f"free {name} (--free {name})")
-    return " and ".join(mine + ask) + (f" ({rel['note']})" if rel.get("note") else "")
+    if mine and ask:
+        text = " and ".join(mine) + ". Ask the specification for " + " and ".join(ask)
+    else:
+        text = " and ".join(mine) if mine else "ask for " + " and ".join(ask)
+    return text + (f" ({rel['note']})" if rel.get("note") else "")
 
 
 def relaxation_lines(r) -> list[str]:
-    """The diagnosis's relaxations in words, the designer's first; a header where none is his, or a line where
-    none exists."""
+    """The diagnosis's relaxations in words, in three lists that never contradict each other: the designer's alone
+    first; then, under :data:`ASK_SPECIFICATION`, the specification's alone; then, under :data:`TOGETHER`, those
+    that need both (each says the designer's change, then what to ask for). Where none is the designer's alone,
+    :data:`NO_DESIGNER` says so first; a line where no relaxation exists. Headers end with ``:`` or start with
+    ``no``; the catalog search's summary (:func:`search_lines`) comes first."""
     dg = r.diagnosis or {}
     if "relaxations" not in dg:
         return []
     rel = dg["relaxations"]
+    head = search_lines(r)
     if not rel:
-        return ["no relaxation of one input, two inputs or all of them together (within the searched ranges) makes "
-                "a design feasible"]
-    lines = [] if rel[0].get("owner", "designer") == "designer" else [NO_DESIGNER]
-    return lines + [relaxation_text(x) for x in rel]
+        return head + ["no relaxation of one input, two inputs or all of them together (within the searched ranges) "
+                       "makes a design feasible"]
+    kinds = {k: [relaxation_text(x) for x in rel if relaxation_kind(x) == k] for k in ("designer", "specification",
+                                                                                        "both")}
+    lines = head + (kinds["designer"] or [NO_DESIGNER])
+    if kinds["specification"]:
+        lines += [ASK_SPECIFICATION if not kinds["designer"] else "or " + ASK_SPECIFICATION] + kinds["specification"]
+    if kinds["both"]:
+        lines += ["or " + TOGETHER if kinds["designer"] or kinds["specification"] else TOGETHER]
+        lines += kinds["both"]
+    return lines
+
+
+def is_header(text: str) -> bool:
+    """Whether a line of :func:`relaxation_lines` is a header or a statement (else a relaxation)."""
+    return text.endswith(":") or text.startswith(("no ", "every catalog "))
+
+
+def _searched(group: str) -> str:
+    from synth.design.space import PART_KEYS_BY_TABLE
+    return ", ".join(k.removesuffix("_mm").replace("_", " ") for k in PART_KEYS_BY_TABLE[group])
+
+
+def search_lines(r) -> list[str]:
+    """What the catalog search of an infeasible synthesis tried, per group of a failing check: ``every catalog
+    bolt format, ... was tried with the rest of the design, none making it feasible (...)`` (the diagnosis's, not a
+    correction)."""
+    from synth.design.space import PART_KEYS_BY_TABLE
+    if not r.diagnosis or r.solver in ("", "flowchart"):
+        return []
+    failing: dict = {}
+    for c in r.checks:
+        if c.verdict == "fail" and c.constraint.group in PART_KEYS_BY_TABLE:
+            failing.setdefault(c.constraint.group, []).append(c.label)
+    return [f"every catalog {_searched(g)} was tried with the rest of the design, none making it feasible (the "
+            "nearest design fails: " + "; ".join(labels) + ")" for g, labels in failing.items()]
 
 
 def correction(r, c) -> str:
     """The suggested correction of check ``c`` of result ``r``, in agreement with how ``r`` was found: after a
-    catalog search (an infeasible synthesis) the parts of the check's group were all tried, so the correction is
-    the relaxations that relax it (or freeing a part the input fixes), not another part; otherwise the registry's
-    correction."""
+    catalog search (an infeasible synthesis) the parts of the check's group were all tried, so no other part is
+    offered: the correction is the relaxations that relax the check (or freeing a part the input fixes), smallest
+    first, else ``none within the catalog`` and where the input changes are (what was searched is the diagnosis's,
+    :func:`search_lines`); otherwise the registry's correction."""
     from synth.design.space import PART_KEYS_BY_TABLE
     from synth.schema import field_by_name
     con = c.constraint
@@ -132,9 +197,12 @@ def correction(r, c) -> str:
     ways = [relaxation_text(x) for x in dg.get("relaxations", []) if c.id in x.get("relaxes", [])
             or any(f in fixed for f in x.get("free", []))]
     ways += [f"free {n} (fixed by the input)" for n in fixed]
-    searched = ", ".join(k.removesuffix("_mm").replace("_", " ") for k in PART_KEYS_BY_TABLE[con.group])
-    head = f"every catalog {searched} was tried with the rest of the design"
-    return head + ("; " + "; or ".join(dict.fromkeys(ways)) if ways else "; see the diagnosis for the inputs to relax")
+    if ways:
+        return "; or ".join(dict.fromkeys(ways))
+    if dg.get("relaxations"):
+        return ("none within the catalog; each input change of the diagnosis makes a whole design feasible, this "
+                "check included")
+    return "none within the catalog, nor by relaxing the inputs searched"
 
 
 def alternative_rows(r) -> list[dict]:

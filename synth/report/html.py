@@ -17,7 +17,9 @@ Built from a :class:`synth.design.result.Result` with the Jinja2 templates of
    the check's verdict for a check row: :data:`VERDICT_COLOURS`);
 4. the 3D model's section and exploded pictures, the graphs of
    :mod:`synth.report.plots`, a platform section (the hook
-   :func:`platform_section`), other scenes' tables, notes and the data read.
+   :func:`platform_section`), other scenes' tables, notes and the data read;
+5. an appendix with the derivation of each failing check and of the five
+   smallest margins (:func:`derivation_rows`, :mod:`synth.design.derivation`).
 
 Print: A4 landscape or portrait (``page``), a title block on every page (page
 margin boxes: title and verdict on top; input, revision, author, synth version
@@ -64,7 +66,7 @@ from synth.report.robust import robust_section
 from synth.io.outputs import write_text
 
 __all__ = ["render_html", "write_html", "digest_html", "metadata", "settings_in_words", "platform_section",
-           "VERDICT_COLOURS", "verdict_class", "css_string", "check_steps", "check_row", "part_label"]
+           "VERDICT_COLOURS", "verdict_class", "css_string", "check_steps", "check_row", "part_label", "derivation_rows"]
 
 #: background colour of a row per verdict (thesis colours: green verified, red failed, orange not verified);
 #: ``None``: a row no check reads
@@ -96,6 +98,7 @@ body.synth{font-family:"Segoe UI",Roboto,"Helvetica Neue",Arial,"DejaVu Sans",sa
 .synth figure img{width:100%} .synth figcaption{font-size:.85em}
 .synth .small{font-size:.85em;color:#555} .synth nav ol{columns:3;font-size:.92em}
 .synth code{font-size:.9em}
+.synth pre.derivation{font-size:.78em;white-space:pre-wrap;overflow-wrap:anywhere;background:#f7f7f7;padding:.4em}
 @media print{
   body.synth{max-width:none;margin:0;font-size:8.5pt}
   .synth *{-webkit-print-color-adjust:exact;print-color-adjust:exact}
@@ -397,6 +400,9 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
     if result.notes:
         toc.append(("notes", "Notes"))
     toc.append(("inputs", "Design input"))
+    derived = derivation_rows(result)
+    if derived:
+        toc.append(("derivations", "Appendix: derivations"))
     block = "  ".join(x for x in (shown or meta["input"], f"rev. {revision}" if revision else "", author,
                                   meta["date"]) if x)
     block += f"\n{meta['synth']}  inputs sha256 {meta['inputs_sha256'][:16]}"
@@ -410,7 +416,22 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
         settings=settings_in_words(result), output=_output_rows(result), legend_na="grey (not applicable)",
         checks=checks, not_applicable=na, cad=cad, cad_note=cad_note, graphs=figs,
         skipped=[{"id": s.id, "title": s.title, "reason": s.reason} for s in skipped], platform=plat, robust=robust,
-        scenes=scene_rows, notes=list(result.notes), inputs=_inputs(result), alternatives=alternative_rows(result))
+        scenes=scene_rows, notes=list(result.notes), inputs=_inputs(result), alternatives=alternative_rows(result),
+        derivations=derived)
+
+
+def derivation_rows(result) -> list:
+    """The appendix: ``[{"check", "label", "text"}]``, the derivations (:mod:`synth.design.derivation`) of the
+    result's failing checks and of its five smallest margins; [] for a result without a design."""
+    from synth.design.constraints import EVALUATED_GROUPS, REGISTRY
+    from synth.design.derivation import derive_result
+    if not result.parts or result.inputs is None:
+        return []
+    ids = [c.id for c in result.checks if c.verdict == FAIL] + [c.id for c in result.binding(5)]
+    ids = [i for i in dict.fromkeys(ids) if i in REGISTRY and REGISTRY[i].group in EVALUATED_GROUPS]
+    if not ids:
+        return []
+    return [{"check": x.check, "label": x.label, "text": x.text()} for x in derive_result(result, ids)]
 
 
 def part_label(key: str) -> str:

@@ -58,7 +58,7 @@ from synth.design.applications import Applications
 from synth.design.space import space
 
 __all__ = ["Graph", "Skipped", "CATALOG", "GRAPH_CHECKS", "build_graphs", "graph_png", "COLOURS", "graph_verdict",
-           "drive_figure"]
+           "drive_figure", "pareto_figure"]
 
 #: Thesis colours: verified green, failed red, advisory warning amber, nominal/reference blue, limit black.
 COLOURS = {PASS: "#2e7d32", FAIL: "#c62828", WARNING: "#ef6c00", "nominal": "#1f5fbf", "limit": "black",
@@ -678,3 +678,43 @@ def build_graphs(result, extra: dict | None = None, *, show_progress: bool = Tru
         (skipped if isinstance(g, Skipped) else graphs).append(g)
     graphs.extend(_cad_graphs(dt))
     return graphs, skipped
+
+
+def pareto_figure(front: list, path, *, y: str = "margin", ylabel: str = "smallest margin [%]",
+                  title: str = "cost against margin: Pareto front", note=None) -> None:
+    """Save a Pareto front (cost against ``y``; a margin, a fraction in the data, in percent) to ``path``: each
+    point numbered, and under the plot one line per number saying which design it is
+    (:func:`synth.formatting.design_label`), what it scores and ``note(point)`` (default: what binds), so no label
+    is clipped and every point names its design."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import textwrap
+
+    from synth import formatting as fmt
+    from synth.design.constraints import words
+    from synth.io.outputs import write_figure
+    note = note or (lambda p: "binds: " + words(p["binding"]))
+    scale = 100.0 if y == "margin" else 1.0
+    lines = []
+    for i, p in enumerate(front, start=1):
+        score = fmt.percent(p[y]) if y == "margin" else f"{y} {fmt.number(p[y], 3)}"
+        text = f"{i}: {fmt.number(p['cost_eur'])} EUR, {score}; {note(p)}; {fmt.design_label(p.get('parts') or {})}"
+        lines += textwrap.wrap(text, 125, subsequent_indent="     ")
+    fig = plt.figure(figsize=(8.5, 4.6 + 0.16 * len(lines)))
+    height = 4.1 / (4.6 + 0.16 * len(lines))
+    ax = fig.add_axes((0.1, 1.0 - height - 0.02, 0.86, height - 0.09))
+    c = [p["cost_eur"] for p in front]
+    m = [scale * p[y] for p in front]
+    ax.step(c, m, where="post", color="0.6", label="front (cheapest design at each level)")
+    ax.plot(c, m, "o", color=COLOURS["nominal"], label="design on the front (numbered below)")
+    for i, (x, v) in enumerate(zip(c, m), start=1):
+        ax.annotate(str(i), (x, v), fontsize=8, xytext=(4, 4), textcoords="offset points")
+    ax.set_xlabel("cost [EUR] (catalog unit costs)")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(True, alpha=0.3)
+    ax.margins(x=0.08, y=0.12)
+    ax.legend(fontsize=7, loc="lower right")
+    fig.text(0.02, 1.0 - height - 0.1, "\n".join(lines), fontsize=6.5, va="top", family="monospace")
+    write_figure(fig, path, dpi=120)

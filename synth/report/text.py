@@ -8,9 +8,9 @@ infeasible input, the assumptions and notes, and the verdict.
 
 from __future__ import annotations
 
-from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Result
+from synth.design.result import FAIL, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Result
 from synth.output_table import ROWS, format_value
-from synth.report.advice import NO_DESIGNER, alternative_rows, change_lines, correction, objective_line, \
+from synth.report.advice import alternative_rows, change_lines, correction, is_header, objective_line, \
     relaxation_lines, rule_lines
 from synth.design.evaluate import FIDELITY_TEXT
 from synth.report.robust import text_lines
@@ -22,17 +22,10 @@ MARKS = {PASS: "PASS", FAIL: "FAIL", WARNING: "WARN", NOT_VERIFIED: "N/V "}
 
 
 def verdict_line(r: Result) -> str:
-    """``Verdict: PASS``, ``Verdict: FAIL (2 checks failed)`` or ``Verdict: INCOMPLETE (...)``."""
-    failed, nv, assumed = r.failed(), r.not_verified(), r.assumptions()
-    extra = []
-    if failed:
-        extra.append(f"{len(failed)} check(s) failed")
-    if nv:
-        extra.append(f"{len(nv)} not verified")
-    if assumed:
-        extra.append(f"{len(assumed)} input(s) assumed")
-    text = {PASS: "PASS", FAIL: "FAIL", INCOMPLETE: "INCOMPLETE: passed what was checked, not everything was"}[r.verdict]
-    return f"Verdict: {text}" + (f" ({'; '.join(extra)})" if extra else "")
+    """The last line of every scene that judges a design: ``Verdict: PASS``, ``Verdict: FAIL (...)`` or ``Verdict:
+    INCOMPLETE (...)``, with why (the result's one verdict, :attr:`Result.judgement`: failed checks, a capability
+    target missed or not assessed, checks not verified, inputs assumed)."""
+    return r.judgement.line()
 
 
 def _check_line(c, r=None) -> list[str]:
@@ -51,8 +44,9 @@ def _check_line(c, r=None) -> list[str]:
     return out
 
 
-def render(r: Result, *, title: str = "") -> str:
-    """The whole terminal report of ``r``."""
+def render(r: Result, *, title: str = "", verdict: bool = True) -> str:
+    """The whole terminal report of ``r``, ending with its verdict line (``verdict=False``: without it, for a scene
+    that prints more before its last line, :func:`verdict_line`)."""
     lines = [title] if title else []
     lines += rule_lines(r)
     if r.solver and r.solver != "flowchart":
@@ -100,9 +94,8 @@ def render(r: Result, *, title: str = "") -> str:
         lines += ["", "Diagnosis", "-" * 78, f"  {r.diagnosis['message']}"]
         for v in r.diagnosis.get("violated", []):
             lines.append(f"  violated: {v['label']} (step {v['step']}) by {-100 * v['margin']:.1f} %")
-        for i, text in enumerate(relaxation_lines(r)):
-            lines.append(f"  {text}" if text == NO_DESIGNER or text.startswith("no relaxation")
-                         else f"  feasible if you {text}")
+        for text in relaxation_lines(r):
+            lines.append(f"  {text}" if is_header(text) else f"  feasible if you {text}")
     if r.assumptions():
         lines += ["", "Assumed (documented defaults for inputs not given)", "-" * 78]
         lines += [f"  - {a}" for a in r.assumptions()]
@@ -110,5 +103,6 @@ def render(r: Result, *, title: str = "") -> str:
         lines += text_lines(r.robust)
     if r.notes:
         lines += ["", "Notes", "-" * 78] + [f"  - {n}" for n in r.notes]
-    lines += ["", verdict_line(r)]
+    if verdict:
+        lines += ["", verdict_line(r)]
     return "\n".join(lines)

@@ -73,7 +73,9 @@ def add_design_options(p) -> None:
     """The synthesis options (objective, solver, pinning, trials, time limit) and the model options."""
     p.add_argument("--objective", default=DEFAULT_OBJECTIVE,
                    help="standard | cost | margin, a lexicographic list 'a,b' or weights 'cost=1,margin=5'")
-    p.add_argument("--solver", default=DEFAULT_SOLVER, choices=list(SOLVERS))
+    p.add_argument("--solver", default=DEFAULT_SOLVER, choices=list(SOLVERS),
+                   help=f"catalog solver (default {DEFAULT_SOLVER}: exact; every solver answers the same question, "
+                        "docs: optimisation)")
     p.add_argument("--pin-inputs", action="store_true",
                    help="keep every part the input names (pivot class, bushing thickness, main spring, bolt), "
                         "feasible or not; by default a named part is kept unless no design with it passes")

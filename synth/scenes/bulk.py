@@ -12,7 +12,8 @@ an interrupted run without recomputing them. A run holds a lock on that
 folder (a second run on the same ``--out`` is refused while the first runs),
 every chunk carries its run id and a checksum, and ``--resume`` refuses,
 naming them, chunks of another run or with a bad checksum. Exit code 0 when
-the run completed (even with infeasible or broken rows), 2 for a bad command
+the run completed (even with infeasible or broken rows: the last line, ``Run: COMPLETE (...)``, counts each row
+verdict; a row's ``verdict`` is its one verdict, a capability target missed included), 2 for a bad command
 line, an unreadable portfolio or a refused folder, 130 when interrupted, 143 when terminated (SIGTERM).
 """
 
@@ -30,6 +31,7 @@ from synth.bulk.summary import summarise, text, write_summary
 from synth.bulk.portfolio import row_record, validate_record, write_table
 from synth.design.evaluate import Settings
 from synth.design.space import PART_KEYS
+from synth.design.verdict import combine
 
 __all__ = ["register"]
 
@@ -98,8 +100,10 @@ def _main(args) -> int:
         print(f"\nsynth bulk: {how}; finished chunks are kept in {sidecar(args.out)}; "
               "rerun the same command with --resume to continue", file=sys.stderr)
         return 143 if isinstance(exc, Terminated) else 130
-    if (args.capability is not None or args.ppm is not None) and rep.table is not None:
-        _capability(args, rep, settings)
+    rs = robust_settings_from_args(args, samples="bulk --samples")  # --capability/--ppm, else the rules' targets
+    table = None
+    if (rs.capability is not None or rs.ppm is not None) and rep.table is not None:
+        table = _capability(args, rep, settings)
     for w in rep.warnings:
         print(f"synth bulk: note: {w}", file=sys.stderr)
     said = {"screening": " (every design reported verified at full fidelity)",
@@ -115,12 +119,29 @@ def _main(args) -> int:
         with output_files(args.summary, "--summary") as stage:  # one output: every file, or none
             paths = write_summary(s, stage, rules=settings.rules)
         print(f"summary: {len(paths)} files in {args.summary}")
+    print(run_line(rep, table))
     return 0
 
 
-def _capability(args, rep, settings) -> None:
+def run_line(rep, table=None) -> str:
+    """The last line of ``synth bulk``: the run completed (exit 0, whatever the rows' verdicts), with the count of
+    each row verdict (the result's ``verdict`` column: the one verdict of each application, its capability target
+    included; ``table``: the result table as rewritten with the capability columns, else the run's)."""
+    t = table if table is not None else rep.columns(["verdict", "status"])
+    parts = []
+    if t is not None and "verdict" in t.columns and "status" in t.columns:
+        err = t["status"] == "error"
+        counts = t.loc[~err, "verdict"].value_counts()
+        parts = [f"{int(counts[k])} {k}" for k in ("pass", "incomplete", "fail") if counts.get(k)]
+        if err.any():
+            parts.append(f"{int(err.sum())} with input errors")
+    return f"Run: COMPLETE ({', '.join(parts) or 'no rows'}; each application's verdict is in {rep.out})"
+
+
+def _capability(args, rep, settings):
     """``--capability``/``--ppm``: the production capability of each feasible application's chosen design, as
-    columns of the result table (rewritten), through :func:`synth.robust.portfolio.portfolio_capability`."""
+    columns of the result table (rewritten, and returned), through :func:`synth.robust.portfolio.portfolio_capability`;
+    a row whose design misses the target fails (its ``verdict``)."""
     import time
 
     import pandas as pd
@@ -138,10 +159,15 @@ def _capability(args, rep, settings) -> None:
     rows = portfolio_capability(inputs, parts, settings=settings, rs=rs,
                                 workers=min(args.workers or 1, max(1, usable_cores())))
     extra = pd.DataFrame(rows, columns=list(COLUMNS), index=table.index)
-    rep._table = pd.concat([table.drop(columns=[c for c in COLUMNS if c in table.columns]), extra], axis=1)
-    write_table(rep.table, rep.out)
+    out = pd.concat([table.drop(columns=[c for c in COLUMNS if c in table.columns]), extra], axis=1)
+    if "verdict" in out.columns:  # the row's one verdict: a capability target missed fails the row
+        missed = [m is not None and not bool(m) for m in extra["capability_meets"]]  # None: no design, no target
+        out["verdict"] = [combine(str(v), m) for v, m in zip(out["verdict"], missed)]
+    rep._table = out
+    write_table(out, rep.out)
     n = sum(p is not None for p in parts)
     dt = time.perf_counter() - t0
     meets = int(sum(bool(r["capability_meets"]) for r in rows if r["capability_meets"] is not None))
     print(f"synth bulk: capability ({rs.targets()}, {rs.samples} samples per application) of {n} feasible "
           f"designs in {dt:.3g} s ({n / max(dt, 1e-9):.3g} applications/s): {meets} meet it")
+    return out

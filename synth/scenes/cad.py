@@ -41,4 +41,9 @@ def _main(args) -> int:
                                         stl=not args.no_stl, pictures=not args.no_pictures)
     print(f"synth cad: {args.result} -> {args.out}")
     print("\n".join(summary_lines(model, checks, info)))
-    return 1 if any(c.verdict == FAIL for c in checks) else 0
+    failed = [c.label for c in checks if c.verdict == FAIL]
+    own = str(result.get("verdict") or "") if isinstance(result, dict) else ""
+    also = f"; the design's own verdict, of its saved result: {own.upper()}" if own and own != "pass" else ""
+    print("\nVerdict: " + (f"FAIL (geometric checks failed: {'; '.join(failed)}{also})" if failed
+                           else f"PASS (every geometric check of the 3D model passes{also})"))
+    return 1 if failed else 0

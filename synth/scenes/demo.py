@@ -2,8 +2,10 @@
 
 The synthesis is the robust one (:mod:`synth.robust.synthesis`, Ppk >= 1.33 under the tolerance model): the best
 design meeting the target, or the most standardised nominal design and why no catalog design meets it; its
-production capability and the verdicts resting on illustrative limits are printed and reported. The exit code is
-the design's nominal verdict (``--no-robust``: the nominal synthesis alone).
+production capability and the verdicts resting on illustrative limits are printed and reported. The verdict (the
+last line, and the exit code) is the result's one verdict: it includes the capability target the demo sets, so a
+design that misses Ppk 1.33 is a FAIL with the checks that miss it (``--no-robust``: the nominal synthesis alone,
+judged on its checks).
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ import yaml
 
 from synth import schema
 from synth.errors import InputError, Problem
-from synth.report.text import render
+from synth.report.text import render, verdict_line
 from synth.scenes._options import default_args, synthesise
 from synth.cad import require_cadquery
 from synth.robust.settings import RobustSettings
@@ -74,15 +76,19 @@ def _main(args) -> int:
     r = synthesise(d, a)
     if not args.no_robust and r.parts:  # its capability and the verdicts resting on illustrative limits
         add_capability(r, rs)
-    print(render(r, title=f"synth demo: the most standardised tensioner for {name} ({path})"))
     pictures: list = []
-    cad_failed = False
-    if not args.no_cad:
+    cad_lines: list = []
+    if not args.no_cad:  # before the print: the 3D model's geometric checks are checks of the design
         cad = export_cad(r, out, f"synth demo: {name}", what="--out")
-        pictures, cad_failed = cad.pictures, cad.failed
-        print("\n" + "\n".join(cad.lines))
+        cad_lines, pictures = cad.lines, cad.pictures
+    print(render(r, title=f"synth demo: the most standardised tensioner for {name} ({path})", verdict=False))
+    if cad_lines:
+        print("\n" + "\n".join(cad_lines))
     if not args.no_report:
         rep = make_report(r, out, show_progress=False, cad=pictures, cad_pictures=False, source_name=str(path),
                           application=name)
-        print(f"\nreport: {rep['html']} and {rep['xlsx']}")
-    return 1 if cad_failed else r.exit_code
+        written = [rep["html"]] + ([rep["pdf"]] if rep["pdf"] else []) + [rep["xlsx"]]
+        print("\nreport: " + ", ".join(str(p) for p in written)
+              + (f" (PDF not written: {rep['pdf_note']})" if rep["pdf"] is None and rep["pdf_note"] else ""))
+    print("\n" + verdict_line(r))
+    return r.exit_code  # the one verdict: the design's checks, its 3D model's and the capability target

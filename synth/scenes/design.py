@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 from synth.io.outputs import json_text
 from synth.design.result import FAIL
-from synth.report.text import render
+from synth.report.text import render, verdict_line
 from synth.scenes._options import add_design_options, add_robust_options, synthesise, settings_from_args
 from synth.io.documents import load_input
 from synth.drive.analysis import durability_point
@@ -23,6 +23,7 @@ from synth.errors import InputError
 from synth.robust.assumptions import flips
 from synth import parts
 from synth.cost.decision import cost_report
+from synth.design.derivation import check_names, derive_result
 
 __all__ = ["register"]
 
@@ -41,10 +42,17 @@ def register(sub) -> None:
                         "wear and spring checks come from it, and the registry adds belt-slack and arm-lock checks")
     p.add_argument("--cad", metavar="DIR", default=None,
                    help="also export the 3D model of the design (STEP, STL, pictures, geometric checks) into DIR")
+    p.add_argument("--explain", nargs="+", metavar="CHECK", default=[],
+                   help="also print the derivation of these checks (registry ids, e.g. self_locking bolt_yield): the "
+                        "margin with its numbers, the value and the limit traced through the physics functions "
+                        "(equation, numbers substituted, intermediate values with units) and the source of each "
+                        "input, constant and catalog row")
     p.set_defaults(func=_main)
 
 
 def _main(args) -> int:
+    if args.explain:  # before the work: a bad check id is refused with the accepted ids
+        check_names(args.explain, "--explain")
     if args.cad:  # before the work: the 3D model needs CadQuery (synth[cad])
         require_cadquery()
     d = load_input(args.input)
@@ -56,19 +64,28 @@ def _main(args) -> int:
         r.notes.insert(0, note)
     if args.assumptions and r.parts:
         r.robust = {**r.robust, "assumptions": flips(d, r.parts, settings_from_args(args))}
-    if args.json:
-        print(json_text(r.to_dict(), indent=2))
-    else:
-        print(render(r, title=f"synth design: {args.input}"))
-    cad_failed = False
-    if args.cad:
+    cad_lines = []
+    if args.cad:  # before the print: the 3D model's geometric checks are checks of the design (its verdict)
         from pathlib import Path
-        cad = export_cad(r, args.cad, Path(args.input).stem)
-        print("\n".join(cad.lines), file=sys.stderr if args.json else sys.stdout)
-        cad_failed = cad.failed
-    if (r.robust.get("checks") and not r.robust.get("meets", True)) or cad_failed:
-        return 1  # the capability target is missed, or a geometric check of the 3D model fails: the design fails it
-    return r.exit_code
+        cad_lines = export_cad(r, args.cad, Path(args.input).stem).lines
+    explained = derive_result(r, args.explain) if args.explain and r.parts else []
+    if args.json:
+        data = r.to_dict()
+        if args.explain:
+            data["derivations"] = [x.as_dict() for x in explained]
+        print(json_text(data, indent=2))
+        if cad_lines:
+            print("\n".join(cad_lines), file=sys.stderr)
+        return r.exit_code
+    print(render(r, title=f"synth design: {args.input}", verdict=False))
+    if cad_lines:
+        print("\n" + "\n".join(cad_lines))
+    if args.explain:
+        print("\nDerivations" + ("" if explained else ": none (no design to derive; the diagnosis above says why)"))
+        for x in explained:
+            print("\n" + x.text())
+    print("\n" + verdict_line(r))
+    return r.exit_code  # the one verdict: a capability target missed fails (Result.judgement)
 
 
 def with_cost(d, args, synthesise):
@@ -153,8 +170,9 @@ def export_cad(r, out_dir, application: str | None = None, *, what: str = "--cad
     pictures written (for a report that then exports no second model) and whether a geometric check failed (a
     part the CAD kernel could not build fails ``cad_solids``: exit 1, never 70).
 
-    A failing design whose geometry cannot exist (a pulley inside its own bearing) is reported, not drawn: the
-    lines say why, and the exit code stays the design's (1).
+    The model's geometric checks (thesis step 11, registry group ``cad``) are added to ``r.checks``: the design's
+    verdict includes them. A failing design whose geometry cannot exist (a pulley inside its own bearing) is
+    reported, not drawn: the lines say why, and the exit code stays the design's (1).
     """
     try:
         model, checks, info = export_result(r, out_dir, application=application, what=what)
@@ -164,5 +182,7 @@ def export_cad(r, out_dir, application: str | None = None, *, what: str = "--cad
         return CadExport(["3D model not drawn (the design fails, and its geometry cannot be built): "
                           + "; ".join(str(p) for p in exc.problems)], [], True)
     lines = [f"3D model written to {out_dir}"] + summary_lines(model, checks, info)
+    known = {c.id for c in r.checks}  # the geometric checks (step 11) join the design's: its verdict includes them
+    r.checks = list(r.checks) + [c for c in checks if c.id not in known]
     return CadExport(lines, [str(f) for f in info["files"] if str(f).endswith(".png")],
                      any(c.verdict == FAIL for c in checks))

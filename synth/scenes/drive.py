@@ -68,6 +68,7 @@ def _main(args) -> int:
         for what, path in (("plot", args.plot), ("layout", args.layout)):
             if path:
                 print(f"{what} saved to {path}")
+        print("\nVerdict: " + ("PASS (no finding)" if ok else f"FAIL ({'; '.join(res['problems'])})"))
     return 0 if ok else 1
 
 

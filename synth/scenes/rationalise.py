@@ -54,13 +54,20 @@ def register(sub) -> None:
     p.add_argument("portfolio", metavar="PORTFOLIO",
                    help="portfolio table, or synthetic:N[:SEED] for synthetic feasibility data")
     p.add_argument("--out", required=True, metavar="DIR", help="folder for platform.csv, assignment.csv, summary.md")
-    p.add_argument("--objective", default="variants", choices=["variants", "cost"])
-    p.add_argument("--max-variants", nargs="*", default=[], metavar="FAMILY=N", help="cap the variants of a family")
-    p.add_argument("--time-limit", type=float, default=60.0, metavar="S", help="MILP time limit per solve [s]")
-    p.add_argument("--solver", default="highs", choices=["highs", "scip"])
+    p.add_argument("--objective", default="variants", choices=["variants", "cost"],
+                   help="variants: the fewest distinct parts, weighted per family (default); cost: unit cost times "
+                        "annual volume plus a fixed cost per variant")
+    p.add_argument("--max-variants", nargs="*", default=[], metavar="FAMILY=N",
+                   help="cap the variants of families: FAMILY=N, several after one option (FAMILY one of "
+                        + ", ".join(FAMILIES) + ")")
+    p.add_argument("--time-limit", type=float, default=60.0, metavar="S",
+                   help="MILP time limit per solve [s] (default 60): on expiry the best platform found")
+    p.add_argument("--solver", default="highs", choices=["highs", "scip"],
+                   help="MILP solver: highs (default, built from arrays for highspy) or scip (through the Pyomo "
+                        "reference model)")
     p.add_argument("--tradeoff", default="margin", choices=["margin", "cost", "none"],
                    help="trade-off curve: platform size against worst margin or total cost")
-    p.add_argument("--points", type=int, default=5, help="points of the trade-off curve (2 to 50)")
+    p.add_argument("--points", type=int, default=5, help="points of the trade-off curve, 2 to 50 (default 5)")
     p.add_argument("--fidelity", default="full", choices=["full", "screening", "screening-only"],
                    help="model fidelity of the feasibility data (full: the design scenes' default; screening: the "
                         "options the closed forms pass, judged at full fidelity; screening-only: unverified)")
@@ -112,4 +119,7 @@ def _main(args) -> int:
           f"unit cost {p['unit_cost_increase']:+.2%} against the per-application optima; MILP {r.status}, "
           f"gap {r.gap:.2%}; greedy {gap_text(r.greedy_gap)}")
     print("written: " + ", ".join(str(x) for x in paths))
-    return 0 if r.status in ("optimal", "time_limit", "greedy") else 1
+    ok = r.status in ("optimal", "time_limit", "greedy")
+    print(f"Run: {'COMPLETE' if ok else 'FAILED'} (MILP {r.status}; {p['applications_served']} of {len(r.records)} "
+          f"applications served; each application's verified verdict is in {Path(args.out) / 'assignment.csv'})")
+    return 0 if ok else 1

@@ -35,6 +35,7 @@ from synth.robust.assumptions import flips
 from synth.robust.capability import capability
 from synth.robust.sampling import base_of
 from synth.report.pdf import write_pdf
+from synth.report.text import verdict_line
 from synth.report.robust import capability_rows
 from synth.scenes._options import robust_settings_from_args
 from synth.scenes._options import rules_of, settings_from_args
@@ -206,9 +207,9 @@ def _main(args) -> int:
             raise InputError(Problem("--cad", png, "an existing PNG file"))
     if args.platform and not Path(args.platform).exists():
         raise InputError(Problem("--platform", args.platform, "an existing rationalisation output (synth rationalise --out)"))
-    rs = None
-    if args.capability is not None or args.ppm is not None:
-        rs = robust_settings_from_args(args)
+    rs = robust_settings_from_args(args)  # --capability/--ppm, else the design rules' capability targets
+    if rs.capability is None and rs.ppm is None:
+        rs = None
     r = make_report(args.input, args.out, args, scenes=scenes, cad=args.cad, cad_pictures=not args.no_cad,
                     pdf=not args.no_pdf, author=args.author, revision=args.revision, page=args.page,
                     platform=Path(args.platform) if args.platform else None, robust=rs)
@@ -218,4 +219,5 @@ def _main(args) -> int:
         print(f"  PDF not written: {r['pdf_note']}", file=sys.stderr)
     for s in r["skipped"]:
         print(f"  graph not drawn: {s.title}: {s.reason}", file=sys.stderr)
+    print(verdict_line(r["result"]))
     return r["result"].exit_code

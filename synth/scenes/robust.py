@@ -4,13 +4,15 @@ The design is the one ``synth design INPUT`` returns (or a saved result's). For 
 (``catalogs/tolerances.csv``), per checked constraint the probability of violation with its 95 % interval,
 the process performance index Ppk, the worst case and the RSS of the bands, the contributors, and which
 verdicts rest on an illustrative limit (they flip inside its plausible range, ``catalogs/assumption_ranges.csv``).
-``--out DIR`` also writes ``capability.json``, ``capability.csv`` and the histograms. Exit code 0 when the
-design passes its checks and meets the target, 1 when it does not, 3 when checks were not verified.
+``--out DIR`` also writes ``capability.json``, ``capability.csv`` and the histograms. The verdict (the last line and
+the exit code) is the result's one verdict: 0 when the design passes its checks and meets the target, 1 when it
+fails a check or misses the target (the line says which), 3 when checks were not verified.
 To search the catalog for the best design meeting the target: ``synth design INPUT --capability 1.33``.
 """
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 from synth.scenes._options import add_design_options, add_robust_options, load_saved_result
@@ -73,14 +75,14 @@ def _nominal(args):
 
 
 def _main(args) -> int:
-    from synth.report.text import render
+    from synth.report.text import render, verdict_line
     from synth.scenes.report import out_folder
     out = out_folder(args.out) if args.out else None
     r = robust_result(args.input, args)
     if args.json:
         print(json_text(r.to_dict(), indent=2))
     else:
-        print(render(r, title=f"synth robust: {args.input}"))
+        print(render(r, title=f"synth robust: {args.input}", verdict=False))
     if out is not None and r.robust.get("checks"):
         import pandas as pd
         from synth.bulk.portfolio import write_table
@@ -91,7 +93,8 @@ def _main(args) -> int:
                 title, unit = HISTOGRAM_TITLES.get(key, (key, ""))
                 with output_file(stage / f"hist_{key}.png") as tmp:
                     tmp.write_bytes(histogram_png(values, (r.robust.get("limits") or {}).get(key), title, unit))
-        print(f"\nwritten: {out / 'capability.json'}, {out / 'capability.csv'} and the histograms")
-    if r.exit_code != 0:
-        return r.exit_code
-    return 0 if r.robust.get("meets", True) else 1
+        print(f"\nwritten: {out / 'capability.json'}, {out / 'capability.csv'} and the histograms",
+              file=sys.stderr if args.json else sys.stdout)
+    if not args.json:
+        print("\n" + verdict_line(r))
+    return r.exit_code  # the one verdict: the design's checks and the capability target (Result.judgement)

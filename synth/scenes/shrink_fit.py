@@ -112,11 +112,14 @@ def _main(args) -> int:
     if args.json:
         print(json_text({**res, "margin_vs_reassemblies": curves}, indent=2))
     else:
-        print(format_report(res))
+        report = format_report(res).splitlines()
+        verdict = report.pop() if report and report[-1].startswith("Verdict: ") else f"Verdict: {res['verdict'].upper()}"
+        print("\n".join(report))
         print()
         print(_margin_table(curves))
         if args.plot:
             print(f"plot saved to {args.plot}")
+        print("\n" + verdict)  # the last line of every scene that judges
     return 1 if res["verdict"] == "fail" else 0
 
 
@@ -149,4 +152,6 @@ def _select(args) -> int:
     print(_margin_table(curves))
     if args.plot:
         print(f"plot saved to {args.plot}")
+    print("\nVerdict: " + (f"PASS (best fit {sel['fit']}, slip margin {100 * sel['margin']:+.1f} %)" if sel["fit"]
+                           else "FAIL (no admissible fit)"))
     return 0 if sel["fit"] else 1
