@@ -33,21 +33,22 @@ def serve(values: dict, source: str, *, host: str = "127.0.0.1", port: int = 808
     (:class:`synth.ui.guard.Policy`; default: :meth:`~synth.ui.guard.Policy.of` ``host, port``, with a new token
     when ``host`` is beyond the loopback).
 
-    The synthesis of ``values`` starts in a worker process before NiceGUI is imported (the two take a core each:
-    :class:`synth.ui.launch.Launch`)."""
+    The synthesis of ``values`` is made while the browser loads the page (:class:`synth.ui.launch.Launch`)."""
     import shutil
     import tempfile
 
-    from synth.ui.session import DesignSession
-    folder = Path(root) if root else Path(tempfile.mkdtemp(prefix="synth-ui-"))
-    from synth.ui.launch import Launch
-    launch = Launch.start(DesignSession(values, source=source, workdir=folder, rules=rules))
-
+    from synth.ui.trace import mark
+    mark("serving: importing NiceGUI")
     from nicegui import app, ui
 
     from synth.ui.app import setup
     from synth.ui.guard import Policy
+    from synth.ui.launch import Launch
     policy = policy or Policy.of(host, port)
+    folder = Path(root) if root else Path(tempfile.mkdtemp(prefix="synth-ui-"))
+    mark("NiceGUI and the server's modules imported")
+    launch = Launch(values, source, rules)
+    app.on_startup(launch.start)
     setup(values, source, policy=policy, root=folder, rules=rules, launch=launch)
     if root is None:  # the uploads, 3D models and reports of every tab: gone with the server
         app.on_shutdown(lambda: shutil.rmtree(folder, ignore_errors=True))

@@ -30,10 +30,7 @@ from synth.io.limits import short
 from synth.ui import jobs, tabs, uploads, worker
 from synth.ui.guard import BODY_LIMIT, Guard, Policy
 from synth.ui.messages import message_of, quiet_tracebacks
-from synth.ui.design_page import DesignPage
-from synth.ui.portfolio import PortfolioSession
-from synth.ui.portfolio_page import HANDOFF, PortfolioPage
-from synth.ui.session import DesignSession
+from synth.ui.trace import mark
 from synth.ui.widgets import CSS, FILES_URL
 
 __all__ = ["setup", "FILES_URL", "CONNECT_S"]
@@ -89,10 +86,15 @@ def setup(values: dict, source: str, *, policy: Policy, root: Path, rules=None, 
 
     @ui.page("/", title="synth: design")
     async def design_page(open: str | None = None) -> None:  # noqa: A002 - the query parameter's name
-        _page_errors()
+        mark("design page requested")
+        _page_errors()  # the page's modules: imported by the launch while the browser loaded the page
+        from synth.ui.design_page import DesignPage
+        from synth.ui.portfolio_page import HANDOFF
+        from synth.ui.session import DesignSession
         tab_id = await _tab()
         if tab_id is None:
             return
+        mark("design page connected")
         tab = tabs.state(tab_id, root)
         handed = HANDOFF.pop(open or "", None)  # a portfolio's application: its own input, no rules, its fidelity
 
@@ -109,6 +111,8 @@ def setup(values: dict, source: str, *, policy: Policy, root: Path, rules=None, 
     @ui.page("/portfolio", title="synth: portfolio")
     async def portfolio_page() -> None:
         _page_errors()
+        from synth.ui.portfolio import PortfolioSession
+        from synth.ui.portfolio_page import PortfolioPage
         tab_id = await _tab()
         if tab_id is None:
             return

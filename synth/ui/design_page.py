@@ -27,6 +27,7 @@ from synth.report.html import digest_html
 from synth.ui import charts, form, jobs, views, worker
 from synth.ui.launch import Launch
 from synth.ui.session import FIDELITIES, OBJECTIVES, TOP_MAX, DesignSession
+from synth.ui.trace import mark
 from synth.ui.widgets import FILES_URL, count, download, header, in_page, number, png, refused, stem, upload_box
 
 __all__ = ["DesignPage", "DESIGN_UPLOAD_LIMIT", "TABS"]
@@ -41,6 +42,12 @@ TABS = (CHECKS, DESIGN, ALTERNATIVES, WHATIF, CAPABILITY, GRAPHS, MODEL)
 
 #: the 3D view's canvas [px]
 SCENE_W, SCENE_H = 860, 540
+#: frames per second of the 3D view: while it is turned or zoomed (and 3 s after), at rest in view, out of view.
+#: NiceGUI's scene draws at a fixed rate whatever happens; in a browser drawing WebGL on the CPU (no GPU: headless,
+#: a remote desktop) 20 frames a second of the model took 0.6 of a core and an edit's checks waited 0.9 s behind them
+FPS_ACTIVE, FPS_REST, FPS_HIDDEN = 20, 2, 0.5
+#: seconds the view keeps its full rate after the last turn or zoom
+AWAKE_S = 3.0
 
 
 class DesignPage:
@@ -63,6 +70,7 @@ class DesignPage:
                 self._form()
             with ui.column().classes("q-pa-sm").style(f"width:66%;{pane}"):
                 self._results()
+        mark("design page built")
         self.show_problems()
         self.show_result()
         if self.s.result is None and self.s.input is not None:
@@ -74,6 +82,7 @@ class DesignPage:
         result = await self.launch.result_for(self.s) if self.launch is not None else None
         if result is not None:
             self.s.adopt(result)
+            mark("design page: the launch's result shown")
             if not self.launch.warmed:  # the first page shows its checks: the workers import what comes next
                 self.launch.warmed = True
                 ui.timer(1.0, lambda: (worker.warm("cad"), worker.warm("design")), once=True)
@@ -210,9 +219,10 @@ class DesignPage:
         with ui.tabs().classes("full-width").props("dense") as tabs:
             made = {name: ui.tab(name).props(f"data-testid=tab-{name.replace(' ', '-').lower()}") for name in TABS}
         with ui.tab_panels(tabs, value=made[CHECKS], on_change=self.on_tab).classes("full-width").props("keep-alive"):
-            with ui.tab_panel(made[CHECKS]):
+            self.panels = {name: ui.tab_panel(made[name]) for name in TABS}
+            with self.panels[CHECKS]:
                 self.checks = ui.html("", sanitize=False).classes("full-width")
-            with ui.tab_panel(made[DESIGN]):
+            with self.panels[DESIGN]:
                 ui.label("Parts").classes("text-subtitle1")
                 self.parts = ui.html("", sanitize=False)
                 ui.label("What binds (smallest margins)").classes("text-subtitle1")
@@ -221,16 +231,16 @@ class DesignPage:
                 self.diagnosis = ui.html("", sanitize=False)
                 ui.label("Notes").classes("text-subtitle1")
                 self.notes = ui.html("", sanitize=False)
-            with ui.tab_panel(made[ALTERNATIVES]):
-                self._alternatives_panel()
-            with ui.tab_panel(made[WHATIF]):
-                self._whatif_panel()
-            with ui.tab_panel(made[CAPABILITY]):
-                self._capability_panel()
-            with ui.tab_panel(made[GRAPHS]):
-                self.graphs = ui.column().classes("full-width")
-            with ui.tab_panel(made[MODEL]):
-                self._model_panel()
+        self._built = {CHECKS, DESIGN}  # the other tabs are built when first opened: the first page is light
+
+    def _build(self, name: str) -> None:
+        """Build tab ``name``'s panel the first time it is opened."""
+        if name in self._built or name not in self.panels:
+            return
+        self._built.add(name)
+        with self.panels[name]:
+            {ALTERNATIVES: self._alternatives_panel, WHATIF: self._whatif_panel, CAPABILITY: self._capability_panel,
+             GRAPHS: self._graphs_panel, MODEL: self._model_panel}[name]()
 
     def show_result(self) -> None:
         r = self.s.result
@@ -249,8 +259,10 @@ class DesignPage:
         self.binding.content = views.binding_table(r)
         self.diagnosis.content = views.diagnosis_html(r)
         self.notes.content = "<ul>" + "".join(f"<li>{html.escape(str(n))}</li>" for n in r.notes) + "</ul>"
-        self.show_alternatives()
-        self.show_capability()
+        if ALTERNATIVES in self._built:
+            self.show_alternatives()
+        if CAPABILITY in self._built:
+            self.show_capability()
         self.seq.text = f"evaluation {self.s.seq}"
         self.seq.props["data-seq"] = str(self.s.seq)
         self.seq.update()
@@ -258,14 +270,20 @@ class DesignPage:
             in_page(self.graphs, self.draw_graphs)
         elif self.tab == MODEL:
             in_page(self.model_note, self.draw_model)
-        elif self.tab == WHATIF and self.sweep_field.value:
+        elif self.tab == WHATIF and self.sweep_field.value and self.sweep_note.text:
             self.sweep_note.text = "the design changed: run the sweep again for this one"
 
     async def on_tab(self, e) -> None:
         self.tab = e.value
-        if self.tab == GRAPHS:
+        self._build(self.tab)
+        if self.tab == ALTERNATIVES:
+            self.show_alternatives()
+        elif self.tab == CAPABILITY:
+            self.show_capability()
+        elif self.tab == GRAPHS:
             await self.draw_graphs()
         elif self.tab == MODEL:
+            self.wake()
             await self.draw_model()
         elif self.tab == WHATIF:
             self.fill_sweep_fields()
@@ -452,6 +470,9 @@ class DesignPage:
         self.cap_contrib.update()
 
     # --- graphs ---------------------------------------------------------------------------------------------------------
+    def _graphs_panel(self) -> None:
+        self.graphs = ui.column().classes("full-width")
+
     def result_key(self) -> str:
         """The worker's name for the result in view (its capability study included)."""
         r = self.s.result
@@ -481,7 +502,12 @@ class DesignPage:
             ui.button("Reset view", icon="center_focus_strong", on_click=self.reset_view) \
                 .props("dense outline data-testid=reset-view")
             self.model_note = ui.label().classes("text-caption")
-        self.scene = ui.scene(width=SCENE_W, height=SCENE_H, grid=False).props("data-testid=scene")
+        self.scene = ui.scene(width=SCENE_W, height=SCENE_H, grid=False, fps=FPS_HIDDEN).props("data-testid=scene")
+        self._awake_until = 0.0
+        for event in ("pointerdown", "wheel"):
+            self.scene.on(event, self.wake, [])
+        self.scene.on("pointermove", self.wake, [], throttle=1.0)
+        ui.timer(1.0, self._rest)
         self.model_checks = ui.label().classes("text-caption")
         with ui.row().classes("items-start"):
             self.section = ui.image().style("width:49%").props("alt=section")
@@ -546,9 +572,28 @@ class DesignPage:
         self.reset_view()
         self.model_note.text = f"{len(files['stl'])} parts (STL, millimetres); drag to turn, scroll to zoom"
 
+    def _fps(self, fps: float) -> None:
+        if self.scene.props.get("fps") != fps:
+            self.scene.props["fps"] = fps
+            self.scene.update()
+
+    def wake(self, *_) -> None:
+        """The view is turned, zoomed or changed: its full frame rate for :data:`AWAKE_S` seconds."""
+        import time
+        self._awake_until = time.monotonic() + AWAKE_S
+        self._fps(FPS_ACTIVE)
+
+    def _rest(self) -> None:
+        import time
+        if self.tab != MODEL:
+            self._fps(FPS_HIDDEN)
+        elif time.monotonic() > self._awake_until:
+            self._fps(FPS_REST)
+
     def reset_view(self) -> None:
         """The camera back to the view that frames the whole model."""
         if self.view is not None:
+            self.wake()
             x, y, z = self.view["camera"]
             self.scene.move_camera(x=x, y=y, z=z, look_at_x=0, look_at_y=0, look_at_z=0, up_x=0, up_y=0, up_z=1,
                                    duration=0)

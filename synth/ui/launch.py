@@ -1,44 +1,68 @@
-"""The synthesis of the input ``synth ui`` opens, started before the server imports NiceGUI.
+"""The synthesis of the input ``synth ui`` opens, made while the browser loads the page.
 
-The server's start is mostly imports (NiceGUI, FastAPI, socket.io: about half of it) and the synthesis of the
-input it opens (the evaluator, the optimiser); one after the other they are the sum, on two cores they need not be.
-:func:`start` hands the synthesis to the ``design`` worker (:mod:`synth.ui.worker`) before the server imports
-NiceGUI; the first design page whose input is that one takes a copy of its result instead of synthesising
-(every later page too: a new tab opens at once). This module imports no NiceGUI.
+The server's start is imports (NiceGUI, FastAPI, socket.io, then synth's evaluator and optimiser) and the synthesis
+of the input it opens. The server listens as soon as NiceGUI is imported; :meth:`Launch.start` (run when the server
+starts) then imports the rest of synth and synthesises in a thread, while the browser loads the page's scripts (about
+1 s of the browser's own processes); the first design page whose input is that one takes a copy of its result
+instead of synthesising, and every later page too (a new tab opens at once). A thread, not a second process: a
+process would import numpy and the evaluator again, which a machine busy with other work pays in full (measured:
+``docs/sections/ui.md``, "Speed").
+
+>>> import asyncio
+>>> from synth.ui.session import DesignSession, default_values
+>>> launch = Launch(default_values(), "default")
+>>> launch.start()
+>>> r = asyncio.run(launch.result_for(DesignSession(default_values())))
+>>> r.verdict, r is launch.future.result()[1]
+('pass', False)
 """
 
 from __future__ import annotations
 
 import asyncio
+import concurrent.futures
 import copy
-
-from synth.ui import worker
+import threading
 
 __all__ = ["Launch"]
 
 
 class Launch:
-    """The synthesis of the input the server opened, started in the ``design`` worker before the server imported
-    NiceGUI (the two use two cores): a page whose input is that one takes its result instead of synthesising."""
+    """The synthesis of ``values`` under ``rules`` (see the module docstring)."""
 
-    def __init__(self, call: tuple, future):
-        self.call, self.future = call, future
+    def __init__(self, values: dict, source: str, rules=None):
+        self.values, self.source, self.rules = values, source, rules
+        self.future: concurrent.futures.Future = concurrent.futures.Future()
         self.warmed = False
 
-    @classmethod
-    def start(cls, session) -> "Launch | None":
-        """The launch of ``session``'s synthesis (None for an input that is not valid: the page says why)."""
-        if session.input is None:
-            return None
-        call = session.synthesis_call()
-        return cls(call, worker.lane("design").submit_threadsafe("synthesise", *call))
+    def start(self) -> None:
+        """Synthesise in a daemon thread (the server's ``on_startup``: it listens already)."""
+        threading.Thread(target=self._run, daemon=True, name="synth-ui-launch").start()
+
+    def _run(self) -> None:
+        from synth.ui.trace import mark
+        mark("launch started (the server listens)")
+        try:
+            from synth.ui.session import DesignSession
+            s = DesignSession(self.values, source=self.source, rules=self.rules)
+            call = s.synthesis_call() if s.input is not None else None
+            import synth.ui.design_page  # noqa: F401 - the page's modules, imported while the browser loads
+            mark("launch: the input validated, the page's modules imported")
+            result = s.synthesise() if call is not None else None
+            mark("launch: synthesised")
+            self.future.set_result((call, result))
+        except BaseException as exc:  # noqa: BLE001 - the page's own synthesis says what is wrong, if anything
+            self.future.set_exception(exc)
 
     async def result_for(self, session):
-        """A copy of the launch's result when ``session`` asks for the same synthesis; None otherwise or when the
-        worker failed (the page then synthesises itself)."""
-        if session.input is None or session.synthesis_call() != self.call:
+        """A copy of the launch's result when ``session`` asks for the same synthesis; None otherwise, or when the
+        launch failed (the page then synthesises itself and says why)."""
+        if session.input is None:
             return None
         try:
-            return copy.deepcopy(await asyncio.wrap_future(self.future))
-        except Exception:  # noqa: BLE001 - the worker could not: the page's own synthesis says why, if anything
+            call, result = await asyncio.wrap_future(self.future)
+        except Exception:  # noqa: BLE001 - see above
             return None
+        if result is None or call != session.synthesis_call():
+            return None
+        return copy.deepcopy(result)

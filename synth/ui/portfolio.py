@@ -42,8 +42,7 @@ MIN_SLICE = 100
 
 #: the page's table: (``synth bulk``'s column, the column's label); margins are shown in percent
 COLUMNS = (("application_id", "application"), ("verdict", "verdict"), ("binding_constraint", "what binds"),
-           ("binding_margin", "its margin [%]"), ("margin_min", "smallest margin [%]"),
-           ("violated", "violated checks (margin)"), ("relaxation", "smallest input relaxation"),
+           ("binding_margin", "its margin [%]"), ("violated", "violated checks (margin)"), ("relaxation", "smallest input relaxation"),
            ("application_type", "application type"), ("error", "input error"))
 
 
@@ -160,7 +159,7 @@ class PortfolioSession:
                     v = verdict_word(v)
                 elif k == "binding_constraint":
                     v = check_words(v) if v else ""
-                elif k in ("binding_margin", "margin_min") and v is not None:
+                elif k == "binding_margin" and v is not None:
                     v = round(100.0 * float(v), 1)
                 elif k == "violated":
                     v = _violated_words(v)

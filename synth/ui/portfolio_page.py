@@ -21,6 +21,7 @@ from synth.io.limits import LIMITS, short
 from synth.ui import charts, jobs
 from synth.ui.portfolio import PortfolioSession, check_words
 from synth.ui.session import FIDELITIES
+from synth.ui.views import part_label, part_value
 from synth.ui.widgets import count, download, header, refused, upload_box
 
 __all__ = ["PortfolioPage", "PORTFOLIO_UPLOAD_LIMIT", "HANDOFF"]
@@ -112,15 +113,22 @@ class PortfolioPage:
                                  "results.csv says which and why, e.g. the lock-up pin's data missing); feasible "
                                  "counts them." if counts.get("INCOMPLETE") else ""))
         with self.plots:
-            for opts in self.charts():
-                height = 60 + 26 * len(opts["yAxis"]["data"])
-                ui.echart(opts).style(f"width:48%;height:{height}px")
+            summary, parts = self.charts()
+            for opts in summary:
+                _chart(opts)
+            if parts:
+                with ui.expansion(f"Parts chosen ({len(parts)} families)").classes("full-width") \
+                        .props("dense header-class=text-weight-bold"):
+                    with ui.row().classes("full-width"):
+                        for opts in parts:
+                            _chart(opts)
         self.table.columns = [{**c, "field": c["name"], "sortable": True, "align": "left"} for c in p.columns()]
         self.table.rows = self._rows = p.rows()
 
-    def charts(self) -> list[dict]:
-        """The summary as bar charts: feasible share by group, what binds, what is violated, the parts chosen."""
-        s, out = self.p.summary, []
+    def charts(self) -> tuple[list[dict], list[dict]]:
+        """The summary as bar charts: feasible share by group, what binds, what is violated; and the parts chosen,
+        one chart per family (labels whole: ``6006``, ``none`` for a class a design does not have)."""
+        s, out, parts = self.p.summary, [], []
         if len(s.by_group):
             out.append(charts.bars([f"{r.group} = {r.value} (n={r.evaluated})" for r in s.by_group.itertuples()],
                                    [round(100 * x, 1) for x in s.by_group["feasible_share"]],
@@ -134,9 +142,10 @@ class PortfolioPage:
         if len(s.parts):
             for fam in dict.fromkeys(s.parts["family"]):
                 sub = s.parts[s.parts["family"] == fam].head(8)
-                out.append(charts.bars([str(x) for x in sub["part"]], [round(100 * x, 1) for x in sub["share"]],
-                                       f"Parts chosen: {fam}", "share of feasible applications [%]"))
-        return out
+                parts.append(charts.bars([part_value(x) for x in sub["part"]],
+                                         [round(100 * x, 1) for x in sub["share"]],
+                                         part_label(str(fam)), "share of feasible applications [%]"))
+        return out, parts
 
     def show_files(self) -> None:
         """A download for every file the page names: the screening's table, the summary, the platform's files."""
@@ -224,6 +233,11 @@ class PortfolioPage:
         label = self._rows[i].get("application_id") if i < len(self._rows) else None
         HANDOFF[token] = (self.p.application(i), f"{self.p.source}: {label or f'row {i + 1}'}", self.p.fidelity)
         ui.navigate.to(f"/?open={token}")
+
+
+def _chart(opts: dict) -> None:
+    height = 70 + 26 * len(opts["yAxis"]["data"])
+    ui.echart(opts).style(f"width:48%;height:{height}px")
 
 
 async def _job(p: PortfolioSession, what: str, fn, **kw) -> None:

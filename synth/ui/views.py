@@ -25,6 +25,7 @@ from synth.report.advice import relaxation_lines, alternative_rows
 from synth.ui.portfolio import verdict_word
 
 __all__ = ["checks_table", "parts_table", "binding_table", "diagnosis_html", "alternatives_html", "fill", "eng", "pct",
+           "part_value", "part_label", "fit_view",
            "capability_summary", "capability_table", "contributors", "compare_alternatives"]
 
 
@@ -90,7 +91,7 @@ def checks_table(result) -> str:
 
 def parts_table(result) -> str:
     """The design's parts (part key in words, value; ``none`` for a class the design does not have)."""
-    rows = "".join(f"<tr><th>{_e(part_label(k))}</th><td>{_e(_part(v))}</td></tr>"
+    rows = "".join(f"<tr><th>{_e(part_label(k))}</th><td>{_e(part_value(v))}</td></tr>"
                    for k, v in (result.parts or {}).items())
     return f'<table class="kv parts"><tbody>{rows}</tbody></table>'
 
@@ -129,7 +130,7 @@ def alternatives_html(result) -> str:
 # --- production capability (``synth.capability``: ``Result.robust``) ----------------------------------------------------
 #: the capability record's figures the table knows, in its order: (key, heading, format); any other figure a record
 #: carries follows as a column of its own (the robust API grows: a new figure is shown, not dropped)
-_CAPABILITY_COLUMNS = (("target", "counted", "yes"), ("meets", "meets the target", "yes"), ("ppk", "Ppk", "3g"),
+_CAPABILITY_COLUMNS = (("target", "counted", "yes"), ("meets", "meets the target", "meets"), ("ppk", "Ppk", "3g"),
                        ("ppm", "ppm", "eng"), ("p_violation", "P(violation) [95 %]", "p"),
                        ("nominal_margin", "nominal margin", "pct"), ("worst_case_margin", "worst case", "pct"),
                        ("rss_margin", "RSS", "pct"), ("method", "method", "text"),
@@ -142,6 +143,8 @@ _CAPABILITY_HIDDEN = {"id", "label", "group", "samples", "failures", "p_lo", "p_
 def _cell(kind: str, value, rec: dict) -> str:
     if kind == "yes":
         return "" if value is None else ("yes" if value else "no")
+    if kind == "meets":  # a check the target does not count is neither
+        return ("yes" if value else "no") if rec.get("target") and value is not None else ""
     if kind == "3g":
         return "-" if value is None else (f"{value:.3g}" if _finite(value) else eng(value))
     if kind == "eng":
@@ -230,7 +233,7 @@ def compare_alternatives(alternatives: list[dict], applied: int | None = None) -
     first = alternatives[0].get("parts") or {}
     for k in dict.fromkeys(k for a in alternatives for k in (a.get("parts") or {})):
         vals = [(a.get("parts") or {}).get(k) for a in alternatives]
-        rows.append((part_label(k), [_part(v) for v in vals], [str(v) != str(first.get(k)) for v in vals]))
+        rows.append((part_label(k), [part_value(v) for v in vals], [str(v) != str(first.get(k)) for v in vals]))
     body = []
     for name, vals, differs in rows:
         cells = "".join(f"<td{' class=differs' if differs and differs[i] else ''}>{_e(v)}</td>"
@@ -240,7 +243,7 @@ def compare_alternatives(alternatives: list[dict], applied: int | None = None) -
             '<p class="small">Marked: a part that differs from #1, the optimum.</p>')
 
 
-def _part(v) -> str:
+def part_value(v) -> str:
     """A part's value: ``none`` for an absent class (``none``, 0, empty), numbers without trailing zeros."""
     if v is None or (isinstance(v, str) and v.strip().lower() in ("", "none", "nan")):
         return "none"

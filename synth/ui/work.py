@@ -24,7 +24,7 @@ import hashlib
 import time
 from pathlib import Path
 
-__all__ = ["echo", "warm", "synthesise", "model_key", "model", "model_details", "step", "graphs", "report",
+__all__ = ["echo", "warm", "model_key", "model", "model_details", "step", "graphs", "report",
            "capability"]
 
 #: models, graph sets and geometric checks kept per process (least recently used dropped first)
@@ -57,7 +57,7 @@ def echo(x):
 
 def warm(lane: str) -> float:
     """Import what lane ``lane``'s tasks need (``cad``: CadQuery and the CAD modules; ``design``: the report's
-    modules, matplotlib, the optimiser); returns the seconds it took."""
+    modules, matplotlib); returns the seconds it took."""
     t = time.perf_counter()
     if lane == "cad":
         try:
@@ -75,13 +75,6 @@ def warm(lane: str) -> float:
         import synth.report.plots  # noqa: F401
         import synth.scenes.report  # noqa: F401
     return time.perf_counter() - t
-
-
-def synthesise(d, rules, objective: str, fidelity: str, top: int):
-    """``synth.synthesise`` of the validated input ``d`` under ``rules``: the call of
-    :meth:`synth.ui.session.DesignSession.synthesise` (:meth:`~synth.ui.session.DesignSession.synthesis_call`)."""
-    import synth
-    return synth.synthesise(d, objective, fidelity=fidelity, top=top, rules=rules)
 
 
 # --- the CAD lane --------------------------------------------------------------------------------------------------

@@ -7,8 +7,7 @@ process, even in a thread, they held the GIL so long that the checks of an edit 
 one worker process (``python -m synth.ui.worker``) that runs its tasks one after the other and keeps what it
 built (the CAD models by the design's hash, the graphs by the result's) for the next task:
 
-* ``design``: the synthesis of the input the server opens, started before the server imports NiceGUI (the two
-  run on two cores), then graphs, reports and capability studies;
+* ``design``: the graphs, the report and its PDF, the capability studies;
 * ``cad``: the 3D model, its STL, STEP, pictures and geometric checks.
 
 A lane's process is started on first use (or by :func:`warm`), connects back to the server over a local socket
@@ -155,7 +154,8 @@ class Lane:
                    + os.environ.get("PYTHONPATH", "")}
             env.pop("PYTEST_CURRENT_TEST", None)
             host, port = listener.address
-            self._proc = subprocess.Popen([sys.executable, "-m", "synth.ui.worker", self.name, host, str(port)],
+            safe = ["-P"] if sys.version_info >= (3, 11) else []  # never a ``synth`` folder of the working folder
+            self._proc = subprocess.Popen([sys.executable, *safe, "-m", "synth.ui.worker", self.name, host, str(port)],
                                           env=env, stdin=subprocess.DEVNULL)
             sock = getattr(getattr(listener, "_listener", None), "_socket", None)
             if sock is not None:  # a process that never connects (it failed to start) is an error, not a hang
