@@ -25,7 +25,6 @@ from synth.errors import InputError, Problem
 from synth.io.limits import LIMITS, short
 from synth.report.html import digest_html
 from synth.ui import charts, form, jobs, views, worker
-from synth.ui.launch import Launch
 from synth.ui.session import FIDELITIES, OBJECTIVES, TOP_MAX, DesignSession
 from synth.ui.trace import mark
 from synth.ui.widgets import FILES_URL, count, download, header, in_page, number, png, refused, stem, upload_box
@@ -51,9 +50,10 @@ AWAKE_S = 3.0
 
 
 class DesignPage:
-    """One page showing a tab's design session (see the module docstring)."""
+    """One page showing a tab's design session (see the module docstring); ``launch``: the server's
+    :class:`synth.ui.launch.Launch` (not imported here: the launch imports this module while the browser loads)."""
 
-    def __init__(self, session: DesignSession, root: Path, host: str, port: int, *, launch: Launch | None = None):
+    def __init__(self, session: DesignSession, root: Path, host: str, port: int, *, launch=None):
         self.root, self.s, self.launch = root, session, launch
         self.widgets: dict = {}
         self.graphs_key = self.capability_key = None
