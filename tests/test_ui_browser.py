@@ -436,13 +436,14 @@ def test_the_3d_view_fits_the_model_keeps_it_across_edits_and_resets(page, tmp_p
     pg.wait_for_function(f"performance.getEntriesByType('resource').filter(e => e.name.endsWith('.stl')).length > {n}")
     box = pg.locator("canvas").first.bounding_box()
     pg.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
-    pg.mouse.wheel(0, 600)  # zoomed out by the engineer...
-    pg.wait_for_timeout(500)
+    framed = _norm(pg.evaluate(camera_js)[:3])
+    dist = f"(c => Math.hypot(c[0], c[1], c[2]))({camera_js})"
+    pg.mouse.wheel(0, 600)  # zoomed out by the engineer (drawn at the next frame: a loaded machine is late)...
+    pg.wait_for_function(f"{dist} > 1.05 * {framed}", timeout=30_000)
     moved = pg.evaluate(camera_js)[:3]
     pg.locator("[data-testid=reset-view]").click()  # ...and back to the view that frames the model
-    pg.wait_for_timeout(500)
-    again = pg.evaluate(camera_js)[:3]
-    assert moved != pytest.approx(again, rel=1e-3) and _norm(again) < _norm(moved)
+    pg.wait_for_function(f"{dist} < 0.99 * {_norm(moved)}", timeout=30_000)
+    assert _norm(pg.evaluate(camera_js)[:3]) == pytest.approx(framed, rel=1e-6)
 
 
 def _norm(v) -> float:

@@ -5,8 +5,8 @@ its process:
 
 * the **CAD model** by the design's hash (:func:`model_key`: the geometry the model is built from, every dimension
   and part of :class:`~synth.cad.dimensions.TensionerGeometry` but its labels): built once per design, whatever the
-  edits that leave the geometry as it is (a stiffness, a damping target, a tolerance); its STL files, geometric
-  checks and pictures once per model, the STEP once per model and header;
+  edits that leave the geometry as it is (the support's strength, a safety factor; a stiffness changes the spring's
+  coils); its STL files, geometric checks and pictures once per model, the STEP once per model and header;
 * the **graphs** of a result by the page's key of that result (:func:`graphs`), shared by the Graphs tab and the
   report.
 
