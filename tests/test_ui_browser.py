@@ -423,7 +423,13 @@ def test_the_3d_view_fits_the_model_keeps_it_across_edits_and_resets(page, tmp_p
     assert max(abs(y) for _, y in ndc) > 0.6  # ...filling most of its height
     assert min(y for _, y in ndc) < -0.3 and max(y for _, y in ndc) > 0.3  # ...not at the top edge
     pg.wait_for_function("document.querySelectorAll('img[alt=section]').length > 0")
+    parts = int(re.match(r"(\d+) parts", pg.get_by_text("parts (STL, millimetres)").inner_text()).group(1))
+    for _ in range(3000):  # every part's STL loaded (a loaded machine finishes them after the pictures)
+        if len(stl) >= parts:
+            break
+        pg.wait_for_timeout(20)
     n = len(stl)
+    assert n == parts
     for v in ("380", "360"):  # the support's strength: new checks, the same geometry (no model rebuilt, no STL fetched)
         seq = _seq(pg)
         pg.locator("[data-field=support_yield_strength_compression_mpa] input").fill(v)
