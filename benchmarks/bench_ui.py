@@ -1,24 +1,24 @@
-"""``synth ui``: cold start to a usable page, and the re-verification after an edit, in Debian's Chromium.
+"""``synth ui`` in Debian's Chromium: cold start, an edit with the 3D view open, the first 3D view, STEP and PDF.
 
-Run: ``.venv/bin/python benchmarks/bench_ui.py [--starts N] [--edits M]`` (needs ``synth[ui]`` and
-``playwright``; the browser is ``/usr/bin/chromium``, never a downloaded one). Prints a markdown table.
+Run: ``.venv/bin/python benchmarks/bench_ui.py [--starts N] [--edits M] [--tree PATH ...]`` (needs ``synth[ui]``,
+CadQuery and ``playwright``; the browser is ``/usr/bin/chromium``, never a downloaded one). Prints one markdown
+table, a column per tree (``--tree``: checkouts of synth to compare in one run, each served by its own code; default
+this one), and the machine's load average before and after. A benchmark, not a test: nothing is asserted.
 
-* **cold start**: from spawning ``python -m synth ui --port P`` to the design page showing the checks of
-  the embedded default application in Chromium (interpreter, imports, the synthesis, serving, the page's
-  scripts and its first render). One warm-up start first (byte-code, synth's on-disk cache), then N.
-  The server's CPU time by then (``/proc``) is printed too: on a loaded machine the wall time includes
-  waiting for a core, the CPU time does not.
-* **re-verification after an edit**: measured inside the page: from the spring stiffness typed into its
-  box (an ``input`` event) to the browser having the new checks table (the ``evaluation`` counter the
-  server sets with the same update) and the next animation frame: browser -> server (validate, verify,
-  render the rows) -> browser. M edits alternating between values; median and 90th percentile.
-* **of which in the server**: the same edits through :class:`synth.ui.session.DesignSession` and the
-  HTML it renders, in this process (no browser, no network).
-* **reference: the command line**: ``synth design`` on the same input as a whole process, the answer to
-  one edit before ``synth ui`` (median of N), measured in the same run; and ``python -c "import pandas,
-  nicegui"``, the imports any start of the server pays (the machine's load shows in both).
-
-Targets (issue 25): cold start under 3 s, re-verification under 200 ms (median).
+* **cold start**: from spawning ``python -m synth ui --port P`` to the design page showing the checks of the embedded
+  default application in Chromium (interpreter, imports, the synthesis, serving, the page's scripts, its first
+  render); one warm-up start first (byte-code, numba's cache), then N. The server's CPU time by then (``/proc``) too:
+  on a loaded machine the wall time includes waiting for a core, the CPU time does not.
+* **first 3D view**: from the 3D tab clicked to every part's STL loaded by the page, on the page of the last cold
+  start: right after its checks appeared ("at once"), and on a second page of the same server after 10 s
+  ("after a pause": what the server prepares while the engineer reads the checks).
+* **edit to checks, 3D open**: with the 3D view shown, from the support's strength typed into its box to the new checks
+  table painted (measured inside the page: the ``evaluation`` counter the server sets with the same update, then the
+  next animation frame); M edits alternating between two values that leave the geometry as it is, and M of the pulley
+  diameter, which changes it (the model is rebuilt meanwhile); median and 90th percentile.
+* **STEP, PDF**: from the button clicked to the browser's download, after the 3D view was shown (its model built):
+  the first of each, then again after an edit of the support's strength (a new result, the same geometry: STEP written from the kept model,
+  the report redrawn).
 """
 
 from __future__ import annotations
@@ -26,19 +26,14 @@ from __future__ import annotations
 import argparse
 import os
 import statistics
-import subprocess
 import sys
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
 
-from synth.report.pdf import chromium_binary  # noqa: E402
-from synth.ui.browser import free_port, goto_when_up, launch_chromium, start_server, stop_server  # noqa: E402
-
-_EDIT_JS = """async (v) => {
-  const box = document.querySelector('[data-field=spring_stiffness_nm_per_deg] input');
+_EDIT_JS = """async ([field, v]) => {
+  const box = document.querySelector(`[data-field=${field}] input`);
   const seq = document.querySelector('[data-testid=seq]');
   const before = seq.dataset.seq;
   const t0 = performance.now();
@@ -53,7 +48,10 @@ _EDIT_JS = """async (v) => {
   return performance.now() - t0;
 }"""
 
-_VALUES = ("0.0170", "0.0164")  # the default application's stiffness and a neighbour: both verify
+#: (field, two values) of the edits: the support's strength keeps the geometry (new checks, the same parts; a
+#: stiffness edit changes the spring's coils), a pulley diameter changes it; both verify
+EDITS = {"support": ("support_yield_strength_compression_mpa", ("380", "400")),
+         "pulley": ("pulley_diameter_mm", ("66", "65.5"))}
 
 
 def cpu_s(pid: int) -> float:
@@ -65,48 +63,105 @@ def cpu_s(pid: int) -> float:
         return float("nan")
 
 
-def cold_start(browser) -> tuple[float, float, object, object]:
-    """Seconds from spawning the server to the checks in the page, and the server's CPU seconds by then;
-    returns (wall, cpu, server process, page)."""
-    port = free_port()
-    t0 = time.perf_counter()
-    proc, _ = start_server(port)
-    page = browser.new_page()
-    goto_when_up(page, f"http://127.0.0.1:{port}/")
-    page.locator("table.checks tr[data-check]").first.wait_for(timeout=60000)
-    return time.perf_counter() - t0, cpu_s(proc.pid), proc, page
+class Tree:
+    """A checkout of synth, served by its own code (``synth.ui.browser`` of this one starts it)."""
+
+    def __init__(self, path: Path):
+        self.path = path
+        self.figures: dict[str, list[float]] = {}
+
+    def add(self, name: str, value: float) -> None:
+        self.figures.setdefault(name, []).append(value)
+
+    def start(self, port: int):
+        import subprocess
+        env = {**os.environ, "PYTHONUNBUFFERED": "1", "PYTHONPATH": str(self.path)}
+        env.pop("PYTEST_CURRENT_TEST", None)
+        return subprocess.Popen([sys.executable, "-P", "-m", "synth", "ui", "--port", str(port)], env=env,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=str(self.path))
 
 
-def server_side(edits: int) -> list[float]:
-    from synth.report.html import digest_html
-    from synth.ui import views
-    from synth.ui.session import DesignSession, default_values
-    s = DesignSession(default_values())
-    s.synthesise()
-    out = []
-    for i in range(edits):
-        t = time.perf_counter()
-        s.edit("spring_stiffness_nm_per_deg", _VALUES[i % 2])
-        digest_html(s.result), views.checks_table(s.result), views.parts_table(s.result), views.binding_table(s.result)
-        out.append(1000 * (time.perf_counter() - t))
-    return out
+def _page(browser, port: int, stl: list):
+    ctx = browser.new_context(accept_downloads=True, viewport={"width": 1400, "height": 900})
+    page = ctx.new_page()
+    page.set_default_timeout(600_000)
+    page.on("requestfinished", lambda r: stl.append(r.url) if r.url.endswith(".stl") else None)
+    return ctx, page
 
 
-#: the references, whole processes: one edit's answer on the command line, and the imports a server needs
-REFERENCES = {"design": ["-m", "synth", "design", str(ROOT / "synth" / "data" / "default_case.yaml")],
-              "imports": ["-c", "import pandas, nicegui"]}
+def _first_view(page, stl: list) -> float:
+    """Seconds from the 3D tab clicked to every part's STL loaded (the model note names how many)."""
+    import re
+    n0 = len(stl)
+    t = time.perf_counter()
+    page.get_by_role("tab", name="3D model").click()
+    note = page.get_by_text(re.compile(r"\d+ parts \(STL"))
+    note.wait_for()
+    parts = int(re.match(r"(\d+)", note.inner_text()).group(1))
+    while len(stl) - n0 < parts:
+        page.wait_for_timeout(20)
+    return time.perf_counter() - t
 
 
-def command_line(runs: int, which: str = "design") -> list[float]:
-    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-    cmd = [sys.executable, *REFERENCES[which]]
-    subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, check=False)  # warm-up
-    out = []
-    for _ in range(runs):
-        t = time.perf_counter()
-        subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, check=False)
-        out.append(time.perf_counter() - t)
-    return out
+def _download(page, kind: str) -> float:
+    t = time.perf_counter()
+    with page.expect_download(timeout=600_000) as dl:
+        page.locator(f"[data-testid=download-{kind}]").click()
+    dl.value.path()
+    return time.perf_counter() - t
+
+
+def measure(tree: Tree, browser, starts: int, edits: int, only_cold: bool = False) -> None:
+    from synth.ui.browser import free_port, goto_when_up, stop_server
+    for i in range(starts + 1):
+        port = free_port()
+        t0 = time.perf_counter()
+        proc = tree.start(port)
+        stl: list = []
+        ctx, page = _page(browser, port, stl)
+        try:
+            goto_when_up(page, f"http://127.0.0.1:{port}/", 300)
+            page.locator("table.checks tr[data-check]").first.wait_for()
+            if i == 0:
+                continue  # the warm-up start
+            tree.add("cold", time.perf_counter() - t0)
+            tree.add("cold_cpu", cpu_s(proc.pid))
+            if i < starts or only_cold:
+                continue
+            tree.add("view_at_once", _first_view(page, stl))
+            time.sleep(10)
+            ctx2, page2 = _page(browser, port, stl)
+            goto_when_up(page2, f"http://127.0.0.1:{port}/", 300)
+            page2.locator("table.checks tr[data-check]").first.wait_for()
+            tree.add("view_after_pause", _first_view(page2, stl))
+            ctx2.close()
+            for kind, (field, values) in EDITS.items():
+                for k in range(edits + 2):
+                    ms = page.evaluate(_EDIT_JS, [field, values[k % 2]])
+                    if k >= 2:  # two warm-up edits
+                        tree.add(f"edit_{kind}", ms)
+                    page.wait_for_timeout(150)
+            page.wait_for_timeout(3000)  # the last model rebuilt
+            tree.add("step_first", _download(page, "step"))
+            tree.add("pdf_first", _download(page, "pdf"))
+            page.evaluate(_EDIT_JS, ["support_yield_strength_compression_mpa", "390"])  # the geometry kept
+            tree.add("step_after_edit", _download(page, "step"))
+            tree.add("pdf_after_edit", _download(page, "pdf"))
+        finally:
+            ctx.close()
+            stop_server(proc)
+
+
+ROWS = (("cold", "cold start to the checks of the default application in the page [s]", "s", "< 3 (idle)"),
+        ("cold_cpu", "of which the server's CPU time by then [s]", "s", ""),
+        ("view_at_once", "first 3D view, tab clicked as the checks appear [s]", "s", "as fast as it can be"),
+        ("view_after_pause", "first 3D view, tab clicked 10 s later (a second page) [s]", "s", ""),
+        ("edit_support", "edit to checks, 3D open, geometry kept (support strength) [ms]", "ms", "< 200"),
+        ("edit_pulley", "edit to checks, 3D open, geometry changed (pulley diameter) [ms]", "ms", "< 200"),
+        ("step_first", "STEP download, first (model built for the view) [s]", "s", "< 3"),
+        ("pdf_first", "PDF download, first (model built for the view) [s]", "s", "< 3"),
+        ("step_after_edit", "STEP download after an edit [s]", "s", "< 3"),
+        ("pdf_after_edit", "PDF download after an edit [s]", "s", "< 3"))
 
 
 def _p90(xs: list[float]) -> float:
@@ -114,55 +169,46 @@ def _p90(xs: list[float]) -> float:
     return xs[int(0.9 * (len(xs) - 1))]
 
 
+def _cell(xs: list[float] | None, unit: str) -> str:
+    if not xs:
+        return "-"
+    fmt = (lambda x: f"{x:.0f}") if unit == "ms" else (lambda x: f"{x:.2f}")
+    if len(xs) == 1:
+        return fmt(xs[0])
+    return f"{fmt(statistics.median(xs))} (p90 {fmt(_p90(xs))}, n={len(xs)})"
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--starts", type=int, default=5)
-    ap.add_argument("--edits", type=int, default=40)
+    ap.add_argument("--starts", type=int, default=3, help="cold starts after the warm-up one (default 3)")
+    ap.add_argument("--edits", type=int, default=20, help="edits of each kind (default 20)")
+    ap.add_argument("--tree", action="append", default=[], help="a checkout of synth to measure (repeatable)")
+    ap.add_argument("--only-cold", action="store_true", help="the cold starts only")
+    ap.add_argument("--rounds", type=int, default=1, help="rounds over the trees (default 1)")
     a = ap.parse_args(argv)
+    sys.path.insert(0, str(ROOT))
+    from synth.report.pdf import chromium_binary
+    from synth.ui.browser import launch_chromium
     chromium = chromium_binary()
     if chromium is None:
         print("no chromium binary (apt-get install chromium): nothing measured")
         return 0
     from playwright.sync_api import sync_playwright
-    starts, cpus, edits = [], [], []
+    trees = [Tree(Path(t).resolve()) for t in (a.tree or [str(ROOT)])]
+    load0 = os.getloadavg()
     with sync_playwright() as p:
         browser = launch_chromium(p, chromium)
-        for i in range(a.starts + 1):
-            s, cpu, proc, page = cold_start(browser)
-            try:
-                if i > 0:  # the first start is the warm-up
-                    starts.append(s)
-                    cpus.append(cpu)
-                if i == a.starts:
-                    for k in range(a.edits + 2):
-                        ms = page.evaluate(_EDIT_JS, _VALUES[k % 2])
-                        if k >= 2:  # two warm-up edits
-                            edits.append(ms)
-            finally:
-                page.close()
-                stop_server(proc)
+        for _ in range(a.rounds):  # the trees in turn, so that a change of the machine's load hits each alike
+            for tree in trees:
+                measure(tree, browser, a.starts, a.edits, a.only_cold)
         browser.close()
-    server = server_side(a.edits)
-    cli = command_line(a.starts)
-    imports = command_line(a.starts, "imports")
-    print(f"synth ui on this machine ({os.cpu_count()} cores, shared); {a.starts} cold starts after one warm-up, "
-          f"{a.edits} edits after two warm-up edits.\n")
-    print("| measurement | median | p90 | target | n |")
-    print("|---|---|---|---|---|")
-    print(f"| cold start to the checks of the default application in the page [s] | {statistics.median(starts):.2f} | "
-          f"{_p90(starts):.2f} | < 3 | {len(starts)} |")
-    print(f"| of which the server's CPU time by then [s] | {statistics.median(cpus):.2f} | {_p90(cpus):.2f} | | "
-          f"{len(cpus)} |")
-    print(f"| re-verification after an edit, in the page [ms] | {statistics.median(edits):.0f} | {_p90(edits):.0f} | "
-          f"< 200 | {len(edits)} |")
-    print(f"| of which in the server: validate, verify, render [ms] | {statistics.median(server):.1f} | "
-          f"{_p90(server):.1f} | | {len(server)} |")
-    print(f"| reference: `synth design` on the same input, whole command [s] | {statistics.median(cli):.2f} | "
-          f"{_p90(cli):.2f} | | {len(cli)} |")
-    print(f"| reference: `python -c \"import pandas, nicegui\"` [s] | {statistics.median(imports):.2f} | "
-          f"{_p90(imports):.2f} | | {len(imports)} |")
-    print(f"\nAn edit in the page answers {statistics.median(cli) * 1000 / statistics.median(edits):.0f} times faster "
-          "than the command line's whole run (medians of this run).")
+    load1 = os.getloadavg()
+    print(f"synth ui on this machine ({os.cpu_count()} cores, shared); load average {load0[0]:.1f} before, "
+          f"{load1[0]:.1f} after; {a.starts} cold starts after a warm-up, {a.edits} edits of each kind.\n")
+    print("| measurement | " + " | ".join(t.path.name for t in trees) + " | target |")
+    print("|---|" + "---|" * len(trees) + "---|")
+    for key, label, unit, target in ROWS:
+        print(f"| {label} | " + " | ".join(_cell(t.figures.get(key), unit) for t in trees) + f" | {target} |")
     return 0
 
 

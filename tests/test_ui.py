@@ -142,8 +142,8 @@ def test_a_portfolio_row_opens_as_the_input_synth_bulk_read():
     p = PortfolioSession()
     p.sample(5, seed=2)
     assert len(p.run(slices=2, min_slice=1)) == 5
-    table_rows, cols = p.rows()
-    assert cols[:2] == ["#", "application_id"] and [r["#"] for r in table_rows] == list(range(5))
+    table_rows, cols = p.rows(), [c["name"] for c in p.columns()]
+    assert cols[:3] == ["#", "application_id", "verdict"] and [r["#"] for r in table_rows] == list(range(5))
     assert p.application(3) == records(p.table)[3]
     whole = synth.screen(p.table, progress=False)
     assert list(whole["feasible"]) == list(p.results["feasible"])  # slices give the rows of one call
@@ -206,3 +206,122 @@ def test_the_servers_policy_host_origin_and_token():
     assert wide.token_state({**scope(), "query_string": f"token={wide.token}".encode()}) == "query"
     assert wide.token_state(scope(cookie=f"{wide.cookie}=x{wide.token}")) == "missing"
     assert Policy.of("0.0.0.0", 8080).token != wide.token  # one per launch
+
+
+# --- issue 35: what the pages show and what they keep ----------------------------------------------------------------
+def test_a_portfolio_rows_verdict_is_the_design_pages_for_that_application():
+    """Issue 35: a row marked feasible opened as "Verdict: INCOMPLETE". The screening's verdict column already said
+    INCOMPLETE (a check not verified: the sample has no lock-up pin data); the table showed `feasible` instead, and
+    the row opened at full fidelity whatever the screening's. Now the table shows the verdict in the design page's
+    words and a row opens at the screening's fidelity."""
+    from synth.ui.portfolio import PortfolioSession
+    p = PortfolioSession()
+    p.sample(12, seed=3)
+    p.run(slices=1, min_slice=1, fidelity="screening")
+    rows = p.rows()
+    assert {r["verdict"] for r in rows} <= {"PASS", "INCOMPLETE", "FAIL"} and "INCOMPLETE" in {r["verdict"] for r in rows}
+    for i in range(len(rows)):
+        s = DesignSession(p.application(i), source="row")
+        s.fidelity = p.fidelity
+        assert s.synthesise().verdict.upper() == rows[i]["verdict"], i
+    feasible_but_incomplete = [r for r, f in zip(rows, p.results["feasible"]) if f and r["verdict"] == "INCOMPLETE"]
+    assert feasible_but_incomplete  # what the issue saw: feasible, yet INCOMPLETE (and now shown as such)
+
+
+def test_the_table_says_what_binds_in_words_and_margins_in_percent():
+    from synth.design.constraints import REGISTRY
+    from synth.ui.portfolio import PortfolioSession
+    p = PortfolioSession()
+    p.sample(6, seed=1)
+    p.run(slices=1, min_slice=1)
+    labels = {c["name"]: c["label"] for c in p.columns()}
+    assert labels["binding_margin"] == "its margin [%]" and labels["binding_constraint"] == "what binds"
+    for row, (cid, m) in zip(p.rows(), zip(p.results["binding_constraint"], p.results["binding_margin"])):
+        assert row["binding_constraint"] == REGISTRY[cid].label
+        assert row["binding_margin"] == round(100 * m, 1)
+
+
+def test_a_portfolio_writes_every_file_the_page_names(tmp_path):
+    """Issue 35: the rationalisation cites assignment.csv with no download."""
+    import pandas as pd
+
+    from synth.ui.portfolio import PortfolioSession
+    p = PortfolioSession(tmp_path)
+    p.sample(8, seed=4)
+    p.run(slices=1, min_slice=1)
+    assert pd.read_csv(p.write_results())["verdict"].tolist() == p.results["verdict"].tolist()
+    assert "summary/summary.md" in p.write_summary()
+    html = p.rationalise(time_limit=30)
+    assert "assignment.csv" in html
+    files = p.files()
+    assert {"platform/assignment.csv", "platform/platform.csv", "results.csv"} <= set(files)
+    assignment = pd.read_csv(files["platform/assignment.csv"])
+    assert len(assignment) == 8
+
+
+def test_a_box_keeps_every_digit_of_a_number_and_shows_it_rounded():
+    """Issue 35: the pulley diameter showed 62.96956885569824; rounding the kept value instead would judge another
+    application than the portfolio's row."""
+    d = {**default_values(), "pulley_diameter_mm": 62.96956885569824, "spring_stiffness_nm_per_deg": 1.0e-2}
+    s = DesignSession(d)
+    assert s.input.pulley_diameter_mm == 62.96956885569824 and s.input.spring_stiffness_nm_per_deg == 0.01
+    assert form.shown(s.texts["pulley_diameter_mm"]) == "62.97"
+
+
+def test_the_objectives_offered_are_the_optimisers():
+    from synth.optimise.objectives import OBJECTIVES as optimiser
+    from synth.ui.session import OBJECTIVES
+    assert tuple(OBJECTIVES) == tuple(optimiser)
+
+
+def test_an_alternative_applied_is_that_design_verified_for_the_input(designed):
+    s = DesignSession(default_values())
+    s.top = 4
+    best = s.synthesise()
+    assert [a["rank"] for a in s.alternatives] == [1, 2, 3, 4] and s.applied == 1
+    alt = s.alternatives[2]
+    r = s.apply(3)
+    ref = synth.verify(default_values(), alt["parts"])
+    assert r.parts == alt["parts"] and s.applied == 3
+    assert [(c.id, c.verdict, c.value) for c in r.checks] == [(c.id, c.verdict, c.value) for c in ref.checks]
+    with pytest.raises(InputError, match="alternative: got 9; accepted: the rank of an alternative on offer: 1, 2, 3, 4"):
+        s.apply(9)
+    html = views.compare_alternatives(s.alternatives, s.applied)
+    assert "#3 (in view)" in html and html.count("<th data-rank=") == 4
+    assert best.parts == s.alternatives[0]["parts"]
+
+
+def test_a_what_if_sweep_is_the_designs_verification_at_each_value():
+    s = DesignSession(default_values())
+    s.synthesise()
+    data = s.sweep("spring_stiffness_nm_per_deg", 0.016, 0.024, 5)
+    assert data["x"] == pytest.approx([0.016, 0.018, 0.020, 0.022, 0.024]) and data["design_x"] == 0.0164
+    ref = synth.verify({**default_values(), "spring_stiffness_nm_per_deg": 0.022}, s.result.parts)
+    assert data["margins"]["spring_yield"][3] == pytest.approx(ref.check("spring_yield").margin)
+    assert data["margins"]["spring_yield"][3] < 0 < data["margins"]["spring_yield"][2]  # the README's example
+    from synth.ui import charts
+    opts = charts.sweep(data, {c.id: c.label for c in s.result.checks})
+    assert opts["series"][0]["name"] in ("main spring stress at installation within the permissible bending stress",
+                                         "main spring Smith-Goodman safety factor")
+    marks = opts["series"][0]["markLine"]["data"]
+    assert marks[0]["xAxis"] == 0.0164 and marks[1]["yAxis"] == 0
+    with pytest.raises(InputError, match="sweep range"):
+        s.sweep("spring_stiffness_nm_per_deg", 0.02, 0.01)
+
+
+def test_the_capability_panel_shows_every_figure_a_record_carries():
+    """The robust API grows (the ISO 22514-2 percentile method, ppm for bounded outputs): a figure the panel does not
+    know is shown in a column of its own, not dropped."""
+    robust = {"targets": "Ppk >= 1.33", "meets": False, "min_ppk": 0.9, "max_p_violation": 1e-3,
+              "failing": ["spring_yield"], "settings": {"samples": 4096, "seed": 1},
+              "checks": [{"id": "spring_yield", "label": "main spring stress", "target": True, "meets": False,
+                          "ppk": 0.9, "ppm": 1000.0, "p_violation": 1e-3, "p_lo": 5e-4, "p_hi": 2e-3,
+                          "method": "percentile", "ppk_percentile": 0.95, "contributors": [["wire", 0.6]],
+                          "nominal_margin": 0.05},
+                         {"id": "bolt_yield", "label": "bolt", "target": False, "method": "deterministic"}]}
+    table = views.capability_table(robust)
+    assert "<th>ppk percentile</th>" in table and ">0.95<" in table and "wire 60 %" in table and "1000" in table and "bolt" not in table
+    assert f'data-check="spring_yield" style="background:#{VERDICT_FILLS["fail"].lower()}"' in table
+    summary = views.capability_summary(robust)
+    assert "MISSES the target" in summary and "failing: main spring stress" in summary
+    assert views.contributors(robust) == {"spring_yield": [("wire", 0.6)]}

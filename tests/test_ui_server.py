@@ -4,7 +4,8 @@ Each test reproduces a probe of issue 39 against a real server process (``python
 ``Host`` (DNS rebinding) and a foreign ``Origin`` on HTTP, socket.io polling and the websocket, a page of another
 port, the token beyond the loopback, a 2 GB upload refused while it streams, a 305-character file name, crafted
 socket events, an input's design rules, SIGTERM during a 100,000-application screening. A page is driven as its
-browser would: the page's HTML gives its elements and client id, python-socketio speaks to its socket.
+browser would: the page's HTML gives its client id, python-socketio speaks to its socket, and the elements arrive
+over it (a page is built once its browser tab has connected: ``synth.ui.tabs``).
 The browser's view of the same doors: ``tests/test_ui_browser.py``.
 """
 
@@ -145,6 +146,17 @@ class Page:
         self.elements = elements_of(html)
         self.received: list = []
 
+    def _on(self, event, data=None) -> None:
+        self.received.append((event, data))
+        if event == "update" and isinstance(data, dict):  # the elements the server adds, changes and removes
+            for k, v in data.items():
+                if not str(k).isdigit():  # the message's own id
+                    continue
+                if v is None:
+                    self.elements.pop(int(k), None)
+                else:
+                    self.elements[int(k)] = v
+
     def find(self, **props) -> int:
         hits = [i for i, e in self.elements.items()
                 if all(e.get("props", {}).get(k) == v or e.get(k) == v for k, v in props.items())]
@@ -156,10 +168,13 @@ class Page:
 
     async def connect(self) -> None:
         self.sio = socketio.AsyncClient()
-        self.sio.on("*", lambda event, data=None: self.received.append((event, data)))
+        self.sio.on("*", self._on)
         q = (f"client_id={self.client_id}&tab_id={uuid.uuid4()}&document_id={uuid.uuid4()}&next_message_id=0"
              "&implicit_handshake=true")
-        await self.sio.connect(f"{self.server.base}/?{q}", socketio_path=WS.strip("/"), transports=["websocket"])
+        await self.sio.connect(f"{self.server.base}/?{q}", socketio_path=WS.strip("/"), transports=["websocket"],
+                               wait_timeout=60)  # a loaded machine answers the first connection late
+        await self.wait_for(lambda: any("upload" in e.get("tag", "") for e in self.elements.values()), 120,
+                            "the page's elements")
 
     async def event(self, element: int, kind: str, *args) -> None:
         listener = next(ev["listener_id"] for ev in self.elements[element]["events"] if ev["type"] == kind)
@@ -170,7 +185,12 @@ class Page:
         return [d.get("message", "") for e, d in self.received if e == "notify" and isinstance(d, dict)]
 
     def shown(self) -> str:
+        """Every text the server sent, in order."""
         return "\n".join(texts(self.received))
+
+    def now(self) -> str:
+        """The texts of the page's elements as they are now."""
+        return "\n".join(texts(list(self.elements.values())))
 
     async def wait_for(self, pred, timeout: float = 120.0, what: str = "") -> None:
         deadline = time.perf_counter() + timeout
@@ -290,7 +310,11 @@ def _stream(port: int, url: str, total: int, limit: int, chunk: int = MB) -> dic
 
 
 def test_a_2gb_upload_is_refused_within_1s_of_crossing_the_limit_and_its_copy_removed(server):
-    page = Page(server, "/")
+    async def connected():
+        page = Page(server, "/")
+        await page.connect()  # the page's upload box is built once its tab has connected
+        return page
+    page = run(connected())
     url = page.upload_url()
     port, limit = server.port, 16 * MB
     # announced: refused before a byte of it is read
@@ -401,8 +425,8 @@ def test_an_input_with_rules_opened_in_the_page_is_judged_under_them_as_the_comm
         await page.wait_for(lambda: "design rules: ACME rev C" in page.shown() and "verdict fail" in page.shown(),
                             120, "the verdict under the rules")
         await page.close()
-        return page.shown()
-    shown = run(go())
+        return page.now()
+    shown = run(go())  # what the page shows now (the default application's PASS came before the file)
     assert "design rules: ACME rev C (ruled.yaml: rules): minimum margin spring_yield: 50 %" in shown
     assert f"{cli.status} design" in shown and "Verdict: PASS" not in shown
     assert server.uploads_left() == []  # read, then removed
@@ -411,9 +435,13 @@ def test_an_input_with_rules_opened_in_the_page_is_judged_under_them_as_the_comm
 def test_synth_ui_input_with_rules_opens_under_them(tmp_path):
     s = Server(tmp_path, str(_ruled_input(tmp_path)))
     try:
-        html = httpx.get(s.base + "/", timeout=120).text
-        els = elements_of(html)
-        shown = [e.get("text", "") for e in els.values()]
+        async def go():
+            page = Page(s, "/")
+            await page.connect()
+            await page.wait_for(lambda: "verdict fail" in page.shown(), 120, "the verdict")
+            await page.close()
+            return [e.get("text", "") for e in page.elements.values()]
+        shown = run(go())
         assert any(t.startswith("design rules: ACME rev C") for t in shown), shown
         assert any(t.endswith("verdict fail") for t in shown)
     finally:

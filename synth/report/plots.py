@@ -654,7 +654,11 @@ _CAD_TITLES = {"section": "3D model: section through the pivot axis", "exploded"
 
 
 def _cad_graphs(dt: _Data) -> list[Graph]:
-    paths = list(dt.extra.get("cad") or []) + list((dt.r.curves or {}).get("cad_images") or [])
+    return cad_graphs(list(dt.extra.get("cad") or []) + list((dt.r.curves or {}).get("cad_images") or []))
+
+
+def cad_graphs(paths) -> list[Graph]:
+    """The 3D model's pictures (PNG paths: ``section.png``, ``exploded.png``) as graphs (Fig. 75-76)."""
     out = []
     for i, p in enumerate(paths):
         p = Path(p)

@@ -28,7 +28,7 @@ from synth.design.result import Result
 from synth.design.verify import verify
 from synth.design.evaluate import Settings
 from synth.report.html import write_html
-from synth.report.plots import build_graphs
+from synth.report.plots import build_graphs, cad_graphs
 from synth.io.outputs import output_files, refuse_link
 from synth.io.saved_results import INPUTS_ACCEPTED
 from synth.robust.assumptions import flips
@@ -125,7 +125,7 @@ def result_for_report(source, args=None):
 def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: list | None = None,
                 show_progress: bool = True, cad_pictures: bool = True, pdf: bool = True, author: str = "",
                 revision: str = "", page: str = "landscape", platform=None, source_name: str | None = None,
-                application: str | None = None, robust=None) -> dict:
+                application: str | None = None, robust=None, graphs: tuple | None = None) -> dict:
     """Write ``report.html``, ``report.pdf`` and ``results.xlsx`` of ``source`` (input file, saved result or Result).
 
     ``source_name``: the input file a given :class:`Result` was made from (the document block names it and its
@@ -134,6 +134,9 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     :class:`synth.robust.settings.RobustSettings`): add the production-scatter section (the design's capability,
     unless the result carries it, and the verdicts resting on illustrative limits) and the ``Capability`` and
     ``Assumptions`` sheets.
+
+    ``graphs``: ``(graphs, skipped)`` of ``source`` already drawn (:func:`~synth.report.plots.build_graphs` without
+    ``extra``, as ``synth ui`` keeps them); the pictures of ``cad`` are added to them.
 
     Returns ``{"html": Path, "pdf": Path | None, "pdf_note": str, "xlsx": Path, "result": Result,
     "graphs": [...], "skipped": [...]}`` (``pdf_note``: why no PDF was written, when none was).
@@ -161,7 +164,10 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
                 result.notes.append(cad_note)
         scenes = {k: v for k, v in (scenes or {}).items() if v is not None}
         extra = {"pareto": scenes.get("Pareto"), "solvers": scenes.get("Solvers"), "cad": pictures}
-        graphs, skipped = build_graphs(result, extra, show_progress=show_progress)
+        if graphs is None:
+            graphs, skipped = build_graphs(result, extra, show_progress=show_progress)
+        else:
+            graphs, skipped = [*graphs[0], *cad_graphs(pictures)], list(graphs[1])
         html_path = write_html(out / "report.html", result, graphs, skipped, source=name, scenes=scenes,
                                author=author, revision=revision, page=page, platform=platform, cad_note=cad_note,
                                application=application)

@@ -31,17 +31,25 @@ def serve(values: dict, source: str, *, host: str = "127.0.0.1", port: int = 808
     """Serve the pages on ``host:port`` until interrupted; ``values``: the design input the design page opens,
     ``rules`` its design rules (:class:`synth.design.rules.Rules`), ``policy`` what the server accepts
     (:class:`synth.ui.guard.Policy`; default: :meth:`~synth.ui.guard.Policy.of` ``host, port``, with a new token
-    when ``host`` is beyond the loopback)."""
+    when ``host`` is beyond the loopback).
+
+    The synthesis of ``values`` is made while the browser loads the page (:class:`synth.ui.launch.Launch`)."""
     import shutil
     import tempfile
 
+    from synth.ui.trace import mark
+    mark("serving: importing NiceGUI")
     from nicegui import app, ui
 
     from synth.ui.app import setup
     from synth.ui.guard import Policy
+    from synth.ui.launch import Launch
     policy = policy or Policy.of(host, port)
     folder = Path(root) if root else Path(tempfile.mkdtemp(prefix="synth-ui-"))
-    setup(values, source, policy=policy, root=folder, rules=rules)
+    mark("NiceGUI and the server's modules imported")
+    launch = Launch(values, source, rules)
+    app.on_startup(launch.start)
+    setup(values, source, policy=policy, root=folder, rules=rules, launch=launch)
     if root is None:  # the uploads, 3D models and reports of every tab: gone with the server
         app.on_shutdown(lambda: shutil.rmtree(folder, ignore_errors=True))
     ui.run(host=host, port=port, title="synth", reload=False, show=False, show_welcome_message=False,

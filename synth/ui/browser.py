@@ -25,6 +25,10 @@ __all__ = ["CHROMIUM_FLAGS", "free_port", "start_server", "stop_server", "launch
 #: is given it first on its path so that it runs this same code, never another installed copy
 PACKAGE_HOME = Path(sys.modules["synth"].__file__).resolve().parent.parent
 
+#: ``python -P`` (3.11+): the working folder is not put first on the path, so a ``synth`` folder there (another
+#: checkout) is never the one that runs
+SAFE_PATH = ["-P"] if sys.version_info >= (3, 11) else []
+
 #: headless, no GPU, no sandbox (containers), and none of Chromium's own traffic (updates, sync, first run)
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
                   "--disable-component-update", "--disable-sync", "--no-first-run"]
@@ -46,7 +50,7 @@ def start_server(port: int, *args: str, env: dict | None = None,
     e = {**os.environ, **(env or {}), "PYTHONUNBUFFERED": "1"}
     e["PYTHONPATH"] = str(PACKAGE_HOME) + os.pathsep + e.get("PYTHONPATH", "")
     e.pop("PYTEST_CURRENT_TEST", None)  # NiceGUI would take its own test mode (and port) for a test's child
-    cmd = [sys.executable, "-m", "synth", "ui", "--port", str(port), *args]
+    cmd = [sys.executable, *SAFE_PATH, "-m", "synth", "ui", "--port", str(port), *args]
     if output is None:
         proc = subprocess.Popen(cmd, env=e, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         return proc, proc.stdout.readline().strip()

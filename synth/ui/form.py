@@ -29,7 +29,7 @@ import yaml
 from synth import catalog, schema
 from synth.errors import InputError, Problem
 
-__all__ = ["widget", "options", "label", "hint", "text_of", "value_of", "mapping", "problems_by_field", "to_yaml",
+__all__ = ["widget", "options", "label", "hint", "text_of", "shown", "value_of", "mapping", "problems_by_field", "to_yaml",
            "sections", "MAX_TEXT"]
 
 #: longest text a box accepts (a value, never a document: the input gate's limits stay with files)
@@ -69,14 +69,39 @@ def hint(f: schema.Field) -> str:
 
 
 def text_of(value: Any) -> str:
-    """A value as shown in a text box (``62``, ``0.5``, ``[2.3, 2.3]``; None empty)."""
+    """A value as the text a box keeps (``62``, ``0.5``, ``[2.3, 2.3]``; None empty): every digit of a number, in a
+    form YAML reads back as the same number (``1.0e-05``, not ``1e-05``, which YAML reads as text).
+
+    >>> text_of(62.96956885569824), text_of(1e-05), value_of(text_of(1e-05)) == 1e-05, text_of([2.3, 2])
+    ('62.96956885569824', '1.0e-05', True, '[2.3, 2]')
+    """
     if value is None:
         return ""
-    if isinstance(value, float) and math.isfinite(value):
-        return f"{value:g}" if abs(value) < 1e15 else repr(value)
+    if isinstance(value, float) and not isinstance(value, bool) and math.isfinite(value):
+        t = repr(float(value))
+        mantissa, e, exponent = t.partition("e")
+        return f"{mantissa}.0e{exponent}" if e and "." not in mantissa else t
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(text_of(v) for v in value) + "]"
     return str(value)
+
+
+#: significant digits a box shows of a number that has more (the box keeps them all until it is edited)
+SHOWN_DIGITS = 5
+
+
+def shown(text: str) -> str:
+    """What a box shows of the ``text`` it keeps: a number with more than :data:`SHOWN_DIGITS` significant digits
+    rounded to them (a portfolio's ``62.96956885569824`` shows ``62.97``), anything else as it is.
+
+    >>> shown("62.96956885569824"), shown("0.0164"), shown("7"), shown("abc"), shown("0.034669964285953515")
+    ('62.97', '0.0164', '7', 'abc', '0.03467')
+    """
+    v = value_of(text)
+    if not isinstance(v, float) or not math.isfinite(v):
+        return text
+    short = text_of(float(f"{v:.{SHOWN_DIGITS}g}"))
+    return short if len(short) < len(text.strip()) else text
 
 
 def value_of(text: Any) -> Any:

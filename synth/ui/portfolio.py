@@ -1,10 +1,20 @@
-"""The portfolio page's state: a portfolio table, its screening, the summary and the platform.
+"""The portfolio page's state: a portfolio table, its screening, the summary and the platform, and their files.
 
 The screening is :func:`synth.screen` (what ``synth bulk`` computes) called on consecutive slices of the
 table, so the page can move a progress bar between them: every application is screened on its own, so
 the slices' rows are the rows of one call. The summary (feasible share, what binds) is
-:func:`synth.bulk.summary.summarise` and its plots :func:`synth.bulk.summary.write_summary`'s; the
-platform rationalisation is :mod:`synth.platform` (``synth rationalise``) on the same file.
+:func:`synth.bulk.summary.summarise`; the platform rationalisation is :mod:`synth.platform` (``synth rationalise``)
+on the same file. The state belongs to the browser tab, not to the page (:mod:`synth.ui.tabs`): a screening goes on
+while the tab shows another page, and the portfolio page shows it again when it comes back.
+
+Every file the page names can be downloaded (:meth:`PortfolioSession.files`): the screening's table
+(``results.csv``, ``synth bulk``'s columns), the summary (``summary.md`` and its tables, ``write_summary``'s) and the
+platform's files (``platform.csv``, ``assignment.csv``, ``summary.md``, ``section.html``: ``synth rationalise
+--out``'s).
+
+The table shows each row's verdict in the design page's words (PASS, INCOMPLETE, FAIL: ``synth bulk``'s
+``verdict`` column, the one judgement of :mod:`synth.design.assessment`), what binds in words, margins in percent.
+A row opens on the design page at the fidelity it was screened at, so the page's verdict is the row's.
 
 >>> p = PortfolioSession()
 >>> p.sample(4, seed=0)
@@ -14,6 +24,8 @@ platform rationalisation is :mod:`synth.platform` (``synth rationalise``) on the
 (4, True)
 >>> sorted(p.application(0))[:2]
 ['application_type', 'belt_loading_type']
+>>> [c["label"] for c in p.columns()][:4]
+['#', 'application', 'verdict', 'what binds']
 """
 
 from __future__ import annotations
@@ -22,15 +34,42 @@ import math
 import tempfile
 from pathlib import Path
 
-__all__ = ["PortfolioSession", "TABLE_COLUMNS"]
+__all__ = ["PortfolioSession", "COLUMNS", "verdict_word", "check_words"]
 
 #: the smallest slice screened in one call: the engine's batch work per call (its diagnosis probes above all) costs
 #: 0.3-0.7 s whatever the slice's size, so 200 applications took 3.2 s in one call, 5.9 s in 4 and 9.3 s in 10
 MIN_SLICE = 100
 
-#: the result columns the page's table shows after the application's id (``synth bulk``'s names)
-TABLE_COLUMNS = ("application_type", "status", "feasible", "binding_constraint", "binding_margin", "violated",
-                 "relaxation", "error")
+#: the page's table: (``synth bulk``'s column, the column's label); margins are shown in percent
+COLUMNS = (("application_id", "application"), ("verdict", "verdict"), ("binding_constraint", "what binds"),
+           ("binding_margin", "its margin [%]"), ("violated", "violated checks (margin)"), ("relaxation", "smallest input relaxation"),
+           ("application_type", "application type"), ("error", "input error"))
+
+
+def verdict_word(v) -> str:
+    """A verdict as the design page's banner says it (``pass`` -> ``PASS``)."""
+    return str(v or "").upper()
+
+
+def check_words(cid) -> str:
+    """A check id in words (its registry label), the id itself when the registry has none."""
+    from synth.design.constraints import REGISTRY
+    c = REGISTRY.get(str(cid))
+    return c.label if c is not None else str(cid or "")
+
+
+def _violated_words(text) -> str:
+    """``synth bulk``'s ``violated`` (``id:+0.123;...``) in words and percent."""
+    out = []
+    for item in str(text or "").split(";"):
+        cid, _, m = item.partition(":")
+        if not cid:
+            continue
+        try:
+            out.append(f"{check_words(cid)} {100 * float(m):+.1f} %")
+        except ValueError:
+            out.append(check_words(cid))
+    return "; ".join(out)
 
 
 class PortfolioSession:
@@ -42,8 +81,14 @@ class PortfolioSession:
         self.path: Path | None = None
         self.source = ""
         self.results = None    # synth.screen's table
+        self.fidelity = "screening"  # of the screening in self.results
         self.summary = None
         self.platform = None   # synth.platform.rationalise's result
+        self.platform_html = ""
+        self.progress = (0, 0)  # (done, total) of the job running
+        self.running = ""       # the job running ("screening", "platform"), "" none
+        self.version = 0        # +1 whenever the table, the results or the platform change (the page redraws)
+        self._files: dict[str, Path] = {}
 
     def load(self, path: str | Path, name: str | None = None) -> int:
         """Read a portfolio file (CSV, Excel, .ods, Parquet: ``synth bulk``'s reader); returns its row count."""
@@ -51,6 +96,9 @@ class PortfolioSession:
         self.table = read_portfolio(Path(path)).reset_index(drop=True)
         self.path, self.source = Path(path), name or Path(path).name
         self.results = self.summary = self.platform = None
+        self.platform_html = ""
+        self._files = {}
+        self.version += 1
         return len(self.table)
 
     def sample(self, n: int, seed: int = 0) -> int:
@@ -73,35 +121,77 @@ class PortfolioSession:
         n = len(self.table)
         size = max(1, min_slice, math.ceil(n / max(1, slices)))
         parts = []
-        for a in range(0, n, size):
-            if check is not None:
-                check()
-            parts.append(synth.screen(self.table.iloc[a:a + size], fidelity=fidelity, progress=False))
-            if progress is not None:
-                progress(min(n, a + size), n)
-        self.results = pd.concat(parts, ignore_index=True)
-        self.summary = summarise(self.results)
+        self.running, self.progress = "screening", (0, n)
+        try:
+            for a in range(0, n, size):
+                if check is not None:
+                    check()
+                parts.append(synth.screen(self.table.iloc[a:a + size], fidelity=fidelity, progress=False))
+                self.progress = (min(n, a + size), n)
+                if progress is not None:
+                    progress(min(n, a + size), n)
+            self.results = pd.concat(parts, ignore_index=True)
+            self.fidelity = fidelity
+            self.summary = summarise(self.results)
+            self._files = {k: v for k, v in self._files.items() if k.startswith("platform/")}
+        finally:
+            self.running = ""
+            self.version += 1
         return self.results
 
-    def plots(self) -> list[Path]:
-        """The summary's bar charts (feasible share by group, binding and violated constraints, parts)."""
-        from synth.bulk.summary import write_summary
-        folder = self.workdir / "summary"
-        return [p for p in write_summary(self.summary, folder) if p.suffix == ".png"]
+    def columns(self) -> list[dict]:
+        """The table's columns for the page (``name``, ``label``): ``#`` the row, then :data:`COLUMNS` present."""
+        have = set(self.results.columns) if self.results is not None else {c for c, _ in COLUMNS}
+        return [{"name": "#", "label": "#"}] + [{"name": c, "label": lab} for c, lab in COLUMNS if c in have]
 
-    def rows(self) -> tuple[list[dict], list[str]]:
-        """The result table as rows for the page (``#`` the row, the application id, :data:`TABLE_COLUMNS`)."""
+    def rows(self) -> list[dict]:
+        """The result table as rows for the page: ``#`` the row, the verdict as the design page says it, what binds
+        in words, margins in percent (one decimal), the violated checks in words."""
         t = self.results
-        cols = [c for c in ("application_id", *TABLE_COLUMNS) if c in t.columns]
+        cols = [c for c, _ in COLUMNS if c in t.columns]
         out = []
         for i, rec in enumerate(t[cols].to_dict(orient="records")):
             row = {"#": i}
             for k, v in rec.items():
-                if isinstance(v, float):
-                    v = None if not math.isfinite(v) else round(v, 4)
+                if isinstance(v, float) and not math.isfinite(v):
+                    v = None
+                if k == "verdict":
+                    v = verdict_word(v)
+                elif k == "binding_constraint":
+                    v = check_words(v) if v else ""
+                elif k == "binding_margin" and v is not None:
+                    v = round(100.0 * float(v), 1)
+                elif k == "violated":
+                    v = _violated_words(v)
                 row[k] = "" if v is None else (v if isinstance(v, (bool, int, float)) else str(v))
             out.append(row)
-        return out, ["#", *cols]
+        return out
+
+    def verdicts(self) -> dict[str, int]:
+        """How many rows have each verdict (``{"PASS": n, "INCOMPLETE": m, ...}``)."""
+        return {verdict_word(k): int(v) for k, v in self.results["verdict"].value_counts().items()}
+
+    # --- files ------------------------------------------------------------------------------------------------------
+    def files(self) -> dict[str, Path]:
+        """Every file the page names, by the name shown: ``results.csv`` (the screening's table, ``synth bulk``'s
+        columns) once screened; ``summary/...`` (:func:`synth.bulk.summary.write_summary`) once asked for
+        (:meth:`write_summary`); ``platform/...`` (``synth rationalise --out``'s files) once rationalised."""
+        return dict(self._files)
+
+    def write_results(self) -> Path:
+        """The screening's table as ``results.csv`` (``synth bulk``'s file)."""
+        from synth.bulk.portfolio import CSV_FLOAT, write_table
+        path = write_table(self.results, self.workdir / "files" / "results.csv", float_format=CSV_FLOAT)
+        self._files["results.csv"] = path
+        return path
+
+    def write_summary(self) -> dict[str, Path]:
+        """The summary's files (``summary.md``, one CSV per table, the bar charts): ``synth bulk --summary``'s."""
+        from synth.bulk.summary import write_summary
+        folder = self.workdir / "files" / "summary"
+        for p in write_summary(self.summary, folder):
+            self._files[f"summary/{p.name}"] = p
+        return {k: v for k, v in self._files.items() if k.startswith("summary/")}
 
     def row(self, value) -> int:
         """``value`` (what the page sent for a row) as a row of the screened table, or an
@@ -128,11 +218,27 @@ class PortfolioSession:
         return row_record(self.table.iloc[int(i)].to_dict())
 
     def rationalise(self, progress=None, *, fidelity: str = "full", time_limit: float = 60.0) -> str:
-        """The platform of the portfolio (``synth rationalise``, variants objective); its report section (HTML)."""
+        """The platform of the portfolio (``synth rationalise``, variants objective): its files (``platform/...``,
+        :meth:`files`) and its report section (HTML), which names ``assignment.csv``."""
         from synth.design.evaluate import Settings
         from synth.platform.outputs import report_section
         from synth.platform.producer import load_feasibility
         from synth.platform.rationalise import rationalise
-        pf = load_feasibility(str(self.path), Settings(fidelity=fidelity), progress=progress)
-        self.platform = rationalise(pf, "variants", time_limit=time_limit)
-        return report_section(self.platform)
+        from synth.platform.outputs import write_all
+        self.running, self.progress = "platform", (0, 1)
+
+        def step(done, total):
+            self.progress = (done, total)
+            if progress is not None:
+                progress(done, total)
+        try:
+            pf = load_feasibility(str(self.path), Settings(fidelity=fidelity), progress=step)
+            self.platform = rationalise(pf, "variants", time_limit=time_limit)
+            self._files = {k: v for k, v in self._files.items() if not k.startswith("platform/")}
+            for p in write_all(pf, self.platform, self.workdir / "files" / "platform"):
+                self._files[f"platform/{p.name}"] = p
+            self.platform_html = report_section(self.platform)
+        finally:
+            self.running = ""
+            self.version += 1
+        return self.platform_html

@@ -4,8 +4,10 @@ Every number comes from the public API (:func:`synth.synthesise`, :func:`synth.v
 :func:`synth.write_report`, :func:`synth.cad.export_result`); this module keeps what the page shows in
 step: an edit re-validates the whole input (:func:`synth.schema.validate`, the command line's messages)
 and, when it is valid, re-verifies the current design at once; "synthesise" runs the optimiser and makes
-its design the current one. Files (the 3D model, the report) are written once per evaluated result into
-the session's own folder.
+its design the current one, and its ranked alternatives stay on offer (:meth:`DesignSession.apply` makes one the
+current design). A what-if sweep (:meth:`DesignSession.sweep`) verifies the current design along one input. The 3D
+model, graphs, report and capability are made by the worker processes (:mod:`synth.ui.work`) from
+:meth:`DesignSession.key`, the session's name for the result in view.
 
 The design rules of the input (its ``rules:`` section, :func:`synth.design.rules.read_rules`, as the command line
 reads them) are the session's own: every synthesis and verification gets them as its ``rules=`` argument, never
@@ -18,10 +20,14 @@ through a process-wide setting (two tabs of one server judge under their own rul
 (False, ['pulley_diameter_mm: got 500; accepted: a number in [10, 200] mm'])
 >>> s.edit("pulley_diameter_mm", "62"), s.result.status
 (True, 'verified')
+>>> [a["rank"] for a in s.alternatives][:2], s.apply(2).parts == s.alternatives[1]["parts"], s.applied
+([1, 2], True, 2)
 """
 
 from __future__ import annotations
 
+import math
+import secrets
 import tempfile
 from importlib import resources
 from pathlib import Path
@@ -32,19 +38,20 @@ from synth import schema
 from synth.io import documents
 from synth.design.rules import NONE, Rules, read_rules
 from synth.errors import InputError, Problem
-from synth.optimise.objectives import OBJECTIVES
 from synth.ui import form
-from synth.excel.template import write_template
-from synth.cad import export_result
 
-__all__ = ["DesignSession", "default_values", "OBJECTIVES", "FIDELITIES"]
+__all__ = ["DesignSession", "default_values", "OBJECTIVES", "FIDELITIES", "TOP", "TOP_MAX", "SWEEP_POINTS"]
 
-#: the alternatives a synthesis in the page lists (``Result.alternatives``)
-TOP = 5
-#: the objectives offered (``synth.synthesise``'s documented ones; a lexicographic or weighted one stays the API's):
-#: :data:`synth.optimise.objectives.OBJECTIVES`, imported above
+#: the alternatives a synthesis in the page lists by default (``Result.alternatives``), and the most it offers
+TOP, TOP_MAX = 5, 20
+#: the objectives offered (``synth.synthesise``'s documented ones, :data:`synth.optimise.objectives.OBJECTIVES`; a
+#: lexicographic or weighted one stays the API's). Written out so that the page's start imports no optimiser: a
+#: test checks they are the optimiser's.
+OBJECTIVES = ("standard", "cost", "margin")
 #: the model fidelities (:data:`synth.design.evaluate.FIDELITIES`; ``full`` is every design scene's default)
 FIDELITIES = ("full", "screening")
+#: the points of a what-if sweep, and the most a page asks for
+SWEEP_POINTS, SWEEP_MAX = 21, 101
 
 
 def default_values() -> dict:
@@ -68,8 +75,11 @@ class DesignSession:
         self.other_problems: list[str] = []
         self.result = None
         self.seq = 0  # +1 at every evaluation: the page's "result shown" counter
+        self.top = TOP
+        self.alternatives: list[dict] = []  # the last synthesis's ranked designs (Result.alternatives)
+        self.applied: int | None = None     # the rank of the alternative in view (1: the optimum), None: edited
+        self.uid = secrets.token_hex(6)     # the session's part of the worker's keys (:meth:`key`)
         self.workdir = Path(workdir) if workdir else Path(tempfile.mkdtemp(prefix="synth-ui-"))
-        self._files: dict[tuple, dict] = {}
         self.set_values(values or {})
 
     # --- the input ----------------------------------------------------------------------------------------------
@@ -151,6 +161,7 @@ class DesignSession:
 
     def write_template(self, path: str | Path) -> Path:
         """The Excel input template filled with the (valid) input: ``synth template --from``."""
+        from synth.excel.template import write_template
         self._require_valid()
         return write_template(path, self.input.as_dict())
 
@@ -161,45 +172,114 @@ class DesignSession:
 
     # --- the design -------------------------------------------------------------------------------------------
     def synthesise(self):
-        """The optimiser's design for the input (``synth.synthesise``); it becomes the current design."""
+        """The optimiser's design for the input (``synth.synthesise``, its :attr:`top` best); it becomes the current
+        design, its alternatives those on offer."""
         self._require_valid()
-        self.result = synth.synthesise(self.input, self.objective, fidelity=self.fidelity, top=TOP, rules=self.rules)
+        return self.adopt(synth.synthesise(self.input, self.objective, fidelity=self.fidelity, top=self.top,
+                                           rules=self.rules))
+
+    def synthesis_call(self) -> tuple:
+        """``(input, rules, objective, fidelity, top)``: the arguments of :meth:`synthesise`'s call (a worker makes
+        the same call: :func:`synth.ui.work.synthesise`)."""
+        self._require_valid()
+        return self.input, self.rules, self.objective, self.fidelity, self.top
+
+    def adopt(self, result):
+        """Make ``result`` (of :meth:`synthesise`'s call) the current design and its alternatives those on offer."""
+        self.result = result
+        self.alternatives = list(result.alternatives or [])
+        self.applied = 1 if self.alternatives else None
+        self.seq += 1
+        return result
+
+    def verify(self, parts: dict | None = None):
+        """The current design (or ``parts``) checked for the current input (``synth.verify``)."""
+        self._require_valid()
+        if parts is None and (self.result is None or not self.result.parts):
+            return self.synthesise()
+        self.result = synth.verify(self.input, dict(parts or self.result.parts), fidelity=self.fidelity,
+                                   rules=self.rules)
+        if parts is None:  # an edit: the design in view is no longer one of the ranked ones as they were ranked
+            self.applied = None
         self.seq += 1
         return self.result
 
-    def verify(self):
-        """The current design checked for the current input (``synth.verify``)."""
+    def apply(self, rank: int):
+        """Make alternative ``rank`` (1: the optimum) of the last synthesis the current design, verified for the
+        current input."""
+        ranks = [a["rank"] for a in self.alternatives]
+        if isinstance(rank, bool) or rank not in ranks:
+            raise InputError(Problem("alternative", rank, "the rank of an alternative on offer: "
+                                     + (", ".join(map(str, ranks)) or "none (synthesise first)")))
+        alt = self.alternatives[ranks.index(rank)]
+        self.verify(alt["parts"])
+        self.applied = rank
+        return self.result
+
+    def key(self) -> str:
+        """The name of the result in view for the worker's caches (the session and its evaluation)."""
+        return f"{self.uid}-{self.seq}"
+
+    def application(self) -> str | None:
+        """The application's name for the STEP product and the report: the input's file name without its suffix."""
+        stem = Path(self.source).stem if self.source else ""
+        return stem or None
+
+    # --- what if --------------------------------------------------------------------------------------------------
+    def sweep_range(self, name: str) -> tuple[float, float]:
+        """The default range of a what-if sweep of field ``name``: its value +-20 %, inside what it accepts."""
+        f = self._numeric_field(name)
+        x0 = float(getattr(self.input, name))
+        lo, hi = (x0 * 0.8, x0 * 1.2) if x0 > 0 else (x0 * 1.2, x0 * 0.8) if x0 < 0 else (-1.0, 1.0)
+        span = hi - lo
+        lo = max(lo, f.lo + (1e-6 * span if f.lo_open else 0.0))
+        hi = min(hi, f.hi - (1e-6 * span if f.hi_open else 0.0))
+        return lo, hi
+
+    def sweep_fields(self) -> list[str]:
+        """The input fields a what-if sweep can move: the numbers the current input gives."""
+        if self.input is None:
+            return []
+        return [f.name for f in schema.FIELDS if f.kind in ("float", "int") and not f.choices and not f.catalog
+                and isinstance(getattr(self.input, f.name, None), (int, float))
+                and not isinstance(getattr(self.input, f.name), bool)]
+
+    def _numeric_field(self, name: str):
+        if name not in self.sweep_fields():
+            raise InputError(Problem("sweep input", name, "a number of the current input: "
+                                     + ", ".join(self.sweep_fields()[:8]) + ", ..."))
+        return schema.field_by_name(name)
+
+    def sweep(self, name: str, lo: float, hi: float, points: int = SWEEP_POINTS) -> dict:
+        """The current design verified (``synth.verify``) at ``points`` values of input ``name`` from ``lo`` to
+        ``hi``, the rest of the input as it is: ``{"field", "x", "design_x", "margins": {check: [margin or None]},
+        "verdicts": {check: [verdict]}}``, margins as fractions (the evaluator's); a value the input refuses is a
+        point without margins."""
         self._require_valid()
         if self.result is None or not self.result.parts:
-            return self.synthesise()
-        self.result = synth.verify(self.input, self.result.parts, fidelity=self.fidelity, rules=self.rules)
-        self.seq += 1
-        return self.result
-
-    # --- files ---------------------------------------------------------------------------------------------------
-    def _folder(self, kind: str, seq: int) -> Path:
-        p = self.workdir / f"{kind}-{seq}"
-        p.mkdir(parents=True, exist_ok=True)
-        return p
-
-    def cad(self) -> dict:
-        """The 3D model of the current result (STEP, one STL per part, section and exploded pictures): paths."""
-        seq, result = self.seq, self.result  # an edit while the model is built makes a new result, not this one
-        key = ("cad", seq)
-        if key not in self._files:
-            out = self._folder("cad", seq)
-            model, checks, info = export_result(result, out, application=self.source or None)
-            self._files[key] = {"step": out / "tensioner.step", "section": out / "section.png",
-                                "exploded": out / "exploded.png",
-                                "stl": {f.stem: f for f in info["files"] if f.suffix == ".stl"},
-                                "checks": checks, "folder": out}
-        return self._files[key]
-
-    def report(self, pdf: bool = False) -> dict:
-        """The report of the current result (``synth.write_report``: HTML and workbook, and the PDF when ``pdf``;
-        Chromium prints it in about 2 s, so only when asked): paths."""
-        seq, result = self.seq, self.result
-        key = ("report", seq, pdf)
-        if key not in self._files:
-            self._files[key] = synth.write_report(result, self._folder("report-pdf" if pdf else "report", seq), pdf=pdf)
-        return self._files[key]
+            raise InputError(Problem("design", None, "a design to sweep (synthesise first)"))
+        f = self._numeric_field(name)
+        ok = all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in (lo, hi))
+        if not ok or not lo < hi:
+            raise InputError(Problem("sweep range", f"{lo} to {hi}", "two finite numbers, the first the smaller"))
+        if isinstance(points, bool) or not isinstance(points, int) or not 3 <= points <= SWEEP_MAX:
+            raise InputError(Problem("sweep points", points, f"an integer in [3, {SWEEP_MAX}]"))
+        xs = [lo + (hi - lo) * i / (points - 1) for i in range(points)]
+        if f.kind == "int":
+            xs = sorted({int(round(x)) for x in xs})
+        base, parts = self.input.as_dict(), dict(self.result.parts)
+        margins: dict[str, list] = {}
+        verdicts: dict[str, list] = {}
+        for j, x in enumerate(xs):
+            try:
+                r = synth.verify({**base, name: x}, parts, fidelity=self.fidelity, rules=self.rules)
+                got = {c.id: c for c in r.checks}
+            except InputError:
+                got = {}
+            for cid in set(margins) | set(got):
+                c = got.get(cid)
+                margins.setdefault(cid, [None] * len(xs))[j] = (
+                    None if c is None or c.margin is None or not math.isfinite(c.margin) else float(c.margin))
+                verdicts.setdefault(cid, [None] * len(xs))[j] = None if c is None else c.verdict
+        return {"field": name, "x": xs, "design_x": float(getattr(self.input, name)), "margins": margins,
+                "verdicts": verdicts}

@@ -1,0 +1,221 @@
+"""What the worker processes of ``synth ui`` run (:mod:`synth.ui.worker`): every function here is a task.
+
+Each is a call of synth's public API or of the module a scene calls, and keeps what it built for the next task of
+its process:
+
+* the **CAD model** by the design's hash (:func:`model_key`: the geometry the model is built from, every dimension
+  and part of :class:`~synth.cad.dimensions.TensionerGeometry` but its labels): built once per design, whatever the
+  edits that leave the geometry as it is (the support's strength, a safety factor; a stiffness changes the spring's
+  coils); its STL files, geometric checks and pictures once per model, the STEP once per model and header;
+* the **graphs** of a result by the page's key of that result (:func:`graphs`), shared by the Graphs tab and the
+  report.
+
+Nothing is imported at this module's import: a task imports what it needs, and :func:`warm` imports it ahead.
+
+>>> echo([1, "a"])
+[1, 'a']
+"""
+
+from __future__ import annotations
+
+import collections
+import dataclasses
+import hashlib
+import time
+from pathlib import Path
+
+__all__ = ["echo", "warm", "model_key", "model", "model_details", "step", "graphs", "report",
+           "capability"]
+
+#: models, graph sets and geometric checks kept per process (least recently used dropped first)
+KEEP = 8
+
+#: the fields of a geometry that label it (its name, status and verdict): they change no solid
+LABEL_FIELDS = ("name", "status", "feasible", "verdict")
+
+_MODELS: collections.OrderedDict = collections.OrderedDict()   # model key -> TensionerModel
+_CHECKS: collections.OrderedDict = collections.OrderedDict()   # model key -> [check dicts]
+_GRAPHS: collections.OrderedDict = collections.OrderedDict()   # result key -> (graphs, skipped)
+
+
+def _keep(cache: collections.OrderedDict, key, value):
+    cache[key] = value
+    cache.move_to_end(key)
+    while len(cache) > KEEP:
+        cache.popitem(last=False)
+    return value
+
+
+def _hash(*parts) -> str:
+    return hashlib.sha256(repr(parts).encode("utf-8")).hexdigest()[:20]
+
+
+def echo(x):
+    """``x`` back (the worker's own test)."""
+    return x
+
+
+def warm(lane: str) -> float:
+    """Import what lane ``lane``'s tasks need (``cad``: CadQuery and the CAD modules; ``design``: the report's
+    modules, matplotlib); returns the seconds it took."""
+    t = time.perf_counter()
+    if lane == "cad":
+        try:
+            import cadquery  # noqa: F401
+
+            import synth.cad.assembly  # noqa: F401
+            import synth.cad.export  # noqa: F401
+            import synth.cad.pictures  # noqa: F401
+            import synth.cad.verify  # noqa: F401
+        except ImportError:  # no CadQuery: the 3D tab says what to install when asked
+            pass
+    else:
+        import matplotlib
+        matplotlib.use("Agg")
+        import synth.report.plots  # noqa: F401
+        import synth.scenes.report  # noqa: F401
+    return time.perf_counter() - t
+
+
+# --- the CAD lane --------------------------------------------------------------------------------------------------
+def model_key(geometry) -> str:
+    """The design's hash: every field of the geometry but its labels (:data:`LABEL_FIELDS`).
+
+    >>> from synth.cad.dimensions import geometry_from, _example_values, _example_inputs
+    >>> g = geometry_from(_example_values(), inputs=_example_inputs())
+    >>> model_key(g) == model_key(dataclasses.replace(g, status="verified")), len(model_key(g))
+    (True, 20)
+    >>> model_key(g) == model_key(dataclasses.replace(g, pulley_diameter_mm=g.pulley_diameter_mm + 1))
+    False
+    """
+    return _hash(*((f.name, getattr(geometry, f.name)) for f in dataclasses.fields(geometry)
+                   if f.name not in LABEL_FIELDS))
+
+
+def _model(result):
+    """``(model with this result's labels, key, seconds built)``: the model of the result's geometry, built once."""
+    from synth.cad import geometry_from, require_cadquery
+    require_cadquery()
+    from synth.cad.assembly import build
+    g = geometry_from(result)
+    key = model_key(g)
+    t = time.perf_counter()
+    m = _MODELS.get(key)
+    if m is None:
+        m = _keep(_MODELS, key, build(g))
+    else:
+        _MODELS.move_to_end(key)
+    return dataclasses.replace(m, geometry=g), key, time.perf_counter() - t
+
+
+def _bbox(model) -> list[float]:
+    box = None
+    for shape in model.parts.values():
+        b = shape.BoundingBox()
+        box = b if box is None else box.add(b)
+    return [0.0] * 6 if box is None else [box.xmin, box.ymin, box.zmin, box.xmax, box.ymax, box.zmax]
+
+
+def model(result, root: str) -> dict:
+    """The 3D view's files of ``result``'s design, under ``root/cad/KEY``: one STL per part, its colour (RGBA,
+    ``catalogs/cad_colours.csv``) and the assembly's bounding box (mm). ``{"key", "folder", "stl": {part: path},
+    "colours": {part: [r, g, b, a]}, "bbox": [xmin, ymin, zmin, xmax, ymax, zmax], "timings_s": {"build", "stl"}}``."""
+    from synth.cad.export import export_stl
+    m, key, build_s = _model(result)
+    folder = Path(root) / "cad" / key
+    stl = folder / "stl"
+    t = time.perf_counter()
+    if not all((stl / f"{name}.stl").is_file() for name in m.parts):
+        export_stl(m, stl)
+    from synth.cad.assembly import colour_of
+    return {"key": key, "folder": str(folder), "stl": {name: str(stl / f"{name}.stl") for name in m.parts},
+            "colours": {name: list(colour_of(name)) for name in m.parts},
+            "bbox": _bbox(m), "timings_s": {"build": build_s, "stl": time.perf_counter() - t}}
+
+
+def model_details(result, root: str) -> dict:
+    """The step-11 geometric checks (interference included) and the section and exploded pictures of ``result``'s
+    design: ``{"key", "checks": [{"id", "label", "verdict", "note"}], "section", "exploded", "timings_s"}``."""
+    from synth.cad.export import exploded_picture, section_picture
+    from synth.cad.verify import verify_model
+    m, key, _ = _model(result)
+    times = {}
+    t = time.perf_counter()
+    checks = _CHECKS.get(key)
+    if checks is None:
+        checks = _keep(_CHECKS, key, [{"id": c.id, "label": c.label, "verdict": c.verdict, "note": c.note}
+                                      for c in verify_model(m, interference=True)])
+    times["verification"] = time.perf_counter() - t
+    g = m.geometry
+    label = f"{g.name} | {g.layout} layout | {g.status}" + ("" if g.feasible else " (INFEASIBLE: nearest design)")
+    folder = Path(root) / "cad" / key / ("pictures-" + _hash(label))
+    t = time.perf_counter()
+    section, exploded = folder / "section.png", folder / "exploded.png"
+    if not (section.is_file() and exploded.is_file()):
+        folder.mkdir(parents=True, exist_ok=True)
+        exploded_picture(m, exploded, title="exploded view | " + label)
+        section_picture(m, section, title="section through the pivot axis | " + label)
+    times["pictures"] = time.perf_counter() - t
+    return {"key": key, "checks": checks, "section": str(section), "exploded": str(exploded), "timings_s": times}
+
+
+def step(result, root: str, application: str | None = None) -> dict:
+    """The STEP assembly of ``result``'s design (its header: the application, the design values, the status), once
+    per model and header: ``{"path", "timings_s"}``."""
+    from synth.cad.step import design_values, export_step
+    m, key, build_s = _model(result)
+    design = design_values(m, result)
+    g = m.geometry
+    folder = Path(root) / "cad" / key / ("step-" + _hash(application, sorted(design.items()), g.name, g.status,
+                                                          g.verdict, g.feasible))
+    path = folder / "tensioner.step"
+    t = time.perf_counter()
+    if not path.is_file():
+        folder.mkdir(parents=True, exist_ok=True)
+        export_step(m, path, application=application, design=design)
+    return {"path": str(path), "timings_s": {"build": build_s, "step": time.perf_counter() - t}}
+
+
+# --- the design lane -----------------------------------------------------------------------------------------------
+def graphs(result, key: str):
+    """``(graphs, skipped)`` of ``result`` (:func:`synth.report.plots.build_graphs`, the report's), drawn once per
+    ``key`` (the page's name for this result)."""
+    hit = _GRAPHS.get(key)
+    if hit is not None:
+        _GRAPHS.move_to_end(key)
+        return hit
+    import matplotlib
+    matplotlib.use("Agg")
+    from synth.report.plots import build_graphs
+    return _keep(_GRAPHS, key, build_graphs(result, show_progress=False))
+
+
+def report(result, key: str, folder: str, *, pdf: bool, source: str = "", pictures: tuple = (),
+           root: str | None = None) -> dict:
+    """The report of ``result`` into ``folder`` (``synth report``'s HTML and results workbook, with the graphs of
+    :func:`graphs` and the 3D model's ``pictures``), and with ``pdf`` its PDF (:func:`synth.ui.printer.print_pdf`):
+    ``{"html", "xlsx", "pdf", "pdf_note", "timings_s"}``."""
+    from synth.scenes.report import make_report
+    t0 = time.perf_counter()
+    drawn = graphs(result, key)
+    t1 = time.perf_counter()
+    out = make_report(result, folder, cad=[p for p in pictures if Path(p).is_file()], graphs=drawn, pdf=False,
+                      show_progress=False, cad_pictures=False, source_name=source or None)
+    t2 = time.perf_counter()
+    files = {"html": str(out["html"]), "xlsx": str(out["xlsx"]), "pdf": None, "pdf_note": "not asked for"}
+    if pdf:
+        from synth.ui.printer import print_pdf
+        path, _, note = print_pdf(out["html"], folder=root)
+        files["pdf"], files["pdf_note"] = (str(path) if path else None), note
+    files["timings_s"] = {"graphs": t1 - t0, "html_and_workbook": t2 - t1, "pdf": time.perf_counter() - t2}
+    return files
+
+
+def capability(result, target: float | None, ppm: float | None):
+    """``synth.capability`` of ``result``'s design for a Ppk ``target`` and a ``ppm`` limit: its ``robust`` record."""
+    import copy
+
+    import synth
+    r = copy.deepcopy(result)
+    r.robust = {}  # studied anew for this target
+    return synth.capability(r, target=target, ppm=ppm).robust
