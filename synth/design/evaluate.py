@@ -376,7 +376,8 @@ def core(apps, a, c: dict, settings: Settings = Settings(), detail: bool = False
     v.update({k: np.asarray(val, dtype=float) for k, val in split.items()})
     made = apps.derived.get("spring_torque_made_nm")  # a made spring's torque (synth.robust's samples): eq. (12)-(13)
     if made is not None:
-        t = damping.made_tensioner(made[a], v["axial_damping_nm"], np.minimum(rho, 0.999))
+        d_ax = np.where(np.asarray(c["axial_group_present"], dtype=bool), v["axial_damping_nm"], 0.0)  # the design's
+        t = damping.made_tensioner(made[a], d_ax, np.minimum(rho, 0.999))
         v.update(spring_torque_nominal_nm=np.asarray(made[a], dtype=float), damping_nm=t["damping_nm"],
                  radial_damping_nm=t["radial_damping_nm"],
                  hubload_nominal_n=damping.hubload_nominal_n(t["calculated_torque_nm"], wa, alpha))
