@@ -794,7 +794,8 @@ _BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_m
                 "sliding_safety_factor", "pivot_base_max_pressure_mpa", "bolt_rp02_mpa",
                 "min_head_contact_diameter_mm", "min_active_threads", "bolt_force_tilting_n", "bolt_force_sliding_n",
                 "bolt_head_contact_diameter_mm", "bolt_clamp_force_required_n", "bolt_permissible_preload_n",
-                "bolt_required_preload_max_n", "bolt_residual_clamp_force_n", "bolt_embedding_loss_n")
+                "bolt_required_preload_min_n", "bolt_required_preload_max_n", "bolt_residual_clamp_force_n",
+                "bolt_embedding_loss_n")
 
 
 def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:

@@ -83,7 +83,8 @@ class SearchReport:
         """Why no catalog design meets the target: the checks that rejected the cores, how often, their best
         index over every candidate and what drives their scatter."""
         if not self.rejected_by:
-            return "no feasible catalog design to check"
+            return ("no catalog design passes every check with the made joint (VDI 2230: the design's tightening "
+                    "method, its preload window): the capability has nothing to judge")
         parts = []
         for cid, k in sorted(self.rejected_by.items(), key=lambda kv: (-kv[1], self.best_ppk.get(kv[0], 0)))[:4]:
             drivers = ", ".join(f"{q} {s:.0%}" for q, s in self.contributors.get(cid, [])[:2])

@@ -72,9 +72,9 @@ QUANTITIES = {
 
 #: the unit each quantity's band is given in, and the largest band synth accepts (a larger one makes the quantity
 #: zero or negative, or its samples non-finite): unit -> (largest half-width, why)
-UNITS = {"mm": (10.0, "a half-width below 10 mm: a larger one exceeds the tensioner's dimensions"),
-         "MPa": (1000.0, "a half-width below 1000 MPa: a larger one exceeds the strength of the spring wire"),
-         "%": (100.0, "a half-width below 100 %: a larger one makes the quantity zero or negative")}
+UNITS = {"mm": (10.0, "a larger one exceeds the tensioner's dimensions"),
+         "MPa": (1000.0, "a larger one exceeds the strength of the spring wire"),
+         "%": (100.0, "a larger one makes the quantity zero or negative")}
 #: each quantity's unit (its band's): a row giving another unit is refused (a band of 0.05 in mm and in % differ)
 QUANTITY_UNITS = {q: "mm" for q in QUANTITIES}
 QUANTITY_UNITS.update({"spring_tensile_strength": "MPa", "spring_torque": "%", "pivot_bushing_friction": "%",
