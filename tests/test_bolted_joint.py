@@ -618,7 +618,7 @@ def test_resiliences_by_hand_and_limits():
 def test_vdi_path_case1_hand_calculation():
     """Case 1 as run, VDI path with embedding (l_K = the 40 mm pivot height): F_Kerf 16312 N (sliding), f_Z 10 um,
     delta_S 5.498e-6 + delta_P 2.039e-6 mm/N -> F_Z 1327 N; torque-controlled (alpha_A 1.6): F_M,min = F_Kerf + F_Z
-    = 17639 N, F_M,max = 28223 N. The thesis's M8x1.25 8.8 allows F_M,zul = 18131 N at mu_G 0.14: it fails; 12.9
+    = 17639 N, F_M,max = 28222 N. The thesis's M8x1.25 8.8 allows F_M,zul = 18131 N at mu_G 0.14: it fails; 12.9
     (31.2 kN) passes. The window's bottom less the embedding is F_Kerf: the targets hold at the smallest preload."""
     c = _case("case1_as_run")
     lk = c["inputs"]["max_pivot_height_mm"]

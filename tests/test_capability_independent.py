@@ -43,7 +43,9 @@ def answer():
 
 def test_the_default_case_names_the_seat_and_the_value_that_allows_a_capable_design(answer):
     d, r, why, relaxed, r2 = answer
-    assert not r.feasible and why["kind"] == "input"
+    # the answer as asked (the thesis's nominal joint) with its production capability, which misses the target
+    assert r.feasible and r.robust["meets"] is False and "under_head" in r.robust["failing"]
+    assert why["kind"] == "input"
     assert why["name"] == "bolt_head_contact_external_diameter_mm" and why["value"] == 11.0
     # F_M,max = 1.6 x 13875 N on a 400 MPa support needs a bearing of sqrt(4 x 22200/(pi 400) + 8.2^2) = 11.74 mm
     assert 11.74 <= why["allows"] <= 12.5

@@ -175,7 +175,7 @@ def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs
     if obj.weights and "margin" in obj.weights or obj.order[0] == "margin":
         raise InputError(Problem("objective", objective, "an objective led by standard or cost with --capability/"
                                                          "--ppm (the margin is its last tie-break)"))
-    settings = production(settings)
+    asked, settings = settings, production(settings)
     ev = evaluate(d, settings, pin_inputs=pin_inputs)
     rep = SearchReport()
     w = obj.additive_weights() or {"cost": 1.0}
@@ -183,12 +183,17 @@ def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs
     stats = {"time_s": time.perf_counter() - t0, "robust_candidates": rep.candidates,
              "robust_cores_checked": rep.cores_checked, "robust_cores_rejected": rep.cores_rejected,
              "robust_samples": rs.samples, "robust_proof": rep.proof}
-    if pos is None:
-        r = enumerate_solve(d, Objective(order=tuple(obj.order) + (("margin",) if "margin" not in obj.order else ())),
-                            settings=settings, pin_inputs=pin_inputs)
+    if pos is None:  # the nominal answer as asked, its production capability, and what prevents the target
+        full = Objective(order=tuple(obj.order) + (("margin",) if "margin" not in obj.order else ()))
+        r = enumerate_solve(d, full, settings=asked, pin_inputs=pin_inputs)
         r.notes.append(rep.why_none(rs))
         r.stats.update(stats)
-        found = prevented_by(d, r, w, settings, rs, rep, pin_inputs=pin_inputs) if explain else None
+        found = None
+        if explain:
+            made = r if asked == settings else None
+            if rep.cores_checked == 0:  # no design passes with the made joint: its diagnosis names the input
+                made = made or enumerate_solve(d, full, settings=settings, pin_inputs=pin_inputs)
+            found = prevented_by(d, made or r, w, settings, rs, rep, pin_inputs=pin_inputs)
         if found:
             r.notes.append(found["text"])
             r.stats["robust_explain_time_s"] = found.pop("time_s")
