@@ -195,27 +195,19 @@ def _independent(d, parts, n=N, seed=20250101):
     out["spring_coil_gap"] = (sp["coil_gap_worst_mm"] - _constant("main_spring_min_coil_gap_mm")) / bb
     # --- the joint (step 10): the made preload in its tightening window, the safety factors on the specified hubload
     hl_spec = float(bolted_joint.nominal_hubload_n(t_c, arm, alpha))
-    window = bolted_joint.fixation(hl_spec, d.middle_plane_belt_height_mm, d.middle_plane_belt_height_increment_worst_mm,
-                                   d.tilting_safety_factor, d.sliding_safety_factor,
-                                   d.engine_support_internal_diameter_mm, d.engine_support_external_diameter_mm,
-                                   d.contact_angle_deg, d.support_yield_strength_compression_mpa,
-                                   d.support_yield_strength_traction_mpa, method="vdi2230",
-                                   number_of_active_threads=d.number_of_active_threads,
-                                   bolt_head_contact_external_diameter_mm=d.bolt_head_contact_external_diameter_mm,
-                                   head_type=parts["bolt_head_type"], washer=parts["bolt_washer"],
-                                   bolt_format=parts["bolt_format"], bolt_property_class=parts["bolt_property_class"],
-                                   tightening_method=parts["bolt_tightening"])
+
+    def joint(belt_offset_mm, **made):
+        return bolted_joint.fixation(
+            hl_spec, d.middle_plane_belt_height_mm, belt_offset_mm, d.tilting_safety_factor,
+            d.sliding_safety_factor, d.engine_support_internal_diameter_mm, d.engine_support_external_diameter_mm,
+            d.contact_angle_deg, d.support_yield_strength_compression_mpa, d.support_yield_strength_traction_mpa,
+            method="vdi2230", number_of_active_threads=d.number_of_active_threads,
+            bolt_head_contact_external_diameter_mm=d.bolt_head_contact_external_diameter_mm,
+            head_type=parts["bolt_head_type"], washer=parts["bolt_washer"], bolt_format=parts["bolt_format"],
+            bolt_property_class=parts["bolt_property_class"], tightening_method=parts["bolt_tightening"], **made)
+    window = joint(d.middle_plane_belt_height_increment_worst_mm)
     f_made = float(window["bolt_axial_force_n"]) * (1.0 + g("bolt_preload", zero) / 100.0)
-    j = bolted_joint.fixation(hl_spec, d.middle_plane_belt_height_mm, g("belt_offset", zero),
-                              d.tilting_safety_factor, d.sliding_safety_factor,
-                              d.engine_support_internal_diameter_mm, d.engine_support_external_diameter_mm,
-                              d.contact_angle_deg, d.support_yield_strength_compression_mpa,
-                              d.support_yield_strength_traction_mpa, method="vdi2230",
-                              number_of_active_threads=d.number_of_active_threads,
-                              bolt_head_contact_external_diameter_mm=d.bolt_head_contact_external_diameter_mm,
-                              head_type=parts["bolt_head_type"], washer=parts["bolt_washer"],
-                              bolt_format=parts["bolt_format"], bolt_property_class=parts["bolt_property_class"],
-                              tightening_method=parts["bolt_tightening"], clamp_force_n=f_made)
+    j = joint(g("belt_offset", zero), clamp_force_n=f_made)
     out["tilting"] = (j["tilting_safety_factor"] - d.tilting_safety_factor) / d.tilting_safety_factor
     out["sliding"] = (j["sliding_safety_factor"] - d.sliding_safety_factor) / d.sliding_safety_factor
     s_c, s_t = d.support_yield_strength_compression_mpa, d.support_yield_strength_traction_mpa

@@ -640,11 +640,11 @@ def round_two():
     case("report_result_without_inputs", ["report", f, "--out", "{tmp}/rep", "--no-pdf"], 2,
          ["inputs (r_no_inputs.json)", "missing"])
     # one option, one meaning: --pin-inputs, --objective
-    f = default_case("d_pin_pivot_20.yaml", {"pivot_class_diameter_mm": 20})
+    f = default_case("d_pin_pivot_26.yaml", {"pivot_class_diameter_mm": 26})
     for solver in ("enumerate", "minlp", "milp-highs", "milp-cvxpy"):
         case(f"pin_inputs_{solver}", ["design", f, "--solver", solver, "--pin-inputs"], 1,
              stdout=["Verdict: FAIL"],
-             note="pivot class 20 kept: infeasible, exit 1 (the MILP/MINLP solvers returned pivot 14, 'pass', exit 0)")
+             note="pivot class 26 kept: infeasible (its arm wall), exit 1 (the MILP/MINLP solvers once returned another class, 'pass', exit 0)")
     for weight in ("nan", "1e400", "-1"):
         case(f"objective_cost_{weight}", ["design", case3, "--objective", f"cost={weight}"], 2,
              ["--objective", "finite, non-negative"])
