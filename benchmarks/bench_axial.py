@@ -4,7 +4,7 @@ the reference and on the twin in one process, and the bulk engine of this tree a
     .venv/bin/python benchmarks/bench_axial.py [--rows 20000] [--n 2000] [--runs 3] [--base /path/to/checkout]
 
 Table 1: :func:`synth.design.evaluate.axial` on ``--rows`` (core, real axial option) rows of generated applications
-at each fidelity, on the numpy reference and inside ``synth.kernels.axial.engine("numba")`` (warm; median of
+at each fidelity, on the numpy reference and on the compiled twins (``engine="numba"``; warm; median of
 ``--runs``), with the largest difference of a margin. Table 2 (with ``--base``): ``screen_applications`` on ``--n``
 generated applications, each run a fresh process of this tree and of the base checkout in turn (A B A B ...; the
 ratio is taken pair by pair), with whether the two results are equal (every column; floats to 1e-9).
@@ -71,7 +71,6 @@ def _median_time(fn, runs: int):
 
 def group_table(n_rows: int, runs: int, seed: int) -> None:
     from synth.design import evaluate as E
-    from synth.kernels import axial as physics
     print(f"## The axial group on {n_rows} rows (warm, median of {runs})\n")
     print("| fidelity | numpy reference s | numba twin s | ratio | us/row (twin) | largest margin difference | "
           "verdicts equal |")
@@ -79,11 +78,9 @@ def group_table(n_rows: int, runs: int, seed: int) -> None:
     for fid in ("screening", "full"):
         apps, cg, rr, o, st = _rows(n_rows, seed, fid)
         with np.errstate(all="ignore"):
-            with physics.engine("numba"):
-                E.axial(apps, cg, rr[:50], {k: np.asarray(v)[:50] for k, v in o.items()}, st)  # load the kernels
+            E.axial(apps, cg, rr[:50], {k: np.asarray(v)[:50] for k, v in o.items()}, st, engine="numba")  # load
             ref, t_ref = _median_time(lambda: E.axial(apps, cg, rr, o, st), runs)
-            with physics.engine("numba"):
-                twin, t_twin = _median_time(lambda: E.axial(apps, cg, rr, o, st), runs)
+            twin, t_twin = _median_time(lambda: E.axial(apps, cg, rr, o, st, engine="numba"), runs)
         diff = 0.0
         for k, m in ref.margins.items():
             m, t = np.asarray(m, dtype=float), np.asarray(twin.margins[k], dtype=float)

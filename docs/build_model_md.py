@@ -12,7 +12,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 ORDER = ["00_overview", "architecture", "data_sources", "flowchart_rules", "step00_03", "plain_bushing",
          "friction_wear", "stackup", "packaging", "disc_spring", "torsion_spring", "bolted_joint", "cad",
-         "optimisation", "fidelity", "robust", "control", "bulk_engine", "kernels", "kernels_axial", "bulk", "reports", "ui",
+         "optimisation", "fidelity", "robust", "control", "bulk_engine", "kernels", "kernels_axial", "performance", "bulk", "reports", "ui",
          "shrink_fit", "drive", "validation"]
 
 

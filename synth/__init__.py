@@ -14,9 +14,12 @@ The Python API (``docs/sections/api.md``); every function imports what it needs 
 
 Each returns a :class:`~synth.design.result.Result` (``.verdict``, ``.parts``, ``.values``,
 ``.checks``, ``.to_frame()``; a notebook shows its digest) except :func:`screen` (a DataFrame) and
-:func:`write_report` (the paths written). Model settings are keywords (``fidelity="screening"``,
-``friction_circle=False``, ``bushing_running_in=True``, ``bolt_method="vdi2230"``, ...: the fields of
-:class:`~synth.design.evaluate.Settings`).
+:func:`write_report` (the paths written). The configuration is per call: model settings are keywords
+(``fidelity="screening"``, ``friction_circle=False``, ``bushing_running_in=True``, ``bolt_method="vdi2230"``,
+``spring_limit_basis="en13906"``, ``catalogs=[folder]``, ``engine="numpy"``, ...: the fields of
+:class:`~synth.design.settings.Settings`), design rules the ``rules=`` keyword (else the input file's ``rules:``
+section); each call resolves them into one :class:`~synth.design.settings.Settings` and passes it down, so calls
+in several threads (a web server, a notebook) never see each other's rules or catalogs.
 
 The physics lives in :mod:`synth.model`, standard parts in the ``catalogs/`` CSV files, the input
 schema in :mod:`synth.schema`, the registry, evaluator and result in :mod:`synth.design`, the
@@ -43,7 +46,7 @@ __all__ = ["load", "synthesise", "run_flowchart", "verify", "screen", "write_rep
            "Result", "DesignInput", "Settings", "InputError", "__version__"]
 
 _LAZY = {"Result": ("synth.design.result", "Result"), "DesignInput": ("synth.schema", "DesignInput"),
-         "Settings": ("synth.design.evaluate", "Settings"), "InputError": ("synth.errors", "InputError")}
+         "Settings": ("synth.design.settings", "Settings"), "InputError": ("synth.errors", "InputError")}
 
 
 def __getattr__(name: str) -> Any:
@@ -65,10 +68,11 @@ _display.HTML_VIEWS["Result"] = _result_digest
 
 
 def settings(**kw) -> "Settings":
-    """The model :class:`~synth.design.evaluate.Settings` of keywords; an unknown one names the accepted ones."""
-    from synth.design.evaluate import Settings
+    """The configuration (:class:`~synth.design.settings.Settings`) of keywords: the model settings, ``rules``,
+    ``spring_limit_basis``, ``catalogs``, ``engine``; an unknown one names the accepted ones."""
+    from synth.design.settings import Settings
     from synth.errors import InputError, Problem
-    known = list(Settings.__dataclass_fields__)
+    known = [*Settings.__dataclass_fields__, "spring_limit_basis"]
     bad = [Problem(f"setting {k}", v, "one of " + ", ".join(known)) for k, v in kw.items() if k not in known]
     if bad:
         raise InputError(bad)
@@ -99,19 +103,20 @@ def _input(d) -> "DesignInput":
     return load(d)
 
 
-def _rules(rules, d):
-    """The design rules of an API call: ``rules`` (a mapping, a :class:`~synth.design.rules.Rules` or a rules
-    file), else those of the input file ``d`` (its ``rules:`` section), else the rules in force."""
+def _configure(d, rules, settings_kw: dict) -> "Settings":
+    """The configuration of an API call, resolved once: its settings keywords and design rules (``rules``: a
+    mapping, a :class:`~synth.design.rules.Rules` or a rules file; else the input file ``d``'s ``rules:`` section;
+    else none). ``spring_limit_basis`` given as a keyword sets the rules' basis."""
     from pathlib import Path
 
-    from synth.design.rules import Rules, active, read_rules
+    from synth.design.rules import NONE, Rules, read_rules
     if rules is not None:
-        return read_rules(rules) if isinstance(rules, (str, Path)) else Rules.from_mapping(rules)
-    if isinstance(d, (str, Path)) and str(d).lower().endswith((".yaml", ".yml", ".toml", ".json")):
+        found = read_rules(rules) if isinstance(rules, (str, Path)) else Rules.from_mapping(rules)
+    elif isinstance(d, (str, Path)) and str(d).lower().endswith((".yaml", ".yml", ".toml", ".json")):
         found = read_rules(d, "input file", section_only=True)
-        if not found.empty():
-            return found
-    return active()
+    else:
+        found = NONE
+    return settings(rules=found, **settings_kw)
 
 
 def run_flowchart(d: "DesignInput | str | Path | dict", parts: dict | None = None, *, rules=None,
@@ -122,10 +127,10 @@ def run_flowchart(d: "DesignInput | str | Path | dict", parts: dict | None = Non
     The result keeps 60 points of the wear histories for the report's graphs. ``rules``: design rules (a mapping,
     :class:`~synth.design.rules.Rules` or a rules file; default: the input file's ``rules:`` section).
     """
-    from synth import flowchart
-    from synth.design.rules import using
-    with using(_rules(rules, d)):
-        return flowchart.run(_input(d), settings(**settings_kw), parts=parts, time_points=60)
+    from synth import catalog, flowchart
+    s = _configure(d, rules, settings_kw)
+    with catalog.using(s.catalogs):
+        return flowchart.run(_input(d), s, parts=parts, time_points=60)
 
 
 def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard", solver: str = "enumerate", *,
@@ -146,36 +151,40 @@ def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard"
     ``top`` K > 1: ``Result.alternatives``, the K best designs in objective order (rank, parts, objectives,
     smallest margin and what binds it, what differs from the optimum). ``rules``: design rules (required safety
     factors and limits, minimum margins; a mapping, :class:`~synth.design.rules.Rules` or a rules file; default:
-    the input file's ``rules:`` section), echoed in ``Result.rules``.
+    the input file's ``rules:`` section), echoed in ``Result.rules``; the other keywords are the configuration's
+    (:class:`~synth.design.settings.Settings`: ``fidelity``, ``spring_limit_basis``, ``catalogs``, ...).
     """
+    from synth import catalog
     from synth.optimise.honour import solve_honouring
-    kw: dict = {"settings": settings(**settings_kw), "pin_inputs": pin_inputs, "fix": fix, "free": free,
-                "top": top}
+    s = _configure(d, rules, settings_kw)
+    kw: dict = {"settings": s, "pin_inputs": pin_inputs, "fix": fix, "free": free, "top": top}
     if solver == "blackbox":
         kw["n_trials"] = n_trials
     if time_limit_s is not None:
         kw["time_limit_s"] = time_limit_s
-    from synth.design.rules import using
-    with using(_rules(rules, d)):
+    with catalog.using(s.catalogs):
         return solve_honouring(_input(d), objective, solver, **kw)
 
 
 def capability(source: "Result | DesignInput | str | Path | dict", *, target: float | None = 1.33,
                ppm: float | None = None, samples: int | None = None, seed: int | None = None,
-               assumptions: bool = True, **settings_kw) -> "Result":
+               assumptions: bool = True, rules=None, **settings_kw) -> "Result":
     """The production capability of a design (``synth robust``): ``source`` a :class:`Result` (its design), or an
     input (the design :func:`synthesise` returns for it). Returns the result with ``.robust`` set: the tolerance
     model, per check the probability of violation with its 95 % interval, Ppk, worst case, RSS and contributors,
     whether every counted check meets ``target`` (Ppk) and ``ppm``, and with ``assumptions`` the verdicts that
-    flip inside the illustrative limits' ranges (``synth.robust``)."""
+    flip inside the illustrative limits' ranges (``synth.robust``). A :class:`Result` is judged under its own
+    configuration (its settings and rules); an input under ``rules`` and the settings keywords."""
+    from synth import catalog
     from synth.design.result import Result
     from synth.robust.settings import RobustSettings
     from synth.scenes.report import add_capability
     kw = {k: v for k, v in (("samples", samples), ("seed", seed)) if v is not None}
     rs = RobustSettings(capability=target, ppm=ppm, **kw)
-    r = source if isinstance(source, Result) else synthesise(source, **settings_kw)
+    r = source if isinstance(source, Result) else synthesise(source, rules=rules, **settings_kw)
     if r.parts:
-        add_capability(r, rs)
+        with catalog.using(settings_kw.get("catalogs")):
+            add_capability(r, rs)
         if not assumptions:
             r.robust.pop("assumptions", None)
     return r
@@ -184,35 +193,39 @@ def capability(source: "Result | DesignInput | str | Path | dict", *, target: fl
 def verify(d: "DesignInput | str | Path | dict", parts: dict, *, rules=None, **settings_kw) -> "Result":
     """Design ``parts`` (every part key: ``synth.design.space.PART_KEYS``, as any result's ``.parts``) checked
     for input ``d`` through every step, with the wear histories for the graphs (60 points)."""
+    from synth import catalog
     from synth.design.space import PART_DEFAULTS, PART_KEYS
     from synth.design.verify import verify as _verify
     from synth.errors import InputError, Problem
-    model = settings(**settings_kw)
+    s = _configure(d, rules, settings_kw)
     missing = [k for k in PART_KEYS if k not in (parts or {}) and k not in PART_DEFAULTS]
     if missing:
         raise InputError(Problem("parts", ", ".join(missing) + " missing", "a dict with every part key: "
                                  + ", ".join(PART_KEYS)))
-    from synth.design.rules import using
-    with using(_rules(rules, d)):
-        return _verify(_input(d), dict(parts), model, time_points=60)
+    with catalog.using(s.catalogs):
+        return _verify(_input(d), dict(parts), s, time_points=60)
 
 
 def screen(applications, *, objective: str = "standard", fidelity: str = "screening", diagnose: bool = True,
-           chunk_size: int | None = None, progress: bool = True) -> "pd.DataFrame":
+           chunk_size: int | None = None, progress: bool = True, rules=None, **settings_kw) -> "pd.DataFrame":
     """Every application of a portfolio, one row each (``synth bulk`` in memory, nothing written).
 
     ``applications``: a portfolio file (CSV, Excel, .ods, Parquet), a DataFrame whose columns are input
     fields, or a list of design inputs (:class:`~synth.schema.DesignInput`, mappings or files). Returns the
     input columns followed by the result columns of :func:`synth.bulk.engine.columns` and ``error`` (a
     row that does not validate gets its problems there; the others run). A progress bar follows the
-    chunks (a ``tqdm`` bar in Jupyter).
+    chunks (a ``tqdm`` bar in Jupyter). ``rules`` (design rules: a mapping, :class:`~synth.design.rules.Rules` or a
+    rules file) and the settings keywords configure every row, as :func:`synthesise`'s.
     """
     import pandas as pd
+
+    from synth import catalog
 
     from synth.bulk.portfolio import read_portfolio, records
     from synth.bulk.run import compute_chunk, default_chunk_size, result_columns
     from synth.errors import InputError, Problem
     from synth.report.progress import Progress
+    s = _configure(None, rules, {**settings_kw, "fidelity": fidelity})
     size = default_chunk_size() if chunk_size is None else chunk_size
     if not isinstance(size, int) or isinstance(size, bool) or size < 1:
         raise InputError(Problem("chunk_size", chunk_size, "an integer >= 1"))
@@ -230,7 +243,8 @@ def screen(applications, *, objective: str = "standard", fidelity: str = "screen
     bar = Progress(total=len(recs), desc="synth screen") if progress else None
     try:
         for a in range(0, len(recs), size):
-            chunks.append(compute_chunk(recs[a:a + size], objective=objective, fidelity=fidelity, diagnose=diagnose))
+            with catalog.using(s.catalogs):
+                chunks.append(compute_chunk(recs[a:a + size], objective=objective, diagnose=diagnose, settings=s))
             if bar is not None:
                 bar.update(len(chunks[-1]))
     finally:

@@ -5,12 +5,14 @@ Every catalog is one CSV file in ``catalogs/`` (shipped inside the wheel as
 ``6006`` or ``M8x1.25``), units are in the column names (``d_mm``,
 ``C_n``), and every row has a ``source`` column.
 
-A user's own folder overrides the built-in data: set it with
-:func:`set_user_dirs` or the ``SYNTH_CATALOGS`` environment variable
-(``os.pathsep``-separated). A user CSV with the same file name is merged on
+A user's own folder overrides the built-in data: set it for the process with
+:func:`set_user_dirs` (``synth --catalogs``) or the ``SYNTH_CATALOGS`` environment variable
+(``os.pathsep``-separated), or for one block of work with :func:`using` (this thread or task only: a run's
+configuration, :attr:`synth.design.settings.Settings.catalogs`, applied where the run starts or a worker takes its
+chunk). A user CSV with the same file name is merged on
 the key column: its rows replace built-in rows with the same key and new keys
 are appended, so a user can add a part or change one cost without copying the
-whole table.
+whole table. Every cache is keyed by the folders in use (:func:`user_dirs`), never by a process-wide flag.
 
 Named constants (friction coefficients, wear constants, tolerances...) live in
 ``catalogs/constants.csv`` with value, unit and source; read them with
@@ -24,6 +26,7 @@ Named constants (friction coefficients, wear constants, tolerances...) live in
 from __future__ import annotations
 
 import contextlib
+import contextvars
 import functools
 import os
 from pathlib import Path
@@ -36,9 +39,13 @@ from synth.fingerprint import cached, catalogs_sha256, source_stamp
 if TYPE_CHECKING:  # annotations only: pandas is imported where a table is read (start-up: about 60 ms)
     import pandas as pd
 
-__all__ = ["builtin_dir", "set_user_dirs", "overriding", "names", "load", "row", "keys", "constant", "constant_row"]
+__all__ = ["builtin_dir", "set_user_dirs", "user_dirs", "using", "overriding", "names", "load", "row", "keys",
+           "constant", "constant_row"]
 
 _USER_DIRS: list[Path] = []
+#: the user folders of the block of work in this thread or task (:func:`using`), None: the process's
+_SCOPED: contextvars.ContextVar = contextvars.ContextVar("synth_user_catalogs", default=None)
+_CHECKED: set = set()  # the folder lists checked through the input gate (once each)
 
 
 def builtin_dir() -> Path:
@@ -74,23 +81,64 @@ def set_user_dirs(*dirs: str | os.PathLike) -> None:
     load.cache_clear()
 
 
+def _check_dirs(dirs, option: str = "--catalogs") -> None:
+    problems = []
+    for d in dirs:
+        try:
+            check_user_dir(d, names(), lambda n: _load_cached(n, ()), option=option)
+        except InputError as exc:
+            problems.extend(exc.problems)
+    if problems:
+        raise InputError(problems)
+
+
 @contextlib.contextmanager
-def overriding(folder):
-    """Use ``folder`` as the first user catalog folder for the duration of the block (synth's own generated
-    CSVs, e.g. an assumption at the end of its range, :mod:`synth.robust.assumptions`: not checked again, and no
-    cache cleared: every cache is keyed by the folders, so the tables without a file in ``folder`` stay parsed)."""
-    before = list(_USER_DIRS)
-    _USER_DIRS[:] = [Path(folder), *before]
+def using(dirs):
+    """Read the catalogs with the user folders ``dirs`` (first wins; None: the process's, :func:`user_dirs`) for
+    the block, in this thread or task only: the user catalogs of a run's configuration
+    (:attr:`synth.design.settings.Settings.catalogs`) where it starts or a worker takes its chunk. Each list of
+    folders is checked through the input gate once, as :func:`set_user_dirs` checks them; no cache is cleared
+    (every cache is keyed by the folders)."""
+    if dirs is None:
+        yield
+        return
+    dirs = tuple(Path(d) for d in dirs)
+    if dirs and dirs not in _CHECKED and dirs != tuple(_user_dirs()):
+        _check_dirs(dirs)
+        _CHECKED.add(dirs)
+    token = _SCOPED.set(dirs)
     try:
         yield
     finally:
-        _USER_DIRS[:] = before
+        _SCOPED.reset(token)
+
+
+@contextlib.contextmanager
+def overriding(folder):
+    """Use ``folder`` as the first user catalog folder for the duration of the block, in this thread or task only
+    (synth's own generated CSVs, e.g. an assumption at the end of its range, :mod:`synth.robust.assumptions`: not
+    checked again, and no cache cleared: every cache is keyed by the folders, so the tables without a file in
+    ``folder`` stay parsed)."""
+    token = _SCOPED.set((Path(folder), *_user_dirs()))
+    try:
+        yield
+    finally:
+        _SCOPED.reset(token)
 
 
 _ENV_CHECKED: dict[str, list[Path]] = {}
 
 
+def user_dirs() -> list[Path]:
+    """The user catalog folders in use here (first wins): the block's (:func:`using`), else the process's
+    (:func:`set_user_dirs`, then ``SYNTH_CATALOGS``)."""
+    return list(_user_dirs())
+
+
 def _user_dirs() -> list[Path]:
+    scoped = _SCOPED.get()
+    if scoped is not None:
+        return list(scoped)
     env = os.environ.get("SYNTH_CATALOGS", "")
     dirs = _ENV_CHECKED.get(env)
     if dirs is None:  # checked once per value of the variable, like --catalogs (see set_user_dirs)

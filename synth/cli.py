@@ -112,12 +112,15 @@ def _top_parser() -> argparse.ArgumentParser:
     commands = "\n".join(f"  {name:<{width}}{s.help}" for name, s in SCENES.items())
     codes = "\n".join(f"  {code:<4}{text}" for code, text in EXIT_CODES.items())
     p = argparse.ArgumentParser(
-        prog="synth", usage="synth [--catalogs DIR] [--version] COMMAND [ARGS ...]", allow_abbrev=False,
+        prog="synth", usage="synth [--catalogs DIR] [--threads N] [--version] COMMAND [ARGS ...]", allow_abbrev=False,
         description="Timing-belt tensioner design synthesiser.",
         epilog=f"commands (synth COMMAND --help for the options of one):\n{commands}\n\nexit codes:\n{codes}",
         formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--catalogs", metavar="DIR", action="append", default=[],
                    help="a folder of user catalogs overriding the built-in CSVs (repeatable)")
+    p.add_argument("--threads", metavar="N", default=None,
+                   help="threads synth may use for big batches (default: SYNTH_THREADS, else the processors this "
+                        "process may use: affinity and CPU quota; never more); small dense algebra uses 1")
     p.add_argument("--version", action=_VersionAction)
     return p
 
@@ -162,13 +165,36 @@ def _split(argv: list[str]) -> tuple[list[str], str | None, list[str]]:
     i = 0
     while i < len(argv):
         a = argv[i]
-        if a == "--catalogs":
+        if a in ("--catalogs", "--threads"):
             i += 2
         elif a.startswith("-"):
             i += 1
         else:
             return argv[:i], a, argv[i + 1:]
     return argv, None, []
+
+
+def _refuse_empty_values(parser: argparse.ArgumentParser, args) -> None:
+    """An option or argument given an empty or blank value (``--fix ''``, ``--rules ''``, ``--cad ''``, ``synth
+    design ''``) is refused naming it: argparse takes it, and a scene would read it as "not given" and silently do
+    less. An option whose default is the empty text (``--author ''``) may be given it."""
+    from synth.errors import InputError, Problem
+    problems = []
+    for action in parser._actions:
+        if action.dest in ("help", "version"):
+            continue
+        value = getattr(args, action.dest, None)
+        if value == action.default:
+            continue
+        values = value if isinstance(value, list) else [value]
+        if any(isinstance(v, str) and not v.strip() for v in values):
+            name = max(action.option_strings, key=len) if action.option_strings else (action.metavar or action.dest)
+            hint = ("" if not action.option_strings else "; leave the option out for its default" if action.metavar
+                    is None else f"; leave the option out for its default, or give {action.metavar}")
+            problems.append(Problem(name, value if not isinstance(value, list) else " ".join(map(str, value)),
+                                    f"a non-empty value{hint}"))
+    if problems:
+        raise InputError(problems)
 
 
 def _print_input_error(exc) -> None:
@@ -219,14 +245,19 @@ def _main(argv: list[str] | None) -> int:
         return 2
     from synth.errors import InputError, Terminated
     from synth.io.outputs import FS_ERRNOS, os_problem
+    from synth import threads
+    pools = contextlib.ExitStack()
     try:
-        args = scene_parser(name).parse_args(rest)
+        pools.enter_context(threads.scene(top_args.threads))  # the scene's thread pools, before its imports load BLAS
+        parser = scene_parser(name)
+        args = parser.parse_args(rest)
+        _refuse_empty_values(parser, args)
         if top_args.catalogs:
             from synth import catalog
             catalog.set_user_dirs(*top_args.catalogs)
-        from synth.design import rules
-        with rules.using(rules.of_args(args)):  # --rules, or the input's rules: section, for the whole scene
-            return int(args.func(args) or 0)
+        code = int(args.func(args) or 0)  # the scene resolves its configuration (synth.scenes._options)
+        sys.stdout.flush()  # a failed write of the output (a full disk) is reported here, not at exit unnoticed
+        return code
     except BrokenPipeError:  # output piped into head & co.
         sys.stderr.close()
         return 0
@@ -240,10 +271,31 @@ def _main(argv: list[str] | None) -> int:
     except OSError as exc:
         if exc.errno not in FS_ERRNOS:
             return _internal(name, exc)
-        _print_input_error(InputError(os_problem(exc, "path" if exc.filename else f"synth {name}", verb="use")))
+        if exc.filename:
+            problem = os_problem(exc, "path", verb="use")
+        else:  # no file named: the write that failed is the standard output's (synth design --json > /dev/full)
+            problem = _stdout_problem(exc, name, rest)
+        _print_input_error(InputError(problem))
         return 2
     except Exception as exc:  # the one place where any error becomes a line, not a traceback
         return _internal(name, exc)
+    finally:
+        pools.close()
+
+
+def _stdout_problem(exc: OSError, name: str, rest: list):
+    """A failed write of the standard output as a Problem: which output (``--json``'s or the report's), where it
+    goes (the file or device it is redirected to) and why; the output is then incomplete."""
+    from synth.errors import Problem
+    from synth.io.outputs import FS_ERRNOS
+    try:
+        target = os.readlink("/proc/self/fd/1")  # Linux: the file or device the output is redirected to
+    except (OSError, ValueError):
+        target = "standard output"
+    what = f"synth {name}{' --json' if '--json' in rest else ''}: standard output"
+    return Problem(what, target, f"an output synth can write ({FS_ERRNOS.get(exc.errno, exc.strerror)}); the "
+                                 f"{'JSON' if '--json' in rest else 'report'} written there is incomplete: redirect "
+                                 "it to a file on a device with space")
 
 
 def _internal(name: str, exc: Exception) -> int:

@@ -20,7 +20,8 @@ from pathlib import Path
 
 from synth.version import __version__
 
-__all__ = ["builtin_catalog_dir", "catalogs_sha256", "file_sha256", "source_stamp", "cached", "version_text"]
+__all__ = ["builtin_catalog_dir", "catalogs_sha256", "file_sha256", "source_stamp", "cache_dir", "cached",
+           "version_text"]
 
 #: cached versions kept per name (several catalog settings in use side by side)
 _KEEP = 8
@@ -66,7 +67,9 @@ def file_sha256(path) -> str:
     return h.hexdigest()
 
 
-def _cache_dir() -> Path | None:
+def cache_dir() -> Path | None:
+    """synth's cache folder: ``SYNTH_CACHE_DIR``, else ``$XDG_CACHE_HOME/synth``, else ``~/.cache/synth``; None when
+    ``SYNTH_CACHE_DIR=off`` (also ``0``, ``none``, empty)."""
     env = os.environ.get("SYNTH_CACHE_DIR")
     if env is not None:
         return None if env.strip().lower() in ("", "off", "0", "none") else Path(env)
@@ -83,7 +86,7 @@ def cached(name: str, key_parts: list, build):
     for k in key_parts:
         h.update(Path(k).read_bytes() if isinstance(k, Path) else str(k).encode())
         h.update(b"\0")
-    folder = _cache_dir()
+    folder = cache_dir()
     path = folder / f"{name}-{h.hexdigest()[:20]}.pickle" if folder else None
     if path is not None and path.is_file():
         try:

@@ -32,6 +32,7 @@ from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import TENSIONER_GROUPS
 from synth.design.rules import echo
+from synth.design.settings import DEFAULT
 from synth.schema import plausibility
 from synth.design.result import NOT_VERIFIED, Check, Result, checks_of, plain
 from synth.design.space import (PART_DEFAULTS, PART_KEYS, axial_attributes, bolt_attributes, bushing_attributes,
@@ -225,7 +226,7 @@ class _Walk:
         if ok.any():
             # step 9: "Round wire is preferred due to the lower cost ... if it is not sufficient, the rectangular
             # wire is implemented": a feasible round-wire spring whenever one exists; within the section the text
-            # gives no order, the cheapest (catalog costs, illustrative) is taken
+            # gives no order, the cheapest (synth.cost prices at the default volume) is taken
             section = rnd if (ok & rnd).any() else ~rnd
             pool = ok & section
             order = np.lexsort((-g.values["main_spring_safety_factor"], cost, ~pool))
@@ -286,7 +287,7 @@ def _wire_code(p, section: str, size_mm) -> int:
 def _stopped(walk: _Walk, stop: _Stop) -> Result:
     """The result of a run the procedure could not complete: the checks of what ran, the rest not verified."""
     apps, d = walk.apps, walk.d
-    groups = {"input": evaluate.inputs(apps, _ONE), **stop.groups}
+    groups = {"input": evaluate.inputs(apps, _ONE, walk.s), **stop.groups}
     checks = checks_of(groups, apps)
     done = {c.id for c in checks}
     for cid, c in REGISTRY.items():
@@ -298,12 +299,7 @@ def _stopped(walk: _Walk, stop: _Stop) -> Result:
               if np.ndim(v) and np.asarray(v).dtype.kind == "f"}
     return Result(status="baseline", solver="flowchart", values=values, checks=checks,
                   notes=plausibility(d) + walk.notes + [stop.why] + walk.s.notes(), inputs=inputs_of(d),
-                  settings=_settings_dict(walk.s), steps_run=sorted(set(walk.steps)), rules=echo())
-
-
-def _settings_dict(s: Settings) -> dict:
-    import dataclasses
-    return dataclasses.asdict(s)
+                  settings=walk.s.as_dict(), steps_run=sorted(set(walk.steps)), rules=echo(walk.s.rules))
 
 
 def run(design_input, settings: Settings | None = None, parts: dict | None = None, *, time_points: int = 60) -> Result:
@@ -314,7 +310,7 @@ def run(design_input, settings: Settings | None = None, parts: dict | None = Non
     evaluator, with nothing selected. ``time_points`` keeps that many points of
     the plastic-wear history for the report's graphs.
     """
-    s = settings or Settings()
+    s = settings or DEFAULT
     if parts:
         missing = [k for k in PART_KEYS if k not in parts and k not in PART_DEFAULTS]
         if missing:
@@ -341,7 +337,7 @@ def run(design_input, settings: Settings | None = None, parts: dict | None = Non
                  parts=parts_of_attributes(attrs, groups),
                  values=values, checks=checks_of(groups, walk.apps),
                  notes=plausibility(design_input) + walk.notes + s.notes(), inputs=inputs_of(design_input),
-                 settings=_settings_dict(s), steps_run=sorted(set(walk.steps)), rules=echo())
+                 settings=s.as_dict(), steps_run=sorted(set(walk.steps)), rules=echo(s.rules))
     if "_history" in groups["axial"].values:
         res.curves["plastic_wear"] = {k: np.asarray(v).reshape(-1).tolist()
                                       for k, v in groups["axial"].values["_history"].items()}

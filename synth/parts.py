@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from synth import catalog
+from synth.cost import book
 from synth.errors import CatalogError, Problem
 from synth.fingerprint import cached, catalogs_sha256, source_stamp
 
@@ -122,12 +123,15 @@ class Parts:
     bolt_head: Table                        # format x head type ("M8x1.25 hex"): dw, head size, cost factor
     bolt_class: Table
     washer: Table                           # washers.csv: series (product_standard) x bolt diameter
-    tightening: Table                       # tightening_factors.csv: alpha_A range, what sets the preload, cost
+    tightening: Table                       # tightening_factors.csv: alpha_A range, what sets the preload
     plastic: dict                           # (k_wear, mu) per environment of the standard plastic material
     durability: Table
     cone_ranges: dict                       # parameter -> (min, max)
     cone_clearances: tuple                  # (di_min, di_max, clearance) arrays
     friction: dict                          # interface -> (n_envs,) mu
+    #: every part's unit price at the default annual volume (:mod:`synth.cost.book`; the design space's cost
+    #: columns are made of it, :mod:`synth.cost.columns`)
+    prices: object = None
 
 
 @functools.lru_cache(maxsize=8)
@@ -140,8 +144,7 @@ def _arrays_cached(user_dirs: tuple) -> Parts:
 def _read_parts() -> Parts:
     load = catalog.load
     bear = load("ball_bearings")
-    b = _table("ball_bearings", bear, ("d_mm", "D_mm", "B_mm", "C_n", "C0_n", "ball_count", "ball_diameter_mm",
-                                        "unit_cost_eur"))
+    b = _table("ball_bearings", bear, ("d_mm", "D_mm", "B_mm", "C_n", "C0_n", "ball_count", "ball_diameter_mm"))
     sel = load("bearing_selection")
     hub = np.full((len(b), len(FUELS)), np.nan)
     for _, r in sel.iterrows():
@@ -154,20 +157,20 @@ def _read_parts() -> Parts:
         rows = piv[piv["bearing"].astype(str).str.strip() == key].sort_values("working_arm_mm")
         t2[i] = tuple(_num(rows, c) for c in ("working_arm_mm", "pivot_class_diameter_mm", "max_loading_arm_mm"))
     bush = load("pivot_bushings")
-    bt = _table("pivot_bushings", bush, ("radial_thickness_mm", "sliding_layer_depth_mm", "radial_clearance_mm",
-                                          "unit_cost_eur", "cost_eur_per_mm"), strings=("material",))
+    bt = _table("pivot_bushings", bush, ("radial_thickness_mm", "sliding_layer_depth_mm", "radial_clearance_mm"),
+                strings=("material",))
     limits = {}
     for name, col in (("p_max_mpa", "p_max_{}_mpa"), ("pv_max_mpa_m_per_s", "pv_max_{}_mpa_m_per_s"),
                       ("pvt_max_mpa_m_per_s_h", "pvt_max_{}_mpa_m_per_s_h"), ("k_w_mm3_per_n_m", "k_w_{}_mm3_per_n_m")):
         limits[name] = np.stack([_num(bush, col.format(_ENV_SUFFIX[e])) for e in ENVIRONMENTS], axis=1)
     lengths = [np.sort(np.array([float(x) for x in str(v).split(";") if x.strip()])) for v in bush["lengths_mm"]]
     dp = _table("damper_pads", load("damper_pads"), ("max_axial_damping_nm", "contact_area_mm2", "mean_radius_mm",
-                                                     "outer_diameter_mm", "axial_height_mm", "unit_cost_eur"))
+                                                     "outer_diameter_mm", "axial_height_mm"))
     es = _table("endcap_spacers", load("endcap_spacers"), ("max_axial_damping_nm", "contact_area_mm2", "mean_radius_mm",
-                                                           "axial_height_mm", "unit_cost_eur"))
+                                                           "axial_height_mm"))
     mat = _table("spring_materials", load("spring_materials"), ("E_mpa", "G_mpa", "density_kg_m3",
                                                                "sigma_y_bend_fraction", "sigma_A0_fraction",
-                                                               "sigma_perm_static_fraction", "unit_cost_eur"),
+                                                               "sigma_perm_static_fraction"),
                  strings=("wire_sections",))
     strength_df = load("spring_material_strength")
     grade = strength_df["material"].astype(str).str.strip()
@@ -178,21 +181,21 @@ def _read_parts() -> Parts:
             raise CatalogError(Problem("spring_material_strength.csv", key, "tensile strength rows for every material "
                                        "of spring_materials.csv"))
     wires = load("spring_wires")
-    w = _table("spring_wires", wires, ("b_mm", "h_mm", "b_tol_mm", "h_tol_mm", "unit_cost_eur"), strings=("section",))
+    w = _table("spring_wires", wires, ("b_mm", "h_mm", "b_tol_mm", "h_tol_mm"), strings=("section",))
     w.cols["round_wire"] = np.array([s == "round" for s in w.section], dtype=bool)
     bolts = load("bolts")
     bo = _table("bolts", bolts, ("d_mm", "pitch_mm", "d2_mm", "d3_mm", "D1_mm", "stress_area_mm2", "pivot_bore_min_mm",
-                                 "escalation_rank", "unit_cost_eur"))
+                                 "escalation_rank"))
     heads = load("bolt_heads")
-    bh = _table("bolt_heads", heads, ("dw_min_mm", "head_outer_mm", "head_height_mm", "cost_factor"),
+    bh = _table("bolt_heads", heads, ("dw_min_mm", "head_outer_mm", "head_height_mm"),
                 strings=("bolt_format", "head_type"))
     bh.cols["bolt_code"] = np.array([bo.code(f, "bolt_heads.bolt_format") for f in bh.bolt_format], dtype=np.int64)
     cls = _table("bolt_property_classes", load("bolt_property_classes"),
                  ("rm_min_mpa", "rp02_min_mpa", "rm_min_d_gt16_mpa", "rp02_min_d_gt16_mpa", "d_max_mm",
                   "escalation_rank", "unit_cost_factor"))
-    ws = _table("washers", load("washers"), ("d_mm", "d1_mm", "d2_mm", "h_mm", "unit_cost_eur"),
+    ws = _table("washers", load("washers"), ("d_mm", "d1_mm", "d2_mm", "h_mm"),
                 strings=("product_standard",))
-    tf = _table("tightening_factors", load("tightening_factors"), ("alpha_a_min", "alpha_a_max", "unit_cost_eur"),
+    tf = _table("tightening_factors", load("tightening_factors"), ("alpha_a_min", "alpha_a_max"),
                 flags=("standard", "design_option"), strings=("preload_set_by",))
     pw = load("plastic_wear")
     std = pw[pw[pw.columns[0]].astype(str) == "PPA_CF10_AR10_PTFE"].iloc[0]
@@ -209,14 +212,15 @@ def _read_parts() -> Parts:
         rows = fr[fr["interface"].astype(str).str.strip() == iface]
         envs = {str(e).strip(): float(m) for e, m in zip(rows["environment"], rows["mu"])}
         friction[iface] = np.array([envs.get(e, envs.get("any", np.nan)) for e in ENVIRONMENTS])
-    return Parts(b, hub, t2, bt, limits, lengths, dp, es, mat, strength, w, bo, bh, cls, ws, tf, plastic, dur,
-                 cone_ranges,
-                 tuple(_num(clr, c) for c in ("di_min_mm", "di_max_mm", "clearance_mm")), friction)
+    p = Parts(b, hub, t2, bt, limits, lengths, dp, es, mat, strength, w, bo, bh, cls, ws, tf, plastic, dur,
+              cone_ranges, tuple(_num(clr, c) for c in ("di_min_mm", "di_max_mm", "clearance_mm")), friction)
+    p.prices = book.build(p)
+    return p
 
 
 def arrays() -> Parts:
     """The catalogs of the current user-folder setting as :class:`Parts` (cached; do not modify)."""
-    return _arrays_cached(tuple(catalog._user_dirs()))
+    return _arrays_cached(tuple(catalog.user_dirs()))
 
 
 def mu(interface: str, environment) -> float | np.ndarray:

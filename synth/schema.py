@@ -40,7 +40,7 @@ from typing import Any
 from synth import catalog
 from synth.errors import InputError, Problem
 from synth.io.limits import short
-from synth.io.numbers import is_not_given, number_from_text
+from synth.io.numbers import is_not_given, number_from_text, percentage
 from synth.io.numbers import parse_number_list as _parse_number_list
 
 __all__ = ["Field", "FIELDS", "SECTIONS", "OWNERS", "PART_FIELDS", "plausibility", "UNIT_SLIPS", "DesignInput", "validate", "field_by_name",
@@ -119,6 +119,10 @@ FIELDS: tuple[Field, ...] = (
                                         ("lubricated", "belt_in_oil"), ("Dry", "dry"))),
     _f("engine_fuel", "Application", kind="str", choices=("gasoline", "diesel"), label="Engine fuel",
        words=(("Gasoline", "gasoline"), ("petrol", "gasoline"), ("Diesel", "diesel"))),
+    _f("annual_volume", "Application", "1/year", kind="int", required=False, lo=1, hi=1e9,
+       label="Annual volume (pieces a year; selects the price breaks; empty: constant cost_annual_volume_default)",
+       basis="a count of pieces, at least one a year; 1e9 is far above any engine programme (a few tens of millions "
+             "of engines a year worldwide)"),
     # Pulley
     _f("pulley_shell_type", "Pulley", kind="str", choices=("flat", "toothed"), label="Pulley shell type",
        words=(("Flat", "flat"), ("cylindrical", "flat"), ("Toothed", "toothed"))),
@@ -406,7 +410,7 @@ def _coerce(f: Field, value: Any, problems: list[Problem]) -> Any:
             problems.append(Problem(f.name, shown, f.accepted()))
             return None
         return text
-    number = _number(value)
+    number = percentage(value, "%") if f.unit == "%" else _number(value)  # "8 %", "8%" and 8 in a % field
     if number is None:
         problems.append(Problem(f.name, shown, f.accepted()))
         return None
@@ -424,7 +428,8 @@ def _coerce(f: Field, value: Any, problems: list[Problem]) -> Any:
 
 
 def _number(value) -> float | None:
-    """A finite float from a number or a cell's text (decimal comma, ``%``), else None (never raises).
+    """A finite float from a number or a cell's text (decimal comma; a percentage only in a field whose unit is
+    ``%``: :func:`synth.io.numbers.percentage`), else None (never raises).
 
     A subnormal number (below 2.2e-308 in magnitude, not 0) is no physical value either: None.
     """

@@ -35,7 +35,7 @@ CONSTRAINTS = constraint_ids()
 ARM_LIMIT_MM = 3.5  # the fake engine's feasibility rule: working arm >= 3.5 mm
 
 
-def fake_screen(apps, *, objective="standard", fidelity="screening", diagnose=True):
+def fake_screen(apps, *, objective="standard", fidelity="screening", diagnose=True, settings=None):
     """A fast engine stand-in: feasible iff working_arm_mm >= 3.5 mm (margin arm_wall), vectorised."""
     n = len(apps)
     df = pd.DataFrame({c: pd.Series([None] * n, dtype=object) for c in columns()})
@@ -246,10 +246,10 @@ def test_resume_refuses_changed_settings(tmp_path, fake_engine):
         run_portfolio(path, out, chunk_size=2, resume=True, objective="cost")
     with pytest.raises(InputError, match="--chunk-size: got 3"):
         run_portfolio(path, out, chunk_size=3, resume=True)
-    from synth.design.rules import using
-    with using({"name": "ACME", "min_margins": {"spring_yield": "5 %"}}), \
-            pytest.raises(InputError, match="the design rules .*got 'ACME'; accepted: 'no design rules'"):
-        run_portfolio(path, out, chunk_size=2, resume=True)  # judged by other rules: not the same run
+    from synth.design.settings import Settings
+    acme = Settings(rules={"name": "ACME", "min_margins": {"spring_yield": "5 %"}})
+    with pytest.raises(InputError, match="the design rules .*got 'ACME'; accepted: 'no design rules'"):
+        run_portfolio(path, out, chunk_size=2, resume=True, settings=acme)  # judged by other rules: not the same run
     write_table(sample_portfolio(4, seed=9), path)
     with pytest.raises(InputError, match="the portfolio file"):
         run_portfolio(path, out, chunk_size=2, resume=True)

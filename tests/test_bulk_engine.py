@@ -89,12 +89,13 @@ def test_fast_equals_reference_under_a_pivot_wall_rule():
     designs of the two infeasible applications equal the enumeration's (pivot classes 17 and 16 mm, smallest
     margins -0.074 and -0.067; the fast path judged the wall without the rule before issue 21's mend and chose
     15 and 14 mm at -0.5) and the feasible one's optimum too."""
-    from synth.design.rules import using
+    from synth.design.settings import Settings
     pool = generate(6, seed=5)
     apps = [pool[0], pool[5], pool[1]]
-    with using({"limits": {"pivot_min_wall_mm": 2.0}, "min_margins": {"pivot_wall": 0.2}}):
-        fast = screen_applications(apps, diagnose=False)
-        ref = screen_applications_reference(apps, diagnose=False)
+    ruled = Settings(fidelity="screening", rules={"limits": {"pivot_min_wall_mm": 2.0},
+                                                  "min_margins": {"pivot_wall": 0.2}})
+    fast = screen_applications(apps, diagnose=False, settings=ruled)
+    ref = screen_applications_reference(apps, diagnose=False, settings=ruled)
     _assert_same(fast, ref)
     assert fast["feasible"].tolist() == [False, False, True]
     assert fast["part_pivot_class_diameter_mm"].astype(float).tolist()[:2] == [17.0, 16.0]

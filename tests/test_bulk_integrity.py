@@ -22,7 +22,7 @@ from synth.cli import main
 from synth.errors import InputError
 
 
-def fake_screen(apps, objective="standard", fidelity="screening", diagnose=True):
+def fake_screen(apps, objective="standard", fidelity="screening", diagnose=True, settings=None):
     from synth.bulk.engine import columns
     rows = []
     for a in apps:

@@ -449,3 +449,44 @@ def test_cli_flowchart_json_is_self_contained(tmp_path, capsys):
     assert json.loads(path.read_text())["inputs"]["pulley_diameter_mm"] == 65.5
     assert main(["cad", str(path), "--out", str(tmp_path / "c"), "--no-stl", "--no-pictures"]) == 1
     assert "[FAIL] main spring within the housing diameter (3D model)" in capsys.readouterr().out
+
+
+# --- the CAD kernel's failures are verdicts (issue 39) --------------------------------------------------------
+
+def test_a_part_the_kernel_cannot_build_fails_a_geometric_check(monkeypatch):
+    """OCCT's ``StdFail_NotDone`` on a part (all-zero design rules made a 70-coil spring whose sweep fails: exit 70)
+    leaves the part out: ``cad_solids`` fails naming it and why, the checks measured on it are not verified; an
+    error in synth's own part code stays an error."""
+    from OCP.StdFail import StdFail_NotDone
+
+    import synth.cad.assembly as assembly
+    from synth.design.result import NOT_VERIFIED
+    g = geometry_from(_example_values(), inputs=_example_inputs())
+
+    def kernel_fails(g):
+        raise StdFail_NotDone("BRepOffsetAPI_MakePipeShell::MakeSolid")
+    monkeypatch.setitem(assembly.PART_FUNCTIONS, "endcap", kernel_fails)
+    m = build(g)
+    assert "endcap" not in m.parts and "StdFail_NotDone: BRepOffsetAPI_MakePipeShell" in m.unbuilt["endcap"]
+    checks = verify_model(m, interference=False)
+    solids = _by_id(checks, "cad_solids")
+    assert solids.verdict == FAIL and solids.value == 1 and solids.note.startswith("not built: endcap:")
+    assert _by_id(checks, "cad_axial_space").verdict == NOT_VERIFIED
+    assert _by_id(checks, "cad_spring_height").verdict == PASS  # measured on the spring, which was built
+    monkeypatch.setitem(assembly.PART_FUNCTIONS, "endcap", lambda g: 1 / 0)
+    with pytest.raises(ZeroDivisionError):
+        build(g)
+
+
+def test_a_spring_that_is_no_solid_is_not_drawn():
+    """A wire wider than its coil (a pinned manual spring, exit 70 before) and a spring of more coils than the model
+    draws (70: OCCT's sweep failed, exit 70; the interference booleans of long helices took minutes) are not drawn:
+    ``cad_solids`` fails."""
+    g = geometry_from(_example_values(), inputs=_example_inputs())
+    m = build(g.replace(spring_mean_diameter_mm=2.0))  # 2.3 mm wire on a 2 mm mean diameter
+    assert "intersects itself" in m.unbuilt["main_spring"] and "main_spring" not in m.parts
+    m = build(g.replace(spring_active_coils=70.0))
+    assert "more than the 30 coils the 3D model draws" in m.unbuilt["main_spring"]
+    c = _by_id(verify_model(m, interference=True), "cad_solids")
+    assert c.verdict == FAIL and "main_spring" in c.note
+    assert build(g).unbuilt == {}

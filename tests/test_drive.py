@@ -40,9 +40,9 @@ def test_three_pulley_hand_calculation_of_the_first_mode():
     in series, f = sqrt((EA/(L1 + L2) + EA/L3) r^2 / J) / 2 pi."""
     d = validate({"belt": {"stiffness_n": 1e5}, "pulleys": [
         {"name": "C", "role": "crank", "x_mm": 0, "y_mm": 0, "radius_mm": 30},
-        {"name": "T", "role": "tensioner", "radius_mm": 20, "inertia_kg_m2": 1e-12, "backside": True},
+        {"name": "T", "role": "tensioner", "radius_mm": 20, "inertia_kg_m2": 1e-9, "backside": True},
         {"name": "A", "x_mm": 0, "y_mm": 300, "radius_mm": 40, "inertia_kg_m2": 0.002}],
-        "tensioner": {"pivot_x_mm": 70, "pivot_y_mm": 146, "arm_length_mm": 4, "arm_angle_deg": 90,
+        "tensioner": {"pivot_x_mm": 30, "pivot_y_mm": 146, "arm_length_mm": 4, "arm_angle_deg": 90,
                       "inertia_kg_m2": 1e-5, "stiffness_nm_per_deg": 0.02, "nominal_torque_nm": 2,
                       "friction_torque_nm": 0.5},
         "excitation": {"speed_min_rpm": 1000, "speed_max_rpm": 2000, "orders": [{"order": 2, "amplitude_deg": 1}]}})
@@ -180,3 +180,151 @@ def test_bench_drive_quick_runs(capsys):
     spec.loader.exec_module(mod)
     assert mod.main(["--quick"]) == 0
     assert "| default (24 harmonics" in capsys.readouterr().out
+
+
+def test_synth_design_takes_the_travels_and_hub_load_from_the_drive(tmp_path, capsys):
+    """``synth design case3 --drive D``: the drive states its tensioner by its free-arm stop (120 deg), preload and
+    the calculated torque 1.85 Nm, the spring 0.0164 Nm/deg. By hand, the arm turns from the free arm to nominal by
+    (1.85 - preload) / 0.0164 = 30 deg (the belt loads it clockwise: nominal 90 deg) and on to the installation
+    stop at 40 deg: 50 deg. The design's inputs take both travels, the differential and wrap angles, and theta_pp and
+    f; the note names them, and a verdict comes back."""
+    import yaml
+    from synth.cli import main
+    from synth.data import case_path
+    data = example_drive().to_dict()
+    ten = data["tensioner"]
+    ten.pop("arm_angle_deg")
+    ten.update(free_arm_angle_deg=120.0, preload_nm=1.85 - 0.0164 * 30.0, installation_angle_deg=40.0)
+    data["belt"].update(length_tolerance_mm=0.5, wear_pct=0.05)
+    data["excitation"]["speeds"] = 3
+    path = tmp_path / "drive.yaml"
+    path.write_text(yaml.safe_dump(data))
+    code = main(["design", str(case_path("case3")), "--drive", str(path), "--solver", "flowchart", "--json"])
+    r = json.loads(capsys.readouterr().out)
+    assert code in (0, 1) and r["verdict"] in ("pass", "fail")
+    inputs = r["inputs"]
+    assert inputs["arm_travel_nominal_to_free_deg"] == pytest.approx((1.85 - (1.85 - 0.0164 * 30.0)) / 0.0164)
+    assert inputs["arm_travel_nominal_to_installation_deg"] == pytest.approx(90.0 - 40.0)
+    s = static_state(validate(data))
+    assert inputs["differential_angle_deg"] == pytest.approx(s["differential_angle_deg"])
+    note = r["notes"][0]
+    for name in ("arm_travel_nominal_to_free_deg = 30.00", "arm_travel_nominal_to_installation_deg = 50.00",
+                 "differential_angle_deg", "wrap_angle_deg", "theta_pp", "working range"):
+        assert name in note, note
+
+
+def _gates(name="gates_ag00686"):
+    from pathlib import Path
+    return load_drive(Path(__file__).resolve().parents[1] / "synth" / "data" / "drives" / f"{name}.yaml")
+
+
+def test_a_duty_torque_is_the_power_at_the_pulleys_speed():
+    """A duty point's load as a torque Q gives the tension step of the power P = Q omega, omega = v / r."""
+    from synth.drive.inputs import DutyPoint
+    from synth.drive.positions import duty_table
+    d = _gates()
+    v = 2 * np.pi * 1500 / 60 * d.pulleys[0].radius_mm / 1000
+    q = 5500.0 / (v / (d.pulleys[2].radius_mm / 1000))      # the A/C's 5.5 kW as a torque [N m]
+    by_power = dataclasses.replace(d, duty=(DutyPoint(1500.0, None, (("A_C", 5.5),)),))
+    by_torque = dataclasses.replace(d, duty=(DutyPoint(1500.0, None, (), (("A_C", q),)),))
+    np.testing.assert_allclose(duty_table(by_torque)["tension_n"], duty_table(by_power)["tension_n"], rtol=1e-12)
+    t = duty_table(by_power)["tension_n"][0]
+    assert t[2] - t[1] == pytest.approx(5500.0 / v)          # across the A/C: P / v
+    assert t[0] == pytest.approx(t[-1] - 5500.0 / v)        # the crank gives it back
+
+
+def test_the_nominal_angle_from_the_belt_length_is_the_one_from_the_torque():
+    """A belt of exactly the required length (the drive length less the elongation at the nominal tension) puts the
+    arm where the spring's nominal torque does."""
+    from synth.drive.positions import positions
+    d = _gates()
+    table = positions(d)
+    nominal = next(r for r in table["rows"] if r["position"] == "nominal")
+    data = d.to_dict()
+    data["tensioner"].pop("nominal_torque_nm")
+    data["belt"]["length_mm"] = nominal["required_belt_length_mm"]
+    from_length = validate(data)
+    assert from_length.tensioner.nominal_from == "belt"
+    # (the elongation scales with the belt's length: 1475 mm there, the required 1474.99 mm here)
+    assert from_length.tensioner.arm_angle_deg == pytest.approx(d.tensioner.arm_angle_deg, abs=1e-4)
+    assert from_length.tensioner.nominal_torque_nm == pytest.approx(24.54, abs=1e-4)
+
+
+def test_thermal_change_widens_the_working_range_and_a_belt_beyond_a_stop_is_a_finding(capsys):
+    from synth.drive.positions import positions, travels
+    d = _gates()
+    cold = travels(d)["working_range_deg"]
+    hot = travels(dataclasses.replace(d, belt_thermal_change_pct=-0.2))["working_range_deg"]  # it shrinks hot
+    assert hot > cold + 4.0                                   # 0.2 % of 1475 mm at about 0.5 mm/deg
+    worn = dataclasses.replace(d, belt_wear_pct=2.0)           # 29.6 mm of wear: past the free arm
+    row = next(r for r in positions(worn)["rows"] if r["position"] == "worn")
+    assert not row["found"] and row["stop"] == "free arm" and row["beyond_mm"] > 10.0
+
+
+def test_stops_on_the_wrong_side_and_two_statements_of_the_nominal_are_refused():
+    data = _gates().to_dict()
+    data["tensioner"]["installation_angle_deg"] = 50.0       # before the nominal 75 deg: the free arm's side
+    with pytest.raises(InputError, match="installation_angle_deg: got 50"):
+        validate(data)
+    data = _gates().to_dict()
+    data["tensioner"]["arm_angle_deg"] = 75.0
+    with pytest.raises(InputError, match="either arm_angle_deg or preload_nm"):
+        validate(data)
+
+
+def test_synth_drive_prints_a_reports_tables_and_draws_the_layout(tmp_path, capsys):
+    from pathlib import Path
+    from synth.cli import main
+    path = Path(__file__).resolve().parents[1] / "synth" / "data" / "drives" / "gates_ag00686.yaml"
+    assert main(["drive", str(path), "--layout", str(tmp_path / "layout.png")]) == 0
+    out = capsys.readouterr().out
+    for text in ("Free Arm", "Replace", "Load", "arm to hub load [deg]", "required belt length [mm]", "Hub load [N]",
+                 "free system", "travels: nominal to installation 29.3 deg"):
+        assert text in out, text
+    assert (tmp_path / "layout.png").stat().st_size > 10_000
+
+
+def test_bench_drive_reports_quick_runs(capsys):
+    """The ten-pulley benchmark's drive is valid and its six positions all lie between the stops."""
+    import importlib.util
+    from pathlib import Path
+    spec = importlib.util.spec_from_file_location("bench_drive_reports", Path(__file__).resolve().parents[1]
+                                                  / "benchmarks" / "bench_drive_reports.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    assert mod.main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert "| ten-pulley | 10 | 6 | 6 | positions + duty table |" in out
+
+
+def test_a_reports_drive_reads_from_a_workbook_with_its_duty_table(tmp_path):
+    """A duty table in the Drive sheet: one row per point, a pulley's power as a ``power_kw.NAME`` column."""
+    from openpyxl import Workbook
+    drive = _gates()
+    data = drive.to_dict()
+    wb = Workbook()
+    ws = wb.active
+    ws.title = "Drive"
+    ws.append(["name", drive.name])
+    for sec in ("belt", "tensioner"):
+        for k, v in data[sec].items():
+            ws.append([f"{sec}.{k}", v])
+    cols = list(dict.fromkeys(k for p in data["pulleys"] for k in p))
+    ws.append([])
+    ws.append(["pulleys"])
+    ws.append([None, *cols])
+    for p in data["pulleys"]:
+        ws.append([None, *(p.get(k) for k in cols)])
+    loads = list(dict.fromkeys(n for p in data["duty"] for n in p["power_kw"]))
+    ws.append([])
+    ws.append(["duty"])
+    ws.append([None, "speed_rpm", "time_pct", *(f"power_kw.{n}" for n in loads)])
+    for p in data["duty"]:
+        ws.append([None, p["speed_rpm"], p["time_pct"], *(p["power_kw"].get(n) for n in loads)])
+    path = tmp_path / "drive.xlsx"
+    wb.save(path)
+    assert load_drive(path) == drive
+    ws[f"E{ws.max_row}"] = "lots"                                     # the last point's A_C power
+    wb.save(path)
+    with pytest.raises(InputError, match=r"duty\[5\]\.power_kw\.A_C \(Drive!E\d+\): got 'lots'"):
+        load_drive(path)

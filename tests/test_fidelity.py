@@ -119,8 +119,8 @@ def test_no_design_at_screening_is_the_full_model_s_verdict(monkeypatch):
     axial group decides, and find the full model's optimum (bulk engine, branch and bound, exhaustive tables)."""
     real = evaluate.axial
 
-    def strict(apps, cg, r, o, settings=evaluate.Settings(), time_points=0):
-        g = real(apps, cg, r, o, settings, time_points)
+    def strict(apps, cg, r, o, settings=evaluate.DEFAULT, time_points=0, engine=None):
+        g = real(apps, cg, r, o, settings, time_points, engine)
         if settings.model == "screening":
             g.margins["damping_eol"] = np.full(len(g), -1.0)
             g.state["damping_eol"] = np.zeros(len(g), dtype=np.int8)

@@ -271,11 +271,41 @@ def test_many_shared_aliases_below_the_limit_are_accepted():
     assert data["k99"] == {"x": 1, "y": 2}
 
 
-@pytest.mark.parametrize("text, expected", [("2,5", 2.5), ("4%", 4.0), (" 12 ", 12.0), ("-3.5e2", -350.0),
+@pytest.mark.parametrize("text, expected", [("2,5", 2.5), ("4%", None), (" 12 ", 12.0), ("-3.5e2", -350.0),
                                             ("1,250", None), ("abc", None), ("1e400", None), ("", None)])
 def test_number_from_text(text, expected):
+    """A plain number; a percentage is not one (the fields that take one read it by ``percentage``)."""
     from synth.io.numbers import number_from_text
     assert number_from_text(text) == expected
+
+
+@pytest.mark.parametrize("value, unit, expected", [
+    ("0.5 %", "fraction", 0.005), ("1 %", "fraction", 0.01), ("1%", "fraction", 0.01), (" 5 % ", "fraction", 0.05),
+    ("0,5 %", "fraction", 0.005), (0.05, "fraction", 0.05), ("0.05", "fraction", 0.05), ("150 %", "fraction", 1.5),
+    ("8 %", "%", 8.0), ("8%", "%", 8.0), (8, "%", 8.0), ("8", "%", 8.0),
+    ("8 %%", "%", None), ("% 8", "%", None), ("abc %", "fraction", None), (True, "%", None), ("5e-324 %", "%", None),
+    ("inf %", "fraction", None), (None, "%", None)])
+def test_one_percentage_parser(value, unit, expected):
+    """Issue 39: "0.5 %" was read as 50 % and "1 %", "1%" and 1% were refused although the message promised a
+    percentage; the range (a margin below 1) is the field's to check, naming it."""
+    from synth.io.numbers import percentage
+    got = percentage(value, unit)
+    assert got == pytest.approx(expected) if expected is not None else got is None
+
+
+def test_every_field_that_takes_a_percentage_reads_it_by_the_one_parser():
+    """The rules' margins, the schema's fields in %, a user constant in % and a workbook cell formatted as a
+    percentage read "N %" alike; a length refuses it."""
+    from synth.design.rules import Rules
+    assert Rules.from_mapping({"min_margins": {"spring_yield": "0.5 %"}}).min_margins == {"spring_yield": 0.005}
+    with pytest.raises(InputError, match=r"rules.min_margins.spring_yield: got '150 %'.*\[0, 1\)"):
+        Rules.from_mapping({"min_margins": {"spring_yield": "150 %"}})
+    assert schema.validate({"spring_torque_tolerance_pct": "8 %"}, partial=True).spring_torque_tolerance_pct == 8.0
+    with pytest.raises(InputError, match="working_arm_mm: got '4%'"):
+        schema.validate({"working_arm_mm": "4%"}, partial=True)
+    from synth.io.workbook import percent_text
+    assert schema.validate({"spring_torque_tolerance_pct": percent_text(0.08)},
+                           partial=True).spring_torque_tolerance_pct == 8.0
 
 
 @pytest.mark.parametrize("words, field, choice", [
@@ -357,23 +387,27 @@ def test_formula_cells(tmp_path):
 def test_user_catalog_override_is_typed_like_builtin(tmp_path):
     header, *rows = (Path(catalog.builtin_dir()) / "bolts.csv").read_text().splitlines()
     row = rows[1].split(",")
-    row[header.split(",").index("unit_cost_eur")] = "0.99"
+    row[header.split(",").index("pivot_bore_min_mm")] = "8.99"
     (tmp_path / "bolts.csv").write_text(header + "\n" + ",".join(row) + "\n")
     catalog.set_user_dirs(tmp_path)
     r = catalog.row("bolts", row[0])
-    assert r["unit_cost_eur"] == 0.99 and isinstance(r["d_mm"], float) and r["standard"] in (True, False)
+    assert r["pivot_bore_min_mm"] == 8.99 and isinstance(r["d_mm"], float) and r["standard"] in (True, False)
     assert len(catalog.keys("bolts")) == len(rows)
 
 
 def test_count_bounds_documented():
     from synth.io.limits import COUNTS, check_count
 
-    for c in COUNTS.values():
-        assert check_count(c.option, c.lo) == c.lo and check_count(c.option, c.hi) == c.hi
-        with pytest.raises(InputError, match=c.option):
-            check_count(c.option, c.hi + 1)
+    for key, c in COUNTS.items():
+        assert check_count(key, c.lo) == c.lo and check_count(key, c.hi) == c.hi
+        with pytest.raises(InputError, match=f"{c.option}: got {c.hi + 1}; accepted: an integer in "):
+            check_count(key, c.hi + 1)
         with pytest.raises(InputError):
-            check_count(c.option, "1.5")
+            check_count(key, "1.5")
+    doc = (HERE.parent / "docs" / "sections" / "input_gate.md").read_text(encoding="utf-8")
+    for key, c in COUNTS.items():  # every bound is in the documented table, with what it runs in
+        if key not in ("--seed", "--broken", "N", "--reassemblies"):
+            assert f"{c.hi:,}" in doc, (key, c.hi)
 
 
 def test_synth_catalogs_variable_is_checked_like_the_option(tmp_path, monkeypatch, capsys):

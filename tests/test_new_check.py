@@ -87,14 +87,16 @@ def test_a_spring_check_runs_the_kernels_on_their_numpy_twin_and_binds_in_the_pl
     from synth.platform.producer import feasibility
     from synth.scenes.demo import default_input
     d = default_input()  # cases 1 and 3 have no feasible spring option to bind
+    from synth.design.settings import DEFAULT
+    from synth.kernels import engines
     assert main_spring.compiled_covers() and main_spring.checks() == main_spring.MARGIN_NAMES
     with registered(probe("spring", limit_factor=1.0 + 1e-9)):                  # passes by 1e-9: it binds
         assert not main_spring.compiled_covers()
         assert main_spring.checks() == tuple(c.id for c in by_group("spring") if not c.advisory)
-        assert main_spring._check_engine("numba") == "numpy"
+        assert engines.spring(DEFAULT, "numba") == "numpy"
         pf = feasibility([d])
         assert {str(b) for g in pf.apps[0].option_binding["spring"] for b in g} == {"probe_spring"}
-    assert main_spring._check_engine("numba") == "numba"
+    assert engines.spring(DEFAULT, "numba") == "numba"
     pf = feasibility([d])   # the kernels again: the step-9 checks bind
     assert {str(b) for g in pf.apps[0].option_binding["spring"] for b in g} == {
         "spring_coil_gap", "spring_fatigue", "spring_index_max", "spring_outer_contact", "spring_inner_contact"}
@@ -118,7 +120,8 @@ def test_a_bolt_check_reading_the_core_is_judged_per_core_in_the_bulk_fast_path(
                              sense="<=", physics=physics)
     apps = generate(4, seed=3)
     with registered(probe_pivot):
-        assert [c.id for c in bolt_core_checks()] == ["pivot_wall", "probe_pivot"]
+        assert [c.id for c in bolt_core_checks({"pivot_diameter_mm": 0, "loading_arm_mm": 0})] == [
+            "pivot_wall", "probe_pivot"]
         fast = screen_applications(apps, diagnose=False)
         ref = screen_applications_reference(apps, diagnose=False)
     pd.testing.assert_frame_equal(fast, ref, check_exact=False, rtol=1e-9, atol=1e-12)

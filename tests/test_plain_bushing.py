@@ -97,9 +97,9 @@ def test_table5_limits_in_catalog():
     assert (p.bushing.radial_thickness_mm[a], p.bushing.radial_thickness_mm[b]) == (1.0, 0.5)
 
 
-def test_catalog_has_source_cost_standard():
+def test_catalog_has_source_standard_lengths():
     df = catalog.load("pivot_bushings")
-    for col in ("source", "unit_cost_eur", "standard", "lengths_mm"):
+    for col in ("source", "standard", "lengths_mm"):
         assert df[col].notna().all()
 
 

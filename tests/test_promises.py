@@ -330,3 +330,134 @@ def test_escapers_by_construction(text):
     assert all(32 <= ord(c) < 127 for c in step) and "'" not in step and ";" not in step
     cell = csv_cell(text)
     assert not (cell[:1] in ("=", "+", "-", "@", "\t", "\r") and _formula_like(cell))
+
+
+# ---------------------------------------------------------------- issue 39: outputs under faults, CSV rows, --resume
+RESULT = HERE / "bad_inputs" / "files" / "r_arm_20.json"  # a saved design result (synth cad exits 1 on it)
+
+
+def _portfolio(tmp_path, n: int = 4, name: str = "p.csv") -> Path:
+    from synth.bulk.sample import sample_portfolio
+    p = tmp_path / name
+    sample_portfolio(n, seed=1).to_csv(p, index=False)
+    return p
+
+
+def test_a_line_break_in_a_cell_stays_in_its_csv_row(tmp_path, capsys):
+    """A portfolio cell holding a bare carriage return (or a line feed, or both) stays one quoted cell of its row:
+    12 applications are 12 CSV records (a bare CR was written unquoted: 14 lines for 12 rows, the next starting
+    with an unescaped ``=1+1``); with a rules name ``=HYPERLINK(...)``, no text cell of any CSV written starts a
+    formula."""
+    import csv
+
+    from synth.bulk.sample import sample_portfolio
+    t = sample_portfolio(12, seed=5)
+    ids = list(t["application_id"].astype(str))
+    ids[3], ids[5], ids[7] = "APP\r=1+1", "APP\n=2+2", "APP\r\n@SUM(1)"
+    t["application_id"] = ids
+    p = tmp_path / "p.parquet"
+    t.to_parquet(p, index=False)
+    rules = tmp_path / "rules.yaml"
+    rules.write_text('name: "=HYPERLINK(\\"http://x\\",\\"y\\")"\nmin_margins:\n  spring_yield: 0.01\n')
+    code, out, err = _run(["bulk", p, "--out", tmp_path / "r.csv", "--no-diagnose", "--rules", rules,
+                           "--summary", tmp_path / "s"], capsys)
+    assert code == 0, err
+    with open(tmp_path / "r.csv", newline="", encoding="utf-8") as fh:
+        rows = list(csv.reader(fh))
+    assert len(rows) == 13
+    assert [r[0] for r in rows[1:]][3:8:2] == ["APP\n=1+1", "APP\n=2+2", "APP\n@SUM(1)"]
+    for f in [tmp_path / "r.csv", *(tmp_path / "s").glob("*.csv")]:
+        with open(f, newline="", encoding="utf-8") as fh:
+            for row in csv.reader(fh):
+                for cell in row:
+                    assert not (cell.lstrip(" ")[:1] in ("=", "+", "-", "@", "\t", "\r") and _formula_like(cell)), \
+                        (f.name, cell)
+
+
+def test_chunk_folder_and_lock_planted_as_links_are_never_written_through(tmp_path, capsys):
+    p = _portfolio(tmp_path)
+    target = tmp_path / "target"
+    target.mkdir()
+    (tmp_path / "r.csv.chunks").symlink_to(target)
+    code, _, err = _run(["bulk", p, "--out", tmp_path / "r.csv", "--no-diagnose"], capsys)
+    assert code == 2 and "r.csv.chunks" in err and "symbolic link" in err, err
+    assert list(target.iterdir()) == [] and not (tmp_path / "r.csv").exists()
+    (tmp_path / "r.csv.chunks").unlink()
+    (tmp_path / "r.csv.chunks").mkdir()
+    victim = tmp_path / "victim.txt"
+    victim.write_text("keep me")
+    (tmp_path / "r.csv.chunks" / "run.lock").symlink_to(victim)
+    code, _, err = _run(["bulk", p, "--out", tmp_path / "r.csv", "--no-diagnose"], capsys)
+    assert code == 2 and "run.lock" in err and "symbolic link" in err, err
+    assert victim.read_text() == "keep me"
+
+
+def test_cad_on_a_full_disk_leaves_no_empty_or_truncated_file(tmp_path, capsys, monkeypatch):
+    """OCCT's STL writer on a full disk leaves a partial file and reports success (7 empty and 1 truncated STL
+    were left, exit 2): every file is checked complete by its format, the export is one output moved into place
+    only when whole, and the folder keeps only what it held."""
+    import shutil
+
+    import cadquery as cq
+    real, calls = cq.Shape.exportStl, []
+
+    def partial(self, file_name, *args, **kw):
+        calls.append(file_name)
+        if len(calls) < 3:
+            return real(self, file_name, *args, **kw)
+        Path(file_name).write_bytes(b"\0" * 100)  # truncated, and "written" as far as the writer says
+        return True
+    monkeypatch.setattr(cq.Shape, "exportStl", partial)
+    usage = shutil.disk_usage
+    monkeypatch.setattr(shutil, "disk_usage", lambda path: usage(path)._replace(free=0))
+    out = tmp_path / "cad"
+    out.mkdir()
+    (out / "mine.txt").write_text("keep me")
+    code, _, err = _run(["cad", RESULT, "--out", out, "--no-pictures"], capsys)
+    assert code == 2 and "no space left" in err and str(out / "stl") in err and ".synth-" not in err, err
+    assert sorted(q.name for q in out.rglob("*")) == ["mine.txt"]
+
+
+def test_a_multi_file_output_is_all_or_nothing(tmp_path):
+    from synth.io.outputs import incomplete, output_files, write_text
+    out = tmp_path / "out"
+    with pytest.raises(InputError, match="--cad: got '.*out'; accepted: .*no space left"):
+        with output_files(out, "--cad") as stage:
+            write_text(stage / "a.json", "{}")
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+    assert list(out.iterdir()) == []
+    (tmp_path / "t.stl").write_bytes(bytes(80) + (3).to_bytes(4, "little") + bytes(100))
+    assert "3 triangles" in incomplete(tmp_path / "t.stl")
+    (tmp_path / "t.step").write_text("ISO-10303-21;\nHEADER;\n")
+    assert "without its end" in incomplete(tmp_path / "t.step")
+
+
+@pytest.mark.skipif(not Path("/dev/full").exists(), reason="no /dev/full")
+def test_output_to_a_full_device_names_the_output_and_why():
+    env = {**os.environ, "PYTHONPATH": str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    with open("/dev/full", "w") as full:
+        r = subprocess.run([sys.executable, "-m", "synth", "flowchart", str(DEFAULT), "--json"], stdout=full,
+                           stderr=subprocess.PIPE, text=True, env=env, timeout=300)
+    assert r.returncode == 2, r.stderr
+    assert "standard output" in r.stderr and "/dev/full" in r.stderr and "no space left" in r.stderr
+    assert "got '?'" not in r.stderr and "Traceback" not in r.stderr
+
+
+def test_resume_compares_the_rules_by_content(tmp_path, capsys):
+    """A content-identical copy of the rules file under another name resumes the run; changed rules are refused
+    saying what changed (it read "got 'bulk rules A'; accepted: 'bulk rules A'")."""
+    p = _portfolio(tmp_path)
+    a = tmp_path / "rules_a.yaml"
+    a.write_text("name: bulk rules A\nmin_margins:\n  spring_yield: 1 %\n")
+    copy = tmp_path / "a copy of the rules.yaml"
+    copy.write_text(a.read_text())
+    changed = tmp_path / "rules_b.yaml"
+    changed.write_text("name: bulk rules A\nmin_margins:\n  spring_yield: 2 %\n")
+    argv = ["bulk", p, "--out", tmp_path / "r.csv", "--no-diagnose", "--chunk-size", "2"]
+    code, _, err = _run(argv + ["--rules", a], capsys)
+    assert code == 0, err
+    code, out, err = _run(argv + ["--rules", copy, "--resume"], capsys)
+    assert code == 0 and "0 computed, 2 reused" in out, err
+    code, _, err = _run(argv + ["--rules", changed, "--resume"], capsys)
+    assert code == 2 and "got 'bulk rules A'; accepted: 'bulk rules A' as in the interrupted run" in err, err
+    assert "min_margins.spring_yield 1 % in the run, 2 % now" in err

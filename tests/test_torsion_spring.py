@@ -146,7 +146,7 @@ def test_static_permissible_stress_is_reported_not_gating():
 
 def test_catalogs_have_required_columns_and_sizes():
     wires = catalog.load("spring_wires")
-    assert {"unit_cost_eur", "standard", "source", "b_tol_mm", "h_tol_mm"} <= set(wires.columns)
+    assert {"standard", "source", "b_tol_mm", "h_tol_mm"} <= set(wires.columns)
     rnd = wires[wires["section"] == "round"]["b_mm"].to_numpy(float)
     assert rnd.min() <= 2.0 and rnd.max() >= 4.5
     assert "F2.30x2.30" in set(wires["designation"])

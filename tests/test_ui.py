@@ -147,3 +147,62 @@ def test_a_portfolio_row_opens_as_the_input_synth_bulk_read():
     assert p.application(3) == records(p.table)[3]
     whole = synth.screen(p.table, progress=False)
     assert list(whole["feasible"]) == list(p.results["feasible"])  # slices give the rows of one call
+
+
+def _ruled(tmp_path, name="ACME rev C", margin="50 %"):
+    import yaml
+    path = tmp_path / "ruled.yaml"
+    path.write_text(yaml.safe_dump({**default_values(), "rules": {"name": name, "min_margins": {"spring_yield": margin}}}),
+                    encoding="utf-8")
+    return path
+
+
+def test_an_inputs_rules_judge_the_sessions_design_and_travel_with_its_yaml(tmp_path):
+    """Issue 39: the page said "Verdict: PASS" for an input whose rules the command line judges infeasible."""
+    path = _ruled(tmp_path)
+    s = DesignSession()
+    assert s.load(path)
+    api = synth.synthesise(path)  # the input file's rules: section, as synth design reads it
+    assert api.verdict == "fail" and s.result.verdict == "fail"
+    assert s.result.status == api.status and s.result.rules == api.rules
+    assert s.rule_lines()[0] == "design rules: ACME rev C (ruled.yaml: rules)"
+    assert s.edit("spring_stiffness_nm_per_deg", "0.0164") and s.result.rules["name"] == "ACME rev C"  # verify too
+    saved = tmp_path / "saved.yaml"
+    saved.write_text(s.yaml_text(), encoding="utf-8")
+    again = DesignSession()
+    assert again.load(saved) and again.rules.min_margins == {"spring_yield": 0.5}
+    plain = DesignSession(default_values())
+    assert plain.synthesise().verdict == "pass" and plain.result.rules == {}  # no rules: none leak from the other
+
+
+def test_bad_rules_in_an_input_are_refused_as_the_command_line_refuses_them(tmp_path, capsys):
+    path = _ruled(tmp_path, margin="150 %")
+    with pytest.raises(InputError) as e:
+        DesignSession().read(path)
+    assert main(["design", str(path)]) == 2
+    cli = capsys.readouterr().err
+    assert all(str(p) in cli for p in e.value.problems)
+    assert main(["ui", str(path)]) == 2  # refused before serving
+
+
+def test_the_servers_policy_host_origin_and_token():
+    from synth.ui.guard import Policy, is_loopback
+
+    def scope(**headers):
+        return {"type": "http", "method": "GET", "path": "/", "query_string": b"",
+                "headers": [(k.replace("_", "-").encode(), v.encode()) for k, v in headers.items()]}
+    local = Policy.of("127.0.0.1", 8080)
+    assert local.token is None and local.token_state(scope(host="127.0.0.1:8080")) == "ok"
+    assert local.refusal(scope(host="[::1]:8080")) is None and local.refusal(scope(host="LOCALHOST:8080")) is None
+    assert local.refusal(scope(host="127.0.0.1:8080", origin="http://localhost:8080"))[0] == 403  # not its Host
+    assert local.refusal(scope(host="user@127.0.0.1:8080"))[0] == 403
+    assert local.refusal(scope())[0] == 400
+    assert local.origins() == ["http://127.0.0.1:8080", "http://[::1]:8080", "http://localhost:8080"]
+    wide = Policy.of("0.0.0.0", 8080)
+    assert not is_loopback("0.0.0.0") and wide.token and len(wide.token) >= 40
+    assert wide.token_state(scope(host="127.0.0.1:8080")) == "missing"
+    assert wide.token_state(scope(host="127.0.0.1:8080", cookie=f"{wide.cookie}={wide.token}")) == "ok"
+    assert wide.token_state(scope(host="127.0.0.1:8080", authorization=f"token {wide.token}")) == "ok"
+    assert wide.token_state({**scope(), "query_string": f"token={wide.token}".encode()}) == "query"
+    assert wide.token_state(scope(cookie=f"{wide.cookie}=x{wide.token}")) == "missing"
+    assert Policy.of("0.0.0.0", 8080).token != wide.token  # one per launch

@@ -17,7 +17,8 @@ pytest.importorskip("nicegui")
 sync_api = pytest.importorskip("playwright.sync_api")
 
 from synth.report.palette import VERDICT_FILLS  # noqa: E402
-from synth.ui.browser import free_port, goto_when_up, is_local, launch_chromium, start_server, stop_server  # noqa: E402
+from synth.ui.browser import (CHROMIUM_FLAGS, free_port, goto_when_up, is_local, launch_chromium,  # noqa: E402
+                              start_server, stop_server)
 
 CHROMIUM = chromium_binary()
 pytestmark = pytest.mark.skipif(CHROMIUM is None, reason="no chromium binary (apt-get install chromium)")
@@ -168,6 +169,124 @@ def test_a_200_application_portfolio_screens_to_the_apis_feasible_share(page, tm
     pg.wait_for_url(re.compile(r"/\?open="))
     pg.get_by_text("input: fleet.csv: APP-00007").wait_for()
     pg.locator(CHECKS).first.wait_for()
+
+
+# --- the server's doors, as a browser meets them (issue 39; raw requests: tests/test_ui_server.py) ---------------------
+def _wait_up(port: int) -> None:
+    """Until the server answers (these tests reach it from pages that do not retry)."""
+    import time
+    import urllib.error
+    import urllib.request
+    deadline = time.perf_counter() + 60
+    while True:
+        try:
+            urllib.request.urlopen(f"http://127.0.0.1:{port}/favicon.ico", timeout=5).close()
+            return
+        except urllib.error.HTTPError:
+            return
+        except OSError:
+            if time.perf_counter() > deadline:
+                raise
+            time.sleep(0.1)
+
+
+def test_a_page_on_another_local_port_cannot_reach_the_server(browser, server, tmp_path):
+    """A page served by another program of this machine (another port: another origin) opens no websocket to the
+    server, reads nothing of it by fetch, loads none of its resources."""
+    import http.server
+    import threading
+    port = server[0]
+    _wait_up(port)
+    (tmp_path / "index.html").write_text(f"""<!doctype html><script>
+window.results = {{}};
+const ws = new WebSocket("ws://127.0.0.1:{port}/_nicegui_ws/socket.io/?EIO=4&transport=websocket");
+ws.onopen = () => {{ window.results.ws = "open"; ws.close(); }};
+ws.onerror = () => {{ window.results.ws = window.results.ws || "refused"; }};
+fetch("http://127.0.0.1:{port}/_nicegui_ws/socket.io/?EIO=4&transport=polling")
+  .then(r => r.text()).then(t => window.results.polling = t).catch(e => window.results.polling = "refused");
+const img = new Image();
+img.onload = () => window.results.img = "loaded"; img.onerror = () => window.results.img = "refused";
+img.src = "http://127.0.0.1:{port}/favicon.ico";
+</script>""", encoding="utf-8")
+    handler = lambda *a: http.server.SimpleHTTPRequestHandler(*a, directory=str(tmp_path))  # noqa: E731
+    other = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    threading.Thread(target=other.serve_forever, daemon=True).start()
+    ctx = browser.new_context()
+    try:
+        pg = ctx.new_page()
+        pg.goto(f"http://127.0.0.1:{other.server_address[1]}/index.html")
+        pg.wait_for_function("Object.keys(window.results).length === 3", timeout=30000)
+        results = pg.evaluate("window.results")
+    finally:
+        ctx.close()
+        other.shutdown()
+        other.server_close()
+    assert results == {"ws": "refused", "polling": "refused", "img": "refused"}
+
+
+def test_dns_rebinding_a_foreign_name_for_127_0_0_1_gets_no_page(browser, server):
+    """Chromium resolves attacker.example to 127.0.0.1 (as a rebound DNS name would): the server refuses it."""
+    port = server[0]
+    _wait_up(port)
+    b = browser.browser_type.launch(executable_path=CHROMIUM,
+                                    args=[*CHROMIUM_FLAGS, "--host-resolver-rules=MAP attacker.example 127.0.0.1"])
+    try:
+        pg = b.new_page()
+        sockets = []
+        pg.on("websocket", lambda ws: sockets.append(ws.url))
+        response = pg.goto(f"http://attacker.example:{port}/")
+        assert response.status == 403
+        assert "Host 'attacker.example:" in pg.inner_text("body")
+        pg.wait_for_timeout(500)
+        assert sockets == []
+    finally:
+        b.close()
+
+
+def test_an_input_with_rules_opened_in_the_page_is_judged_under_them(page, tmp_path):
+    import yaml
+
+    import synth
+    from synth.ui.session import default_values
+    d = {**default_values(), "rules": {"name": "ACME rev C", "min_margins": {"spring_yield": "50 %"}}}
+    path = tmp_path / "ruled.yaml"
+    path.write_text(yaml.safe_dump(d), encoding="utf-8")
+    assert synth.synthesise(path).verdict == "fail"  # as synth design judges the file
+    pg, url = page
+    goto_when_up(pg, url)
+    pg.locator(CHECKS).first.wait_for()
+    assert pg.locator(".banner").first.inner_text().startswith("Verdict: PASS")  # the default, without rules
+    pg.locator("input[type=file]").set_input_files(str(path))
+    pg.get_by_text("input: ruled.yaml").wait_for()
+    pg.wait_for_function("document.querySelector('.banner').innerText.startsWith('Verdict: FAIL')")
+    rules = pg.locator("[data-testid=rules]").inner_text()
+    assert rules.startswith("design rules: ACME rev C (ruled.yaml: rules): minimum margin spring_yield: 50 %")
+    assert pg.locator(".rules").first.inner_text().startswith("design rules: ACME rev C")  # the digest says so too
+
+
+def test_a_305_character_file_name_and_a_crafted_row_click_are_messages_in_the_page(page):
+    pg, url = page
+    goto_when_up(pg, url)
+    pg.locator(CHECKS).first.wait_for()
+    pg.locator("input[type=file]").set_input_files(
+        {"name": "n" * 300 + ".yaml", "mimeType": "application/x-yaml", "buffer": b"pulley_diameter_mm: 62\n"})
+    note = pg.locator(".q-notification", has_text="file name")
+    note.wait_for()
+    assert "(305 characters)" in note.inner_text() and "at most 200 characters" in note.inner_text()
+
+    goto_when_up(pg, url + "portfolio")
+    pg.get_by_text("A row opens that application").wait_for()
+    pg.wait_for_function("window.did_handshake === true")
+    pg.evaluate("""() => {
+        const app = document.querySelector('.q-table__container').closest('[id^=c]');
+        const id = Number(app.id.slice(1));
+        window.socket.emit("event", {id: id, client_id: window.clientId,
+            listener_id: mounted_app.elements[id].events.find(e => e.type === "rowClick").listener_id,
+            args: [JSON.stringify({}), JSON.stringify({"#": 99999}), JSON.stringify(0)]});
+    }""")
+    note = pg.locator(".q-notification", has_text="row: got")
+    note.wait_for()
+    assert "row: got 99999; accepted: a row of a screened portfolio" in note.inner_text()
 
 
 def test_graphs_3d_model_step_download_and_no_request_leaves_the_machine(page, server, tmp_path):

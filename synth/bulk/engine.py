@@ -151,12 +151,18 @@ def _dtypes(df: pd.DataFrame) -> pd.DataFrame:
     return df.reset_index(drop=True)
 
 
-def screen_applications_reference(apps: Sequence, *, objective: str = "standard", fidelity: str = "screening",
-                                  diagnose: bool = True) -> pd.DataFrame:
+def _settings(settings, fidelity) -> evaluate.Settings:
+    """The configuration of a screening: ``settings`` (default none) at ``fidelity`` (given: it wins)."""
+    s = settings if settings is not None else evaluate.Settings(fidelity=fidelity or "screening")
+    return s if fidelity is None or fidelity == s.fidelity else s.replace(fidelity=fidelity)
+
+
+def screen_applications_reference(apps: Sequence, *, objective: str = "standard", fidelity: str | None = "screening",
+                                  diagnose: bool = True, settings: evaluate.Settings | None = None) -> pd.DataFrame:
     """Reference engine: ``solve(d, objective, "enumerate", exhaustive=True)`` per application: every core and
     option of its catalog product evaluated, the nearest design and each relaxation probe by the exhaustive
     evaluation (slow; the right answer, and what the fast path is tested against)."""
-    settings = evaluate.Settings(fidelity=fidelity)
+    settings = _settings(settings, fidelity)
     rows = []
     for d in apps:
         try:
@@ -348,13 +354,15 @@ class _NoSpace(Exception):
         self.which = which
 
 
-def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity: str = "screening",
-                        diagnose: bool = True) -> pd.DataFrame:
+def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity: str | None = "screening",
+                        diagnose: bool = True, settings: evaluate.Settings | None = None) -> pd.DataFrame:
     """One row per application of ``apps`` (validated ``DesignInput``), in the order given (index 0..n-1).
 
     ``objective`` as :func:`synth.optimise.solve` accepts it; ``fidelity``
     ``screening`` (closed-form wear, linear cone spring) or ``full``;
-    ``diagnose=False`` skips the relaxation search of infeasible applications.
+    ``diagnose=False`` skips the relaxation search of infeasible applications;
+    ``settings``: the configuration every row is judged under (:class:`~synth.design.settings.Settings`: design
+    rules, spring limit basis, engine; ``fidelity`` sets its fidelity).
     Columns: :func:`columns`. The same answer as :func:`screen_applications_reference`.
 
     Additive objectives (``standard``, ``cost``, their orders and weighted sums without the margin) take the
@@ -370,16 +378,16 @@ def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity
     >>> list(df.index), df.loc[1, "status"]
     ([0, 1], 'optimal')
     """
-    settings = evaluate.Settings(fidelity=fidelity)
+    settings = _settings(settings, fidelity)
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     apps = list(apps)
     if obj.uses_margin():
-        return screen_applications_reference(apps, objective=objective, fidelity=fidelity, diagnose=diagnose)
+        return screen_applications_reference(apps, objective=objective, diagnose=diagnose, settings=settings)
     w = obj.additive_weights() or {"cost": 1.0}
 
     def reference_row(d, exc=None):
-        return screen_applications_reference([d], objective=obj, fidelity=fidelity,
-                                             diagnose=diagnose).to_dict(orient="records")[0]
+        return screen_applications_reference([d], objective=obj, diagnose=diagnose,
+                                             settings=settings).to_dict(orient="records")[0]
 
     def reference_frame(d, exc=None):
         row = reference_row(d)

@@ -33,12 +33,16 @@ and moved into place (:func:`synth.io.outputs.output_file`; removed on any failu
 ``engine="dask"`` submits one task per chunk to a ``dask.distributed``
 cluster (a :class:`~distributed.LocalCluster` of ``workers`` one-thread
 processes, or the scheduler at ``scheduler``) and writes each chunk as it
-arrives; the table is the same as in-process.
+arrives; the table is the same as in-process. Every chunk, in this process or on
+a worker, is computed under the run's one configuration
+(:class:`~synth.design.settings.Settings`: fidelity, design rules and spring limit
+basis, user catalogs, engine), an argument of the task.
 """
 
 from __future__ import annotations
 
 import contextlib
+import errno
 import gc
 import hashlib
 import json
@@ -62,10 +66,12 @@ from synth.fingerprint import file_sha256, catalogs_sha256
 from synth.bulk.portfolio import (CSV_FLOAT, arrow_safe, column_warnings, field_columns, read_portfolio,
                                   validate_record, validate_table, write_table)
 from synth.errors import InputError, Problem
-from synth.io.outputs import output_file, write_text, csv_rows
+from synth.threads import usable_cores, worker_environ
+from synth.io.outputs import csv_rows, output_file, output_folder, write_text
 from synth.report.progress import Progress
 from synth.bulk.engine import columns
-from synth.design.rules import echo, using
+from synth.design.rules import echo
+from synth.design.settings import Settings
 from synth.optimise.objectives import Objective
 from synth.io.limits import check_count
 from synth.bulk.portfolio import FORMATS, check_columns
@@ -130,16 +136,23 @@ def _screen_default():
     return screen_applications
 
 
-def _call_engine(screen, apps, objective, fidelity, diagnose) -> pd.DataFrame:
-    df = screen(apps, objective=objective, fidelity=fidelity, diagnose=diagnose)
+def _call_engine(screen, apps, objective, settings, diagnose) -> pd.DataFrame:
+    df = screen(apps, objective=objective, fidelity=settings.fidelity, diagnose=diagnose, settings=settings)
     if len(df) != len(apps):
         raise RuntimeError(f"engine returned {len(df)} rows for {len(apps)} applications")
     return df.reset_index(drop=True)
 
 
-def compute_chunk(recs, *, objective: str = "standard", fidelity: str = "screening",
+def _run_settings(settings: Settings | None, fidelity: str | None) -> Settings:
+    """The configuration of a run: ``settings`` (default: no rules, this process's catalogs) at ``fidelity`` when
+    given (the bulk's default: ``screening``)."""
+    s = settings if settings is not None else Settings(fidelity="screening")
+    return s if fidelity is None or fidelity == s.fidelity else s.replace(fidelity=fidelity)
+
+
+def compute_chunk(recs, *, objective: str = "standard", fidelity: str | None = None,
                   diagnose: bool = True, screen: Callable | None = None,
-                  catalog_dirs: tuple[str, ...] | None = None, rules=None) -> pd.DataFrame:
+                  settings: Settings | None = None) -> pd.DataFrame:
     """Validate and evaluate one chunk: one result row per record, in order.
 
     ``recs``: a table of the chunk's rows (its design-input columns, validated column by column:
@@ -147,16 +160,16 @@ def compute_chunk(recs, *, objective: str = "standard", fidelity: str = "screeni
     Valid rows go to the engine in one call; a row that fails validation gets ``status = "error"`` and its
     problems in ``error``. If the engine raises on the chunk, the chunk is evaluated one application at a
     time and only the failing ones get ``error = "engine: ..."``: one bad row never stops a portfolio.
-    ``catalog_dirs`` are the user catalog folders to use (re-applied in a Dask worker process); ``rules`` the
-    design rules to judge by (:class:`synth.design.rules.Rules`, made active here: a Dask worker process does not
-    share the caller's; None: the rules in force).
+    ``settings``: the run's configuration (:class:`~synth.design.settings.Settings`: the design rules and spring
+    limit basis every row is judged by, the user catalog folders read here, in a Dask worker process too);
+    ``fidelity`` (default ``screening``) sets its fidelity.
     """
-    if rules is not None:
-        with using(rules):
-            return compute_chunk(recs, objective=objective, fidelity=fidelity, diagnose=diagnose, screen=screen,
-                                 catalog_dirs=catalog_dirs)
-    if catalog_dirs is not None and [str(p) for p in catalog._user_dirs()] != list(catalog_dirs):
-        catalog.set_user_dirs(*catalog_dirs)
+    settings = _run_settings(settings, fidelity)
+    with catalog.using(settings.catalogs):
+        return _compute_chunk(recs, objective, diagnose, screen, settings)
+
+
+def _compute_chunk(recs, objective, diagnose, screen, settings) -> pd.DataFrame:
     screen = screen or _screen_default()
     cols = result_columns()
     if isinstance(recs, pd.DataFrame):
@@ -169,14 +182,14 @@ def compute_chunk(recs, *, objective: str = "standard", fidelity: str = "screeni
     apps = [checked[i] for i in valid]
     res = None
     try:
-        res = _call_engine(screen, apps, objective, fidelity, diagnose)
+        res = _call_engine(screen, apps, objective, settings, diagnose)
     except InputError:
         raise  # a bad setting (objective...): the same for every row, reported once
     except Exception:
         rows = []
         for a in apps:
             try:
-                rows.append({**_call_engine(screen, [a], objective, fidelity, diagnose).iloc[0].to_dict(),
+                rows.append({**_call_engine(screen, [a], objective, settings, diagnose).iloc[0].to_dict(),
                              "error": ""})
             except Exception as exc:  # noqa: BLE001 - reported in the row, never swallowed
                 rows.append(_error_row(cols, f"engine: {type(exc).__name__}: {exc}"))
@@ -237,18 +250,21 @@ def _sha256_frame(df: pd.DataFrame) -> str:
     return h.hexdigest()
 
 
-def _catalogs_sha256() -> str:
-    """Hash of every catalog CSV in use (built-in and user folders): a changed catalog invalidates a resume."""
-    return catalogs_sha256(catalog._user_dirs())
+def _catalogs_sha256(settings: Settings | None = None) -> str:
+    """Hash of every catalog CSV in use (built-in and the user folders of ``settings``, default this process's): a
+    changed catalog invalidates a resume."""
+    dirs = None if settings is None else settings.catalogs
+    return catalogs_sha256(catalog.user_dirs() if dirs is None else [Path(p) for p in dirs])
 
 
 def manifest_of(portfolio_hash: str, n_rows: int, *, objective: str, fidelity: str, chunk_size: int,
-                diagnose: bool) -> dict:
-    """The manifest of a run: what must not change between an interrupted run and its resume (the design rules in
-    force included: :func:`synth.design.rules.echo`)."""
+                diagnose: bool, settings: Settings | None = None) -> dict:
+    """The manifest of a run: what must not change between an interrupted run and its resume (the configuration's
+    design rules included: :func:`synth.design.rules.echo`, and its catalogs' hash)."""
+    s = settings if settings is not None else Settings()
     return {"portfolio_sha256": portfolio_hash, "n_rows": int(n_rows), "objective": str(objective),
             "fidelity": str(fidelity), "chunk_size": int(chunk_size), "diagnose": bool(diagnose),
-            "synth_version": __version__, "catalogs_sha256": _catalogs_sha256(), "rules": echo()}
+            "synth_version": __version__, "catalogs_sha256": _catalogs_sha256(s), "rules": echo(s.rules)}
 
 
 def _check_manifest(old: dict, new: dict, folder: Path) -> None:
@@ -259,11 +275,17 @@ def _check_manifest(old: dict, new: dict, folder: Path) -> None:
               "rules": "the design rules (--rules)"}
     problems = []
     for k in _MANIFEST_KEYS:
-        if old.get(k, {} if k == "rules" else None) != new[k]:
+        if k == "rules":  # by content: the same rules in a renamed or copied file are the same rules
+            changes = _rules_changes(old.get(k) or {}, new[k] or {})
+            if changes:
+                problems.append(Problem(f"--resume: {labels[k]}", _rules_name(new[k]),
+                                        f"{_rules_name(old.get(k))!r} as in the interrupted run "
+                                        f"({folder / MANIFEST}), by content; they differ: {'; '.join(changes)}; "
+                                        "give the run's rules, or rerun without --resume to start again"))
+            continue
+        if old.get(k) != new[k]:
             shown_old = old.get(k) if not k.endswith("sha256") else str(old.get(k))[:12]
             shown_new = new[k] if not k.endswith("sha256") else new[k][:12]
-            if k == "rules":  # by name (the whole rules are in the manifest)
-                shown_old, shown_new = (_rules_name(old.get(k)), _rules_name(new[k]))
             problems.append(Problem(f"--resume: {labels[k]}", shown_new,
                                     f"{shown_old!r} as in the interrupted run ({folder / MANIFEST}); "
                                     "rerun without --resume to start again"))
@@ -271,8 +293,37 @@ def _check_manifest(old: dict, new: dict, folder: Path) -> None:
         raise InputError(problems)
 
 
+#: what of a set of design rules judges a design (its name and source file are labels: a copy of the rules file
+#: under another name judges every row the same)
+_RULES_CONTENT = ("limits", "min_margins", "spring_limit_basis", "capability")
+
+
+def _rules_changes(old: dict, new: dict) -> list[str]:
+    """What differs between two manifests' design rules, by content (``min_margins.spring_yield 1 % in the run,
+    2 % now``); [] when they judge alike."""
+    def flat(rules: dict) -> dict:
+        out = {}
+        for k in _RULES_CONTENT:
+            v = rules.get(k, "thesis" if k == "spring_limit_basis" else {})
+            if isinstance(v, dict):
+                out.update({f"{k}.{kk}": vv for kk, vv in v.items()})
+            else:
+                out[k] = v
+        return out
+
+    def shown(key: str, v) -> str:
+        if v is None:
+            return "not set"
+        return f"{100 * v:g} %" if key.startswith("min_margins.") and isinstance(v, (int, float)) else f"{v}"
+    a, b = flat(old), flat(new)
+    return [f"{k} {shown(k, a.get(k))} in the run, {shown(k, b.get(k))} now"
+            for k in sorted(set(a) | set(b)) if a.get(k) != b.get(k)]
+
+
 def _rules_name(rules) -> str:
-    return "no design rules" if not rules else (rules.get("name") or "unnamed design rules")
+    if not rules:
+        return "no design rules"
+    return rules.get("name") or "unnamed design rules"
 
 
 def _write_atomic_json(path: Path, data: dict) -> None:
@@ -456,8 +507,14 @@ class RunLock:
         self._fd: int | None = None
 
     def acquire(self) -> "RunLock":
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+        output_folder(self.path.parent, "--out", inside=True)
+        try:  # never through a link planted at run.lock (O_NOFOLLOW: ELOOP)
+            fd = os.open(self.path, os.O_RDWR | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0), 0o644)
+        except OSError as exc:
+            if exc.errno == errno.ELOOP:
+                raise InputError(Problem("--out", str(self.path), "a lock file that is not a symbolic link (synth "
+                                                                  "never writes through a link: remove it)")) from None
+            raise
         try:
             import fcntl
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -568,7 +625,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
                   chunk_size: int | None = None, resume: bool = False, engine: str = "inprocess",
                   scheduler: str | None = None, workers: int | None = None, diagnose: bool = True,
                   stop_after_chunks: int | None = None, screen: Callable | None = None,
-                  stream=None, connect_timeout_s: float = 20.0) -> RunReport:
+                  stream=None, connect_timeout_s: float = 20.0, settings: Settings | None = None) -> RunReport:
     """Evaluate every application of ``portfolio`` (a path or a DataFrame) and write ``out``.
 
     ``stop_after_chunks=k`` stops after ``k`` chunks computed in this run (a
@@ -577,12 +634,15 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
     signature as :func:`synth.bulk.engine.screen_applications`; on Dask it
     must be picklable). Progress is drawn on ``stream`` (default stderr) when
     it is a terminal. ``connect_timeout_s`` bounds the wait for a ``scheduler``.
-    The run holds the lock of ``<out>.chunks`` from start to end (see the module doc).
+    The run holds the lock of ``<out>.chunks`` from start to end (see the module doc). ``settings``: the run's
+    configuration (:class:`~synth.design.settings.Settings`: design rules, spring limit basis, user catalogs,
+    engine; its fidelity is ``fidelity``), resolved here once and given to every chunk.
     """
 
     given = chunk_size is not None
     chunk_size = default_chunk_size() if chunk_size is None else chunk_size
     _validate_settings(objective, fidelity, chunk_size, engine, workers)
+    settings = _run_settings(settings, fidelity).resolved()  # the catalogs fixed: chunks may run elsewhere
     t0 = time.monotonic()
     out = Path(out)
     if out.suffix.lower() not in FORMATS:
@@ -606,9 +666,9 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
     if not given and engine == "dask":  # at least two chunks per worker, so that every worker has work
         chunk_size = max(1, min(int(chunk_size), -(-n // (2 * int(workers or 2)))))
     ranges = chunk_ranges(n, int(chunk_size))
-    folder = sidecar(out)
+    folder = output_folder(sidecar(out), "--out", inside=True)  # never a link: chunks, manifest, lock go in it
     manifest = manifest_of(p_hash, n, objective=objective, fidelity=fidelity, chunk_size=int(chunk_size),
-                           diagnose=diagnose)
+                           diagnose=diagnose, settings=settings)
     run_id = uuid.uuid4().hex
     lock = RunLock(folder, run_id, out).acquire()  # before anything in the folder is read or cleared
     try:
@@ -626,7 +686,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
                 chunk_size = old["chunk_size"]
                 ranges = chunk_ranges(n, chunk_size)
                 manifest = manifest_of(p_hash, n, objective=objective, fidelity=fidelity, chunk_size=chunk_size,
-                                       diagnose=diagnose)
+                                       diagnose=diagnose, settings=settings)
             _check_manifest(old, manifest, folder)
             if not isinstance(old.get("run_id"), str) or not old["run_id"]:
                 raise InputError(Problem("--resume", str(folder / MANIFEST), "the manifest of a run with a run id "
@@ -640,10 +700,7 @@ def run_portfolio(portfolio, out, *, objective: str = "standard", fidelity: str 
             _write_atomic_json(folder / MANIFEST, {**manifest, "run_id": run_id})
         todo = [i for i in range(len(ranges)) if i not in set(done)]
         todo_set = set(todo)
-        from synth.design.rules import active
-        kw = dict(objective=objective, fidelity=fidelity, diagnose=diagnose, screen=screen,
-                  catalog_dirs=tuple(str(p) for p in catalog._user_dirs()),
-                  rules=None if active().empty() else active())
+        kw = dict(objective=objective, diagnose=diagnose, screen=screen, settings=settings)
         computed = 0
         cols = field_columns(table)
 
@@ -797,14 +854,6 @@ def write_result(out: Path, table: pd.DataFrame, folder: Path, ranges: list, run
     return out
 
 
-def usable_cores() -> int:
-    """The processors this process may run on (its affinity; the machine's count where that is not known)."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):  # pragma: no cover - not Linux
-        return os.cpu_count() or 1
-
-
 def dask_pointless(scheduler: str | None, workers: int | None, tasks: int, threads: int | None = None) -> str | None:
     """Why ``--engine dask`` would not help (the note saying the work runs in this process instead), or None.
 
@@ -886,6 +935,7 @@ def dask_client(scheduler: str | None, workers: int | None, connect_timeout_s: f
     distributed starts its workers with ``MALLOC_TRIM_THRESHOLD_=65536``: glibc then returns every large numpy
     temporary to the system and faults it back in, and the group functions (arrays of 10^5 rows) run 3-4x
     slower than in a plain process (measured by the platform producer); the local workers keep glibc's default.
+    Their BLAS and numba pools are those of one-thread processes (:func:`synth.threads.worker_environ`).
     """
     import dask
     from dask.distributed import Client, LocalCluster
@@ -900,7 +950,7 @@ def dask_client(scheduler: str | None, workers: int | None, connect_timeout_s: f
                                          f"the address of a running Dask scheduler ({exc})")) from None
         else:
             cluster = stack.enter_context(LocalCluster(n_workers=int(workers or 2), threads_per_worker=1,
-                                                       processes=True, dashboard_address=None,
+                                                       processes=True, dashboard_address=None, env=worker_environ(1),
                                                        silence_logs=logging.ERROR))
             client = stack.enter_context(Client(cluster))
         yield client

@@ -28,8 +28,10 @@ def require_cadquery() -> None:
 
 
 def export_result(result, out_dir, inputs=None, *, stl: bool = True, pictures: bool = True, interference: bool = True,
-                  application: str | None = None):
-    """Build, verify and export ``result`` into ``out_dir``; returns ``(model, checks, info)``.
+                  application: str | None = None, what: str = "--out"):
+    """Build, verify and export ``result`` into ``out_dir`` (``what``: its option, in messages); returns
+    ``(model, checks, info)``. A part the CAD kernel cannot build fails the ``cad_solids`` check
+    (:func:`synth.cad.assembly.build`): a verdict, never an internal error.
 
     ``info`` is ``{"files": [...], "timings_s": {...}}`` (build, verification, step, stl, pictures).
     ``application`` names the STEP product ``synth tensioner <application>``; by default the stem of the
@@ -45,10 +47,11 @@ def export_result(result, out_dir, inputs=None, *, stl: bool = True, pictures: b
     g = geometry_from(result, inputs)
     model = build(g)
     t = time.perf_counter()
-    checks = verify_model(model, interference=interference)
+    rules = result.get("rules") if isinstance(result, dict) else getattr(result, "rules", None)
+    checks = verify_model(model, interference=interference, rules=rules)  # under the result's own rules
     t_verify = time.perf_counter() - t
     info = export_model(model, out_dir, checks=checks, stl=stl, pictures=pictures,
-                        application=application or _application_name(result, inputs), result=result)
+                        application=application or _application_name(result, inputs), result=result, what=what)
     info["timings_s"]["verification"] = t_verify
     return model, checks, info
 

@@ -166,7 +166,9 @@ def geometry_from(result, inputs=None, *, name: str | None = None) -> TensionerG
     values, ins, status, feasible, label, verdict = _split(result)
     ins = _inputs_dict(inputs) or _inputs_dict(ins)
     if ins is None:
-        raise InputError(Problem("inputs", None, "the design input (pass --input INPUT.yaml: this result does not carry it)"))
+        where = f" ({Path(result).name})" if isinstance(result, (str, Path)) else ""
+        raise InputError(Problem(f"inputs{where}", None, "the design input (pass --input INPUT.yaml: this result "
+                                                         "does not carry it)"))
     missing: list = [k for k in _INPUT_KEYS if ins.get(k) is None]
     if missing:
         raise InputError([Problem(f"inputs.{k}", None, "a value (needed by the CAD model)") for k in missing])

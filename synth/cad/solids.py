@@ -38,11 +38,23 @@ import cadquery as cq
 from synth import catalog
 from synth.cad.dimensions import TensionerGeometry
 
-__all__ = ["Stack", "stack", "PART_FUNCTIONS", "support_plate", "pivot", "pivot_bushing", "arm", "ball_bearing",
+__all__ = ["NotBuildable", "MAX_DRAWN_COILS", "Stack", "stack", "PART_FUNCTIONS", "support_plate", "pivot", "pivot_bushing", "arm", "ball_bearing",
            "pulley", "main_spring", "spring_bushing", "damper_pad", "endcap_spacer", "cone_spring", "endcap",
            "fixation_bolt", "spring_pitch_mm"]
 
 _EPS = 1e-6
+
+#: the most active coils the 3D model draws (a software limit, CAD only): the thesis's springs have 4-5, a
+#: tensioner's torsion spring rarely more than 10; a spring of more cannot be assembled in a tensioner's housing
+#: (its registry checks, the coil gap in the housing, fail already), OCCT's sweep of 70 coils fails outright
+#: (StdFail_NotDone, issue 39) and the interference booleans of a long helix grow without bound: 4.5 s for case
+#: 1's 4.09 coils, 66 s for 10, 146 s for 20 and 237 s for 40 (synth.cad.verify, one core, issue 39).
+MAX_DRAWN_COILS = 30.0
+
+
+class NotBuildable(ValueError):
+    """A part whose dimensions describe no solid (a spring wire wider than its coil) or more than the model draws
+    (:data:`MAX_DRAWN_COILS`): the part is not drawn, and the 3D model's ``cad_solids`` check fails naming it."""
 
 
 @dataclass(frozen=True)
@@ -278,6 +290,13 @@ def main_spring(g: TensionerGeometry) -> cq.Shape:
     p = spring_pitch_mm(g)
     n = max(g.spring_active_coils, 0.25)
     rm = 0.5 * g.spring_mean_diameter_mm
+    if not rm > 0.5 * h:  # the coil's inner radius rm - h/2 would be <= 0: the wire sweeps through itself
+        raise NotBuildable(f"a {h:g} mm wire on a {g.spring_mean_diameter_mm:g} mm mean diameter intersects itself "
+                           "(the mean diameter must exceed the radial wire size)")
+    if not n <= MAX_DRAWN_COILS:
+        raise NotBuildable(f"{g.spring_active_coils:.4g} active coils at a {p:.4g} mm pitch make a spring "
+                           f"{p * n + b:.4g} mm tall in a {g.spring_housing_height_mm:.4g} mm housing: more than the "
+                           f"{MAX_DRAWN_COILS:g} coils the 3D model draws")
     path = cq.Wire.makeHelix(p, p * n, rm, center=cq.Vector(0, 0, s.flange_top_u + b / 2))
     wp = cq.Workplane("XZ", origin=(0, 0, s.flange_top_u + b / 2)).center(rm, 0)
     prof = wp.circle(b / 2) if g.wire_section == "round" else wp.rect(h, b)

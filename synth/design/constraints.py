@@ -543,6 +543,10 @@ _CAD = (
     Constraint(id="cad_collar", label="spring-bushing collar height not negative (3D model)", step=11,
                equation="step 6 stack", unit="mm", group="cad", value="cad_collar_height_mm", limit="zero",
                sense=">=", objective=False, correction="a shorter pivot bushing or a taller spring housing"),
+    Constraint(id="cad_solids", label="every part built as a valid solid (3D model)", step=11,
+               equation="step 11 (Fig. 75-76)", unit="parts", group="cad", value="cad_unbuilt_parts", limit="zero",
+               sense="<=", objective=False, correction="resize the parts the note names (their geometry is the "
+                                                       "design's: the design's own checks say which input binds)"),
 )
 
 _SHRINK_FIT = (

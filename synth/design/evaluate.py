@@ -41,112 +41,18 @@ from synth.design.constraints import by_group, margin, physics_inputs
 from synth.model import bolted_joint, damping, disc_spring
 from synth.model import layout, packaging, pivot, plain_bushing, stackup
 from synth.model import torsion_spring
-from synth.design.rules import active as active_rules
+from synth.design.rules import NONE as NO_RULES, Rules
+from synth.design.settings import (DEFAULT, FIDELITIES, FIDELITY_TEXT, SPRING_LIMIT_BASES, UNVERIFIED_NOTE,
+                                   Settings)
 from synth.drive.analysis import tensioner_checks
-from synth.errors import InputError, Problem
-from synth.drive.inputs import drive_from_mapping
 
-__all__ = ["Settings", "SPRING_LIMIT_BASES", "SPRING_TOLERANCE_COLUMNS", "MADE_CONE_SPRING_COLUMNS", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
+__all__ = ["Settings", "DEFAULT", "core_values", "SPRING_KEY_VALUES", "SPRING_LIMIT_BASES", "SPRING_TOLERANCE_COLUMNS", "MADE_CONE_SPRING_COLUMNS", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
            "spring_values", "SPRING_OPTION_COLUMNS", "drive_values", "fixation_values", "bolt_core", "bolt_core_checks", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
            "BOLT_CORE_VALUES", "axial_judged", "axial_full", "FIDELITY_TEXT", "UNVERIFIED_NOTE", "FIDELITY_VALUES",
            "fidelity_free_ok"]  # FIDELITY_FREE: read at call time (__getattr__)
 
-#: ``full``: the full model everywhere; ``screening``: the searches rank and prune with the screening model and the
-#: full model judges every design they keep (what is reported is valid under the full model); ``screening-only``:
-#: the screening model alone, unverified (every output says so)
-FIDELITIES = ("full", "screening", "screening-only")
-#: the note of every design reported at screening-only fidelity (in its notes, and in every bulk row)
-UNVERIFIED_NOTE = "screening-only fidelity: not verified at full fidelity (the full model may reject this design)"
-#: what a reported design's fidelity means (the reports' and the command lines' words)
-FIDELITY_TEXT = {
-    "full": "full: Almen-Laszlo cone-spring characteristic and its exact plastic wear along it",
-    "screening": "screening, verified: designs searched with the linear cone spring and closed-form plastic wear, "
-                 "every reported design checked at full fidelity (its checks and values are the full model's)",
-    "screening-only": "screening only: linear cone spring and closed-form plastic wear, NOT verified at full "
-                      "fidelity (the full model may reject the design)"}
-#: the design rules a main spring's installation stress may be checked by (:class:`Settings`)
-SPRING_LIMIT_BASES = ("thesis", "en13906")
 _CONSTANT_LIMITS = {"zero": 0.0, "one": 1.0}  # limits (and scales) that are plain numbers
-
-
-@dataclass(frozen=True)
-class Settings:
-    """Model settings: speed against accuracy, and conventions (one set for every consumer).
-
-    * ``fidelity``: ``"full"`` (Almen-Laszlo cone spring, exact plastic wear
-      along it), ``"screening"`` (the searches rank and prune with the linear
-      cone spring and closed-form wear; every design they keep is judged by
-      the full model: :attr:`judge`) or ``"screening-only"`` (the screening
-      model alone, unverified);
-    * ``friction_circle``: radial friction on ``r_p sin(atan(mu))`` (physics,
-      default) or on ``r_p mu`` (the thesis tool's tables);
-    * ``bushing_running_in``: integrate the running-in of the pivot clearance in
-      the bushing wear (an extension with illustrative constants; off: the
-      thesis's closed-form eq. (32));
-    * ``bushing_length_scheme`` (the flowchart's selection only): ``"thesis"``
-      (the thesis tool's trial lengths, multiples of half the pivot diameter,
-      then the next catalog length is the part) or ``"catalog"`` (the shortest
-      catalog length that passes);
-    * ``bolt_method``: ``"thesis"`` (the elastic von Mises check of the nominal
-      preload, eq. (103)-(107): the default, it reproduces the thesis tool and
-      its safety targets already hold the preload scatter) or ``"vdi2230"``
-      (permissible assembly preload with the plastic torsion factor, tightening
-      factor and embedding loss, VDI 2230-1; the clamped length is taken as the
-      maximum pivot height);
-    * ``drive``: the belt drive around the tensioner (:class:`synth.drive.inputs.Drive`, ``synth design
-      --drive``) or None; with a drive the core group adds the registry's ``drive_belt_slack`` and
-      ``drive_arm_lock`` checks at each design's own damping (a saved result's dict form is read back).
-    * ``spring_limit_basis`` (a design rule): what the main spring's installation stress is checked against
-      (constraint ``spring_yield``): ``"thesis"`` (the curvature-corrected stress against the material's
-      ``sigma_y_bend_fraction * Rm``, the thesis tool's yield check, eq. (72)-(77): the default) or
-      ``"en13906"`` (the spring makers' static rule, EN 13906-3 practice: the stress without the curvature
-      factor against ``sigma_perm_static_fraction * Rm``, 0.75 Rm; expressed on the corrected stress as
-      ``0.75 Rm k_f``, the same relative margin). The advisory ``spring_static_permissible`` shows the static
-      rule either way.
-    """
-
-    fidelity: str = "full"
-    friction_circle: bool = True
-    bushing_running_in: bool = False
-    bushing_length_scheme: str = "thesis"
-    bolt_method: str = "thesis"
-    drive: object = None
-    spring_limit_basis: str = "thesis"
-
-    def __post_init__(self):
-        if isinstance(self.drive, dict):
-            object.__setattr__(self, "drive", drive_from_mapping(self.drive))
-        if self.fidelity not in FIDELITIES:
-            raise InputError(Problem("fidelity", self.fidelity, "one of " + ", ".join(FIDELITIES)))
-        if self.bolt_method not in ("thesis", "vdi2230"):
-            raise InputError(Problem("bolt_method", self.bolt_method, "thesis or vdi2230"))
-        if self.bushing_length_scheme not in ("thesis", "catalog"):
-            raise InputError(Problem("bushing_length_scheme", self.bushing_length_scheme, "thesis or catalog"))
-        if self.spring_limit_basis not in SPRING_LIMIT_BASES:
-            raise InputError(Problem("spring_limit_basis", self.spring_limit_basis, " or ".join(SPRING_LIMIT_BASES)))
-
-    @property
-    def model(self) -> str:
-        """The physics the groups compute with these settings: ``"full"`` or ``"screening"``."""
-        return "full" if self.fidelity == "full" else "screening"
-
-    @property
-    def judge(self) -> "Settings":
-        """The settings whose model decides a design's verdict: full fidelity for ``"screening"`` (screen, then
-        verify), these settings otherwise (``"screening-only"`` is not verified).
-
-        >>> Settings(fidelity="screening").judge.fidelity, Settings(fidelity="screening-only").judge.model
-        ('full', 'screening')
-        """
-        if self.fidelity != "screening":
-            return self
-        import dataclasses
-        return dataclasses.replace(self, fidelity="full")
-
-    def notes(self) -> list:
-        """What a reported design's notes say about its fidelity: :data:`UNVERIFIED_NOTE` at screening-only."""
-        return [UNVERIFIED_NOTE] if self.fidelity == "screening-only" else []
 
 
 @dataclass
@@ -155,7 +61,8 @@ class Group:
 
     ``margins[id]`` is ``+inf`` where the constraint does not apply or is not
     verified (``state`` says which), ``-inf`` where its value is NaN. ``search``: the search model's group
-    this one was judged from (:func:`axial_judged`); its margins rank nearest designs (:meth:`rank`).
+    this one was judged from (:func:`axial_judged`); its margins rank nearest designs (:meth:`rank`). ``rules``:
+    the design rules its margins are measured beyond (:meth:`synth.design.rules.Rules.required`).
     """
 
     name: str
@@ -163,6 +70,8 @@ class Group:
     margins: dict = field(default_factory=dict)
     state: dict = field(default_factory=dict)
     search: "Group | None" = None
+    #: the design rules the margins were computed under (:func:`finish`): each check's required margin
+    rules: Rules = NO_RULES
 
     def rank(self) -> "Group":
         """The group whose margins rank nearest designs: the search model's (:attr:`search`), else this one."""
@@ -197,28 +106,31 @@ class Group:
                 out[k] = arr
             return out
         return Group(self.name, mix(self.values, other.values), mix(self.margins, other.margins),
-                     mix(self.state, other.state))
+                     mix(self.state, other.state), rules=self.rules)
 
     def take(self, idx) -> "Group":
         """The rows ``idx`` as a new group."""
         return Group(self.name, {k: v[idx] for k, v in self.values.items()},
-                     {k: v[idx] for k, v in self.margins.items()}, {k: v[idx] for k, v in self.state.items()})
+                     {k: v[idx] for k, v in self.margins.items()}, {k: v[idx] for k, v in self.state.items()},
+                     rules=self.rules)
 
 
-def finish(name: str, values: dict, apps, a, checks: tuple | None = None) -> Group:
+def finish(name: str, values: dict, apps, a, checks: tuple | None = None, *, rules: Rules = NO_RULES,
+           core: dict | None = None) -> Group:
     """The registry margins of group ``name`` (or of its ``checks`` only) from its ``values`` for rows of
     applications ``a`` (an array of any shape: every value broadcasts to it).
 
     ``apps`` may be None (a group measured on a built model, the CAD checks): a constraint that needs an input
-    is then not verified where its limit is NaN. The design rules in force (:func:`synth.design.rules.active`)
-    set the limits they name and the margins checks must keep: the margin is then the one beyond the rule's.
+    is then not verified where its limit is NaN. ``rules`` (the configuration's,
+    :attr:`synth.design.settings.Settings.rules`) set the limits they name and the margins checks must keep: the
+    margin is then the one beyond the rule's. ``core``: the values of the rows' core the group's checks may read
+    (:func:`core_values`), for their physics functions (:func:`add_physics`).
     """
     n = np.shape(a)  # the rows' shape: 1-D, or the bulk engine's 2-D grid of core rows x bolt diameters
     margins, state = {}, {}
     met = {}
-    rules = active_rules()
     checks = by_group(name) if checks is None else checks
-    add_physics(checks, values, apps, a)
+    add_physics(checks, values, apps, a, core)
     for c in checks:
         if c.limit in rules.limits:  # a design rule sets this limit (synth.design.rules)
             values[c.limit] = np.full(n, rules.limits[c.limit])
@@ -249,16 +161,27 @@ def finish(name: str, values: dict, apps, a, checks: tuple | None = None) -> Gro
         # every row evaluated (the usual case): the margins as they are, in an array of their own
         margins[c.id] = m if own and not st.any() else np.where(st == EVALUATED, m, np.inf)
         state[c.id] = st
-    return Group(name, values, margins, state)
+    return Group(name, values, margins, state, rules=rules)
 
 
-def add_physics(checks, values: dict, apps, a) -> None:
+def add_physics(checks, values: dict, apps, a, core: dict | None = None) -> None:
     """The values and limits of the ``checks`` that declare a physics function (:attr:`Constraint.physics`), added
-    to ``values`` in place: each parameter is read by its name from the group's values, else from the applications'
-    fields at rows ``a``."""
+    to ``values`` in place: each parameter is read by its name from the group's values, else from its core's
+    (``core``: the rows' core values, :func:`core_values`), else from the applications' fields at rows ``a``; a
+    name that is none of them is an error naming the check."""
     for c in checks:
         if c.physics is not None:
-            kw = {k: values[k] if k in values else apps.f[k][a] for k in physics_inputs(c)}
+            kw = {}
+            for k in physics_inputs(c):
+                if k in values:
+                    kw[k] = values[k]
+                elif core is not None and k in core:
+                    kw[k] = core[k]
+                elif apps is not None and k in apps.f:
+                    kw[k] = apps.f[k][a]
+                else:
+                    raise KeyError(f"constraint {c.id}: its physics function reads {k!r}, which is not a value of "
+                                   f"group {c.group}, of its core or a field of the application")
             values.update(c.physics(**kw))
 
 
@@ -279,22 +202,56 @@ class _Fields(dict):
         return v
 
 
-#: what the bushing group reads of its core row (besides the application): the bulk engine evaluates one row per
-#: distinct value of these, exactly
+#: what the bushing group's function reads of its core row (besides the application): declared beside the function;
+#: :func:`core_values` adds what the registry's checks read
 BUSHING_CORE_VALUES = ("hubload_nominal_n", "pivot_diameter_mm", "axial_group_present")
-#: what the axial group reads of its core row (besides the application)
+#: what the axial group's function reads of its core row (besides the application)
 AXIAL_CORE_VALUES = ("axial_damping_nm", "radial_damping_nm",
                      "cone_spring_max_external_diameter_mm", "cone_spring_min_internal_diameter_mm",
                      "cone_spring_table8_max_mm", "damper_pad_mean_radius_mm", "damper_pad_contact_area_mm2",
                      "damper_pad_axial_height_mm", "bearing_width_mm", "axial_group_present",
                      "damper_pad_outer_diameter_mm")
-#: what the bolt group's checks may read of its core row (besides the application and the bolt): the pivot wall's
-#: (registry ``pivot_wall``); :func:`bolt_core_checks` are the checks that read them
-BOLT_CORE_VALUES = ("pivot_diameter_mm", "loading_arm_mm")
+#: what a main spring reads of its core row (besides the application): its key
+SPRING_KEY_VALUES = ("spring_torque_nominal_nm", "spring_housing_height_mm", "spring_housing_outer_diameter_mm",
+                     "spring_housing_inner_diameter_mm")
+#: what the bolt group's function reads of its core row: nothing (step 10 sees the application and the bolt); its
+#: checks that read the core (the pivot wall's physics: the pivot diameter and the loading arm) add theirs
+#: (:func:`core_values`, :func:`bolt_core_checks`)
+BOLT_CORE_VALUES = ()
+_DECLARED_CORE_VALUES = {"bushing": BUSHING_CORE_VALUES, "axial": AXIAL_CORE_VALUES, "spring": SPRING_KEY_VALUES,
+                         "bolt": BOLT_CORE_VALUES}
+
+
+def core_values(group: str, core) -> tuple:
+    """What group ``group`` reads of its core row: its function's declared inputs (:data:`BUSHING_CORE_VALUES`,
+    :data:`AXIAL_CORE_VALUES`, :data:`SPRING_KEY_VALUES`, :data:`BOLT_CORE_VALUES`), then every value of the core
+    (``core``: a core group's values, or their names) a registered check of the group reads through its physics
+    function's parameters (:func:`~synth.design.constraints.physics_inputs`), registry order.
+
+    Derived from the registry as it is now, never kept by hand: the searches that evaluate a group once per
+    distinct value of what it reads of the core (:class:`synth.optimise.batch.Batch`, the platform producer, the
+    design space's product) key it on this, and the group functions hand these values to the physics
+    (:func:`add_physics`). A check of the axial group whose physics reads ``pivot_diameter_mm`` makes the pivot
+    diameter part of the axial group's key, with no other edit.
+
+    >>> core_values("bolt", {"pivot_diameter_mm": 0, "loading_arm_mm": 0, "bearing_width_mm": 0})
+    ('pivot_diameter_mm', 'loading_arm_mm')
+    """
+    out = list(_DECLARED_CORE_VALUES[group])
+    for c in by_group(group):
+        for k in physics_inputs(c):
+            if k in core and k not in out:
+                out.append(k)
+    return tuple(out)
+
+
+def _core_rows(group: str, cg: "Group", r) -> dict:
+    """The core values group ``group`` reads (:func:`core_values`) at core rows ``r`` of core group ``cg``."""
+    return {k: cg.values[k][r] for k in core_values(group, cg.values)}
 
 
 # --------------------------------------------------------------------------- step 0: inputs only
-def inputs(apps, a) -> Group:
+def inputs(apps, a, settings: Settings = DEFAULT) -> Group:
     """Group ``input``: layout, pulley axial space, lock-up pin (eq. (17)-(27)) for applications ``a``."""
     f = _Fields(apps, a)
     v = {"layout_standard": apps.layout_standard[a], "layout_reverse": apps.layout_reverse[a]}
@@ -312,7 +269,7 @@ def inputs(apps, a) -> Group:
                                      f["lockup_pin_diameter_mm"], f["pulley_diameter_mm"], tp, tm)
     v.update(hubload_angle_from_EHR_deg=hl, wrap_upper_limit_deg=tp, wrap_lower_limit_deg=tm, pin_clearance_mm=c,
              pin_clearance_required_mm=req)
-    return finish("input", v, apps, a)
+    return finish("input", v, apps, a, rules=settings.rules)
 
 
 # --------------------------------------------------------------------------- steps 1-3, 7: the core
@@ -334,7 +291,7 @@ def _table2(p, bearing, working_arm_mm):
     return cls, la, arm_max
 
 
-def core(apps, a, c: dict, settings: Settings = Settings(), detail: bool = False) -> Group:
+def core(apps, a, c: dict, settings: Settings = DEFAULT, detail: bool = False) -> Group:
     """Group ``core`` (steps 1-3, 7 and the cone-spring annulus of step 8) for applications ``a`` and core rows ``c``.
 
     ``c`` holds the core table's columns for the rows (:meth:`synth.design.space.Space.rows`).
@@ -404,7 +361,7 @@ def core(apps, a, c: dict, settings: Settings = Settings(), detail: bool = False
                                  c["pivot_diameter_mm"], mu, np.zeros(n), settings.friction_circle)
         for k in ("hubload_loading_n", "hubload_unloading_n", "asymmetry_ratio"):
             v[k] = np.asarray(ch[k], dtype=float)
-    return finish("core", v, apps, a)
+    return finish("core", v, apps, a, rules=settings.rules)
 
 
 def drive_values(drive, damping_nm) -> dict:
@@ -423,7 +380,7 @@ def drive_values(drive, damping_nm) -> dict:
 
 
 # --------------------------------------------------------------------------- step 4: the pivot bushing
-def bushing(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Group:
+def bushing(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT) -> Group:
     """Group ``bushing`` (step 4) for core rows ``r`` of core group ``cg`` and bushing options ``o``.
 
     ``o``: ``supplier_code`` and ``pivot_bushing_length_mm`` per row (any length); the option's supplier
@@ -435,7 +392,7 @@ def bushing(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Gro
     sup, env = np.asarray(o["supplier_code"]), apps.env[a]
     lim = {k: p.bushing_limits[k][sup, env] for k in p.bushing_limits}
     rated = np.isfinite(lim["pvt_max_mpa_m_per_s_h"]) & np.isfinite(lim["k_w_mm3_per_n_m"])
-    cv = {k: cg.values[k][r] for k in BUSHING_CORE_VALUES}
+    cv = _core_rows("bushing", cg, r)
     pad = cv["axial_group_present"] > 0
     res = plain_bushing.evaluate_bushing(cv["hubload_nominal_n"], cv["pivot_diameter_mm"],
                               o["pivot_bushing_length_mm"], apps.theta_pp_deg[a], apps.frequency_hz[a],
@@ -453,7 +410,7 @@ def bushing(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Gro
              pivot_bushing_pvt_max_mpa_m_per_s_h=lim["pvt_max_mpa_m_per_s_h"],
              pivot_bushing_sliding_layer_mm=p.bushing.sliding_layer_depth_mm[sup],
              pulley_max_parallelism_eol_mm=f["pulley_max_parallelism_eol_mm"])
-    return finish("bushing", v, apps, a)
+    return finish("bushing", v, apps, a, rules=settings.rules, core=cv)
 
 
 # --------------------------------------------------------------------------- steps 5-8: the axial damping group
@@ -494,11 +451,14 @@ def __getattr__(name):  # FIDELITY_FREE read from the registry as it is now (a c
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_points: int = 0) -> Group:
+def axial(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT, time_points: int = 0,
+          engine: str | None = None) -> Group:
     """Group ``axial`` (Table 4, belt plane, cone spring, plastic wear) for core rows ``r`` and axial options ``o``.
 
     ``o``: the axial table's columns (spacer, cone-spring variant). Rows pair a core with a damper pad with
     a real option, or a core without one with the ``none`` option. ``time_points`` keeps the wear history.
+    ``engine``: the cone spring's and the wear's (:mod:`synth.kernels.axial`; None: the numpy reference), chosen
+    by a search of many rows with :func:`synth.kernels.engines.axial`.
     """
     from synth.kernels import axial as axial_engine  # the cone spring and the wear on the caller's engine
     p = parts.arrays()
@@ -530,7 +490,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
                                  sized(cv["damper_pad_mean_radius_mm"]),
                                  sized(np.asarray(o["endcap_spacer_mean_radius_mm"])), sized(de), sized(di), gap,
                                  aspect_ratio=sized(zeta), deflection_ratio=sized(phi), fidelity=settings.model,
-                                 **made)
+                                 engine=engine or "numpy", **made)
         _put_columns(v, keys, cs, None if every else i)
     v["cone_spring_gap_tolerance_mm"] = np.full(n, gap)
     v["cone_spring_sigma_om_abs_mpa"] = np.abs(v["sigma_om_mpa"])
@@ -555,10 +515,10 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = Settings(), time_poi
                                   at(cv["radial_damping_nm"]),
                                   k_wear_mm3_per_n_m=at(apps.k_wear_plastic_mm3_per_n_m[a]),
                                   plastic_friction_coefficient=at(mu_pl), fidelity=settings.model,
-                                  time_points=time_points)
+                                  time_points=time_points, engine=engine or "numpy")
         _put_columns(v, PLASTIC_WEAR_VALUES, pw, None if worn else w)
         history = pw.get("history")
-    g = finish("axial", v, apps, a)
+    g = finish("axial", v, apps, a, rules=settings.rules, core=cv)
     if history is not None:
         g.values["_history_rows"] = w
         g.values["_history"] = history
@@ -570,7 +530,7 @@ def _axial_base(apps, cg: Group, r, o: dict) -> tuple:
     core values, real, spacer height, De, Di)``: Table 4's spacer, the belt plane, the cone spring's diameters."""
     a = cg.values["app"][r]
     f = _Fields(apps, a)
-    cv = {k: cg.values[k][r] for k in AXIAL_CORE_VALUES}
+    cv = _core_rows("axial", cg, r)
     real = np.asarray(o["axial_group_present"], dtype=bool)
     std = apps.layout_standard[a]
     es_h = np.asarray(o["endcap_spacer_axial_height_mm"], dtype=float)
@@ -598,7 +558,7 @@ def _cone_diameters(cv: dict, real, de, di) -> dict:
             "cone_spring_internal_diameter_mm": np.where(real, di, np.nan)}
 
 
-def axial_before_physics(apps, cg: Group, r, o: dict) -> Group:
+def axial_before_physics(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT) -> Group:
     """The checks of group ``axial`` that read only what it derives before its physics (:func:`_axial_base`: no
     cone spring, no wear; so none the fidelity changes), at their cost: the same margins as :func:`axial` gives
     them (a search discards the rows that fail one before the physics). A check added with ``register`` that reads
@@ -608,7 +568,7 @@ def axial_before_physics(apps, cg: Group, r, o: dict) -> Group:
     checks = tuple(c for c in by_group("axial") if c.physics is None
                    and all(k in v or k in _CONSTANT_LIMITS for k in (c.value, c.limit, c.scale, c.applies,
                                                                      c.objective_unless) if k))
-    return finish("axial", v, apps, a, checks=checks)
+    return finish("axial", v, apps, a, checks=checks, rules=settings.rules, core=cv)
 
 
 def _rows_of(idx: np.ndarray, n: int):
@@ -629,22 +589,23 @@ def _put_columns(v: dict, keys, got: dict, rows) -> None:
             v[k][slice(None) if rows is None else rows] = col
 
 
-def axial_judged(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Group:
+def axial_judged(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT, engine: str | None = None) -> Group:
     """Group ``axial`` as a search reads it: screen, then judge.
 
     At fidelity ``screening`` the rows the screening model passes are evaluated again by the full model
     (:attr:`Settings.judge`) and carry its values, margins and states: a row passes only when both models pass
     it, and a passing row's margins (the margin objective's) are the full model's. Nearest designs are ranked
     by the search model (:meth:`Group.rank`: the screening group, kept as ``search``), as the bulk engine ranks
-    them; a reported design is verified again. At the other fidelities :func:`axial` itself.
+    them; a reported design is verified again. At the other fidelities :func:`axial` itself. ``engine``: as
+    :func:`axial`'s, for both models.
     """
-    g = axial(apps, cg, r, o, settings)
+    g = axial(apps, cg, r, o, settings, engine=engine)
     if settings.judge is settings:
         return g
-    return _judged_rows(apps, cg, r, o, settings, g, g.ok())
+    return _judged_rows(apps, cg, r, o, settings, g, g.ok(), engine)
 
 
-def axial_full(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> Group:
+def axial_full(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT, engine: str | None = None) -> Group:
     """The full model's verdicts of group ``axial`` at the cost of the rows that can pass it (``settings``: the
     search's, fidelity ``screening``).
 
@@ -653,10 +614,10 @@ def axial_full(apps, cg: Group, r, o: dict, settings: Settings = Settings()) -> 
     model's verdict; nearest designs are ranked by the screening group (:meth:`Group.rank`). At the other
     fidelities :func:`axial` itself.
     """
-    g = axial(apps, cg, r, o, settings)
+    g = axial(apps, cg, r, o, settings, engine=engine)
     if settings.judge is settings:
         return g
-    return _judged_rows(apps, cg, r, o, settings, g, fidelity_free_ok(g))
+    return _judged_rows(apps, cg, r, o, settings, g, fidelity_free_ok(g), engine)
 
 
 def fidelity_free_ok(g: Group) -> np.ndarray:
@@ -665,26 +626,23 @@ def fidelity_free_ok(g: Group) -> np.ndarray:
     return assess_group(g, only=_fidelity_free()).ok  # the registry now, never a list frozen at import
 
 
-def _judged_rows(apps, cg, r, o, settings, g: Group, which) -> Group:
+def _judged_rows(apps, cg, r, o, settings, g: Group, which, engine=None) -> Group:
     """``g`` (the search model's group) with the rows ``which`` replaced by the judge's, and ``g`` as ``search``."""
     rows = np.flatnonzero(which)
     if not len(rows):
-        return Group(g.name, g.values, g.margins, g.state, search=g)
-    full = axial(apps, cg, np.asarray(r)[rows], {k: np.asarray(v)[rows] for k, v in o.items()}, settings.judge)
+        return Group(g.name, g.values, g.margins, g.state, search=g, rules=g.rules)
+    full = axial(apps, cg, np.asarray(r)[rows], {k: np.asarray(v)[rows] for k, v in o.items()}, settings.judge,
+                 engine=engine)
     out = g.put(rows, full)
     out.search = g
     return out
 
 
 # --------------------------------------------------------------------------- step 9: the main spring
-#: what a main spring reads of its core row (besides the application): its key
-SPRING_KEY_VALUES = ("spring_torque_nominal_nm", "spring_housing_height_mm", "spring_housing_outer_diameter_mm",
-                     "spring_housing_inner_diameter_mm")
-
-
 def spring_keys(cg: Group, r) -> dict:
-    """What a main spring sees of core rows ``r``: application, spring torque, housing height and diameters."""
-    return {"app": cg.values["app"][r], **{k: cg.values[k][r] for k in SPRING_KEY_VALUES}}
+    """What a main spring sees of core rows ``r``: application, spring torque, housing height and diameters (and
+    any other core value a registered spring check reads, :func:`core_values`)."""
+    return {"app": cg.values["app"][r], **_core_rows("spring", cg, r)}
 
 
 #: the per-row inputs of :func:`spring_values` besides the option (what a main spring sees of its application)
@@ -723,7 +681,7 @@ def spring_inputs(apps, keys: dict, k) -> dict:
             "dtheta_nom_free_arm_deg": f["arm_travel_nominal_to_free_deg"][a]}
 
 
-def spring_values(o: dict, x: dict, settings: Settings = Settings()) -> dict:
+def spring_values(o: dict, x: dict, settings: Settings = DEFAULT) -> dict:
     """The values of group ``spring`` (step 9, eq. (64)-(93)) for options ``o`` (the spring table's columns) and
     per-row inputs ``x`` (:data:`SPRING_INPUTS`, :func:`spring_inputs`), all broadcast to one length.
 
@@ -774,7 +732,7 @@ def spring_values(o: dict, x: dict, settings: Settings = Settings()) -> dict:
     return v
 
 
-def spring(apps, keys: dict, k, o: dict, settings: Settings = Settings(), inputs: dict | None = None) -> Group:
+def spring(apps, keys: dict, k, o: dict, settings: Settings = DEFAULT, inputs: dict | None = None) -> Group:
     """Group ``spring`` (step 9) for rows pairing key ``k[i]`` of ``keys`` (:func:`spring_keys`) with option ``o``.
 
     ``inputs`` (optional): per-row values replacing some of :func:`spring_inputs` (a made spring's stiffness in
@@ -784,7 +742,8 @@ def spring(apps, keys: dict, k, o: dict, settings: Settings = Settings(), inputs
     if inputs:
         x.update(inputs)
     v = {"app": a, **spring_values(o, x, settings)}
-    return finish("spring", v, apps, a)
+    core = {c: np.asarray(keys[c])[k] for c in keys if c != "app" and c not in SPRING_KEY_VALUES}
+    return finish("spring", v, apps, a, rules=settings.rules, core=core)
 
 
 # --------------------------------------------------------------------------- step 10 and the pivot wall
@@ -798,7 +757,7 @@ _BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_m
                 "bolt_embedding_loss_n")
 
 
-def fixation_values(apps, a, o: dict, settings: Settings = Settings()) -> dict:
+def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
     """Step 10 (:func:`synth.model.bolted_joint.fixation`) for rows of applications ``a`` and bolts ``o``.
 
     One vectorised call per bolt-head form, washer series, tightening method (the VDI 2230 path only: the
@@ -878,30 +837,25 @@ def _mu(apps, key: str, interface: str, ua, env) -> np.ndarray:
     return np.asarray(d[ua] if d is not None else parts.mu(interface, env), dtype=float)
 
 
-def bolt_core_checks() -> tuple:
-    """The checks of group ``bolt`` that read the core (a :data:`BOLT_CORE_VALUES` key among what their margin
-    reads, :meth:`~synth.design.constraints.Constraint.reads`: the pivot wall of step 2, a check added with
-    ``register``); the others depend on the application and the bolt only."""
-    core = set(BOLT_CORE_VALUES)
-    return tuple(c for c in by_group("bolt") if core.intersection(c.reads()))
+def bolt_core_checks(core) -> tuple:
+    """The checks of group ``bolt`` that read the core (a value of ``core``, a core group's values or their
+    names, among what their margin reads, :meth:`~synth.design.constraints.Constraint.reads`: the pivot wall of
+    step 2, a check added with ``register``); the others depend on the application and the bolt only."""
+    read = set(core_values("bolt", core))
+    return tuple(c for c in by_group("bolt") if read.intersection(c.reads()))
 
 
-def _bolt_design_values(a, core: dict, o: dict) -> dict:
-    """What every check of group ``bolt`` may read of its design besides the application: the core's
-    :data:`BOLT_CORE_VALUES` and the bolt's nominal diameter."""
-    return {"app": a, **{k: core[k] for k in BOLT_CORE_VALUES}, "bolt_d_mm": np.asarray(o["bolt_d_mm"], dtype=float)}
-
-
-def bolt_core(apps, a, core: dict, o: dict) -> Group:
+def bolt_core(apps, a, core: dict, o: dict, settings: Settings = DEFAULT) -> Group:
     """The checks of group ``bolt`` that read the core (:func:`bolt_core_checks`) for rows of applications ``a``
-    with core values ``core`` (:data:`BOLT_CORE_VALUES`) and bolt columns ``o`` (``bolt_d_mm`` and what else
+    with core values ``core`` (:func:`core_values`) and bolt columns ``o`` (``bolt_d_mm`` and what else
     they read), broadcasting to ``a``'s shape (the bulk engine: core rows x bolt diameters): the registry's
     margins, state and design rules as :func:`bolt` gives them, without the fixation (the per-core part of the
     bolt group)."""
-    return finish("bolt", _bolt_design_values(a, core, o), apps, a, checks=bolt_core_checks())
+    v = {"app": a, "bolt_d_mm": np.asarray(o["bolt_d_mm"], dtype=float)}
+    return finish("bolt", v, apps, a, checks=bolt_core_checks(core), rules=settings.rules, core=core)
 
 
-def bolt(apps, cg: Group, r, o: dict, settings: Settings = Settings(), fixation: dict | None = None) -> Group:
+def bolt(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT, fixation: dict | None = None) -> Group:
     """Group ``bolt`` (step 10 and the pivot wall of step 2) for core rows ``r`` and bolt options ``o``.
 
     ``fixation`` (optional): the :func:`fixation_values` of the rows, when the caller computed them once per
@@ -911,7 +865,7 @@ def bolt(apps, cg: Group, r, o: dict, settings: Settings = Settings(), fixation:
     f = _Fields(apps, a)
     n = len(a)
     fix = fixation if fixation is not None else fixation_values(apps, a, o, settings)
-    v = {**_bolt_design_values(a, {k: cg.values[k][r] for k in BOLT_CORE_VALUES}, o), **fix}
+    v = {"app": a, "bolt_d_mm": np.asarray(o["bolt_d_mm"], dtype=float), **fix}
     v["bolt_method_thesis"] = np.full(n, settings.bolt_method == "thesis")
     v["bolt_method_vdi"] = ~v["bolt_method_thesis"]
     v["bolt_sigma_permissible_mpa"] = _const("bolt_yield_utilisation_max") * np.asarray(o["rp02_mpa"], dtype=float)
@@ -921,4 +875,4 @@ def bolt(apps, cg: Group, r, o: dict, settings: Settings = Settings(), fixation:
     for k in ("engine_support_internal_diameter_mm", "support_yield_strength_compression_mpa",
               "support_yield_strength_traction_mpa"):
         v[k] = f[k]
-    return finish("bolt", v, apps, a)
+    return finish("bolt", v, apps, a, rules=settings.rules, core=_core_rows("bolt", cg, r))

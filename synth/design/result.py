@@ -32,7 +32,6 @@ from synth.design.constraints import GROUPS as REGISTRY_GROUPS, REGISTRY, margin
 from synth.io.outputs import plain  # JSON-friendly data (NaN and infinities as None, no subnormal number)
 from synth.design.applications import DEFAULTS
 from synth.design.evaluate import _CONSTANT_LIMITS as CONSTANT_LIMITS
-from synth.design.rules import active as active_rules
 from synth.schema import FIELDS
 from synth.errors import InputError, Problem
 
@@ -138,6 +137,9 @@ class Result:
     #: the K best designs in objective order, the first this one (``--top K``:
     #: :func:`synth.optimise.alternatives.ranked`): rank, parts, objectives, margin, binding, verdict, differs
     alternatives: list = field(default_factory=list)
+    #: the design's price lines (quoted, modelled, assumed) and, for the cost objective, how much the choice
+    #: depends on the prices (:func:`synth.cost.decision.cost_report`)
+    cost: dict = field(default_factory=dict)
     #: the design rules the checks were made under (:mod:`synth.design.rules`; {} without rules)
     rules: dict = field(default_factory=dict)
 
@@ -200,7 +202,7 @@ class Result:
         return [self.checks[j] for j in order[:n]]
 
     #: what a synthesis adds to a verified design (kept when the design is verified again, e.g. for its curves)
-    SYNTHESIS_FIELDS = ("objective", "objectives", "stats", "diagnosis", "changes", "control", "alternatives")
+    SYNTHESIS_FIELDS = ("objective", "objectives", "stats", "diagnosis", "changes", "control", "alternatives", "cost")
 
     def carry(self, other: "Result") -> "Result":
         """This result with the synthesis fields (:attr:`SYNTHESIS_FIELDS`) of ``other``; returns self."""
@@ -240,6 +242,7 @@ class Result:
             "inputs": plain(self.inputs), "settings": plain(self.settings), "steps_run": list(self.steps_run),
             **({"robust": plain(self.robust, n)} if self.robust else {}),
             "changes": plain(self.changes), "control": plain(self.control), "alternatives": plain(self.alternatives, n),
+            **({"cost": plain(self.cost, n)} if self.cost else {}),
             "rules": plain(self.rules),
         }
 
@@ -267,7 +270,8 @@ class Result:
                    steps_run=list(data.get("steps_run") or []), changes=list(data.get("changes") or []),
                    control=dict(data.get("control") or {}), alternatives=list(data.get("alternatives") or []),
                    rules=dict(data.get("rules") or {}),
-                   robust=dict(data["robust"]) if isinstance(data.get("robust"), dict) else {})
+                   robust=dict(data["robust"]) if isinstance(data.get("robust"), dict) else {},
+                   cost=dict(data["cost"]) if isinstance(data.get("cost"), dict) else {})
 
 
 def checks_of(groups: dict, apps, row: int = 0, assessment: Assessment | None = None) -> list:
@@ -281,7 +285,6 @@ def checks_of(groups: dict, apps, row: int = 0, assessment: Assessment | None = 
         if name in REGISTRY_GROUPS:
             app[name] = int(g.values["app"][row]) if "app" in g.values else row
     out = []
-    rules = active_rules()
     for k, c in enumerate(a.columns.constraints):
         cid, g, st, aa = c.id, groups[c.group], int(a.state[j, k]), app[c.group]
         if st == NOT_APPLICABLE_STATE:
@@ -300,7 +303,7 @@ def checks_of(groups: dict, apps, row: int = 0, assessment: Assessment | None = 
         verdict = FAIL if a.failed[j, k] else (WARNING if a.warning[j, k] else PASS)
         assumed = [] if apps is None or not a.assumed[j, k] else [
             apps.assumed_note(x, aa) for x in c.assumes if x in DEFAULTS and apps.assumed(x)[aa]]
-        out.append(Check(cid, value, limit, m, verdict, assumed=assumed, required=rules.required(cid)))
+        out.append(Check(cid, value, limit, m, verdict, assumed=assumed, required=g.rules.required(cid)))
     return out
 
 

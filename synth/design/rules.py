@@ -23,26 +23,26 @@ file) or a rules file (``--rules FILE``: the same mapping, at the top or under `
   the margin *beyond* the rule (``margin >= 0`` passes, everywhere: feasibility, the optimiser, the diagnosis),
   and the check carries the required margin (``required_margin``).
 * ``spring_limit_basis`` and ``capability`` are the settings of the production-scatter and limit-basis work
-  (issue 22): recorded, validated and echoed here; the evaluator reads them from the active rules.
+  (issue 22): recorded, validated and echoed here; the spring limit basis lives here only
+  (:attr:`synth.design.settings.Settings.spring_limit_basis` reads it).
 
-The rules are active for a run (:func:`using`; the command line activates those of ``--rules`` or of the input
-file for the whole scene), applied in :func:`synth.design.evaluate.finish`, and carried by every result
-(``Result.rules``), so a saved result is re-verified under its own rules.
+Rules are part of a run's configuration (:class:`synth.design.settings.Settings`, its ``rules``): resolved once
+where the run starts (the command line from ``--rules`` or the input file's section, the Python API from its
+``rules=`` keyword or the input's section), passed as an argument to every search and worker, applied in
+:func:`synth.design.evaluate.finish` and carried by every result (``Result.rules``), so a saved result is
+re-verified under its own rules. No process-wide state: two threads judging under two sets of rules each get
+their own.
 
 >>> r = Rules.from_mapping({"name": "ACME", "min_margins": {"spring_yield": "5 %"},
 ...                         "limits": {"main_spring_min_safety_factor": 1.3}})
 >>> r.min_margins, r.limits
 ({'spring_yield': 0.05}, {'main_spring_min_safety_factor': 1.3})
->>> with using(r):
-...     active().min_margins["spring_yield"]
-0.05
->>> active().empty()
-True
+>>> echo(r)["name"], echo(NONE)
+('ACME', {})
 """
 
 from __future__ import annotations
 
-import contextlib
 import functools
 import math
 from dataclasses import dataclass, field
@@ -50,10 +50,11 @@ from pathlib import Path
 
 from synth.errors import InputError, Problem
 from synth.io.files import WORKBOOK_SUFFIXES, suffix_of
+from synth.io.limits import short
 from synth.io.structured import read_document
-from synth.io.numbers import number_from_text
+from synth.io.numbers import percentage
 
-__all__ = ["Rules", "using", "active", "LIMIT_NAMES", "SPRING_LIMIT_BASES", "CAPABILITY_TARGETS", "read_rules",  # noqa: F822 (LIMIT_NAMES: module __getattr__)
+__all__ = ["Rules", "LIMIT_NAMES", "SPRING_LIMIT_BASES", "CAPABILITY_TARGETS", "read_rules",  # noqa: F822 (LIMIT_NAMES: module __getattr__)
            "NONE", "echo", "of_args"]
 
 #: the bases of the main spring's installation check (issue 22 adds ``en13906``: the spring makers' static rule)
@@ -101,13 +102,13 @@ def _tighten_text(name: str) -> str:
 
 
 def _fraction(value, where: str) -> float:
-    """A margin: a fraction (0.05) or a percentage (``5 %``, ``"5%"``), in [0, 1)."""
-    x = number_from_text(value) if isinstance(value, str) else value
-    if isinstance(value, str) and "%" in value and x is not None and abs(x) > 1.0:
-        x = x / 100.0  # "5 %" read as 5 by a reader that keeps the number
-    if isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x) or not 0.0 <= x < 1.0:
-        raise InputError(Problem(where, value, "a margin from 0 to 1 (a fraction, 0.05) or a percentage (5 %)"))
-    return float(x)
+    """A margin in [0, 1): a fraction (0.05) or a percentage (``"5 %"``, ``5%``, ``"0.5 %"`` is 0.005), read by the
+    one percentage parser (:func:`synth.io.numbers.percentage`)."""
+    x = percentage(value, "fraction")
+    if x is None or not 0.0 <= x < 1.0:
+        raise InputError(Problem(where, value, "a margin in [0, 1): a fraction (0.05) or a percentage below 100 % "
+                                               "(5 %, 5%; \"0.5 %\" is 0.005)"))
+    return x
 
 
 @dataclass(frozen=True)
@@ -120,6 +121,11 @@ class Rules:
     min_margins: dict = field(default_factory=dict)
     spring_limit_basis: str = "thesis"
     capability: dict = field(default_factory=dict)
+
+    def __hash__(self) -> int:  # frozen, of mappings: hashed by their items (a configuration is a cache key)
+        return hash((self.name, self.source, tuple(sorted(self.limits.items())),
+                     tuple(sorted(self.min_margins.items())), self.spring_limit_basis,
+                     tuple(sorted(self.capability.items()))))
 
     def empty(self) -> bool:
         return not (self.limits or self.min_margins or self.capability or self.spring_limit_basis != "thesis")
@@ -209,50 +215,50 @@ class Rules:
 
 
 NONE = Rules()
-_ACTIVE: list = [NONE]
 
 
-def active() -> Rules:
-    """The rules in force (:data:`NONE` outside :func:`using`)."""
-    return _ACTIVE[-1]
+def echo(rules: Rules) -> dict:
+    """``rules`` as a result and a run's manifest carry them (``Result.rules``; {} without rules)."""
+    return {} if rules.empty() else rules.as_dict()
 
 
-def echo() -> dict:
-    """The rules in force as a result carries them (``Result.rules``; {} without rules)."""
-    return {} if active().empty() else active().as_dict()
-
-
-@contextlib.contextmanager
-def using(rules):
-    """Make ``rules`` (a :class:`Rules`, a mapping or None) the rules in force for the block."""
-    r = Rules.from_mapping(rules) if not isinstance(rules, Rules) else rules
-    _ACTIVE.append(r)
-    try:
-        yield r
-    finally:
-        _ACTIVE.pop()
+#: what ``--rules`` accepts (every refusal of a rules file says it)
+_RULES_ACCEPTED = ("a YAML, TOML or JSON file of design rules (keys " + ", ".join(_KEYS) + ", at the top or under "
+                   "rules:), or a design input or saved result with a rules: section")
 
 
 def _read_rules_mapping(path, what: str, *, section_only: bool):
     """The design-rules mapping of file ``path``: a design input's (or a saved result's) ``rules:`` section, or a
-    rules file's mapping (at the top, or under ``rules:``); None when a design input has none (``section_only``:
-    the ``rules:`` section or None). A workbook has none."""
-    if suffix_of(path) in WORKBOOK_SUFFIXES:
-        return None
-    accepted = "a YAML, TOML or JSON file of design rules (or a design input with a rules: section)"
-    if section_only:  # a design input: its own reader reports what is wrong with it, the rules reader nothing
+    rules file's mapping (at the top, or under ``rules:``).
+
+    ``section_only`` (a design input read for its own rules): the ``rules:`` section or None (a workbook has
+    none; the input's own reader reports what is wrong with the file). Otherwise (``--rules FILE``) the file must
+    hold rules, judged by its content: a workbook, a design input or saved result without a ``rules:`` section,
+    or a mapping with none of the rules' keys is refused naming the file, what it is and what is accepted.
+    """
+    if section_only:
+        if suffix_of(path) in WORKBOOK_SUFFIXES:
+            return None
         try:
-            data = read_document(path, what, accepted=accepted)
+            data = read_document(path, what, accepted=_RULES_ACCEPTED)
         except InputError:
             return None
         return data.get("rules") or None if isinstance(data, dict) else None
-    data = read_document(path, what, accepted=accepted)
+    data = read_document(path, what, accepted=_RULES_ACCEPTED)  # a workbook, PDF, binary...: refused by content
     if not isinstance(data, dict):
-        raise InputError(Problem(what, str(path), accepted))
-    if "rules" in data:
-        return data["rules"] or None
-    if "inputs" in data or any(k in data for k in ("application_type", "pulley_diameter_mm")):
-        return None  # a design input without rules
+        held = "nothing (it is empty)" if data is None else f"a {type(data).__name__}, not a mapping"
+        raise InputError(Problem(what, str(path), f"{_RULES_ACCEPTED}; this file holds {held}"))
+    if data.get("rules"):
+        return data["rules"]
+    result = data.get("kind") == "synth.result" or "checks" in data
+    if "rules" in data or result or "inputs" in data or not any(k in _KEYS and k != "name" for k in data):
+        what_it_is = ("a saved result made without design rules" if result
+                      else "a design input without a rules: section" if "inputs" in data or "application_type" in data
+                      else "a file whose rules: section is empty" if "rules" in data
+                      else "a file without design rules")
+        keys = ", ".join(sorted(map(str, data))[:6]) or "none"
+        raise InputError(Problem(what, str(path), f"{_RULES_ACCEPTED}; this is {what_it_is} (its keys: "
+                                                  f"{short(keys, 100)})"))
     return data
 
 

@@ -54,6 +54,8 @@ import numpy as np
 from synth import catalog
 
 from synth.parts import Parts, Table, arrays
+from synth.cost import columns
+from synth.cost.book import book_for, volume_of
 from synth.errors import InputError, Problem
 from synth.model import packaging, pivot, torsion_spring, disc_spring
 from synth.fingerprint import cached, catalogs_sha256, source_stamp
@@ -254,7 +256,7 @@ def core_attributes(p: Parts, bearing, pivot_class_mm, supplier, pad) -> dict:
         "damper_pad_mean_radius_mm": padcol("mean_radius_mm"),
         "damper_pad_outer_diameter_mm": padcol("outer_diameter_mm"),
         "damper_pad_axial_height_mm": padcol("axial_height_mm"),
-        "cost_eur": p.bearing.unit_cost_eur[b] + padcol("unit_cost_eur"),
+        "cost_eur": columns.core_eur(p.prices, b, dpad),
         # Table 2's standard class depends on the working arm: the pivot-class part of the score is per application
         "nonstandard": (_w("bearing") * ~p.bearing.standard[b] + _w("bushing") * ~p.bushing.standard[s]
                         + _w("damper_pad") * np.where(has, ~p.damper_pad.standard[pc], False)).astype(float),
@@ -287,7 +289,7 @@ def bushing_attributes(p: Parts, supplier, length_mm) -> dict:
     sup = np.asarray(supplier, dtype=np.int64)
     length = np.asarray(length_mm, dtype=float)
     return {"supplier_code": sup, "pivot_bushing_supplier": p.bushing.key[sup], "pivot_bushing_length_mm": length,
-            "cost_eur": p.bushing.unit_cost_eur[sup] + p.bushing.cost_eur_per_mm[sup] * length,
+            "cost_eur": columns.bushing_eur(p.prices, sup, length),
             "nonstandard": np.zeros(length.shape)}
 
 
@@ -321,7 +323,6 @@ def axial_attributes(p: Parts, spacer, aspect_ratio, deflection_ratio, de_reduct
     def col(name, none=0.0):
         return np.where(has, es.cols[name][ec], none)
 
-    cone_cost = catalog.constant("cone_spring_unit_cost_eur")
     cone_ns = _w("cone_spring") * (1.0 - catalog.constant("cone_spring_design_standard"))
     return {
         "spacer_code": e, "axial_group_present": has,
@@ -334,7 +335,7 @@ def axial_attributes(p: Parts, spacer, aspect_ratio, deflection_ratio, de_reduct
         "endcap_spacer_contact_area_mm2": col("contact_area_mm2"),
         "endcap_spacer_mean_radius_mm": col("mean_radius_mm"),
         "endcap_spacer_axial_height_mm": col("axial_height_mm"),
-        "cost_eur": np.where(has, col("unit_cost_eur") + cone_cost, 0.0),
+        "cost_eur": columns.axial_eur(p.prices, e),
         "nonstandard": np.where(has, _w("endcap_spacer") * ~es.standard[ec] + cone_ns, 0.0),
     }
 
@@ -374,9 +375,8 @@ def spring_attributes(p: Parts, material, wire, mbd_mm) -> dict:
         rm[sel] = torsion_spring.material_strength_mpa(mat.key[int(i)], dia[sel])
     inertia = torsion_spring.second_moment_mm4(wire_t.b_mm[w], wire_t.h_mm[w], rnd)
     area = np.where(rnd, np.pi * wire_t.h_mm[w] ** 2 / 4.0, wire_t.b_mm[w] * wire_t.h_mm[w])
-    # wire length x k = pi E I / 180 (eq. 64-65): cost = (per metre + per kg) x length, divided by k per application
-    length_times_k_m = np.pi * mat.E_mpa[m] * inertia / (180.0 * 1000.0) / 1000.0
-    cost_k = length_times_k_m * (wire_t.unit_cost_eur[w] + area * 1e-6 * mat.density_kg_m3[m] * mat.unit_cost_eur[m])
+    # wire length x k = pi E I / 180 (eq. 64-65): the wire's cost x k, divided by k per application
+    cost_k = columns.spring_eur_times_stiffness(p.prices, m, w, mat.E_mpa[m], inertia, area, mat.density_kg_m3[m])
     return {
         "material_code": m, "wire_code": w,
         "main_spring_material": mat.key[m], "main_spring_wire": wire_t.key[w], "main_spring_mean_body_diameter_mm": d,
@@ -450,8 +450,7 @@ def bolt_attributes(p: Parts, head, property_class, washer=None, tightening=None
         "rp02_mpa": np.where(big, cl.rp02_min_d_gt16_mpa[c], cl.rp02_min_mpa[c]),
         "escalation_order": rank_b * 100 + cl.escalation_rank[c],  # the thesis escalates hex-head bolts
         "class_defined": ~(np.isfinite(cl.d_max_mm[c]) & (bo.d_mm[b] > cl.d_max_mm[c])),  # ISO 898-1: 9.8 to 16 mm
-        "cost_eur": (bo.unit_cost_eur[b] * bh.cost_factor[hd] * cl.unit_cost_factor[c] + wcol("unit_cost_eur", 0.0)
-                     + tf.unit_cost_eur[tc]),
+        "cost_eur": columns.bolt_eur(p.prices, hd, c, wc, tc),
         "nonstandard": (_w("bolt") * ~bo.standard[b] + _w("bolt") * ~bh.standard[hd]
                         + _w("bolt") * ~cl.standard[c] + _w("bolt") * np.where(has, ~ws.standard[wi], False)
                         + _w("bolt") * ~tf.standard[tc]).astype(float),
@@ -521,7 +520,7 @@ def _space_cached(user_dirs: tuple) -> Space:
 
 def space() -> Space:
     """The design space of the current catalog setting (cached; do not modify its arrays)."""
-    return _space_cached(tuple(catalog._user_dirs()))
+    return _space_cached(tuple(catalog.user_dirs()))
 
 
 def core_rows(sp: Space, d, *, pin_inputs=False) -> np.ndarray:
@@ -560,11 +559,39 @@ def fixed_fields(d, pin_inputs=False) -> tuple[str, ...]:
     return tuple(n for n in PART_FIELDS if n in names)
 
 
-def space_for(d, pin_inputs=False) -> Space:
+def space_for(d, pin_inputs=False, inputs=None) -> Space:
     """The design space of input ``d`` with the parts it names kept (:func:`fixed_fields`; the whole
-    :func:`space` when none is)."""
+    :func:`space` when none is), priced at the annual volume of ``inputs`` (default ``[d]``: :func:`priced_for`)."""
     fixed = fixed_fields(d, pin_inputs)
-    return pinned_space(space(), {n: getattr(d, n) for n in fixed}) if fixed else space()
+    sp = pinned_space(space(), {n: getattr(d, n) for n in fixed}) if fixed else space()
+    return priced_for(sp, [d] if inputs is None else inputs)
+
+
+_PRICED: dict = {}
+
+
+def priced_for(sp: Space, inputs) -> Space:
+    """``sp`` with the cost columns of the inputs' annual volume (:func:`synth.cost.book.book_for`): ``sp`` itself
+    at the default volume's breaks; inputs of different breaks keep the default's, and the space says so."""
+    vols = {getattr(d, "annual_volume", None) for d in inputs}
+    if vols <= {None}:
+        return sp
+    default = volume_of(None)
+    books = {id(b): b for b in (book_for(sp.parts, default if v is None else v) for v in vols)}
+    if len(books) > 1:
+        return Space(sp.tables, sp.parts, list(sp.notes) + ["annual volumes of different price breaks in one "
+                     "batch: priced at the default volume"], pinned=sp.pinned)
+    book = next(iter(books.values()))
+    if book is sp.parts.prices:
+        return sp
+    hit = _PRICED.get((id(sp), book.key))
+    if hit is None or hit[0] is not sp:
+        if len(_PRICED) > 16:
+            _PRICED.clear()
+        hit = (sp, Space(columns.reprice(book, sp.tables), sp.parts,
+                         list(sp.notes) + [f"priced at {book.volume:,.0f} a year"], pinned=sp.pinned))
+        _PRICED[(id(sp), book.key)] = hit
+    return hit[1]
 
 
 def _wire_rows(p: Parts, pins: dict) -> np.ndarray:

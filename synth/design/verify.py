@@ -29,13 +29,14 @@ from synth.design.result import Result, checks_of, plain
 from synth.design.space import NONE, PART_KEYS, space
 from synth.design.space import SUBSYSTEMS
 from synth.design.rules import echo
+from synth.design.settings import DEFAULT
 from synth.schema import plausibility
 
 __all__ = ["evaluate_design", "verify", "values_of", "inputs_of", "wire_size_mm"]
 
 
 
-def evaluate_design(apps: Applications, attrs: dict, settings: evaluate.Settings = evaluate.Settings(), *, detail: bool = True,
+def evaluate_design(apps: Applications, attrs: dict, settings: evaluate.Settings = DEFAULT, *, detail: bool = True,
                     time_points: int = 0, of=None) -> dict:
     """Every group of N designs (``attrs``: N-row attribute dicts per table), design ``i`` for application ``i``
     of ``apps`` (one design: application 0), or for application ``of[i]`` when ``of`` is given. The one sequence
@@ -48,7 +49,7 @@ def evaluate_design(apps: Applications, attrs: dict, settings: evaluate.Settings
     n = len(next(iter(attrs["core"].values())))
     a = np.arange(n, dtype=np.int64) if of is None else np.asarray(of, dtype=np.int64)
     one = np.arange(n, dtype=np.int64)  # design i is row i of the core group
-    groups = {"input": evaluate.inputs(apps, a)}
+    groups = {"input": evaluate.inputs(apps, a, settings)}
     cg = evaluate.core(apps, a, attrs["core"], settings, detail=detail)
     groups["core"] = cg
     groups["bushing"] = evaluate.bushing(apps, cg, one, attrs["bushing"], settings)
@@ -150,7 +151,7 @@ def parts_of_attributes(attrs: dict, groups: dict) -> dict:
     return parts_of_rows(attrs, groups["core"].values)[0]
 
 
-def verify(d, parts: dict, settings: evaluate.Settings = evaluate.Settings(), *, status: str = "verified", solver: str = "",
+def verify(d, parts: dict, settings: evaluate.Settings = DEFAULT, *, status: str = "verified", solver: str = "",
            detail: bool = True, time_points: int = 0, notes: list | None = None) -> Result:
     """The :class:`~synth.design.result.Result` of design ``parts`` (the keys of PART_KEYS) for input ``d``."""
     apps = Applications.of([d])
@@ -160,7 +161,7 @@ def verify(d, parts: dict, settings: evaluate.Settings = evaluate.Settings(), *,
     notes = [n for n in plausibility(d) if n not in (notes or [])] + list(notes or [])
     res = Result(status=status, solver=solver, parts=parts_of_attributes(attrs, groups),
                  values=values, checks=checks_of(groups, apps), notes=list(notes or []) + settings.notes(),
-                 inputs=inputs_of(d), settings=dataclasses.asdict(settings), rules=echo())
+                 inputs=inputs_of(d), settings=settings.as_dict(), rules=echo(settings.rules))
     if time_points and "_history" in groups["axial"].values:
         res.curves["plastic_wear"] = {k: np.asarray(v).reshape(-1).tolist()
                                       for k, v in groups["axial"].values["_history"].items()}

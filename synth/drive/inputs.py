@@ -2,17 +2,29 @@
 
 A drive file (YAML, TOML, JSON, or a workbook sheet named ``Drive``) has the
 sections ``belt``, ``tensioner``, ``pulleys`` (a list in the belt's travel
-order), ``excitation`` (speeds and the crank's orders, or the thesis's
-irregularity, eq. (3)) and an optional ``solver``. Each field is declared in
-:data:`FIELDS` (a :class:`synth.schema.Field`: unit, bounds, default, why);
-the validator, the workbook reader and the docs read that one table. Every
-problem is reported at once, naming the field as written
-(``pulleys[2].radius_mm``) or the workbook cell (``Drive!B7``).
+order), and the optional ``duty`` (a list of duty points: engine speed, share
+of time, each pulley's power or torque), ``excitation`` (speeds and the
+crank's orders, or the thesis's irregularity, eq. (3): the arm's periodic
+response) and ``solver``. Each field is declared in :data:`FIELDS` (a
+:class:`synth.schema.Field`: unit, bounds, default, why); the validator, the
+workbook reader and the docs read that one table. Every problem is reported
+at once, naming the field as written (``pulleys[2].radius_mm``) or the
+workbook cell (``Drive!B7``).
+
+A drive-design report states a drive the way this input reads it: pulleys
+with their pitch and effective diameters and the side the belt wraps
+(``backside``), the belt's ribs, length, tolerance, wear and thermal change,
+the tensioner as pivot, arm and spring (free-arm angle, preload, rate, the
+nominal torque or "spring mean load", the installation stop), and the
+accessories' power per engine speed. The tensioner's nominal arm angle is
+then derived (:func:`synth.drive.positions.nominal_angle_deg`); it can also be
+stated (``arm_angle_deg``), as for the synthesised tensioner.
 
 Workbook layout (sheet ``Drive``): column A the field (``belt.stiffness_n``),
-column B its value; a row ``pulleys`` (and ``orders``) in column A starts a
-table whose next row holds the column names (``name``, ``role``,
-``radius_mm``...), one row per pulley until an empty row.
+column B its value; a row ``pulleys``, ``orders`` or ``duty`` in column A
+starts a table whose next row holds the column names (``name``, ``role``,
+``radius_mm``...; a duty point's loads as ``power_kw.ALT``, ``torque_nm.A_C``),
+one row per entry until an empty row.
 
 >>> d = example_drive()
 >>> d.name, [p.name for p in d.pulleys], d.tensioner.arm_length_mm
@@ -22,6 +34,7 @@ table whose next row holds the column names (``name``, ``role``,
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
@@ -29,47 +42,98 @@ from synth.errors import InputError, Problem
 from synth.io.limits import short
 from synth.io.numbers import is_not_given, number_from_text
 from synth.schema import Field
+from synth.drive import belt as belt_data
+from synth.drive.positions import nominal_angle_deg, loading_sense, _frame_of
 from synth.drive.statics import static_state
 from synth.io.files import existing_file, suffix_of
 from synth.io.structured import read_document
 from synth.io.workbook import read_sheet, column_letter
 
-__all__ = ["FIELDS", "ROLES", "Pulley", "Tensioner", "Order", "Drive", "validate", "load_drive", "example_drive",
-           "EXAMPLE_PATH", "DRIVE_SUFFIXES", "drive_from_mapping"]
+__all__ = ["FIELDS", "ROLES", "Pulley", "Tensioner", "Order", "DutyPoint", "Drive", "validate", "load_drive",
+           "example_drive", "EXAMPLE_PATH", "DRIVE_SUFFIXES", "drive_from_mapping", "MAX_PULLEYS", "MAX_DUTY_POINTS",
+           "MAX_ORDERS"]
 
 INF = math.inf
 ROLES = ("crank", "driven", "idler", "tensioner")
 DRIVE_SUFFIXES = (".yaml", ".yml", ".toml", ".json", ".xlsx", ".xlsm", ".ods")
 EXAMPLE_PATH = Path(__file__).resolve().parents[1] / "data" / "drives" / "example_timing_drive.yaml"
+#: count bounds of the lists (each entry is a row of small dense algebra; see docs/sections/drive.md, "Bounds")
+MAX_PULLEYS = 40
+MAX_DUTY_POINTS = 200
+MAX_ORDERS = 20
 
-_POS = dict(lo=0.0, lo_open=True)
 _COORD = dict(lo=-2000.0, hi=2000.0, basis="an engine front is well within 2 m")
+_RADIUS = dict(lo=1.0, hi=500.0, basis="the smallest pulley of any belt drive is several mm; 1 mm is a floor "
+                                       "(a subnormal radius made the span matrix singular)")
+_INERTIA = dict(lo=1e-9, hi=10.0, basis="1e-9 kg m2 is a 2 mm steel disc; 10 kg m2 is beyond a truck's flywheel "
+                                        "(a subnormal inertia made the mass matrix singular)")
+_POWER = dict(lo=-500.0, hi=500.0, basis="an accessory or a belt starter-generator draws or gives well under 500 kW")
 
 
 def _f(name, section, unit="-", **kw) -> Field:
     return Field(name=name, section=section, unit=unit, **kw)
 
 
-#: every field of a drive input; ``section`` is the mapping it sits in (``pulleys`` and ``orders``: one per row)
+#: every field of a drive input; ``section`` is the mapping it sits in (``pulleys``, ``orders``, ``duty``: one per
+#: row; ``loads``: the values of a duty point's ``power_kw`` and ``torque_nm`` mappings)
 FIELDS: tuple[Field, ...] = (
     _f("name", "drive", kind="str", required=False, default="drive", label="Drive name"),
-    _f("stiffness_n", "belt", "N", **_POS, hi=1e7, label="Belt stiffness EA per unit strain (span: EA/L)",
-       basis="automotive timing and poly-V belts: EA 1e4-5e5 N; 1e7 is twenty times the stiffest"),
+    _f("stiffness_n", "belt", "N", required=False, lo=1000.0, hi=1e7,
+       label="Belt stiffness EA per unit strain (span: EA/L); empty: ribs x stiffness_per_rib_n",
+       basis="automotive timing and poly-V belts: EA 1e4-5e5 N; 1e7 is twenty times the stiffest, 1000 N a floor "
+             "below any belt"),
+    _f("ribs", "belt", kind="int", required=False, lo=1, hi=60, label="Ribs of a poly-V belt (PK: 3-12)",
+       basis="automotive PK belts have 3 to 12 ribs; 60 is beyond any industrial PL belt"),
+    _f("stiffness_per_rib_n", "belt", "N", required=False, lo=100.0, hi=1e6, default=belt_data.EA_PER_RIB_N,
+       label="EA per rib of the spans in the rotational model (modes, response)",
+       basis="default fitted on a drive report's first mode (synth.drive.belt.EA_PER_RIB_N); the reports imply "
+             "7.6-13.5 kN"),
+    _f("elongation_stiffness_per_rib_n", "belt", "N", required=False, lo=100.0, hi=1e6,
+       default=belt_data.ELONGATION_EA_PER_RIB_N,
+       label="Quasi-static EA per rib: the belt's elongation from its measuring tension (required belt length)",
+       basis="default: fourteen drive reports' required-length column (synth.drive.belt.ELONGATION_EA_PER_RIB_N)"),
+    _f("measuring_tension_per_rib_n", "belt", "N", required=False, lo=0.0, hi=1000.0,
+       default=belt_data.MEASURING_TENSION_PER_RIB_N,
+       label="Tension per rib and strand at which the belt's length is measured"),
+    _f("length_mm", "belt", "mm", required=False, lo=100.0, hi=20000.0, label="Belt effective length (as measured)",
+       basis="automotive belts are 600-3000 mm; 20 m is beyond any conveyor-free drive"),
+    _f("length_tolerance_mm", "belt", "mm", required=False, lo=0.0, hi=200.0, default=0.0,
+       label="Belt length tolerance (+/-)"),
+    _f("wear_pct", "belt", "%", required=False, lo=0.0, hi=10.0, default=0.0,
+       label="Belt elongation at replacement (wear), % of the longest belt"),
+    _f("thermal_change_pct", "belt", "%", required=False, lo=-5.0, hi=5.0, default=0.0,
+       label="Belt length change when hot, % (signed; widens the shortest or the longest belt)"),
     _f("damping_n_s", "belt", "N s", required=False, lo=0.0, hi=1e4, default=0.0,
        label="Belt damping c' per unit strain (span: c'/L)"),
     _f("min_tension_n", "belt", "N", required=False, lo=0.0, hi=1e4, default=0.0,
        label="Lowest effective span tension before the belt counts as slack"),
-    _f("friction_coefficient", "belt", required=False, **_POS, hi=3.0,
+    _f("friction_coefficient", "belt", required=False, lo=0.01, hi=3.0,
        label="Belt-pulley friction coefficient (poly-V: effective; empty: no slip margin, a toothed belt)"),
     _f("pivot_x_mm", "tensioner", "mm", **_COORD, label="Tensioner pivot x"),
     _f("pivot_y_mm", "tensioner", "mm", **_COORD, label="Tensioner pivot y"),
-    _f("arm_length_mm", "tensioner", "mm", **_POS, hi=200, label="Arm length (the working arm)"),
-    _f("arm_angle_deg", "tensioner", "deg", lo=-360, hi=360, label="Nominal arm angle (counter-clockwise from +x)"),
-    _f("inertia_kg_m2", "tensioner", "kg m2", **_POS, hi=1.0, label="Arm and pulley inertia about the pivot"),
-    _f("stiffness_nm_per_deg", "tensioner", "Nm/deg", **_POS, hi=10, label="Spring stiffness",
-       basis="the design input's spring_stiffness_nm_per_deg bound"),
-    _f("nominal_torque_nm", "tensioner", "Nm", **_POS, hi=100, label="Arm torque at nominal (calculated torque)"),
-    _f("friction_torque_nm", "tensioner", "Nm", lo=0.0, hi=100, label="Friction torque (the damping)"),
+    _f("arm_length_mm", "tensioner", "mm", lo=0.1, hi=300, label="Arm length (pivot to pulley centre)",
+       basis="0.1 mm: the positional tolerance of an eccentric's two bores (the design input's floor); "
+             "accessory-drive arms reach about 100 mm"),
+    _f("arm_angle_deg", "tensioner", "deg", required=False, lo=-360, hi=360,
+       label="Nominal arm angle (counter-clockwise from +x); empty: from free_arm_angle_deg and preload_nm"),
+    _f("free_arm_angle_deg", "tensioner", "deg", required=False, lo=-360, hi=360,
+       label="Free-arm angle: the arm on its stop without a belt (counter-clockwise from +x)"),
+    _f("preload_nm", "tensioner", "Nm", required=False, lo=0.0, hi=500,
+       label="Spring torque at the free arm (preload); the nominal angle follows"),
+    _f("installation_angle_deg", "tensioner", "deg", required=False, lo=-360, hi=360,
+       label="Installation (load) stop: the arm turned back to fit the belt (counter-clockwise from +x)"),
+    _f("inertia_kg_m2", "tensioner", "kg m2", required=False, **_INERTIA,
+       label="Arm inertia about the pivot (with its pulley unless pulley_mass_kg is given)"),
+    _f("pulley_mass_kg", "tensioner", "kg", required=False, lo=0.0, hi=100.0, default=0.0,
+       label="Tensioner pulley mass (adds m l^2 to the arm's inertia)"),
+    _f("stiffness_nm_per_deg", "tensioner", "Nm/deg", lo=1e-4, hi=50, label="Spring rate",
+       basis="1e-4 Nm/deg: the design input's floor (a torque bench's resolution over 100 deg); accessory-drive "
+             "springs are about 0.5 Nm/deg"),
+    _f("nominal_torque_nm", "tensioner", "Nm", required=False, lo=0.01, hi=500,
+       label="Spring torque at nominal (calculated torque; a report's spring mean load); empty: from the belt length",
+       basis="0.01 Nm: a torque bench's resolution (the design input's floor)"),
+    _f("friction_torque_nm", "tensioner", "Nm", required=False, lo=0.0, hi=100,
+       label="Friction torque (the damping; needed for the periodic response)"),
     _f("damping_nm_s_per_rad", "tensioner", "Nm s/rad", required=False, lo=0.0, hi=100, default=0.0,
        label="Viscous damping of the arm"),
     _f("name", "pulleys", kind="str", label="Pulley name"),
@@ -77,75 +141,107 @@ FIELDS: tuple[Field, ...] = (
        label="crank (drives), driven, idler or tensioner (its centre follows the arm)"),
     _f("x_mm", "pulleys", "mm", required=False, **_COORD, label="Centre x (not for the tensioner)"),
     _f("y_mm", "pulleys", "mm", required=False, **_COORD, label="Centre y (not for the tensioner)"),
-    _f("radius_mm", "pulleys", "mm", **_POS, hi=500, label="Pitch radius"),
-    _f("inertia_kg_m2", "pulleys", "kg m2", required=False, **_POS, hi=10.0,
-       label="Inertia with what it drives (not for the crank)"),
+    _f("radius_mm", "pulleys", "mm", required=False, **_RADIUS, label="Pitch radius (or pitch_diameter_mm)"),
+    _f("pitch_diameter_mm", "pulleys", "mm", required=False, lo=2.0, hi=1000.0,
+       label="Pitch diameter (the belt's cord line; or radius_mm)"),
+    _f("effective_diameter_mm", "pulleys", "mm", required=False, lo=2.0, hi=1000.0,
+       label="Effective diameter (belt length is measured on it; empty: the pitch diameter)"),
+    _f("inertia_kg_m2", "pulleys", "kg m2", required=False, **_INERTIA,
+       label="Inertia with what it drives (the crank's: for the free system's modes)"),
     _f("load_torque_nm", "pulleys", "Nm", required=False, lo=-1000, hi=1000, default=0.0,
        label="Mean load torque (driven pulleys)"),
     _f("damping_nm_s_per_rad", "pulleys", "Nm s/rad", required=False, lo=0.0, hi=100, default=0.0,
        label="Viscous damping of the pulley's shaft"),
-    _f("torque_order", "pulleys", required=False, **_POS, hi=50,
+    _f("torque_order", "pulleys", required=False, lo=0.5, hi=50,
        label="Order of the load torque's fluctuation (a camshaft of 4 cylinders: 2), a multiple of 0.5"),
     _f("torque_amplitude_nm", "pulleys", "Nm", required=False, lo=0.0, hi=1000, default=0.0,
        label="Amplitude of the load torque's fluctuation"),
     _f("torque_phase_deg", "pulleys", "deg", required=False, lo=-360, hi=360, default=0.0,
        label="Phase of the load torque's fluctuation"),
     _f("backside", "pulleys", kind="str", required=False, choices=("true", "false"), default="false",
-       label="The belt's back on the pulley (outside the loop)"),
-    _f("speed_min_rpm", "excitation", "rpm", **_POS, hi=20000, label="Lowest engine speed of the sweep"),
-    _f("speed_max_rpm", "excitation", "rpm", **_POS, hi=20000, label="Highest engine speed of the sweep"),
-    _f("speeds", "excitation", kind="int", required=False, lo=2, hi=1000, default=50, label="Speeds in the sweep"),
-    _f("durability_speed_rpm", "excitation", "rpm", required=False, **_POS, hi=20000,
+       label="The belt's back on the pulley (outside the loop; a report's flat 'back' contact)"),
+    _f("speed_rpm", "duty", "rpm", lo=1.0, hi=20000, label="Engine speed of the duty point"),
+    _f("time_pct", "duty", "%", required=False, lo=0.0, hi=100.0, label="Share of the duty cycle's time"),
+    _f("power_kw", "loads", "kW", **_POWER, label="A pulley's power at the duty point (name: kW; the crank's follows)"),
+    _f("torque_nm", "loads", "Nm", lo=-5000.0, hi=5000.0, label="A pulley's torque at the duty point (name: N m)"),
+    _f("speed_min_rpm", "excitation", "rpm", lo=1.0, hi=20000, label="Lowest engine speed of the sweep"),
+    _f("speed_max_rpm", "excitation", "rpm", lo=1.0, hi=20000, label="Highest engine speed of the sweep"),
+    _f("speeds", "excitation", kind="int", required=False, lo=2, hi=60, default=50, label="Speeds in the sweep",
+       basis="60 speeds at the largest harmonics run in about a minute with the tolerance check (docs: drive, "
+             "Bounds)"),
+    _f("durability_speed_rpm", "excitation", "rpm", required=False, lo=1.0, hi=20000,
        label="Engine speed of the durability test (theta_pp and f are taken there)"),
-    _f("irregularity", "excitation", required=False, **_POS, hi=2.0,
+    _f("irregularity", "excitation", required=False, lo=1e-4, hi=2.0,
        label="Kinematic irregularity delta (thesis eq. (3)) of the firing order; instead of orders"),
-    _f("firing_order", "excitation", required=False, **_POS, hi=50, label="Order of the irregularity (4 cylinders: 2)"),
-    _f("order", "orders", **_POS, hi=50, label="Order (a multiple of 0.5)"),
+    _f("firing_order", "excitation", required=False, lo=0.5, hi=50, label="Order of the irregularity (4 cylinders: 2)"),
+    _f("order", "orders", lo=0.5, hi=50, label="Order (a multiple of 0.5)"),
     _f("amplitude_deg", "orders", "deg", lo=0.0, hi=30, label="Crank angle amplitude of the order"),
     _f("phase_deg", "orders", "deg", required=False, lo=-360, hi=360, default=0.0, label="Phase"),
-    _f("harmonics", "solver", kind="int", required=False, lo=4, hi=400, default=24,
-       label="Harmonics of the base frequency in the harmonic balance"),
-    _f("regularisation", "solver", required=False, **_POS, hi=0.5, default=0.01,
-       label="Friction regularisation eps / peak arm speed without friction"),
-    _f("tolerance", "solver", required=False, **_POS, hi=0.5, default=0.05,
+    _f("harmonics", "solver", kind="int", required=False, lo=4, hi=32, default=24,
+       label="Harmonics of the base frequency in the harmonic balance",
+       basis="the tolerance check solves again at twice the harmonics: 64 harmonics cost 0.6 s a speed, 128 "
+             "cost 5 s (docs: drive, Bounds); 400 ran for minutes"),
+    _f("regularisation", "solver", required=False, lo=1e-3, hi=0.5, default=0.01,
+       label="Friction regularisation eps / peak arm speed without friction",
+       basis="1e-3: the tolerance check halves it; below, the regularised Coulomb law is too stiff for the "
+             "harmonic balance's time samples"),
+    _f("tolerance", "solver", required=False, lo=1e-4, hi=0.5, default=0.05,
        label="Largest relative move of the answer when the regularisation is halved and the harmonics doubled"),
 )
 
-_SECTIONS = ("belt", "tensioner", "pulleys", "excitation", "solver")
+_SECTIONS = ("belt", "tensioner", "pulleys", "duty", "excitation", "solver")
 _BY = {(f.section, f.name): f for f in FIELDS}
 
 
 @dataclass(frozen=True)
 class Pulley:
-    """A pulley of the drive (lengths mm, inertia kg m^2, torques N m)."""
+    """A pulley of the drive (lengths mm, inertia kg m^2, torques N m); ``radius_mm`` is the pitch radius,
+    ``effective_radius_mm`` the effective one (None: the pitch radius)."""
 
     name: str
     role: str
     x_mm: float
     y_mm: float
     radius_mm: float
-    inertia_kg_m2: float
+    inertia_kg_m2: float | None
     load_torque_nm: float = 0.0
     damping_nm_s_per_rad: float = 0.0
     backside: bool = False
     torque_order: float = 0.0
     torque_amplitude_nm: float = 0.0
     torque_phase_deg: float = 0.0
+    effective_radius_mm: float | None = None
 
 
 @dataclass(frozen=True)
 class Tensioner:
-    """The automatic tensioner as the drive sees it: pivot, arm, inertia, spring, nominal torque, friction."""
+    """The automatic tensioner as the drive sees it: pivot, arm, inertia, spring, nominal torque, friction.
+
+    ``arm_angle_deg`` and ``nominal_torque_nm`` are the nominal position, stated or derived (``nominal_from``:
+    ``angle``, ``torque`` or ``belt``); ``preload_nm`` is the spring's torque at ``free_arm_angle_deg``.
+    """
 
     pivot_x_mm: float
     pivot_y_mm: float
     arm_length_mm: float
     arm_angle_deg: float
-    inertia_kg_m2: float
+    inertia_kg_m2: float | None
     stiffness_nm_per_deg: float
     nominal_torque_nm: float
-    friction_torque_nm: float
+    friction_torque_nm: float | None
     damping_nm_s_per_rad: float = 0.0
+    free_arm_angle_deg: float | None = None
+    preload_nm: float | None = None
+    installation_angle_deg: float | None = None
+    pulley_mass_kg: float = 0.0
+    nominal_from: str = "angle"
+
+    @property
+    def arm_inertia_kg_m2(self) -> float | None:
+        """The arm's inertia about the pivot with its pulley's mass [kg m^2]."""
+        if self.inertia_kg_m2 is None:
+            return None
+        return self.inertia_kg_m2 + self.pulley_mass_kg * (self.arm_length_mm / 1000.0) ** 2
 
 
 @dataclass(frozen=True)
@@ -158,6 +254,17 @@ class Order:
 
 
 @dataclass(frozen=True)
+class DutyPoint:
+    """One point of a duty cycle: engine speed [rpm], share of time [%] and the pulleys' loads, as
+    ``((name, kW), ...)`` and ``((name, N m), ...)``."""
+
+    speed_rpm: float
+    time_pct: float | None = None
+    power_kw: tuple = ()
+    torque_nm: tuple = ()
+
+
+@dataclass(frozen=True)
 class Drive:
     """A validated drive (hashable: it can sit in :class:`synth.design.evaluate.Settings`)."""
 
@@ -167,8 +274,8 @@ class Drive:
     belt_stiffness_n: float
     belt_damping_n_s: float
     orders: tuple
-    speed_min_rpm: float
-    speed_max_rpm: float
+    speed_min_rpm: float | None
+    speed_max_rpm: float | None
     speeds: int = 50
     durability_speed_rpm: float | None = None
     belt_min_tension_n: float = 0.0
@@ -176,6 +283,15 @@ class Drive:
     harmonics: int = 24
     regularisation: float = 0.01
     tolerance: float = 0.05
+    belt_ribs: int | None = None
+    belt_length_mm: float | None = None
+    belt_length_tolerance_mm: float = 0.0
+    belt_wear_pct: float = 0.0
+    belt_thermal_change_pct: float = 0.0
+    belt_elongation_stiffness_per_rib_n: float = belt_data.ELONGATION_EA_PER_RIB_N
+    belt_measuring_tension_per_rib_n: float = belt_data.MEASURING_TENSION_PER_RIB_N
+    duty: tuple = ()
+    belt_stiffness_per_rib_n: float | None = None   # given per rib (EA = ribs x it), or None: stiffness_n given
 
     @property
     def crank_index(self) -> int:
@@ -185,43 +301,90 @@ class Drive:
     def tensioner_index(self) -> int:
         return next(i for i, p in enumerate(self.pulleys) if p.role == "tensioner")
 
+    @property
+    def dynamic(self) -> bool:
+        """The drive states an excitation: the arm's periodic response can be solved."""
+        return bool(self.orders) or any(p.torque_amplitude_nm > 0 for p in self.pulleys)
+
+    @property
+    def loading_sense(self) -> float:
+        """``+1`` when the belt pushes the arm counter-clockwise at its nominal angle."""
+        return loading_sense(_frame_of(self), self.tensioner.arm_angle_deg)
+
     def speeds_rpm(self):
         import numpy as np
         return np.linspace(self.speed_min_rpm, self.speed_max_rpm, self.speeds)
 
     def with_tensioner(self, **changes) -> "Drive":
-        """A copy with some tensioner values changed (the synthesised design's)."""
-        return replace(self, tensioner=replace(self.tensioner, **changes))
+        """A copy with some tensioner values changed (the synthesised design's). The nominal arm angle stays;
+        a spring changed there moves the free-arm preload with it (``preload = M_nom - k rel``)."""
+        ten = replace(self.tensioner, **changes, nominal_from="angle")
+        if ten.free_arm_angle_deg is not None:
+            rel = abs((ten.arm_angle_deg - ten.free_arm_angle_deg + 180.0) % 360.0 - 180.0)
+            ten = replace(ten, preload_nm=ten.nominal_torque_nm - ten.stiffness_nm_per_deg * rel)
+        return replace(self, tensioner=ten)
 
     def to_dict(self) -> dict:
         """The drive as a drive-file mapping (:func:`validate` reads it back)."""
-        t = asdict(self.tensioner)
-        out = {"name": self.name,
-               "belt": {"stiffness_n": self.belt_stiffness_n, "damping_n_s": self.belt_damping_n_s,
-                        "min_tension_n": self.belt_min_tension_n},
-               "pulleys": [_pulley_dict(p) for p in self.pulleys],
-               "tensioner": t,
-               "excitation": {"speed_min_rpm": self.speed_min_rpm, "speed_max_rpm": self.speed_max_rpm,
-                              "speeds": self.speeds, "orders": [asdict(o) for o in self.orders]},
+        t = {k: v for k, v in asdict(self.tensioner).items() if v is not None and k != "nominal_from"}
+        if self.tensioner.nominal_from != "angle":
+            t.pop("arm_angle_deg")
+        else:
+            t.pop("preload_nm", None)
+        if self.tensioner.nominal_from == "belt":
+            t.pop("nominal_torque_nm")
+        belt = ({"stiffness_n": self.belt_stiffness_n} if self.belt_stiffness_per_rib_n is None else
+                {"stiffness_per_rib_n": self.belt_stiffness_per_rib_n})
+        belt.update({"damping_n_s": self.belt_damping_n_s, "min_tension_n": self.belt_min_tension_n,
+                     "length_tolerance_mm": self.belt_length_tolerance_mm, "wear_pct": self.belt_wear_pct,
+                     "thermal_change_pct": self.belt_thermal_change_pct,
+                     "elongation_stiffness_per_rib_n": self.belt_elongation_stiffness_per_rib_n,
+                     "measuring_tension_per_rib_n": self.belt_measuring_tension_per_rib_n})
+        for key, value in (("ribs", self.belt_ribs), ("length_mm", self.belt_length_mm),
+                           ("friction_coefficient", self.belt_friction_coefficient)):
+            if value is not None:
+                belt[key] = value
+        out = {"name": self.name, "belt": belt, "pulleys": [_pulley_dict(p) for p in self.pulleys], "tensioner": t,
                "solver": {"harmonics": self.harmonics, "regularisation": self.regularisation,
                           "tolerance": self.tolerance}}
-        if self.durability_speed_rpm is not None:
-            out["excitation"]["durability_speed_rpm"] = self.durability_speed_rpm
-        if self.belt_friction_coefficient is not None:
-            out["belt"]["friction_coefficient"] = self.belt_friction_coefficient
+        if self.orders:
+            out["excitation"] = {"speed_min_rpm": self.speed_min_rpm, "speed_max_rpm": self.speed_max_rpm,
+                                 "speeds": self.speeds, "orders": [asdict(o) for o in self.orders]}
+            if self.durability_speed_rpm is not None:
+                out["excitation"]["durability_speed_rpm"] = self.durability_speed_rpm
+        if self.duty:
+            out["duty"] = [{"speed_rpm": p.speed_rpm, **({"time_pct": p.time_pct} if p.time_pct is not None else {}),
+                            **({"power_kw": dict(p.power_kw)} if p.power_kw else {}),
+                            **({"torque_nm": dict(p.torque_nm)} if p.torque_nm else {})} for p in self.duty]
         return out
 
 
 def _pulley_dict(p: Pulley) -> dict:
-    out = {**asdict(p), "backside": "true" if p.backside else "false"}
+    out = {k: v for k, v in asdict(p).items() if v is not None}
+    out["backside"] = "true" if p.backside else "false"
+    if "effective_radius_mm" in out:
+        out["effective_diameter_mm"] = 2.0 * out.pop("effective_radius_mm")
     if p.torque_amplitude_nm == 0:
         for k in ("torque_order", "torque_amplitude_nm", "torque_phase_deg"):
             out.pop(k)
-    if p.role == "crank" and p.inertia_kg_m2 == 0:
-        out.pop("inertia_kg_m2")
     if p.role == "tensioner":
         out.pop("x_mm"), out.pop("y_mm")
     return out
+
+
+def _number(raw) -> float | None:
+    """A finite float from a number or a text (decimal comma, ``%``), else None (never raises)."""
+    if isinstance(raw, bool):
+        return None
+    if isinstance(raw, str):
+        return number_from_text(raw)
+    if not isinstance(raw, (int, float)):
+        return None
+    try:
+        x = float(raw)
+    except OverflowError:  # an integer of hundreds of digits
+        return None
+    return x if math.isfinite(x) else None
 
 
 def _value(f: Field, raw, where: str, problems: list):
@@ -243,15 +406,17 @@ def _value(f: Field, raw, where: str, problems: list):
             problems.append(Problem(where, short(raw), "a text"))
             return None
         return str(raw).strip()
-    x = number_from_text(raw) if isinstance(raw, str) else (
-        None if isinstance(raw, bool) or not isinstance(raw, (int, float)) else float(raw))
-    if x is None or not math.isfinite(x):
+    x = _number(raw)
+    if x is None:
         problems.append(Problem(where, short(raw), f.accepted()))
+        return None
+    if x != 0.0 and abs(x) < sys.float_info.min:
+        problems.append(Problem(where, short(raw), f.accepted() + " (a subnormal number is no physical value)"))
         return None
     below = x <= f.lo if f.lo_open else x < f.lo
     above = x >= f.hi if f.hi_open else x > f.hi
     if below or above or (f.kind == "int" and x != int(x)):
-        problems.append(Problem(where, short(raw), f.accepted() + (f" ({f.basis})" if f.basis and above else "")))
+        problems.append(Problem(where, short(raw), f.accepted() + (f" ({f.basis})" if f.basis and (above or below) else "")))
         return None
     return int(x) if f.kind == "int" else x
 
@@ -279,11 +444,12 @@ def validate(data) -> Drive:
     ...     validate({"belt": {"stiffness_n": -1}})
     ... except InputError as exc:
     ...     print(exc.problems[0])
-    belt.stiffness_n: got -1; accepted: a number in (0, 1e+07] N
+    belt.stiffness_n: got -1; accepted: a number in [1000, 1e+07] N (automotive timing and poly-V belts:
+    EA 1e4-5e5 N; 1e7 is twenty times the stiffest, 1000 N a floor below any belt)
     """
     if not isinstance(data, dict):
-        raise InputError(Problem("drive file", type(data).__name__, "a mapping with belt, tensioner, pulleys, "
-                                                                     "excitation (and solver)"))
+        raise InputError(Problem("drive file", type(data).__name__, "a mapping with belt, tensioner, pulleys "
+                                                                     "(and duty, excitation, solver)"))
     problems: list[Problem] = []
     for k in data:
         if k not in _SECTIONS and k != "name":
@@ -291,14 +457,54 @@ def validate(data) -> Drive:
     name = _value(_BY[("drive", "name")], data.get("name"), "name", problems)
     belt = _section(data.get("belt"), "belt", "belt.", problems)
     ten = _section(data.get("tensioner"), "tensioner", "tensioner.", problems)
-    exc = _section(data.get("excitation"), "excitation", "excitation.", problems, skip=("orders",))
+    given_exc = data.get("excitation") is not None
+    exc = _section(data.get("excitation"), "excitation", "excitation.", problems, skip=("orders",)) \
+        if given_exc else {}
     solver = _section(data.get("solver") or {}, "solver", "solver.", problems)
-    raw_pulleys = data.get("pulleys")
+    pulleys = _pulleys(data.get("pulleys"), problems)
+    orders = _orders(data.get("excitation"), exc, problems) if given_exc else []
+    duty = _duty(data.get("duty"), [p.name for p in pulleys], problems)
+    stiffness_n = _belt_stiffness(belt, problems)
+    dynamic = bool(orders) or any(p.torque_amplitude_nm > 0 for p in pulleys)
+    _nominal_problems(ten, belt, problems)
+    if dynamic:
+        _dynamic_problems(pulleys, ten, exc, problems)
+    if problems:
+        raise InputError(problems)
+    nominal_from = "angle" if ten.get("arm_angle_deg") is not None else (
+        "torque" if ten.get("nominal_torque_nm") is not None else "belt")
+    if nominal_from != "angle":
+        belt_given = {**belt, "ribs": belt.get("ribs")}
+        ten.update(nominal_angle_deg(tuple(pulleys), ten, belt_given))
+        ten.pop("sense")
+    elif ten.get("free_arm_angle_deg") is not None:
+        rel = abs((ten["arm_angle_deg"] - ten["free_arm_angle_deg"] + 180.0) % 360.0 - 180.0)
+        ten["preload_nm"] = ten["nominal_torque_nm"] - ten["stiffness_nm_per_deg"] * rel
+    drive = Drive(name=name or "drive", pulleys=tuple(pulleys), tensioner=Tensioner(**ten, nominal_from=nominal_from),
+                  belt_stiffness_n=stiffness_n, belt_damping_n_s=belt["damping_n_s"], orders=tuple(orders),
+                  speed_min_rpm=exc.get("speed_min_rpm"), speed_max_rpm=exc.get("speed_max_rpm"),
+                  speeds=exc.get("speeds") or 50, durability_speed_rpm=exc.get("durability_speed_rpm"),
+                  belt_min_tension_n=belt["min_tension_n"], belt_friction_coefficient=belt.get("friction_coefficient"),
+                  harmonics=solver["harmonics"], regularisation=solver["regularisation"], tolerance=solver["tolerance"],
+                  belt_ribs=belt.get("ribs"), belt_length_mm=belt.get("length_mm"),
+                  belt_length_tolerance_mm=belt["length_tolerance_mm"], belt_wear_pct=belt["wear_pct"],
+                  belt_thermal_change_pct=belt["thermal_change_pct"],
+                  belt_elongation_stiffness_per_rib_n=belt["elongation_stiffness_per_rib_n"],
+                  belt_measuring_tension_per_rib_n=belt["measuring_tension_per_rib_n"], duty=tuple(duty),
+                  belt_stiffness_per_rib_n=None if belt.get("stiffness_n") is not None else belt["stiffness_per_rib_n"])
+    static_state(drive)  # a belt path that cannot exist is an input error now, not later
+    _stop_problems(drive)
+    return drive
+
+
+def _pulleys(raw_pulleys, problems: list) -> list:
     pulleys = []
-    if not isinstance(raw_pulleys, list) or len(raw_pulleys) < 3:
-        problems.append(Problem("pulleys", short(raw_pulleys), "a list of at least three pulleys (crank, tensioner "
-                                                               "and one more) in the belt's travel order"))
-        raw_pulleys = raw_pulleys if isinstance(raw_pulleys, list) else []
+    if not isinstance(raw_pulleys, list) or not 3 <= len(raw_pulleys) <= MAX_PULLEYS:
+        problems.append(Problem("pulleys", short(raw_pulleys) if not isinstance(raw_pulleys, list)
+                                else f"{len(raw_pulleys)} pulleys",
+                                f"a list of 3 to {MAX_PULLEYS} pulleys (crank, tensioner and one more) in the belt's "
+                                "travel order"))
+        raw_pulleys = raw_pulleys if isinstance(raw_pulleys, list) and len(raw_pulleys) <= MAX_PULLEYS else []
     for i, rp in enumerate(raw_pulleys):
         v = _section(rp, "pulleys", f"pulleys[{i}].", problems)
         if not v:
@@ -310,10 +516,13 @@ def validate(data) -> Drive:
                 if v.get(key) is None and not any(p.field == f"{where}.{key}" for p in problems):
                     problems.append(Problem(f"{where}.{key}", None, "a value (every pulley but the tensioner has a "
                                                                     "fixed centre)"))
-        if role != "crank" and v.get("inertia_kg_m2") is None and not any(
-                p.field == f"{where}.inertia_kg_m2" for p in problems):
-            problems.append(Problem(f"{where}.inertia_kg_m2", None, "a value (every pulley but the crank, whose "
-                                                                    "motion is given, has an inertia)"))
+        radius = v.get("radius_mm")
+        if (radius is None) == (v.get("pitch_diameter_mm") is None):
+            if not any(p.field in (f"{where}.radius_mm", f"{where}.pitch_diameter_mm") for p in problems):
+                problems.append(Problem(f"{where}.radius_mm", radius, "either radius_mm or pitch_diameter_mm (the "
+                                                                      "pitch line's size, once)"))
+        elif radius is None:
+            radius = v["pitch_diameter_mm"] / 2.0
         for key in ("load_torque_nm", "torque_amplitude_nm"):
             if role in ("idler", "tensioner", "crank") and (v.get(key) or 0.0) != 0.0:
                 problems.append(Problem(f"{where}.{key}", v[key], f"0 for a {role} pulley"))
@@ -322,13 +531,15 @@ def validate(data) -> Drive:
             if o is None or abs(2 * o - round(2 * o)) > 1e-9:
                 problems.append(Problem(f"{where}.torque_order", o, "a multiple of 0.5 (the order of the load "
                                                                     "torque's fluctuation)"))
+        eff = v.get("effective_diameter_mm")
         pulleys.append(Pulley(name=v.get("name") or f"P{i + 1}", role=role, x_mm=v.get("x_mm") or 0.0,
-                              y_mm=v.get("y_mm") or 0.0, radius_mm=v.get("radius_mm") or 1.0,
-                              inertia_kg_m2=v.get("inertia_kg_m2") or 0.0, load_torque_nm=v.get("load_torque_nm") or 0.0,
+                              y_mm=v.get("y_mm") or 0.0, radius_mm=radius or 1.0,
+                              inertia_kg_m2=v.get("inertia_kg_m2"), load_torque_nm=v.get("load_torque_nm") or 0.0,
                               damping_nm_s_per_rad=v.get("damping_nm_s_per_rad") or 0.0,
                               backside=v.get("backside") == "true", torque_order=v.get("torque_order") or 0.0,
                               torque_amplitude_nm=v.get("torque_amplitude_nm") or 0.0,
-                              torque_phase_deg=v.get("torque_phase_deg") or 0.0))
+                              torque_phase_deg=v.get("torque_phase_deg") or 0.0,
+                              effective_radius_mm=None if eff is None else eff / 2.0))
     if raw_pulleys:
         for role in ("crank", "tensioner"):
             n = sum(p.role == role for p in pulleys)
@@ -338,11 +549,16 @@ def validate(data) -> Drive:
         dup = sorted({n for n in names if names.count(n) > 1})
         if dup:
             problems.append(Problem("pulleys", ", ".join(dup), "distinct pulley names"))
+    return pulleys
+
+
+def _orders(raw_exc, exc: dict, problems: list) -> list:
     orders = []
-    raw_orders = (data.get("excitation") or {}).get("orders") if isinstance(data.get("excitation"), dict) else None
+    raw_orders = raw_exc.get("orders") if isinstance(raw_exc, dict) else None
     if raw_orders is not None:
-        if not isinstance(raw_orders, list) or not raw_orders:
-            problems.append(Problem("excitation.orders", short(raw_orders), "a list of {order, amplitude_deg, phase_deg}"))
+        if not isinstance(raw_orders, list) or not 1 <= len(raw_orders) <= MAX_ORDERS:
+            problems.append(Problem("excitation.orders", short(raw_orders),
+                                    f"a list of 1 to {MAX_ORDERS} {{order, amplitude_deg, phase_deg}}"))
         else:
             for i, ro in enumerate(raw_orders):
                 v = _section(ro, "orders", f"excitation.orders[{i}].", problems)
@@ -360,21 +576,119 @@ def validate(data) -> Drive:
             n = exc["firing_order"]
             # eq. (3): delta = (w_max - w_min) / w_mean = 2 n A for theta_c = A cos(n Omega t)
             orders.append(Order(n, math.degrees(exc["irregularity"] / (2.0 * n)), 0.0))
-    elif raw_orders is None and data.get("excitation") is not None:
+    elif raw_orders is None:
         problems.append(Problem("excitation.orders", None, "the crank's orders, or irregularity with firing_order"))
     if None not in (exc.get("speed_min_rpm"), exc.get("speed_max_rpm")) and exc["speed_min_rpm"] >= exc["speed_max_rpm"]:
         problems.append(Problem("excitation.speed_max_rpm", exc["speed_max_rpm"],
                                 f"a speed above speed_min_rpm = {exc['speed_min_rpm']:g} rpm"))
+    return orders
+
+
+def _duty(raw, names: list, problems: list) -> list:
+    """The duty points; a workbook's flattened ``power_kw.ALT`` columns are read as the ``power_kw`` mapping."""
+    if raw is None:
+        return []
+    if not isinstance(raw, list) or not 1 <= len(raw) <= MAX_DUTY_POINTS:
+        problems.append(Problem("duty", short(raw) if not isinstance(raw, list) else f"{len(raw)} points",
+                                f"a list of 1 to {MAX_DUTY_POINTS} duty points {{speed_rpm, time_pct, power_kw: "
+                                "{pulley: kW}, torque_nm: {pulley: N m}}"))
+        return []
+    out = []
+    for i, row in enumerate(raw):
+        where = f"duty[{i}]"
+        if not isinstance(row, dict):
+            problems.append(Problem(where, short(row), "a mapping of speed_rpm, time_pct, power_kw, torque_nm"))
+            continue
+        row = dict(row)
+        loads = {}
+        for kind in ("power_kw", "torque_nm"):
+            mapping = row.pop(kind, None)
+            flat = {str(k).split(".", 1)[1]: row.pop(k) for k in list(row) if str(k).startswith(kind + ".")}
+            if mapping is not None and not isinstance(mapping, dict):
+                problems.append(Problem(f"{where}.{kind}", short(mapping), "a mapping of pulley names to values"))
+                mapping = {}
+            items = {**(mapping or {}), **{k: v for k, v in flat.items() if not is_not_given(v)}}
+            values = []
+            for key, value in items.items():
+                if str(key) not in names:
+                    problems.append(Problem(f"{where}.{kind}.{short(key)}", short(value),
+                                            "a pulley name: " + ", ".join(names)))
+                    continue
+                x = _value(_BY[("loads", kind)], value, f"{where}.{kind}.{key}", problems)
+                if x is not None:
+                    values.append((str(key), x))
+            loads[kind] = tuple(values)
+        v = _section(row, "duty", f"{where}.", problems)
+        if v and v.get("speed_rpm") is not None:
+            out.append(DutyPoint(v["speed_rpm"], v.get("time_pct"), loads["power_kw"], loads["torque_nm"]))
+    return out
+
+
+def _belt_stiffness(belt: dict, problems: list) -> float | None:
+    if belt.get("stiffness_n") is not None:
+        return belt["stiffness_n"]
+    if belt.get("ribs") is not None:
+        return belt["ribs"] * belt["stiffness_per_rib_n"]
+    problems.append(Problem("belt.stiffness_n", None, "a value, or belt.ribs (EA = ribs x stiffness_per_rib_n, "
+                                                      f"default {belt_data.EA_PER_RIB_N:g} N per rib)"))
+    return None
+
+
+def _nominal_problems(ten: dict, belt: dict, problems: list) -> None:
+    """The nominal position is stated once: the arm angle, or the free arm with its preload (and the nominal
+    torque, or the belt's length and ribs)."""
+    angle, free, pre, torque = (ten.get(k) for k in ("arm_angle_deg", "free_arm_angle_deg", "preload_nm",
+                                                     "nominal_torque_nm"))
+    if angle is not None and pre is not None:
+        problems.append(Problem("tensioner.preload_nm", pre, "either arm_angle_deg or preload_nm (the nominal arm "
+                                                             "angle or the spring's torque at the free arm: one "
+                                                             "follows from the other)"))
+    elif angle is not None:
+        if torque is None:
+            problems.append(Problem("tensioner.nominal_torque_nm", None, "a value (the spring's torque at the "
+                                                                         "nominal arm angle)"))
+    elif pre is not None or free is not None:
+        if free is None or pre is None:
+            problems.append(Problem("tensioner.free_arm_angle_deg" if free is None else "tensioner.preload_nm",
+                                    None, "a value: free_arm_angle_deg and preload_nm state the spring together"))
+        elif torque is None and (belt.get("length_mm") is None or belt.get("ribs") is None):
+            problems.append(Problem("tensioner.nominal_torque_nm", None, "a value, or belt.length_mm with belt.ribs "
+                                                                         "(the nominal angle then follows from the "
+                                                                         "belt's length)"))
+    else:
+        problems.append(Problem("tensioner.arm_angle_deg", None, "the nominal arm angle, or free_arm_angle_deg with "
+                                                                 "preload_nm"))
+
+
+def _dynamic_problems(pulleys, ten: dict, exc: dict, problems: list) -> None:
+    """The periodic response needs every inertia, the arm's friction and the sweep's speeds."""
+    for i, p in enumerate(pulleys):
+        if p.role != "crank" and p.inertia_kg_m2 is None and not any(
+                q.field == f"pulleys[{i}].inertia_kg_m2" for q in problems):
+            problems.append(Problem(f"pulleys[{i}].inertia_kg_m2", None, "a value (the excitation's response needs "
+                                                                         "every pulley's inertia but the crank's)"))
+    for key in ("inertia_kg_m2", "friction_torque_nm"):
+        if ten.get(key) is None and not any(q.field == f"tensioner.{key}" for q in problems):
+            problems.append(Problem(f"tensioner.{key}", None, "a value (the excitation's response needs it)"))
+    for key in ("speed_min_rpm", "speed_max_rpm"):
+        if exc.get(key) is None and not any(p.field == f"excitation.{key}" for p in problems):
+            problems.append(Problem(f"excitation.{key}", None, "a value (the sweep's speeds)"))
+
+
+def _stop_problems(drive) -> None:
+    """The stops on the right sides: the free arm before the nominal position, the installation stop past it."""
+    ten = drive.tensioner
+    s = drive.loading_sense
+    problems = []
+    for key, sign, what in (("free_arm_angle_deg", -1.0, "before"), ("installation_angle_deg", 1.0, "past")):
+        a = getattr(ten, key)
+        if a is not None and sign * s * ((a - ten.arm_angle_deg + 180.0) % 360.0 - 180.0) < 0:
+            problems.append(Problem(f"tensioner.{key}", a, f"an angle {what} the nominal arm angle "
+                                    f"({ten.arm_angle_deg:.2f} deg) in the belt's loading sense "
+                                    f"({'counter-clockwise' if s > 0 else 'clockwise'}): the belt pushes the arm "
+                                    "from the free arm towards the installation stop"))
     if problems:
         raise InputError(problems)
-    drive = Drive(name=name or "drive", pulleys=tuple(pulleys), tensioner=Tensioner(**ten),
-                  belt_stiffness_n=belt["stiffness_n"], belt_damping_n_s=belt["damping_n_s"], orders=tuple(orders),
-                  speed_min_rpm=exc["speed_min_rpm"], speed_max_rpm=exc["speed_max_rpm"], speeds=exc["speeds"],
-                  durability_speed_rpm=exc.get("durability_speed_rpm"), belt_min_tension_n=belt["min_tension_n"],
-                  belt_friction_coefficient=belt.get("friction_coefficient"), harmonics=solver["harmonics"],
-                  regularisation=solver["regularisation"], tolerance=solver["tolerance"])
-    static_state(drive)  # a belt path that cannot exist is an input error now, not later
-    return drive
 
 
 def load_drive(path) -> Drive:
@@ -398,6 +712,11 @@ def load_drive(path) -> Drive:
 def _from_sheet(path) -> Drive:
     """The ``Drive`` sheet as a drive mapping; problems name the sheet and cell."""
     ws = read_sheet(path, "--drive", "Drive")
+    if ws.title != "Drive":
+        raise InputError(Problem("--drive", str(path), "a workbook with a sheet named 'Drive' (this one has the sheets "
+                                 + ", ".join(repr(n) for n in ws.sheetnames)[:300]
+                                 + ("; a design input's workbook is read by synth design, not as a drive"
+                                    if "Input" in ws.sheetnames else "") + ")"))
     data: dict = {"name": Path(path).stem}
     cell_of: dict[str, str] = {}
     rows = sorted({int("".join(ch for ch in a if ch.isdigit())) for a in ws.cells})
@@ -406,7 +725,7 @@ def _from_sheet(path) -> Drive:
         r = rows[i]
         key = ws.value(f"A{r}")
         key = str(key).strip() if key is not None else ""
-        if key in ("pulleys", "orders"):
+        if key in ("pulleys", "orders", "duty"):
             header_row = r + 1
             cols = []
             c = 2 if ws.value(f"A{header_row}") is None else 1
@@ -422,7 +741,7 @@ def _from_sheet(path) -> Drive:
             if key == "orders":
                 data.setdefault("excitation", {})["orders"] = items
             else:
-                data["pulleys"] = items
+                data[key] = items
             i = next((k for k, x in enumerate(rows) if x >= rr), len(rows))
             continue
         if key and "." in key:
@@ -454,5 +773,9 @@ def drive_from_mapping(data) -> Drive:
         d["pulleys"] = tuple(Pulley(**p) for p in d["pulleys"])
         d["tensioner"] = Tensioner(**d["tensioner"])
         d["orders"] = tuple(Order(**o) for o in d["orders"])
+        d["duty"] = tuple(DutyPoint(p["speed_rpm"], p.get("time_pct"),
+                                    tuple((str(a), float(b)) for a, b in p.get("power_kw") or ()),
+                                    tuple((str(a), float(b)) for a, b in p.get("torque_nm") or ()))
+                          for p in d.get("duty") or ())
         return Drive(**d)
     return validate(data)

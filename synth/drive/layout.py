@@ -35,7 +35,8 @@ import numpy as np
 
 from synth.errors import InputError, Problem
 
-__all__ = ["loop_orientation", "span_geometry", "path_length_mm", "tensioner_centre_mm", "take_up"]
+__all__ = ["loop_orientation", "span_geometry", "effective_length_mm", "path_length_mm", "tensioner_centre_mm",
+           "take_up"]
 
 
 def loop_orientation(centres_mm) -> float:
@@ -50,42 +51,75 @@ def loop_orientation(centres_mm) -> float:
     return 1.0 if area >= 0 else -1.0
 
 
-def span_geometry(centres_mm, radii_mm, sigma, names=None) -> dict:
+def span_geometry(centres_mm, radii_mm, sigma, names=None, *, strict: bool = True) -> dict:
     """Spans and wraps of a closed belt path through circles in travel order.
 
     ``sigma[i]`` is ``+1`` where the belt wraps pulley ``i`` counter-clockwise, ``-1`` clockwise. Span ``j``
     runs from pulley ``j`` to pulley ``j + 1`` (the last back to the first). Returns ``length_mm`` and
     ``direction`` (unit travel vectors) per span, ``wrap_rad`` per pulley, the tangent points ``start_mm``,
-    ``end_mm`` per span. Circles whose tangent does not exist (one inside the other) are an input error.
+    ``end_mm`` per span and ``closed``: the travel direction turns once round the loop, ``sum(sigma wrap) =
+    2 pi`` times the loop's sense (a pulley the belt has left, its wrap through zero, breaks it).
+
+    ``centres_mm`` may carry leading axes (``(..., n, 2)``: many layouts at once, for a sweep of arm angles);
+    ``strict=False`` then marks a layout the belt cannot run (no common tangent, or not closed) NaN instead of
+    raising. With ``strict`` such a layout is an input error naming the pulleys.
     """
     c = np.asarray(centres_mm, dtype=float)
     r = np.asarray(radii_mm, dtype=float)
     s = np.asarray(sigma, dtype=float)
     rho = s * r
-    n = len(c)
+    n = c.shape[-2]
     nxt = (np.arange(n) + 1) % n
-    d = c[nxt] - c
-    dist = np.hypot(d[:, 0], d[:, 1])
+    d = c[..., nxt, :] - c
+    dist = np.hypot(d[..., 0], d[..., 1])
     drho = rho[nxt] - rho
-    bad = np.flatnonzero(np.abs(drho) >= dist)
-    if len(bad):
+    no_tangent = np.abs(drho) >= dist
+    if strict and no_tangent.any():
         label = names or [f"pulley {i + 1}" for i in range(n)]
-        raise InputError([Problem(f"pulleys ({label[j]} -> {label[nxt[j]]})", f"{dist[j]:.4g} mm apart",
+        first = np.argwhere(no_tangent.reshape(-1, n))[0][0]  # the first layout with a span that cannot exist
+        bad = np.flatnonzero(no_tangent.reshape(-1, n)[first])
+        dd = dist.reshape(-1, n)[first]
+        raise InputError([Problem(f"pulleys ({label[j]} -> {label[nxt[j]]})", f"{dd[j]:.4g} mm apart",
                                   "pulleys the belt can span: centre distance above the difference of the signed "
-                                  f"radii ({abs(drho[j]):.4g} mm here; a pulley inside another, or wrap sides "
-                                  "that cross)") for j in bad])
-    beta = np.arctan2(d[:, 1], d[:, 0])
-    a = beta - np.arcsin(drho / dist)
-    u = np.stack([np.cos(a), np.sin(a)], axis=1)
-    left = np.stack([-u[:, 1], u[:, 0]], axis=1)
+                                  f"radii ({abs(drho[j]):.4g} mm here; a pulley inside another, or wrap sides that "
+                                  "cross)") for j in bad])
+    beta = np.arctan2(d[..., 1], d[..., 0])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.where(no_tangent, np.nan, drho / np.where(dist > 0, dist, 1.0))
+    a = beta - np.arcsin(ratio)
+    u = np.stack([np.cos(a), np.sin(a)], axis=-1)
+    left = np.stack([-u[..., 1], u[..., 0]], axis=-1)
     start = c - rho[:, None] * left
-    end = c[nxt] - rho[nxt][:, None] * left
-    length = np.sqrt(dist ** 2 - drho ** 2)
-    a_in = np.roll(a, 1)  # the span arriving at pulley i is span i - 1
+    end = c[..., nxt, :] - rho[nxt][:, None] * left
+    length = np.sqrt(np.where(no_tangent, np.nan, dist ** 2 - drho ** 2))
+    a_in = np.roll(a, 1, axis=-1)  # the span arriving at pulley i is span i - 1
     turn = np.where(s > 0, a - a_in, a_in - a)
     wrap = np.mod(turn, 2.0 * np.pi)
+    total = np.sum(s * wrap, axis=-1)
+    closed = np.abs(np.abs(total) - 2.0 * np.pi) < 1e-6
+    if strict and not np.all(closed):
+        label = names or [f"pulley {i + 1}" for i in range(n)]
+        raise InputError(Problem("pulleys", ", ".join(label), "a belt path that closes: the belt turns once round "
+                                 f"the loop (here {np.degrees(float(np.ravel(total)[0])):.1f} deg instead of "
+                                 "360; a pulley the belt no longer touches, or wrap sides that cross)"))
     return {"length_mm": length, "direction": u, "wrap_rad": wrap, "start_mm": start, "end_mm": end,
-            "angle_rad": a}
+            "angle_rad": a, "closed": closed}
+
+
+def effective_length_mm(geometry: dict, effective_radii_mm):
+    """Belt length on the effective line: the spans (pitch-line tangents) plus each wrap on its effective radius
+    [mm] (broadcasts over the leading axes of :func:`span_geometry`).
+
+    The drive reports measure belt length on the effective line (ISO 9981: the effective diameter of a grooved
+    pulley is its outside diameter, a flat backside pulley's is its diameter plus the belt's thickness to that
+    line); the pitch line (the cord) sets the tangents and the speed ratios.
+
+    >>> g = span_geometry(np.array([[0.0, 0.0], [100.0, 0.0]]), np.array([10.0, 10.0]), np.array([1.0, 1.0]))
+    >>> round(float(effective_length_mm(g, [9.0, 9.0])), 4)  # 2 x 100 + 2 pi 9
+    256.5487
+    """
+    return np.sum(geometry["length_mm"], axis=-1) + np.sum(geometry["wrap_rad"] * np.asarray(effective_radii_mm,
+                                                                                               float), axis=-1)
 
 
 def path_length_mm(centres_mm, radii_mm, sigma) -> float:

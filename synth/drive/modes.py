@@ -31,9 +31,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from synth.drive.statics import static_state
 
-__all__ = ["LinearDrive", "linear_drive", "natural_frequencies"]
+from synth.drive.statics import static_state
+from synth.errors import InputError, Problem
+
+__all__ = ["LinearDrive", "linear_drive", "natural_frequencies", "system_modes"]
 
 
 @dataclass(frozen=True)
@@ -55,8 +57,12 @@ class LinearDrive:
     static: dict
 
 
-def linear_drive(drive, static: dict | None = None) -> LinearDrive:
+def linear_drive(drive, static: dict | None = None, *, crank_free: bool = False,
+                 ea_n: float | None = None) -> LinearDrive:
     """Assemble ``M, C, K, B`` of a validated drive about its static state.
+
+    ``ea_n``: the belt's EA instead of the drive's [N]. ``crank_free``: the crank is a degree of freedom with its inertia (the free system whose modes a drive
+    report lists: a rigid rotation of every pulley at frequency 0 comes first), instead of a prescribed motion.
 
     >>> from synth.drive.inputs import example_drive
     >>> m = linear_drive(example_drive())
@@ -66,7 +72,7 @@ def linear_drive(drive, static: dict | None = None) -> LinearDrive:
     s = static if static is not None else static_state(drive)
     p = drive.pulleys
     n = len(p)
-    crank = drive.crank_index
+    crank = -1 if crank_free else drive.crank_index
     free = [i for i in range(n) if i != crank]
     col = {i: k for k, i in enumerate(free)}
     nd = len(free) + 1
@@ -83,10 +89,15 @@ def linear_drive(drive, static: dict | None = None) -> LinearDrive:
                 B[j, col[idx]] += sign * r_m[idx]
         B[j, arm] = s["take_up_dl_mm_per_rad"][j] / 1000.0
     length_m = s["span_length_mm"] / 1000.0
-    k_span = drive.belt_stiffness_n / length_m
+    k_span = drive.belt_stiffness_n / length_m if ea_n is None else ea_n / length_m
     c_span = drive.belt_damping_n_s / length_m
     ten = drive.tensioner
-    J = np.array([p[i].inertia_kg_m2 for i in free] + [ten.inertia_kg_m2])
+    missing = [p[i].name for i in free if p[i].inertia_kg_m2 is None] + (
+        ["tensioner arm"] if ten.inertia_kg_m2 is None else [])
+    if missing:
+        raise InputError(Problem("inertia_kg_m2", ", ".join(missing), "an inertia for every pulley that turns and for "
+                                 "the tensioner arm (the drive's modes and response need them)"))
+    J = np.array([p[i].inertia_kg_m2 for i in free] + [ten.arm_inertia_kg_m2])
     M = np.diag(J)
     k_arm = np.degrees(1.0) * ten.stiffness_nm_per_deg + s["tensioner_tension_n"] * s["path_d2_mm_per_rad2"] / 1000.0
     Kp = np.zeros((nd, nd))
@@ -113,3 +124,21 @@ def natural_frequencies(model: LinearDrive, arm_locked: bool = False) -> dict:
     w2, vec = eigh(K, M)
     f = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
     return {"frequency_hz": f, "modes": vec, "dofs": tuple(model.dofs[i] for i in keep)}
+
+
+def system_modes(drive, ea_per_rib_n: float | None = None, count: int = 3) -> dict:
+    """The free system's first ``count`` modes [Hz] (crank free with its inertia, the arm free), as a drive
+    report's vibration page lists them: the rigid rotation (0 Hz) left out.
+
+    ``ea_per_rib_n``: the spans' EA per rib instead of the drive's (a belt of ``ribs``); the drive's EA otherwise.
+    Returns ``frequency_hz``, the mode shapes (columns) and the degrees of freedom.
+    """
+    if ea_per_rib_n is not None and not drive.belt_ribs:
+        raise InputError(Problem("belt.ribs", None, "a value (EA per rib needs the belt's ribs)"))
+    ea = None if ea_per_rib_n is None else ea_per_rib_n * drive.belt_ribs
+    model = linear_drive(drive, crank_free=True, ea_n=ea)
+    from scipy.linalg import eigh
+    w2, vec = eigh(model.K, model.M)
+    f = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * np.pi)
+    keep = np.arange(1, min(len(f), count + 1))  # the first is the rigid rotation of the whole drive
+    return {"frequency_hz": f[keep], "modes": vec[:, keep], "dofs": model.dofs}

@@ -23,6 +23,7 @@ otherwise be ignored silently), and every file as above.
 from __future__ import annotations
 
 import difflib
+import importlib
 import io
 import math
 from pathlib import Path
@@ -30,11 +31,14 @@ from pathlib import Path
 from synth.errors import InputError, Problem
 from synth.io.files import read_text
 from synth.io.limits import LIMITS, short
+from synth.io.numbers import percentage
 from synth.io.tables import _parser_problem, check_field_counts
 
 __all__ = ["check_user_dir", "read_user_catalog", "read_catalog_text"]
 
 _TRUE = ("true", "1", "yes", "y")
+#: catalogs whose rows have rules beyond their cells' types: file stem -> "module:function(table, at) -> problems"
+_ROW_CHECKS = {"prices": "synth.cost.prices:check_rows"}
 _FALSE = ("false", "0", "no", "n")
 
 
@@ -142,7 +146,7 @@ def read_user_catalog(path, builtin):
                 problems.append(Problem(at(i, "source"), None, "the source of the row's values (standard and "
                                                                "clause, data sheet, or 'illustrative')"))
     for col in builtin.columns[1:]:
-        kind = builtin[col].dtype.kind
+        kind = builtin[col].dtype.kind if builtin[col].notna().any() else "O"  # an empty column: text
         if kind == "b":
             vals = []
             for i, v in enumerate(raw[col]):
@@ -167,12 +171,19 @@ def read_user_catalog(path, builtin):
                                                                   "built-in catalog)"))
                     vals.append(math.nan)
                     continue
-                try:
-                    x = float(t)
-                except ValueError:
-                    x = None
+                in_percent = col.endswith("_pct") or (col == "value" and "unit" in raw.columns
+                                                      and str(raw["unit"].iloc[i]).strip() == "%")
+                if in_percent:  # a value in percent: 8, "8 %" or 8% (the one percentage parser)
+                    x = percentage(t, "%")
+                else:
+                    try:
+                        x = float(t)
+                    except ValueError:
+                        x = None
                 if x is None or not math.isfinite(x):
-                    problems.append(Problem(at(i, col), short(t), f"a finite number (column {col} is numeric)"))
+                    problems.append(Problem(at(i, col), short(t), f"a finite number (column {col} is numeric"
+                                                                  + (", in percent: 8 or 8 %)" if in_percent
+                                                                     else ")")))
                     vals.append(math.nan)
                 elif sign is not None and (x <= sign[1] if sign[0] == ">" else x < sign[1]):
                     problems.append(Problem(at(i, col), short(t), f"a number {sign[0]} 0 (every value of column {col} "
@@ -186,6 +197,9 @@ def read_user_catalog(path, builtin):
             out[col] = raw[col].astype(str).str.strip().replace("", math.nan)
         if len(problems) >= 50:
             break
+    if not problems and p.stem in _ROW_CHECKS:  # a catalog with rules beyond its cells' types
+        module, name = _ROW_CHECKS[p.stem].split(":")
+        problems = getattr(importlib.import_module(module), name)(out, at)
     if problems:
         raise InputError(problems)
     return out

@@ -23,7 +23,8 @@ from pathlib import Path
 from synth.errors import InputError, Problem
 from synth.io.limits import LIMITS, MB
 
-__all__ = ["existing_file", "read_text", "check_size", "check_zip", "suffix_of", "WORKBOOK_SUFFIXES"]
+__all__ = ["existing_file", "read_text", "check_size", "check_zip", "suffix_of", "content_kind", "kind_of_file",
+           "WORKBOOK_SUFFIXES"]
 
 #: the workbook files a user may name (the Excel template, or it saved by LibreOffice)
 WORKBOOK_SUFFIXES = (".xlsx", ".xlsm", ".ods")
@@ -81,13 +82,11 @@ def read_text(path, what: str, *, limit: int | None = None, accepted: str = "a U
         data = p.read_bytes()
     except OSError as exc:
         raise InputError(Problem(what, str(p), f"a readable file ({exc.strerror})")) from None
-    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+    kind = content_kind(data)
+    if kind == "UTF-16 text":
         raise InputError(Problem(what, str(p), "UTF-8 text (this file is UTF-16: save it as UTF-8)"))
-    if data.startswith(b"PK\x03\x04"):
-        raise InputError(Problem(what, str(p), f"{accepted}; this is a zip archive (a workbook? give it its "
-                                               ".xlsx or .ods extension)"))
-    if b"\x00" in data[:8192]:
-        raise InputError(Problem(what, str(p), f"{accepted}; this is a binary file, not text"))
+    if kind is not None:
+        raise InputError(Problem(what, str(p), f"{accepted}; this is {kind}"))
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
@@ -97,6 +96,61 @@ def read_text(path, what: str, *, limit: int | None = None, accepted: str = "a U
     if "\x00" in text:
         raise InputError(Problem(what, str(p), f"{accepted}; this file holds NUL characters (binary data)"))
     return text
+
+
+#: leading bytes of the binary files a user may name by mistake, and what they are
+_MAGIC = ((b"%PDF-", "a PDF document, not text"), (b"\x89PNG", "a PNG picture, not text"),
+          (b"\xff\xd8\xff", "a JPEG picture, not text"), (b"\x1f\x8b", "a gzip archive, not text"),
+          (b"PAR1", "a Parquet table, not text"), (b"ISO-10303-21", "a STEP file (a 3D model), not an input"),
+          (b"\xd0\xcf\x11\xe0", "an old Excel (.xls) or Word file, not text"))
+
+
+def content_kind(data: bytes) -> str | None:
+    r"""What the bytes of a file are when they are not UTF-8 text of an input, judged by content (never by the
+    file's name), else None.
+
+    >>> content_kind(b"PK\x03\x04" + bytes(40)), content_kind(b"%PDF-1.7"), content_kind(b"name: x\n")
+    ('a zip archive (a workbook? give it its .xlsx or .ods extension)', 'a PDF document, not text', None)
+    """
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        return "UTF-16 text"
+    if data.startswith(b"PK\x03\x04"):
+        return _zip_kind(data)
+    for magic, kind in _MAGIC:
+        if data.startswith(magic):
+            return kind
+    if b"\x00" in data[:8192]:
+        return "a binary file, not text"
+    return None
+
+
+def kind_of_file(path) -> str | None:
+    """:func:`content_kind` of the file at ``path`` (its first 8 kB; a zip archive's directory), None when it reads
+    as text or cannot be read (the reader then says why)."""
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(8192)
+    except (OSError, ValueError):
+        return None
+    if head.startswith(b"PK\x03\x04"):
+        return _zip_kind(path)
+    return content_kind(head)
+
+
+def _zip_kind(data) -> str:
+    """A zip archive's kind by its members: an Excel workbook, an OpenDocument spreadsheet, or a zip archive
+    (``data``: its bytes, or its path)."""
+    import io
+    try:
+        with zipfile.ZipFile(io.BytesIO(data) if isinstance(data, bytes) else data) as zf:
+            names = set(zf.namelist()[:10_000])
+    except (zipfile.BadZipFile, OSError, ValueError, EOFError, RuntimeError):
+        names = set()
+    if "xl/workbook.xml" in names:
+        return "an Excel workbook (the design-input template?), not a text file"
+    if "content.xml" in names and "mimetype" in names:
+        return "an OpenDocument spreadsheet, not a text file"
+    return "a zip archive (a workbook? give it its .xlsx or .ods extension)"
 
 
 def check_zip(path: Path, what: str, unpacked_limit: int, kind: str, part_limit: int | None = None) -> None:

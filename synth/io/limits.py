@@ -13,7 +13,7 @@ each kind stays well inside that (measured numbers in
 >>> check_count("--points", -3)
 Traceback (most recent call last):
 ...
-synth.errors.InputError: --points: got -3; accepted: an integer in [2, 500] (margin thresholds probed: each is one catalog solve)
+synth.errors.InputError: --points: got -3; accepted: an integer in [2, 500] (margin thresholds probed: each is one catalog solve (500: about 20 s, 0.2 GB))
 >>> short("x" * 500)[-25:]
 'xxxxx... (500 characters)'
 """
@@ -97,7 +97,8 @@ LIMITS = Limits()
 
 @dataclass(frozen=True)
 class Count:
-    """The accepted range of one count option of the command line, and why."""
+    """The accepted range of one count option of the command line, and why (the time and memory it runs in at
+    its upper bound, measured: ``docs/sections/input_gate.md``, "Count options")."""
 
     option: str
     lo: int
@@ -105,31 +106,42 @@ class Count:
     why: str
 
 
-#: option -> its bounds; the upper bound keeps every array that count sizes small and every run finite
-COUNTS: dict[str, Count] = {c.option: c for c in (
-    Count("--reassemblies", 0, 100,
-          "re-assemblies (pull-off + press-on) of the crank pulley; the paper's case has 1 (i = 2 displacements) "
-          "and a pulley comes off at each timing-belt change, a handful of times in an engine's life"),
-    Count("--points", 2, 500, "margin thresholds probed: each is one catalog solve"),
-    Count("N", 1, LIMITS.portfolio_rows, "applications in the portfolio (the largest portfolio synth bulk reads)"),
-    Count("--broken", 0, LIMITS.portfolio_rows, "rows broken on purpose, at most N"),
-    Count("--seed", 0, 2**32 - 1, "a seed of numpy's random generator"),
-    Count("--chunk-size", 1, 10_000,
-          "applications per chunk; the engine keeps a chunk's design spaces in memory "
-          "(about 2 MB per application, catalogs/constants_bulk.csv), so 10,000 is about 2 GB"),
-    Count("--workers", 1, 64, "worker processes of a local Dask cluster"),
-    Count("--trials", 1, 100_000, "black-box trials"),
+#: key -> the bounds of a count option (the key is the option, or ``"scene option"`` where one option of two
+#: scenes sizes different work); the upper bound keeps every array that count sizes small and every run finite
+COUNTS: dict[str, Count] = {k: c for k, c in (
+    ("--reassemblies", Count("--reassemblies", 0, 100,
+     "re-assemblies (pull-off + press-on) of the crank pulley; the paper's case has 1 (i = 2 displacements) "
+     "and a pulley comes off at each timing-belt change, a handful of times in an engine's life")),
+    ("--points", Count("--points", 2, 500, "margin thresholds probed: each is one catalog solve (500: about 20 s, "
+                                           "0.2 GB)")),
+    ("rationalise --points", Count("--points", 2, 50, "points of the trade-off curve: each is one platform MILP of "
+                                                      "up to --time-limit seconds")),
+    ("N", Count("N", 1, LIMITS.portfolio_rows, "applications in the portfolio (the largest portfolio synth bulk "
+                                               "reads)")),
+    ("--broken", Count("--broken", 0, LIMITS.portfolio_rows, "rows broken on purpose, at most N")),
+    ("--seed", Count("--seed", 0, 2**32 - 1, "a seed of numpy's random generator")),
+    ("--chunk-size", Count("--chunk-size", 1, 5_000,
+     "applications per chunk; the engine keeps a chunk's design spaces and probes in memory (about 0.33 MB "
+     "per application, catalogs/constants_bulk.csv), so 5,000 stay within about 2 GB")),
+    ("--workers", Count("--workers", 1, 64, "worker processes (a local cluster: at most the usable cores)")),
+    ("--trials", Count("--trials", 1, 100_000, "black-box trials per subsystem study")),
+    ("--top", Count("--top", 1, 50, "ranked alternative designs (50: about 8 s, 0.2 GB)")),
+    ("--samples", Count("--samples", 64, 262_144,
+     "Monte Carlo samples of one design (2^18: about 1.1 GB; a power of two keeps the Sobol balance)")),
+    ("bulk --samples", Count("--samples", 64, 2_048,
+     "Monte Carlo samples per application, 64 applications at once (2^11: about 1.1 GB)")),
 )}
 
 
 def check_count(option: str, value, lo: int | None = None, hi: int | None = None) -> int:
-    """``value`` as an int if it is a whole number within the bounds of ``option`` (:data:`COUNTS`).
+    """``value`` as an int if it is a whole number within the bounds of ``option`` (a key of :data:`COUNTS`).
 
     ``lo``/``hi`` narrow the bounds (``--broken`` at most N). Raises
     :class:`~synth.errors.InputError` naming the option, the value and the
     accepted range.
     """
     c = COUNTS[option]
+    option = c.option  # the name the user typed (a key "bulk --samples" is option --samples)
     lo = c.lo if lo is None else max(c.lo, lo)
     hi = c.hi if hi is None else min(c.hi, hi)
     accepted = f"an integer in [{lo}, {hi}] ({c.why})"

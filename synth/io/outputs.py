@@ -13,9 +13,19 @@ construction, whatever the user typed or the folder holds.
   :func:`os_problem`.
 * :func:`output_folder` -- a folder to write into: created when missing,
   refused when it is a file or (inside the output) a symbolic link.
+* :func:`output_files` -- a multi-file output (a CAD export, a report, a
+  summary): every file is written into a new staging folder and the set is
+  moved into place (renames) only when all of it is complete; on a failure
+  (a full disk) the folder is left as it was, with no empty or truncated file.
+* A file whose writer can fail without saying so (OCCT's STL and STEP
+  writers on a full disk) is checked complete by its format before it is
+  renamed into place (:func:`incomplete`: an STL's triangle count, a STEP
+  file's end, a PNG's last chunk...).
 * :func:`csv_safe` -- text cells of a CSV that a spreadsheet would run as a
   formula (``=HYPERLINK(...)``, ``@SUM(...)``, ``=cmd|...``) get the
-  apostrophe prefix (OWASP, "CSV Injection"); every CSV synth writes calls it.
+  apostrophe prefix (OWASP, "CSV Injection"), and a cell holding a line break
+  stays one quoted cell of its row; every CSV synth writes calls it, whatever
+  the text's source (a portfolio cell, an echoed name, a message).
 * :func:`plain` / :func:`json_text` -- JSON that is always valid (RFC 8259: no
   ``NaN`` or ``Infinity``) and holds no subnormal number.
 * :func:`step_text` -- a text for an ISO 10303-21 (STEP) string.
@@ -40,7 +50,8 @@ from pathlib import Path
 
 from synth.errors import InputError, Problem
 
-__all__ = ["FORMULA_LEADS", "FS_ERRNOS", "os_problem", "output_file", "output_folder", "write_text", "write_figure", "write_csv", "csv_rows", "csv_cell",
+__all__ = ["FORMULA_LEADS", "FS_ERRNOS", "os_problem", "output_file", "output_folder", "output_files", "refuse_link",
+           "incomplete", "write_text", "write_figure", "write_csv", "csv_rows", "csv_cell",
            "csv_safe", "plain", "json_text", "step_text"]
 
 #: Leading characters that make a spreadsheet read typed text as a formula (OWASP "CSV Injection": ``= + - @``,
@@ -60,7 +71,8 @@ FS_ERRNOS = {errno.EACCES: "permission denied (a read-only or protected folder?)
              errno.ENAMETOOLONG: "the name is too long",
              errno.ELOOP: "too many symbolic links",
              errno.ENXIO: "it is a device or socket, not a file",
-             errno.ETXTBSY: "the file is busy"}
+             errno.ETXTBSY: "the file is busy",
+             errno.EIO: "an input/output error of the device (a failing disk or network share?)"}
 
 
 def os_problem(exc: OSError, what: str, path=None, verb: str = "write") -> Problem:
@@ -70,7 +82,10 @@ def os_problem(exc: OSError, what: str, path=None, verb: str = "write") -> Probl
     return Problem(what, str(where), f"a path synth can {verb} ({why})")
 
 
-def _refuse_link(p: Path, what: str) -> None:
+def refuse_link(p, what: str) -> None:
+    """An :class:`InputError` when ``p`` is a symbolic link: a folder synth makes inside an output is never one
+    (checked before the work, and again when the folder is made)."""
+    p = Path(p)
     if p.is_symlink():
         raise InputError(Problem(what, str(p), f"a folder that is not a symbolic link (this one points to "
                                                f"{os.readlink(p)}; synth never writes through a link an output "
@@ -85,7 +100,7 @@ def output_folder(path, what: str = "--out", *, inside: bool = False) -> Path:
     """
     p = Path(path)
     if inside:
-        _refuse_link(p, what)
+        refuse_link(p, what)
     if p.exists() and not p.is_dir():
         raise InputError(Problem(what, str(p), "a folder (this is an existing file; give a folder name)"))
     try:
@@ -114,6 +129,9 @@ def output_file(path, what: str = "--out"):
         output_folder(p.parent, what)
         tmp = _new_temporary(p)
         yield tmp
+        why = incomplete(tmp)
+        if why is not None:  # a writer that failed without an error (OCCT's on a full disk)
+            raise _disk_full(p.parent) or OSError(errno.EIO, f"the writer left an incomplete file ({why})", str(p))
         os.replace(tmp, p)
         tmp = None
     except OSError as exc:
@@ -129,6 +147,118 @@ def output_file(path, what: str = "--out"):
         if tmp is not None:
             with contextlib.suppress(OSError):
                 tmp.unlink()
+
+
+@contextlib.contextmanager
+def output_files(folder, what: str = "--out", *, inside: bool = False):
+    """A multi-file output into ``folder``: yields a new staging folder; its files are moved into ``folder`` when the
+    block ends without an error, all of them, else none.
+
+    The staging folder (``folder/.synth-<random>.tmp``, created exclusively) is on the same file system as
+    ``folder``, so the move is a rename per file: no copy, no space needed, nothing half written. Its
+    sub-folders (``stl/``) are created in ``folder`` when missing, never through a symbolic link
+    (:func:`output_folder` with ``inside=True``); a link at a file's final name is replaced, never followed. On
+    any failure (a full disk, a writer that fails, Ctrl-C) the staging folder is removed and ``folder`` holds
+    what it held before. A problem names ``what`` and the file's final path, not the staging one.
+
+    >>> import tempfile, pathlib
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "cad"
+    >>> with output_files(out, "--cad") as stage:
+    ...     _ = write_text(stage / "a.json", "{}")
+    ...     _ = write_text(output_folder(stage / "stl") / "b.stl", "solid x\\nendsolid x\\n")
+    >>> sorted(str(q.relative_to(out)) for q in out.rglob("*"))
+    ['a.json', 'stl', 'stl/b.stl']
+    """
+    final = output_folder(folder, what, inside=inside)
+    stage = None
+    try:
+        try:
+            stage = _new_stage(final)
+            yield stage
+            _move_into(stage, final, what)
+        except OSError as exc:
+            if exc.errno in FS_ERRNOS:
+                raise InputError(os_problem(exc, what, exc.filename or final)) from None
+            raise
+    except InputError as exc:  # name the final path and the option, not the staging folder
+        if stage is None:
+            raise
+        raise InputError([Problem(what if p.field == "--out" else p.field,
+                                  str(p.value).replace(str(stage), str(final)), p.accepted)
+                          for p in exc.problems]) from None
+    finally:
+        if stage is not None:
+            import shutil
+            shutil.rmtree(stage, ignore_errors=True)
+
+
+def _new_stage(final: Path) -> Path:
+    for _ in range(100):
+        stage = final / f".synth-{secrets.token_hex(6)}.tmp"
+        try:
+            stage.mkdir()
+            return stage
+        except FileExistsError:
+            continue
+    raise FileExistsError(errno.EEXIST, "no free staging name", str(final))  # pragma: no cover
+
+
+def _move_into(src: Path, dst: Path, what: str) -> None:
+    """Move every file of ``src`` into ``dst`` (sub-folders into sub-folders, created never through a link)."""
+    for entry in sorted(src.iterdir()):
+        target = dst / entry.name
+        if entry.is_dir() and not entry.is_symlink():
+            _move_into(entry, output_folder(target, what, inside=True), what)
+        else:
+            if target.is_dir() and not target.is_symlink():
+                raise InputError(Problem(what, str(target), "a file name (a folder of that name is in the way)"))
+            os.replace(entry, target)
+
+
+#: the last bytes of a complete file, by extension (a writer that fails silently leaves a file without them)
+_ENDINGS = {".step": b"END-ISO-10303-21;", ".stp": b"END-ISO-10303-21;", ".png": b"IEND\xaeB`\x82",
+            ".pdf": b"%%EOF", ".parquet": b"PAR1"}
+
+
+def incomplete(path) -> str | None:
+    """Why the file at ``path`` is not a complete file of its format (by extension), or None.
+
+    Checked: a binary STL holds exactly the triangles its header counts (84 + 50 n bytes), an ASCII STL ends
+    with ``endsolid``; a STEP, PNG, PDF or Parquet file ends as its format ends (:data:`_ENDINGS`); an .xlsx or
+    .ods is a readable zip archive. Any other file is written by Python, which raises on a failed write.
+
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "a.stl"
+    >>> _ = p.write_bytes(b"")
+    >>> incomplete(p)
+    'an STL file of 0 bytes (a binary STL has at least 84)'
+    """
+    p = Path(path)
+    suffix = p.suffix.lower()
+    try:
+        size = p.stat().st_size
+        if suffix == ".stl":
+            with open(p, "rb") as fh:
+                head = fh.read(84)
+                fh.seek(max(0, size - 256))
+                tail = fh.read()
+            triangles = int.from_bytes(head[80:84], "little") if size >= 84 else -1
+            if size == 84 + 50 * triangles or (head[:5] == b"solid" and b"endsolid" in tail):
+                return None
+            if size < 84:
+                return f"an STL file of {size} bytes (a binary STL has at least 84)"
+            return f"an STL file of {size} bytes whose header counts {triangles} triangles ({84 + 50 * triangles} bytes)"
+        if suffix in _ENDINGS:
+            with open(p, "rb") as fh:
+                fh.seek(max(0, size - 1024))
+                tail = fh.read()
+            return None if _ENDINGS[suffix] in tail else f"a {suffix} file of {size} bytes without its end"
+        if suffix in (".xlsx", ".xlsm", ".ods"):
+            import zipfile
+            return None if zipfile.is_zipfile(p) else f"a {suffix} file of {size} bytes that is no complete zip"
+    except OSError as exc:
+        return f"unreadable ({exc.strerror})"
+    return None
 
 
 def _new_temporary(p: Path) -> Path:
@@ -193,17 +323,33 @@ def csv_rows(df, fh, *, header: bool = True, float_format: str | None = None) ->
 
 # ---------------------------------------------------------------- CSV
 def csv_cell(value):
-    """A text cell that a spreadsheet would read as a formula, with the apostrophe prefix; anything else as it is.
+    """A text cell as every CSV synth writes it: formula-safe and one cell whatever its line breaks.
 
-    Text that is a plain number (``-3.5``, ``+2``) cannot be a formula and is kept.
+    * Text a spreadsheet would read as a formula (:data:`FORMULA_LEADS`, also after leading spaces: `` =1+1``)
+      gets the apostrophe prefix; text that is a plain number (``-3.5``, ``+2``) cannot be a formula and is kept.
+    * A line break is written as ``\\n`` (a carriage return, bare or before a line feed, becomes one): Python's
+      CSV writer quotes a cell holding a line feed but writes a bare carriage return unquoted, which splits the
+      row in every reader (and the next physical line may start with ``=``).
+
+    >>> csv_cell(" =1+1"), csv_cell("a\\r=1+1"), csv_cell("\\r\\n=cmd"), csv_cell(" 2.5")
+    ("' =1+1", 'a\\n=1+1', "'\\n=cmd", ' 2.5')
     """
-    if not isinstance(value, str) or not value.startswith(FORMULA_LEADS):
+    if not _needs_cell(value):
         return value
-    try:
-        float(value)
-        return value
-    except ValueError:
-        return "'" + value
+    text = value
+    if text.lstrip(" ").startswith(FORMULA_LEADS):
+        try:
+            float(text)
+        except ValueError:
+            text = "'" + text
+    if "\r" in text:
+        text = text.replace("\r\n", "\n").replace("\r", "\n")
+    return text
+
+
+def _needs_cell(v) -> bool:
+    """Whether :func:`csv_cell` changes ``v`` (a formula lead, a carriage return), in one cheap test per cell."""
+    return isinstance(v, str) and (v.lstrip(" ").startswith(FORMULA_LEADS) or "\r" in v)
 
 
 def csv_safe(df):
@@ -216,8 +362,7 @@ def csv_safe(df):
         col = out.iloc[:, i]
         if is_object_dtype(col.dtype) or is_string_dtype(col.dtype):
             cells = col.to_numpy(dtype=object)  # one pass over the cells, no pandas per-cell call
-            lead = np.fromiter((isinstance(v, str) and v.startswith(FORMULA_LEADS) for v in cells), dtype=bool,
-                               count=len(cells))
+            lead = np.fromiter((_needs_cell(v) for v in cells), dtype=bool, count=len(cells))
             if lead.any():
                 text = col.astype("object")
                 out.isetitem(i, text.where(~lead, text[lead].map(csv_cell)))

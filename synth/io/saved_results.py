@@ -15,6 +15,11 @@ Traceback (most recent call last):
 ...
 synth.errors.InputError: parts (r.json): got 'list'; accepted: a mapping of part key to choice (as --json writes)
 values.pulley_width_mm (r.json): got 'wide'; accepted: a number (mm) or null
+>>> check_result({"kind": "synth.result", "parts": {}, "checks": []}, "r.json", "result", needs_inputs=True)
+Traceback (most recent call last):
+...
+synth.errors.InputError: values (r.json): missing; expected a mapping of derived values (as --json writes)
+inputs (r.json): missing; expected the design input the result was made from (a result of synth design/flowchart --json, 0.2 or later, carries it under 'inputs')
 """
 
 from __future__ import annotations
@@ -28,7 +33,7 @@ from synth.io.limits import short
 from synth.io.structured import read_document
 from synth.io.files import existing_file
 
-__all__ = ["load_result", "check_result", "result_kind", "parts_of"]
+__all__ = ["load_result", "check_result", "result_kind", "parts_of", "INPUTS_ACCEPTED"]
 
 _UNIT = re.compile(r"_(mm|mm2|mm3|n|nm|mpa|deg|hz|h|s|eur|pct|nm_per_deg|n_per_mm|kg)$")
 _ACCEPTED = "a JSON object written by the --json option of a synth scene (design, flowchart, demo...)"
@@ -48,15 +53,16 @@ def result_kind(data) -> str | None:
     return None
 
 
-def load_result(path, what: str = "result") -> dict:
-    """The parsed, shape-checked result file ``path`` (see the module doc)."""
+def load_result(path, what: str = "result", *, needs_inputs: bool = False) -> dict:
+    """The parsed, shape-checked result file ``path`` (see the module doc; ``needs_inputs``: a scene that
+    re-verifies the design needs the carried ``inputs``, and a result without them is refused naming the key)."""
 
     if Path(path).suffix.lower() != ".json":
         existing_file(path, what, _ACCEPTED)
         raise InputError(Problem(what, str(path), _ACCEPTED + " (a .json file)"))
     # non-finite numbers are allowed in a saved result (a margin of -Infinity); a string "inf" too
     data = read_document(path, what, accepted=_ACCEPTED, allow_nonfinite=True)
-    check_result(data, Path(path).name, what)
+    check_result(data, Path(path).name, what, needs_inputs=needs_inputs)
     return data
 
 
@@ -80,8 +86,14 @@ def _check_values(values: dict, prefix: str, where: str, problems: list) -> None
         problems.append(Problem(f"{prefix}{k} ({where})", short(v), f"a number ({_unit_of(k)}) or null"))
 
 
-def check_result(data, where: str, what: str = "result") -> str:
-    """Raise one :class:`InputError` listing every shape problem of a parsed result; return its kind."""
+#: what a scene that re-verifies a saved result needs under its ``inputs`` key
+INPUTS_ACCEPTED = ("the design input the result was made from (a result of synth design/flowchart --json, 0.2 or "
+                   "later, carries it under 'inputs')")
+
+
+def check_result(data, where: str, what: str = "result", *, needs_inputs: bool = False) -> str:
+    """Raise one :class:`InputError` listing every shape problem of a parsed result (a key it lacks named as
+    missing; ``needs_inputs``: its ``inputs`` too); return its kind."""
     if not isinstance(data, dict):
         raise InputError(Problem(what, where, f"{_ACCEPTED} (this file holds a {type(data).__name__}, "
                                               "not an object)"))
@@ -99,8 +111,8 @@ def check_result(data, where: str, what: str = "result") -> str:
 
     def block(key: str, kind_, accepted: str):
         v = data.get(key)
-        if not isinstance(v, kind_):
-            problems.append(Problem(f"{key} ({where})", type(v).__name__, accepted))
+        if not isinstance(v, kind_):  # a key the result lacks is said missing, by its name
+            problems.append(Problem(f"{key} ({where})", None if key not in data else type(v).__name__, accepted))
             return None
         return v
 
@@ -119,6 +131,8 @@ def check_result(data, where: str, what: str = "result") -> str:
     if checks is not None and not all(isinstance(c, dict) for c in checks):
         problems.append(Problem(f"checks ({where})", "a list with non-objects", "a list of checks (mappings)"))
     inputs = data.get("inputs")
+    if inputs is None and needs_inputs:
+        problems.append(Problem(f"inputs ({where})", None, INPUTS_ACCEPTED))
     if inputs is not None and not isinstance(inputs, dict):
         problems.append(Problem(f"inputs ({where})", type(inputs).__name__, "the design input (a mapping of fields)"))
     elif inputs is not None and not problems:

@@ -62,7 +62,7 @@ from pathlib import Path
 from typing import Any
 
 from synth.errors import InputError, Problem
-from synth.io.files import read_text, suffix_of
+from synth.io.files import kind_of_file, read_text, suffix_of
 from synth.io.limits import LIMITS, Limits, short
 
 __all__ = ["parse", "check_values", "read_document", "FORMAT_OF_SUFFIX"]
@@ -388,6 +388,7 @@ def read_document(path, what: str, *, accepted: str = "an existing .yaml, .yml, 
     """The data of a YAML, TOML or JSON file (by extension), within the gate's limits."""
     fmt = FORMAT_OF_SUFFIX.get(suffix_of(path))
     if fmt is None:
-        raise InputError(Problem(what, str(path), accepted + " (by its extension)"))
+        kind = kind_of_file(path)  # by content: a workbook, a PDF... named where a document is expected
+        raise InputError(Problem(what, str(path), accepted + (f"; this is {kind}" if kind else " (by its extension)")))
     text = read_text(path, what, accepted=accepted)
     return parse(text, fmt, Path(path).name, allow_nonfinite=allow_nonfinite, what=what)

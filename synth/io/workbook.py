@@ -26,7 +26,7 @@ from synth.errors import InputError, Problem
 from synth.io.files import check_size, check_zip, existing_file, suffix_of
 from synth.io.limits import LIMITS
 
-__all__ = ["Cell", "Sheet", "read_sheet", "column_letter", "column_index"]
+__all__ = ["Cell", "Sheet", "read_sheet", "column_letter", "column_index", "percent_text"]
 
 
 @dataclass(frozen=True)
@@ -130,7 +130,7 @@ def _read_xlsx(p: Path, prefer: str, skip: tuple[str, ...]) -> Sheet | None:
                     percent[address] = pct
                     continue
                 if isinstance(v, (int, float)) and not isinstance(v, bool) and pct:
-                    v = v * 100.0  # a cell typed "4%" holds 0.04; the input field is in percent
+                    v = percent_text(v)  # a cell typed "4%" holds 0.04: read as typed, "4 %"
                 if v is not None:
                     sheet.cells[address] = Cell(v)
             sheet.n_rows = r
@@ -162,8 +162,19 @@ def _cached_values(p: Path, sheet: Sheet, percent: dict[str, bool]) -> None:
         if isinstance(v, float) and v.is_integer() and not pct:
             v = int(v)
         if isinstance(v, (int, float)) and not isinstance(v, bool) and pct:
-            v = v * 100.0
+            v = percent_text(v)
         sheet.cells[address] = Cell(v, sheet.cells[address].formula)
+
+
+def percent_text(fraction: float) -> str:
+    """A cell formatted as a percentage as the user typed it: it holds 0.04 for ``4%``, read as ``"4 %"``, so that
+    the one percentage parser (:func:`synth.io.numbers.percentage`) reads it for a field that takes a percentage
+    and every other number field refuses it (4 % of a length means nothing).
+
+    >>> percent_text(0.04), percent_text(0.07), percent_text(0.005)
+    ('4 %', '7 %', '0.5 %')
+    """
+    return f"{fraction * 100:.12g} %"
 
 
 def _read_ods(p: Path, prefer: str, skip: tuple[str, ...]) -> Sheet | None:
@@ -216,8 +227,8 @@ def _ods_value(cell, teletype, OFFICENS, TABLENS) -> Cell:
         try:
             value = float(raw)
             if vtype == "percentage":
-                value *= 100.0  # 4 % is stored as 0.04; the input field is in percent
-            if value.is_integer() and "." not in str(raw) and "e" not in str(raw).lower():
+                value = percent_text(value)  # 4 % is stored as 0.04: read as typed, "4 %"
+            elif value.is_integer() and "." not in str(raw) and "e" not in str(raw).lower():
                 value = int(value)
         except (TypeError, ValueError):
             value = raw

@@ -37,6 +37,9 @@ from numba import carray, cfunc, njit, types
 from numba.extending import intrinsic
 
 from synth.kernels._ieee import _maximum, _minimum
+from synth.kernels.numba_setup import announce_compiles
+
+announce_compiles()  # a line on stderr when this process compiles a kernel (synth.kernels.numba_setup)
 
 #: outputs of :func:`cone_spring_rows`, in column order (the keys of :func:`synth.model.disc_spring.cone_spring`)
 CONE_SPRING_OUT = (

@@ -14,6 +14,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from synth.kernels.numba_setup import announce_compiles
+
+announce_compiles()  # a line on stderr when this process compiles a kernel (synth.kernels.numba_setup)
+
 
 @njit(cache=True)
 def set_bits(row, col, bits):

@@ -43,6 +43,9 @@ import numpy as np
 from numba import njit, prange
 
 from synth.kernels._ieee import _maximum, _minimum
+from synth.kernels.numba_setup import announce_compiles
+
+announce_compiles()  # a line on stderr when this process compiles a kernel (synth.kernels.numba_setup)
 
 #: columns of the option table (``spring_options`` computes them by name; the kernels read them by number)
 OPTION_COLUMNS = ("ei", "mbd", "kf", "z", "rm", "sa0", "sy", "sy_scale", "h", "h_tol", "bb", "b_scale", "idx_min",

@@ -11,10 +11,9 @@ fidelity; the twins 0.2-0.4 ms and 1 us (``benchmarks/bench_axial.py``).
 :func:`cone_spring` and :func:`plastic_wear` take the reference's arguments (as the evaluator passes them) and an
 ``engine``: ``"numpy"`` calls the reference itself; ``"numba"`` runs the compiled twin
 (:mod:`synth.kernels._axial_jit`: the reference's lines row by row, the wear root by scipy's compiled ``brentq``).
-This is the one place the choice is made: the evaluator's axial group calls these two functions without naming an
-engine, and they run on :func:`current_engine`, the reference unless a caller that evaluates many rows chose the
-twin for a block of its work (``with engine("numba"): ...``: the bulk engine's
-:class:`~synth.optimise.batch.Batch`, and the platform producer of ``synth rationalise``,
+The evaluator's axial group (:func:`synth.design.evaluate.axial`) passes the engine its caller names, an argument:
+the reference unless a caller that evaluates many rows chose the twin (:func:`synth.kernels.engines.axial`: the
+bulk engine's :class:`~synth.optimise.batch.Batch`, and the platform producer of ``synth rationalise``,
 :data:`synth.platform.producer.AXIAL_ENGINE`: its option margins stand within
 :data:`synth.platform.producer.MARGIN_TOL` of the optimiser's, with the same feasible options,
 ``tests/test_platform_real.py``); the one-application path keeps the reference (it never imports numba). The twin hands the call back to the reference
@@ -45,9 +44,6 @@ at the validity edges, and the verdicts equal.
 
 from __future__ import annotations
 
-import contextlib
-import contextvars
-
 import numpy as np
 
 from synth import catalog
@@ -55,8 +51,7 @@ from synth.errors import InputError, Problem
 from synth.model import disc_spring as s8
 from synth.model import friction_wear as s5
 
-__all__ = ["ENGINES", "RTOL", "ATOL", "cone_spring", "plastic_wear", "engine", "current_engine", "load_kernels",
-           "numba_loaded"]
+__all__ = ["ENGINES", "RTOL", "ATOL", "cone_spring", "plastic_wear", "load_kernels", "numba_loaded"]
 
 ENGINES = ("numba", "numpy")
 #: the twin's stated agreement with the reference: relative to a value's magnitude
@@ -66,32 +61,6 @@ ATOL = 1e-12
 
 _JIT = None
 _ADDRESSES: tuple | None = None
-#: the engine of the calls that name none: the reference unless a caller of many rows chose (:func:`engine`)
-_ENGINE: contextvars.ContextVar = contextvars.ContextVar("synth_axial_engine", default="numpy")
-
-
-@contextlib.contextmanager
-def engine(name: str):
-    """Run the axial group's physics on ``name`` (:data:`ENGINES`) inside the ``with`` block (this thread or task
-    only), e.g. ``with axial.engine("numba"): E.axial(...)``: the evaluator's signatures stay as they are.
-
-    >>> with engine("numba"):
-    ...     current_engine()
-    'numba'
-    >>> current_engine()
-    'numpy'
-    """
-    _check_engine(name)
-    token = _ENGINE.set(name)
-    try:
-        yield name
-    finally:
-        _ENGINE.reset(token)
-
-
-def current_engine() -> str:
-    """The engine the calls that name none run on (``"numpy"``, the reference, outside :func:`engine`)."""
-    return _ENGINE.get()
 
 
 def load_kernels():
@@ -139,13 +108,11 @@ def _elastic_scale() -> float:
 def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radial_damping_nm,
                 plastic_friction_coefficient, damper_pad_mean_radius_mm, endcap_spacer_mean_radius_mm,
                 outer_diameter_mm, inner_diameter_mm, gap_tolerance_mm, *, aspect_ratio, deflection_ratio,
-                fidelity: str = "full", engine: str | None = None, **kw) -> dict:
+                fidelity: str = "full", engine: str = "numpy", **kw) -> dict:
     """:func:`synth.model.disc_spring.cone_spring` (the same arguments and values) on the ``engine``.
 
     ``engine="numba"`` runs the compiled twin on rows (every argument broadcast to one length); the reference
-    answers a made spring or given force tolerances (``kw``) and any call with a row it refuses. ``engine=None``:
-    :func:`current_engine`."""
-    engine = current_engine() if engine is None else engine
+    answers a made spring or given force tolerances (``kw``) and any call with a row it refuses."""
     _check_engine(engine)
     args = (axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radial_damping_nm,
             plastic_friction_coefficient, damper_pad_mean_radius_mm, endcap_spacer_mean_radius_mm,
@@ -178,13 +145,12 @@ def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, th
                  endcap_spacer_contact_area_mm2, endcap_spacer_mean_radius_mm, endcap_spacer_axial_height_mm,
                  durability_theta_peak_to_peak_deg, durability_frequency_hz, durability_duration_h,
                  radial_damping_nm, *, k_wear_mm3_per_n_m, plastic_friction_coefficient, fidelity: str = "full",
-                 time_points: int = 0, engine: str | None = None, **kw) -> dict:
+                 time_points: int = 0, engine: str = "numpy", **kw) -> dict:
     """:func:`synth.model.friction_wear.plastic_wear` (the same arguments and values) on the ``engine``, with the
     wear constant and friction coefficient given (as the evaluator gives them).
 
     ``engine="numba"`` runs the compiled twin; the reference answers the wear history (``time_points > 0``), other
-    materials or relaxations (``kw``) and any call with a row it refuses. ``engine=None``: :func:`current_engine`."""
-    engine = current_engine() if engine is None else engine
+    materials or relaxations (``kw``) and any call with a row it refuses."""
     _check_engine(engine)
     args = (initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm,
             damper_pad_contact_area_mm2, damper_pad_mean_radius_mm, damper_pad_axial_height_mm,

@@ -97,7 +97,9 @@ import numpy as np
 from synth import catalog
 from synth.design import evaluate
 from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin as registry_margin
+from synth.design.settings import DEFAULT, Settings
 from synth.errors import InputError, Problem
+from synth.kernels import engines
 from synth.model import torsion_spring
 from synth.design.space import space
 
@@ -107,8 +109,7 @@ __all__ = ["MARGIN_NAMES", "checks", "compiled_covers", "SpringOptions", "Spring
 
 #: the margins the compiled kernels compute, in their layout: the registry's non-advisory spring constraints of
 #: step 9 as declared (a check added later with ``register`` is not among them: see :func:`checks`)
-MARGIN_NAMES = ("spring_yield", "spring_material_section", "spring_fatigue", "spring_outer_contact",
-                "spring_inner_contact", "spring_coil_gap", "spring_index_min", "spring_index_max")
+MARGIN_NAMES = engines.SPRING_MARGINS
 _DECLARED = tuple(c.id for c in by_group("spring") if not c.advisory)
 if not set(MARGIN_NAMES) <= set(_DECLARED):  # pragma: no cover - a kernel margin the registry no longer declares
     raise ImportError(f"synth.kernels.main_spring computes {MARGIN_NAMES}; the registry's spring group is "
@@ -127,10 +128,11 @@ def checks() -> tuple:
     return MARGIN_NAMES + extra
 
 
-def compiled_covers() -> bool:
-    """Whether the compiled kernels compute every margin of :func:`checks` (else the numpy twin runs)."""
-    return len(checks()) == len(MARGIN_NAMES)
-ENGINES = ("numba", "numpy")
+def compiled_covers(settings: Settings = DEFAULT) -> bool:
+    """Whether the compiled kernels compute the registry's spring judgement under ``settings`` (else the numpy twin
+    runs): :func:`synth.kernels.engines.spring_covers`, the one decision."""
+    return engines.spring_covers(settings)
+ENGINES = engines.ENGINES
 #: the option columns the numpy twin reads (the space's spring table names them so)
 OPTION_FIELDS = evaluate.SPRING_OPTION_COLUMNS
 
@@ -284,13 +286,18 @@ def options_of_space(table: dict | None = None, idx=None) -> SpringOptions:
 @dataclass(frozen=True, eq=False)
 class SpringKeys:
     """Spring keys: the raw per-key inputs (:data:`synth.design.evaluate.SPRING_INPUTS` and ``fatigue_verified``)
-    and the key-only quantities the kernels read."""
+    and the key-only quantities the kernels read; for keys of the evaluator's rows (:func:`keys_of_rows`), their
+    applications (``apps``, each key's ``app``) and the other core values a registered spring check reads
+    (``core``: :func:`synth.design.evaluate.core_values`), which the numpy twin hands to the registry's group."""
 
     raw: dict
     derived: dict      # the columns of _main_spring_jit.KEY_COLUMNS, by name
     consts: dict       # the scalars of _main_spring_jit.CONST_NAMES
     constants: dict    # main_spring_constants() when built
     _table: dict = field(default_factory=dict, repr=False)
+    apps: object = field(default=None, repr=False)
+    app: np.ndarray | None = field(default=None, repr=False)
+    core: dict = field(default_factory=dict, repr=False)
 
     def __len__(self) -> int:
         return len(self.derived["k180"])
@@ -298,10 +305,12 @@ class SpringKeys:
     def take(self, idx) -> "SpringKeys":
         """The keys ``idx`` (indices or a boolean mask), as a new :class:`SpringKeys`."""
         return SpringKeys({k: v[idx] for k, v in self.raw.items()}, {k: v[idx] for k, v in self.derived.items()},
-                          self.consts, self.constants)
+                          self.consts, self.constants, apps=self.apps,
+                          app=None if self.app is None else self.app[idx],
+                          core={k: v[idx] for k, v in self.core.items()})
 
 
-def _keys(raw: dict) -> SpringKeys:
+def _keys(raw: dict, apps=None, app=None, core=None) -> SpringKeys:
     cst = torsion_spring.main_spring_constants()
     k = raw["stiffness_nm_per_deg"]
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
@@ -322,7 +331,7 @@ def _keys(raw: dict) -> SpringKeys:
     sf_min = cst["main_spring_min_safety_factor"]
     consts = {"mbd_tol": cst["main_spring_mbd_tol_mm"], "sf_min": sf_min, "sf_scale": float(_scale(sf_min)),
               "min_gap": cst["main_spring_min_coil_gap_mm"]}
-    return SpringKeys(raw, d, consts, cst)
+    return SpringKeys(raw, d, consts, cst, apps=apps, app=app, core=core or {})
 
 
 def spring_keys(*, spring_torque_nominal_nm, housing_height_mm, housing_outer_diameter_mm, housing_inner_diameter_mm,
@@ -365,7 +374,8 @@ def keys_of_rows(apps, keys: dict, k=None) -> SpringKeys:
         k = np.arange(len(keys["app"]))
     raw = {name: np.ascontiguousarray(np.asarray(v, dtype=float)) for name, v in evaluate.spring_inputs(apps, keys, k).items()}
     raw["fatigue_verified"] = np.asarray(apps.met(REGISTRY["spring_fatigue"].needs[0]))[keys["app"][k]]
-    return _keys(raw)
+    core = {c: np.asarray(v)[k] for c, v in keys.items() if c != "app" and c not in evaluate.SPRING_KEY_VALUES}
+    return _keys(raw, apps, np.asarray(keys["app"])[k], core)
 
 
 def _tables(keys: SpringKeys, options: SpringOptions):
@@ -379,12 +389,10 @@ def _tables(keys: SpringKeys, options: SpringOptions):
     return jit, keys._table["t"], options._table["t"], keys._table["c"]
 
 
-def _check_engine(engine) -> str:
-    """The engine a call runs on: ``engine`` (validated), or the numpy twin when the registry holds a spring check
-    the compiled kernels do not compute (:func:`compiled_covers`)."""
-    if engine not in ENGINES:
-        raise InputError(Problem("engine", engine, " or ".join(ENGINES)))
-    return engine if engine == "numpy" or compiled_covers() else "numpy"
+def _check_engine(engine, settings: Settings) -> str:
+    """The engine a call runs on: ``engine`` where the one decision allows it (:func:`synth.kernels.engines.spring`:
+    the numpy twin where the compiled kernels do not cover the registry's checks under ``settings``)."""
+    return engines.spring(settings, engine)
 
 
 def _same_constants(keys: SpringKeys, options: SpringOptions):
@@ -398,7 +406,10 @@ def _same_constants(keys: SpringKeys, options: SpringOptions):
 
 
 class _Requirements:
-    """What :func:`synth.design.evaluate.finish` asks of the applications, for keys x options rows."""
+    """What :func:`synth.design.evaluate.finish` asks of the applications, for keys x options rows of keys made
+    without their applications (:func:`spring_keys`): the durability test only (no application field)."""
+
+    f: dict = {}  # no application field: a check whose physics reads one needs keys of rows (keys_of_rows)
 
     def __init__(self, fatigue_verified):
         self.fatigue_verified = fatigue_verified
@@ -409,36 +420,48 @@ class _Requirements:
         return self.fatigue_verified
 
 
-def reference_margins(keys: SpringKeys, options: SpringOptions, key_idx=None, option_idx=None) -> np.ndarray:
+def _group(keys: SpringKeys, ki: np.ndarray, values: dict, settings: Settings) -> evaluate.Group:
+    """The registry's spring group (:func:`synth.design.evaluate.finish`) of rows of keys ``ki`` (flat, one per row)
+    and their ``values`` (:func:`synth.design.evaluate.spring_values`): with the keys' applications where they have
+    them (a check may read an application field or another core value), under ``settings``' rules."""
+    if keys.apps is not None:
+        apps, a = keys.apps, keys.app[ki]
+    else:
+        apps, a = _Requirements(keys.raw["fatigue_verified"][ki]), np.arange(len(ki))
+    core = {k: v[ki] for k, v in keys.core.items()}
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        return evaluate.finish("spring", values, apps, a, rules=settings.rules, core=core)
+
+
+def reference_margins(keys: SpringKeys, options: SpringOptions, key_idx=None, option_idx=None, *,
+                      settings: Settings = DEFAULT) -> np.ndarray:
     """Margins ``(n_keys, n_options, len(checks()))`` by the registry path itself: :func:`synth.design.evaluate.spring_values`
     on keys x options broadcast and :func:`synth.design.evaluate.finish` (optionally for the keys ``key_idx`` and
-    the options ``option_idx``)."""
+    the options ``option_idx``), under ``settings`` (its design rules, its spring limit basis)."""
     ki = np.arange(len(keys)) if key_idx is None else np.asarray(key_idx)
     oi = np.arange(len(options)) if option_idx is None else np.asarray(option_idx)
     nk, no = len(ki), len(oi)
     x = {k: v[ki][:, None] for k, v in keys.raw.items() if k != "fatigue_verified"}
     o = {k: v[oi][None, :] for k, v in options.raw.items()}
-    v = evaluate.spring_values(o, x)
+    v = evaluate.spring_values(o, x, settings)
     flat = {name: np.broadcast_to(val, (nk, no)).reshape(-1) for name, val in v.items()}
-    req = _Requirements(np.repeat(keys.raw["fatigue_verified"][ki], no))
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        g = evaluate.finish("spring", flat, req, np.arange(nk * no))
+    g = _group(keys, np.repeat(ki, no), flat, settings)
     return np.stack([g.margins[m].reshape(nk, no) for m in checks()], axis=-1)
 
 
 def margins(keys: SpringKeys, options: SpringOptions, *, engine: str = "numba", parallel: bool = False,
-            out: np.ndarray | None = None) -> np.ndarray:
+            out: np.ndarray | None = None, settings: Settings = DEFAULT) -> np.ndarray:
     """(a) Every margin, ``out[i, j, m]`` for key ``i``, option ``j`` and margin ``checks()[m]`` (>= 0 passes).
 
     ``engine="numpy"`` is :func:`reference_margins` itself. The array holds
     ``8 * 8`` bytes per pair: call it on chunks of keys for large tables, and
     pass ``out`` (float64, C order, ``(n_keys, n_options, 8)``) to reuse one
-    buffer (numba engine).
+    buffer (numba engine). ``settings``: the configuration (design rules, limit basis) judged under.
     """
-    engine = _check_engine(engine)
+    engine = _check_engine(engine, settings)
     _same_constants(keys, options)
     if engine == "numpy":
-        return reference_margins(keys, options)
+        return reference_margins(keys, options, settings=settings)
     jit, kt, ot, c = _tables(keys, options)
     shape = (len(keys), len(options), jit.N_MARGINS)
     if out is None:
@@ -449,12 +472,13 @@ def margins(keys: SpringKeys, options: SpringOptions, *, engine: str = "numba", 
     return out
 
 
-def pair_margins(keys: SpringKeys, options: SpringOptions, key_idx, option_idx, *, engine: str = "numba") -> np.ndarray:
+def pair_margins(keys: SpringKeys, options: SpringOptions, key_idx, option_idx, *, engine: str = "numba",
+                 settings: Settings = DEFAULT) -> np.ndarray:
     """(a) for listed pairs: ``out[p, m]`` = margin ``checks()[m]`` of key ``key_idx[p]`` x option
     ``option_idx[p]`` (the rows a caller needs of the product, as :func:`margins` gives the whole product);
     ``engine="numpy"``: the registry path on those pairs (:func:`synth.design.evaluate.spring_values`,
     :func:`~synth.design.evaluate.finish`)."""
-    engine = _check_engine(engine)
+    engine = _check_engine(engine, settings)
     _same_constants(keys, options)
     ki = np.ascontiguousarray(np.asarray(key_idx, dtype=np.int64).reshape(-1))
     oj = np.ascontiguousarray(np.asarray(option_idx, dtype=np.int64).reshape(-1))
@@ -463,11 +487,8 @@ def pair_margins(keys: SpringKeys, options: SpringOptions, key_idx, option_idx, 
     if engine == "numpy":
         x = {k: v[ki] for k, v in keys.raw.items() if k != "fatigue_verified"}
         o = {k: v[oj] for k, v in options.raw.items()}
-        v = evaluate.spring_values(o, x)
-        req = _Requirements(keys.raw["fatigue_verified"][ki])
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            g = evaluate.finish("spring", {name: np.broadcast_to(val, ki.shape) for name, val in v.items()}, req,
-                         np.arange(ki.size))
+        v = evaluate.spring_values(o, x, settings)
+        g = _group(keys, ki, {name: np.broadcast_to(val, ki.shape) for name, val in v.items()}, settings)
         names = checks()
         return np.stack([g.margins[m] for m in names], axis=-1) if ki.size else np.zeros((0, len(names)))
     jit, kt, ot, c = _tables(keys, options)
@@ -547,7 +568,7 @@ class MaxMin(tuple):
 
 def first_feasible(keys: SpringKeys, options: SpringOptions, order=None, *, key_group=None, score=None,
                    score_limit=None, tol: float = FEAS_TOL, engine: str = "numba",
-                   parallel: bool = False) -> FirstFeasible:
+                   parallel: bool = False, settings: Settings = DEFAULT) -> FirstFeasible:
     """(b) Per key, the first option of ``order`` whose margins are all ``>= -tol`` (early exit).
 
     ``order``: option indices in score order (e.g. ``np.argsort(cost, kind="stable")``), one list for every
@@ -560,12 +581,12 @@ def first_feasible(keys: SpringKeys, options: SpringOptions, order=None, *, key_
     Returns :class:`FirstFeasible` ``(index, visited)``: ``index[i] = -1`` when no option qualifies;
     ``visited`` counts the options the kernel examined (numpy: the pairs evaluated, whole blocks).
     """
-    engine = _check_engine(engine)
+    engine = _check_engine(engine, settings)
     n = len(keys)
     ptr, idx, kg = _groups(n, len(options), order, key_group)
     sc = _candidate_scores(score, ptr, idx, len(options))
     lim = _per_key(score_limit, n, "score_limit", np.inf)
-    return _first_feasible(keys, options, ptr, idx, kg, sc, lim, float(tol), engine, parallel)
+    return _first_feasible(keys, options, ptr, idx, kg, sc, lim, float(tol), engine, parallel, settings)
 
 
 def _candidate_scores(score, ptr, idx, n_opt) -> np.ndarray:
@@ -585,7 +606,7 @@ def _candidate_scores(score, ptr, idx, n_opt) -> np.ndarray:
     return out
 
 
-def _first_feasible(keys, options, ptr, idx, kg, sc, lim, tol, engine, parallel) -> FirstFeasible:
+def _first_feasible(keys, options, ptr, idx, kg, sc, lim, tol, engine, parallel, settings) -> FirstFeasible:
     """:func:`first_feasible` on checked candidate lists (CSR ``ptr``, ``idx``, scores ``sc`` aligned with ``idx``;
     ``kg`` per key)."""
     _same_constants(keys, options)
@@ -598,7 +619,7 @@ def _first_feasible(keys, options, ptr, idx, kg, sc, lim, tol, engine, parallel)
         scan(kt, ot, c, float(tol), yield_thresholds(options, tol), ptr, idx, chunk_list, kptr, kperm,
              np.ascontiguousarray(sc, dtype=float), lim, pick, visited, work)
         return FirstFeasible((pick, visited))
-    return FirstFeasible(_first_feasible_numpy(keys, options, ptr, idx, kg, sc, lim, tol))
+    return FirstFeasible(_first_feasible_numpy(keys, options, ptr, idx, kg, sc, lim, tol, settings))
 
 
 #: keys per chunk of the score-order scan: the keys of one candidate list walk it together, up to this many
@@ -675,14 +696,17 @@ def _keys_by_group(kg, n_groups):
     return np.split(order, np.cumsum(np.bincount(kg, minlength=n_groups))[:-1])
 
 
-def _first_feasible_numpy(keys, options, ptr, idx, kg, score, limit, tol):
+def _first_feasible_numpy(keys, options, ptr, idx, kg, score, limit, tol, settings):
     """(b) in numpy: each list in blocks for the keys still looking, the registry path on every pair of a block.
 
     Options that no key of the list can pass are left out first, exactly: an option-only margin (index range,
     material section) below ``-tol``, or an installation-torque threshold (:func:`yield_thresholds`) below the
-    smallest installation torque of the list's keys."""
+    smallest installation torque of the list's keys. Both bound the margins from above under any design rule (a
+    rule tightens a limit or asks for more margin); the threshold is the thesis's limit basis's, so another basis
+    skips it."""
     pick, visited = np.full(len(keys), -1, np.int64), np.zeros(len(keys), np.int64)
-    t_max = yield_thresholds(options, tol)
+    t_max = (yield_thresholds(options, tol) if settings.spring_limit_basis == "thesis"
+             else np.full(len(options), np.inf))
     t_inst = keys.derived["t_inst"]
     for g, kk in enumerate(_keys_by_group(kg, len(ptr) - 1)):
         lst = idx[ptr[g]:ptr[g + 1]]
@@ -699,7 +723,7 @@ def _first_feasible_numpy(keys, options, ptr, idx, kg, score, limit, tol):
             if not len(a):
                 break
             pos = can[lo:hi]
-            m = reference_margins(keys, options, kk[a], lst[pos])
+            m = reference_margins(keys, options, kk[a], lst[pos], settings=settings)
             ok = np.all(m >= -tol, axis=2) & (pos[None, :] < stop[a][:, None])
             visited[kk[a]] += ((pos[None, :] < stop[a][:, None])).sum(axis=1)
             has = ok.any(axis=1)
@@ -710,7 +734,7 @@ def _first_feasible_numpy(keys, options, ptr, idx, kg, score, limit, tol):
 
 
 def any_feasible(keys: SpringKeys, options: SpringOptions, candidates=None, *, key_group=None, tol: float = FEAS_TOL,
-                 engine: str = "numba", parallel: bool = False) -> FirstFeasible:
+                 engine: str = "numba", parallel: bool = False, settings: Settings = DEFAULT) -> FirstFeasible:
     """(d) Per key, whether some option of ``candidates`` (lists as in :func:`first_feasible`) is feasible.
 
     Options whose index margins fail cannot be feasible for any key and are
@@ -721,14 +745,14 @@ def any_feasible(keys: SpringKeys, options: SpringOptions, candidates=None, *, k
     decreasing index margins on the generated portfolio). Returns
     :class:`FirstFeasible` ``(found, visited)`` with ``found`` boolean.
     """
-    engine = _check_engine(engine)
+    engine = _check_engine(engine, settings)
     ptr, idx, kg = _groups(len(keys), len(options), candidates, key_group)
     keep = options.upper_bound[idx] >= -tol
     grp = np.repeat(np.arange(len(ptr) - 1), np.diff(ptr))[keep]
     ptr_k = np.zeros_like(ptr)
     ptr_k[1:] = np.cumsum(np.bincount(grp, minlength=len(ptr) - 1))
     r = _first_feasible(keys, options, ptr_k, idx[keep], kg, np.zeros(int(keep.sum())), np.full(len(keys), np.inf),
-                        float(tol), engine, parallel)
+                        float(tol), engine, parallel, settings)
     return FirstFeasible((r.index >= 0, r.visited))
 
 
@@ -736,7 +760,7 @@ def any_feasible(keys: SpringKeys, options: SpringOptions, candidates=None, *, k
 
 
 def max_min_margin(keys: SpringKeys, options: SpringOptions, candidates=None, *, key_group=None, cap=None,
-                   engine: str = "numba", parallel: bool = False) -> MaxMin:
+                   engine: str = "numba", parallel: bool = False, settings: Settings = DEFAULT) -> MaxMin:
     """(c) Per key, the option of ``candidates`` with the largest smallest margin (NaN read as -inf).
 
     Ties go to the option listed first (lists as in :func:`first_feasible`;
@@ -756,7 +780,7 @@ def max_min_margin(keys: SpringKeys, options: SpringOptions, candidates=None, *,
     key with no candidate; ``visited``: the pairs whose margins were
     evaluated (at least the yield margin; numpy: whole blocks).
     """
-    engine = _check_engine(engine)
+    engine = _check_engine(engine, settings)
     _same_constants(keys, options)
     n = len(keys)
     ptr, idx, kg = _groups(n, len(options), candidates, key_group)
@@ -770,10 +794,10 @@ def max_min_margin(keys: SpringKeys, options: SpringOptions, candidates=None, *,
         scan = jit.max_min_scan_parallel if parallel else jit.max_min_scan
         scan(kt, ot, c, ptr, idx_s, ub_s, rank_s, chunk_list, kptr, kperm, cp, pick, value, visited, best_rank, work)
         return MaxMin((pick, value, visited))
-    return MaxMin(_max_min_numpy(keys, options, ptr, idx_s, ub_s, rank_s, kg, cp))
+    return MaxMin(_max_min_numpy(keys, options, ptr, idx_s, ub_s, rank_s, kg, cp, settings))
 
 
-def _max_min_numpy(keys, options, ptr, idx, ub, rank, kg, cap):
+def _max_min_numpy(keys, options, ptr, idx, ub, rank, kg, cap, settings):
     n = len(keys)
     pick, value, visited = np.full(n, -1, np.int64), np.full(n, -np.inf), np.zeros(n, np.int64)
     best_rank = np.full(n, np.iinfo(np.int64).max)
@@ -785,7 +809,7 @@ def _max_min_numpy(keys, options, ptr, idx, ub, rank, kg, cap):
             if not len(a):
                 break
             ka, pos = kk[a], np.arange(lo_g + lo, lo_g + hi)
-            m = reference_margins(keys, options, ka, idx[pos])
+            m = reference_margins(keys, options, ka, idx[pos], settings=settings)
             v = np.min(np.where(np.isnan(m), -np.inf, m), axis=2)
             visited[ka] += hi - lo
             vmax = v.max(axis=1)

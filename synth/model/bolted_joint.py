@@ -556,7 +556,7 @@ def bolt_head(bolt_format: str, head_type: str = "hex"):
     Head forms: ``hex`` (ISO 4017, fine pitch ISO 8676), ``flange`` (ISO 4162 /
     ISO 15071), ``socket`` (ISO 4762 / ISO 12474). Columns ``dw_min_mm``
     (bearing-face diameter), ``head_outer_mm`` (s, dc or dk), ``head_height_mm``,
-    ``product_standard``, ``cost_factor``.
+    ``product_standard`` (prices: :mod:`synth.cost`).
 
     >>> float(bolt_head("M8x1.25", "flange")["dw_min_mm"]), str(bolt_head("M8x1", "socket")["product_standard"])
     (14.9, 'ISO 12474')
@@ -586,9 +586,7 @@ def bolt_candidates(bolt_format: str | None = None, property_class: str | None =
     (``hex``, ``flange``, ``socket``) picks the head row of
     ``bolt_heads.csv``. Returns a list of dicts with the thread geometry, the
     head (``head_type``, ``dw_min_mm``, ``head_outer_mm``, ``head_height_mm``,
-    ``head_product_standard``), ``rp02_mpa``, ``rm_mpa``, ``unit_cost_eur``
-    (the format's cost times the head's ``cost_factor``) and
-    ``unit_cost_factor`` (the class's).
+    ``head_product_standard``), ``rp02_mpa`` and ``rm_mpa`` (prices: :mod:`synth.cost`).
 
     >>> [(c["bolt_format"], c["bolt_property_class"]) for c in bolt_candidates()][:3]
     [('M8x1.25', '8.8'), ('M8x1.25', '9.8'), ('M8x1.25', '10.9')]
@@ -660,8 +658,7 @@ def _candidate(b, c, head, head_type, key_b, key_c) -> dict | None:
         "head_type": head_type, "dw_min_mm": float(head["dw_min_mm"]),
         "head_outer_mm": float(head["head_outer_mm"]), "head_height_mm": float(head["head_height_mm"]),
         "head_product_standard": str(head["product_standard"]),
-        "unit_cost_eur": float(b["unit_cost_eur"]) * float(head["cost_factor"]),
-        "rp02_mpa": rp, "rm_mpa": rm, "unit_cost_factor": float(c["unit_cost_factor"]),
+        "rp02_mpa": rp, "rm_mpa": rm,
     }
 
 
@@ -884,9 +881,8 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     (``bolt_force_tilting_n``, ``bolt_force_sliding_n``, ``bolt_clamp_force_required_n``,
     ``tilting_moment_nmm``, ``pivot_base_max_pressure_mpa``,
     ``pivot_base_min_pressure_mpa``, ``bolt_utilisation``, ``bolt_rp02_mpa``,
-    ``bolt_head_contact_diameter_mm`` (the bearing diameter on the support),
-    ``bolt_unit_cost_eur``); column-G corrections
-    (``min_head_contact_diameter_mm``, ``min_active_threads``,
+    ``bolt_head_contact_diameter_mm`` (the bearing diameter on the support));
+    column-G corrections (``min_head_contact_diameter_mm``, ``min_active_threads``,
     ``pivot_bore_min_mm``) -- the limits and verdicts are the registry's
     (:mod:`synth.design.constraints`); and for ``"vdi2230"`` also
     ``bolt_permissible_preload_n`` (F_M,zul; +inf for a yield-controlled
@@ -1061,7 +1057,6 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         "bolt_rp02_mpa": col["rp02_mpa"],
         "bolt_utilisation": eqv_s / col["rp02_mpa"],
         "bolt_head_contact_diameter_mm": dw,
-        "bolt_unit_cost_eur": col["unit_cost_eur"] * col["unit_cost_factor"],
         "min_head_contact_diameter_mm": min_head_contact_diameter_mm(f_top, d_in, ex(s_comp)),
         "min_active_threads": min_active_threads(f_top, a_thr, ex(s_trac)),
         "pivot_bore_min_mm": col["pivot_bore_min_mm"],

@@ -434,8 +434,7 @@ def material_properties(material, b_mm, h_mm, round_wire):
     installation stress, illustrative), ``sigma_A0_mpa``
     (``sigma_A0_fraction * Rm``, illustrative), ``sigma_perm_static_mpa``
     (``sigma_perm_static_fraction * Rm``, the static permissible stress of
-    :func:`permissible_static_bending_stress_mpa` for winding) and
-    ``unit_cost_eur_per_kg``.
+    :func:`permissible_static_bending_stress_mpa` for winding); prices: :mod:`synth.cost`.
 
     >>> p = material_properties("VDSiCr", 2.3, 2.3, True)
     >>> float(p["E_mpa"]), float(p["Rm_mpa"]), round(float(p["sigma_y_mpa"]), 1), float(p["sigma_perm_static_mpa"])
@@ -452,7 +451,6 @@ def material_properties(material, b_mm, h_mm, round_wire):
         "sigma_y_mpa": mat.sigma_y_bend_fraction[i] * rm,
         "sigma_A0_mpa": mat.sigma_A0_fraction[i] * rm,
         "sigma_perm_static_mpa": mat.sigma_perm_static_fraction[i] * rm,
-        "unit_cost_eur_per_kg": np.full_like(rm, mat.unit_cost_eur[i]),
     }
 
 
@@ -466,7 +464,7 @@ def wire_properties(wire):
     r = catalog.row("spring_wires", wire, field="main_spring_wire")
     return {"wire": str(r["designation"]), "round_wire": str(r["section"]).strip() == "round",
             "b_mm": float(r["b_mm"]), "h_mm": float(r["h_mm"]), "b_tol_mm": float(r["b_tol_mm"]),
-            "h_tol_mm": float(r["h_tol_mm"]), "unit_cost_eur_per_m": float(r["unit_cost_eur"])}
+            "h_tol_mm": float(r["h_tol_mm"])}
 
 
 def material_wire_sections(material) -> set:

@@ -177,7 +177,7 @@ def tightening_method(method: str = DEFAULT_TIGHTENING_METHOD) -> dict:
     permissible preload; ``"yield"``: yield- and angle-controlled tightening
     take the bolt to its yield point, the preload is the bolt's own and the
     bolt is dimensioned for ``F_M,min``), ``design_option`` (offered to the
-    design space), ``unit_cost_eur`` (assembly cost per joint).
+    design space); its assembly cost is the price book's (:mod:`synth.cost`).
 
     >>> r = tightening_method("yield_controlled")
     >>> r["alpha_a_max"], r["preload_set_by"], r["design_option"]
@@ -194,8 +194,7 @@ def tightening_method(method: str = DEFAULT_TIGHTENING_METHOD) -> dict:
                                  " or ".join(PRELOAD_SET_BY)))
     return {"tightening_method": str(method).strip(), "alpha_a_min": float(r["alpha_a_min"]),
             "alpha_a_max": float(r["alpha_a_max"]), "preload_set_by": set_by,
-            "design_option": str(r["design_option"]).strip().lower() in ("true", "1", "yes"),
-            "unit_cost_eur": float(r["unit_cost_eur"])}
+            "design_option": str(r["design_option"]).strip().lower() in ("true", "1", "yes")}
 
 
 def tightening_factor(method: str = DEFAULT_TIGHTENING_METHOD, bound: str = "max") -> float:

@@ -29,6 +29,7 @@ import math
 import numpy as np
 
 from synth.design.space import SUBSYSTEMS
+from synth.design.combine import combine
 from synth.optimise.solvers.enumerate import weights_vec
 from synth.design.evaluate import Settings
 from synth.errors import InputError, Problem
@@ -103,8 +104,7 @@ def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None
         raise InputError(Problem("--top", k, f"an integer from 1 to {MAX_TOP}"))
     if not result.parts or result.status not in ("optimal", "feasible", "baseline"):
         return []
-    settings = settings or Settings(**{f: v for f, v in (result.settings or {}).items()
-                                       if f in Settings.__dataclass_fields__})
+    settings = settings or Settings.from_saved(result.settings, result.rules)
     obj = objective or Objective.parse(result.objective or "standard")
     obj = obj if isinstance(obj, Objective) else Objective.parse(obj)
     ev = evaluate(d, settings, pin_inputs=pin_inputs)
@@ -114,7 +114,7 @@ def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None
     core_margin = ev.core_margin()
     for idx in pool:
         pos, options = idx[0], dict(zip(SUBSYSTEMS, idx[1:]))
-        margin = min([float(core_margin[pos])] + [float(ev.subs[s].margin[row_of[pos], o]) for s, o in options.items()])
+        margin = combine(float(core_margin[pos]), [float(ev.subs[s].margin[row_of[pos], o]) for s, o in options.items()])
         designs.append((obj.key(ev.objective_values(pos, options, margin)) + (-margin,), pos, options))
     designs.sort(key=lambda x: x[0])  # ties of the objective: the larger margin first
     out = [_entry(1, result, result.parts, design_margin)]

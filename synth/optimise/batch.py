@@ -23,14 +23,14 @@ given the core), and its smallest margin the minimum of theirs.
 
 * Bushing and bolt are cheap and evaluated for every candidate core: the
   bushing once per distinct value of what it reads of the core
-  (:data:`~synth.design.evaluate.BUSHING_CORE_VALUES`); the bolt's checks
+  (:func:`~synth.design.evaluate.core_values`); the bolt's checks
   once per application and bolt, but those that read the core (the pivot wall
   of step 2: :func:`~synth.design.evaluate.bolt_core_checks`) per core and
   distinct value of the bolt columns they read (the diameter).
 * Springs go through the compiled kernels (:mod:`synth.kernels.main_spring`)
   once per distinct key, the axial group in blocks of its options in score
   order, once per distinct value of what it reads of the core
-  (:data:`~synth.design.evaluate.AXIAL_CORE_VALUES`).
+  (:func:`~synth.design.evaluate.core_values`).
 * Branch and bound over the cores: a core's lower bound is its score, its
   bushing and bolt optima and the smallest axial and spring scores; cores are
   taken in increasing bound, in rounds of growing blocks over all
@@ -61,13 +61,12 @@ from synth.design.assessment import assess, passes
 from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.constraints import by_group, physics_inputs
-from synth.design.space import SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, space, space_for, spring_window
-from synth.kernels import axial as axial_kernels
+from synth.design.space import (SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, priced_for, space, space_for,
+                                spring_window)
 from synth.optimise.objectives import weighted_sum, weighted_sum_around
 from synth.optimise.product import DURABILITY_NOTE, core_scores, option_scores
 from synth.errors import InputError
-from synth.design.rules import active
-from synth.kernels import main_spring
+from synth.kernels import engines, main_spring
 from synth import catalog
 from synth.design.verify import evaluate_design, parts_of_design
 
@@ -77,11 +76,12 @@ __all__ = ["Batch", "wsum", "SLACK", "any_feasible", "designs_pass", "robust"]
 SLACK = 1e-9
 
 
-def _bolt_ids() -> tuple[tuple, tuple]:
+def _bolt_ids(core_values: dict) -> tuple[tuple, tuple]:
     """The bolt group's non-advisory checks as the registry holds them now (a check added with ``register``
     included; read per batch, never frozen at import): ``(per application and bolt, per core and bolt)``, the
-    second those that read the core (:func:`~synth.design.evaluate.bolt_core_checks`: the pivot wall)."""
-    core = {c.id for c in evaluate.bolt_core_checks()}
+    second those that read the core (``core_values``: a core group's values;
+    :func:`~synth.design.evaluate.bolt_core_checks`: the pivot wall)."""
+    core = {c.id for c in evaluate.bolt_core_checks(core_values)}
     ids = [c.id for c in by_group("bolt") if not c.advisory]
     return tuple(i for i in ids if i not in core), tuple(i for i in ids if i in core)
 
@@ -162,32 +162,34 @@ def _space_of(inputs: list, pin_inputs):
     (``pin_inputs``), which must then be the same parts for every input (a relaxation's probes change other
     inputs)."""
     if not pin_inputs or not inputs:
-        return space()
+        return priced_for(space(), inputs)
     first = [(n, getattr(inputs[0], n)) for n in fixed_fields(inputs[0], pin_inputs)]
     for d in inputs[1:]:
         if [(n, getattr(d, n)) for n in fixed_fields(d, pin_inputs)] != first:
             raise ValueError("a batch keeps one set of input parts: every input must name the same ones")
-    return space_for(inputs[0], pin_inputs)
+    return space_for(inputs[0], pin_inputs, inputs)
 
 
 class Batch:
     """N applications and their decomposed design space on the applications axis (see the module docstring).
 
-    ``spring_engine``: ``"numba"`` (the compiled kernels; imports numba on first use) or ``"numpy"`` (their
-    twins, the registry's group on blocks: the one-application path, which must not import numba); the axial
-    group's physics runs on the same engine (:mod:`synth.kernels.axial`).
+    ``spring_engine``: the engine this path takes (:func:`synth.kernels.engines.preferred`): ``"numba"`` (the
+    compiled kernels; imports numba on first use) or ``"numpy"`` (their twins, the registry's group on blocks: the
+    one-application path, which must not import numba); the configuration ``settings`` may ask for another, and the
+    compiled spring kernels run only where they cover the registry's checks under it
+    (:func:`synth.kernels.engines.spring`); the axial group's physics runs on the engine asked for
+    (:mod:`synth.kernels.axial`).
     """
 
     def __init__(self, inputs, settings: evaluate.Settings = evaluate.Settings(), *, pin_inputs: bool = False,
                  spring_engine: str = "numba", apps: Applications | None = None):
         self.inputs = list(inputs)
         self.settings = settings
-        # the compiled spring kernels hold the catalog's limits and no required margin: under design rules the
-        # springs go through their numpy twins, the registry's own finish (synth.design.rules)
-        self.engine = "numpy" if not active().empty() else spring_engine
-        self.axial_engine = spring_engine  # physics only (no limits): design rules do not change it
-        self._bolt_ids, self._bolt_core_ids = _bolt_ids()
-        self.score_engine = spring_engine  # the spring lists' scores (no limits either)
+        # the one decision (synth.kernels.engines): the compiled spring kernels only where they cover the
+        # registry's checks under the settings (rules, limit basis), the axial twins (physics only) wherever asked
+        self.engine = engines.spring(settings, spring_engine)
+        self.axial_engine = engines.axial(settings, spring_engine)
+        self.score_engine = engines.preferred(settings, spring_engine)  # the spring lists' scores (no limits)
         self.sp = sp = _space_of(self.inputs, pin_inputs)
         self.apps = apps if apps is not None else Applications.of(self.inputs)
         n = len(self.inputs)
@@ -198,8 +200,9 @@ class Batch:
         self.C = np.concatenate(per).astype(np.int64) if n else np.zeros(0, dtype=np.int64)
         self.evaluations = len(self.C)
         with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-            self.ig = evaluate.inputs(self.apps, np.arange(n))
+            self.ig = evaluate.inputs(self.apps, np.arange(n), settings)
             self.cg = evaluate.core(self.apps, self.A, sp.rows_read("core", self.C), settings)
+        self._bolt_ids, self._bolt_core_ids = _bolt_ids(self.cg.values)
         self.in_ok = self.ig.ok()
         self.in_min = self.ig.min_margin(objective_only=False)
         self.core_ok = self.cg.ok() & self.in_ok[self.A]
@@ -230,7 +233,8 @@ class Batch:
         if not n_r:
             return out_v, out_k
         sup = cg.values["supplier_code"][rows]
-        first, inv = _unique_rows(self.A[rows], sup, *(cg.values[k][rows] for k in evaluate.BUSHING_CORE_VALUES))
+        first, inv = _unique_rows(self.A[rows], sup, *(cg.values[k][rows]
+                                                       for k in evaluate.core_values("bushing", cg.values)))
         rep = rows[first]
         score = wsum(option_scores(sp, "bushing"), weights) if weights is not None else None
         res_v = np.empty(len(rep))
@@ -298,8 +302,9 @@ class Batch:
         if self._bolt_core_ids and nr and nd:
             with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
                 g = evaluate.bolt_core(self.apps, np.broadcast_to(self.A[rows][:, None], (nr, nd)),
-                                       {k: self.cg.values[k][rows][:, None] for k in evaluate.BOLT_CORE_VALUES},
-                                       {k: v[None, :] for k, v in o.items()})
+                                       {k: self.cg.values[k][rows][:, None]
+                                        for k in evaluate.core_values("bolt", self.cg.values)},
+                                       {k: v[None, :] for k, v in o.items()}, self.settings)
             for cid in self._bolt_core_ids:
                 m = np.minimum(m, g.margins[cid])
         return m, code
@@ -456,7 +461,7 @@ class Batch:
     def _spring_keys(self, rows):
         """``(keys dict, inverse)``: the distinct spring keys of core rows (application and what the spring sees)."""
         kd = evaluate.spring_keys(self.cg, rows)
-        first, inv = _unique_rows(kd["app"], *(kd[k] for k in evaluate.SPRING_KEY_VALUES))
+        first, inv = _unique_rows(kd["app"], *(kd[k] for k in kd if k != "app"))
         return {k: v[first] for k, v in kd.items()}, inv
 
     def _spring_first(self, keys, limit, weights):
@@ -469,7 +474,7 @@ class Batch:
         last = self._last_within(weights, apps_k, limit)
         kk = main_spring.keys_of_rows(self.apps, keys)
         r = main_spring.first_feasible(kk, self._options(), lists, key_group=grp, score=positions, score_limit=last,
-                             engine=self.engine)
+                                       engine=self.engine, settings=self.settings)
         self.evaluations += int(r.visited.sum())
         out = np.full(len(apps_k), np.inf)
         hit = np.flatnonzero(r.index >= 0)
@@ -508,20 +513,23 @@ class Batch:
         inv, lists = self._ranges()
         grp = inv[keys["app"]]
         kk = main_spring.keys_of_rows(self.apps, keys)
-        r = main_spring.max_min_margin(kk, self._options(), lists, key_group=grp, cap=cap, engine=self.engine)
+        r = main_spring.max_min_margin(kk, self._options(), lists, key_group=grp, cap=cap, engine=self.engine,
+                                       settings=self.settings)
         self.evaluations += int(r.visited.sum())
         v = np.asarray(r.value, dtype=float)
         return v, np.where((r.index >= 0) & (v > -np.inf), r.index, 0)
 
     # ------------------------------------------------------------------------------------------- axial
     def _axial_rows(self, rows):
-        first, inv = _unique_rows(self.A[rows], *(self.cg.values[k][rows] for k in evaluate.AXIAL_CORE_VALUES))
+        first, inv = _unique_rows(self.A[rows], *(self.cg.values[k][rows]
+                                                  for k in evaluate.core_values("axial", self.cg.values)))
         return rows[first], inv
 
     def _axial_slots(self, rep) -> np.ndarray:
         """Per representative core row (:meth:`_axial_rows`), its row in the kept axial margins: one per distinct
         application and value of what the axial group reads of the core, whichever call met it first."""
-        vals = np.stack([self.A[rep], *(self.cg.values[k][rep] for k in evaluate.AXIAL_CORE_VALUES)], axis=1)
+        vals = np.stack([self.A[rep], *(self.cg.values[k][rep]
+                                        for k in evaluate.core_values("axial", self.cg.values))], axis=1)
         vals = np.where(np.isnan(vals), np.finfo(float).max, vals) + 0.0  # as _unique_rows: NaN equal, -0.0 = 0.0
         slot = self._ax_slot
         out = np.array([slot.setdefault(k, len(slot)) for k in
@@ -543,11 +551,13 @@ class Batch:
     def _axial_eval(self, rr, oo, settings: evaluate.Settings | None = None):
         """The axial group of core rows ``rr`` and options ``oo`` (at ``settings``, default the search's; in the
         full model's search of :meth:`optimum`, :func:`~synth.design.evaluate.axial_full`)."""
-        with np.errstate(over="ignore", divide="ignore", invalid="ignore"), axial_kernels.engine(self.axial_engine):
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
             if settings is None and self._screened is not None:
-                g = evaluate.axial_full(self.apps, self.cg, rr, self.sp.rows_read("axial", oo), self._screened)
+                g = evaluate.axial_full(self.apps, self.cg, rr, self.sp.rows_read("axial", oo), self._screened,
+                                        engine=self.axial_engine)
             else:
-                g = evaluate.axial(self.apps, self.cg, rr, self.sp.rows_read("axial", oo), settings or self.settings)
+                g = evaluate.axial(self.apps, self.cg, rr, self.sp.rows_read("axial", oo), settings or self.settings,
+                                   engine=self.axial_engine)
         self.evaluations += len(rr)
         return g
 
@@ -557,7 +567,8 @@ class Batch:
         plane, the cone spring's diameters; most pairs of a scan fail one). A pair that fails one fails at any
         fidelity, and its smallest margin is at most that check's: a search need not size its cone spring."""
         with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-            return evaluate.axial_before_physics(self.apps, self.cg, rr, self.sp.rows_read("axial", oo)).ok()
+            return evaluate.axial_before_physics(self.apps, self.cg, rr, self.sp.rows_read("axial", oo),
+                                                 self.settings).ok()
 
     def _undecided(self, rr, g: evaluate.Group, ok) -> None:
         """Mark the applications of rows ``rr`` (axial group ``g``, its verdicts ``ok`` after the judge) where the

@@ -28,7 +28,8 @@ import time
 import numpy as np
 
 from synth.design import constraints
-from synth.design.evaluate import Settings
+from synth.design.evaluate import DEFAULT, Settings
+from synth.design.combine import combine
 from synth.design.space import SUBSYSTEMS, space
 from synth.errors import InputError, Problem
 from synth.optimise.product import evaluate
@@ -65,7 +66,7 @@ def relaxable() -> dict:
     return got
 
 
-def is_feasible(d, settings: Settings = Settings(), *, pin_inputs: bool = False) -> bool:
+def is_feasible(d, settings: Settings = DEFAULT, *, pin_inputs: bool = False) -> bool:
     """Whether any design of the catalog product (``pin_inputs``: with the parts the input names) meets every
     constraint for input ``d``."""
     try:
@@ -78,14 +79,15 @@ def is_feasible(d, settings: Settings = Settings(), *, pin_inputs: bool = False)
 def nearest_design(ev):
     """``(core position, options, min_margin)`` of the design with the largest smallest margin (all constraints)."""
     core_m = np.where(np.ones(len(ev.cores), bool), ev.core_min_margin(), -np.inf)[ev.rows]
-    best_k = {}
+    best_k, best_m = {}, []
     for s in SUBSYSTEMS:
         sub = ev.subs[s]
         m = np.where(sub.available, sub.min_margin, -np.inf)
         best_k[s] = np.argmax(m, axis=1)
-        core_m = np.minimum(core_m, m[np.arange(len(m)), best_k[s]])
-    r = int(np.argmax(core_m))
-    return int(ev.rows[r]), {s: int(best_k[s][r]) for s in SUBSYSTEMS}, float(core_m[r])
+        best_m.append(m[np.arange(len(m)), best_k[s]])
+    design_m = combine(core_m, best_m)
+    r = int(np.argmax(design_m))
+    return int(ev.rows[r]), {s: int(best_k[s][r]) for s in SUBSYSTEMS}, float(design_m[r])
 
 
 def reference_probe(pin_inputs: bool = False):
@@ -181,7 +183,7 @@ def _levels(cands: dict) -> list:
     return [[(n,) for n in names], list(itertools.combinations(names, 2)), last]
 
 
-def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: int = 7, probe=None,
+def relaxations(d, violated: list, *, settings: Settings = DEFAULT, steps: int = 7, probe=None,
                 pin_inputs: bool = False) -> list:
     """Smallest input changes that make ``d`` feasible, for the inputs that relax ``violated``.
 
@@ -197,7 +199,7 @@ def relaxations(d, violated: list, *, settings: Settings = Settings(), steps: in
                              probe=lambda items: [one(x, ch, settings) for x, ch in items])[0]
 
 
-def probe_batch(settings: Settings = Settings(), spring_engine: str = "numba", *, pin_inputs: bool = False):
+def probe_batch(settings: Settings = DEFAULT, spring_engine: str = "numba", *, pin_inputs: bool = False):
     """A batched feasibility probe: ``probe([(d, changes), ...]) -> [bool, ...]``, every probe of a bisection
     step in one vectorised feasibility search (:func:`synth.optimise.batch.any_feasible`); the same answers as
     the reference probe (``is_feasible`` of the changed input; an input the physics refuses is not feasible).
@@ -230,7 +232,7 @@ def probe_batch(settings: Settings = Settings(), spring_engine: str = "numba", *
     return probe
 
 
-def relaxations_batch(ds: list, violated: list, *, settings: Settings = Settings(), steps: int = 7,
+def relaxations_batch(ds: list, violated: list, *, settings: Settings = DEFAULT, steps: int = 7,
                       probe=None) -> list:
     """:func:`relaxations` of many applications at once: per application the same candidate inputs, the same
     far probes and the same bisections, hence the same relaxations; but each round probes every pending
@@ -324,7 +326,7 @@ def violated_of(res) -> list:
 
 
 def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: dict | None = None,
-             relax: bool = True, settings: Settings = Settings(), exhaustive: bool = False, batch=None,
+             relax: bool = True, settings: Settings = DEFAULT, exhaustive: bool = False, batch=None,
              pin_inputs: bool = False):
     """A :class:`~synth.design.result.Result` with ``status="infeasible"`` and its ``diagnosis``.
 
@@ -373,7 +375,7 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
     return res
 
 
-def layout_switch(d, settings: Settings = Settings(), *, pin_inputs: bool = False) -> dict | None:
+def layout_switch(d, settings: Settings = DEFAULT, *, pin_inputs: bool = False) -> dict | None:
     """The layout switch of eq. (17)-(18) that makes ``d`` infeasible, explained, or None
     (:func:`layout_switches` of one application with the reference probe)."""
     single = reference_probe(pin_inputs)

@@ -71,10 +71,15 @@ def plot_front(front: list, path, *, y: str = "margin", ylabel: str = "smallest 
     c = [p["cost_eur"] for p in front]
     m = [scale * p[y] for p in front]
     ax.step(c, m, where="post", color="0.6")
+    band = [p.get("cost_band_eur") for p in front]
+    if all(band):  # the cost's 90 % band under the price bands (synth.cost.decision.band_of)
+        ax.errorbar(c, m, xerr=[[x - b[0] for x, b in zip(c, band)], [b[1] - x for x, b in zip(c, band)]], fmt="none",
+                    ecolor="C0", alpha=0.35, capsize=2, label="cost: 90 % band of the prices")
+        ax.legend(fontsize=7, loc="lower right")
     ax.plot(c, m, "o", color="C0")
     for p, v in zip(front, m):
         ax.annotate(label(p), (p["cost_eur"], v), fontsize=6, xytext=(3, 3), textcoords="offset points")
-    ax.set_xlabel("cost [EUR] (catalog unit costs)")
+    ax.set_xlabel("cost [EUR] (synth.cost: quoted, modelled and assumed prices)")
     ax.set_ylabel(ylabel)
     ax.set_title(title)
     ax.grid(True, alpha=0.3)

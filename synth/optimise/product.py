@@ -29,11 +29,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from synth import catalog
-from synth.design.evaluate import (SPRING_OPTION_COLUMNS, Group, Settings, axial_full, axial_judged, bolt, bushing,
-                                   core, fixation_values, inputs, spring, spring_keys)
+from synth.design.evaluate import (DEFAULT, SPRING_OPTION_COLUMNS, Group, Settings, axial_full, axial_judged, bolt,
+                                   bushing, core, fixation_values, inputs, spring, spring_keys)
 from synth.design.applications import Applications
-from synth.design.space import SUBSYSTEMS, Space, core_rows, pinned_diameter, space, space_for, spring_window
+from synth.design.space import SUBSYSTEMS, Space, core_rows, pinned_diameter, space_for, spring_window
 from synth.design.verify import parts_of_design
+from synth.cost.breakdown import attributes
 
 __all__ = ["SubTable", "Evaluation", "evaluate", "subsystem", "SPRING_BLOCK_PAIRS", "design_scores",
            "core_scores", "option_scores"]
@@ -165,19 +166,18 @@ def _bolt(apps, sp, cg, pos, settings) -> SubTable:
 
 def _spring(apps, sp, cg, pos, settings, counter) -> SubTable:
     nk = sp.n("spring")
-    keys = spring_keys(cg, pos)
-    stack = np.stack([keys[k] for k in ("spring_torque_nominal_nm", "spring_housing_height_mm",
-                                         "spring_housing_outer_diameter_mm", "spring_housing_inner_diameter_mm")], axis=1)
+    keys = spring_keys(cg, pos)  # the key: torque, housing height and diameters, and what else its checks read
+    cols = [k for k in keys if k != "app"]
+    stack = np.stack([np.asarray(keys[k], dtype=float) for k in cols], axis=1)
     uniq, inv = np.unique(stack, axis=0, return_inverse=True)
     inv = np.asarray(inv).reshape(-1)
     if not len(uniq):
         empty = np.zeros((0, nk), dtype=bool)
         return SubTable(empty, empty, np.zeros((0, nk)), np.zeros((0, nk)))
     mbd = sp.tables["spring"]["main_spring_mean_body_diameter_mm"]
-    ukeys = {"app": np.zeros(len(uniq), dtype=np.int64), "spring_torque_nominal_nm": uniq[:, 0],
-             "spring_housing_height_mm": uniq[:, 1], "spring_housing_outer_diameter_mm": uniq[:, 2],
-             "spring_housing_inner_diameter_mm": uniq[:, 3]}
-    lo, hi = spring_window(uniq[:, 3].min(), uniq[:, 2].max())
+    ukeys = {"app": np.zeros(len(uniq), dtype=np.int64), **{k: uniq[:, j] for j, k in enumerate(cols)}}
+    lo, hi = spring_window(ukeys["spring_housing_inner_diameter_mm"].min(),
+                           ukeys["spring_housing_outer_diameter_mm"].max())
     opts_idx = np.flatnonzero((mbd >= lo) & (mbd <= hi) | pinned_diameter(sp))
     shape = (len(uniq), nk)
     feas = np.zeros(shape, dtype=bool)
@@ -233,7 +233,7 @@ def evaluate(d, settings: Settings = Settings(fidelity="full"), *, pin_inputs: b
     sp = space_for(d, pin_inputs)
     cores = core_rows(sp, d)
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        ig = inputs(apps, np.zeros(1, dtype=np.int64))
+        ig = inputs(apps, np.zeros(1, dtype=np.int64), settings)
         cg = core(apps, np.zeros(len(cores), dtype=np.int64), sp.rows("core", cores), settings)
         ok = cg.ok() & bool(ig.ok()[0])
         pos = np.flatnonzero(ok) if prune else np.arange(len(cores))
@@ -252,10 +252,9 @@ def evaluate(d, settings: Settings = Settings(fidelity="full"), *, pin_inputs: b
     return Evaluation(d, apps, sp, settings, cores, ig, cg, pos, subs, score_core, score, notes, counter[0])
 
 
-def design_scores(d, parts: dict, settings: Settings = Settings()) -> dict:
+def design_scores(d, parts: dict, settings: Settings = DEFAULT) -> dict:
     """``{standard, cost}`` of the design ``parts`` of input ``d`` (the optimiser's additive objectives)."""
-    sp = space()
-    attrs = sp.design_attributes(parts)
+    attrs = attributes(d, parts)[1]  # priced at the input's annual volume
     apps = Applications.of([d])
     cg = core(apps, np.zeros(1, dtype=np.int64), attrs["core"], settings)
     std_class = cg.values["pivot_class_standard_mm"][0]

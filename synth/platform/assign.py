@@ -22,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from formulations.platform import PlatformInstance
+from synth.design.combine import combine
 from synth.platform.compile import flat_groups
 from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility
 
@@ -185,18 +186,18 @@ def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None
         c = int(np.argmin(total[lo:cptr[ai + 1]]))
         rec.update(feasible=True, core=c, unit_cost_eur=float(total[lo + c]))
         rec["codes"] = {f: int(a.core_parts[f][c]) for f in CORE_FAMILIES}
-        margins = [(float(a.core_margin[c]), "" if a.core_binding is None else str(a.core_binding[c]))]
+        opt_m, opt_b = [], []
         for s in SUBSYSTEMS:
             gi = int(a.group[s][c])
             k = int(best_opt[s][lo + c])
             rec["options"][s] = k
             rec["codes"].update({f: int(pf.options[s][f][k]) for f in SUBSYSTEM_FAMILIES[s]})
             pos = int(np.flatnonzero(np.asarray(a.feasible[s][gi]) == k)[0])
-            b = "" if a.option_binding is None else str(a.option_binding[s][gi][pos])
-            margins.append((float(a.option_margin[s][gi][pos]), b))
+            opt_b.append("" if a.option_binding is None else str(a.option_binding[s][gi][pos]))
+            opt_m.append(float(a.option_margin[s][gi][pos]))
         rec["parts"] = {f: pf.part_key(f, rec["codes"][f]) for f in FAMILIES}
-        m, b = min(margins, key=lambda t: t[0])
-        rec["margin"], rec["binding"] = m, b
+        rec["margin"], rec["binding"] = combine(float(a.core_margin[c]), opt_m,
+                                                "" if a.core_binding is None else str(a.core_binding[c]), opt_b)
     return out
 
 

@@ -207,4 +207,4 @@ def _catalogue(user_dirs: tuple) -> Catalogue:
 
 def catalogue() -> Catalogue:
     """The :class:`Catalogue` of the current catalog setting (cached like :func:`synth.design.space.space`)."""
-    return _catalogue(tuple(catalog._user_dirs()))
+    return _catalogue(tuple(catalog.user_dirs()))

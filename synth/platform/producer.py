@@ -12,7 +12,7 @@ applications axis, as the bulk engine):
 1. the inputs and every core the application may use (:func:`synth.design.space.core_rows`):
    the feasible cores pass the input-only and the core constraints;
 2. per subsystem, the **group** of each feasible core: the core values that subsystem's
-   group function reads (:data:`GROUP_KEYS`); cores of one application with the same
+   group function reads (:func:`group_keys`); cores of one application with the same
    key accept the same options, so each group is evaluated once, on one representative
    core, against every candidate option;
 3. per group, the feasible options with their smallest margin (the margin objective's,
@@ -38,7 +38,8 @@ product by :func:`synth.optimise.diagnose.diagnose` (about a second per applicat
 
 ``engine="dask"`` computes the chunks on a ``dask.distributed`` cluster (a local one of
 ``workers`` processes, or ``scheduler``), the pattern of :mod:`synth.bulk.run`; the data
-are the same as in-process.
+are the same as in-process: every chunk is given the run's configuration
+(:class:`~synth.design.settings.Settings`: the design rules, the spring limit basis, the user catalogs, the engine).
 
 >>> from synth.data.generated_applications import generate
 >>> pf = feasibility(generate(3, seed=0), ["a", "b", "c"])
@@ -62,27 +63,31 @@ from synth import catalog
 from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.assessment import assess_group, passes
-from synth.design.constraints import FEAS_TOL, REGISTRY, version
+from synth.design.combine import combine, nearest_rank
+from synth.design.constraints import REGISTRY, version
 from synth.design.space import SUBSYSTEMS, core_rows, spring_window
 from synth.errors import InputError, Problem
-from synth.kernels import axial as axial_kernels
 from synth.platform.data import AppFeasibility, PortfolioFeasibility, default_fixed_costs, validate
 from synth.platform.options import Catalogue, catalogue
-from synth.kernels import main_spring
+from synth.kernels import engines, main_spring
 from synth.kernels.main_spring import keys_of_rows
 from synth.optimise.diagnose import diagnose
 from synth.bulk.run import ENGINES, chunk_ranges, dask_pointless, dask_client
 from synth.bulk.portfolio import read_portfolio, records, validate_record, FORMATS
 from synth.platform.synthetic import synthetic_portfolio
 
-__all__ = ["load_feasibility", "feasibility", "from_table", "chunk_feasibility", "GROUP_KEYS", "SPRING_TORQUE_ONLY", "SPRING_STAGES",
-           "VOLUME_COLUMNS", "margins_and_binding", "spring_group", "PRODUCER"]
+__all__ = ["load_feasibility", "feasibility", "from_table", "chunk_feasibility", "group_keys", "SPRING_TORQUE_ONLY",
+           "SPRING_STAGES", "VOLUME_COLUMNS", "margins_and_binding", "spring_group", "PRODUCER"]
 
-#: subsystem -> the core values its group function reads (besides the application): the group key
-GROUP_KEYS = {"bushing": ("supplier_code", *evaluate.BUSHING_CORE_VALUES),
-              "axial": ("pad_code", *evaluate.AXIAL_CORE_VALUES),
-              "spring": evaluate.SPRING_KEY_VALUES,
-              "bolt": evaluate.BOLT_CORE_VALUES}
+
+def group_keys(core: dict) -> dict:
+    """Subsystem -> the core values its group reads (besides the application): the group key. What each group
+    function declares and what the registry's checks read of the core now (:func:`synth.design.evaluate.core_values`
+    of ``core``, a core group's values), with the core's bushing supplier and damper pad, which decide its options."""
+    return {"bushing": ("supplier_code", *evaluate.core_values("bushing", core)),
+            "axial": ("pad_code", *evaluate.core_values("axial", core)),
+            "spring": evaluate.core_values("spring", core),
+            "bolt": evaluate.core_values("bolt", core)}
 #: spring constraints whose margins depend on the key only through the nominal spring torque (and the
 #: application): the stresses (eq. 69-77, figure 71) and the option-only index range and wire section
 SPRING_TORQUE_ONLY = ("spring_yield", "spring_static_permissible", "spring_fatigue", "spring_index_min",
@@ -104,9 +109,9 @@ SPRING_STAGES = ((("spring_torque_nominal_nm",), SPRING_TORQUE_ONLY, ("spring_to
 VOLUME_COLUMNS = ("annual_volume", "volume")
 #: (group, option) pairs per group-function call (bounds the memory of a chunk)
 BLOCK_PAIRS = 100_000
-#: the axial group's engine (:func:`synth.kernels.axial.engine`): the compiled wear, about 3x the numpy reference's
-#: speed on the feasibility data (``benchmarks/bench_platform.py``); ``"numpy"`` gives the design path's margins
-#: bit for bit
+#: the axial group's engine this path takes (:func:`synth.kernels.engines.axial`; ``Settings(engine="numpy")``
+#: overrides it): the compiled wear, about 3x the numpy reference's speed on the feasibility data
+#: (``benchmarks/bench_platform.py``); ``"numpy"`` gives the design path's margins bit for bit
 AXIAL_ENGINE = "numba"
 #: how far an option margin may stand from the design path's (``synth.optimise.product``, the numpy reference):
 #: the compiled wear agrees within :data:`synth.kernels.axial.RTOL` (1e-12) relative; the feasible options, the
@@ -155,7 +160,9 @@ def _name(b: int) -> str:
 def spring_group(apps, keys: dict, k, options, settings: evaluate.Settings, spring_keys=None) -> evaluate.Group:
     """The main-spring group's registry margins for rows pairing key ``k[i]`` with option ``options[i]``: the
     compiled kernels (:func:`synth.kernels.main_spring.pair_margins`, equal to the registry's spring group,
-    ``tests/test_kernels.py``), 10-15x the numpy group on these pairs.
+    ``tests/test_kernels.py``), 10-15x the numpy group on these pairs, where they cover the registry's checks under
+    ``settings`` (:func:`synth.kernels.engines.spring`: no design rule on a spring check, the thesis's limit
+    basis), else the numpy twin.
 
     ``options``: rows of the design space's spring table (integers), or the table's columns for each row (a
     dict, as :func:`synth.design.evaluate.spring` takes them). ``spring_keys``: the keys' kernel table when the
@@ -169,9 +176,9 @@ def spring_group(apps, keys: dict, k, options, settings: evaluate.Settings, spri
         opts, rows = main_spring.options_of_space(options, np.arange(len(k))), np.arange(len(k))
     else:
         opts, rows = main_spring.options_of_space(), np.asarray(options, dtype=np.int64)
-    m = main_spring.pair_margins(kk, opts, k, rows)
+    m = main_spring.pair_margins(kk, opts, k, rows, engine=engines.spring(settings, "numba"), settings=settings)
     return evaluate.Group("spring", {"app": np.asarray(keys["app"])[k]},
-                   {name: m[:, c] for c, name in enumerate(main_spring.checks())})
+                          {name: m[:, c] for c, name in enumerate(main_spring.checks())}, rules=settings.rules)
 
 
 # --------------------------------------------------------------------------------------------------------- chunk
@@ -206,8 +213,7 @@ class _Pairs:
         self.m.append(m)
         self.b.append(b)
         rank = grp.rank()  # nearest designs: ranked by the search model (fidelity screening: the screening one)
-        ma = np.where(ok, np.maximum(grp.min_margin(objective_only=False), 0.0),
-                      np.minimum(rank.min_margin(objective_only=False), -FEAS_TOL))
+        ma = nearest_rank(ok, grp.min_margin(objective_only=False), rank.min_margin(objective_only=False))
         gg, mm, at = _segment_best(gp, ma)
         upd = mm > self.best[gg]
         if upd.any():
@@ -242,12 +248,18 @@ def _group_ids(values: dict, pos: np.ndarray, cols: tuple, extra: dict | None = 
     return np.asarray(inv).reshape(-1), pos[first]
 
 
-def chunk_feasibility(inputs: list, ids: list, volumes, settings: evaluate.Settings = evaluate.Settings(), *,
-                      diagnose: bool = False, catalog_dirs: tuple | None = None, stats: dict | None = None) -> list:
-    """:class:`~synth.platform.data.AppFeasibility` of each validated input (one vectorised evaluation).
+def chunk_feasibility(inputs: list, ids: list, volumes, settings: evaluate.Settings = evaluate.DEFAULT, *,
+                      diagnose: bool = False, stats: dict | None = None) -> list:
+    """:class:`~synth.platform.data.AppFeasibility` of each validated input (one vectorised evaluation) under the
+    configuration ``settings`` (its user catalogs read here: a Dask worker process has its own).
 
     ``stats`` (a dict) receives the seconds and the evaluated pairs of each group (added to what it holds).
     """
+    with catalog.using(settings.catalogs):
+        return _chunk_feasibility(inputs, ids, volumes, settings, diagnose, stats)
+
+
+def _chunk_feasibility(inputs, ids, volumes, settings, diagnose, stats) -> list:
     st = stats if stats is not None else {}
     clock = [time.perf_counter()]
 
@@ -257,8 +269,6 @@ def chunk_feasibility(inputs: list, ids: list, volumes, settings: evaluate.Setti
         st[f"{name}_pairs"] = st.get(f"{name}_pairs", 0) + int(pairs)
         clock[0] = now
 
-    if catalog_dirs is not None and [str(p) for p in catalog._user_dirs()] != list(catalog_dirs):
-        catalog.set_user_dirs(*catalog_dirs)
     cat = catalogue()
     sp = cat.space
     n = len(inputs)
@@ -266,7 +276,7 @@ def chunk_feasibility(inputs: list, ids: list, volumes, settings: evaluate.Setti
         return []
     apps = Applications.of(inputs)
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        ig = evaluate.inputs(apps, np.arange(n))
+        ig = evaluate.inputs(apps, np.arange(n), settings)
         per_app = [core_rows(sp, d) for d in inputs]
         a = np.concatenate([np.full(len(c), i, dtype=np.int64) for i, c in enumerate(per_app)])
         crow = np.concatenate(per_app).astype(np.int64)
@@ -280,8 +290,9 @@ def chunk_feasibility(inputs: list, ids: list, volumes, settings: evaluate.Setti
         pos = np.flatnonzero(ok)
         extra = {"pad_code": sp.tables["core"]["pad_code"][crow]}
         gid, rep, pairs = {}, {}, {}
+        keys = group_keys(cg.values)
         for s in SUBSYSTEMS:
-            gid[s], rep[s] = _group_ids(cg.values, pos, GROUP_KEYS[s], extra)
+            gid[s], rep[s] = _group_ids(cg.values, pos, keys[s], extra)
             pairs[s] = _Pairs(len(rep[s]))
         lap("core", len(a))
         lap("bushing", _bushing(apps, cat, cg, rep["bushing"], settings, pairs["bushing"]))
@@ -314,10 +325,11 @@ def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs, group=evaluate.a
     gp = np.repeat(np.arange(len(rep)), cnt)
     j = np.arange(len(gp)) - np.repeat(np.cumsum(cnt) - cnt, cnt)
     op = np.where(pad[gp] < 0, cat.axial_none, cat.axial_option(np.maximum(pad[gp], 0), j))
-    with axial_kernels.engine(AXIAL_ENGINE):
-        for blk in _blocks(len(gp), BLOCK_PAIRS // 4):
-            g, o = gp[blk], op[blk]
-            acc.add(g, o, group(apps, cg, rep[g], cat.space.rows("axial", cat.option_row["axial"][o]), settings))
+    engine = engines.axial(settings, AXIAL_ENGINE)
+    for blk in _blocks(len(gp), BLOCK_PAIRS // 4):
+        g, o = gp[blk], op[blk]
+        acc.add(g, o, group(apps, cg, rep[g], cat.space.rows("axial", cat.option_row["axial"][o]), settings,
+                            engine=engine))
     return len(gp)
 
 
@@ -435,9 +447,7 @@ def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, ro
     mbd = cat.space.tables["spring"]["main_spring_mean_body_diameter_mm"][rows]
     n = 0
     for _ in range(rounds):
-        val = all_m[pos].copy()
-        for s in SUBSYSTEMS:
-            val = np.minimum(val, np.where(has[s][gid[s]], np.inf, pairs[s].best[gid[s]]))
+        val = combine(all_m[pos], [np.where(has[s][gid[s]], np.inf, pairs[s].best[gid[s]]) for s in SUBSYSTEMS])
         groups = {int(gid["spring"][k[int(np.argmax(val[k]))]]) for k in todo}
         todo = [k for k in todo if not refined[gid["spring"][k[int(np.argmax(val[k]))]]]]
         groups = np.array(sorted(g for g in groups if not refined[g]), np.int64)
@@ -534,9 +544,7 @@ def _why(cat, i, a, crow, all_m, all_b, sel, k, gid, first_group, pairs) -> str:
         j = rows[int(np.argmax(all_m[rows]))]
         return (f"no feasible core: the nearest ({_core_text(cat, int(crow[j]))}) misses {_name(all_b[j])} "
                 f"(margin {all_m[j]:+.3f})")
-    val = all_m[sel].copy()
-    for s in SUBSYSTEMS:
-        val = np.minimum(val, pairs[s].best[gid[s][k]])
+    val = combine(all_m[sel], [pairs[s].best[gid[s][k]] for s in SUBSYSTEMS])
     c = int(np.argmax(val))
     miss = []
     for s in SUBSYSTEMS:
@@ -571,7 +579,7 @@ def _error_app(app_id: str, error: str, cat: Catalogue, volume: float) -> AppFea
                           core_rows=z)
 
 
-def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: evaluate.Settings = evaluate.Settings(), *,
+def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: evaluate.Settings = evaluate.DEFAULT, *,
                 errors: list | None = None, diagnose: bool = False, chunk_size: int = CHUNK_SIZE,
                 engine: str = "inprocess", workers: int | None = None, scheduler: str | None = None,
                 progress=None) -> PortfolioFeasibility:
@@ -580,12 +588,21 @@ def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: e
     ``inputs[i]`` may be None when ``errors[i]`` says why (a row that failed validation: it is
     reported, never evaluated). ``volumes``: units per year (1 each by default). ``engine``:
     ``inprocess`` or ``dask`` (see the module docstring). ``progress(done, total)`` is called
-    after each chunk.
+    after each chunk. ``settings``: the configuration every chunk is evaluated under (shipped with it to a Dask
+    worker).
     """
     if engine not in ENGINES:
         raise InputError(Problem("--engine", engine, " or ".join(ENGINES)))
     if not (isinstance(chunk_size, (int, np.integer)) and chunk_size >= 1):
         raise InputError(Problem("chunk size", chunk_size, "a whole number >= 1"))
+    settings = settings.resolved()  # the user catalogs fixed: a chunk may run in another process
+    with catalog.using(settings.catalogs):
+        return _feasibility(inputs, ids, volumes, settings, errors, diagnose, chunk_size, engine, workers, scheduler,
+                            progress)
+
+
+def _feasibility(inputs, ids, volumes, settings, errors, diagnose, chunk_size, engine, workers, scheduler,
+                 progress) -> PortfolioFeasibility:
     t0 = time.perf_counter()
     n = len(inputs)
     ids = [f"row {i + 1}" for i in range(n)] if ids is None else [str(x) for x in ids]
@@ -596,7 +613,7 @@ def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: e
     if engine == "dask" and not scheduler:   # at least one chunk per local worker
         chunk_size = max(1, min(int(chunk_size), -(-len(valid) // int(workers or 2))))
     ranges = chunk_ranges(len(valid), int(chunk_size))
-    kw = dict(diagnose=diagnose, catalog_dirs=tuple(str(p) for p in catalog._user_dirs()))
+    kw = dict(diagnose=diagnose)
     jobs = [([inputs[i] for i in valid[lo:hi]], [ids[i] for i in valid[lo:hi]], volumes[valid[lo:hi]])
             for lo, hi in ranges]
     run_notes: list = []
@@ -665,7 +682,8 @@ def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress, notes:
 
 
 def _volumes(table, n: int):
-    col = next((c for c in VOLUME_COLUMNS if c in table.columns), None)
+    # an empty column is no column (the design input's field annual_volume, left empty: synth.schema)
+    col = next((c for c in VOLUME_COLUMNS if c in table.columns and table[c].notna().any()), None)
     if col is None:
         return np.ones(n), None
     probs, vol = [], np.ones(n)
@@ -682,7 +700,7 @@ def _volumes(table, n: int):
     return vol, col
 
 
-def from_table(portfolio, settings: evaluate.Settings = evaluate.Settings(), **kw) -> PortfolioFeasibility:
+def from_table(portfolio, settings: evaluate.Settings = evaluate.DEFAULT, **kw) -> PortfolioFeasibility:
     """Feasibility of a portfolio table (a path or a DataFrame, :mod:`synth.bulk.portfolio`).
 
     Rows are validated one by one; a bad row is reported (``note``: ``input error: ...``) and
@@ -718,7 +736,7 @@ def load_feasibility(portfolio: str, settings: evaluate.Settings | None = None, 
     if Path(str(portfolio)).suffix.lower() not in FORMATS:
         raise InputError(Problem("PORTFOLIO", portfolio, "synthetic:N[:SEED] with whole numbers N >= 1, SEED >= 0, "
                                  "or a portfolio table (" + ", ".join(sorted(FORMATS)) + ")"))
-    return PRODUCER(portfolio, settings or evaluate.Settings(), **kw)
+    return PRODUCER(portfolio, settings or evaluate.DEFAULT, **kw)
 
 
 #: ``(portfolio path, settings, **kw) -> PortfolioFeasibility``: the evaluator's producer

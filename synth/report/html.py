@@ -59,6 +59,7 @@ from synth import schema
 from synth.report.plots import GRAPH_CHECKS
 from synth.errors import InputError, Problem
 from synth.report.advice import alternative_rows
+from synth.report import cost as cost_words
 from synth.report.robust import robust_section
 from synth.io.outputs import write_text
 
@@ -378,7 +379,8 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
     checks, na = check_steps(result)
     cad = [_figure(g) for g in graphs if g.id.startswith("cad_")]
     figs = [_figure(g) for g in graphs if not g.id.startswith("cad_")]
-    scene_rows = [s for s in (_scene(k, v) for k, v in (scenes or {}).items()) if s]
+    scenes = {**cost_words.tables(getattr(result, "cost", None) or {}), **(scenes or {})}
+    scene_rows = [s for s in (_scene(k, v) for k, v in scenes.items()) if s]
     plat = platform_section(platform)
     robust = robust_section(result)
     digest = digest_context(result)

@@ -14,6 +14,7 @@ from synth.report.advice import NO_DESIGNER, alternative_rows, change_lines, cor
     relaxation_lines, rule_lines
 from synth.design.evaluate import FIDELITY_TEXT
 from synth.report.robust import text_lines
+from synth.report import cost as cost_words
 
 __all__ = ["render", "verdict_line", "MARKS"]
 
@@ -90,6 +91,7 @@ def render(r: Result, *, title: str = "") -> str:
             lines.append(f"       differs: {a['differs']}")
     elif r.alternatives == [] and (r.control or {}).get("top", 1) > 1:
         lines += ["", "Alternatives: none (no feasible design)"]
+    lines += cost_words.text_lines(getattr(r, "cost", None) or {})
     binds = r.binding(5)
     if binds:
         lines += ["", "What binds (smallest margins)", "-" * 78]

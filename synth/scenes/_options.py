@@ -16,11 +16,12 @@ from synth.design import rules
 from synth.optimise import SOLVERS
 from synth.robust.settings import DEFAULT_SAMPLES, RobustSettings
 from synth.errors import InputError, Problem
+from synth.io.limits import check_count
 from synth.optimise.honour import solve_honouring
 from synth.report.progress import phase
 from synth.io.saved_results import load_result
 
-__all__ = ["add_model_options", "settings_from_args", "add_design_options", "add_robust_options",
+__all__ = ["add_model_options", "settings_from_args", "rules_of", "add_design_options", "add_robust_options",
            "robust_settings_from_args", "synthesise", "load_saved_result",
            "DEFAULT_SOLVER", "DEFAULT_OBJECTIVE", "default_args"]
 
@@ -48,13 +49,24 @@ def add_model_options(p) -> None:
                         "spring_limit_basis (rules: section or --rules), else thesis")
 
 
+def rules_of(args):
+    """The design rules of a scene's command line (:func:`synth.design.rules.of_args`: ``--rules FILE``, else the
+    input file's ``rules:`` section), read once per command line."""
+    got = getattr(args, "_synth_rules", None)
+    if got is None:
+        got = rules.of_args(args)
+        setattr(args, "_synth_rules", got)
+    return got
+
+
 def settings_from_args(args):
-    """The model settings of the options; the spring limit basis from ``--spring-limit``, else the design rules in
-    force (:func:`synth.design.rules.active`)."""
-    from synth.design.evaluate import Settings
+    """The run's configuration (:class:`~synth.design.settings.Settings`) of the options, resolved once: the model
+    settings, the design rules (:func:`rules_of`) and the spring limit basis of ``--spring-limit``, else the
+    rules'."""
+    from synth.design.settings import Settings
     return Settings(fidelity=args.fidelity, friction_circle=not args.linear_friction,
                     bolt_method=getattr(args, "bolt_method", "thesis"), drive=getattr(args, "drive_model", None),
-                    spring_limit_basis=getattr(args, "spring_limit", None) or rules.active().spring_limit_basis)
+                    spring_limit_basis=getattr(args, "spring_limit", None), rules=rules_of(args))
 
 
 def add_design_options(p) -> None:
@@ -70,7 +82,8 @@ def add_design_options(p) -> None:
     p.add_argument("--free", nargs="+", metavar="FIELD", default=[],
                    help="let synth choose these parts for the objective, whatever the input names")
     p.add_argument("--top", type=int, default=1, metavar="K",
-                   help="also the K best designs in objective order, what differs between them and their margins")
+                   help="also the K best designs in objective order, what differs between them and their margins "
+                        "(1 to 50)")
     p.add_argument("--trials", type=int, default=200, help="blackbox: trials per subsystem study (1 to 100000)")
     p.add_argument("--time-limit", type=float, default=None, metavar="S",
                    help="seconds for the solver (minlp, milp-*, blackbox): on expiry the best design found so far")
@@ -86,22 +99,26 @@ def add_robust_options(p, *, default_capability=None) -> None:
                    help="production target: every checked constraint violated by at most N parts per million "
                         "(the upper end of its 95 %% interval)")
     p.add_argument("--samples", type=int, default=DEFAULT_SAMPLES, metavar="N",
-                   help=f"Monte Carlo samples per design (scrambled Sobol; default {DEFAULT_SAMPLES})")
+                   help=f"Monte Carlo samples per design (scrambled Sobol; default {DEFAULT_SAMPLES}; 64 to 262144, "
+                        "the bulk 64 to 2048 per application)")
     p.add_argument("--seed", type=int, default=RobustSettings().seed, help="seed of the samples (same seed, same numbers)")
     p.add_argument("--capability-method", choices=("percentile", "moment"), default=None,
                    help="how Ppk is computed (ISO 22514-2): percentile (default: (X50 - LSL)/(X50 - X0.135%%), for any "
                         "distribution) or moment ((mu - LSL)/(3 sigma)); bounded outputs are judged by their ppm")
 
 
-def robust_settings_from_args(args, *, default_capability=None):
-    """The :class:`~synth.robust.settings.RobustSettings` of the options (checked: a bad value names its option);
-    without ``--capability`` and ``--ppm``, the design rules' capability targets (``ppk_min``, ``ppm_max``), else
-    ``default_capability``."""
+def robust_settings_from_args(args, *, default_capability=None, samples: str = "--samples"):
+    """The :class:`~synth.robust.settings.RobustSettings` of the options (checked: a bad value names its option;
+    ``--samples`` within the bounds of ``samples``, a key of :data:`synth.io.limits.COUNTS`: one design's or the
+    bulk's); without ``--capability`` and ``--ppm``, the design rules' capability targets (``ppk_min``,
+    ``ppm_max``), else ``default_capability``."""
+    if getattr(args, "samples", None) is not None:
+        check_count(samples, args.samples)
     names = {"capability": "--capability", "ppm": "--ppm", "samples": "--samples", "seed": "--seed",
              "method": "--capability-method"}
     cap, ppm = getattr(args, "capability", None), getattr(args, "ppm", None)
     if cap is None and ppm is None:
-        targets = rules.active().capability
+        targets = rules_of(args).capability
         cap, ppm = targets.get("ppk_min"), targets.get("ppm_max")
         if cap is None and ppm is None:
             cap = default_capability
@@ -125,8 +142,8 @@ def default_args():
 def synthesise(d, args):
     """The :class:`~synth.design.result.Result` of the synthesis the options of ``args`` ask for (with
     ``--capability``/``--ppm``: the robust synthesis of :mod:`synth.robust.synthesis`)."""
-    if not 1 <= int(getattr(args, "trials", 200)) <= 100_000:
-        raise InputError(Problem("--trials", args.trials, "an integer from 1 to 100000"))
+    check_count("--trials", getattr(args, "trials", 200))
+    check_count("--top", getattr(args, "top", 1))
     limit = getattr(args, "time_limit", None)
     if limit is not None and not (0 < limit <= 86_400):
         raise InputError(Problem("--time-limit", limit, "seconds in (0, 86400]"))
@@ -144,8 +161,9 @@ def synthesise(d, args):
         return solve_honouring(d, getattr(args, "objective", DEFAULT_OBJECTIVE), solver, **kw)
 
 
-def load_saved_result(path: str | Path, what: str = "result"):
+def load_saved_result(path: str | Path, what: str = "result", *, needs_inputs: bool = False):
     """A :class:`~synth.design.result.Result` saved with ``--json`` (any scene), read through the input gate
-    (:func:`synth.io.saved_results.load_result`: size, encoding, shape, carried inputs); errors name the file."""
+    (:func:`synth.io.saved_results.load_result`: size, encoding, shape, carried inputs); errors name the file and
+    the key (``needs_inputs``: a result without its ``inputs`` is refused naming it)."""
     from synth.design.result import Result
-    return Result.from_dict(load_result(path, what), source=str(Path(path).name))
+    return Result.from_dict(load_result(path, what, needs_inputs=needs_inputs), source=str(Path(path).name))

@@ -20,13 +20,13 @@ from __future__ import annotations
 
 import sys
 
-from synth.bulk.run import ENGINES, FIDELITIES, run_portfolio, sidecar
+from synth.bulk.run import ENGINES, FIDELITIES, run_portfolio, sidecar, usable_cores
 from synth.errors import InputError, Terminated
+from synth.io.outputs import output_files
 from synth.io.limits import check_count
 from synth.robust.portfolio import BULK_SAMPLES
-from synth.scenes._options import add_robust_options, robust_settings_from_args
+from synth.scenes._options import add_robust_options, robust_settings_from_args, rules_of
 from synth.bulk.summary import summarise, text, write_summary
-from synth.design.rules import active
 from synth.bulk.portfolio import row_record, validate_record, write_table
 from synth.design.evaluate import Settings
 from synth.design.space import PART_KEYS
@@ -83,35 +83,42 @@ def register(sub) -> None:
 def _main(args) -> int:
     if args.scheduler and args.engine != "dask":
         args.engine = "dask"
+    if args.capability is not None or args.ppm is not None:  # checked before the run, not after it
+        robust_settings_from_args(args, samples="bulk --samples")
+    if args.workers is not None and not args.scheduler:  # a local cluster: no more worker processes than cores
+        check_count("--workers", args.workers, hi=max(1, usable_cores()))
+    settings = Settings(fidelity=args.fidelity, rules=rules_of(args))  # the run's one configuration
     try:
         rep = run_portfolio(args.portfolio, args.out, objective=args.objective, fidelity=args.fidelity,
                             chunk_size=args.chunk_size, resume=args.resume, engine=args.engine,
-                            scheduler=args.scheduler, workers=args.workers, diagnose=not args.no_diagnose)
+                            scheduler=args.scheduler, workers=args.workers, diagnose=not args.no_diagnose,
+                            settings=settings)
     except KeyboardInterrupt as exc:
         how = "terminated (SIGTERM)" if isinstance(exc, Terminated) else "interrupted"
         print(f"\nsynth bulk: {how}; finished chunks are kept in {sidecar(args.out)}; "
               "rerun the same command with --resume to continue", file=sys.stderr)
         return 143 if isinstance(exc, Terminated) else 130
     if (args.capability is not None or args.ppm is not None) and rep.table is not None:
-        _capability(args, rep)
+        _capability(args, rep, settings)
     for w in rep.warnings:
         print(f"synth bulk: note: {w}", file=sys.stderr)
     said = {"screening": " (every design reported verified at full fidelity)",
             "screening-only": " (designs NOT verified at full fidelity)"}.get(args.fidelity, "")
     print(f"synth bulk: {args.portfolio} -> {rep.out} | objective {args.objective} | fidelity {args.fidelity}{said}")
-    for line in active().lines():  # the rules every row was judged by (also in the sidecar's manifest)
+    for line in settings.rules.lines():  # the rules every row was judged by (also in the sidecar's manifest)
         print(line)
     print(rep.message() + (f", {rep.apps_per_s:.3g} applications/s" if rep.computed else ""))
     from synth.bulk.summary import COLUMNS
     s = summarise(rep.columns(COLUMNS))  # the columns the summary reads, not the whole table
     print(text(s))
     if args.summary:
-        paths = write_summary(s, args.summary, rules=active())
+        with output_files(args.summary, "--summary") as stage:  # one output: every file, or none
+            paths = write_summary(s, stage, rules=settings.rules)
         print(f"summary: {len(paths)} files in {args.summary}")
     return 0
 
 
-def _capability(args, rep) -> None:
+def _capability(args, rep, settings) -> None:
     """``--capability``/``--ppm``: the production capability of each feasible application's chosen design, as
     columns of the result table (rewritten), through :func:`synth.robust.portfolio.portfolio_capability`."""
     import time
@@ -119,7 +126,7 @@ def _capability(args, rep) -> None:
     import pandas as pd
 
     from synth.robust.portfolio import COLUMNS, portfolio_capability
-    rs = robust_settings_from_args(args)
+    rs = robust_settings_from_args(args, samples="bulk --samples")
     t0 = time.perf_counter()
     table = rep.table
     inputs, parts = [], []
@@ -128,10 +135,10 @@ def _capability(args, rep) -> None:
         ok = d is not None and bool(row.get("feasible")) and all(f"part_{k}" in row for k in PART_KEYS)
         inputs.append(d)
         parts.append({k: row[f"part_{k}"] for k in PART_KEYS} if ok else None)
-    rows = portfolio_capability(inputs, parts, settings=Settings(fidelity=args.fidelity), rs=rs,
-                                workers=args.workers or 1)
+    rows = portfolio_capability(inputs, parts, settings=settings, rs=rs,
+                                workers=min(args.workers or 1, max(1, usable_cores())))
     extra = pd.DataFrame(rows, columns=list(COLUMNS), index=table.index)
-    rep.table = pd.concat([table.drop(columns=[c for c in COLUMNS if c in table.columns]), extra], axis=1)
+    rep._table = pd.concat([table.drop(columns=[c for c in COLUMNS if c in table.columns]), extra], axis=1)
     write_table(rep.table, rep.out)
     n = sum(p is not None for p in parts)
     dt = time.perf_counter() - t0

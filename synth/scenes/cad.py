@@ -10,7 +10,10 @@ from __future__ import annotations
 
 from synth.design.result import FAIL
 from synth.cad import export_result, summary_lines
-from synth.io.saved_results import load_result
+from pathlib import Path
+
+from synth.errors import InputError, Problem
+from synth.io.saved_results import INPUTS_ACCEPTED, load_result
 
 __all__ = ["register", "add_cad_options"]
 
@@ -31,6 +34,9 @@ def register(sub) -> None:
 
 def _main(args) -> int:
     result = load_result(args.result, "result")  # the gate: size, encoding, shape, carried inputs
+    if args.input is None and result.get("inputs") is None:
+        raise InputError(Problem(f"inputs ({Path(args.result).name})", None,
+                                 INPUTS_ACCEPTED + "; or pass --input INPUT.yaml, the input it was made from"))
     model, checks, info = export_result(result, args.out, args.input,
                                         stl=not args.no_stl, pictures=not args.no_pictures)
     print(f"synth cad: {args.result} -> {args.out}")

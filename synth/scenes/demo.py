@@ -76,11 +76,13 @@ def _main(args) -> int:
         add_capability(r, rs)
     print(render(r, title=f"synth demo: the most standardised tensioner for {name} ({path})"))
     pictures: list = []
+    cad_failed = False
     if not args.no_cad:
-        lines, pictures = export_cad(r, out, f"synth demo: {name}", pictures=True)
-        print("\n" + "\n".join(lines))
+        cad = export_cad(r, out, f"synth demo: {name}", what="--out")
+        pictures, cad_failed = cad.pictures, cad.failed
+        print("\n" + "\n".join(cad.lines))
     if not args.no_report:
         rep = make_report(r, out, show_progress=False, cad=pictures, cad_pictures=False, source_name=str(path),
                           application=name)
         print(f"\nreport: {rep['html']} and {rep['xlsx']}")
-    return r.exit_code
+    return 1 if cad_failed else r.exit_code

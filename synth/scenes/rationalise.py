@@ -15,7 +15,11 @@ chunks); ``synthetic:N[:SEED]`` gives illustrative data of the same shape.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from synth.errors import InputError, Problem
+from synth.io.limits import check_count
+from synth.io.outputs import output_files
 from synth.platform.data import FAMILIES
 from synth.report.progress import Progress, phase
 
@@ -56,7 +60,7 @@ def register(sub) -> None:
     p.add_argument("--solver", default="highs", choices=["highs", "scip"])
     p.add_argument("--tradeoff", default="margin", choices=["margin", "cost", "none"],
                    help="trade-off curve: platform size against worst margin or total cost")
-    p.add_argument("--points", type=int, default=5, help="points of the trade-off curve")
+    p.add_argument("--points", type=int, default=5, help="points of the trade-off curve (2 to 50)")
     p.add_argument("--fidelity", default="full", choices=["full", "screening", "screening-only"],
                    help="model fidelity of the feasibility data (full: the design scenes' default; screening: the "
                         "options the closed forms pass, judged at full fidelity; screening-only: unverified)")
@@ -75,11 +79,13 @@ def _main(args) -> int:
     from synth.platform.producer import load_feasibility
     from synth.platform.rationalise import rationalise, tradeoff
     caps = parse_max_variants(args.max_variants)
-    if args.points < 2:
-        raise InputError(Problem("--points", args.points, "a whole number >= 2"))
+    check_count("rationalise --points", args.points)
     from synth.design.evaluate import Settings
-    if args.workers is not None and args.workers < 1:
-        raise InputError(Problem("--workers", args.workers, "a whole number >= 1"))
+    from synth.bulk.run import usable_cores
+    if args.workers is not None:  # a local cluster: no more worker processes than cores
+        check_count("--workers", args.workers, hi=None if args.scheduler else max(1, usable_cores()))
+    if not 0 < args.time_limit <= 86_400:
+        raise InputError(Problem("--time-limit", args.time_limit, "seconds in (0, 86400] per MILP solve"))
     engine = "dask" if args.scheduler else args.engine
     with Progress(total=None, desc="synth rationalise: feasibility") as bar:
         bar.update(0, "running")
@@ -98,7 +104,8 @@ def _main(args) -> int:
             rows = tradeoff(pf, args.tradeoff, points=args.points, time_limit=args.time_limit,
                             progress=lambda done, total: bar.update(done - bar.n))
     r.tradeoff = rows
-    paths = write_all(pf, r, args.out, rows, args.tradeoff)
+    with output_files(args.out, "--out") as stage:  # one output: every file, or none
+        paths = [Path(args.out) / q.relative_to(stage) for q in write_all(pf, r, stage, rows, args.tradeoff)]
     p = price_of_standardisation(pf, r)
     print(f"synth rationalise: {p['applications_served']} of {len(r.records)} applications served by "
           f"{r.n_parts} distinct parts (union of per-application optima: {p['parts_union_of_optima']}); "

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from synth.scenes._options import add_design_options, add_robust_options, load_saved_result
 from synth.scenes._options import robust_settings_from_args, settings_from_args, synthesise
-from synth.io.outputs import json_text, output_file, output_folder, write_text
+from synth.io.outputs import json_text, output_file, output_files, write_text
 from synth.report.robust import capability_rows, histogram_png, HISTOGRAM_TITLES
 
 __all__ = ["register", "robust_result"]
@@ -46,9 +46,8 @@ def robust_result(source, args):
     rs = robust_settings_from_args(args, default_capability=1.33)
     src = Path(source)
     if _is_result_file(src):
-        saved = load_saved_result(src, "input")
-        fields = set(Settings.__dataclass_fields__)
-        settings = Settings(**{k: v for k, v in (saved.settings or {}).items() if k in fields})
+        saved = load_saved_result(src, "input", needs_inputs=True)  # re-verified: its inputs are needed
+        settings = Settings.from_saved(saved.settings, saved.rules)  # the result's own configuration
         d = schema.validate({k: v for k, v in (saved.inputs or {}).items() if v is not None})
         r = verify(d, saved.parts, settings, status=saved.status, solver=saved.solver, notes=saved.notes)
         r.objective, r.objectives, r.stats = saved.objective, saved.objectives, saved.stats
@@ -85,13 +84,13 @@ def _main(args) -> int:
     if out is not None and r.robust.get("checks"):
         import pandas as pd
         from synth.bulk.portfolio import write_table
-        output_folder(out)
-        write_text(out / "capability.json", json_text(r.robust, indent=2))
-        write_table(pd.DataFrame(capability_rows(r.robust)), out / "capability.csv")
-        for key, values in (r.robust.get("histograms") or {}).items():
-            title, unit = HISTOGRAM_TITLES.get(key, (key, ""))
-            with output_file(out / f"hist_{key}.png") as tmp:
-                tmp.write_bytes(histogram_png(values, (r.robust.get("limits") or {}).get(key), title, unit))
+        with output_files(out, "--out") as stage:  # one output: every file, or none
+            write_text(stage / "capability.json", json_text(r.robust, indent=2))
+            write_table(pd.DataFrame(capability_rows(r.robust)), stage / "capability.csv")
+            for key, values in (r.robust.get("histograms") or {}).items():
+                title, unit = HISTOGRAM_TITLES.get(key, (key, ""))
+                with output_file(stage / f"hist_{key}.png") as tmp:
+                    tmp.write_bytes(histogram_png(values, (r.robust.get("limits") or {}).get(key), title, unit))
         print(f"\nwritten: {out / 'capability.json'}, {out / 'capability.csv'} and the histograms")
     if r.exit_code != 0:
         return r.exit_code

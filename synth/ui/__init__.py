@@ -1,10 +1,14 @@
 """``synth ui``: a local web application for the design loop (NiceGUI), on the public API only.
 
 * :mod:`synth.ui.form` - the design input as a form generated from :mod:`synth.schema`;
-* :mod:`synth.ui.session` - one design's state: input, current design, result, its files;
+* :mod:`synth.ui.session` - one design's state: input, design rules, current design, result, its files;
 * :mod:`synth.ui.portfolio` - a portfolio's screening, summary and platform;
 * :mod:`synth.ui.views` - the result's HTML fragments (the report's rows, the verdict palette);
-* :mod:`synth.ui.app` - the NiceGUI pages.
+* :mod:`synth.ui.app` - the NiceGUI pages;
+* :mod:`synth.ui.guard` - which requests the server answers (Host, Origin, token, body size);
+* :mod:`synth.ui.uploads` - files received as they stream, their size and name checked;
+* :mod:`synth.ui.jobs` - the long work in threads that end with the server;
+* :mod:`synth.ui.messages` - every error a message in the page, one line in the server's output.
 
 :func:`serve` starts the server (``synth ui``); NiceGUI is the optional dependency ``synth[ui]``.
 Why NiceGUI: ``docs/sections/ui.md`` (measured by ``benchmarks/bench_ui_frameworks.py``).
@@ -18,18 +22,28 @@ __all__ = ["serve", "LOCAL_HOSTS"]
 
 LOCAL_HOSTS = ("127.0.0.1", "localhost", "::1")
 
+#: seconds the server waits for open requests when it stops (SIGTERM, Ctrl-C) before it ends them
+STOP_GRACE_S = 1.0
 
-def serve(values: dict, source: str, *, host: str = "127.0.0.1", port: int = 8080, root: str | Path | None = None) -> None:
-    """Serve the pages on ``host:port`` until interrupted; ``values``: the design input the design page opens."""
+
+def serve(values: dict, source: str, *, host: str = "127.0.0.1", port: int = 8080, root: str | Path | None = None,
+          rules=None, policy=None) -> None:
+    """Serve the pages on ``host:port`` until interrupted; ``values``: the design input the design page opens,
+    ``rules`` its design rules (:class:`synth.design.rules.Rules`), ``policy`` what the server accepts
+    (:class:`synth.ui.guard.Policy`; default: :meth:`~synth.ui.guard.Policy.of` ``host, port``, with a new token
+    when ``host`` is beyond the loopback)."""
     import shutil
     import tempfile
 
     from nicegui import app, ui
 
     from synth.ui.app import setup
+    from synth.ui.guard import Policy
+    policy = policy or Policy.of(host, port)
     folder = Path(root) if root else Path(tempfile.mkdtemp(prefix="synth-ui-"))
-    setup(values, source, host=host, port=port, root=folder)
+    setup(values, source, policy=policy, root=folder, rules=rules)
     if root is None:  # the uploads, 3D models and reports of every tab: gone with the server
         app.on_shutdown(lambda: shutil.rmtree(folder, ignore_errors=True))
     ui.run(host=host, port=port, title="synth", reload=False, show=False, show_welcome_message=False,
-           uvicorn_logging_level="warning", favicon="⚙", tailwind=False)  # Quasar classes only: no Tailwind runtime
+           uvicorn_logging_level="warning", favicon="⚙", tailwind=False,  # Quasar classes only: no Tailwind runtime
+           timeout_graceful_shutdown=STOP_GRACE_S)

@@ -12,23 +12,34 @@ page), and the platform rationalisation.
 
 Everything the page loads comes from this server: NiceGUI ships Vue, Quasar, three.js and its fonts;
 the graphs are PNG data, the 3D parts and downloads are files under the server's own folder.
+
+The server trusts nothing it did not serve (:mod:`synth.ui.guard`: Host, Origin, token, body size); files
+are received as they stream (:mod:`synth.ui.uploads`); the long work runs in threads that end with the server
+(:mod:`synth.ui.jobs`); every error, and every event the page sends that is not one it could send, becomes a
+message in the page (:mod:`synth.ui.messages`), never a traceback.
 """
 
 from __future__ import annotations
 
-import asyncio
 import base64
 import html
+import inspect
+import logging
+import math
 import secrets
+import shutil
 import tempfile
 import threading
 from pathlib import Path
 
-from nicegui import app, run, ui
+from nicegui import app, background_tasks, ui
 
 from synth import schema
-from synth.errors import InputError
-from synth.ui import form, views
+from synth.errors import InputError, Problem
+from synth.io.limits import LIMITS, short
+from synth.ui import form, jobs, uploads, views
+from synth.ui.guard import BODY_LIMIT, Guard, Policy, is_loopback
+from synth.ui.messages import message_of, quiet_tracebacks
 from synth.ui.portfolio import PortfolioSession
 from synth.ui.session import FIDELITIES, OBJECTIVES, DesignSession
 from synth.report.html import digest_html
@@ -63,17 +74,71 @@ _HANDOFF: dict[str, tuple[dict, str]] = {}
 
 _DRAW = threading.Lock()  # matplotlib's pyplot is not thread-safe: one drawing job at a time, whatever the tab
 
+#: the largest design input a page opens: the Excel template's limit (a YAML, TOML or JSON one is at most 8 MB)
+DESIGN_UPLOAD_LIMIT = max(LIMITS.workbook_bytes, LIMITS.text_input_bytes)
+#: the largest portfolio a page opens (a CSV; an .xlsx or .ods one is bounded by its unpacked size)
+PORTFOLIO_UPLOAD_LIMIT = LIMITS.portfolio_bytes
+
+_log = logging.getLogger("synth.ui")
+
 
 def _drawing(fn, *args, **kw):
-    """``fn(*args, **kw)`` holding the drawing lock (run in a worker thread by ``run.io_bound``)."""
+    """``fn(*args, **kw)`` holding the drawing lock (run in a job's thread, :func:`synth.ui.jobs.run`)."""
     with _DRAW:
         return fn(*args, **kw)
 
 
-def _refused(exc: InputError, what: str = "synth: invalid input") -> None:
-    """The problems of ``exc`` as the command line prints them, in a notification that stays until closed."""
-    ui.notify(what + ": " + "; ".join(str(p) for p in exc.problems), type="negative", multi_line=True, timeout=0,
-              close_button=True)
+def _refused(exc: BaseException, what: str = "synth: invalid input") -> None:
+    """``exc`` worded as the command line words it (:func:`synth.ui.messages.message_of`), in a notification that
+    stays until closed."""
+    if not isinstance(exc, InputError):
+        what = "synth ui"
+        _log.warning("%s", message_of(exc), exc_info=exc)
+    ui.notify(what + ": " + message_of(exc), type="negative", multi_line=True, timeout=0, close_button=True)
+
+
+def _in_page(element, work, *args) -> None:
+    """Schedule ``await work(*args)`` in ``element``'s page (a route's work shown there); an error is a message."""
+    async def task():
+        with element:
+            try:
+                await work(*args)
+            except Exception as exc:  # noqa: BLE001 - every error a message in the page
+                _refused(exc)
+    background_tasks.create(task(), name=f"synth ui: {getattr(work, '__name__', 'work')}")
+
+
+def _upload_box(label: str, accept: str, limit: int, folder: Path, what: str, done) -> "ui.upload":
+    """An upload box posting to its own streaming URL (:mod:`synth.ui.uploads`), never NiceGUI's route (which reads
+    the whole request before a handler sees it). ``done(path, name)``: a coroutine function run in the page."""
+    box = ui.upload(label=label, auto_upload=True, max_file_size=limit,
+                    on_rejected=lambda: ui.notify(f"synth: {what}: a file of at most {limit / 2**20:g} MB",
+                                                  type="negative", multi_line=True, timeout=0, close_button=True))
+    box.props(f"accept={accept} flat bordered")
+    target = uploads.Target(folder, limit, what, done=lambda path, name: _in_page(box, done, path, name),
+                            refused=lambda exc: _in_page(box, _refuse_async, exc, "synth: " + what + " refused"))
+    app.remove_route(box.props["url"])  # NiceGUI's own route for this box: nothing posts there
+    box.props["url"] = uploads.register(target)
+    box._synth_target = target  # the page holds its upload target (the registry holds it weakly)
+    return box
+
+
+async def _refuse_async(exc: InputError, what: str) -> None:
+    _refused(exc, what)
+
+
+def _count(value, field: str, hi: int) -> int:
+    """A count from a number box (NaN, 2.5, 1e300, text refused with what is accepted)."""
+    ok = (isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+          and float(value).is_integer() and 1 <= value <= hi)
+    if not ok:
+        raise InputError(Problem(field, short(value), f"an integer in [1, {hi}]"))
+    return int(value)
+
+
+def _page_errors() -> None:
+    """Every error of this page's handlers a message in the page (NiceGUI's per-page exception handler)."""
+    ui.on_exception(lambda exc: _refused(exc))
 
 
 def _png(path_or_bytes) -> str:
@@ -87,8 +152,9 @@ def _header(host: str, port: int) -> None:
         ui.link("Design", "/").classes("text-white")
         ui.link("Portfolio", "/portfolio").classes("text-white")
         ui.space()
-        where = "local only" if host in ("127.0.0.1", "localhost", "::1") else "REACHABLE FROM THE NETWORK"
-        ui.label(f"serving http://{host}:{port}/ ({where}: bound to {host})").classes("text-caption")
+        where = "local only" if is_loopback(host) else "REACHABLE FROM THE NETWORK, with its token"
+        shown = f"[{host}]" if ":" in host else host
+        ui.label(f"serving http://{shown}:{port}/ ({where}: bound to {host})").classes("text-caption")
 
 
 def _messages(el, msgs: list[str]) -> None:
@@ -110,9 +176,10 @@ def _select_value(el, options: dict, text: str):
 class DesignPage:
     """One browser tab's design page (its :class:`DesignSession` and the elements showing it)."""
 
-    def __init__(self, values: dict, source: str, root: Path, host: str, port: int):
+    def __init__(self, values: dict, source: str, root: Path, host: str, port: int, rules=None):
         workdir = Path(tempfile.mkdtemp(prefix="design-", dir=root))
-        self.root, self.s = root, DesignSession(values, source=source, workdir=workdir)
+        ui.context.client.on_delete(lambda: shutil.rmtree(workdir, ignore_errors=True))  # the tab's files
+        self.root, self.s = root, DesignSession(values, source=source, workdir=workdir, rules=rules)
         self.widgets: dict = {}
         self.graphs_seq = self.model_seq = -1
         self._loading = False
@@ -125,18 +192,22 @@ class DesignPage:
             with ui.column().classes("q-pa-sm").style(f"width:66%;{pane}"):
                 self._results()
         if self.s.input is not None:
-            self.s.synthesise()
+            try:
+                self.s.synthesise()
+            except InputError as exc:
+                _refused(exc)
         self.show_problems()
         self.show_result()
 
     # --- the form -------------------------------------------------------------------------------------------
     def _form(self) -> None:
         with ui.row().classes("items-center"):
-            ui.upload(label="Open an input (YAML, TOML, JSON, Excel)", auto_upload=True, on_upload=self.on_upload) \
-                .props("accept=.yaml,.yml,.toml,.json,.xlsx,.ods flat bordered").classes("full-width")
+            _upload_box("Open an input (YAML, TOML, JSON, Excel)", ".yaml,.yml,.toml,.json,.xlsx,.ods",
+                        DESIGN_UPLOAD_LIMIT, self.s.workdir, "input file", self.on_file).classes("full-width")
             ui.button("Save YAML", icon="download", on_click=self.save_yaml).props("outline dense")
             ui.button("Excel template", icon="grid_on", on_click=self.save_template).props("outline dense")
         self.source_label = ui.label().classes("text-caption")
+        self.rules_label = ui.label().classes("text-caption").props("data-testid=rules")
         self.other_box = ui.label().classes("text-negative text-caption")
         for section, fields in form.sections():
             with ui.expansion(section, value=True).classes("full-width").props("dense header-class=text-weight-bold"):
@@ -177,6 +248,8 @@ class DesignPage:
             _messages(el, self.s.problems.get(name, []))
         self.other_box.text = "; ".join(self.s.other_problems)
         self.source_label.text = f"input: {self.s.source}" if self.s.source else ""
+        lines = self.s.rule_lines()
+        self.rules_label.text = (lines[0] + ": " + "; ".join(x.strip() for x in lines[1:])) if lines else ""
 
     def on_edit(self, name: str, value) -> None:
         if self._loading:
@@ -190,16 +263,21 @@ class DesignPage:
                                 "valid input")
             self.status.classes(replace="text-negative")
 
-    async def on_upload(self, e) -> None:
-        name = Path(e.file.name).name or "input"
-        path = self.s.workdir / f"upload-{secrets.token_hex(4)}-{name}"
-        await e.file.save(path)
+    async def on_file(self, path: Path, name: str) -> None:
+        """An input file received (:mod:`synth.ui.uploads`): read it (values and design rules), then synthesise."""
         try:
-            self.s.load(path)
+            values, rules = await jobs.run(self.s.read, path)
         except InputError as exc:
             _refused(exc)
             return
-        self.s.source = name
+        finally:
+            shutil.rmtree(path.parent, ignore_errors=True)  # read: the copy is not kept
+        if self.s.open(values, rules, name):
+            self.status.text = "synthesising..."
+            try:
+                await jobs.run(self.s.synthesise)
+            except InputError as exc:
+                _refused(exc)
         self.fill_form()
         self.show_problems()
         self.show_result()
@@ -213,13 +291,16 @@ class DesignPage:
         except InputError as exc:
             _refused(exc, "the template needs a valid input")
             return
+        if not self.s.rules.empty():
+            ui.notify("the Excel template holds no design rules: " + (self.s.rules.name or "the input's rules")
+                      + " are not in it (Save YAML keeps them)", type="warning", multi_line=True)
         ui.download.file(path)
 
     # --- the result ------------------------------------------------------------------------------------------
     def _results(self) -> None:
         with ui.row().classes("items-center"):
             ui.select(list(OBJECTIVES), value=self.s.objective, label="objective",
-                      on_change=lambda e: setattr(self.s, "objective", e.value)).props("dense").style("width:9em")
+                      on_change=self.on_objective).props("dense").style("width:9em")
             ui.select(list(FIDELITIES), value=self.s.fidelity, label="fidelity",
                       on_change=self.on_fidelity).props("dense").style("width:9em")
             ui.button("Synthesise", icon="auto_fix_high", on_click=self.on_synthesise).props("data-testid=synthesise")
@@ -278,9 +359,9 @@ class DesignPage:
         self.seq.props["data-seq"] = str(self.s.seq)
         self.seq.update()
         if self.tab == GRAPHS:  # drawn for the tab in view only: an edit stays a 5 ms round trip
-            asyncio.ensure_future(self.draw_graphs())
+            _in_page(self.graphs, self.draw_graphs)
         elif self.tab == MODEL:
-            asyncio.ensure_future(self.draw_model())
+            _in_page(self.model_note, self.draw_model)
 
     async def on_tab(self, e) -> None:
         self.tab = e.value
@@ -289,18 +370,27 @@ class DesignPage:
         elif self.tab == MODEL:
             await self.draw_model()
 
+    def on_objective(self, e) -> None:
+        if e.value not in OBJECTIVES:  # a value no option of the drop-down sends
+            e.sender.value = self.s.objective
+            raise InputError(Problem("objective", short(e.value), "one of " + ", ".join(OBJECTIVES)))
+        self.s.objective = e.value
+
     async def on_fidelity(self, e) -> None:
+        if e.value not in FIDELITIES:
+            e.sender.value = self.s.fidelity
+            raise InputError(Problem("fidelity", short(e.value), "one of " + ", ".join(FIDELITIES)))
         self.s.fidelity = e.value
         if self.s.input is not None and self.s.result is not None:
             self.s.verify()
             self.show_result()
 
     async def _api(self, fn, *args) -> bool:
-        """``fn(*args)`` in a worker thread; an :class:`InputError` is shown as the command line words it."""
+        """``fn(*args)`` in a job's thread; an error is shown as the command line words it."""
         try:
-            await run.io_bound(fn, *args)
+            await jobs.run(fn, *args)
             return True
-        except InputError as exc:
+        except Exception as exc:  # noqa: BLE001 - every error a message in the page
             _refused(exc)
             return False
 
@@ -317,7 +407,7 @@ class DesignPage:
         if r is None or seq == self.graphs_seq:
             return
         self.graphs_seq = seq
-        graphs, skipped = await run.io_bound(_drawing, build_graphs, r, show_progress=False)
+        graphs, skipped = await jobs.run(_drawing, build_graphs, r, show_progress=False)
         if seq != self.s.seq:
             return
         self.graphs.clear()
@@ -337,7 +427,7 @@ class DesignPage:
             return
         self.model_seq = seq
         self.model_note.text = "building the 3D model..."
-        files = await run.io_bound(_drawing, self.s.cad)
+        files = await jobs.run(_drawing, self.s.cad)
         if seq != self.s.seq:
             return
         rel = files["folder"].relative_to(self.root).as_posix()
@@ -365,9 +455,9 @@ class DesignPage:
                                spinner=True, timeout=None)
         try:
             if kind == "step":
-                path = (await run.io_bound(_drawing, self.s.cad))["step"]
+                path = (await jobs.run(_drawing, self.s.cad))["step"]
             else:
-                files = await run.io_bound(_drawing, self.s.report, kind == "pdf")
+                files = await jobs.run(_drawing, self.s.report, kind == "pdf")
                 path = files.get(kind)
                 if not path or not Path(path).is_file():
                     ui.notify(files.get("pdf_note") or f"no {kind} written", type="warning")
@@ -385,16 +475,23 @@ def _stem(source: str) -> str:
 class PortfolioPage:
     """One browser tab's portfolio page."""
 
+    #: the most applications the sample box makes
+    SAMPLE_MAX = 100_000
+
     def __init__(self, root: Path, host: str, port: int):
-        self.p = PortfolioSession(Path(tempfile.mkdtemp(prefix="portfolio-", dir=root)))
+        workdir = Path(tempfile.mkdtemp(prefix="portfolio-", dir=root))
+        ui.context.client.on_delete(lambda: shutil.rmtree(workdir, ignore_errors=True))  # the tab's files
+        self.p = PortfolioSession(workdir)
         self.done = (0, 0)
+        self._rows: list[dict] = []
         _header(host, port)
         with ui.column().classes("full-width q-pa-md synth-ui"):
             with ui.row().classes("items-center full-width"):
-                ui.upload(label="Open a portfolio (CSV, Excel, .ods, Parquet)", auto_upload=True,
-                          on_upload=self.on_upload).props("accept=.csv,.xlsx,.xlsm,.ods,.parquet flat bordered")
+                _upload_box("Open a portfolio (CSV, Excel, .ods, Parquet)", ".csv,.xlsx,.xlsm,.ods,.parquet",
+                            PORTFOLIO_UPLOAD_LIMIT, workdir, "portfolio", self.on_file)
                 ui.label("or")
-                self.n = ui.number("applications", value=200, min=1, max=100000, precision=0).style("width:9em")
+                self.n = ui.number("applications", value=200, min=1, max=self.SAMPLE_MAX, precision=0) \
+                    .style("width:9em")
                 ui.button("Synthetic sample", on_click=self.on_sample).props("outline")
             self.loaded = ui.label().props("data-testid=loaded")
             with ui.row().classes("items-center"):
@@ -424,22 +521,27 @@ class PortfolioPage:
     def _loaded(self, n: int) -> None:
         self.loaded.text = f"{n} applications from {self.p.source}"
         self.share.text = ""
-        self.table.rows = []
+        self.table.rows = self._rows = []
         self.plots.clear()
         self.platform.content = ""
 
-    async def on_upload(self, e) -> None:
-        name = Path(e.file.name).name or "portfolio.csv"
-        path = self.p.workdir / f"upload-{secrets.token_hex(4)}-{name}"
-        await e.file.save(path)
+    async def on_file(self, path: Path, name: str) -> None:
+        """A portfolio received (:mod:`synth.ui.uploads`); the previous one's file is removed (the platform reads
+        the file of the portfolio in view)."""
+        old = self.p.path
         try:
-            self._loaded(await run.io_bound(self.p.load, path, name))
+            self._loaded(await jobs.run(self.p.load, path, name))
         except InputError as exc:
+            shutil.rmtree(path.parent, ignore_errors=True)
             _refused(exc, "synth: invalid portfolio")
+            return
+        if old is not None and old.parent.name.startswith("upload-") and old.parent != path.parent:
+            shutil.rmtree(old.parent, ignore_errors=True)
 
     async def on_sample(self) -> None:
         try:
-            self._loaded(await run.io_bound(self.p.sample, int(self.n.value or 0)))
+            n = _count(self.n.value, "applications", self.SAMPLE_MAX)
+            self._loaded(await jobs.run(self.p.sample, n))
         except InputError as exc:
             _refused(exc)
 
@@ -450,33 +552,42 @@ class PortfolioPage:
         if self.p.table is None:
             ui.notify("open a portfolio or make a sample first", type="warning")
             return
+        fidelity = self.fidelity.value
+        if fidelity not in FIDELITIES:
+            raise InputError(Problem("fidelity", short(fidelity), "one of " + ", ".join(FIDELITIES)))
         self.run_button.disable()
         self.done = (0, len(self.p.table))
         try:
-            await run.io_bound(self.p.run, self._progress, fidelity=self.fidelity.value)
+            await jobs.run(self.p.run, self._progress, fidelity=fidelity, check=jobs.check)
+            pngs = await jobs.run(_drawing, self.p.plots)
+        except Exception as exc:  # noqa: BLE001 - every error a message in the page
+            _refused(exc)
+            return
         finally:
             self.run_button.enable()
         self._tick()
         o = self.p.summary.overall
         self.share.text = (f"feasible share: {100 * o['feasible_share']:.1f} % ({o['feasible']} of {o['evaluated']} "
                            f"evaluated; {o['input_errors']} input errors)")
-        pngs = await run.io_bound(_drawing, self.p.plots)
         self.plots.clear()
         with self.plots:
             for p in pngs:
                 ui.image(_png(p)).style("width:48%").props(f"alt={p.stem}")
         rows, cols = self.p.rows()
         self.table.columns = [{"name": c, "label": c, "field": c, "sortable": True, "align": "left"} for c in cols]
-        self.table.rows = rows
+        self.table.rows = self._rows = rows
 
     def on_row(self, e) -> None:
-        row = e.args[1] if isinstance(e.args, list) and len(e.args) > 1 else {}
-        i = int(row.get("#", -1))
-        if i < 0:
-            return
+        """A row clicked: ``e.args`` is Quasar's ``[event, row, index]``; the row's ``#`` names the application
+        (anything else the page could not have sent is refused with what is accepted)."""
+        args = e.args
+        row = args[1] if isinstance(args, list) and len(args) > 1 else None
+        if not isinstance(row, dict):
+            raise InputError(Problem("row", short(args), "a row of the table, as the page sends a click"))
+        i = self.p.row(row.get("#"))
         token = secrets.token_urlsafe(8)
-        label = row.get("application_id") or f"row {i + 1}"
-        _HANDOFF[token] = (self.p.application(i), f"{self.p.source}: {label}")
+        label = self._rows[i].get("application_id") if i < len(self._rows) else None
+        _HANDOFF[token] = (self.p.application(i), f"{self.p.source}: {label or f'row {i + 1}'}")
         ui.navigate.to(f"/?open={token}")
 
     async def on_rationalise(self) -> None:
@@ -486,8 +597,8 @@ class PortfolioPage:
         self.rat_button.disable()
         self.done = (0, 1)
         try:
-            section = await run.io_bound(_drawing, self.p.rationalise, self._progress)
-        except InputError as exc:
+            section = await jobs.run(_drawing, self.p.rationalise, self._progress)
+        except Exception as exc:  # noqa: BLE001 - every error a message in the page
             _refused(exc, "synth rationalise")
             return
         finally:
@@ -495,16 +606,132 @@ class PortfolioPage:
         self.platform.content = section
 
 
-def setup(values: dict, source: str, *, host: str, port: int, root: Path) -> None:
-    """Register the pages; ``values``/``source``: the input the design page opens with."""
+def _page(build) -> None:
+    """Build a page; an error is a message in it, not NiceGUI's error page with a traceback in the log."""
+    _page_errors()
+    try:
+        build()
+    except Exception as exc:  # noqa: BLE001 - every error a message in the page
+        ui.label("synth ui could not build this page: " + message_of(exc)).classes("text-negative q-pa-md")
+        _log.warning("page: %s", message_of(exc), exc_info=exc)
+
+
+def setup(values: dict, source: str, *, policy: Policy, root: Path, rules=None) -> None:
+    """Register the pages, the upload route and the server's guard; ``values``/``source``/``rules``: the input the
+    design page opens with."""
     app.add_static_files(FILES_URL, root)
     ui.add_css(_CSS, shared=True)
+    app.add_route(uploads.UPLOAD_URL + "/{key}", _upload_route, methods=["POST"])
+    app.add_middleware(Guard, policy=policy, body_limit=lambda path: uploads.body_limit(path) or BODY_LIMIT)
+    from nicegui import core
+    core.sio.eio.cors_allowed_origins = policy.origins()  # NiceGUI's is "*": any site's page
+    _check_socket_messages(core.sio)
+    quiet_tracebacks()
+    app.on_shutdown(jobs.STOP.set)
+    host, port = policy.host, policy.port
 
     @ui.page("/", title="synth: design")
     def design_page(open: str | None = None) -> None:  # noqa: A002 - the query parameter's name
-        v, src = _HANDOFF.get(open or "", (values, source))
-        DesignPage(v, src, root, host, port)
+        handed = _HANDOFF.get(open or "")  # a portfolio's application: its own input, no rules
+        v, src, r = (*handed, None) if handed else (values, source, rules)
+        _page(lambda: DesignPage(v, src, root, host, port, rules=r))
 
     @ui.page("/portfolio", title="synth: portfolio")
     def portfolio_page() -> None:
-        PortfolioPage(root, host, port)
+        _page(lambda: PortfolioPage(root, host, port))
+
+
+async def _upload_route(request):
+    from starlette.responses import PlainTextResponse
+    status, text = await uploads.receive(request)
+    return PlainTextResponse(text, status_code=status, headers={} if status == 200 else {"connection": "close"})
+
+
+# --- the socket: every message the page sends is one it could send ---------------------------------------------------
+_SOCKET_EVENTS = ("connect", "handshake", "event", "javascript_response", "ack", "log")
+
+
+def _check_socket_messages(sio) -> None:
+    """Wrap NiceGUI's socket.io handlers: a message that is not one its page could send (a wrong shape, an unknown
+    element or listener, an argument no widget of that kind sends) is refused with a message in the page it names,
+    and one line in the server's output, never a traceback."""
+    handlers = sio.handlers.setdefault("/", {})
+    for name in _SOCKET_EVENTS:
+        h = handlers.get(name)
+        if h is not None and not getattr(h, "_synth_checked", False):
+            handlers[name] = _checked(name, h)
+
+
+def _checked(name: str, handler):
+    import socketio
+
+    async def checked(sid, *args):
+        msg = args[0] if args else None
+        try:
+            if name == "event":
+                _check_event(msg)
+            out = handler(sid, *args)
+            return (await out) if inspect.isawaitable(out) else out
+        except socketio.exceptions.ConnectionRefusedError:
+            raise
+        except Exception as exc:  # noqa: BLE001 - a crafted message: refused, said in the page
+            text = message_of(exc) if isinstance(exc, InputError) else f"{type(exc).__name__}: {short(str(exc), 200)}"
+            _log.warning("refused a %r message from a page: %s", name, text)
+            _tell(msg, f"synth ui refused a message from this page ({name}): {text}")
+            if name == "connect":
+                raise socketio.exceptions.ConnectionRefusedError("refused") from None
+            return False if name == "handshake" else None
+    checked._synth_checked = True
+    return checked
+
+
+def _tell(msg, text: str) -> None:
+    from nicegui import Client
+    cid = msg.get("client_id") if isinstance(msg, dict) else None
+    client = Client.instances.get(cid) if isinstance(cid, str) else None
+    if client is not None and not client.is_deleted:
+        with client:
+            ui.notify(text, type="negative", multi_line=True, timeout=0, close_button=True)
+
+
+def _check_event(msg) -> None:
+    """An element event as NiceGUI's page sends it: ``{"id", "client_id", "listener_id", "args": [JSON text]}`` for a
+    listener the element has, with arguments its kind of widget sends."""
+    import json
+
+    from nicegui import Client
+    if not isinstance(msg, dict) or not isinstance(msg.get("client_id"), str):
+        raise InputError(Problem("event", short(msg), "a mapping with the page's client_id"))
+    client = Client.instances.get(msg["client_id"])
+    if client is None:
+        return  # NiceGUI ignores it
+    if isinstance(msg.get("id"), bool) or not isinstance(msg.get("id"), int):
+        raise InputError(Problem("event id", short(msg.get("id")), "the id of an element of the page"))
+    el = client.elements.get(msg["id"])
+    if el is None:
+        return  # an element just removed (a notification dismissed, a plot replaced): NiceGUI ignores its events
+    listener = getattr(el, "_event_listeners", {}).get(msg.get("listener_id"))
+    if listener is None:
+        raise InputError(Problem("event listener_id", short(msg.get("listener_id")), "a listener of that element"))
+    raw = msg.get("args", [])
+    if not isinstance(raw, list) or not all(a is None or isinstance(a, str) for a in raw):
+        raise InputError(Problem("event args", short(raw), "a list of JSON texts"))
+    try:
+        args = [None if a is None else json.loads(a) for a in raw]
+    except ValueError:
+        raise InputError(Problem("event args", short(raw), "a list of JSON texts")) from None
+    value = args[0] if len(args) == 1 else args
+    if listener.type.startswith("update:") and isinstance(el, ui.select):
+        ok = value is None or isinstance(value, str) or (
+            isinstance(value, dict) and isinstance(value.get("value"), int) and not isinstance(value["value"], bool)
+            and 0 <= value["value"] < len(el.options))
+        if not ok:
+            raise InputError(Problem(f"{el.props.get('label') or 'drop-down'}", short(value),
+                                     f"an option of the drop-down (index 0 to {len(el.options) - 1})"))
+    elif listener.type.startswith("update:") and isinstance(el, ui.number):
+        try:
+            ok = value is None or value == "" or math.isfinite(float(value))
+        except (TypeError, ValueError):
+            ok = False
+        if not ok:
+            raise InputError(Problem(f"{el.props.get('label') or 'number'}", short(value), "a finite number"))

@@ -37,15 +37,26 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
-def start_server(port: int, *args: str, env: dict | None = None) -> tuple[subprocess.Popen, str]:
-    """``python -m synth ui --port PORT ARGS`` as a process; returns it and the first line it printed."""
+def start_server(port: int, *args: str, env: dict | None = None,
+                 output: Path | None = None) -> tuple[subprocess.Popen, str]:
+    """``python -m synth ui --port PORT ARGS`` as a process; returns it and the first line it printed.
+
+    ``output``: a file the server's output (stdout and stderr) goes to, to be read while it runs (default: a pipe).
+    """
     e = {**os.environ, **(env or {}), "PYTHONUNBUFFERED": "1"}
     e["PYTHONPATH"] = str(PACKAGE_HOME) + os.pathsep + e.get("PYTHONPATH", "")
     e.pop("PYTEST_CURRENT_TEST", None)  # NiceGUI would take its own test mode (and port) for a test's child
-    proc = subprocess.Popen([sys.executable, "-m", "synth", "ui", "--port", str(port), *args], env=e,
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    line = proc.stdout.readline().strip()
-    return proc, line
+    cmd = [sys.executable, "-m", "synth", "ui", "--port", str(port), *args]
+    if output is None:
+        proc = subprocess.Popen(cmd, env=e, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        return proc, proc.stdout.readline().strip()
+    with open(output, "w", encoding="utf-8") as f:
+        proc = subprocess.Popen(cmd, env=e, stdout=f, stderr=subprocess.STDOUT, text=True)
+    deadline = time.perf_counter() + 60
+    while "\n" not in Path(output).read_text(encoding="utf-8") and proc.poll() is None \
+            and time.perf_counter() < deadline:
+        time.sleep(0.02)
+    return proc, Path(output).read_text(encoding="utf-8").split("\n", 1)[0].strip()
 
 
 def stop_server(proc: subprocess.Popen) -> None:

@@ -123,11 +123,14 @@ def problems_by_field(exc: InputError) -> tuple[dict[str, list[str]], list[str]]
     return by_field, other
 
 
-def to_yaml(values: dict[str, Any], source: str = "") -> str:
-    """The input as a YAML design-input file (fields in the schema's order), loadable by every scene."""
+def to_yaml(values: dict[str, Any], source: str = "", rules=None) -> str:
+    """The input as a YAML design-input file (fields in the schema's order, then the design ``rules:`` section when
+    ``rules`` (:class:`synth.design.rules.Rules`) has any), loadable by every scene."""
     order = [f.name for f in schema.FIELDS]
     data = {k: values[k] for k in order if values.get(k) is not None}
     data.update({k: v for k, v in values.items() if k not in data and v is not None})
+    if rules is not None and not rules.empty():
+        data["rules"] = {k: v for k, v in rules.as_dict().items() if v and k != "source"}
     source = " ".join(str(source).split())  # one comment line, whatever the file name holds
     head = "# synth design input" + (f" (from {source})" if source else "") + ", saved by synth ui\n"
     return head + yaml.safe_dump(data, sort_keys=False, allow_unicode=True)

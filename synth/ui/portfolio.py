@@ -60,10 +60,12 @@ class PortfolioSession:
         path = write_table(sample_portfolio(n, seed=seed), self.workdir / f"sample_{n}_{seed}.csv")
         return self.load(path, f"sample of {n} (seed {seed})")
 
-    def run(self, progress=None, *, fidelity: str = "screening", slices: int = 10, min_slice: int = MIN_SLICE):
+    def run(self, progress=None, *, fidelity: str = "screening", slices: int = 10, min_slice: int = MIN_SLICE,
+            check=None):
         """Screen every application (:func:`synth.screen`); ``progress(done, total)`` after each slice.
 
-        ``slices`` slices, none smaller than ``min_slice`` applications (the last one aside)."""
+        ``slices`` slices, none smaller than ``min_slice`` applications (the last one aside); ``check()`` is called
+        before each slice (:func:`synth.ui.jobs.check`: it raises to end the screening when the server stops)."""
         import pandas as pd
 
         import synth
@@ -72,6 +74,8 @@ class PortfolioSession:
         size = max(1, min_slice, math.ceil(n / max(1, slices)))
         parts = []
         for a in range(0, n, size):
+            if check is not None:
+                check()
             parts.append(synth.screen(self.table.iloc[a:a + size], fidelity=fidelity, progress=False))
             if progress is not None:
                 progress(min(n, a + size), n)
@@ -98,6 +102,25 @@ class PortfolioSession:
                 row[k] = "" if v is None else (v if isinstance(v, (bool, int, float)) else str(v))
             out.append(row)
         return out, ["#", *cols]
+
+    def row(self, value) -> int:
+        """``value`` (what the page sent for a row) as a row of the screened table, or an
+        :class:`~synth.errors.InputError` saying what is accepted (a row number in [0, n - 1]).
+
+        >>> p = PortfolioSession()
+        >>> p.row(0)
+        Traceback (most recent call last):
+        ...
+        synth.errors.InputError: row: got 0; accepted: a row of a screened portfolio (none is screened yet)
+        """
+        from synth.errors import InputError, Problem
+        from synth.io.limits import short
+        if self.table is None or self.results is None:
+            raise InputError(Problem("row", short(value), "a row of a screened portfolio (none is screened yet)"))
+        n = len(self.results)
+        if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < n:
+            raise InputError(Problem("row", short(value), f"a row number of the table, an integer in [0, {n - 1}]"))
+        return value
 
     def application(self, i: int) -> dict:
         """The design input of row ``i`` (the portfolio's field columns, as ``synth bulk`` reads them)."""

@@ -7,6 +7,10 @@ and, when it is valid, re-verifies the current design at once; "synthesise" runs
 its design the current one. Files (the 3D model, the report) are written once per evaluated result into
 the session's own folder.
 
+The design rules of the input (its ``rules:`` section, :func:`synth.design.rules.read_rules`, as the command line
+reads them) are the session's own: every synthesis and verification gets them as its ``rules=`` argument, never
+through a process-wide setting (two tabs of one server judge under their own rules).
+
 >>> s = DesignSession(default_values(), source="default")
 >>> s.synthesise().verdict, s.result.parts["ball_bearing"]
 ('pass', '6006')
@@ -26,6 +30,7 @@ from typing import Any
 import synth
 from synth import schema
 from synth.io import documents
+from synth.design.rules import NONE, Rules, read_rules
 from synth.errors import InputError, Problem
 from synth.optimise.objectives import OBJECTIVES
 from synth.ui import form
@@ -52,9 +57,11 @@ def default_values() -> dict:
 class DesignSession:
     """The state of one design page (see the module docstring)."""
 
-    def __init__(self, values: dict | None = None, *, source: str = "", workdir: str | Path | None = None):
+    def __init__(self, values: dict | None = None, *, source: str = "", workdir: str | Path | None = None,
+                 rules: Rules | dict | None = None):
         self.texts: dict[str, str] = {f.name: "" for f in schema.FIELDS}
         self.source = source
+        self.rules: Rules = Rules.from_mapping(rules, source=f"{source}: rules") if rules else NONE
         self.objective, self.fidelity = "standard", "full"
         self.input = None
         self.problems: dict[str, list[str]] = {}
@@ -114,20 +121,33 @@ class DesignSession:
             self.verify()
         return True
 
-    def load(self, path: str | Path) -> bool:
-        """Fill the form from an input file (YAML, TOML, JSON, the Excel template); synthesise when it is valid.
-
-        A file that cannot be read raises :class:`~synth.errors.InputError` (the command line's message);
-        a readable one with bad values fills the form and marks the fields.
-        """
+    def read(self, path: str | Path) -> tuple[dict, Rules]:
+        """The values and the design rules (its ``rules:`` section; none: no rules) of an input file (YAML, TOML,
+        JSON, the Excel template), as the command line reads them; an :class:`~synth.errors.InputError` for a file
+        that cannot be read or whose rules are not valid."""
         values = documents.read_mapping(Path(path))
-        if self.set_values({k: v for k, v in values.items() if v is not None}, source=Path(path).name):
+        rules = read_rules(Path(path), "input file", section_only=True)
+        return {k: v for k, v in values.items() if v is not None}, rules
+
+    def open(self, values: dict, rules: Rules, source: str) -> bool:
+        """Take an input read by :meth:`read` (the form's values and the rules); True if it is valid."""
+        self.rules = rules
+        return self.set_values(values, source=source)
+
+    def load(self, path: str | Path) -> bool:
+        """Fill the form from an input file and take its design rules (:meth:`read`, :meth:`open`); synthesise when
+        it is valid. A readable file with bad values fills the form and marks the fields."""
+        if self.open(*self.read(path), Path(path).name):
             self.synthesise()
             return True
         return False
 
     def yaml_text(self) -> str:
-        return form.to_yaml(self.values(), self.source)
+        return form.to_yaml(self.values(), self.source, rules=self.rules)
+
+    def rule_lines(self) -> list[str]:
+        """The design rules the session judges by, in words (none: empty)."""
+        return self.rules.lines()
 
     def write_template(self, path: str | Path) -> Path:
         """The Excel input template filled with the (valid) input: ``synth template --from``."""
@@ -143,7 +163,7 @@ class DesignSession:
     def synthesise(self):
         """The optimiser's design for the input (``synth.synthesise``); it becomes the current design."""
         self._require_valid()
-        self.result = synth.synthesise(self.input, self.objective, fidelity=self.fidelity, top=TOP)
+        self.result = synth.synthesise(self.input, self.objective, fidelity=self.fidelity, top=TOP, rules=self.rules)
         self.seq += 1
         return self.result
 
@@ -152,7 +172,7 @@ class DesignSession:
         self._require_valid()
         if self.result is None or not self.result.parts:
             return self.synthesise()
-        self.result = synth.verify(self.input, self.result.parts, fidelity=self.fidelity)
+        self.result = synth.verify(self.input, self.result.parts, fidelity=self.fidelity, rules=self.rules)
         self.seq += 1
         return self.result
 

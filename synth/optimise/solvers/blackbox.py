@@ -55,6 +55,7 @@ import numpy as np
 
 from synth import catalog
 from synth.design.assessment import passes
+from synth.design.combine import combine
 from synth.design.constraints import FEAS_TOL
 from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS, Space
@@ -220,14 +221,13 @@ class Search:
         ev = self.ev
         vals = {name: ev.score_core[name] + sum(np.where(self.exact[s], self.feas_min[s][name], self.lb[s][name])
                                                 for s in SUBSYSTEMS) for name in ("standard", "cost")}
-        vals["margin"] = np.minimum.reduce([self.u_obj] + [np.where(self.exact[s], self.reach_obj[s], np.inf)
-                                                           for s in SUBSYSTEMS])
+        vals["margin"] = combine(self.u_obj, [np.where(self.exact[s], self.reach_obj[s], np.inf) for s in SUBSYSTEMS])
         return _key(self.obj, vals)
 
     def _cap(self) -> np.ndarray:
         """Per core, the upper bound of the smallest margin of a design on it: its own, and that of every
         subsystem whose every choice was evaluated on it."""
-        return np.minimum.reduce([self.u_all] + [np.where(self.exact[s], self.reach[s], np.inf) for s in SUBSYSTEMS])
+        return combine(self.u_all, [np.where(self.exact[s], self.reach[s], np.inf) for s in SUBSYSTEMS])
 
     # ------------------------------------------------------------------ the archive
     def _evaluate(self, s: str, cols: dict, rows: np.ndarray) -> SubTable:
@@ -325,8 +325,8 @@ class Search:
         vals = {name: (self.lb_total[name] - lb[name])[rows][:, None] + sc[name][None, :] for name in ("standard", "cost")}
         vals["margin"] = np.minimum(self.u_obj[rows][:, None], sub.margin)
         score = _scalar(self.obj, vals)
-        others = np.minimum.reduce([self.u_all[rows]] + [np.where(self.tried[o][rows], self.reach[o][rows], np.inf)
-                                                         for o in SUBSYSTEMS if o != s])
+        others = combine(self.u_all[rows], [np.where(self.tried[o][rows], self.reach[o][rows], np.inf)
+                                            for o in SUBSYSTEMS if o != s])
         cap = np.where(sub.available, np.minimum(others[:, None], sub.min_margin), -np.inf)
         feas = sub.feasible & self.ok_core[rows][:, None] & passes(others[:, None])
         col_best = cap.max(axis=0, initial=-np.inf)
@@ -399,9 +399,9 @@ class Search:
 
     def _design(self, ev: Evaluation, core: int, options: dict) -> dict:
         """``{standard, cost, margin, min_margin}`` of a design of the archive."""
-        margin = min([float(ev.core_margin()[core])] + [float(ev.subs[s].margin[core, options[s]]) for s in SUBSYSTEMS])
-        mmin = min([float(ev.core_min_margin()[core])] +
-                   [float(ev.subs[s].min_margin[core, options[s]]) for s in SUBSYSTEMS])
+        margin = combine(float(ev.core_margin()[core]), [float(ev.subs[s].margin[core, options[s]]) for s in SUBSYSTEMS])
+        mmin = combine(float(ev.core_min_margin()[core]),
+                       [float(ev.subs[s].min_margin[core, options[s]]) for s in SUBSYSTEMS])
         return {**ev.objective_values(core, options, margin), "min_margin": mmin}
 
     def _combine(self):

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from synth.design.evaluate import Settings
+from synth.design.combine import combine
 from synth.design.result import Result
 from synth.design.space import SUBSYSTEMS
 from synth.optimise.product import Evaluation, evaluate
@@ -92,10 +93,10 @@ def best_additive(t: Tables, tau: float = -np.inf):
 
 def max_margin(t: Tables):
     """The largest achievable objective margin over feasible designs (``-inf`` when none)."""
-    m = np.where(np.isfinite(t.core_score), t.core_margin, -np.inf)
-    for s in SUBSYSTEMS:
-        best = np.max(np.where(t.feas[s], t.margin[s], -np.inf), axis=1) if t.feas[s].shape[1] else np.full(len(m), -np.inf)
-        m = np.minimum(m, best)
+    core = np.where(np.isfinite(t.core_score), t.core_margin, -np.inf)
+    best = [np.max(np.where(t.feas[s], t.margin[s], -np.inf), axis=1) if t.feas[s].shape[1]
+            else np.full(len(core), -np.inf) for s in SUBSYSTEMS]
+    m = combine(core, best)
     return float(np.max(m)) if len(m) else -np.inf
 
 
