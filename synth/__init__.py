@@ -196,11 +196,11 @@ def verify(d: "DesignInput | str | Path | dict", parts: dict, *, rules=None, **s
     """Design ``parts`` (every part key: ``synth.design.space.PART_KEYS``, as any result's ``.parts``) checked
     for input ``d`` through every step, with the wear histories for the graphs (60 points)."""
     from synth import catalog
-    from synth.design.space import PART_KEYS
+    from synth.design.space import PART_DEFAULTS, PART_KEYS
     from synth.design.verify import verify as _verify
     from synth.errors import InputError, Problem
     s = _configure(d, rules, settings_kw)
-    missing = [k for k in PART_KEYS if k not in (parts or {})]
+    missing = [k for k in PART_KEYS if k not in (parts or {}) and k not in PART_DEFAULTS]
     if missing:
         raise InputError(Problem("parts", ", ".join(missing) + " missing", "a dict with every part key: "
                                  + ", ".join(PART_KEYS)))

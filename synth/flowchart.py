@@ -35,7 +35,7 @@ from synth.design.rules import echo
 from synth.design.settings import DEFAULT
 from synth.schema import plausibility
 from synth.design.result import NOT_VERIFIED, Check, Result, checks_of, plain
-from synth.design.space import (PART_KEYS, axial_attributes, bolt_attributes, bushing_attributes,
+from synth.design.space import (PART_DEFAULTS, PART_KEYS, axial_attributes, bolt_attributes, bushing_attributes,
                                 core_attributes, space, spring_attributes)
 from synth.design.verify import evaluate_design, inputs_of, values_of, verify
 from synth.model import ball_bearing, damping, pivot
@@ -312,7 +312,7 @@ def run(design_input, settings: Settings | None = None, parts: dict | None = Non
     """
     s = settings or DEFAULT
     if parts:
-        missing = [k for k in PART_KEYS if k not in parts]
+        missing = [k for k in PART_KEYS if k not in parts and k not in PART_DEFAULTS]
         if missing:
             raise InputError(Problem("parts", sorted(parts), "a dict with the keys " + ", ".join(PART_KEYS)))
         r = verify(design_input, dict(parts), s, status="verified", solver="flowchart", time_points=time_points,

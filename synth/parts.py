@@ -122,6 +122,8 @@ class Parts:
     bolt: Table
     bolt_head: Table                        # format x head type ("M8x1.25 hex"): dw, head size, cost factor
     bolt_class: Table
+    washer: Table                           # washers.csv: series (product_standard) x bolt diameter
+    tightening: Table                       # tightening_factors.csv: alpha_A range, what sets the preload
     plastic: dict                           # (k_wear, mu) per environment of the standard plastic material
     durability: Table
     cone_ranges: dict                       # parameter -> (min, max)
@@ -191,6 +193,10 @@ def _read_parts() -> Parts:
     cls = _table("bolt_property_classes", load("bolt_property_classes"),
                  ("rm_min_mpa", "rp02_min_mpa", "rm_min_d_gt16_mpa", "rp02_min_d_gt16_mpa", "d_max_mm",
                   "escalation_rank", "unit_cost_factor"))
+    ws = _table("washers", load("washers"), ("d_mm", "d1_mm", "d2_mm", "h_mm"),
+                strings=("product_standard",))
+    tf = _table("tightening_factors", load("tightening_factors"), ("alpha_a_min", "alpha_a_max"),
+                flags=("standard", "design_option"), strings=("preload_set_by",))
     pw = load("plastic_wear")
     std = pw[pw[pw.columns[0]].astype(str) == "PPA_CF10_AR10_PTFE"].iloc[0]
     plastic = {"k_wear_mm3_per_n_m": np.array([float(std[f"k_wear_{e}_mm3_per_n_m"]) for e in ENVIRONMENTS]),
@@ -206,8 +212,8 @@ def _read_parts() -> Parts:
         rows = fr[fr["interface"].astype(str).str.strip() == iface]
         envs = {str(e).strip(): float(m) for e, m in zip(rows["environment"], rows["mu"])}
         friction[iface] = np.array([envs.get(e, envs.get("any", np.nan)) for e in ENVIRONMENTS])
-    p = Parts(b, hub, t2, bt, limits, lengths, dp, es, mat, strength, w, bo, bh, cls, plastic, dur, cone_ranges,
-              tuple(_num(clr, c) for c in ("di_min_mm", "di_max_mm", "clearance_mm")), friction)
+    p = Parts(b, hub, t2, bt, limits, lengths, dp, es, mat, strength, w, bo, bh, cls, ws, tf, plastic, dur,
+              cone_ranges, tuple(_num(clr, c) for c in ("di_min_mm", "di_max_mm", "clearance_mm")), friction)
     p.prices = book.build(p)
     return p
 

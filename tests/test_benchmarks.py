@@ -58,5 +58,8 @@ def test_bench_blackbox_runs_and_is_reproducible(capsys):
     """The black-box benchmark's cases table at a small budget, and its seeded-reproducibility check."""
     _module("bench_blackbox").main(["--apps", "0", "--budgets", "10"])
     out = capsys.readouterr().out
-    assert "| thesis case 3 | nearest -0.0427 |" in out and "| default case | 2 / 1.734 |" in out
+    # issue 34's friction 0.10: thesis case 3's nearest design needs more spring torque for its damping window (its
+    # spring yield -6.4 %, was -4.3 % at 0.15); the default case free reaches the standard pivot class 19 with the
+    # M6 hex 12.9 on its ISO 7089 washer (1 non-standard part, 1.744 EUR: see test_control)
+    assert "| thesis case 3 | nearest -0.0641 |" in out and "| default case | 1 / 1.744 |" in out
     assert out.count("| yes |") == 4

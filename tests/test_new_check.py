@@ -99,7 +99,7 @@ def test_a_spring_check_runs_the_kernels_on_their_numpy_twin_and_binds_in_the_pl
     assert engines.spring(DEFAULT, "numba") == "numba"
     pf = feasibility([d])   # the kernels again: the step-9 checks bind
     assert {str(b) for g in pf.apps[0].option_binding["spring"] for b in g} == {
-        "spring_coil_gap", "spring_fatigue", "spring_index_max", "spring_outer_contact"}
+        "spring_coil_gap", "spring_fatigue", "spring_index_max", "spring_outer_contact", "spring_inner_contact"}
 
 
 def test_a_bolt_check_reading_the_core_is_judged_per_core_in_the_bulk_fast_path():

@@ -91,7 +91,7 @@ def test_flowchart_baseline_never_better_than_the_optimum(evaluated):
                 best = ev.objective_values(core, options, 0.0)
                 key = obj.order[0]
                 assert best[key] <= base.objectives[key] + 1e-9, (name, objective)
-    assert n_baseline >= 3   # the comparison is made on feasible baselines
+    assert n_baseline >= 2   # the comparison is made on feasible baselines (2 since the dry friction 0.10, issue 34)
 
 
 def test_cases_1_and_3_are_infeasible_for_every_solver(evaluated):

@@ -62,7 +62,8 @@ def test_resolved_bands_come_from_the_chosen_parts_catalogs(demo):
     dia = ts.rm_lookup_diameter_mm(float(wire["b_mm"]), float(wire["h_mm"]), wire["section"] == "round")
     assert band["spring_tensile_strength"][1] == pytest.approx(float(ts.material_strength_mpa(mat, dia, "max")
                                                                      - ts.material_strength_mpa(mat, dia, "min")))
-    assert band["bolt_preload"] == (-23.0, 23.0)                 # VDI 2230 guide: torque wrench, tested joint
+    # the design's tightening method (torque found on the joint, VDI 2230-1 Table A8 alpha_A 1.6): +/- 0.6/2.6
+    assert band["bolt_preload"] == pytest.approx((-100 * 0.6 / 2.6, 100 * 0.6 / 2.6))
     assert band["spring_torque"] == (-8.0, 8.0)                  # the application's spring_torque_tolerance_pct
     assert "stack_pivot" not in sc.names and ("stack_pivot", "no cone spring in the design") in sc.dropped
 
@@ -73,23 +74,28 @@ def test_ppk_of_checks_linear_in_one_normal_input_matches_the_closed_form(demo):
     proportional to it, so a margin ``m = (L - v0 (1 + t)) / L`` has ``Ppk = m0 / (3 (1 - m0) sigma_t)``."""
     d, r = demo
     base = base_of(d, r.parts, table=_only("spring_torque"))
-    cap = capability(base, RobustSettings(samples=4096), rare=False, details=False)
     sigma = 0.08 / 3.0
+    moment = capability(base, RobustSettings(samples=4096, method="moment"), rare=False, details=False)
+    pct = capability(base, RobustSettings(samples=32768), rare=False, details=False)
     for cid in ("bearing_load", "damping_upper", "bushing_p"):
         m0 = base.nominal_margin(cid)
         closed = m0 / (3.0 * (1.0 - m0) * sigma)
-        assert cap.check(cid).ppk == pytest.approx(closed, rel=0.03), cid
+        assert moment.check(cid).ppk == pytest.approx(closed, rel=0.03), cid
+        # a normal output: the percentile method (ISO 22514-2) is the moment form
+        assert pct.check(cid).ppk == pytest.approx(closed, rel=0.03), cid
+        assert not pct.check(cid).bounded
 
 
 def test_probability_of_a_linear_check_matches_the_normal_tail(demo):
     """The same linear check: P(violation) = Phi(-3 Ppk) exactly; the Monte Carlo count lies in its interval."""
     from scipy.stats import norm
     d, r = demo
-    base = base_of(d, r.parts, table=_only("spring_torque", spring_torque=40.0))
+    m0 = base_of(d, r.parts, table=_only("spring_torque")).nominal_margin("damping_upper")
+    band = 3.0 * m0 / ((1.0 - m0) * 1.75)  # the band (3 sigma) whose tail beyond the limit is ~4 %
+    base = base_of(d, r.parts, table=_only("spring_torque", spring_torque=100 * band))
     cap = capability(base, RobustSettings(samples=8192), rare=False, details=False)
     c = cap.check("damping_upper")
-    m0 = base.nominal_margin("damping_upper")
-    exact = norm.sf(m0 / ((1.0 - m0) * 0.40 / 3.0))
+    exact = norm.sf(m0 / ((1.0 - m0) * band / 3.0))
     assert c.p_lo <= exact <= c.p_hi and c.failures > 100
 
 
@@ -110,18 +116,16 @@ def test_form_importance_sampling_agrees_with_brute_force_at_1e_3():
 
 
 def test_importance_sampling_on_the_evaluator_agrees_with_brute_force(demo):
-    """The demo's bolt stress under the tightening scatter (P ~ 1e-3): importance sampling (2000 samples around
-    the design point) against 131072 Monte Carlo samples of the evaluator."""
+    """The demo's damping upper limit under a wide spring-torque band (P ~ 1e-3): importance sampling (2000 samples
+    around the design point) against 131072 Monte Carlo samples of the evaluator."""
     d, r = demo
-    # the M8x1.25 8.8 bolt the demo's design had under the illustrative costs (synth.cost now prices an M6 12.9 a
-    # little lower): the rare event this test needs, P ~ 1e-3
-    parts = {**r.parts, "bolt_format": "M8x1.25", "bolt_property_class": "8.8"}
-    base = base_of(d, parts, table=_only("bolt_preload", "spring_torque"))
+    m0 = base_of(d, r.parts, table=_only("spring_torque")).nominal_margin("damping_upper")
+    base = base_of(d, r.parts, table=_only("spring_torque", spring_torque=100 * m0 / ((1.0 - m0) * 3.09 / 3.0)))
     u = sobol_u(131072, len(base.scatter), 5)
-    m = evaluate_u(base, u, ("bolt_yield",)).margins["bolt_yield"]
+    m = evaluate_u(base, u, ("damping_upper",)).margins["damping_upper"]
     brute = float(np.mean(m < 0))
     lo, hi = clopper_pearson(int(np.sum(m < 0)), len(m))
-    res = form_is(lambda p: evaluate_u(base, p, ("bolt_yield",)).margins["bolt_yield"][:, None],
+    res = form_is(lambda p: evaluate_u(base, p, ("damping_upper",)).margins["damping_upper"][:, None],
                   len(base.scatter), n_is=2000, seed=2)[0]
     assert 3e-4 < brute < 3e-3
     assert res["p_lo"] <= hi and lo <= res["p_hi"]          # the two intervals overlap
@@ -141,19 +145,26 @@ def test_a_fixed_seed_gives_identical_results_and_another_seed_different_ones(de
 
 
 # --------------------------------------------------------------------------------------------- synthesis
-def test_robust_synthesis_skips_no_better_design(demo):
-    """With a tolerance model some catalog design meets (tight tightening and friction), the robust search's
-    design meets Ppk >= 1.33 and every cheaper nominally feasible design of the catalog misses it (each one
-    checked by the same estimator)."""
+@pytest.fixture(scope="module")
+def seated():
+    """The demo application on a 12 mm seat: with the made joint (a tightening window of 1.6) its bolts can bear
+    their top preload (on the default 11 mm seat none can: tests/test_capability_independent.py)."""
+    return dataclasses.replace(default_input(), bolt_head_contact_external_diameter_mm=12.0)
+
+
+def test_robust_synthesis_skips_no_better_design(seated):
+    """The robust search's design meets Ppk >= 1.33 and every cheaper nominally feasible design of the catalog
+    misses it (each one checked by the same estimator, with the made joint of the production view); a wider
+    bushing-friction band (+/-18 %) makes the target move the answer."""
     from synth.optimise.product import evaluate
     from synth.optimise.solvers.enumerate import tables
     from synth.robust import synthesis as S
-    d, _ = demo
-    ev = evaluate(d)
+    from synth.robust.sampling import production
+    d = seated
+    ev = evaluate(d, production(Settings()))
+    rs = RobustSettings(capability=1.33, samples=2048)
     tab = tolerances()
-    tab["bolt_preload"] = dataclasses.replace(tab["bolt_preload"], band=5.0, band_from="")
-    tab["pivot_bushing_friction"] = dataclasses.replace(tab["pivot_bushing_friction"], band=5.0)
-    rs = RobustSettings(capability=1.33, samples=512)
+    tab["pivot_bushing_friction"] = dataclasses.replace(tab["pivot_bushing_friction"], band=18.0)
     value, pos, opts, cap = S.search(ev, {"cost": 1.0}, rs, table=tab)
     assert pos is not None and cap.meets
     t = tables(ev, {"cost": 1.0})
@@ -171,24 +182,58 @@ def test_robust_synthesis_skips_no_better_design(demo):
             base = S.base_of_attributes(d, S._attributes(ev, int(t.rows[r]), dict(zip(SUBSYSTEMS, map(int, combo)))),
                                         ev.settings, tab, apps=ev.apps)
             assert not capability(base, rs, rare=False, details=False).meets, (r, combo)
-    assert cheaper > 0  # the nominal optimum is among them: the target moved the answer
+    # the target moved the answer: the nominal optimum (cost, then margin) misses it
+    from synth.optimise.solvers.enumerate import solve as enumerate_solve
+    nominal = enumerate_solve(d, "cost,margin", settings=production(Settings()))
+    assert nominal.parts != ev.parts(pos, opts)
+    assert not capability(base_of(d, nominal.parts, table=tab), rs, rare=False, details=False).meets
 
 
-def test_robust_design_of_the_demo_says_why_no_catalog_design_meets_the_default_target(demo):
-    """The default tolerance model: the tightening scatter on the under-head pressure and the bushing friction
-    on the damping window reject every core; the result is the nominal design, with the reason."""
+def test_the_robust_synthesis_judges_the_made_joint():
+    """With --capability the joint is the made one (VDI 2230, the design's tightening window) whatever the bolt
+    setting: on the demo's 11 mm seat no design passes (the window's top crushes the seat), and the answer (the
+    nominal design as asked, the thesis's joint) says so with its production capability."""
     from synth.robust.synthesis import robust_solve
-    d, nominal = demo
-    r = robust_solve(d, "standard", rs=RobustSettings(capability=1.33, samples=512), details=False)
-    assert r.parts == nominal.parts
-    why = r.notes[-1]
-    assert why.startswith("no catalog design meets Ppk >= 1.33") and "under_head" in why and "bolt_preload" in why
+    r = robust_solve(default_input(), "standard", rs=RobustSettings(capability=1.33, samples=512), explain=False)
+    assert r.feasible and r.robust["meets"] is False and {"under_head", "bolt_preload_vdi"} <= set(r.robust["failing"])
+    assert any(n.startswith("no catalog design passes every check with the made joint") for n in r.notes)
+
+
+def test_a_bounded_output_is_judged_by_its_ppm(seated):
+    """The sliding safety factor at the made preload: the window [F_req, 1.6 F_req] (uniform) is its only scatter,
+    so the factor never falls below its target (0 ppm, the primary figure), although its percentile index is 1.0
+    (the window's bottom is the target) and its moment index 0.58 (a uniform's)."""
+    from synth.optimise import solve
+    from synth.robust.sampling import production
+    r = solve(seated, "standard,cost,margin", settings=production(Settings()))
+    cap = capability(base_of(seated, r.parts), RobustSettings(samples=4096))
+    c = cap.check("sliding")
+    assert c.target and c.bounded and c.method == "bounded" and c.p == c.p_hi == 0.0 and c.ppk == float("inf")
+    assert c.ppk_percentile == pytest.approx(1.0, abs=0.01) and c.ppk_moment == pytest.approx(3 ** -0.5, abs=0.01)
+    assert c.meets(RobustSettings()) and c.contributors[0][0] == "bolt_preload"
+    # the moment method, asked for, is what the target states; a bounded output is still judged by its ppm
+    assert "moment method" in RobustSettings(method="moment").targets()
+    assert capability(base_of(seated, r.parts), RobustSettings(samples=4096, method="moment")).check("sliding").meets(
+        RobustSettings(method="moment"))
+
+
+def test_one_ppk_for_a_design_and_a_portfolio(seated):
+    """The bulk's capability (K designs x N samples) and the one design's use the same statistics
+    (synth.robust.stats): the smallest percentile index of the targeted checks is the same number."""
+    from synth.optimise import solve
+    from synth.robust.portfolio import portfolio_capability
+    from synth.robust.sampling import production
+    r = solve(seated, "standard,cost,margin", settings=production(Settings()))
+    rs = RobustSettings(samples=1024)
+    row = portfolio_capability([seated], [r.parts], rs=rs)[0]
+    cap = capability(base_of(seated, r.parts), rs, rare=False)
+    assert row["capability_min_ppk"] == pytest.approx(min(c.ppk_percentile for c in cap.checks if c.target), rel=1e-9)
 
 
 # --------------------------------------------------------------------------------------------- evaluator hooks
-def test_a_made_design_at_its_nominal_values_is_the_sized_design():
-    """The made joint tightened to the sized clamp force, and the made cone spring with the sized thickness at
-    its nominal deflection, give the sized design's values (case 1, an axial design)."""
+def test_a_made_design_at_its_window_ends_is_the_sized_design():
+    """The made joint at the window's bottom gives the window's safety factors, at its top the window's pressures;
+    the made cone spring with the sized thickness at its nominal deflection gives the sized spring (case 1)."""
     from synth.data import case_path
     from synth.design import evaluate
     from synth.design.applications import Applications
@@ -198,29 +243,59 @@ def test_a_made_design_at_its_nominal_values_is_the_sized_design():
     from synth.io.documents import load_input
     d = load_input(case_path("case1"))
     parts = solve(d, "standard").parts
-    apps = Applications.of([d])
+    vdi = Settings(bolt_method="vdi2230")
     attrs = space().design_attributes(parts)
-    g0 = evaluate_design(apps, attrs, detail=False)
-    made = Applications.of([d])
-    made.derived["bolt_clamp_force_n"] = np.asarray(g0["bolt"].values["bolt_axial_force_n"], dtype=float)
-    ax = dict(attrs["axial"])
-    ax[evaluate.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.asarray(g0["axial"].values["cone_spring_thickness_mm"])
-    ax[evaluate.MADE_CONE_SPRING_COLUMNS["deflection_offset_mm"]] = np.zeros(1)
-    ax[evaluate.MADE_CONE_SPRING_COLUMNS["force_factor"]] = np.ones(1)
-    g1 = evaluate_design(made, {**attrs, "axial": ax}, detail=False)
-    for k in ("sliding_safety_factor", "tilting_safety_factor", "bolt_sigma_eqv_mpa", "bolt_tightening_torque_nm"):
-        assert g1["bolt"].values[k][0] == pytest.approx(g0["bolt"].values[k][0], rel=1e-12), k
+    g0 = evaluate_design(Applications.of([d]), attrs, vdi, detail=False)
+    bolt0 = g0["bolt"].values
+    made = Applications.of([d, d])
+    made.derived["bolt_clamp_force_n"] = np.array([bolt0["bolt_required_preload_min_n"][0],
+                                                   bolt0["bolt_required_preload_max_n"][0]])
+    two = {t: {k: np.repeat(np.asarray(v), 2, axis=0) for k, v in cols.items()} for t, cols in attrs.items()}
+    ax = two["axial"]
+    ax[evaluate.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.repeat(g0["axial"].values["cone_spring_thickness_mm"], 2)
+    ax[evaluate.MADE_CONE_SPRING_COLUMNS["deflection_offset_mm"]] = np.zeros(2)
+    ax[evaluate.MADE_CONE_SPRING_COLUMNS["force_factor"]] = np.ones(2)
+    g1 = evaluate_design(made, two, vdi, detail=False)
+    b1 = g1["bolt"].values
+    for k in ("sliding_safety_factor", "tilting_safety_factor"):
+        assert b1[k][0] == pytest.approx(bolt0[k][0], rel=1e-12), k
+    for k in ("bolt_under_head_stress_mpa", "bolt_thread_stress_mpa", "bolt_required_preload_max_n"):
+        assert b1[k][1] == pytest.approx(bolt0[k][0], rel=1e-12), k
     assert g1["axial"].values["cone_spring_fax_nominal_n"][0] == pytest.approx(
         g0["axial"].values["cone_spring_fax_nominal_n"][0], rel=1e-9)
     assert g1["axial"].values["damping_eol_nm"][0] == pytest.approx(g0["axial"].values["damping_eol_nm"][0], rel=1e-9)
 
 
-def test_the_vdi_method_refuses_a_made_clamp_force():
-    from synth.errors import InputError
-    from synth.model.bolted_joint import fixation
-    with pytest.raises(InputError, match="clamp_force_n"):
-        fixation(462.5, 20.0, 2.0, 3.0, 3.0, 8.2, 28.0, 360.0, 400.0, 400.0, method="vdi2230", clamp_length_mm=34.0,
-                 number_of_active_threads=2.6, clamp_force_n=15000.0)
+def test_the_made_spring_drives_the_tensioner_not_the_friction():
+    """eq. (66) tolerances the made spring's torque: a sample scales the spring and the tensioner follows
+    (eq. (12)-(13)); the sample's friction changes the damping, never the spring (the former re-sizing put about a
+    quarter of the spring's fatigue scatter on the bushing friction)."""
+    from synth.optimise import solve
+    d = default_input()
+    r = solve(d, "standard,cost,margin")
+    base = base_of(d, r.parts, table=_only("pivot_bushing_friction"))
+    cap = capability(base, RobustSettings(samples=1024), rare=False)
+    assert cap.check("spring_fatigue").sd == 0.0 and cap.check("spring_yield").sd == 0.0
+    assert cap.check("damping_upper").contributors[0][0] == "pivot_bushing_friction"
+    spring = capability(base_of(d, r.parts, table=_only("spring_torque")), RobustSettings(samples=1024), rare=False)
+    assert spring.check("spring_fatigue").sd > 0 and spring.check("damping_upper").sd > 0
+
+
+def test_the_supplier_centres_the_cone_spring_in_its_window():
+    """Thesis steps 6 and 8: the made cone spring's nominal height (force) is the supplier's, centred in the damping
+    window's band; the samples are made of it (case 1, an axial design)."""
+    from synth.data import case_path
+    from synth.optimise import solve
+    from synth.io.documents import load_input
+    d = load_input(case_path("case1"))
+    r = solve(d, "standard")
+    base = base_of(d, r.parts)
+    cone = base.cone
+    assert np.isfinite(cone["thickness_mm"][0])
+    assert cone["thickness_mm"][0] != pytest.approx(base.groups["axial"].values["cone_spring_thickness_mm"][0], rel=1e-6)
+    assert cone["room_n"][0] >= base.groups["axial"].values["cone_spring_force_band_room_n"][0] - 1e-9
+    cap = capability(base, RobustSettings(samples=512), rare=False)
+    assert cap.cone["nominal_force_n"] == pytest.approx(cone["force_n"][0]) and "supplier" in cap.cone["note"]
 
 
 # --------------------------------------------------------------------------------------------- rules and assumptions
@@ -244,13 +319,13 @@ def test_the_demo_spring_passes_at_088_rm_and_fails_at_075_rm(demo):
 
 
 def test_the_default_objective_breaks_ties_by_the_margin(demo):
-    """The issue's demo: standard then cost alone returned +0.0 % margins; with the margin as the last
-    tie-break the same standardisation and cost give at least +3.1 % on every counted check."""
+    """The issue's demo: standard then cost alone return a design at +0.5 % on its smallest margin; with the margin
+    as the last tie-break the same standardisation and cost give +1.9 % on every counted check (friction 0.10)."""
     from synth.optimise import solve
     d, r = demo
     plain = solve(d, "standard")
     assert (r.objectives["standard"], r.objectives["cost"]) == (plain.objectives["standard"], plain.objectives["cost"])
-    assert plain.objectives["margin"] < 0.001 and r.objectives["margin"] >= 0.031
+    assert plain.objectives["margin"] < 0.006 and r.objectives["margin"] >= 0.018
 
 
 # --------------------------------------------------------------------------------------------- the scene
@@ -262,7 +337,14 @@ def test_synth_robust_reports_the_capability_and_exits_1_when_the_target_is_miss
     out = json.loads(capsys.readouterr().out.split("\nwritten:")[0])
     assert rc == 1 and out["robust"]["meets"] is False and "under_head" in out["robust"]["failing"]
     assert (tmp_path / "capability.csv").is_file() and (tmp_path / "hist_damping_nm.png").is_file()
-    rc = cli.main(["robust", str(case), "--samples", "512", "--capability", "0.1", "--no-assumptions"])
+    import yaml
+    raw = yaml.safe_load(case.read_text())
+    raw["inputs"]["bolt_head_contact_external_diameter_mm"] = 12.0
+    (tmp_path / "seated.yaml").write_text(yaml.safe_dump(raw))
+    # synth robust judges synth design's answer (the thesis's joint by default) made: with --bolt-method vdi2230
+    # synth design chooses a joint whose made window passes
+    rc = cli.main(["robust", str(tmp_path / "seated.yaml"), "--samples", "512", "--capability", "0.1",
+                   "--no-assumptions", "--bolt-method", "vdi2230"])
     assert rc == 0 and "meets the target" in capsys.readouterr().out
 
 

@@ -9,7 +9,7 @@ sigma), ...))``, each term the product of lognormal factors (a reference row, a 
 relation's scatter ``fit:<item>``, an assumed factor), which :mod:`synth.cost.decision` samples.
 
 The arrays of the book (``bearing``, ``damper_pad``, ``endcap_spacer``, ``bushing_*``, ``cone_spring``,
-``spring_*``, ``bolt``) are what the design space's cost columns are made of (:mod:`synth.cost.columns`).
+``spring_*``, ``bolt``, ``washer``, ``tightening``) are what the design space's cost columns are made of (:mod:`synth.cost.columns`).
 
 >>> from synth.parts import arrays
 >>> b = arrays().prices
@@ -86,6 +86,10 @@ class PriceBook:
     spring_piece: Priced                # EUR per spring
     bolt: np.ndarray                    # (n_heads, n_classes)
     bolt_info: dict                     # (head, class) -> Priced
+    washer: np.ndarray                  # (n_washers,)
+    washer_info: tuple
+    tightening: np.ndarray              # (n_methods,) assembly premium per joint over the reference method
+    tightening_info: tuple
     notes: tuple = field(default_factory=tuple)
 
     def bushing_priced(self, supplier: int, length_mm: float) -> Priced:
@@ -245,6 +249,44 @@ def _bolts(ctx: _Ctx, p) -> tuple:
     return prices.reshape(nh, nc), {(int(h), int(k)): info[i] for i, (h, k) in enumerate(zip(hh, cc))}
 
 
+def _washers(ctx: _Ctx, p) -> tuple:
+    """Washers (``washers.csv``) by the fastener relation from the family's reference row, their size measure
+    the steel annulus ``rho pi/4 (d2^2 - d1^2) h``."""
+    c = catalog.constant
+    ws = p.washer
+    keys = [str(k) for k in ws.key]
+    mass = made.annulus_mass_kg(ws.d2_mm, ws.d1_mm, ws.h_mm, c("cost_steel_density_kg_m3"))
+
+    def code(name):
+        if name not in keys:
+            raise InputError(Problem(f"{WHERE}, item washer:{name}", name, "a washer of washers.csv: "
+                                     + ", ".join(keys)))
+        return keys.index(name)
+    return _relational(ctx, "washer", code, np.asarray(mass, float), (np.ones(len(keys)), np.zeros(len(keys))),
+                       c("cost_fastener_mass_exponent"), c("cost_fastener_fit_scatter"), keys,
+                       f"relation (mass/mass_ref)^{c('cost_fastener_mass_exponent'):.3g}:")
+
+
+def _tightening(ctx: _Ctx, p) -> tuple:
+    """The assembly premium per joint of each tightening method over the torque-controlled reference
+    (:data:`synth.model.vdi2230.DEFAULT_TIGHTENING_METHOD`, 0): a ``tightening:<method>`` row, required for every
+    method the design space offers (``design_option``); a method it does not offer and no row names is 0."""
+    from synth.model.vdi2230 import DEFAULT_TIGHTENING_METHOD
+    tf = p.tightening
+    out, info = np.zeros(len(tf)), []
+    for i, k in enumerate(map(str, tf.key)):
+        item = f"tightening:{k}"
+        if k != DEFAULT_TIGHTENING_METHOD and (item in ctx.rows or tf.design_option[i]):
+            pr = ctx.price(item, f"the assembly premium per joint of tightening method {k} over "
+                           f"{DEFAULT_TIGHTENING_METHOD}", unit="part")
+        else:
+            pr = Priced(0.0, "assumed", f"the reference method ({DEFAULT_TIGHTENING_METHOD}): its assembly is in "
+                        "the process rows" if k == DEFAULT_TIGHTENING_METHOD else "not offered to the design space")
+        out[i] = pr.eur
+        info.append(pr)
+    return out, tuple(info)
+
+
 def _moulded(ctx: _Ctx, family: str, table) -> tuple:
     c = catalog.constant
     mat = ctx.price(f"material:{PLASTIC}", f"the compound of the {family}s", unit="kg")
@@ -270,7 +312,8 @@ def _check_items(ctx: _Ctx, p) -> None:
     known = {"damper_pad": set(map(str, p.damper_pad.key)), "endcap_spacer": set(map(str, p.endcap_spacer.key)),
              "material": set(map(str, p.spring_material.key)) | set(catalog.keys("plastic_wear"))
              | {"cone_spring_steel"} | {f"pivot_bushing_{k}" for k in p.bushing.key},
-             "process": set(PROCESSES)}
+             "process": set(PROCESSES), "washer": set(map(str, p.washer.key)),
+             "tightening": set(map(str, p.tightening.key))}
     for r in ctx.rows.values():
         if r.family in known and r.name not in known[r.family]:
             problems.append(Problem(f"{WHERE}, item {r.item}", r.name, f"a {r.family} of the catalogs: "
@@ -299,6 +342,8 @@ def build(p, volume: float | None = None) -> PriceBook:
     _check_items(ctx, p)
     bearing, bearing_info = _bearings(ctx, p)
     bolt, bolt_info = _bolts(ctx, p)
+    washer, washer_info = _washers(ctx, p)
+    tightening, tightening_info = _tightening(ctx, p)
     pad, pad_info = _moulded(ctx, "damper_pad", p.damper_pad)
     spacer, spacer_info = _moulded(ctx, "endcap_spacer", p.endcap_spacer)
     # pivot bushing: wrapped wall at the nominal diameter, per kg of the supplier's bushing, plus the process
@@ -332,7 +377,8 @@ def build(p, volume: float | None = None) -> PriceBook:
         spring_material=np.array([m.eur for m in mat_info]), spring_material_info=mat_info, wire_factor=wire_factor,
         coiling=ctx.price("process:main_spring_coiling", "coiling a metre of spring wire", unit="m"),
         spring_piece=ctx.price("process:main_spring", "the operations per spring", unit="part"),
-        bolt=bolt, bolt_info=bolt_info, notes=tuple(dict.fromkeys(ctx.notes)))
+        bolt=bolt, bolt_info=bolt_info, washer=washer, washer_info=washer_info, tightening=tightening,
+        tightening_info=tightening_info, notes=tuple(dict.fromkeys(ctx.notes)))
 
 
 _BOOKS: dict = {}

@@ -94,6 +94,13 @@ def lines(d, parts: dict) -> list:
     h, c = int(bolt["head_code"][0]), int(bolt["class_code"][0])
     out.append(Line(f"bolt:{p.bolt_head.key[h]} {p.bolt_class.key[c]}",
                     f"bolt {p.bolt_head.key[h]} {p.bolt_class.key[c]}", book.bolt_info[(h, c)]))
+    w = int(bolt["washer_code"][0])
+    if w >= 0:
+        out.append(Line(f"washer:{p.washer.key[w]}", f"washer {p.washer.key[w]}", book.washer_info[w]))
+    t = int(bolt["tightening_code"][0])
+    if book.tightening[t] > 0.0:
+        out.append(Line(f"tightening:{p.tightening.key[t]}", f"tightening {p.tightening.key[t]} (assembly premium)",
+                        book.tightening_info[t]))
     return out
 
 

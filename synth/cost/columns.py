@@ -55,9 +55,13 @@ def spring_eur_times_stiffness(book, material_code, wire_code, E_mpa, second_mom
     return lk * (book.coiling.eur + kg_per_m * book.spring_material[m] * book.wire_factor[w])
 
 
-def bolt_eur(book, head_code, class_code) -> np.ndarray:
-    """Cost [EUR] of bolt options (a format in a head form, a property class)."""
-    return book.bolt[np.asarray(head_code, np.int64), np.asarray(class_code, np.int64)]
+def bolt_eur(book, head_code, class_code, washer_code=-1, tightening_code=None) -> np.ndarray:
+    """Cost [EUR] of bolt options: the screw (a format in a head form, a property class), its washer (code -1:
+    none) and the tightening method's assembly premium (code None: the reference method, 0)."""
+    w = np.asarray(washer_code, np.int64)
+    out = book.bolt[np.asarray(head_code, np.int64), np.asarray(class_code, np.int64)] \
+        + np.where(w >= 0, book.washer[np.maximum(w, 0)], 0.0)
+    return out if tightening_code is None else out + book.tightening[np.asarray(tightening_code, np.int64)]
 
 
 def reprice(book, tables: dict) -> dict:
@@ -75,5 +79,5 @@ def reprice(book, tables: dict) -> dict:
                                                                s["second_moment_mm4"], s["wire_section_area_mm2"],
                                                                s["density_kg_m3"])
     o = out["bolt"]
-    o["cost_eur"] = bolt_eur(book, o["head_code"], o["class_code"])
+    o["cost_eur"] = bolt_eur(book, o["head_code"], o["class_code"], o["washer_code"], o["tightening_code"])
     return out

@@ -105,7 +105,8 @@ def decide(d, designs: list, *, rivals: list = (), samples: int | None = None, s
 
 #: the columns of each table of the design space that set its price (the other columns of a row change no price)
 PRICE_KEYS = {"core": ("bearing_code", "pad_code"), "bushing": ("supplier_code", "pivot_bushing_length_mm"),
-              "axial": ("spacer_code",), "spring": ("material_code", "wire_code"), "bolt": ("head_code", "class_code")}
+              "axial": ("spacer_code",), "spring": ("material_code", "wire_code"), "bolt": ("head_code", "class_code", "washer_code",
+                                                                                       "tightening_code")}
 
 
 def _key_codes(table: dict, names: tuple) -> np.ndarray:
@@ -181,7 +182,8 @@ def _rows_with(tables: dict, attrs: dict, family: str):
             "endcap_spacer": lambda: same("axial", "spacer_code"),
             "cone_spring": lambda: ("axial", np.asarray(tables["axial"]["spacer_code"]) >= 0),
             "main_spring": lambda: same("spring", "material_code", "wire_code"),
-            "bolt": lambda: same("bolt", "head_code", "class_code")}[family]()
+            "bolt": lambda: same("bolt", "head_code", "class_code"), "washer": lambda: same("bolt", "washer_code"),
+            "tightening": lambda: same("bolt", "tightening_code")}[family]()
 
 
 def price_pool(d, r, n: int, *, settings=None) -> tuple:

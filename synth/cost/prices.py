@@ -1,8 +1,9 @@
 """The price file: ``catalogs/prices.csv`` and a company's own ``prices.csv`` (``--catalogs DIR``), row by row.
 
-One row prices one *item*: a part (``ball_bearing:6006``, ``bolt:M8x1.25 hex 8.8``, ``damper_pad:DP1``,
-``endcap_spacer:ES1``, ``pivot_bushing:A 18``), a material per kg (``material:VDSiCr``), a process rate
-(``process:main_spring`` per part, ``process:main_spring_coiling`` per metre of wire) or an exchange rate
+One row prices one *item*: a part (``ball_bearing:6006``, ``bolt:M8x1.25 hex 8.8``, ``washer:ISO 7089 8 300HV``,
+``damper_pad:DP1``, ``endcap_spacer:ES1``, ``pivot_bushing:A 18``), a tightening method's assembly premium per
+joint over the torque-controlled reference (``tightening:angle_controlled``), a material per kg
+(``material:VDSiCr``), a process rate (``process:main_spring`` per part, ``process:main_spring_coiling`` per metre of wire) or an exchange rate
 (``fx:USD``: EUR per USD). Columns:
 
 ========= =====================================================================================================
@@ -15,7 +16,7 @@ breaks    further breaks ``quantity:price; quantity:price`` (same currency and u
 date      when the price was set (``YYYY-MM-DD``)
 supplier  who quotes it (empty for synth's assumptions)
 status    ``quoted`` (a supplier's price) or ``assumed`` (a named default)
-reference ``true`` for the one row of a bought-in family (``ball_bearing``, ``bolt``) its relation starts from
+reference ``true`` for the one row of a bought-in family (``ball_bearing``, ``bolt``, ``washer``): its relation's start
 band_pct  one standard deviation of the price, in percent (the band of :mod:`synth.cost.decision`)
 source    where the price comes from
 ========= =====================================================================================================
@@ -46,10 +47,11 @@ from synth.errors import InputError, Problem
 __all__ = ["FAMILIES", "STATUSES", "PriceRow", "check_rows", "rows_of", "parse_breaks"]
 
 #: item family -> the units (``per``) a row of it may be priced in
-FAMILIES = {"ball_bearing": ("part",), "bolt": ("part",), "damper_pad": ("part",), "endcap_spacer": ("part",),
-            "pivot_bushing": ("part",), "material": ("kg",), "process": ("part", "m"), "fx": ()}
+FAMILIES = {"ball_bearing": ("part",), "bolt": ("part",), "washer": ("part",), "damper_pad": ("part",),
+            "endcap_spacer": ("part",), "pivot_bushing": ("part",), "tightening": ("part",), "material": ("kg",),
+            "process": ("part", "m"), "fx": ()}
 #: the families priced by a relation from one reference row
-RELATIONAL = ("ball_bearing", "bolt")
+RELATIONAL = ("ball_bearing", "bolt", "washer")
 STATUSES = ("quoted", "assumed")
 _CURRENCY = re.compile(r"^[A-Z]{3}$")
 

@@ -95,6 +95,8 @@ class Columns:
     objective_columns: tuple
     #: the checks that depend on the design (:attr:`Constraint.design`)
     design: np.ndarray
+    #: targeted by the production capability outside the margin objective (:attr:`Constraint.capability`)
+    capability: np.ndarray
 
 
 _COLUMNS: dict = {}
@@ -115,7 +117,8 @@ def columns_of(ids: tuple) -> Columns:
             np.array([pos[i] for i in ids], dtype=np.int64),
             tuple((j, c.objective_unless) for j, c in enumerate(cons) if objective[j] and c.objective_unless),
             tuple(j for j, c in enumerate(cons) if not c.advisory), tuple(np.flatnonzero(objective).tolist()),
-            np.array([c.design for c in cons], dtype=bool))
+            np.array([c.design for c in cons], dtype=bool),
+            np.array([c.capability and not c.advisory for c in cons], dtype=bool))
     return got
 
 
@@ -201,8 +204,10 @@ class Assessment:
     @cached_property
     def targeted(self) -> np.ndarray:
         """``(n, k)`` the checks a production capability targets (:mod:`synth.robust`): those counted in the margin
-        objective (:attr:`counts_in_objective`) that depend on the design."""
-        return self.counts_in_objective & self.columns.design
+        objective (:attr:`counts_in_objective`), and those the registry targets at their made scatter although the
+        margin objective leaves them out (:attr:`Constraint.capability`: the safety factors a preload is sized
+        to), that depend on the design."""
+        return (self.counts_in_objective | self.columns.capability) & self.columns.design
 
     @cached_property
     def in_objective(self) -> np.ndarray:

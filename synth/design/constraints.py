@@ -109,6 +109,9 @@ class Constraint:
     design: bool = True
     objective: bool = True
     objective_unless: str | None = None
+    #: targeted by the production capability (:mod:`synth.robust`) even where the margin objective leaves it out:
+    #: a check sized to its limit nominally (a safety factor the preload is sized to) is judged at its made scatter
+    capability: bool = False
     advisory: bool = False
     correction: str = ""
     #: input fields whose change in their declared direction (:attr:`synth.schema.Field.relax`) can relax this
@@ -462,11 +465,11 @@ _ENTRIES = (
     # --- fixation (step 10) and the pivot wall around the bolt hole (step 2) -------------------------------
     Constraint(id="tilting", label="tilting safety factor", step=10, equation="eq. (94)-(97)", unit="-", group="bolt",
                value="tilting_safety_factor", limit="tilting_safety_factor_target", sense=">=", needs=("fixation",),
-               assumes=("middle_plane_belt_height_increment_worst_mm",), objective=False,
+               assumes=("middle_plane_belt_height_increment_worst_mm",), objective=False, capability=True,
                correction="a higher bolt preload or a larger support"),
     Constraint(id="sliding", label="sliding safety factor", step=10, equation="eq. (98)-(99)", unit="-", group="bolt",
                value="sliding_safety_factor", limit="sliding_safety_factor_target", sense=">=", needs=("fixation",),
-               objective=False, correction="a higher bolt preload"),
+               objective=False, capability=True, correction="a higher bolt preload"),
     Constraint(id="bolt_yield", label="bolt equivalent stress within the permissible utilisation", step=10,
                equation="eq. (103)-(107)", unit="MPa", group="bolt", value="bolt_sigma_eqv_mpa",
                limit="bolt_sigma_permissible_mpa", sense="<=", needs=("fixation",),

@@ -331,6 +331,13 @@ def core(apps, a, c: dict, settings: Settings = DEFAULT, detail: bool = False) -
     target = apps.damping_target_or_zero_nm[a]
     split = damping.damping_split(f["calculated_torque_target_nm"], target, np.minimum(rho, 0.999), apps.axial_allowed[a])
     v.update({k: np.asarray(val, dtype=float) for k, val in split.items()})
+    made = apps.derived.get("spring_torque_made_nm")  # a made spring's torque (synth.robust's samples): eq. (12)-(13)
+    if made is not None:
+        d_ax = np.where(np.asarray(c["axial_group_present"], dtype=bool), v["axial_damping_nm"], 0.0)  # the design's
+        t = damping.made_tensioner(made[a], d_ax, np.minimum(rho, 0.999))
+        v.update(spring_torque_nominal_nm=np.asarray(made[a], dtype=float), damping_nm=t["damping_nm"],
+                 radial_damping_nm=t["radial_damping_nm"],
+                 hubload_nominal_n=damping.hubload_nominal_n(t["calculated_torque_nm"], wa, alpha))
     v["damping_upper_nm"] = f["damping_target_nm"] + f["damping_tolerance_nm"]
     v["damping_lower_nm"] = f["damping_target_nm"] - f["damping_tolerance_nm"]
     pad = np.asarray(c["axial_group_present"], dtype=bool)
@@ -746,17 +753,19 @@ _BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_m
                 "sliding_safety_factor", "pivot_base_max_pressure_mpa", "bolt_rp02_mpa",
                 "min_head_contact_diameter_mm", "min_active_threads", "bolt_force_tilting_n", "bolt_force_sliding_n",
                 "bolt_head_contact_diameter_mm", "bolt_clamp_force_required_n", "bolt_permissible_preload_n",
-                "bolt_required_preload_max_n", "bolt_residual_clamp_force_n", "bolt_embedding_loss_n")
+                "bolt_required_preload_min_n", "bolt_required_preload_max_n", "bolt_residual_clamp_force_n",
+                "bolt_embedding_loss_n")
 
 
 def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
     """Step 10 (:func:`synth.model.bolted_joint.fixation`) for rows of applications ``a`` and bolts ``o``.
 
-    One vectorised call per bolt-head form and whether the application gives its bolt-head contact diameter:
-    the distinct applications of those rows x the distinct bolts (format, property class) among them, every
-    bolt evaluated as the chosen one (``fixation(..., candidates=...)``), the friction coefficients of each
-    application's environment passed per application; the rows gather their (application, bolt) entry.
-    NaN for applications without their fixation data.
+    One vectorised call per bolt-head form, washer series, tightening method (the VDI 2230 path only: the
+    thesis path tightens to the required force whatever the method) and whether the application gives its
+    seat (``bolt_head_contact_external_diameter_mm``): the distinct applications of those rows x the distinct
+    bolts (format, property class) among them, every bolt evaluated as the chosen one
+    (``fixation(..., candidates=...)``), the friction coefficients of each application's environment passed per
+    application; the rows gather their (application, bolt) entry. NaN for applications without their fixation data.
     """
     n = len(a)
     out = {k: np.full(n, np.nan) for k in _BOLT_VALUES}
@@ -767,12 +776,17 @@ def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
     aa_all = np.asarray(a)[rows]
     fmt, cls = np.asarray(o["bolt_format"], dtype=object)[rows], np.asarray(o["bolt_property_class"], dtype=object)[rows]
     head = np.asarray(o["bolt_head_type"], dtype=object)[rows]
+    nr = len(rows)
+    washer = np.asarray(o["bolt_washer"], dtype=object)[rows] if "bolt_washer" in o else np.full(nr, bolted_joint.NO_WASHER, object)
+    vdi = settings.bolt_method == "vdi2230"
+    method = np.asarray(o["bolt_tightening"], dtype=object)[rows] if vdi and "bolt_tightening" in o else \
+        np.full(nr, bolted_joint.DEFAULT_TIGHTENING_METHOD, object)
     given = apps.given["bolt_head_contact_external_diameter_mm"][aa_all]
     f = apps.f
-    made = apps.derived.get("bolt_clamp_force_n")  # a made joint's clamp force (synth.robust), NaN: sized
-    for h in dict.fromkeys(head.tolist()):
+    made = apps.derived.get("bolt_clamp_force_n")  # a made joint's preload (synth.robust), NaN: the window
+    for h, w, m in dict.fromkeys(zip(head.tolist(), washer.tolist(), method.tolist())):
         for g in (False, True):
-            sel = np.flatnonzero((head == h) & (given == g))
+            sel = np.flatnonzero((head == h) & (washer == w) & (method == m) & (given == g))
             if not len(sel):
                 continue
             ua, ia = np.unique(aa_all[sel], return_inverse=True)
@@ -792,9 +806,8 @@ def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
                 mu_crankcase=_mu(apps, "mu_crankcase", "pivot_base_crankcase", ua, env),
                 mu_thread=_mu(apps, "mu_thread", "thread", ua, env), mu_head=_mu(apps, "mu_head", "under_head", ua, env),
                 bolt_head_contact_external_diameter_mm=f["bolt_head_contact_external_diameter_mm"][ua] if g else None,
-                head_type=str(h), candidates=pairs, method=settings.bolt_method,
-                clamp_length_mm=f["max_pivot_height_mm"][ua] if settings.bolt_method == "vdi2230" else None,
-                clamp_force_n=None if made is None else made[ua])
+                head_type=str(h), washer=str(w), candidates=pairs, method=settings.bolt_method,
+                tightening_method=str(m), clamp_force_n=None if made is None else made[ua])
             ia = np.asarray(ia).reshape(-1)
             for k in _BOLT_VALUES:
                 if k in r:

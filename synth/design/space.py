@@ -61,7 +61,7 @@ from synth.model import packaging, pivot, torsion_spring, disc_spring
 from synth.fingerprint import cached, catalogs_sha256, source_stamp
 from synth.schema import PART_FIELDS, field_by_name
 
-__all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "NONE", "CAPACITY", "Space", "space", "core_rows", "spring_window",
+__all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "PART_DEFAULTS", "NONE", "bolt_attributes", "washer_code", "CAPACITY", "Space", "space", "core_rows", "spring_window",
            "table_sizes", "check_capacity", "fixed_fields", "space_for", "pinned_space", "pinned_diameter",
            "design_inputs", "same_input"]
 
@@ -76,8 +76,10 @@ PART_KEYS_BY_TABLE = {
     "axial": ("endcap_spacer_class", "cone_spring_aspect_ratio", "cone_spring_deflection_ratio",
               "cone_spring_external_diameter_mm", "cone_spring_internal_diameter_mm"),
     "spring": ("main_spring_material", "main_spring_wire", "main_spring_mean_body_diameter_mm"),
-    "bolt": ("bolt_format", "bolt_head_type", "bolt_property_class"),
+    "bolt": ("bolt_format", "bolt_head_type", "bolt_property_class", "bolt_washer", "bolt_tightening"),
 }
+#: part keys a design may leave out, and the value they then take (results saved before the key existed)
+PART_DEFAULTS = {"bolt_head_type": "hex", "bolt_washer": NONE, "bolt_tightening": "torque_wrench_tested"}
 PART_KEYS = tuple(k for t in TABLES for k in PART_KEYS_BY_TABLE[t])
 
 
@@ -192,11 +194,19 @@ class Space:
         out["spring"] = spring_attributes(p, [code(p.spring_material, "main_spring_material")],
                                           [code(p.spring_wire, "main_spring_wire")],
                                           [num("main_spring_mean_body_diameter_mm")])
-        head = parts.get("bolt_head_type") or "hex"
+        head = parts.get("bolt_head_type") or PART_DEFAULTS["bolt_head_type"]
         p.bolt.code(str(need("bolt_format")).strip(), f"{field_prefix}.bolt_format")
-        out["bolt"] = bolt_attributes(p, [p.bolt_head.code(f"{str(parts['bolt_format']).strip()} {head}",
-                                                           f"{field_prefix}.bolt_head_type")],
-                                      [code(p.bolt_class, "bolt_property_class")])
+        hcode = p.bolt_head.code(f"{str(parts['bolt_format']).strip()} {head}", f"{field_prefix}.bolt_head_type")
+        series = str(parts.get("bolt_washer") or PART_DEFAULTS["bolt_washer"]).strip()
+        wcode = int(washer_code(p, [hcode], [series])[0])
+        if wcode == -2:
+            names = [NONE, *dict.fromkeys(p.washer.product_standard.tolist())]
+            raise InputError(Problem(f"{field_prefix}.bolt_washer", parts.get("bolt_washer"),
+                                     "one of " + ", ".join(names) + f" with a washer for {parts['bolt_format']} "
+                                     "(none under a flange head)"))
+        tcode = p.tightening.code(str(parts.get("bolt_tightening") or PART_DEFAULTS["bolt_tightening"]).strip(),
+                                  f"{field_prefix}.bolt_tightening")
+        out["bolt"] = bolt_attributes(p, [hcode], [code(p.bolt_class, "bolt_property_class")], [wcode], [tcode])
         if not out["bolt"]["class_defined"][0]:
             raise InputError(Problem(f"{field_prefix}.bolt_property_class", parts["bolt_property_class"],
                                      f"a class ISO 898-1 defines for {parts['bolt_format']} (9.8 only up to 16 mm)"))
@@ -390,32 +400,75 @@ def _spring(p: Parts, mbd=None) -> dict:
     return spring_attributes(p, m[supplied], w[supplied], d[supplied])
 
 
-def bolt_attributes(p: Parts, head, property_class) -> dict:
-    """The bolt table's columns for head codes (``bolt_heads.csv``: a format in a head form) and property classes."""
+def washer_code(p: Parts, head, series) -> np.ndarray:
+    """The ``washers.csv`` row of washer ``series`` (``"none"``: -1) for the bolt of each head code; -2 where the
+    series has no washer for that bolt (or the head is a flange head: its flange is its washer)."""
+    hd = np.atleast_1d(np.asarray(head, dtype=np.int64))
+    ser = np.broadcast_to(np.asarray(series, dtype=object), hd.shape)
+    ws = p.washer
+    d = p.bolt.d_mm[p.bolt_head.bolt_code[hd]]
+    out = np.full(hd.shape, -2, dtype=np.int64)
+    for i in range(len(hd)):
+        name = str(ser[i]).strip()
+        if name == NONE:
+            out[i] = -1
+        elif p.bolt_head.head_type[hd[i]] != "flange":
+            hit = np.flatnonzero((ws.product_standard == name) & np.isclose(ws.d_mm, d[i]))
+            out[i] = hit[0] if len(hit) else -2
+    return out
+
+
+def bolt_attributes(p: Parts, head, property_class, washer=None, tightening=None) -> dict:
+    """The bolt table's columns for head codes (``bolt_heads.csv``: a format in a head form), property classes,
+    washer codes (``washers.csv`` rows, -1: none; default none) and tightening-method codes
+    (``tightening_factors.csv`` rows; default the reference method, :data:`synth.model.vdi2230.DEFAULT_TIGHTENING_METHOD`)."""
+    from synth.model.vdi2230 import DEFAULT_TIGHTENING_METHOD
     hd, c = np.asarray(head, dtype=np.int64), np.asarray(property_class, dtype=np.int64)
-    bh, bo, cl = p.bolt_head, p.bolt, p.bolt_class
+    bh, bo, cl, ws, tf = p.bolt_head, p.bolt, p.bolt_class, p.washer, p.tightening
+    wc = np.broadcast_to(np.asarray(-1 if washer is None else washer, dtype=np.int64), hd.shape)
+    tc = np.broadcast_to(np.asarray(tf.code(DEFAULT_TIGHTENING_METHOD) if tightening is None else tightening,
+                                    dtype=np.int64), hd.shape)
     b = bh.bolt_code[hd]
     big = bo.d_mm[b] > 16.0
-    rank_b = np.where(np.isfinite(bo.escalation_rank[b]) & (bh.head_type[hd] == "hex"), bo.escalation_rank[b], np.inf)
+    has = wc >= 0
+    wi = np.where(has, wc, 0)
+
+    def wcol(name, none=np.nan):
+        return np.where(has, ws.cols[name][wi], none)
+    reference = (tf.key[tc] == DEFAULT_TIGHTENING_METHOD) & ~has
+    rank_b = np.where(np.isfinite(bo.escalation_rank[b]) & (bh.head_type[hd] == "hex") & reference,
+                      bo.escalation_rank[b], np.inf)
     return {
         "head_code": hd, "bolt_code": b, "class_code": c, "bolt_format": bo.key[b], "bolt_head_type": bh.head_type[hd],
         "bolt_property_class": cl.key[c], "bolt_d_mm": bo.d_mm[b], "pivot_bore_min_mm": bo.pivot_bore_min_mm[b],
         "bolt_head_dw_min_mm": bh.dw_min_mm[hd], "bolt_head_outer_mm": bh.head_outer_mm[hd],
         "bolt_head_height_mm": bh.head_height_mm[hd],
+        "washer_code": wc, "bolt_washer": np.where(has, ws.product_standard[wi], NONE).astype(object),
+        "washer_d1_mm": wcol("d1_mm"), "washer_d2_mm": wcol("d2_mm"), "washer_h_mm": wcol("h_mm", 0.0),
+        "tightening_code": tc, "bolt_tightening": tf.key[tc], "tightening_alpha_a": tf.alpha_a_max[tc],
+        "tightening_by_yield": tf.preload_set_by[tc] == "yield",
         "rp02_mpa": np.where(big, cl.rp02_min_d_gt16_mpa[c], cl.rp02_min_mpa[c]),
         "escalation_order": rank_b * 100 + cl.escalation_rank[c],  # the thesis escalates hex-head bolts
         "class_defined": ~(np.isfinite(cl.d_max_mm[c]) & (bo.d_mm[b] > cl.d_max_mm[c])),  # ISO 898-1: 9.8 to 16 mm
-        "cost_eur": columns.bolt_eur(p.prices, hd, c),
+        "cost_eur": columns.bolt_eur(p.prices, hd, c, wc, tc),
         "nonstandard": (_w("bolt") * ~bo.standard[b] + _w("bolt") * ~bh.standard[hd]
-                        + _w("bolt") * ~cl.standard[c]).astype(float),
+                        + _w("bolt") * ~cl.standard[c] + _w("bolt") * np.where(has, ~ws.standard[wi], False)
+                        + _w("bolt") * ~tf.standard[tc]).astype(float),
     }
 
 
 def _bolt(p: Parts) -> dict:
-    h, c = (a.ravel() for a in np.meshgrid(np.arange(len(p.bolt_head)), np.arange(len(p.bolt_class)), indexing="ij"))
-    t = bolt_attributes(p, h, c)
-    keep = t["class_defined"]
-    return {k: v[keep] for k, v in t.items()}
+    """Every bolt option: head (format x head form) x property class x washer series (none, each series of
+    ``washers.csv``; flange heads none) x tightening method (the ``design_option`` rows of ``tightening_factors.csv``)."""
+    series = [NONE, *dict.fromkeys(p.washer.product_standard.tolist())]
+    methods = np.flatnonzero(p.tightening.design_option)
+    h, c, s, t = (a.ravel() for a in np.meshgrid(np.arange(len(p.bolt_head)), np.arange(len(p.bolt_class)),
+                                                 np.arange(len(series)), methods, indexing="ij"))
+    w = washer_code(p, h, np.array(series, dtype=object)[s])
+    keep = w >= -1
+    tab = bolt_attributes(p, h[keep], c[keep], w[keep], t[keep])
+    ok = tab["class_defined"]
+    return {k: v[ok] for k, v in tab.items()}
 
 
 #: table -> (the most rows the evaluator is given, the catalogs whose rows multiply into it). Capacity bounds,
@@ -427,7 +480,7 @@ CAPACITY = {"core": (2_000, "ball_bearings.csv, pivot_classes.csv, pivot_bushing
             "bushing": (500, "pivot_bushings.csv"),
             "axial": (5_000, "endcap_spacers.csv"),
             "spring": (150_000, "spring_materials.csv, spring_wires.csv (and the bearings' diameters)"),
-            "bolt": (2_000, "bolt_heads.csv, bolt_property_classes.csv")}
+            "bolt": (10_000, "bolt_heads.csv, bolt_property_classes.csv, washers.csv, tightening_factors.csv")}
 
 
 def table_sizes(p: Parts) -> dict:
@@ -436,7 +489,8 @@ def table_sizes(p: Parts) -> dict:
     return {"core": len(selectable_bearings(p)) * len(_pivot_classes(p)) * len(p.bushing) * (len(p.damper_pad) + 1),
             "bushing": int(sum(len(lengths) for lengths in p.bushing_lengths)), "axial": n_axial,
             "spring": len(p.spring_material) * len(p.spring_wire) * len(mbd_grid(p)),
-            "bolt": len(p.bolt_head) * len(p.bolt_class)}
+            "bolt": len(p.bolt_head) * len(p.bolt_class) * (1 + len(set(p.washer.product_standard.tolist())))
+            * int(p.tightening.design_option.sum())}
 
 
 def check_capacity(p: Parts) -> None:

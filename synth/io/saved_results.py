@@ -158,9 +158,10 @@ def parts_of(data: dict, where: str, what: str = "--parts") -> dict:
     """The part choices of a checked result or of a parts-only object ``{"parts": {...}}`` (every part key
     present)."""
     check_result(data, where, what)
-    from synth.design.space import PART_KEYS
+    from synth.design.space import PART_DEFAULTS, PART_KEYS
     parts = dict(data["parts"])
-    missing = [k for k in PART_KEYS if k not in parts and k not in ("bolt_head_type", "cone_spring_internal_diameter_mm")]
+    missing = [k for k in PART_KEYS if k not in parts and k not in PART_DEFAULTS
+               and k != "cone_spring_internal_diameter_mm"]
     if missing:
         raise InputError(Problem(what, where, "a result with a complete design (this one has no "
                                               + ", ".join(missing[:4]) + ")"))

@@ -3,9 +3,10 @@
 The tensioner is clamped on the engine by one bolt. The bolt preload must keep
 the pivot base in contact with the crankcase under the tilting moment of the
 hubload (which acts at the belt middle-plane height) and must hold the
-hubload by friction (sliding). The preload is then carried by a bolt format
-and property class (the smallest that does not yield), and the clamped parts
-are checked under the head and in the threads.
+hubload by friction (sliding). The preload is carried by a bolt format and
+property class, and the clamped parts are checked under the head (on the
+head's own bearing face, or a washer's, within the support's seat) and in
+the threads.
 
 Units: forces in N, lengths in mm, torques in N*mm inside and N*m at the
 public outputs (``_nm``), stresses in MPa (= N/mm^2), angles in degrees.
@@ -14,26 +15,31 @@ Where the printed thesis equations are wrong or ambiguous the physically
 correct form is implemented and the thesis tool's convention is offered as a
 keyword option; see ``docs/sections/bolted_joint.md``.
 
-Two paths choose the bolt (:func:`fixation` ``method``): ``"thesis"``
-(default; the thesis tool's elastic stress check at the required clamp force,
-reproduces the thesis cases) and ``"vdi2230"`` (VDI 2230 Part 1 (2015):
-permissible assembly preload with plastic torsion, tightening factor and
-embedding loss, so that the smallest residual clamp force meets the tilting
-and sliding targets). Thread data: ``catalogs/bolts.csv`` (ISO 261/262/724,
-ISO 898-1 A_s), head forms ``catalogs/bolt_heads.csv`` (hex, flange,
-socket), classes ``catalogs/bolt_property_classes.csv`` (ISO 898-1). This module
-holds the thesis form and the choice of the bolt; the VDI 2230 equations
-(ISO thread geometry, permissible preload, tightening factor, embedding,
-resiliences) are :mod:`synth.model.vdi2230`.
+Two paths size and judge the joint (:func:`fixation` ``method``): ``"thesis"``
+(the thesis tool's elastic stress check at exactly the required clamp force:
+the reproduction path of the thesis cases) and ``"vdi2230"`` (VDI 2230 Part 1:
+the made joint of a tightening method, its preload window ``[F_M,min,
+alpha_A F_M,min]`` sized to the requirement, or the bolt's yield point for
+yield- and angle-controlled tightening). Thread data: ``catalogs/bolts.csv``
+(ISO 261/262/724, ISO 898-1 A_s), head forms ``catalogs/bolt_heads.csv``
+(hex, flange, socket), washers ``catalogs/washers.csv`` (ISO 7089, ISO 7093-1),
+classes ``catalogs/bolt_property_classes.csv`` (ISO 898-1), tightening methods
+``catalogs/tightening_factors.csv``. This module computes the values of the
+step-10 checks for a given bolt; which bolt passes is the registry's verdict and
+the flowchart's (or an optimiser's) choice. The VDI 2230 equations are
+:mod:`synth.model.vdi2230`.
+
+Thesis case 1 as run (its 13 mm contact: a head bearing on at least 13 mm, e.g. a flange head on a 13 mm seat):
 
 >>> hl = nominal_hubload_n(3.25, 5.0, 85.0)
 >>> round(float(hl), 1)
 652.5
 >>> out = fixation(hl, 29.5, 2.0, 2.5, 2.5, 8.2, 22.9, 360.0, 400.0, 400.0,
 ...                application_type="belt_in_oil", number_of_active_threads=2.3,
-...                bolt_head_contact_external_diameter_mm=13.0)
->>> str(out["bolt_format"]), str(out["bolt_property_class"]), round(float(out["bolt_tightening_torque_nm"]), 2)
-('M8x1.25', '8.8', 19.64)
+...                bolt_head_contact_external_diameter_mm=13.0, head_type="flange",
+...                bolt_format="M8x1.25", bolt_property_class="8.8")
+>>> round(float(out["bolt_tightening_torque_nm"]), 2), round(float(out["bolt_under_head_stress_mpa"]), 1)
+(19.64, 204.1)
 """
 
 from __future__ import annotations
@@ -46,7 +52,8 @@ from synth.model.input_guards import as_array as _arr, require as _require
 from synth.model.vdi2230 import (DEFAULT_EMBEDDING_LOADING, DEFAULT_EMBEDDING_ROUGHNESS, DEFAULT_TIGHTENING_METHOD,
                                  HEAD_TYPES, assembly_torque_nm, bolt_resilience_mm_per_n,
                                  clamped_parts_resilience_mm_per_n, embedding_preload_loss_n, embedding_um,
-                                 head_mean_diameter_mm, permissible_assembly_preload_n, tightening_factor)
+                                 head_mean_diameter_mm, permissible_assembly_preload_n)
+from synth.model import vdi2230 as _vdi
 from synth import parts
 from synth.model.damping import hubload_nominal_n
 from synth import catalog as _catalog
@@ -60,7 +67,8 @@ __all__ = [
     "bolt_normal_stress_mpa", "bolt_torsion_stress_mpa", "von_mises_stress_mpa",
     "under_head_stress_mpa", "thread_area_mm2", "thread_bearing_stress_mpa",
     "min_head_contact_diameter_mm", "min_active_threads",
-    "METHODS", "bolt_head", "bolt_candidates", "fixation",
+    "METHODS", "bolt_head", "bolt_candidates", "NO_WASHER", "washer_series", "washer_dimensions",
+    "head_bearing_diameter_mm", "head_friction_diameter_mm", "fixation",
 ]
 
 STEP = 10
@@ -459,18 +467,18 @@ def under_head_stress_mpa(bolt_force_n, head_contact_diameter_mm, hole_diameter_
     """Bearing stress under the bolt head, eq. (108)-(109) [MPa].
 
     ``F / (pi/4 (d_w^2 - d_int^2))``: annulus between the bolt-head contact
-    diameter and the support internal diameter. A head not larger than the
-    hole raises InputError. Case 3: 14500/(pi/4 (11^2 - 8.2^2)) = 343.4 MPa.
+    diameter and the support internal diameter (or a washer's bore). A head
+    (or washer) bearing no larger than the hole leaves no annulus: the
+    pressure is infinite (the check fails). Case 3: 14500/(pi/4 (11^2 - 8.2^2)) = 343.4 MPa.
 
-    >>> round(float(under_head_stress_mpa(14500.0, 11.0, 8.2)), 1)
-    343.4
+    >>> round(float(under_head_stress_mpa(14500.0, 11.0, 8.2)), 1), float(under_head_stress_mpa(14500.0, 8.0, 8.2))
+    (343.4, inf)
     """
     dw = _require("bolt_head_contact_external_diameter_mm", head_contact_diameter_mm)
     dh = _require("engine_support_internal_diameter_mm", hole_diameter_mm, inclusive=True)
-    if np.any(dw <= dh):
-        raise InputError(Problem("bolt_head_contact_external_diameter_mm", float(np.ravel(np.broadcast_to(dw, np.broadcast(dw, dh).shape)[dw <= dh])[0]),
-                                 "a diameter > the support internal diameter"))
-    return _arr(bolt_force_n) / (np.pi / 4.0 * (dw**2 - dh**2))
+    ring = np.pi / 4.0 * (dw**2 - dh**2)
+    with np.errstate(divide="ignore"):
+        return np.where(ring > 0, _arr(bolt_force_n) / np.where(ring > 0, ring, 1.0), np.inf)
 
 
 def thread_area_mm2(d_mm, pitch_mm, d2_mm, d3_mm, D1_mm, *, model="triangle"):
@@ -689,6 +697,96 @@ def _bolt_candidates(bolt_format, property_class, head_type):
 
 
 # ----------------------------------------------------------------------------------------------
+# the head's bearing on the support: the screw's own head, a washer, the seat
+# ----------------------------------------------------------------------------------------------
+
+NO_WASHER = "none"
+
+
+def washer_series() -> tuple:
+    """The washer series of ``catalogs/washers.csv`` (its ``product_standard`` column), ``"none"`` first.
+
+    >>> washer_series()
+    ('none', 'ISO 7089', 'ISO 7093-1')
+    """
+    ws = load("washers")
+    return (NO_WASHER, *dict.fromkeys(ws["product_standard"].astype(str).str.strip()))
+
+
+def washer_dimensions(series, d_mm) -> dict:
+    """``{"d1_mm", "d2_mm", "h_mm"}``: the bore, outer diameter and thickness of the ``series`` washer
+    (``catalogs/washers.csv``) for each bolt diameter ``d_mm`` (arrays; ``"none"``: no washer, NaN
+    diameters and 0 thickness). A series without a washer for a diameter is an error naming both.
+
+    >>> w = washer_dimensions("ISO 7089", [8.0, 10.0])
+    >>> w["d2_mm"].tolist(), w["h_mm"].tolist()
+    ([16.0, 20.0], [1.6, 2.0])
+    """
+    d = np.atleast_1d(np.asarray(d_mm, dtype=float))
+    series = str(series).strip()
+    if series == NO_WASHER:
+        return {"d1_mm": np.full(d.shape, np.nan), "d2_mm": np.full(d.shape, np.nan), "h_mm": np.zeros(d.shape)}
+    ws = load("washers")
+    rows = ws[ws["product_standard"].astype(str).str.strip() == series]
+    if rows.empty:
+        raise InputError(Problem("bolt_washer", series, "one of " + ", ".join(washer_series())))
+    by_d = {float(r["d_mm"]): r for _, r in rows.iterrows()}
+    out = {k: np.empty(d.shape) for k in ("d1_mm", "d2_mm", "h_mm")}
+    for i, di in enumerate(d):
+        r = by_d.get(float(di))
+        if r is None:
+            raise InputError(Problem("bolt_washer", series, f"a series with a washer for M{di:g} "
+                                     f"(catalogs/washers.csv has {', '.join(f'M{x:g}' for x in sorted(by_d))})"))
+        for k in out:
+            out[k][i] = float(r[k])
+    return out
+
+
+def head_bearing_diameter_mm(head_dw_mm, washer_d2_mm=np.nan, washer_h_mm=0.0, seat_mm=None):
+    """Outer diameter of the head's bearing on the support [mm]: the screw's own, a washer's, within the seat.
+
+    Without a washer (``washer_d2_mm`` NaN) the head's bearing-face diameter
+    ``dw`` (``bolt_heads.csv`` ``dw_min_mm``, ISO 4017 / 4162 / 4762). A
+    washer under the head spreads the head's load at 45 deg through its
+    thickness ``h``: it bears on ``min(d2, dw + 2 h)`` (a thin washer does
+    not carry its whole face; synth assumption, the washer being hardened,
+    300 HV, so that the head does not indent it). ``seat_mm`` (the
+    application's ``bolt_head_contact_external_diameter_mm``, NaN or None:
+    no seat) is the support's bearing face: the contact ends there.
+
+    An ISO 4017 M6 head on the default 11 mm seat bears on its own 8.88 mm;
+    an M8 flange head (14.9 mm) on it on the seat's 11 mm; an M8 hex head on
+    an ISO 7089 washer (16 x 1.6 mm) with no seat on 11.63 + 3.2 = 14.83 mm:
+
+    >>> [float(x) for x in head_bearing_diameter_mm([8.88, 14.9], seat_mm=11.0)]
+    [8.88, 11.0]
+    >>> round(float(head_bearing_diameter_mm(11.63, 16.0, 1.6)), 2)
+    14.83
+    """
+    dw = _arr(head_dw_mm)
+    d2 = _arr(washer_d2_mm)
+    out = np.where(np.isfinite(d2), np.minimum(d2, dw + 2.0 * _arr(washer_h_mm)), dw)
+    if seat_mm is not None:
+        seat = _arr(seat_mm)
+        out = np.where(np.isfinite(seat), np.minimum(out, seat), out)
+    return out
+
+
+def head_friction_diameter_mm(head_dw_mm, washer_d2_mm=np.nan, seat_mm=None):
+    """Outer diameter of the face the head turns on while tightened [mm] (the under-head friction of eq. (101),
+    VDI 2230 D_Km): the head's own face on a washer, or on the support within its seat.
+
+    >>> float(head_friction_diameter_mm(11.63, seat_mm=11.0)), float(head_friction_diameter_mm(11.63, 16.0, 11.0))
+    (11.0, 11.63)
+    """
+    dw = _arr(head_dw_mm)
+    if seat_mm is None:
+        return dw + 0.0 * np.nan_to_num(_arr(washer_d2_mm))
+    seat = _arr(seat_mm)
+    return np.where(np.isfinite(_arr(washer_d2_mm)) | ~np.isfinite(seat), dw, np.minimum(dw, seat))
+
+
+# ----------------------------------------------------------------------------------------------
 # the flowchart step
 # ----------------------------------------------------------------------------------------------
 
@@ -697,74 +795,82 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
              engine_support_internal_diameter_mm, engine_support_external_diameter_mm, contact_angle_deg,
              support_yield_strength_compression_mpa, support_yield_strength_traction_mpa, *,
              number_of_active_threads, application_type="dry",
-             bolt_head_contact_external_diameter_mm=None, head_type="hex",
+             bolt_head_contact_external_diameter_mm=None, head_type="hex", washer=NO_WASHER,
              bolt_format=None, bolt_property_class=None,
              mu_crankcase=None, mu_thread=None, mu_head=None,
              contact_model="sector", torque_model="vdi", normal_stress_area="stress",
              torsion_diameter="minor", thread_area_model="triangle",
-             method="thesis", clamp_length_mm=None, tightening_method=DEFAULT_TIGHTENING_METHOD, alpha_a=None,
+             method="thesis", tightening_method=DEFAULT_TIGHTENING_METHOD, alpha_a=None,
+             embedding=False, clamp_length_mm=None,
              embedding_roughness=DEFAULT_EMBEDDING_ROUGHNESS, embedding_loading=DEFAULT_EMBEDDING_LOADING,
              clamped_interfaces=None, joint_type="tapped", clamped_parts_modulus_mpa=None,
-             free_thread_length_mm=0.0, utilisation=None, tighten_to="permissible", candidates=None,
-             clamp_force_n=None):
-    """Step 10 of the flowchart: bolt preload, bolt choice and all checks (eq. (94)-(111)).
+             free_thread_length_mm=0.0, utilisation=None, candidates=None, clamp_force_n=None):
+    """Step 10 of the flowchart: the joint of one named bolt, or of each of ``candidates`` (eq. (94)-(111)).
 
     Vectorised over designs: every numeric argument broadcasts. The clamp
-    force the joint needs is ``max(F_tilting, F_sliding)`` for the safety
-    targets (eq. (100)). Two paths choose and check the bolt (``method``):
+    force the joint needs is ``F_req = max(F_tilting, F_sliding)`` for the
+    safety targets (eq. (100)). This function computes the values of the
+    registry's step-10 checks for the bolt it is given; choosing the bolt
+    (the thesis's escalation: the first format and class that passes) is the
+    caller's (:mod:`synth.flowchart`, the optimisers), from those checks.
 
-    ``"thesis"`` (default): the bolt is tightened to exactly that force; the
-    bolt is the first (format, class) of :func:`bolt_candidates` whose
-    elastic von Mises stress (eq. (103)-(107)) stays within
-    ``bolt_yield_utilisation_max * Rp0.2`` (the largest if none does; its
-    margin is then negative). This is the thesis tool: it reproduces the
-    thesis cases (case 1 as run: M8x1.25 8.8, 19.64 N*m).
+    **The head's bearing diameter** on the support is the part's own: the
+    head's ``dw_min`` (``bolt_heads.csv``, ``head_type``), or with a
+    ``washer`` (``washers.csv`` series, ``"none"``: no washer) the washer's
+    outer diameter as far as the head's load spreads through it
+    (:func:`head_bearing_diameter_mm`). The application's
+    ``bolt_head_contact_external_diameter_mm`` is a given seat: the support's
+    bearing face ends there, so the contact is never larger
+    (a head overhanging the seat bears on the seat).
 
-    ``"vdi2230"``: VDI 2230 Part 1 (2015) steps R1-R7, R10, R12, R13. The
-    required force is the minimum residual clamp force ``F_Kerf``; embedding
-    ``F_Z`` (:func:`embedding_preload_loss_n`, needs ``clamp_length_mm``) and
-    the tightening factor ``alpha_A`` (:func:`tightening_factor` of
-    ``tightening_method``, or ``alpha_a``) give ``F_M,min = F_Kerf + F_Z`` and
-    ``F_M,max = alpha_A F_M,min``; the bolt is the first candidate with
-    ``F_M,max <= F_M,zul`` (:func:`permissible_assembly_preload_n`, plastic
-    torsion, ``nu = utilisation`` or 0.9). It is tightened to ``F_M,zul`` at
-    the lowest friction (torque eq. (R13/1); ``tighten_to="required"``
-    tightens to ``F_M,max`` instead, the least torque that still guarantees
-    ``F_M,min``); the reported ``bolt_axial_force_n`` is that assembly
-    preload ``F_M``, the stresses are those of R7 at ``F_M`` (``tau`` on the
-    plastic section ``pi d0^3/12``), head and thread pressures use it (R10),
-    and the safety factors are those of the smallest residual clamp force
-    ``F_M/alpha_A - F_Z`` (R12).
+    Two paths size and judge the joint (``method``):
+
+    ``"thesis"`` (the reproduction path): the bolt is tightened to exactly
+    ``F_req`` and judged by the elastic von Mises stress (eq. (103)-(107))
+    against ``bolt_yield_utilisation_max * Rp0.2``; it reproduces the thesis
+    cases (case 1 as run: M8x1.25 8.8, 19.64 N*m).
+
+    ``"vdi2230"`` (the made joint of a tightening method, VDI 2230 Part 1):
+    ``tightening_method`` (``catalogs/tightening_factors.csv``) tightens the
+    joint into the window ``[F_M,min, F_M,max]``, ``F_M,max = alpha_A
+    F_M,min`` (Table A8, the method's upper factor, or ``alpha_a``). A
+    torque-controlled method sizes the window to the requirement:
+    ``F_M,min = F_req`` (+ the embedding loss ``F_Z`` with ``embedding=True``,
+    R4/R5: it needs ``clamp_length_mm``), and the bolt must carry the
+    window's top: ``F_M,max <= F_M,zul`` (R7/2, plastic torsion, ``nu``).
+    A yield- or angle-controlled method takes the bolt to its yield point:
+    ``F_M,min`` is the bolt's own yield preload (R7/2 at ``nu = 1``) and the
+    bolt is dimensioned for it (VDI 2230-1: ``alpha_A`` is the scatter of the
+    lot's yield point; no ``F_M,zul`` check). The safety factors are those
+    of the window's bottom (the smallest residual clamp force), the head,
+    thread and pivot-base pressures and the bolt stresses those of its top
+    (R10); ``bolt_axial_force_n`` is the window's mean and the tightening
+    torque (R13/1) is set for it.
+
+    ``clamp_force_n`` (broadcast like the designs, NaN where not given): a
+    made joint, tightened to this preload (a production-scatter sample of
+    :mod:`synth.robust`); every value then follows from it (the safety
+    factors at it less the embedding loss, the pressures and stresses at
+    it) and ``bolt_clamp_force_required_n`` stays ``F_req``.
 
     Friction coefficients default to ``friction_coefficients.csv`` for the
-    ``application_type`` (``dry`` or ``belt_in_oil``; in the VDI path they
-    are read as the lowest values, mu_min). The bolt-head contact diameter
-    defaults to the catalog ``dw_min`` of the chosen format in ``head_type``
-    (``hex`` ISO 4017/8676, ``flange`` ISO 4162/15071, ``socket`` ISO 4762/12474).
+    ``application_type`` (``dry`` or ``belt_in_oil``).
 
     Options (thesis-tool conventions vs defaults): ``contact_model``
     (``sector``/``thesis``, see :func:`pivot_base_bending_factor_per_mm3`),
     ``torque_model`` (``vdi``/``helix``), ``normal_stress_area``
     (``stress`` = ISO 898-1 A_s / ``core`` = printed eq. (103)-(104)),
     ``torsion_diameter`` (``minor`` = eq. (105) / ``stress`` = VDI 2230),
-    ``thread_area_model`` (see :func:`thread_area_mm2`); these five apply to
-    the thesis path. VDI-path options: ``clamp_length_mm`` (the clamped
-    length l_K, e.g. the pivot height), ``embedding_roughness``
-    (``rz_lt_10``/``rz_10_40``/``rz_40_160``), ``embedding_loading``
-    (``axial``/``transverse``), ``clamped_interfaces``, ``joint_type``
-    (``tapped``/``through``), ``clamped_parts_modulus_mpa``,
-    ``free_thread_length_mm`` (loaded free thread inside l_K, default 0).
+    ``thread_area_model`` (see :func:`thread_area_mm2`); these apply to the
+    thesis path. VDI-path options: ``embedding`` with ``clamp_length_mm``
+    (the clamped length l_K), ``embedding_roughness``, ``embedding_loading``,
+    ``clamped_interfaces``, ``joint_type``, ``clamped_parts_modulus_mpa``,
+    ``free_thread_length_mm``, ``utilisation`` (``nu`` of R7, default 0.9).
 
-    ``clamp_force_n`` (thesis path only; broadcast like the designs, NaN where not given): a made joint,
-    tightened to this clamp force instead of the one the safety targets need (a production-scatter sample
-    of :mod:`synth.robust`: the specified preload times its tightening scatter); every value then follows
-    from it and ``bolt_clamp_force_required_n`` stays the force the targets need. The VDI path's tightening
-    factor already holds the preload scatter: giving it there is an error.
-
-    ``candidates`` (a list of ``(bolt_format, bolt_property_class)`` pairs, with ``bolt_format`` and
-    ``bolt_property_class`` left None): every pair is evaluated as the chosen bolt, no escalation, and every
-    returned array gains a trailing axis, one entry per pair (a design space evaluates all its bolts of one
-    head form in one call; each entry equals the call naming that bolt).
+    The bolt: ``bolt_format`` and ``bolt_property_class`` (one bolt), or
+    ``candidates`` (a list of ``(bolt_format, bolt_property_class)`` pairs):
+    every pair is evaluated and every returned array gains a trailing axis,
+    one entry per pair (each entry equals the call naming that bolt).
 
     Returns a dict of arrays with the case keys ``bolt_tightening_torque_nm``,
     ``bolt_axial_force_n``, ``bolt_sigma_mpa``, ``bolt_tau_mpa``,
@@ -775,23 +881,27 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     (``bolt_force_tilting_n``, ``bolt_force_sliding_n``, ``bolt_clamp_force_required_n``,
     ``tilting_moment_nmm``, ``pivot_base_max_pressure_mpa``,
     ``pivot_base_min_pressure_mpa``, ``bolt_utilisation``, ``bolt_rp02_mpa``,
-    ``bolt_head_contact_diameter_mm``); column-G
-    corrections (``min_head_contact_diameter_mm``, ``min_active_threads``,
+    ``bolt_head_contact_diameter_mm`` (the bearing diameter on the support));
+    column-G corrections (``min_head_contact_diameter_mm``, ``min_active_threads``,
     ``pivot_bore_min_mm``) -- the limits and verdicts are the registry's
-    (:mod:`synth.design.constraints`); and for ``"vdi2230"`` also ``bolt_permissible_preload_n`` (F_M,zul),
-    ``bolt_required_preload_min_n`` (F_M,min), ``bolt_required_preload_max_n``
+    (:mod:`synth.design.constraints`); and for ``"vdi2230"`` also
+    ``bolt_permissible_preload_n`` (F_M,zul; +inf for a yield-controlled
+    method), ``bolt_required_preload_min_n`` (F_M,min), ``bolt_required_preload_max_n``
     (F_M,max), ``bolt_embedding_um`` (f_Z), ``bolt_embedding_loss_n`` (F_Z),
-    ``bolt_resilience_mm_per_n``, ``clamped_parts_resilience_mm_per_n``,
-    ``bolt_residual_clamp_force_n`` (F_KR,min) and ``tightening_factor``.
+    ``bolt_residual_clamp_force_n`` (the smallest residual clamp force) and
+    ``tightening_factor``.
 
-    >>> r = fixation(462.5, 20.0, 2.0, 3.0, 3.0, 8.2, 28.0, 360.0, 400.0, 400.0,
-    ...              number_of_active_threads=2.6, bolt_head_contact_external_diameter_mm=11.0)
+    >>> r = fixation(462.5, 20.0, 2.0, 3.0, 3.0, 8.2, 28.0, 360.0, 400.0, 400.0, number_of_active_threads=2.6,
+    ...              bolt_head_contact_external_diameter_mm=11.0, bolt_format="M8x1.25", bolt_property_class="8.8")
     >>> round(float(r["bolt_axial_force_n"])), round(float(r["tilting_safety_factor"]), 2)
     (13875, 5.18)
     >>> v = fixation(462.5, 20.0, 2.0, 3.0, 3.0, 8.2, 28.0, 360.0, 400.0, 400.0, method="vdi2230",
-    ...              clamp_length_mm=34.0, number_of_active_threads=2.6, bolt_head_contact_external_diameter_mm=11.0)
-    >>> str(v["bolt_format"]), str(v["bolt_property_class"]), bool(v["sliding_safety_factor"] >= 3.0)
-    ('M8x1.25', '10.9', True)
+    ...              number_of_active_threads=2.6, head_type="flange", bolt_format="M8x1.25",
+    ...              bolt_property_class="10.9")
+    >>> round(float(v["bolt_required_preload_min_n"])), round(float(v["bolt_required_preload_max_n"]))
+    (13875, 22200)
+    >>> round(float(v["bolt_under_head_stress_mpa"]), 1), round(float(v["sliding_safety_factor"]), 2)
+    (182.7, 3.0)
     """
     if method not in METHODS:
         raise InputError(Problem("method", method, "one of " + ", ".join(METHODS)))
@@ -803,9 +913,7 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         raise InputError(Problem("normal_stress_area", normal_stress_area, "'stress' or 'core'"))
     if torsion_diameter not in ("minor", "stress"):
         raise InputError(Problem("torsion_diameter", torsion_diameter, "'minor' or 'stress'"))
-    if tighten_to not in ("permissible", "required"):
-        raise InputError(Problem("tighten_to", tighten_to, "'permissible' (F_M,zul) or 'required' (F_M,max)"))
-    if method == "vdi2230" and clamp_length_mm is None:
+    if method == "vdi2230" and embedding and clamp_length_mm is None:
         raise InputError(Problem("clamp_length_mm", None, "a clamped length > 0 mm (e.g. the pivot height) for the "
                                  "VDI 2230 embedding loss"))
     mu_cc = friction_coefficient("pivot_base_crankcase", application_type) if mu_crankcase is None else mu_crankcase
@@ -823,18 +931,13 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     f_tilt = bolt_force_tilting_n(hl, tilting_safety_factor_target, lever, d_ext, d_int, contact_angle_deg,
                                   model=contact_model)
     f_slide = bolt_force_sliding_n(hl, sliding_safety_factor_target, mu_cc)
-    force = required = required_bolt_force_n(f_tilt, f_slide)
-    if clamp_force_n is not None:
-        if method != "thesis":
-            raise InputError(Problem("clamp_force_n", "given", "the thesis method (VDI 2230's tightening factor "
-                                                               "already holds the preload scatter)"))
-        cf = _arr(clamp_force_n)
-        force = np.where(np.isfinite(cf), cf, required)
+    required = required_bolt_force_n(f_tilt, f_slide)
+    made = None if clamp_force_n is None else _arr(clamp_force_n)
     area = pivot_base_contact_area_mm2(d_ext, d_int, contact_angle_deg)
     k = pivot_base_bending_factor_per_mm3(d_ext, d_int, contact_angle_deg, model=contact_model)
     moment = hl * lever
 
-    # --- bolt escalation: candidates on a trailing axis --------------------------------------
+    # --- the bolts: one named, or candidates on a trailing axis (no choice among them here) --------------
     if candidates is not None:
         if bolt_format is not None or bolt_property_class is not None:
             raise InputError(Problem("candidates", "given with bolt_format/bolt_property_class",
@@ -843,128 +946,124 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         if not cands:
             raise InputError(Problem("candidates", "[]", "at least one (format, class) pair"))
     else:
+        if bolt_format is None or bolt_property_class is None:
+            raise InputError(Problem("bolt_format", bolt_format, "a bolt format and a property class (or a list of "
+                                     "candidates): choosing the bolt is the flowchart's step, from the checks"))
         cands = bolt_candidates(bolt_format, bolt_property_class, head_type)
     col = {key: np.array([c[key] for c in cands], dtype=float) for key, v in cands[0].items() if isinstance(v, float)}
     names_f = np.array([c["bolt_format"] for c in cands])
     names_c = np.array([c["bolt_property_class"] for c in cands])
-    fk = force[..., None]
-    mu_gk = _arr(mu_g)[..., None]
-    dw_c = col["dw_min_mm"] if bolt_head_contact_external_diameter_mm is None else \
+    wsh = washer_dimensions(washer, col["d_mm"])
+    seat = None if bolt_head_contact_external_diameter_mm is None else \
         _arr(bolt_head_contact_external_diameter_mm)[..., None]
-    per = {}  # per-candidate arrays to pick from
+    if seat is not None and np.any(seat[..., 0] <= d_int):
+        s_, d_ = np.broadcast_arrays(seat[..., 0], d_int)
+        raise InputError(Problem("bolt_head_contact_external_diameter_mm", float(np.ravel(s_[s_ <= d_])[0]),
+                                 "a seat diameter > the support internal diameter"))
+    dw = head_bearing_diameter_mm(col["dw_min_mm"], wsh["d2_mm"], wsh["h_mm"], seat)   # on the support
+    d_in = np.fmax(d_int[..., None], wsh["d1_mm"])                                  # its bore (a washer's)
+    dk = head_friction_diameter_mm(col["dw_min_mm"], wsh["d2_mm"], seat)               # the turning face
+    mu_gk = _arr(mu_g)[..., None]
+    each = candidates is not None
+    shape = np.broadcast_shapes(np.shape(required)[:], ()) + (len(cands),)
+
+    def ex(a):  # a design array on the candidates' axis
+        return np.asarray(a, dtype=float)[..., None]
+
+    a_thr = thread_area_mm2(col["d_mm"], col["pitch_mm"], col["d2_mm"], col["d3_mm"], col["D1_mm"],
+                            model=thread_area_model)
+    vdi = {}
     if method == "thesis":
-        per["t_thread"] = thread_torque_nmm(fk, col["pitch_mm"], col["d2_mm"], mu_gk, model=torque_model)
+        force = ex(required) if made is None else np.where(np.isfinite(ex(made)), ex(made), ex(required))
+        f_top = f_bottom = f_bolt = force
+        t_thread = thread_torque_nmm(force, col["pitch_mm"], col["d2_mm"], mu_gk, model=torque_model)
         a_norm = col["stress_area_mm2"] if normal_stress_area == "stress" else np.pi / 4.0 * col["d3_mm"] ** 2
         d_tors = col["d3_mm"] if torsion_diameter == "minor" else (col["d2_mm"] + col["d3_mm"]) / 2.0
-        per["sigma"] = bolt_normal_stress_mpa(fk, a_norm)
-        per["tau"] = bolt_torsion_stress_mpa(per["t_thread"], d_tors)
-        per["eqv"] = von_mises_stress_mpa(per["sigma"], per["tau"])
-        passes = per["eqv"] <= constant("bolt_yield_utilisation_max") * col["rp02_mpa"]
+        sigma_s = bolt_normal_stress_mpa(force, a_norm)
+        tau_s = bolt_torsion_stress_mpa(t_thread, d_tors)
+        eqv_s = von_mises_stress_mpa(sigma_s, tau_s)
+        torque = (t_thread + under_head_torque_nmm(force, dk, d_in, ex(mu_k))) / 1000.0
     else:
-        alpha = tightening_factor(tightening_method) if alpha_a is None else _require(
-            "alpha_a", alpha_a, low=1.0, inclusive=True, accepted="a tightening factor >= 1")
-        fz_um = embedding_um(embedding_roughness, embedding_loading, interfaces=clamped_interfaces,
-                             joint_type=joint_type)
-        lk = _arr(clamp_length_mm)[..., None]
-        per["d_s"] = bolt_resilience_mm_per_n(col["d_mm"], col["d3_mm"], lk, head_type=head_type, joint_type=joint_type,
-                                              free_thread_length_mm=_arr(free_thread_length_mm)[..., None],
-                                              internal_thread_modulus_mpa=clamped_parts_modulus_mpa)
-        per["d_p"] = clamped_parts_resilience_mm_per_n(dw_c, d_int[..., None], d_ext[..., None], lk,
-                                                       modulus_mpa=clamped_parts_modulus_mpa, joint_type=joint_type)
-        per["f_z"] = embedding_preload_loss_n(fz_um, per["d_s"], per["d_p"])
-        per["f_min"] = fk + per["f_z"]
-        per["f_max"] = alpha * per["f_min"]
-        per["f_zul"] = permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"], col["rp02_mpa"],
-                                                      mu_gk, utilisation=utilisation)
-        passes = per["f_max"] <= per["f_zul"]
-    each = candidates is not None
-    if each:  # every candidate is the chosen bolt: its trailing axis stays, the design arrays gain one
-        idx = np.broadcast_to(np.arange(len(cands)), passes.shape)
-
-        def pick(a):
-            return np.broadcast_to(a, passes.shape)
-
-        def ex(a):
-            return np.asarray(a, dtype=float)[..., None]
-    else:
-        idx = np.where(passes.any(axis=-1), passes.argmax(axis=-1), len(cands) - 1)
-
-        def pick(a):
-            a = np.broadcast_to(a, passes.shape)
-            return np.take_along_axis(a, idx[..., None], axis=-1)[..., 0]
-
-        def ex(a):
-            return a
-
-    sel = {key: col[key][idx] for key in col}
-    dw = pick(dw_c)
-    if method == "thesis":
-        f_bolt = ex(force)
-        sigma_s, tau_s, eqv_s = pick(per["sigma"]), pick(per["tau"]), pick(per["eqv"])
-        torque = (pick(per["t_thread"]) + under_head_torque_nmm(ex(force), dw, ex(d_int), ex(mu_k))) / 1000.0
-        residual = ex(force)
-    else:
-        f_zul, f_z, f_max = pick(per["f_zul"]), pick(per["f_z"]), pick(per["f_max"])
-        f_bolt = f_zul if tighten_to == "permissible" else np.minimum(f_max, f_zul)
-        d0 = (sel["d2_mm"] + sel["d3_mm"]) / 2.0
-        thread_moment = f_bolt / 2.0 * (sel["pitch_mm"] / np.pi + ex(mu_g) * sel["d2_mm"] /
-                                        np.cos(np.radians(constant("thread_flank_half_angle_deg"))))
-        sigma_s = f_bolt / (np.pi / 4.0 * d0**2)
+        tm = _vdi.tightening_method(tightening_method)
+        yield_set = tm["preload_set_by"] == "yield"
+        alpha = tm["alpha_a_max"] if alpha_a is None else float(_require(
+            "alpha_a", alpha_a, low=1.0, inclusive=True, accepted="a tightening factor >= 1"))
+        f_zul = permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"], col["rp02_mpa"], mu_gk,
+                                               utilisation=utilisation)
+        f_z = np.zeros(shape)
+        fz_um = 0.0
+        if embedding:
+            fz_um = embedding_um(embedding_roughness, embedding_loading, interfaces=clamped_interfaces,
+                                 joint_type=joint_type)
+            lk = ex(clamp_length_mm)
+            d_s = bolt_resilience_mm_per_n(col["d_mm"], col["d3_mm"], lk, head_type=head_type, joint_type=joint_type,
+                                           free_thread_length_mm=ex(free_thread_length_mm),
+                                           internal_thread_modulus_mpa=clamped_parts_modulus_mpa)
+            d_p = clamped_parts_resilience_mm_per_n(dw, d_in, ex(d_ext), lk, modulus_mpa=clamped_parts_modulus_mpa,
+                                                    joint_type=joint_type)
+            f_z = np.broadcast_to(embedding_preload_loss_n(fz_um, d_s, d_p), shape)
+        if yield_set:  # the bolt's own yield preload (nu = 1, Rp0.2 min): the window's bottom
+            f_min = np.broadcast_to(permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"],
+                                                                   col["rp02_mpa"], mu_gk, utilisation=1.0), shape)
+            limit = np.full(shape, np.inf)
+        else:
+            f_min = np.broadcast_to(ex(required) + f_z, shape)
+            limit = np.broadcast_to(f_zul, shape)
+        f_max = alpha * f_min
+        if made is None:
+            f_bottom, f_top, f_bolt = f_min, f_max, (f_min + f_max) / 2.0
+        else:
+            mf = ex(made)
+            f_bottom = np.where(np.isfinite(mf), mf, f_min)
+            f_top = np.where(np.isfinite(mf), mf, f_max)
+            f_bolt = np.where(np.isfinite(mf), mf, (f_min + f_max) / 2.0)
+        d0 = (col["d2_mm"] + col["d3_mm"]) / 2.0
+        thread_moment = f_top / 2.0 * (col["pitch_mm"] / np.pi + mu_gk * col["d2_mm"] /
+                                       np.cos(np.radians(constant("thread_flank_half_angle_deg"))))
+        sigma_s = f_top / (np.pi / 4.0 * d0**2)
         tau_s = 12.0 * thread_moment / (np.pi * d0**3)  # plastic torsion section pi d0^3/12 (VDI R7)
         eqv_s = von_mises_stress_mpa(sigma_s, tau_s)
-        torque = assembly_torque_nm(f_bolt, sel["pitch_mm"], sel["d2_mm"], ex(mu_g), head_mean_diameter_mm(dw, ex(d_int)),
+        torque = assembly_torque_nm(f_bolt, col["pitch_mm"], col["d2_mm"], mu_gk, head_mean_diameter_mm(dk, d_in),
                                     ex(mu_k))
-        residual = f_bolt / alpha - f_z
-    sf_t = tilting_safety_factor(np.maximum(residual, 0.0), ex(hl), ex(lever), ex(d_ext), ex(d_int),
+        f_bottom = f_bottom - f_z
+        vdi = {"bolt_permissible_preload_n": limit, "bolt_required_preload_min_n": f_min,
+               "bolt_required_preload_max_n": f_top, "bolt_embedding_um": np.full(shape, fz_um),
+               "bolt_embedding_loss_n": f_z, "bolt_residual_clamp_force_n": f_bottom,
+               "tightening_factor": np.full(shape, alpha)}
+    sf_t = tilting_safety_factor(np.maximum(f_bottom, 0.0), ex(hl), ex(lever), ex(d_ext), ex(d_int),
                                  ex(contact_angle_deg), model=contact_model)
-    sf_s = sliding_safety_factor(np.maximum(residual, 0.0), ex(hl), ex(mu_cc))
-    p_avg = f_bolt / ex(area)
-    s_head = under_head_stress_mpa(f_bolt, dw, ex(d_int))
-    a_thr = thread_area_mm2(sel["d_mm"], sel["pitch_mm"], sel["d2_mm"], sel["d3_mm"], sel["D1_mm"],
-                            model=thread_area_model)
-    s_thr = thread_bearing_stress_mpa(f_bolt, a_thr, ex(n_thr))
-    p_max = p_avg + ex(moment) * ex(k)
-
+    sf_s = sliding_safety_factor(np.maximum(f_bottom, 0.0), ex(hl), ex(mu_cc))
+    p_top = f_top / ex(area)
     out = {
         "bolt_tightening_torque_nm": torque,
         "bolt_axial_force_n": f_bolt,
         "bolt_sigma_mpa": sigma_s,
         "bolt_tau_mpa": tau_s,
         "bolt_sigma_eqv_mpa": eqv_s,
-        "bolt_under_head_stress_mpa": s_head,
-        "bolt_thread_stress_mpa": s_thr,
-        "bolt_format": names_f[idx],
-        "bolt_property_class": names_c[idx],
+        "bolt_under_head_stress_mpa": under_head_stress_mpa(f_top, dw, d_in),
+        "bolt_thread_stress_mpa": thread_bearing_stress_mpa(f_top, a_thr, ex(n_thr)),
+        "bolt_format": names_f,
+        "bolt_property_class": names_c,
         "pivot_base_contact_surface_mm2": ex(area),
-        "average_contact_pressure_mpa": p_avg,
+        "average_contact_pressure_mpa": f_bolt / ex(area),
         "tilting_safety_factor": sf_t,
         "sliding_safety_factor": sf_s,
         "bolt_force_tilting_n": ex(f_tilt),
         "bolt_force_sliding_n": ex(f_slide),
         "bolt_clamp_force_required_n": ex(required),
         "tilting_moment_nmm": ex(moment),
-        "pivot_base_max_pressure_mpa": p_max,
-        "pivot_base_min_pressure_mpa": residual / ex(area) - ex(moment) * ex(k),
-        "bolt_rp02_mpa": sel["rp02_mpa"],
-        "bolt_utilisation": eqv_s / sel["rp02_mpa"],
+        "pivot_base_max_pressure_mpa": p_top + ex(moment) * ex(k),
+        "pivot_base_min_pressure_mpa": f_bottom / ex(area) - ex(moment) * ex(k),
+        "bolt_rp02_mpa": col["rp02_mpa"],
+        "bolt_utilisation": eqv_s / col["rp02_mpa"],
         "bolt_head_contact_diameter_mm": dw,
-        "min_head_contact_diameter_mm": min_head_contact_diameter_mm(f_bolt, ex(d_int), ex(s_comp)),
-        "min_active_threads": min_active_threads(f_bolt, a_thr, ex(s_trac)),
-        "pivot_bore_min_mm": sel["pivot_bore_min_mm"],
+        "min_head_contact_diameter_mm": min_head_contact_diameter_mm(f_top, d_in, ex(s_comp)),
+        "min_active_threads": min_active_threads(f_top, a_thr, ex(s_trac)),
+        "pivot_bore_min_mm": col["pivot_bore_min_mm"],
+        **vdi,
     }
-    if each:
-        shape = passes.shape
-        out = {key: np.broadcast_to(v, shape) for key, v in out.items()}
-    if method == "vdi2230":
-        out.update({
-            "bolt_permissible_preload_n": f_zul,
-            "bolt_required_preload_min_n": pick(per["f_min"]),
-            "bolt_required_preload_max_n": f_max,
-            "bolt_embedding_um": np.full_like(f_bolt, fz_um),
-            "bolt_embedding_loss_n": f_z,
-            "bolt_resilience_mm_per_n": pick(per["d_s"]),
-            "clamped_parts_resilience_mm_per_n": pick(per["d_p"]),
-            "bolt_residual_clamp_force_n": residual,
-            "tightening_factor": np.full_like(f_bolt, alpha),
-        })
+    full = np.broadcast_shapes(*(np.shape(v) for v in out.values()), shape)
+    out = {key: np.broadcast_to(v, full) for key, v in out.items()}
+    if not each:
+        out = {key: v[..., 0] for key, v in out.items()}
     return out

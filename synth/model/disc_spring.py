@@ -34,6 +34,7 @@ from synth.model.damping import axial_damping_nm as eq9
 from synth.model.damping import axial_force_required_n as eq9_inverse
 
 __all__ = [
+    "centred_cone_spring",
     "FIDELITIES",
     "disc_spring_factors",
     "disc_spring_k4",
@@ -672,3 +673,61 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
     out.update({f"cone_spring_{k}": v for k, v in table7_ratios(*geo).items()})
     shape = np.broadcast_shapes(*(np.shape(v) for v in out.values()))
     return {k: np.broadcast_to(_f(v), shape) for k, v in out.items()}
+
+
+def centred_cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radial_damping_nm,
+                        plastic_friction_coefficient, damper_pad_mean_radius_mm, endcap_spacer_mean_radius_mm,
+                        outer_diameter_mm, inner_diameter_mm, gap_tolerance_mm, *, aspect_ratio, deflection_ratio,
+                        fidelity: str = "full", iterations: int = 3) -> dict:
+    """Steps 6 and 8 as the thesis leaves them to the supplier: the cone spring's nominal height, and so its force,
+    set to centre the delivered springs in the damping window (thesis step 6: the gap stack's nominal "is
+    exploited by the cone spring supplier, in order to achieve the requested cone spring axial force"; step 8 and
+    the conclusions: the height left to the supplier, its tolerance set by the gap tolerance and the damping window).
+
+    :func:`cone_spring` sizes the spring for the force of the damping target and gives the band its force must
+    keep at the nominal gap, ``[F_min,tol, F_max,tol]`` (the damping window less the force shift over the gap
+    tolerance, Fig. 68). A spring ordered at the nominal ``F`` is delivered in ``[F (1 - d-), F (1 + d+)]``
+    (DIN EN 16983: +25/-7.5 % below 1.25 mm): an asymmetric window. The nominal that centres the delivered range
+    in the band is
+
+    .. math:: F^* = \frac{F_{max,tol} + F_{min,tol}}{2 + d_+ - d_-}
+
+    and the room left, ``min(F_max,tol - F* (1 + d+), F* (1 - d-) - F_min,tol)``, is the largest any nominal
+    leaves. The spring is the variant's (its ``h0/t`` and ``s/h0``) thickness for ``F*`` (the supplier's free
+    height ``(1 + h0/t) t``); the band and the DIN EN 16983 group follow the thickness, so ``F*`` is found by a
+    fixed-point iteration (``iterations``; the group changes at most once).
+
+    Returns :func:`cone_spring`'s keys for the centred spring, with ``cone_spring_fax_nominal_n`` = ``F*`` and
+    ``cone_spring_force_band_room_n`` the centred room.
+
+    Thesis case 1 (D 2.00 +/- 0.30 N m, the tool's spring variant): the band at the nominal gap is 498-555 N, narrower
+    than the delivered range of any nominal (+25/-7.5 %); the target's 509.1 N overruns its top by 83 N, the centred
+    484.6 N by 50 N on both sides:
+
+    >>> args = (1.7129, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 30.0, 16.2, 0.22)
+    >>> c = centred_cone_spring(*args, aspect_ratio=1.2, deflection_ratio=0.75)
+    >>> t = cone_spring(*args, aspect_ratio=1.2, deflection_ratio=0.75)
+    >>> round(float(t["cone_spring_fax_nominal_n"]), 1), round(float(c["cone_spring_fax_nominal_n"]), 1)
+    (509.1, 484.6)
+    >>> round(float(t["cone_spring_force_band_room_n"]), 1), round(float(c["cone_spring_force_band_room_n"]), 1)
+    (-82.7, -50.3)
+    """
+    mu_r = _f(plastic_friction_coefficient) * (_f(damper_pad_mean_radius_mm) + _f(endcap_spacer_mean_radius_mm)) * 1e-3
+    rest = (damping_target_nm, damping_tolerance_nm, radial_damping_nm, plastic_friction_coefficient,
+            damper_pad_mean_radius_mm, endcap_spacer_mean_radius_mm, outer_diameter_mm, inner_diameter_mm,
+            gap_tolerance_mm)
+    kw = dict(aspect_ratio=aspect_ratio, deflection_ratio=deflection_ratio, fidelity=fidelity)
+    d_ax = _f(axial_damping_nm_)
+    for _ in range(max(1, int(iterations))):
+        cs = cone_spring(d_ax, *rest, **kw)
+        p, m = cs["cone_spring_force_tolerance_plus"], cs["cone_spring_force_tolerance_minus"]
+        f_star = (cs["cone_spring_fax_max_tolerance_n"] + cs["cone_spring_fax_min_tolerance_n"]) / (2.0 + p - m)
+        d_ax = np.where(np.isfinite(f_star) & (f_star > 0), f_star * mu_r, d_ax)
+    cs = dict(cone_spring(d_ax, *rest, **kw))
+    p, m = cs["cone_spring_force_tolerance_plus"], cs["cone_spring_force_tolerance_minus"]
+    f_max, f_min = cs["cone_spring_fax_max_tolerance_n"], cs["cone_spring_fax_min_tolerance_n"]
+    f_star = (f_max + f_min) / (2.0 + p - m)
+    cs["cone_spring_fax_nominal_n"] = f_star
+    cs["cone_spring_force_band_room_n"] = np.minimum(f_max - f_star * (1.0 + p), f_star * (1.0 - m) - f_min)
+    return cs
+

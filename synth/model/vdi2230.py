@@ -18,6 +18,7 @@ from synth.model.input_guards import as_array as _arr, require as _require
 __all__ = [
     "iso724_diameters_mm", "stress_area_mm2", "permissible_assembly_preload_n", "elastic_permissible_preload_n",
     "assembly_torque_nm", "head_mean_diameter_mm", "tightening_factor_from_scatter", "tightening_factor",
+    "tightening_method", "preload_scatter", "PRELOAD_SET_BY",
     "embedding_um", "bolt_resilience_mm_per_n", "clamped_parts_resilience_mm_per_n", "embedding_preload_loss_n",
     "DEFAULT_TIGHTENING_METHOD", "DEFAULT_EMBEDDING_ROUGHNESS", "DEFAULT_EMBEDDING_LOADING", "JOINT_TYPES",
     "HEAD_TYPES",
@@ -163,30 +164,65 @@ DEFAULT_TIGHTENING_METHOD = "torque_wrench_tested"  # engine assembly: torque se
 DEFAULT_EMBEDDING_ROUGHNESS = "rz_10_40"            # machined faces, 10 <= Rz < 40 um
 DEFAULT_EMBEDDING_LOADING = "transverse"             # the hubload loads the joint in shear
 HEAD_TYPES = ("hex", "flange", "socket")             # head forms (catalogs/bolt_heads.csv)
+PRELOAD_SET_BY = ("torque", "yield")                 # what sets the preload of a tightening method
 JOINT_TYPES = ("tapped", "through")                  # VDI ESV (tapped thread) / DSV (through bolt and nut)
 
 
-def tightening_factor(method: str = DEFAULT_TIGHTENING_METHOD, bound: str = "max") -> float:
-    """Tightening factor ``alpha_A`` of a tightening method, from ``catalogs/tightening_factors.csv`` [-].
+def tightening_method(method: str = DEFAULT_TIGHTENING_METHOD) -> dict:
+    """The ``catalogs/tightening_factors.csv`` row of a tightening method, as plain values.
 
-    The file gives the preload scatter range of each method (VDI 2230
-    guide values); ``bound="max"`` (default, the conservative end) or
-    ``"min"`` converts its end with :func:`tightening_factor_from_scatter`.
-    Default method: torque-controlled tightening with the torque found by
-    tests on the original joint (+/-17..23 %, alpha_A 1.41-1.60), as on an
+    Keys ``alpha_a_min``, ``alpha_a_max`` (VDI 2230-1 Table A8 tightening factor
+    ``alpha_A = F_M,max/F_M,min``), ``preload_set_by`` (``"torque"``: the
+    torque sets the preload, sized to ``F_M,min`` and bounded by the bolt's
+    permissible preload; ``"yield"``: yield- and angle-controlled tightening
+    take the bolt to its yield point, the preload is the bolt's own and the
+    bolt is dimensioned for ``F_M,min``), ``design_option`` (offered to the
+    design space); its assembly cost is the price book's (:mod:`synth.cost`).
+
+    >>> r = tightening_method("yield_controlled")
+    >>> r["alpha_a_max"], r["preload_set_by"], r["design_option"]
+    (1.4, 'yield', True)
+    """
+    df = load("tightening_factors")
+    hit = df[df["tightening_method"].astype(str).str.strip() == str(method).strip()]
+    if hit.empty:
+        raise InputError(Problem("tightening_method", method, "one of " + ", ".join(df["tightening_method"])))
+    r = hit.iloc[0]
+    set_by = str(r["preload_set_by"]).strip()
+    if set_by not in PRELOAD_SET_BY:
+        raise InputError(Problem(f"catalog tightening_factors.csv, row {method}, column preload_set_by", set_by,
+                                 " or ".join(PRELOAD_SET_BY)))
+    return {"tightening_method": str(method).strip(), "alpha_a_min": float(r["alpha_a_min"]),
+            "alpha_a_max": float(r["alpha_a_max"]), "preload_set_by": set_by,
+            "design_option": str(r["design_option"]).strip().lower() in ("true", "1", "yes")}
+
+
+def tightening_factor(method: str = DEFAULT_TIGHTENING_METHOD, bound: str = "max") -> float:
+    """Tightening factor ``alpha_A`` of a tightening method (VDI 2230-1 Table A8), from
+    ``catalogs/tightening_factors.csv`` [-].
+
+    ``bound="max"`` (default, the conservative end) or ``"min"`` of the
+    method's range. Default method: torque-controlled tightening with the
+    torque found by tests on the original joint (alpha_A 1.4-1.6), as on an
     engine assembly line.
 
     >>> round(tightening_factor(), 2), round(tightening_factor("torque_wrench_tested", "min"), 2)
-    (1.6, 1.41)
+    (1.6, 1.4)
     """
-    df = load("tightening_factors")
-    hit = df[df["tightening_method"] == str(method).strip()]
-    if hit.empty:
-        raise InputError(Problem("tightening_method", method, "one of " + ", ".join(df["tightening_method"])))
     if bound not in ("min", "max"):
         raise InputError(Problem("bound", bound, "'min' or 'max'"))
-    s = float(hit.iloc[0]["scatter_max_pct" if bound == "max" else "scatter_min_pct"]) / 100.0
-    return float(tightening_factor_from_scatter(s))
+    return tightening_method(method)[f"alpha_a_{bound}"]
+
+
+def preload_scatter(alpha_a):
+    """The relative preload scatter ``s = (alpha_A - 1)/(alpha_A + 1)`` about the mean of the window
+    ``[F_M,min, alpha_A F_M,min]`` (the inverse of :func:`tightening_factor_from_scatter`) [-].
+
+    >>> round(float(preload_scatter(1.6)), 4)
+    0.2308
+    """
+    a = _require("alpha_a", alpha_a, low=1.0, inclusive=True, accepted="a tightening factor >= 1")
+    return (a - 1.0) / (a + 1.0)
 
 
 def embedding_um(roughness_class: str = DEFAULT_EMBEDDING_ROUGHNESS, loading: str = DEFAULT_EMBEDDING_LOADING, *,

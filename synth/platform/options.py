@@ -108,8 +108,12 @@ def _spring_key(material, wire, mbd_mm) -> str:
     return f"{material} {wire} Dm {_num(mbd_mm)} mm"
 
 
-def _bolt_key(fmt, head, cls) -> str:
-    return f"{fmt} {head} {cls}"
+def _bolt_key(fmt, head, cls, washer=NO_PART_KEY, tightening="torque_wrench_tested") -> str:
+    """A bolt option's key: format, head form, class, and its washer and tightening method where they are not the
+    reference (no washer, the torque found by tests): the keys of the reference options are unchanged."""
+    extra = "".join(f" {x}" for x in (f"washer {washer}" if str(washer) != NO_PART_KEY else "",
+                                      str(tightening) if str(tightening) != "torque_wrench_tested" else "") if x)
+    return f"{fmt} {head} {cls}{extra}"
 
 
 def family_keys(parts: dict) -> dict:
@@ -133,7 +137,9 @@ def family_keys(parts: dict) -> dict:
                                                               parts["cone_spring_external_diameter_mm"]),
             "main_spring": _spring_key(parts["main_spring_material"], parts["main_spring_wire"],
                                        parts["main_spring_mean_body_diameter_mm"]),
-            "bolt": _bolt_key(parts["bolt_format"], parts.get("bolt_head_type") or "hex", parts["bolt_property_class"])}
+            "bolt": _bolt_key(parts["bolt_format"], parts.get("bolt_head_type") or "hex", parts["bolt_property_class"],
+                              parts.get("bolt_washer") or NO_PART_KEY,
+                              parts.get("bolt_tightening") or "torque_wrench_tested")}
 
 
 def _codes(keys) -> tuple[list, np.ndarray]:
@@ -190,7 +196,8 @@ def _catalogue(user_dirs: tuple) -> Catalogue:
     rows["spring"] = np.arange(sp.n("spring"))
     cost["spring"] = spt["cost_eur_times_stiffness"].astype(float)
     bo = sp.tables["bolt"]
-    keys = [_bolt_key(f, h, c) for f, h, c in zip(bo["bolt_format"], bo["bolt_head_type"], bo["bolt_property_class"])]
+    keys = [_bolt_key(*k) for k in zip(bo["bolt_format"], bo["bolt_head_type"], bo["bolt_property_class"],
+                                       bo["bolt_washer"], bo["bolt_tightening"])]
     pf_parts["bolt"], codes = _codes(keys)
     options["bolt"] = {"bolt": codes}
     rows["bolt"], cost["bolt"] = np.arange(sp.n("bolt")), bo["cost_eur"].astype(float)

@@ -9,13 +9,23 @@ From the samples of :mod:`synth.robust.sampling` (the evaluator's margins,
   ``rare_min_failures`` violations: the FORM design point and importance
   sampling of :mod:`synth.robust.rare` give the probability with its own
   interval;
-* **Ppk** = ``mean(m) / (3 sd(m))``: the distance of the mean to the limit in
-  units of 3 standard deviations (the margin is a linear rescaling of the
-  checked value, so this is the ISO 22514-2 / AIAG index ``(USL - mu)/(3 sigma)``
-  or ``(mu - LSL)/(3 sigma)`` of the value itself). A window (two checks of one
+* **Ppk** by ISO 22514-2 (:mod:`synth.robust.stats`, written once): the
+  percentile method, ``X50 / (X50 - X0.135 %)`` of the margin (the margin is a
+  linear rescaling of the checked value, so this is the index of the value:
+  ``(X50 - LSL)/(X50 - X0.135 %)`` or its upper twin), for outputs of any
+  distribution, and beside it the moment form ``mean/(3 sd)`` (the index of a
+  normal output). The target names its method (:class:`RobustSettings`
+  ``method``, default the percentile method). A window (two checks of one
   value with opposite senses, e.g. the damping's upper and lower tolerance)
   has the smaller of its two sides' indices. A simulation has no rational
-  subgroups: its one standard deviation is the overall one, so Cpk = Ppk here;
+  subgroups: its one spread is the overall one, so Cpk = Ppk here;
+* **bounded outputs**: a check whose scatter comes from bounded (uniform)
+  quantities only (every contributor of at least 0.5 % of its variance) is
+  judged by its probability of violation, the primary figure: its worst case
+  over the bands within the limit is 0 ppm, otherwise P(violation) (the
+  Monte Carlo's upper 95 % end, or importance sampling) against the target's
+  ppm equivalent ``Phi(-3 Ppk)`` (Ppk 1.33: 33 ppm); its ``ppk`` is the index
+  that ppm is equivalent to, its percentile and moment indices are reported beside;
 * **worst case** (every quantity at the end of its band that hurts the check,
   the ends chosen from the secant sensitivities over the band; evaluated at
   that vertex) and **RSS** (the root sum of squares of the band contributions,
@@ -25,9 +35,10 @@ From the samples of :mod:`synth.robust.sampling` (the evaluator's margins,
   are the first-order Sobol indices), with the regression's R^2.
 
 The **target** (:class:`~synth.robust.settings.RobustSettings`) applies to the
-checks the registry counts in the margin objective (``objective=True``; not
-advisory, not input-only, not met by construction such as a preload sized to
-its safety factor): every other check is reported, not required.
+checks the assessment targets (:attr:`synth.design.assessment.Assessment.targeted`:
+those the registry counts in the margin objective, and the safety factors of
+step 10 that the preload is sized to, ``capability=True``, judged at the made
+preload's scatter): every other check is reported, not required.
 
 Closed-form check (tests): a check linear in normal inputs has
 ``Ppk = m0 / (3 sqrt(sum (s_i sigma_i)^2))``.
@@ -40,53 +51,43 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from synth.design.assessment import assess, passes
-from synth.design.constraints import REGISTRY
+from synth.design.constraints import FEAS_TOL, REGISTRY
+from synth.robust import stats
 from synth.robust.sampling import Base, evaluate_deviations, evaluate_u, sobol_u
 from synth.robust.settings import RobustSettings
 from synth.design.result import plain
 
-#: a margin whose standard deviation is below this (relative) is a constant: round-off, not scatter
-SD_FLOOR = 1e-9
 #: sample values kept per histogram (the report's 40 bins; the JSON stays small)
 HISTOGRAM_SAMPLES = 1000
 #: above this Ppk (a normal margin 7.5 standard deviations from its limit, P ~ 1e-13) an unresolved probability
 #: keeps the Monte Carlo's Clopper-Pearson bound unless a ppm target needs a smaller one
 RARE_PPK_MAX = 2.5
+#: a contributor below this share of a check's variance does not make its output unbounded
+BOUNDED_SHARE = 0.005
 
-__all__ = ["CheckCapability", "Capability", "capability", "clopper_pearson", "ppk", "targeted", "windows"]
+__all__ = ["CheckCapability", "Capability", "capability", "clopper_pearson", "ppk", "targeted", "windows",
+           "equivalent_ppk"]
 
-
-def clopper_pearson(k, n: int, level: float = 0.95) -> tuple:
-    """``(lo, hi)``: the exact binomial interval of ``k`` successes in ``n`` trials (``k`` an array: arrays).
-
-    >>> [round(x, 5) for x in clopper_pearson(0, 10000)]
-    [0.0, 0.00037]
-    """
-    from scipy.special import betaincinv
-    a = (1.0 - level) / 2.0
-    kk = np.asarray(k, dtype=float)
-    with np.errstate(all="ignore"):
-        lo = np.where(kk == 0, 0.0, betaincinv(np.maximum(kk, 1e-300), n - kk + 1, a))
-        hi = np.where(kk >= n, 1.0, betaincinv(kk + 1, np.maximum(n - kk, 1e-300), 1.0 - a))
-    if np.ndim(k) == 0:
-        return float(lo), float(hi)
-    return lo, hi
+clopper_pearson = stats.clopper_pearson
 
 
-def ppk(m: np.ndarray) -> float:
-    """``mean / (3 sd)`` of the finite margins ``m``; +inf for a passing constant, -inf for a failing one.
+def ppk(m: np.ndarray, method: str = "moment") -> float:
+    """The index of margins ``m`` by ``method`` (:data:`synth.robust.stats.METHODS`).
 
     >>> round(ppk(np.array([0.3, 0.5, 0.7])), 4)     # 0.5 / (3 * 0.1633)
     1.0206
     """
-    m = np.asarray(m, dtype=float)
-    m = m[np.isfinite(m)]
-    if not len(m):
-        return float("inf")
-    mu, sd = float(m.mean()), float(m.std())
-    if sd <= SD_FLOOR * max(1.0, abs(mu)):
-        return float("inf") if passes(mu) else float("-inf")
-    return mu / (3.0 * sd)
+    return float(stats.ppk_percentile(m) if method == "percentile" else stats.ppk_moment(m))
+
+
+def equivalent_ppk(p: float) -> float:
+    """The index of a normal output violating its limit with probability ``p``: ``-Phi^-1(p)/3`` (0: +inf).
+
+    >>> round(equivalent_ppk(3.3e-5), 2), equivalent_ppk(0.0)
+    (1.33, inf)
+    """
+    from scipy.special import ndtri
+    return float("inf") if p <= 0 else float(-ndtri(min(float(p), 1.0)) / 3.0)
 
 
 def targeted(cid: str, base: Base) -> bool:
@@ -116,19 +117,22 @@ class CheckCapability:
     centre: float           # margin with every quantity at the centre of its band
     mean: float
     sd: float
-    ppk: float
+    ppk: float              # the target's figure: the method's index, or a bounded output's ppm-equivalent index
     p: float
     p_lo: float
     p_hi: float
     failures: int
     n: int
-    method: str             # "monte carlo" | "importance sampling" | "deterministic"
+    method: str             # "monte carlo" | "importance sampling" | "deterministic" | "bounded"
     worst_case: float
     rss: float
     contributors: list = field(default_factory=list)   # [(quantity, share)], largest first
     r2: float = float("nan")
     target: bool = False
     note: str = ""
+    ppk_percentile: float = float("nan")   # ISO 22514-2 percentile method
+    ppk_moment: float = float("nan")       # mean / (3 sd)
+    bounded: bool = False                  # scatter from bounded quantities only: judged by its ppm
 
     @property
     def label(self) -> str:
@@ -146,6 +150,7 @@ class CheckCapability:
         c = REGISTRY[self.id]
         return plain({"id": self.id, "label": c.label, "group": c.group, "nominal_margin": self.nominal,
                       "centre_margin": self.centre, "mean_margin": self.mean, "sd_margin": self.sd, "ppk": self.ppk,
+                      "ppk_percentile": self.ppk_percentile, "ppk_moment": self.ppk_moment, "bounded": self.bounded,
                       "p_violation": self.p, "p_lo": self.p_lo, "p_hi": self.p_hi, "ppm": self.p * 1e6,
                       "failures": self.failures, "samples": self.n, "method": self.method,
                       "worst_case_margin": self.worst_case, "rss_margin": self.rss,
@@ -164,6 +169,7 @@ class Capability:
     histograms: dict = field(default_factory=dict)   # value key -> samples (a thinned copy for plots)
     windows: dict = field(default_factory=dict)      # value key -> (upper check, lower check)
     limits: dict = field(default_factory=dict)       # value key -> (lower, upper) of the histogram's window
+    cone: dict = field(default_factory=dict)         # the supplier's centred cone spring (steps 6 and 8), if any
 
     def check(self, cid: str) -> CheckCapability:
         for c in self.checks:
@@ -190,6 +196,7 @@ class Capability:
     def to_dict(self) -> dict:
         return plain({"kind": "synth.capability", "targets": self.settings.targets(),
                       "settings": {"capability": self.settings.capability, "ppm": self.settings.ppm,
+                                   "method": self.settings.method,
                                    "samples": self.settings.samples, "seed": self.settings.seed,
                                    "rare_samples": self.settings.rare_samples},
                       "meets": self.meets, "min_ppk": self.min_ppk(), "max_p_violation": self.max_p(),
@@ -197,7 +204,8 @@ class Capability:
                       "windows": {k: list(v) for k, v in self.windows.items()},
                       "tolerances": self.scatter_rows, "not_sampled": [list(x) for x in self.dropped],
                       "checks": [{**c.as_dict(), "meets": c.meets(self.settings)} for c in self.checks],
-                      "histograms": self.histograms, "limits": {k: list(v) for k, v in self.limits.items()}})
+                      "histograms": self.histograms, "limits": {k: list(v) for k, v in self.limits.items()},
+                      "cone_spring": self.cone})
 
 
 def _linear(base: Base, checks: tuple) -> tuple:
@@ -262,8 +270,8 @@ def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool 
                u: np.ndarray | None = None) -> Capability:
     """The :class:`Capability` of the design of ``base`` under settings ``rs``.
 
-    ``details``: worst case, RSS, contributors and histograms (off in the synthesis, which needs the
-    probabilities and indices only); ``rare``: importance sampling of the targeted checks the Monte Carlo does
+    ``details``: the histograms (off in the synthesis; the worst case, which decides a bounded output, and the
+    contributors are always computed); ``rare``: importance sampling of the targeted checks the Monte Carlo does
     not resolve; ``u``: given standard-normal points (default: ``rs.samples`` Sobol points of ``rs.seed``).
     """
     sc = base.scatter
@@ -274,24 +282,34 @@ def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool 
     n = len(u)
     s = evaluate_u(base, u)
     checks = base.checks
-    lin = _linear(base, checks) if details else None
+    lin = _linear(base, checks)
     contributions = _contributors(u, s.margins, sc.names)
+    uniform = {q for q, k in zip(sc.names, sc.kind) if k == 1}
     out = []
-    counts = np.array([int(np.sum(~passes(s.margins[cid]))) for cid in checks], dtype=np.int64)
+    stack = np.vstack([s.margins[cid] for cid in checks]) if checks else np.zeros((0, n))
+    counts = (~passes(stack)).sum(axis=1).astype(np.int64) if len(checks) else np.zeros(0, np.int64)
     los, his = clopper_pearson(counts, n)
+    pct, mom = stats.ppk_percentile(stack), stats.ppk_moment(stack)
     for j, cid in enumerate(checks):
-        m = s.margins[cid]
+        m = stack[j]
         k, lo, hi = int(counts[j]), float(los[j]), float(his[j])
         fin = m[np.isfinite(m)]
         mean = float(fin.mean()) if len(fin) else float("inf")
         sd = float(fin.std()) if len(fin) else 0.0
-        if sd <= SD_FLOOR * max(1.0, abs(mean)):
+        if sd <= stats.SD_FLOOR * max(1.0, abs(mean)):
             sd = 0.0
         contrib, r2 = contributions.get(cid, ([], float("nan"))) if sd > 0 else ([], float("nan"))
+        bounded = sd > 0 and bool(contrib) and all(q in uniform for q, share in contrib if share >= BOUNDED_SHARE)
+        worst = lin[1][cid]
+        p = k / n
+        how = "monte carlo" if sd > 0 else "deterministic"
+        if bounded and worst >= -FEAS_TOL:  # every value within the bands passes: no violation, 0 ppm
+            p, lo, hi, how = 0.0, 0.0, 0.0, "bounded"
+        index = float(pct[j] if rs.method == "percentile" else mom[j])
         out.append(CheckCapability(
-            cid, base.nominal_margin(cid), lin[0][cid] if lin else float("nan"), mean, sd, ppk(m), k / n, lo, hi, k,
-            n, "monte carlo" if sd > 0 else "deterministic", lin[1][cid] if lin else float("nan"),
-            lin[2][cid] if lin else float("nan"), contrib, r2, targeted(cid, base)))
+            cid, base.nominal_margin(cid), lin[0][cid], mean, sd, equivalent_ppk(hi) if bounded else index, p, lo,
+            hi, k, n, how, worst, lin[2][cid], contrib, r2, targeted(cid, base), ppk_percentile=float(pct[j]),
+            ppk_moment=float(mom[j]), bounded=bounded))
     w = windows(checks)
     by_id = {c.id: c for c in out}
     for up, low in w.values():  # a window's index: the smaller side's, on both of its checks
@@ -300,6 +318,11 @@ def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool 
     if rare and d:
         _rare(base, out, rs, n)
     cap = Capability(out, rs, sc.rows, sc.dropped, windows=w)
+    if base.cone is not None and np.isfinite(base.cone["thickness_mm"][0]):
+        cap.cone = {"nominal_force_n": float(base.cone["force_n"][0]), "thickness_mm": float(base.cone["thickness_mm"][0]),
+                    "band_room_n": float(base.cone["room_n"][0]),
+                    "note": "the supplier's cone spring (thesis steps 6 and 8): its nominal height set to centre its "
+                            "delivered forces in the damping window's band; the samples are made of it"}
     if details:
         cap.histograms, cap.limits = _histograms(base, s)
     return cap
@@ -312,7 +335,7 @@ def _rare(base: Base, out: list, rs: RobustSettings, n: int) -> None:
 
     def needs(c):  # a probability the Monte Carlo does not resolve, and that matters: in the range a target or a
         # report can use (Ppk <= RARE_PPK_MAX, P above ~1e-13), or below a ppm target the MC bound cannot certify
-        if not (c.target and c.sd > 0 and c.failures < rs.rare_min_failures):
+        if not (c.target and c.sd > 0 and c.failures < rs.rare_min_failures) or c.method == "bounded":
             return False
         return c.ppk <= RARE_PPK_MAX or (rs.ppm is not None and c.p_hi > rs.ppm * 1e-6)
     todo = [c for c in out if needs(c)]
@@ -328,6 +351,8 @@ def _rare(base: Base, out: list, rs: RobustSettings, n: int) -> None:
     for c, r in zip(todo, res):
         c.method = "FORM bound" if r["hits"] == 0 and r["se"] != r["se"] else "importance sampling"
         c.p, c.p_lo, c.p_hi = r["p"], r["p_lo"], r["p_hi"]
+        if c.bounded:  # a bounded output's figure is its probability
+            c.ppk = equivalent_ppk(c.p_hi)
         extra = f"FORM beta {r['beta']:.3g} (P_FORM {r['p_form']:.3g}); {r['hits']} of {rs.rare_samples} " \
                 f"importance samples violate"
         c.note = "; ".join(x for x in (c.note, extra, r["note"]) if x)

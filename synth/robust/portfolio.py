@@ -6,8 +6,10 @@ Sobol sample over every quantity of the tolerance catalog, as for one design:
 its own bands (:func:`synth.robust.tolerances.resolve`); a quantity not in play
 for a design deviates by 0 there. The K x N rows go through
 :func:`synth.robust.sampling.perturb` and the one evaluator in one call; the
-statistics are the single design's (P(violation) with its Clopper-Pearson
-interval, Ppk), per design and per targeted check, vectorised. The importance
+statistics are the single design's (:mod:`synth.robust.stats`: P(violation)
+with its Clopper-Pearson interval, the target method's Ppk), per design and per
+targeted check, vectorised; the joint is the made one (VDI 2230,
+:func:`synth.robust.sampling.production`). The importance
 sampling of small probabilities is not run here: a ppm target below what the
 samples resolve is judged on the Monte Carlo's upper bound, and the columns
 say so (``capability_method``).
@@ -31,7 +33,8 @@ from synth.design.assessment import assess, passes
 from synth.design.constraints import EVALUATED_GROUPS, REGISTRY
 from synth.design.space import space
 from synth.design.verify import evaluate_design
-from synth.robust.sampling import Base, context, perturb, sobol_u
+from synth.robust import stats
+from synth.robust.sampling import Base, centred_cone, context, perturb, production, sobol_u
 from synth.robust.settings import RobustSettings
 from synth.robust.tolerances import resolve, tolerances
 from synth import catalog
@@ -46,7 +49,7 @@ COLUMNS = ("capability_meets", "capability_min_ppk", "capability_max_ppm", "capa
 
 
 def _chunk(inputs: list, parts: list, settings: evaluate.Settings, rs: RobustSettings, table: dict) -> list:
-    from scipy.stats import beta
+    settings = production(settings)
     k = len(inputs)
     sp = space()
     per = [sp.design_attributes(p) for p in parts]
@@ -69,7 +72,7 @@ def _chunk(inputs: list, parts: list, settings: evaluate.Settings, rs: RobustSet
     low, high = lo[rows], hi[rows]
     x = np.where(kind[None, :] == 0, (low + high) / 2.0 + (high - low) / 6.0 * uu, low + (high - low) * ndtr(uu))
     dev = {name: x[:, j] for j, name in enumerate(names) if (hi[:, j] > lo[:, j]).any()}
-    base = Base(inputs, {}, settings, apps, attrs, groups, None, ())
+    base = Base(inputs, {}, settings, apps, attrs, groups, None, (), cone=centred_cone(apps, attrs, groups, settings))
     a_s, at_s = perturb(base, dev or {"_n": np.zeros(len(rows))}, rows)
     with np.errstate(all="ignore"):
         gs = evaluate_design(a_s, at_s, settings, detail=False)
@@ -85,15 +88,8 @@ def _chunk(inputs: list, parts: list, settings: evaluate.Settings, rs: RobustSet
             continue
         m = np.asarray(gs[c.group].margins[cid], dtype=float).reshape(k, n)
         fails = (~passes(m)).sum(axis=1)
-        ok = np.isfinite(m)
-        cnt = ok.sum(axis=1)
-        with np.errstate(all="ignore"):
-            mu = np.where(ok, m, 0.0).sum(axis=1) / cnt
-            sd = np.sqrt(np.where(ok, (m - mu[:, None]) ** 2, 0.0).sum(axis=1) / cnt)
-            ppk = np.where(sd > 1e-9 * np.maximum(1.0, np.abs(mu)), mu / (3.0 * sd),
-                           np.where(passes(mu), np.inf, -np.inf))
-        ppk = np.where(cnt == 0, np.inf, ppk)
-        p_hi = np.where(fails >= n, 1.0, beta.ppf(0.975, fails + 1, np.maximum(n - fails, 1)))
+        ppk = stats.ppk_percentile(m) if rs.method == "percentile" else stats.ppk_moment(m)
+        p_hi = stats.clopper_pearson(fails, n)[1]
         for i in np.flatnonzero(on):
             o = out[i]
             if ppk[i] < o["binding_ppk"]:
@@ -137,5 +133,6 @@ def portfolio_capability(inputs: list, parts: list, *, settings: evaluate.Settin
             out[i] = {"capability_meets": not r["failing"], "capability_min_ppk": r["ppk"],
                       "capability_max_ppm": r["p_hi"] * 1e6, "capability_failing": " ".join(r["failing"]),
                       "capability_binding": r["binding"],
-                      "capability_method": f"monte carlo, {rs.samples} samples (upper 95 % ends)"}
+                      "capability_method": f"monte carlo, {rs.samples} samples, {rs.method} index (upper 95 % "
+                                           "ends; bounded outputs judged by the same index)"}
     return out

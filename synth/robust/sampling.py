@@ -9,11 +9,20 @@ here: every value and every margin is the evaluator's, the registry's.
 
 What the design fixes stays fixed (its drawing): the main spring's active
 coils (its stiffness then follows from the made wire and coil diameter,
-eq. (64)-(65)), the cone spring's thickness and cone height (its force then
-follows from the realised gap stack), the bolt's specified preload (the thesis
-method sizes it; the made joint gets it times its tightening scatter). The
-worst-case tolerances of the nominal model that a sampled quantity replaces
-are set to 0 for the sample (:data:`synth.robust.tolerances.QUANTITIES`).
+eq. (64)-(65)) and its torque at the nominal position (the made spring's
+torque scatters within its tolerance, eq. (66); the tensioner's damping,
+calculated torque and hubload follow from it by eq. (12)-(13)), the cone
+spring's thickness and cone height (its force then follows from the realised
+gap stack), the bolt's tightening method (the made joint's preload lies in
+its window). The application's specification stays the application's: its
+calculated torque target, and the hubload the safety factors of step 10 are
+defined on (eq. (94)-(99)). The worst-case tolerances of the nominal model
+that a sampled quantity replaces are set to 0 for the sample
+(:data:`synth.robust.tolerances.QUANTITIES`).
+
+The made joint is always the VDI 2230 path's (:func:`production`): a
+production run tightens its bolts with a method and its scatter, which the
+thesis path (tightened to exactly the required force) has not.
 
 >>> from synth.scenes.demo import default_input
 >>> from synth.optimise import solve
@@ -39,7 +48,7 @@ from synth.design.verify import evaluate_design, parts_of_attributes
 from synth.model import torsion_spring
 from synth.robust.tolerances import Scatter, resolve
 
-__all__ = ["Base", "Samples", "base_of", "base_of_attributes", "context", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
+__all__ = ["Base", "Samples", "production", "base_of", "base_of_attributes", "context", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
            "design_checks"]
 
 #: the values a sample keeps besides the margins (the report's histograms): value key -> group
@@ -62,6 +71,9 @@ class Base:
     scatter: Scatter
     checks: tuple                # registry ids evaluated at nominal (not "not applicable", not "not verified")
     notes: list = field(default_factory=list)
+    #: per design row, the supplier's centred cone spring (:func:`centred_cone`): its thickness (NaN: none) and
+    #: nominal force; None: the sized spring's own thickness
+    cone: dict | None = None
 
     def nominal_margin(self, cid: str) -> float:
         return float(self.groups[REGISTRY[cid].group].margins[cid][0])
@@ -89,6 +101,18 @@ def design_checks(groups: dict) -> tuple:
     return tuple(out)
 
 
+def production(settings: evaluate.Settings) -> evaluate.Settings:
+    """The settings of the production view: ``settings`` with the made joint of VDI 2230 (``bolt_method
+    "vdi2230"``: the design's tightening method, its preload window; the thesis path tightens to exactly the
+    required force, which no tightening method does).
+
+    >>> production(evaluate.Settings()).bolt_method
+    'vdi2230'
+    """
+    import dataclasses
+    return settings if settings.bolt_method == "vdi2230" else dataclasses.replace(settings, bolt_method="vdi2230")
+
+
 def base_of(d, parts: dict, settings: evaluate.Settings = evaluate.Settings(), table: dict | None = None) -> Base:
     """The :class:`Base` of design ``parts`` for input ``d``: its nominal evaluation and its tolerance model."""
     return base_of_attributes(d, space().design_attributes(parts), settings, table, parts=parts)
@@ -96,14 +120,46 @@ def base_of(d, parts: dict, settings: evaluate.Settings = evaluate.Settings(), t
 
 def base_of_attributes(d, attrs: dict, settings: evaluate.Settings = evaluate.Settings(), table: dict | None = None, *,
                        apps: Applications | None = None, parts: dict | None = None) -> Base:
-    """:func:`base_of` from the design's one-row attributes per table (the optimiser's rows)."""
+    """:func:`base_of` from the design's one-row attributes per table (the optimiser's rows); the settings of the
+    production view (:func:`production`)."""
+    settings = production(settings)
     apps = Applications.of([d]) if apps is None else apps
     with np.errstate(all="ignore"):
         groups = evaluate_design(apps, attrs, settings, detail=False)
     sc = resolve(context(apps, attrs, groups, settings, 0), table)
     if parts is None:
         parts = parts_of_attributes(attrs, groups)
-    return Base(d, dict(parts), settings, apps, attrs, groups, sc, design_checks(groups))
+    return Base(d, dict(parts), settings, apps, attrs, groups, sc, design_checks(groups),
+                cone=centred_cone(apps, attrs, groups, settings))
+
+
+def centred_cone(apps: Applications, attrs: dict, groups: dict, settings: evaluate.Settings) -> dict:
+    """The made cone spring of each design row: the supplier's, its nominal height (force) centred in the damping
+    window's band (:func:`synth.model.disc_spring.centred_cone_spring`, thesis steps 6 and 8), at the design's own
+    variant (outer and inner diameter, ``h0/t``, ``s/h0``); ``{"thickness_mm", "force_n", "room_n"}`` arrays, NaN
+    where the design has no sized cone spring."""
+    from synth.model import disc_spring, stackup
+    ax, core = groups["axial"].values, groups["core"].values
+    sized = np.asarray(ax["cone_spring_sized"], dtype=bool)
+    k = len(sized)
+    out = {key: np.full(k, np.nan) for key in ("thickness_mm", "force_n", "room_n")}
+    i = np.flatnonzero(sized)
+    if not len(i):
+        return out
+    a = np.asarray(groups["axial"].values["app"])[i]
+    with np.errstate(all="ignore"):
+        cs = disc_spring.centred_cone_spring(
+            np.asarray(core["axial_damping_nm"])[i], apps.damping_target_or_zero_nm[a],
+            np.nan_to_num(apps.f["damping_tolerance_nm"][a], nan=0.0), np.asarray(core["radial_damping_nm"])[i],
+            apps.mu_plastic[a], np.asarray(core["damper_pad_mean_radius_mm"])[i],
+            np.asarray(attrs["axial"]["endcap_spacer_mean_radius_mm"])[i],
+            np.asarray(ax["cone_spring_external_diameter_mm"])[i], np.asarray(ax["cone_spring_internal_diameter_mm"])[i],
+            stackup.gap_tolerance_mm("worst_case"), aspect_ratio=np.asarray(attrs["axial"]["cone_spring_aspect_ratio"])[i],
+            deflection_ratio=np.asarray(attrs["axial"]["cone_spring_deflection_ratio"])[i], fidelity=settings.model)
+    out["thickness_mm"][i] = cs["cone_spring_thickness_mm"]
+    out["force_n"][i] = cs["cone_spring_fax_nominal_n"]
+    out["room_n"][i] = cs["cone_spring_force_band_room_n"]
+    return out
 
 
 def context(apps: Applications, attrs: dict, groups: dict, settings: evaluate.Settings, k: int) -> dict:
@@ -124,7 +180,9 @@ def context(apps: Applications, attrs: dict, groups: dict, settings: evaluate.Se
             "cone_force_tolerance": (float(np.asarray(ax["cone_spring_force_tolerance_plus"])[k]),
                                      float(np.asarray(ax["cone_spring_force_tolerance_minus"])[k])) if cone
             else (np.nan, np.nan),
-            "bolt": settings.bolt_method == "thesis" and bool(apps.met("fixation")[k])}
+            "bolt": bool(apps.met("fixation")[k]),
+            "tightening_alpha_a": float(np.asarray(attrs["bolt"]["tightening_alpha_a"])[k])
+            if "tightening_alpha_a" in attrs["bolt"] else float("nan")}
 
 
 @functools.lru_cache(maxsize=8)
@@ -164,9 +222,10 @@ def perturb(base: Base, dev: dict, rows=None) -> tuple:
         a = np.asarray(a)
         return np.broadcast_to(a[:1], (n,)) if one else a[rows]
     fields = {}
-    if "spring_torque" in dev:  # the tensioner's torque follows its spring's; eq. (66)'s worst case is the sample
-        fields["calculated_torque_target_nm"] = at(f0["calculated_torque_target_nm"]) * (1.0 + dev["spring_torque"] / 100)
+    if "spring_torque" in dev:  # the made spring's torque (eq. (66)): its worst case of eq. (66) is the sample
         fields["spring_torque_tolerance_pct"] = np.zeros(n)
+    if "working_arm" in dev:
+        fields["working_arm_mm"] = at(f0["working_arm_mm"]) + dev["working_arm"]
     if "belt_offset" in dev:  # the realised offset in the tilting lever of eq. (95), instead of its worst case
         fields["middle_plane_belt_height_increment_worst_mm"] = dev["belt_offset"]
     if "pulley_diameter" in dev:
@@ -210,8 +269,9 @@ def perturb(base: Base, dev: dict, rows=None) -> tuple:
         ax = attrs["axial"]
         gap = (_col(dev, "stack_pivot", n) - _col(dev, "stack_endcap_spacer", n) - _col(dev, "stack_arm", n)
                - _col(dev, "stack_damper_pad", n))
-        ax[evaluate.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.where(
-            sized, at(base.groups["axial"].values["cone_spring_thickness_mm"]), np.nan)
+        made_t = base.groups["axial"].values["cone_spring_thickness_mm"] if base.cone is None else \
+            base.cone["thickness_mm"]  # the supplier's centred spring (steps 6 and 8), its thickness at the variant
+        ax[evaluate.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.where(sized, at(made_t), np.nan)
         ax[evaluate.MADE_CONE_SPRING_COLUMNS["deflection_offset_mm"]] = -gap  # a smaller gap deflects the spring more
         ax[evaluate.MADE_CONE_SPRING_COLUMNS["force_factor"]] = 1.0 + _col(dev, "cone_spring_force", n) / 100.0
     apps = a0.with_fields(rows, **fields)
@@ -219,9 +279,13 @@ def perturb(base: Base, dev: dict, rows=None) -> tuple:
                    ("crankcase_friction", "mu_crankcase")):
         if q in dev:
             apps.derived[key] = apps.derived[key] * (1.0 + dev[q] / 100.0)
-    if "bolt_preload" in dev and base.settings.bolt_method == "thesis":
-        f_spec = at(base.groups["bolt"].values["bolt_axial_force_n"]).astype(float)  # NaN without fixation data
-        apps.derived["bolt_clamp_force_n"] = f_spec * (1.0 + dev["bolt_preload"] / 100.0)
+    # the made spring (its torque within its tolerance, or the design's own where no tolerance is in play): the
+    # tensioner follows from it by eq. (12)-(13), never a spring re-sized to the sample's friction
+    m_s = at(base.groups["core"].values["spring_torque_nominal_nm"]).astype(float)
+    apps.derived["spring_torque_made_nm"] = m_s * (1.0 + _col(dev, "spring_torque", n) / 100.0)
+    if "bolt_preload" in dev:  # the made joint's preload about its window's mean (the thesis path: the sized force)
+        f_mean = at(base.groups["bolt"].values["bolt_axial_force_n"]).astype(float)  # NaN without fixation data
+        apps.derived["bolt_clamp_force_n"] = f_mean * (1.0 + dev["bolt_preload"] / 100.0)
     return apps, attrs
 
 

@@ -8,6 +8,12 @@ plain number with its accepted range, checked here.
 * ``capability``: the smallest process performance index Ppk every checked
   constraint must reach (1.33 is the usual automotive target: the nearest
   limit 4 standard deviations from the mean); None: no index target;
+* ``method``: how the index is computed (ISO 22514-2): ``"percentile"`` (the
+  default: ``(X50 - LSL)/(X50 - X0.135 %)``, for outputs of any distribution)
+  or ``"moment"`` (``(mu - LSL)/(3 sigma)``, a normal output's); either way a
+  bounded output (its scatter from uniform quantities only) is judged by its
+  probability of violation against the ppm a normal output of the target's
+  index has (1.33: 33 ppm);
 * ``ppm``: the largest probability of violation per check, in parts per
   million (the upper end of its 95 % interval must be below it); None: no ppm
   target;
@@ -30,6 +36,7 @@ from dataclasses import dataclass, fields
 
 from synth.errors import InputError, Problem
 from synth.io.limits import COUNTS  # one bound for the command line's --samples and the Python API
+from synth.robust.stats import METHODS, ppm_equivalent
 
 __all__ = ["RobustSettings", "DEFAULT_SAMPLES", "SEARCH_SAMPLES"]
 
@@ -55,6 +62,7 @@ class RobustSettings:
 
     capability: float | None = 1.33
     ppm: float | None = None
+    method: str = "percentile"
     samples: int = DEFAULT_SAMPLES
     seed: int = 20240601
     rare_samples: int = 2000
@@ -64,6 +72,10 @@ class RobustSettings:
         for f in fields(self):
             v = getattr(self, f.name)
             if v is None and f.name in ("capability", "ppm"):
+                continue
+            if f.name == "method":
+                if v not in METHODS:
+                    raise InputError(Problem("method", v, " or ".join(METHODS) + " (ISO 22514-2 index forms)"))
                 continue
             lo, hi, accepted = _RANGES[f.name]
             ok = isinstance(v, (int, float)) and not isinstance(v, bool) and lo < v <= hi if f.name in (
@@ -81,10 +93,12 @@ class RobustSettings:
         return cls(**data)
 
     def targets(self) -> str:
-        """The targets in words: ``Ppk >= 1.33``, ``<= 10 ppm``, both, or ``none``."""
+        """The targets in words, naming the index's method: ``Ppk >= 1.33 (percentile method, ...)``,
+        ``P(violation) <= 10 ppm``, both, or ``none``."""
         out = []
         if self.capability is not None:
-            out.append(f"Ppk >= {self.capability:g}")
+            out.append(f"Ppk >= {self.capability:g} ({self.method} method, ISO 22514-2; bounded outputs: "
+                       f"P(violation) <= {ppm_equivalent(self.capability) * 1e6:.3g} ppm)")
         if self.ppm is not None:
             out.append(f"P(violation) <= {self.ppm:g} ppm")
         return " and ".join(out) or "none"

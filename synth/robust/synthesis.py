@@ -39,7 +39,7 @@ from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS
 from synth.optimise.objectives import Objective
 from synth.robust.capability import capability
-from synth.robust.sampling import base_of_attributes, base_of
+from synth.robust.sampling import base_of_attributes, base_of, production
 from synth.robust.settings import RobustSettings
 from synth.optimise.solvers.enumerate import tables
 from synth.robust.tolerances import tolerances
@@ -48,7 +48,7 @@ from synth.optimise.answer import build_result
 from synth.optimise.solvers.enumerate import solve as enumerate_solve
 from synth.errors import InputError, Problem
 
-__all__ = ["robust_solve", "robust_front", "SearchReport"]
+__all__ = ["robust_solve", "robust_front", "prevented_by", "SearchReport"]
 
 _EPS = 1e-9
 #: the groups whose failing checks reject a core outright (no subsystem option changes them)
@@ -83,7 +83,8 @@ class SearchReport:
         """Why no catalog design meets the target: the checks that rejected the cores, how often, their best
         index over every candidate and what drives their scatter."""
         if not self.rejected_by:
-            return "no feasible catalog design to check"
+            return ("no catalog design passes every check with the made joint (VDI 2230: the design's tightening "
+                    "method, its preload window): the capability has nothing to judge")
         parts = []
         for cid, k in sorted(self.rejected_by.items(), key=lambda kv: (-kv[1], self.best_ppk.get(kv[0], 0)))[:4]:
             drivers = ", ".join(f"{q} {s:.0%}" for q, s in self.contributors.get(cid, [])[:2])
@@ -162,15 +163,19 @@ def search(ev, weights: dict, rs: RobustSettings, *, report: SearchReport | None
 
 
 def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs: RobustSettings = RobustSettings(),
-                 pin_inputs: bool = False, details: bool = True):
+                 pin_inputs: bool = False, details: bool = True, explain: bool = True):
     """The :class:`~synth.design.result.Result` of the robust synthesis (see the module docstring): the best
     design meeting ``rs``'s target with its capability in ``result.robust``; when none does, the nominal
-    optimum with its capability and a note saying which checks no design meets and what drives them."""
+    optimum (or the nearest design) with its capability, a note saying which checks no design meets and what drives
+    them, and (``explain``) the one input or tolerance that prevents it with the value that would allow it
+    (:func:`prevented_by`, in ``result.robust["prevented_by"]``). The joint is the made one
+    (:func:`synth.robust.sampling.production`)."""
     t0 = time.perf_counter()
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     if obj.weights and "margin" in obj.weights or obj.order[0] == "margin":
         raise InputError(Problem("objective", objective, "an objective led by standard or cost with --capability/"
                                                          "--ppm (the margin is its last tie-break)"))
+    asked, settings = settings, production(settings)
     ev = evaluate(d, settings, pin_inputs=pin_inputs)
     rep = SearchReport()
     w = obj.additive_weights() or {"cost": 1.0}
@@ -178,13 +183,24 @@ def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs
     stats = {"time_s": time.perf_counter() - t0, "robust_candidates": rep.candidates,
              "robust_cores_checked": rep.cores_checked, "robust_cores_rejected": rep.cores_rejected,
              "robust_samples": rs.samples, "robust_proof": rep.proof}
-    if pos is None:
-        r = enumerate_solve(d, Objective(order=tuple(obj.order) + (("margin",) if "margin" not in obj.order else ())),
-                            settings=settings, pin_inputs=pin_inputs)
+    if pos is None:  # the nominal answer as asked, its production capability, and what prevents the target
+        full = Objective(order=tuple(obj.order) + (("margin",) if "margin" not in obj.order else ()))
+        r = enumerate_solve(d, full, settings=asked, pin_inputs=pin_inputs)
         r.notes.append(rep.why_none(rs))
         r.stats.update(stats)
+        found = None
+        if explain:
+            made = r if asked == settings else None
+            if rep.cores_checked == 0:  # no design passes with the made joint: its diagnosis names the input
+                made = made or enumerate_solve(d, full, settings=settings, pin_inputs=pin_inputs)
+            found = prevented_by(d, made or r, w, settings, rs, rep, pin_inputs=pin_inputs)
+        if found:
+            r.notes.append(found["text"])
+            r.stats["robust_explain_time_s"] = found.pop("time_s")
         if r.feasible:
             r.robust = capability(base_of(d, r.parts, settings), rs).to_dict() if details else {}
+        if found:
+            r.robust = {**(r.robust or {}), "prevented_by": found}
         return r
     r = build_result(ev, pos, opts, status="optimal", solver="enumerate", objective=obj, stats=stats)
     r.objective = f"{r.objective} | {rs.targets()}"
@@ -195,6 +211,113 @@ def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs
     return r
 
 
+def _with_input(d, name: str, value: float):
+    """Input ``d`` with field ``name`` set to ``value`` (validated again: what follows from it is re-derived)."""
+    import dataclasses
+
+    from synth.schema import validate
+    raw = {k: v for k, v in dataclasses.asdict(d).items() if v is not None}
+    raw[name] = value
+    return validate(raw)
+
+
+def _robust_design(d, weights, settings, rs, table=None, pin_inputs=False):
+    """``(parts, min Ppk)`` of the best design of input ``d`` meeting ``rs`` (None when none does)."""
+    ev = evaluate(d, settings, pin_inputs=pin_inputs)
+    _, pos, opts, cap = search(ev, weights, rs, table=table)
+    return (ev.parts(pos, opts), cap.min_ppk()) if pos is not None else None
+
+
+def _design_words(parts: dict) -> str:
+    return (f"bolt {parts['bolt_format']} {parts['bolt_property_class']} {parts['bolt_head_type']} "
+            f"(washer {parts['bolt_washer']}, {parts['bolt_tightening']}), pivot class "
+            f"{parts['pivot_class_diameter_mm']:g}, spring {parts['main_spring_material']} {parts['main_spring_wire']} "
+            f"Dm {parts['main_spring_mean_body_diameter_mm']:g}")
+
+
+def prevented_by(d, nominal, weights: dict, settings: Settings, rs: RobustSettings, rep: SearchReport, *,
+                 pin_inputs: bool = False, tries: int = 4) -> dict | None:
+    """The one input or tolerance that keeps every catalog design from ``rs``'s target, and the value that allows
+    a design (verified: the robust search finds one there), or None when none is found in a few tries.
+
+    * No design passes every nominal check: the nominal diagnosis's single-input relaxations (``nominal.diagnosis``:
+      the designer's inputs first, then the specification's, smallest change first); each is tried at its value
+      and a little beyond it in its direction (the diagnosis finds the nearest design's, the target may need more).
+    * Designs pass nominally but none meets the target: the tolerance that drives the check rejecting most cores
+      (its largest contributor); its band is narrowed by bisection (at most ``tries`` searches after the band's
+      removal) to the widest that allows a design. A band read from an input (``input.FIELD``) names the input.
+
+    Returns ``{"kind": "input" | "tolerance", "name", "value", "allows", "unit", "design", "min_ppk", "text",
+    "time_s"}``.
+    """
+    import dataclasses
+
+    from synth.schema import field_by_name
+    t0 = time.perf_counter()
+    diag = getattr(nominal, "diagnosis", None) or {}
+    if not nominal.feasible:
+        single = [x for x in diag.get("relaxations", []) if len(x.get("inputs", {})) == 1]
+        single.sort(key=lambda x: (bool(x.get("specification")), x.get("relative_change", np.inf)))
+        for rel in single[:2]:
+            (name, ch), = rel["inputs"].items()
+            a, b = float(ch["from"]), float(ch["to"])
+            for k in range(tries):
+                value = round(b + (b - a) * (0.05 * k * (k + 1)), 4)  # the relaxation, then 10 %, 30 %, 60 % beyond
+                try:
+                    got = _robust_design(_with_input(d, name, value), weights, settings, rs, pin_inputs=pin_inputs)
+                except InputError:
+                    break
+                if got:
+                    parts, ppk = got
+                    unit = field_by_name(name).unit
+                    text = (f"prevented by the input {name} = {a:g} {unit}: {value:g} {unit} allows a design at "
+                            f"{rs.targets()} (smallest Ppk {ppk:.3g}): {_design_words(parts)}")
+                    return {"kind": "input", "name": name, "value": a, "allows": value, "unit": unit,
+                            "design": parts, "min_ppk": ppk, "text": text, "time_s": time.perf_counter() - t0}
+        return None
+    if not rep.rejected_by:
+        return None
+    cid = max(rep.rejected_by, key=lambda c: (rep.rejected_by[c], -rep.best_ppk.get(c, 0.0)))
+    drivers = [q for q, _ in rep.contributors.get(cid, [])]
+    table = tolerances()
+    for q in drivers[:2]:
+        if q not in table:
+            continue
+
+        def attempt(f):
+            tab = dict(table)
+            tab[q] = dataclasses.replace(table[q], scale=f)
+            return _robust_design(d, weights, settings, rs, table=tab, pin_inputs=pin_inputs)
+        best = attempt(0.0)
+        if not best:
+            continue
+        lo, hi = 0.0, 1.0
+        for _ in range(tries):
+            mid = (lo + hi) / 2.0
+            got = attempt(mid)
+            if got:
+                lo, best = mid, got
+            else:
+                hi = mid
+        parts, ppk = best
+        tol = table[q]
+        where = tol.band_from if tol.band_from else f"band {tol.band:g} {tol.unit}"
+        if tol.band_from.startswith("input."):
+            name = tol.band_from.split(".", 1)[1]
+            value = float(getattr(d, name))
+            text = (f"prevented by the input {name} = {value:g} (the band of {q}, which drives {cid}): "
+                    f"{value * lo:.3g} allows a design at {rs.targets()} (smallest Ppk {ppk:.3g}): "
+                    f"{_design_words(parts)}")
+            return {"kind": "input", "name": name, "value": value, "allows": value * lo,
+                    "unit": field_by_name(name).unit, "design": parts, "min_ppk": ppk, "text": text,
+                    "time_s": time.perf_counter() - t0}
+        text = (f"prevented by the tolerance of {q} ({where}; it drives {cid}): {lo:.0%} of it allows a design at "
+                f"{rs.targets()} (smallest Ppk {ppk:.3g}): {_design_words(parts)}")
+        return {"kind": "tolerance", "name": q, "value": 1.0, "allows": lo, "unit": "x band", "design": parts,
+                "min_ppk": ppk, "text": text, "time_s": time.perf_counter() - t0}
+    return None
+
+
 def robust_front(d, *, settings: Settings = Settings(), rs: RobustSettings = RobustSettings(), n_points: int = 8,
                  step: float = 0.02) -> list:
     """Cost against capability, exact (the epsilon-constraint method): the cheapest design meeting ``rs``'s
@@ -202,6 +325,7 @@ def robust_front(d, *, settings: Settings = Settings(), rs: RobustSettings = Rob
     up to ``n_points`` points. Each point: ``cost_eur``, ``ppk`` (the smallest of its targeted checks), ``ppm``
     (their largest probability of violation, upper 95 % end), ``binding`` (the check of that Ppk) and
     ``parts``. The first target is ``rs.capability`` (0 if only a ppm target is given)."""
+    settings = production(settings)
     ev = evaluate(d, settings)
     target = rs.capability if rs.capability is not None else 0.0
     pts = []

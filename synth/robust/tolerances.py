@@ -23,8 +23,8 @@ of one design of one application: the quantities in play (a zero band or a
 part the design does not have drops them) with their deviation bounds.
 
 >>> t = tolerances()
->>> t["spring_wire_width"].kind, t["bolt_preload"].band_from
-('normal', 'tightening_factors.torque_wrench_tested.scatter_max_pct')
+>>> t["spring_wire_width"].kind, t["bolt_preload"].kind, t["bolt_preload"].band_from
+('normal', 'uniform', 'bolt_tightening.alpha_a_max')
 """
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ import numpy as np
 from synth import catalog
 from synth.errors import InputError, Problem
 
-__all__ = ["QUANTITIES", "KINDS", "Tolerance", "Scatter", "tolerances", "resolve"]
+__all__ = ["QUANTITIES", "QUANTITY_UNITS", "UNITS", "KINDS", "Tolerance", "Scatter", "tolerances", "resolve"]
 
 KINDS = ("normal", "uniform")
 
@@ -48,25 +48,38 @@ QUANTITIES = {
     "spring_wire_height": "main spring wire radial side h (spring option h_mm; h_tol_mm of eq. (83)-(88) set to 0)",
     "spring_coil_diameter": "main spring mean body diameter (spring option; mbd_tol of eq. (83)-(88) set to 0)",
     "spring_tensile_strength": "main spring wire tensile strength Rm (and sigma_y, sigma_A0, the static limit with it)",
-    "spring_torque": "spring torque at the nominal position, and so the tensioner's torque (calculated torque "
-                     "target); the one-sided torque tolerance of eq. (66) set to 0",
+    "spring_torque": "the made spring's torque at the nominal position (eq. (66)'s toleranced quantity): the "
+                     "tensioner's damping, calculated torque and hubload follow by eq. (12)-(13); the one-sided "
+                     "worst case of eq. (66) set to 0",
     "spring_housing_outer_diameter": "spring housing bore (the limit of eq. (82))",
     "spring_housing_inner_diameter": "spring support diameter (the limit of eq. (86))",
     "pivot_diameter": "pivot diameter (radial damping lever, bushing pressure)",
-    "working_arm": "working arm (eccentricity): hubload and radial damping",
+    "working_arm": "working arm (eccentricity): the lever of eq. (7) and (12)-(13), the Table 2 check",
     "belt_offset": "the belt plane's offset in the tilting lever of eq. (95) (the sample instead of the worst-case "
                    "increment; the design's dimensions keep the nominal belt plane)",
     "pulley_diameter": "pulley diameter (lock-up pin checks, eq. (22)-(25))",
     "pivot_bushing_friction": "pivot bushing friction coefficient (radial damping, eq. (10))",
     "plastic_friction": "plastic elements' friction coefficient (axial damping, eq. (9))",
     "crankcase_friction": "pivot base-crankcase friction (sliding safety factor, eq. (99))",
-    "bolt_preload": "the made joint's clamp force: the specified (sized) preload times its tightening scatter",
+    "bolt_preload": "the made joint's assembly preload, within its tightening method's window [F_M,min, F_M,max] "
+                    "(VDI 2230-1: alpha_A = F_M,max/F_M,min)",
     "stack_pivot": "cone spring gap: pivot height (Table 6)",
     "stack_endcap_spacer": "cone spring gap: endcap spacer height (Table 6)",
     "stack_arm": "cone spring gap: arm hub height (Table 6)",
     "stack_damper_pad": "cone spring gap: damper pad height (Table 6)",
     "cone_spring_force": "the made cone spring's force at its deflection (DIN EN 16983 force tolerance)",
 }
+
+#: the unit each quantity's band is given in, and the largest band synth accepts (a larger one makes the quantity
+#: zero or negative, or its samples non-finite): unit -> (largest half-width, why)
+UNITS = {"mm": (10.0, "a larger one exceeds the tensioner's dimensions"),
+         "MPa": (1000.0, "a larger one exceeds the strength of the spring wire"),
+         "%": (100.0, "a larger one makes the quantity zero or negative")}
+#: each quantity's unit (its band's): a row giving another unit is refused (a band of 0.05 in mm and in % differ)
+QUANTITY_UNITS = {q: "mm" for q in QUANTITIES}
+QUANTITY_UNITS.update({"spring_tensile_strength": "MPa", "spring_torque": "%", "pivot_bushing_friction": "%",
+                       "plastic_friction": "%", "crankcase_friction": "%", "bolt_preload": "%",
+                       "cone_spring_force": "%"})
 
 #: quantities that need a part or a model path; resolve() drops them where the design has none
 _CONE = ("stack_pivot", "stack_endcap_spacer", "stack_arm", "stack_damper_pad", "cone_spring_force")
@@ -83,12 +96,16 @@ class Tolerance:
     band_from: str
     source: str
     note: str
+    #: a factor on the band (1: the catalog's; the robust synthesis's search for the band that would allow a design)
+    scale: float = 1.0
 
 
 def tolerances() -> dict:
-    """``{quantity: Tolerance}`` of the tolerance catalog (built-in merged with the user's folders), checked:
-    a quantity synth does not know, a kind other than normal/uniform, or a band that is not a number >= 0
-    (and no ``band_from``) is an error naming the row and column."""
+    """``{quantity: Tolerance}`` of the tolerance catalog (built-in merged with the user's folders), checked: a
+    quantity synth does not know, a kind other than normal/uniform, a unit other than the quantity's
+    (:data:`QUANTITY_UNITS`), a row with both a ``band`` and a ``band_from`` (or neither), or a band that is not a
+    finite number from 0 to the unit's largest (:data:`UNITS`) is an error naming the file, row, column, value and
+    what is accepted."""
     df = catalog.load("tolerances")
     out, problems = {}, []
     for i, r in df.iterrows():
@@ -100,19 +117,32 @@ def tolerances() -> dict:
         kind = str(r["kind"]).strip().lower()
         if kind not in KINDS:
             problems.append(Problem(f"{where}, column kind", r["kind"], "normal (band = +/-3 sigma) or uniform"))
-        src = "" if (isinstance(r["band_from"], float) and math.isnan(r["band_from"])) else str(r["band_from"]).strip()
+        unit = str(r["unit"]).strip()
+        if unit != QUANTITY_UNITS[q]:
+            problems.append(Problem(f"{where}, column unit", r["unit"], f"{QUANTITY_UNITS[q]} (the unit of {q}'s band)"))
+            unit = QUANTITY_UNITS[q]
+        src = "" if _blank(r["band_from"]) else str(r["band_from"]).strip()
         band = None
-        if not src:
+        if src and not _blank(r["band"]):
+            problems.append(Problem(f"{where}, columns band and band_from", f"{r['band']} and {src}",
+                                    "either a band or a band_from, not both (which one would hold is ambiguous)"))
+        elif not src:
+            top, why = UNITS[unit]
             try:
                 band = float(r["band"])
             except (TypeError, ValueError):
                 band = float("nan")
-            if not (math.isfinite(band) and band >= 0):
-                problems.append(Problem(f"{where}, column band", r["band"], "a half-width >= 0 (or a band_from)"))
-        out[q] = Tolerance(q, kind, band, str(r["unit"]).strip(), src, str(r["source"]), str(r.get("note", "")))
+            if not (math.isfinite(band) and 0 <= band < top):
+                problems.append(Problem(f"{where}, column band", r["band"],
+                                        f"a half-width from 0 to below {top:g} {unit} ({why}), or a band_from"))
+        out[q] = Tolerance(q, kind, band, unit, src, str(r["source"]), str(r.get("note", "")))
     if problems:
         raise InputError(problems)
     return out
+
+
+def _blank(v) -> bool:
+    return v is None or (isinstance(v, float) and math.isnan(v)) or str(v).strip() == ""
 
 
 @dataclass
@@ -201,6 +231,13 @@ def _band_from(spec: str, ctx: dict, tol: Tolerance):
             return f"{rest} not tabulated for {dia:g} mm (ISO 286-1 rows {over.min():g} to {up_to.max():g} mm)"
         v = float(table[rest][hit[0]]) / 1000.0 / 2.0
         return -v, v
+    if kind == "bolt_tightening":  # the design's own tightening method: its window about the mean, +/- s
+        from synth.model.vdi2230 import preload_scatter
+        alpha = ctx.get("tightening_alpha_a", float("nan"))
+        if not np.isfinite(alpha):
+            return "no tightening method"
+        v = 100.0 * float(preload_scatter(alpha))
+        return -v, v
     if kind == "disc_spring_force_tolerances":
         plus, minus = ctx["cone_force_tolerance"]
         if not (np.isfinite(plus) and np.isfinite(minus)):
@@ -209,7 +246,7 @@ def _band_from(spec: str, ctx: dict, tol: Tolerance):
     raise InputError(Problem(f"catalog tolerances.csv, row {tol.quantity}, column band_from", spec,
                              "constants.NAME, input.FIELD, spring_wires.COLUMN, spring_material_strength, "
                              "tightening_factors.METHOD.COLUMN, stackup_tolerances.COMPONENT.COLUMN, "
-                             "iso286_it_grades.ITn_um or disc_spring_force_tolerances"))
+                             "iso286_it_grades.ITn_um, disc_spring_force_tolerances or bolt_tightening.alpha_a_max"))
 
 
 def resolve(ctx: dict, table: dict | None = None) -> Scatter:
@@ -224,8 +261,7 @@ def resolve(ctx: dict, table: dict | None = None) -> Scatter:
             dropped.append((q, "no cone spring in the design"))
             continue
         if q == "bolt_preload" and not ctx["bolt"]:
-            dropped.append((q, "not the thesis bolt method with fixation data (VDI 2230's tightening factor holds "
-                               "the preload scatter)"))
+            dropped.append((q, "no fixation data"))
             continue
         if q == "plastic_friction" and not ctx["cone"]:
             dropped.append((q, "no axial damping group"))
@@ -238,6 +274,7 @@ def resolve(ctx: dict, table: dict | None = None) -> Scatter:
             lo, hi = b
         else:
             lo, hi = -float(tol.band), float(tol.band)
+        lo, hi = lo * tol.scale, hi * tol.scale
         if not (hi > lo):
             dropped.append((q, "zero band"))
             continue

@@ -104,6 +104,9 @@ def add_robust_options(p, *, default_capability=None) -> None:
                    help=f"Monte Carlo samples per design (scrambled Sobol; default {DEFAULT_SAMPLES}; 64 to 262144, "
                         "the bulk 64 to 2048 per application)")
     p.add_argument("--seed", type=int, default=RobustSettings().seed, help="seed of the samples (same seed, same numbers)")
+    p.add_argument("--capability-method", choices=("percentile", "moment"), default=None,
+                   help="how Ppk is computed (ISO 22514-2): percentile (default: (X50 - LSL)/(X50 - X0.135%%), for any "
+                        "distribution) or moment ((mu - LSL)/(3 sigma)); bounded outputs are judged by their ppm")
 
 
 def robust_settings_from_args(args, *, default_capability=None, samples: str = "--samples"):
@@ -113,14 +116,16 @@ def robust_settings_from_args(args, *, default_capability=None, samples: str = "
     ``ppm_max``), else ``default_capability``."""
     if getattr(args, "samples", None) is not None:
         check_count(samples, args.samples)
-    names = {"capability": "--capability", "ppm": "--ppm", "samples": "--samples", "seed": "--seed"}
+    names = {"capability": "--capability", "ppm": "--ppm", "samples": "--samples", "seed": "--seed",
+             "method": "--capability-method"}
     cap, ppm = getattr(args, "capability", None), getattr(args, "ppm", None)
     if cap is None and ppm is None:
         targets = rules_of(args).capability
         cap, ppm = targets.get("ppk_min"), targets.get("ppm_max")
         if cap is None and ppm is None:
             cap = default_capability
-    kw = {"capability": cap, "ppm": ppm, "samples": getattr(args, "samples", None), "seed": getattr(args, "seed", None)}
+    kw = {"capability": cap, "ppm": ppm, "samples": getattr(args, "samples", None), "seed": getattr(args, "seed", None),
+          "method": getattr(args, "capability_method", None)}
     kw = {k: v for k, v in kw.items() if v is not None or k in ("capability", "ppm")}
     try:
         return RobustSettings(**kw)

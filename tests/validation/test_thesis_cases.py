@@ -57,8 +57,10 @@ FAILS = {
     ("case1_as_run", "tool"): {"spring_yield", "spring_fatigue", "damper_pad_capacity", "endcap_spacer_capacity"},
     ("case1_as_run", "real"): {"cone_force_band", "cone_not_flattened", "damping_eol", "spring_yield",
                                "spring_fatigue"},
-    ("case3", "tool"): {"damping_upper", "spring_yield", "spring_fatigue"},
-    ("case3", "real"): {"damping_upper", "spring_yield", "spring_fatigue", "spring_coil_gap"},
+    # case 3's radial damping meets its band with the default dry friction 0.10 (0.483 N m); with the thesis tool's
+    # 0.15 it was 0.72 N m, above 0.65 (tests/test_production_friction.py)
+    ("case3", "tool"): {"spring_yield", "spring_fatigue"},
+    ("case3", "real"): {"spring_yield", "spring_fatigue", "spring_coil_gap"},
 }
 
 
@@ -112,19 +114,30 @@ def test_case1_printed_spring_stress_follows_the_equations_not_the_print():
 def test_case3_printed_wire_cannot_give_the_printed_coils():
     """Case 3: 3.0 mm round wire at Dm 44 and 0.0164 N m/deg needs 6.3 coils (eq. 64-65), not the printed 2.18,
     and 6.3 coils of 3 mm do not fit an 8.8 mm housing (coil gap -72 %); the production spring (Dm 39.1) would need
-    7.1, not 2.52. Radial damping 0.72 N m (friction circle of the 21 mm pivot, mu 0.15) exceeds the 0.45 + 0.20 N m
-    band the tool met by printing the target."""
+    7.1, not 2.52. Radial damping 0.48 N m (friction circle of the 21 mm pivot, the default dry mu 0.10) is within the
+    0.45 +/- 0.20 N m band (with the tool's mu 0.15 it was 0.72 N m: the tool met the band by printing the target)."""
     r = flowchart.run(_input("case3"), Settings(), parts=dict(DESIGNS[("case3", "tool")], main_spring_wire="R3.00"),
                       time_points=0)
     assert r.values["main_spring_active_coils_free"] == pytest.approx(6.31, rel=0.01)
     assert r.check("spring_coil_gap").margin == pytest.approx(-0.722, abs=0.01)
-    assert r.values["radial_damping_nm"] == pytest.approx(0.720, rel=0.01)
+    assert r.values["radial_damping_nm"] == pytest.approx(1.85 * 10.5 * np.sin(np.arctan(0.10)) / 4.0, rel=1e-9)
     real = flowchart.run(_input("case3"), Settings(), parts=dict(DESIGNS[("case3", "real")], main_spring_wire="R3.00"),
                          time_points=0)
     assert real.values["main_spring_active_coils_free"] == pytest.approx(7.10, rel=0.01)
 
 
-def test_case3_wire_consistent_reading():
+@pytest.fixture
+def tool_friction(tmp_path):
+    """The thesis tool's dry pivot-bushing friction 0.15 (cases/NOTES.md) as a user catalog: the tool's printed
+    case-3 spring torque 1.56 N m and stresses are its; synth's default is 0.10 (friction_coefficients.csv)."""
+    fr = catalog.load("friction_coefficients")
+    fr = fr[fr["friction"] == "pivot_bushing dry"].assign(mu=0.15)
+    fr.to_csv(tmp_path / "friction_coefficients.csv", index=False)
+    with catalog.overriding(tmp_path):
+        yield
+
+
+def test_case3_wire_consistent_reading(tool_friction):
     """The consistent reading of case 3's wire is 2.3 mm: eq. (64) n_a = E pi d^4 / (64 * 180 k_t mbd) gives 2.179 at
     Dm 44 (printed 2.18) and 2.452 at the production Dm 39.1, whose free-state hooks angle 360 (3 - 2.452) = 197.3 deg
     is the printed 197; the tool's 295.70 deg is printed 295.56. The verdict on it: the coil gap passes (+9.5 %) for

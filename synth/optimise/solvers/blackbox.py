@@ -421,7 +421,7 @@ class Search:
                 w = np.asarray(wsum(ev.score[s], self.weights), dtype=float)
                 got = np.where(ev.subs[s].feasible[rows], w[None, :], np.inf).min(axis=1).max()
                 unseen = [sc for c, sc in zip(v.choices, v.scores) if v.key(c) not in self.seen[s]]
-                if not unseen or min(unseen) >= got - 1e-9 * max(1.0, abs(got)):
+                if not unseen or (np.isfinite(got) and min(unseen) >= got - 1e-9 * max(1.0, abs(got))):
                     self.done[s] = True   # no choice left untried could improve any live core
 
     def finished(self) -> bool:
