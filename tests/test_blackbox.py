@@ -59,9 +59,11 @@ def test_blackbox_on_the_grids_reaches_enumerate_and_never_beats_it(grid_runs):
 
 
 def test_continuous_search_reports_its_catalog_snap_verified():
-    """Thesis case 3 has no feasible catalog design: the continuous search moves the spring's mean diameter
-    off the 1 mm grid for a nearer design, and reports the grid design it snaps to, verified."""
-    d = load_input(case_path("case3"))
+    """A generated application with no feasible catalog design: the continuous search moves the spring's mean
+    diameter off the 1 mm grid for a nearer design, and reports the grid design it snaps to, verified. (Thesis
+    case 3 served here until the pivot bushing's dry friction 0.10: its nearest design now sits on the grid's
+    50 mm end, where there is nothing to snap.)"""
+    d = generate(12, seed=0)[6]
     ref = solve(d, "standard", "enumerate", settings=FAST, relax=False)
     r = solve(d, "standard", "blackbox", settings=FAST, n_trials=200, seed=0)
     assert r.status == "infeasible" and smallest(r) >= smallest(ref) - 0.01 * abs(smallest(ref))
