@@ -79,7 +79,7 @@ def distinct_keys(keys=None) -> tuple:
     keys = tuple(k.strip() for k in (keys.split(",") if isinstance(keys, str) else keys) if k.strip())
     bad = [k for k in keys if k not in PART_KEYS]
     if bad or not keys:
-        raise InputError(Problem("distinct", bad[0] if bad else "", "part keys from " + ", ".join(PART_KEYS)))
+        raise InputError(Problem("--distinct", bad[0] if bad else "", "part keys from " + ", ".join(PART_KEYS)))
     return tuple(k for k in PART_KEYS if k in keys)
 
 
@@ -122,7 +122,7 @@ def _by_margin(core_value, sub_values: list) -> tuple:
     return combine(core_value[0], [v[0] for v in sub_values]), -(core_value[1] + sum(v[1] for v in sub_values))
 
 
-def _pool(ev, weights: dict, k: int, codes: dict, near: bool = False) -> set:
+def _pool(ev, weights: dict, k: int, keys: tuple, codes: dict, near: bool = False) -> set:
     """``{(core position, options tuple)}``: the ``k`` best distinct designs of ``ev`` by the additive score
     ``weights`` (ties: the larger margin) and the ``k`` best by the smallest (objective) margin (ties: the smaller
     score), over the evaluated cores. ``near``: the nearest designs (every core and available option, by the
@@ -152,9 +152,19 @@ def _pool(ev, weights: dict, k: int, codes: dict, near: bool = False) -> set:
         if not near:
             by_score += _best(lists, k, lambda a, b: (a[0] + b[0], max(a[1], b[1])), False)
         by_margin += _best(mlists, k, lambda a, b: (min(a[0], b[0]), a[1] + b[1]), True)
-    pick = heapq.nsmallest(k, by_score, key=lambda x: x[0]) + heapq.nlargest(
-        k, by_margin, key=lambda x: (x[0][0], -x[0][1]))
-    return {idx for _, idx in pick}
+    core_code = _codes(ev.space, "core", keys)[ev.cores]
+
+    def first_distinct(items, key):  # the k best of distinct codes (cores may share the distinct keys)
+        out, seen = [], set()
+        for _, idx in sorted(items, key=key):
+            sig = (core_code[idx[0]],) + tuple(codes[s][o] for s, o in zip(SUBSYSTEMS, idx[1:]))
+            if sig not in seen:
+                seen.add(sig)
+                out.append(idx)
+            if len(out) == k:
+                break
+        return out
+    return set(first_distinct(by_score, lambda x: x[0]) + first_distinct(by_margin, lambda x: (-x[0][0], x[0][1])))
 
 
 def _differs(first: dict, parts: dict) -> dict:
@@ -190,7 +200,7 @@ def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None
     obj = obj if isinstance(obj, Objective) else Objective.parse(obj)
     ev = evaluate(d, settings, pin_inputs=pin_inputs, prune=not near)
     codes = {s: _codes(ev.space, s, keys) for s in SUBSYSTEMS}
-    pool = _pool(ev, obj.additive_weights() or {"cost": 1.0}, k, codes, near=near)
+    pool = _pool(ev, obj.additive_weights() or {"cost": 1.0}, k, keys, codes, near=near)
     row_of = {int(p): r for r, p in enumerate(ev.rows)}
     core_margin = ev.core_min_margin() if near else ev.core_margin()
     designs = []
