@@ -42,6 +42,7 @@ assessment as the optimum; its margin is the verified one), and the first is the
 from __future__ import annotations
 
 import heapq
+import itertools
 import math
 
 import numpy as np
@@ -211,32 +212,27 @@ def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None
         values = ev.objective_values(pos, options, margin)
         designs.append(((-margin,) + obj.key(values) if near else obj.key(values) + (-margin,), pos, options))
     designs.sort(key=lambda x: x[0])  # ties of the objective: the larger margin first
+    status = "near miss" if near else "alternative"
+    others = (build_result(ev, pos, options, status=status, solver=result.solver, objective=obj, stats={},
+                           detail=False) for pos, options in _distinct(ev, designs, signature(result.parts, keys),
+                                                                       keys))
     if not near:
-        out, seen = [_entry(1, result, result.parts, False)], {signature(result.parts, keys)}
-        for _, pos, options in designs:
-            if len(out) >= k:
-                break
-            parts = ev.parts(pos, options)
-            if signature(parts, keys) in seen:
-                continue
-            seen.add(signature(parts, keys))
-            r = build_result(ev, pos, options, status="alternative", solver=result.solver, objective=obj, stats={},
-                             detail=False)
-            out.append(_entry(len(out) + 1, r, result.parts, False))
-        return out
-    # near misses: verify each candidate, rank by the verified margin (the result's own design first of ties)
-    found = [(_near_margin(result), 0, result)]
-    seen = {signature(result.parts, keys)}
+        return [_entry(1, result, result.parts, False)] + [
+            _entry(i + 2, r, result.parts, False) for i, r in enumerate(itertools.islice(others, k - 1))]
+    # near misses: every candidate verified, ranked by the verified margin (the result's own design first of ties)
+    found = sorted(enumerate([result, *others]), key=lambda x: (-_near_margin(x[1]), x[0]))
+    return [_entry(i + 1, r, result.parts, True) for i, (_, r) in enumerate(found[:k])]
+
+
+def _distinct(ev, designs: list, first: tuple, keys: tuple):
+    """``(core position, options)`` of ``designs`` (in order) whose signature differs from ``first``'s and every
+    earlier one's."""
+    seen = {first}
     for _, pos, options in designs:
-        parts = ev.parts(pos, options)
-        if signature(parts, keys) in seen:
-            continue
-        seen.add(signature(parts, keys))
-        r = build_result(ev, pos, options, status="near miss", solver=result.solver, objective=obj, stats={},
-                         detail=False)
-        found.append((_near_margin(r), len(found), r))
-    found.sort(key=lambda x: (-x[0], x[1]))
-    return [_entry(i + 1, r, result.parts, True) for i, (_, _, r) in enumerate(found[:k])]
+        sig = signature(ev.parts(pos, options), keys)
+        if sig not in seen:
+            seen.add(sig)
+            yield pos, options
 
 
 def _near_margin(r) -> float:
