@@ -144,3 +144,14 @@ def test_distinct_says_what_counts_as_different(capsys):
     code = main(["design", str(DEFAULT), "--top", "3", "--distinct", "bolt_format", "bolt_colour"])
     err = capsys.readouterr().err
     assert code == 2 and "--distinct: got 'bolt_colour'" in err
+
+
+def test_a_failing_flowchart_design_gets_the_catalogs_best_not_near_misses(default_top5):
+    """The thesis procedure fails the default case (its pivot class 20 kept) where the catalog holds feasible
+    designs: --top lists the catalog's best distinct designs, the first the exhaustive optimum, each differing from
+    the flowchart's design (before: 'none', or near misses that pass)."""
+    _, r = default_top5
+    flow = synth.synthesise(str(DEFAULT), solver="flowchart", top=3)
+    assert flow.failed() and [a["kind"] for a in flow.alternatives] == ["alternative"] * 3
+    assert flow.alternatives[0]["parts"] == r["parts"]
+    assert all(a["verdict"] == "pass" and a["differs"] for a in flow.alternatives)

@@ -189,17 +189,21 @@ def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None
     check); ``binding``: the check that sets it; ``failed``: ``[{"id", "label", "margin"}]`` of the checks it
     fails; ``differs``: part -> [the first's, this one's]). ``distinct``: the part keys that make designs
     different (:data:`DISTINCT_KEYS`; see the module docstring). ``pin_inputs``: the parts kept in the search (as
-    the synthesis kept them). A result without a design has none."""
+    the synthesis kept them). A result without a design has none; a failing result of a solver that does not
+    search the catalog (the flowchart) where the space holds feasible designs: the ``k`` best of those, ``differs``
+    from the result."""
     if not (isinstance(k, int) and not isinstance(k, bool) and 1 <= k <= MAX_TOP):
         raise InputError(Problem("--top", k, f"an integer from 1 to {MAX_TOP}"))
-    near = result.status == "infeasible"
     if not result.parts or result.status not in ("optimal", "feasible", "baseline", "infeasible"):
         return []
     keys = distinct_keys(distinct)
     settings = settings or Settings.from_saved(result.settings, result.rules)
     obj = objective or Objective.parse(result.objective or "standard")
     obj = obj if isinstance(obj, Objective) else Objective.parse(obj)
-    ev = evaluate(d, settings, pin_inputs=pin_inputs, prune=not near)
+    # an infeasible result: every core evaluated; near misses unless the space holds a feasible design (a
+    # solver that does not search it, the flowchart, may fail where the catalog passes)
+    ev = evaluate(d, settings, pin_inputs=pin_inputs, prune=result.status != "infeasible")
+    near = not ev.any_feasible()
     codes = {s: _codes(ev.space, s, keys) for s in SUBSYSTEMS}
     pool = _pool(ev, obj.additive_weights() or {"cost": 1.0}, k, keys, codes, near=near)
     row_of = {int(p): r for r, p in enumerate(ev.rows)}
@@ -213,21 +217,23 @@ def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None
         designs.append(((-margin,) + obj.key(values) if near else obj.key(values) + (-margin,), pos, options))
     designs.sort(key=lambda x: x[0])  # ties of the objective: the larger margin first
     status = "near miss" if near else "alternative"
+    lead = near or not result.failed()  # the result leads the list (a failing result among feasible designs: not)
     others = (build_result(ev, pos, options, status=status, solver=result.solver, objective=obj, stats={},
-                           detail=False) for pos, options in _distinct(ev, designs, signature(result.parts, keys),
-                                                                       keys))
+                           detail=False)
+              for pos, options in _distinct(ev, designs, signature(result.parts, keys) if lead else None, keys))
     if not near:
-        return [_entry(1, result, result.parts, False)] + [
-            _entry(i + 2, r, result.parts, False) for i, r in enumerate(itertools.islice(others, k - 1))]
+        head = [_entry(1, result, result.parts, False)] if lead else []
+        return head + [_entry(len(head) + i + 1, r, result.parts, False)
+                       for i, r in enumerate(itertools.islice(others, k - len(head)))]
     # near misses: every candidate verified, ranked by the verified margin (the result's own design first of ties)
     found = sorted(enumerate([result, *others]), key=lambda x: (-_near_margin(x[1]), x[0]))
     return [_entry(i + 1, r, result.parts, True) for i, (_, r) in enumerate(found[:k])]
 
 
 def _distinct(ev, designs: list, first: tuple, keys: tuple):
-    """``(core position, options)`` of ``designs`` (in order) whose signature differs from ``first``'s and every
-    earlier one's."""
-    seen = {first}
+    """``(core position, options)`` of ``designs`` (in order) whose signature differs from ``first``'s (None: no
+    first) and every earlier one's."""
+    seen = {first} - {None}
     for _, pos, options in designs:
         sig = signature(ev.parts(pos, options), keys)
         if sig not in seen:
