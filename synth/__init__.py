@@ -136,7 +136,8 @@ def run_flowchart(d: "DesignInput | str | Path | dict", parts: dict | None = Non
 
 
 def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard", solver: str = "enumerate", *,
-               pin_inputs: bool = False, fix=(), free=(), top: int = 1, time_limit_s: float | None = None,
+               pin_inputs: bool = False, fix=(), free=(), top: int = 1, distinct=None,
+               time_limit_s: float | None = None,
                n_trials: int = 200, rules=None, **settings_kw) -> "Result":
     """The best catalog design of input ``d`` (what ``synth design`` prints).
 
@@ -150,8 +151,10 @@ def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard"
     The parts the input names (pivot class, bushing thickness, main spring, bolt) are kept unless no design with
     them passes; ``fix`` (field names) keeps them whatever the verdict, ``pin_inputs=True`` keeps every one,
     ``free`` lets synth choose them. ``Result.changes`` says which the design does not keep, and why.
-    ``top`` K > 1: ``Result.alternatives``, the K best designs in objective order (rank, parts, objectives,
-    smallest margin and what binds it, what differs from the optimum). ``rules``: design rules (required safety
+    ``top`` K > 1: ``Result.alternatives``, the K best designs in objective order that differ in a catalog part
+    (rank, parts, objectives, smallest margin and what binds it, what differs from the optimum; ``distinct``: the
+    part keys that count, :data:`synth.optimise.alternatives.DISTINCT_KEYS`), or for an infeasible input its K
+    nearest designs by the smallest margin (each with every check it fails). ``rules``: design rules (required safety
     factors and limits, minimum margins; a mapping, :class:`~synth.design.rules.Rules` or a rules file; default:
     the input file's ``rules:`` section), echoed in ``Result.rules``; the other keywords are the configuration's
     (:class:`~synth.design.settings.Settings`: ``fidelity``, ``spring_limit_basis``, ``catalogs``, ...).
@@ -159,7 +162,8 @@ def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard"
     from synth import catalog
     from synth.optimise.honour import solve_honouring
     s = _configure(d, rules, settings_kw)
-    kw: dict = {"settings": s, "pin_inputs": pin_inputs, "fix": fix, "free": free, "top": top}
+    kw: dict = {"settings": s, "pin_inputs": pin_inputs, "fix": fix, "free": free, "top": top,
+                "distinct": distinct}
     if solver == "blackbox":
         kw["n_trials"] = n_trials
     if time_limit_s is not None:

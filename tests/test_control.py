@@ -221,7 +221,7 @@ def test_top_k_lists_the_best_designs_in_objective_order(default_json, capsys, t
         for k, (first, this) in a["differs"].items():
             assert alts[0]["parts"][k] == first and a["parts"][k] == this
     code, out, _ = _run(capsys, "design", DEFAULT, "--top", "2")
-    assert "Alternatives: the 2 best designs in objective order" in out and "#2" in out
+    assert "Alternatives: the 2 best distinct designs in objective order" in out and "#2" in out
     code, out, err = _run(capsys, "design", DEFAULT, "--top", "0")
     assert code == 2 and "--top" in err
 

@@ -80,11 +80,12 @@ def _why_not(d, settings, keep) -> str:
 
 
 def solve_honouring(d, objective="standard", solver: str = "enumerate", *, fix=(), free=(), pin_inputs=False,
-                    top: int = 1, robust=None, **kw):
+                    top: int = 1, distinct=None, robust=None, **kw):
     """The synthesis of ``d`` (:func:`synth.optimise.solve` with ``solver`` and ``kw``) that keeps the parts the
     input names as the module docstring says; the result carries :attr:`changes` and :attr:`control`, and with
     ``top`` K > 1 the K best designs (:attr:`alternatives`, :func:`synth.optimise.alternatives.ranked`) in the
-    same space. The exact solver (``enumerate``) takes the margin as the objective's last tie-break
+    same space (``distinct``: the part keys that make them different, :data:`synth.optimise.alternatives.
+    DISTINCT_KEYS`; an infeasible input: its K nearest designs). The exact solver (``enumerate``) takes the margin as the objective's last tie-break
     (:func:`synth.optimise.objectives.with_margin_tiebreak`). ``robust`` (a
     :class:`synth.robust.settings.RobustSettings`): the robust synthesis
     (:func:`synth.robust.synthesis.robust_solve`, enumerate only) in place of the nominal one, honouring the
@@ -92,6 +93,9 @@ def solve_honouring(d, objective="standard", solver: str = "enumerate", *, fix=(
     from synth.design.evaluate import Settings
     from synth.design.space import fixed_fields
     settings = kw.get("settings") or Settings()
+    if distinct is not None:
+        from synth.optimise.alternatives import distinct_keys
+        distinct = distinct_keys(distinct)  # a bad key is said before the synthesis
     if solver == "enumerate":
         objective = with_margin_tiebreak(objective)
     if robust is not None and solver != "enumerate":
@@ -159,7 +163,7 @@ def solve_honouring(d, objective="standard", solver: str = "enumerate", *, fix=(
     res.changes = changes_of(d, res, free=free, released=released, reasons=reasons)
     if top != 1:
         from synth.optimise.alternatives import ranked
-        res.alternatives = ranked(d, res, top, settings=settings, objective=objective,
+        res.alternatives = ranked(d, res, top, settings=settings, objective=objective, distinct=distinct,
                                   pin_inputs=tuple(n for n in order if n not in released) if solver != "flowchart"
                                   else False)
     return res

@@ -206,15 +206,21 @@ def correction(r, c) -> str:
 
 
 def alternative_rows(r) -> list[dict]:
-    """The ranked alternatives (:attr:`Result.alternatives`) as rows of words: ``{"rank", "objectives",
-    "margin", "binding", "verdict", "differs"}`` (``differs``: what differs from the first, the optimum)."""
+    """The ranked alternatives (:attr:`Result.alternatives`) as rows of words: ``{"rank", "kind", "objectives",
+    "margin", "binding", "failed", "verdict", "differs"}`` (``differs``: what differs from the first, the optimum or
+    for near misses the nearest design; ``failed``: the checks a near miss fails, each by how much)."""
     rows = []
     for a in r.alternatives or []:
+        near = a.get("kind") == "near miss"
         objs = objective_line({k: v for k, v in a.get("objectives", {}).items() if k != "margin"})
         diff = ", ".join(f"{k} {_value(x[0])} -> {_value(x[1])}" for k, x in a.get("differs", {}).items())
-        rows.append({"rank": a["rank"], "objectives": objs.removeprefix("objectives: "),
+        first = "the nearest design" if near else "the optimum"
+        rows.append({"rank": a["rank"], "kind": a.get("kind", "alternative"),
+                     "objectives": objs.removeprefix("objectives: "),
                      "margin": margin_pct(a.get("margin")), "binding": a.get("binding", ""),
-                     "verdict": a.get("verdict", ""), "differs": diff or ("the optimum" if a["rank"] == 1 else "-")})
+                     "failed": "; ".join(f"{f['label']} by {-100 * f['margin']:.1f} %" for f in a.get("failed", []))
+                     or "none", "verdict": a.get("verdict", ""),
+                     "differs": diff or (first if a["rank"] == 1 else "-")})
     return rows
 
 

@@ -77,14 +77,22 @@ def render(r: Result, *, title: str = "", verdict: bool = True) -> str:
     for c in sorted((c for c in r.checks if c.verdict != NOT_APPLICABLE), key=lambda c: c.constraint.step):
         lines += _check_line(c, r)
     alts = alternative_rows(r)
-    if alts:
-        lines += ["", f"Alternatives: the {len(alts)} best designs in objective order (margin: the smallest, "
-                      "and the check that sets it)", "-" * 78]
+    if alts and alts[0]["kind"] == "near miss":
+        lines += ["", f"Near misses (no feasible design): the {len(alts)} nearest distinct designs by the smallest "
+                      "margin (what binds; every check each fails)", "-" * 78]
+        for a in alts:
+            lines.append(f"  #{a['rank']:<2} margin {a['margin']} ({a['binding']}), {a['objectives']}")
+            lines.append(f"       fails: {a['failed']}")
+            lines.append(f"       differs: {a['differs']}")
+    elif alts:
+        lines += ["", f"Alternatives: the {len(alts)} best distinct designs in objective order (each differs from "
+                      "every earlier one in a catalog part; margin: the smallest, and the check that sets it)",
+                  "-" * 78]
         for a in alts:
             lines.append(f"  #{a['rank']:<2} {a['objectives']}, margin {a['margin']} ({a['binding']})")
             lines.append(f"       differs: {a['differs']}")
     elif r.alternatives == [] and (r.control or {}).get("top", 1) > 1:
-        lines += ["", "Alternatives: none (no feasible design)"]
+        lines += ["", "Alternatives: none (no design to rank)"]
     lines += cost_words.text_lines(getattr(r, "cost", None) or {})
     binds = r.binding(5)
     if binds:

@@ -85,7 +85,12 @@ def add_design_options(p) -> None:
                    help="let synth choose these parts for the objective, whatever the input names")
     p.add_argument("--top", type=int, default=1, metavar="K",
                    help="also the K best designs in objective order, what differs between them and their margins "
-                        "(1 to 50)")
+                        "(1 to 50): designs distinct in a catalog part (--distinct); an infeasible input: its K "
+                        "nearest designs")
+    p.add_argument("--distinct", nargs="+", metavar="KEY", default=None,
+                   help="--top: the part keys that make two designs different alternatives (default: every "
+                        "catalog part; the main spring's mean diameter and the cone spring's variant are "
+                        "dimensions of one part)")
     p.add_argument("--trials", type=int, default=200, help="blackbox: trials per subsystem study (1 to 100000)")
     p.add_argument("--time-limit", type=float, default=None, metavar="S",
                    help="seconds for the solver (minlp, milp-*, blackbox): on expiry the best design found so far")
@@ -150,7 +155,8 @@ def synthesise(d, args):
     if limit is not None and not (0 < limit <= 86_400):
         raise InputError(Problem("--time-limit", limit, "seconds in (0, 86400]"))
     kw = {"settings": settings_from_args(args), "pin_inputs": getattr(args, "pin_inputs", False),
-          "fix": getattr(args, "fix", ()), "free": getattr(args, "free", ()), "top": getattr(args, "top", 1)}
+          "fix": getattr(args, "fix", ()), "free": getattr(args, "free", ()), "top": getattr(args, "top", 1),
+          "distinct": getattr(args, "distinct", None)}
     rs = robust_settings_from_args(args)  # --capability/--ppm, else the design rules' targets
     if rs.capability is not None or rs.ppm is not None:
         kw["robust"] = rs

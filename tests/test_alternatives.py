@@ -1,0 +1,157 @@
+"""``--top K`` (issue 35): alternatives that a buyer or designer would call different, and for an infeasible input
+its ranked near misses, each judged by the one evaluator (:func:`synth.verify` gives the same margins)."""
+
+from __future__ import annotations
+
+import io
+import itertools
+import json
+import math
+from contextlib import redirect_stdout
+from pathlib import Path
+
+import pytest
+
+import synth
+from synth.cli import main
+from synth.data import case_path
+from synth.design.space import PART_KEYS
+from synth.optimise.alternatives import DIMENSION_KEYS, DISTINCT_KEYS
+from synth.optimise.product import design_scores
+
+ROOT = Path(__file__).resolve().parents[1]
+DEFAULT = ROOT / "synth" / "data" / "default_case.yaml"
+CASE1 = case_path("case1")  # thesis case 1: infeasible with synth's defaults (every bolt fails the under-head)
+#: --json writes numbers to 6 significant digits (Result.as_dict)
+JSON_REL = 1e-5
+#: the catalog parts a buyer or designer calls different parts (the brief of issue 35)
+CATALOG_KEYS = ("ball_bearing", "pivot_class_diameter_mm", "pivot_bushing_supplier", "pivot_bushing_length_mm",
+                "damper_pad_class", "endcap_spacer_class", "main_spring_material", "main_spring_wire",
+                "bolt_format", "bolt_head_type", "bolt_property_class")
+
+
+def _design(*argv) -> tuple[int, dict]:
+    buf = io.StringIO()
+    with redirect_stdout(buf):
+        code = main(["design", *map(str, argv), "--json"])
+    return code, json.loads(buf.getvalue())
+
+
+def _before(a: tuple, b: tuple) -> bool:
+    """Whether objective key ``a`` ranks strictly before ``b`` (equal within the JSON's rounding: not before)."""
+    for x, y in zip(a, b):
+        if not math.isclose(x, y, rel_tol=JSON_REL, abs_tol=1e-9):
+            return x < y
+    return False
+
+
+@pytest.fixture(scope="module")
+def default_top5():
+    return _design(DEFAULT, "--top", "5")
+
+
+@pytest.fixture(scope="module")
+def case1_top5():
+    return _design(CASE1, "--top", "5")
+
+
+def test_the_distinct_keys_are_the_catalog_parts():
+    assert set(DISTINCT_KEYS) == set(CATALOG_KEYS)
+    assert set(DISTINCT_KEYS) | set(DIMENSION_KEYS) == set(PART_KEYS) and not set(DISTINCT_KEYS) & set(DIMENSION_KEYS)
+
+
+def test_top5_of_the_default_case_differ_pairwise_in_a_catalog_part(default_top5):
+    code, r = default_top5
+    alts = r["alternatives"]
+    assert code == 0 and r["verdict"] == "pass" and len(alts) == 5
+    assert alts[0]["parts"] == r["parts"] and alts[0]["differs"] == {}  # the first is the optimum
+    assert [a["kind"] for a in alts] == ["alternative"] * 5 and all(a["verdict"] == "pass" for a in alts)
+    for a, b in itertools.combinations(alts, 2):  # d4b9b72: five designs differing only in the spring's Dm
+        assert any(a["parts"][k] != b["parts"][k] for k in CATALOG_KEYS), (a["rank"], b["rank"])
+    keys = [(a["objectives"]["standard"], a["objectives"]["cost"], -a["margin"]) for a in alts]
+    assert keys == sorted(keys)  # objective order: standard, cost, then the larger margin
+    assert alts[0]["objectives"] == {"standard": 2.0, "cost": pytest.approx(1.7342, abs=1e-4), "margin": pytest.approx(
+        0.0313433, abs=1e-6)}
+
+
+def test_each_alternative_is_the_best_of_its_parts_and_verify_agrees(default_top5):
+    """Each listed design's margin and binding check are synth.verify's on the same parts (a second path), and
+    the neighbouring mean diameters of its parts rank no higher (it is its parts' best representative)."""
+    _, r = default_top5
+    for a in r["alternatives"]:
+        v = synth.verify(str(DEFAULT), a["parts"])
+        assert v.verdict == "pass"
+        assert a["margin"] == pytest.approx(float(v.assessment().objective_margin[0]), rel=JSON_REL)
+        assert a["binding_id"] == str(v.assessment().binding_ids()[0])
+    d = synth.load(str(DEFAULT))
+    for a in r["alternatives"]:  # the neighbouring mean diameters of the same parts do not rank higher
+        key = (a["objectives"]["standard"], a["objectives"]["cost"], -a["margin"])
+        for step in (-1.0, 1.0):
+            parts = {**a["parts"], "main_spring_mean_body_diameter_mm": a["parts"]["main_spring_mean_body_diameter_mm"]
+                     + step}
+            other = synth.verify(d, parts)
+            if other.verdict == "pass":
+                s = design_scores(d, parts)
+                assert not _before((s["standard"], s["cost"], -float(other.assessment().objective_margin[0])),
+                                   key), (a["rank"], step)
+
+
+def test_case1_lists_its_five_nearest_designs_by_decreasing_margin(case1_top5):
+    code, r = case1_top5
+    near = r["alternatives"]
+    assert code == 1 and r["status"] == "infeasible" and len(near) == 5
+    assert near[0]["parts"] == r["parts"]  # the first is the diagnosis's nearest design
+    assert [a["kind"] for a in near] == ["near miss"] * 5 and all(a["verdict"] == "fail" for a in near)
+    margins = [a["margin"] for a in near]
+    assert margins == sorted(margins, reverse=True) and all(m < 0 for m in margins)
+    # every catalog bolt leaves the under-head pressure 35.2 % above the support's 400 MPa (the diagnosis's)
+    assert near[0]["binding_id"] == "under_head" and near[0]["margin"] == pytest.approx(-0.3522, abs=5e-5)
+    assert r["diagnosis"]["violated"][0]["constraint"] == "under_head"
+    assert near[0]["margin"] == pytest.approx(r["diagnosis"]["violated"][0]["margin"], rel=JSON_REL)
+    for a, b in itertools.combinations(near, 2):
+        assert any(a["parts"][k] != b["parts"][k] for k in CATALOG_KEYS)
+
+
+def test_case1_near_misses_have_the_margins_of_synth_verify(case1_top5):
+    """The cross-check between paths: each near miss verified alone gives the same smallest margin, binding check
+    and failing checks."""
+    _, r = case1_top5
+    assert len(r["alternatives"]) == 5
+    for a in r["alternatives"]:
+        v = synth.verify(str(CASE1), a["parts"])
+        asm = v.assessment()
+        assert a["margin"] == pytest.approx(float(asm.margin_min[0]), rel=JSON_REL)
+        assert a["binding_id"] == str(asm.binding_ids()[0])
+        assert [(f["id"], f["margin"]) for f in a["failed"]] == \
+            [(c.id, pytest.approx(c.margin, rel=JSON_REL)) for c in sorted(v.failed(), key=lambda c: c.margin)]
+        assert math.isclose(a["failed"][0]["margin"], a["margin"], rel_tol=JSON_REL)
+
+
+def test_case1_prints_near_misses_not_none(capsys):
+    code = main(["design", str(CASE1), "--top", "2"])
+    out = capsys.readouterr().out
+    assert code == 1 and "Alternatives: none" not in out
+    assert "Near misses (no feasible design): the 2 nearest distinct designs" in out
+    block = out.split("Near misses")[1].split("\n\n")[0]
+    assert "#1  margin -35.2 % (under-head pressure within the support's compressive strength)" in block
+    assert "fails: under-head pressure within the support's compressive strength by 35.2 %" in block
+
+
+def test_distinct_says_what_counts_as_different(capsys):
+    r = synth.synthesise(str(DEFAULT), top=4, distinct=("ball_bearing", "bolt_format"))
+    sig = [(a["parts"]["ball_bearing"], a["parts"]["bolt_format"]) for a in r.alternatives]
+    assert len(sig) == 4 and len(set(sig)) == 4 and r.alternatives[0]["parts"] == r.parts
+    code = main(["design", str(DEFAULT), "--top", "3", "--distinct", "bolt_format", "bolt_colour"])
+    err = capsys.readouterr().err
+    assert code == 2 and "--distinct: got 'bolt_colour'" in err
+
+
+def test_a_failing_flowchart_design_gets_the_catalogs_best_not_near_misses(default_top5):
+    """The thesis procedure fails the default case (its pivot class 20 kept) where the catalog holds feasible
+    designs: --top lists the catalog's best distinct designs, the first the exhaustive optimum, each differing from
+    the flowchart's design (before: 'none', or near misses that pass)."""
+    _, r = default_top5
+    flow = synth.synthesise(str(DEFAULT), solver="flowchart", top=3)
+    assert flow.failed() and [a["kind"] for a in flow.alternatives] == ["alternative"] * 3
+    assert flow.alternatives[0]["parts"] == r["parts"]
+    assert all(a["verdict"] == "pass" and a["differs"] for a in flow.alternatives)
