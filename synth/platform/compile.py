@@ -287,10 +287,13 @@ def compile_portfolio(pf: PortfolioFeasibility, objective: str = "variants", *, 
     for s in SUBSYSTEMS:                                          # options per group after the margin floor
         p, cst, mar, grp, n_g, _ = pre.options[s]
         keep = mar >= tau
-        p, cst, grp = p[keep], cst[keep], grp[keep]
+        if not keep.all():                                        # (no floor: every option, no copies)
+            p, cst, grp = p[keep], cst[keep], grp[keep]
         first = np.ones(len(p), bool)                             # per group and pattern the cheapest kept
         first[1:] = (p[1:] != p[:-1]) | (grp[1:] != grp[:-1])
-        p, cst, grp = p[first], cst[first], grp[first]
+        if not first.all():
+            p, cst, grp = p[first], cst[first], grp[first]
+        del keep, first
         cut = np.searchsorted(grp, np.arange(n_g + 1))
         kept[s] = (p, cst, cut)
         dead = (cut[1:] == cut[:-1])[cores["group"][s]]
