@@ -55,3 +55,19 @@ def test_a_missing_table_or_unknown_portfolio_is_named(tmp_path):
         _run(["rationalise", str(tmp_path / "portfolio.csv"), "--out", str(tmp_path)])
     with pytest.raises(InputError, match="PORTFOLIO: got 'engines.txt'; accepted: synthetic:N"):
         _run(["rationalise", "engines.txt", "--out", str(tmp_path)])
+
+
+def test_a_progress_line_per_stage(tmp_path, capsys, monkeypatch):
+    """On a terminal every stage of the platform has its own line (issue 36: the label sat at "N of N" while the
+    MILP ran), then the trade-off curve and the outputs; each line ends "done"."""
+    from synth.platform.rationalise import STAGES
+    monkeypatch.setenv("SYNTH_PROGRESS", "1")
+    assert _run(["rationalise", "synthetic:20:1", "--out", str(tmp_path / "p"), "--points", "2"]) == 0
+    lines = [x.strip() for x in capsys.readouterr().err.replace("\r", "\n").splitlines() if x.strip()]
+    done = [x for x in lines if x.endswith("done")]
+    want = [s if s != "MILP" else "highs MILP" for s in STAGES]
+    got = [x.split(":")[1].split(" (")[0].removeprefix(" platform, ") for x in done
+           if x.startswith("synth rationalise: platform, ")]
+    assert got == want
+    assert any(x.startswith("synth rationalise: trade-off curve (margin):") and "2/2" in x for x in lines)
+    assert done[-1].startswith("synth rationalise: writing the outputs:")

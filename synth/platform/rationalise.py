@@ -13,6 +13,7 @@ or against the worst margin).
 from __future__ import annotations
 
 import time
+from contextlib import nullcontext
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -27,9 +28,12 @@ from synth.platform.prune import prune as prune_work
 from synth.platform.verified import verify_records
 from synth.platform.outputs import platform_table, price_of_standardisation
 
-__all__ = ["PlatformResult", "rationalise", "tradeoff", "OBJECTIVES"]
+__all__ = ["PlatformResult", "rationalise", "tradeoff", "OBJECTIVES", "STAGES"]
 
 OBJECTIVES = ("variants", "cost")
+#: the stages of :func:`rationalise`, in order (the names its ``stage`` callback receives; ``verify`` only with
+#: ``verify=True`` (it checks nothing on synthetic data), the last two only with ``details``)
+STAGES = ("compile", "prune", "greedy", "MILP", "assign", "verify", "per-application optima", "price of standardisation")
 
 
 @dataclass
@@ -95,7 +99,8 @@ def _check(objective, max_variants, time_limit, weights):
 def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_variants: dict | None = None,
                 time_limit: float = 60.0, weights: dict | None = None, solver: str = "highs", prune: bool = True,
                 min_margin: float | None = None, budget: float | None = None, verify: bool = True,
-                pre: Precompiled | None = None, details: bool = True, build: str = "arrays") -> PlatformResult:
+                pre: Precompiled | None = None, details: bool = True, build: str = "arrays",
+                stage=None) -> PlatformResult:
     """The platform of ``pf`` minimising ``objective`` (``variants``: weighted count of distinct
     parts; ``cost``: unit cost x volume plus per-variant fixed cost).
 
@@ -108,29 +113,36 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     ``details=False`` leaves out what only the platform's own report reads (the per-application optima on the
     full catalog, ``price`` and ``table``): the trade-off rows do not need them. ``build``: how HiGHS gets the MILP
     (:data:`formulations.platform.BUILDS`: from arrays through highspy, or through Pyomo, the reference).
+    ``stage(name)``: a context manager around each stage (:data:`STAGES`: the command line's progress line per
+    stage, :class:`synth.report.progress.phase`); none by default.
     """
     _check(objective, max_variants, time_limit, weights)
+    step = stage or (lambda name: nullcontext())
     w_all = {**default_weights(), **(weights or {})}
     t0 = time.perf_counter()
-    pre = pre if pre is not None else precompile(pf)   # the compilation and the assignments share its groups
-    work = compile_portfolio(pf, objective, min_margin=min_margin, weights=w_all, pre=pre)
-    if pre.assign_groups is None:
-        pre.assign_groups = option_groups(pf)
+    with step("compile"):
+        pre = pre if pre is not None else precompile(pf)   # the compilation and the assignments share its groups
+        work = compile_portfolio(pf, objective, min_margin=min_margin, weights=w_all, pre=pre)
+        if pre.assign_groups is None:
+            pre.assign_groups = option_groups(pf)
     groups = pre.assign_groups   # the two assignments below share them
     pre = None                   # what is left of it is not needed (one solve: its memory back for the MILP)
     before = work.sizes()
     t1 = time.perf_counter()
     capped = bool(max_variants) or budget is not None
-    if prune:
-        prune_work(work, allow_unserved=capped)
-    inst = work.instance()
+    with step("prune"):
+        if prune:
+            prune_work(work, allow_unserved=capped)
+        inst = work.instance()
     t2 = time.perf_counter()
-    y_g = greedy(inst, objective)
-    g_val = objective_value(inst, y_g, objective)
+    with step("greedy"):
+        y_g = greedy(inst, objective)
+        g_val = objective_value(inst, y_g, objective)
     t3 = time.perf_counter()
     warm = y_g if not capped else None   # the uncapped greedy platform may break a cap
-    sol = solve_milp(inst, objective, solver=solver, time_limit=time_limit, max_variants=max_variants,
-                     budget=budget, allow_unserved=capped, warm_start=warm, build=build)
+    with step("MILP"):
+        sol = solve_milp(inst, objective, solver=solver, time_limit=time_limit, max_variants=max_variants,
+                         budget=budget, allow_unserved=capped, warm_start=warm, build=build)
     t4 = time.perf_counter()
     notes = list(pf.notes)
     if sol.y is not None:
@@ -141,10 +153,12 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     else:
         y, status = np.zeros(inst.n_parts, bool), sol.status
     platform = platform_from_y(work, y)
-    records = assign(pf, platform, min_margin=min_margin, groups=groups)
+    with step("assign"):
+        records = assign(pf, platform, min_margin=min_margin, groups=groups)
     t_v = time.perf_counter()
     if verify:
-        verify_records(pf, records)
+        with step("verify"):
+            verify_records(pf, records)
     t_v = time.perf_counter() - t_v
     reasons = dict(work.unservable)
     for i, r in enumerate(records):
@@ -160,7 +174,8 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
                 if code >= 0:
                     used[f].add(code)
     platform = {f: platform[f] & used[f] for f in FAMILIES}
-    per_app = assign(pf, full_platform(pf), min_margin=min_margin, groups=groups) if details else []
+    with step("per-application optima") if details else nullcontext():
+        per_app = assign(pf, full_platform(pf), min_margin=min_margin, groups=groups) if details else []
     t5 = time.perf_counter()
     obj = sol.objective if sol.y is not None else g_val
     res = PlatformResult(
@@ -175,8 +190,9 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
         per_app_optima=per_app, weights=w_all, max_variants=dict(max_variants or {}), notes=notes)
     if not details:
         return res
-    res.price = price_of_standardisation(pf, res)
-    res.table = platform_table(pf, res).to_dict(orient="records")
+    with step("price of standardisation"):
+        res.price = price_of_standardisation(pf, res)
+        res.table = platform_table(pf, res).to_dict(orient="records")
     return res
 
 

@@ -103,16 +103,21 @@ def _main(args) -> int:
     for note in pf.notes:
         if note.startswith("--engine dask"):
             print(f"synth rationalise: note: {note}", file=sys.stderr)
-    with phase(f"synth rationalise: platform ({args.solver} MILP, {len(pf.apps)} applications)"):
-        r = rationalise(pf, args.objective, max_variants=caps, time_limit=args.time_limit, solver=args.solver)
+    label = f"{args.solver} MILP"
+
+    def stage(name):   # a progress line per stage of the platform (synth.platform.rationalise.STAGES)
+        return phase(f"synth rationalise: platform, {label if name == 'MILP' else name} ({len(pf.apps)} applications)")
+
+    r = rationalise(pf, args.objective, max_variants=caps, time_limit=args.time_limit, solver=args.solver,
+                    stage=stage)
     rows = None
     if args.tradeoff != "none":
         with Progress(total=args.points, desc=f"synth rationalise: trade-off curve ({args.tradeoff})") as bar:
             rows = tradeoff(pf, args.tradeoff, points=args.points, time_limit=args.time_limit,
                             progress=lambda done, total: bar.update(done - bar.n))
     r.tradeoff = rows
-    with output_files(args.out, "--out") as stage:  # one output: every file, or none
-        paths = [Path(args.out) / q.relative_to(stage) for q in write_all(pf, r, stage, rows, args.tradeoff)]
+    with output_files(args.out, "--out") as out, phase("synth rationalise: writing the outputs"):
+        paths = [Path(args.out) / q.relative_to(out) for q in write_all(pf, r, out, rows, args.tradeoff)]
     p = price_of_standardisation(pf, r)
     print(f"synth rationalise: {p['applications_served']} of {len(r.records)} applications served by "
           f"{r.n_parts} distinct parts (union of per-application optima: {p['parts_union_of_optima']}); "
