@@ -36,7 +36,8 @@ from dataclasses import dataclass
 
 from synth.errors import InputError, Problem
 
-__all__ = ["Goal", "GOALS", "OBJECTIVES", "UNITS", "MAX_WEIGHT", "Objective", "with_margin_tiebreak", "weighted_sum"]
+__all__ = ["Goal", "GOALS", "OBJECTIVES", "UNITS", "MAX_WEIGHT", "TIE", "Objective", "with_margin_tiebreak", "weighted_sum",
+           "ties"]
 
 
 @dataclass(frozen=True)
@@ -177,6 +178,22 @@ def weighted_sum(scores: dict, weights: dict):
         if _BY_NAME[k].additive:
             out = out + w * scores[k]
     return out
+
+
+#: relative tolerance of a tie between two additive scores (:func:`weighted_sum`): the same sums formed in another
+#: order differ by float rounding (about 1e-15 relative), a real price difference of 1e-6 EUR under a lexicographic
+#: score of 1e5 (standard x 1e4 + cost) is 1e-11 relative: a tie is closer than 1e-12, never a cent or a tenth of one
+TIE = 1e-12
+
+
+def ties(scores, best):
+    """Whether additive scores ``scores`` tie the best score ``best`` (within :data:`TIE` relative, at least 1 in
+    absolute): the one definition of "equal objective" the exact solvers break by the margin.
+
+    >>> bool(ties(10002.14665 + 1e-12, 10002.14665)), bool(ties(10002.147511, 10002.14665))
+    (True, False)
+    """
+    return scores <= best + TIE * max(1.0, abs(best))
 
 
 def weighted_sum_around(scores: dict, weights: dict, goal: str) -> tuple:

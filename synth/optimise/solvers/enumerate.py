@@ -29,7 +29,7 @@ from synth.design.combine import combine
 from synth.design.result import Result
 from synth.design.space import SUBSYSTEMS
 from synth.optimise.product import Evaluation, evaluate
-from synth.optimise.objectives import Objective, weighted_sum
+from synth.optimise.objectives import Objective, ties, weighted_sum
 from synth.optimise.answer import build_result
 from synth.optimise.batch import Batch
 from synth.optimise.diagnose import diagnose
@@ -148,7 +148,7 @@ def solve_space(ev: Evaluation, objective: Objective) -> tuple:
             taus = _thresholds(t)
             curve = additive_curve(tables(ev, Objective(order=pre).additive_weights()), taus)
             best = np.min(curve) if len(curve) else np.inf
-            good = np.flatnonzero(curve <= best + 1e-7 * max(1.0, abs(best)))
+            good = np.flatnonzero(ties(curve, best))  # 1e-7 here tied cost 1e-3 EUR apart (1e4 x standard)
             tau = taus[good[-1]] if len(good) and np.isfinite(best) else -np.inf
     else:
         tau = -np.inf
