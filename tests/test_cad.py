@@ -217,7 +217,8 @@ def test_case_checks_agree_with_the_flowchart(exported, case):
     assert "interfering: support_plate/main_spring" in _by_id(checks, "cad_interference").note
     assert "," not in _by_id(checks, "cad_interference").note.split("interfering: ")[1]   # that pair only
     # the drawn spring's outer diameter is the result's Dm + radial wire size: 43.5 + 2.5 and 45.5 + 2.0
-    assert _by_id(checks, "cad_spring_diameter").value == pytest.approx({"case1": 46.0, "case3": 47.5}[case], abs=TOL)
+    # (case 3 at the dry friction 0.10: the flowchart's spring is sized to more torque, Dm 47.4 + 2.0)
+    assert _by_id(checks, "cad_spring_diameter").value == pytest.approx({"case1": 46.0, "case3": 49.4}[case], abs=TOL)
     for cid in ("cad_pivot_height", "cad_axial_space", "cad_belt_plane", "cad_spring_height", "cad_crankcase_face",
                 "cad_collar"):
         assert _by_id(checks, cid).verdict == PASS, cid

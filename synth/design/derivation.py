@@ -26,7 +26,7 @@ the terminal (``synth design --explain CHECK``), the report's appendix and :func
 ...     "bolt_format": "M8x1.25", "bolt_head_type": "hex", "bolt_property_class": "8.8"}
 >>> dv = derive(default_input(), parts, "self_locking")
 >>> dv.value.key, round(dv.value.value, 4), dv.value.step.function
-('lever_ratio', 0.3338, 'synth.model.damping.lever_ratio')
+('lever_ratio', 0.2239, 'synth.model.damping.lever_ratio')
 >>> [q.key for q in dv.value.step.inputs][:2], dv.value.step.inputs[1].origin
 (['pivot_diameter_mm', 'mu_pivot_bushing'], 'catalog')
 """

@@ -27,7 +27,7 @@ every scene prints last (:meth:`Verdict.line`).
 >>> v.state, v.exit_code
 ('fail', 1)
 >>> v.line()
-'Verdict: FAIL (production capability Ppk >= 1.33 missed: under-head pressure Ppk 0.945)'
+'Verdict: FAIL (production capability Ppk >= 1.33 missed: under-head pressure Ppk 0.945; every nominal check passes)'
 """
 
 from __future__ import annotations

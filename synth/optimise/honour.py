@@ -19,10 +19,13 @@ exact batched search of the diagnosis (:func:`synth.optimise.batch.any_feasible`
 the design itself is then the chosen solver's, on the space that keeps the chosen parts
 (:func:`synth.design.space.space_for`).
 
->>> from synth.scenes.demo import default_input    # thesis case 3 at its own travel: pivot class 20 asked
->>> r = solve_honouring(default_input(), "standard", "enumerate")
+>>> from synth import schema
+>>> from synth.scenes.demo import default_input    # thesis case 3 at its own travel, pivot class 26 asked
+>>> d = schema.validate({**{k: v for k, v in default_input().as_dict().items() if v is not None},
+...                      "pivot_class_diameter_mm": 26.0})    # its arm wall fails whatever the other parts
+>>> r = solve_honouring(d, "standard", "enumerate")
 >>> [(c["field"], c["input"], c["design"], c["how"]) for c in r.changes]
-[('pivot_class_diameter_mm', 20.0, 17.0, 'freed: no design keeps it')]
+[('pivot_class_diameter_mm', 26.0, 19.0, 'freed: no design keeps it')]
 """
 
 from __future__ import annotations
