@@ -16,7 +16,7 @@ from __future__ import annotations
 import asyncio
 import threading
 
-__all__ = ["run", "STOP", "Stopped", "check", "running"]
+__all__ = ["run", "STOP", "Stopped", "check", "running", "settle"]
 
 #: set when the server stops: jobs that work in steps end at the next one
 STOP = threading.Event()
@@ -39,7 +39,9 @@ def running() -> int:
     return len(_RUNNING)
 
 
-def _settle(fut: asyncio.Future, ok: bool, value) -> None:
+def settle(fut: asyncio.Future, ok: bool, value) -> None:
+    """Give ``fut`` its result (``ok``) or exception, unless it is done already (cancelled): the loop's callback of a
+    job finished in a thread or a worker process."""
     if fut.done():
         return
     if ok:
@@ -62,7 +64,7 @@ async def run(fn, *args, **kw):
         finally:
             _RUNNING.discard(threading.current_thread())
         try:
-            loop.call_soon_threadsafe(_settle, fut, ok, out)
+            loop.call_soon_threadsafe(settle, fut, ok, out)
         except RuntimeError:  # the loop is closed: the server stopped while the job ran
             pass
 

@@ -39,6 +39,8 @@ import sys
 import threading
 from pathlib import Path
 
+from synth.ui.jobs import settle
+
 __all__ = ["Lane", "lane", "warm", "stop_all", "WorkerError", "main"]
 
 #: the folder this ``synth`` package was imported from: a worker runs this same code, never another installed copy
@@ -63,15 +65,6 @@ class _Task:
 
     def __init__(self, name, args, kw, future, loop, coalesce):
         self.name, self.args, self.kw, self.future, self.loop, self.coalesce = name, args, kw, future, loop, coalesce
-
-
-def _settle(fut: asyncio.Future, ok: bool, value) -> None:
-    if fut.done():
-        return
-    if ok:
-        fut.set_result(value)
-    else:
-        fut.set_exception(value)
 
 
 def _error_of(payload) -> BaseException:
@@ -140,7 +133,7 @@ class Lane:
                 (task.future.set_result if ok else task.future.set_exception)(value)
             return
         try:
-            task.loop.call_soon_threadsafe(_settle, task.future, ok, value)
+            task.loop.call_soon_threadsafe(settle, task.future, ok, value)
         except RuntimeError:  # the loop is closed: the server stopped
             pass
 
