@@ -951,7 +951,7 @@ def dask_client(scheduler: str | None, workers: int | None, connect_timeout_s: f
         else:
             cluster = stack.enter_context(LocalCluster(n_workers=int(workers or 2), threads_per_worker=1,
                                                        processes=True, dashboard_address=None, env=worker_environ(1),
-                                                       silence_logs=logging.ERROR))
+                                                       silence_logs=logging.CRITICAL))
             client = stack.enter_context(Client(cluster))
         yield client
 
