@@ -63,13 +63,14 @@ def test_relaxations_equal_the_reference():
     # infeasible applications (generated with every input given, and varied), diagnosis on: the same probes, the
     # same bisection, the same relaxation strings
     st = Settings(fidelity="screening")
-    apps = [d for d in generate(100, seed=38) if not is_feasible(d, st)][:20]
-    apps += [d for d in PORTFOLIO[:40] if not is_feasible(d, st)][:10]
-    assert len(apps) >= 25
+    # 12 applications (8 + 4): each reference row is a whole sequential diagnosis (seconds each on CI)
+    apps = [d for d in generate(40, seed=38) if not is_feasible(d, st)][:8]
+    apps += [d for d in PORTFOLIO[:40] if not is_feasible(d, st)][:4]
+    assert len(apps) >= 10
     fast = screen_applications(apps, objective="standard", diagnose=True)
     ref = screen_applications_reference(apps, objective="standard", diagnose=True)
     assert_same_rows(fast, ref)
-    assert (fast["relaxation"] != "").sum() >= 5
+    assert (fast["relaxation"] != "").sum() >= 3
 
 
 def test_full_fidelity_and_cost_objective_equal_the_reference():
