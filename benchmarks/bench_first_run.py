@@ -49,6 +49,19 @@ def run(args: list, env: dict) -> tuple[float, float, int, str]:
     return time.perf_counter() - t, ru.ru_utime + ru.ru_stime, proc.returncode, err
 
 
+HEADER = ("Whole commands, each pair from an empty cache; bulk: the README's sample (10 rows broken, --summary)\n\n"
+          "| command | tree | pair | first wall [s] | first CPU [s] | second wall [s] | second CPU [s] | "
+          "first / second (wall) | first / second (CPU) | compile notice first / second | kernels cached | exit | "
+          "load |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+
+
+def row(name, tree, k, f, s, kernels) -> str:
+    """A row of the table (without the load column)."""
+    notice = f"{'yes' if NOTICE in f[3] else 'no'} / {'yes' if NOTICE in s[3] else 'no'}"
+    return (f"| {name} | {tree.name} | {k} | {f[0]:.1f} | {f[1]:.1f} | {s[0]:.1f} | {s[1]:.1f} | {f[0] / s[0]:.2f} | "
+            f"{f[1] / s[1]:.2f} | {notice} | {kernels} | {f[2]}, {s[2]} |")
+
+
 def cold(code: list, env: dict, k: int = 5) -> float:
     """Median wall seconds of ``k`` processes ``python CODE``."""
     out = []
@@ -63,24 +76,22 @@ PROFILE = """
 import sys, time
 from synth.kernels import numba_setup
 from numba.core import event
-rows, depth, t0 = [], [0], {}
+spans, stack = [], []
 class Timer(event.Listener):
     def on_start(self, ev):
-        depth[0] += 1
-        t0[depth[0]] = time.process_time()
+        stack.append(time.process_time())
     def on_end(self, ev):
         d = ev.data["dispatcher"].py_func
-        if depth[0] == 1:
-            rows.append((d.__module__.rsplit(".", 1)[-1] + "." + d.__name__, time.process_time() - t0[1]))
-        depth[0] -= 1
+        spans.append((stack.pop(), time.process_time(), d.__module__.rsplit(".", 1)[-1] + "." + d.__name__))
 event.register("numba:compile", Timer())
 from synth.cli import main
 try:
     main(sys.argv[1:])
 except SystemExit:
     pass
-for name, dt in rows:
-    print(f"{name}\t{dt:.2f}", file=sys.stderr)
+for a, b, name in spans:  # the outermost compiles: those inside no other
+    if not any(a2 <= a and b <= b2 and (a2, b2) != (a, b) for a2, b2, _ in spans):
+        print(f"{name}\t{b - a:.2f}", file=sys.stderr)
 """
 
 
@@ -138,20 +149,12 @@ def main(argv: list[str] | None = None) -> int:
                     second = run([x.replace(str(tmp / f"{name}-{i}-{k}"), str(tmp / f"{name}-{i}-{k}b"))
                                   for x in args], e)
                     kernels = len(list(cache.glob("numba-*/**/*.nbc")))
+                    if not rows:
+                        print(HEADER, flush=True)
                     rows.append((name, tree, k + 1, first, second, kernels))
-                    print(f"  {name} {tree.name} pair {k + 1}: first {first[0]:.1f} s, second {second[0]:.1f} s "
-                          f"(load {os.getloadavg()[0]:.1f})", file=sys.stderr, flush=True)
+                    print(row(*rows[-1]) + f" {os.getloadavg()[0]:.1f} |", flush=True)
         starts = {tree: (cold(["-c", "import synth"], env_of(tree, tmp / "cold")),
                          cold(["-m", "synth", "--help"], env_of(tree, tmp / "cold"))) for tree in trees}
-    print(f"Whole commands, each pair from an empty cache; bulk: the README's sample ({a.n:,} applications, 10 broken, "
-          f"--summary); load {os.getloadavg()[0]:.1f} at the end\n")
-    print("| command | tree | pair | first wall [s] | first CPU [s] | second wall [s] | second CPU [s] | "
-          "first / second (wall) | first / second (CPU) | compile notice first / second | kernels cached | exit |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
-    for name, tree, k, f, s, kernels in rows:
-        notice = f"{'yes' if NOTICE in f[3] else 'no'} / {'yes' if NOTICE in s[3] else 'no'}"
-        print(f"| {name} | {tree.name} | {k} | {f[0]:.1f} | {f[1]:.1f} | {s[0]:.1f} | {s[1]:.1f} | {f[0] / s[0]:.2f} | "
-              f"{f[1] / s[1]:.2f} | {notice} | {kernels} | {f[2]}, {s[2]} |")
     print("\n| tree | import synth [s] | synth --help [s] |\n|---|---|---|")
     for tree, (imp, hlp) in starts.items():
         print(f"| {tree.name} | {imp:.2f} | {hlp:.2f} |")
