@@ -234,3 +234,19 @@ def test_importing_the_axial_kernels_does_not_import_numba():
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
+
+
+def test_each_twin_compiles_one_signature():
+    # issue 36: a one-row call (its output table is C- and F-contiguous) and a column that is a read-only view of
+    # the caller's array typed the kernels apart, and the first bulk run compiled each twin twice
+    gap = np.array([0.22, 0.3])
+    cs = (1.7129, 2.0, 0.3, 0.2871, 0.1294, 12.5, 13.5, 30.0, 16.2)
+    for g in (gap[0], gap):
+        K.cone_spring(*cs, g, aspect_ratio=1.2, deflection_ratio=0.75, engine="numba")
+    wear = (0.668, 30.0, 16.2, 0.742, 0.890, 460, 12.5, 3.5, 490, 13.5, 1.5, 16, 50, 1200)
+    mat = s5.plastic_material()
+    for rad in (0.287, np.array([0.287, 0.3])):
+        K.plastic_wear(*wear, rad, **mat, engine="numba")
+    jit = K.load_kernels()
+    assert len(jit.cone_spring_rows.signatures) == 1, jit.cone_spring_rows.signatures
+    assert len(jit.plastic_wear_rows.signatures) == 1, jit.plastic_wear_rows.signatures

@@ -93,10 +93,19 @@ def _check_engine(engine: str) -> None:
 
 
 def _columns(*xs) -> tuple:
-    """``(shape, columns)``: the arguments' broadcast shape and each argument broadcast to it as one contiguous
-    float row per design."""
+    """``(shape, columns)``: the arguments' broadcast shape and each argument broadcast to it as one contiguous,
+    writeable float row per design (numba types a read-only array apart: a column that is a view of the caller's
+    array would compile the kernel a second time)."""
     shape = np.broadcast_shapes(*(np.shape(x) for x in xs))
-    return shape, [np.ascontiguousarray(np.broadcast_to(np.asarray(x, dtype=float), shape).ravel()) for x in xs]
+    cols = [np.ascontiguousarray(np.broadcast_to(np.asarray(x, dtype=float), shape).ravel()) for x in xs]
+    return shape, [c if c.flags.writeable else c.copy() for c in cols]
+
+
+def _table(n: int, k: int) -> np.ndarray:
+    """An uninitialised ``(n, k)`` float table in Fortran order (each value a contiguous column) that numba types
+    as Fortran-ordered for every ``n``: a one-row table is C-contiguous too, which numba would type as a C array and
+    compile the kernel for a second time, so it gets a spare row (the kernels write rows ``0..n-1`` only)."""
+    return np.empty((max(n, 2), k), order="F")
 
 
 def _elastic_scale() -> float:
@@ -128,7 +137,7 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
     t = s8.disc_spring_thickness_for_force_mm(f_nom, de, di, zeta, phi, fidelity=fidelity)
     jit = load_kernels()
     tab, lo, hi, inc_lo, inc_hi = s8._tolerance_rows()
-    out = np.empty((len(ad), len(jit.CONE_SPRING_OUT)), order="F")  # each value a contiguous column
+    out = _table(len(ad), len(jit.CONE_SPRING_OUT))
     bad = np.zeros(len(ad), dtype=bool)
     jit.cone_spring_rows(f_nom, t, t ** 3, t ** 4, np.log(de / di), *cols[1:], fidelity == "screening",
                          _elastic_scale(), np.ascontiguousarray(lo, float), np.ascontiguousarray(hi, float),
@@ -137,7 +146,7 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
                          bad)
     if bad.any():
         return s8.cone_spring(*args, **opts)
-    return {k: out[:, c].reshape(shape) for c, k in enumerate(jit.CONE_SPRING_OUT)}
+    return {k: out[:len(ad), c].reshape(shape) for c, k in enumerate(jit.CONE_SPRING_OUT)}
 
 
 def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm,
@@ -164,7 +173,7 @@ def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, th
     n = len(cols[0])
     jit = load_kernels()
     solver, callback = _addresses()
-    out = np.empty((n, len(jit.PLASTIC_WEAR_OUT)), order="F")  # each value a contiguous column
+    out = _table(n, len(jit.PLASTIC_WEAR_OUT))
     bad = np.zeros(n, dtype=bool)
     t, de, di = cols[3], cols[1], cols[2]
     jit.plastic_wear_rows(t ** 3, t ** 4, np.log(de / di), *cols, fidelity == "screening", _elastic_scale(),
@@ -174,4 +183,4 @@ def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, th
                           int(catalog.constant("plastic_wear_secant_passes")), solver, callback, out, bad)
     if bad.any():
         return s5.plastic_wear(*args, **opts)
-    return {k: out[:, c].reshape(shape) for c, k in enumerate(jit.PLASTIC_WEAR_OUT)}
+    return {k: out[:n, c].reshape(shape) for c, k in enumerate(jit.PLASTIC_WEAR_OUT)}

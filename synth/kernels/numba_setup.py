@@ -14,8 +14,9 @@ pool, and a line on stderr when a kernel compiles.
   numba) prints :func:`notice` on stderr at the first compile of the process (numba's ``numba:compile`` event
   fires only on a cache miss, never when a kernel loads from the cache).
 
-Measured (``benchmarks/bench_first_run.py``, docs/sections/performance.md): ``synth bulk`` of 2,000 applications
-compiles 26 kernels (about :data:`COMPILE_S` s of CPU) on its first run.
+Measured (``benchmarks/bench_first_run.py``, docs/sections/performance.md): the first ``synth bulk`` compiles the
+five kernels it calls and their helpers (26 functions, one signature each: about :data:`COMPILE_S` s of CPU);
+``synth design`` and ``synth robust`` compile nothing (the one-application path never imports numba).
 """
 
 from __future__ import annotations
@@ -29,9 +30,10 @@ from synth.version import __version__
 
 __all__ = ["COMPILE_S", "configure", "kernel_cache_dir", "announce_compiles", "notice"]
 
-#: seconds of CPU the first ``synth bulk`` spends compiling the kernels: its CPU time less the second run's, 13-17 s
-#: on the shared 2-core machine of ``benchmarks/bench_first_run.py`` (load 6), about 7 s on a quiet one (issue 36)
-COMPILE_S = 15
+#: seconds of CPU the first ``synth bulk`` spends compiling the kernels: its CPU time less the second run's, 10-18 s
+#: on the shared 2-core machine of ``benchmarks/bench_first_run.py`` (load 12-17), about half on a quiet one
+#: (issue 36)
+COMPILE_S = 12
 
 _ANNOUNCED = False
 _LISTENING = False
