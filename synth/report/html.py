@@ -47,6 +47,7 @@ from pathlib import Path
 
 from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, field_corrections, \
     row_verdict
+from synth import formatting as fmt
 from synth.fingerprint import file_sha256
 from synth.report.palette import VERDICT_FILLS
 from synth.output_table import ROWS, format_value
@@ -141,15 +142,7 @@ def css_string(text) -> str:
 
 
 def _num(v) -> str:
-    if v is None:
-        return "-"
-    if isinstance(v, float):
-        return f"{v:.4g}"
     return format_value(v)
-
-
-def _margin(m) -> str:
-    return "-" if m is None else f"{100 * m:+.1f} %"
 
 
 def _now() -> _dt.datetime:
@@ -232,9 +225,12 @@ def check_row(c, result=None) -> dict:
     fix = correction(result, c) if result is not None else con.correction
     extra = fix if c.verdict in (FAIL, WARNING) and fix else \
         "; ".join(x for x in [c.note, *c.assumed] if x)
-    return {"id": c.id, "label": con.label, "step": con.step, "value": _num(c.value),
-            "sense": con.sense if c.value is not None else "", "limit": _num(c.limit), "unit": con.unit,
-            "margin": _margin(c.margin), "verdict": c.verdict, "cls": verdict_class(c.verdict),
+    logical = fmt.is_logical(con, c.value, c.limit)  # a condition met or not: yes/no, no limit, no margin
+    return {"id": c.id, "label": con.label, "step": con.step,
+            "value": fmt.check_relation(c) if logical else fmt.number(c.value),
+            "sense": con.sense if c.value is not None and not logical else "",
+            "limit": "" if logical else fmt.number(c.limit), "unit": "" if logical else con.unit,
+            "margin": fmt.check_margin(c), "verdict": c.verdict, "cls": verdict_class(c.verdict),
             "equation": con.equation, "correction": fix, "note": c.note, "extra": extra}
 
 
@@ -249,14 +245,7 @@ def digest_context(result) -> dict:
     """What the digest shows, as plain rows (the template's data)."""
     by_margin = sorted(result.failed(), key=lambda c: (c.margin if c.margin is not None else 0.0))
     p = result.parts or {}
-    design = ""
-    if p:
-        design = (f"Design: bearing {p.get('ball_bearing', '-')}, pivot class {_num(p.get('pivot_class_diameter_mm'))} mm, "
-                  f"bushing {p.get('pivot_bushing_supplier', '-')} x {_num(p.get('pivot_bushing_length_mm'))} mm, "
-                  f"damper pad {p.get('damper_pad_class', '-')}, main spring {p.get('main_spring_material', '-')} "
-                  f"{p.get('main_spring_wire', '-')} on {_num(p.get('main_spring_mean_body_diameter_mm'))} mm, "
-                  f"bolt {p.get('bolt_format', '-')} {p.get('bolt_head_type', '') or ''} "
-                  f"class {p.get('bolt_property_class', '-')}.").replace("  ", " ")
+    design = f"Design: {fmt.design_label(p)}." if p else ""
     line = verdict_line(result)
     line = line[line.index("(") + 1:-1] if line.endswith(")") and "(" in line else ""
     return {"verdict": result.verdict, "cls": verdict_class(result.verdict), "line": line,
