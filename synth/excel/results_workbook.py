@@ -132,7 +132,7 @@ def _output_sheet(ws, result) -> None:
 def _checks_sheet(ws, result) -> None:
     _title(ws, "Checks (every verdict with its margin)", result.verdict)
     _header(ws, 4, ["Step", "Step name", "Check", "Value", "Relation", "Limit", "Unit", "Margin [%]", "Verdict",
-                    "Equation", "Suggested correction", "Note"], [6, 20, 60, 11, 8, 11, 8, 10, 12, 13, 50, 40])
+                    "Equation", "Suggested correction", "Note"], [6, 20, 42, 11, 8, 11, 8, 14, 12, 13, 50, 40])
     r = 4
     # in the flowchart's step order (the registry's within a step), as the terminal and the report list them
     rows = sorted((c for c in result.checks if c.verdict != "not applicable"), key=lambda c: c.constraint.step)
@@ -166,8 +166,7 @@ def _checks_sheet(ws, result) -> None:
     # a yes/no check has no number to compare: its verdict colours it
     ws.conditional_formatting.add(cells, _rule('AND(NOT(ISNUMBER($D5)),$I5="fail")', FAIL))
     ws.conditional_formatting.add(cells, _rule('AND(NOT(ISNUMBER($D5)),$I5="pass")', PASS))
-    wrap(ws, "C", 5, last)
-    wrap(ws, "H", 5, last)
+    wrap(ws, "C", 5, last)  # the whole check name (it was cut at the column's edge)
     wrap(ws, "K", 5, last)
     wrap(ws, "L", 5, last)
     page_setup(ws, "synth results: checks", header_rows="4:4", subtitle=_subtitle(result))

@@ -1,0 +1,94 @@
+"""Presentation rules of issue 35, the same in every medium through :mod:`synth.formatting`: a yes/no check (a part
+present or not, a supplier rated or not) reads ``yes``/``no`` with no limit and no margin; a margin against a zero
+limit is the distance in the check's unit, not a percentage of nothing; numbers in plain notation; an absent part
+``none``, not 0; the workbook's checks in the flowchart's step order.
+
+Before (ab57224) the terminal printed ``bushing supplier rated for the application type: 1 >= 1 -  margin +0.0 %``,
+``spring torque at nominal positive: 1.724 >= 0 Nm  margin +172.4 %``, ``Axial force [N] 2.284e+04`` and
+``cone_spring_aspect_ratio 0``; the report and the workbook said the same in their own forms."""
+
+from __future__ import annotations
+
+import pytest
+
+import synth
+from synth import formatting as fmt
+from synth.design.result import FAIL, Check
+from synth.scenes.demo import default_input
+
+#: the default case's optimum (synth design synth/data/default_case.yaml): no damper pad, so no cone spring
+PARTS = {"ball_bearing": "6006", "pivot_class_diameter_mm": 20.0, "pivot_bushing_supplier": "B",
+         "damper_pad_class": "none", "pivot_bushing_length_mm": 15.0, "endcap_spacer_class": "none",
+         "cone_spring_aspect_ratio": 0.0, "cone_spring_deflection_ratio": 0.0, "cone_spring_external_diameter_mm": 0.0,
+         "cone_spring_internal_diameter_mm": 0.0, "main_spring_material": "OTEVA91SC", "main_spring_wire": "F2.00x2.00",
+         "main_spring_mean_body_diameter_mm": 33.0, "bolt_format": "M6x1", "bolt_head_type": "hex",
+         "bolt_property_class": "12.9", "bolt_washer": "ISO 7089", "bolt_tightening": "torque_wrench_tested"}
+#: the registry's yes/no checks that the default design evaluates
+LOGICAL = ("bushing_rated", "spring_material_section", "axial_group_complete", "axial_group_matches_split",
+           "axial_group_not_superfluous")
+
+
+@pytest.fixture(scope="module")
+def result():
+    return synth.verify(default_input(), PARTS)
+
+
+def _check(r, cid):
+    return next(c for c in r.checks if c.id == cid)
+
+
+def test_the_yes_no_checks_are_those_of_the_registry(result):
+    found = {c.id for c in result.checks if c.value is not None and fmt.is_logical(c.constraint, c.value, c.limit)}
+    assert found == set(LOGICAL)
+
+
+def test_terminal_prints_yes_no_checks_as_yes_and_a_zero_limit_as_a_distance(result):
+    from synth.report.text import render
+    out = render(result)
+    lines = {c.id: next(x for x in out.splitlines() if f" {c.constraint.label}: " in x) for c in result.checks
+             if c.id in LOGICAL + ("spring_torque_positive",)}
+    for cid in LOGICAL:
+        assert lines[cid].split(f"{_check(result, cid).constraint.label}: ")[1].startswith("yes  ("), lines[cid]
+        assert "margin" not in lines[cid] and ">=" not in lines[cid]
+    torque = _check(result, "spring_torque_positive")
+    assert torque.limit == 0.0 and torque.value == pytest.approx(1.7238, abs=1e-4)
+    assert "1.724 >= 0 Nm  margin 1.724 Nm above the limit" in lines["spring_torque_positive"]
+    assert "%" not in lines["spring_torque_positive"]
+    assert "e+0" not in out and "e-0" not in out  # plain numbers (the bolt's axial force was 2.284e+04)
+    design = out.split("Design (part keys)")[1].split("\n\n")[0]
+    rows = dict(line.split(maxsplit=1) for line in design.splitlines()[2:] if line.strip())
+    assert rows["cone_spring_aspect_ratio"] == rows["cone_spring_internal_diameter_mm"] == "none"  # not 0
+    assert rows["damper_pad_class"] == "none" and "0" not in rows.values()
+
+
+def test_a_failing_yes_no_check_says_no():
+    c = Check("bushing_rated", 0.0, 1.0, -1.0, FAIL)
+    assert fmt.check_relation(c) == "no" and fmt.check_margin(c) == "-"
+    assert fmt.check_words(c) == "bushing supplier rated for the application type: no"
+
+
+def test_report_rows_and_workbook_say_the_same(result):
+    from synth.excel.results_workbook import build_results
+    from synth.report.html import check_row
+    row = check_row(_check(result, "bushing_rated"), result)
+    assert (row["value"], row["sense"], row["limit"], row["unit"], row["margin"]) == ("yes", "", "", "", "-")
+    row = check_row(_check(result, "spring_torque_positive"), result)
+    assert (row["value"], row["limit"], row["margin"]) == ("1.724", "0", "1.724 Nm above the limit")
+    ws = build_results(result)["Checks"]
+    rows = [[c.value for c in r] for r in ws.iter_rows(min_row=5) if r[0].value is not None]
+    steps = [r[0] for r in rows]
+    assert steps == sorted(steps) and len(rows) >= 40  # the flowchart's step order
+    by_label = {r[2]: r for r in rows}
+    rated = by_label[_check(result, "bushing_rated").constraint.label]
+    assert rated[3:8] == ["yes", None, None, None, None]  # value yes; no relation, limit, unit or margin
+    torque = by_label[_check(result, "spring_torque_positive").constraint.label]
+    assert torque[3] == pytest.approx(1.7238, abs=1e-4) and torque[5] == 0 and torque[7] == "1.724 Nm above the limit"
+    assert isinstance(by_label[_check(result, "spring_yield").constraint.label][7], float)  # percent elsewhere
+
+
+def test_shortfall_against_a_zero_limit_is_in_the_unit():
+    from synth.design.constraints import REGISTRY
+    from synth.report.advice import shortfall_of
+    assert shortfall_of({"constraint": "spring_torque_positive", "margin": -0.5}) == "0.5 Nm"
+    assert shortfall_of({"id": "under_head", "margin": -0.35216}) == "35.2 %"
+    assert fmt.shortfall(REGISTRY["cone_force_band"], -0.2) == "20.0 %"  # a zero limit with a scale: percent
