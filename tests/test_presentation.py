@@ -92,3 +92,54 @@ def test_shortfall_against_a_zero_limit_is_in_the_unit():
     assert shortfall_of({"constraint": "spring_torque_positive", "margin": -0.5}) == "0.5 Nm"
     assert shortfall_of({"id": "under_head", "margin": -0.35216}) == "35.2 %"
     assert fmt.shortfall(REGISTRY["cone_force_band"], -0.2) == "20.0 %"  # a zero limit with a scale: percent
+
+
+def test_sensitivity_figures_have_every_line_in_the_legend_and_the_design_point(result, monkeypatch):
+    """Fig. 17-19: the dotted asymmetry ratio (on the right axis) was missing from the legend and the design's own
+    value was not marked."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from synth.report import plots
+    monkeypatch.setattr(plots, "_N", 7)  # a coarse sweep: the legend, not the curve, is under test
+    dt = plots._Data(result, None)
+    for gid, value in (("sensitivity_differential_angle", dt.need("differential_angle_deg")),
+                       ("sensitivity_mu_pivot_bushing", dt.need("mu_pivot_bushing"))):
+        fig, ax = plots._fig(gid)
+        plots._FUNCS[gid](dt, ax, "pass")
+        labels = ax.get_legend_handles_labels()[1]
+        assert "asymmetry ratio (right axis)" in labels and f"design point ({fmt.number(value)})" in labels, labels
+        assert any(line.get_xdata()[0] == value for line in ax.lines if line.get_label() == labels[-1]
+                   or line.get_marker() == "o")
+        plt.close(fig)
+
+
+def test_drive_figure_explains_its_line_styles_and_marks_the_durability_speed():
+    """synth drive --plot: the dotted lines (each span's smallest tension) were unexplained and the durability speed
+    unmarked. A small sweep of the shape synth.drive.analysis.analyse returns."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    from synth.report.plots import drive_figure
+    speed = np.linspace(800.0, 6000.0, 5)
+    res = {"name": "example", "spans": ["crank-tensioner", "tensioner-cam"], "slack": {"limit_n": 50.0},
+           "durability": {"speed_rpm": 4500.0},
+           "sweep": {"speed_rpm": speed, "theta_pp_deg": np.linspace(2.0, 6.0, 5),
+                     "tension_min_n": np.full((5, 2), 200.0), "tension_max_n": np.full((5, 2), 600.0)}}
+    fig = drive_figure(res)
+    labels = [t.get_text() for ax in fig.axes for t in ax.get_legend().get_texts()]
+    assert {"solid: largest tension", "dotted: smallest tension", "slack limit",
+            "durability speed (4500 rpm)"} <= set(labels), labels
+    plt.close(fig)
+
+
+def test_a_graph_drawn_only_on_request_is_not_listed_as_not_drawn():
+    """'Graphs not drawn: no Pareto front given' in a review document: the Pareto and solver graphs are drawn from a
+    file the user gives; without one nothing is missing."""
+    from synth.report.html import listed_skips
+    from synth.report.plots import Skipped
+    rows = listed_skips([Skipped("pareto", "Pareto front", "no Pareto front given (--pareto FILE ...)"),
+                         Skipped("solvers", "Solvers", "no solver comparison given"),
+                         Skipped("bushing_wear", "Pivot bushing wear", "a reason")])
+    assert rows == [{"id": "bushing_wear", "title": "Pivot bushing wear", "reason": "a reason"}]

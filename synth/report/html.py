@@ -59,7 +59,7 @@ from synth.report.advice import change_lines, objective_line, rule_lines
 from synth.report.text import verdict_line
 from synth.flowchart import STEP_NAMES
 from synth import schema
-from synth.report.plots import GRAPH_CHECKS
+from synth.report.plots import GRAPH_CHECKS, ON_REQUEST
 from synth.errors import InputError, Problem
 from synth.report.advice import alternative_rows
 from synth.report import cost as cost_words
@@ -67,7 +67,8 @@ from synth.report.robust import robust_section
 from synth.io.outputs import write_text
 
 __all__ = ["render_html", "write_html", "digest_html", "metadata", "settings_in_words", "platform_section",
-           "VERDICT_COLOURS", "verdict_class", "css_string", "check_steps", "check_row", "part_label", "derivation_rows"]
+           "VERDICT_COLOURS", "verdict_class", "css_string", "check_steps", "check_row", "part_label", "derivation_rows",
+           "listed_skips"]
 
 #: background colour of a row per verdict (thesis colours: green verified, red failed, orange not verified);
 #: ``None``: a row no check reads
@@ -404,9 +405,15 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
         d=digest, toc=toc, parts=parts, binding=[check_row(c, result) for c in result.binding(5)],
         settings=settings_in_words(result), output=_output_rows(result), legend_na="grey (not applicable)",
         checks=checks, not_applicable=na, cad=cad, cad_note=cad_note, graphs=figs,
-        skipped=[{"id": s.id, "title": s.title, "reason": s.reason} for s in skipped], platform=plat, robust=robust,
+        skipped=listed_skips(skipped), platform=plat, robust=robust,
         scenes=scene_rows, notes=list(result.notes), inputs=_inputs(result), alternatives=alternative_rows(result),
         derivations=derived)
+
+
+def listed_skips(skipped) -> list[dict]:
+    """The graphs the report lists as not drawn, with why: not those drawn only from a file the user gives
+    (:data:`synth.report.plots.ON_REQUEST`: without the file nothing is missing)."""
+    return [{"id": s.id, "title": s.title, "reason": s.reason} for s in skipped if s.id not in ON_REQUEST]
 
 
 def derivation_rows(result) -> list:
