@@ -143,3 +143,17 @@ def test_a_graph_drawn_only_on_request_is_not_listed_as_not_drawn():
                          Skipped("solvers", "Solvers", "no solver comparison given"),
                          Skipped("bushing_wear", "Pivot bushing wear", "a reason")])
     assert rows == [{"id": "bushing_wear", "title": "Pivot bushing wear", "reason": "a reason"}]
+
+
+def test_the_production_scatter_table_is_in_percent_like_every_other():
+    """The capability table printed margins as fractions (+0.134) beside percent everywhere else."""
+    from synth.report.robust import text_lines
+    robust = {"targets": "Ppk >= 1.33", "settings": {"samples": 256, "seed": 1}, "meets": False, "min_ppk": 0.2,
+              "max_p_violation": 0.27, "failing": ["spring_fatigue"],
+              "checks": [{"id": "spring_fatigue", "method": "monte carlo", "target": True, "nominal_margin": 0.0569,
+                          "worst_case_margin": -0.0312, "rss_margin": 0.0105, "ppk": 0.2, "p_violation": 0.27,
+                          "p_lo": 0.22, "p_hi": 0.33, "contributors": []}]}
+    out = "\n".join(text_lines(robust))
+    row = next(x for x in out.splitlines() if "spring_fatigue" in x and "+" in x)
+    assert row.split()[1:4] == ["+5.7", "%", "-3.1"] and "27 % [22 %, 33 %]" in row
+    assert "largest P(violation) 27 %" in out and "0.0569" not in out
