@@ -252,7 +252,7 @@ def check_margin(check) -> str:
         side = "above" if d > 0 else ("below" if d < 0 else "on")
         return f"{quantity(abs(d), unit)} {side} the limit" if side != "on" else "on the limit"
     need = getattr(check, "required", 0.0) or 0.0
-    return percent(m) + (f" beyond the required {percent(need, signed=False)}" if need else "")
+    return percent(m) + (f" beyond the required {number(100.0 * need)} %" if need else "")
 
 
 def check_words(check) -> str:
