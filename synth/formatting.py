@@ -8,9 +8,12 @@ derivations say the same thing the same way:
   (``13880``, not ``1.388e+04``), round-off of zero printed as ``0`` (not ``-2.096e-16``);
 * :func:`quantity`: a number and its unit (``1.644 Nm``; no unit for ``-``);
 * :func:`percent`: a fraction as a signed percentage (``+5.0 %``), the form of every margin;
+* :func:`difference`: a value against a reference, with its unit and in percent (an alternative's cost against the
+  optimum's: ``+0.068 EUR (+3.9 %)``);
 * :func:`probability`: a probability in percent, or in parts per million below 0.1 %;
 * :func:`yes_no`, :func:`part`: logical values and parts, with ``none`` for a part the design does not have
   (never ``0``);
+* :func:`shortfall`: how far a failing check misses its limit (``35.2 %``, against a zero limit ``0.5 Nm``);
 * :func:`check_relation`, :func:`check_margin`: one check (a :class:`~synth.design.result.Check` with its
   registry constraint) as ``value <= limit unit`` and its margin, ``yes``/``no`` for a logical check (a part
   present or not, a supplier rated or not: no margin), and the value against the limit where the limit is zero
@@ -31,8 +34,8 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["number", "quantity", "percent", "probability", "yes_no", "part", "ABSENT", "ZERO",
-           "is_logical", "zero_limit", "check_relation", "check_margin", "check_words", "SIGNIFICANT",
+__all__ = ["number", "quantity", "percent", "difference", "probability", "yes_no", "part", "ABSENT", "ZERO",
+           "is_logical", "zero_limit", "shortfall", "check_relation", "check_margin", "check_words", "SIGNIFICANT",
            "design_label"]
 
 #: significant figures of a number people read (data exports keep 6: :data:`synth.design.result.EXPORT_DIGITS`)
@@ -110,6 +113,21 @@ def percent(fraction, *, signed: bool = True) -> str:
     return f"{p:{sign}.1f} %" if abs(p) >= 0.1 else f"{p:{sign}.2f} %"
 
 
+def difference(x, reference, unit: str = "") -> str:
+    """``x`` against ``reference``: the signed difference with its unit and as a percentage of the reference
+    (``+0.068 EUR (+3.9 %)``; ``0 EUR (0.0 %)`` for none; ``-`` where either is missing).
+
+    >>> difference(1.8124, 1.7444, "EUR"), difference(2.0, 2.0, "EUR"), difference(1.0, 0.0, "EUR")
+    ('+0.068 EUR (+3.9 %)', '0 EUR (0.0 %)', '+1 EUR')
+    """
+    if not (_finite(x) and _finite(reference)):
+        return "-"
+    d = float(x) - float(reference)
+    text = number(d)
+    text = ("+" + text if d > 0 and text != "0" else text) + (f" {unit}" if unit and unit != "-" else "")
+    return text + (f" ({percent(d / reference)})" if abs(reference) >= ZERO else "")
+
+
 def probability(p) -> str:
     """A probability for people: ``0``, a percentage from 0.1 % (two significant figures), else parts per million.
 
@@ -169,10 +187,41 @@ def is_logical(constraint, value=None, limit=None) -> bool:
             and _num01(value) and _num01(limit))
 
 
-def zero_limit(constraint, limit) -> bool:
+def zero_limit(constraint, limit=None) -> bool:
     """Whether a check's margin is against a zero limit with no scale of its own (its margin is then the value's
-    distance in the check's unit, not a percentage: show the value and the limit)."""
-    return getattr(constraint, "scale", None) is None and _finite(limit) and abs(limit) < ZERO
+    distance in the check's unit, not a percentage: show the value and the limit). Without ``limit``: whether the
+    registry entry's limit is the constant zero.
+
+    >>> class C: scale, limit = None, "zero"
+    >>> zero_limit(C()), zero_limit(C(), 0.0), zero_limit(C(), 400.0)
+    (True, True, False)
+    """
+    if getattr(constraint, "scale", None) is not None:
+        return False
+    if limit is None:
+        return getattr(constraint, "limit", None) == "zero"
+    return _finite(limit) and abs(limit) < ZERO
+
+
+def _unit(constraint) -> str:
+    unit = getattr(constraint, "unit", "")
+    return "" if unit in ("-", "") else unit
+
+
+def shortfall(constraint, margin, limit=None) -> str:
+    """How far a failing check misses its limit, without sign: the percentage of the limit (``35.2 %``), or against
+    a zero limit the distance in the check's unit (the margin is then absolute: ``0.5 Nm``).
+
+    >>> class C: scale, limit, unit = None, "zero", "Nm"
+    >>> class D: scale, limit, unit = None, "limit_mpa", "MPa"
+    >>> shortfall(C(), -0.5), shortfall(D(), -0.35216, 400.0)
+    ('0.5 Nm', '35.2 %')
+    """
+    if margin is None:
+        return "-"
+    if zero_limit(constraint, limit):
+        return quantity(abs(margin), _unit(constraint))
+    return percent(-margin, signed=False)
 
 
 def check_relation(check) -> str:
@@ -203,7 +252,7 @@ def check_margin(check) -> str:
         side = "above" if d > 0 else ("below" if d < 0 else "on")
         return f"{quantity(abs(d), unit)} {side} the limit" if side != "on" else "on the limit"
     need = getattr(check, "required", 0.0) or 0.0
-    return percent(m) + (f" beyond the required {percent(need, signed=False)}" if need else "")
+    return percent(m) + (f" beyond the required {number(100.0 * need)} %" if need else "")
 
 
 def check_words(check) -> str:

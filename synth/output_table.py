@@ -7,6 +7,8 @@ the Excel/HTML reports all print from this one list.
 
 from __future__ import annotations
 
+from synth import formatting as fmt
+
 __all__ = ["ROWS", "format_value"]
 
 ROWS: tuple[tuple[str, str, str, str], ...] = (
@@ -60,13 +62,13 @@ ROWS: tuple[tuple[str, str, str, str], ...] = (
 
 
 def format_value(v) -> str:
-    """Human formatting: floats to 4 significant digits, lists joined by ' x ', booleans Yes/No."""
+    """Human formatting: floats to 4 significant digits in plain notation (:func:`synth.formatting.number`), lists joined by ' x ', booleans Yes/No."""
     if v is None:
         return "-"
     if isinstance(v, bool):
         return "Yes" if v else "No"
     if isinstance(v, float):
-        return f"{v:.4g}" if abs(v) < 1e5 else f"{v:.0f}"
+        return fmt.number(v)  # plain engineering notation: 22840, not 2.284e+04
     if isinstance(v, (list, tuple)):
         return " x ".join(format_value(x) for x in v)
     return str(v)

@@ -68,6 +68,16 @@ def test_every_json_flag_has_help(name):
             assert action.help and action.help.strip()
 
 
+@pytest.mark.parametrize("name", list(SCENES))
+def test_every_option_says_what_it_does(name):
+    """``synth NAME --help`` describes every argument and option (issue 35: ``rationalise --help`` had three
+    options without a description)."""
+    import argparse
+    bare = [a.option_strings or [a.dest] for a in scene_parser(name)._actions
+            if a.help != argparse.SUPPRESS and len((a.help or "").split()) < 3]
+    assert not bare, bare
+
+
 def test_json_help_default_only_where_the_scene_gives_none():
     flags = {n: next((a.help for a in scene_parser(n)._actions if "--json" in a.option_strings), None) for n in SCENES}
     # the scenes that return a Result say their exit code does not change with --json; compare keeps the default

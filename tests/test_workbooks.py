@@ -140,7 +140,11 @@ def test_verdict_colours_are_conditional_formats(results_xlsx):
     checks = {f: colour for cells, f, colour in _rules(wb["Checks"]) if cells.startswith("D5:")}
     assert checks['$I5="not verified"'] == FILLS[NOT_VERIFIED]
     assert checks['$I5="warning"'] == FILLS[WARNING]   # an advisory range left is amber, never red
-    assert sorted(checks.values()) == sorted([FILLS[NOT_VERIFIED], FILLS[WARNING], FILLS[FAIL], FILLS[PASS]])
+    # a yes/no check (its value the text yes or no: nothing to compare) is coloured by its verdict
+    assert checks['AND(NOT(ISNUMBER($D5)),$I5="fail")'] == FILLS[FAIL]
+    assert checks['AND(NOT(ISNUMBER($D5)),$I5="pass")'] == FILLS[PASS]
+    assert sorted(checks.values()) == sorted([FILLS[NOT_VERIFIED], FILLS[WARNING], FILLS[FAIL], FILLS[PASS],
+                                              FILLS[FAIL], FILLS[PASS]])
     assert any("$D5" in f and "$F5" in f for f in checks)  # the colour follows value against limit
     assert {f: c for s, f, c in _rules(wb["Output"]) if s == "A2"}['ISNUMBER(SEARCH("FAIL",$A$2))'] == FILLS[FAIL]
     assert any(s.startswith("D") for s, *_ in _rules(wb["Optimum"]))  # the optimum's verdict column
@@ -217,7 +221,8 @@ def test_libreoffice_evaluates_each_rows_colour_from_its_own_verdict(results_xls
         verdict = row_verdict(r, key)
         assert (output[i][1][0], text or None) == (label, verdict)  # a row no check reads: blank
         assert colour == FILLS.get(verdict), (label, verdict, colour)
-    listed = [c for c in r.checks if c.verdict != "not applicable"]   # the sheet lists what applies
+    # the sheet lists what applies, in the flowchart's step order
+    listed = sorted((c for c in r.checks if c.verdict != "not applicable"), key=lambda c: c.constraint.step)
     assert len(checks) - 4 == len(listed)
     for i, c in enumerate(listed, start=4):
         assert checks[i][2][0] == c.label and checks[i][8][0] == c.verdict

@@ -37,7 +37,7 @@ from synth.schema import FIELDS
 from synth.errors import InputError, Problem
 
 __all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain",
-           "checks_of", "row_verdict", "field_corrections"]
+           "checks_of", "row_verdict", "field_corrections", "absent_part"]
 
 
 
@@ -319,13 +319,24 @@ _ABSENT_WITH = {"damper_pad_": "damper_pad_class", "endcap_spacer_": "endcap_spa
                 "cone_spring_": "endcap_spacer_class"}
 
 
+def absent_part(parts: dict, key: str) -> bool:
+    """Whether part key ``key`` of design ``parts`` belongs to a part the design does not have (the cone spring's
+    ratios and diameters without an endcap spacer: stored as 0, shown as ``none``).
+
+    >>> absent_part({"endcap_spacer_class": "none", "cone_spring_aspect_ratio": 0.0}, "cone_spring_aspect_ratio")
+    True
+    """
+    return key not in _ABSENT_WITH.values() and any(key.startswith(prefix) and (parts or {}).get(part) == "none"
+                                                    for prefix, part in _ABSENT_WITH.items())
+
+
 def _not_applicable_value(result: Result, key: str, readers: list) -> bool:
     """A missing value the design does not have: every check reading it does not apply, or its part is ``none``."""
     if readers:
         return all(v == NOT_APPLICABLE for v in readers)
     if key == "axial_damping_nm":
         return result.values.get("axial_damping_present") is False
-    return any(key.startswith(prefix) and result.parts.get(part) == "none" for prefix, part in _ABSENT_WITH.items())
+    return absent_part(result.parts, key)
 
 
 def row_verdict(result: Result, key: str) -> str | None:

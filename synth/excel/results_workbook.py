@@ -6,8 +6,11 @@ Sheets:
   unit, value) with the verdict of the flowchart step that produced the row,
   coloured as in the thesis (green verified, red failed, orange not verified
   because data is missing), and the suggested corrections of the failed checks;
-* ``Checks``: every check with value, limit, margin, verdict, equation and
-  suggested correction;
+* ``Checks``: every check in the flowchart's step order with value, limit,
+  margin, verdict, equation and suggested correction (:mod:`synth.formatting`:
+  a yes/no check's value is ``yes`` or ``no``, without limit or margin; a
+  margin against a zero limit is the distance in the check's unit, not a
+  percentage);
 * ``Input``: the echo of the data read (thesis column F), with the cell it was
   read from when the input is a workbook, and the suggested correction of
   each field (thesis column G);
@@ -28,6 +31,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from synth import formatting as fmt
 from synth import schema
 from synth.design.constraints import FEAS_TOL
 from synth.design.result import FAIL, NOT_VERIFIED, PASS, WARNING, field_corrections, row_verdict
@@ -128,15 +132,22 @@ def _output_sheet(ws, result) -> None:
 def _checks_sheet(ws, result) -> None:
     _title(ws, "Checks (every verdict with its margin)", result.verdict)
     _header(ws, 4, ["Step", "Step name", "Check", "Value", "Relation", "Limit", "Unit", "Margin [%]", "Verdict",
-                    "Equation", "Suggested correction", "Note"], [6, 20, 40, 11, 8, 11, 8, 10, 12, 13, 50, 40])
+                    "Equation", "Suggested correction", "Note"], [6, 20, 42, 11, 8, 11, 8, 14, 12, 13, 50, 40])
     r = 4
-    rows = [c for c in result.checks if c.verdict != "not applicable"]
+    # in the flowchart's step order (the registry's within a step), as the terminal and the report list them
+    rows = sorted((c for c in result.checks if c.verdict != "not applicable"), key=lambda c: c.constraint.step)
     for r, c in enumerate(rows, start=5):
         con = c.constraint
-        margin = None if c.margin is None else 100.0 * c.margin
         note = "; ".join([c.note] + c.assumed).strip("; ") if (c.note or c.assumed) else None
-        row = [con.step, STEP_NAMES.get(con.step, ""), con.label, _cell_value(c.value),
-               con.sense if c.value is not None else None, _cell_value(c.limit), con.unit, margin, c.verdict,
+        if fmt.is_logical(con, c.value, c.limit):  # a condition met or not: yes/no, no limit, no margin
+            value, sense, limit, unit, margin = fmt.check_relation(c), None, None, None, None
+        else:
+            value, sense, limit, unit = _cell_value(c.value), con.sense if c.value is not None else None, \
+                _cell_value(c.limit), con.unit
+            # a percentage of the limit; against a zero limit the distance in the check's unit, in words
+            margin = (fmt.check_margin(c) if fmt.zero_limit(con, c.limit) else 100.0 * c.margin) \
+                if c.margin is not None else None
+        row = [con.step, STEP_NAMES.get(con.step, ""), con.label, value, sense, limit, unit, margin, c.verdict,
                con.equation, correction(result, c) if c.verdict == FAIL else None, note]
         for j, val in enumerate(row, start=1):
             put(ws, r, j, val)
@@ -152,6 +163,10 @@ def _checks_sheet(ws, result) -> None:
     ws.conditional_formatting.add(cells, _rule('$I5="warning"', WARNING))  # advisory: amber whatever the value
     ws.conditional_formatting.add(cells, _rule(f"AND({numbers},{over}>{tol})", FAIL))
     ws.conditional_formatting.add(cells, _rule(f"AND({numbers},{over}<={tol})", PASS))
+    # a yes/no check has no number to compare: its verdict colours it
+    ws.conditional_formatting.add(cells, _rule('AND(NOT(ISNUMBER($D5)),$I5="fail")', FAIL))
+    ws.conditional_formatting.add(cells, _rule('AND(NOT(ISNUMBER($D5)),$I5="pass")', PASS))
+    wrap(ws, "C", 5, last)  # the whole check name (it was cut at the column's edge)
     wrap(ws, "K", 5, last)
     wrap(ws, "L", 5, last)
     page_setup(ws, "synth results: checks", header_rows="4:4", subtitle=_subtitle(result))

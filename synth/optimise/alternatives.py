@@ -20,11 +20,15 @@ by the objective's own key (:meth:`synth.optimise.objectives.Objective.key`), ti
 additive objectives and the margin alone the ranking is exact; a lexicographic or weighted mix of both is ranked
 within that pool.
 
-**Near misses.** An infeasible application has no alternative; its K nearest designs are ranked the way the
+**Near misses.** An infeasible application has no alternative; its K nearest designs are ranked first the way the
 diagnosis finds its nearest design (:func:`synth.optimise.diagnose.nearest_design`): by the smallest margin of
 every counted check (:attr:`synth.design.assessment.Assessment.margin_min`, combined by the minimum over the core
-and subsystems), over every core, distinct as above; ties by the objective. Each comes with what binds and by how
-much, and every check it fails.
+and subsystems), over every core, distinct as above. Many designs tie there (one check binds them all by the same
+amount: case 1's every bolt misses the under-head pressure by 35.2 %), so ties are ranked by the second smallest
+margin, then by the number of failing checks (:func:`near_key`), then as the pool found them (the diagnosis's
+nearest design first). The pool is :data:`NEAR_POOL` times K designs by the smallest margin (ties by the objective),
+each verified; the second-level rank is exact within that pool. The nearest design the diagnosis shows is ranked
+with the others and need not come first. Each comes with what binds and by how much, and every check it fails.
 
 Every design listed is verified alone (:func:`synth.design.verify.verify`: the same checks and the same
 assessment as the optimum; its margin is the verified one), and the first is the design the solver returned.
@@ -41,6 +45,7 @@ assessment as the optimum; its margin is the verified one), and the first is the
 
 from __future__ import annotations
 
+import functools
 import heapq
 import itertools
 import math
@@ -53,13 +58,16 @@ from synth.optimise.solvers.enumerate import weights_vec
 from synth.design.evaluate import Settings
 from synth.errors import InputError, Problem
 from synth.optimise.product import evaluate
-from synth.optimise.objectives import Objective
+from synth.optimise.objectives import TIE, Objective
 from synth.optimise.answer import build_result, design_margin
 
-__all__ = ["ranked", "signature", "distinct_keys", "MAX_TOP", "DISTINCT_KEYS", "DIMENSION_KEYS"]
+__all__ = ["ranked", "signature", "distinct_keys", "near_key", "MAX_TOP", "NEAR_POOL", "DISTINCT_KEYS", "DIMENSION_KEYS"]
 
 #: the largest --top K (each alternative is verified alone)
 MAX_TOP = 50
+#: near misses: the pool of candidates verified is this many times K (at most :data:`MAX_TOP`), so that designs
+#: tying on the binding check can be ordered by the next one (:func:`near_key`)
+NEAR_POOL = 4
 #: part keys that are a dimension of a part, not another part: designs differing only in them are one alternative
 #: (the main spring's mean body diameter, its coil count following; the cone spring's variant, a point of the
 #: search grid of its ratios and diameters, :func:`synth.design.space.cone_variants`: it is designed, not bought)
@@ -205,7 +213,10 @@ def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None
     ev = evaluate(d, settings, pin_inputs=pin_inputs, prune=result.status != "infeasible")
     near = not ev.any_feasible()
     codes = {s: _codes(ev.space, s, keys) for s in SUBSYSTEMS}
-    pool = _pool(ev, obj.additive_weights() or {"cost": 1.0}, k, keys, codes, near=near)
+    # near misses tie on one binding check (every bolt of case 1 misses the under-head pressure by 35.2 %): a
+    # wider pool, each verified, gives the second-level rank (near_key) designs to order
+    pool = _pool(ev, obj.additive_weights() or {"cost": 1.0}, min(NEAR_POOL * k, MAX_TOP) if near else k, keys,
+                 codes, near=near)
     row_of = {int(p): r for r, p in enumerate(ev.rows)}
     core_margin = ev.core_min_margin() if near else ev.core_margin()
     designs = []
@@ -225,9 +236,10 @@ def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None
         head = [_entry(1, result, result.parts, False)] if lead else []
         return head + [_entry(len(head) + i + 1, r, result.parts, False)
                        for i, r in enumerate(itertools.islice(others, k - len(head)))]
-    # near misses: every candidate verified, ranked by the verified margin (the result's own design first of ties)
-    found = sorted(enumerate([result, *others]), key=lambda x: (-_near_margin(x[1]), x[0]))
-    return [_entry(i + 1, r, result.parts, True) for i, (_, r) in enumerate(found[:k])]
+    # near misses: every candidate verified, ranked by near_key (the result's own design first of full ties)
+    found = sorted(((near_key(r), i, r) for i, r in enumerate([result, *others])),
+                   key=functools.cmp_to_key(_nearer))
+    return [_entry(i + 1, r, result.parts, True) for i, (_, _, r) in enumerate(found[:k])]
 
 
 def _distinct(ev, designs: list, first: tuple, keys: tuple):
@@ -239,6 +251,32 @@ def _distinct(ev, designs: list, first: tuple, keys: tuple):
         if sig not in seen:
             seen.add(sig)
             yield pos, options
+
+
+def near_key(r) -> tuple:
+    """``(smallest margin, second smallest margin, number of failing checks)`` of a verified design, over every
+    counted check: what ranks the near misses. The nearest design has the largest smallest margin (the diagnosis's
+    rank, :func:`_near_margin`); of designs that tie there (the same check binds them by the same amount) the one
+    whose next-worst check is nearer its limit, then the one failing fewer checks, is the nearer: it needs fewer
+    and smaller changes."""
+    a = r.assessment()
+    m = np.sort(a.margins[0][a.counted[0]])
+    return _near_margin(r), float(m[1]) if len(m) > 1 else math.inf, int(a.failed[0].sum())
+
+
+def _tie(x: float, y: float) -> bool:
+    """Two margins equal within :data:`synth.optimise.objectives.TIE` (round-off of one value along two paths)."""
+    return x == y or (math.isfinite(x) and math.isfinite(y) and abs(x - y) <= TIE * max(1.0, abs(x), abs(y)))
+
+
+def _nearer(a: tuple, b: tuple) -> int:
+    """Order of two ``(near_key, index, result)``: the larger smallest margin, then the larger second smallest
+    (margins within :data:`TIE` tie), then fewer failing checks, then the earlier index."""
+    (a1, a2, an), (b1, b2, bn) = a[0], b[0]
+    for x, y in ((a1, b1), (a2, b2)):
+        if not _tie(x, y):
+            return -1 if x > y else 1
+    return (an > bn) - (an < bn) or (a[1] > b[1]) - (a[1] < b[1])
 
 
 def _near_margin(r) -> float:

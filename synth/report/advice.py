@@ -10,11 +10,13 @@ The terminal (:mod:`synth.report.text`), the report's digest (:mod:`synth.report
 """
 
 from __future__ import annotations
+from synth import formatting as fmt
+from synth.design.constraints import REGISTRY
 from synth.optimise.objectives import UNITS
 from synth.design.rules import Rules
 
 __all__ = ["objective_line", "change_lines", "relaxation_lines", "relaxation_text", "relaxation_kind", "correction",
-           "search_lines", "is_header", "NO_DESIGNER", "ASK_SPECIFICATION", "TOGETHER", "margin_pct",
+           "search_lines", "is_header", "NO_DESIGNER", "ASK_SPECIFICATION", "TOGETHER", "margin_pct", "shortfall_of",
            "alternative_rows", "rule_lines"]
 
 #: the header of the relaxations when none is the tensioner designer's alone
@@ -27,8 +29,16 @@ TOGETHER = "a change of yours that works only together with a change of the spec
 
 
 def margin_pct(m) -> str:
-    """A margin (a fraction) as people read it: ``+12.3 %``."""
-    return "-" if m is None else f"{100 * float(m):+.1f} %" if abs(float(m)) >= 0.001 else f"{100 * float(m):+.2f} %"
+    """A margin (a fraction) as people read it: ``+12.3 %`` (:func:`synth.formatting.percent`)."""
+    return fmt.percent(m)
+
+
+def shortfall_of(failed: dict) -> str:
+    """How far a failing check ``{"constraint" or "id", "margin"}`` (the diagnosis's violated, a near miss's
+    failed) misses its limit: :func:`synth.formatting.shortfall` of its registry entry (``35.2 %``; against a zero
+    limit the distance with the unit)."""
+    con = REGISTRY.get(failed.get("constraint", failed.get("id")))
+    return fmt.shortfall(con, failed["margin"]) if con is not None else fmt.percent(-failed["margin"], signed=False)
 
 
 def objective_line(objectives: dict) -> str:
@@ -207,20 +217,32 @@ def correction(r, c) -> str:
 
 def alternative_rows(r) -> list[dict]:
     """The ranked alternatives (:attr:`Result.alternatives`) as rows of words: ``{"rank", "kind", "objectives",
-    "margin", "binding", "failed", "verdict", "differs"}`` (``differs``: what differs from the first, the optimum or
-    for near misses the nearest design; ``failed``: the checks a near miss fails, each by how much)."""
+    "cost_change", "margin", "binding", "failed", "verdict", "differs"}`` (``differs``: what differs from the
+    design shown, the optimum or for near misses the nearest design; ``cost_change``: the cost against the optimum's
+    (a near miss: against the design shown), in EUR and percent, :func:`synth.formatting.difference`, empty for
+    that design itself; ``failed``: the checks a near miss fails, each by how much)."""
     rows = []
-    for a in r.alternatives or []:
+    alts = r.alternatives or []
+    near_list = bool(alts) and alts[0].get("kind") == "near miss"
+    # the cost against the optimum (the first alternative), a near miss's against the nearest design shown
+    ref = (getattr(r, "objectives", None) or {}).get("cost") if near_list else (alts[0].get("objectives", {}).get("cost") if alts
+                                                               else None)
+    for a in alts:
         near = a.get("kind") == "near miss"
         objs = objective_line({k: v for k, v in a.get("objectives", {}).items() if k != "margin"})
         diff = ", ".join(f"{k} {_value(x[0])} -> {_value(x[1])}" for k, x in a.get("differs", {}).items())
-        first = "the nearest design" if near else "the optimum"
+        first = "the nearest design shown" if near else "the optimum"
+        cost = a.get("objectives", {}).get("cost")
+        same = not a.get("differs") if near else a is alts[0]
+        change = "" if same or cost is None else fmt.difference(cost, ref, "EUR")
         rows.append({"rank": a["rank"], "kind": a.get("kind", "alternative"),
-                     "objectives": objs.removeprefix("objectives: "),
+                     "objectives": objs.removeprefix("objectives: ") + (f", {change} against {first}" if change
+                                                                        and change != "-" else ""),
+                     "cost_change": change,
                      "margin": margin_pct(a.get("margin")), "binding": a.get("binding", ""),
-                     "failed": "; ".join(f"{f['label']} by {-100 * f['margin']:.1f} %" for f in a.get("failed", []))
+                     "failed": "; ".join(f"{f['label']} by {shortfall_of(f)}" for f in a.get("failed", []))
                      or "none", "verdict": a.get("verdict", ""),
-                     "differs": diff or (first if a["rank"] == 1 else "-")})
+                     "differs": diff or first})
     return rows
 
 

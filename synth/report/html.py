@@ -46,7 +46,8 @@ import os
 from pathlib import Path
 
 from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, field_corrections, \
-    row_verdict
+    row_verdict, absent_part
+from synth import formatting as fmt
 from synth.fingerprint import file_sha256
 from synth.report.palette import VERDICT_FILLS
 from synth.output_table import ROWS, format_value
@@ -58,7 +59,7 @@ from synth.report.advice import change_lines, objective_line, rule_lines
 from synth.report.text import verdict_line
 from synth.flowchart import STEP_NAMES
 from synth import schema
-from synth.report.plots import GRAPH_CHECKS
+from synth.report.plots import GRAPH_CHECKS, ON_REQUEST
 from synth.errors import InputError, Problem
 from synth.report.advice import alternative_rows
 from synth.report import cost as cost_words
@@ -66,7 +67,8 @@ from synth.report.robust import robust_section
 from synth.io.outputs import write_text
 
 __all__ = ["render_html", "write_html", "digest_html", "metadata", "settings_in_words", "platform_section",
-           "VERDICT_COLOURS", "verdict_class", "css_string", "check_steps", "check_row", "part_label", "derivation_rows"]
+           "VERDICT_COLOURS", "verdict_class", "css_string", "check_steps", "check_row", "part_label", "derivation_rows",
+           "listed_skips"]
 
 #: background colour of a row per verdict (thesis colours: green verified, red failed, orange not verified);
 #: ``None``: a row no check reads
@@ -141,15 +143,7 @@ def css_string(text) -> str:
 
 
 def _num(v) -> str:
-    if v is None:
-        return "-"
-    if isinstance(v, float):
-        return f"{v:.4g}"
     return format_value(v)
-
-
-def _margin(m) -> str:
-    return "-" if m is None else f"{100 * m:+.1f} %"
 
 
 def _now() -> _dt.datetime:
@@ -232,9 +226,12 @@ def check_row(c, result=None) -> dict:
     fix = correction(result, c) if result is not None else con.correction
     extra = fix if c.verdict in (FAIL, WARNING) and fix else \
         "; ".join(x for x in [c.note, *c.assumed] if x)
-    return {"id": c.id, "label": con.label, "step": con.step, "value": _num(c.value),
-            "sense": con.sense if c.value is not None else "", "limit": _num(c.limit), "unit": con.unit,
-            "margin": _margin(c.margin), "verdict": c.verdict, "cls": verdict_class(c.verdict),
+    logical = fmt.is_logical(con, c.value, c.limit)  # a condition met or not: yes/no, no limit, no margin
+    return {"id": c.id, "label": con.label, "step": con.step,
+            "value": fmt.check_relation(c) if logical else fmt.number(c.value),
+            "sense": con.sense if c.value is not None and not logical else "",
+            "limit": "" if logical else fmt.number(c.limit), "unit": "" if logical else con.unit,
+            "margin": fmt.check_margin(c), "verdict": c.verdict, "cls": verdict_class(c.verdict),
             "equation": con.equation, "correction": fix, "note": c.note, "extra": extra}
 
 
@@ -249,14 +246,7 @@ def digest_context(result) -> dict:
     """What the digest shows, as plain rows (the template's data)."""
     by_margin = sorted(result.failed(), key=lambda c: (c.margin if c.margin is not None else 0.0))
     p = result.parts or {}
-    design = ""
-    if p:
-        design = (f"Design: bearing {p.get('ball_bearing', '-')}, pivot class {_num(p.get('pivot_class_diameter_mm'))} mm, "
-                  f"bushing {p.get('pivot_bushing_supplier', '-')} x {_num(p.get('pivot_bushing_length_mm'))} mm, "
-                  f"damper pad {p.get('damper_pad_class', '-')}, main spring {p.get('main_spring_material', '-')} "
-                  f"{p.get('main_spring_wire', '-')} on {_num(p.get('main_spring_mean_body_diameter_mm'))} mm, "
-                  f"bolt {p.get('bolt_format', '-')} {p.get('bolt_head_type', '') or ''} "
-                  f"class {p.get('bolt_property_class', '-')}.").replace("  ", " ")
+    design = f"Design: {fmt.design_label(p)}." if p else ""
     line = verdict_line(result)
     line = line[line.index("(") + 1:-1] if line.endswith(")") and "(" in line else ""
     return {"verdict": result.verdict, "cls": verdict_class(result.verdict), "line": line,
@@ -407,7 +397,7 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
                                   meta["date"]) if x)
     block += f"\n{meta['synth']}  inputs sha256 {meta['inputs_sha256'][:16]}"
     verdict_text = f"Verdict: {result.verdict.upper()}"
-    parts = [(label, key, _num(v)) for key, v in (result.parts or {}).items()
+    parts = [(label, key, fmt.ABSENT if absent_part(result.parts, key) else _num(v)) for key, v in (result.parts or {}).items()
              for label in [part_label(key)]]
     return _environment().get_template("report.html.j2").render(
         title=title, css=_CSS, page=page, page_title=title, verdict_text=verdict_text,
@@ -415,9 +405,15 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
         d=digest, toc=toc, parts=parts, binding=[check_row(c, result) for c in result.binding(5)],
         settings=settings_in_words(result), output=_output_rows(result), legend_na="grey (not applicable)",
         checks=checks, not_applicable=na, cad=cad, cad_note=cad_note, graphs=figs,
-        skipped=[{"id": s.id, "title": s.title, "reason": s.reason} for s in skipped], platform=plat, robust=robust,
+        skipped=listed_skips(skipped), platform=plat, robust=robust,
         scenes=scene_rows, notes=list(result.notes), inputs=_inputs(result), alternatives=alternative_rows(result),
         derivations=derived)
+
+
+def listed_skips(skipped) -> list[dict]:
+    """The graphs the report lists as not drawn, with why: not those drawn only from a file the user gives
+    (:data:`synth.report.plots.ON_REQUEST`: without the file nothing is missing)."""
+    return [{"id": s.id, "title": s.title, "reason": s.reason} for s in skipped if s.id not in ON_REQUEST]
 
 
 def derivation_rows(result) -> list:

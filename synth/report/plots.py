@@ -58,11 +58,15 @@ from synth.design.applications import Applications
 from synth.design.space import space
 
 __all__ = ["Graph", "Skipped", "CATALOG", "GRAPH_CHECKS", "build_graphs", "graph_png", "COLOURS", "graph_verdict",
-           "drive_figure", "pareto_figure"]
+           "drive_figure", "pareto_figure", "ON_REQUEST"]
 
 #: Thesis colours: verified green, failed red, advisory warning amber, nominal/reference blue, limit black.
 COLOURS = {PASS: "#2e7d32", FAIL: "#c62828", WARNING: "#ef6c00", "nominal": "#1f5fbf", "limit": "black",
            "other": "#7f7f7f"}
+
+#: graphs drawn only from a file the user gives (``synth report --pareto/--solvers``): without it nothing is missing,
+#: so a review document does not list them as not drawn
+ON_REQUEST = ("pareto", "solvers")
 
 #: (id, title, thesis figure)
 CATALOG: tuple[tuple[str, str, str], ...] = (
@@ -310,7 +314,7 @@ def g_hysteresis_torque(dt: _Data, ax, verdict):
             "torque_unloading_nm": ch["torque_unloading_nm"], "calculated_torque_nm": ch["calculated_torque_nm"]}
 
 
-def _sensitivity(dt: _Data, ax, parameter, values, xlabel):
+def _sensitivity(dt: _Data, ax, parameter, values, xlabel, design: float):
     kw = dict(spring_torque_nominal_nm=dt.need("spring_torque_nominal_nm"),
               axial_damping_nm=dt.get("axial_damping_nm", 0.0) or 0.0, working_arm_mm=dt.need("working_arm_mm"),
               differential_angle_deg=dt.need("differential_angle_deg"), pivot_diameter_mm=dt.need("pivot_diameter_mm"),
@@ -324,8 +328,14 @@ def _sensitivity(dt: _Data, ax, parameter, values, xlabel):
     if target is not None and tol is not None:
         ax.axhspan(target - tol, target + tol, color=COLOURS[PASS], alpha=0.12, label="damping target band")
     ax2 = ax.twinx()
-    ax2.plot(values, s["asymmetry_ratio"], ":", color="black", label="asymmetry ratio")
+    ax2.plot(values, s["asymmetry_ratio"], ":", color="black")
     ax2.set_ylabel("asymmetry ratio [-]")
+    # the right axis's curve in the one legend (drawn on the left axis), and the design's own point on each curve
+    ax.plot([], [], ":", color="black", label="asymmetry ratio (right axis)")
+    ax.axvline(design, color=COLOURS["limit"], ls="-.", lw=0.8, label=f"design point ({_plain(design)})")
+    for key in ("calculated_torque_nm", "damping_nm"):
+        ax.plot([design], [np.interp(design, values, s[key])], "o", color="black", ms=4)
+    ax2.plot([design], [np.interp(design, values, s["asymmetry_ratio"])], "o", color="black", ms=4)
     ax.set(xlabel=xlabel, ylabel="torque [Nm]")
     return {"values": np.asarray(values, float), "calculated_torque_nm": s["calculated_torque_nm"],
             "damping_nm": s["damping_nm"], "asymmetry_ratio": np.asarray(s["asymmetry_ratio"], float)}
@@ -334,18 +344,19 @@ def _sensitivity(dt: _Data, ax, parameter, values, xlabel):
 def g_sensitivity_differential_angle(dt: _Data, ax, verdict):
     a = float(dt.need("differential_angle_deg"))
     values = np.linspace(max(a - 30.0, 5.0), min(a + 30.0, 175.0), _N)
-    return _sensitivity(dt, ax, "differential_angle_deg", values, "differential angle [deg]")
+    return _sensitivity(dt, ax, "differential_angle_deg", values, "differential angle [deg]", a)
 
 
 def g_sensitivity_mu_pivot_bushing(dt: _Data, ax, verdict):
     mu = float(dt.need("mu_pivot_bushing"))
-    return _sensitivity(dt, ax, "mu_pivot_bushing", np.linspace(0.0, 2.0 * mu, _N), "pivot bushing friction [-]")
+    return _sensitivity(dt, ax, "mu_pivot_bushing", np.linspace(0.0, 2.0 * mu, _N), "pivot bushing friction [-]", mu)
 
 
 def g_sensitivity_mu_plastic(dt: _Data, ax, verdict):
     dt.axial()
     mu = dt.mu_plastic()
-    return _sensitivity(dt, ax, "mu_plastic", np.linspace(0.5 * mu, 1.5 * mu, _N), "plastic friction coefficient [-]")
+    return _sensitivity(dt, ax, "mu_plastic", np.linspace(0.5 * mu, 1.5 * mu, _N), "plastic friction coefficient [-]",
+                        mu)
 
 
 def _bushing(dt: _Data, time_points: int = _T) -> dict:
@@ -537,6 +548,7 @@ def g_drive_span_tension(dt: _Data, ax, verdict):
         ax.plot(sw["speed_rpm"], sw["tension_min_n"][:, j], lw=1, color=line.get_color(), ls=":")
         out[f"{name}_min_n"], out[f"{name}_max_n"] = sw["tension_min_n"][:, j], sw["tension_max_n"][:, j]
     ax.axhline(drive.belt_min_tension_n, color=_colour(verdict), lw=1.5, label="slack limit")
+    _line_styles(ax, drive.durability_speed_rpm)
     ax.set(xlabel="engine speed [rpm]", ylabel="span tension, max (solid) and min (dotted) [N]")
     return out
 
@@ -554,6 +566,21 @@ def g_drive_hysteresis_loop(dt: _Data, ax, verdict):
     return {"angle_deg": ang, "torque_nm": tq}
 
 
+def _plain(x) -> str:
+    from synth import formatting as fmt
+    return fmt.number(x)
+
+
+def _line_styles(ax, durability_speed_rpm=None) -> None:
+    """What the span-tension plots' line styles mean, in the legend (each span keeps one colour: solid its largest
+    tension over a revolution, dotted its smallest), and the durability speed marked."""
+    ax.plot([], [], color="0.3", lw=1, label="solid: largest tension")
+    ax.plot([], [], color="0.3", lw=1, ls=":", label="dotted: smallest tension")
+    if durability_speed_rpm is not None:
+        ax.axvline(durability_speed_rpm, color=COLOURS["limit"], ls="--", lw=0.8,
+                   label=f"durability speed ({_plain(durability_speed_rpm)} rpm)")
+
+
 def drive_figure(res: dict):
     """Arm amplitude and the lowest span tension against speed, from :func:`synth.drive.analysis.analyse`."""
     import matplotlib
@@ -561,14 +588,19 @@ def drive_figure(res: dict):
     import matplotlib.pyplot as plt
     sw = res["sweep"]
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
-    a1.plot(sw["speed_rpm"], sw["theta_pp_deg"], color=COLOURS["nominal"])
+    a1.plot(sw["speed_rpm"], sw["theta_pp_deg"], color=COLOURS["nominal"], label="arm peak-to-peak angle")
     a1.set(ylabel="arm peak-to-peak [deg]", title=res["name"])
     t_min, t_max = np.asarray(sw["tension_min_n"]), np.asarray(sw["tension_max_n"])
     for j, name in enumerate(res["spans"]):
         line, = a2.plot(sw["speed_rpm"], t_max[:, j], lw=1, label=name)
         a2.plot(sw["speed_rpm"], t_min[:, j], lw=1, ls=":", color=line.get_color())
-    a2.axhline(res["slack"]["limit_n"], color=COLOURS["limit"], lw=1)
+    a2.axhline(res["slack"]["limit_n"], color=COLOURS["limit"], lw=1, label="slack limit")
+    durability = (res.get("durability") or {}).get("speed_rpm")
+    if durability is not None:
+        a1.axvline(durability, color=COLOURS["limit"], ls="--", lw=0.8, label=f"durability speed ({_plain(durability)} rpm)")
+    _line_styles(a2, durability)
     a2.set(xlabel="engine speed [rpm]", ylabel="span tension [N]")
+    a1.legend(fontsize=7)
     a2.legend(fontsize=7)
     fig.tight_layout()
     return fig

@@ -18,6 +18,8 @@ import base64
 import io
 import math
 
+from synth import formatting as fmt
+
 __all__ = ["capability_rows", "text_lines", "robust_section", "histogram_png", "HISTOGRAM_TITLES"]
 
 #: value key -> (title, unit) of the histograms
@@ -29,16 +31,25 @@ HISTOGRAM_TITLES = {"damping_nm": ("Damping at new", "N m"), "damping_eol_nm": (
                     "sliding_safety_factor": ("Sliding safety factor", "-")}
 
 
-def _f(x, fmt="{:.3g}") -> str:
+def _f(x, pattern="{:.3g}") -> str:
     if x is None or (isinstance(x, float) and not math.isfinite(x)):
         return "inf" if x is not None and x > 0 else ("-inf" if x is not None else "-")
-    return fmt.format(x)
+    return pattern.format(x)
 
 
 def _p(c: dict) -> str:
+    """A probability of violation and its 95 % interval for people (:func:`synth.formatting.probability`)."""
     if c.get("p_violation") is None:
         return "-"
-    return f"{c['p_violation']:.2g} [{c['p_lo']:.2g}, {c['p_hi']:.2g}]"
+    return f"{fmt.probability(c['p_violation'])} [{fmt.probability(c['p_lo'])}, {fmt.probability(c['p_hi'])}]"
+
+
+def _m(x) -> str:
+    """A margin (a fraction in the data) in percent, as every other table shows it (:func:`synth.formatting.percent`);
+    ``inf`` for a check that cannot fail."""
+    if x is not None and isinstance(x, float) and math.isinf(x):
+        return _f(x)
+    return fmt.percent(x)
 
 
 def capability_rows(robust: dict) -> list:
@@ -70,19 +81,19 @@ def text_lines(robust: dict) -> list:
     lines = ["", f"Production scatter ({robust['targets']}; {robust['settings']['samples']} samples, seed "
                  f"{robust['settings']['seed']})", "-" * 78]
     lines.append(f"  {'meets the target' if robust['meets'] else 'MISSES the target'}: smallest Ppk "
-                 f"{_f(robust['min_ppk'])}, largest P(violation) {_f(robust['max_p_violation'], '{:.2g}')}"
+                 f"{_f(robust['min_ppk'])}, largest P(violation) {fmt.probability(robust['max_p_violation'])}"
                  + (f"; failing: {', '.join(robust['failing'])}" if robust["failing"] else ""))
     lines.append(f"  {'check':<28} {'nominal':>8} {'worst':>8} {'RSS':>8} {'Ppk':>7}  P(violation) [95 %]")
     for c in robust["checks"]:
         if c["method"] == "deterministic" and not c["target"]:
             continue
         mark = "*" if c["target"] else " "
-        lines.append(f" {mark}{c['id']:<28} {_f(c['nominal_margin'], '{:+.3f}'):>8} "
-                     f"{_f(c['worst_case_margin'], '{:+.3f}'):>8} {_f(c['rss_margin'], '{:+.3f}'):>8} "
+        lines.append(f" {mark}{c['id']:<28} {_m(c['nominal_margin']):>8} "
+                     f"{_m(c['worst_case_margin']):>8} {_m(c['rss_margin']):>8} "
                      f"{_f(c['ppk']):>7}  {_p(c)} {c['method'] if c['method'] != 'monte carlo' else ''}".rstrip())
         if c.get("contributors") and c["target"] and c["ppk"] is not None and c["ppk"] < 3:
             lines.append("      scatter from " + ", ".join(f"{q} {s:.0%}" for q, s in c["contributors"][:3]))
-    lines.append("  (* counted in the target; margins relative to the limit, >= 0 passes)")
+    lines.append("  (* counted in the target; margins in percent of the limit, >= 0 passes)")
     return lines + _flips_block(robust)
 
 
@@ -132,7 +143,7 @@ def robust_section(result):
     out = [f"<p><b>{escape('Meets' if robust['meets'] else 'Misses')} the target</b> "
            f"({escape(robust['targets'])}; {robust['settings']['samples']} scrambled Sobol samples, seed "
            f"{robust['settings']['seed']}): smallest Ppk {escape(_f(robust['min_ppk']))}, largest probability of "
-           f"violation {escape(_f(robust['max_p_violation'], '{:.2g}'))}"
+           f"violation {escape(fmt.probability(robust['max_p_violation']))}"
            + (f"; failing: {escape(', '.join(robust['failing']))}" if robust["failing"] else "") + ".</p>"]
     out.append("<p>Per check: the nominal margin (the registry's verdict, with the thesis's worst-case stacks), "
                "the worst case and the RSS of the tolerance model's bands, the process performance index Ppk and the "
@@ -145,8 +156,8 @@ def robust_section(result):
         if c["method"] == "deterministic" and not c["target"]:
             continue
         cls = "" if not c["target"] else (' class="v-pass"' if c.get("meets", True) else ' class="v-fail"')
-        cells = [f"{'* ' if c['target'] else ''}{row['label']}", _f(row["nominal_margin"], "{:+.3f}"),
-                 _f(row["worst_case_margin"], "{:+.3f}"), _f(row["rss_margin"], "{:+.3f}"), _f(row["ppk"]), _p(c),
+        cells = [f"{'* ' if c['target'] else ''}{row['label']}", _m(row["nominal_margin"]),
+                 _m(row["worst_case_margin"]), _m(row["rss_margin"]), _f(row["ppk"]), _p(c),
                  row["method"], row["contributors"]]
         out.append(f"<tr{cls}>" + "".join(f"<td>{escape(x)}</td>" for x in cells) + "</tr>")
     out.append("</tbody></table>")

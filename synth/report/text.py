@@ -8,10 +8,11 @@ infeasible input, the assumptions and notes, and the verdict.
 
 from __future__ import annotations
 
-from synth.design.result import FAIL, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Result
+from synth import formatting as fmt
+from synth.design.result import FAIL, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Result, absent_part
 from synth.output_table import ROWS, format_value
 from synth.report.advice import alternative_rows, change_lines, correction, is_header, objective_line, \
-    relaxation_lines, rule_lines
+    relaxation_lines, rule_lines, shortfall_of
 from synth.design.evaluate import FIDELITY_TEXT
 from synth.report.robust import text_lines
 from synth.report import cost as cost_words
@@ -33,9 +34,9 @@ def _check_line(c, r=None) -> list[str]:
     mark = MARKS[c.verdict]
     if c.verdict == NOT_VERIFIED:
         return [f"  [{mark}] step {con.step:>2} {con.label}: {c.note}"]
-    need = f" beyond the required {100 * c.required:g} %" if getattr(c, "required", 0.0) else ""
-    out = [f"  [{mark}] step {con.step:>2} {con.label}: {c.value:.4g} {con.sense} {c.limit:.4g} {con.unit}"
-           f"  margin {100 * c.margin:+.1f} %{need}  ({con.equation})"]
+    margin = fmt.check_margin(c)  # none for a yes/no check; the distance with its unit against a zero limit
+    out = [f"  [{mark}] step {con.step:>2} {con.label}: {fmt.check_relation(c)}"
+           + (f"  margin {margin}" if margin != "-" else "") + f"  ({con.equation})"]
     fix = correction(r, c) if r is not None else con.correction
     if c.verdict == FAIL and fix:
         out.append(f"           suggested correction: {fix}")
@@ -62,7 +63,7 @@ def render(r: Result, *, title: str = "", verdict: bool = True) -> str:
         lines += ["Parts the input names (kept unless no design with them passes; --fix keeps, --free frees)",
                   "-" * 78] + [f"  {x}" for x in changes] + [""]
     lines += ["Design (part keys)", "-" * 78]
-    lines += [f"  {k:<36} {format_value(v)}" for k, v in r.parts.items()]
+    lines += [f"  {k:<36} {fmt.ABSENT if absent_part(r.parts, k) else format_value(v)}" for k, v in r.parts.items()]
     lines += ["", "Output (thesis Tables 10/14)", "-" * 78]
     section = None
     for sec, label, key, unit in ROWS:
@@ -73,20 +74,23 @@ def render(r: Result, *, title: str = "", verdict: bool = True) -> str:
             lines.append(sec)
             section = sec
         lines.append(f"  {label:<40} [{unit:>4}]  {format_value(v)}")
-    lines += ["", "Checks (margin: the relative distance to the limit; >= 0 passes)", "-" * 78]
+    lines += ["", "Checks (margin: the relative distance to the limit, >= 0 passes; yes/no: a condition met or "
+                  "not; against a zero limit: the distance in the check's unit)", "-" * 78]
     for c in sorted((c for c in r.checks if c.verdict != NOT_APPLICABLE), key=lambda c: c.constraint.step):
         lines += _check_line(c, r)
     alts = alternative_rows(r)
     if alts and alts[0]["kind"] == "near miss":
         lines += ["", f"Near misses (no feasible design): the {len(alts)} nearest distinct designs by the smallest "
-                      "margin (what binds; every check each fails)", "-" * 78]
+                      "margin, ties by the next smallest, then the fewer failing checks (what binds; every check each "
+                      "fails)", "-" * 78]
         for a in alts:
             lines.append(f"  #{a['rank']:<2} margin {a['margin']} ({a['binding']}), {a['objectives']}")
             lines.append(f"       fails: {a['failed']}")
             lines.append(f"       differs: {a['differs']}")
     elif alts:
         lines += ["", f"Alternatives: the {len(alts)} best distinct designs in objective order (each differs from "
-                      "every earlier one in a catalog part; margin: the smallest, and the check that sets it)",
+                      "every earlier one in a catalog part; cost against the optimum's; margin: the smallest, and "
+                      "the check that sets it)",
                   "-" * 78]
         for a in alts:
             lines.append(f"  #{a['rank']:<2} {a['objectives']}, margin {a['margin']} ({a['binding']})")
@@ -97,11 +101,11 @@ def render(r: Result, *, title: str = "", verdict: bool = True) -> str:
     binds = r.binding(5)
     if binds:
         lines += ["", "What binds (smallest margins)", "-" * 78]
-        lines += [f"  {100 * c.margin:+7.1f} %  {c.label} (step {c.step})" for c in binds]
+        lines += [f"  {fmt.check_margin(c):>9}  {c.label} (step {c.step})" for c in binds]
     if r.diagnosis:
         lines += ["", "Diagnosis", "-" * 78, f"  {r.diagnosis['message']}"]
         for v in r.diagnosis.get("violated", []):
-            lines.append(f"  violated: {v['label']} (step {v['step']}) by {-100 * v['margin']:.1f} %")
+            lines.append(f"  violated: {v['label']} (step {v['step']}) by {shortfall_of(v)}")
         for text in relaxation_lines(r):
             lines.append(f"  {text}" if is_header(text) else f"  feasible if you {text}")
     if r.assumptions():

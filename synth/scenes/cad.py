@@ -26,7 +26,7 @@ def add_cad_options(p) -> None:
 def register(sub) -> None:
     p = sub.add_parser("cad", help="export the 3D model (STEP, STL, pictures) of a saved design/flowchart result")
     p.add_argument("result", help="JSON of synth design --json or synth flowchart --json")
-    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--out", required=True, metavar="DIR", help="folder for the STEP assembly, one STL per part, the pictures and cad_report.json")
     p.add_argument("--input", default=None, help="design input (needed for a flowchart JSON, which lacks it)")
     add_cad_options(p)
     p.set_defaults(func=_main)

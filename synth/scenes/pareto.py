@@ -25,7 +25,7 @@ __all__ = ["register", "front_verdict"]
 
 def register(sub) -> None:
     p = sub.add_parser("pareto", help="cost against margin: the Pareto front of the catalog designs")
-    p.add_argument("input", help="design-input YAML")
+    p.add_argument("input", help="design input (.yaml, .toml, .json, .xlsx; a case file works)")
     p.add_argument("--out", default="pareto_out", help="folder for front.md, front.json and front.png")
     p.add_argument("--points", default=40, metavar="N",
                    help="margin thresholds probed, 2-500 (each is one catalog solve; default 40)")

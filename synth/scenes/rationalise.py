@@ -66,15 +66,20 @@ def register(sub) -> None:
                    help="MILP solver: highs (default, built from arrays for highspy) or scip (through the Pyomo "
                         "reference model)")
     p.add_argument("--tradeoff", default="margin", choices=["margin", "cost", "none"],
-                   help="trade-off curve: platform size against worst margin or total cost")
-    p.add_argument("--points", type=int, default=5, help="points of the trade-off curve, 2 to 50 (default 5)")
+                   help="trade-off curve written to tradeoff.csv and .png: platform size against the worst margin "
+                        "(default), against the total cost, or none")
+    p.add_argument("--points", type=int, default=5, metavar="N",
+                   help="points of the trade-off curve, 2 to 50 (default 5; each is one MILP solve)")
     p.add_argument("--fidelity", default="full", choices=["full", "screening", "screening-only"],
                    help="model fidelity of the feasibility data (full: the design scenes' default; screening: the "
                         "options the closed forms pass, judged at full fidelity; screening-only: unverified)")
     p.add_argument("--engine", default="inprocess", choices=["inprocess", "dask"],
                    help="evaluate the chunks of applications in this process or on Dask")
-    p.add_argument("--workers", type=int, default=None, metavar="N", help="local Dask cluster: worker processes")
-    p.add_argument("--scheduler", metavar="ADDRESS", help="Dask scheduler address (default: a local cluster)")
+    p.add_argument("--workers", type=int, default=None, metavar="N",
+                   help="with --engine dask and no --scheduler: the local cluster's worker processes, one thread "
+                        "each, at most the usable cores (default 2)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="with --engine dask: the address of a running Dask scheduler (default: a local cluster)")
     p.add_argument("--diagnose", action="store_true",
                    help="applications with no feasible design: the nearest design of synth.optimise.diagnose "
                         "(about 1 s each) instead of the nearest evaluated one")

@@ -46,7 +46,7 @@ __all__ = ["register", "make_report", "read_table", "out_folder", "add_capabilit
 def register(sub) -> None:
     p = sub.add_parser("report", help="write the design report (report.html) and results workbook (results.xlsx)")
     p.add_argument("input", help="design input (.yaml, .toml, .json, .xlsx) or a saved result (--json of any scene)")
-    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--out", required=True, metavar="DIR", help="folder for report.html, report.pdf and results.xlsx")
     p.add_argument("--flowchart", action="store_true", help="report the thesis procedure's design, not the synthesis")
     p.add_argument("--no-cad", action="store_true", help="do not build the 3D model pictures")
     p.add_argument("--optimum", metavar="FILE", help="an optimum (JSON/YAML mapping or CSV) to add as a sheet")
