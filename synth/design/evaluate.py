@@ -45,6 +45,7 @@ from synth.design.rules import NONE as NO_RULES, Rules
 from synth.design.settings import (DEFAULT, FIDELITIES, FIDELITY_TEXT, SPRING_LIMIT_BASES, UNVERIFIED_NOTE,
                                    Settings)
 from synth.drive.analysis import tensioner_checks
+from synth.kernels import axial as axial_engine  # the cone spring and the wear on the caller's engine
 
 __all__ = ["Settings", "DEFAULT", "core_values", "SPRING_KEY_VALUES", "SPRING_LIMIT_BASES", "SPRING_TOLERANCE_COLUMNS", "MADE_CONE_SPRING_COLUMNS", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
@@ -460,7 +461,6 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT, time_points
     ``engine``: the cone spring's and the wear's (:mod:`synth.kernels.axial`; None: the numpy reference), chosen
     by a search of many rows with :func:`synth.kernels.engines.axial`.
     """
-    from synth.kernels import axial as axial_engine  # the cone spring and the wear on the caller's engine
     p = parts.arrays()
     v, a, f, cv, real, es_h, de, di = _axial_base(apps, cg, r, o)
     n = len(a)

@@ -51,7 +51,7 @@ from synth.model import disc_spring
 from synth.model import bolted_joint
 from synth.drive.analysis import _model, _sweep
 from synth.drive.analysis import durability_point
-from synth.report.progress import progress
+from synth.progress import progress
 from synth.design.evaluate import Settings
 from synth.schema import validate
 from synth.design.applications import Applications
