@@ -69,7 +69,8 @@ def out_folder(path, option: str = "--out") -> Path:
     return p
 
 
-def _is_result_file(path: Path) -> bool:
+def is_result_file(path: Path) -> bool:
+    """Whether ``path`` is a saved result (a ``.json`` mapping of kind ``synth.result``), not an input."""
     if path.suffix.lower() != ".json" or not path.is_file():
         return False
     try:
@@ -86,7 +87,7 @@ def result_for_report(source, args=None):
     else:
         src = Path(source)
         cells = None
-        if _is_result_file(src):
+        if is_result_file(src):
             res, name = load_saved_result(src, "input"), str(src)
         else:
             data = documents.read_mapping(src)
