@@ -64,11 +64,11 @@ def ten_pulley_drive() -> dict:
 
 
 def _clear():
-    from synth.drive.analysis import _model, _sweep
+    from synth.drive.analysis import drive_model, drive_sweep
     from synth.drive.positions import frame
     frame.cache_clear()
-    _model.cache_clear()
-    _sweep.cache_clear()
+    drive_model.cache_clear()
+    drive_sweep.cache_clear()
 
 
 def _best(fn, repeat):

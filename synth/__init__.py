@@ -184,7 +184,7 @@ def capability(source: "Result | DesignInput | str | Path | dict", *, target: fl
     from synth import catalog
     from synth.design.result import Result
     from synth.robust.settings import RobustSettings
-    from synth.scenes.report import add_capability
+    from synth.robust.capability import add_capability
     kw = {k: v for k, v in (("samples", samples), ("seed", seed)) if v is not None}
     rs = RobustSettings(capability=target, ppm=ppm, **kw)
     r = source if isinstance(source, Result) else synthesise(source, rules=rules, **settings_kw)
@@ -258,7 +258,7 @@ def screen(applications, *, objective: str = "standard", fidelity: str = "screen
     from synth.bulk.portfolio import read_portfolio, records
     from synth.bulk.run import compute_chunk, default_chunk_size, result_columns
     from synth.errors import InputError, Problem
-    from synth.report.progress import Progress
+    from synth.progress import Progress
     s = _configure(None, rules, {**settings_kw, "fidelity": fidelity})
     size = default_chunk_size() if chunk_size is None else chunk_size
     if not isinstance(size, int) or isinstance(size, bool) or size < 1:

@@ -72,7 +72,7 @@ def set_user_dirs(*dirs: str | os.PathLike) -> None:
     problems = []
     for d in dirs:
         try:
-            check_user_dir(d, names(), lambda n: _load_cached(n, ()))
+            check_user_dir(d, names(), lambda n: load_cached(n, ()))
         except InputError as exc:
             problems.extend(exc.problems)
     if problems:
@@ -85,7 +85,7 @@ def _check_dirs(dirs, option: str = "--catalogs") -> None:
     problems = []
     for d in dirs:
         try:
-            check_user_dir(d, names(), lambda n: _load_cached(n, ()), option=option)
+            check_user_dir(d, names(), lambda n: load_cached(n, ()), option=option)
         except InputError as exc:
             problems.extend(exc.problems)
     if problems:
@@ -146,7 +146,7 @@ def _user_dirs() -> list[Path]:
         problems = []
         for d in dirs:
             try:
-                check_user_dir(d, names(), lambda n: _load_cached(n, ()), option="SYNTH_CATALOGS")
+                check_user_dir(d, names(), lambda n: load_cached(n, ()), option="SYNTH_CATALOGS")
             except InputError as exc:
                 problems.extend(exc.problems)
         if problems:
@@ -170,26 +170,28 @@ def _read(path: Path) -> pd.DataFrame:
 
 
 @functools.lru_cache(maxsize=None)
-def _load_cached(name: str, user_dirs: tuple[Path, ...]) -> pd.DataFrame:
+def load_cached(name: str, user_dirs: tuple[Path, ...]) -> pd.DataFrame:
+    """The table ``name`` under the folders ``user_dirs`` (:func:`user_dirs`), parsed once per folders: the same
+    object until the folders or the cache change (a memo of what is derived from it keys on that identity)."""
     import pandas as pd
     path = builtin_dir() / f"{name}.csv"
     if not path.is_file():
         raise CatalogError(Problem("catalog", name, "one of " + ", ".join(names())))
     if user_dirs and not any((d / f"{name}.csv").is_file() for d in user_dirs):
-        return _load_cached(name, ())  # no user file for it: the built-in table, parsed once
+        return load_cached(name, ())  # no user file for it: the built-in table, parsed once
     df = _read(path)
     key = df.columns[0]
     for d in reversed(user_dirs):
         upath = d / f"{name}.csv"
         if upath.is_file():
-            udf = read_user_catalog(upath, df if not user_dirs else _load_cached(name, ()))
+            udf = read_user_catalog(upath, df if not user_dirs else load_cached(name, ()))
             df = pd.concat([df[~df[key].isin(udf[key])], udf], ignore_index=True)
     return df
 
 
 def load(name: str) -> pd.DataFrame:
     """Return catalog ``name`` as a DataFrame (a copy: safe to modify)."""
-    return _load_cached(name, tuple(_user_dirs())).copy()
+    return load_cached(name, tuple(_user_dirs())).copy()
 
 
 _PARSED: dict = {}
@@ -204,7 +206,7 @@ def parsed(name: str, build):
     True
     """
     dirs = tuple(_user_dirs())
-    src = _load_cached(name, dirs)
+    src = load_cached(name, dirs)
     hit = _PARSED.get((name, build, dirs))
     if hit is not None and hit[0] is src:
         return hit[1]
@@ -216,7 +218,7 @@ def parsed(name: str, build):
 @functools.lru_cache(maxsize=None)
 def _index_cached(name: str, user_dirs: tuple[Path, ...]) -> dict:
     """``{key: row position}`` of catalog ``name`` (first occurrence wins, as :func:`row` always did)."""
-    df = _load_cached(name, user_dirs)
+    df = load_cached(name, user_dirs)
     out: dict = {}
     for i, k in enumerate(df[df.columns[0]]):
         out.setdefault(k, i)
@@ -224,7 +226,7 @@ def _index_cached(name: str, user_dirs: tuple[Path, ...]) -> dict:
 
 
 def _clear_caches() -> None:
-    for f in (_load_cached, _index_cached, _constants_cached, _constant_values):
+    for f in (load_cached, _index_cached, constants_cached, _constant_values):
         f.cache_clear()
 
 
@@ -243,7 +245,7 @@ def row(name: str, key: str, field: str | None = None) -> pd.Series:
     ``field`` names the input field that asked for it, for the error message.
     """
     dirs = tuple(_user_dirs())
-    df = _load_cached(name, dirs)
+    df = load_cached(name, dirs)
     i = _index_cached(name, dirs).get(str(key).strip())
     if i is None:
         col = df.columns[0]
@@ -252,10 +254,10 @@ def row(name: str, key: str, field: str | None = None) -> pd.Series:
 
 
 @functools.lru_cache(maxsize=None)
-def _constants_cached(user_dirs: tuple[Path, ...]) -> tuple[pd.DataFrame, dict]:
-    import pandas as pd
+def constants_cached(user_dirs: tuple[Path, ...]) -> tuple[pd.DataFrame, dict]:
     """Every ``constants*.csv`` merged, and ``{name: row position}`` (first occurrence wins)."""
-    frames = [_load_cached(n, user_dirs) for n in names() if n == "constants" or n.startswith("constants_")]
+    import pandas as pd
+    frames = [load_cached(n, user_dirs) for n in names() if n == "constants" or n.startswith("constants_")]
     df = pd.concat(frames, ignore_index=True)
     index: dict = {}
     for i, n in enumerate(df["name"]):
@@ -264,7 +266,7 @@ def _constants_cached(user_dirs: tuple[Path, ...]) -> tuple[pd.DataFrame, dict]:
 
 
 def _constants() -> pd.DataFrame:
-    return _constants_cached(tuple(_user_dirs()))[0].copy()
+    return constants_cached(tuple(_user_dirs()))[0].copy()
 
 
 def constant_row(name: str) -> pd.Series:
@@ -274,7 +276,7 @@ def constant_row(name: str) -> pd.Series:
     (one per flowchart step or model), all with columns
     ``name,value,unit,source,note``.
     """
-    df, index = _constants_cached(tuple(_user_dirs()))
+    df, index = constants_cached(tuple(_user_dirs()))
     i = index.get(name)
     if i is None:
         raise CatalogError(Problem("constant", name, "one of " + ", ".join(sorted(df["name"]))))
@@ -301,6 +303,6 @@ def _constant_values(user_dirs: tuple[Path, ...]) -> dict:
     """``{name: value}`` of every constant, read once per catalog data (:func:`synth.fingerprint.cached`)."""
 
     def build():
-        df, index = _constants_cached(user_dirs)
+        df, index = constants_cached(user_dirs)
         return {n: df["value"].iloc[i] for n, i in index.items()}
     return cached("constants", [catalogs_sha256(user_dirs), source_stamp()], build)

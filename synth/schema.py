@@ -373,7 +373,7 @@ def _choice(f: Field, text: str) -> str | None:
     return None
 
 
-def _coerce(f: Field, value: Any, problems: list[Problem]) -> Any:
+def coerce(f: Field, value: Any, problems: list[Problem]) -> Any:
     """Convert ``value`` to the field's kind, appending a problem on failure.
 
     ``None`` and the "not given" words (``N/A``, ``n.a.``, ``-``, empty; see
@@ -453,7 +453,7 @@ def _require(d: dict, names: tuple[str, ...], why: str, problems: list[Problem])
             problems.append(Problem(n, None, f"a value ({why})"))
 
 
-def _consistency(d: dict, problems: list[Problem]) -> None:
+def consistency(d: dict, problems: list[Problem]) -> None:
     """Cross-field rules: one problem per inconsistent field."""
     def both(a, b):
         return d.get(a) is not None and d.get(b) is not None
@@ -511,22 +511,22 @@ def _catalog_limits() -> dict:
     its rim (``pulley_min_wall_mm`` a side), None without a bearing catalog; ``thicknesses``: the sorted
     radial thicknesses of the pivot bushings (empty without that catalog). Keyed by the user folders and the
     parsed tables themselves (a cleared catalog cache parses new ones, and so derives again)."""
-    dirs = tuple(catalog._user_dirs())
+    dirs = tuple(catalog.user_dirs())
     hit = _CATALOG_LIMITS.get(dirs)
     if hit is not None:
         sources, out = hit
-        if all(catalog._load_cached(n, dirs) is src for n, src in sources) \
+        if all(catalog.load_cached(n, dirs) is src for n, src in sources) \
                 and out["wall"] == catalog.constant("pulley_min_wall_mm"):
             return out
     have = set(catalog.names())
     sources, out = [], {"pulley": None, "thicknesses": [], "wall": catalog.constant("pulley_min_wall_mm")}
     if "ball_bearings" in have:
-        sources.append(("ball_bearings", catalog._load_cached("ball_bearings", dirs)))
+        sources.append(("ball_bearings", catalog.load_cached("ball_bearings", dirs)))
         bearings = catalog.load("ball_bearings")
         i = int(bearings["D_mm"].astype(float).idxmin())
         out["pulley"] = (bearings.iloc[i, 0], float(bearings["D_mm"][i]), float(bearings["D_mm"][i]) + 2.0 * out["wall"])
     if "pivot_bushings" in have:
-        sources.append(("pivot_bushings", catalog._load_cached("pivot_bushings", dirs)))
+        sources.append(("pivot_bushings", catalog.load_cached("pivot_bushings", dirs)))
         out["thicknesses"] = sorted({float(t) for t in catalog.load("pivot_bushings")["radial_thickness_mm"]})
     _CATALOG_LIMITS[dirs] = (tuple(sources), out)
     return out
@@ -558,15 +558,15 @@ def validate(data: dict, partial: bool = False) -> "DesignInput":
                                                        f"{name} (remove one)"))
             continue
         given_as[name] = key
-        out[name] = _coerce(_BY_NAME[name], value, problems)
-    return _finish(out, problems, partial)
+        out[name] = coerce(_BY_NAME[name], value, problems)
+    return finish(out, problems, partial)
 
 
 _DEFAULTED = tuple(f for f in FIELDS if f.default is not None)
 _REQUIRED = tuple(f for f in FIELDS if f.required)
 
 
-def _finish(out: dict, problems: list[Problem], partial: bool = False) -> "DesignInput":
+def finish(out: dict, problems: list[Problem], partial: bool = False) -> "DesignInput":
     """The rules of :func:`validate` after each field's value is coerced (``out``: field name -> value, None
     where not given; ``problems`` so far): defaults, required fields, selectors, cross-field consistency. The
     column validator of portfolios (:func:`synth.bulk.portfolio.validate_table`) coerces whole columns, then
@@ -594,7 +594,7 @@ def _finish(out: dict, problems: list[Problem], partial: bool = False) -> "Desig
                                         "[d] for a round wire, [b, h] for a rectangular one"))
         if out.get("bolt_mode") == "manual":
             _require(out, ("bolt_format", "bolt_property_class"), "bolt_mode is 'manual'", problems)
-    _consistency(out, problems)
+    consistency(out, problems)
     if problems:
         raise InputError(problems)
     return DesignInput(**out)

@@ -17,7 +17,7 @@ import synth
 from conftest import CASES
 from synth.design.constraints import REGISTRY
 from synth.design.result import FAIL, NOT_VERIFIED
-from synth.report import progress
+from synth import progress
 
 ROOT = Path(__file__).resolve().parents[1]
 

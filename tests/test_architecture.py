@@ -1,4 +1,5 @@
-"""The package's shape (issue 21): no import circle, the core below presentation, the linter clean.
+"""The package's shape (issues 21, 33): no import circle, imports pointing down the layers, few private names used
+across modules, the linter clean.
 
 The import graph is read from the source (every ``import`` and ``from ... import``, at module top or inside a
 function: a lazy import is still a dependency), so it needs no import of synth and takes well under a second.
@@ -21,6 +22,36 @@ CORE = ("synth.design", "synth.model", "synth.schema", "synth.kernels")
 #: what the core must not import: presentation and the readers of the user's documents
 PRESENTATION = ("synth.report", "synth.excel", "synth.io.documents", "synth.scenes", "synth.ui", "synth.cli",
                 "synth.cad")
+#: the layers, lowest first (issue 33): a module is in the layer of the longest prefix naming it; an import of a
+#: higher layer runs back up. Within a layer, imports go either way (the circle tests keep them a tree).
+LAYERS = (
+    # foundations: no physics and no catalog: errors, version, threads, text, files and numbers read and written
+    ("formulations", "synth.version", "synth.errors", "synth.fingerprint", "synth.threads", "synth.progress",
+     "synth.display", "synth.formatting", "synth.output_table", "synth.io", "synth.excel.cells"),
+    # the data: catalogs, the input schema, the generated applications
+    ("synth.catalog", "synth.schema", "synth.data"),
+    # the physics, the parts' arrays and prices, the compiled twins of the physics (numba set up once)
+    ("synth.model", "synth.parts", "synth.cost", "synth.drive", "synth.kernels"),
+    # the core: the registry, the configuration, the one evaluator and result
+    ("synth.design",),
+    # the searches over the core: the flowchart, the optimisers, the compiled scans, the shrink fit, the cost decision
+    ("synth.flowchart", "synth.optimise", "synth.kernels.main_spring", "synth.kernels.engines", "synth.shrink_fit",
+     "synth.compare", "synth.cost.breakdown", "synth.cost.decision"),
+    # the runs built on the searches: production scatter, bulk, the platform
+    ("synth.robust", "synth.bulk", "synth.platform"),
+    # presentation and the readers of the user's documents
+    ("synth.report", "synth.excel", "synth.cad", "synth.io.documents", "synth.io.saved_results"),
+    # the Python API (synth/__init__.py only), the web UI on it, the command line's scenes
+    ("synth",),
+    ("synth.ui",),
+    ("synth.scenes", "synth.cli", "synth.__main__"),
+)
+#: imports running back up the layers allowed (issue 33: at most 2; 5 under these layers before it, 1 after: the
+#: API's write_report of a file reads it as `synth report FILE` does, synth -> synth.scenes.report)
+MAX_BACK_ARROWS = 2
+#: private names (``_name``) of one module used in another (issue 33: 23 before it; the 4 left: the kernels' own IEEE
+#: helpers and bitset module, and `optimise.alternatives._best`, outside this change)
+MAX_PRIVATE_NAMES = 4
 
 
 def _modules() -> dict:
@@ -174,3 +205,98 @@ def test_ruff_is_clean():
     res = subprocess.run([ruff, "check", "--no-cache", "--quiet", str(ROOT)], capture_output=True, text=True,
                          timeout=120)
     assert res.returncode == 0, res.stdout[-4000:] + res.stderr[-2000:]
+
+
+def layer_of(module: str) -> int:
+    """The index in :data:`LAYERS` of the longest prefix naming ``module`` (``synth`` names the package's top only)."""
+    best, at = -1, None
+    for i, names in enumerate(LAYERS):
+        for p in names:
+            if (module == p or (p != "synth" and module.startswith(p + "."))) and len(p) > best:
+                best, at = len(p), i
+    if at is None:
+        raise AssertionError(f"{module} is in no layer: add its package to LAYERS")
+    return at
+
+
+def with_packages(graph: dict) -> dict:
+    """Every import with the packages it initialises (importing ``a.b.c`` runs ``a.b``'s ``__init__``, lazily or
+    not) where that ``__init__`` imports a module, except the importer's own packages."""
+    out = {}
+    for m, ts in graph.items():
+        own = m.split(".")
+        out[m] = set(ts) | {p for t in ts for i in range(1, t.count(".") + 1)
+                            if t.split(".")[:i] != own[:i] and graph.get(p := ".".join(t.split(".")[:i]))}
+    return out
+
+
+def back_arrows(graph: dict) -> list:
+    """``[(importer, imported), ...]``: the imports from a lower layer to a higher one, lazy ones included, and the
+    packages they initialise (a package counted apart only where no module of it is a back arrow already)."""
+    up = {(m, t) for m, ts in with_packages(graph).items() for t in ts if layer_of(t) > layer_of(m)}
+    return sorted((m, t) for m, t in up if not any(m == a and b.startswith(t + ".") for a, b in up))
+
+
+def private_names() -> dict:
+    """``{"module.name": [modules using it]}``: the private names (``_name``, not dunder) of one of the packages'
+    modules that another module imports or reads as an attribute, and the private modules imported from outside
+    their package (an import inside a function or a ``module._name`` read counts as much as a top import)."""
+    mods = _modules()
+    uses: dict = {}
+    for m, p in mods.items():
+        pkg = m if p.name == "__init__.py" else m.rpartition(".")[0]
+        tree = ast.parse(p.read_text(encoding="utf-8"))
+        alias = {}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Import):
+                for a in node.names:
+                    if a.name in mods:
+                        alias[a.asname or a.name.split(".")[0]] = a.name if a.asname else a.name.split(".")[0]
+            elif isinstance(node, ast.ImportFrom):
+                base = node.module or ""
+                if node.level:
+                    up = pkg.split(".")[: len(pkg.split(".")) - (node.level - 1)]
+                    base = ".".join(up + ([node.module] if node.module else []))
+                if base not in mods:
+                    continue
+                for a in node.names:
+                    full, private = f"{base}.{a.name}", a.name.startswith("_") and not a.name.startswith("__")
+                    if full in mods:
+                        alias[a.asname or a.name] = full
+                        if private and base != pkg:
+                            uses.setdefault(full, set()).add(m)
+                    elif private and base != m:
+                        uses.setdefault(full, set()).add(m)
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Attribute) and node.attr.startswith("_") and not node.attr.startswith("__"):
+                chain, v = [], node.value
+                while isinstance(v, ast.Attribute):
+                    chain.append(v.attr)
+                    v = v.value
+                if isinstance(v, ast.Name) and v.id in alias:
+                    target = ".".join([alias[v.id], *chain[::-1]])
+                    if target in mods and target != m:
+                        uses.setdefault(f"{target}.{node.attr}", set()).add(m)
+    return {k: sorted(v) for k, v in sorted(uses.items())}
+
+
+def test_layers_find_a_back_arrow():
+    assert layer_of("synth") == layer_of("synth.ui") - 1 and layer_of("synth.design.evaluate") == layer_of("synth.design")
+    assert layer_of("synth.kernels.axial") < layer_of("synth.design") < layer_of("synth.kernels.main_spring")
+    graph = {"synth.design.evaluate": {"synth.kernels.axial"}, "synth.kernels.axial": set(),
+             "synth.kernels": {"synth.kernels.main_spring"}, "synth.kernels.main_spring": {"synth.design.evaluate"},
+             "synth.design": set()}
+    # importing synth.kernels.axial initialises synth.kernels, which imports the scans above the core
+    assert back_arrows(graph) == [("synth.kernels", "synth.kernels.main_spring")]
+
+
+def test_imports_point_down_the_layers():
+    """At most :data:`MAX_BACK_ARROWS` imports run from a lower layer to a higher one (issue 33)."""
+    found = back_arrows(import_graph())
+    assert len(found) <= MAX_BACK_ARROWS, f"{len(found)} imports run back up the layers: {found}"
+
+
+def test_private_names_used_across_modules():
+    """A name another module needs is a public seam; at most :data:`MAX_PRIVATE_NAMES` private names are shared."""
+    found = private_names()
+    assert len(found) <= MAX_PRIVATE_NAMES, f"{len(found)} private names used across modules: {found}"

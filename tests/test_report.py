@@ -19,7 +19,8 @@ from conftest import CASES
 from synth import cli
 from synth.design.result import FAIL, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Check, Result, row_verdict
 from synth.output_table import ROWS
-from synth.report import plots, progress
+from synth import progress
+from synth.report import plots
 from synth.scenes.report import make_report
 
 #: ``synth report INPUT --flowchart``: the thesis procedure's design (the default is the synthesis of synth design)

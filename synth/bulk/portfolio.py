@@ -33,7 +33,7 @@ import pandas as pd
 
 from synth import schema
 from synth.errors import InputError, Problem
-from synth.io.numbers import is_not_given, _NUMBER, NOT_GIVEN
+from synth.io.numbers import is_not_given, NUMBER_RE, NOT_GIVEN
 from synth.io.tables import read_table, duplicate_columns
 from synth.io.outputs import output_file, write_csv
 from synth.excel.cells import write_frame
@@ -191,9 +191,9 @@ def validate_rows(df: pd.DataFrame) -> tuple[list, list[str]]:
 
 def _coerce_column(f, name: str, col: pd.Series, problems: list) -> list:
     """The values of field ``f`` (column ``name``) as :func:`synth.schema.validate` coerces them, column by column:
-    plain numbers (the text of :data:`synth.io.numbers` ``_NUMBER``, or a numeric column) parsed and range-checked
+    plain numbers (the text of :data:`synth.io.numbers` ``NUMBER_RE``, or a numeric column) parsed and range-checked
     at once, other fields once per distinct cell; any other cell (a decimal comma, a unit, a bad value) goes
-    through the validator's own ``_coerce`` (its problems appended to ``problems[row]``). None: not given."""
+    through the validator's own ``coerce`` (its problems appended to ``problems[row]``). None: not given."""
     n = len(col)
     raw = col.to_numpy(dtype=object)
     out = [None] * n
@@ -205,7 +205,7 @@ def _coerce_column(f, name: str, col: pd.Series, problems: list) -> list:
         else:
             t = col.astype("string").str.strip()
             given = ~(t.isna() | t.str.lower().str.replace(" ", "", regex=False).isin(NOT_GIVEN)).to_numpy()
-            plain = (t.str.fullmatch(_NUMBER.pattern).fillna(False).to_numpy(dtype=bool)) & given
+            plain = (t.str.fullmatch(NUMBER_RE.pattern).fillna(False).to_numpy(dtype=bool)) & given
             x = np.full(n, np.nan)
             x[plain] = t[plain].astype(float).to_numpy()
             slow = given & ~plain
@@ -220,7 +220,7 @@ def _coerce_column(f, name: str, col: pd.Series, problems: list) -> list:
             out[i] = v
         for i in np.flatnonzero(slow).tolist():
             found: list = []
-            out[i] = schema._coerce(f, clean_cell(raw[i], name), found)
+            out[i] = schema.coerce(f, clean_cell(raw[i], name), found)
             problems[i].extend(found)
         return out
     seen: dict = {}
@@ -231,7 +231,7 @@ def _coerce_column(f, name: str, col: pd.Series, problems: list) -> list:
             hit = None
         if hit is None:
             found = []
-            value = schema._coerce(f, clean_cell(raw[i], name), found)
+            value = schema.coerce(f, clean_cell(raw[i], name), found)
             hit = (value, found)
             try:
                 seen[v] = hit
@@ -250,7 +250,7 @@ def validate_table(df: pd.DataFrame) -> tuple[list, list[str]]:
     Each field column is coerced at once (:func:`_coerce_column`: plain numbers parsed and range-checked as
     arrays, the other fields once per distinct cell, anything unusual through the validator's own per-value
     code); then each row takes the validator's rules on its coerced values (defaults, required fields,
-    selectors, cross-field consistency: :func:`synth.schema._finish`, the one copy of them)."""
+    selectors, cross-field consistency: :func:`synth.schema.finish`, the one copy of them)."""
     n = len(df)
     cols = field_columns(df)
     problems: list = [[] for _ in range(n)]
@@ -263,7 +263,7 @@ def validate_table(df: pd.DataFrame) -> tuple[list, list[str]]:
     errors = [""] * n
     for i, row in enumerate(zip(*columns) if columns else [()] * n):
         try:
-            apps[i] = schema._finish(dict(zip(names, row)), problems[i])
+            apps[i] = schema.finish(dict(zip(names, row)), problems[i])
         except InputError as exc:
             errors[i] = format_problems(exc)
     return apps, errors

@@ -68,7 +68,7 @@ from synth.bulk.portfolio import (CSV_FLOAT, arrow_safe, column_warnings, field_
 from synth.errors import InputError, Problem
 from synth.threads import usable_cores, worker_environ
 from synth.io.outputs import csv_rows, output_file, output_folder, write_text
-from synth.report.progress import Progress
+from synth.progress import Progress
 from synth.bulk.engine import columns
 from synth.design.rules import echo
 from synth.design.settings import Settings

@@ -57,7 +57,8 @@ class Priced:
         return Priced(self.eur * k, self.status, basis or self.basis, tuple((e * k, f) for e, f in self.terms))
 
 
-def _add(*ps: Priced, status: str, basis: str) -> Priced:
+def add_priced(*ps: Priced, status: str, basis: str) -> Priced:
+    """The sum of the prices ``ps``: their euros and terms, under ``status`` and ``basis``."""
     return Priced(sum(p.eur for p in ps), status, basis, tuple(t for p in ps for t in p.terms))
 
 
@@ -98,7 +99,7 @@ class PriceBook:
             if s == supplier and abs(length - length_mm) < 1e-9:
                 return p
         mat = self.bushing_material[supplier].scaled(float(self.bushing_mass_per_mm[supplier]) * length_mm)
-        return _add(mat, self.bushing_process, status="modelled",
+        return add_priced(mat, self.bushing_process, status="modelled",
                     basis=f"wall mass {1000 * self.bushing_mass_per_mm[supplier] * length_mm:.1f} g x "
                           f"{self.bushing_material[supplier].eur:.3g} EUR/kg + {self.bushing_process.eur:.3g} EUR "
                           "per part")
@@ -299,7 +300,7 @@ def _moulded(ctx: _Ctx, family: str, table) -> tuple:
         else:
             m = float(made.moulded_mass_kg(table.contact_area_mm2[i], table.axial_height_mm[i],
                                            c("cost_plastic_density_kg_m3")))
-            p = _add(mat.scaled(m), proc, status="modelled",
+            p = add_priced(mat.scaled(m), proc, status="modelled",
                      basis=f"{1000 * m:.2f} g x {mat.eur:.3g} EUR/kg ({PLASTIC}) + {proc.eur:.3g} EUR moulding")
         out[i] = p.eur
         info.append(p)
@@ -363,7 +364,7 @@ def build(p, volume: float | None = None) -> PriceBook:
                                         de / c("cost_cone_spring_nominal_ratio_de_t"), c("cost_steel_density_kg_m3")))
     steel = ctx.price("material:cone_spring_steel", "the cone springs' strip", unit="kg")
     proc = ctx.price("process:cone_spring", "making one cone spring", unit="part")
-    cone = _add(steel.scaled(m_cone), proc, status="modelled",
+    cone = add_priced(steel.scaled(m_cone), proc, status="modelled",
                 basis=f"nominal blank {1000 * m_cone:.1f} g x {steel.eur:.3g} EUR/kg + {proc.eur:.3g} EUR per part")
     # main spring: material per kg, section factor, coiling per metre, per spring
     mat_info = tuple(ctx.price(f"material:{k}", f"the spring wire {k}", unit="kg") for k in p.spring_material.key)

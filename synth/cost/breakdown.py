@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from synth.cost import columns
-from synth.cost.book import Priced, _add, book_for, volume_of
+from synth.cost.book import Priced, add_priced, book_for, volume_of
 from synth.cost.made import spring_length_times_stiffness_m
 
 __all__ = ["Line", "lines", "attributes", "summary"]
@@ -118,7 +118,7 @@ def _spring_line(book, p, spring: dict, k: float) -> Line:
     mbd = float(spring["main_spring_mean_body_diameter_mm"][0])
     key = f"main_spring:{p.spring_material.key[m]} {p.spring_wire.key[w]}"  # its price: whatever its mean diameter
     return Line(key, f"main spring {p.spring_material.key[m]} {p.spring_wire.key[w]} (Dm {mbd:g} mm)",
-                _add(mat, coil, book.spring_piece, status="modelled",
+                add_priced(mat, coil, book.spring_piece, status="modelled",
                      basis=f"wire {length:.3f} m, {1000 * kg:.1f} g x {book.spring_material[m]:.3g} EUR/kg"
                            + (f" x {f:g} (rectangular)" if f != 1.0 else "")
                            + f" + coiling {book.coiling.eur:.3g} EUR/m + {book.spring_piece.eur:.3g} EUR per spring"))

@@ -808,17 +808,17 @@ def derivations(d, parts: dict, check_ids=None, settings=None) -> list:
 
 
 def _derivation(c, check, groups, values, ex, rules) -> Derivation:
-    from synth.design.evaluate import _CONSTANT_LIMITS
+    from synth.design.evaluate import CONSTANT_LIMITS
     g = groups[c.group].values
 
     def raw(key):
-        if key in _CONSTANT_LIMITS:
-            return _CONSTANT_LIMITS[key]
+        if key in CONSTANT_LIMITS:
+            return CONSTANT_LIMITS[key]
         return _scalar(np.asarray(g[key]).reshape(-1)[0]) if key in g else values.get(key)
     value, limit = raw(c.value), raw(c.limit)
 
     def quantity(key, v):
-        if key in _CONSTANT_LIMITS:
+        if key in CONSTANT_LIMITS:
             return Quantity(key, v, "", "constant", f"the registry's constant limit {key}")
         if key in rules.limits:
             return Quantity(key, v, c.unit if c.unit != "-" else "", "rule",

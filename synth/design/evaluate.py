@@ -45,6 +45,7 @@ from synth.design.rules import NONE as NO_RULES, Rules
 from synth.design.settings import (DEFAULT, FIDELITIES, FIDELITY_TEXT, SPRING_LIMIT_BASES, UNVERIFIED_NOTE,
                                    Settings)
 from synth.drive.analysis import tensioner_checks
+from synth.kernels import axial as axial_engine  # the cone spring and the wear on the caller's engine
 
 __all__ = ["Settings", "DEFAULT", "core_values", "SPRING_KEY_VALUES", "SPRING_LIMIT_BASES", "SPRING_TOLERANCE_COLUMNS", "MADE_CONE_SPRING_COLUMNS", "Group", "finish", "inputs", "core", "bushing", "axial", "spring", "bolt", "spring_keys",
            "EVALUATED", "NOT_APPLICABLE", "NOT_VERIFIED", "FIDELITIES", "SPRING_INPUTS", "spring_inputs",
@@ -52,7 +53,7 @@ __all__ = ["Settings", "DEFAULT", "core_values", "SPRING_KEY_VALUES", "SPRING_LI
            "BOLT_CORE_VALUES", "axial_judged", "axial_full", "FIDELITY_TEXT", "UNVERIFIED_NOTE", "FIDELITY_VALUES",
            "fidelity_free_ok"]  # FIDELITY_FREE: read at call time (__getattr__)
 
-_CONSTANT_LIMITS = {"zero": 0.0, "one": 1.0}  # limits (and scales) that are plain numbers
+CONSTANT_LIMITS = {"zero": 0.0, "one": 1.0}  # limits (and scales) that are plain numbers
 
 
 @dataclass
@@ -134,9 +135,9 @@ def finish(name: str, values: dict, apps, a, checks: tuple | None = None, *, rul
     for c in checks:
         if c.limit in rules.limits:  # a design rule sets this limit (synth.design.rules)
             values[c.limit] = np.full(n, rules.limits[c.limit])
-        lim = _CONSTANT_LIMITS[c.limit] if c.limit in _CONSTANT_LIMITS else values[c.limit]
+        lim = CONSTANT_LIMITS[c.limit] if c.limit in CONSTANT_LIMITS else values[c.limit]
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            scale = None if c.scale is None else (_CONSTANT_LIMITS[c.scale] if c.scale in _CONSTANT_LIMITS
+            scale = None if c.scale is None else (CONSTANT_LIMITS[c.scale] if c.scale in CONSTANT_LIMITS
                                                   else values[c.scale])
             m = margin(c, values[c.value], lim, scale)
             kept = rules.required(c.id)
@@ -460,7 +461,6 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT, time_points
     ``engine``: the cone spring's and the wear's (:mod:`synth.kernels.axial`; None: the numpy reference), chosen
     by a search of many rows with :func:`synth.kernels.engines.axial`.
     """
-    from synth.kernels import axial as axial_engine  # the cone spring and the wear on the caller's engine
     p = parts.arrays()
     v, a, f, cv, real, es_h, de, di = _axial_base(apps, cg, r, o)
     n = len(a)
@@ -566,7 +566,7 @@ def axial_before_physics(apps, cg: Group, r, o: dict, settings: Settings = DEFAU
     v, a, _, cv, real, _, de, di = _axial_base(apps, cg, r, o)
     v.update(_cone_diameters(cv, real, de, di))
     checks = tuple(c for c in by_group("axial") if c.physics is None
-                   and all(k in v or k in _CONSTANT_LIMITS for k in (c.value, c.limit, c.scale, c.applies,
+                   and all(k in v or k in CONSTANT_LIMITS for k in (c.value, c.limit, c.scale, c.applies,
                                                                      c.objective_unless) if k))
     return finish("axial", v, apps, a, checks=checks, rules=settings.rules, core=cv)
 

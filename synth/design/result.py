@@ -31,7 +31,7 @@ from synth.design.assessment import (EVALUATED, EVALUATED_VERDICTS, FAIL, INCOMP
 from synth.design.constraints import GROUPS as REGISTRY_GROUPS, REGISTRY, margin as registry_margin
 from synth.io.outputs import plain  # JSON-friendly data (NaN and infinities as None, no subnormal number)
 from synth.design.applications import DEFAULTS
-from synth.design.evaluate import _CONSTANT_LIMITS as CONSTANT_LIMITS
+from synth.design.evaluate import CONSTANT_LIMITS as CONSTANT_LIMITS
 from synth.design.verdict import Verdict, judge
 from synth.schema import FIELDS
 from synth.errors import InputError, Problem

@@ -69,7 +69,7 @@ _KEYS = ("name", "limits", "min_margins", "spring_limit_basis", "capability")
 def _limit_names() -> tuple[str, ...]:
     from synth import catalog
     from synth.design.constraints import REGISTRY
-    names = set(catalog._constants_cached(())[0]["name"])
+    names = set(catalog.constants_cached(())[0]["name"])
     return tuple(sorted({c.limit for c in REGISTRY.values() if c.limit in names}))
 
 

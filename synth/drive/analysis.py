@@ -33,13 +33,15 @@ def require_durability_speed(drive) -> float:
 
 
 @lru_cache(maxsize=64)
-def _model(drive):
+def drive_model(drive):
+    """The drive's linear model (:func:`linear_drive`), built once per drive."""
     return linear_drive(drive)
 
 
 @lru_cache(maxsize=256)
-def _sweep(drive, friction_nm: float):
-    return sweep(_model(drive), drive, friction_nm, drive.speeds_rpm())
+def drive_sweep(drive, friction_nm: float):
+    """The response over the drive's speeds at the damping friction ``friction_nm`` (:func:`sweep`), once per pair."""
+    return sweep(drive_model(drive), drive, friction_nm, drive.speeds_rpm())
 
 
 @limits("small")  # small dense solves: one BLAS thread (synth.threads)
@@ -53,7 +55,7 @@ def durability_point(drive, friction_nm: float | None = None) -> dict:
     """
     speed = require_durability_speed(drive)
     fr = drive.tensioner.friction_torque_nm if friction_nm is None else float(friction_nm)
-    r = speed_response(_model(drive), drive, speed, fr, harmonics=drive.harmonics, eps_rel=drive.regularisation)
+    r = speed_response(drive_model(drive), drive, speed, fr, harmonics=drive.harmonics, eps_rel=drive.regularisation)
     return {"speed_rpm": speed, "theta_pp_deg": r["theta_pp_deg"], "frequency_hz": r["arm_frequency_hz"],
             "locked": r["locked"], "critical_friction_nm": r["critical_friction_nm"], "friction_nm": fr,
             "psi_rad": r["psi_rad"], "friction_nm_t": r["friction_nm_t"], "omega_b": r["omega_b"],
@@ -68,11 +70,11 @@ def tensioner_checks(drive, friction_nm) -> dict:
     fr = np.atleast_1d(np.asarray(friction_nm, dtype=float))
     out = np.full(fr.shape, np.nan)
     for v in np.unique(fr[np.isfinite(fr)]):
-        out[fr == v] = float(_sweep(drive, float(v))["tension_min_n"].min())
+        out[fr == v] = float(drive_sweep(drive, float(v))["tension_min_n"].min())
     point = durability_point(drive, 0.0)
     return {"min_span_tension_n": out, "critical_friction_nm": point["critical_friction_nm"],
             "belt_min_tension_n": drive.belt_min_tension_n,
-            "static_tension_n": float(_model(drive).static["tensioner_tension_n"])}
+            "static_tension_n": float(drive_model(drive).static["tensioner_tension_n"])}
 
 
 @limits("small")
@@ -105,7 +107,7 @@ def analyse(drive, *, check: bool = True) -> dict:
         if low < drive.belt_min_tension_n:
             problems.append(f"a span's tension {low:.1f} N below the belt's {drive.belt_min_tension_n:g} N")
     if _has_inertias(drive):
-        model = _model(drive)
+        model = drive_model(drive)
         free = natural_frequencies(model)
         held = natural_frequencies(model, arm_locked=True)
         out["modes"] = {"arm_free_hz": free["frequency_hz"].tolist(), "arm_locked_hz": held["frequency_hz"].tolist(),
@@ -164,7 +166,7 @@ def _plain(data):
 
 def _response(drive, check: bool) -> dict:
     """The periodic response over the speed sweep, the slack and lock verdicts, the durability point."""
-    model = _model(drive)
+    model = drive_model(drive)
     sw = sweep(model, drive, drive.tensioner.friction_torque_nm, drive.speeds_rpm(), check=check)
     t_min = sw["tension_min_n"]
     i_slack = int(np.argmin(t_min.min(axis=1)))

@@ -43,7 +43,7 @@ from synth.io.limits import short
 from synth.io.numbers import is_not_given, number_from_text
 from synth.schema import Field
 from synth.drive import belt as belt_data
-from synth.drive.positions import nominal_angle_deg, loading_sense, _frame_of
+from synth.drive.positions import nominal_angle_deg, loading_sense, frame_of
 from synth.drive.statics import static_state
 from synth.io.files import existing_file, suffix_of
 from synth.io.structured import read_document
@@ -309,7 +309,7 @@ class Drive:
     @property
     def loading_sense(self) -> float:
         """``+1`` when the belt pushes the arm counter-clockwise at its nominal angle."""
-        return loading_sense(_frame_of(self), self.tensioner.arm_angle_deg)
+        return loading_sense(frame_of(self), self.tensioner.arm_angle_deg)
 
     def speeds_rpm(self):
         import numpy as np

@@ -88,7 +88,9 @@ def frame(pulleys, pivot_mm, arm_length_mm, reference_angle_deg) -> dict:
             "names": [p.name for p in pulleys], "pivot": np.asarray(pivot_mm, float), "arm": float(arm_length_mm)}
 
 
-def _frame_of(drive, reference_angle_deg=None) -> dict:
+def frame_of(drive, reference_angle_deg=None) -> dict:
+    """The layout :func:`frame` of ``drive``'s pulleys and tensioner, its arm at ``reference_angle_deg`` (default: the
+    drive's arm angle)."""
     ten = drive.tensioner
     ref = ten.arm_angle_deg if reference_angle_deg is None else reference_angle_deg
     return frame(drive.pulleys, (ten.pivot_x_mm, ten.pivot_y_mm), ten.arm_length_mm, float(ref))
@@ -223,7 +225,7 @@ def positions(drive) -> dict:
     (shortest) the belt is than the arm can take up.
     """
     ten = drive.tensioner
-    fr = _frame_of(drive)
+    fr = frame_of(drive)
     s = drive.loading_sense
     nom = _state_row(fr, ten, s, ten.arm_angle_deg, "nominal")
     l_n = nom["drive_length_mm"]
@@ -306,7 +308,7 @@ def duty_table(drive) -> dict:
     ``hub_direction_deg`` and ``load_w`` (each pulley's power; the crank's negative: it gives).
     """
     ten = drive.tensioner
-    fr = _frame_of(drive)
+    fr = frame_of(drive)
     st = arm_state(fr, ten.arm_angle_deg, strict=True)
     u = st["geometry"]["direction"][0]
     n = len(drive.pulleys)

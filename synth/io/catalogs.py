@@ -32,7 +32,7 @@ from synth.errors import InputError, Problem
 from synth.io.files import read_text
 from synth.io.limits import LIMITS, short
 from synth.io.numbers import percentage
-from synth.io.tables import _parser_problem, check_field_counts
+from synth.io.tables import parser_problem, check_field_counts
 
 __all__ = ["check_user_dir", "read_user_catalog", "read_catalog_text"]
 
@@ -79,7 +79,7 @@ def read_catalog_text(text: str, path: Path):
         df = pd.read_csv(io.StringIO(text), comment="#", skipinitialspace=True, dtype=str, keep_default_na=False,
                          nrows=LIMITS.catalog_rows + 1)
     except Exception as exc:  # ParserError, EmptyDataError
-        raise InputError(_parser_problem(exc, path, "catalog")) from None
+        raise InputError(parser_problem(exc, path, "catalog")) from None
     if len(df) > LIMITS.catalog_rows:
         raise InputError(Problem("catalog", str(path), f"a catalog of at most {LIMITS.catalog_rows} rows"))
     df.columns = [str(c).strip() for c in df.columns]

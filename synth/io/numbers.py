@@ -37,7 +37,7 @@ __all__ = ["NOT_GIVEN", "is_not_given", "number_from_text", "percentage", "PERCE
 #: the words that mean "not given" (compared case-insensitively, spaces ignored)
 NOT_GIVEN = ("n/a", "n.a.", "n.a", "na", "n/d", "-", "--", "\u2013", "\u2014", "")
 
-_NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+NUMBER_RE = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
 _DECIMAL_COMMA = re.compile(r"^[+-]?\d+,\d+([eE][+-]?\d+)?$")
 #: "1,250": a thousands separator (1250) or a decimal comma (1.25)? Not clear: reported, not guessed
 AMBIGUOUS_COMMA = re.compile(r"^[+-]?\d{1,3},\d{3}$")
@@ -66,7 +66,7 @@ def number_from_text(text: str) -> float | None:
     for the fields that take one).
     """
     t = str(text).strip().replace("\u2212", "-")
-    if _NUMBER.match(t):
+    if NUMBER_RE.match(t):
         x = float(t)
     elif _DECIMAL_COMMA.match(t) and not AMBIGUOUS_COMMA.match(t):
         x = float(t.replace(",", "."))

@@ -32,7 +32,8 @@ TABLE_FORMATS = {".csv": "csv", ".xlsx": "excel", ".xlsm": "excel", ".ods": "ods
                  ".pq": "parquet"}
 
 
-def _parser_problem(exc: Exception, p: Path, what: str) -> Problem:
+def parser_problem(exc: Exception, p: Path, what: str) -> Problem:
+    """The problem of CSV file ``p`` (``what``) that pandas' parser raised ``exc`` for, naming the line."""
     text = " ".join(str(exc).split())
     m = re.search(r"Expected (\d+) fields in line (\d+), saw (\d+)", text)
     if m:
@@ -81,7 +82,7 @@ def read_csv_text(path, what: str, *, limit: int | None = None, max_rows: int | 
         df = pd.read_csv(io.StringIO(text), dtype=None if typed else str, skipinitialspace=True, comment=comment,
                          nrows=max_rows + 1)
     except Exception as exc:  # ParserError, EmptyDataError, UnicodeError...: the file is named, the line kept
-        raise InputError(_parser_problem(exc, p, what)) from None
+        raise InputError(parser_problem(exc, p, what)) from None
     if len(df) > max_rows:
         raise InputError(Problem(what, str(p), f"a table of at most {max_rows} rows"))
     if len(df.columns) > LIMITS.portfolio_columns:

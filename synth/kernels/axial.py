@@ -110,7 +110,7 @@ def _table(n: int, k: int) -> np.ndarray:
 
 def _elastic_scale() -> float:
     """``4 E / (1 - nu^2)`` [MPa] with the catalog's elastic constants, computed as the reference computes it."""
-    e, nu = s8._elastic()
+    e, nu = s8.elastic_constants()
     return float(4.0 * e / (1.0 - nu ** 2))
 
 
@@ -136,7 +136,7 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
     f_nom = s8.required_axial_force_n(ad, mu, r_dp, r_es)
     t = s8.disc_spring_thickness_for_force_mm(f_nom, de, di, zeta, phi, fidelity=fidelity)
     jit = load_kernels()
-    tab, lo, hi, inc_lo, inc_hi = s8._tolerance_rows()
+    tab, lo, hi, inc_lo, inc_hi = s8.tolerance_rows()
     out = _table(len(ad), len(jit.CONE_SPRING_OUT))
     bad = np.zeros(len(ad), dtype=bool)
     jit.cone_spring_rows(f_nom, t, t ** 3, t ** 4, np.log(de / di), *cols[1:], fidelity == "screening",

@@ -606,8 +606,8 @@ def _candidates_memo(key, args) -> tuple:
     catalog cache, gives new tables and so a new list). A named format and class is read from the table of every
     (format, class) of its head form, built in one pass; anything else (automatic mode, an unknown name: its
     error) by :func:`_bolt_candidates`."""
-    dirs = tuple(_catalog._user_dirs())
-    tables = tuple(_catalog._load_cached(n, dirs) for n in ("bolts", "bolt_property_classes", "bolt_heads"))
+    dirs = tuple(_catalog.user_dirs())
+    tables = tuple(_catalog.load_cached(n, dirs) for n in ("bolts", "bolt_property_classes", "bolt_heads"))
     hit = _CANDIDATES.get((key, dirs))
     if hit is not None and all(a is b for a, b in zip(hit[0], tables)):
         return hit[1]

@@ -68,7 +68,8 @@ def _check_fidelity(fidelity: str) -> None:
         raise InputError(Problem("fidelity", fidelity, " or ".join(FIDELITIES)))
 
 
-def _elastic(youngs_modulus_mpa=None, poisson_ratio=None):
+def elastic_constants(youngs_modulus_mpa=None, poisson_ratio=None):
+    """``(E, nu)`` of the cone spring's steel as arrays: the given values, else the catalog's constants."""
     e = catalog.constant("cone_spring_youngs_modulus_mpa") if youngs_modulus_mpa is None else youngs_modulus_mpa
     nu = catalog.constant("cone_spring_poisson_ratio") if poisson_ratio is None else poisson_ratio
     return _f(e), _f(nu)
@@ -146,7 +147,7 @@ def _prep(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm, re
     """Effective t, h0, K4 and the stiffness scale 4E/(1-nu^2)/(K1 De^2) [MPa/mm^2]."""
     de, di, t, h0 = _validate_geometry(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm)
     k = disc_spring_factors(de, di)
-    e, nu = _elastic(youngs_modulus_mpa, poisson_ratio)
+    e, nu = elastic_constants(youngs_modulus_mpa, poisson_ratio)
     k4 = disc_spring_k4(t, h0 + t, reduced_thickness_mm)
     if reduced_thickness_mm is not None:  # DIN EN 16984: t -> t', h0 -> h0' = l0 - t'
         tr = _f(reduced_thickness_mm)
@@ -281,7 +282,7 @@ def disc_spring_thickness_for_force_mm(force_n, outer_diameter_mm, inner_diamete
     _require(zeta > 0, "aspect_ratio", zeta, "> 0 (h0/t)")
     _require((phi > 0) & (phi <= 1), "deflection_ratio", phi, "in (0, 1] (s/h0)")
     k = disc_spring_factors(outer_diameter_mm, inner_diameter_mm)
-    e, nu = _elastic(youngs_modulus_mpa, poisson_ratio)
+    e, nu = elastic_constants(youngs_modulus_mpa, poisson_ratio)
     x = phi * zeta
     g = x if fidelity == "screening" else x * ((zeta - x) * (zeta - 0.5 * x) + 1.0)
     scale = 4.0 * e / (1.0 - nu ** 2) / (k["k1"] * _f(outer_diameter_mm) ** 2)
@@ -291,11 +292,11 @@ def disc_spring_thickness_for_force_mm(force_n, outer_diameter_mm, inner_diamete
 _TOLERANCE_ROWS: dict = {}
 
 
-def _tolerance_rows():
+def tolerance_rows():
     """The force-tolerance table as arrays, parsed once per catalog table (a user folder or a cleared catalog
     cache gives a new table, and so a new parse)."""
-    dirs = tuple(catalog._user_dirs())
-    src = catalog._load_cached("disc_spring_force_tolerances", dirs)
+    dirs = tuple(catalog.user_dirs())
+    src = catalog.load_cached("disc_spring_force_tolerances", dirs)
     hit = _TOLERANCE_ROWS.get(dirs)
     if hit is not None and hit[0] is src:
         return hit[1]
@@ -311,7 +312,7 @@ def _tolerance_rows():
 def _tolerance_row_index(thickness_mm):
     """Row of ``disc_spring_force_tolerances.csv`` for each thickness; -1 outside every row."""
     t = _f(thickness_mm)
-    _, lo, hi, inc_lo, inc_hi = _tolerance_rows()
+    _, lo, hi, inc_lo, inc_hi = tolerance_rows()
     idx = np.full(t.shape, -1)
     for i in range(len(lo)):  # four rows of the standard, not a loop over designs
         above = np.where(inc_lo[i], t >= lo[i], t > lo[i])
@@ -334,7 +335,7 @@ def disc_spring_group(thickness_mm):
     idx = _tolerance_row_index(t)
     _require(idx >= 0, "thickness_mm", t, "0 < t <= 16 mm (DIN EN 16983 groups 1-3)")
     _require(t > 0, "thickness_mm", t, "> 0")
-    tab = _tolerance_rows()[0]
+    tab = tolerance_rows()[0]
     return tab["group"].to_numpy(int)[idx]
 
 
@@ -361,7 +362,7 @@ def force_tolerance_band_n(force_n, thickness_mm) -> dict:
     f = _f(force_n)
     grp = disc_spring_group(thickness_mm)
     idx = _tolerance_row_index(thickness_mm)
-    tab = _tolerance_rows()[0]
+    tab = tolerance_rows()[0]
     plus = tab["force_tol_plus_pct"].to_numpy(float)[idx]
     minus = tab["force_tol_minus_pct"].to_numpy(float)[idx]
     return {"force_min_n": f * (1.0 - minus / 100.0), "force_max_n": f * (1.0 + plus / 100.0),
@@ -628,7 +629,7 @@ def cone_spring(axial_damping_nm_, damping_target_nm, damping_tolerance_nm, radi
     geo = (de, di, t, h0)
     if force_tolerance_plus is None or force_tolerance_minus is None:
         row = _tolerance_row_index(t)
-        tab = _tolerance_rows()[0]
+        tab = tolerance_rows()[0]
         plus_pct = np.append(tab["force_tol_plus_pct"].to_numpy(float), np.nan)[row]
         minus_pct = np.append(tab["force_tol_minus_pct"].to_numpy(float), np.nan)[row]
         force_tolerance_plus = plus_pct / 100.0 if force_tolerance_plus is None else force_tolerance_plus

@@ -35,7 +35,7 @@ import numpy as np
 
 from synth import catalog
 from synth.errors import InputError, Problem
-from synth.model.disc_spring import (_elastic, _f as _arr, axial_damping_nm, disc_spring_factors,
+from synth.model.disc_spring import (elastic_constants, axial_damping_nm, disc_spring_factors,
                                      disc_spring_force_n, disc_spring_rate_n_per_mm)
 
 __all__ = [
@@ -175,10 +175,10 @@ def wear_integral(deflection_mm, outer_diameter_mm, inner_diameter_mm, thickness
 
 
 def _wear_coefficients(outer_diameter_mm, inner_diameter_mm, thickness_mm, cone_height_mm, e=None, nu=None):
-    e, nu = _elastic(e, nu)
+    e, nu = elastic_constants(e, nu)
     k1 = disc_spring_factors(outer_diameter_mm, inner_diameter_mm)["k1"]
-    t, z = _arr(thickness_mm), _arr(cone_height_mm) / _arr(thickness_mm)
-    s = 4.0 * e / (1.0 - nu ** 2) / (k1 * _arr(outer_diameter_mm) ** 2)
+    t, z = _f(thickness_mm), _f(cone_height_mm) / _f(thickness_mm)
+    s = 4.0 * e / (1.0 - nu ** 2) / (k1 * _f(outer_diameter_mm) ** 2)
     alpha, beta, gamma = s * t ** 3 * (z * z + 1.0), -1.5 * s * t * t * z, 0.5 * s * t
     return alpha, beta, gamma, np.sqrt(4.0 * alpha * gamma - beta * beta)
 

@@ -33,7 +33,7 @@ from synth.design.combine import combine
 from synth.design.space import SUBSYSTEMS, space
 from synth.errors import InputError, Problem
 from synth.optimise.product import evaluate
-from synth.schema import FIELDS, field_by_name, _consistency
+from synth.schema import FIELDS, field_by_name, consistency
 from synth.optimise.batch import any_feasible, designs_pass, Batch
 from synth.optimise.answer import build_result
 from synth.model.layout import layout_of
@@ -105,7 +105,7 @@ def _consistent(d, changes: dict) -> bool:
     the support's bore, a support bore narrower than its outer diameter, ...): a probe outside them is not an
     input a user could give."""
     problems: list = []
-    _consistency({**vars(d), **changes}, problems)
+    consistency({**vars(d), **changes}, problems)
     return not problems
 
 

@@ -89,10 +89,10 @@ def solve_honouring(d, objective="standard", solver: str = "enumerate", *, fix=(
     ``top`` K > 1 the K best designs (:attr:`alternatives`, :func:`synth.optimise.alternatives.ranked`) in the
     same space (``distinct``: the part keys that make them different, :data:`synth.optimise.alternatives.
     DISTINCT_KEYS`; an infeasible input: its K nearest designs). The exact solver (``enumerate``) takes the margin as the objective's last tie-break
-    (:func:`synth.optimise.objectives.with_margin_tiebreak`). ``robust`` (a
-    :class:`synth.robust.settings.RobustSettings`): the robust synthesis
-    (:func:`synth.robust.synthesis.robust_solve`, enumerate only) in place of the nominal one, honouring the
-    same parts."""
+    (:func:`synth.optimise.objectives.with_margin_tiebreak`). ``robust``: the robust synthesis in place of the
+    nominal one (enumerate only), honouring the same parts, a function ``robust(d, objective, *, settings,
+    pin_inputs) -> Result`` its caller binds (:func:`synth.robust.synthesis.robust_solve` with its
+    :class:`~synth.robust.settings.RobustSettings`: the robust layer sits above the optimiser)."""
     from synth.design.evaluate import Settings
     from synth.design.space import fixed_fields
     settings = kw.get("settings") or Settings()
@@ -108,8 +108,7 @@ def solve_honouring(d, objective="standard", solver: str = "enumerate", *, fix=(
     def solve(d, objective, solver, *, pin_inputs, **kw):
         if robust is None:
             return solve_nominal(d, objective, solver, pin_inputs=pin_inputs, **kw)
-        from synth.robust.synthesis import robust_solve
-        return robust_solve(d, objective, settings=settings, rs=robust, pin_inputs=pin_inputs)
+        return robust(d, objective, settings=settings, pin_inputs=pin_inputs)
 
     named = fixed_fields(d, True)
     fix = set(fixed_fields(d, parse_fields(fix, "--fix")))

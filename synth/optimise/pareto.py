@@ -19,7 +19,7 @@ import numpy as np
 from synth.design.evaluate import Settings
 from synth.optimise.product import evaluate
 from synth.optimise.answer import build_result
-from synth.optimise.solvers.enumerate import _thresholds, best_additive, tables
+from synth.optimise.solvers.enumerate import margin_thresholds, best_additive, tables
 from synth.design.constraints import words
 from synth.io.outputs import write_figure
 
@@ -35,7 +35,7 @@ def pareto_front(d, *, n_points: int = 40, settings: Settings = Settings()) -> l
     ev = evaluate(d, settings)
     t = tables(ev, {"cost": 1.0})
     pts, seen = [], set()
-    for tau in _thresholds(t, n_points):
+    for tau in margin_thresholds(t, n_points):
         val, core, opts = best_additive(t, tau)
         if core is None:
             continue

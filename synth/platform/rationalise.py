@@ -114,7 +114,7 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     full catalog, ``price`` and ``table``): the trade-off rows do not need them. ``build``: how HiGHS gets the MILP
     (:data:`formulations.platform.BUILDS`: from arrays through highspy, or through Pyomo, the reference).
     ``stage(name)``: a context manager around each stage (:data:`STAGES`: the command line's progress line per
-    stage, :class:`synth.report.progress.phase`); none by default.
+    stage, :class:`synth.progress.phase`); none by default.
     """
     _check(objective, max_variants, time_limit, weights)
     step = stage or (lambda name: nullcontext())

@@ -49,9 +49,9 @@ from synth.model import damping
 from synth.design import evaluate
 from synth.model import disc_spring
 from synth.model import bolted_joint
-from synth.drive.analysis import _model, _sweep
+from synth.drive.analysis import drive_model, drive_sweep
 from synth.drive.analysis import durability_point
-from synth.report.progress import progress
+from synth.progress import progress
 from synth.design.evaluate import Settings
 from synth.schema import validate
 from synth.design.applications import Applications
@@ -528,7 +528,7 @@ def _drive_sweep(dt: _Data):
     damping = dt.get("damping_nm")
     if damping is None:
         raise _Skip("the design has no damping value")
-    return drive, _model(drive), _sweep(drive, float(damping)), float(damping)
+    return drive, drive_model(drive), drive_sweep(drive, float(damping)), float(damping)
 
 
 def g_drive_arm_amplitude(dt: _Data, ax, verdict):

@@ -50,10 +50,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from synth import schema
 from synth.design.assessment import assess, passes
 from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.robust import stats
-from synth.robust.sampling import Base, evaluate_deviations, evaluate_u, sobol_u
+from synth.design.settings import Settings
+from synth.robust.assumptions import flips
+from synth.robust.sampling import Base, base_of, evaluate_deviations, evaluate_u, sobol_u
 from synth.robust.settings import RobustSettings
 from synth.design.result import plain
 
@@ -66,7 +69,7 @@ RARE_PPK_MAX = 2.5
 BOUNDED_SHARE = 0.005
 
 __all__ = ["CheckCapability", "Capability", "capability", "clopper_pearson", "ppk", "targeted", "windows",
-           "equivalent_ppk"]
+           "equivalent_ppk", "add_capability"]
 
 clopper_pearson = stats.clopper_pearson
 
@@ -373,3 +376,16 @@ def _histograms(base: Base, s) -> tuple:
     if np.isfinite(tol) and tol > 0:
         limits["spring_torque_nominal_nm"] = (t0 * (1 - tol / 100), t0 * (1 + tol / 100))
     return hist, {k: v for k, v in limits.items() if k in hist}
+
+
+def add_capability(result, rs) -> None:
+    """Set ``result.robust`` (the capability of its design under ``rs``, unless it carries one) and its
+    assumptions' flips, through :mod:`synth.robust`."""
+    settings = Settings.from_saved(result.settings, result.rules)  # the result's own configuration
+    d = schema.validate({k: v for k, v in (result.inputs or {}).items() if v is not None})
+    robust = dict(result.robust or {})
+    if not robust.get("checks"):
+        robust.update(capability(base_of(d, result.parts, settings), rs).to_dict())
+    if "assumptions" not in robust:
+        robust["assumptions"] = flips(d, result.parts, settings)
+    result.robust = robust

@@ -122,7 +122,7 @@ def portfolio_capability(inputs: list, parts: list, *, settings: evaluate.Settin
     chunks = [todo[s:s + max(1, int(chunk))] for s in range(0, len(todo), max(1, int(chunk)))]
     if workers > 1 and len(chunks) > 1:
         from concurrent.futures import ProcessPoolExecutor
-        dirs = [str(d) for d in catalog._USER_DIRS]
+        dirs = [str(d) for d in catalog.user_dirs()]  # the folders in use here (a `using` block too)
         with ProcessPoolExecutor(max_workers=int(workers)) as pool:
             results = list(pool.map(_run, [(dirs, [inputs[i] for i in idx], [parts[i] for i in idx], settings, rs)
                                            for idx in chunks]))

@@ -218,10 +218,10 @@ def _band_from(spec: str, ctx: dict, tol: Tolerance):
         return 0.0, ctx["rm_max"] - ctx["rm_min"]
     if kind in ("tightening_factors", "stackup_tolerances"):
         key, _, column = rest.partition(".")
-        v = _catalog_value(kind, key, column, f"tolerances.csv {tol.quantity} band_from", tuple(catalog._user_dirs()))
+        v = _catalog_value(kind, key, column, f"tolerances.csv {tol.quantity} band_from", tuple(catalog.user_dirs()))
         return -v, v
     if kind == "iso286_it_grades":
-        over, up_to, table = _it_grades(tuple(catalog._user_dirs()))
+        over, up_to, table = _it_grades(tuple(catalog.user_dirs()))
         if rest not in table:
             raise InputError(Problem(f"catalog tolerances.csv, row {tol.quantity}, column band_from", spec,
                                      "iso286_it_grades." + ", iso286_it_grades.".join(table)))

@@ -18,7 +18,7 @@ from synth.robust.settings import DEFAULT_SAMPLES, RobustSettings
 from synth.errors import InputError, Problem
 from synth.io.limits import check_count
 from synth.optimise.honour import solve_honouring
-from synth.report.progress import phase
+from synth.progress import phase
 from synth.io.saved_results import load_result
 
 __all__ = ["add_model_options", "settings_from_args", "rules_of", "add_design_options", "add_robust_options",
@@ -159,7 +159,8 @@ def synthesise(d, args):
           "distinct": getattr(args, "distinct", None)}
     rs = robust_settings_from_args(args)  # --capability/--ppm, else the design rules' targets
     if rs.capability is not None or rs.ppm is not None:
-        kw["robust"] = rs
+        from synth.robust.synthesis import robust_solve  # scipy and pandas: only for a robust synthesis
+        kw["robust"] = lambda d, objective, **kw: robust_solve(d, objective, rs=rs, **kw)
     if args.solver == "blackbox":
         kw["n_trials"] = args.trials
     if limit is not None:

@@ -21,7 +21,8 @@ from synth.report.text import render, verdict_line
 from synth.scenes._options import default_args, synthesise
 from synth.cad import require_cadquery
 from synth.robust.settings import RobustSettings
-from synth.scenes.report import add_capability, make_report
+from synth.robust.capability import add_capability
+from synth.scenes.report import make_report
 from synth.scenes.design import export_cad
 
 __all__ = ["register", "default_input"]

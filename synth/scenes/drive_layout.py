@@ -18,9 +18,9 @@ def layout_figure(drive, res: dict):
     import matplotlib.pyplot as plt
     from matplotlib.patches import Circle
 
-    from synth.drive.positions import _frame_of, arm_state
+    from synth.drive.positions import frame_of, arm_state
 
-    fr = _frame_of(drive)
+    fr = frame_of(drive)
     ten = drive.tensioner
     st = arm_state(fr, ten.arm_angle_deg, strict=True)
     g = st["geometry"]

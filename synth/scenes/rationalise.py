@@ -21,7 +21,7 @@ from synth.errors import InputError, Problem
 from synth.io.limits import check_count
 from synth.io.outputs import output_files
 from synth.platform.data import FAMILIES
-from synth.report.progress import Progress, phase
+from synth.progress import Progress, phase
 
 __all__ = ["register", "parse_max_variants"]
 

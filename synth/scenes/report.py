@@ -25,22 +25,12 @@ from synth.scenes._options import add_design_options, add_robust_options, defaul
 from synth.scenes.design import with_cost
 from synth.io.documents import read_rows
 from synth.design.result import Result
-from synth.design.verify import verify
-from synth.design.evaluate import Settings
-from synth.report.html import write_html
-from synth.report.plots import build_graphs, cad_graphs
-from synth.io.outputs import output_files, refuse_link
-from synth.io.saved_results import INPUTS_ACCEPTED
-from synth.robust.assumptions import flips
-from synth.robust.capability import capability
-from synth.robust.sampling import base_of
-from synth.report.pdf import write_pdf
+from synth.report.document import reverified, write_files
 from synth.report.text import verdict_line
-from synth.report.robust import capability_rows
 from synth.scenes._options import robust_settings_from_args
 from synth.scenes._options import rules_of, settings_from_args
 
-__all__ = ["register", "make_report", "read_table", "out_folder", "add_capability"]
+__all__ = ["register", "make_report", "read_table", "out_folder"]
 
 
 def register(sub) -> None:
@@ -79,7 +69,8 @@ def out_folder(path, option: str = "--out") -> Path:
     return p
 
 
-def _is_result_file(path: Path) -> bool:
+def is_result_file(path: Path) -> bool:
+    """Whether ``path`` is a saved result (a ``.json`` mapping of kind ``synth.result``), not an input."""
     if path.suffix.lower() != ".json" or not path.is_file():
         return False
     try:
@@ -96,7 +87,7 @@ def result_for_report(source, args=None):
     else:
         src = Path(source)
         cells = None
-        if _is_result_file(src):
+        if is_result_file(src):
             res, name = load_saved_result(src, "input"), str(src)
         else:
             data = documents.read_mapping(src)
@@ -108,16 +99,7 @@ def result_for_report(source, args=None):
             if args is not None and getattr(args, "flowchart", False):
                 return flowchart.run(d, settings_from_args(args)), cells, name
             res = with_cost(d, args or default_args(), synthesise)
-    if res.inputs is None:
-        raise InputError(Problem(f"inputs ({Path(name).name})", None, INPUTS_ACCEPTED))
-    if not res.curves and res.parts and res.solver != "flowchart":  # re-verify for the curves of the graphs
-        given = rules_of(args) if args is not None else None  # --rules, for a result without its own
-        settings = Settings.from_saved(res.settings, res.rules or (given.as_dict() if given and not given.empty()
-                                                                   else None))  # the result's own configuration
-        again = verify(schema.validate({k: v for k, v in res.inputs.items() if v is not None}), res.parts, settings,
-                       status=res.status, solver=res.solver, time_points=60, notes=res.notes)
-        res = again.carry(res)
-    return res, cells, name
+    return reverified(res, rules_of(args) if args is not None else None, name), cells, name  # --rules: a result's
 
 
 
@@ -141,67 +123,11 @@ def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: 
     Returns ``{"html": Path, "pdf": Path | None, "pdf_note": str, "xlsx": Path, "result": Result,
     "graphs": [...], "skipped": [...]}`` (``pdf_note``: why no PDF was written, when none was).
     """
-    from synth.excel.results_workbook import write_results
     result, cells, name = result_for_report(source, args)
-    name = str(source_name) if source_name else name
-    if robust is not None and result.parts:
-        add_capability(result, robust)
-    if cad_pictures and not cad:
-        refuse_link(Path(out_dir) / "cad", "--out")  # before the work: never through a link the folder holds
-    with output_files(out_dir, "--out") as out:  # one output: every file, or none (a full disk)
-        final = Path(out_dir)
-        pictures = list(cad or [])
-        cad_note = (f"The model of this design: {Path(pictures[0]).parent} (STEP assembly and pictures)." if pictures
-                    else "")
-        if cad_pictures and not pictures and result.parts:
-            try:
-                from synth.cad import export_result
-                _, _, info = export_result(result, out / "cad", stl=False, pictures=True, interference=False)
-                pictures = [str(f) for f in info["files"] if str(f).endswith(".png")]
-                cad_note = f"The model of this design: {final / 'cad'} (STEP assembly and pictures)."
-            except InputError as exc:  # a design the CAD model cannot draw: the report says so
-                cad_note = f"3D model not drawn: {exc}"
-                result.notes.append(cad_note)
-        scenes = {k: v for k, v in (scenes or {}).items() if v is not None}
-        extra = {"pareto": scenes.get("Pareto"), "solvers": scenes.get("Solvers"), "cad": pictures}
-        if graphs is None:
-            graphs, skipped = build_graphs(result, extra, show_progress=show_progress)
-        else:
-            graphs, skipped = [*graphs[0], *cad_graphs(pictures)], list(graphs[1])
-        html_path = write_html(out / "report.html", result, graphs, skipped, source=name, scenes=scenes,
-                               author=author, revision=revision, page=page, platform=platform, cad_note=cad_note,
-                               application=application)
-        pdf_path, pdf_note = None, "not asked for"
-        if pdf:
-            pdf_path, _, pdf_note = write_pdf(html_path)
-        sheets = dict(scenes)
-        if result.robust.get("checks"):
-            sheets["Capability"] = capability_rows(result.robust)
-        if result.robust.get("assumptions"):
-            sheets["Assumptions"] = [{"assumption": a["id"], "catalog": a["catalog"], "key": a["key"],
-                                      "column": a["column"], "value": str(a["value"]), "low": a["low"], "high": a["high"],
-                                      "scale": a["scale"], "flips": "; ".join(f"{f['check']}: {f['nominal']} -> "
-                                                                              f"{f['at_low']} / {f['at_high']}"
-                                                                              for f in a["flips"]),
-                                      "reason": a["reason"], "source": a["source"]} for a in result.robust["assumptions"]]
-        xlsx_path = write_results(out / "results.xlsx", result, cells=cells, source=name, scenes=sheets)
-        html_path, xlsx_path = final / html_path.relative_to(out), final / xlsx_path.relative_to(out)
-        pdf_path = None if pdf_path is None else final / pdf_path.relative_to(out)
-    return {"html": html_path, "pdf": pdf_path, "pdf_note": pdf_note if pdf_path is None else "", "xlsx": xlsx_path,
-            "result": result, "graphs": graphs, "skipped": skipped}
-
-
-def add_capability(result, rs) -> None:
-    """Set ``result.robust`` (the capability of its design under ``rs``, unless it carries one) and its
-    assumptions' flips, through :mod:`synth.robust`."""
-    settings = Settings.from_saved(result.settings, result.rules)  # the result's own configuration
-    d = schema.validate({k: v for k, v in (result.inputs or {}).items() if v is not None})
-    robust = dict(result.robust or {})
-    if not robust.get("checks"):
-        robust.update(capability(base_of(d, result.parts, settings), rs).to_dict())
-    if "assumptions" not in robust:
-        robust["assumptions"] = flips(d, result.parts, settings)
-    result.robust = robust
+    return write_files(result, out_dir, cells=cells, name=str(source_name) if source_name else name, scenes=scenes,
+                       cad=cad, show_progress=show_progress, cad_pictures=cad_pictures, pdf=pdf, author=author,
+                       revision=revision, page=page, platform=platform, application=application, robust=robust,
+                       graphs=graphs)
 
 
 def _main(args) -> int:

@@ -44,10 +44,10 @@ def robust_result(source, args):
     from synth.design.verify import verify
     from synth.robust.capability import capability
     from synth.robust.sampling import base_of
-    from synth.scenes.report import _is_result_file
+    from synth.scenes.report import is_result_file
     rs = robust_settings_from_args(args, default_capability=1.33)
     src = Path(source)
-    if _is_result_file(src):
+    if is_result_file(src):
         saved = load_saved_result(src, "input", needs_inputs=True)  # re-verified: its inputs are needed
         settings = Settings.from_saved(saved.settings, saved.rules)  # the result's own configuration
         d = schema.validate({k: v for k, v in (saved.inputs or {}).items() if v is not None})

@@ -73,7 +73,7 @@ def warm(lane: str) -> float:
         import matplotlib
         matplotlib.use("Agg")
         import synth.report.plots  # noqa: F401
-        import synth.scenes.report  # noqa: F401
+        import synth.report.document  # noqa: F401
     return time.perf_counter() - t
 
 
@@ -195,12 +195,12 @@ def report(result, key: str, folder: str, *, pdf: bool, source: str = "", pictur
     """The report of ``result`` into ``folder`` (``synth report``'s HTML and results workbook, with the graphs of
     :func:`graphs` and the 3D model's ``pictures``), and with ``pdf`` its PDF (:func:`synth.ui.printer.print_pdf`):
     ``{"html", "xlsx", "pdf", "pdf_note", "timings_s"}``."""
-    from synth.scenes.report import make_report
+    from synth.report.document import reverified, write_files
     t0 = time.perf_counter()
     drawn = graphs(result, key)
     t1 = time.perf_counter()
-    out = make_report(result, folder, cad=[p for p in pictures if Path(p).is_file()], graphs=drawn, pdf=False,
-                      show_progress=False, cad_pictures=False, source_name=source or None)
+    out = write_files(reverified(result), folder, cad=[p for p in pictures if Path(p).is_file()], graphs=drawn,
+                      pdf=False, show_progress=False, cad_pictures=False, name=source or "result")
     t2 = time.perf_counter()
     files = {"html": str(out["html"]), "xlsx": str(out["xlsx"]), "pdf": None, "pdf_note": "not asked for"}
     if pdf:

@@ -117,7 +117,9 @@ def additive_curve(t: Tables, taus) -> np.ndarray:
     return total.min(axis=0) if len(total) else np.full(len(taus), np.inf)
 
 
-def _thresholds(t: Tables, n: int | None = None) -> np.ndarray:
+def margin_thresholds(t: Tables, n: int | None = None) -> np.ndarray:
+    """The distinct margins (at least 0) of the core rows and the feasible options of ``t``, ascending, each a
+    threshold of the margin objective (``n``: at most that many, by quantile)."""
     vals = [t.core_margin[np.isfinite(t.core_margin)]]
     for s in SUBSYSTEMS:
         m = t.margin[s][t.feas[s]]
@@ -135,7 +137,7 @@ def solve_space(ev: Evaluation, objective: Objective) -> tuple:
     w = objective.additive_weights()
     t = tables(ev, w if w else {"cost": 1.0})
     if objective.weights and "margin" in objective.weights:
-        taus = _thresholds(t)
+        taus = margin_thresholds(t)
         curve = additive_curve(t, taus)
         score = curve - objective.weights["margin"] * taus
         i = int(np.argmin(score)) if np.isfinite(score).any() else None
@@ -145,7 +147,7 @@ def solve_space(ev: Evaluation, objective: Objective) -> tuple:
         if not pre:
             tau = max_margin(t)
         else:
-            taus = _thresholds(t)
+            taus = margin_thresholds(t)
             curve = additive_curve(tables(ev, Objective(order=pre).additive_weights()), taus)
             best = np.min(curve) if len(curve) else np.inf
             good = np.flatnonzero(ties(curve, best))  # 1e-7 here tied cost 1e-3 EUR apart (1e4 x standard)
