@@ -68,6 +68,7 @@ class Work:
     row_alive: list
     unservable: list = field(default_factory=list)   # (pf app index, reason)
     log: list = field(default_factory=list)          # what each reduction removed
+    breaks: tuple | None = None  # (app volume, break ptr, qty, step): synth.platform.volume.pool_prices
 
     @property
     def n_parts(self) -> int:
@@ -107,7 +108,9 @@ class Work:
             row_core=cat(rc, np.int64),
             row_opt_ptr=np.concatenate([[0], np.cumsum([len(self.row_pats[i]) for i in rows])]).astype(np.int64),
             row_opt_pattern=cat([self.row_pats[i] for i in rows], np.int64),
-            row_opt_cost=cat([self.row_cost[i] for i in rows], float))
+            row_opt_cost=cat([self.row_cost[i] for i in rows], float),
+            **({} if self.breaks is None else dict(zip(("app_volume", "break_ptr", "break_qty", "break_step"),
+                                                       self.breaks))))
 
 
 class _Patterns:

@@ -44,7 +44,7 @@ def platform_table(pf, result) -> pd.DataFrame:
     rows = [{"family": f, "part": pf.part_key(f, c), "applications": use[f].get(pf.part_key(f, c), 0)}
             for f in FAMILIES for c in sorted(result.platform[f])]
     cols = ["family", "part", "applications"]
-    vs = (result.price or {}).get("volume") if result.price else volume_saving(pf, result.records, price_curves(pf))
+    vs = result.price.get("volume") if result.price else volume_saving(pf, result.records, _curves(pf, result))
     if vs is not None:
         by = {(r["family"], r["part"]): r for r in vs["per_part"]}
         for r in rows:
@@ -66,6 +66,12 @@ def assignment_table(result) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def _curves(pf, result):
+    """The price curves ``result`` was priced by, else those of ``pf`` (:func:`synth.platform.volume.price_curves`)."""
+    c = getattr(result, "curves", None)
+    return c if c is not None else price_curves(pf)
+
+
 def price_of_standardisation(pf, result) -> dict:
     """Parts and cost of the platform against each application's own optimum (cheapest design on the full catalog)."""
     vol = {a.app_id: a.volume for a in pf.apps}
@@ -84,7 +90,7 @@ def price_of_standardisation(pf, result) -> dict:
             "unit_cost_volume_platform_eur": cost_p, "unit_cost_volume_optima_eur": cost_o,
             "fixed_cost_platform_eur": fixed(result.platform), "fixed_cost_union_of_optima_eur": fixed(union),
             "unit_cost_increase": (cost_p - cost_o) / cost_o if cost_o else 0.0,
-            "volume": volume_saving(pf, result.records, price_curves(pf))}
+            "volume": volume_saving(pf, result.records, _curves(pf, result))}
 
 
 def volume_markdown(vs: dict | None, top: int = 10) -> str:

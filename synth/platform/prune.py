@@ -53,6 +53,10 @@ R5 **Implied row** (variants objective, every application must be served). If th
 
 The reductions run in rounds until none removes anything (each can enable the others).
 The tests compare the optimum with and without them on small portfolios.
+
+R1-R3 compare unit costs; where a part's unit price falls with the summed volume of the applications it serves
+(:func:`synth.platform.volume.pool_prices`: a volume break left to the MILP), a dearer option may reach a better
+break, and they are not applied.
 """
 
 from __future__ import annotations
@@ -436,8 +440,12 @@ def prune(w: Work, *, allow_unserved: bool = False, max_rounds: int = 6) -> Work
     ``w.log`` records what each round removed. Returns ``w`` (edited in place).
     """
     w.log.append({"round": 0, **w.sizes()})
+    # a part's unit price that falls with its pooled volume (synth.platform.volume.pool_prices) breaks the cost
+    # comparisons of R1-R3: a dearer option may reach a better break; they are left out then
+    pooled = w.objective == "cost" and w.breaks is not None and len(w.breaks[2]) > 0
     for rnd in range(1, max_rounds + 1):
-        n = {"R1_options": dominated_options(w), "R2_variants": dominated_variants(w), "R3_cores": dominated_cores(w),
+        n = {"R1_options": 0 if pooled else dominated_options(w), "R2_variants": 0 if pooled else dominated_variants(w),
+             "R3_cores": 0 if pooled else dominated_cores(w),
              "R4_merged_rows": merge_rows(w), "R5_implied_rows": 0 if allow_unserved else implied_rows(w)}
         w.log.append({"round": rnd, **n, **w.sizes()})
         if not any(n.values()):

@@ -32,17 +32,20 @@ import numpy as np
 
 from synth.platform.data import FAMILIES, PortfolioFeasibility
 
-__all__ = ["PriceCurves", "price_curves", "volume_saving", "saving_text", "app_volumes"]
+__all__ = ["PriceCurves", "price_curves", "pool_prices", "volume_saving", "saving_text", "app_volumes"]
 
 
 @dataclass
 class PriceCurves:
     """``quantity``: ``(K,)`` break quantities ascending (the first at most every volume); ``prices[f]``:
     ``(n_f, K)`` unit price [EUR] of every part of family ``f`` from each break on (non-increasing along ``K``);
-    a family without an entry has no price of its own."""
+    a family without an entry has no price of its own. ``included[f]``: the unit price of each part that the
+    feasibility data's core and option costs already hold (the default volume's, :func:`price_curves`), which
+    :func:`pool_prices` replaces."""
 
     quantity: np.ndarray
     prices: dict
+    included: dict | None = None   # family -> (n_f,) the price the feasibility data's unit costs hold (None: 0)
 
     def price(self, family: str, codes, volume) -> np.ndarray:
         """Unit price [EUR] of parts ``codes`` of ``family`` bought in ``volume`` pieces a year (0 for none)."""
@@ -95,8 +98,76 @@ def price_curves(pf: PortfolioFeasibility) -> PriceCurves | None:
     with catalog.using(getattr(pf.settings, "catalogs", None)):
         q = _quantities()
         per_q = [_family_prices(book_for(cat.space.parts, float(v)), cat) for v in q]
+        default = _family_prices(cat.space.parts.prices, cat)     # what the design space's cost columns hold
     prices = {f: np.minimum.accumulate(np.stack([d[f] for d in per_q], axis=1), axis=1) for f in per_q[0]}
-    return PriceCurves(q, prices)
+    return PriceCurves(q, prices, default)
+
+
+def pool_prices(work, curves: PriceCurves) -> int:
+    """Price the parts of ``work`` (:class:`synth.platform.compile.Work`, cost objective) at the summed volume of
+    the applications they serve, exactly, in the MILP of :mod:`formulations.platform`; returns the number of
+    volume breaks left to the MILP.
+
+    Part ``j``'s unit price is the step function ``p_j(V)`` of :class:`PriceCurves`, ``V_j`` the summed volume of
+    the applications whose design holds it. A served application's volume is at least the smallest positive volume
+    ``v_j`` among the applications that can use ``j``, so every break up to ``v_j`` is always reached: the unit
+    costs of the cores and options get ``p_j(v_j)`` in place of the price they held (``included``). Each break
+    ``q`` with ``v_j < q <= sum of those volumes`` becomes one break of the MILP, the price falling by the step
+    ``p_j(q^-) - p_j(q)`` once ``V_j >= q``; a break above every volume the part can reach is dropped."""
+    from synth.platform.data import FAMILIES as FAMS
+    pf = work.pf
+    J = work.n_parts
+    vol = np.array([float(pf.apps[i].volume) for i in work.app_index])
+    fam = work.part_family
+    code = np.arange(J) - np.array([work.part_offset[FAMS[f]] for f in fam])
+    K = len(curves.quantity)
+    price = np.zeros((J, K))
+    inc = np.zeros(J)
+    for fi, f in enumerate(FAMS):
+        sel = np.flatnonzero(fam == fi)
+        if f in curves.prices and len(sel):
+            price[sel] = curves.prices[f][code[sel]]
+            if curves.included is not None and f in curves.included:
+                inc[sel] = curves.included[f][code[sel]]
+    plen = np.array([len(p) for p in work.patterns], np.int64)
+    pparts = np.concatenate(work.patterns).astype(np.int64) if len(work.patterns) else np.zeros(0, np.int64)
+    pid = np.repeat(np.arange(len(plen)), plen)
+    # (application, part) pairs that can occur: the cores' and the rows' patterns
+    live = np.flatnonzero(work.core_alive)
+    rows = [i for i, a in enumerate(work.row_alive) if a]
+    app_pat = [np.stack([work.core_app[live], work.core_pattern[live]], 1)]
+    app_pat += [np.stack([np.full(len(work.row_pats[i]), work.row_app[i]), work.row_pats[i]], 1) for i in rows]
+    ap = np.unique(np.concatenate(app_pat).astype(np.int64), axis=0)
+    n = plen[ap[:, 1]]
+    start = np.repeat(np.r_[0, np.cumsum(plen)][ap[:, 1]], n)
+    j_of = pparts[start + np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)]
+    pair = np.unique(np.repeat(ap[:, 0], n) * J + j_of)
+    pa, pj = pair // J, pair % J
+    v = vol[pa]
+    vmin = np.full(J, np.inf)
+    np.minimum.at(vmin, pj[v > 0], v[v > 0])
+    vmax = np.bincount(pj, weights=v, minlength=J)
+    k_min = np.maximum(np.searchsorted(curves.quantity, np.where(np.isfinite(vmin), vmin, 0.0), side="right") - 1, 0)
+    base = price[np.arange(J), k_min]
+    delta = base - inc                                     # per piece, on every core and option holding the part
+    d_pat = np.bincount(pid, weights=delta[pparts], minlength=len(plen))
+    work.core_cost = work.core_cost + d_pat[work.core_pattern] * vol[work.core_app]
+    for i in rows:
+        work.row_cost[i] = work.row_cost[i] + d_pat[work.row_pats[i]] * vol[work.row_app[i]]
+    ptr, qty, step = [0], [], []
+    for j in range(J):
+        prev = base[j]
+        for k in range(k_min[j] + 1, K):
+            q = curves.quantity[k]
+            if q > vmax[j]:
+                break
+            if prev - price[j, k] > 1e-12:
+                qty.append(q)
+                step.append(prev - price[j, k])
+                prev = price[j, k]
+        ptr.append(len(qty))
+    work.breaks = (vol, np.array(ptr, np.int64), np.array(qty, float), np.array(step, float))
+    return len(qty)
 
 
 def app_volumes(pf: PortfolioFeasibility) -> dict:
