@@ -27,11 +27,26 @@ Constraints (rules named ``*_rule``)::
     cover_rule        sum_{c in C_r} x_c <= sum_{o in O_r} V_{k_o}     variants objective
     flow_rule         sum_{c in C_r} x_c  = sum_{o in O_r} z_ro        cost objective
     option_link_rule  sum_{r of (a, s)} sum_{o: k_o = k} z_ro <= V_k    cost objective, each (a, s, k)
+    pool_rule         s_e <= V_j                                        cost objective, each volume break e of j
+    break_on_rule     s_e <= Vmax_j b_e
+    break_reach_rule  q_e b_e <= V_j
     max_variants_rule sum_{j in f} y_j <= N_f                          optional, per family
     budget_rule       sum_j w_j y_j <= B                               optional (epsilon constraint)
 
+**Volume breaks** (cost objective, optional: ``break_ptr``, ``break_qty``, ``break_step``, ``app_volume``). Part
+``j``'s unit price falls by ``d_e`` once its volume ``V_j = sum_c vol_a(c) x_c [j in k_c] + sum_i vol_a(i) z_i
+[j in k_i]`` (pieces a year of every application whose design holds it) reaches the break's quantity ``q_e``
+(an all-units quantity discount: every piece gets the lower price). ``b_e`` binary: the break is reached;
+``s_e in [0, Vmax_j]`` the volume it discounts (``Vmax_j``: the summed volume of every application that can use
+``j``); the objective gets ``- sum_e d_e s_e``. With ``d_e >= 0`` the minimum puts ``s_e = V_j`` when ``b_e = 1``
+(allowed only when ``V_j >= q_e``) and 0 otherwise, so the cost of part ``j`` is exactly ``p_j(V_j) V_j``, the
+unit costs ``u`` holding each part at its price below the first break (:func:`synth.platform.volume.pool_prices`).
+A fractional assignment could reach a break with a share of an application, so there the ``x`` of every core of an
+application with a break part in some design and the ``z`` of every option holding one are binary; the other
+``z`` stay continuous (with those fixed, the rest of a row is a simplex with fixed costs: a vertex, one option).
+
 Objective: ``variants``: ``sum_j w_j y_j + P sum_a e_a``; ``cost``:
-``sum_j F_j y_j + sum_c u_c x_c + sum_ro u_o z_ro + P sum_a e_a``. ``P`` exceeds anything
+``sum_j F_j y_j + sum_c u_c x_c + sum_ro u_o z_ro - sum_e d_e s_e + P sum_a e_a``. ``P`` exceeds anything
 a part saving can buy, so serving applications comes first.
 
 Why ``x``, ``v``, ``z`` and ``e`` may be continuous. Fix an integral ``y`` (a platform).
@@ -43,7 +58,8 @@ cheapest platform option of the row (``option_link`` caps the sum over the rows 
 subsystem, which is at most ``sum_c x_c <= 1``), so the cost is
 ``sum_c x_c (u_c + sum_s best_s(c))``: linear in ``x`` over a simplex, minimised at a
 vertex, a single core. Hence a branch and bound on ``y`` alone is exact, and the
-integral assignment is recovered per application afterwards.
+integral assignment is recovered per application afterwards (with volume breaks: see above; the
+solution's ``x`` and ``z`` are then the designs).
 
 Size. With ``n_rows`` rows and ``nnz_opt = sum_r |O_r|``: variables ``J + |v| + n_cores
 (+ n_apps) (+ nnz_opt)``; non-zeros about ``n_cores * (2 + rows per core) + nnz_opt``
@@ -169,6 +185,8 @@ class _Breaks:
     qty: np.ndarray
     step: np.ndarray
     vmax: np.ndarray
+    x_int: np.ndarray            # (C,) bool: x_c integral (every core of an application one of whose designs
+    z_int: np.ndarray            # has a part with a break); (n_z,) bool: z_i integral (its option has one)
     core_ptr: np.ndarray
     core: np.ndarray
     core_vol: np.ndarray
@@ -198,8 +216,14 @@ def _breaks(inst: PlatformInstance, objective: str, c_item, c_part, z_item, z_pa
     pairs = np.unique(np.concatenate([c_app * J + c_part, z_app * J + z_part]).astype(np.int64))
     vmax = np.bincount(pairs % J, weights=vol[pairs // J], minlength=J)
     part = np.repeat(np.arange(J), np.diff(inst.break_ptr))
+    has = np.diff(inst.break_ptr) > 0
+    z_int = np.zeros(int(inst.row_opt_ptr[-1]), bool)
+    z_int[z_item[has[z_part]]] = True
+    app_int = np.zeros(inst.n_apps, bool)
+    app_int[c_app[has[c_part]]] = True
+    app_int[z_app[has[z_part]]] = True
     return _Breaks(part=part, qty=np.asarray(inst.break_qty, float), step=np.asarray(inst.break_step, float),
-                   vmax=vmax[part], core_ptr=np.searchsorted(c_part[oc], np.arange(J + 1)), core=c_item[oc],
+                   vmax=vmax[part], x_int=app_int[inst.core_app], z_int=z_int, core_ptr=np.searchsorted(c_part[oc], np.arange(J + 1)), core=c_item[oc],
                    core_vol=vol[c_app[oc]], opt_ptr=np.searchsorted(z_part[oz], np.arange(J + 1)), opt=z_item[oz],
                    opt_vol=vol[z_app[oz]])
 
@@ -230,9 +254,12 @@ def build_model(inst: PlatformInstance, objective: str = "variants", *, max_vari
     m.J = pyo.Set(initialize=[int(j) for j in np.flatnonzero(in_use)])
     m.y = pyo.Var(m.J, domain=pyo.Binary)
     br = _breaks(inst, objective, c_item, c_part, z_item, z_part)
-    kind = {"domain": pyo.Binary} if br else {"bounds": (0, 1)}   # with volume breaks x and z are integral
-    m.x = pyo.Var(range(C), **kind)
-    m.z = pyo.Var(range(n_z), **kind)
+    if br:   # with volume breaks the x and z of designs holding a part with a break are integral
+        m.x = pyo.Var(range(C), domain=lambda m, c: pyo.Binary if br.x_int[c] else pyo.Reals, bounds=(0, 1))
+        m.z = pyo.Var(range(n_z), domain=lambda m, i: pyo.Binary if br.z_int[i] else pyo.Reals, bounds=(0, 1))
+    else:
+        m.x = pyo.Var(range(C), bounds=(0, 1))
+        m.z = pyo.Var(range(n_z), bounds=(0, 1))
     if allow_unserved:
         m.e = pyo.Var(range(inst.n_apps), bounds=(0, 1))
     nnz = 0
@@ -329,7 +356,7 @@ def build_model(inst: PlatformInstance, objective: str = "variants", *, max_vari
     m.obj = pyo.Objective(expr=_lin([t[0] for t in terms], [t[1] for t in terms]), sense=pyo.minimize)
     n_var = int(in_use.sum()) + C + n_z + (inst.n_apps if allow_unserved else 0) + 2 * nb
     n_con = sum(len(c) for c in m.component_objects(pyo.Constraint, active=True))
-    m.size = {"variables": n_var, "binaries": int(in_use.sum()) + (nb + C + n_z if nb else 0),
+    m.size = {"variables": n_var, "binaries": int(in_use.sum()) + (nb + int(br.x_int.sum() + br.z_int.sum()) if nb else 0),
               "constraints": int(n_con), "nonzeros": int(nnz)}
     return m
 
@@ -489,13 +516,15 @@ def build_arrays(inst: PlatformInstance, objective: str = "variants", *, max_var
     upper = np.ones(len(cost))
     if br:
         upper[S0:B0] = br.vmax
-    integer = ((order >= Y0) & (order < E0)) | (order >= B0) | ((order < Y0) & bool(nb))
+    integer = ((order >= Y0) & (order < E0)) | (order >= B0)
+    if br:
+        integer |= np.r_[br.x_int, br.z_int, np.zeros(len(cost) - Y0, bool)][order]
     return MilpArrays(
         col_lower=np.zeros(len(order)), col_upper=upper[order], col_cost=cost[order],
         col_integer=integer, row_lower=row_lower, row_upper=row_upper, row_start=row_start,
         row_index=col_of[keys], row_value=values, y_col=y_col, x_col=col_of[X0:Z0], z_col=col_of[Z0:Y0],
         e_col=col_of[E0:S0] if allow_unserved else None,
-        size={"variables": n_var, "binaries": int(in_use.sum()) + (nb + C + n_z if nb else 0),
+        size={"variables": n_var, "binaries": int(in_use.sum()) + (nb + int(br.x_int.sum() + br.z_int.sum()) if nb else 0),
               "constraints": int(sum(n_rows)), "nonzeros": int(nnz)})
 
 

@@ -153,7 +153,7 @@ def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None
         target = {f: np.full(len(pf.apps), -2, np.int64) for f in FAMILIES}
         for ai, d in designs.items():
             for f in FAMILIES:
-                target[f][ai] = int(d.get(f, -1))
+                target[f][ai] = int(d.get(f, -2))
     for s in SUBSYSTEMS:
         idx, mar, cost, grp, gptr = groups[s]
         entry_ok = None

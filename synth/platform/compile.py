@@ -79,6 +79,12 @@ class Work:
         f = FAMILIES[int(self.part_family[j])]
         return f, int(j - self.part_offset[f])
 
+    def pf_volume(self, a) -> np.ndarray:
+        """The annual volume of instance application(s) ``a``."""
+        vol = self.breaks[0] if self.breaks is not None else np.array([float(self.pf.apps[i].volume)
+                                                                       for i in self.app_index])
+        return vol[np.asarray(a, np.int64)]
+
     def sizes(self) -> dict:
         rows = [i for i, a in enumerate(self.row_alive) if a]
         return {"applications": int(len(self.app_index)), "cores": int(self.core_alive.sum()), "rows": len(rows),

@@ -22,7 +22,8 @@ from formulations.platform import solve as solve_milp
 from synth.errors import InputError, Problem
 from synth.platform.assign import assign, full_platform, objective_value, option_groups, platform_from_y
 from synth.platform.compile import Precompiled, compile_portfolio, precompile
-from synth.platform.data import FAMILIES, PortfolioFeasibility, default_weights
+from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility, \
+    default_weights
 from synth.platform.greedy import greedy
 from synth.platform.prune import prune as prune_work
 from synth.platform.verified import verify_records
@@ -84,19 +85,20 @@ def milp_designs(work, inst, sol) -> dict:
     depends on which applications use it."""
     parts = [inst.pattern_parts[inst.pattern_ptr[k]:inst.pattern_ptr[k + 1]] for k in range(inst.n_patterns)]
     out: dict = {}
-    for c in np.flatnonzero(sol.x):
-        a = int(inst.core_app[c])
-        out[int(work.app_index[a])] = d = {f: -1 for f in FAMILIES}
-        for j in parts[int(inst.core_pattern[c])]:
+
+    def put(d, fams, pattern):
+        d.update({f: -1 for f in fams})
+        for j in parts[int(pattern)]:
             f, code = work.part_of(int(j))
             d[f] = code
+    for c in np.flatnonzero(sol.x):
+        out[int(work.app_index[int(inst.core_app[c])])] = d = {}
+        put(d, CORE_FAMILIES, inst.core_pattern[c])
     entry_row = np.repeat(np.arange(len(inst.row_app)), np.diff(inst.row_opt_ptr))
-    for i in np.flatnonzero(sol.z):
+    for i in np.flatnonzero(sol.z):   # a subsystem with no option at 1 (an LP's tie) is left to the assignment
         d = out.get(int(work.app_index[int(inst.row_app[entry_row[i]])]))
         if d is not None:
-            for j in parts[int(inst.row_opt_pattern[i])]:
-                f, code = work.part_of(int(j))
-                d[f] = code
+            put(d, SUBSYSTEM_FAMILIES[SUBSYSTEMS[int(inst.row_sub[entry_row[i]])]], inst.row_opt_pattern[i])
     return out
 
 
