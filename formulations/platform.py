@@ -89,7 +89,7 @@ import pyomo.environ as pyo
 from pyomo.core.expr.numeric_expr import LinearExpression
 
 __all__ = ["PlatformInstance", "PlatformSolution", "MilpArrays", "build_model", "build_arrays", "highs_model", "solve",
-           "SOLVERS", "BUILDS"]
+           "designs_start", "SOLVERS", "BUILDS"]
 
 #: solver name -> Pyomo solver (HiGHS through appsi, SCIP through PySCIPOpt)
 SOLVERS = {"highs": "appsi_highs", "scip": "scip_direct"}
@@ -380,6 +380,7 @@ class MilpArrays:
     y_col: np.ndarray            # (J,) column of ``y_j``, -1 for a part without a variable
     x_col: np.ndarray            # (C,) column of ``x_c``
     z_col: np.ndarray            # (n_z,) column of ``z_i``
+    sb_col: np.ndarray           # (2 n_breaks,) columns of ``s_e`` then ``b_e``
     e_col: np.ndarray | None     # (n_apps,) column of ``e_a`` (``allow_unserved`` only)
     size: dict
 
@@ -523,6 +524,7 @@ def build_arrays(inst: PlatformInstance, objective: str = "variants", *, max_var
         col_lower=np.zeros(len(order)), col_upper=upper[order], col_cost=cost[order],
         col_integer=integer, row_lower=row_lower, row_upper=row_upper, row_start=row_start,
         row_index=col_of[keys], row_value=values, y_col=y_col, x_col=col_of[X0:Z0], z_col=col_of[Z0:Y0],
+        sb_col=col_of[S0:B0 + nb],
         e_col=col_of[E0:S0] if allow_unserved else None,
         size={"variables": n_var, "binaries": int(in_use.sum()) + (nb + int(br.x_int.sum() + br.z_int.sum()) if nb else 0),
               "constraints": int(sum(n_rows)), "nonzeros": int(nnz)})
@@ -549,7 +551,50 @@ def highs_model(arr: MilpArrays):
     return h
 
 
-def _highs_arrays(arr: MilpArrays, time_limit: float, mip_gap: float, warm_start: np.ndarray | None):
+def designs_start(inst: PlatformInstance, y: np.ndarray) -> tuple:
+    """``(x, z, s, b)``: a complete MIP start from platform ``y`` where the MILP has volume breaks (a platform alone
+    leaves the integral ``x`` and ``z`` to find): each application's cheapest design on it at the unit costs (the
+    first core of equal cost, each row's first cheapest option), the breaks its volumes reach."""
+    y = np.asarray(y, bool)
+    pid = np.repeat(np.arange(inst.n_patterns), inst.pattern_len())
+    ok = np.bincount(pid, weights=y[inst.pattern_parts].astype(float), minlength=inst.n_patterns) \
+        >= inst.pattern_len() - 0.5
+    R, C, n_z = len(inst.row_app), len(inst.core_app), int(inst.row_opt_ptr[-1])
+    val = np.where(ok[inst.row_opt_pattern], inst.row_opt_cost, np.inf)
+    best, pick = np.full(R, np.inf), np.full(R, -1)
+    for r in range(R):
+        lo, hi = inst.row_opt_ptr[r], inst.row_opt_ptr[r + 1]
+        if hi > lo:
+            k = int(np.argmin(val[lo:hi]))
+            if np.isfinite(val[lo + k]):
+                best[r], pick[r] = val[lo + k], lo + k
+    core_val = np.where(ok[inst.core_pattern], inst.core_cost, np.inf)
+    r_of = np.repeat(np.arange(R), np.diff(inst.row_core_ptr))
+    np.add.at(core_val, inst.row_core, best[r_of])
+    x, z = np.zeros(C), np.zeros(n_z)
+    start = np.searchsorted(inst.core_app, np.arange(inst.n_apps + 1))
+    for a in range(inst.n_apps):
+        if start[a + 1] > start[a]:
+            c = start[a] + int(np.argmin(core_val[start[a]:start[a + 1]]))
+            if np.isfinite(core_val[c]):
+                x[c] = 1.0
+    rows = r_of[x[inst.row_core] > 0.5]
+    z[pick[rows]] = 1.0
+    c_item, c_part = _expand(inst.pattern_ptr, inst.pattern_parts, inst.core_pattern)
+    z_item, z_part = _expand(inst.pattern_ptr, inst.pattern_parts, inst.row_opt_pattern)
+    br = _breaks(inst, "cost", c_item, c_part, z_item, z_part)
+    if br is None:
+        return x, z, np.zeros(0), np.zeros(0)
+    vol = np.zeros(inst.n_parts)
+    for e in range(len(br)):
+        cs, cv, zs, zv = br.terms(e)
+        vol[br.part[e]] = float(np.dot(cv, x[cs]) + np.dot(zv, z[zs]))
+    b = (vol[br.part] >= br.qty - 1e-9).astype(float)
+    return x, z, b * vol[br.part], b
+
+
+def _highs_arrays(arr: MilpArrays, time_limit: float, mip_gap: float, warm_start: np.ndarray | None,
+                  full: tuple | None = None):
     """Solve ``arr`` with highspy, with appsi's options and MIP start; returns ``(status, has a solution,
     objective, bound, column values)``, read as appsi's ``_postsolve`` reads them."""
     import highspy
@@ -561,6 +606,9 @@ def _highs_arrays(arr: MilpArrays, time_limit: float, mip_gap: float, warm_start
         col = np.zeros(n)
         has = arr.y_col >= 0
         col[arr.y_col[has]] = np.asarray(warm_start, bool)[has].astype(float)
+        if full is not None:   # the designs too (volume breaks: integral x and z)
+            x, z, s, b = full
+            col[arr.x_col], col[arr.z_col], col[arr.sb_col] = x, z, np.r_[s, b]
         start = highspy.HighsSolution()
         start.col_value = col
         start.value_valid = True
@@ -613,7 +661,9 @@ def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = 
     if solver == "highs" and build == "arrays" and model is None:
         arr = build_arrays(inst, objective, max_variants=max_variants, budget=budget, allow_unserved=allow_unserved)
         t1 = time.perf_counter()
-        status, has, obj, bound, col = _highs_arrays(arr, time_limit, mip_gap, warm_start)
+        full = designs_start(inst, warm_start) if warm_start is not None and objective == "cost" \
+            and inst.n_breaks else None
+        status, has, obj, bound, col = _highs_arrays(arr, time_limit, mip_gap, warm_start, full)
         y = unserved = x = z = None
         if has:
             y = np.zeros(inst.n_parts, bool)
@@ -632,6 +682,11 @@ def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = 
     if warm_start is not None:
         for j in m.y:
             m.y[j].set_value(float(bool(warm_start[j])))
+        if hasattr(m, "b"):   # volume breaks: the designs too
+            x, z, s, b = designs_start(inst, warm_start)
+            for vals, var in ((x, m.x), (z, m.z), (s, m.s), (b, m.b)):
+                for i, v in enumerate(vals):
+                    var[i].set_value(float(v))
     t1 = time.perf_counter()
     if solver == "highs":
         from pyomo.contrib.appsi.solvers import Highs

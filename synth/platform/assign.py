@@ -67,13 +67,20 @@ def serve(inst: PlatformInstance, y: np.ndarray, objective: str = "cost"):
 
 
 def objective_value(inst: PlatformInstance, y: np.ndarray, objective: str) -> float:
-    """The MILP objective of platform ``y`` (``inf`` when an application is not served)."""
+    """The MILP objective of platform ``y`` (``inf`` when an application is not served); with volume breaks, of
+    each application's cheapest design at the unit costs with the breaks their volumes reach
+    (:func:`formulations.platform.designs_start`: an upper bound of the platform's cost)."""
     served, cost, _ = serve(inst, y)
     if not served.all():
         return np.inf
     y = np.asarray(y, bool)
     if objective == "variants":
         return float(np.sum(inst.part_weight[y]))
+    if inst.n_breaks:
+        from formulations.platform import designs_start
+        x, z, pooled, _ = designs_start(inst, y)
+        return float(np.sum(inst.part_fixed_cost[y]) + x @ inst.core_cost + z @ inst.row_opt_cost
+                     - np.asarray(inst.break_step, float) @ pooled)
     return float(np.sum(inst.part_fixed_cost[y]) + np.sum(cost))
 
 
