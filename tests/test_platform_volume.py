@@ -172,3 +172,20 @@ def test_array_build_hands_highs_the_pyomo_model_with_breaks():
     for k in want:
         assert np.array_equal(got[k], want[k]) if isinstance(want[k], np.ndarray) else got[k] == want[k], k
     assert arr.size == m.size
+
+
+def test_the_outputs_show_the_volume_saving_beside_the_parts():
+    from synth.platform.outputs import platform_table, summary_markdown
+    pf = _portfolio()
+    r = rationalise(pf, "cost", curves=CURVES, time_limit=30)
+    t = platform_table(pf, r)
+    a = t[(t.family == "ball_bearing") & (t.part == "A")].iloc[0]
+    assert (a.applications, a.annual_volume, a.volume_saving_eur) == (2, 1200.0, pytest.approx(240.0))
+    text = summary_markdown(pf, r)
+    assert "volume saving 240 EUR/year (20.00%)" in text and "| ball_bearing | A | 2 | 1,200 | 1,200 | 960 | 240 |" \
+        in text
+    pf.volumes_given = False                           # no volume column: no pooled volume, and it says so
+    blind = rationalise(pf, "cost", time_limit=30)
+    assert blind.price["volume"] is None and list(platform_table(pf, blind).columns) == ["family", "part",
+                                                                                         "applications"]
+    assert "No annual volumes" in summary_markdown(pf, blind)
