@@ -1,7 +1,10 @@
 """``synth rationalise`` as a whole command, this tree against another, at 1,000 and 10,000 applications (issue 36).
 
 Run: ``.venv/bin/python benchmarks/bench_rationalise.py [--sizes 1000 10000] [--base CHECKOUT] [--seed 0]
-[--args ...]`` (prints markdown tables). The portfolio of each size is ``synth portfolio-sample N --seed S`` (written
+[--repeat R] [--volumes] [--args ...]`` (prints markdown tables). ``--repeat R``: R turns (base, then this tree,
+each turn), the ratios taken turn by turn and their median printed; ``--volumes``: the portfolio gets an
+``annual_volume`` column (lognormal, median 3,000 pieces a year, seeded: :func:`add_volumes`), so the platform
+prices each part at its pooled volume (:mod:`synth.platform.volume`). The portfolio of each size is ``synth portfolio-sample N --seed S`` (written
 once, read by both trees). Each tree runs ``python -m synth rationalise PORTFOLIO --out DIR`` as a fresh process
 (``PYTHONPATH=TREE``; ``--base CHECKOUT``, e.g. a worktree of main, runs first in the same turn, then this tree): wall
 seconds, the process's CPU seconds and its peak resident memory (``os.wait4``), and the seconds of each stage, read
@@ -90,11 +93,24 @@ def _lines_differing(a: Path, b: Path) -> str:
     return (f"{len(diff)} lines: " + "; ".join(diff[:3]) if len(x) == len(y) else f"{len(x)} against {len(y)} lines")
 
 
+def add_volumes(path: Path, seed: int) -> None:
+    """Give the portfolio table ``path`` an ``annual_volume`` column: lognormal, median 3,000, sigma 1.3, rounded to
+    10, within 10-500,000 pieces a year (an engine programme's tensioners, from niche to volume cars)."""
+    import numpy as np
+    import pandas as pd
+    t = pd.read_parquet(path)
+    rng = np.random.default_rng(seed)
+    t["annual_volume"] = np.round(rng.lognormal(np.log(3000), 1.3, len(t)), -1).clip(10, 500_000).astype(int)
+    t.to_parquet(path)
+
+
 def main(argv: list | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", type=int, nargs="+", default=[1000, 10000])
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--base", type=Path, help="another checkout (e.g. a worktree of main) run in the same turn")
+    ap.add_argument("--repeat", type=int, default=1, help="turns of base then this tree (median ratios)")
+    ap.add_argument("--volumes", action="store_true", help="an annual_volume column in the portfolio")
     ap.add_argument("--args", nargs=argparse.REMAINDER, default=[], help="more arguments for synth rationalise")
     a = ap.parse_args(argv)
     trees = ([("base", a.base.resolve())] if a.base else []) + [("this tree", ROOT)]
@@ -104,31 +120,44 @@ def main(argv: list | None = None) -> int:
             port = Path(tmp) / f"portfolio_{n}.parquet"
             subprocess.run([sys.executable, "-m", "synth", "portfolio-sample", str(n), "--seed", str(a.seed),
                             "--out", str(port)], env=_env(ROOT), cwd=NEUTRAL, check=True, stdout=subprocess.DEVNULL)
+            if a.volumes:
+                add_volumes(port, a.seed)
             res = {}
+            turns = []
             if n == a.sizes[0]:   # each tree's compiled kernels loaded (or compiled) once before the timed runs
                 warm = Path(tmp) / "warm_up.parquet"
                 subprocess.run([sys.executable, "-m", "synth", "portfolio-sample", "20", "--out", str(warm)],
                                env=_env(ROOT), cwd=NEUTRAL, check=True, stdout=subprocess.DEVNULL)
                 for _, tree in trees:
                     run(tree, ["rationalise", str(warm), "--out", str(Path(tmp) / "warm_up"), "--tradeoff", "none"])
-            for name, tree in trees:
-                out = Path(tmp) / f"out_{n}_{name.replace(' ', '_')}"
-                res[name] = r = run(tree, ["rationalise", str(port), "--out", str(out), *a.args])
-                if r["code"] != 0:
-                    print(f"{name}, {n:,}: exit {r['code']}\n{r['stderr'][-2000:]}", file=sys.stderr)
-                ref = res[trees[0][0]]
-                rows.append(f"| {n:,} | {name} | {r['wall']:.1f} | {r['cpu']:.1f} | {r['rss_mib']:,.0f} "
-                            f"| {r['wall'] / ref['wall']:.2f} | {r['cpu'] / ref['cpu']:.2f} "
-                            f"| {r['rss_mib'] / ref['rss_mib']:.2f} | {r['code']} |")
-                for st, s in r["stages"].items():
-                    stages.append(f"| {n:,} | {name} | {st} | {s:.1f} |")
+            for turn in range(max(1, a.repeat)):
+                for name, tree in trees:
+                    out = Path(tmp) / f"out_{n}_{name.replace(' ', '_')}"
+                    res[name] = r = run(tree, ["rationalise", str(port), "--out", str(out), *a.args])
+                    if r["code"] != 0:
+                        print(f"{name}, {n:,}: exit {r['code']}\n{r['stderr'][-2000:]}", file=sys.stderr)
+                    ref = res[trees[0][0]]
+                    rows.append(f"| {n:,} | {name} | {turn + 1} | {r['wall']:.1f} | {r['cpu']:.1f} "
+                                f"| {r['rss_mib']:,.0f} | {r['wall'] / ref['wall']:.2f} | {r['cpu'] / ref['cpu']:.2f} "
+                                f"| {r['rss_mib'] / ref['rss_mib']:.2f} | {r['code']} |")
+                    for st, s in r["stages"].items():
+                        stages.append(f"| {n:,} | {name} | {st} | {s:.1f} |")
+                turns.append((res[trees[-1][0]]["wall"] / res[trees[0][0]]["wall"],
+                              res[trees[-1][0]]["cpu"] / res[trees[0][0]]["cpu"]))
+            if a.base:
+                import statistics
+                checks.append(f"* {n:,} applications, this tree / base over {len(turns)} turns: median wall "
+                              f"{statistics.median(t[0] for t in turns):.3f}, median CPU "
+                              f"{statistics.median(t[1] for t in turns):.3f}")
             if a.base:
                 checks.append(f"* {n:,} applications, outputs of the base and this tree: "
                               + same_files(*(Path(tmp) / f"out_{n}_{k.replace(' ', '_')}" for k, _ in trees)))
         print(f"`synth rationalise` (portfolio-sample, seed {a.seed}; load average {os.getloadavg()[0]:.1f}, "
               f"{os.cpu_count()} cores)\n")
-        print("| applications | tree | wall [s] | CPU [s] | peak RSS [MiB] | wall / first | CPU / first "
-              "| RSS / first | exit |\n|---|---|---|---|---|---|---|---|---|")
+        print(f"`{' '.join(['rationalise', 'PORTFOLIO', '--out', 'DIR', *a.args])}`"
+              + (", with an annual_volume column" if a.volumes else "") + "\n")
+        print("| applications | tree | turn | wall [s] | CPU [s] | peak RSS [MiB] | wall / first | CPU / first "
+              "| RSS / first | exit |\n|---|---|---|---|---|---|---|---|---|---|")
         print("\n".join(rows))
         print("\nStages (seconds the progress lines drew; wall):\n\n| applications | tree | stage | s |\n|---|---|---|---|")
         print("\n".join(stages))

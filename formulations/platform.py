@@ -27,11 +27,26 @@ Constraints (rules named ``*_rule``)::
     cover_rule        sum_{c in C_r} x_c <= sum_{o in O_r} V_{k_o}     variants objective
     flow_rule         sum_{c in C_r} x_c  = sum_{o in O_r} z_ro        cost objective
     option_link_rule  sum_{r of (a, s)} sum_{o: k_o = k} z_ro <= V_k    cost objective, each (a, s, k)
+    pool_rule         s_e <= V_j                                        cost objective, each volume break e of j
+    break_on_rule     s_e <= Vmax_j b_e
+    break_reach_rule  q_e b_e <= V_j
     max_variants_rule sum_{j in f} y_j <= N_f                          optional, per family
     budget_rule       sum_j w_j y_j <= B                               optional (epsilon constraint)
 
+**Volume breaks** (cost objective, optional: ``break_ptr``, ``break_qty``, ``break_step``, ``app_volume``). Part
+``j``'s unit price falls by ``d_e`` once its volume ``V_j = sum_c vol_a(c) x_c [j in k_c] + sum_i vol_a(i) z_i
+[j in k_i]`` (pieces a year of every application whose design holds it) reaches the break's quantity ``q_e``
+(an all-units quantity discount: every piece gets the lower price). ``b_e`` binary: the break is reached;
+``s_e in [0, Vmax_j]`` the volume it discounts (``Vmax_j``: the summed volume of every application that can use
+``j``); the objective gets ``- sum_e d_e s_e``. With ``d_e >= 0`` the minimum puts ``s_e = V_j`` when ``b_e = 1``
+(allowed only when ``V_j >= q_e``) and 0 otherwise, so the cost of part ``j`` is exactly ``p_j(V_j) V_j``, the
+unit costs ``u`` holding each part at its price below the first break (:func:`synth.platform.volume.pool_prices`).
+A fractional assignment could reach a break with a share of an application, so there the ``x`` of every core of an
+application with a break part in some design and the ``z`` of every option holding one are binary; the other
+``z`` stay continuous (with those fixed, the rest of a row is a simplex with fixed costs: a vertex, one option).
+
 Objective: ``variants``: ``sum_j w_j y_j + P sum_a e_a``; ``cost``:
-``sum_j F_j y_j + sum_c u_c x_c + sum_ro u_o z_ro + P sum_a e_a``. ``P`` exceeds anything
+``sum_j F_j y_j + sum_c u_c x_c + sum_ro u_o z_ro - sum_e d_e s_e + P sum_a e_a``. ``P`` exceeds anything
 a part saving can buy, so serving applications comes first.
 
 Why ``x``, ``v``, ``z`` and ``e`` may be continuous. Fix an integral ``y`` (a platform).
@@ -43,7 +58,8 @@ cheapest platform option of the row (``option_link`` caps the sum over the rows 
 subsystem, which is at most ``sum_c x_c <= 1``), so the cost is
 ``sum_c x_c (u_c + sum_s best_s(c))``: linear in ``x`` over a simplex, minimised at a
 vertex, a single core. Hence a branch and bound on ``y`` alone is exact, and the
-integral assignment is recovered per application afterwards.
+integral assignment is recovered per application afterwards (with volume breaks: see above; the
+solution's ``x`` and ``z`` are then the designs).
 
 Size. With ``n_rows`` rows and ``nnz_opt = sum_r |O_r|``: variables ``J + |v| + n_cores
 (+ n_apps) (+ nnz_opt)``; non-zeros about ``n_cores * (2 + rows per core) + nnz_opt``
@@ -73,7 +89,7 @@ import pyomo.environ as pyo
 from pyomo.core.expr.numeric_expr import LinearExpression
 
 __all__ = ["PlatformInstance", "PlatformSolution", "MilpArrays", "build_model", "build_arrays", "highs_model", "solve",
-           "SOLVERS", "BUILDS"]
+           "designs_start", "SOLVERS", "BUILDS"]
 
 #: solver name -> Pyomo solver (HiGHS through appsi, SCIP through PySCIPOpt)
 SOLVERS = {"highs": "appsi_highs", "scip": "scip_direct"}
@@ -103,6 +119,14 @@ class PlatformInstance:
     row_opt_ptr: np.ndarray      # (R+1,) CSR: options of each row
     row_opt_pattern: np.ndarray
     row_opt_cost: np.ndarray     # unit cost x volume
+    app_volume: np.ndarray | None = None   # (n_apps,) pieces a year (the volume breaks' only)
+    break_ptr: np.ndarray | None = None    # (J+1,) CSR: the quantity breaks of each part (cost objective)
+    break_qty: np.ndarray | None = None    # quantity q of each break [pieces a year]
+    break_step: np.ndarray | None = None   # the part's unit price falls by this [EUR] once its volume reaches q
+
+    @property
+    def n_breaks(self) -> int:
+        return 0 if self.break_ptr is None else int(self.break_ptr[-1])
 
     @property
     def n_parts(self) -> int:
@@ -130,6 +154,8 @@ class PlatformSolution:
     size: dict = field(default_factory=dict)
     solver: str = "highs"
     unserved: np.ndarray | None = None   # bool per application (allow_unserved only)
+    x: np.ndarray | None = None          # bool per core and per option entry: the designs of the solution
+    z: np.ndarray | None = None          # (with volume breaks only: the platform alone does not fix them)
 
 
 def _groups(keys: np.ndarray):
@@ -147,6 +173,59 @@ def _expand(ptr: np.ndarray, parts: np.ndarray, pattern: np.ndarray):
     start = np.repeat(ptr[pattern], n)
     off = np.arange(len(item)) - np.repeat(np.cumsum(n) - n, n)
     return item, parts[start + off]
+
+
+@dataclass
+class _Breaks:
+    """The volume breaks of an instance, as both builds read them: per break ``e`` its part, quantity, step and the
+    largest volume ``vmax`` its part can have; per part the cores (``core``, CSR ``core_ptr``) and option entries
+    (``opt``, ``opt_ptr``) holding it, ascending, with the volume of their application (``core_vol``, ``opt_vol``)."""
+
+    part: np.ndarray
+    qty: np.ndarray
+    step: np.ndarray
+    vmax: np.ndarray
+    x_int: np.ndarray            # (C,) bool: x_c integral (every core of an application one of whose designs
+    z_int: np.ndarray            # has a part with a break); (n_z,) bool: z_i integral (its option has one)
+    core_ptr: np.ndarray
+    core: np.ndarray
+    core_vol: np.ndarray
+    opt_ptr: np.ndarray
+    opt: np.ndarray
+    opt_vol: np.ndarray
+
+    def __len__(self) -> int:
+        return int(len(self.part))
+
+    def terms(self, e: int) -> tuple:
+        """``(cores, their volumes, option entries, their volumes)`` of break ``e``'s part: its volume ``V_j``."""
+        j = int(self.part[e])
+        c0, c1, o0, o1 = self.core_ptr[j], self.core_ptr[j + 1], self.opt_ptr[j], self.opt_ptr[j + 1]
+        return self.core[c0:c1], self.core_vol[c0:c1], self.opt[o0:o1], self.opt_vol[o0:o1]
+
+
+def _breaks(inst: PlatformInstance, objective: str, c_item, c_part, z_item, z_part) -> _Breaks | None:
+    """The :class:`_Breaks` of ``inst`` (cost objective with breaks only, else None)."""
+    if objective != "cost" or not inst.n_breaks:
+        return None
+    J = inst.n_parts
+    vol = np.asarray(inst.app_volume, float)
+    z_row = np.repeat(np.arange(len(inst.row_app)), np.diff(inst.row_opt_ptr))
+    c_app, z_app = inst.core_app[c_item], inst.row_app[z_row[z_item]]
+    oc, oz = np.argsort(c_part, kind="stable"), np.argsort(z_part, kind="stable")
+    pairs = np.unique(np.concatenate([c_app * J + c_part, z_app * J + z_part]).astype(np.int64))
+    vmax = np.bincount(pairs % J, weights=vol[pairs // J], minlength=J)
+    part = np.repeat(np.arange(J), np.diff(inst.break_ptr))
+    has = np.diff(inst.break_ptr) > 0
+    z_int = np.zeros(int(inst.row_opt_ptr[-1]), bool)
+    z_int[z_item[has[z_part]]] = True
+    app_int = np.zeros(inst.n_apps, bool)
+    app_int[c_app[has[c_part]]] = True
+    app_int[z_app[has[z_part]]] = True
+    return _Breaks(part=part, qty=np.asarray(inst.break_qty, float), step=np.asarray(inst.break_step, float),
+                   vmax=vmax[part], x_int=app_int[inst.core_app], z_int=z_int, core_ptr=np.searchsorted(c_part[oc], np.arange(J + 1)), core=c_item[oc],
+                   core_vol=vol[c_app[oc]], opt_ptr=np.searchsorted(z_part[oz], np.arange(J + 1)), opt=z_item[oz],
+                   opt_vol=vol[z_app[oz]])
 
 
 def _lin(coefs, vars_):
@@ -174,8 +253,13 @@ def build_model(inst: PlatformInstance, objective: str = "variants", *, max_vari
     in_use[z_part] = True
     m.J = pyo.Set(initialize=[int(j) for j in np.flatnonzero(in_use)])
     m.y = pyo.Var(m.J, domain=pyo.Binary)
-    m.x = pyo.Var(range(C), bounds=(0, 1))
-    m.z = pyo.Var(range(n_z), bounds=(0, 1))
+    br = _breaks(inst, objective, c_item, c_part, z_item, z_part)
+    if br:   # with volume breaks the x and z of designs holding a part with a break are integral
+        m.x = pyo.Var(range(C), domain=lambda m, c: pyo.Binary if br.x_int[c] else pyo.Reals, bounds=(0, 1))
+        m.z = pyo.Var(range(n_z), domain=lambda m, i: pyo.Binary if br.z_int[i] else pyo.Reals, bounds=(0, 1))
+    else:
+        m.x = pyo.Var(range(C), bounds=(0, 1))
+        m.z = pyo.Var(range(n_z), bounds=(0, 1))
     if allow_unserved:
         m.e = pyo.Var(range(inst.n_apps), bounds=(0, 1))
     nnz = 0
@@ -213,6 +297,30 @@ def build_model(inst: PlatformInstance, objective: str = "variants", *, max_vari
         return _lin([1.0] * len(idx) + [-1.0], [m.z[int(i)] for i in z_item[idx]] + [m.y[int(z_part[idx[0]])]]) <= 0
     m.option_link = pyo.Constraint(range(len(ol)), rule=option_link_rule)
     nnz += len(z_item) + len(ol)
+    nb = len(br) if br else 0
+    if br:
+        m.s = pyo.Var(range(nb), bounds=lambda m, e: (0.0, float(br.vmax[e])))
+        m.b = pyo.Var(range(nb), domain=pyo.Binary)
+
+        def volume_terms(m, e):
+            cs, cv, zs, zv = br.terms(e)
+            return [-float(v) for v in cv] + [-float(v) for v in zv], [m.x[int(c)] for c in cs] + [m.z[int(i)] for i in zs]
+
+        def pool_rule(m, e):
+            coefs, vars_ = volume_terms(m, e)
+            return _lin([1.0] + coefs, [m.s[e]] + vars_) <= 0
+        m.pool = pyo.Constraint(range(nb), rule=pool_rule)
+
+        def break_on_rule(m, e):
+            return _lin([1.0, -float(br.vmax[e])], [m.s[e], m.b[e]]) <= 0
+        m.break_on = pyo.Constraint(range(nb), rule=break_on_rule)
+
+        def break_reach_rule(m, e):
+            coefs, vars_ = volume_terms(m, e)
+            return _lin([float(br.qty[e])] + coefs, [m.b[e]] + vars_) <= 0
+        m.break_reach = pyo.Constraint(range(nb), rule=break_reach_rule)
+        n_use = int(sum(br.core_ptr[j + 1] - br.core_ptr[j] + br.opt_ptr[j + 1] - br.opt_ptr[j] for j in br.part))
+        nnz += 2 * (nb + n_use) + 2 * nb
 
     fam_idx = {n: i for i, n in enumerate(inst.family_names)}
     caps = [(f, int(n)) for f, n in (max_variants or {}).items()]
@@ -239,15 +347,17 @@ def build_model(inst: PlatformInstance, objective: str = "variants", *, max_vari
         terms = [(float(inst.part_fixed_cost[j]), m.y[j]) for j in m.J if inst.part_fixed_cost[j] != 0]
         terms += [(float(inst.core_cost[c]), m.x[c]) for c in range(C) if inst.core_cost[c] != 0]
         terms += [(float(inst.row_opt_cost[i]), m.z[i]) for i in range(n_z) if inst.row_opt_cost[i] != 0]
+        terms += [(-float(br.step[e]), m.s[e]) for e in range(nb)]
         pen = float(np.sum(inst.part_fixed_cost[in_use]) + np.sum(np.abs(inst.core_cost))
                     + np.sum(np.abs(inst.row_opt_cost))) + 1.0
     if allow_unserved:
         m.penalty = pen
         terms += [(pen, m.e[a]) for a in range(inst.n_apps)]
     m.obj = pyo.Objective(expr=_lin([t[0] for t in terms], [t[1] for t in terms]), sense=pyo.minimize)
-    n_var = int(in_use.sum()) + C + n_z + (inst.n_apps if allow_unserved else 0)
+    n_var = int(in_use.sum()) + C + n_z + (inst.n_apps if allow_unserved else 0) + 2 * nb
     n_con = sum(len(c) for c in m.component_objects(pyo.Constraint, active=True))
-    m.size = {"variables": n_var, "binaries": int(in_use.sum()), "constraints": int(n_con), "nonzeros": int(nnz)}
+    m.size = {"variables": n_var, "binaries": int(in_use.sum()) + (nb + int(br.x_int.sum() + br.z_int.sum()) if nb else 0),
+              "constraints": int(n_con), "nonzeros": int(nnz)}
     return m
 
 
@@ -268,6 +378,9 @@ class MilpArrays:
     row_index: np.ndarray        # column of each entry
     row_value: np.ndarray
     y_col: np.ndarray            # (J,) column of ``y_j``, -1 for a part without a variable
+    x_col: np.ndarray            # (C,) column of ``x_c``
+    z_col: np.ndarray            # (n_z,) column of ``z_i``
+    sb_col: np.ndarray           # (2 n_breaks,) columns of ``s_e`` then ``b_e``
     e_col: np.ndarray | None     # (n_apps,) column of ``e_a`` (``allow_unserved`` only)
     size: dict
 
@@ -310,9 +423,13 @@ def build_arrays(inst: PlatformInstance, objective: str = "variants", *, max_var
         raise ValueError(f"objective must be 'variants' or 'cost', got {objective!r}")
     J, C, R, A = inst.n_parts, len(inst.core_app), len(inst.row_app), int(inst.n_apps)
     n_z = int(inst.row_opt_ptr[-1])
-    X0, Z0, Y0, E0 = 0, C, C + n_z, C + n_z + J       # variable keys: x_c, z_i, y_j, e_a
     c_item, c_part = _expand(inst.pattern_ptr, inst.pattern_parts, inst.core_pattern)
     z_item, z_part = _expand(inst.pattern_ptr, inst.pattern_parts, inst.row_opt_pattern)
+    br = _breaks(inst, objective, c_item, c_part, z_item, z_part)
+    nb = len(br) if br else 0
+    X0, Z0, Y0, E0 = 0, C, C + n_z, C + n_z + J       # variable keys: x_c, z_i, y_j, e_a, s_e, b_e
+    S0 = E0 + (A if allow_unserved else 0)
+    B0 = S0 + nb
     in_use = np.zeros(J, bool)
     in_use[c_part] = True
     in_use[z_part] = True
@@ -340,6 +457,21 @@ def build_arrays(inst: PlatformInstance, objective: str = "variants", *, max_var
         blocks.append((*_rows(ptr, base + item[order], np.ones(len(order)), ar(g + 1),
                               Y0 + part[order[ptr[:-1]]], -np.ones(g)), -np.inf, 0.0))
         nnz += len(item) + g
+    if br:
+        # the volume V_j of each break's part: its cores (x), then its option entries (z), at -volume
+        cn = (br.core_ptr[1:] - br.core_ptr[:-1])[br.part]
+        on = (br.opt_ptr[1:] - br.opt_ptr[:-1])[br.part]
+        vptr = np.concatenate([[0], np.cumsum(cn + on)]).astype(np.int64)
+        cpos = np.repeat(br.core_ptr[br.part], cn) + ar(int(cn.sum())) - np.repeat(np.cumsum(cn) - cn, cn)
+        opos = np.repeat(br.opt_ptr[br.part], on) + ar(int(on.sum())) - np.repeat(np.cumsum(on) - on, on)
+        vstart, vkey, vval = _rows(np.concatenate([[0], np.cumsum(cn)]).astype(np.int64), X0 + br.core[cpos],
+                                   -br.core_vol[cpos], np.concatenate([[0], np.cumsum(on)]).astype(np.int64),
+                                   Z0 + br.opt[opos], -br.opt_vol[opos])
+        one = ar(nb + 1)
+        blocks.append((*_rows(one, S0 + ar(nb), np.ones(nb), vstart, vkey, vval), -np.inf, 0.0))        # pool
+        blocks.append((*_rows(one, S0 + ar(nb), np.ones(nb), one, B0 + ar(nb), -br.vmax), -np.inf, 0.0))  # break_on
+        blocks.append((*_rows(one, B0 + ar(nb), br.qty, vstart, vkey, vval), -np.inf, 0.0))           # break_reach
+        nnz += 2 * (nb + int(vptr[-1])) + 2 * nb
     fam_idx = {n: i for i, n in enumerate(inst.family_names)}
     for f, n in (max_variants or {}).items():
         if f not in fam_idx:
@@ -360,17 +492,19 @@ def build_arrays(inst: PlatformInstance, objective: str = "variants", *, max_var
     row_lower = np.repeat([b[3] for b in blocks], n_rows).astype(float)
     row_upper = np.repeat([b[4] for b in blocks], n_rows).astype(float)
     # objective, by variable key
-    cost = np.zeros(E0 + (A if allow_unserved else 0))
+    cost = np.zeros(B0 + nb)
     if objective == "variants":
         cost[Y0:E0] = np.where(in_use, inst.part_weight, 0.0)
         pen = float(np.sum(inst.part_weight[in_use])) + 1.0
     else:
         cost[Y0:E0] = np.where(in_use, inst.part_fixed_cost, 0.0)
         cost[X0:Z0], cost[Z0:Y0] = inst.core_cost, inst.row_opt_cost
+        if br:
+            cost[S0:B0] = -br.step
         pen = float(np.sum(inst.part_fixed_cost[in_use]) + np.sum(np.abs(inst.core_cost))
                     + np.sum(np.abs(inst.row_opt_cost))) + 1.0
     if allow_unserved:
-        cost[E0:] = pen
+        cost[E0:S0] = pen
     # columns in the order of first appearance (appsi's), then variables only the objective names
     uniq, first = np.unique(keys, return_index=True)
     order = uniq[np.argsort(first, kind="stable")]
@@ -379,13 +513,21 @@ def build_arrays(inst: PlatformInstance, objective: str = "variants", *, max_var
     col_of = np.full(len(cost), -1, np.int64)
     col_of[order] = ar(len(order))
     y_col = np.where(in_use, col_of[Y0:E0], -1)
-    n_var = int(in_use.sum()) + C + n_z + (A if allow_unserved else 0)
+    n_var = int(in_use.sum()) + C + n_z + (A if allow_unserved else 0) + 2 * nb
+    upper = np.ones(len(cost))
+    if br:
+        upper[S0:B0] = br.vmax
+    integer = ((order >= Y0) & (order < E0)) | (order >= B0)
+    if br:
+        integer |= np.r_[br.x_int, br.z_int, np.zeros(len(cost) - Y0, bool)][order]
     return MilpArrays(
-        col_lower=np.zeros(len(order)), col_upper=np.ones(len(order)), col_cost=cost[order],
-        col_integer=(order >= Y0) & (order < E0), row_lower=row_lower, row_upper=row_upper, row_start=row_start,
-        row_index=col_of[keys], row_value=values, y_col=y_col, e_col=col_of[E0:] if allow_unserved else None,
-        size={"variables": n_var, "binaries": int(in_use.sum()), "constraints": int(sum(n_rows)),
-              "nonzeros": int(nnz)})
+        col_lower=np.zeros(len(order)), col_upper=upper[order], col_cost=cost[order],
+        col_integer=integer, row_lower=row_lower, row_upper=row_upper, row_start=row_start,
+        row_index=col_of[keys], row_value=values, y_col=y_col, x_col=col_of[X0:Z0], z_col=col_of[Z0:Y0],
+        sb_col=col_of[S0:B0 + nb],
+        e_col=col_of[E0:S0] if allow_unserved else None,
+        size={"variables": n_var, "binaries": int(in_use.sum()) + (nb + int(br.x_int.sum() + br.z_int.sum()) if nb else 0),
+              "constraints": int(sum(n_rows)), "nonzeros": int(nnz)})
 
 
 def highs_model(arr: MilpArrays):
@@ -409,7 +551,50 @@ def highs_model(arr: MilpArrays):
     return h
 
 
-def _highs_arrays(arr: MilpArrays, time_limit: float, mip_gap: float, warm_start: np.ndarray | None):
+def designs_start(inst: PlatformInstance, y: np.ndarray) -> tuple:
+    """``(x, z, s, b)``: a complete MIP start from platform ``y`` where the MILP has volume breaks (a platform alone
+    leaves the integral ``x`` and ``z`` to find): each application's cheapest design on it at the unit costs (the
+    first core of equal cost, each row's first cheapest option), the breaks its volumes reach."""
+    y = np.asarray(y, bool)
+    pid = np.repeat(np.arange(inst.n_patterns), inst.pattern_len())
+    ok = np.bincount(pid, weights=y[inst.pattern_parts].astype(float), minlength=inst.n_patterns) \
+        >= inst.pattern_len() - 0.5
+    R, C, n_z = len(inst.row_app), len(inst.core_app), int(inst.row_opt_ptr[-1])
+    val = np.where(ok[inst.row_opt_pattern], inst.row_opt_cost, np.inf)
+    best, pick = np.full(R, np.inf), np.full(R, -1)
+    for r in range(R):
+        lo, hi = inst.row_opt_ptr[r], inst.row_opt_ptr[r + 1]
+        if hi > lo:
+            k = int(np.argmin(val[lo:hi]))
+            if np.isfinite(val[lo + k]):
+                best[r], pick[r] = val[lo + k], lo + k
+    core_val = np.where(ok[inst.core_pattern], inst.core_cost, np.inf)
+    r_of = np.repeat(np.arange(R), np.diff(inst.row_core_ptr))
+    np.add.at(core_val, inst.row_core, best[r_of])
+    x, z = np.zeros(C), np.zeros(n_z)
+    start = np.searchsorted(inst.core_app, np.arange(inst.n_apps + 1))
+    for a in range(inst.n_apps):
+        if start[a + 1] > start[a]:
+            c = start[a] + int(np.argmin(core_val[start[a]:start[a + 1]]))
+            if np.isfinite(core_val[c]):
+                x[c] = 1.0
+    rows = r_of[x[inst.row_core] > 0.5]
+    z[pick[rows]] = 1.0
+    c_item, c_part = _expand(inst.pattern_ptr, inst.pattern_parts, inst.core_pattern)
+    z_item, z_part = _expand(inst.pattern_ptr, inst.pattern_parts, inst.row_opt_pattern)
+    br = _breaks(inst, "cost", c_item, c_part, z_item, z_part)
+    if br is None:
+        return x, z, np.zeros(0), np.zeros(0)
+    vol = np.zeros(inst.n_parts)
+    for e in range(len(br)):
+        cs, cv, zs, zv = br.terms(e)
+        vol[br.part[e]] = float(np.dot(cv, x[cs]) + np.dot(zv, z[zs]))
+    b = (vol[br.part] >= br.qty - 1e-9).astype(float)
+    return x, z, b * vol[br.part], b
+
+
+def _highs_arrays(arr: MilpArrays, time_limit: float, mip_gap: float, warm_start: np.ndarray | None,
+                  full: tuple | None = None):
     """Solve ``arr`` with highspy, with appsi's options and MIP start; returns ``(status, has a solution,
     objective, bound, column values)``, read as appsi's ``_postsolve`` reads them."""
     import highspy
@@ -421,6 +606,9 @@ def _highs_arrays(arr: MilpArrays, time_limit: float, mip_gap: float, warm_start
         col = np.zeros(n)
         has = arr.y_col >= 0
         col[arr.y_col[has]] = np.asarray(warm_start, bool)[has].astype(float)
+        if full is not None:   # the designs too (volume breaks: integral x and z)
+            x, z, s, b = full
+            col[arr.x_col], col[arr.z_col], col[arr.sb_col] = x, z, np.r_[s, b]
         start = highspy.HighsSolution()
         start.col_value = col
         start.value_valid = True
@@ -473,16 +661,20 @@ def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = 
     if solver == "highs" and build == "arrays" and model is None:
         arr = build_arrays(inst, objective, max_variants=max_variants, budget=budget, allow_unserved=allow_unserved)
         t1 = time.perf_counter()
-        status, has, obj, bound, col = _highs_arrays(arr, time_limit, mip_gap, warm_start)
-        y = unserved = None
+        full = designs_start(inst, warm_start) if warm_start is not None and objective == "cost" \
+            and inst.n_breaks else None
+        status, has, obj, bound, col = _highs_arrays(arr, time_limit, mip_gap, warm_start, full)
+        y = unserved = x = z = None
         if has:
             y = np.zeros(inst.n_parts, bool)
             y[arr.y_col >= 0] = col[arr.y_col[arr.y_col >= 0]] > 0.5
             if allow_unserved:
                 unserved = col[arr.e_col] > 0.5
+            if objective == "cost" and inst.n_breaks:
+                x, z = col[arr.x_col] > 0.5, col[arr.z_col] > 0.5
         return PlatformSolution(status=status, y=y, objective=obj, bound=bound, gap=_gap(has, obj, bound, status),
                                 time_s=time.perf_counter() - t1, build_s=t1 - t0, size=dict(arr.size),
-                                solver=solver, unserved=unserved)
+                                solver=solver, unserved=unserved, x=x, z=z)
     m = model if model is not None else build_model(inst, objective, max_variants=max_variants, budget=budget,
                                                     allow_unserved=allow_unserved)
     build_s = time.perf_counter() - t0
@@ -490,6 +682,11 @@ def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = 
     if warm_start is not None:
         for j in m.y:
             m.y[j].set_value(float(bool(warm_start[j])))
+        if hasattr(m, "b"):   # volume breaks: the designs too
+            x, z, s, b = designs_start(inst, warm_start)
+            for vals, var in ((x, m.x), (z, m.z), (s, m.s), (b, m.b)):
+                for i, v in enumerate(vals):
+                    var[i].set_value(float(v))
     t1 = time.perf_counter()
     if solver == "highs":
         from pyomo.contrib.appsi.solvers import Highs
@@ -525,11 +722,15 @@ def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = 
         y = np.zeros(J, bool)
         for j in m.y:
             y[j] = (pyo.value(m.y[j]) or 0.0) > 0.5
-    unserved = None
+    unserved = x = z = None
     if has and allow_unserved:
         unserved = np.array([(pyo.value(m.e[a]) or 0.0) > 0.5 for a in range(inst.n_apps)], bool)
+    if has and hasattr(m, "b"):
+        x = np.array([(pyo.value(m.x[c]) or 0.0) > 0.5 for c in range(len(inst.core_app))], bool)
+        z = np.array([(pyo.value(m.z[i]) or 0.0) > 0.5 for i in range(int(inst.row_opt_ptr[-1]))], bool)
     return PlatformSolution(status=status, y=y, objective=obj, bound=bound, gap=_gap(has, obj, bound, status),
-                            time_s=solve_s, build_s=build_s, size=dict(m.size), solver=solver, unserved=unserved)
+                            time_s=solve_s, build_s=build_s, size=dict(m.size), solver=solver, unserved=unserved,
+                            x=x, z=z)
 
 
 def _gap(has: bool, obj: float, bound: float, status: str) -> float:

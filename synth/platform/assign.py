@@ -67,13 +67,20 @@ def serve(inst: PlatformInstance, y: np.ndarray, objective: str = "cost"):
 
 
 def objective_value(inst: PlatformInstance, y: np.ndarray, objective: str) -> float:
-    """The MILP objective of platform ``y`` (``inf`` when an application is not served)."""
+    """The MILP objective of platform ``y`` (``inf`` when an application is not served); with volume breaks, of
+    each application's cheapest design at the unit costs with the breaks their volumes reach
+    (:func:`formulations.platform.designs_start`: an upper bound of the platform's cost)."""
     served, cost, _ = serve(inst, y)
     if not served.all():
         return np.inf
     y = np.asarray(y, bool)
     if objective == "variants":
         return float(np.sum(inst.part_weight[y]))
+    if inst.n_breaks:
+        from formulations.platform import designs_start
+        x, z, pooled, _ = designs_start(inst, y)
+        return float(np.sum(inst.part_fixed_cost[y]) + x @ inst.core_cost + z @ inst.row_opt_cost
+                     - np.asarray(inst.break_step, float) @ pooled)
     return float(np.sum(inst.part_fixed_cost[y]) + np.sum(cost))
 
 
@@ -98,7 +105,7 @@ def _in(platform: dict, f: str, codes: np.ndarray) -> np.ndarray:
 
 
 def _cheapest(idx: np.ndarray, mar: np.ndarray, cost: np.ndarray, grp: np.ndarray, n_groups: int,
-              usable: np.ndarray, tau: float):
+              usable: np.ndarray, tau: float, entry_ok: np.ndarray | None = None):
     """Per group of options (option ``idx[i]`` of group ``grp[i]``, margin ``mar[i]``, unit cost ``cost[i]``) the
     cheapest usable option with a margin of at least ``tau`` (the first of equal costs) and its cost: ``(choice,
     cost)``, ``-1`` and ``inf`` for a group with none. Every group at once (one sort), not a loop over them.
@@ -110,6 +117,8 @@ def _cheapest(idx: np.ndarray, mar: np.ndarray, cost: np.ndarray, grp: np.ndarra
     """
     choice, best = np.full(n_groups, -1, np.int64), np.full(n_groups, np.inf)
     m = usable[idx] & (mar >= tau)
+    if entry_ok is not None:                                   # per entry (a design an application must keep)
+        m &= entry_ok
     idx, grp, c = idx[m], grp[m], cost[m]
     if not len(idx):
         return choice, best
@@ -128,7 +137,7 @@ def option_groups(pf: PortfolioFeasibility) -> dict:
 
 
 def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None = None,
-           groups: dict | None = None) -> list:
+           groups: dict | None = None, designs: dict | None = None) -> list:
     """One record per application of ``pf``: its cheapest design built only from ``platform`` parts.
 
     Record keys: ``app_id``, ``feasible``, ``core`` (index into the application's cores or
@@ -136,16 +145,32 @@ def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None
     ``codes`` (``{family: part code}``, ``-1`` none), ``unit_cost_eur``, ``margin`` (the smallest of the core's and the options' margins),
     ``binding`` (the constraint with that margin, when the data name it), ``reason`` (why
     not feasible). ``min_margin`` ignores cores and options with a smaller margin. ``groups``: ``pf``'s
-    :func:`option_groups` when already computed (the same records).
+    :func:`option_groups` when already computed (the same records). ``designs``: ``{application index:
+    {family: part code}}``, the parts an application's design must have (the MILP's designs where a part's price
+    depends on which applications use it: :func:`synth.platform.volume.pool_prices`); its cheapest design with
+    exactly those parts.
     """
     tau = -np.inf if min_margin is None else float(min_margin)
     opt_ok = {s: np.all([_in(platform, f, pf.options[s][f]) for f in fams], axis=0)
               for s, fams in SUBSYSTEM_FAMILIES.items()}
     cheap = {}
     groups = groups if groups is not None else option_groups(pf)
+    target = None
+    if designs:   # per family the code each application must use (-2: free)
+        target = {f: np.full(len(pf.apps), -2, np.int64) for f in FAMILIES}
+        for ai, d in designs.items():
+            for f in FAMILIES:
+                target[f][ai] = int(d.get(f, -2))
     for s in SUBSYSTEMS:
         idx, mar, cost, grp, gptr = groups[s]
-        cheap[s] = (*_cheapest(idx, mar, cost, grp, int(gptr[-1]), opt_ok[s], tau), gptr)
+        entry_ok = None
+        if target is not None:
+            app = np.repeat(np.arange(len(pf.apps)), np.diff(gptr))[grp]
+            entry_ok = np.ones(len(idx), bool)
+            for f in SUBSYSTEM_FAMILIES[s]:
+                t = target[f][app]
+                entry_ok &= (t == -2) | (np.asarray(pf.options[s][f])[idx] == t)
+        cheap[s] = (*_cheapest(idx, mar, cost, grp, int(gptr[-1]), opt_ok[s], tau, entry_ok), gptr)
     # every application's cores one after the other: which the platform builds, and their cheapest designs' costs
     apps = pf.apps
     n_c = np.array([a.n_cores for a in apps], np.int64)
@@ -154,7 +179,10 @@ def assign(pf: PortfolioFeasibility, platform: dict, *, min_margin: float | None
     cat = (lambda xs, dt: np.concatenate(xs).astype(dt, copy=False) if xs else np.zeros(0, dt))  # noqa: E731
     ok = cat([np.asarray(a.core_margin, float) for a in apps], float) >= tau
     for f in CORE_FAMILIES:
-        ok &= _in(platform, f, cat([np.asarray(a.core_parts[f]).reshape(-1) for a in apps], np.int64))
+        codes = cat([np.asarray(a.core_parts[f]).reshape(-1) for a in apps], np.int64)
+        ok &= _in(platform, f, codes)
+        if target is not None:
+            ok &= (target[f][app_of] == -2) | (codes == target[f][app_of])
     total = cat([np.asarray(a.core_cost_eur, float) for a in apps], float).copy()
     missing, best_opt = {}, {}
     for s in SUBSYSTEMS:

@@ -68,6 +68,7 @@ class Work:
     row_alive: list
     unservable: list = field(default_factory=list)   # (pf app index, reason)
     log: list = field(default_factory=list)          # what each reduction removed
+    breaks: tuple | None = None  # (app volume, break ptr, qty, step): synth.platform.volume.pool_prices
 
     @property
     def n_parts(self) -> int:
@@ -77,6 +78,12 @@ class Work:
         """``(family, code)`` of global part ``j``."""
         f = FAMILIES[int(self.part_family[j])]
         return f, int(j - self.part_offset[f])
+
+    def pf_volume(self, a) -> np.ndarray:
+        """The annual volume of instance application(s) ``a``."""
+        vol = self.breaks[0] if self.breaks is not None else np.array([float(self.pf.apps[i].volume)
+                                                                       for i in self.app_index])
+        return vol[np.asarray(a, np.int64)]
 
     def sizes(self) -> dict:
         rows = [i for i, a in enumerate(self.row_alive) if a]
@@ -107,7 +114,9 @@ class Work:
             row_core=cat(rc, np.int64),
             row_opt_ptr=np.concatenate([[0], np.cumsum([len(self.row_pats[i]) for i in rows])]).astype(np.int64),
             row_opt_pattern=cat([self.row_pats[i] for i in rows], np.int64),
-            row_opt_cost=cat([self.row_cost[i] for i in rows], float))
+            row_opt_cost=cat([self.row_cost[i] for i in rows], float),
+            **({} if self.breaks is None else dict(zip(("app_volume", "break_ptr", "break_qty", "break_step"),
+                                                       self.breaks))))
 
 
 class _Patterns:

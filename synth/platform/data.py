@@ -114,7 +114,8 @@ class PortfolioFeasibility:
     * real data only (:mod:`synth.platform.producer`): ``design_inputs`` (the validated input
       of each application, None for a row that failed validation), the evaluator
       ``settings``, the ``catalogue`` (:class:`synth.platform.options.Catalogue`: how an
-      option is a row of the design space) and ``stats`` (times).
+      option is a row of the design space) and ``stats`` (times); ``volumes_given``: the portfolio has an annual
+      volume column (:mod:`synth.platform.volume` prices each part at the summed volume of its applications).
     """
 
     apps: list
@@ -127,6 +128,7 @@ class PortfolioFeasibility:
     settings: object = None
     catalogue: object = None
     stats: dict = field(default_factory=dict)
+    volumes_given: bool = False
 
     def n_options(self, s: str) -> int:
         return int(len(self.option_cost_eur[s]))

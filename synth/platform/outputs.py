@@ -1,12 +1,13 @@
 """Files of a platform result: ``platform.csv``, ``assignment.csv``, ``summary.md``,
 ``tradeoff.csv`` and ``tradeoff.png``.
 
-* ``platform.csv``: family, part, applications using it (one row per platform part).
+* ``platform.csv``: family, part, applications using it (one row per platform part); with annual volumes, the
+  part's pooled volume and its volume saving (:mod:`synth.platform.volume`).
 * ``assignment.csv``: one row per application: id, feasible, the part key of every family
   (``none``: no part of that family), unit cost, smallest margin and its binding
   constraint, and for an application no platform serves, the reason.
 * ``summary.md``: the price of standardisation (platform parts and cost against the
-  per-application optima), the feasibility data (time, applications), the solve
+  per-application optima), the volume saving, the feasibility data (time, applications), the solve
   (status, gap, MILP size, times), the reductions.
 * :func:`report_section`: the same for the HTML report, one self-contained ``<section>``
   (tables and the plots embedded as base64 PNG).
@@ -26,18 +27,32 @@ from synth.platform.assign import platform_parts_used
 from synth.errors import InputError, Problem
 from synth.io.files import read_text
 from synth.platform.data import FAMILIES
+from synth.platform.volume import price_curves, saving_text, volume_saving
 from synth.io.outputs import write_figure, output_folder, write_csv, write_text
 from synth.bulk.portfolio import CSV_FLOAT
 
 __all__ = ["platform_table", "gap_text", "assignment_table", "price_of_standardisation", "summary_markdown",
+           "volume_markdown",
            "tradeoff_table", "plot_tradeoff", "plot_families", "write_all", "report_section"]
 
 
 def platform_table(pf, result) -> pd.DataFrame:
+    """``platform.csv``: each platform part and the applications using it; with annual volumes also its pooled
+    volume (pieces a year) and what buying it in that volume saves against each application's own
+    (:func:`synth.platform.volume.volume_saving`)."""
     use = platform_parts_used(pf, result.records)
     rows = [{"family": f, "part": pf.part_key(f, c), "applications": use[f].get(pf.part_key(f, c), 0)}
             for f in FAMILIES for c in sorted(result.platform[f])]
-    return pd.DataFrame(rows, columns=["family", "part", "applications"])
+    cols = ["family", "part", "applications"]
+    vs = result.price.get("volume") if result.price else volume_saving(pf, result.records, _curves(pf, result))
+    if vs is not None:
+        by = {(r["family"], r["part"]): r for r in vs["per_part"]}
+        for r in rows:
+            hit = by.get((r["family"], r["part"]), {})
+            r["annual_volume"] = hit.get("pooled_volume", 0.0)
+            r["volume_saving_eur"] = hit.get("saving_eur", 0.0)
+        cols += ["annual_volume", "volume_saving_eur"]
+    return pd.DataFrame(rows, columns=cols)
 
 
 def assignment_table(result) -> pd.DataFrame:
@@ -49,6 +64,12 @@ def assignment_table(result) -> pd.DataFrame:
                     "verdict": r.get("verdict", ""), "reason": r["reason"]})
         rows.append(row)
     return pd.DataFrame(rows)
+
+
+def _curves(pf, result):
+    """The price curves ``result`` was priced by, else those of ``pf`` (:func:`synth.platform.volume.price_curves`)."""
+    c = getattr(result, "curves", None)
+    return c if c is not None else price_curves(pf)
 
 
 def price_of_standardisation(pf, result) -> dict:
@@ -68,7 +89,27 @@ def price_of_standardisation(pf, result) -> dict:
             "parts_by_family": {f: (len(result.platform[f]), len(union[f])) for f in FAMILIES},
             "unit_cost_volume_platform_eur": cost_p, "unit_cost_volume_optima_eur": cost_o,
             "fixed_cost_platform_eur": fixed(result.platform), "fixed_cost_union_of_optima_eur": fixed(union),
-            "unit_cost_increase": (cost_p - cost_o) / cost_o if cost_o else 0.0}
+            "unit_cost_increase": (cost_p - cost_o) / cost_o if cost_o else 0.0,
+            "volume": volume_saving(pf, result.records, _curves(pf, result))}
+
+
+def volume_markdown(vs: dict | None, top: int = 10) -> str:
+    """The volume saving for ``summary.md``: the total, and the parts that save most."""
+    if vs is None:
+        return ("No annual volumes (no `annual_volume` column): every application counts one unit, and no part is "
+                "priced at a pooled volume.\n")
+    out = [f"Each platform part is priced at the quantity break of the summed annual volume of the applications it "
+           f"serves: {saving_text(vs)}, against each application buying its parts in its own volume "
+           f"({vs['own_eur']:,.0f} EUR/year pooled to {vs['pooled_eur']:,.0f}; `docs/model.md`, \"Platform "
+           "rationalisation\").", ""]
+    saving = [r for r in vs["per_part"] if r["saving_eur"] > 0.005]
+    if saving:
+        out += ["| family | part | applications | annual volume | own volumes [EUR/year] | pooled [EUR/year] | "
+                "saving [EUR/year] |", "|---|---|---|---|---|---|---|"]
+        out += [f"| {r['family']} | {r['part']} | {r['applications']} | {r['pooled_volume']:,.0f} | "
+                f"{r['own_eur']:,.0f} | {r['pooled_eur']:,.0f} | {r['saving_eur']:,.0f} |"
+                for r in saving[:top]]
+    return "\n".join(out) + "\n"
 
 
 def gap_text(x: float, digits: int = 1) -> str:
@@ -92,6 +133,7 @@ def summary_markdown(pf, result) -> str:
              f"{p['fixed_cost_union_of_optima_eur']:,.0f} | |", "",
              "| family | platform | union of optima |", "|---|---|---|"]
     lines += [f"| {f} | {a} | {b} |" for f, (a, b) in p["parts_by_family"].items()]
+    lines += ["", "## Volume", "", volume_markdown(p.get("volume"))]
     s = result.size
     st = getattr(pf, "stats", {}) or {}
     if "feasibility_s" in st:
@@ -251,7 +293,8 @@ def report_section(result) -> str:
            f"{result.n_parts} distinct parts ({result.objective} objective, MILP {html.escape(result.status)}, "
            f"gap {result.gap:.2%}); {n_bad} not served (see <code>assignment.csv</code>). "
            f"The union of the applications' own optimal designs uses {p['parts_union_of_optima']} parts; "
-           f"standardising changes the unit cost x volume by {p['unit_cost_increase']:+.2%}.</p>",
+           f"standardising changes the unit cost x volume by {p['unit_cost_increase']:+.2%}; "
+           f"{html.escape(saving_text(p.get('volume')))}.</p>",
            _html_table(["family", "platform", "union of per-application optima"],
                        [(f, a, b) for f, (a, b) in p["parts_by_family"].items()]),
            _png_tag(plot_families(result), "parts per family", "Distinct parts per family: platform against the "

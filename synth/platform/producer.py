@@ -716,6 +716,7 @@ def from_table(portfolio, settings: evaluate.Settings = evaluate.DEFAULT, **kw) 
            else [f"row {i + 1}" for i in range(n)])
     volumes, col = _volumes(table, n)
     pf = feasibility([d for d, _ in checked], ids, volumes, settings, errors=[e for _, e in checked], **kw)
+    pf.volumes_given = col is not None
     pf.notes.append(f"volumes: column {col}" if col else
                     "volumes: no annual_volume column, every application counts 1 unit")
     return pf

@@ -53,6 +53,14 @@ R5 **Implied row** (variants objective, every application must be served). If th
 
 The reductions run in rounds until none removes anything (each can enable the others).
 The tests compare the optimum with and without them on small portfolios.
+
+**Pooled prices.** Where a part's unit price falls with the summed volume of the applications it serves
+(:func:`synth.platform.volume.pool_prices`: volume breaks left to the MILP), R1-R3 compare the dominator's cost
+without any break against the dominated one's with every break of its parts reached (its largest discount), and
+R1 and R3 ask in addition that the parts the dominated option or core has beyond the other's have no break (moving
+an application off them takes no volume from a part another application's break needs). *Proof*: the swap then
+costs the application no more at any volumes, moves no volume off a part with a break (R2 moves all of part
+``j``'s volume onto ``k``, whose price can only fall), and changes no other application's design.
 """
 
 from __future__ import annotations
@@ -100,10 +108,24 @@ def _subset_matrix(w: Work, pats: np.ndarray) -> np.ndarray:
     return inter >= lens[:, None] - 0.5
 
 
+def _pooled(w: Work):
+    """``(largest discount per piece, number of parts with a volume break)`` per pattern where parts are priced at
+    their pooled volume (:func:`synth.platform.volume.pool_prices`), else None."""
+    if w.objective != "cost" or w.breaks is None or not len(w.breaks[2]):
+        return None
+    _, ptr, _, step = w.breaks
+    disc = np.add.reduceat(np.r_[step, 0.0], ptr[:-1]) * (np.diff(ptr) > 0)      # per part: the sum of its steps
+    has = (np.diff(ptr) > 0).astype(np.int64)
+    vd = np.array([disc[p].sum() for p in w.patterns])
+    nbp = np.array([has[p].sum() for p in w.patterns], np.int64)
+    return vd, nbp
+
+
 def dominated_options(w: Work) -> int:
     """R1 (and the empty-pattern rows). Returns the number of (row, option) entries removed."""
     removed = 0
     cost_obj = w.objective == "cost"
+    pooled = _pooled(w)
     plen = np.fromiter((len(x) for x in w.patterns), np.int64, len(w.patterns))
     multi = {si for si in range(len(SUBSYSTEMS))   # subsystems with an option of other than one part
              if (plen[np.concatenate([w.row_pats[i] for i in _live_rows(w, si)] or [np.zeros(0, np.int64)])] != 1).any()}
@@ -117,7 +139,12 @@ def dominated_options(w: Work) -> int:
         if lens.min() == lens.max() and lens.min() > 0:
             continue                                   # distinct patterns of one size: none is a subset of another
         S = _subset_matrix(w, p)                       # S[a, b]: p[a] subset of p[b]
-        better = S & ((c[:, None] <= c[None, :] + 1e-9) if cost_obj else True)
+        if cost_obj and pooled is not None:            # a's dearest against b's cheapest, b's extra parts priceless
+            vd, nbp = pooled
+            c_lo = c - w.pf_volume(w.row_app[i]) * vd[p]
+            better = S & (c[:, None] <= c_lo[None, :] + 1e-9) & (nbp[p][:, None] == nbp[p][None, :])
+        else:
+            better = S & ((c[:, None] <= c[None, :] + 1e-9) if cost_obj else True)
         np.fill_diagonal(better, False)
         mutual = better & better.T
         idx = np.arange(len(p))
@@ -238,6 +265,9 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     pats = np.concatenate([w.row_pats[i] for i in rows])
     cost = np.concatenate([w.row_cost[i] for i in rows])
     r_of = np.repeat(np.arange(len(rows)), [len(w.row_pats[i]) for i in rows])
+    pooled = _pooled(w) if cost_obj else None
+    cost_lo = cost if pooled is None else cost - np.array([w.pf_volume(w.row_app[i]) for i in rows])[r_of] * \
+        pooled[0][pats]                          # an option's cheapest at its parts' best breaks
     # per option: its part of family fi (-1: none) and the pattern of its other parts ("rest")
     upat, inv = _unique_ints(pats, len(w.patterns))
     part_u, rest_u = _split_patterns(w, upat, fi)
@@ -267,7 +297,7 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
         cls = np.asarray(cls).reshape(-1)
         n_app = int(cls.max()) + 1
         cmin, cmax = np.full((n_app, nc), np.inf), np.full((n_app, nc), -np.inf)
-        np.minimum.at(cmin, (cls, pcol), cost[has])
+        np.minimum.at(cmin, (cls, pcol), cost_lo[has])
         np.maximum.at(cmax, (cls, pcol), cost[has])
         in_app = sp.csc_matrix((np.ones(len(cls), bool), (cls, pcol)), shape=(n_app, nc))
     # per part j: its smallest token (the first in its column on ties: a dominator is in it), and the parts of that
@@ -327,6 +357,7 @@ def dominated_cores(w: Work) -> int:
     """R3. Returns the number of cores removed."""
     cr = _core_rows(w)
     cost_obj = w.objective == "cost"
+    pooled = _pooled(w) if cost_obj else None
     alive = np.flatnonzero(w.core_alive)
     if not len(alive):
         return 0
@@ -362,7 +393,11 @@ def dominated_cores(w: Work) -> int:
                 if off:
                     sup[off:, 0] = False                       # a real row does not hold "everything"
             better &= sup[np.ix_(rinv.ravel(), rinv.ravel())]
-        if cost_obj:
+        if cost_obj and pooled is not None:   # a's dearest against b's cheapest, b's extra parts priceless
+            cc, kp = w.core_cost[cs], w.core_pattern[cs]
+            lo = cc - w.pf_volume(w.core_app[cs]) * pooled[0][kp]
+            better &= (cc[:, None] <= lo[None, :] + 1e-9) & (pooled[1][kp][:, None] == pooled[1][kp][None, :])
+        elif cost_obj:
             cc = w.core_cost[cs]
             better &= cc[:, None] <= cc[None, :] + 1e-9
         np.fill_diagonal(better, False)

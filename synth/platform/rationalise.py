@@ -22,11 +22,13 @@ from formulations.platform import solve as solve_milp
 from synth.errors import InputError, Problem
 from synth.platform.assign import assign, full_platform, objective_value, option_groups, platform_from_y
 from synth.platform.compile import Precompiled, compile_portfolio, precompile
-from synth.platform.data import FAMILIES, PortfolioFeasibility, default_weights
+from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility, \
+    default_weights
 from synth.platform.greedy import greedy
 from synth.platform.prune import prune as prune_work
 from synth.platform.verified import verify_records
 from synth.platform.outputs import platform_table, price_of_standardisation
+from synth.platform.volume import pool_prices, price_curves
 
 __all__ = ["PlatformResult", "rationalise", "tradeoff", "OBJECTIVES", "STAGES"]
 
@@ -60,6 +62,7 @@ class PlatformResult:
     price: dict = field(default_factory=dict)     # synth.platform.outputs.price_of_standardisation
     table: list = field(default_factory=list)     # platform.csv rows: family, part, applications
     tradeoff: list | None = None                  # trade-off rows when a sweep was made (the report section)
+    curves: object = None                         # synth.platform.volume.PriceCurves the parts were priced by
 
     @property
     def n_parts(self) -> int:
@@ -74,6 +77,29 @@ class PlatformResult:
                     if code >= 0:
                         union[f].add(code)
         return sum(len(v) for v in union.values())
+
+
+def milp_designs(work, inst, sol) -> dict:
+    """``{application index: {family: part code}}``: the design of every application the MILP's solution serves
+    (its core ``x`` and option entries ``z``), what :func:`~synth.platform.assign.assign` keeps where a part's price
+    depends on which applications use it."""
+    parts = [inst.pattern_parts[inst.pattern_ptr[k]:inst.pattern_ptr[k + 1]] for k in range(inst.n_patterns)]
+    out: dict = {}
+
+    def put(d, fams, pattern):
+        d.update({f: -1 for f in fams})
+        for j in parts[int(pattern)]:
+            f, code = work.part_of(int(j))
+            d[f] = code
+    for c in np.flatnonzero(sol.x):
+        out[int(work.app_index[int(inst.core_app[c])])] = d = {}
+        put(d, CORE_FAMILIES, inst.core_pattern[c])
+    entry_row = np.repeat(np.arange(len(inst.row_app)), np.diff(inst.row_opt_ptr))
+    for i in np.flatnonzero(sol.z):   # a subsystem with no option at 1 (an LP's tie) is left to the assignment
+        d = out.get(int(work.app_index[int(inst.row_app[entry_row[i]])]))
+        if d is not None:
+            put(d, SUBSYSTEM_FAMILIES[SUBSYSTEMS[int(inst.row_sub[entry_row[i]])]], inst.row_opt_pattern[i])
+    return out
 
 
 def _check(objective, max_variants, time_limit, weights):
@@ -100,7 +126,7 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
                 time_limit: float = 60.0, weights: dict | None = None, solver: str = "highs", prune: bool = True,
                 min_margin: float | None = None, budget: float | None = None, verify: bool = True,
                 pre: Precompiled | None = None, details: bool = True, build: str = "arrays",
-                stage=None) -> PlatformResult:
+                stage=None, curves="auto") -> PlatformResult:
     """The platform of ``pf`` minimising ``objective`` (``variants``: weighted count of distinct
     parts; ``cost``: unit cost x volume plus per-variant fixed cost).
 
@@ -114,7 +140,10 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     full catalog, ``price`` and ``table``): the trade-off rows do not need them. ``build``: how HiGHS gets the MILP
     (:data:`formulations.platform.BUILDS`: from arrays through highspy, or through Pyomo, the reference).
     ``stage(name)``: a context manager around each stage (:data:`STAGES`: the command line's progress line per
-    stage, :class:`synth.progress.phase`); none by default.
+    stage, :class:`synth.progress.phase`); none by default. ``curves``: the parts' unit prices against their
+    volume (:class:`synth.platform.volume.PriceCurves`; ``"auto"``: :func:`~synth.platform.volume.price_curves` of
+    ``pf``, None without annual volumes; None: each part at the price the feasibility data hold): the cost objective
+    prices each part at the summed volume of the applications it serves (:func:`~synth.platform.volume.pool_prices`).
     """
     _check(objective, max_variants, time_limit, weights)
     step = stage or (lambda name: nullcontext())
@@ -123,6 +152,10 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     with step("compile"):
         pre = pre if pre is not None else precompile(pf)   # the compilation and the assignments share its groups
         work = compile_portfolio(pf, objective, min_margin=min_margin, weights=w_all, pre=pre)
+        if isinstance(curves, str):
+            curves = price_curves(pf)
+        if objective == "cost" and curves is not None:
+            pool_prices(work, curves)
         if pre.assign_groups is None:
             pre.assign_groups = option_groups(pf)
     groups = pre.assign_groups   # the two assignments below share them
@@ -154,7 +187,8 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
         y, status = np.zeros(inst.n_parts, bool), sol.status
     platform = platform_from_y(work, y)
     with step("assign"):
-        records = assign(pf, platform, min_margin=min_margin, groups=groups)
+        designs = milp_designs(work, inst, sol) if sol.y is not None and sol.x is not None else None
+        records = assign(pf, platform, min_margin=min_margin, groups=groups, designs=designs)
     t_v = time.perf_counter()
     if verify:
         with step("verify"):
@@ -187,7 +221,7 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
         times={"compile_s": t1 - t0, "prune_s": t2 - t1, "greedy_s": t3 - t2, "build_s": sol.build_s,
                "solve_s": sol.time_s, "milp_s": t4 - t3, "assign_s": t5 - t4 - t_v, "verify_s": t_v,
                "total_s": t5 - t0},
-        per_app_optima=per_app, weights=w_all, max_variants=dict(max_variants or {}), notes=notes)
+        per_app_optima=per_app, weights=w_all, max_variants=dict(max_variants or {}), notes=notes, curves=curves)
     if not details:
         return res
     with step("price of standardisation"):
@@ -214,6 +248,7 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
         raise InputError(Problem("trade-off", kind, "margin or cost"))
     rows = []
     tick = progress or (lambda done, total: None)
+    curves = price_curves(pf)
 
     def row(r: PlatformResult, **extra):
         ok = [x for x in r.records if x["feasible"]]
@@ -261,13 +296,13 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
     small = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False, pre=pre,
                         details=not share, build=build)
     cheap = rationalise(pf, "cost", time_limit=time_limit, weights=weights, verify=False, pre=pre,
-                        details=not share, build=build)
+                        details=not share, build=build, curves=curves)
     lo, hi = sum(small.weights[f] * len(c) for f, c in small.platform.items()), \
         sum(cheap.weights[f] * len(c) for f, c in cheap.platform.items())
     budgets = np.unique(np.round(np.linspace(lo, max(hi, lo), points), 6))
     for b in budgets:
         r = cheap if b >= hi else rationalise(pf, "cost", time_limit=time_limit, weights=weights, budget=float(b),
-                                              verify=False, pre=pre, details=not share, build=build)
+                                              verify=False, pre=pre, details=not share, build=build, curves=curves)
         rows.append(row(r, budget=float(b)))
         tick(len(rows), len(budgets))
     return rows

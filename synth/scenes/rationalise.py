@@ -87,7 +87,8 @@ def register(sub) -> None:
 
 
 def _main(args) -> int:
-    from synth.platform.outputs import gap_text, price_of_standardisation, write_all
+    from synth.platform.outputs import gap_text, write_all
+    from synth.platform.volume import saving_text
     from synth.platform.producer import load_feasibility
     from synth.platform.rationalise import rationalise, tradeoff
     caps = parse_max_variants(args.max_variants)
@@ -123,9 +124,10 @@ def _main(args) -> int:
     r.tradeoff = rows
     with output_files(args.out, "--out") as out, phase("synth rationalise: writing the outputs"):
         paths = [Path(args.out) / q.relative_to(out) for q in write_all(pf, r, out, rows, args.tradeoff)]
-    p = price_of_standardisation(pf, r)
+    p = r.price
     print(f"synth rationalise: {p['applications_served']} of {len(r.records)} applications served by "
           f"{r.n_parts} distinct parts (union of per-application optima: {p['parts_union_of_optima']}); "
+          f"{saving_text(p['volume'])}; "
           f"unit cost {p['unit_cost_increase']:+.2%} against the per-application optima; MILP {r.status}, "
           f"gap {r.gap:.2%}; greedy {gap_text(r.greedy_gap)}")
     print("written: " + ", ".join(str(x) for x in paths))
