@@ -111,11 +111,13 @@ def volume_of(d) -> float:
     return float(v) if v is not None else catalog.constant("cost_annual_volume_default")
 
 
-def _rows() -> dict:
+def price_rows() -> dict:
+    """The price book's rows by part key (the current catalogs, parsed once)."""
     return catalog.parsed("prices", rows_of)
 
 
-def _curve() -> tuple:
+def break_curve() -> tuple:
+    """The quantity breaks as sorted (quantity, price factor, scatter) rows of ``price_breaks.csv``."""
     def build_curve(df):
         rows = sorted((float(r["quantity"]), float(r["factor"]), float(r["scatter"])) for _, r in df.iterrows())
         return tuple(rows)
@@ -338,7 +340,7 @@ def build(p, volume: float | None = None) -> PriceBook:
     ``cost_annual_volume_default``)."""
     c = catalog.constant
     volume = float(volume if volume is not None else c("cost_annual_volume_default"))
-    rows, curve = _rows(), _curve()
+    rows, curve = price_rows(), break_curve()
     ctx = _Ctx(rows, volume, curve, [])
     _check_items(ctx, p)
     bearing, bearing_info = _bearings(ctx, p)
@@ -390,7 +392,7 @@ def book_for(p, volume: float | None) -> PriceBook:
     the same breaks, else built once per parts and breaks."""
     if volume is None or p.prices is None:
         return p.prices if p.prices is not None else build(p)
-    key = _key(_rows(), _curve(), float(volume))
+    key = _key(price_rows(), break_curve(), float(volume))
     if key == p.prices.key:
         return p.prices
     hit = _BOOKS.get((id(p), key))

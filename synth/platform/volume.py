@@ -58,9 +58,9 @@ class PriceCurves:
 
 def _quantities() -> np.ndarray:
     """Every quantity at which some price of the current catalogs breaks (the curve's and each price row's)."""
-    from synth.cost.book import _curve, _rows
-    qs = {1.0} | {float(q) for q, _, _ in _curve()}
-    for r in _rows().values():
+    from synth.cost.book import break_curve, price_rows
+    qs = {1.0} | {float(q) for q, _, _ in break_curve()}
+    for r in price_rows().values():
         qs |= {float(q) for q, _ in r.breaks}
     return np.array(sorted(qs))
 
