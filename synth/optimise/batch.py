@@ -63,17 +63,20 @@ from synth.design.applications import Applications
 from synth.design.constraints import by_group, physics_inputs
 from synth.design.space import (SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, priced_for, space, space_for,
                                 spring_window)
-from synth.optimise.objectives import weighted_sum, weighted_sum_around
+from synth.optimise.objectives import TIE, weighted_sum, weighted_sum_around
 from synth.optimise.product import DURABILITY_NOTE, core_scores, option_scores
 from synth.errors import InputError
 from synth.kernels import engines, main_spring
 from synth import catalog
 from synth.design.verify import evaluate_design, parts_of_design
 
-__all__ = ["Batch", "wsum", "SLACK", "any_feasible", "designs_pass", "robust"]
+__all__ = ["Batch", "wsum", "SLACK", "MARGIN_EPS", "any_feasible", "designs_pass", "robust"]
 
 #: relative slack of the score cuts (a cut never removes a design within 1e-9 of the best: rounding is far below)
 SLACK = 1e-9
+#: the margin threshold's tolerance of the exact solver's lexicographic orders with the margin
+#: (:data:`synth.optimise.solvers.enumerate._EPS`): an option passes the threshold ``tau`` when its margin is >= tau - 1e-9
+MARGIN_EPS = 1e-9
 
 
 def _bolt_ids(core_values: dict) -> tuple[tuple, tuple]:
@@ -719,6 +722,160 @@ class Batch:
                     self.settings, self._screened = search, None
                 for i in redo:
                     out[i] = again[i]
+        self._redone = set(int(i) for i in redo) if judge is not self.settings else set()
+        return out
+
+    def optimum_margin_ties(self, weights: dict, which=None) -> list:
+        """:meth:`optimum` with its ties broken as the exact solver breaks them for the order ``weights`` then the
+        margin (``synth design``'s ``standard,cost,margin``: :func:`synth.optimise.objectives.with_margin_tiebreak`,
+        :func:`synth.optimise.solvers.enumerate.solve_space`): among the designs whose score ties the best
+        (:func:`synth.optimise.objectives.ties`), the largest design margin (the smallest margin counted in the
+        margin objective); among those reaching it, per subsystem the cheapest option in score order whose margin
+        reaches it (first index of equal scores), and the core of the smallest total (first row of equal totals).
+
+        Only the tied designs are evaluated: the cores whose bound ties the best score, and per tied core and
+        subsystem the feasible options whose score ties the subsystem's best (one evaluator call per subsystem)."""
+        found = self.optimum(weights, which=which)
+        return self._margin_ties(weights, found)
+
+    def _margin_ties(self, weights: dict, found: list) -> list:
+        n = len(self)
+        live = np.array([f is not None and i not in getattr(self, "_redone", ()) for i, f in enumerate(found)],
+                        dtype=bool)
+        if not live.any():
+            return found
+        sp, cg, st = self.sp, self.cg, self.settings
+        best = np.full(n, np.inf)
+        for i in np.flatnonzero(live):
+            best[i] = self._total(weights, found[i][0], found[i][1])
+        tol = TIE * np.maximum(1.0, np.abs(np.where(np.isfinite(best), best, 0.0)))
+        R = np.flatnonzero(self.core_ok & live[self.A])
+        cs = wsum(core_scores(sp, self.C[R], {k: cg.values[k][R] for k in ("pivot_class_standard_mm",
+                                                                           "pivot_class_diameter_mm")}), weights)
+        b_sc, _ = self._bushing(R, weights)
+        t_sc, _ = self._bolt(R, weights)
+        ax_sc = wsum(option_scores(sp, "axial"), weights)
+        real = sp.tables["axial"]["axial_group_present"]
+        min_a = np.where(self.pad[R], ax_sc[real].min() if real.any() else np.inf, ax_sc[~real].min())
+        smin = self._spring_app_lists(weights)[2]
+        a_of = self.A[R]
+        lim = best[a_of] + tol[a_of]
+        p0 = cs + b_sc
+        go = np.isfinite(p0) & np.isfinite(t_sc) & ((((p0 + min_a) + smin[a_of]) + t_sc) <= lim)
+        R, a_of, cs, b_sc, t_sc, min_a, p0, lim = (x[go] for x in (R, a_of, cs, b_sc, t_sc, min_a, p0, lim))
+        if not len(R):
+            return found
+        keys, kinv = self._spring_keys(R)
+        k_lim = np.full(len(keys["app"]), -np.inf)
+        np.maximum.at(k_lim, kinv, lim - ((p0 + min_a) + t_sc))
+        k_sc, _ = self._spring_first(keys, k_lim + SLACK * np.maximum(1.0, np.abs(k_lim)), weights)
+        s_sc = k_sc[kinv]
+        a_lim = lim - ((p0 + s_sc) + t_sc)
+        ok = np.isfinite(a_lim)
+        a_sc = np.full(len(R), np.inf)
+        if ok.any():
+            a_sc[ok], _ = self._axial_first(R[ok], a_lim[ok] + SLACK * np.maximum(1.0, np.abs(a_lim[ok])), weights)
+        total = ((p0 + a_sc) + s_sc) + t_sc
+        tied = np.isfinite(total) & (total <= lim)
+        R, a_of, cs, mins = R[tied], a_of[tied], cs[tied], {"bushing": b_sc[tied], "axial": a_sc[tied],
+                                                             "spring": s_sc[tied], "bolt": t_sc[tied]}
+        if not len(R):
+            return found
+        # per tied core and subsystem, the feasible options whose score ties the subsystem's best, and their margins
+        opts = {s: self._tied_options(s, R, mins[s] + tol[a_of], weights) for s in SUBSYSTEMS}
+        core_m = cg.min_margin()[R]
+        out = list(found)
+        for i in np.unique(a_of):
+            js = np.flatnonzero(a_of == i)
+            design_m = np.array([min([core_m[j]] + [max(opts[s][j][2], default=-np.inf) for s in SUBSYSTEMS])
+                                 for j in js])
+            m_star = design_m.max()
+            tau = m_star if m_star >= 0 else (0.0 if m_star >= -MARGIN_EPS else -np.inf)
+            pick, total_i = None, np.inf
+            for j in js:
+                if not core_m[j] >= tau - MARGIN_EPS:
+                    continue
+                t, chosen = cs[j], {}
+                for s in SUBSYSTEMS:
+                    o, sc, m = opts[s][j]
+                    good = [k for k in range(len(o)) if m[k] >= tau - MARGIN_EPS]
+                    if not good:
+                        t = np.inf
+                        break
+                    k = min(good, key=lambda k: (sc[k], o[k]))
+                    chosen[s] = int(o[k])
+                    t = t + sc[k]
+                if t < total_i:
+                    pick, total_i = (int(R[j]), chosen), t
+            if pick is not None:
+                out[i] = pick
+        return out
+
+    def _total(self, weights: dict, core_row: int, options: dict) -> float:
+        """The additive score of a design summed as the exact solver sums it (the core, then each subsystem)."""
+        sp, cg = self.sp, self.cg
+        t = wsum(core_scores(sp, self.C[[core_row]], {k: cg.values[k][[core_row]] for k in
+                                                      ("pivot_class_standard_mm", "pivot_class_diameter_mm")}),
+                 weights)[0]
+        k = self.apps.spring_stiffness_nm_per_deg[self.A[core_row]]
+        for s in SUBSYSTEMS:
+            t = t + wsum(option_scores(sp, s, k if s == "spring" else None, [options[s]]), weights)[0]
+        return float(t)
+
+    def _tied_options(self, s: str, rows, limit, weights) -> list:
+        """Per core row of ``rows``: ``(options, scores, objective margins)`` of the options of subsystem ``s``
+        that the core may take, pass every check and score at most ``limit`` (index order); one evaluator call
+        for all the rows, as the exact solver's tables evaluate them (:mod:`synth.optimise.product`)."""
+        sp, cg, st = self.sp, self.cg, self.settings
+        t = sp.tables[s]
+        a_of = self.A[rows]
+        if s == "spring":
+            inv, lists = self._ranges()
+            k = self.apps.spring_stiffness_nm_per_deg
+            cand = [lists[inv[a]] for a in a_of]
+            scores = [np.asarray(wsum(option_scores(sp, s, k[a], c), weights), dtype=float) if len(c) else
+                      np.zeros(0) for a, c in zip(a_of, cand)]
+        else:
+            sc_all = np.asarray(wsum(option_scores(sp, s), weights), dtype=float) + np.zeros(sp.n(s))
+            if s == "bushing":
+                avail = [np.flatnonzero(t["supplier_code"] == cg.values["supplier_code"][r]) for r in rows]
+            elif s == "axial":
+                avail = [np.flatnonzero(t["axial_group_present"] == (cg.values["axial_group_present"][r] > 0))
+                         for r in rows]
+            else:
+                avail = [np.arange(sp.n(s))] * len(rows)
+            cand, scores = avail, [sc_all[c] for c in avail]
+        keep = [sc <= lim for sc, lim in zip(scores, limit)]
+        cand = [c[kp] for c, kp in zip(cand, keep)]
+        scores = [sc[kp] for sc, kp in zip(scores, keep)]
+        cnt = np.array([len(c) for c in cand], dtype=np.int64)
+        ri = np.repeat(np.arange(len(rows)), cnt)
+        oo = np.concatenate(cand).astype(np.int64) if len(ri) else np.zeros(0, dtype=np.int64)
+        rr = np.asarray(rows)[ri]
+        ok, marg = np.zeros(len(ri), dtype=bool), np.zeros(len(ri))
+        if len(ri):
+            with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+                if s == "bushing":
+                    g = evaluate.bushing(self.apps, cg, rr, sp.rows(s, oo), st)
+                elif s == "axial":
+                    g = evaluate.axial_judged(self.apps, cg, rr, sp.rows(s, oo), st)
+                elif s == "bolt":
+                    o = sp.rows(s, oo)
+                    fix = evaluate.fixation_values(self.apps, self.A[rr], o, st)
+                    g = evaluate.bolt(self.apps, cg, rr, o, st, fixation=fix)
+                else:
+                    keys = evaluate.spring_keys(cg, rr)
+                    g = evaluate.spring(self.apps, keys, np.arange(len(rr)),
+                                        {c: t[c][oo] for c in evaluate.SPRING_OPTION_COLUMNS}, st)
+            a = g.assessment()
+            ok, marg = a.ok, a.objective_margin
+            self.evaluations += len(ri)
+        out = []
+        starts = np.concatenate([[0], np.cumsum(cnt)])
+        for j in range(len(rows)):
+            sl = slice(starts[j], starts[j + 1])
+            f = ok[sl]
+            out.append((cand[j][f], scores[j][f], marg[sl][f]))
         return out
 
     def _optimum(self, weights: dict, *, first: bool = False, which=None) -> list:
