@@ -744,7 +744,7 @@ class Batch:
                         dtype=bool)
         if not live.any():
             return found
-        sp, cg, st = self.sp, self.cg, self.settings
+        sp, cg = self.sp, self.cg
         best = np.full(n, np.inf)
         for i in np.flatnonzero(live):
             best[i] = self._total(weights, found[i][0], found[i][1])
