@@ -822,29 +822,56 @@ class Batch:
             t = t + wsum(option_scores(sp, s, k if s == "spring" else None, [options[s]]), weights)[0]
         return float(t)
 
+    def _tied_springs(self, keys: dict, limit, weights) -> list:
+        """Per spring key (:meth:`_spring_keys`): ``(options, scores, objective margins)`` of the springs of its
+        application's range that pass every check and score at most ``limit`` (index order); one call of the
+        registry's spring group (:func:`synth.design.evaluate.spring`, as the exact solver's tables)."""
+        sp, t = self.sp, self.sp.tables["spring"]
+        inv, lists = self._ranges()
+        k = self.apps.spring_stiffness_nm_per_deg
+        cand, scores = [], []
+        for j, a in enumerate(keys["app"]):
+            c = lists[inv[a]]
+            sc = np.asarray(wsum(option_scores(sp, "spring", k[a], c), weights), dtype=float) + np.zeros(len(c))
+            kp = sc <= limit[j]
+            cand.append(c[kp])
+            scores.append(sc[kp])
+        cnt = np.array([len(c) for c in cand], dtype=np.int64)
+        ki = np.repeat(np.arange(len(cand)), cnt)
+        oo = np.concatenate(cand).astype(np.int64) if len(ki) else np.zeros(0, dtype=np.int64)
+        ok, marg = np.zeros(len(ki), dtype=bool), np.zeros(len(ki))
+        if len(ki):
+            with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+                g = evaluate.spring(self.apps, keys, ki, {c: t[c][oo] for c in evaluate.SPRING_OPTION_COLUMNS},
+                                    self.settings)
+            a = g.assessment()
+            ok, marg = a.ok, a.objective_margin
+            self.evaluations += len(ki)
+        starts = np.concatenate([[0], np.cumsum(cnt)])
+        return [(cand[j][ok[starts[j]:starts[j + 1]]], scores[j][ok[starts[j]:starts[j + 1]]],
+                 marg[starts[j]:starts[j + 1]][ok[starts[j]:starts[j + 1]]]) for j in range(len(cand))]
+
     def _tied_options(self, s: str, rows, limit, weights) -> list:
         """Per core row of ``rows``: ``(options, scores, objective margins)`` of the options of subsystem ``s``
         that the core may take, pass every check and score at most ``limit`` (index order); one evaluator call
         for all the rows, as the exact solver's tables evaluate them (:mod:`synth.optimise.product`)."""
         sp, cg, st = self.sp, self.cg, self.settings
         t = sp.tables[s]
-        a_of = self.A[rows]
-        if s == "spring":
-            inv, lists = self._ranges()
-            k = self.apps.spring_stiffness_nm_per_deg
-            cand = [lists[inv[a]] for a in a_of]
-            scores = [np.asarray(wsum(option_scores(sp, s, k[a], c), weights), dtype=float) if len(c) else
-                      np.zeros(0) for a, c in zip(a_of, cand)]
+        if s == "spring":  # once per distinct spring key (what a main spring sees of the core), not per core
+            keys, kinv = self._spring_keys(np.asarray(rows))
+            lim_k = np.full(len(keys["app"]), -np.inf)
+            np.maximum.at(lim_k, kinv, limit)
+            per_key = self._tied_springs(keys, lim_k, weights)
+            return [per_key[k] for k in kinv]
+        sc_all = np.asarray(wsum(option_scores(sp, s), weights), dtype=float) + np.zeros(sp.n(s))
+        if s == "bushing":
+            avail = [np.flatnonzero(t["supplier_code"] == cg.values["supplier_code"][r]) for r in rows]
+        elif s == "axial":
+            avail = [np.flatnonzero(t["axial_group_present"] == (cg.values["axial_group_present"][r] > 0))
+                     for r in rows]
         else:
-            sc_all = np.asarray(wsum(option_scores(sp, s), weights), dtype=float) + np.zeros(sp.n(s))
-            if s == "bushing":
-                avail = [np.flatnonzero(t["supplier_code"] == cg.values["supplier_code"][r]) for r in rows]
-            elif s == "axial":
-                avail = [np.flatnonzero(t["axial_group_present"] == (cg.values["axial_group_present"][r] > 0))
-                         for r in rows]
-            else:
-                avail = [np.arange(sp.n(s))] * len(rows)
-            cand, scores = avail, [sc_all[c] for c in avail]
+            avail = [np.arange(sp.n(s))] * len(rows)
+        cand, scores = avail, [sc_all[c] for c in avail]
         keep = [sc <= lim for sc, lim in zip(scores, limit)]
         cand = [c[kp] for c, kp in zip(cand, keep)]
         scores = [sc[kp] for sc, kp in zip(scores, keep)]
@@ -863,10 +890,6 @@ class Batch:
                     o = sp.rows(s, oo)
                     fix = evaluate.fixation_values(self.apps, self.A[rr], o, st)
                     g = evaluate.bolt(self.apps, cg, rr, o, st, fixation=fix)
-                else:
-                    keys = evaluate.spring_keys(cg, rr)
-                    g = evaluate.spring(self.apps, keys, np.arange(len(rr)),
-                                        {c: t[c][oo] for c in evaluate.SPRING_OPTION_COLUMNS}, st)
             a = g.assessment()
             ok, marg = a.ok, a.objective_margin
             self.evaluations += len(ri)
