@@ -160,6 +160,59 @@ def _rounds(pos, seg_end, block: int, may, still=None):
             yield take
 
 
+def _n_units(unit) -> int:
+    """The number of evaluation units of :meth:`Batch._tie_units` (core rows, or spring keys)."""
+    return len(unit["app"]) if isinstance(unit, dict) else len(unit)
+
+
+def _restrict(cand, keep):
+    """The candidates of :meth:`Batch._tie_candidates` of the rows ``keep`` (a mask of its rows) only."""
+    inv, unit, (ui, oo), sc = cand
+    used = np.zeros(_n_units(unit), dtype=bool)
+    used[inv[keep]] = True
+    m = used[ui]
+    return inv[keep], unit, (ui[m], oo[m]), sc[m]
+
+
+def _tie_pick(found: list, R, a_of, cs, core_m, evaluated: dict) -> list:
+    """``found`` with the design of the margin tie-break where the tied cores ``R`` (applications ``a_of``, core
+    scores ``cs``, objective margins ``core_m``) and their tied options (``evaluated``: per subsystem, what
+    :meth:`Batch._tie_evaluate` returns) give one, as :func:`synth.optimise.solvers.enumerate.solve_space` takes
+    it: the threshold ``tau`` is the largest design margin of a tied design (0 when it is within 1e-9 below 0,
+    none when below), per core and subsystem the first option in score order whose margin reaches ``tau - 1e-9``,
+    and the core of the smallest total (summed as the solver sums it), the first row of equal totals."""
+    n = len(found)
+    design_m = np.asarray(core_m, dtype=float).copy()
+    unit_app = {}
+    for s, (inv, ui, oo, sc, m, nu) in evaluated.items():
+        best = np.full(nu, -np.inf)
+        np.maximum.at(best, ui, m)
+        design_m = np.minimum(design_m, best[inv])
+        unit_app[s] = np.zeros(nu, dtype=np.int64)
+        unit_app[s][inv] = a_of
+    m_star = np.full(n, -np.inf)
+    np.maximum.at(m_star, a_of, design_m)
+    tau = np.where(m_star >= 0, m_star, np.where(m_star >= -MARGIN_EPS, 0.0, -np.inf))
+    thr = tau - MARGIN_EPS
+    total = np.where(core_m >= thr[a_of], cs, np.inf)
+    picks = {}
+    for s in SUBSYSTEMS:
+        inv, ui, oo, sc, m, nu = evaluated[s]
+        reach = np.flatnonzero(m >= thr[unit_app[s][ui]])  # in score order within each unit
+        u, at = np.unique(ui[reach], return_index=True)
+        ch_o, ch_sc = np.full(nu, -1, dtype=np.int64), np.full(nu, np.inf)
+        ch_o[u], ch_sc[u] = oo[reach[at]], sc[reach[at]]
+        total = total + ch_sc[inv]
+        picks[s] = ch_o[inv]
+    o = np.lexsort((R, total, a_of))
+    o = o[np.isfinite(total[o])]
+    out = list(found)
+    for i, j in zip(*np.unique(a_of[o], return_index=True)):
+        j = o[j]
+        out[int(i)] = (int(R[j]), {s: int(picks[s][j]) for s in SUBSYSTEMS})
+    return out
+
+
 def _space_of(inputs: list, pin_inputs):
     """The one design space of a batch: the whole catalog product, or the one keeping the parts the inputs name
     (``pin_inputs``), which must then be the same parts for every input (a relaxation's probes change other
@@ -220,6 +273,7 @@ class Batch:
         self._ax_mm = np.zeros((0, sp.n("axial")))
         self._ax_known = np.zeros((0, sp.n("axial")), dtype=bool)
         self._screened = None  # the screening settings while optimum() searches with the full model alone
+        self._last, self._redone = None, set()  # the last optimum()'s search state and re-searched applications
 
     def __len__(self) -> int:
         return len(self.inputs)
@@ -711,18 +765,20 @@ class Batch:
         evaluates the full model only where those constraints pass (:func:`~synth.design.evaluate.axial_full`)."""
         out = self._optimum(weights, first=first, which=which)
         judge = self.settings.judge
+        redo = ()
         if judge is not self.settings:
             redo = np.flatnonzero(self._axial_undecided & np.array([o is None for o in out], dtype=bool))
             if len(redo):
+                last = self._last
                 search = self._screened = self.settings
                 self.settings = judge
                 try:
                     again = self._optimum(weights, first=first, which=redo)
                 finally:
-                    self.settings, self._screened = search, None
+                    self.settings, self._screened, self._last = search, None, last
                 for i in redo:
                     out[i] = again[i]
-        self._redone = set(int(i) for i in redo) if judge is not self.settings else set()
+        self._redone = set(int(i) for i in redo)  # searched by the full model alone: no tie-break (_last: the first)
         return out
 
     def optimum_margin_ties(self, weights: dict, which=None) -> list:
@@ -733,173 +789,159 @@ class Batch:
         margin objective); among those reaching it, per subsystem the cheapest option in score order whose margin
         reaches it (first index of equal scores), and the core of the smallest total (first row of equal totals).
 
-        Only the tied designs are evaluated: the cores whose bound ties the best score, and per tied core and
-        subsystem the feasible options whose score ties the subsystem's best (one evaluator call per subsystem)."""
+        From the search's own state (:meth:`_margin_ties`): the cores it finished keep their totals, the others
+        whose bound ties the best score are searched now; per tied core and subsystem the candidates are the options
+        scoring from the first feasible one's score (a cheaper one failed the scan) to the tie, once per distinct
+        value of what the subsystem reads of the core; only the applications with more than one tied design
+        evaluate them (one evaluator call per subsystem; the main springs on the compiled kernels where they cover
+        the registry's checks).
+
+        >>> from synth.data.generated_applications import generate
+        >>> b = Batch(generate(8, seed=7), spring_engine="numpy")
+        >>> w = {"cost": 1.0, "standard": 1e4}
+        >>> sum(f != t for f, t in zip(b.optimum(w), b.optimum_margin_ties(w)))  # designs of equal score, more margin
+        5
+        """
         found = self.optimum(weights, which=which)
         return self._margin_ties(weights, found)
 
     def _margin_ties(self, weights: dict, found: list) -> list:
-        n = len(self)
-        live = np.array([f is not None and i not in getattr(self, "_redone", ()) for i, f in enumerate(found)],
-                        dtype=bool)
-        if not live.any():
+        """``found`` (:meth:`optimum`'s) with its ties broken by the margin (:meth:`optimum_margin_ties`), from the
+        first search's bounds and scores (:attr:`_last`): only the cores it did not finish are searched again,
+        and only the applications with more than one tied design evaluate their tied options."""
+        last = self._last
+        live = np.array([f is not None and i not in self._redone for i, f in enumerate(found)], dtype=bool)
+        if last is None or not live.any():
             return found
-        sp, cg = self.sp, self.cg
-        best = np.full(n, np.inf)
-        for i in np.flatnonzero(live):
-            best[i] = self._total(weights, found[i][0], found[i][1])
-        tol = TIE * np.maximum(1.0, np.abs(np.where(np.isfinite(best), best, 0.0)))
-        R = np.flatnonzero(self.core_ok & live[self.A])
-        cs = wsum(core_scores(sp, self.C[R], {k: cg.values[k][R] for k in ("pivot_class_standard_mm",
-                                                                           "pivot_class_diameter_mm")}), weights)
-        b_sc, _ = self._bushing(R, weights)
-        t_sc, _ = self._bolt(R, weights)
-        ax_sc = wsum(option_scores(sp, "axial"), weights)
-        real = sp.tables["axial"]["axial_group_present"]
-        min_a = np.where(self.pad[R], ax_sc[real].min() if real.any() else np.inf, ax_sc[~real].min())
-        smin = self._spring_app_lists(weights)[2]
-        a_of = self.A[R]
-        lim = best[a_of] + tol[a_of]
-        p0 = cs + b_sc
-        go = np.isfinite(p0) & np.isfinite(t_sc) & ((((p0 + min_a) + smin[a_of]) + t_sc) <= lim)
-        R, a_of, cs, b_sc, t_sc, min_a, p0, lim = (x[go] for x in (R, a_of, cs, b_sc, t_sc, min_a, p0, lim))
-        if not len(R):
+        inc = last["inc"]  # the best score, summed as the exact solver sums it
+        tol = TIE * np.maximum(1.0, np.abs(np.where(np.isfinite(inc), inc, 0.0)))  # objectives.ties
+        lim = inc + tol
+        j = self._tied_rows(weights, live, lim)
+        if not len(j):
             return found
-        keys, kinv = self._spring_keys(R)
-        k_lim = np.full(len(keys["app"]), -np.inf)
-        np.maximum.at(k_lim, kinv, lim - ((p0 + min_a) + t_sc))
-        k_sc, _ = self._spring_first(keys, k_lim + SLACK * np.maximum(1.0, np.abs(k_lim)), weights)
-        s_sc = k_sc[kinv]
-        a_lim = lim - ((p0 + s_sc) + t_sc)
-        ok = np.isfinite(a_lim)
-        a_sc = np.full(len(R), np.inf)
-        if ok.any():
-            a_sc[ok], _ = self._axial_first(R[ok], a_lim[ok] + SLACK * np.maximum(1.0, np.abs(a_lim[ok])), weights)
-        total = ((p0 + a_sc) + s_sc) + t_sc
-        tied = np.isfinite(total) & (total <= lim)
-        R, a_of, cs, mins = R[tied], a_of[tied], cs[tied], {"bushing": b_sc[tied], "axial": a_sc[tied],
-                                                             "spring": s_sc[tied], "bolt": t_sc[tied]}
-        if not len(R):
+        R, a_of = last["R"][j], last["a_of"][j]
+        lo = {"bushing": last["b_sc"][j], "axial": last["a_sc"][j], "spring": last["k_sc"][last["kinv"][j]],
+              "bolt": last["t_sc"][j]}
+        # per subsystem, the options of each tied core whose score ties its first feasible option's (a cheaper
+        # one fails: the search took the first that passes in score order), by evaluation unit (what the
+        # subsystem reads of the core)
+        cand = {s: self._tie_candidates(s, weights, R, lo[s], lo[s] + tol[a_of]) for s in SUBSYSTEMS}
+        # an application with one tied core and one candidate per subsystem has one tied design: found's
+        many = np.bincount(a_of, minlength=len(self)) > 1
+        for inv, unit, (ui, _), _ in cand.values():
+            many[a_of[np.bincount(ui, minlength=_n_units(unit))[inv] > 1]] = True
+        keep = many[a_of]
+        if not keep.any():
             return found
-        # per tied core and subsystem, the feasible options whose score ties the subsystem's best, and their margins
-        opts = {s: self._tied_options(s, R, mins[s] + tol[a_of], weights) for s in SUBSYSTEMS}
-        core_m = cg.min_margin()[R]
-        out = list(found)
-        for i in np.unique(a_of):
-            js = np.flatnonzero(a_of == i)
-            design_m = np.array([min([core_m[j]] + [max(opts[s][j][2], default=-np.inf) for s in SUBSYSTEMS])
-                                 for j in js])
-            m_star = design_m.max()
-            tau = m_star if m_star >= 0 else (0.0 if m_star >= -MARGIN_EPS else -np.inf)
-            pick, total_i = None, np.inf
-            for j in js:
-                if not core_m[j] >= tau - MARGIN_EPS:
-                    continue
-                t, chosen = cs[j], {}
-                for s in SUBSYSTEMS:
-                    o, sc, m = opts[s][j]
-                    good = [k for k in range(len(o)) if m[k] >= tau - MARGIN_EPS]
-                    if not good:
-                        t = np.inf
-                        break
-                    k = min(good, key=lambda k: (sc[k], o[k]))
-                    chosen[s] = int(o[k])
-                    t = t + sc[k]
-                if t < total_i:
-                    pick, total_i = (int(R[j]), chosen), t
-            if pick is not None:
-                out[i] = pick
-        return out
+        R, a_of = R[keep], a_of[keep]
+        evaluated = {s: self._tie_evaluate(s, *_restrict(c, keep)) for s, c in cand.items()}
+        return _tie_pick(found, R, a_of, last["cs"][j][keep], self.cg.min_margin()[R], evaluated)
 
-    def _total(self, weights: dict, core_row: int, options: dict) -> float:
-        """The additive score of a design summed as the exact solver sums it (the core, then each subsystem)."""
-        sp, cg = self.sp, self.cg
-        t = wsum(core_scores(sp, self.C[[core_row]], {k: cg.values[k][[core_row]] for k in
-                                                      ("pivot_class_standard_mm", "pivot_class_diameter_mm")}),
-                 weights)[0]
-        k = self.apps.spring_stiffness_nm_per_deg[self.A[core_row]]
-        for s in SUBSYSTEMS:
-            t = t + wsum(option_scores(sp, s, k if s == "spring" else None, [options[s]]), weights)[0]
-        return float(t)
+    def _tied_rows(self, weights: dict, live, lim) -> np.ndarray:
+        """Positions in :attr:`_last` of the cores of the applications ``live`` whose best design scores at most
+        ``lim`` (per application): the first search's totals where it finished the core, else searched now (its
+        spring and axial scans, cut at ``lim``) and kept."""
+        last = self._last
+        R, a_of, p0, min_a, t_sc, keys, kinv = (last[k] for k in ("R", "a_of", "p0", "min_a", "t_sc", "keys", "kinv"))
+        k_sc, k_pk, a_sc, total = last["k_sc"], last["k_pk"], last["a_sc"], last["total"]
+        lim_r = lim[a_of]
+        cand = np.flatnonzero(live[a_of] & (last["lb"] <= lim_r))
+        todo = cand[~last["done"][cand]]
+        if len(todo):
+            kt = np.unique(kinv[todo])
+            kt = kt[np.isnan(k_sc[kt])]
+            if len(kt):  # springs of the keys the first search did not scan
+                part = np.full(len(keys["app"]), np.inf)
+                np.minimum.at(part, kinv[todo], (p0[todo] + min_a[todo]) + t_sc[todo])
+                lk = lim[keys["app"][kt]] - part[kt]
+                lk = lk + SLACK * np.maximum(1.0, np.abs(lim[keys["app"][kt]]))
+                sub = {k: v[kt] for k, v in keys.items()}
+                k_sc[kt], k_pk[kt] = self._spring_first(sub, np.where(np.isfinite(lk), lk, np.inf), weights)
+            s = k_sc[kinv[todo]]
+            go = np.isfinite(s) & (((p0[todo] + min_a[todo]) + s) + t_sc[todo] <= lim_r[todo])
+            ta, s = todo[go], s[go]
+            if len(ta):
+                la = lim_r[ta] - ((p0[ta] + s) + t_sc[ta]) + SLACK * np.maximum(1.0, np.abs(lim_r[ta]))
+                a_sc[ta], last["a_pk"][ta] = self._axial_first(R[ta], np.where(np.isfinite(la), la, np.inf), weights)
+                total[ta] = ((p0[ta] + a_sc[ta]) + s) + t_sc[ta]
+            last["done"][todo] = True
+        return cand[total[cand] <= lim_r[cand]]
 
-    def _tied_springs(self, keys: dict, limit, weights) -> list:
-        """Per spring key (:meth:`_spring_keys`): ``(options, scores, objective margins)`` of the springs of its
-        application's range that pass every check and score at most ``limit`` (index order); one call of the
-        registry's spring group (:func:`synth.design.evaluate.spring`, as the exact solver's tables)."""
-        sp, t = self.sp, self.sp.tables["spring"]
-        inv, lists = self._ranges()
-        k = self.apps.spring_stiffness_nm_per_deg
-        cand, scores = [], []
-        for j, a in enumerate(keys["app"]):
-            c = lists[inv[a]]
-            sc = np.asarray(wsum(option_scores(sp, "spring", k[a], c), weights), dtype=float) + np.zeros(len(c))
-            kp = sc <= limit[j]
-            cand.append(c[kp])
-            scores.append(sc[kp])
-        cnt = np.array([len(c) for c in cand], dtype=np.int64)
-        ki = np.repeat(np.arange(len(cand)), cnt)
-        oo = np.concatenate(cand).astype(np.int64) if len(ki) else np.zeros(0, dtype=np.int64)
-        ok, marg = np.zeros(len(ki), dtype=bool), np.zeros(len(ki))
-        if len(ki):
-            with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-                g = evaluate.spring(self.apps, keys, ki, {c: t[c][oo] for c in evaluate.SPRING_OPTION_COLUMNS},
-                                    self.settings)
-            a = g.assessment()
-            ok, marg = a.ok, a.objective_margin
-            self.evaluations += len(ki)
-        starts = np.concatenate([[0], np.cumsum(cnt)])
-        return [(cand[j][ok[starts[j]:starts[j + 1]]], scores[j][ok[starts[j]:starts[j + 1]]],
-                 marg[starts[j]:starts[j + 1]][ok[starts[j]:starts[j + 1]]]) for j in range(len(cand))]
+    def _tie_units(self, s: str, rows):
+        """``(inverse, units)``: the evaluation units of subsystem ``s`` for core rows ``rows`` (one per distinct
+        application and value of what ``s`` reads of the core: a spring key for the main spring) and each row's."""
+        if s == "spring":
+            keys, inv = self._spring_keys(rows)
+            return inv, keys
+        extra = (self.cg.values["supplier_code"][rows],) if s == "bushing" else ()
+        first, inv = _unique_rows(self.A[rows], *extra, *(self.cg.values[k][rows]
+                                                          for k in evaluate.core_values(s, self.cg.values)))
+        return inv, rows[first]
 
-    def _tied_options(self, s: str, rows, limit, weights) -> list:
-        """Per core row of ``rows``: ``(options, scores, objective margins)`` of the options of subsystem ``s``
-        that the core may take, pass every check and score at most ``limit`` (index order); one evaluator call
-        for all the rows, as the exact solver's tables evaluate them (:mod:`synth.optimise.product`)."""
-        sp, cg, st = self.sp, self.cg, self.settings
-        t = sp.tables[s]
-        if s == "spring":  # once per distinct spring key (what a main spring sees of the core), not per core
-            keys, kinv = self._spring_keys(np.asarray(rows))
-            lim_k = np.full(len(keys["app"]), -np.inf)
-            np.maximum.at(lim_k, kinv, limit)
-            per_key = self._tied_springs(keys, lim_k, weights)
-            return [per_key[k] for k in kinv]
-        sc_all = np.asarray(wsum(option_scores(sp, s), weights), dtype=float) + np.zeros(sp.n(s))
+    def _tie_candidates(self, s: str, weights: dict, rows, lo, hi):
+        """``(row unit, unit, (unit, option) pairs, their scores)``: per evaluation unit (:meth:`_tie_units`) of
+        core rows ``rows``, the options of ``s`` the core may take whose score lies in ``[lo, hi]`` (the row's; a
+        unit takes the widest), in score order (ties by index, as the exact solver's ``argmin``)."""
+        inv, unit = self._tie_units(s, rows)
+        nu = _n_units(unit)
+        ulo, uhi = np.full(nu, np.inf), np.full(nu, -np.inf)
+        np.minimum.at(ulo, inv, lo)
+        np.maximum.at(uhi, inv, hi)
+        if s == "spring":  # a range of positions of the application's score-ordered list
+            _, list_of, _, _, (flat, start) = self._spring_app_lists(weights)
+            apps_u = unit["app"]
+            first = self._last_within(weights, apps_u, np.nextafter(ulo, -np.inf)) + 1
+            cnt = np.maximum(self._last_within(weights, apps_u, uhi) - first + 1, 0).astype(np.int64)
+            ui = np.repeat(np.arange(nu), cnt)
+            oo = flat[start[list_of[apps_u]][ui] + first.astype(np.int64)[ui] + _segments(np.zeros(nu), cnt)]
+            return inv, unit, (ui, oo), self._spring_scores(weights, apps_u[ui], oo)
+        sc = np.asarray(wsum(option_scores(self.sp, s), weights), dtype=float) + np.zeros(self.sp.n(s))
+        order = np.argsort(sc, kind="stable")
+        a, b = np.searchsorted(sc[order], ulo, "left"), np.searchsorted(sc[order], uhi, "right")
+        cnt = np.maximum(b - a, 0)
+        ui = np.repeat(np.arange(nu), cnt)
+        oo = order[np.repeat(a, cnt) + _segments(np.zeros(nu), cnt)]
+        t = self.sp.tables[s]
         if s == "bushing":
-            avail = [np.flatnonzero(t["supplier_code"] == cg.values["supplier_code"][r]) for r in rows]
+            may = t["supplier_code"][oo] == self.cg.values["supplier_code"][unit[ui]]
         elif s == "axial":
-            avail = [np.flatnonzero(t["axial_group_present"] == (cg.values["axial_group_present"][r] > 0))
-                     for r in rows]
+            may = t["axial_group_present"][oo] == self.pad[unit[ui]]
         else:
-            avail = [np.arange(sp.n(s))] * len(rows)
-        cand, scores = avail, [sc_all[c] for c in avail]
-        keep = [sc <= lim for sc, lim in zip(scores, limit)]
-        cand = [c[kp] for c, kp in zip(cand, keep)]
-        scores = [sc[kp] for sc, kp in zip(scores, keep)]
-        cnt = np.array([len(c) for c in cand], dtype=np.int64)
-        ri = np.repeat(np.arange(len(rows)), cnt)
-        oo = np.concatenate(cand).astype(np.int64) if len(ri) else np.zeros(0, dtype=np.int64)
-        rr = np.asarray(rows)[ri]
-        ok, marg = np.zeros(len(ri), dtype=bool), np.zeros(len(ri))
-        if len(ri):
+            may = np.ones(len(oo), dtype=bool)
+        ui, oo = ui[may], oo[may]
+        return inv, unit, (ui, oo), sc[oo]
+
+    def _tie_evaluate(self, s: str, inv, unit, pairs, scores):
+        """The candidates of :meth:`_tie_candidates` that pass every check, with their margins counted in the
+        margin objective: ``(row unit, unit index, option, score, margin)`` (the pairs in their order); one
+        evaluator call (the main spring: the compiled kernels where they cover the registry's checks)."""
+        ui, oo = pairs
+        sp, st = self.sp, self.settings
+        ok, marg = np.zeros(len(ui), dtype=bool), np.zeros(len(ui))
+        if len(ui):
             with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-                if s == "bushing":
-                    g = evaluate.bushing(self.apps, cg, rr, sp.rows(s, oo), st)
+                if s == "spring":
+                    kk = main_spring.keys_of_rows(self.apps, unit)
+                    m = main_spring.pair_margins(kk, self._options(), ui, oo, engine=self.engine, settings=st)
+                    g = evaluate.Group("spring", {"app": unit["app"][ui]}, dict(zip(main_spring.checks(), m.T)),
+                                       rules=st.rules)
+                elif s == "bushing":
+                    g = evaluate.bushing(self.apps, self.cg, unit[ui], sp.rows(s, oo), st)
                 elif s == "axial":
-                    g = evaluate.axial_judged(self.apps, cg, rr, sp.rows(s, oo), st)
-                elif s == "bolt":
+                    pre = self._axial_passes_before_physics(unit[ui], oo)  # the others fail at any fidelity
+                    ui, oo, scores, ok, marg = ui[pre], oo[pre], scores[pre], ok[pre], marg[pre]
+                    g = evaluate.axial_judged(self.apps, self.cg, unit[ui], sp.rows(s, oo), st,
+                                              engine=self.axial_engine)
+                else:
                     o = sp.rows(s, oo)
-                    fix = evaluate.fixation_values(self.apps, self.A[rr], o, st)
-                    g = evaluate.bolt(self.apps, cg, rr, o, st, fixation=fix)
-            a = g.assessment()
-            ok, marg = a.ok, a.objective_margin
-            self.evaluations += len(ri)
-        out = []
-        starts = np.concatenate([[0], np.cumsum(cnt)])
-        for j in range(len(rows)):
-            sl = slice(starts[j], starts[j + 1])
-            f = ok[sl]
-            out.append((cand[j][f], scores[j][f], marg[sl][f]))
-        return out
+                    g = evaluate.bolt(self.apps, self.cg, unit[ui], o, st,
+                                      fixation=evaluate.fixation_values(self.apps, self.A[unit[ui]], o, st))
+            if len(ui):
+                a = g.assessment()
+                ok, marg = a.ok, a.objective_margin
+            self.evaluations += len(ui)
+        return inv, ui[ok], oo[ok], scores[ok], marg[ok], _n_units(unit)
+
 
     def _optimum(self, weights: dict, *, first: bool = False, which=None) -> list:
         n = len(self)
@@ -927,7 +969,8 @@ class Batch:
         if not len(R):
             return out
         o = np.lexsort((R, lb, a_of))  # per application, by bound, then row
-        R, a_of, b_pk, t_sc, t_pk, min_a, p0, lb = (x[o] for x in (R, a_of, b_pk, t_sc, t_pk, min_a, p0, lb))
+        R, a_of, cs, b_sc, b_pk, t_sc, t_pk, min_a, p0, lb = (x[o] for x in (R, a_of, cs, b_sc, b_pk, t_sc, t_pk,
+                                                                               min_a, p0, lb))
         keys, kinv = self._spring_keys(R)
         # the smallest partial score of each key's rows: its spring scan can stop where no row can win
         k_part = np.full(len(keys["app"]), np.inf)
@@ -936,6 +979,7 @@ class Batch:
         k_pk = np.full(len(keys["app"]), -1, dtype=np.int64)
         a_sc, a_pk = np.full(len(R), np.inf), np.full(len(R), -1, dtype=np.int64)
         total = np.full(len(R), np.inf)
+        done = np.zeros(len(R), dtype=bool)  # the rows whose total is known (inf: none within the cut)
         inc = np.full(n, np.inf)
         best = np.full(n, -1, dtype=np.int64)  # position in R
         seg = np.flatnonzero(np.r_[True, a_of[1:] != a_of[:-1]])
@@ -972,6 +1016,7 @@ class Batch:
                     lim_a = np.full(len(ta), np.inf)
                 a_sc[ta], a_pk[ta] = self._axial_first(R[ta], np.where(np.isfinite(lim_a), lim_a, np.inf), weights)
                 total[ta] = ((p0[ta] + a_sc[ta]) + s[go]) + t_sc[ta]
+                done[ta] = True
                 fin = ta[np.isfinite(total[ta])]
                 for j in fin[np.lexsort((R[fin], total[fin]))]:  # few: the finite totals of this round
                     i = a_of[j]
@@ -981,6 +1026,11 @@ class Batch:
             j = best[i]
             out[i] = (int(R[j]), {"bushing": int(b_pk[j]), "axial": int(a_pk[j]), "spring": int(k_pk[kinv[j]]),
                                   "bolt": int(t_pk[j])})
+        # the search's state, for the margin tie-break (:meth:`_margin_ties`): rows per application by bound
+        self._last = None if first else {
+            "R": R, "a_of": a_of, "cs": cs, "b_sc": b_sc, "p0": p0, "min_a": min_a, "t_sc": t_sc, "lb": lb,
+            "keys": keys, "kinv": kinv, "k_sc": k_sc, "k_pk": k_pk, "a_sc": a_sc, "a_pk": a_pk, "total": total,
+            "done": done, "inc": inc}
         return out
 
     def nearest(self, which=None) -> list:
