@@ -58,6 +58,7 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--fidelity", default="screening", choices=["screening", "full"])
     ap.add_argument("--no-compare", action="store_true", help="only the times, not the comparison with the solver")
+    ap.add_argument("--every", type=int, default=100, help="print the count so far every this many rows")
     a = ap.parse_args(argv)
     apps = generate(a.n, seed=a.seed)
     settings = Settings(fidelity=a.fidelity)
@@ -65,7 +66,7 @@ def main(argv=None) -> int:
     print(f"| applications | feasible | rows the tie-break changes | search CPU s | tie-break CPU s | share |\n"
           f"|---:|---:|---:|---:|---:|---:|\n"
           f"| {a.n} | {t['feasible']} | {t['changed']} | {t['search_s']:.2f} | {t['tie_break_s']:.2f} | "
-          f"{t['tie_break_s'] / t['search_s']:.1%} |")
+          f"{t['tie_break_s'] / t['search_s']:.1%} |", flush=True)
     if a.no_compare:
         return 0
     df = screen_applications(apps, objective="standard", settings=settings, diagnose=False)
@@ -75,6 +76,8 @@ def main(argv=None) -> int:
                                              relax=False))
         if diff:
             bad[i] = diff
+        if (i + 1) % a.every == 0:
+            print(f"compared {i + 1} rows: {len(bad)} differ", flush=True)
     print(f"\n| applications (seed {a.seed}, {a.fidelity}) | feasible rows | rows differing from synth design |\n"
           f"|---:|---:|---:|\n| {a.n} | {int(df['feasible'].sum())} | {len(bad)} |")
     for i, diff in list(bad.items())[:20]:
