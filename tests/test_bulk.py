@@ -423,7 +423,8 @@ def test_real_engine_end_to_end(tmp_path):
         if a is None:
             assert t.loc[i, "error"] == e
             continue
-        r = solve(a, "standard", "enumerate", settings=Settings(fidelity="screening"), relax=False)
+        # synth design's objective: standard, its ties broken by cost, then the margin (with_margin_tiebreak)
+        r = solve(a, "standard,cost,margin", "enumerate", settings=Settings(fidelity="screening"), relax=False)
         assert t.loc[i, "feasible"] == (r.status == "optimal") and t.loc[i, "verdict"] == r.verdict
         assert {k: t.loc[i, f"part_{k}"] for k in PART_KEYS} == r.parts
         assert r.margins

@@ -46,7 +46,7 @@ from synth.optimise.product import core_scores, option_scores
 from synth.design.verify import evaluate_design, parts_of_rows
 from synth.optimise.batch import Batch, robust
 from synth.optimise.diagnose import layout_switches, probe_batch, relaxations_batch
-from synth.optimise.objectives import Objective
+from synth.optimise.objectives import Objective, with_margin_tiebreak
 
 __all__ = ["columns", "constraint_ids", "screen_applications", "screen_applications_reference", "row_from_result"]
 
@@ -166,7 +166,8 @@ def screen_applications_reference(apps: Sequence, *, objective: str = "standard"
     rows = []
     for d in apps:
         try:
-            rows.append(row_from_result(solve(d, objective, "enumerate", settings=settings, relax=diagnose,
+            rows.append(row_from_result(solve(d, with_margin_tiebreak(objective), "enumerate", settings=settings,
+                                              relax=diagnose,
                                               exhaustive=True), diagnose))
         except InputError as exc:
             rows.append(error_row(exc))
@@ -310,11 +311,12 @@ def _parts(attrs: dict, core_values: dict) -> dict:
     return {k: [r[k] for r in rows] for k in PART_KEYS}
 
 
-def _screen_chunk(inputs: list, weights: dict, obj, settings, diagnose: bool) -> list:
+def _screen_chunk(inputs: list, weights: dict, obj, settings, diagnose: bool, margin_ties: bool = False) -> list:
     """The rows of a chunk of applications (see :func:`screen_applications`)."""
     n = len(inputs)
     b = Batch(inputs, settings)
-    found = b.optimum(weights)
+    # ties broken as synth design breaks them (the margin, then catalog order) for a single objective name
+    found = b.optimum_margin_ties(weights) if margin_ties else b.optimum(weights)
     bad = [i for i, f in enumerate(found) if f is None]
     near = b.nearest(bad) if bad else [None] * n
     cols = {c: np.empty(n, dtype=object) for c in columns()}
@@ -346,6 +348,15 @@ def _screen_chunk(inputs: list, weights: dict, obj, settings, diagnose: bool) ->
             if r:
                 cols["relaxation"][i] = _fmt_relaxation(r[0])
     return cols
+
+
+def _margin_ties(objective) -> bool:
+    """Whether ``synth design`` breaks the ties of ``objective`` by the margin (a single name: ``standard`` is
+    ``standard,cost,margin``, :func:`synth.optimise.objectives.with_margin_tiebreak`): the fast path then breaks them
+    the same way (:meth:`synth.optimise.batch.Batch.optimum_margin_ties`)."""
+    if isinstance(objective, Objective):
+        return False
+    return Objective.parse(with_margin_tiebreak(objective)).uses_margin() and not Objective.parse(objective).uses_margin()
 
 
 class _NoSpace(Exception):
@@ -384,9 +395,10 @@ def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity
     if obj.uses_margin():
         return screen_applications_reference(apps, objective=objective, diagnose=diagnose, settings=settings)
     w = obj.additive_weights() or {"cost": 1.0}
+    ties = _margin_ties(objective)
 
     def reference_row(d, exc=None):
-        return screen_applications_reference([d], objective=obj, diagnose=diagnose,
+        return screen_applications_reference([d], objective=objective, diagnose=diagnose,
                                              settings=settings).to_dict(orient="records")[0]
 
     def reference_frame(d, exc=None):
@@ -395,10 +407,10 @@ def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity
 
     def chunk(items):  # a list of pieces (DataFrames), concatenated in order
         try:
-            return [_frame(_screen_chunk(items, w, obj, settings, diagnose))]
+            return [_frame(_screen_chunk(items, w, obj, settings, diagnose, ties))]
         except _NoSpace as exc:  # rare: those applications alone, by the reference
             rest = [d for i, d in enumerate(items) if i not in exc.which]
-            ok = _frame(_screen_chunk(rest, w, obj, settings, diagnose)) if rest else None
+            ok = _frame(_screen_chunk(rest, w, obj, settings, diagnose, ties)) if rest else None
             pieces, k = [], 0
             for i, d in enumerate(items):
                 if i in exc.which:

@@ -63,17 +63,20 @@ from synth.design.applications import Applications
 from synth.design.constraints import by_group, physics_inputs
 from synth.design.space import (SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, priced_for, space, space_for,
                                 spring_window)
-from synth.optimise.objectives import weighted_sum, weighted_sum_around
+from synth.optimise.objectives import TIE, weighted_sum, weighted_sum_around
 from synth.optimise.product import DURABILITY_NOTE, core_scores, option_scores
 from synth.errors import InputError
 from synth.kernels import engines, main_spring
 from synth import catalog
 from synth.design.verify import evaluate_design, parts_of_design
 
-__all__ = ["Batch", "wsum", "SLACK", "any_feasible", "designs_pass", "robust"]
+__all__ = ["Batch", "wsum", "SLACK", "MARGIN_EPS", "any_feasible", "designs_pass", "robust"]
 
 #: relative slack of the score cuts (a cut never removes a design within 1e-9 of the best: rounding is far below)
 SLACK = 1e-9
+#: the margin threshold's tolerance of the exact solver's lexicographic orders with the margin
+#: (:data:`synth.optimise.solvers.enumerate._EPS`): an option passes the threshold ``tau`` when its margin is >= tau - 1e-9
+MARGIN_EPS = 1e-9
 
 
 def _bolt_ids(core_values: dict) -> tuple[tuple, tuple]:
@@ -157,6 +160,59 @@ def _rounds(pos, seg_end, block: int, may, still=None):
             yield take
 
 
+def _n_units(unit) -> int:
+    """The number of evaluation units of :meth:`Batch._tie_units` (core rows, or spring keys)."""
+    return len(unit["app"]) if isinstance(unit, dict) else len(unit)
+
+
+def _restrict(cand, keep):
+    """The candidates of :meth:`Batch._tie_candidates` of the rows ``keep`` (a mask of its rows) only."""
+    inv, unit, (ui, oo), sc = cand
+    used = np.zeros(_n_units(unit), dtype=bool)
+    used[inv[keep]] = True
+    m = used[ui]
+    return inv[keep], unit, (ui[m], oo[m]), sc[m]
+
+
+def _tie_pick(found: list, R, a_of, cs, core_m, evaluated: dict) -> list:
+    """``found`` with the design of the margin tie-break where the tied cores ``R`` (applications ``a_of``, core
+    scores ``cs``, objective margins ``core_m``) and their tied options (``evaluated``: per subsystem, what
+    :meth:`Batch._tie_evaluate` returns) give one, as :func:`synth.optimise.solvers.enumerate.solve_space` takes
+    it: the threshold ``tau`` is the largest design margin of a tied design (0 when it is within 1e-9 below 0,
+    none when below), per core and subsystem the first option in score order whose margin reaches ``tau - 1e-9``,
+    and the core of the smallest total (summed as the solver sums it), the first row of equal totals."""
+    n = len(found)
+    design_m = np.asarray(core_m, dtype=float).copy()
+    unit_app = {}
+    for s, (inv, ui, oo, sc, m, nu) in evaluated.items():
+        best = np.full(nu, -np.inf)
+        np.maximum.at(best, ui, m)
+        design_m = np.minimum(design_m, best[inv])
+        unit_app[s] = np.zeros(nu, dtype=np.int64)
+        unit_app[s][inv] = a_of
+    m_star = np.full(n, -np.inf)
+    np.maximum.at(m_star, a_of, design_m)
+    tau = np.where(m_star >= 0, m_star, np.where(m_star >= -MARGIN_EPS, 0.0, -np.inf))
+    thr = tau - MARGIN_EPS
+    total = np.where(core_m >= thr[a_of], cs, np.inf)
+    picks = {}
+    for s in SUBSYSTEMS:
+        inv, ui, oo, sc, m, nu = evaluated[s]
+        reach = np.flatnonzero(m >= thr[unit_app[s][ui]])  # in score order within each unit
+        u, at = np.unique(ui[reach], return_index=True)
+        ch_o, ch_sc = np.full(nu, -1, dtype=np.int64), np.full(nu, np.inf)
+        ch_o[u], ch_sc[u] = oo[reach[at]], sc[reach[at]]
+        total = total + ch_sc[inv]
+        picks[s] = ch_o[inv]
+    o = np.lexsort((R, total, a_of))
+    o = o[np.isfinite(total[o])]
+    out = list(found)
+    for i, j in zip(*np.unique(a_of[o], return_index=True)):
+        j = o[j]
+        out[int(i)] = (int(R[j]), {s: int(picks[s][j]) for s in SUBSYSTEMS})
+    return out
+
+
 def _space_of(inputs: list, pin_inputs):
     """The one design space of a batch: the whole catalog product, or the one keeping the parts the inputs name
     (``pin_inputs``), which must then be the same parts for every input (a relaxation's probes change other
@@ -217,6 +273,7 @@ class Batch:
         self._ax_mm = np.zeros((0, sp.n("axial")))
         self._ax_known = np.zeros((0, sp.n("axial")), dtype=bool)
         self._screened = None  # the screening settings while optimum() searches with the full model alone
+        self._last, self._redone = None, set()  # the last optimum()'s search state and re-searched applications
 
     def __len__(self) -> int:
         return len(self.inputs)
@@ -708,18 +765,183 @@ class Batch:
         evaluates the full model only where those constraints pass (:func:`~synth.design.evaluate.axial_full`)."""
         out = self._optimum(weights, first=first, which=which)
         judge = self.settings.judge
+        redo = ()
         if judge is not self.settings:
             redo = np.flatnonzero(self._axial_undecided & np.array([o is None for o in out], dtype=bool))
             if len(redo):
+                last = self._last
                 search = self._screened = self.settings
                 self.settings = judge
                 try:
                     again = self._optimum(weights, first=first, which=redo)
                 finally:
-                    self.settings, self._screened = search, None
+                    self.settings, self._screened, self._last = search, None, last
                 for i in redo:
                     out[i] = again[i]
+        self._redone = set(int(i) for i in redo)  # searched by the full model alone: no tie-break (_last: the first)
         return out
+
+    def optimum_margin_ties(self, weights: dict, which=None) -> list:
+        """:meth:`optimum` with its ties broken as the exact solver breaks them for the order ``weights`` then the
+        margin (``synth design``'s ``standard,cost,margin``: :func:`synth.optimise.objectives.with_margin_tiebreak`,
+        :func:`synth.optimise.solvers.enumerate.solve_space`): among the designs whose score ties the best
+        (:func:`synth.optimise.objectives.ties`), the largest design margin (the smallest margin counted in the
+        margin objective); among those reaching it, per subsystem the cheapest option in score order whose margin
+        reaches it (first index of equal scores), and the core of the smallest total (first row of equal totals).
+
+        From the search's own state (:meth:`_margin_ties`): the cores it finished keep their totals, the others
+        whose bound ties the best score are searched now; per tied core and subsystem the candidates are the options
+        scoring from the first feasible one's score (a cheaper one failed the scan) to the tie, once per distinct
+        value of what the subsystem reads of the core; only the applications with more than one tied design
+        evaluate them (one evaluator call per subsystem; the main springs on the compiled kernels where they cover
+        the registry's checks).
+
+        >>> from synth.data.generated_applications import generate
+        >>> b = Batch(generate(8, seed=7), spring_engine="numpy")
+        >>> w = {"cost": 1.0, "standard": 1e4}
+        >>> sum(f != t for f, t in zip(b.optimum(w), b.optimum_margin_ties(w)))  # designs of equal score, more margin
+        5
+        """
+        found = self.optimum(weights, which=which)
+        return self._margin_ties(weights, found)
+
+    def _margin_ties(self, weights: dict, found: list) -> list:
+        """``found`` (:meth:`optimum`'s) with its ties broken by the margin (:meth:`optimum_margin_ties`), from the
+        first search's bounds and scores (:attr:`_last`): only the cores it did not finish are searched again,
+        and only the applications with more than one tied design evaluate their tied options."""
+        last = self._last
+        live = np.array([f is not None and i not in self._redone for i, f in enumerate(found)], dtype=bool)
+        if last is None or not live.any():
+            return found
+        inc = last["inc"]  # the best score, summed as the exact solver sums it
+        tol = TIE * np.maximum(1.0, np.abs(np.where(np.isfinite(inc), inc, 0.0)))  # objectives.ties
+        lim = inc + tol
+        j = self._tied_rows(weights, live, lim)
+        if not len(j):
+            return found
+        R, a_of = last["R"][j], last["a_of"][j]
+        lo = {"bushing": last["b_sc"][j], "axial": last["a_sc"][j], "spring": last["k_sc"][last["kinv"][j]],
+              "bolt": last["t_sc"][j]}
+        # per subsystem, the options of each tied core whose score ties its first feasible option's (a cheaper
+        # one fails: the search took the first that passes in score order), by evaluation unit (what the
+        # subsystem reads of the core)
+        cand = {s: self._tie_candidates(s, weights, R, lo[s], lo[s] + tol[a_of]) for s in SUBSYSTEMS}
+        # an application with one tied core and one candidate per subsystem has one tied design: found's
+        many = np.bincount(a_of, minlength=len(self)) > 1
+        for inv, unit, (ui, _), _ in cand.values():
+            many[a_of[np.bincount(ui, minlength=_n_units(unit))[inv] > 1]] = True
+        keep = many[a_of]
+        if not keep.any():
+            return found
+        R, a_of = R[keep], a_of[keep]
+        evaluated = {s: self._tie_evaluate(s, *_restrict(c, keep)) for s, c in cand.items()}
+        return _tie_pick(found, R, a_of, last["cs"][j][keep], self.cg.min_margin()[R], evaluated)
+
+    def _tied_rows(self, weights: dict, live, lim) -> np.ndarray:
+        """Positions in :attr:`_last` of the cores of the applications ``live`` whose best design scores at most
+        ``lim`` (per application): the first search's totals where it finished the core, else searched now (its
+        spring and axial scans, cut at ``lim``) and kept."""
+        last = self._last
+        R, a_of, p0, min_a, t_sc, keys, kinv = (last[k] for k in ("R", "a_of", "p0", "min_a", "t_sc", "keys", "kinv"))
+        k_sc, k_pk, a_sc, total = last["k_sc"], last["k_pk"], last["a_sc"], last["total"]
+        lim_r = lim[a_of]
+        cand = np.flatnonzero(live[a_of] & (last["lb"] <= lim_r))
+        todo = cand[~last["done"][cand]]
+        if len(todo):
+            kt = np.unique(kinv[todo])
+            kt = kt[np.isnan(k_sc[kt])]
+            if len(kt):  # springs of the keys the first search did not scan
+                part = np.full(len(keys["app"]), np.inf)
+                np.minimum.at(part, kinv[todo], (p0[todo] + min_a[todo]) + t_sc[todo])
+                lk = lim[keys["app"][kt]] - part[kt]
+                lk = lk + SLACK * np.maximum(1.0, np.abs(lim[keys["app"][kt]]))
+                sub = {k: v[kt] for k, v in keys.items()}
+                k_sc[kt], k_pk[kt] = self._spring_first(sub, np.where(np.isfinite(lk), lk, np.inf), weights)
+            s = k_sc[kinv[todo]]
+            go = np.isfinite(s) & (((p0[todo] + min_a[todo]) + s) + t_sc[todo] <= lim_r[todo])
+            ta, s = todo[go], s[go]
+            if len(ta):
+                la = lim_r[ta] - ((p0[ta] + s) + t_sc[ta]) + SLACK * np.maximum(1.0, np.abs(lim_r[ta]))
+                a_sc[ta], last["a_pk"][ta] = self._axial_first(R[ta], np.where(np.isfinite(la), la, np.inf), weights)
+                total[ta] = ((p0[ta] + a_sc[ta]) + s) + t_sc[ta]
+            last["done"][todo] = True
+        return cand[total[cand] <= lim_r[cand]]
+
+    def _tie_units(self, s: str, rows):
+        """``(inverse, units)``: the evaluation units of subsystem ``s`` for core rows ``rows`` (one per distinct
+        application and value of what ``s`` reads of the core: a spring key for the main spring) and each row's."""
+        if s == "spring":
+            keys, inv = self._spring_keys(rows)
+            return inv, keys
+        extra = (self.cg.values["supplier_code"][rows],) if s == "bushing" else ()
+        first, inv = _unique_rows(self.A[rows], *extra, *(self.cg.values[k][rows]
+                                                          for k in evaluate.core_values(s, self.cg.values)))
+        return inv, rows[first]
+
+    def _tie_candidates(self, s: str, weights: dict, rows, lo, hi):
+        """``(row unit, unit, (unit, option) pairs, their scores)``: per evaluation unit (:meth:`_tie_units`) of
+        core rows ``rows``, the options of ``s`` the core may take whose score lies in ``[lo, hi]`` (the row's; a
+        unit takes the widest), in score order (ties by index, as the exact solver's ``argmin``)."""
+        inv, unit = self._tie_units(s, rows)
+        nu = _n_units(unit)
+        ulo, uhi = np.full(nu, np.inf), np.full(nu, -np.inf)
+        np.minimum.at(ulo, inv, lo)
+        np.maximum.at(uhi, inv, hi)
+        if s == "spring":  # a range of positions of the application's score-ordered list
+            _, list_of, _, _, (flat, start) = self._spring_app_lists(weights)
+            apps_u = unit["app"]
+            first = self._last_within(weights, apps_u, np.nextafter(ulo, -np.inf)) + 1
+            cnt = np.maximum(self._last_within(weights, apps_u, uhi) - first + 1, 0).astype(np.int64)
+            ui = np.repeat(np.arange(nu), cnt)
+            oo = flat[start[list_of[apps_u]][ui] + first.astype(np.int64)[ui] + _segments(np.zeros(nu), cnt)]
+            return inv, unit, (ui, oo), self._spring_scores(weights, apps_u[ui], oo)
+        sc = np.asarray(wsum(option_scores(self.sp, s), weights), dtype=float) + np.zeros(self.sp.n(s))
+        order = np.argsort(sc, kind="stable")
+        a, b = np.searchsorted(sc[order], ulo, "left"), np.searchsorted(sc[order], uhi, "right")
+        cnt = np.maximum(b - a, 0)
+        ui = np.repeat(np.arange(nu), cnt)
+        oo = order[np.repeat(a, cnt) + _segments(np.zeros(nu), cnt)]
+        t = self.sp.tables[s]
+        if s == "bushing":
+            may = t["supplier_code"][oo] == self.cg.values["supplier_code"][unit[ui]]
+        elif s == "axial":
+            may = t["axial_group_present"][oo] == self.pad[unit[ui]]
+        else:
+            may = np.ones(len(oo), dtype=bool)
+        ui, oo = ui[may], oo[may]
+        return inv, unit, (ui, oo), sc[oo]
+
+    def _tie_evaluate(self, s: str, inv, unit, pairs, scores):
+        """The candidates of :meth:`_tie_candidates` that pass every check, with their margins counted in the
+        margin objective: ``(row unit, unit index, option, score, margin)`` (the pairs in their order); one
+        evaluator call (the main spring: the compiled kernels where they cover the registry's checks)."""
+        ui, oo = pairs
+        sp, st = self.sp, self.settings
+        ok, marg = np.zeros(len(ui), dtype=bool), np.zeros(len(ui))
+        if len(ui):
+            with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+                if s == "spring":
+                    kk = main_spring.keys_of_rows(self.apps, unit)
+                    m = main_spring.pair_margins(kk, self._options(), ui, oo, engine=self.engine, settings=st)
+                    g = evaluate.Group("spring", {"app": unit["app"][ui]}, dict(zip(main_spring.checks(), m.T)),
+                                       rules=st.rules)
+                elif s == "bushing":
+                    g = evaluate.bushing(self.apps, self.cg, unit[ui], sp.rows(s, oo), st)
+                elif s == "axial":
+                    pre = self._axial_passes_before_physics(unit[ui], oo)  # the others fail at any fidelity
+                    ui, oo, scores, ok, marg = ui[pre], oo[pre], scores[pre], ok[pre], marg[pre]
+                    g = evaluate.axial_judged(self.apps, self.cg, unit[ui], sp.rows(s, oo), st,
+                                              engine=self.axial_engine)
+                else:
+                    o = sp.rows(s, oo)
+                    g = evaluate.bolt(self.apps, self.cg, unit[ui], o, st,
+                                      fixation=evaluate.fixation_values(self.apps, self.A[unit[ui]], o, st))
+            if len(ui):
+                a = g.assessment()
+                ok, marg = a.ok, a.objective_margin
+            self.evaluations += len(ui)
+        return inv, ui[ok], oo[ok], scores[ok], marg[ok], _n_units(unit)
+
 
     def _optimum(self, weights: dict, *, first: bool = False, which=None) -> list:
         n = len(self)
@@ -747,7 +969,8 @@ class Batch:
         if not len(R):
             return out
         o = np.lexsort((R, lb, a_of))  # per application, by bound, then row
-        R, a_of, b_pk, t_sc, t_pk, min_a, p0, lb = (x[o] for x in (R, a_of, b_pk, t_sc, t_pk, min_a, p0, lb))
+        R, a_of, cs, b_sc, b_pk, t_sc, t_pk, min_a, p0, lb = (x[o] for x in (R, a_of, cs, b_sc, b_pk, t_sc, t_pk,
+                                                                               min_a, p0, lb))
         keys, kinv = self._spring_keys(R)
         # the smallest partial score of each key's rows: its spring scan can stop where no row can win
         k_part = np.full(len(keys["app"]), np.inf)
@@ -756,6 +979,7 @@ class Batch:
         k_pk = np.full(len(keys["app"]), -1, dtype=np.int64)
         a_sc, a_pk = np.full(len(R), np.inf), np.full(len(R), -1, dtype=np.int64)
         total = np.full(len(R), np.inf)
+        done = np.zeros(len(R), dtype=bool)  # the rows whose total is known (inf: none within the cut)
         inc = np.full(n, np.inf)
         best = np.full(n, -1, dtype=np.int64)  # position in R
         seg = np.flatnonzero(np.r_[True, a_of[1:] != a_of[:-1]])
@@ -792,6 +1016,7 @@ class Batch:
                     lim_a = np.full(len(ta), np.inf)
                 a_sc[ta], a_pk[ta] = self._axial_first(R[ta], np.where(np.isfinite(lim_a), lim_a, np.inf), weights)
                 total[ta] = ((p0[ta] + a_sc[ta]) + s[go]) + t_sc[ta]
+                done[ta] = True
                 fin = ta[np.isfinite(total[ta])]
                 for j in fin[np.lexsort((R[fin], total[fin]))]:  # few: the finite totals of this round
                     i = a_of[j]
@@ -801,6 +1026,11 @@ class Batch:
             j = best[i]
             out[i] = (int(R[j]), {"bushing": int(b_pk[j]), "axial": int(a_pk[j]), "spring": int(k_pk[kinv[j]]),
                                   "bolt": int(t_pk[j])})
+        # the search's state, for the margin tie-break (:meth:`_margin_ties`): rows per application by bound
+        self._last = None if first else {
+            "R": R, "a_of": a_of, "cs": cs, "b_sc": b_sc, "p0": p0, "min_a": min_a, "t_sc": t_sc, "lb": lb,
+            "keys": keys, "kinv": kinv, "k_sc": k_sc, "k_pk": k_pk, "a_sc": a_sc, "a_pk": a_pk, "total": total,
+            "done": done, "inc": inc}
         return out
 
     def nearest(self, which=None) -> list:
