@@ -49,3 +49,19 @@ def test_the_target_is_part_of_the_configuration():
         Settings(capability=1.33)
     s = Settings(capability=RS)
     assert s.capability is RS and s.replace(capability=None).capability is None and s != Settings()
+
+
+def test_a_resume_under_another_target_is_refused(tmp_path):
+    from synth.bulk.run import _check_manifest, manifest_of
+    from synth.errors import InputError
+
+    def manifest(rs):
+        return manifest_of("x", 3, objective="standard", fidelity="full", chunk_size=1, diagnose=True,
+                           settings=Settings(catalogs=(), capability=rs))
+    old = manifest(RS)
+    _check_manifest(old, manifest(RS), tmp_path)
+    with pytest.raises(InputError, match="--capability"):
+        _check_manifest(old, manifest(RobustSettings(capability=1.0, samples=256)), tmp_path)
+    with pytest.raises(InputError, match="--capability"):
+        _check_manifest(old, manifest(None), tmp_path)
+    _check_manifest({k: v for k, v in manifest(None).items() if k != "capability"}, manifest(None), tmp_path)
