@@ -144,30 +144,6 @@ def synthesis(repeat: int) -> list:
     return out
 
 
-def bulk(n_apps: int) -> list:
-    from synth.bulk.engine import screen_applications
-    from synth.data.generated_applications import generate
-    from synth.design.space import PART_KEYS
-    from synth.robust.portfolio import BULK_SAMPLES, portfolio_capability
-    apps = generate(n_apps, seed=1)
-    w0 = time.perf_counter()
-    c0 = time.process_time()
-    df = screen_applications(apps, objective="standard", diagnose=False)
-    w_nom, c_nom = time.perf_counter() - w0, time.process_time() - c0
-    parts = [({k: row[f"part_{k}"] for k in PART_KEYS} if row["feasible"] else None)
-             for row in df.to_dict(orient="records")]
-    feas = sum(p is not None for p in parts)
-    rs = RobustSettings(capability=1.33, samples=BULK_SAMPLES)
-    portfolio_capability(apps[:4], parts[:4], rs=rs)  # warm
-    out = [f"| {n_apps} applications ({feas} feasible) | wall [s] | CPU of this process [s] | applications/s (wall) |",
-           "|---|---|---|---|", f"| nominal bulk screening (in process) | {w_nom:.2f} | {c_nom:.2f} | {n_apps / w_nom:.0f} |"]
-    for workers in (1, 2):
-        w, c, _ = _time(lambda: portfolio_capability(apps, parts, rs=rs, workers=workers), 1)
-        out.append(f"| capability of the feasible designs, {BULK_SAMPLES} samples, {workers} process(es) | {w:.2f} | "
-                   f"{c:.2f} | {feas / w:.0f} (of the feasible) |")
-    return out
-
-
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--apps", type=int, default=200)
@@ -183,8 +159,7 @@ def main(argv=None) -> int:
     if not a.quick:
         print("\n## 3. Robust synthesis against the nominal synthesis\n")
         print("\n".join(synthesis(max(1, a.repeat // 2))))
-    print("\n## 4. Bulk capability against the nominal bulk\n")
-    print("\n".join(bulk(a.apps)))
+    # the bulk's capability (each row re-selected for the target): benchmarks/bench_bulk_capability.py
     return 0
 
 

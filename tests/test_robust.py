@@ -217,19 +217,6 @@ def test_a_bounded_output_is_judged_by_its_ppm(seated):
         RobustSettings(method="moment"))
 
 
-def test_one_ppk_for_a_design_and_a_portfolio(seated):
-    """The bulk's capability (K designs x N samples) and the one design's use the same statistics
-    (synth.robust.stats): the smallest percentile index of the targeted checks is the same number."""
-    from synth.optimise import solve
-    from synth.robust.portfolio import portfolio_capability
-    from synth.robust.sampling import production
-    r = solve(seated, "standard,cost,margin", settings=production(Settings()))
-    rs = RobustSettings(samples=1024)
-    row = portfolio_capability([seated], [r.parts], rs=rs)[0]
-    cap = capability(base_of(seated, r.parts), rs, rare=False)
-    assert row["capability_min_ppk"] == pytest.approx(min(c.ppk_percentile for c in cap.checks if c.target), rel=1e-9)
-
-
 # --------------------------------------------------------------------------------------------- evaluator hooks
 def test_a_made_design_at_its_window_ends_is_the_sized_design():
     """The made joint at the window's bottom gives the window's safety factors, at its top the window's pressures;

@@ -47,6 +47,7 @@ from synth.design.verify import evaluate_design, parts_of_rows
 from synth.optimise.batch import Batch, robust
 from synth.optimise.diagnose import layout_switches, probe_batch, relaxations_batch
 from synth.optimise.objectives import Objective, with_margin_tiebreak
+from synth.bulk.capability import COLUMNS as CAPABILITY_COLUMNS
 
 __all__ = ["columns", "constraint_ids", "screen_applications", "screen_applications_reference", "row_from_result"]
 
@@ -68,7 +69,7 @@ def columns() -> list:
             + [f"part_{k}" for k in PART_KEYS]
             + ["margin_min", "binding_constraint", "binding_margin"]
             + [f"margin_{n}" for n in constraint_ids()]
-            + ["violated", "relaxation", "notes"])
+            + list(CAPABILITY_COLUMNS) + ["violated", "relaxation", "notes"])
 
 
 def _num(v):
@@ -333,7 +334,7 @@ def _screen_chunk(inputs: list, weights: dict, obj, settings, diagnose: bool, ma
         groups = _verify(b, idx, core_rows, options)
         part = _rows(b, idx, core_rows, options, groups, status, obj)
         for c in cols:
-            cols[c][idx] = part[c]
+            cols[c][idx] = part[c] if c in part else None  # the capability columns: empty without a target
         for i, f in zip(sel, part["_failed"]):
             failed[i] = f
     if diagnose and bad:
@@ -392,6 +393,10 @@ def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity
     settings = _settings(settings, fidelity)
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     apps = list(apps)
+    if settings.capability is not None:  # each row re-selected for the target: synth design --capability's answer
+        from synth.bulk.capability import screen_robust
+        return frame(screen_robust(apps, objective, settings, diagnose, lambda a, s: screen_applications(
+            a, objective=objective, diagnose=diagnose, settings=s), row_from_result))
     if obj.uses_margin():
         return screen_applications_reference(apps, objective=objective, diagnose=diagnose, settings=settings)
     w = obj.additive_weights() or {"cost": 1.0}

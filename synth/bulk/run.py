@@ -87,7 +87,7 @@ DEFAULT_CHUNK_SIZE = 250
 MANIFEST = "manifest.json"
 LOCK = "run.lock"
 _MANIFEST_KEYS = ("portfolio_sha256", "n_rows", "objective", "fidelity", "chunk_size", "diagnose",
-                  "synth_version", "catalogs_sha256", "rules")
+                  "synth_version", "catalogs_sha256", "rules", "capability")
 
 
 def default_chunk_size() -> int:
@@ -116,7 +116,8 @@ def _kind(col: str) -> str:
         return "bool"
     if col.startswith("part_"):
         return "part"
-    if col.startswith(("margin_", "objective_")) or col == "binding_margin":
+    if col.startswith(("margin_", "objective_")) or col in ("binding_margin", "capability_min_ppk",
+                                                             "capability_max_ppm"):
         return "float"
     return "text"
 
@@ -264,7 +265,15 @@ def manifest_of(portfolio_hash: str, n_rows: int, *, objective: str, fidelity: s
     s = settings if settings is not None else Settings()
     return {"portfolio_sha256": portfolio_hash, "n_rows": int(n_rows), "objective": str(objective),
             "fidelity": str(fidelity), "chunk_size": int(chunk_size), "diagnose": bool(diagnose),
-            "synth_version": __version__, "catalogs_sha256": _catalogs_sha256(s), "rules": echo(s.rules)}
+            "synth_version": __version__, "catalogs_sha256": _catalogs_sha256(s), "rules": echo(s.rules),
+            "capability": _capability_echo(s.capability)}
+
+
+def _capability_echo(rs) -> str:
+    """The capability target and estimator of a run (``--capability``/``--ppm``, samples, seed, method), or ""."""
+    if rs is None:
+        return ""
+    return f"{rs.targets()}; {rs.samples} samples, seed {rs.seed}"
 
 
 def _check_manifest(old: dict, new: dict, folder: Path) -> None:
@@ -272,7 +281,8 @@ def _check_manifest(old: dict, new: dict, folder: Path) -> None:
               "objective": "--objective", "fidelity": "--fidelity", "chunk_size": "--chunk-size",
               "diagnose": "--no-diagnose", "synth_version": "the synth version",
               "catalogs_sha256": "the catalogs (a CSV or --catalogs folder changed)",
-              "rules": "the design rules (--rules)"}
+              "rules": "the design rules (--rules)",
+              "capability": "the capability target (--capability, --ppm, --samples, --seed, --capability-method)"}
     problems = []
     for k in _MANIFEST_KEYS:
         if k == "rules":  # by content: the same rules in a renamed or copied file are the same rules
@@ -283,7 +293,7 @@ def _check_manifest(old: dict, new: dict, folder: Path) -> None:
                                         f"({folder / MANIFEST}), by content; they differ: {'; '.join(changes)}; "
                                         "give the run's rules, or rerun without --resume to start again"))
             continue
-        if old.get(k) != new[k]:
+        if old.get(k, "" if k == "capability" else None) != new[k]:  # a run before the target's key: none
             shown_old = old.get(k) if not k.endswith("sha256") else str(old.get(k))[:12]
             shown_new = new[k] if not k.endswith("sha256") else new[k][:12]
             problems.append(Problem(f"--resume: {labels[k]}", shown_new,

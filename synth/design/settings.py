@@ -95,7 +95,11 @@ class Settings:
       ``spring_static_permissible`` shows the static rule either way;
     * ``catalogs``: the user catalog folders (``--catalogs``) the run reads, first wins; None: this process's
       (:func:`synth.catalog.user_dirs`, resolved by :meth:`resolved` before the settings leave the process);
-    * ``engine``: the compiled kernels' engine (:data:`ENGINES`): ``"auto"`` lets each path take its own.
+    * ``engine``: the compiled kernels' engine (:data:`ENGINES`): ``"auto"`` lets each path take its own;
+    * ``capability``: the production capability target and its estimator (a
+      :class:`synth.robust.settings.RobustSettings`, ``--capability``/``--ppm``) or None: with it the searches
+      that honour it (``synth bulk``'s rows, ``synth rationalise``'s options) keep only designs that meet it,
+      through the robust synthesis (:mod:`synth.robust.synthesis`); it changes no margin.
     """
 
     fidelity: str = "full"
@@ -107,10 +111,11 @@ class Settings:
     rules: Rules = NONE
     catalogs: tuple | None = None
     engine: str = "auto"
+    capability: object = None
 
     def __init__(self, fidelity: str = "full", friction_circle: bool = True, bushing_running_in: bool = False,
                  bushing_length_scheme: str = "thesis", bolt_method: str = "thesis", drive=None,
-                 spring_limit_basis: str | None = None, *, rules=None, catalogs=None, engine: str = "auto"):
+                 spring_limit_basis: str | None = None, *, rules=None, catalogs=None, engine: str = "auto", capability=None):
         if isinstance(drive, dict):
             drive = drive_from_mapping(drive)
         if fidelity not in FIDELITIES:
@@ -121,6 +126,8 @@ class Settings:
             raise InputError(Problem("bushing_length_scheme", bushing_length_scheme, "thesis or catalog"))
         if engine not in ENGINES:
             raise InputError(Problem("engine", engine, " or ".join(ENGINES)))
+        if capability is not None and not all(hasattr(capability, k) for k in ("capability", "ppm", "samples")):
+            raise InputError(Problem("capability", capability, "None or a synth.robust.settings.RobustSettings"))
         rules = NONE if rules is None else Rules.from_mapping(rules)
         if spring_limit_basis is not None and spring_limit_basis != rules.spring_limit_basis:
             if spring_limit_basis not in SPRING_LIMIT_BASES:
@@ -133,7 +140,8 @@ class Settings:
         for name, value in (("fidelity", fidelity), ("friction_circle", bool(friction_circle)),
                             ("bushing_running_in", bool(bushing_running_in)),
                             ("bushing_length_scheme", bushing_length_scheme), ("bolt_method", bolt_method),
-                            ("drive", drive), ("rules", rules), ("catalogs", catalogs), ("engine", engine)):
+                            ("drive", drive), ("rules", rules), ("catalogs", catalogs), ("engine", engine),
+                            ("capability", capability)):
             object.__setattr__(self, name, value)
 
     @property

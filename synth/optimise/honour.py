@@ -83,7 +83,7 @@ def _why_not(d, settings, keep) -> str:
 
 
 def solve_honouring(d, objective="standard", solver: str = "enumerate", *, fix=(), free=(), pin_inputs=False,
-                    top: int = 1, distinct=None, robust=None, **kw):
+                    top: int = 1, distinct=None, robust=None, explain: bool = True, **kw):
     """The synthesis of ``d`` (:func:`synth.optimise.solve` with ``solver`` and ``kw``) that keeps the parts the
     input names as the module docstring says; the result carries :attr:`changes` and :attr:`control`, and with
     ``top`` K > 1 the K best designs (:attr:`alternatives`, :func:`synth.optimise.alternatives.ranked`) in the
@@ -91,8 +91,10 @@ def solve_honouring(d, objective="standard", solver: str = "enumerate", *, fix=(
     DISTINCT_KEYS`; an infeasible input: its K nearest designs). The exact solver (``enumerate``) takes the margin as the objective's last tie-break
     (:func:`synth.optimise.objectives.with_margin_tiebreak`). ``robust``: the robust synthesis in place of the
     nominal one (enumerate only), honouring the same parts, a function ``robust(d, objective, *, settings,
-    pin_inputs) -> Result`` its caller binds (:func:`synth.robust.synthesis.robust_solve` with its
-    :class:`~synth.robust.settings.RobustSettings`: the robust layer sits above the optimiser)."""
+    pin_inputs, explain) -> Result`` its caller binds (:func:`synth.robust.synthesis.robust_solve` with its
+    :class:`~synth.robust.settings.RobustSettings`: the robust layer sits above the optimiser); ``explain=False``:
+    without the search of the one input or tolerance that prevents the target
+    (:func:`synth.robust.synthesis.prevented_by`; the same design, the bulk's rows)."""
     from synth.design.evaluate import Settings
     from synth.design.space import fixed_fields
     settings = kw.get("settings") or Settings()
@@ -108,7 +110,7 @@ def solve_honouring(d, objective="standard", solver: str = "enumerate", *, fix=(
     def solve(d, objective, solver, *, pin_inputs, **kw):
         if robust is None:
             return solve_nominal(d, objective, solver, pin_inputs=pin_inputs, **kw)
-        return robust(d, objective, settings=settings, pin_inputs=pin_inputs)
+        return robust(d, objective, settings=settings, pin_inputs=pin_inputs, explain=explain)
 
     named = fixed_fields(d, True)
     fix = set(fixed_fields(d, parse_fields(fix, "--fix")))

@@ -38,13 +38,16 @@ from synth.errors import InputError, Problem
 from synth.io.limits import COUNTS  # one bound for the command line's --samples and the Python API
 from synth.robust.stats import METHODS, ppm_equivalent
 
-__all__ = ["RobustSettings", "DEFAULT_SAMPLES", "SEARCH_SAMPLES"]
+__all__ = ["RobustSettings", "DEFAULT_SAMPLES", "SEARCH_SAMPLES", "BULK_SAMPLES"]
 
 #: Monte Carlo samples of one design's capability (2^13)
 DEFAULT_SAMPLES = 8192
 #: Monte Carlo samples per candidate in the robust synthesis and the bulk capability (2^11): every candidate and
 #: the design reported are judged by the same estimator
 SEARCH_SAMPLES = 2048
+#: Monte Carlo samples per candidate in ``synth bulk --capability`` (2^10): each row's robust synthesis (``synth
+#: design --capability --samples 1024`` gives the same row)
+BULK_SAMPLES = 1024
 
 _RANGES = {
     "capability": (0.0, 10.0, "a process performance index Ppk in (0, 10] (1.33 is the usual target)"),

@@ -17,7 +17,7 @@ linear rescaling of the checked value with the limit at ``m = 0`` and
 
 Every function takes ``(..., N)`` arrays (the last axis the samples; NaN or
 inf where a check does not apply in a sample are left out): one design's checks
-(:mod:`synth.robust.capability`) or many designs' (:mod:`synth.robust.portfolio`).
+(:mod:`synth.robust.capability`).
 
 >>> import numpy as np
 >>> m = np.linspace(-1.0, 3.0, 100001)   # uniform margin on [-1, 3]: median 1

@@ -182,11 +182,12 @@ def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs
     value, pos, opts, cap = search(ev, w, rs, report=rep)
     stats = {"time_s": time.perf_counter() - t0, "robust_candidates": rep.candidates,
              "robust_cores_checked": rep.cores_checked, "robust_cores_rejected": rep.cores_rejected,
-             "robust_samples": rs.samples, "robust_proof": rep.proof}
+             "robust_samples": rs.samples, "robust_proof": rep.proof, "robust_found": pos is not None}
     if pos is None:  # the nominal answer as asked, its production capability, and what prevents the target
         full = Objective(order=tuple(obj.order) + (("margin",) if "margin" not in obj.order else ()))
         r = enumerate_solve(d, full, settings=asked, pin_inputs=pin_inputs)
         r.notes.append(rep.why_none(rs))
+        r.stats["robust_why"] = r.notes[-1]
         r.stats.update(stats)
         found = None
         if explain:

@@ -25,13 +25,10 @@ from synth.bulk.run import ENGINES, FIDELITIES, run_portfolio, sidecar, usable_c
 from synth.errors import InputError, Terminated
 from synth.io.outputs import output_files
 from synth.io.limits import check_count
-from synth.robust.portfolio import BULK_SAMPLES
+from synth.robust.settings import BULK_SAMPLES
 from synth.scenes._options import add_robust_options, robust_settings_from_args, rules_of
 from synth.bulk.summary import summarise, text, write_summary
-from synth.bulk.portfolio import row_record, validate_record, write_table
 from synth.design.evaluate import Settings
-from synth.design.space import PART_KEYS
-from synth.design.verdict import combine
 
 __all__ = ["register"]
 
@@ -78,18 +75,20 @@ def register(sub) -> None:
     add_robust_options(p)
     for a in p._actions:  # the bulk's own sample count (per application)
         if a.dest == "samples":
-            a.help = f"Monte Carlo samples per application with --capability/--ppm (default {BULK_SAMPLES})"
+            a.help = (f"Monte Carlo samples per candidate design with --capability/--ppm (default {BULK_SAMPLES}; "
+                      "synth design --capability --samples N gives the same row)")
     p.set_defaults(func=_main, samples=BULK_SAMPLES)
 
 
 def _main(args) -> int:
     if args.scheduler and args.engine != "dask":
         args.engine = "dask"
-    if args.capability is not None or args.ppm is not None:  # checked before the run, not after it
-        robust_settings_from_args(args, samples="bulk --samples")
+    rs = robust_settings_from_args(args, samples="bulk --samples")  # --capability/--ppm, else the rules' targets
     if args.workers is not None and not args.scheduler:  # a local cluster: no more worker processes than cores
         check_count("--workers", args.workers, hi=max(1, usable_cores()))
-    settings = Settings(fidelity=args.fidelity, rules=rules_of(args))  # the run's one configuration
+    targeted = rs.capability is not None or rs.ppm is not None
+    # the run's one configuration: each row re-selected for the capability target when one is set
+    settings = Settings(fidelity=args.fidelity, rules=rules_of(args), capability=rs if targeted else None)
     try:
         rep = run_portfolio(args.portfolio, args.out, objective=args.objective, fidelity=args.fidelity,
                             chunk_size=args.chunk_size, resume=args.resume, engine=args.engine,
@@ -100,10 +99,6 @@ def _main(args) -> int:
         print(f"\nsynth bulk: {how}; finished chunks are kept in {sidecar(args.out)}; "
               "rerun the same command with --resume to continue", file=sys.stderr)
         return 143 if isinstance(exc, Terminated) else 130
-    rs = robust_settings_from_args(args, samples="bulk --samples")  # --capability/--ppm, else the rules' targets
-    table = None
-    if (rs.capability is not None or rs.ppm is not None) and rep.table is not None:
-        table = _capability(args, rep, settings)
     for w in rep.warnings:
         print(f"synth bulk: note: {w}", file=sys.stderr)
     said = {"screening": " (every design reported verified at full fidelity)",
@@ -111,6 +106,8 @@ def _main(args) -> int:
     print(f"synth bulk: {args.portfolio} -> {rep.out} | objective {args.objective} | fidelity {args.fidelity}{said}")
     for line in settings.rules.lines():  # the rules every row was judged by (also in the sidecar's manifest)
         print(line)
+    if targeted:
+        print(_capability_line(rep, rs))
     print(rep.message() + (f", {rep.apps_per_s:.3g} applications/s" if rep.computed else ""))
     from synth.bulk.summary import COLUMNS
     s = summarise(rep.columns(COLUMNS))  # the columns the summary reads, not the whole table
@@ -119,14 +116,14 @@ def _main(args) -> int:
         with output_files(args.summary, "--summary") as stage:  # one output: every file, or none
             paths = write_summary(s, stage, rules=settings.rules)
         print(f"summary: {len(paths)} files in {args.summary}")
-    print(run_line(rep, table))
+    print(run_line(rep))
     return 0
 
 
 def run_line(rep, table=None) -> str:
     """The last line of ``synth bulk``: the run completed (exit 0, whatever the rows' verdicts), with the count of
     each row verdict (the result's ``verdict`` column: the one verdict of each application, its capability target
-    included; ``table``: the result table as rewritten with the capability columns, else the run's)."""
+    included)."""
     t = table if table is not None else rep.columns(["verdict", "status"])
     parts = []
     if t is not None and "verdict" in t.columns and "status" in t.columns:
@@ -138,36 +135,10 @@ def run_line(rep, table=None) -> str:
     return f"Run: COMPLETE ({', '.join(parts) or 'no rows'}; each application's verdict is in {rep.out})"
 
 
-def _capability(args, rep, settings):
-    """``--capability``/``--ppm``: the production capability of each feasible application's chosen design, as
-    columns of the result table (rewritten, and returned), through :func:`synth.robust.portfolio.portfolio_capability`;
-    a row whose design misses the target fails (its ``verdict``)."""
-    import time
-
-    import pandas as pd
-
-    from synth.robust.portfolio import COLUMNS, portfolio_capability
-    rs = robust_settings_from_args(args, samples="bulk --samples")
-    t0 = time.perf_counter()
-    table = rep.table
-    inputs, parts = [], []
-    for row in table.to_dict(orient="records"):
-        d, _ = validate_record(row_record(row))
-        ok = d is not None and bool(row.get("feasible")) and all(f"part_{k}" in row for k in PART_KEYS)
-        inputs.append(d)
-        parts.append({k: row[f"part_{k}"] for k in PART_KEYS} if ok else None)
-    rows = portfolio_capability(inputs, parts, settings=settings, rs=rs,
-                                workers=min(args.workers or 1, max(1, usable_cores())))
-    extra = pd.DataFrame(rows, columns=list(COLUMNS), index=table.index)
-    out = pd.concat([table.drop(columns=[c for c in COLUMNS if c in table.columns]), extra], axis=1)
-    if "verdict" in out.columns:  # the row's one verdict: a capability target missed fails the row
-        missed = [m is not None and not bool(m) for m in extra["capability_meets"]]  # None: no design, no target
-        out["verdict"] = [combine(str(v), m) for v, m in zip(out["verdict"], missed)]
-    rep._table = out
-    write_table(out, rep.out)
-    n = sum(p is not None for p in parts)
-    dt = time.perf_counter() - t0
-    meets = int(sum(bool(r["capability_meets"]) for r in rows if r["capability_meets"] is not None))
-    print(f"synth bulk: capability ({rs.targets()}, {rs.samples} samples per application) of {n} feasible "
-          f"designs in {dt:.3g} s ({n / max(dt, 1e-9):.3g} applications/s): {meets} meet it")
-    return out
+def _capability_line(rep, rs) -> str:
+    """The line of a run with a capability target: how many rows' designs meet it (re-selected for it)."""
+    t = rep.columns(["capability_verdict"])
+    got = t["capability_verdict"].value_counts() if t is not None else {}
+    return (f"capability: {rs.targets()}, {rs.samples} samples per design: each application's design re-selected "
+            f"for it (synth design --capability): {int(got.get('PASS', 0))} meet it, {int(got.get('FAIL', 0))} "
+            "cannot (capability_why says what prevents it)")

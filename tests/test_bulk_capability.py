@@ -1,0 +1,67 @@
+"""``synth bulk --capability``: each row is the design ``synth design --capability`` returns (issue 34).
+
+The rows' one mechanism is the design's (:func:`synth.optimise.honour.solve_honouring` with ``robust=``); what the
+bulk adds is the chunk-wide shortcut for applications with no design under the made joint, and the run's one
+configuration carrying the target into the chunk (:func:`synth.bulk.run.compute_chunk`, also a Dask worker's
+task). The 50-row sample and the throughput on 2,000 rows: ``benchmarks/bench_bulk_capability.py``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from synth.bulk.run import compute_chunk
+from synth.data.generated_applications import generate
+from synth.design.settings import Settings
+from synth.design.space import PART_KEYS
+from synth.robust.settings import RobustSettings
+
+RS = RobustSettings(capability=1.33, samples=256)
+
+
+def test_a_row_without_a_made_design_is_the_robust_synthesis_s_answer():
+    """Generated application 2 (seed 0) passes nominally but none of its designs passes with the made joint (its
+    VDI 2230 preload window): the robust search has no candidate (no core checked), so ``synth design
+    --capability`` returns the nominal optimum with the search's reason; the bulk's chunk-wide shortcut row (the
+    run's chunk path, the target in its settings) is that nominal row, failed by the target, with that reason."""
+    from synth.optimise.product import evaluate
+    from synth.robust.sampling import production
+    from synth.robust.synthesis import SearchReport, search
+    d = generate(3, seed=0)[2]
+    settings = Settings(fidelity="full", capability=RS)
+    row = compute_chunk([d.as_dict()], settings=settings, diagnose=False).iloc[0]
+    nominal = compute_chunk([d.as_dict()], settings=settings.replace(capability=None), diagnose=False).iloc[0]
+    assert nominal["capability_verdict"] == "" and math.isnan(nominal["capability_min_ppk"])  # no target: empty
+    rep = SearchReport()
+    assert search(evaluate(d, production(settings)), {"standard": 1.0}, RS, report=rep)[1] is None
+    assert rep.cores_checked == 0 and rep.candidates == 0
+    assert {k: row[f"part_{k}"] for k in PART_KEYS} == {k: nominal[f"part_{k}"] for k in PART_KEYS}
+    assert bool(row["feasible"]) and nominal["verdict"] != "fail" and row["verdict"] == "fail"
+    assert row["capability_verdict"] == "FAIL" and math.isnan(row["capability_min_ppk"])
+    assert row["capability_why"] == rep.why_none(RS) and rep.why_none(RS) in row["notes"]
+    assert row["capability_why"].startswith("no catalog design passes every check with the made joint")
+
+
+def test_the_target_is_part_of_the_configuration():
+    with pytest.raises(Exception, match="capability"):
+        Settings(capability=1.33)
+    s = Settings(capability=RS)
+    assert s.capability is RS and s.replace(capability=None).capability is None and s != Settings()
+
+
+def test_a_resume_under_another_target_is_refused(tmp_path):
+    from synth.bulk.run import _check_manifest, manifest_of
+    from synth.errors import InputError
+
+    def manifest(rs):
+        return manifest_of("x", 3, objective="standard", fidelity="full", chunk_size=1, diagnose=True,
+                           settings=Settings(catalogs=(), capability=rs))
+    old = manifest(RS)
+    _check_manifest(old, manifest(RS), tmp_path)
+    with pytest.raises(InputError, match="--capability"):
+        _check_manifest(old, manifest(RobustSettings(capability=1.0, samples=256)), tmp_path)
+    with pytest.raises(InputError, match="--capability"):
+        _check_manifest(old, manifest(None), tmp_path)
+    _check_manifest({k: v for k, v in manifest(None).items() if k != "capability"}, manifest(None), tmp_path)
