@@ -230,6 +230,8 @@ def _nan_outside_margins(df: pd.DataFrame) -> list:
             continue
         if c.startswith("part_"):
             continue  # None/NaN part where the space has no such choice (bushing length without durability)
+        if c in ("capability_min_ppk", "capability_max_ppm"):
+            continue  # empty (NaN) without a capability target: these screenings set none
         if df[c].dtype == float and df[c].isna().any():
             bad.append(c)
     return bad

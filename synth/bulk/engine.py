@@ -147,8 +147,11 @@ def frame(rows: list) -> pd.DataFrame:
 def _dtypes(df: pd.DataFrame) -> pd.DataFrame:
     df["feasible"] = df["feasible"].astype(bool)
     for c in df.columns:
-        if c.startswith(("objective_", "margin_")) or c == "binding_margin":
+        if c.startswith(("objective_", "margin_")) or c in ("binding_margin", "capability_min_ppk",
+                                                             "capability_max_ppm"):
             df[c] = df[c].astype(float)
+        elif c in CAPABILITY_COLUMNS:  # text: empty without a target, whichever path built the row
+            df[c] = df[c].map(lambda v: "" if v is None or (isinstance(v, float) and math.isnan(v)) else v)
     return df.reset_index(drop=True)
 
 
