@@ -35,7 +35,7 @@ def main(argv=None) -> int:
     from synth.design.space import PART_KEYS
     from synth.optimise.batch import any_feasible
     from synth.optimise.honour import solve_honouring
-    from synth.robust.synthesis import robust_solve
+    from synth.robust.synthesis import robust_for
     from synth.robust.sampling import production
     from synth.robust.settings import RobustSettings
     rs = RobustSettings(capability=a.capability, samples=a.samples)
@@ -61,7 +61,7 @@ def main(argv=None) -> int:
     t1 = time.perf_counter()
     for i in idx:
         r = solve_honouring(apps[i], "standard", "enumerate", settings=settings.replace(capability=None),
-                            explain=False, robust=lambda d, objective, **kw: robust_solve(d, objective, rs=rs, **kw))
+                            explain=False, robust=robust_for(rs))
         row = df.iloc[i]
         keys = [k for k in PART_KEYS if r.parts.get(k) != row[f"part_{k}"]]
         if r.verdict != row["verdict"]:

@@ -34,10 +34,12 @@ import numpy as np
 from synth.design.space import fixed_fields
 from synth.design.verdict import combine
 
-__all__ = ["COLUMNS", "screen_robust", "capability_cells"]
+__all__ = ["COLUMNS", "NUMBERS", "screen_robust", "capability_cells"]
 
+#: the number columns among the capability columns (NaN when empty; the others are text, "" when empty)
+NUMBERS = ("capability_min_ppk", "capability_max_ppm")
 #: the capability columns of a bulk row (after the nominal ones; empty without a target)
-COLUMNS = ("capability_verdict", "capability_min_ppk", "capability_max_ppm", "capability_binding",
+COLUMNS = ("capability_verdict", *NUMBERS, "capability_binding",
            "capability_failing", "capability_why")
 
 
@@ -69,11 +71,10 @@ def _g(v) -> str:
 
 def _row(d, objective, settings, diagnose: bool, row_of) -> dict:
     from synth.optimise.honour import solve_honouring
-    from synth.robust.synthesis import robust_solve
-    rs = settings.capability
+    from synth.robust.synthesis import robust_for
     with np.errstate(all="ignore"):  # a check without scatter has no contributors (0/0): not the user's concern
         res = solve_honouring(d, objective, "enumerate", settings=settings, explain=False,
-                              robust=lambda d, objective, **kw: robust_solve(d, objective, rs=rs, **kw))
+                              robust=robust_for(settings.capability))
     return {**row_of(res, diagnose), **capability_cells(res)}
 
 

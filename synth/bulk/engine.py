@@ -47,7 +47,7 @@ from synth.design.verify import evaluate_design, parts_of_rows
 from synth.optimise.batch import Batch, robust
 from synth.optimise.diagnose import layout_switches, probe_batch, relaxations_batch
 from synth.optimise.objectives import Objective, with_margin_tiebreak
-from synth.bulk.capability import COLUMNS as CAPABILITY_COLUMNS
+from synth.bulk.capability import COLUMNS as CAPABILITY_COLUMNS, NUMBERS as CAPABILITY_NUMBERS
 
 __all__ = ["columns", "constraint_ids", "screen_applications", "screen_applications_reference", "row_from_result"]
 
@@ -147,8 +147,7 @@ def frame(rows: list) -> pd.DataFrame:
 def _dtypes(df: pd.DataFrame) -> pd.DataFrame:
     df["feasible"] = df["feasible"].astype(bool)
     for c in df.columns:
-        if c.startswith(("objective_", "margin_")) or c in ("binding_margin", "capability_min_ppk",
-                                                             "capability_max_ppm"):
+        if c.startswith(("objective_", "margin_")) or c in ("binding_margin", *CAPABILITY_NUMBERS):
             df[c] = df[c].astype(float)
         elif c in CAPABILITY_COLUMNS:  # text: empty without a target, whichever path built the row
             df[c] = df[c].map(lambda v: "" if v is None or (isinstance(v, float) and math.isnan(v)) else v)

@@ -65,6 +65,7 @@ from synth.version import __version__
 from synth.fingerprint import file_sha256, catalogs_sha256
 from synth.bulk.portfolio import (CSV_FLOAT, arrow_safe, column_warnings, field_columns, read_portfolio,
                                   validate_record, validate_table, write_table)
+from synth.bulk.capability import NUMBERS as CAPABILITY_NUMBERS
 from synth.errors import InputError, Problem
 from synth.threads import usable_cores, worker_environ
 from synth.io.outputs import csv_rows, output_file, output_folder, write_text
@@ -116,8 +117,7 @@ def _kind(col: str) -> str:
         return "bool"
     if col.startswith("part_"):
         return "part"
-    if col.startswith(("margin_", "objective_")) or col in ("binding_margin", "capability_min_ppk",
-                                                             "capability_max_ppm"):
+    if col.startswith(("margin_", "objective_")) or col in ("binding_margin", *CAPABILITY_NUMBERS):
         return "float"
     return "text"
 

@@ -48,7 +48,7 @@ from synth.optimise.answer import build_result
 from synth.optimise.solvers.enumerate import solve as enumerate_solve
 from synth.errors import InputError, Problem
 
-__all__ = ["robust_solve", "robust_front", "prevented_by", "SearchReport"]
+__all__ = ["robust_solve", "robust_for", "robust_front", "prevented_by", "SearchReport"]
 
 _EPS = 1e-9
 #: the groups whose failing checks reject a core outright (no subsystem option changes them)
@@ -211,6 +211,12 @@ def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs
     r.robust = final.to_dict()
     return r
 
+
+
+def robust_for(rs: RobustSettings):
+    """:func:`robust_solve` bound to the target ``rs``: the ``robust`` function
+    :func:`synth.optimise.honour.solve_honouring` takes (the robust layer sits above the optimiser)."""
+    return lambda d, objective, **kw: robust_solve(d, objective, rs=rs, **kw)
 
 def _with_input(d, name: str, value: float):
     """Input ``d`` with field ``name`` set to ``value`` (validated again: what follows from it is re-derived)."""

@@ -159,8 +159,8 @@ def synthesise(d, args):
           "distinct": getattr(args, "distinct", None)}
     rs = robust_settings_from_args(args)  # --capability/--ppm, else the design rules' targets
     if rs.capability is not None or rs.ppm is not None:
-        from synth.robust.synthesis import robust_solve  # scipy and pandas: only for a robust synthesis
-        kw["robust"] = lambda d, objective, **kw: robust_solve(d, objective, rs=rs, **kw)
+        from synth.robust.synthesis import robust_for  # scipy and pandas: only for a robust synthesis
+        kw["robust"] = robust_for(rs)
     if args.solver == "blackbox":
         kw["n_trials"] = args.trials
     if limit is not None:
