@@ -157,3 +157,18 @@ def test_the_production_scatter_table_is_in_percent_like_every_other():
     row = next(x for x in out.splitlines() if "spring_fatigue" in x and "+" in x)
     assert row.split()[1:4] == ["+5.7", "%", "-3.1"] and "27 % [22 %, 33 %]" in row
     assert "largest P(violation) 27 %" in out and "0.0569" not in out
+
+
+def test_the_pivot_class_is_explained_beside_the_pivot_diameter_in_every_listing(result):
+    """The pivot class (thesis Table 2, the arm's bore for a 1 mm bushing wall) is not the pivot's diameter: the
+    default design's class 20 with the 0.5 mm bushing gives a 21 mm pivot (20 + 2 x (1 - 0.5)), and each listing of
+    the parts says so (issue 35: "pivot class 17" beside "pivot diameter 18 mm" unexplained)."""
+    from synth.report.html import render_html
+    from synth.report.text import render
+    from synth.ui.views import parts_table
+    assert result.parts["pivot_class_diameter_mm"] == 20 and result.values["pivot_diameter_mm"] == 21
+    note = "pivot diameter 21 mm = class + 2 x (1 mm - 0.5 mm bushing wall)"
+    line = next(x for x in render(result).splitlines() if x.strip().startswith("pivot_class_diameter_mm"))
+    assert line.split()[1] == "20" and note in line
+    assert note in parts_table(result)
+    assert note in render_html(result, [], [])

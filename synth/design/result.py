@@ -35,9 +35,10 @@ from synth.design.evaluate import CONSTANT_LIMITS as CONSTANT_LIMITS
 from synth.design.verdict import Verdict, judge
 from synth.schema import FIELDS
 from synth.errors import InputError, Problem
+from synth.catalog import constant
 
 __all__ = ["Check", "Result", "PASS", "FAIL", "INCOMPLETE", "NOT_VERIFIED", "NOT_APPLICABLE", "WARNING", "plain",
-           "checks_of", "row_verdict", "field_corrections", "absent_part"]
+           "checks_of", "row_verdict", "field_corrections", "absent_part", "part_note"]
 
 
 
@@ -328,6 +329,27 @@ def absent_part(parts: dict, key: str) -> bool:
     """
     return key not in _ABSENT_WITH.values() and any(key.startswith(prefix) and (parts or {}).get(part) == "none"
                                                     for prefix, part in _ABSENT_WITH.items())
+
+
+def part_note(result: Result, key: str) -> str:
+    """What a part key's value means where it is not itself a quantity of the made tensioner, for every medium that
+    lists the parts: the pivot class is thesis Table 2's class (the arm's bore for a 1 mm bushing wall), not the
+    pivot's diameter, which is ``class + 2 (t_ref - t)`` (:func:`synth.model.pivot.pivot_diameter_mm`, step 2).
+    Empty where the key needs no note or the values are missing.
+
+    >>> r = Result("optimal", parts={"pivot_class_diameter_mm": 20.0},
+    ...            values={"pivot_diameter_mm": 21.0, "pivot_bushing_radial_thickness_mm": 0.5})
+    >>> part_note(r, "pivot_class_diameter_mm")
+    'Table 2 class; pivot diameter 21 mm = class + 2 x (1 mm - 0.5 mm bushing wall)'
+    """
+    if key != "pivot_class_diameter_mm":
+        return ""
+    v = result.values or {}
+    d, t = v.get("pivot_diameter_mm"), v.get("pivot_bushing_radial_thickness_mm")
+    if not all(isinstance(x, (int, float)) and math.isfinite(x) for x in (d, t)):
+        return ""
+    t_ref = constant("pivot_reference_bushing_thickness_mm")
+    return f"Table 2 class; pivot diameter {d:g} mm = class + 2 x ({t_ref:g} mm - {t:g} mm bushing wall)"
 
 
 def _not_applicable_value(result: Result, key: str, readers: list) -> bool:

@@ -46,7 +46,7 @@ import os
 from pathlib import Path
 
 from synth.design.result import FAIL, INCOMPLETE, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, field_corrections, \
-    row_verdict, absent_part
+    row_verdict, absent_part, part_note
 from synth import formatting as fmt
 from synth.fingerprint import file_sha256
 from synth.report.palette import VERDICT_FILLS
@@ -397,8 +397,8 @@ def render_html(result, graphs, skipped, *, source: str | None = None, title: st
                                   meta["date"]) if x)
     block += f"\n{meta['synth']}  inputs sha256 {meta['inputs_sha256'][:16]}"
     verdict_text = f"Verdict: {result.verdict.upper()}"
-    parts = [(label, key, fmt.ABSENT if absent_part(result.parts, key) else _num(v)) for key, v in (result.parts or {}).items()
-             for label in [part_label(key)]]
+    parts = [(part_label(key), key, fmt.ABSENT if absent_part(result.parts, key) else _num(v), part_note(result, key))
+             for key, v in (result.parts or {}).items()]
     return _environment().get_template("report.html.j2").render(
         title=title, css=_CSS, page=page, page_title=title, verdict_text=verdict_text,
         banner_ink=_INK.get(result.verdict, "#222"), title_block=block, meta=meta, meta_rows=meta_rows,

@@ -9,7 +9,7 @@ infeasible input, the assumptions and notes, and the verdict.
 from __future__ import annotations
 
 from synth import formatting as fmt
-from synth.design.result import FAIL, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Result, absent_part
+from synth.design.result import FAIL, NOT_APPLICABLE, NOT_VERIFIED, PASS, WARNING, Result, absent_part, part_note
 from synth.output_table import ROWS, format_value
 from synth.report.advice import alternative_rows, change_lines, correction, is_header, objective_line, \
     relaxation_lines, rule_lines, shortfall_of
@@ -63,7 +63,8 @@ def render(r: Result, *, title: str = "", verdict: bool = True) -> str:
         lines += ["Parts the input names (kept unless no design with them passes; --fix keeps, --free frees)",
                   "-" * 78] + [f"  {x}" for x in changes] + [""]
     lines += ["Design (part keys)", "-" * 78]
-    lines += [f"  {k:<36} {fmt.ABSENT if absent_part(r.parts, k) else format_value(v)}" for k, v in r.parts.items()]
+    lines += [f"  {k:<36} {fmt.ABSENT if absent_part(r.parts, k) else format_value(v)}"
+              + (f"  ({note})" if (note := part_note(r, k)) else "") for k, v in r.parts.items()]
     lines += ["", "Output (thesis Tables 10/14)", "-" * 78]
     section = None
     for sec, label, key, unit in ROWS:

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from html import escape
 
+from synth.design.result import part_note
 from synth.report.palette import VERDICT_FILLS
 from synth.report.html import check_steps, part_label, check_row
 from synth.report.advice import relaxation_lines, alternative_rows
@@ -91,7 +92,8 @@ def checks_table(result) -> str:
 
 def parts_table(result) -> str:
     """The design's parts (part key in words, value; ``none`` for a class the design does not have)."""
-    rows = "".join(f"<tr><th>{_e(part_label(k))}</th><td>{_e(part_value(v))}</td></tr>"
+    rows = "".join(f"<tr><th>{_e(part_label(k))}</th><td>{_e(part_value(v))}"
+                   + (f' <span class="note">({_e(note)})</span>' if (note := part_note(result, k)) else "") + "</td></tr>"
                    for k, v in (result.parts or {}).items())
     return f'<table class="kv parts"><tbody>{rows}</tbody></table>'
 
