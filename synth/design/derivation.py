@@ -318,12 +318,21 @@ def _traced(fn, *args, **kw):
 # --------------------------------------------------------------------------------------------- the evaluator's lines
 @functools.lru_cache(maxsize=1)
 def _evaluator_lines() -> dict:
-    """``{value key: (group function, source text of its expression)}`` of the evaluator's own assignments
-    (``v["k"] = ...``, ``v.update(k=...)``, dict literals of ``v``), read from :mod:`synth.design.evaluate`."""
-    from synth.design import evaluate
-    src = inspect.getsource(evaluate)
-    tree = ast.parse(src)
+    """``{value key: (group function, source text of its expression, module file)}`` of the evaluator's own
+    assignments (``v["k"] = ...``, ``v.update(k=...)``, dict literals of ``v``), read from :mod:`synth.design.evaluate`
+    and its group modules."""
+    from synth.design import axial_group, bolt_group, evaluate, spring_group
     out: dict = {}
+    for module in (evaluate, axial_group, spring_group, bolt_group):
+        _module_lines(module, out)
+    return out
+
+
+def _module_lines(module, out: dict) -> None:
+    """:func:`_evaluator_lines` of one module, added to ``out`` (the first assignment of a key kept)."""
+    src = inspect.getsource(module)
+    tree = ast.parse(src)
+    path = "synth/" + module.__name__.split(".", 1)[1].replace(".", "/") + ".py"
     for fn in (n for n in tree.body if isinstance(n, ast.FunctionDef)):
         for node in ast.walk(fn):
             pairs = []
@@ -349,19 +358,18 @@ def _evaluator_lines() -> dict:
                                   if isinstance(k, ast.Constant) and isinstance(k.value, str)]
             for key, expr in pairs:
                 text = " ".join((ast.get_source_segment(src, expr) or "").split())
-                out.setdefault(key, (fn.name, text))
-    return out
+                out.setdefault(key, (fn.name, text, path))
 
 
 def _referenced(text: str) -> list:
     """The keys an evaluator expression reads (``f["x"]``, ``v["x"]``, ``c["x"]``...) and the named constants it
-    reads (``_const("x")``), in order.
+    reads (``const("x")``), in order.
 
-    >>> _referenced('_const("bolt_yield_utilisation_max") * np.asarray(o["rp02_mpa"], dtype=float)')
+    >>> _referenced('const("bolt_yield_utilisation_max") * np.asarray(o["rp02_mpa"], dtype=float)')
     ['bolt_yield_utilisation_max', 'rp02_mpa']
     """
     import re
-    return list(dict.fromkeys(re.findall(r'(?:_const\(\s*|\[\s*)"([A-Za-z_][A-Za-z_0-9]*)"\s*[\])]', text)))
+    return list(dict.fromkeys(re.findall(r'(?:\bconst\(\s*|\[\s*)"([A-Za-z_][A-Za-z_0-9]*)"\s*[\])]', text)))
 
 
 # --------------------------------------------------------------------------------------------- explaining values
@@ -533,9 +541,9 @@ class _Explainer:
         hit = self.lines.get(_norm(name))
         if hit is None:
             return None
-        group, text = hit
+        group, text, path = hit
         q = Quantity(name, value, unit_of(name), "evaluator",
-                     f"computed by the evaluator's {group} group (synth/design/evaluate.py)", formula=text)
+                     f"computed by the evaluator's {group} group ({path})", formula=text)
         if depth < MAX_DEPTH:
             for k in _referenced(text)[:6]:
                 if k == _norm(name):
