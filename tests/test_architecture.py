@@ -35,7 +35,8 @@ LAYERS = (
     # the core: the registry, the configuration, the one evaluator and result
     ("synth.design",),
     # the searches over the core: the flowchart, the optimisers, the compiled scans, the shrink fit, the cost decision
-    ("synth.flowchart", "synth.optimise", "synth.kernels.main_spring", "synth.kernels.engines", "synth.shrink_fit",
+    ("synth.flowchart", "synth.optimise", "synth.kernels.main_spring", "synth.kernels.spring_tables",
+     "synth.kernels.engines", "synth.shrink_fit",
      "synth.compare", "synth.cost.breakdown", "synth.cost.decision"),
     # the runs built on the searches: production scatter, bulk, the platform
     ("synth.robust", "synth.bulk", "synth.platform"),
