@@ -10,7 +10,7 @@ import numpy as np
 from synth import parts
 from synth.design.assessment import assess_group
 from synth.design.constraints import by_group
-from synth.design.group import CONSTANT_LIMITS, Fields, Group, const, finish, read_core
+from synth.design.group import CONSTANT_LIMITS, Fields, Group, const as _const, finish, read_core
 from synth.design.settings import DEFAULT, Settings
 from synth.kernels import axial as axial_engine  # the cone spring and the wear on the caller's engine
 from synth.model import packaging, stackup
@@ -94,7 +94,7 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT, time_points
         _put_columns(v, keys, cs, None if every else i)
     v["cone_spring_gap_tolerance_mm"] = np.full(n, gap)
     v["cone_spring_sigma_om_abs_mpa"] = np.abs(v["sigma_om_mpa"])
-    v["cone_spring_sigma_om_max_mpa"] = np.full(n, const("cone_spring_sigma_om_max_mpa"))
+    v["cone_spring_sigma_om_max_mpa"] = np.full(n, _const("cone_spring_sigma_om_max_mpa"))
     for key, rng in (("diameter_ratio", "diameter_ratio"), ("aspect_ratio", "aspect_ratio"), ("thinness", "thinness")):
         lo, hi = p.cone_ranges[rng]
         v[f"cone_spring_{key}_min"], v[f"cone_spring_{key}_max"] = np.full(n, lo), np.full(n, hi)

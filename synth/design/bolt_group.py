@@ -8,7 +8,7 @@ import numpy as np
 
 from synth import parts
 from synth.design.constraints import by_group
-from synth.design.group import Fields, Group, const, core_values, finish, read_core
+from synth.design.group import Fields, Group, const as _const, core_values, finish, read_core
 from synth.design.settings import DEFAULT, Settings
 from synth.model import bolted_joint
 
@@ -136,7 +136,7 @@ def bolt(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT, fixation: di
     v = {"app": a, "bolt_d_mm": np.asarray(o["bolt_d_mm"], dtype=float), **fix}
     v["bolt_method_thesis"] = np.full(n, settings.bolt_method == "thesis")
     v["bolt_method_vdi"] = ~v["bolt_method_thesis"]
-    v["bolt_sigma_permissible_mpa"] = const("bolt_yield_utilisation_max") * np.asarray(o["rp02_mpa"], dtype=float)
+    v["bolt_sigma_permissible_mpa"] = _const("bolt_yield_utilisation_max") * np.asarray(o["rp02_mpa"], dtype=float)
     v["pivot_bore_min_mm"] = np.asarray(o["pivot_bore_min_mm"], dtype=float)
     for k in ("tilting_safety_factor", "sliding_safety_factor"):
         v[f"{k}_target"] = f[k]

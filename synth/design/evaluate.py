@@ -38,8 +38,8 @@ from synth import parts
 from synth.design.settings import (DEFAULT, FIDELITIES, FIDELITY_TEXT, SPRING_LIMIT_BASES, UNVERIFIED_NOTE,
                                    Settings)
 from synth.design.group import (AXIAL_CORE_VALUES, BOLT_CORE_VALUES, BUSHING_CORE_VALUES, CONSTANT_LIMITS, EVALUATED,
-                                NOT_APPLICABLE, NOT_VERIFIED, SPRING_KEY_VALUES, Fields, Group, add_physics, const,
-                                core_values, finish, read_core)
+                                NOT_APPLICABLE, NOT_VERIFIED, SPRING_KEY_VALUES, Fields, Group, add_physics,
+                                const as _const, core_values, finish, read_core)
 from synth.design.axial_group import (CONE_SPRING_VALUES, FIDELITY_VALUES, MADE_CONE_SPRING_COLUMNS,
                                       PLASTIC_WEAR_VALUES, axial, axial_before_physics, axial_full, axial_judged,
                                       fidelity_free, fidelity_free_ok)
@@ -135,9 +135,9 @@ def core(apps, a, c: dict, settings: Settings = DEFAULT, detail: bool = False) -
               "supplier_code"):
         v[k] = c[k]
     v["arm_wall_mm"] = pivot.arm_wall_mm(c["bearing_inner_diameter_mm"], wa, c["pivot_class_diameter_mm"])
-    v["arm_min_wall_mm"] = np.full(n, const("arm_min_wall_mm"))
+    v["arm_min_wall_mm"] = np.full(n, _const("arm_min_wall_mm"))
     v["pulley_diameter_mm"] = f["pulley_diameter_mm"]
-    v["pulley_min_diameter_mm"] = c["bearing_outer_diameter_mm"] + 2.0 * const("pulley_min_wall_mm")
+    v["pulley_min_diameter_mm"] = c["bearing_outer_diameter_mm"] + 2.0 * _const("pulley_min_wall_mm")
     mu = apps.mu_pivot_bushing[a]
     v["mu_pivot_bushing"] = mu
     rho = damping.lever_ratio(c["pivot_diameter_mm"], mu, wa, alpha, settings.friction_circle)
@@ -167,7 +167,7 @@ def core(apps, a, c: dict, settings: Settings = DEFAULT, detail: bool = False) -
     h_rev = packaging.spring_housing_height_mm(mpbh, c["bearing_width_mm"], layout="reverse", max_pivot_height_mm=hmax_p, **kw)
     v["spring_housing_height_mm"] = np.where(apps.layout_standard[a], h_std, h_rev)
     v["spring_housing_outer_diameter_mm"] = packaging.spring_housing_outer_diameter_mm(c["bearing_outer_diameter_mm"], wa)
-    v["spring_cavity_min_height_mm"] = np.full(n, const("spring_cavity_min_height_mm"))
+    v["spring_cavity_min_height_mm"] = np.full(n, _const("spring_cavity_min_height_mm"))
     v.update(drive_values(settings.drive, v["damping_nm"]))
     if detail:
         ch = damping.characterisation(v["spring_torque_nominal_nm"], f["spring_stiffness_nm_per_deg"],

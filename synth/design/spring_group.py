@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from synth.design.group import SPRING_KEY_VALUES, Group, const, finish, read_core
+from synth.design.group import SPRING_KEY_VALUES, Group, const as _const, finish, read_core
 from synth.design.settings import DEFAULT, Settings
 from synth.model import torsion_spring
 
@@ -91,16 +91,16 @@ def spring_values(o: dict, x: dict, settings: Settings = DEFAULT) -> dict:
     limit = r["sigma_y_limit_mpa"] if settings.spring_limit_basis == "thesis" else \
         np.asarray(r["sigma_perm_static_limit_mpa"]) * np.asarray(r["curvature_factor"])
     v.update(main_spring_sigma_permissible_mpa=full(limit),
-             main_spring_min_safety_factor=np.full(shape, const("main_spring_min_safety_factor")),
+             main_spring_min_safety_factor=np.full(shape, _const("main_spring_min_safety_factor")),
              main_spring_outer_diameter_max_mm=full(r["outer_diameter_max_mm"]),
              spring_housing_outer_diameter_min_mm=full(r["housing_outer_diameter_min_mm"]),
              main_spring_inner_diameter_min_mm=full(r["inner_diameter_min_mm"]),
              spring_housing_inner_diameter_max_mm=full(r["housing_inner_diameter_max_mm"]),
              main_spring_coil_gap_worst_mm=full(r["coil_gap_worst_mm"]),
-             main_spring_min_coil_gap_mm=np.full(shape, const("main_spring_min_coil_gap_mm")),
+             main_spring_min_coil_gap_mm=np.full(shape, _const("main_spring_min_coil_gap_mm")),
              main_spring_wire_b_mm=full(o["b_mm"]),
-             main_spring_index_min=np.full(shape, const("main_spring_index_min")),
-             main_spring_index_max=np.full(shape, const("main_spring_index_max")),
+             main_spring_index_min=np.full(shape, _const("main_spring_index_min")),
+             main_spring_index_max=np.full(shape, _const("main_spring_index_max")),
              main_spring_mean_body_diameter_mm=full(o["main_spring_mean_body_diameter_mm"]),
              main_spring_supplied_in_section=full(o["supplied_in_section"]))
     v["main_spring_wire_length_m"] = (np.pi * v["main_spring_mean_body_diameter_mm"]

@@ -148,10 +148,10 @@ def module_lines(module, out: dict) -> None:
 
 def referenced(text: str) -> list:
     """The keys an evaluator expression reads (``f["x"]``, ``v["x"]``, ``c["x"]``...) and the named constants it
-    reads (``const("x")``), in order.
+    reads (``_const("x")``: the group modules' name of :func:`synth.design.group.const`), in order.
 
-    >>> referenced('const("bolt_yield_utilisation_max") * np.asarray(o["rp02_mpa"], dtype=float)')
+    >>> referenced('_const("bolt_yield_utilisation_max") * np.asarray(o["rp02_mpa"], dtype=float)')
     ['bolt_yield_utilisation_max', 'rp02_mpa']
     """
     import re
-    return list(dict.fromkeys(re.findall(r'(?:\bconst\(\s*|\[\s*)"([A-Za-z_][A-Za-z_0-9]*)"\s*[\])]', text)))
+    return list(dict.fromkeys(re.findall(r'(?:_const\(\s*|\[\s*)"([A-Za-z_][A-Za-z_0-9]*)"\s*[\])]', text)))
