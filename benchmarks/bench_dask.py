@@ -28,7 +28,7 @@ def main(argv=None) -> int:
     ap.add_argument("--workers", type=int, nargs="*", default=[1, 2, 4])
     ap.add_argument("--runs", type=int, default=1)
     args = ap.parse_args(argv)
-    from synth.bulk import run
+    from synth.bulk import execution, run
     from synth.bulk.portfolio import write_table
     from synth.bulk.sample import sample_portfolio
     cores = run.usable_cores()
@@ -50,7 +50,8 @@ def main(argv=None) -> int:
         timed("in-process")
         default_choice = {w: run.dask_pointless(None, w, -(-args.n // args.chunk)) for w in args.workers}
         real = run.dask_pointless
-        run.dask_pointless = lambda *a, **k: None  # measure Dask even where the command would not use it
+        run.dask_pointless = execution.dask_pointless = lambda *a, **k: None  # measure Dask even where the command
+        # would not use it (the run asks before starting Dask, the execution once connected)
         try:
             for w in args.workers:
                 timed(f"LocalCluster, {w} worker{'s' if w > 1 else ''}", engine="dask", workers=w)
@@ -58,7 +59,7 @@ def main(argv=None) -> int:
             with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cl:
                 timed("existing cluster (--scheduler), 2 workers", engine="dask", scheduler=cl.scheduler_address)
         finally:
-            run.dask_pointless = real
+            run.dask_pointless = execution.dask_pointless = real
     base = rows[0][1]
     print(f"## synth bulk: in-process against Dask ({args.n} generated applications, chunks of {args.chunk}, no "
           f"diagnosis; {cores} usable cores, shared with other jobs)\n")

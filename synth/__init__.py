@@ -300,12 +300,24 @@ def write_report(source: "Result | DesignInput | str | Path", out_dir: "str | Pa
     ``{"html", "pdf", "pdf_note", "xlsx", "result", "graphs", "skipped"}``.
     """
     from synth.design.result import Result
-    from synth.scenes.report import make_report
+    from synth.report.document import reverified, write_files
+    from synth.report.source import read_source
     from synth.schema import DesignInput
     if isinstance(source, DesignInput):
         source = synthesise(source)
     elif not isinstance(source, Result):
         from pathlib import Path
         source = Path(source)
-    return make_report(source, out_dir, scenes=scenes, show_progress=True, cad_pictures=cad_pictures, pdf=pdf,
-                       author=author, revision=revision, page=page, platform=platform)
+    result, cells, name = read_source(source, _priced)
+    return write_files(reverified(result, None, name), out_dir, cells=cells, name=name, scenes=scenes, cad=None,
+                       show_progress=True, cad_pictures=cad_pictures, pdf=pdf, author=author, revision=revision,
+                       page=page, platform=platform, application=None, robust=None, graphs=None)
+
+
+def _priced(d: "DesignInput") -> "Result":
+    """The synthesis of an input file :func:`write_report` reports, as ``synth report INPUT`` makes it: the default
+    synthesis (:func:`synthesise`) with the design's price lines (:func:`synth.cost.decision.cost_report`)."""
+    from synth.cost.decision import cost_report
+    r = synthesise(d)
+    r.cost = cost_report(d, r, sensitivity=False, settings=settings())
+    return r

@@ -95,7 +95,7 @@ def test_checks_before_the_physics_are_the_groups_own(axial_rows):
     for k, m in pre.margins.items():
         assert np.array_equal(m, full.margins[k]), k
         assert np.array_equal(pre.state[k], full.state[k]), k
-    assert set(pre.margins) <= set(E._fidelity_free()) | {c for c in pre.margins if REGISTRY[c].advisory}
+    assert set(pre.margins) <= set(E.fidelity_free()) | {c for c in pre.margins if REGISTRY[c].advisory}
     ok = pre.ok()
     assert not ok.all() and not (full.ok() & ~ok).any()  # a row the cut rejects the group rejects
 

@@ -52,7 +52,7 @@ def test_the_target_is_part_of_the_configuration():
 
 
 def test_a_resume_under_another_target_is_refused(tmp_path):
-    from synth.bulk.run import _check_manifest, manifest_of
+    from synth.bulk.store import check_manifest as _check_manifest, manifest_of
     from synth.errors import InputError
 
     def manifest(rs):

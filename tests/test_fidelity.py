@@ -20,7 +20,7 @@ import pytest
 
 from synth.bulk.engine import screen_applications
 from synth.data.generated_applications import generate
-from synth.design import evaluate
+from synth.design import axial_group, evaluate
 from synth.design.applications import Applications
 from synth.design.space import PART_KEYS, space
 from synth.design.verify import evaluate_design
@@ -126,6 +126,7 @@ def test_no_design_at_screening_is_the_full_model_s_verdict(monkeypatch):
             g.state["damping_eol"] = np.zeros(len(g), dtype=np.int8)
         return g
     monkeypatch.setattr(evaluate, "axial", strict)
+    monkeypatch.setattr(axial_group, "axial", strict)  # screen-then-judge calls its own module's
     apps = [d for d in APPS[:40] if d.damping_typology != "only_radial"][:12]
     full = screen_applications(apps, objective="standard", fidelity="full", diagnose=False)
     assert full["feasible"].sum() >= 3

@@ -22,7 +22,7 @@ from synth.design.applications import Applications
 from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.design.space import core_rows, space
 from synth.errors import InputError
-from synth.kernels import main_spring
+from synth.kernels import main_spring, spring_tables
 from synth.model import torsion_spring as s9
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -187,7 +187,7 @@ def test_margins_equal_reference_at_the_extremes(space_springs, keys, seed, mbd)
     opts = space_springs.take(rng.choice(len(space_springs), size=40, replace=False))
     raw = {k: v[:3] for k, v in opts.raw.items()}
     raw["main_spring_mean_body_diameter_mm"] = np.full(3, mbd)  # an extreme diameter
-    odd = main_spring._options(raw)
+    odd = spring_tables._options(raw)
     for o in (opts, odd):
         ref = main_spring.reference_margins(keys, o)
         _assert_close(main_spring.margins(keys, o), ref)

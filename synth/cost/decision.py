@@ -133,7 +133,7 @@ def _search(ev, codes: dict, n: int, exclude: tuple | None = None) -> list:
     """The ``n`` cheapest feasible price sets of evaluation ``ev``: ``[(cost, key, (core position, option, ...))]``
     by cost, one design each (the largest-margin option of each priced part); ``exclude``: ``(table, mask)``, the
     rows of a table (a boolean mask over it) no design may use."""
-    from synth.optimise.alternatives import _best
+    from synth.optimise.alternatives import best_combinations as _best
     from synth.design.space import SUBSYSTEMS
     core_code = codes["core"][ev.cores]
     ok_core = ev.core_feasible()[ev.rows]

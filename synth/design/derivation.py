@@ -33,16 +33,16 @@ the terminal (``synth design --explain CHECK``), the report's appendix and :func
 
 from __future__ import annotations
 
-import ast
 import functools
 import inspect
 import math
 import sys
-from dataclasses import dataclass, field
 
 import numpy as np
 
 from synth import formatting as fmt
+from synth.design.derivation_record import UNITS, Derivation, Quantity, Step, unit_of
+from synth.design.trace import evaluator_lines, outputs, referenced, scalar, traced
 
 __all__ = ["Derivation", "Quantity", "Step", "derive", "derivations", "derive_result", "check_names", "unit_of",
            "MAX_DEPTH"]
@@ -73,297 +73,6 @@ ATTRIBUTE_CATALOGS = (
     ("round_wire", "main_spring_wire", "spring_wires"),
 )
 
-#: key suffix -> unit (the units-in-names convention of synth), longest first
-_UNITS = (("_mpa_m_per_s_h", "MPa m/s h"), ("_mpa_m_per_s", "MPa m/s"), ("_mm3_per_n_m", "mm3/(N m)"),
-          ("_nm_per_deg", "Nm/deg"), ("_n_per_mm", "N/mm"), ("_m_per_s", "m/s"), ("_kg_m3", "kg/m3"),
-          ("_mm4", "mm4"), ("_mm3", "mm3"), ("_mm2", "mm2"), ("_nmm", "N mm"), ("_mpa", "MPa"), ("_deg", "deg"),
-          ("_pct", "%"), ("_rpm", "rpm"), ("_eur", "EUR"), ("_hz", "Hz"), ("_mm", "mm"), ("_nm", "Nm"), ("_n", "N"),
-          ("_h", "h"), ("_s", "s"), ("_m", "m"))
-
-
-def unit_of(key: str) -> str:
-    """The unit a key's name declares (``_mm`` mm, ``_nm`` Nm, ``_mpa_m_per_s`` MPa m/s...), "" for none.
-
-    >>> unit_of("pivot_bushing_pv_mpa_m_per_s"), unit_of("lever_ratio"), unit_of("spring_stiffness_nm_per_deg")
-    ('MPa m/s', '', 'Nm/deg')
-    """
-    k = key.rstrip("_")
-    for suffix, unit in _UNITS:
-        if k.endswith(suffix):
-            return unit
-    return ""
-
-
-# --------------------------------------------------------------------------------------------- the record
-@dataclass
-class Step:
-    """One physics function call: its qualified name, its equation (docstring), its inputs and what it returned."""
-
-    function: str
-    equation: str
-    inputs: list = field(default_factory=list)
-    #: where its result is reused elsewhere in the derivation: shown once
-    ref: int = 0
-
-    def as_dict(self) -> dict:
-        return {"function": self.function, "equation": self.equation, "ref": self.ref,
-                "inputs": [q.as_dict() for q in self.inputs]}
-
-
-@dataclass
-class Quantity:
-    """One value of a derivation: its key, value and unit, where it comes from (``origin``: ``input``, ``default``
-    (a documented default of an input not given), ``constant``, ``catalog``, ``design`` (a part key), ``rule``
-    (a design rule), ``computed`` (a physics call: ``step``), ``evaluator`` (a line of the evaluator: ``formula``),
-    ``setting``, ``value``) and its ``source`` in words."""
-
-    key: str
-    value: object
-    unit: str = ""
-    origin: str = "value"
-    source: str = ""
-    step: Step | None = None
-    formula: str = ""
-    parts: list = field(default_factory=list)
-
-    def text(self) -> str:
-        """``key = value unit``."""
-        v = self.value
-        shown = fmt.quantity(v, self.unit) if isinstance(v, (int, float)) and not isinstance(v, bool) else fmt.part(v)
-        return f"{self.key.rstrip('_')} = {shown}"
-
-    def as_dict(self) -> dict:
-        v = self.value
-        if isinstance(v, (np.generic,)):
-            v = v.item()
-        if isinstance(v, float) and not math.isfinite(v):
-            v = None if math.isnan(v) else ("inf" if v > 0 else "-inf")
-        return {"key": self.key, "value": v, "unit": self.unit, "text": self.text(), "origin": self.origin,
-                "source": self.source, "formula": self.formula, "step": self.step.as_dict() if self.step else None,
-                "parts": [q.as_dict() for q in self.parts]}
-
-
-@dataclass
-class Derivation:
-    """A check's derivation (see the module docstring)."""
-
-    check: str
-    label: str
-    step: int
-    equation: str
-    unit: str
-    sense: str
-    verdict: str
-    margin: float | None
-    #: the margin with its numbers: ``(limit - value) / |limit| = (1 - 0.3338) / 1 = +66.6 %``
-    margin_formula: str
-    required_margin: float
-    value: Quantity
-    limit: Quantity
-    scale: Quantity | None = None
-    applies: str = ""
-    note: str = ""
-    #: the sources cited (``[n]`` in the quantities' ``source``): ``[(n, where, source text)]``
-    sources: list = field(default_factory=list)
-
-    def lines(self) -> list:
-        """The derivation as text lines (the terminal's ``synth design --explain CHECK``, the report's appendix):
-        the check and its equation reference, the margin with its numbers, the value and the limit traced through
-        the physics calls (each call's equation, then the call with its numbers substituted and its result, then
-        where each argument comes from), and the numbered sources."""
-        head = f"{self.check}: {self.label} (thesis step {self.step}, {self.equation}): {self.verdict.upper()}"
-        out = [head, f"  check: {self.value.key} {self.sense} {self.limit.key}"
-                     + (f", {self.value.unit or '-'}" if self.value.unit else "")]
-        if self.applies:
-            out.append(f"  applies when: {self.applies}")
-        if self.margin_formula:
-            out.append(f"  {self.margin_formula}")
-        for title, q in (("value", self.value), ("limit", self.limit), ("scale", self.scale)):
-            if q is not None:
-                out.append(f"  {title}:")
-                out += _quantity_lines(q, 4)
-        if self.sources:
-            out.append("  sources:")
-            out += [f"    [{n}] {where}: {src or '(no source given)'}" for n, where, src in self.sources]
-        return out
-
-    def text(self) -> str:
-        """:meth:`lines` joined."""
-        return "\n".join(self.lines())
-
-    def as_dict(self) -> dict:
-        """Plain data (JSON-ready): what :func:`synth.derive` returns for the web page."""
-        return {"check": self.check, "label": self.label, "step": self.step, "equation": self.equation,
-                "unit": self.unit, "sense": self.sense, "verdict": self.verdict, "margin": _plain(self.margin),
-                "margin_formula": self.margin_formula, "required_margin": self.required_margin,
-                "value": self.value.as_dict(), "limit": self.limit.as_dict(),
-                "scale": self.scale.as_dict() if self.scale else None, "applies": self.applies, "note": self.note,
-                "sources": [{"n": n, "where": w, "source": src} for n, w, src in self.sources]}
-
-
-_ORIGIN_WORDS = {"input": "", "default": "", "constant": "", "catalog": "", "design": "", "rule": "",
-                 "setting": "a setting of the model", "value": "an intermediate value of the evaluation (not traced)"}
-
-
-def _quantity_lines(q, indent: int) -> list:
-    """Text lines of one :class:`Quantity` and, for a computed one, its physics call (see :meth:`Derivation.lines`)."""
-    pad = " " * indent
-    if q.step is not None:
-        args = ", ".join(a.text() for a in q.step.inputs)
-        name = q.step.function.rsplit(".", 1)[-1]
-        out = [f"{pad}{q.text()}, computed by {q.step.function}",
-               f"{pad}  equation: {q.step.equation or '(no docstring equation)'}",
-               f"{pad}  {name}({args}) = {q.text().split(' = ', 1)[1]}"]
-        for a in q.step.inputs:
-            out += _quantity_lines(a, indent + 4)
-        return out
-    where = q.source or _ORIGIN_WORDS.get(q.origin, "")
-    out = [f"{pad}{q.text()}" + (f"  <- {where}" if where else "")]
-    if q.formula:
-        out.append(f"{pad}  = {q.formula}")
-    for a in q.parts:
-        out += _quantity_lines(a, indent + 4)
-    return out
-
-
-def _plain(x):
-    if x is None or (isinstance(x, float) and not math.isfinite(x)):
-        return None
-    return float(x)
-
-
-# --------------------------------------------------------------------------------------------- the trace
-@dataclass
-class _Call:
-    index: int
-    module: str
-    name: str
-    args: dict
-    depth: int
-    start: int
-    end: int = -1
-    result: object = None
-
-    @property
-    def qualname(self) -> str:
-        return f"{self.module}.{self.name}"
-
-
-def _scalar(x):
-    """A traced value as a plain scalar (an array of one value: its value), else None (not shown as a number)."""
-    if isinstance(x, (bool, np.bool_)):
-        return bool(x)
-    if isinstance(x, (int, float, np.integer, np.floating)):
-        return float(x)
-    if isinstance(x, str):
-        return x
-    if isinstance(x, np.ndarray) and x.size == 1 and x.dtype.kind in "biuf":
-        v = x.reshape(-1)[0]
-        return bool(v) if x.dtype.kind == "b" else float(v)
-    return None
-
-
-def _outputs(result) -> list:
-    """``[(name or None, value)]`` of a call's result: a scalar, a dict's scalar items, a tuple's scalars."""
-    if isinstance(result, dict):
-        return [(k, v) for k, v in ((k, _scalar(x)) for k, x in result.items()) if isinstance(v, float)]
-    if isinstance(result, tuple):
-        return [(None, v) for v in map(_scalar, result) if isinstance(v, float)]
-    v = _scalar(result)
-    return [(None, v)] if isinstance(v, float) else []
-
-
-class _Tracer:
-    """A profiler hook recording every call of a :mod:`synth.model` function, of :func:`synth.catalog.constant` and of
-    :func:`synth.parts.mu` (arguments at the call, result at the return, nesting depth and event order)."""
-
-    def __init__(self):
-        self.calls: list[_Call] = []
-        self.stack: list = []
-        self.t = 0
-
-    def __call__(self, frame, event, arg):
-        if event == "call":
-            mod = frame.f_globals.get("__name__", "")
-            code = frame.f_code
-            if (mod.startswith("synth.model.") and not code.co_name.startswith("<")) or \
-                    (mod == "synth.catalog" and code.co_name == "constant") or (mod == "synth.parts" and code.co_name == "mu"):
-                n = code.co_argcount + code.co_kwonlyargcount
-                args = {k: frame.f_locals.get(k) for k in code.co_varnames[:n]}
-                c = _Call(len(self.calls), mod, code.co_name, {k: _scalar(v) if _scalar(v) is not None else v
-                                                              for k, v in args.items()}, len(self.stack), self.t)
-                self.calls.append(c)
-                self.stack.append((frame, c))
-        elif event == "return" and self.stack and self.stack[-1][0] is frame:
-            _, c = self.stack.pop()
-            c.result, c.end = arg, self.t
-        self.t += 1
-
-
-def _traced(fn, *args, **kw):
-    """``(fn(*args, **kw), tracer)`` with the profiler hook on for the call (the previous hook restored)."""
-    tracer = _Tracer()
-    previous = sys.getprofile()
-    sys.setprofile(tracer)
-    try:
-        out = fn(*args, **kw)
-    finally:
-        try:
-            sys.setprofile(previous)
-        except TypeError:  # a C-level profiler's hook (cProfile) cannot be set again from Python
-            sys.setprofile(None)
-    return out, tracer
-
-
-# --------------------------------------------------------------------------------------------- the evaluator's lines
-@functools.lru_cache(maxsize=1)
-def _evaluator_lines() -> dict:
-    """``{value key: (group function, source text of its expression)}`` of the evaluator's own assignments
-    (``v["k"] = ...``, ``v.update(k=...)``, dict literals of ``v``), read from :mod:`synth.design.evaluate`."""
-    from synth.design import evaluate
-    src = inspect.getsource(evaluate)
-    tree = ast.parse(src)
-    out: dict = {}
-    for fn in (n for n in tree.body if isinstance(n, ast.FunctionDef)):
-        for node in ast.walk(fn):
-            pairs = []
-            if isinstance(node, ast.Assign) and len(node.targets) == 1:
-                t = node.targets[0]
-                if isinstance(t, ast.Subscript) and isinstance(t.value, ast.Name) and t.value.id == "v" \
-                        and isinstance(t.slice, ast.Constant) and isinstance(t.slice.value, str):
-                    pairs.append((t.slice.value, node.value))
-                if isinstance(t, ast.Tuple) and isinstance(node.value, ast.Tuple) \
-                        and len(t.elts) == len(node.value.elts):  # v["a"], v["b"] = x, y
-                    pairs += [(e.slice.value, x) for e, x in zip(t.elts, node.value.elts)
-                              if isinstance(e, ast.Subscript) and isinstance(e.value, ast.Name) and e.value.id == "v"
-                              and isinstance(e.slice, ast.Constant) and isinstance(e.slice.value, str)]
-                if isinstance(t, ast.Name) and t.id == "v" and isinstance(node.value, ast.Dict):
-                    pairs += [(k.value, v) for k, v in zip(node.value.keys, node.value.values)
-                              if isinstance(k, ast.Constant) and isinstance(k.value, str)]
-            if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "update" \
-                    and isinstance(node.func.value, ast.Name) and node.func.value.id == "v":
-                pairs += [(k.arg, k.value) for k in node.keywords if k.arg]
-                for a in node.args:
-                    if isinstance(a, ast.Dict):
-                        pairs += [(k.value, v) for k, v in zip(a.keys, a.values)
-                                  if isinstance(k, ast.Constant) and isinstance(k.value, str)]
-            for key, expr in pairs:
-                text = " ".join((ast.get_source_segment(src, expr) or "").split())
-                out.setdefault(key, (fn.name, text))
-    return out
-
-
-def _referenced(text: str) -> list:
-    """The keys an evaluator expression reads (``f["x"]``, ``v["x"]``, ``c["x"]``...) and the named constants it
-    reads (``_const("x")``), in order.
-
-    >>> _referenced('_const("bolt_yield_utilisation_max") * np.asarray(o["rp02_mpa"], dtype=float)')
-    ['bolt_yield_utilisation_max', 'rp02_mpa']
-    """
-    import re
-    return list(dict.fromkeys(re.findall(r'(?:_const\(\s*|\[\s*)"([A-Za-z_][A-Za-z_0-9]*)"\s*[\])]', text)))
-
-
 # --------------------------------------------------------------------------------------------- explaining values
 def _close(a, b) -> bool:
     if not isinstance(a, float) or not isinstance(b, float) or not (math.isfinite(a) and math.isfinite(b)):
@@ -389,7 +98,7 @@ def _same_name(a: str, b: str) -> bool:
 def _tokens(name: str) -> set:
     """The words of a key without its unit suffix (``middle_plane_belt_height_mm``: middle, plane, belt, height)."""
     n = _norm(name)
-    for suffix, _ in _UNITS:
+    for suffix, _ in UNITS:
         if n.endswith(suffix):
             n = n[: -len(suffix)]
             break
@@ -421,11 +130,11 @@ class _Explainer:
     def __init__(self, tracer, d, apps, attrs, values, parts):
         self.calls = [c for c in tracer.calls if c.end >= 0]
         self.d, self.apps, self.attrs, self.values, self.parts = d, apps, attrs, values, parts
-        self.lines = _evaluator_lines()
+        self.lines = evaluator_lines()
         self.shown: dict = {}
         self.constants, self.frictions = {}, {}
         for c in self.calls:
-            v = _scalar(c.result)
+            v = scalar(c.result)
             if c.module == "synth.catalog" and isinstance(c.args.get("name"), str) and isinstance(v, float):
                 self.constants.setdefault(c.args["name"], v)
             if c.module == "synth.parts" and isinstance(c.args.get("interface"), str) and isinstance(v, float):
@@ -521,7 +230,7 @@ class _Explainer:
     def _catalog(self, name, value):
         for table, cols in self.attrs.items():
             for col in (c for c in cols if _same_name(c, name)):
-                v = _scalar(np.asarray(cols[col]).reshape(-1)[0])
+                v = scalar(np.asarray(cols[col]).reshape(-1)[0])
                 if isinstance(v, float) and _close(v, value):
                     rows = _attribute_rows(col, table, self.parts)
                     q = Quantity(name, value, unit_of(name), "catalog", "")
@@ -533,11 +242,11 @@ class _Explainer:
         hit = self.lines.get(_norm(name))
         if hit is None:
             return None
-        group, text = hit
+        group, text, path = hit
         q = Quantity(name, value, unit_of(name), "evaluator",
-                     f"computed by the evaluator's {group} group (synth/design/evaluate.py)", formula=text)
+                     f"computed by the evaluator's {group} group ({path})", formula=text)
         if depth < MAX_DEPTH:
-            for k in _referenced(text)[:6]:
+            for k in referenced(text)[:6]:
                 if k == _norm(name):
                     continue
                 v = self._known(k)
@@ -562,7 +271,7 @@ class _Explainer:
             v = getattr(self.d, key, None)
         if v is None and key in getattr(self.apps, "f", {}):
             v = np.asarray(self.apps.f[key])[0]
-        return _scalar(v)
+        return scalar(v)
 
     # --- the producing call ------------------------------------------------------------------------------------
     def _producer(self, name, value, before, *, named: bool):
@@ -572,7 +281,7 @@ class _Explainer:
         for c in self.calls:
             if c.module in ("synth.catalog", "synth.parts") or c.end >= before:
                 continue
-            for out_name, v in _outputs(c.result):
+            for out_name, v in outputs(c.result):
                 if not _close(v, value):
                     continue
                 is_named = _same_name(name, c.name) or (out_name is not None and _same_name(name, out_name))
@@ -587,7 +296,7 @@ class _Explainer:
         best = cands[-1][2]
         # the innermost call inside it that computed the same value (a step's own equation: von Mises in the bolt's)
         inner = [c for c in self.calls if best.start < c.start and c.end < best.end and c.module.startswith("synth.model")
-                 and any(_close(v, value) for _, v in _outputs(c.result))
+                 and any(_close(v, value) for _, v in outputs(c.result))
                  and not any(isinstance(a, float) and _close(a, value) for a in c.args.values())]
         return max(inner, key=lambda c: (c.depth, c.end)) if inner else best
 
@@ -595,7 +304,7 @@ class _Explainer:
         """``name = value``: where it comes from (the producing physics call, an input, a constant, a catalog row, an
         evaluator line), following the physics calls ``MAX_DEPTH`` deep."""
         before = len(self.calls) * 10**9 if before is None else before
-        v = _scalar(value)
+        v = scalar(value)
         if v is None or isinstance(v, (bool, str)):
             for prefix, key, table in ATTRIBUTE_CATALOGS:  # a part's yes/no attribute (a round wire): its row
                 if _norm(name).startswith(prefix) and self.parts.get(key) not in (None, "none") \
@@ -642,7 +351,7 @@ class _Explainer:
                 return q
         for c in self.calls:  # computed in the body of a call still running at the use (a spring's stresses)
             if c.start < before < c.end and c.module.startswith("synth.model"):
-                outs = [k for k, x in _outputs(c.result) if k is not None and _close(x, v)]
+                outs = [k for k, x in outputs(c.result) if k is not None and _close(x, v)]
                 if outs:
                     return Quantity(name, v, unit_of(name), "computed",
                                     f"computed in the body of {c.qualname} (its output {outs[0]})")
@@ -795,7 +504,7 @@ def derivations(d, parts: dict, check_ids=None, settings=None) -> list:
         attrs = space().design_attributes(parts)
         return apps, attrs, evaluate_design(apps, attrs, settings)
     run()  # once without the hook: the catalogs and caches loaded at full speed
-    (apps, attrs, groups), tracer = _traced(run)
+    (apps, attrs, groups), tracer = traced(run)
     values = values_of(groups, attrs)
     checks = {x.id: x for x in checks_of(groups, apps)}
     if ids is None:
@@ -814,7 +523,7 @@ def _derivation(c, check, groups, values, ex, rules) -> Derivation:
     def raw(key):
         if key in CONSTANT_LIMITS:
             return CONSTANT_LIMITS[key]
-        return _scalar(np.asarray(g[key]).reshape(-1)[0]) if key in g else values.get(key)
+        return scalar(np.asarray(g[key]).reshape(-1)[0]) if key in g else values.get(key)
     value, limit = raw(c.value), raw(c.limit)
 
     def quantity(key, v):

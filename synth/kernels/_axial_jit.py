@@ -36,7 +36,7 @@ from llvmlite import ir
 from numba import carray, cfunc, njit, types
 from numba.extending import intrinsic
 
-from synth.kernels._ieee import _maximum, _minimum
+from synth.kernels._ieee import maximum as _maximum, minimum as _minimum
 from synth.kernels.numba_setup import announce_compiles
 
 announce_compiles()  # a line on stderr when this process compiles a kernel (synth.kernels.numba_setup)

@@ -42,7 +42,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from synth.kernels._ieee import _maximum, _minimum
+from synth.kernels._ieee import maximum as _maximum, minimum as _minimum
 from synth.kernels.numba_setup import announce_compiles
 
 announce_compiles()  # a line on stderr when this process compiles a kernel (synth.kernels.numba_setup)

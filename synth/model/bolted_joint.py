@@ -27,7 +27,9 @@ classes ``catalogs/bolt_property_classes.csv`` (ISO 898-1), tightening methods
 ``catalogs/tightening_factors.csv``. This module computes the values of the
 step-10 checks for a given bolt; which bolt passes is the registry's verdict and
 the flowchart's (or an optimiser's) choice. The VDI 2230 equations are
-:mod:`synth.model.vdi2230`.
+:mod:`synth.model.vdi2230`; the pivot base's tilting and sliding :mod:`synth.model.pivot_base`, the bolt's stresses
+:mod:`synth.model.bolt_stress`, the bolts, heads and washers of the catalogs :mod:`synth.model.bolt_parts` (their
+functions are named here too).
 
 Thesis case 1 as run (its 13 mm contact: a head bearing on at least 13 mm, e.g. a flange head on a 13 mm seat):
 
@@ -46,8 +48,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from synth.catalog import constant, load
-from synth.errors import CatalogError, InputError, Problem
+from synth.catalog import constant
+from synth.errors import InputError, Problem
 from synth.model.input_guards import as_array as _arr, require as _require
 from synth.model.vdi2230 import (DEFAULT_EMBEDDING_LOADING, DEFAULT_EMBEDDING_ROUGHNESS, DEFAULT_TIGHTENING_METHOD,
                                  HEAD_TYPES, assembly_torque_nm, bolt_resilience_mm_per_n,
@@ -56,7 +58,15 @@ from synth.model.vdi2230 import (DEFAULT_EMBEDDING_LOADING, DEFAULT_EMBEDDING_RO
 from synth.model import vdi2230 as _vdi
 from synth import parts
 from synth.model.damping import hubload_nominal_n
-from synth import catalog as _catalog
+from synth.model.pivot_base import (bolt_force_sliding_n, bolt_force_tilting_n, pivot_base_bending_factor_per_mm3,
+                                    pivot_base_contact_area_mm2, pivot_base_pressure_mpa, required_bolt_force_n,
+                                    sliding_safety_factor, tilting_lever_mm, tilting_safety_factor)
+from synth.model.bolt_stress import (bolt_normal_stress_mpa, bolt_torsion_stress_mpa, min_active_threads,
+                                     min_head_contact_diameter_mm, thread_area_mm2, thread_bearing_stress_mpa,
+                                     thread_torque_nmm, tightening_torque_nm, under_head_stress_mpa,
+                                     under_head_torque_nmm, von_mises_stress_mpa)
+from synth.model.bolt_parts import (NO_WASHER, bolt_candidates, bolt_head, head_bearing_diameter_mm,
+                                    head_friction_diameter_mm, washer_dimensions, washer_series)
 
 __all__ = [
     "friction_coefficient", "nominal_hubload_n",
@@ -72,7 +82,6 @@ __all__ = [
 ]
 
 STEP = 10
-_MIN_SECTOR_DEG = 1e-6  # numerical floor of the contact angle (a line contact), see the bending factor
 ENVIRONMENTS = ("dry", "belt_in_oil")
 
 
@@ -118,672 +127,8 @@ def nominal_hubload_n(calculated_torque_nm, working_arm_mm, differential_angle_d
     return hubload_nominal_n(t, arm, a)
 
 
-# ----------------------------------------------------------------------------------------------
-# tilting and sliding, eq. (94)-(100)
-# ----------------------------------------------------------------------------------------------
-
-def tilting_lever_mm(middle_plane_belt_height_mm, middle_plane_belt_height_increment_worst_mm=0.0):
-    """Lever of the hubload about the pivot base, eq. (95): ``h_mid + dh_worst`` [mm].
-
-    The worst-case increment of the belt middle-plane height is added so that
-    the requirement holds in the extreme position (thesis text after eq. (95)).
-
-    >>> float(tilting_lever_mm(29.5, 2.0))
-    31.5
-    """
-    return _arr(middle_plane_belt_height_mm) + _arr(middle_plane_belt_height_increment_worst_mm)
-
-
-def pivot_base_contact_area_mm2(d_ext_mm, d_int_mm, contact_angle_deg=360.0):
-    """Contact area of the pivot base on the crankcase, eq. (97) [mm^2].
-
-    Annulus between the engine-support internal and external diameters,
-    reduced to the contact sector: ``A = theta/360 * pi/4 * (D^2 - d^2)``.
-
-    >>> round(float(pivot_base_contact_area_mm2(22.9, 8.2)), 2)
-    359.06
-    >>> round(float(pivot_base_contact_area_mm2(28.0, 8.2, 180.0)), 2)
-    281.47
-    """
-    D, d, th = _geometry(d_ext_mm, d_int_mm, contact_angle_deg)
-    return th / 360.0 * np.pi / 4.0 * (D**2 - d**2)
-
-
-def _geometry(d_ext_mm, d_int_mm, contact_angle_deg):
-    d = _require("engine_support_internal_diameter_mm", d_int_mm, inclusive=True)
-    D = _require("engine_support_external_diameter_mm", d_ext_mm)
-    if np.any(D <= d):
-        D, d = np.broadcast_arrays(D, d)
-        i = np.flatnonzero(np.ravel(D <= d))[0]
-        raise InputError(Problem("engine_support_external_diameter_mm", float(np.ravel(D)[i]),
-                                 f"a diameter > the internal diameter ({float(np.ravel(d)[i]):g} mm)"))
-    th = _require("contact_angle_deg", contact_angle_deg, high=360.0, accepted="an angle in (0, 360] deg")
-    return D, d, th
-
-
-def _one_minus_sinc_term(t):
-    """``t - sin(t)`` without cancellation for small ``t`` (series below 1e-2 rad)."""
-    small = t < 1e-2
-    ts = np.where(small, t, 0.0)
-    series = ts**3 / 6.0 - ts**5 / 120.0 + ts**7 / 5040.0
-    return np.where(small, series, t - np.sin(t))
-
-
-def _sector(D, d, th):
-    """Annular sector of angle ``th`` [deg] symmetric about +x: radii, half angle [rad], area,
-    centroid ``x_c`` and principal centroidal second moments ``I_xx`` (of y), ``I_yy`` (of x - x_c).
-
-    ``A = a (ro^2 - ri^2)``, ``x_c = 2/3 sin(a)/a (ro^3 - ri^3)/(ro^2 - ri^2)``,
-    ``I_xx = (ro^4 - ri^4)/8 (t - sin t)``, ``I_yy = (ro^4 - ri^4)/8 (t + sin t) - A x_c^2`` (t = 2a).
-    """
-    ro, ri = D / 2.0, d / 2.0
-    t = np.radians(th)
-    a = t / 2.0
-    area = a * (ro**2 - ri**2)
-    xc = 2.0 / 3.0 * np.sinc(a / np.pi) * (ro**3 - ri**3) / (ro**2 - ri**2)  # sinc = sin(a)/a
-    xc = np.where(np.isclose(th, 360.0), 0.0, xc)
-    i4 = (ro**4 - ri**4) / 8.0
-    ixx = i4 * _one_minus_sinc_term(t)
-    # Iyy about the centroid stays positive (inertia of a radial line); guard round-off only
-    iyy = np.maximum(i4 * (t + np.sin(t)) - area * xc**2, i4 * t * 1e-12)
-    return ro, ri, a, area, xc, ixx, iyy
-
-
-def pivot_base_bending_factor_per_mm3(d_ext_mm, d_int_mm, contact_angle_deg=360.0, *, model="sector"):
-    """Worst-fibre bending stress per unit tilting moment of the pivot base [1/mm^3].
-
-    ``sigma_b,max = M_tilt * k`` (MPa with M in N*mm). For a full annulus
-    (eq. (96)) ``k = (D/2) / I`` with ``I = pi (D^4 - d^4) / 64``.
-
-    ``model="sector"`` (default, physics): a partial contact is an annular
-    sector of angle ``theta``; with a linear (rigid-body) pressure field about
-    its principal centroidal axes and the hubload in the worst direction,
-    ``k = max over the sector of sqrt((y/I_xx)^2 + ((x - x_c)/I_yy)^2)``
-    (closed-form A, centroid and I of the sector; the maximum lies on the
-    outer arc, where it is found in closed form, or at the inner corners). ``model="thesis"``: eq. (96) as
-    printed, the full-annulus value scaled by ``360/theta`` (read from the
-    scrambled fraction; equal to the sector model at 360 deg).
-
-    Near ``theta = 0`` the factor grows like ``1/theta^2`` (finite for
-    ``theta > 0``; angles below 1e-6 deg are evaluated at 1e-6 deg, a line
-    contact, to keep the sector inertia representable); ``theta <= 0`` or
-    ``> 360`` raises InputError.
-
-    >>> round(float(pivot_base_bending_factor_per_mm3(22.9, 8.2)) * 1e4, 4)
-    8.6237
-    >>> k180 = pivot_base_bending_factor_per_mm3(22.9, 8.2, 180.0)
-    >>> bool(k180 > pivot_base_bending_factor_per_mm3(22.9, 8.2, 360.0))
-    True
-    """
-    D, d, th = _geometry(d_ext_mm, d_int_mm, contact_angle_deg)
-    th = np.maximum(th, _MIN_SECTOR_DEG)
-    if D.size > 64 and d.size == D.size and th.size == D.size and (D == D.flat[0]).all() and \
-            (d == d.flat[0]).all() and (th == th.flat[0]).all():
-        # one support repeated (the samples of one design, synth.robust): computed once, broadcast
-        one = pivot_base_bending_factor_per_mm3(D.flat[0], d.flat[0], th.flat[0], model=model)
-        return np.broadcast_to(one, D.shape)
-    full = 32.0 * D / (np.pi * (D**4 - d**4))
-    if model == "thesis":
-        return full * 360.0 / th
-    if model != "sector":
-        raise InputError(Problem("model", model, "'sector' or 'thesis'"))
-    ro, ri, a, area, xc, ixx, iyy = _sector(D, d, th)
-    # on the outer arc g = (r sin(phi)/Ixx)^2 + ((r cos(phi) - xc)/Iyy)^2 is a quadratic in
-    # c = cos(phi) on [cos(a), 1]: its maximum is at an end or at the vertex (closed form)
-    q2 = ro**2 * (1.0 / iyy**2 - 1.0 / ixx**2)
-    q1 = -2.0 * ro * xc / iyy**2
-    q0 = ro**2 / ixx**2 + xc**2 / iyy**2
-
-    def g(c):
-        return q0 + q1 * c + q2 * c**2
-
-    lo_c = np.cos(a)
-    vertex = np.clip(-q1 / (2.0 * np.where(q2 < 0, q2, -1.0)), lo_c, 1.0)
-    outer = np.maximum(np.maximum(g(lo_c), g(np.ones_like(lo_c))), np.where(q2 < 0, g(vertex), 0.0))
-    corner = (ri * np.sin(a) / ixx) ** 2 + ((ri * np.cos(a) - xc) / iyy) ** 2
-    k = np.sqrt(np.maximum(outer, corner))
-    return np.where(np.isclose(th, 360.0), full, k)
-
-
-def bolt_force_tilting_n(hubload_n, safety_factor, lever_mm, d_ext_mm, d_int_mm, contact_angle_deg=360.0,
-                         *, model="sector"):
-    """Minimum bolt force against tilting, eq. (94)-(97) [N].
-
-    ``HL_t = HL * SF_t`` (94), ``M_t = HL_t * lever`` (95), the average contact
-    pressure must equal the worst-fibre bending stress so that the minimum
-    pressure just reaches zero: ``sigma_avg = M_t * k`` (96) and
-    ``F_t = sigma_avg * A`` (97).
-
-    Case 3 (HL 462.5 N, SF 3, lever 22 mm, support 8.2/28 mm):
-    M_t = 462.5*3*22 = 30525 N*mm; k = 32*28/(pi*(28^4-8.2^4)) = 4.6745e-4 /mm^3;
-    sigma_avg = 14.269 MPa; A = 562.94 mm^2; F_t = 8033 N.
-
-    >>> round(float(bolt_force_tilting_n(462.5, 3.0, 22.0, 28.0, 8.2)))
-    8033
-    """
-    hl = _require("hubload_n", hubload_n, inclusive=True)
-    sf = _require("tilting_safety_factor", safety_factor, inclusive=True)
-    lever = _require("tilting lever (middle plane belt height + increment) [mm]", lever_mm, inclusive=True)
-    k = pivot_base_bending_factor_per_mm3(d_ext_mm, d_int_mm, contact_angle_deg, model=model)
-    area = pivot_base_contact_area_mm2(d_ext_mm, d_int_mm, contact_angle_deg)
-    return hl * sf * lever * k * area
-
-
-def bolt_force_sliding_n(hubload_n, safety_factor, mu_crankcase):
-    """Minimum bolt force against sliding, eq. (98)-(99): ``F_s = HL * SF_s / f`` [N].
-
-    >>> round(float(bolt_force_sliding_n(462.5, 3.0, 0.10)), 1)
-    13875.0
-    """
-    hl = _require("hubload_n", hubload_n, inclusive=True)
-    sf = _require("sliding_safety_factor", safety_factor, inclusive=True)
-    mu = _require("pivot base-crankcase friction coefficient", mu_crankcase)
-    return hl * sf / mu
-
-
-def required_bolt_force_n(force_tilting_n, force_sliding_n):
-    """Bolt axial force that meets both targets, eq. (100): ``max(F_t, F_s)`` [N].
-
-    >>> float(required_bolt_force_n(8033.0, 13875.0))
-    13875.0
-    """
-    return np.maximum(_arr(force_tilting_n), _arr(force_sliding_n))
-
-
-def tilting_safety_factor(bolt_force_n, hubload_n, lever_mm, d_ext_mm, d_int_mm, contact_angle_deg=360.0,
-                          *, model="sector"):
-    """Tilting safety factor reached by a bolt force (eq. (94)-(97) solved for SF) [-].
-
-    ``SF_t = (F/A) / (HL * lever * k)``: average pressure over the bending
-    stress amplitude at the nominal hubload. A zero hubload or lever gives
-    ``inf`` (nothing tilts), never NaN.
-
-    Case 1 as run: F 16312 N on 359.06 mm^2 = 45.43 MPa; HL*lever*k =
-    652.5*31.5*8.6237e-4 = 17.725 MPa; SF = 2.563.
-
-    >>> round(float(tilting_safety_factor(16312.5, 652.5, 31.5, 22.9, 8.2)), 3)
-    2.563
-    """
-    f = _require("bolt_axial_force_n", bolt_force_n, inclusive=True)
-    hl = _require("hubload_n", hubload_n, inclusive=True)
-    lever = _require("tilting lever [mm]", lever_mm, inclusive=True)
-    k = pivot_base_bending_factor_per_mm3(d_ext_mm, d_int_mm, contact_angle_deg, model=model)
-    area = pivot_base_contact_area_mm2(d_ext_mm, d_int_mm, contact_angle_deg)
-    demand = hl * lever * k
-    with np.errstate(divide="ignore"):
-        return np.where(demand > 0, f / area / np.where(demand > 0, demand, 1.0), np.inf)
-
-
-def sliding_safety_factor(bolt_force_n, hubload_n, mu_crankcase):
-    """Sliding safety factor reached by a bolt force, eq. (99) solved for SF: ``f*F/HL`` [-].
-
-    >>> round(float(sliding_safety_factor(14500.0, 483.33, 0.10)), 2)
-    3.0
-    """
-    f = _require("bolt_axial_force_n", bolt_force_n, inclusive=True)
-    hl = _require("hubload_n", hubload_n, inclusive=True)
-    mu = _require("pivot base-crankcase friction coefficient", mu_crankcase)
-    return np.where(hl > 0, mu * f / np.where(hl > 0, hl, 1.0), np.inf)
-
-
-def pivot_base_pressure_mpa(angle_deg, bolt_force_n, tilting_moment_nmm, d_ext_mm, d_int_mm,
-                            contact_angle_deg=360.0, hubload_direction_deg=0.0):
-    """Contact pressure on the outer edge of the pivot base vs polar angle (Fig. 74) [MPa].
-
-    Linear (rigid-body) pressure field: ``p = F/A + M ((x - x_c) cos(psi)/I_yy
-    + y sin(psi)/I_xx)`` with ``psi`` the hubload direction; for a full
-    annulus this is the thesis's sinusoid ``p = sigma_avg + M (D/2)/I *
-    cos(angle - psi)``, maximum on the hubload side. Angles are measured from
-    the bisector of the contact sector; outside the sector the pressure is 0.
-    Negative values mean lift-off (tilting): they are returned, not clipped.
-    ``angle_deg`` broadcasts against the design arrays (add a trailing axis to
-    plot a curve per design).
-
-    >>> p = pivot_base_pressure_mpa([0.0, 90.0, 180.0], 14500.0, 462.5 * 22.0, 28.0, 8.2)
-    >>> [round(float(v), 2) for v in p]
-    [30.51, 25.76, 21.0]
-    """
-    D, d, th = _geometry(d_ext_mm, d_int_mm, contact_angle_deg)
-    th = np.maximum(th, _MIN_SECTOR_DEG)
-    f = _arr(bolt_force_n)
-    m = _arr(tilting_moment_nmm)
-    psi = np.radians(_arr(hubload_direction_deg))
-    ang = np.radians(_arr(angle_deg))
-    ro, ri, a, area, xc, ixx, iyy = _sector(D, d, th)
-    full = np.isclose(th, 360.0)
-    x = ro * np.cos(ang) - xc
-    y = ro * np.sin(ang)
-    p = f / area + m * (x * np.cos(psi) / iyy + y * np.sin(psi) / ixx)
-    wrapped = np.abs((np.degrees(ang) + 180.0) % 360.0 - 180.0)
-    inside = full | (wrapped <= th / 2.0 + 1e-9)
-    return np.where(inside, p, 0.0)
-
-
-# ----------------------------------------------------------------------------------------------
-# bolt, eq. (101)-(111)
-# ----------------------------------------------------------------------------------------------
-
-def thread_torque_nmm(bolt_force_n, pitch_mm, d2_mm, mu_thread, *, model="vdi"):
-    """Thread torque during tightening, eq. (106) corrected [N*mm].
-
-    ``model="vdi"`` (default): ``T_G = F/2 (P/pi + mu d2 / cos(beta))``, the
-    linearised form of eq. (101)/(106) and of VDI 2230-1
-    (``M_A = F (0.16 P + 0.58 d2 mu_G + D_Km/2 mu_K)``; 0.58 = 1/(2 cos 30)).
-    The printed eq. (101) multiplies by ``cos(beta)``; the flank friction acts
-    on the inclined flank so it is divided (the case tables confirm).
-    ``model="helix"``: the exact helix form ``F d2/2 tan(phi + rho')`` with
-    ``tan(phi) = P/(pi d2)``, ``tan(rho') = mu/cos(beta)`` (about 1 % higher).
-    ``d2`` is the pitch diameter ``d - 0.6495 P`` (eq. (102), ISO 724).
-
-    M8x1.25, F 14500 N, mu 0.14: P/pi = 0.3979, 0.14*7.188/0.8660 = 1.1620,
-    T = 7250 * 1.5599 = 11309 N*mm.
-
-    >>> round(float(thread_torque_nmm(14500.0, 1.25, 7.188, 0.14)))
-    11309
-    """
-    f = _arr(bolt_force_n)
-    p = _arr(pitch_mm)
-    d2 = _arr(d2_mm)
-    mu = _require("thread friction coefficient", mu_thread, inclusive=True)
-    cb = np.cos(np.radians(constant("thread_flank_half_angle_deg")))
-    if model == "vdi":
-        return f / 2.0 * (p / np.pi + mu * d2 / cb)
-    if model == "helix":
-        return f * d2 / 2.0 * np.tan(np.arctan(p / (np.pi * d2)) + np.arctan(mu / cb))
-    raise InputError(Problem("torque_model", model, "'vdi' or 'helix'"))
-
-
-def under_head_torque_nmm(bolt_force_n, head_contact_diameter_mm, hole_diameter_mm, mu_head):
-    """Under-head friction torque, eq. (101) last term [N*mm].
-
-    ``T_K = F mu_K D_Km / 2`` with the mean bearing diameter
-    ``D_Km = (d_w + d_h)/2`` (VDI 2230-1): bolt-head contact diameter and the
-    support hole.
-
-    >>> round(float(under_head_torque_nmm(14500.0, 11.0, 8.2, 0.16)))
-    11136
-    """
-    f = _arr(bolt_force_n)
-    mu = _require("under-head friction coefficient", mu_head, inclusive=True)
-    dkm = (_arr(head_contact_diameter_mm) + _arr(hole_diameter_mm)) / 2.0
-    return f * mu * dkm / 2.0
-
-
-def tightening_torque_nm(bolt_force_n, pitch_mm, d2_mm, mu_thread, head_contact_diameter_mm, hole_diameter_mm,
-                         mu_head, *, model="vdi"):
-    """Bolt tightening torque, eq. (101) corrected (VDI 2230-1 form) [N*m].
-
-    Thread torque (:func:`thread_torque_nmm`) plus under-head torque
-    (:func:`under_head_torque_nmm`). Case 3: 11309 + 11136 N*mm = 22.44 N*m
-    (thesis tool 22.60, mu_K 0.162).
-
-    >>> round(float(tightening_torque_nm(14500.0, 1.25, 7.188, 0.14, 11.0, 8.2, 0.16)), 2)
-    22.45
-    """
-    tg = thread_torque_nmm(bolt_force_n, pitch_mm, d2_mm, mu_thread, model=model)
-    tk = under_head_torque_nmm(bolt_force_n, head_contact_diameter_mm, hole_diameter_mm, mu_head)
-    return (tg + tk) / 1000.0
-
-
-def bolt_normal_stress_mpa(bolt_force_n, area_mm2):
-    """Bolt normal stress, eq. (103) corrected: ``F / A_s`` [MPa].
-
-    The default area is the ISO 898-1 stress area ``A_s = pi/4 ((d2+d3)/2)^2``
-    (catalog ``stress_area_mm2``); eq. (103)-(104) print the core area
-    ``pi d3^2/4`` but the case tables follow A_s (cases/NOTES.md). Case 3:
-    14500/36.6 = 396.2 MPa (tool 394.67).
-
-    >>> round(float(bolt_normal_stress_mpa(14500.0, 36.6)), 1)
-    396.2
-    """
-    return _arr(bolt_force_n) / _require("bolt stress area [mm2]", area_mm2)
-
-
-def bolt_torsion_stress_mpa(thread_torque_nmm_, diameter_mm):
-    """Bolt torsion stress, eq. (105): ``16 T_G / (pi d^3)`` [MPa].
-
-    ``d`` is the minor diameter ``d3`` as in the thesis (conservative); VDI
-    2230-1 uses the stress diameter ``(d2+d3)/2`` (``torsion_diameter="stress"``
-    in :func:`fixation`). Case 3: 16*11309/(pi*6.466^3) = 213.0 MPa (tool 214.05).
-
-    >>> round(float(bolt_torsion_stress_mpa(11309.0, 6.466)), 1)
-    213.0
-    """
-    d = _require("bolt torsion diameter [mm]", diameter_mm)
-    return 16.0 * _arr(thread_torque_nmm_) / (np.pi * d**3)
-
-
-def von_mises_stress_mpa(sigma_mpa, tau_mpa):
-    """Von Mises equivalent stress, eq. (107): ``sqrt(sigma^2 + 3 tau^2)`` [MPa].
-
-    >>> round(float(von_mises_stress_mpa(442.74, 239.94)), 2)
-    607.23
-    """
-    s, t = _arr(sigma_mpa), _arr(tau_mpa)
-    return np.sqrt(s**2 + 3.0 * t**2)
-
-
-def under_head_stress_mpa(bolt_force_n, head_contact_diameter_mm, hole_diameter_mm):
-    """Bearing stress under the bolt head, eq. (108)-(109) [MPa].
-
-    ``F / (pi/4 (d_w^2 - d_int^2))``: annulus between the bolt-head contact
-    diameter and the support internal diameter (or a washer's bore). A head
-    (or washer) bearing no larger than the hole leaves no annulus: the
-    pressure is infinite (the check fails). Case 3: 14500/(pi/4 (11^2 - 8.2^2)) = 343.4 MPa.
-
-    >>> round(float(under_head_stress_mpa(14500.0, 11.0, 8.2)), 1), float(under_head_stress_mpa(14500.0, 8.0, 8.2))
-    (343.4, inf)
-    """
-    dw = _require("bolt_head_contact_external_diameter_mm", head_contact_diameter_mm)
-    dh = _require("engine_support_internal_diameter_mm", hole_diameter_mm, inclusive=True)
-    ring = np.pi / 4.0 * (dw**2 - dh**2)
-    with np.errstate(divide="ignore"):
-        return np.where(ring > 0, _arr(bolt_force_n) / np.where(ring > 0, ring, 1.0), np.inf)
-
-
-def thread_area_mm2(d_mm, pitch_mm, d2_mm, d3_mm, D1_mm, *, model="triangle"):
-    """Bearing area of one engaged thread turn, eq. (111) corrected [mm^2].
-
-    ``model="triangle"`` (default; what the thesis tables follow, NOTES.md):
-    ``pi d2 P cos(30 deg)`` (the flank height of the fundamental triangle
-    ``H = 0.866 P`` projected on the pitch cylinder). ``"engagement"``: the
-    ISO 68-1 basic-profile engagement ``pi d2 H1`` with ``H1 = (d - D1)/2 =
-    0.5413 P`` (classical thread bearing pressure, larger stress).
-    ``"printed"``: eq. (111) as printed, ``pi (d^2 - d3^2)/4``.
-
-    >>> round(float(thread_area_mm2(8.0, 1.25, 7.188, 6.466, 6.647)), 2)
-    24.45
-    """
-    d, p, d2, d3, D1 = (_arr(v) for v in (d_mm, pitch_mm, d2_mm, d3_mm, D1_mm))
-    if model == "triangle":
-        return np.pi * d2 * p * np.cos(np.radians(constant("thread_flank_half_angle_deg")))
-    if model == "engagement":
-        return np.pi * d2 * (d - D1) / 2.0
-    if model == "printed":
-        return np.pi / 4.0 * (d**2 - d3**2)
-    raise InputError(Problem("thread_area_model", model, "'triangle', 'engagement' or 'printed'"))
-
-
-def thread_bearing_stress_mpa(bolt_force_n, area_per_thread_mm2, number_of_active_threads):
-    """Average thread bearing stress, eq. (110): ``F / (A_thread n)`` [MPa].
-
-    Case 3: 14500 / (24.445 * 2.6) = 228.1 MPa (tool 228.14).
-
-    >>> round(float(thread_bearing_stress_mpa(14500.0, 24.445, 2.6)), 1)
-    228.1
-    """
-    n = _require("number_of_active_threads", number_of_active_threads)
-    return _arr(bolt_force_n) / (_require("thread area [mm2]", area_per_thread_mm2) * n)
-
-
-def min_head_contact_diameter_mm(bolt_force_n, hole_diameter_mm, allowable_pressure_mpa):
-    """Column-G correction: smallest bolt-head contact diameter, eq. (108)-(109) inverted [mm].
-
-    ``d_w,min = sqrt(4 F / (pi sigma_allow) + d_int^2)``. Case 3:
-    sqrt(4*14500/(pi*400) + 8.2^2) = sqrt(46.15 + 67.24) = 10.65 mm.
-
-    >>> round(float(min_head_contact_diameter_mm(14500.0, 8.2, 400.0)), 2)
-    10.65
-    """
-    s = _require("support_yield_strength_compression_mpa", allowable_pressure_mpa)
-    return np.sqrt(4.0 * _arr(bolt_force_n) / (np.pi * s) + _arr(hole_diameter_mm) ** 2)
-
-
-def min_active_threads(bolt_force_n, area_per_thread_mm2, allowable_stress_mpa):
-    """Column-G correction: smallest number of active threads, eq. (110) inverted [-].
-
-    ``n_min = F / (A_thread sigma_allow)``. Case 3: 14500/(24.445*400) = 1.48.
-
-    >>> round(float(min_active_threads(14500.0, 24.445, 400.0)), 2)
-    1.48
-    """
-    s = _require("support_yield_strength_traction_mpa", allowable_stress_mpa)
-    return _arr(bolt_force_n) / (_require("thread area [mm2]", area_per_thread_mm2) * s)
-
-
-
-
-# ----------------------------------------------------------------------------------------------
-# catalogs: bolt formats, head forms and property classes, escalation order
-# ----------------------------------------------------------------------------------------------
-
+#: the two paths that size and judge the joint (:func:`fixation` ``method``)
 METHODS = ("thesis", "vdi2230")
-
-
-def bolt_head(bolt_format: str, head_type: str = "hex"):
-    """The ``catalogs/bolt_heads.csv`` row of a thread format in a head form (a pandas Series).
-
-    Head forms: ``hex`` (ISO 4017, fine pitch ISO 8676), ``flange`` (ISO 4162 /
-    ISO 15071), ``socket`` (ISO 4762 / ISO 12474). Columns ``dw_min_mm``
-    (bearing-face diameter), ``head_outer_mm`` (s, dc or dk), ``head_height_mm``,
-    ``product_standard`` (prices: :mod:`synth.cost`).
-
-    >>> float(bolt_head("M8x1.25", "flange")["dw_min_mm"]), str(bolt_head("M8x1", "socket")["product_standard"])
-    (14.9, 'ISO 12474')
-    """
-    if head_type not in HEAD_TYPES:
-        raise InputError(Problem("head_type", head_type, "one of " + ", ".join(HEAD_TYPES)))
-    heads = load("bolt_heads")
-    hit = heads[(heads["bolt_format"] == str(bolt_format).strip()) & (heads["head_type"] == head_type)]
-    if hit.empty:
-        raise CatalogError(Problem("bolt_format", bolt_format, f"a format with a {head_type} head: "
-                                   + ", ".join(heads.loc[heads["head_type"] == head_type, "bolt_format"])))
-    return hit.iloc[0].copy()
-
-
-_NUMERIC_BOLT_COLUMNS = ("d_mm", "pitch_mm", "d2_mm", "d3_mm", "D1_mm", "stress_area_mm2", "pivot_bore_min_mm")
-
-
-def bolt_candidates(bolt_format: str | None = None, property_class: str | None = None, head_type: str = "hex"):
-    """The (format, property class) pairs in the flowchart's escalation order, in one head form.
-
-    Automatic mode (``None``): formats with an ``escalation_rank`` in
-    ``bolts.csv`` (M8x1.25, M10x1.5, M12x1.75), and for each format the
-    classes 8.8, 9.8, 10.9, 12.9 in rank order (thesis section 10: the class
-    is raised first, the format when the strongest class yields). Classes not
-    defined for the format's diameter (9.8 above 16 mm) are skipped. Naming a
-    format or class restricts the list (manual verification). ``head_type``
-    (``hex``, ``flange``, ``socket``) picks the head row of
-    ``bolt_heads.csv``. Returns a list of dicts with the thread geometry, the
-    head (``head_type``, ``dw_min_mm``, ``head_outer_mm``, ``head_height_mm``,
-    ``head_product_standard``), ``rp02_mpa`` and ``rm_mpa`` (prices: :mod:`synth.cost`).
-
-    >>> [(c["bolt_format"], c["bolt_property_class"]) for c in bolt_candidates()][:3]
-    [('M8x1.25', '8.8'), ('M8x1.25', '9.8'), ('M8x1.25', '10.9')]
-    >>> len(bolt_candidates("M10x1.25", "10.9")), bolt_candidates("M8x1.25", "8.8", "socket")[0]["dw_min_mm"]
-    (1, 12.33)
-    """
-    key = (None if bolt_format is None else str(bolt_format).strip(),
-           None if property_class is None else str(property_class).strip(), head_type)
-    return [dict(c) for c in _candidates_memo(key, (bolt_format, property_class, head_type))]
-
-
-_CANDIDATES: dict = {}
-
-
-def _candidates_memo(key, args) -> tuple:
-    """:func:`bolt_candidates` memoised per arguments and catalog tables (a user catalog folder, or a cleared
-    catalog cache, gives new tables and so a new list). A named format and class is read from the table of every
-    (format, class) of its head form, built in one pass; anything else (automatic mode, an unknown name: its
-    error) by :func:`_bolt_candidates`."""
-    dirs = tuple(_catalog.user_dirs())
-    tables = tuple(_catalog.load_cached(n, dirs) for n in ("bolts", "bolt_property_classes", "bolt_heads"))
-    hit = _CANDIDATES.get((key, dirs))
-    if hit is not None and all(a is b for a, b in zip(hit[0], tables)):
-        return hit[1]
-    if len(_CANDIDATES) > 4096:
-        _CANDIDATES.clear()
-    fmt, cls, head = key
-    out = None
-    if fmt is not None and cls is not None and head in HEAD_TYPES:
-        every = _CANDIDATES.get((("*", "*", head), dirs))
-        if every is None or not all(a is b for a, b in zip(every[0], tables)):
-            every = (tables, _every_candidate(head))
-            _CANDIDATES[(("*", "*", head), dirs)] = every
-        if (fmt, cls) in every[1]:
-            out = (every[1][(fmt, cls)],)
-    if out is None:
-        out = tuple(_bolt_candidates(*args))
-    _CANDIDATES[(key, dirs)] = (tables, out)
-    return out
-
-
-def _every_candidate(head_type) -> dict:
-    """``{(format, class): candidate}`` of every defined pair in one head form (one pass over the catalogs)."""
-    bolts, classes, heads = load("bolts"), load("bolt_property_classes"), load("bolt_heads")
-    key_b, key_c = bolts.columns[0], classes.columns[0]
-    head_of = {str(h["bolt_format"]).strip(): h for _, h in heads[heads["head_type"] == head_type].iterrows()}
-    out = {}
-    for _, b in bolts.iterrows():
-        head = head_of.get(str(b[key_b]))
-        if head is None:
-            continue
-        for _, c in classes.iterrows():
-            cand = _candidate(b, c, head, head_type, key_b, key_c)
-            if cand is not None:
-                out[(cand["bolt_format"], cand["bolt_property_class"])] = cand
-    return out
-
-
-def _candidate(b, c, head, head_type, key_b, key_c) -> dict | None:
-    """The candidate dict of one bolt row, class row and head row; None for a class not defined at the diameter."""
-    if not np.isnan(float(c["d_max_mm"])) and float(b["d_mm"]) > float(c["d_max_mm"]):
-        return None
-    big = float(b["d_mm"]) > 16.0
-    rp = float(c["rp02_min_d_gt16_mpa"] if big else c["rp02_min_mpa"])
-    rm = float(c["rm_min_d_gt16_mpa"] if big else c["rm_min_mpa"])
-    return {
-        "bolt_format": str(b[key_b]), "bolt_property_class": str(c[key_c]),
-        **{k: float(b[k]) for k in _NUMERIC_BOLT_COLUMNS},
-        "head_type": head_type, "dw_min_mm": float(head["dw_min_mm"]),
-        "head_outer_mm": float(head["head_outer_mm"]), "head_height_mm": float(head["head_height_mm"]),
-        "head_product_standard": str(head["product_standard"]),
-        "rp02_mpa": rp, "rm_mpa": rm,
-    }
-
-
-def _bolt_candidates(bolt_format, property_class, head_type):
-    if head_type not in HEAD_TYPES:
-        raise InputError(Problem("head_type", head_type, "one of " + ", ".join(HEAD_TYPES)))
-    bolts = load("bolts")
-    classes = load("bolt_property_classes")
-    key_b, key_c = bolts.columns[0], classes.columns[0]
-    if bolt_format is None:
-        bolts = bolts[bolts["escalation_rank"].notna()].sort_values("escalation_rank")
-    else:
-        hit = bolts[bolts[key_b] == str(bolt_format).strip()]
-        if hit.empty:
-            raise CatalogError(Problem("bolt_format", bolt_format, "one of " + ", ".join(load("bolts")[key_b])))
-        bolts = hit
-    if property_class is None:
-        classes = classes.sort_values("escalation_rank")
-    else:
-        hit = classes[classes[key_c] == str(property_class).strip()]
-        if hit.empty:
-            raise CatalogError(Problem("bolt_property_class", property_class,
-                                       "one of " + ", ".join(load("bolt_property_classes")[key_c])))
-        classes = hit
-    out = []
-    for _, b in bolts.iterrows():
-        head = bolt_head(str(b[key_b]), head_type)
-        for _, c in classes.iterrows():
-            cand = _candidate(b, c, head, head_type, key_b, key_c)
-            if cand is not None:
-                out.append(cand)
-    if not out:
-        raise InputError(Problem("bolt_property_class", property_class,
-                                 f"a class defined for {bolt_format} (ISO 898-1: 9.8 only up to 16 mm)"))
-    return out
-
-
-# ----------------------------------------------------------------------------------------------
-# the head's bearing on the support: the screw's own head, a washer, the seat
-# ----------------------------------------------------------------------------------------------
-
-NO_WASHER = "none"
-
-
-def washer_series() -> tuple:
-    """The washer series of ``catalogs/washers.csv`` (its ``product_standard`` column), ``"none"`` first.
-
-    >>> washer_series()
-    ('none', 'ISO 7089', 'ISO 7093-1')
-    """
-    ws = load("washers")
-    return (NO_WASHER, *dict.fromkeys(ws["product_standard"].astype(str).str.strip()))
-
-
-def washer_dimensions(series, d_mm) -> dict:
-    """``{"d1_mm", "d2_mm", "h_mm"}``: the bore, outer diameter and thickness of the ``series`` washer
-    (``catalogs/washers.csv``) for each bolt diameter ``d_mm`` (arrays; ``"none"``: no washer, NaN
-    diameters and 0 thickness). A series without a washer for a diameter is an error naming both.
-
-    >>> w = washer_dimensions("ISO 7089", [8.0, 10.0])
-    >>> w["d2_mm"].tolist(), w["h_mm"].tolist()
-    ([16.0, 20.0], [1.6, 2.0])
-    """
-    d = np.atleast_1d(np.asarray(d_mm, dtype=float))
-    series = str(series).strip()
-    if series == NO_WASHER:
-        return {"d1_mm": np.full(d.shape, np.nan), "d2_mm": np.full(d.shape, np.nan), "h_mm": np.zeros(d.shape)}
-    ws = load("washers")
-    rows = ws[ws["product_standard"].astype(str).str.strip() == series]
-    if rows.empty:
-        raise InputError(Problem("bolt_washer", series, "one of " + ", ".join(washer_series())))
-    by_d = {float(r["d_mm"]): r for _, r in rows.iterrows()}
-    out = {k: np.empty(d.shape) for k in ("d1_mm", "d2_mm", "h_mm")}
-    for i, di in enumerate(d):
-        r = by_d.get(float(di))
-        if r is None:
-            raise InputError(Problem("bolt_washer", series, f"a series with a washer for M{di:g} "
-                                     f"(catalogs/washers.csv has {', '.join(f'M{x:g}' for x in sorted(by_d))})"))
-        for k in out:
-            out[k][i] = float(r[k])
-    return out
-
-
-def head_bearing_diameter_mm(head_dw_mm, washer_d2_mm=np.nan, washer_h_mm=0.0, seat_mm=None):
-    """Outer diameter of the head's bearing on the support [mm]: the screw's own, a washer's, within the seat.
-
-    Without a washer (``washer_d2_mm`` NaN) the head's bearing-face diameter
-    ``dw`` (``bolt_heads.csv`` ``dw_min_mm``, ISO 4017 / 4162 / 4762). A
-    washer under the head spreads the head's load at 45 deg through its
-    thickness ``h``: it bears on ``min(d2, dw + 2 h)`` (a thin washer does
-    not carry its whole face; synth assumption, the washer being hardened,
-    300 HV, so that the head does not indent it). ``seat_mm`` (the
-    application's ``bolt_head_contact_external_diameter_mm``, NaN or None:
-    no seat) is the support's bearing face: the contact ends there.
-
-    An ISO 4017 M6 head on the default 11 mm seat bears on its own 8.88 mm;
-    an M8 flange head (14.9 mm) on it on the seat's 11 mm; an M8 hex head on
-    an ISO 7089 washer (16 x 1.6 mm) with no seat on 11.63 + 3.2 = 14.83 mm:
-
-    >>> [float(x) for x in head_bearing_diameter_mm([8.88, 14.9], seat_mm=11.0)]
-    [8.88, 11.0]
-    >>> round(float(head_bearing_diameter_mm(11.63, 16.0, 1.6)), 2)
-    14.83
-    """
-    dw = _arr(head_dw_mm)
-    d2 = _arr(washer_d2_mm)
-    out = np.where(np.isfinite(d2), np.minimum(d2, dw + 2.0 * _arr(washer_h_mm)), dw)
-    if seat_mm is not None:
-        seat = _arr(seat_mm)
-        out = np.where(np.isfinite(seat), np.minimum(out, seat), out)
-    return out
-
-
-def head_friction_diameter_mm(head_dw_mm, washer_d2_mm=np.nan, seat_mm=None):
-    """Outer diameter of the face the head turns on while tightened [mm] (the under-head friction of eq. (101),
-    VDI 2230 D_Km): the head's own face on a washer, or on the support within its seat.
-
-    >>> float(head_friction_diameter_mm(11.63, seat_mm=11.0)), float(head_friction_diameter_mm(11.63, 16.0, 11.0))
-    (11.0, 11.63)
-    """
-    dw = _arr(head_dw_mm)
-    if seat_mm is None:
-        return dw + 0.0 * np.nan_to_num(_arr(washer_d2_mm))
-    seat = _arr(seat_mm)
-    return np.where(np.isfinite(_arr(washer_d2_mm)) | ~np.isfinite(seat), dw, np.minimum(dw, seat))
 
 
 # ----------------------------------------------------------------------------------------------
@@ -967,69 +312,20 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     each = candidates is not None
     shape = np.broadcast_shapes(np.shape(required)[:], ()) + (len(cands),)
 
-    def ex(a):  # a design array on the candidates' axis
-        return np.asarray(a, dtype=float)[..., None]
+    ex = _on_candidates
 
     a_thr = thread_area_mm2(col["d_mm"], col["pitch_mm"], col["d2_mm"], col["d3_mm"], col["D1_mm"],
                             model=thread_area_model)
-    vdi = {}
     if method == "thesis":
-        force = ex(required) if made is None else np.where(np.isfinite(ex(made)), ex(made), ex(required))
-        f_top = f_bottom = f_bolt = force
-        t_thread = thread_torque_nmm(force, col["pitch_mm"], col["d2_mm"], mu_gk, model=torque_model)
-        a_norm = col["stress_area_mm2"] if normal_stress_area == "stress" else np.pi / 4.0 * col["d3_mm"] ** 2
-        d_tors = col["d3_mm"] if torsion_diameter == "minor" else (col["d2_mm"] + col["d3_mm"]) / 2.0
-        sigma_s = bolt_normal_stress_mpa(force, a_norm)
-        tau_s = bolt_torsion_stress_mpa(t_thread, d_tors)
-        eqv_s = von_mises_stress_mpa(sigma_s, tau_s)
-        torque = (t_thread + under_head_torque_nmm(force, dk, d_in, ex(mu_k))) / 1000.0
+        f_top, f_bottom, f_bolt, sigma_s, tau_s, eqv_s, torque, vdi = _thesis_joint(
+            ex(required), made, col, mu_gk, dk, d_in, ex(mu_k), torque_model, normal_stress_area, torsion_diameter)
     else:
-        tm = _vdi.tightening_method(tightening_method)
-        yield_set = tm["preload_set_by"] == "yield"
-        alpha = tm["alpha_a_max"] if alpha_a is None else float(_require(
-            "alpha_a", alpha_a, low=1.0, inclusive=True, accepted="a tightening factor >= 1"))
-        f_zul = permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"], col["rp02_mpa"], mu_gk,
-                                               utilisation=utilisation)
-        f_z = np.zeros(shape)
-        fz_um = 0.0
-        if embedding:
-            fz_um = embedding_um(embedding_roughness, embedding_loading, interfaces=clamped_interfaces,
-                                 joint_type=joint_type)
-            lk = ex(clamp_length_mm)
-            d_s = bolt_resilience_mm_per_n(col["d_mm"], col["d3_mm"], lk, head_type=head_type, joint_type=joint_type,
-                                           free_thread_length_mm=ex(free_thread_length_mm),
-                                           internal_thread_modulus_mpa=clamped_parts_modulus_mpa)
-            d_p = clamped_parts_resilience_mm_per_n(dw, d_in, ex(d_ext), lk, modulus_mpa=clamped_parts_modulus_mpa,
-                                                    joint_type=joint_type)
-            f_z = np.broadcast_to(embedding_preload_loss_n(fz_um, d_s, d_p), shape)
-        if yield_set:  # the bolt's own yield preload (nu = 1, Rp0.2 min): the window's bottom
-            f_min = np.broadcast_to(permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"],
-                                                                   col["rp02_mpa"], mu_gk, utilisation=1.0), shape)
-            limit = np.full(shape, np.inf)
-        else:
-            f_min = np.broadcast_to(ex(required) + f_z, shape)
-            limit = np.broadcast_to(f_zul, shape)
-        f_max = alpha * f_min
-        if made is None:
-            f_bottom, f_top, f_bolt = f_min, f_max, (f_min + f_max) / 2.0
-        else:
-            mf = ex(made)
-            f_bottom = np.where(np.isfinite(mf), mf, f_min)
-            f_top = np.where(np.isfinite(mf), mf, f_max)
-            f_bolt = np.where(np.isfinite(mf), mf, (f_min + f_max) / 2.0)
-        d0 = (col["d2_mm"] + col["d3_mm"]) / 2.0
-        thread_moment = f_top / 2.0 * (col["pitch_mm"] / np.pi + mu_gk * col["d2_mm"] /
-                                       np.cos(np.radians(constant("thread_flank_half_angle_deg"))))
-        sigma_s = f_top / (np.pi / 4.0 * d0**2)
-        tau_s = 12.0 * thread_moment / (np.pi * d0**3)  # plastic torsion section pi d0^3/12 (VDI R7)
-        eqv_s = von_mises_stress_mpa(sigma_s, tau_s)
-        torque = assembly_torque_nm(f_bolt, col["pitch_mm"], col["d2_mm"], mu_gk, head_mean_diameter_mm(dk, d_in),
-                                    ex(mu_k))
-        f_bottom = f_bottom - f_z
-        vdi = {"bolt_permissible_preload_n": limit, "bolt_required_preload_min_n": f_min,
-               "bolt_required_preload_max_n": f_top, "bolt_embedding_um": np.full(shape, fz_um),
-               "bolt_embedding_loss_n": f_z, "bolt_residual_clamp_force_n": f_bottom,
-               "tightening_factor": np.full(shape, alpha)}
+        f_top, f_bottom, f_bolt, sigma_s, tau_s, eqv_s, torque, vdi = _vdi2230_joint(
+            ex(required), made, col, mu_gk, dk, dw, d_in, ex(d_ext), ex(mu_k), shape, tightening_method=tightening_method,
+            alpha_a=alpha_a, utilisation=utilisation, embedding=embedding, clamp_length_mm=clamp_length_mm,
+            embedding_roughness=embedding_roughness, embedding_loading=embedding_loading,
+            clamped_interfaces=clamped_interfaces, joint_type=joint_type, head_type=head_type,
+            clamped_parts_modulus_mpa=clamped_parts_modulus_mpa, free_thread_length_mm=free_thread_length_mm)
     sf_t = tilting_safety_factor(np.maximum(f_bottom, 0.0), ex(hl), ex(lever), ex(d_ext), ex(d_int),
                                  ex(contact_angle_deg), model=contact_model)
     sf_s = sliding_safety_factor(np.maximum(f_bottom, 0.0), ex(hl), ex(mu_cc))
@@ -1067,3 +363,80 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     if not each:
         out = {key: v[..., 0] for key, v in out.items()}
     return out
+
+
+def _on_candidates(a):
+    """A design array on the candidates' (trailing) axis."""
+    return np.asarray(a, dtype=float)[..., None]
+
+
+def _thesis_joint(required, made, col, mu_gk, dk, d_in, mu_k, torque_model, normal_stress_area, torsion_diameter):
+    """The thesis path of :func:`fixation` (eq. (101)-(107)): the bolt tightened to exactly the required force
+    ``required`` (or a made joint's ``made`` preload where finite), judged by its elastic stresses. Arrays on the
+    candidates' axis; returns ``(F top, F bottom, F bolt, sigma, tau, sigma_eqv, torque [N m], {})``."""
+    force = required if made is None else np.where(np.isfinite(_on_candidates(made)), _on_candidates(made), required)
+    f_top = f_bottom = f_bolt = force
+    t_thread = thread_torque_nmm(force, col["pitch_mm"], col["d2_mm"], mu_gk, model=torque_model)
+    a_norm = col["stress_area_mm2"] if normal_stress_area == "stress" else np.pi / 4.0 * col["d3_mm"] ** 2
+    d_tors = col["d3_mm"] if torsion_diameter == "minor" else (col["d2_mm"] + col["d3_mm"]) / 2.0
+    sigma_s = bolt_normal_stress_mpa(force, a_norm)
+    tau_s = bolt_torsion_stress_mpa(t_thread, d_tors)
+    eqv_s = von_mises_stress_mpa(sigma_s, tau_s)
+    torque = (t_thread + under_head_torque_nmm(force, dk, d_in, mu_k)) / 1000.0
+    return f_top, f_bottom, f_bolt, sigma_s, tau_s, eqv_s, torque, {}
+
+
+def _vdi2230_joint(required, made, col, mu_gk, dk, dw, d_in, d_ext, mu_k, shape, *, tightening_method, alpha_a,
+                   utilisation, embedding, clamp_length_mm, embedding_roughness, embedding_loading,
+                   clamped_interfaces, joint_type, head_type, clamped_parts_modulus_mpa, free_thread_length_mm):
+    """The VDI 2230 path of :func:`fixation` (Part 1, R4-R13): the made joint of a tightening method, its preload
+    window sized to the requirement ``required`` (or the bolt's yield preload), the embedding loss, the stresses at
+    the window's top. Arrays on the candidates' axis; returns ``(F top, F bottom, F bolt, sigma, tau, sigma_eqv,
+    torque [N m], the VDI values)``."""
+    tm = _vdi.tightening_method(tightening_method)
+    yield_set = tm["preload_set_by"] == "yield"
+    alpha = tm["alpha_a_max"] if alpha_a is None else float(_require(
+        "alpha_a", alpha_a, low=1.0, inclusive=True, accepted="a tightening factor >= 1"))
+    f_zul = permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"], col["rp02_mpa"], mu_gk,
+                                           utilisation=utilisation)
+    f_z = np.zeros(shape)
+    fz_um = 0.0
+    if embedding:
+        fz_um = embedding_um(embedding_roughness, embedding_loading, interfaces=clamped_interfaces,
+                             joint_type=joint_type)
+        lk = _on_candidates(clamp_length_mm)
+        d_s = bolt_resilience_mm_per_n(col["d_mm"], col["d3_mm"], lk, head_type=head_type, joint_type=joint_type,
+                                       free_thread_length_mm=_on_candidates(free_thread_length_mm),
+                                       internal_thread_modulus_mpa=clamped_parts_modulus_mpa)
+        d_p = clamped_parts_resilience_mm_per_n(dw, d_in, d_ext, lk, modulus_mpa=clamped_parts_modulus_mpa,
+                                                joint_type=joint_type)
+        f_z = np.broadcast_to(embedding_preload_loss_n(fz_um, d_s, d_p), shape)
+    if yield_set:  # the bolt's own yield preload (nu = 1, Rp0.2 min): the window's bottom
+        f_min = np.broadcast_to(permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"],
+                                                               col["rp02_mpa"], mu_gk, utilisation=1.0), shape)
+        limit = np.full(shape, np.inf)
+    else:
+        f_min = np.broadcast_to(required + f_z, shape)
+        limit = np.broadcast_to(f_zul, shape)
+    f_max = alpha * f_min
+    if made is None:
+        f_bottom, f_top, f_bolt = f_min, f_max, (f_min + f_max) / 2.0
+    else:
+        mf = _on_candidates(made)
+        f_bottom = np.where(np.isfinite(mf), mf, f_min)
+        f_top = np.where(np.isfinite(mf), mf, f_max)
+        f_bolt = np.where(np.isfinite(mf), mf, (f_min + f_max) / 2.0)
+    d0 = (col["d2_mm"] + col["d3_mm"]) / 2.0
+    thread_moment = f_top / 2.0 * (col["pitch_mm"] / np.pi + mu_gk * col["d2_mm"] /
+                                   np.cos(np.radians(constant("thread_flank_half_angle_deg"))))
+    sigma_s = f_top / (np.pi / 4.0 * d0**2)
+    tau_s = 12.0 * thread_moment / (np.pi * d0**3)  # plastic torsion section pi d0^3/12 (VDI R7)
+    eqv_s = von_mises_stress_mpa(sigma_s, tau_s)
+    torque = assembly_torque_nm(f_bolt, col["pitch_mm"], col["d2_mm"], mu_gk, head_mean_diameter_mm(dk, d_in),
+                                mu_k)
+    f_bottom = f_bottom - f_z
+    vdi = {"bolt_permissible_preload_n": limit, "bolt_required_preload_min_n": f_min,
+           "bolt_required_preload_max_n": f_top, "bolt_embedding_um": np.full(shape, fz_um),
+           "bolt_embedding_loss_n": f_z, "bolt_residual_clamp_force_n": f_bottom,
+           "tightening_factor": np.full(shape, alpha)}
+    return f_top, f_bottom, f_bolt, sigma_s, tau_s, eqv_s, torque, vdi

@@ -61,7 +61,8 @@ from synth.optimise.product import evaluate
 from synth.optimise.objectives import TIE, Objective
 from synth.optimise.answer import build_result, design_margin
 
-__all__ = ["ranked", "signature", "distinct_keys", "near_key", "MAX_TOP", "NEAR_POOL", "DISTINCT_KEYS", "DIMENSION_KEYS"]
+__all__ = ["ranked", "signature", "distinct_keys", "near_key", "MAX_TOP", "NEAR_POOL", "DISTINCT_KEYS", "DIMENSION_KEYS",
+           "best_combinations"]
 
 #: the largest --top K (each alternative is verified alone)
 MAX_TOP = 50
@@ -116,7 +117,7 @@ def _representatives(f: np.ndarray, order_keys: tuple, codes: np.ndarray, k: int
     return order[np.sort(first)[:k]]
 
 
-def _best(lists: list, k: int, combine, reverse: bool) -> list:
+def best_combinations(lists: list, k: int, combine, reverse: bool) -> list:
     """The ``k`` best combinations of one item per list (``(value, index)`` items; ``combine`` of two values),
     merged pairwise; returns ``(value, (index, ...))``."""
     acc = [(v, (i,)) for v, i in lists[0]]
@@ -159,8 +160,8 @@ def _pool(ev, weights: dict, k: int, keys: tuple, codes: dict, near: bool = Fals
             topm = _representatives(f, (sc[f], -mg[f]), codes[s], k)
             mlists.append([((float(mg[o]), float(sc[o])), int(o)) for o in topm])
         if not near:
-            by_score += _best(lists, k, lambda a, b: (a[0] + b[0], max(a[1], b[1])), False)
-        by_margin += _best(mlists, k, lambda a, b: (min(a[0], b[0]), a[1] + b[1]), True)
+            by_score += best_combinations(lists, k, lambda a, b: (a[0] + b[0], max(a[1], b[1])), False)
+        by_margin += best_combinations(mlists, k, lambda a, b: (min(a[0], b[0]), a[1] + b[1]), True)
     core_code = _codes(ev.space, "core", keys)[ev.cores]
 
     def first_distinct(items, key):  # the k best of distinct codes (cores may share the distinct keys)

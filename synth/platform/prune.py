@@ -201,29 +201,29 @@ def _unique_ints(x: np.ndarray, bound: int) -> tuple[np.ndarray, np.ndarray]:
 
 def _token_bits(part: np.ndarray, tok: np.ndarray, n_parts: int, n_tok: int) -> np.ndarray:
     """``(n_parts, ceil(n_tok / 64))`` bit sets: bit ``tok`` of row ``part`` set for each pair (compiled:
-    :func:`synth.kernels._bitsets_jit.set_bits`).
+    :func:`synth.kernels.bitsets.set_bits`).
 
     >>> _token_bits(np.array([0, 1, 0]), np.array([3, 64, 0]), 2, 65).tolist()
     [[9, 0], [0, 1]]
     """
-    from synth.kernels import _bitsets_jit
+    from synth.kernels import bitsets
     bits = np.zeros((n_parts, (n_tok + 63) // 64), np.uint64)
-    _bitsets_jit.set_bits(np.ascontiguousarray(part, np.int64), np.ascontiguousarray(tok, np.int64), bits)
+    bitsets.set_bits(np.ascontiguousarray(part, np.int64), np.ascontiguousarray(tok, np.int64), bits)
     return bits
 
 
 def _subsets(bits: np.ndarray, pj: np.ndarray, pk: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The pairs ``(pj, pk)`` whose bit set ``bits[pj]`` lies inside ``bits[pk]``, in their order (compiled, each pair
-    stopping at the first word that refutes it: :func:`synth.kernels._bitsets_jit.subset_pairs`).
+    stopping at the first word that refutes it: :func:`synth.kernels.bitsets.subset_pairs`).
 
     >>> b = np.array([[1, 2], [3, 2], [1, 0]], np.uint64)
     >>> [x.tolist() for x in _subsets(b, np.array([0, 0, 2, 1]), np.array([1, 2, 0, 0]))]
     [[0, 2], [1, 0]]
     """
-    from synth.kernels import _bitsets_jit
+    from synth.kernels import bitsets
     ok = np.empty(len(pj), bool)
-    _bitsets_jit.subset_pairs(np.ascontiguousarray(bits), np.ascontiguousarray(pj, np.int64),
-                              np.ascontiguousarray(pk, np.int64), ok)
+    bitsets.subset_pairs(np.ascontiguousarray(bits), np.ascontiguousarray(pj, np.int64),
+                         np.ascontiguousarray(pk, np.int64), ok)
     return pj[ok], pk[ok]
 
 

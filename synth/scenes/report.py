@@ -14,18 +14,17 @@ printed page; ``--platform`` adds a platform-rationalisation section.
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
-from synth import schema, flowchart
-from synth.io import documents
+from synth import flowchart
 from synth.errors import InputError, Problem
-from synth.scenes._options import add_design_options, add_robust_options, default_args, load_saved_result, synthesise
+from synth.scenes._options import add_design_options, add_robust_options, default_args, synthesise
 from synth.scenes.design import with_cost
 from synth.io.documents import read_rows
 from synth.design.result import Result
 from synth.report.document import reverified, write_files
+from synth.report.source import is_result_file, read_source
 from synth.report.text import verdict_line
 from synth.scenes._options import robust_settings_from_args
 from synth.scenes._options import rules_of, settings_from_args
@@ -69,39 +68,15 @@ def out_folder(path, option: str = "--out") -> Path:
     return p
 
 
-def is_result_file(path: Path) -> bool:
-    """Whether ``path`` is a saved result (a ``.json`` mapping of kind ``synth.result``), not an input."""
-    if path.suffix.lower() != ".json" or not path.is_file():
-        return False
-    try:
-        return isinstance(json.loads(path.read_text(encoding="utf-8")), dict) and \
-            json.loads(path.read_text(encoding="utf-8")).get("kind") == "synth.result"
-    except (OSError, ValueError, UnicodeDecodeError):
-        return False
-
-
 def result_for_report(source, args=None):
-    """``(result, cells, source name)`` of an input file, a saved result file or a :class:`Result`."""
-    if isinstance(source, Result):
-        res, cells, name = source, None, "result"
-    else:
-        src = Path(source)
-        cells = None
-        if is_result_file(src):
-            res, name = load_saved_result(src, "input"), str(src)
-        else:
-            data = documents.read_mapping(src)
-            if src.suffix.lower() in (".xlsx", ".xlsm"):
-                from synth.excel.reader import read_cells
-                cells = read_cells(src)[1]
-            d = schema.validate(data)
-            name = str(src)
-            if args is not None and getattr(args, "flowchart", False):
-                return flowchart.run(d, settings_from_args(args)), cells, name
-            res = with_cost(d, args or default_args(), synthesise)
+    """``(result, cells, source name)`` of an input file, a saved result file or a :class:`Result`
+    (:func:`synth.report.source.read_source`): an input synthesised as ``synth design`` does with the options of
+    ``args`` (with its price lines), or with ``--flowchart`` by the thesis procedure (reported as it is)."""
+    if args is not None and getattr(args, "flowchart", False) and not isinstance(source, Result) \
+            and not is_result_file(Path(source)):
+        return read_source(source, lambda d: flowchart.run(d, settings_from_args(args)))
+    res, cells, name = read_source(source, lambda d: with_cost(d, args or default_args(), synthesise))
     return reverified(res, rules_of(args) if args is not None else None, name), cells, name  # --rules: a result's
-
-
 
 
 def make_report(source, out_dir, args=None, *, scenes: dict | None = None, cad: list | None = None,
