@@ -483,7 +483,7 @@ class DesignPage:
         if r is None or key == self.graphs_key:
             return
         self.graphs_key = key
-        graphs, skipped = await worker.lane("design").call("graphs", r, key, coalesce=f"graphs-{id(self)}")
+        graphs, skipped = await worker.lane("design").call("graphs", r, coalesce=f"graphs-{id(self)}")
         if key != self.result_key():
             return
         self.graphs.clear()
@@ -623,13 +623,15 @@ class DesignPage:
 
     async def report(self, pdf: bool) -> dict:
         """The report of the result in view (the ``design`` worker: :func:`synth.ui.work.report`), with the 3D
-        model's pictures when CadQuery can draw them (the ``cad`` worker, at the same time); once per result."""
+        model's pictures when CadQuery can draw them (the ``cad`` worker, at the same time: the pictures only, not the
+        geometric checks the 3D tab shows); once per result in this page, and its PDF once per document in the
+        worker (a design edited and back is not printed again)."""
         r, key = self.s.result, self.result_key()
         hit = self._reports.get((key, pdf)) or (self._reports.get((key, True)) if not pdf else None)
         if hit is not None:
             return hit
-        pictures = worker.lane("cad").submit("model_details", r, str(self.root))
-        graphs = worker.lane("design").submit("graphs", r, key)  # drawn while the pictures are
+        pictures = worker.lane("cad").submit("pictures", r, str(self.root))
+        graphs = worker.lane("design").submit("graphs", r)  # drawn while the pictures are
         try:
             det = await pictures
             shown = (det["section"], det["exploded"])
@@ -637,7 +639,7 @@ class DesignPage:
             shown = ()
         await graphs
         folder = self.s.workdir / f"report-{key}{'-pdf' if pdf else ''}"
-        files = await worker.lane("design").call("report", r, key, str(folder), pdf=pdf, source=self.s.source,
+        files = await worker.lane("design").call("report", r, str(folder), pdf=pdf, source=self.s.source,
                                                  pictures=shown, root=str(self.root))
         self._reports[(key, pdf)] = files
         return files
