@@ -45,6 +45,7 @@ def counted(monkeypatch):
     monkeypatch.setattr(synth.ui.printer, "print_pdf", print_pdf)
     monkeypatch.setattr(work, "_GRAPHS", type(work._GRAPHS)())
     monkeypatch.setattr(work, "_PDFS", type(work._PDFS)())
+    monkeypatch.setattr(work, "_DOCS", type(work._DOCS)())
     return calls
 
 
@@ -73,11 +74,14 @@ def test_a_second_pdf_of_the_same_design_is_the_first_print_and_an_edit_prints_a
     first = work.report(_verified(parts), str(tmp_path / "a"), pdf=True, source="default", root=str(tmp_path))
     again = work.report(_verified(parts), str(tmp_path / "b"), pdf=True, source="default", root=str(tmp_path))
     assert first["printed"] and not again["printed"] and counted["prints"] == 1
-    assert again["document"] == first["document"]
+    assert again == {**first, "printed": False, "timings_s": again["timings_s"]}  # the files made before
+    work._DOCS.clear()  # made anew (another minute: another date), the same document: not printed again
+    anew = work.report(_verified(parts), str(tmp_path / "b"), pdf=True, source="default", root=str(tmp_path))
+    assert not anew["printed"] and counted["prints"] == 1 and anew["document"] == first["document"]
     # the second download is the first document, dated as it was printed: its HTML and its PDF
-    assert Path(again["pdf"]).read_bytes() == Path(first["pdf"]).read_bytes()
-    assert Path(again["html"]).read_text(encoding="utf-8") == Path(first["html"]).read_text(encoding="utf-8")
-    assert "2030-01-01 10:00 UTC" in Path(again["html"]).read_text(encoding="utf-8")
+    assert Path(anew["pdf"]).read_bytes() == Path(first["pdf"]).read_bytes()
+    assert Path(anew["html"]).read_text(encoding="utf-8") == Path(first["html"]).read_text(encoding="utf-8")
+    assert "2030-01-01 10:00 UTC" in Path(anew["html"]).read_text(encoding="utf-8")
 
     edited = work.report(_verified(parts, **{EDIT: 390.0}), str(tmp_path / "c"), pdf=True, source="default",
                          root=str(tmp_path))

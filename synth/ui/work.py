@@ -10,7 +10,8 @@ its process:
 * the **graphs** of a result by the result's hash (:func:`result_key`: its pickled bytes, so every input, part,
   rule, setting, curve and capability study it holds; an edit and back finds them again), shared by the Graphs
   tab and the report;
-* the **report's PDF** by the document's hash (:func:`report`: the SHA-256 of the self-contained HTML, which embeds
+* the **report** by what it is made from (the result's hash, the source's name, the 3D pictures), and its PDF
+  by the document's hash (:func:`report`: the SHA-256 of the self-contained HTML, which embeds
   every graph and picture, with its date taken out): a second download of the same document is the first one's
   file; anything that changes a line of the report (an input, a rule, a setting, a catalog value the result
   carries, the application's name) changes the hash and prints it anew.
@@ -43,7 +44,8 @@ LABEL_FIELDS = ("name", "status", "feasible", "verdict")
 _MODELS: collections.OrderedDict = collections.OrderedDict()   # model key -> TensionerModel
 _CHECKS: collections.OrderedDict = collections.OrderedDict()   # model key -> [check dicts]
 _GRAPHS: collections.OrderedDict = collections.OrderedDict()   # result key -> (graphs, skipped)
-_PDFS: collections.OrderedDict = collections.OrderedDict()     # document key -> {"html", "pdf"} of its first print
+_DOCS: collections.OrderedDict = collections.OrderedDict()     # what a report is made from -> its files
+_PDFS: collections.OrderedDict = collections.OrderedDict()     # document key -> {"pdf", "date"} of its first print
 
 
 def _keep(cache: collections.OrderedDict, key, value):
@@ -231,50 +233,75 @@ def document_key(html_text: str, date: str) -> str:
     return hashlib.sha256(html_text.replace(date, "").encode("utf-8")).hexdigest()[:24]
 
 
+def _made_from(result, source: str, pictures: tuple) -> str:
+    """What a report is made from: the result (:func:`result_key`), the source's name and the file it names (the
+    document block shows its SHA-256), and the 3D pictures' bytes."""
+    from synth.fingerprint import file_sha256
+    src = Path(source) if source else None
+    return _hash(result_key(result), source, file_sha256(src) if src is not None and src.is_file() else "",
+                 *(hashlib.sha256(Path(p).read_bytes()).hexdigest() for p in pictures))
+
+
 def report(result, folder: str, *, pdf: bool, source: str = "", pictures: tuple = (),
            root: str | None = None) -> dict:
     """The report of ``result`` into ``folder`` (``synth report``'s HTML and results workbook, with the graphs of
     :func:`graphs` and the 3D model's ``pictures``), and with ``pdf`` its PDF (:func:`synth.ui.printer.print_pdf`):
     ``{"html", "xlsx", "pdf", "pdf_note", "document", "printed", "timings_s"}``.
 
-    The PDF of a document printed before (:func:`document_key`) is that print, with the HTML it was printed from
-    (the same document, dated when it was first made): ``printed`` says whether this call printed."""
-    from synth.report.document import reverified, write_files
-    from synth.report.html import document_date
+    Made once per result, source and pictures (:func:`_made_from`: the files of an earlier call are returned), and
+    printed once per document (:func:`document_key`: the PDF of a document printed before is that print, and its
+    HTML the one it was printed from, dated when it was first made); ``printed`` says whether this call printed."""
+    import shutil
     t0 = time.perf_counter()
-    drawn = graphs(result)
+    pictures = tuple(p for p in pictures if Path(p).is_file())
+    made_from = _made_from(result, source, pictures)
+    made = _DOCS.get(made_from)
+    if made is not None and all(Path(made[k]).is_file() for k in ("html", "xlsx")):
+        _DOCS.move_to_end(made_from)
+    else:
+        made = _keep(_DOCS, made_from, _write_report(result, folder, source, pictures))
     t1 = time.perf_counter()
-    date = document_date()
-    out = write_files(reverified(result), folder, cad=[p for p in pictures if Path(p).is_file()], graphs=drawn,
-                      pdf=False, show_progress=False, cad_pictures=False, name=source or "result", date=date)
-    html_path = Path(out["html"])
-    text = html_path.read_text(encoding="utf-8")
-    doc = document_key(text, date)
-    t2 = time.perf_counter()
-    files = {"html": str(html_path), "xlsx": str(out["xlsx"]), "pdf": None, "pdf_note": "not asked for",
-             "document": doc, "printed": False}
+    files = {"html": made["html"], "xlsx": made["xlsx"], "pdf": None, "pdf_note": "not asked for",
+             "document": made["document"], "printed": False}
     if pdf:
-        import shutil
+        doc, html_path = made["document"], Path(made["html"])
+        path = html_path.with_suffix(".pdf")
         hit = _PDFS.get(doc)
         if hit is not None and Path(hit["pdf"]).is_file():
             _PDFS.move_to_end(doc)
-            path = html_path.with_suffix(".pdf")
-            if hit["date"] != date:  # the HTML as it was printed: the same document, dated as its PDF
-                html_path.write_text(text.replace(date, hit["date"]), encoding="utf-8")
-            if Path(hit["pdf"]).resolve() != path.resolve():
+            if not path.is_file():
                 shutil.copyfile(hit["pdf"], path)
             files["pdf"], files["pdf_note"] = str(path), ""
         else:
             from synth.ui.printer import print_pdf
-            path, _, note = print_pdf(html_path, folder=root)
-            files["pdf"], files["pdf_note"], files["printed"] = (str(path) if path else None), note, True
-            if path:  # a copy of its own: the folder it was printed in is written again by the next report
+            printed, _, note = print_pdf(html_path, folder=root)
+            files["pdf"], files["pdf_note"], files["printed"] = (str(printed) if printed else None), note, True
+            if printed:  # a copy of its own: the folder it was printed in may be written again
                 kept = Path(root or html_path.parent) / "documents" / f"{doc}.pdf"
                 kept.parent.mkdir(parents=True, exist_ok=True)
-                shutil.copyfile(path, kept)
-                _keep(_PDFS, doc, {"pdf": str(kept), "date": date})
-    files["timings_s"] = {"graphs": t1 - t0, "html_and_workbook": t2 - t1, "pdf": time.perf_counter() - t2}
+                shutil.copyfile(printed, kept)
+                _keep(_PDFS, doc, {"pdf": str(kept), "date": made["date"]})
+    files["timings_s"] = {"html_and_workbook": t1 - t0, "pdf": time.perf_counter() - t1}
     return files
+
+
+def _write_report(result, folder: str, source: str, pictures: tuple) -> dict:
+    """Write the HTML and the workbook: ``{"html", "xlsx", "document", "date"}``; a document printed before keeps
+    the date it was printed with (its HTML then is the one printed)."""
+    from synth.report.document import reverified, write_files
+    from synth.report.html import document_date
+    drawn = graphs(result)
+    date = document_date()
+    out = write_files(reverified(result), folder, cad=list(pictures), graphs=drawn, pdf=False, show_progress=False,
+                      cad_pictures=False, name=source or "result", date=date)
+    html_path = Path(out["html"])
+    text = html_path.read_text(encoding="utf-8")
+    doc = document_key(text, date)
+    hit = _PDFS.get(doc)
+    if hit is not None and hit["date"] != date:  # the HTML as it was printed: the same document, dated as its PDF
+        html_path.write_text(text.replace(date, hit["date"]), encoding="utf-8")
+        date = hit["date"]
+    return {"html": str(html_path), "xlsx": str(out["xlsx"]), "document": doc, "date": date}
 
 
 def capability(result, target: float | None, ppm: float | None):
