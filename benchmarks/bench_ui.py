@@ -177,9 +177,19 @@ ROWS = (("edit_support", "edit to checks, 3D open, geometry kept (support streng
         ("pdf_after_edit", "PDF download after an edit (a new document: drawn and printed) [s]", "s", ""))
 
 
+def _uptime() -> str:
+    import subprocess
+    try:
+        return subprocess.run(["uptime"], capture_output=True, text=True, timeout=5).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return "load average %.2f, %.2f, %.2f" % os.getloadavg()
+
+
 def _p90(xs: list[float]) -> float:
+    """The 90th percentile, nearest rank (of 2 values the larger)."""
+    import math
     xs = sorted(xs)
-    return xs[int(0.9 * (len(xs) - 1))]
+    return xs[max(0, math.ceil(0.9 * len(xs)) - 1)]
 
 
 def _cell(xs: list[float] | None, unit: str) -> str:
@@ -209,6 +219,7 @@ def main(argv: list[str] | None = None) -> int:
     from playwright.sync_api import sync_playwright
     trees = [Tree(Path(t).resolve()) for t in (a.tree or [str(ROOT)])]
     load0 = os.getloadavg()
+    print("uptime before:", _uptime())
     with sync_playwright() as p:
         browser = launch_chromium(p, chromium)
         for _ in range(a.rounds):  # the trees in turn, so that a change of the machine's load hits each alike
@@ -216,6 +227,7 @@ def main(argv: list[str] | None = None) -> int:
                 measure(tree, browser, a.starts, a.edits, a.only_cold)
         browser.close()
     load1 = os.getloadavg()
+    print("uptime after: ", _uptime())
     print(f"synth ui on this machine ({os.cpu_count()} cores, shared); load average {load0[0]:.1f} before, "
           f"{load1[0]:.1f} after; {a.starts} cold starts after a warm-up, {a.edits} edits of each kind.\n")
     print("| measurement | " + " | ".join(t.path.name for t in trees) + " | target |")
