@@ -12,7 +12,7 @@ import socket
 import pytest
 
 import synth
-from synth import catalog, schema
+from synth import catalog, formatting as fmt, schema
 from synth.cli import main
 from synth.design.result import Check, Result
 from synth.report.palette import VERDICT_FILLS
@@ -238,7 +238,8 @@ def test_the_table_says_what_binds_in_words_and_margins_in_percent():
     assert labels["binding_margin"] == "its margin [%]" and labels["binding_constraint"] == "what binds"
     for row, (cid, m) in zip(p.rows(), zip(p.results["binding_constraint"], p.results["binding_margin"])):
         assert row["binding_constraint"] == REGISTRY[cid].label
-        assert row["binding_margin"] == round(100 * m, 1)
+        assert row["binding_margin"] == fmt.percent(m) and row["binding_margin_value"] == m  # as the design page
+    assert ":sort" in next(c for c in p.columns() if c["name"] == "binding_margin")  # by the number, not the text
 
 
 def test_a_portfolio_writes_every_file_the_page_names(tmp_path):

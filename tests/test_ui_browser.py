@@ -166,6 +166,13 @@ def test_a_200_application_portfolio_screens_to_the_apis_feasible_share(page, tm
     assert shown.inner_text().startswith(f"feasible share: {share:.1f} % ")
     pg.get_by_text("200 of 200 applications").wait_for()
     pg.locator(".synth-ui [_echarts_instance_]").first.wait_for()  # the summary's charts (ECharts, drawn in the page)
+    # the margin column (synth.formatting.percent's text) sorts by the number, not the text: "+12.0 %" after "+9.0 %"
+    pg.get_by_role("columnheader", name="its margin [%]").click()
+    heads = pg.locator("thead th").all_inner_texts()
+    col = next(i for i, h in enumerate(heads) if "its margin [%]" in h)
+    texts = pg.locator("tbody tr").evaluate_all(f"rows => rows.map(r => r.cells[{col}].innerText)")
+    shown = [float(t.replace("%", "").replace("+", "").strip()) for t in texts if t.strip() not in ("", "-")]
+    assert len(shown) >= 5 and shown == sorted(shown)
     pg.locator("input[aria-label='filter the table']").fill("APP-00007")
     pg.locator("tbody tr", has_text="APP-00007").first.click()  # opens on the design page
     pg.wait_for_url(re.compile(r"/\?open="))

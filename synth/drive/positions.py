@@ -58,7 +58,6 @@ from __future__ import annotations
 from functools import lru_cache
 
 import numpy as np
-from scipy.optimize import brentq
 
 from synth.drive import layout as geo
 from synth.drive.belt import elongation_mm
@@ -182,6 +181,7 @@ def nominal_angle_deg(pulleys, ten, belt) -> dict:
     if not len(j):
         raise InputError(Problem("belt.length_mm", length, "a belt the arm can tension before its installation "
                                  "stop (or before the belt leaves the pulley): a longer belt"))
+    from scipy.optimize import brentq  # here: a design without a drive never loads scipy.optimize
     rel = brentq(gap, grid[j[0] - 1], grid[j[0]], xtol=1e-10)
     return {"arm_angle_deg": free + s * rel, "nominal_torque_nm": ten["preload_nm"] + k * rel, "sense": s}
 
@@ -279,6 +279,7 @@ def _solve(fr, ten, s, psi, grid, target, name):
     if j == first:
         phi = ten.arm_angle_deg + s * psi[j]
     else:
+        from scipy.optimize import brentq
         phi = ten.arm_angle_deg + s * brentq(
             lambda p: float(arm_state(fr, ten.arm_angle_deg + s * p)["drive_length_mm"][0]) - target,
             psi[j - 1], psi[j], xtol=1e-10)

@@ -43,10 +43,12 @@ def reverified(res: Result, given=None, name: str = "result") -> Result:
 def write_files(result: Result, out_dir, *, cells=None, name: str = "result", scenes: dict | None = None,
                 cad: list | None = None, show_progress: bool = True, cad_pictures: bool = True, pdf: bool = True,
                 author: str = "", revision: str = "", page: str = "landscape", platform=None,
-                application: str | None = None, robust=None, graphs: tuple | None = None) -> dict:
+                application: str | None = None, robust=None, graphs: tuple | None = None,
+                date: str | None = None) -> dict:
     """Write ``report.html``, ``report.pdf`` and ``results.xlsx`` of ``result`` (:func:`reverified`) into
     ``out_dir``: the keywords are :func:`synth.scenes.report.make_report`'s, ``cells`` the input workbook's cells
-    (echoed) and ``name`` the source's name (the document block names it and its SHA-256)."""
+    (echoed), ``name`` the source's name (the document block names it and its SHA-256) and ``date`` the document's
+    date (default: now, :func:`synth.report.html.document_date`)."""
     from synth.excel.results_workbook import write_results
     if robust is not None and result.parts:
         add_capability(result, robust)
@@ -74,7 +76,7 @@ def write_files(result: Result, out_dir, *, cells=None, name: str = "result", sc
             graphs, skipped = [*graphs[0], *cad_graphs(pictures)], list(graphs[1])
         html_path = write_html(out / "report.html", result, graphs, skipped, source=name, scenes=scenes,
                                author=author, revision=revision, page=page, platform=platform, cad_note=cad_note,
-                               application=application)
+                               application=application, date=date)
         pdf_path, pdf_note = None, "not asked for"
         if pdf:
             pdf_path, _, pdf_note = write_pdf(html_path)

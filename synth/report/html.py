@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import base64
 import datetime as _dt
+import functools
 import hashlib
 import json
 import os
@@ -66,7 +67,7 @@ from synth.report import cost as cost_words
 from synth.report.robust import robust_section
 from synth.io.outputs import write_text
 
-__all__ = ["render_html", "write_html", "digest_html", "metadata", "settings_in_words", "platform_section",
+__all__ = ["render_html", "write_html", "digest_html", "metadata", "document_date", "settings_in_words", "platform_section",
            "VERDICT_COLOURS", "verdict_class", "css_string", "check_steps", "check_row", "part_label", "derivation_rows",
            "listed_skips"]
 
@@ -154,6 +155,11 @@ def _now() -> _dt.datetime:
     return _dt.datetime.now().astimezone()
 
 
+def document_date() -> str:
+    """The date a document made now carries (minutes; ``SOURCE_DATE_EPOCH`` when set)."""
+    return _now().strftime("%Y-%m-%d %H:%M %Z").strip()
+
+
 def metadata(result, source=None, *, author: str = "", revision: str = "", date: str | None = None,
              catalog_dirs=()) -> dict:
     """The document block: synth version and catalog hash, input file and SHA-256, inputs hash, date, author, revision.
@@ -169,7 +175,7 @@ def metadata(result, source=None, *, author: str = "", revision: str = "", date:
         "input_sha256": file_sha256(src) if src and src.is_file() else "-",
         "inputs_sha256": hashlib.sha256(json.dumps(inputs, sort_keys=True, default=str).encode()).hexdigest()
         if inputs else "-",
-        "date": date or _now().strftime("%Y-%m-%d %H:%M %Z").strip(),
+        "date": date or document_date(),
         "author": author or "", "revision": revision or "",
     }
 
@@ -258,7 +264,10 @@ def digest_context(result) -> dict:
             "assumed": result.assumptions(), "diagnosis": _diagnosis(result)}
 
 
+@functools.lru_cache(maxsize=1)
 def _environment():
+    """The report's Jinja environment, made once per process: it keeps the compiled templates (an edit in ``synth ui``
+    renders the digest again; compiling it each time was half of that)."""
     import jinja2
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(_TEMPLATES)), autoescape=True,
                              undefined=jinja2.StrictUndefined, trim_blocks=False, lstrip_blocks=False)
@@ -266,11 +275,15 @@ def _environment():
     return env
 
 
+@functools.lru_cache(maxsize=1)
+def _digest_template():
+    return _environment().from_string('{% from "digest.html.j2" import digest %}<div class="synth">{{ digest(d) }}'
+                                      '</div>')
+
+
 def digest_html(result) -> str:
     """The digest alone, with its own styles (``Result._repr_html_``: a notebook shows it)."""
-    env = _environment()
-    tpl = env.from_string('{% from "digest.html.j2" import digest %}<div class="synth">{{ digest(d) }}</div>')
-    return f"<style>{_CSS}</style>" + tpl.render(d=digest_context(result))
+    return f"<style>{_CSS}</style>" + _digest_template().render(d=digest_context(result))
 
 
 def _output_rows(result) -> list:

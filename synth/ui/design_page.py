@@ -15,6 +15,7 @@ shows the design as it was left.
 
 from __future__ import annotations
 
+import asyncio
 import html
 from pathlib import Path
 
@@ -47,6 +48,8 @@ SCENE_W, SCENE_H = 860, 540
 FPS_ACTIVE, FPS_REST, FPS_HIDDEN = 20, 2, 0.5
 #: seconds the view keeps its full rate after the last turn or zoom
 AWAKE_S = 3.0
+#: seconds the 3D view's update waits after an edit, so that the edit's checks leave the server first
+CHECKS_FIRST_S = 0.05
 
 
 class DesignPage:
@@ -269,7 +272,7 @@ class DesignPage:
         if self.tab == GRAPHS:  # drawn for the tab in view only: an edit stays a 5 ms round trip
             in_page(self.graphs, self.draw_graphs)
         elif self.tab == MODEL:
-            in_page(self.model_note, self.draw_model)
+            in_page(self.model_note, self.redraw_model)
         elif self.tab == WHATIF and self.sweep_field.value and self.sweep_note.text:
             self.sweep_note.text = "the design changed: run the sweep again for this one"
 
@@ -483,7 +486,7 @@ class DesignPage:
         if r is None or key == self.graphs_key:
             return
         self.graphs_key = key
-        graphs, skipped = await worker.lane("design").call("graphs", r, key, coalesce=f"graphs-{id(self)}")
+        graphs, skipped = await worker.lane("design").call("graphs", r, coalesce=f"graphs-{id(self)}")
         if key != self.result_key():
             return
         self.graphs.clear()
@@ -519,6 +522,12 @@ class DesignPage:
         from synth.cad.dimensions import geometry_from
         from synth.ui.work import model_key
         return model_key(geometry_from(self.s.result))
+
+    async def redraw_model(self) -> None:
+        """:meth:`draw_model` after a new result, once the page has its checks: the design's hash (its geometry,
+        20 to 40 ms of this process on a loaded machine) and the worker's answer come after them, never before."""
+        await asyncio.sleep(CHECKS_FIRST_S)
+        await self.draw_model()
 
     async def draw_model(self) -> None:
         """The 3D view of the design in view: its STL parts (built once per design's hash, by the ``cad`` worker),
@@ -623,13 +632,15 @@ class DesignPage:
 
     async def report(self, pdf: bool) -> dict:
         """The report of the result in view (the ``design`` worker: :func:`synth.ui.work.report`), with the 3D
-        model's pictures when CadQuery can draw them (the ``cad`` worker, at the same time); once per result."""
+        model's pictures when CadQuery can draw them (the ``cad`` worker, at the same time: the pictures only, not the
+        geometric checks the 3D tab shows); once per result in this page, and its PDF once per document in the
+        worker (a design edited and back is not printed again)."""
         r, key = self.s.result, self.result_key()
         hit = self._reports.get((key, pdf)) or (self._reports.get((key, True)) if not pdf else None)
         if hit is not None:
             return hit
-        pictures = worker.lane("cad").submit("model_details", r, str(self.root))
-        graphs = worker.lane("design").submit("graphs", r, key)  # drawn while the pictures are
+        pictures = worker.lane("cad").submit("pictures", r, str(self.root))
+        graphs = worker.lane("design").submit("graphs", r)  # drawn while the pictures are
         try:
             det = await pictures
             shown = (det["section"], det["exploded"])
@@ -637,7 +648,7 @@ class DesignPage:
             shown = ()
         await graphs
         folder = self.s.workdir / f"report-{key}{'-pdf' if pdf else ''}"
-        files = await worker.lane("design").call("report", r, key, str(folder), pdf=pdf, source=self.s.source,
+        files = await worker.lane("design").call("report", r, str(folder), pdf=pdf, source=self.s.source,
                                                  pictures=shown, root=str(self.root))
         self._reports[(key, pdf)] = files
         return files

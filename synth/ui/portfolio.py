@@ -34,6 +34,8 @@ import math
 import tempfile
 from pathlib import Path
 
+from synth import formatting as fmt
+
 __all__ = ["PortfolioSession", "COLUMNS", "verdict_word", "check_words"]
 
 #: the smallest slice screened in one call: the engine's batch work per call (its diagnosis probes above all) costs
@@ -44,6 +46,11 @@ MIN_SLICE = 100
 COLUMNS = (("application_id", "application"), ("verdict", "verdict"), ("binding_constraint", "what binds"),
            ("binding_margin", "its margin [%]"), ("violated", "violated checks (margin)"), ("relaxation", "smallest input relaxation"),
            ("application_type", "application type"), ("error", "input error"))
+
+
+#: the columns sorted by a number the row keeps beside its text (a margin's percent text does not sort as text)
+_SORT = {"binding_margin": {":sort": "(a, b, ra, rb) => (ra.binding_margin_value === null) - (rb.binding_margin_value "
+                                    "=== null) || (ra.binding_margin_value ?? 0) - (rb.binding_margin_value ?? 0)"}}
 
 
 def verdict_word(v) -> str:
@@ -66,7 +73,7 @@ def _violated_words(text) -> str:
         if not cid:
             continue
         try:
-            out.append(f"{check_words(cid)} {100 * float(m):+.1f} %")
+            out.append(f"{check_words(cid)} {fmt.percent(float(m))}")
         except ValueError:
             out.append(check_words(cid))
     return "; ".join(out)
@@ -142,11 +149,13 @@ class PortfolioSession:
     def columns(self) -> list[dict]:
         """The table's columns for the page (``name``, ``label``): ``#`` the row, then :data:`COLUMNS` present."""
         have = set(self.results.columns) if self.results is not None else {c for c, _ in COLUMNS}
-        return [{"name": "#", "label": "#"}] + [{"name": c, "label": lab} for c, lab in COLUMNS if c in have]
+        return [{"name": "#", "label": "#"}] + [{"name": c, "label": lab, **_SORT.get(c, {})} for c, lab in COLUMNS
+                                                if c in have]
 
     def rows(self) -> list[dict]:
         """The result table as rows for the page: ``#`` the row, the verdict as the design page says it, what binds
-        in words, margins in percent (one decimal), the violated checks in words."""
+        in words, margins in percent as every output writes them (:func:`synth.formatting.percent`; the number
+        itself in ``binding_margin_value``, which the column sorts by), the violated checks in words."""
         t = self.results
         cols = [c for c, _ in COLUMNS if c in t.columns]
         out = []
@@ -159,8 +168,9 @@ class PortfolioSession:
                     v = verdict_word(v)
                 elif k == "binding_constraint":
                     v = check_words(v) if v else ""
-                elif k == "binding_margin" and v is not None:
-                    v = round(100.0 * float(v), 1)
+                elif k == "binding_margin":
+                    row["binding_margin_value"] = None if v is None else float(v)
+                    v = fmt.percent(v) if v is not None else None
                 elif k == "violated":
                     v = _violated_words(v)
                 row[k] = "" if v is None else (v if isinstance(v, (bool, int, float)) else str(v))

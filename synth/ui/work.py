@@ -7,8 +7,14 @@ its process:
   and part of :class:`~synth.cad.dimensions.TensionerGeometry` but its labels): built once per design, whatever the
   edits that leave the geometry as it is (the support's strength, a safety factor; a stiffness changes the spring's
   coils); its STL files, geometric checks and pictures once per model, the STEP once per model and header;
-* the **graphs** of a result by the page's key of that result (:func:`graphs`), shared by the Graphs tab and the
-  report.
+* the **graphs** of a result by the result's hash (:func:`result_key`: its pickled bytes, so every input, part,
+  rule, setting, curve and capability study it holds; an edit and back finds them again), shared by the Graphs
+  tab and the report;
+* the **report** by what it is made from (the result's hash, the source's name, the 3D pictures), and its PDF
+  by the document's hash (:func:`report`: the SHA-256 of the self-contained HTML, which embeds
+  every graph and picture, with its date taken out): a second download of the same document is the first one's
+  file; anything that changes a line of the report (an input, a rule, a setting, a catalog value the result
+  carries, the application's name) changes the hash and prints it anew.
 
 Nothing is imported at this module's import: a task imports what it needs, and :func:`warm` imports it ahead.
 
@@ -19,13 +25,15 @@ Nothing is imported at this module's import: a task imports what it needs, and :
 from __future__ import annotations
 
 import collections
+import copy
 import dataclasses
 import hashlib
+import pickle
 import time
 from pathlib import Path
 
-__all__ = ["echo", "warm", "model_key", "model", "model_details", "step", "graphs", "report",
-           "capability"]
+__all__ = ["echo", "warm", "model_key", "result_key", "model", "pictures", "model_details", "step", "graphs",
+           "report", "capability"]
 
 #: models, graph sets and geometric checks kept per process (least recently used dropped first)
 KEEP = 8
@@ -36,6 +44,8 @@ LABEL_FIELDS = ("name", "status", "feasible", "verdict")
 _MODELS: collections.OrderedDict = collections.OrderedDict()   # model key -> TensionerModel
 _CHECKS: collections.OrderedDict = collections.OrderedDict()   # model key -> [check dicts]
 _GRAPHS: collections.OrderedDict = collections.OrderedDict()   # result key -> (graphs, skipped)
+_DOCS: collections.OrderedDict = collections.OrderedDict()     # what a report is made from -> its files
+_PDFS: collections.OrderedDict = collections.OrderedDict()     # document key -> {"pdf", "date"} of its first print
 
 
 def _keep(cache: collections.OrderedDict, key, value):
@@ -133,19 +143,11 @@ def model(result, root: str) -> dict:
             "bbox": _bbox(m), "timings_s": {"build": build_s, "stl": time.perf_counter() - t}}
 
 
-def model_details(result, root: str) -> dict:
-    """The step-11 geometric checks (interference included) and the section and exploded pictures of ``result``'s
-    design: ``{"key", "checks": [{"id", "label", "verdict", "note"}], "section", "exploded", "timings_s"}``."""
+def pictures(result, root: str) -> dict:
+    """The section and exploded pictures of ``result``'s design (what the report shows; no geometric check), once per
+    model and label: ``{"key", "section", "exploded", "timings_s"}``."""
     from synth.cad.export import exploded_picture, section_picture
-    from synth.cad.verify import verify_model
-    m, key, _ = _model(result)
-    times = {}
-    t = time.perf_counter()
-    checks = _CHECKS.get(key)
-    if checks is None:
-        checks = _keep(_CHECKS, key, [{"id": c.id, "label": c.label, "verdict": c.verdict, "note": c.note}
-                                      for c in verify_model(m, interference=True)])
-    times["verification"] = time.perf_counter() - t
+    m, key, build_s = _model(result)
     g = m.geometry
     label = f"{g.name} | {g.layout} layout | {g.status}" + ("" if g.feasible else " (INFEASIBLE: nearest design)")
     folder = Path(root) / "cad" / key / ("pictures-" + _hash(label))
@@ -155,8 +157,24 @@ def model_details(result, root: str) -> dict:
         folder.mkdir(parents=True, exist_ok=True)
         exploded_picture(m, exploded, title="exploded view | " + label)
         section_picture(m, section, title="section through the pivot axis | " + label)
-    times["pictures"] = time.perf_counter() - t
-    return {"key": key, "checks": checks, "section": str(section), "exploded": str(exploded), "timings_s": times}
+    return {"key": key, "section": str(section), "exploded": str(exploded),
+            "timings_s": {"build": build_s, "pictures": time.perf_counter() - t}}
+
+
+def model_details(result, root: str) -> dict:
+    """The step-11 geometric checks (interference included) and the pictures (:func:`pictures`) of ``result``'s
+    design: ``{"key", "checks": [{"id", "label", "verdict", "note"}], "section", "exploded", "timings_s"}``."""
+    from synth.cad.verify import verify_model
+    m, key, _ = _model(result)
+    t = time.perf_counter()
+    checks = _CHECKS.get(key)
+    if checks is None:
+        checks = _keep(_CHECKS, key, [{"id": c.id, "label": c.label, "verdict": c.verdict, "note": c.note}
+                                      for c in verify_model(m, interference=True)])
+    verification_s = time.perf_counter() - t
+    pics = pictures(result, root)
+    return {**pics, "checks": checks, "timings_s": {"verification": verification_s,
+                                                     "pictures": pics["timings_s"]["pictures"]}}
 
 
 def step(result, root: str, application: str | None = None) -> dict:
@@ -177,9 +195,24 @@ def step(result, root: str, application: str | None = None) -> dict:
 
 
 # --- the design lane -----------------------------------------------------------------------------------------------
-def graphs(result, key: str):
+def result_key(result) -> str:
+    """The result's hash: the SHA-256 of its pickled bytes (every input, part, rule, setting, check, curve and
+    capability record it holds). Two results with the same bytes draw the same graphs; two that differ in anything
+    have different keys (a result made another way that happens to be equal may miss: a cost, never a wrong answer).
+
+    >>> from synth.design.result import Check, Result
+    >>> a = Result("verified", parts={"ball_bearing": "6006"}, checks=[Check("bearing_load", 462.5, 900.0, 0.49, "pass")])
+    >>> b = Result("verified", parts={"ball_bearing": "6006"}, checks=[Check("bearing_load", 462.5, 910.0, 0.49, "pass")])
+    >>> result_key(a) == result_key(copy.deepcopy(a)), result_key(a) == result_key(b)
+    (True, False)
+    """
+    return hashlib.sha256(pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL)).hexdigest()[:24]
+
+
+def graphs(result):
     """``(graphs, skipped)`` of ``result`` (:func:`synth.report.plots.build_graphs`, the report's), drawn once per
-    ``key`` (the page's name for this result)."""
+    result (:func:`result_key`)."""
+    key = result_key(result)
     hit = _GRAPHS.get(key)
     if hit is not None:
         _GRAPHS.move_to_end(key)
@@ -190,31 +223,89 @@ def graphs(result, key: str):
     return _keep(_GRAPHS, key, build_graphs(result, show_progress=False))
 
 
-def report(result, key: str, folder: str, *, pdf: bool, source: str = "", pictures: tuple = (),
+def document_key(html_text: str, date: str) -> str:
+    """The report's hash: its self-contained HTML (every graph and picture embedded) with its date taken out.
+
+    >>> document_key("<p>2030-01-01 10:00 UTC</p><p>x</p>", "2030-01-01 10:00 UTC") == \\
+    ...     document_key("<p>2030-01-01 10:01 UTC</p><p>x</p>", "2030-01-01 10:01 UTC")
+    True
+    """
+    return hashlib.sha256(html_text.replace(date, "").encode("utf-8")).hexdigest()[:24]
+
+
+def _made_from(result, source: str, pictures: tuple) -> str:
+    """What a report is made from: the result (:func:`result_key`), the source's name and the file it names (the
+    document block shows its SHA-256), and the 3D pictures' bytes."""
+    from synth.fingerprint import file_sha256
+    src = Path(source) if source else None
+    return _hash(result_key(result), source, file_sha256(src) if src is not None and src.is_file() else "",
+                 *(hashlib.sha256(Path(p).read_bytes()).hexdigest() for p in pictures))
+
+
+def report(result, folder: str, *, pdf: bool, source: str = "", pictures: tuple = (),
            root: str | None = None) -> dict:
     """The report of ``result`` into ``folder`` (``synth report``'s HTML and results workbook, with the graphs of
     :func:`graphs` and the 3D model's ``pictures``), and with ``pdf`` its PDF (:func:`synth.ui.printer.print_pdf`):
-    ``{"html", "xlsx", "pdf", "pdf_note", "timings_s"}``."""
-    from synth.report.document import reverified, write_files
+    ``{"html", "xlsx", "pdf", "pdf_note", "document", "printed", "timings_s"}``.
+
+    Made once per result, source and pictures (:func:`_made_from`: the files of an earlier call are returned), and
+    printed once per document (:func:`document_key`: the PDF of a document printed before is that print, and its
+    HTML the one it was printed from, dated when it was first made); ``printed`` says whether this call printed."""
+    import shutil
     t0 = time.perf_counter()
-    drawn = graphs(result, key)
+    pictures = tuple(p for p in pictures if Path(p).is_file())
+    made_from = _made_from(result, source, pictures)
+    made = _DOCS.get(made_from)
+    if made is not None and all(Path(made[k]).is_file() for k in ("html", "xlsx")):
+        _DOCS.move_to_end(made_from)
+    else:
+        made = _keep(_DOCS, made_from, _write_report(result, folder, source, pictures))
     t1 = time.perf_counter()
-    out = write_files(reverified(result), folder, cad=[p for p in pictures if Path(p).is_file()], graphs=drawn,
-                      pdf=False, show_progress=False, cad_pictures=False, name=source or "result")
-    t2 = time.perf_counter()
-    files = {"html": str(out["html"]), "xlsx": str(out["xlsx"]), "pdf": None, "pdf_note": "not asked for"}
+    files = {"html": made["html"], "xlsx": made["xlsx"], "pdf": None, "pdf_note": "not asked for",
+             "document": made["document"], "printed": False}
     if pdf:
-        from synth.ui.printer import print_pdf
-        path, _, note = print_pdf(out["html"], folder=root)
-        files["pdf"], files["pdf_note"] = (str(path) if path else None), note
-    files["timings_s"] = {"graphs": t1 - t0, "html_and_workbook": t2 - t1, "pdf": time.perf_counter() - t2}
+        doc, html_path = made["document"], Path(made["html"])
+        path = html_path.with_suffix(".pdf")
+        hit = _PDFS.get(doc)
+        if hit is not None and Path(hit["pdf"]).is_file():
+            _PDFS.move_to_end(doc)
+            if not path.is_file():
+                shutil.copyfile(hit["pdf"], path)
+            files["pdf"], files["pdf_note"] = str(path), ""
+        else:
+            from synth.ui.printer import print_pdf
+            printed, _, note = print_pdf(html_path, folder=root)
+            files["pdf"], files["pdf_note"], files["printed"] = (str(printed) if printed else None), note, True
+            if printed:  # a copy of its own: the folder it was printed in may be written again
+                kept = Path(root or html_path.parent) / "documents" / f"{doc}.pdf"
+                kept.parent.mkdir(parents=True, exist_ok=True)
+                shutil.copyfile(printed, kept)
+                _keep(_PDFS, doc, {"pdf": str(kept), "date": made["date"]})
+    files["timings_s"] = {"html_and_workbook": t1 - t0, "pdf": time.perf_counter() - t1}
     return files
+
+
+def _write_report(result, folder: str, source: str, pictures: tuple) -> dict:
+    """Write the HTML and the workbook: ``{"html", "xlsx", "document", "date"}``; a document printed before keeps
+    the date it was printed with (its HTML then is the one printed)."""
+    from synth.report.document import reverified, write_files
+    from synth.report.html import document_date
+    drawn = graphs(result)
+    date = document_date()
+    out = write_files(reverified(result), folder, cad=list(pictures), graphs=drawn, pdf=False, show_progress=False,
+                      cad_pictures=False, name=source or "result", date=date)
+    html_path = Path(out["html"])
+    text = html_path.read_text(encoding="utf-8")
+    doc = document_key(text, date)
+    hit = _PDFS.get(doc)
+    if hit is not None and hit["date"] != date:  # the HTML as it was printed: the same document, dated as its PDF
+        html_path.write_text(text.replace(date, hit["date"]), encoding="utf-8")
+        date = hit["date"]
+    return {"html": str(html_path), "xlsx": str(out["xlsx"]), "document": doc, "date": date}
 
 
 def capability(result, target: float | None, ppm: float | None):
     """``synth.capability`` of ``result``'s design for a Ppk ``target`` and a ``ppm`` limit: its ``robust`` record."""
-    import copy
-
     import synth
     r = copy.deepcopy(result)
     r.robust = {}  # studied anew for this target

@@ -1,0 +1,100 @@
+"""The caches of ``synth ui``'s workers (issue 35): a second download of the same design comes from a cache, and
+anything that changes the output (an input, a rule, a setting) misses it. A stale cache is a wrong answer.
+
+The workers' functions are called here in the test's process (:mod:`synth.ui.work`); the graphs and the PDF printer
+are replaced by counters (their own tests draw and print), so each test runs in a second or two.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import synth
+from synth.ui import work
+from synth.ui.session import DesignSession, default_values
+
+EDIT = "support_yield_strength_compression_mpa"
+
+
+@pytest.fixture(scope="module")
+def parts():
+    s = DesignSession(default_values(), source="default")
+    return dict(s.synthesise().parts)
+
+
+@pytest.fixture
+def counted(monkeypatch):
+    """Counts of graph sets drawn and PDFs printed; the PDF's bytes are its HTML's (so a test sees what was printed)."""
+    import synth.report.plots
+    import synth.ui.printer
+    calls = {"graphs": 0, "prints": 0}
+
+    def build_graphs(result, extra=None, *, show_progress=True):
+        calls["graphs"] += 1
+        return [], []
+
+    def print_pdf(html, pdf=None, *, folder=None):
+        calls["prints"] += 1
+        out = Path(html).with_suffix(".pdf")
+        out.write_bytes(Path(html).read_bytes())
+        return out, "chromium", ""
+
+    monkeypatch.setattr(synth.report.plots, "build_graphs", build_graphs)
+    monkeypatch.setattr(synth.ui.printer, "print_pdf", print_pdf)
+    monkeypatch.setattr(work, "_GRAPHS", type(work._GRAPHS)())
+    monkeypatch.setattr(work, "_PDFS", type(work._PDFS)())
+    monkeypatch.setattr(work, "_DOCS", type(work._DOCS)())
+    return calls
+
+
+def _verified(parts, **edits):
+    return synth.verify({**default_values(), **edits}, parts)
+
+
+def test_the_graphs_are_drawn_once_per_result_and_again_after_an_edit(parts, counted):
+    a = _verified(parts)
+    work.graphs(a)
+    work.graphs(_verified(parts))  # the same design verified again: the same result, not drawn again
+    assert counted["graphs"] == 1
+    work.graphs(_verified(parts, **{EDIT: 390.0}))  # an edit: drawn anew
+    assert counted["graphs"] == 2
+    work.graphs(synth.verify(default_values(), parts, fidelity="screening"))  # a setting: drawn anew
+    assert counted["graphs"] == 3
+    work.graphs(a)  # back to the first: kept
+    assert counted["graphs"] == 3
+
+
+def test_a_second_pdf_of_the_same_design_is_the_first_print_and_an_edit_prints_anew(parts, counted, tmp_path,
+                                                                                    monkeypatch):
+    import synth.report.html
+    dates = iter(["2030-01-01 10:00 UTC", "2030-01-01 10:07 UTC", "2030-01-01 10:09 UTC", "2030-01-01 10:11 UTC"])
+    monkeypatch.setattr(synth.report.html, "document_date", lambda: next(dates))
+    first = work.report(_verified(parts), str(tmp_path / "a"), pdf=True, source="default", root=str(tmp_path))
+    again = work.report(_verified(parts), str(tmp_path / "b"), pdf=True, source="default", root=str(tmp_path))
+    assert first["printed"] and not again["printed"] and counted["prints"] == 1
+    assert again == {**first, "printed": False, "timings_s": again["timings_s"]}  # the files made before
+    work._DOCS.clear()  # made anew (another minute: another date), the same document: not printed again
+    anew = work.report(_verified(parts), str(tmp_path / "b"), pdf=True, source="default", root=str(tmp_path))
+    assert not anew["printed"] and counted["prints"] == 1 and anew["document"] == first["document"]
+    # the second download is the first document, dated as it was printed: its HTML and its PDF
+    assert Path(anew["pdf"]).read_bytes() == Path(first["pdf"]).read_bytes()
+    assert Path(anew["html"]).read_text(encoding="utf-8") == Path(first["html"]).read_text(encoding="utf-8")
+    assert "2030-01-01 10:00 UTC" in Path(anew["html"]).read_text(encoding="utf-8")
+
+    edited = work.report(_verified(parts, **{EDIT: 390.0}), str(tmp_path / "c"), pdf=True, source="default",
+                         root=str(tmp_path))
+    assert edited["printed"] and counted["prints"] == 2 and edited["document"] != first["document"]
+    assert Path(edited["pdf"]).read_bytes() != Path(first["pdf"]).read_bytes()
+    renamed = work.report(_verified(parts), str(tmp_path / "d"), pdf=True, source="other.yaml", root=str(tmp_path))
+    assert renamed["printed"] and counted["prints"] == 3  # the application's name is in the document
+
+
+def test_design_rules_change_the_results_key(parts):
+    from synth.design.rules import Rules
+    plain = _verified(parts)
+    rules = Rules.from_mapping({"name": "house", "min_margins": {"spring_yield": "5 %"}}, source="test")
+    ruled = synth.verify(default_values(), parts, rules=rules)
+    assert work.result_key(plain) == work.result_key(_verified(parts))
+    assert work.result_key(ruled) != work.result_key(plain)
