@@ -56,7 +56,7 @@ from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.robust import stats
 from synth.design.settings import Settings
 from synth.robust.assumptions import flips
-from synth.robust.sampling import Base, base_of, evaluate_deviations, evaluate_u, sobol_u
+from synth.robust.sampling import Base, Samples, base_of, evaluate_deviations, evaluate_u, sobol_u
 from synth.robust.settings import RobustSettings
 from synth.design.result import plain
 
@@ -96,9 +96,16 @@ def equivalent_ppk(p: float) -> float:
 def targeted(cid: str, base: Base) -> bool:
     """Whether check ``cid`` of the design counts in the capability target: its assessment's
     (:attr:`synth.design.assessment.Assessment.targeted`: the margin objective's checks that depend on the design)."""
-    c = REGISTRY[cid]
-    a = assess({c.group: base.groups[c.group]}, rows=slice(0, 1))
-    return bool(a.targeted[0, list(a.columns.ids).index(cid)])
+    return cid in _targeted(base, (cid,))
+
+
+def _targeted(base: Base, checks: tuple) -> set:
+    """The checks of ``checks`` that :func:`targeted` says count in the target, from one assessment (each column's
+    rule reads its own group)."""
+    if not checks:
+        return set()
+    a = assess(base.groups, rows=slice(0, 1), ids=tuple(checks))
+    return {cid for cid, t in zip(a.columns.ids, a.targeted[0]) if t}
 
 
 def windows(checks) -> dict:
@@ -211,16 +218,26 @@ class Capability:
                       "cone_spring": self.cone})
 
 
-def _linear(base: Base, checks: tuple) -> tuple:
-    """``(centre, worst case, rss)`` margins per check: secant sensitivities over each band (2d + 1 rows), then
-    the adverse vertex of each check (one row per check): two evaluator calls."""
+def _secant_rows(sc) -> np.ndarray:
+    """``(2d + 1, d)`` deviations: every quantity at the centre of its band, then each at its lower and upper end."""
+    d = len(sc)
+    rows = np.repeat(sc.centre()[None, :], 2 * d + 1, axis=0)
+    for j in range(d):
+        rows[1 + 2 * j, j], rows[2 + 2 * j, j] = sc.lo[j], sc.hi[j]
+    return rows
+
+
+def _linear(base: Base, checks: tuple, s=None) -> tuple:
+    """``(centre, worst case, rss)`` margins per check: secant sensitivities over each band (2d + 1 rows, or their
+    margins ``s`` evaluated by the caller: :func:`_secant_rows`), then the adverse vertex of each check (one row per
+    check): two evaluator calls (one with ``s``)."""
     sc = base.scatter
     d = len(sc)
     ctr = sc.centre()
-    rows = np.repeat(ctr[None, :], 2 * d + 1, axis=0)
-    for j in range(d):
-        rows[1 + 2 * j, j], rows[2 + 2 * j, j] = sc.lo[j], sc.hi[j]
-    s = evaluate_deviations(base, {q: rows[:, j] for j, q in enumerate(sc.names)} or {"_n": np.zeros(1)}, checks)
+    if s is None:
+        rows = _secant_rows(sc)
+        s = evaluate_deviations(base, {q: rows[:, j] for j, q in enumerate(sc.names)} or {"_n": np.zeros(1)},
+                                checks)
     centre = {cid: float(s.margins[cid][0]) for cid in checks}
     vert = np.repeat(ctr[None, :], len(checks), axis=0)
     rss = {}
@@ -283,9 +300,10 @@ def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool 
     # same quantity gets the same numbers in every design (common random numbers: candidates compare fairly)
     u = sobol_u(rs.samples, sc.width, rs.seed)[:, sc.columns] if u is None else u
     n = len(u)
-    s = evaluate_u(base, u)
     checks = base.checks
-    lin = _linear(base, checks)
+    s, secant = _samples_and_secants(base, u)
+    lin = _linear(base, checks, secant)
+    aimed = _targeted(base, checks)
     contributions = _contributors(u, s.margins, sc.names)
     uniform = {q for q, k in zip(sc.names, sc.kind) if k == 1}
     out = []
@@ -311,7 +329,7 @@ def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool 
         index = float(pct[j] if rs.method == "percentile" else mom[j])
         out.append(CheckCapability(
             cid, base.nominal_margin(cid), lin[0][cid], mean, sd, equivalent_ppk(hi) if bounded else index, p, lo,
-            hi, k, n, how, worst, lin[2][cid], contrib, r2, targeted(cid, base), ppk_percentile=float(pct[j]),
+            hi, k, n, how, worst, lin[2][cid], contrib, r2, cid in aimed, ppk_percentile=float(pct[j]),
             ppk_moment=float(mom[j]), bounded=bounded))
     w = windows(checks)
     by_id = {c.id: c for c in out}
@@ -329,6 +347,20 @@ def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool 
     if details:
         cap.histograms, cap.limits = _histograms(base, s)
     return cap
+
+
+def _samples_and_secants(base: Base, u: np.ndarray) -> tuple:
+    """``(samples, secants)``: :func:`evaluate_u` of ``u`` and the margins of :func:`_secant_rows` (what
+    :func:`_linear` reads), every check of the design, in one evaluator call (the rows are independent: each is
+    what its own call gives)."""
+    sc = base.scatter
+    if not len(sc):
+        return evaluate_u(base, u), None
+    x = np.vstack([sc.deviations(u), _secant_rows(sc)])
+    both = evaluate_deviations(base, {q: x[:, j] for j, q in enumerate(sc.names)})
+    n = len(u)
+    return (Samples({k: v[:n] for k, v in both.margins.items()}, {k: v[:n] for k, v in both.values.items()}),
+            Samples({k: v[n:] for k, v in both.margins.items()}, {}))
 
 
 def _rare(base: Base, out: list, rs: RobustSettings, n: int) -> None:
