@@ -68,7 +68,7 @@ RARE_PPK_MAX = 2.5
 #: a contributor below this share of a check's variance does not make its output unbounded
 BOUNDED_SHARE = 0.005
 
-__all__ = ["CheckCapability", "Capability", "capability", "clopper_pearson", "ppk", "targeted", "windows",
+__all__ = ["CheckCapability", "Capability", "capability", "capabilities", "clopper_pearson", "ppk", "targeted", "windows",
            "equivalent_ppk", "add_capability"]
 
 clopper_pearson = stats.clopper_pearson
@@ -232,14 +232,23 @@ def _linear(base: Base, checks: tuple, s=None) -> tuple:
     margins ``s`` evaluated by the caller: :func:`_secant_rows`), then the adverse vertex of each check (one row per
     check): two evaluator calls (one with ``s``)."""
     sc = base.scatter
-    d = len(sc)
-    ctr = sc.centre()
     if s is None:
         rows = _secant_rows(sc)
         s = evaluate_deviations(base, {q: rows[:, j] for j, q in enumerate(sc.names)} or {"_n": np.zeros(1)},
                                 checks)
+    centre, rss, vert = _secants(base, checks, s)
+    v = evaluate_deviations(base, {q: vert[:, j] for j, q in enumerate(sc.names)}, checks) if vert is not None \
+        else None
+    return _worst(checks, centre, rss, v)
+
+
+def _secants(base: Base, checks: tuple, s) -> tuple:
+    """``(centre, rss, vertices)`` of the secant rows' margins ``s``: each check's adverse vertex (one row per check,
+    None when there is none to evaluate)."""
+    sc = base.scatter
+    d = len(sc)
     centre = {cid: float(s.margins[cid][0]) for cid in checks}
-    vert = np.repeat(ctr[None, :], len(checks), axis=0)
+    vert = np.repeat(sc.centre()[None, :], len(checks), axis=0)
     rss = {}
     for i, cid in enumerate(checks):
         m = s.margins[cid]
@@ -248,11 +257,12 @@ def _linear(base: Base, checks: tuple, s=None) -> tuple:
             sens = np.where(np.isfinite(hi) & np.isfinite(lo), (hi - lo) / 2.0, 0.0)
         rss[cid] = centre[cid] - float(np.sqrt(np.sum(sens ** 2)))
         vert[i] = np.where(hi < lo, sc.hi, sc.lo) if d else vert[i]
-    if d and len(checks):
-        v = evaluate_deviations(base, {q: vert[:, j] for j, q in enumerate(sc.names)}, checks)
-        worst = {cid: float(v.margins[cid][i]) for i, cid in enumerate(checks)}
-    else:
-        worst = dict(centre)
+    return centre, rss, vert if d and len(checks) else None
+
+
+def _worst(checks: tuple, centre: dict, rss: dict, v) -> tuple:
+    """:func:`_linear`'s answer from the vertices' margins ``v`` (row i: check i's; None: the centre's)."""
+    worst = {cid: float(v.margins[cid][i]) for i, cid in enumerate(checks)} if v is not None else dict(centre)
     return centre, worst, rss
 
 
@@ -295,14 +305,70 @@ def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool 
     not resolve; ``u``: given standard-normal points (default: ``rs.samples`` Sobol points of ``rs.seed``).
     """
     sc = base.scatter
-    d = len(sc)
     # one Sobol sample over every quantity of the catalog, each design reading its own quantities' columns: the
     # same quantity gets the same numbers in every design (common random numbers: candidates compare fairly)
     u = sobol_u(rs.samples, sc.width, rs.seed)[:, sc.columns] if u is None else u
+    s, secant = _samples_and_secants(base, u)
+    return _assemble(base, rs, u, s, _linear(base, base.checks, secant), rare=rare, details=details)
+
+
+def capabilities(bases: list, stacked: Base, rs: RobustSettings = RobustSettings(), *, rare: bool = True,
+                 details: bool = True) -> list:
+    """``[capability(b, rs, rare=rare, details=details) for b in bases]`` (the same, to the bit), the K designs of
+    one application (:func:`synth.robust.sampling.bases_of_attributes`, ``stacked`` their stacked Base) evaluated
+    together: the samples and secant rows of the designs whose tolerance models sample the same quantities in one
+    evaluator call, their worst-case vertices in another (the robust search's candidates)."""
+    from synth.robust.sampling import take
+    out: list = [None] * len(bases)
+    by: dict = {}
+    for i, b in enumerate(bases):
+        by.setdefault(b.scatter.names, []).append(i)
+    for names, idx in by.items():
+        if not names or len(idx) == 1:  # nothing to share
+            for i in idx:
+                out[i] = capability(bases[i], rs, rare=rare, details=details)
+            continue
+        sub = take(stacked, idx)
+        checks = tuple(dict.fromkeys(c for i in idx for c in bases[i].checks))
+        sub.checks = checks
+        us = [sobol_u(rs.samples, bases[i].scatter.width, rs.seed)[:, bases[i].scatter.columns] for i in idx]
+        xs = [np.vstack([bases[i].scatter.deviations(u), _secant_rows(bases[i].scatter)]) for i, u in zip(idx, us)]
+        m = [len(x) for x in xs]
+        x = np.vstack(xs)
+        rows = np.repeat(np.arange(len(idx)), m)
+        both = evaluate_deviations(sub, {q: x[:, j] for j, q in enumerate(names)}, checks, rows=rows)
+        starts = np.concatenate([[0], np.cumsum(m)])
+        secs, samples = [], []
+        for k, (i, u) in enumerate(zip(idx, us)):
+            a, n, b_ = starts[k], len(u), starts[k + 1]
+            own = bases[i].checks
+            samples.append(Samples({c: both.margins[c][a:a + n] for c in own},
+                                   {key: v[a:a + n] for key, v in both.values.items()}))
+            secs.append(_secants(bases[i], own, Samples({c: both.margins[c][a + n:b_] for c in own}, {})))
+        verts = [v for _, _, v in secs]
+        have = [k for k, v in enumerate(verts) if v is not None]
+        vm: dict = {}
+        if have:
+            vx = np.vstack([verts[k] for k in have])
+            vr = np.repeat(np.asarray(have), [len(verts[k]) for k in have])
+            vv = evaluate_deviations(sub, {q: vx[:, j] for j, q in enumerate(names)}, checks, rows=vr)
+            at = np.concatenate([[0], np.cumsum([len(verts[k]) for k in have])])
+            for j, k in enumerate(have):
+                vm[k] = Samples({c: vv.margins[c][at[j]:at[j + 1]] for c in bases[idx[k]].checks}, {})
+        for k, i in enumerate(idx):
+            centre, rss, _ = secs[k]
+            lin = _worst(bases[i].checks, centre, rss, vm.get(k))
+            out[i] = _assemble(bases[i], rs, us[k], samples[k], lin, rare=rare, details=details)
+    return out
+
+
+def _assemble(base: Base, rs: RobustSettings, u: np.ndarray, s, lin: tuple, *, rare: bool, details: bool) -> Capability:
+    """The :class:`Capability` of ``base`` from its samples' margins ``s`` (of points ``u``) and :func:`_linear`'s
+    ``lin``."""
+    sc = base.scatter
+    d = len(sc)
     n = len(u)
     checks = base.checks
-    s, secant = _samples_and_secants(base, u)
-    lin = _linear(base, checks, secant)
     aimed = _targeted(base, checks)
     contributions = _contributors(u, s.margins, sc.names)
     uniform = {q for q, k in zip(sc.names, sc.kind) if k == 1}
