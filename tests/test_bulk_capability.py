@@ -44,6 +44,25 @@ def test_a_row_without_a_made_design_is_the_robust_synthesis_s_answer():
     assert row["capability_why"].startswith("no catalog design passes every check with the made joint")
 
 
+def test_a_shortcut_row_at_full_fidelity_is_synth_design_s_at_full_fidelity():
+    """Generated application 10 (seed 0) has no design under the made joint: its row at full fidelity is the
+    bulk's nominal row, which must be the full model's (``synth design``'s ``standard,cost,margin``: cone spring
+    aspect ratio 0.94). Before issue 34's mend the nominal rows took ``screen_applications``' default fidelity
+    (``screening``) over the run's settings and named the screening search's design of equal objective (1.3); so did
+    ``screen_applications(apps, settings=full)`` without a fidelity argument (the benchmark's call)."""
+    from synth.bulk.engine import screen_applications
+    from synth.optimise import solve
+    d = generate(11, seed=0)[10]
+    full = Settings(fidelity="full")
+    want = solve(d, "standard,cost,margin", "enumerate", settings=full, relax=False).parts
+    assert want["cone_spring_aspect_ratio"] == 0.94
+    row = compute_chunk([d.as_dict()], settings=full.replace(capability=RS), diagnose=False).iloc[0]
+    assert row["capability_verdict"] == "FAIL" and row["capability_why"].startswith("no catalog design passes")
+    assert {k: row[f"part_{k}"] for k in PART_KEYS} == want
+    row = screen_applications([d], settings=full, diagnose=False).iloc[0]
+    assert {k: row[f"part_{k}"] for k in PART_KEYS} == want
+
+
 def test_the_target_is_part_of_the_configuration():
     with pytest.raises(Exception, match="capability"):
         Settings(capability=1.33)

@@ -342,3 +342,28 @@ def test_the_api_gives_the_scenes_capability(demo):
     got = synth.capability(r, samples=512, seed=3, assumptions=False).robust
     ref = capability(base_of(d, r.parts), RobustSettings(samples=512, seed=3)).to_dict()
     assert got["checks"] == ref["checks"] and "assumptions" not in got
+
+
+def test_designs_evaluated_together_have_each_its_own_capability():
+    """The robust search evaluates its candidates together (:func:`synth.robust.capability.capabilities`: one
+    evaluator call for the samples and secant rows of every design sampling the same quantities, one for their
+    worst-case vertices): each design's capability is the one it has alone, to the bit (every check, every figure).
+    Designs of the default case (its optima for standardisation and cost, and the first with another bolt class).
+    """
+    from synth.design.space import space
+    from synth.optimise import solve
+    from synth.robust.capability import capabilities
+    from synth.robust.sampling import base_of_attributes, bases_of_attributes, production
+    d = default_input()
+    rs = RobustSettings(capability=1.33, samples=64)
+    settings = production(Settings())
+    parts = [solve(d, o, relax=False).parts for o in ("standard", "cost")]
+    parts.append({**parts[0], "bolt_property_class": "12.9" if parts[0]["bolt_property_class"] != "12.9" else "10.9"})
+    attrs = [space().design_attributes(p) for p in parts]
+    bases, stacked = bases_of_attributes(d, attrs, settings)
+    assert len({b.scatter.names for b in bases}) < len(bases)  # some share one call
+    with np.errstate(all="ignore"):
+        together = capabilities(bases, stacked, rs, rare=False, details=False)
+        alone = [capability(base_of_attributes(d, a, settings), rs, rare=False, details=False) for a in attrs]
+    assert [c.to_dict() for c in together] == [c.to_dict() for c in alone]
+    assert len({json.dumps(c.to_dict()["checks"], sort_keys=True) for c in alone}) > 1  # not one design thrice

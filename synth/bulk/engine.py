@@ -155,12 +155,13 @@ def _dtypes(df: pd.DataFrame) -> pd.DataFrame:
 
 
 def _settings(settings, fidelity) -> evaluate.Settings:
-    """The configuration of a screening: ``settings`` (default none) at ``fidelity`` (given: it wins)."""
+    """The configuration of a screening: ``settings`` at ``fidelity`` (given: it wins; not given: the settings',
+    ``screening`` without settings)."""
     s = settings if settings is not None else evaluate.Settings(fidelity=fidelity or "screening")
     return s if fidelity is None or fidelity == s.fidelity else s.replace(fidelity=fidelity)
 
 
-def screen_applications_reference(apps: Sequence, *, objective: str = "standard", fidelity: str | None = "screening",
+def screen_applications_reference(apps: Sequence, *, objective: str = "standard", fidelity: str | None = None,
                                   diagnose: bool = True, settings: evaluate.Settings | None = None) -> pd.DataFrame:
     """Reference engine: ``solve(d, objective, "enumerate", exhaustive=True)`` per application: every core and
     option of its catalog product evaluated, the nearest design and each relaxation probe by the exhaustive
@@ -368,7 +369,7 @@ class _NoSpace(Exception):
         self.which = which
 
 
-def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity: str | None = "screening",
+def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity: str | None = None,
                         diagnose: bool = True, settings: evaluate.Settings | None = None) -> pd.DataFrame:
     """One row per application of ``apps`` (validated ``DesignInput``), in the order given (index 0..n-1).
 
@@ -376,7 +377,8 @@ def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity
     ``screening`` (closed-form wear, linear cone spring) or ``full``;
     ``diagnose=False`` skips the relaxation search of infeasible applications;
     ``settings``: the configuration every row is judged under (:class:`~synth.design.settings.Settings`: design
-    rules, spring limit basis, engine; ``fidelity`` sets its fidelity).
+    rules, spring limit basis, engine; ``fidelity``, when given, sets its fidelity; not given: the settings' own,
+    ``screening`` without settings).
     Columns: :func:`columns`. The same answer as :func:`screen_applications_reference`.
 
     Additive objectives (``standard``, ``cost``, their orders and weighted sums without the margin) take the

@@ -56,7 +56,7 @@ from synth.design.constraints import FEAS_TOL, REGISTRY
 from synth.robust import stats
 from synth.design.settings import Settings
 from synth.robust.assumptions import flips
-from synth.robust.sampling import Base, base_of, evaluate_deviations, evaluate_u, sobol_u
+from synth.robust.sampling import Base, Samples, base_of, evaluate_deviations, evaluate_u, sobol_u
 from synth.robust.settings import RobustSettings
 from synth.design.result import plain
 
@@ -68,7 +68,7 @@ RARE_PPK_MAX = 2.5
 #: a contributor below this share of a check's variance does not make its output unbounded
 BOUNDED_SHARE = 0.005
 
-__all__ = ["CheckCapability", "Capability", "capability", "clopper_pearson", "ppk", "targeted", "windows",
+__all__ = ["CheckCapability", "Capability", "capability", "capabilities", "clopper_pearson", "ppk", "targeted", "windows",
            "equivalent_ppk", "add_capability"]
 
 clopper_pearson = stats.clopper_pearson
@@ -96,9 +96,16 @@ def equivalent_ppk(p: float) -> float:
 def targeted(cid: str, base: Base) -> bool:
     """Whether check ``cid`` of the design counts in the capability target: its assessment's
     (:attr:`synth.design.assessment.Assessment.targeted`: the margin objective's checks that depend on the design)."""
-    c = REGISTRY[cid]
-    a = assess({c.group: base.groups[c.group]}, rows=slice(0, 1))
-    return bool(a.targeted[0, list(a.columns.ids).index(cid)])
+    return cid in _targeted(base, (cid,))
+
+
+def _targeted(base: Base, checks: tuple) -> set:
+    """The checks of ``checks`` that :func:`targeted` says count in the target, from one assessment (each column's
+    rule reads its own group)."""
+    if not checks:
+        return set()
+    a = assess(base.groups, rows=slice(0, 1), ids=tuple(checks))
+    return {cid for cid, t in zip(a.columns.ids, a.targeted[0]) if t}
 
 
 def windows(checks) -> dict:
@@ -211,18 +218,37 @@ class Capability:
                       "cone_spring": self.cone})
 
 
-def _linear(base: Base, checks: tuple) -> tuple:
-    """``(centre, worst case, rss)`` margins per check: secant sensitivities over each band (2d + 1 rows), then
-    the adverse vertex of each check (one row per check): two evaluator calls."""
-    sc = base.scatter
+def _secant_rows(sc) -> np.ndarray:
+    """``(2d + 1, d)`` deviations: every quantity at the centre of its band, then each at its lower and upper end."""
     d = len(sc)
-    ctr = sc.centre()
-    rows = np.repeat(ctr[None, :], 2 * d + 1, axis=0)
+    rows = np.repeat(sc.centre()[None, :], 2 * d + 1, axis=0)
     for j in range(d):
         rows[1 + 2 * j, j], rows[2 + 2 * j, j] = sc.lo[j], sc.hi[j]
-    s = evaluate_deviations(base, {q: rows[:, j] for j, q in enumerate(sc.names)} or {"_n": np.zeros(1)}, checks)
+    return rows
+
+
+def _linear(base: Base, checks: tuple, s=None) -> tuple:
+    """``(centre, worst case, rss)`` margins per check: secant sensitivities over each band (2d + 1 rows, or their
+    margins ``s`` evaluated by the caller: :func:`_secant_rows`), then the adverse vertex of each check (one row per
+    check): two evaluator calls (one with ``s``)."""
+    sc = base.scatter
+    if s is None:
+        rows = _secant_rows(sc)
+        s = evaluate_deviations(base, {q: rows[:, j] for j, q in enumerate(sc.names)} or {"_n": np.zeros(1)},
+                                checks)
+    centre, rss, vert = _secants(base, checks, s)
+    v = evaluate_deviations(base, {q: vert[:, j] for j, q in enumerate(sc.names)}, checks) if vert is not None \
+        else None
+    return _worst(checks, centre, rss, v)
+
+
+def _secants(base: Base, checks: tuple, s) -> tuple:
+    """``(centre, rss, vertices)`` of the secant rows' margins ``s``: each check's adverse vertex (one row per check,
+    None when there is none to evaluate)."""
+    sc = base.scatter
+    d = len(sc)
     centre = {cid: float(s.margins[cid][0]) for cid in checks}
-    vert = np.repeat(ctr[None, :], len(checks), axis=0)
+    vert = np.repeat(sc.centre()[None, :], len(checks), axis=0)
     rss = {}
     for i, cid in enumerate(checks):
         m = s.margins[cid]
@@ -231,11 +257,12 @@ def _linear(base: Base, checks: tuple) -> tuple:
             sens = np.where(np.isfinite(hi) & np.isfinite(lo), (hi - lo) / 2.0, 0.0)
         rss[cid] = centre[cid] - float(np.sqrt(np.sum(sens ** 2)))
         vert[i] = np.where(hi < lo, sc.hi, sc.lo) if d else vert[i]
-    if d and len(checks):
-        v = evaluate_deviations(base, {q: vert[:, j] for j, q in enumerate(sc.names)}, checks)
-        worst = {cid: float(v.margins[cid][i]) for i, cid in enumerate(checks)}
-    else:
-        worst = dict(centre)
+    return centre, rss, vert if d and len(checks) else None
+
+
+def _worst(checks: tuple, centre: dict, rss: dict, v) -> tuple:
+    """:func:`_linear`'s answer from the vertices' margins ``v`` (row i: check i's; None: the centre's)."""
+    worst = {cid: float(v.margins[cid][i]) for i, cid in enumerate(checks)} if v is not None else dict(centre)
     return centre, worst, rss
 
 
@@ -278,14 +305,71 @@ def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool 
     not resolve; ``u``: given standard-normal points (default: ``rs.samples`` Sobol points of ``rs.seed``).
     """
     sc = base.scatter
-    d = len(sc)
     # one Sobol sample over every quantity of the catalog, each design reading its own quantities' columns: the
     # same quantity gets the same numbers in every design (common random numbers: candidates compare fairly)
     u = sobol_u(rs.samples, sc.width, rs.seed)[:, sc.columns] if u is None else u
+    s, secant = _samples_and_secants(base, u)
+    return _assemble(base, rs, u, s, _linear(base, base.checks, secant), rare=rare, details=details)
+
+
+def capabilities(bases: list, stacked: Base, rs: RobustSettings = RobustSettings(), *, rare: bool = True,
+                 details: bool = True) -> list:
+    """``[capability(b, rs, rare=rare, details=details) for b in bases]`` (the same, to the bit), the K designs of
+    one application (:func:`synth.robust.sampling.bases_of_attributes`, ``stacked`` their stacked Base) evaluated
+    together: the samples and secant rows of the designs whose tolerance models sample the same quantities in one
+    evaluator call, their worst-case vertices in another (the robust search's candidates)."""
+    from synth.robust.sampling import take
+    out: list = [None] * len(bases)
+    by: dict = {}
+    for i, b in enumerate(bases):
+        by.setdefault(b.scatter.names, []).append(i)
+    for names, idx in by.items():
+        if not names or len(idx) == 1:  # nothing to share
+            for i in idx:
+                out[i] = capability(bases[i], rs, rare=rare, details=details)
+            continue
+        sub = take(stacked, idx)
+        checks = tuple(dict.fromkeys(c for i in idx for c in bases[i].checks))
+        sub.checks = checks
+        us = [sobol_u(rs.samples, bases[i].scatter.width, rs.seed)[:, bases[i].scatter.columns] for i in idx]
+        xs = [np.vstack([bases[i].scatter.deviations(u), _secant_rows(bases[i].scatter)]) for i, u in zip(idx, us)]
+        m = [len(x) for x in xs]
+        x = np.vstack(xs)
+        rows = np.repeat(np.arange(len(idx)), m)
+        both = evaluate_deviations(sub, {q: x[:, j] for j, q in enumerate(names)}, checks, rows=rows)
+        starts = np.concatenate([[0], np.cumsum(m)])
+        secs, samples = [], []
+        for k, (i, u) in enumerate(zip(idx, us)):
+            a, n, b_ = starts[k], len(u), starts[k + 1]
+            own = bases[i].checks
+            samples.append(Samples({c: both.margins[c][a:a + n] for c in own},
+                                   {key: v[a:a + n] for key, v in both.values.items()}))
+            secs.append(_secants(bases[i], own, Samples({c: both.margins[c][a + n:b_] for c in own}, {})))
+        verts = [v for _, _, v in secs]
+        have = [k for k, v in enumerate(verts) if v is not None]
+        vm: dict = {}
+        if have:
+            vx = np.vstack([verts[k] for k in have])
+            vr = np.repeat(np.asarray(have), [len(verts[k]) for k in have])
+            vv = evaluate_deviations(sub, {q: vx[:, j] for j, q in enumerate(names)}, checks, rows=vr)
+            at = np.concatenate([[0], np.cumsum([len(verts[k]) for k in have])])
+            for j, k in enumerate(have):
+                vm[k] = Samples({c: vv.margins[c][at[j]:at[j + 1]] for c in bases[idx[k]].checks}, {})
+        for k, i in enumerate(idx):
+            centre, rss, _ = secs[k]
+            lin = _worst(bases[i].checks, centre, rss, vm.get(k))
+            out[i] = _assemble(bases[i], rs, us[k], samples[k], lin, rare=rare, details=details)
+    return out
+
+
+def _assemble(base: Base, rs: RobustSettings, u: np.ndarray, s, lin: tuple, *, rare: bool, details: bool) -> Capability:
+    """The :class:`Capability` of ``base`` from its samples' margins ``s`` (of points ``u``) and :func:`_linear`'s
+    ``lin``."""
+    sc = base.scatter
+    d = len(sc)
     n = len(u)
-    s = evaluate_u(base, u)
     checks = base.checks
-    lin = _linear(base, checks)
+    aimed = _targeted(base, checks)
     contributions = _contributors(u, s.margins, sc.names)
     uniform = {q for q, k in zip(sc.names, sc.kind) if k == 1}
     out = []
@@ -311,7 +395,7 @@ def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool 
         index = float(pct[j] if rs.method == "percentile" else mom[j])
         out.append(CheckCapability(
             cid, base.nominal_margin(cid), lin[0][cid], mean, sd, equivalent_ppk(hi) if bounded else index, p, lo,
-            hi, k, n, how, worst, lin[2][cid], contrib, r2, targeted(cid, base), ppk_percentile=float(pct[j]),
+            hi, k, n, how, worst, lin[2][cid], contrib, r2, cid in aimed, ppk_percentile=float(pct[j]),
             ppk_moment=float(mom[j]), bounded=bounded))
     w = windows(checks)
     by_id = {c.id: c for c in out}
@@ -329,6 +413,20 @@ def capability(base: Base, rs: RobustSettings = RobustSettings(), *, rare: bool 
     if details:
         cap.histograms, cap.limits = _histograms(base, s)
     return cap
+
+
+def _samples_and_secants(base: Base, u: np.ndarray) -> tuple:
+    """``(samples, secants)``: :func:`evaluate_u` of ``u`` and the margins of :func:`_secant_rows` (what
+    :func:`_linear` reads), every check of the design, in one evaluator call (the rows are independent: each is
+    what its own call gives)."""
+    sc = base.scatter
+    if not len(sc):
+        return evaluate_u(base, u), None
+    x = np.vstack([sc.deviations(u), _secant_rows(sc)])
+    both = evaluate_deviations(base, {q: x[:, j] for j, q in enumerate(sc.names)})
+    n = len(u)
+    return (Samples({k: v[:n] for k, v in both.margins.items()}, {k: v[:n] for k, v in both.values.items()}),
+            Samples({k: v[n:] for k, v in both.margins.items()}, {}))
 
 
 def _rare(base: Base, out: list, rs: RobustSettings, n: int) -> None:

@@ -48,7 +48,7 @@ from synth.design.verify import evaluate_design, parts_of_attributes
 from synth.model import torsion_spring
 from synth.robust.tolerances import Scatter, resolve
 
-__all__ = ["Base", "Samples", "production", "base_of", "base_of_attributes", "context", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
+__all__ = ["Base", "Samples", "production", "base_of", "base_of_attributes", "bases_of_attributes", "take", "context", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
            "design_checks"]
 
 #: the values a sample keeps besides the margins (the report's histograms): value key -> group
@@ -131,6 +131,40 @@ def base_of_attributes(d, attrs: dict, settings: evaluate.Settings = evaluate.Se
         parts = parts_of_attributes(attrs, groups)
     return Base(d, dict(parts), settings, apps, attrs, groups, sc, design_checks(groups),
                 cone=centred_cone(apps, attrs, groups, settings))
+
+
+def bases_of_attributes(d, attrs_list: list, settings: evaluate.Settings = evaluate.Settings(), table: dict | None = None,
+                        *, apps: Applications | None = None) -> tuple:
+    """``([base_of_attributes(d, a, settings, table, apps=apps) for a in attrs_list], stacked)``: the K designs'
+    nominal evaluations in one evaluator call (rows are independent: each is what its own call gives), and
+    ``stacked``, the :class:`Base` of the K designs (K-row apps, attrs, groups, cone; no scatter) that
+    :func:`perturb` takes with ``rows`` (:func:`take`)."""
+    settings = production(settings)
+    apps = Applications.of([d]) if apps is None else apps
+    k = len(attrs_list)
+    attrs = {t: {c: np.concatenate([np.asarray(a[t][c]) for a in attrs_list]) for c in attrs_list[0][t]}
+             for t in attrs_list[0]}
+    with np.errstate(all="ignore"):
+        groups = evaluate_design(apps, attrs, settings, detail=False, of=np.zeros(k, dtype=np.int64))
+        appsk = apps.subset(np.zeros(k, dtype=np.int64))
+        cone = centred_cone(appsk, attrs, groups, settings)
+    stacked = Base(d, {}, settings, appsk, attrs, groups, None, (), cone=cone)
+    out = []
+    for i, a in enumerate(attrs_list):
+        gi = {name: g.take([i]) for name, g in groups.items()}
+        sc = resolve(context(apps, a, gi, settings, 0), table)
+        out.append(Base(d, dict(parts_of_attributes(a, gi)), settings, apps, a, gi, sc, design_checks(gi),
+                        cone={key: v[[i]] for key, v in cone.items()}))
+    return out, stacked
+
+
+def take(stacked: Base, idx) -> Base:
+    """The designs ``idx`` of a stacked :class:`Base` (:func:`bases_of_attributes`) as a stacked Base."""
+    idx = np.asarray(idx, dtype=np.int64)
+    return Base(stacked.inputs, {}, stacked.settings, stacked.apps.subset(idx),
+                {t: {c: v[idx] for c, v in cols.items()} for t, cols in stacked.attrs.items()},
+                {name: g.take(idx) for name, g in stacked.groups.items()}, None, stacked.checks,
+                cone=None if stacked.cone is None else {key: v[idx] for key, v in stacked.cone.items()})
 
 
 def centred_cone(apps: Applications, attrs: dict, groups: dict, settings: evaluate.Settings) -> dict:

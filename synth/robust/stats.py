@@ -93,13 +93,27 @@ def ppk_percentile(m, tail: float = TAIL) -> np.ndarray:
     x = _finite(m)
     cnt = np.sum(~np.isnan(x), axis=-1)
     with _quiet():
-        q = np.nanquantile(x, [0.5, tail], axis=-1)
+        q = _nanquantile(x, (0.5, tail))
         med, low = q[0], q[1]
         spread = med - low
         const = ~(spread > SD_FLOOR * np.maximum(1.0, np.abs(med)))
         out = np.where(const, _constant(med >= -1e-9), med / np.where(const, 1.0, spread))
     out = np.where(cnt == 0, np.inf, out)
     return float(out) if np.ndim(out) == 0 else out
+
+
+def _nanquantile(x: np.ndarray, qs: tuple) -> np.ndarray:
+    """``np.nanquantile(x, qs, axis=-1)``, the rows without NaN by ``np.quantile`` at once (the same values: numpy
+    loops over the rows of a NaN-aware quantile one by one)."""
+    if x.ndim < 2:
+        return np.nanquantile(x, qs, axis=-1)
+    ok = ~np.isnan(x).any(axis=-1)
+    if ok.all():
+        return np.quantile(x, qs, axis=-1)
+    out = np.empty((len(qs),) + x.shape[:-1])
+    out[:, ok] = np.quantile(x[ok], qs, axis=-1)
+    out[:, ~ok] = np.nanquantile(x[~ok], qs, axis=-1)
+    return out
 
 
 def ppm_equivalent(ppk: float) -> float:

@@ -39,7 +39,7 @@ from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS
 from synth.optimise.objectives import Objective
 from synth.robust.capability import capability
-from synth.robust.sampling import base_of_attributes, base_of, production
+from synth.robust.sampling import base_of, production
 from synth.robust.settings import RobustSettings
 from synth.optimise.solvers.enumerate import tables
 from synth.robust.tolerances import tolerances
@@ -124,7 +124,9 @@ def search(ev, weights: dict, rs: RobustSettings, *, report: SearchReport | None
         first = np.array([t.score[s][o[0]] if len(o) else np.inf for o in orders[s]])
         lb = lb + first
     best = (np.inf, None, None, None)
-    for r in np.argsort(lb, kind="stable"):
+    order = np.argsort(lb, kind="stable")
+    walks = _Walks(ev, t, orders, rs, table, order[np.isfinite(lb[order])])
+    for r in order:
         if not np.isfinite(lb[r]) or lb[r] >= best[0] - _EPS * max(1.0, abs(best[0])):
             rep.proof = (f"stopped at a core whose lower bound {lb[r]:.6g} is no better than the best robust design "
                          f"{best[0]:.6g}" if np.isfinite(best[0]) else "every core with a feasible design checked")
@@ -136,30 +138,89 @@ def search(ev, weights: dict, rs: RobustSettings, *, report: SearchReport | None
             value = float(t.core_score[r] + sum(t.score[s][opts[s]] for s in SUBSYSTEMS))
             if value >= best[0] - _EPS * max(1.0, abs(best[0])):
                 break  # this core cannot beat the best any more
-            base = base_of_attributes(ev.inputs, _attributes(ev, int(t.rows[r]), opts), ev.settings, table,
-                                      apps=ev.apps)
-            cap = capability(base, rs, rare=rs.ppm is not None, details=False)
+            cap = walks.capability(int(r), ptr)
             rep.candidates += 1
             failing = cap.failing()
             rep.record(cap)
             if not failing:
                 best = (value, int(t.rows[r]), opts, cap)
                 break
-            groups = {REGISTRY[c.id].group for c in failing}
-            if groups & set(_CORE_GROUPS):
-                rep.reject(cap)
-                break
-            done = False
-            for s in groups:
-                ptr[s] += 1
-                if ptr[s] >= len(orders[s][r]):
-                    done = True
-            if done:
+            if _advance(ptr, failing, orders, r):
                 rep.reject(cap)
                 break
     else:
         rep.proof = "every core with a feasible design checked"
     return best
+
+
+def _advance(ptr: dict, failing: list, orders: dict, r: int) -> bool:
+    """Move core ``r``'s walk ``ptr`` past the options its candidate's ``failing`` checks reject (every design with
+    a failing option fails too); True when the core is done (a core check fails, or a subsystem has no option left).
+    """
+    groups = {REGISTRY[c.id].group for c in failing}
+    if groups & set(_CORE_GROUPS):
+        return True
+    done = False
+    for s in groups:
+        ptr[s] += 1
+        if ptr[s] >= len(orders[s][r]):
+            done = True
+    return done
+
+
+class _Walks:
+    """The capabilities of the cores' candidates, evaluated ahead of :func:`search` and together.
+
+    Each core's walk (its candidates in the order :func:`search` takes them, :func:`_advance`) depends on its own
+    candidates' capabilities alone; the search's best design only cuts walks short and stops the cores. So the
+    walks of the next cores (``upcoming``, in the search's order) are run in lockstep, one candidate of each per
+    round, every round's candidates in one batch (:func:`synth.robust.capability.capabilities`: the same
+    capability as one at a time); the search reads them and the report counts what it reads, as before. A round
+    spans 2**k cores (up to :attr:`WIDTH`) when the search has moved past k cores: an application whose first core
+    holds its design evaluates no more than before, one that walks many cores shares the evaluator's calls."""
+
+    WIDTH = 16
+
+    def __init__(self, ev, t, orders: dict, rs: RobustSettings, table, upcoming):
+        self.ev, self.t, self.orders, self.rs, self.table = ev, t, orders, rs, table
+        self.upcoming = [int(r) for r in upcoming]
+        self.ptr: dict = {}       # core -> its walk's pointer (None: done)
+        self.cache: dict = {}     # (core, options' positions) -> capability
+
+    def _key(self, r: int, ptr: dict) -> tuple:
+        return (r, *(ptr[s] for s in SUBSYSTEMS))
+
+    def capability(self, r: int, ptr: dict):
+        key = self._key(r, ptr)
+        while key not in self.cache:
+            if r in self.ptr and self.ptr[r] is None:
+                raise RuntimeError(f"robust search: core {r}'s walk ended before {key}")  # synth's own bug
+            self._round(r)
+        return self.cache[key]
+
+    def _round(self, r: int) -> None:
+        from synth.robust.capability import capabilities
+        from synth.robust.sampling import bases_of_attributes
+        start = self.upcoming.index(r)
+        width = min(2 ** start, self.WIDTH)  # the first core alone; wider as the search moves past cores
+        cores = []
+        for q in self.upcoming[start:]:
+            if len(cores) >= width:
+                break
+            p = self.ptr.setdefault(q, {s: 0 for s in SUBSYSTEMS})
+            if p is not None:
+                cores.append(q)
+        ev, t = self.ev, self.t
+        opts = [{s: int(self.orders[s][q][self.ptr[q][s]]) for s in SUBSYSTEMS} for q in cores]
+        attrs = [_attributes(ev, int(t.rows[q]), o) for q, o in zip(cores, opts)]
+        bases, stacked = bases_of_attributes(ev.inputs, attrs, ev.settings, self.table, apps=ev.apps)
+        caps = capabilities(bases, stacked, self.rs, rare=self.rs.ppm is not None, details=False)
+        for q, cap in zip(cores, caps):
+            p = self.ptr[q]
+            self.cache[self._key(q, p)] = cap
+            failing = cap.failing()
+            if not failing or _advance(p, failing, self.orders, q):
+                self.ptr[q] = None
 
 
 def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs: RobustSettings = RobustSettings(),
