@@ -6,7 +6,8 @@ per application: every core and option of the catalog product evaluated, the nea
 applications are generated across the input schema's choices with every optional input present and absent
 (``generate(n, seed, vary=True)``). No timing is asserted here: speed is measured by ``benchmarks/``.
 
-* 200 generated applications at screening fidelity (ten slices of 20; `benchmarks/bench_bulk.py` compares more): every column equal (same verdicts,
+* 100 generated applications at screening fidelity (ten slices of 10, each with feasible and failing rows;
+  `benchmarks/bench_bulk.py` compares more): every column equal (same verdicts,
   statuses, chosen or nearest designs, objectives, notes; margins to 1e-9);
 * the relaxations of the infeasible ones (diagnosis on) and full fidelity on smaller samples;
 * ``solve(d, ..., "enumerate")`` (branch and bound) against ``exhaustive=True``: the same Result;
@@ -30,7 +31,7 @@ from synth.optimise import solve
 from synth.optimise.batch import Batch, any_feasible
 from synth.optimise.diagnose import is_feasible, relaxations, relaxations_batch
 
-PORTFOLIO = generate(500, seed=31, vary=True)  # the first 200 in the slices below, all 500 elsewhere
+PORTFOLIO = generate(100, seed=31, vary=True)  # the slices below; the first 40 for the relaxations
 
 
 def assert_same_rows(fast: pd.DataFrame, ref: pd.DataFrame):
@@ -49,9 +50,10 @@ def assert_same_rows(fast: pd.DataFrame, ref: pd.DataFrame):
 
 
 @pytest.mark.parametrize("part", range(10))
-def test_fast_path_equals_the_reference_on_200_generated_applications(part):
-    # 10 slices of 20 (each reference row is a whole per-application search: 500 took 320 s of the suite)
-    apps = PORTFOLIO[20 * part:20 * (part + 1)]
+def test_fast_path_equals_the_reference_on_100_generated_applications(part):
+    # 10 slices of 10 (each reference row is a whole per-application search, about 0.6 s: 500 took 320 s of the
+    # suite, 200 took 120 s)
+    apps = PORTFOLIO[10 * part:10 * (part + 1)]
     fast = screen_applications(apps, objective="standard", fidelity="screening", diagnose=False)
     ref = screen_applications_reference(apps, objective="standard", fidelity="screening", diagnose=False)
     assert_same_rows(fast, ref)
@@ -64,21 +66,23 @@ def test_relaxations_equal_the_reference():
     # infeasible applications (generated with every input given, and varied), diagnosis on: the same probes, the
     # same bisection, the same relaxation strings
     st = Settings(fidelity="screening")
-    # 12 applications (8 + 4): each reference row is a whole sequential diagnosis (seconds each on CI)
-    apps = [d for d in generate(40, seed=38) if not is_feasible(d, st)][:8]
+    # 9 applications (5 + 4): each reference row is a whole sequential diagnosis (seconds each on CI); 3 get a
+    # relaxation (of the spring's stiffness, of the bolt's threads), 6 none
+    apps = [d for d in generate(40, seed=38) if not is_feasible(d, st)][:5]
     apps += [d for d in PORTFOLIO[:40] if not is_feasible(d, st)][:4]
-    assert len(apps) >= 10
+    assert len(apps) == 9
     fast = screen_applications(apps, objective="standard", diagnose=True)
     ref = screen_applications_reference(apps, objective="standard", diagnose=True)
     assert_same_rows(fast, ref)
-    assert (fast["relaxation"] != "").sum() >= 3
+    assert (fast["relaxation"] != "").sum() >= 3 and (fast["relaxation"] == "").sum() >= 3
 
 
 def test_full_fidelity_and_cost_objective_equal_the_reference():
-    apps = generate(30, seed=32, vary=True)
+    apps = generate(20, seed=32, vary=True)  # 20, not 30: the reference took 41 s of the suite
     for fid, obj in (("full", "standard"), ("screening", "cost")):
-        assert_same_rows(screen_applications(apps, objective=obj, fidelity=fid, diagnose=False),
-                         screen_applications_reference(apps, objective=obj, fidelity=fid, diagnose=False))
+        fast = screen_applications(apps, objective=obj, fidelity=fid, diagnose=False)
+        assert_same_rows(fast, screen_applications_reference(apps, objective=obj, fidelity=fid, diagnose=False))
+        assert 0 < fast["feasible"].sum() < len(apps)  # chosen designs and nearest ones compared
 
 
 def _without_stats(r) -> str:

@@ -85,7 +85,7 @@ def test_a_readme_example_runs_as_written(cmds, shown, tmp_path):
 def test_the_readme_python_example_runs(tmp_path):
     code = next(text for lang, text in _blocks() if lang == "python")
     (tmp_path / "synth").symlink_to(ROOT / "synth", target_is_directory=True)
-    r = subprocess.run([sys.executable, "-m", "synth", "portfolio-sample", "200", "--out", "portfolio.parquet"],
+    r = subprocess.run([sys.executable, "-m", "synth", "portfolio-sample", "50", "--out", "portfolio.parquet"],
                        cwd=tmp_path, env=_env(), capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
     script = tmp_path / "example.py"
@@ -93,5 +93,5 @@ def test_the_readme_python_example_runs(tmp_path):
     r = subprocess.run([sys.executable, str(script)], cwd=tmp_path, env=_env(), capture_output=True, text=True,
                        timeout=600)
     assert r.returncode == 0, r.stderr[-3000:]
-    assert re.search(r"verdict \w+ 5 200", r.stdout), r.stdout[-2000:]
+    assert re.search(r"verdict \w+ 5 50", r.stdout), r.stdout[-2000:]
     assert (tmp_path / "out" / "report.html").exists() and (tmp_path / "out" / "results.xlsx").exists()
