@@ -48,6 +48,7 @@ import numpy as np
 
 from synth import catalog
 from synth.errors import InputError, Problem
+from synth.kernels.numba_setup import Compiled
 from synth.model import disc_spring as s8
 from synth.model import friction_wear as s5
 
@@ -59,22 +60,18 @@ RTOL = 1e-12
 #: and, for a difference of two nearly equal forces or wears, relative to the magnitude of the forces
 ATOL = 1e-12
 
-_JIT = None
 _ADDRESSES: tuple | None = None
 
 
-def load_kernels():
-    """The compiled twins' module (imports numba on the first call; later calls are a global lookup)."""
-    global _JIT
-    if _JIT is None:
-        from synth.kernels import _axial_jit
-        _JIT = _axial_jit
-    return _JIT
+def _import_kernels():
+    from synth.kernels import _axial_jit
+    return _axial_jit
 
 
-def numba_loaded() -> bool:
-    """Whether this process has loaded the compiled twins (and so imported numba) yet."""
-    return _JIT is not None
+#: the compiled twins' module (imports numba on the first call; later calls are an attribute lookup)
+load_kernels = Compiled(_import_kernels)
+#: whether this process has loaded the compiled twins' module (and so imported numba) yet
+numba_loaded = load_kernels.loaded
 
 
 def _addresses() -> tuple:

@@ -17,6 +17,7 @@ from synth.design.constraints import REGISTRY, by_group, margin as registry_marg
 from synth.design.settings import DEFAULT, Settings
 from synth.errors import InputError, Problem
 from synth.kernels import engines
+from synth.kernels.numba_setup import Compiled
 from synth.model import torsion_spring
 from synth.design.space import space
 
@@ -53,21 +54,16 @@ ENGINES = engines.ENGINES
 #: the option columns the numpy twin reads (the space's spring table names them so)
 OPTION_FIELDS = evaluate.SPRING_OPTION_COLUMNS
 
-_JIT = None
+
+def _import_kernels():
+    from synth.kernels import _main_spring_jit
+    return _main_spring_jit
 
 
-def load_kernels():
-    """The compiled kernels module (imports numba on the first call; later calls are a global lookup)."""
-    global _JIT
-    if _JIT is None:
-        from synth.kernels import _main_spring_jit
-        _JIT = _main_spring_jit
-    return _JIT
-
-
-def numba_loaded() -> bool:
-    """Whether this process has loaded the compiled kernels (and so imported numba) yet."""
-    return _JIT is not None
+#: the compiled kernels module (imports numba on the first call; later calls are an attribute lookup)
+load_kernels = Compiled(_import_kernels)
+#: whether this process has loaded the compiled kernels module (and so imported numba) yet
+numba_loaded = load_kernels.loaded
 
 
 # --------------------------------------------------------------------------------------- inputs
