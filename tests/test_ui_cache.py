@@ -74,7 +74,10 @@ def test_a_second_pdf_of_the_same_design_is_the_first_print_and_an_edit_prints_a
     first = work.report(_verified(parts), str(tmp_path / "a"), pdf=True, source="default", root=str(tmp_path))
     again = work.report(_verified(parts), str(tmp_path / "b"), pdf=True, source="default", root=str(tmp_path))
     assert first["printed"] and not again["printed"] and counted["prints"] == 1
-    assert again == {**first, "printed": False, "timings_s": again["timings_s"]}  # the files made before
+    for k in ("html", "xlsx", "pdf"):  # the files made before, copied into the second folder
+        assert Path(again[k]).parent == tmp_path / "b" and Path(first[k]).parent == tmp_path / "a"
+        assert Path(again[k]).read_bytes() == Path(first[k]).read_bytes()
+    assert again["document"] == first["document"]
     work._DOCS.clear()  # made anew (another minute: another date), the same document: not printed again
     anew = work.report(_verified(parts), str(tmp_path / "b"), pdf=True, source="default", root=str(tmp_path))
     assert not anew["printed"] and counted["prints"] == 1 and anew["document"] == first["document"]
@@ -98,3 +101,19 @@ def test_design_rules_change_the_results_key(parts):
     ruled = synth.verify(default_values(), parts, rules=rules)
     assert work.result_key(plain) == work.result_key(_verified(parts))
     assert work.result_key(ruled) != work.result_key(plain)
+
+
+def test_each_tab_gets_its_report_in_its_own_folder(parts, counted, tmp_path):
+    """Two tabs (two folders) asking for the report of the same result: each gets files in its own folder (a tab's
+    folder is removed when the tab is forgotten, and a tab must never be served another's files), made once."""
+    a = work.report(_verified(parts), str(tmp_path / "tab-a"), pdf=True, source="default", root=str(tmp_path))
+    b = work.report(_verified(parts), str(tmp_path / "tab-b"), pdf=True, source="default", root=str(tmp_path))
+    for k in ("html", "xlsx", "pdf"):
+        assert tmp_path / "tab-a" in Path(a[k]).parents and tmp_path / "tab-b" in Path(b[k]).parents
+        assert Path(a[k]).read_bytes() == Path(b[k]).read_bytes()
+    assert counted == {"graphs": 1, "prints": 1}  # drawn and printed once, copied for the second tab
+    import shutil
+    shutil.rmtree(tmp_path / "tab-a")  # the first tab forgotten: the second's files stay, and are served again
+    again = work.report(_verified(parts), str(tmp_path / "tab-b"), pdf=True, source="default", root=str(tmp_path))
+    assert {k: again[k] for k in ("html", "xlsx", "pdf")} == {k: b[k] for k in ("html", "xlsx", "pdf")}
+    assert all(Path(again[k]).is_file() for k in ("html", "xlsx", "pdf"))

@@ -248,18 +248,22 @@ def report(result, folder: str, *, pdf: bool, source: str = "", pictures: tuple 
     :func:`graphs` and the 3D model's ``pictures``), and with ``pdf`` its PDF (:func:`synth.ui.printer.print_pdf`):
     ``{"html", "xlsx", "pdf", "pdf_note", "document", "printed", "timings_s"}``.
 
-    Made once per result, source and pictures (:func:`_made_from`: the files of an earlier call are returned), and
+    Made once per result, source and pictures (:func:`_made_from`: the files of an earlier call into the same folder
+    are returned, those of a call into another folder (another tab's) copied into this one), and
     printed once per document (:func:`document_key`: the PDF of a document printed before is that print, and its
     HTML the one it was printed from, dated when it was first made); ``printed`` says whether this call printed."""
     import shutil
     t0 = time.perf_counter()
     pictures = tuple(p for p in pictures if Path(p).is_file())
     made_from = _made_from(result, source, pictures)
-    made = _DOCS.get(made_from)
-    if made is not None and all(Path(made[k]).is_file() for k in ("html", "xlsx")):
-        _DOCS.move_to_end(made_from)
+    key = (made_from, str(Path(folder).resolve()))  # a page's files are in its own folder, never another tab's
+    made = _DOCS.get(key)
+    if made is not None and _written(made):
+        _DOCS.move_to_end(key)
     else:
-        made = _keep(_DOCS, made_from, _write_report(result, folder, source, pictures))
+        other = next((m for (f, _), m in reversed(_DOCS.items()) if f == made_from and _written(m)), None)
+        made = _keep(_DOCS, key, _copied(other, folder) if other is not None
+                     else _write_report(result, folder, source, pictures))
     t1 = time.perf_counter()
     files = {"html": made["html"], "xlsx": made["xlsx"], "pdf": None, "pdf_note": "not asked for",
              "document": made["document"], "printed": False}
@@ -283,6 +287,18 @@ def report(result, folder: str, *, pdf: bool, source: str = "", pictures: tuple 
                 _keep(_PDFS, doc, {"pdf": str(kept), "date": made["date"]})
     files["timings_s"] = {"html_and_workbook": t1 - t0, "pdf": time.perf_counter() - t1}
     return files
+
+
+def _written(made: dict) -> bool:
+    return all(Path(made[k]).is_file() for k in ("html", "xlsx"))
+
+
+def _copied(made: dict, folder: str) -> dict:
+    """The files of a report made for another folder (another tab's), copied into ``folder``: the same document."""
+    import shutil
+    out = Path(folder)
+    out.mkdir(parents=True, exist_ok=True)
+    return {**made, **{k: str(shutil.copyfile(made[k], out / Path(made[k]).name)) for k in ("html", "xlsx")}}
 
 
 def _write_report(result, folder: str, source: str, pictures: tuple) -> dict:
