@@ -16,6 +16,8 @@ this one), and the machine's load average before and after. A benchmark, not a t
   table painted (measured inside the page: the ``evaluation`` counter the server sets with the same update, then the
   next animation frame); M edits alternating between two values that leave the geometry as it is, and M of the pulley
   diameter, which changes it (the model is rebuilt meanwhile); median and 90th percentile.
+  The server's CPU time from the edit typed to the checks painted too (``/proc``: what the server's part of an edit
+  comes to on an idle machine; the browser's drawing is not in it).
 * **STEP, PDF**: from the button clicked to the browser's download, after the 3D view was shown (its model built):
   the first of each; after an edit of the support's strength (a new result, the same geometry: STEP written from the
   kept model, the report a new document, drawn and printed); and **after the first build**: the design edited away and
@@ -116,6 +118,37 @@ def _download(page, kind: str) -> float:
     return time.perf_counter() - t
 
 
+def _edits(tree: Tree, page, edits: int, pid: int) -> None:
+    """``edits`` edits of each kind (:data:`EDITS`) after two warm-up ones, with the 3D view shown; the server's CPU
+    per edit (what an idle machine's server part of an edit approaches)."""
+    for kind, (field, values) in EDITS.items():
+        for k in range(edits + 2):
+            cpu = cpu_s(pid)
+            ms = page.evaluate(_EDIT_JS, [field, values[k % 2]])
+            if k >= 2:  # two warm-up edits
+                tree.add(f"edit_{kind}", ms)
+                tree.add(f"edit_{kind}_cpu", 1000 * (cpu_s(pid) - cpu))
+            page.wait_for_timeout(150)
+
+
+def measure_edits(tree: Tree, browser, edits: int) -> None:
+    """The edits alone (``--only-edits``): one server, its page's 3D view shown, then :func:`_edits`."""
+    from synth.ui.browser import free_port, goto_when_up, stop_server
+    port = free_port()
+    proc = tree.start(port)
+    stl: list = []
+    ctx, page = _page(browser, port, stl)
+    try:
+        goto_when_up(page, f"http://127.0.0.1:{port}/", 300)
+        page.locator("table.checks tr[data-check]").first.wait_for()
+        _first_view(page, stl)
+        page.wait_for_timeout(3000)  # the view at rest, the model's details made
+        _edits(tree, page, edits, proc.pid)
+    finally:
+        ctx.close()
+        stop_server(proc)
+
+
 def measure(tree: Tree, browser, starts: int, edits: int, only_cold: bool = False) -> None:
     from synth.ui.browser import free_port, goto_when_up, stop_server
     for i in range(starts + 1):
@@ -140,12 +173,7 @@ def measure(tree: Tree, browser, starts: int, edits: int, only_cold: bool = Fals
             page2.locator("table.checks tr[data-check]").first.wait_for()
             tree.add("view_after_pause", _first_view(page2, stl))
             ctx2.close()
-            for kind, (field, values) in EDITS.items():
-                for k in range(edits + 2):
-                    ms = page.evaluate(_EDIT_JS, [field, values[k % 2]])
-                    if k >= 2:  # two warm-up edits
-                        tree.add(f"edit_{kind}", ms)
-                    page.wait_for_timeout(150)
+            _edits(tree, page, edits, proc.pid)
             page.wait_for_timeout(3000)  # the last model rebuilt
             tree.add("step_first", _download(page, "step"))
             tree.add("pdf_first", _download(page, "pdf"))
@@ -165,6 +193,8 @@ def measure(tree: Tree, browser, starts: int, edits: int, only_cold: bool = Fals
 #: (key, label, unit, target): the issue's four first (issue 35), then what else was measured
 ROWS = (("edit_support", "edit to checks, 3D open, geometry kept (support strength) [ms]", "ms", "< 200"),
         ("edit_pulley", "edit to checks, 3D open, geometry changed (pulley diameter) [ms]", "ms", "< 200"),
+        ("edit_support_cpu", "of which the server's CPU time (geometry kept) [ms]", "ms", ""),
+        ("edit_pulley_cpu", "of which the server's CPU time (geometry changed) [ms]", "ms", ""),
         ("step_again", "STEP download after the first build (the design edited and back) [s]", "s", "< 3"),
         ("pdf_again", "PDF download after the first build (the design edited and back) [s]", "s", "< 3"),
         ("cold", "cold start to the checks of the default application in the page [s]", "s", "< 3 (idle)"),
@@ -207,6 +237,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--edits", type=int, default=20, help="edits of each kind (default 20)")
     ap.add_argument("--tree", action="append", default=[], help="a checkout of synth to measure (repeatable)")
     ap.add_argument("--only-cold", action="store_true", help="the cold starts only")
+    ap.add_argument("--only-edits", action="store_true", help="the edits with the 3D view open only (one start)")
     ap.add_argument("--rounds", type=int, default=1, help="rounds over the trees (default 1)")
     a = ap.parse_args(argv)
     sys.path.insert(0, str(ROOT))
@@ -224,7 +255,10 @@ def main(argv: list[str] | None = None) -> int:
         browser = launch_chromium(p, chromium)
         for _ in range(a.rounds):  # the trees in turn, so that a change of the machine's load hits each alike
             for tree in trees:
-                measure(tree, browser, a.starts, a.edits, a.only_cold)
+                if a.only_edits:
+                    measure_edits(tree, browser, a.edits)
+                else:
+                    measure(tree, browser, a.starts, a.edits, a.only_cold)
         browser.close()
     load1 = os.getloadavg()
     print("uptime after: ", _uptime())

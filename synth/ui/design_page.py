@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import asyncio
 import html
+import time
 from pathlib import Path
 
 from nicegui import ui
@@ -24,7 +25,6 @@ from nicegui import ui
 from synth import schema
 from synth.errors import InputError, Problem
 from synth.io.limits import LIMITS, short
-from synth.report.html import digest_html
 from synth.ui import charts, form, jobs, views, worker
 from synth.ui.session import FIDELITIES, OBJECTIVES, TOP_MAX, DesignSession
 from synth.ui.trace import mark
@@ -48,8 +48,9 @@ SCENE_W, SCENE_H = 860, 540
 FPS_ACTIVE, FPS_REST, FPS_HIDDEN = 20, 2, 0.5
 #: seconds the view keeps its full rate after the last turn or zoom
 AWAKE_S = 3.0
-#: seconds the 3D view's update waits after an edit, so that the edit's checks leave the server first
-CHECKS_FIRST_S = 0.05
+#: seconds without an edit before the 3D view follows the design (the model of a design being typed is not built:
+#: each build is seconds of a worker's CPU, which the next edit's checks would wait behind on a busy machine)
+REDRAW_PAUSE_S = 0.6
 
 
 class DesignPage:
@@ -65,6 +66,9 @@ class DesignPage:
         self.view: dict | None = None        # the 3D view's framing (views.fit_view)
         self._reports: dict[tuple, dict] = {}
         self._loading = False
+        self.design_seq: int | None = None  # the evaluation the design tab shows
+        self._edited_at = 0.0               # the last edit's time (time.monotonic) while the 3D view is open
+        self._redrawing = False             # a redraw of the 3D view waits for the edits to pause
         self.tab = CHECKS
         header(host, port)
         pane = "height:calc(100vh - 64px);overflow-y:auto;flex-wrap:nowrap"  # form and results scroll apart
@@ -157,6 +161,7 @@ class DesignPage:
     def on_edit(self, name: str, value) -> None:
         if self._loading:
             return
+        mark("edit received")
         text = "" if value is None else str(value)
         if text == form.shown(self.s.texts[name]) and text != self.s.texts[name]:
             return  # the rounded number the box shows: the value kept is unchanged
@@ -165,6 +170,7 @@ class DesignPage:
         self.show_problems()
         if valid:
             self.show_result()
+            mark("edit shown")
         else:
             self.status.text = ("input not valid (see the marked fields): the checks shown are those of the last "
                                 "valid input")
@@ -217,6 +223,7 @@ class DesignPage:
                 ui.button(label, icon="download", on_click=lambda _, k=kind: self.download(k)) \
                     .props(f"outline dense data-testid=download-{kind}")
         self.status = ui.label().classes("text-caption")
+        self.digest_css = ui.html("", sanitize=False).style("display:none")  # the digest's style sheet, sent once
         self.seq = ui.label().props("data-testid=seq").classes("text-caption text-grey")
         self.digest = ui.html("", sanitize=False).classes("full-width")
         with ui.tabs().classes("full-width").props("dense") as tabs:
@@ -256,12 +263,11 @@ class DesignPage:
         self.status.text = (f"{r.status} design{how}, fidelity {r.settings.get('fidelity', self.s.fidelity)}: "
                             f"verdict {r.verdict}")
         self.status.classes(replace="text-positive" if r.verdict == "pass" else "text-negative")
-        self.digest.content = digest_html(r)
+        css, self.digest.content = views.digest(r)
+        self.digest_css.content = f"<style>{css}</style>"  # the same text every time: NiceGUI sends it once
         self.checks.content = views.checks_table(r)
-        self.parts.content = views.parts_table(r)
-        self.binding.content = views.binding_table(r)
-        self.diagnosis.content = views.diagnosis_html(r)
-        self.notes.content = "<ul>" + "".join(f"<li>{html.escape(str(n))}</li>" for n in r.notes) + "</ul>"
+        if self.tab == DESIGN:  # the design tab's tables when it is in view (on_tab draws them when opened)
+            self.show_design()
         if ALTERNATIVES in self._built:
             self.show_alternatives()
         if CAPABILITY in self._built:
@@ -272,14 +278,30 @@ class DesignPage:
         if self.tab == GRAPHS:  # drawn for the tab in view only: an edit stays a 5 ms round trip
             in_page(self.graphs, self.draw_graphs)
         elif self.tab == MODEL:
-            in_page(self.model_note, self.redraw_model)
+            self._edited_at = time.monotonic()
+            if not self._redrawing:  # one waiting redraw follows every edit
+                self._redrawing = True
+                in_page(self.model_note, self.redraw_model)
         elif self.tab == WHATIF and self.sweep_field.value and self.sweep_note.text:
             self.sweep_note.text = "the design changed: run the sweep again for this one"
+
+    def show_design(self) -> None:
+        """The design tab's tables (parts, what binds, diagnosis, notes) of the result in view, once per result."""
+        r = self.s.result
+        if r is None or self.design_seq == self.s.seq:
+            return
+        self.design_seq = self.s.seq
+        self.parts.content = views.parts_table(r)
+        self.binding.content = views.binding_table(r)
+        self.diagnosis.content = views.diagnosis_html(r)
+        self.notes.content = "<ul>" + "".join(f"<li>{html.escape(str(n))}</li>" for n in r.notes) + "</ul>"
 
     async def on_tab(self, e) -> None:
         self.tab = e.value
         self._build(self.tab)
-        if self.tab == ALTERNATIVES:
+        if self.tab == DESIGN:
+            self.show_design()
+        elif self.tab == ALTERNATIVES:
             self.show_alternatives()
         elif self.tab == CAPABILITY:
             self.show_capability()
@@ -524,10 +546,21 @@ class DesignPage:
         return model_key(geometry_from(self.s.result))
 
     async def redraw_model(self) -> None:
-        """:meth:`draw_model` after a new result, once the page has its checks: the design's hash (its geometry,
-        20 to 40 ms of this process on a loaded machine) and the worker's answer come after them, never before."""
-        await asyncio.sleep(CHECKS_FIRST_S)
-        await self.draw_model()
+        """:meth:`draw_model` after an edit, once the edits pause (:data:`REDRAW_PAUSE_S`): the checks of each edit
+        go first, and only the design the engineer stopped at is hashed (its geometry, 20 to 40 ms of this process on
+        a loaded machine), built and shipped; the view says meanwhile that it shows the design before the edit."""
+        try:
+            if self.model_key is not None:
+                self.model_note.text = "the design changed: the 3D view follows when the edits pause"
+            while True:
+                wait = self._edited_at + REDRAW_PAUSE_S - time.monotonic()
+                if wait <= 0:
+                    break
+                await asyncio.sleep(wait)
+        finally:
+            self._redrawing = False
+        if self.tab == MODEL:
+            await self.draw_model()
 
     async def draw_model(self) -> None:
         """The 3D view of the design in view: its STL parts (built once per design's hash, by the ``cad`` worker),
@@ -547,6 +580,8 @@ class DesignPage:
             if files is None or self.s.result is None or files["key"] != self._key_or_none():
                 return  # a newer design is being drawn
             self.show_model(files)
+        else:
+            self.model_note.text = self._shown_note
         details_key = (key, r.status, r.verdict, self.s.source)
         if details_key == self.details_key:
             return
@@ -578,8 +613,9 @@ class DesignPage:
                     colour = "#{:02x}{:02x}{:02x}".format(*(round(255 * x) for x in (r, g, b)))
                     rel = Path(path).relative_to(self.root).as_posix()
                     self.scene.stl(f"{FILES_URL}/{rel}").material(colour, opacity=a)
-        self.reset_view()
-        self.model_note.text = f"{len(files['stl'])} parts (STL, millimetres); drag to turn, scroll to zoom"
+        self._frame()
+        self._shown_note = f"{len(files['stl'])} parts (STL, millimetres); drag to turn, scroll to zoom"
+        self.model_note.text = self._shown_note
 
     def _fps(self, fps: float) -> None:
         if self.scene.props.get("fps") != fps:
@@ -588,21 +624,25 @@ class DesignPage:
 
     def wake(self, *_) -> None:
         """The view is turned, zoomed or changed: its full frame rate for :data:`AWAKE_S` seconds."""
-        import time
         self._awake_until = time.monotonic() + AWAKE_S
         self._fps(FPS_ACTIVE)
 
     def _rest(self) -> None:
-        import time
         if self.tab != MODEL:
             self._fps(FPS_HIDDEN)
         elif time.monotonic() > self._awake_until:
             self._fps(FPS_REST)
 
     def reset_view(self) -> None:
-        """The camera back to the view that frames the whole model."""
+        """The camera back to the view that frames the whole model (the button: drawn at the full frame rate)."""
         if self.view is not None:
             self.wake()
+            self._frame()
+
+    def _frame(self) -> None:
+        """The camera on the view that frames the model; a new model is drawn at the rate in force (at rest: the
+        next frame, without the 3 s of full rate that would take the CPU the next edit's checks need)."""
+        if self.view is not None:
             x, y, z = self.view["camera"]
             self.scene.move_camera(x=x, y=y, z=z, look_at_x=0, look_at_y=0, look_at_z=0, up_x=0, up_y=0, up_z=1,
                                    duration=0)

@@ -21,11 +21,11 @@ from html import escape
 
 from synth.design.result import part_note
 from synth.report.palette import VERDICT_FILLS
-from synth.report.html import check_steps, part_label, check_row
+from synth.report.html import check_steps, part_label, check_row, digest_html
 from synth.report.advice import relaxation_lines, alternative_rows
 from synth.ui.portfolio import verdict_word
 
-__all__ = ["checks_table", "parts_table", "binding_table", "diagnosis_html", "alternatives_html", "fill", "eng", "pct",
+__all__ = ["digest", "checks_table", "parts_table", "binding_table", "diagnosis_html", "alternatives_html", "fill", "eng", "pct",
            "part_value", "part_label", "fit_view",
            "capability_summary", "capability_table", "contributors", "compare_alternatives"]
 
@@ -66,6 +66,23 @@ def eng(x, digits: int = 4) -> str:
 def pct(fraction, digits: int = 1) -> str:
     """A fraction (a margin, a share) in percent with its sign (``+3.1 %``); None ``-``."""
     return f"{100 * fraction:+.{digits}f} %" if _finite(fraction) else "-"
+
+
+def digest(result) -> tuple[str, str]:
+    """``(style sheet, digest)``: the report's digest (:func:`synth.report.html.digest_html`) without the style sheet
+    it carries, which is the same for every result (a page holds it once: a ``<style>`` element in an edit's update
+    makes the browser restyle the whole page).
+
+    >>> from synth.design.result import Result
+    >>> css, body = digest(Result("verified", parts={"ball_bearing": "6006"}))
+    >>> ".synth" in css, "<style>" in body, digest(Result("optimal", parts={}))[0] == css
+    (True, False, True)
+    """
+    text = digest_html(result)
+    if text.startswith("<style>"):
+        css, body = text[len("<style>"):].split("</style>", 1)
+        return css, body
+    return "", text
 
 
 def checks_table(result) -> str:

@@ -266,6 +266,18 @@ def _picklable(v) -> bool:
         return False
 
 
+#: the niceness a worker adds to its own (POSIX): the server's answers to the page (an edit's checks) and the
+#: browser's drawing take a busy machine's cores before a model build, a graph or a print
+NICE = 5
+
+
+def _yield_cpu() -> None:
+    try:
+        os.nice(NICE)
+    except (AttributeError, OSError):  # no os.nice (Windows), or not allowed: the default priority
+        pass
+
+
 def main(argv: list[str] | None = None) -> int:
     """The worker's loop: ``python -m synth.ui.worker NAME HOST PORT`` with the key in ``SYNTH_UI_WORKER_KEY``."""
     import signal
@@ -273,6 +285,7 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the whole process group: the server stops us
     _die_with_parent()
+    _yield_cpu()
     key = bytes.fromhex(os.environ.pop(KEY_ENV))
     conn = Client((argv[1], int(argv[2])), authkey=key)
     from synth.ui import work
