@@ -25,6 +25,12 @@ LOCAL_HOSTS = ("127.0.0.1", "localhost", "::1")
 #: seconds the server waits for open requests when it stops (SIGTERM, Ctrl-C) before it ends them
 STOP_GRACE_S = 1.0
 
+#: packages the server never uses that NiceGUI's socket.io loads when it is imported: aiohttp for engineio's *client*
+#: classes, tornado for its tornado driver (NiceGUI serves socket.io over ASGI). Both imports are optional there
+#: (``try: import ... except ImportError``); :func:`serve` marks them absent, 0.3 s of the cold start's CPU (a fifth of
+#: NiceGUI's import), measured by ``benchmarks/bench_ui.py``
+UNUSED = ("aiohttp", "tornado")
+
 
 def serve(values: dict, source: str, *, host: str = "127.0.0.1", port: int = 8080, root: str | Path | None = None,
           rules=None, policy=None) -> None:
@@ -37,7 +43,11 @@ def serve(values: dict, source: str, *, host: str = "127.0.0.1", port: int = 808
     import shutil
     import tempfile
 
+    import sys
+
     from synth.ui.trace import mark
+    for name in UNUSED:  # the server process is ours until it ends: nothing in it asks for them later
+        sys.modules.setdefault(name, None)
     mark("serving: importing NiceGUI")
     from nicegui import app, ui
 
