@@ -389,6 +389,9 @@ def test_edit_synthesise_apply_capability_screen_open_back_and_download_the_assi
     pg.locator("[data-testid=rationalise]").click()
     link = pg.locator("[data-testid='file-assignment.csv']")
     link.wait_for(timeout=900_000)
+    # at the fidelity chosen beside the buttons (the screening's, the page's default), and the page says so
+    assert pg.locator("[data-testid=platform-fidelity]").inner_text().startswith(
+        "platform rationalised at screening fidelity")
     assert "assignment.csv" in pg.locator("#platform").inner_text()  # the file the section names...
     with pg.expect_download() as dl:
         link.click()  # ...downloads

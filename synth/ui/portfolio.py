@@ -92,6 +92,7 @@ class PortfolioSession:
         self.summary = None
         self.platform = None   # synth.platform.rationalise's result
         self.platform_html = ""
+        self.platform_fidelity = ""  # the model fidelity of the platform
         self.progress = (0, 0)  # (done, total) of the job running
         self.running = ""       # the job running ("screening", "platform"), "" none
         self.version = 0        # +1 whenever the table, the results or the platform change (the page redraws)
@@ -228,8 +229,9 @@ class PortfolioSession:
         return row_record(self.table.iloc[int(i)].to_dict())
 
     def rationalise(self, progress=None, *, fidelity: str = "full", time_limit: float = 60.0) -> str:
-        """The platform of the portfolio (``synth rationalise``, variants objective): its files (``platform/...``,
-        :meth:`files`) and its report section (HTML), which names ``assignment.csv``."""
+        """The platform of the portfolio (``synth rationalise``, variants objective) at model ``fidelity`` (the page
+        passes the one chosen beside its buttons, and says it): its files (``platform/...``, :meth:`files`) and its
+        report section (HTML), which names ``assignment.csv``."""
         from synth.design.evaluate import Settings
         from synth.platform.outputs import report_section
         from synth.platform.producer import load_feasibility
@@ -248,6 +250,7 @@ class PortfolioSession:
             for p in write_all(pf, self.platform, self.workdir / "files" / "platform"):
                 self._files[f"platform/{p.name}"] = p
             self.platform_html = report_section(self.platform)
+            self.platform_fidelity = fidelity
         finally:
             self.running = ""
             self.version += 1

@@ -71,6 +71,7 @@ class PortfolioPage:
             self.table.on("rowClick", self.on_row)
             ui.label("A row opens that application on the design page, at the fidelity it was screened at; Back "
                      "returns here.").classes("text-caption")
+            self.platform_note = ui.label().classes("text-caption").props("data-testid=platform-fidelity")
             self.platform = ui.html("", sanitize=False).classes("full-width")
         self._tick()
         ui.timer(0.2, self._tick)
@@ -93,6 +94,8 @@ class PortfolioPage:
         self.loaded.text = f"{len(p.table)} applications from {p.source}" if p.table is not None else ""
         self.fidelity.value = p.fidelity if p.results is not None else self.fidelity.value
         self.plots.clear()
+        self.platform_note.text = (f"platform rationalised at {p.platform_fidelity} fidelity (the fidelity chosen "
+                                   "beside the buttons)") if p.platform_html else ""
         self.platform.content = p.platform_html
         self.show_files()
         if p.results is None:
@@ -203,10 +206,15 @@ class PortfolioPage:
             return True
         return False
 
-    async def on_run(self) -> None:
+    def _fidelity(self) -> str:
+        """The model fidelity chosen beside the buttons (the screening's and the platform's)."""
         fidelity = self.fidelity.value
         if fidelity not in FIDELITIES:
             raise InputError(Problem("fidelity", short(fidelity), "one of " + ", ".join(FIDELITIES)))
+        return fidelity
+
+    async def on_run(self) -> None:
+        fidelity = self._fidelity()
         if self._busy():
             return
         self.p.running, self.p.progress = "screening", (0, len(self.p.table))  # at once: a second click is refused
@@ -215,10 +223,12 @@ class PortfolioPage:
         self._tick()
 
     async def on_rationalise(self) -> None:
+        fidelity = self._fidelity()
         if self._busy():
             return
         self.p.running, self.p.progress = "platform", (0, 1)
-        background_tasks.create(_job(self.p, "platform", self.p.rationalise), name="synth ui: platform")
+        background_tasks.create(_job(self.p, "platform", self.p.rationalise, fidelity=fidelity),
+                                name="synth ui: platform")
         self._tick()
 
     def on_row(self, e) -> None:
