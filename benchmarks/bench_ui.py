@@ -96,6 +96,15 @@ def _page(browser, port: int, stl: list):
     return ctx, page
 
 
+def _checks_shown(browser, port: int, stl: list):
+    """A new page of the server on ``port``, once it shows the checks: ``(context, page)``."""
+    from synth.ui.browser import goto_when_up
+    ctx, page = _page(browser, port, stl)
+    goto_when_up(page, f"http://127.0.0.1:{port}/", 300)
+    page.locator("table.checks tr[data-check]").first.wait_for()
+    return ctx, page
+
+
 def _first_view(page, stl: list) -> float:
     """Seconds from the 3D tab clicked to every part's STL loaded (the model note names how many)."""
     import re
@@ -135,33 +144,32 @@ def _edits(tree: Tree, page, edits: int, pid: int) -> None:
 
 def measure_edits(tree: Tree, browser, edits: int) -> None:
     """The edits alone (``--only-edits``): one server, its page's 3D view shown, then :func:`_edits`."""
-    from synth.ui.browser import free_port, goto_when_up, stop_server
+    from synth.ui.browser import free_port, stop_server
     port = free_port()
     proc = tree.start(port)
     stl: list = []
-    ctx, page = _page(browser, port, stl)
+    ctx = None
     try:
-        goto_when_up(page, f"http://127.0.0.1:{port}/", 300)
-        page.locator("table.checks tr[data-check]").first.wait_for()
+        ctx, page = _checks_shown(browser, port, stl)
         _first_view(page, stl)
         page.wait_for_timeout(3000)  # the view at rest, the model's details made
         _edits(tree, page, edits, proc.pid)
     finally:
-        ctx.close()
+        if ctx is not None:
+            ctx.close()
         stop_server(proc)
 
 
 def measure(tree: Tree, browser, starts: int, edits: int, only_cold: bool = False) -> None:
-    from synth.ui.browser import free_port, goto_when_up, stop_server
+    from synth.ui.browser import free_port, stop_server
     for i in range(starts + 1):
         port = free_port()
         t0 = time.perf_counter()
         proc = tree.start(port)
         stl: list = []
-        ctx, page = _page(browser, port, stl)
+        ctx = None
         try:
-            goto_when_up(page, f"http://127.0.0.1:{port}/", 300)
-            page.locator("table.checks tr[data-check]").first.wait_for()
+            ctx, page = _checks_shown(browser, port, stl)
             if i == 0:
                 continue  # the warm-up start
             tree.add("cold", time.perf_counter() - t0)
@@ -170,9 +178,7 @@ def measure(tree: Tree, browser, starts: int, edits: int, only_cold: bool = Fals
                 continue
             tree.add("view_at_once", _first_view(page, stl))
             time.sleep(10)
-            ctx2, page2 = _page(browser, port, stl)
-            goto_when_up(page2, f"http://127.0.0.1:{port}/", 300)
-            page2.locator("table.checks tr[data-check]").first.wait_for()
+            ctx2, page2 = _checks_shown(browser, port, stl)
             tree.add("view_after_pause", _first_view(page2, stl))
             ctx2.close()
             _edits(tree, page, edits, proc.pid)
@@ -188,7 +194,8 @@ def measure(tree: Tree, browser, starts: int, edits: int, only_cold: bool = Fals
             tree.add("step_again", _download(page, "step"))
             tree.add("pdf_again", _download(page, "pdf"))
         finally:
-            ctx.close()
+            if ctx is not None:
+                ctx.close()
             stop_server(proc)
 
 
