@@ -81,12 +81,17 @@ provable reductions of ``synth.platform.prune`` are what keep 1,000 applications
 
 from __future__ import annotations
 
+import os
+import sys
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pyomo.environ as pyo
-from pyomo.core.expr.numeric_expr import LinearExpression
+
+if TYPE_CHECKING:   # Pyomo is imported where the reference model is built (the arrays path never needs it)
+    import pyomo.environ as pyo
 
 __all__ = ["PlatformInstance", "PlatformSolution", "MilpArrays", "build_model", "build_arrays", "highs_model", "solve",
            "designs_start", "SOLVERS", "BUILDS"]
@@ -229,6 +234,7 @@ def _breaks(inst: PlatformInstance, objective: str, c_item, c_part, z_item, z_pa
 
 
 def _lin(coefs, vars_):
+    from pyomo.core.expr.numeric_expr import LinearExpression
     return LinearExpression(constant=0.0, linear_coefs=list(coefs), linear_vars=list(vars_))
 
 
@@ -242,6 +248,7 @@ def build_model(inst: PlatformInstance, objective: str = "variants", *, max_vari
     """
     if objective not in ("variants", "cost"):
         raise ValueError(f"objective must be 'variants' or 'cost', got {objective!r}")
+    import pyomo.environ as pyo
     m = pyo.ConcreteModel("platform")
     J, C, R = inst.n_parts, len(inst.core_app), len(inst.row_app)
     n_z = int(inst.row_opt_ptr[-1])
@@ -530,12 +537,34 @@ def build_arrays(inst: PlatformInstance, objective: str = "variants", *, max_var
               "constraints": int(sum(n_rows)), "nonzeros": int(nnz)})
 
 
+@contextmanager
+def _quiet_stdout():
+    """Standard output (the file descriptor, where HiGHS's C++ writes) sent to the null device meanwhile: what
+    Pyomo's ``capture_output(capture_fd=True)`` did here, without importing Pyomo (and SciPy's statistics with it)
+    on the arrays path."""
+    sys.stdout.flush()
+    try:
+        fd = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):   # no real descriptor (a captured stream): nothing to silence
+        yield
+        return
+    saved = os.dup(fd)
+    try:
+        with open(os.devnull, "w") as null:
+            os.dup2(null.fileno(), fd)
+            try:
+                yield
+            finally:
+                os.dup2(saved, fd)
+    finally:
+        os.close(saved)
+
+
 def highs_model(arr: MilpArrays):
     """A silent ``highspy.Highs`` holding ``arr``, loaded by the calls appsi's HiGHS interface makes (variables,
     their integrality, the rows, the objective), so it holds the model appsi would hand over."""
     import highspy
-    from pyomo.common.tee import capture_output
-    with capture_output(capture_fd=True):           # HiGHS prints its banner on stdout when the first one is made
+    with _quiet_stdout():           # HiGHS prints its banner on stdout when the first one is made
         h = highspy.Highs()
     h.setOptionValue("output_flag", False)
     n = len(arr.col_cost)
@@ -675,6 +704,7 @@ def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = 
         return PlatformSolution(status=status, y=y, objective=obj, bound=bound, gap=_gap(has, obj, bound, status),
                                 time_s=time.perf_counter() - t1, build_s=t1 - t0, size=dict(arr.size),
                                 solver=solver, unserved=unserved, x=x, z=z)
+    import pyomo.environ as pyo
     m = model if model is not None else build_model(inst, objective, max_variants=max_variants, budget=budget,
                                                     allow_unserved=allow_unserved)
     build_s = time.perf_counter() - t0

@@ -28,7 +28,7 @@ from synth.errors import InputError, Problem
 from synth.io.files import read_text
 from synth.platform.data import FAMILIES
 from synth.platform.volume import price_curves, saving_text, volume_saving
-from synth.io.outputs import write_figure, output_folder, write_csv, write_text
+from synth.io.outputs import write_figure, output_file, output_folder, write_csv, write_text
 from synth.bulk.portfolio import CSV_FLOAT
 
 __all__ = ["platform_table", "gap_text", "assignment_table", "price_of_standardisation", "summary_markdown",
@@ -267,7 +267,7 @@ def saved_section(text: str) -> str:
                      link_rel=None, strip_comments=True)
 
 
-def report_section(result) -> str:
+def report_section(result, tradeoff_png: bytes | None = None) -> str:
     """The platform for the HTML report: one self-contained ``<section id="platform">`` (the price of
     standardisation, the platform's parts and their use, the solve, and the plots embedded as base64 PNG: parts
     per family, and the trade-off curve when ``result.tradeoff`` holds one).
@@ -279,6 +279,7 @@ def report_section(result) -> str:
     (True, 1)
 
     ``result`` may also be the folder :func:`write_all` wrote (``synth rationalise --out``): its ``section.html``.
+    ``tradeoff_png``: the trade-off plot already drawn (:func:`write_all` draws it once for both files).
     """
     if isinstance(result, (str, Path)):
         f = Path(result) / "section.html"
@@ -305,9 +306,11 @@ def report_section(result) -> str:
     rows = getattr(result, "tradeoff", None)
     if rows:
         kind = "margin" if "margin_floor" in rows[0] else "cost"
-        buf = io.BytesIO()
-        plot_tradeoff(rows, buf, kind)
-        out += [f"<h3>Trade-off ({kind})</h3>", _png_tag(buf.getvalue(), "trade-off", "Platform size against "
+        if tradeoff_png is None:
+            buf = io.BytesIO()
+            plot_tradeoff(rows, buf, kind)
+            tradeoff_png = buf.getvalue()
+        out += [f"<h3>Trade-off ({kind})</h3>", _png_tag(tradeoff_png, "trade-off", "Platform size against "
                                                            + ("the worst margin" if kind == "margin" else "total cost")),
                 _html_table(list(k for k in rows[0] if k != "status") + ["status"],
                             [[f"{r[k]:,.4g}" if isinstance(r[k], (float, np.floating)) else r[k]
@@ -327,12 +330,19 @@ def write_all(pf, result, out, tradeoff_rows: list | None = None, kind: str = "m
     write_csv(platform_table(pf, result), paths[0], float_format=CSV_FLOAT)
     write_csv(assignment_table(result), paths[1], float_format=CSV_FLOAT)
     text = summary_markdown(pf, result)
+    png = None
     if tradeoff_rows:
         text += f"\n## Trade-off ({kind})\n\n" + tradeoff_table(tradeoff_rows)
         write_csv(pd.DataFrame(tradeoff_rows), out / "tradeoff.csv", float_format=CSV_FLOAT)
-        paths += [out / "tradeoff.csv", plot_tradeoff(tradeoff_rows, out / "tradeoff.png", kind)]
+        buf = io.BytesIO()   # drawn once: the file and the report section's embedded copy
+        png = plot_tradeoff(tradeoff_rows, buf, kind).getvalue()
+        with output_file(out / "tradeoff.png") as tmp:
+            Path(tmp).write_bytes(png)
+        paths += [out / "tradeoff.csv", out / "tradeoff.png"]
     write_text(paths[2], text)
     if tradeoff_rows and not getattr(result, "tradeoff", None):
         result.tradeoff = tradeoff_rows
-    paths.append(write_text(out / "section.html", report_section(result)))  # synth report --platform DIR
+    if png is not None and result.tradeoff is not tradeoff_rows:
+        png = None            # the section shows the result's own rows
+    paths.append(write_text(out / "section.html", report_section(result, png)))  # synth report --platform DIR
     return paths
