@@ -63,7 +63,7 @@ from synth.design.applications import Applications
 from synth.design.constraints import by_group, physics_inputs
 from synth.design.space import (SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, priced_for, space, space_for,
                                 spring_window)
-from synth.optimise.objectives import TIE, additive_goals, core_reads, weighted_sum, weighted_sum_around
+from synth.optimise.objectives import FALLBACK_WEIGHTS, TIE, additive_goals, core_reads, weighted_sum, weighted_sum_around
 from synth.optimise.product import DURABILITY_NOTE, core_scores, design_totals, option_scores
 from synth.errors import InputError
 from synth.kernels import engines, main_spring
@@ -1188,7 +1188,7 @@ def any_feasible(inputs: list, settings: evaluate.Settings = evaluate.Settings()
     model only orders and bounds the search: :meth:`Batch.optimum`)."""
     def run(items):
         b = Batch(items, settings, spring_engine=spring_engine, pin_inputs=pin_inputs)
-        found = b.optimum({"cost": 1.0}, first=True)
+        found = b.optimum(FALLBACK_WEIGHTS, first=True)
         if not designs:
             return [f is not None for f in found]
         return [None if f is None else (b.sp, int(b.C[f[0]]), f[1]) for f in found]

@@ -205,7 +205,7 @@ class Search:
             elif s == "axial":
                 groups = [(self.pad == p, t["axial_group_present"] == p) for p in (False, True)]
             else:
-                groups = [(np.ones(n, dtype=bool), np.ones(len(sc["cost"]), dtype=bool))]
+                groups = [(np.ones(n, dtype=bool), np.ones(sp.n(s), dtype=bool))]
             lb = {name: np.full(n, np.inf) for name in sc}
             for rows, opts in groups:
                 if opts.any():

@@ -58,7 +58,7 @@ class Tables:
 
 def weights_vec(scores: dict, weights: dict) -> np.ndarray:
     """:func:`synth.optimise.objectives.weighted_sum` of a score dict (one array per name), as an array."""
-    return np.zeros(len(scores["cost"])) + weighted_sum(scores, weights)
+    return np.zeros(len(next(iter(scores.values())))) + weighted_sum(scores, weights)
 
 
 def tables(ev: Evaluation, weights: dict) -> Tables:
