@@ -46,7 +46,8 @@ from synth.optimise.product import core_scores, option_scores
 from synth.design.verify import evaluate_design, parts_of_rows
 from synth.optimise.batch import Batch, robust
 from synth.optimise.diagnose import layout_switches, probe_batch, relaxations_batch
-from synth.optimise.objectives import Objective, with_margin_tiebreak
+from synth.optimise import objectives
+from synth.optimise.objectives import FALLBACK_WEIGHTS, Objective, with_margin_tiebreak
 from synth.bulk.capability import COLUMNS as CAPABILITY_COLUMNS, NUMBERS as CAPABILITY_NUMBERS
 
 __all__ = ["columns", "constraint_ids", "screen_applications", "screen_applications_reference", "row_from_result"]
@@ -65,7 +66,7 @@ def columns() -> list:
     >>> cols[:2], "part_ball_bearing" in cols, "margin_self_locking" in cols, cols[-1]
     (['feasible', 'status'], True, True, 'notes')
     """
-    return (["feasible", "status", "verdict", "objective_standard", "objective_cost_eur", "objective_margin"]
+    return (["feasible", "status", "verdict"] + [g.column for g in objectives.GOALS]
             + [f"part_{k}" for k in PART_KEYS]
             + ["margin_min", "binding_constraint", "binding_margin"]
             + [f"margin_{n}" for n in constraint_ids()]
@@ -95,9 +96,7 @@ def row_from_result(res, diagnose: bool = True) -> dict:
     """
     feasible = res.status in ("optimal", "feasible") and not res.failed()
     row = {"feasible": bool(feasible), "status": "optimal" if feasible else "infeasible", "verdict": res.verdict,
-           "objective_standard": _num(res.objectives.get("standard")),
-           "objective_cost_eur": _num(res.objectives.get("cost")),
-           "objective_margin": _num(res.objectives.get("margin"))}
+           **{g.column: _num(res.objectives.get(g.name)) for g in objectives.GOALS}}
     for k in PART_KEYS:
         row[f"part_{k}"] = res.parts.get(k)
     a = res.assessment()  # the one judgement (:mod:`synth.design.assessment`), as the fast path's rows
@@ -273,21 +272,19 @@ def _rows(b, idx, rows, options: dict, groups: dict, status: str, objective) -> 
     marg, ev, failed = a.margins, a.evaluated, a.failed
     # objectives as Evaluation.objective_values sums them
     sp = b.sp
-    cv = {k: b.cg.values[k][rows] for k in ("pivot_class_standard_mm", "pivot_class_diameter_mm")}
+    cv = {k: b.cg.values[k][rows] for k in objectives.core_reads()}
     sc = core_scores(sp, b.C[rows], cv)
     k = b.apps.spring_stiffness_nm_per_deg[idx]
-    std, cost = np.zeros(m), np.zeros(m)
-    for s in SUBSYSTEMS:
-        o = option_scores(sp, s, k if s == "spring" else None, options[s])
-        std, cost = std + o["standard"], cost + o["cost"]
-    std, cost = sc["standard"] + std, sc["cost"] + cost
+    totals = objectives.additive_totals(sc, [{n: np.zeros(m) + v for n, v in option_scores(
+        sp, s, k if s == "spring" else None, options[s]).items()} for s in SUBSYSTEMS])
     ids = a.columns.ids
     feasible = (status == "optimal") & a.ok
     notes_nv = _notes_of(b.apps, idx, a.state, ev, {})
     out = {"feasible": feasible, "status": np.where(feasible, "optimal", "infeasible").astype(object),
            "verdict": a.verdict,
-           "objective_standard": std.astype(float), "objective_cost_eur": np.round(cost.astype(float), 6),
-           "objective_margin": a.objective_margin.astype(float), "margin_min": a.margin_min.astype(float),
+           **{g.column: g.totals(totals[g.name]) if g.additive else a.objective_margin.astype(float)
+              for g in objectives.GOALS},
+           "margin_min": a.margin_min.astype(float),
            "binding_constraint": a.binding_ids(), "binding_margin": a.binding_margin}
     for key, col in _parts(groups["_attrs"], groups["core"].values).items():
         out[f"part_{key}"] = col
@@ -403,7 +400,7 @@ def screen_applications(apps: Sequence, *, objective: str = "standard", fidelity
             a, objective=objective, diagnose=diagnose, settings=s), row_from_result))
     if obj.uses_margin():
         return screen_applications_reference(apps, objective=objective, diagnose=diagnose, settings=settings)
-    w = obj.additive_weights() or {"cost": 1.0}
+    w = obj.additive_weights() or FALLBACK_WEIGHTS
     ties = _margin_ties(objective)
 
     def reference_row(d, exc=None):

@@ -63,8 +63,8 @@ from synth.design.applications import Applications
 from synth.design.constraints import by_group, physics_inputs
 from synth.design.space import (SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, priced_for, space, space_for,
                                 spring_window)
-from synth.optimise.objectives import TIE, weighted_sum, weighted_sum_around
-from synth.optimise.product import DURABILITY_NOTE, core_scores, option_scores
+from synth.optimise.objectives import FALLBACK_WEIGHTS, TIE, additive_goals, core_reads, weighted_sum, weighted_sum_around
+from synth.optimise.product import DURABILITY_NOTE, core_scores, design_totals, option_scores
 from synth.errors import InputError
 from synth.kernels import engines, main_spring
 from synth import catalog
@@ -498,9 +498,10 @@ class Batch:
         with nothing stored per pair (the score's per-option terms once,
         :func:`~synth.kernels._main_spring_jit.list_order`), the same doubles as numpy's scores."""
         sp = self.sp
-        if self.score_engine == "numba" and "cost" in weights:
+        per_k = [g.name for g in additive_goals() if g.per_stiffness]
+        if self.score_engine == "numba" and per_k[0] in weights:
             n = len(cand)
-            before, w, after = weighted_sum_around(option_scores(sp, "spring", 1.0, cand), weights, "cost")
+            before, w, after = weighted_sum_around(option_scores(sp, "spring", 1.0, cand), weights, per_k[0])
             pre = np.ascontiguousarray(np.broadcast_to(np.asarray(before, dtype=float), (n,)))
             post = np.array([np.broadcast_to(np.asarray(t, dtype=float), (n,)) for t in after],
                             dtype=float).reshape(len(after), n)
@@ -952,8 +953,7 @@ class Batch:
         if not len(R):
             return out
         sp, cg = self.sp, self.cg
-        cs = wsum(core_scores(sp, self.C[R], {k: cg.values[k][R] for k in ("pivot_class_standard_mm",
-                                                                          "pivot_class_diameter_mm")}), weights)
+        cs = wsum(core_scores(sp, self.C[R], {k: cg.values[k][R] for k in core_reads()}), weights)
         b_sc, b_pk = self._bushing(R, weights)
         t_sc, t_pk = self._bolt(R, weights)
         ax_sc = wsum(option_scores(sp, "axial"), weights)
@@ -1121,15 +1121,15 @@ class Batch:
         return parts_of_design(self.sp, self.C[core_row], options, self.cg.values, core_row)
 
     def objective_values(self, core_row: int, options: dict) -> dict:
-        """``{standard, cost}`` of a design, summed as :meth:`synth.optimise.product.Evaluation.objective_values`."""
+        """The additive goals (``{standard, cost, ...}``) of a design, summed as
+        :meth:`synth.optimise.product.Evaluation.objective_values`."""
         sp = self.sp
-        cv = {k: self.cg.values[k][[core_row]] for k in ("pivot_class_standard_mm", "pivot_class_diameter_mm")}
+        cv = {k: self.cg.values[k][[core_row]] for k in core_reads()}
         sc = core_scores(sp, self.C[[core_row]], cv)
         k = float(self.apps.spring_stiffness_nm_per_deg[self.A[core_row]])
         opt = {s: option_scores(sp, s, k) for s in SUBSYSTEMS}
-        std = float(sc["standard"][0]) + sum(opt[s]["standard"][options[s]] for s in SUBSYSTEMS)
-        cost = float(sc["cost"][0]) + sum(opt[s]["cost"][options[s]] for s in SUBSYSTEMS)
-        return {"standard": float(std), "cost": round(float(cost), 6)}
+        return design_totals({n: float(v[0]) for n, v in sc.items()},
+                             [{n: v[options[s]] for n, v in opt[s].items()} for s in SUBSYSTEMS])
 
     def notes(self, i: int) -> list:
         """The notes the enumeration's evaluation gives application ``i``."""
@@ -1188,7 +1188,7 @@ def any_feasible(inputs: list, settings: evaluate.Settings = evaluate.Settings()
     model only orders and bounds the search: :meth:`Batch.optimum`)."""
     def run(items):
         b = Batch(items, settings, spring_engine=spring_engine, pin_inputs=pin_inputs)
-        found = b.optimum({"cost": 1.0}, first=True)
+        found = b.optimum(FALLBACK_WEIGHTS, first=True)
         if not designs:
             return [f is not None for f in found]
         return [None if f is None else (b.sp, int(b.C[f[0]]), f[1]) for f in found]

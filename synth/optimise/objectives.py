@@ -32,24 +32,61 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Callable
 
+import numpy as np
 
 from synth.errors import InputError, Problem
 
 __all__ = ["Goal", "GOALS", "OBJECTIVES", "UNITS", "MAX_WEIGHT", "TIE", "Objective", "with_margin_tiebreak", "weighted_sum",
-           "ties"]
+           "ties", "FALLBACK_WEIGHTS", "declare", "withdraw", "goal", "additive_goals", "core_reads", "additive_totals"]
+
+
+def _nonstandard_core(sp, cores, core_values):
+    """Weighted count of the core's non-standard parts, plus ``nonstandard_weight_pivot_class`` for a pivot class other
+    than thesis Table 2's for the bearing and working arm (core values ``pivot_class_*``)."""
+    from synth import catalog
+    std = core_values["pivot_class_standard_mm"]
+    flag = ~np.isclose(core_values["pivot_class_diameter_mm"], np.nan_to_num(std, nan=-1.0))
+    return sp.tables["core"]["nonstandard"][cores] + catalog.constant("nonstandard_weight_pivot_class") * flag
+
+
+def _column(name: str):
+    """A part's score read from its table's column ``name`` (a core's at its rows, an option's at ``options``)."""
+    def core(sp, cores, core_values):
+        return sp.tables["core"][name][cores].astype(float)
+
+    def option(sp, table, options, stiffness_nm_per_deg):
+        return sp.tables[table][name][slice(None) if options is None else options].astype(float)
+    return core, option
+
+
+def _cost_option(sp, table, options, stiffness_nm_per_deg):
+    """Catalog unit cost [EUR] of the options; a main spring's from its wire length and mass, which scale as the
+    compliance (:meth:`synth.design.space.Space.spring_cost_eur`)."""
+    if table == "spring":
+        return sp.spring_cost_eur(stiffness_nm_per_deg, options)
+    return _column("cost_eur")[1](sp, table, options, stiffness_nm_per_deg)
 
 
 @dataclass(frozen=True)
 class Goal:
-    """One objective, declared once: every list of objective names, unit, sense and tie-break derives from
-    :data:`GOALS`.
+    """One objective, declared once: every list of objective names, unit, sense, tie-break, score and result column
+    derives from the registry (:data:`GOALS`, :func:`declare`).
 
     ``sense`` is +1 for an objective minimised, -1 for one maximised (a sort key and a weighted sum take
     ``sense * value``); ``additive`` says how a design scores: the sum of its parts' scores (it decomposes over
-    the subsystems, :func:`synth.optimise.product.core_scores` and :func:`~synth.optimise.product.option_scores`)
-    or, when false, the smallest of the design's normalised margins (it combines by the minimum);
-    ``tiebreak`` is the order a single name expands to.
+    the subsystems) or, when false, the smallest of the design's normalised margins (it combines by the minimum);
+    ``tiebreak`` is the order a single name expands to; ``scores`` says in words how a part scores.
+
+    An additive goal carries its score functions: ``core(space, cores, core_values)`` the scores of core rows
+    ``cores`` of ``space``'s core table (``core_values``: the core group's values at those rows, of the names in
+    ``reads``), ``option(space, table, options, stiffness_nm_per_deg)`` those of a subsystem's option rows
+    (``options`` None: every row; the stiffness broadcasts against them). :func:`synth.optimise.product.core_scores`
+    and :func:`~synth.optimise.product.option_scores` ask every additive goal. ``digits`` rounds a design's total
+    (None: kept); ``column`` is its column in a bulk result (``objective_<name>`` unless given);
+    ``per_stiffness`` marks the goal whose main-spring score is a catalog column over the application's stiffness
+    (the compiled spring ordering handles that one goal: :meth:`synth.optimise.batch.Batch._list_order`).
     """
 
     name: str
@@ -59,6 +96,27 @@ class Goal:
     additive: bool
     tiebreak: tuple
     scores: str
+    core: Callable | None = None
+    option: Callable | None = None
+    reads: tuple = ()
+    digits: int | None = None
+    column: str = ""
+    per_stiffness: bool = False
+
+    def __post_init__(self):
+        if self.additive and (self.core is None or self.option is None):
+            raise ValueError(f"goal {self.name}: an additive goal declares its core and option score functions")
+        if not self.column:
+            object.__setattr__(self, "column", f"objective_{self.name}")
+
+    def total(self, x) -> float:
+        """A design's total as results show it (a float, rounded to ``digits``)."""
+        return float(x) if self.digits is None else round(float(x), self.digits)
+
+    def totals(self, x) -> np.ndarray:
+        """Designs' totals as a bulk result's column holds them (floats, rounded to ``digits``)."""
+        x = np.asarray(x).astype(float)
+        return x if self.digits is None else np.round(x, self.digits)
 
 
 #: the objectives, in the order the CLI and the pages offer them
@@ -66,9 +124,12 @@ GOALS = (
     Goal(name="standard", words="non-standard parts", unit="(weighted count)", sense=+1, additive=True,
          tiebreak=("standard", "cost"),
          scores="catalog column nonstandard of each part, plus nonstandard_weight_pivot_class for a pivot class "
-                "other than thesis Table 2's"),
+                "other than thesis Table 2's",
+         core=_nonstandard_core, option=_column("nonstandard")[1],
+         reads=("pivot_class_standard_mm", "pivot_class_diameter_mm")),
     Goal(name="cost", words="cost", unit="EUR", sense=+1, additive=True, tiebreak=("cost", "standard"),
-         scores="catalog unit costs of the parts (the main spring's from its wire length and mass)"),
+         scores="catalog unit costs of the parts (the main spring's from its wire length and mass)",
+         core=_column("cost_eur")[0], option=_cost_option, digits=6, column="objective_cost_eur", per_stiffness=True),
     Goal(name="margin", words="smallest margin", unit="%", sense=-1, additive=False, tiebreak=("margin", "cost"),
          scores="smallest normalised margin over the constraints not met by construction (a fraction, shown in %)"),
 )
@@ -77,8 +138,50 @@ OBJECTIVES = tuple(_BY_NAME)
 #: the largest weight of a weighted objective: weights are relative, and the lexicographic orders use 1e4 between
 #: levels (:meth:`Objective.additive_weights`); above 1e6 a sum of costs (EUR) loses its cents in float precision
 MAX_WEIGHT = 1e6
+#: the additive weights a search ranks catalog rows by when the objective has none (the margin alone)
+FALLBACK_WEIGHTS = {"cost": 1.0}
 #: each objective's words and unit, for every output that prints a value of it
 UNITS = {g.name: (g.words, g.unit) for g in GOALS}
+
+
+def declare(goal: Goal) -> Goal:
+    """Add ``goal`` to the registry (after the declared ones; a name declared already is an error): every scene
+    then offers, scores and shows it. :func:`withdraw` undoes it."""
+    global GOALS, OBJECTIVES
+    if goal.name in _BY_NAME:
+        raise ValueError(f"goal {goal.name} is declared already")
+    _BY_NAME[goal.name] = goal
+    GOALS, OBJECTIVES = tuple(_BY_NAME.values()), tuple(_BY_NAME)
+    UNITS[goal.name] = (goal.words, goal.unit)
+    return goal
+
+
+def withdraw(name: str) -> None:
+    """Remove the goal ``name`` that :func:`declare` added."""
+    global GOALS, OBJECTIVES
+    del _BY_NAME[name], UNITS[name]
+    GOALS, OBJECTIVES = tuple(_BY_NAME.values()), tuple(_BY_NAME)
+
+
+def goal(name: str) -> Goal:
+    """The declared goal ``name``."""
+    return _BY_NAME[name]
+
+
+def additive_goals() -> tuple:
+    """The additive goals, in declaration order: the scores every design sums over its parts."""
+    return tuple(g for g in _BY_NAME.values() if g.additive)
+
+
+def core_reads() -> tuple:
+    """The core values the additive goals' core scores read."""
+    return tuple(dict.fromkeys(k for g in additive_goals() for k in g.reads))
+
+
+def additive_totals(core: dict, options) -> dict:
+    """Per additive goal, ``core[name] + sum(o[name] for o in options)`` (the scores of a design or of designs:
+    scalars or arrays), unrounded: the one sum of a design's scores."""
+    return {g.name: core[g.name] + sum(o[g.name] for o in options) for g in additive_goals()}
 
 
 @dataclass(frozen=True)
@@ -103,7 +206,8 @@ class Objective:
         text = str(text).strip().lower()
         parts = [p.strip() for p in text.split(",") if p.strip()]
         if not parts:
-            raise InputError(Problem("--objective", text, "standard, cost, margin, a lexicographic list or name=weight pairs"))
+            raise InputError(Problem("--objective", text, ", ".join(OBJECTIVES) + ", a lexicographic list or name=weight "
+                                                         "pairs"))
         if any("=" in p for p in parts):
             w = {}
             weights = ("name=weight pairs whose weights are finite, non-negative numbers of at most 1e6, at least "

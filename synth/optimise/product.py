@@ -28,16 +28,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from synth import catalog
 from synth.design.evaluate import (DEFAULT, SPRING_OPTION_COLUMNS, Group, Settings, axial_full, axial_judged, bolt,
                                    bushing, core, fixation_values, inputs, spring, spring_keys)
 from synth.design.applications import Applications
-from synth.design.space import SUBSYSTEMS, Space, core_rows, pinned_diameter, space_for, spring_window
+from synth.design.space import SUBSYSTEMS, Space, core_rows, pinned_diameter, space, space_for, spring_window
 from synth.design.verify import parts_of_design
 from synth.cost.breakdown import attributes
+from synth.optimise.objectives import additive_goals, additive_totals, goal
 
 __all__ = ["SubTable", "Evaluation", "evaluate", "subsystem", "SPRING_BLOCK_PAIRS", "design_scores",
-           "core_scores", "option_scores"]
+           "core_scores", "option_scores", "design_totals"]
 
 #: (key, option) pairs of main springs evaluated per block (bounds the memory of one evaluation)
 SPRING_BLOCK_PAIRS = 200_000
@@ -66,8 +66,8 @@ class Evaluation:
     core: Group               # the core group over ``cores``
     rows: np.ndarray            # positions in ``cores`` whose subsystems were evaluated
     subs: dict                  # subsystem -> SubTable over (rows, options)
-    score_core: dict            # "standard"/"cost" -> (len(cores),)
-    score: dict                 # subsystem -> "standard"/"cost" -> (n_options,)
+    score_core: dict            # additive goal -> (len(cores),)
+    score: dict                 # subsystem -> additive goal -> (n_options,)
     notes: list = field(default_factory=list)
     evaluations: int = 0
 
@@ -96,10 +96,10 @@ class Evaluation:
         return parts_of_design(self.space, self.cores[pos], options, self.core.values, pos)
 
     def objective_values(self, pos: int, options: dict, margin: float) -> dict:
-        """``{standard, cost, margin}`` of a design given by positions."""
-        std = self.score_core["standard"][pos] + sum(self.score[s]["standard"][options[s]] for s in SUBSYSTEMS)
-        cost = self.score_core["cost"][pos] + sum(self.score[s]["cost"][options[s]] for s in SUBSYSTEMS)
-        return {"standard": float(std), "cost": round(float(cost), 6), "margin": margin}
+        """``{standard, cost, ..., margin}`` of a design given by positions (every additive goal, and the margin)."""
+        return {**design_totals({k: v[pos] for k, v in self.score_core.items()},
+                                [{k: v[options[s]] for k, v in self.score[s].items()} for s in SUBSYSTEMS]),
+                "margin": margin}
 
 
 #: the note of an application without its durability test (the checks that need it are not verified)
@@ -107,21 +107,21 @@ DURABILITY_NOTE = "durability test not given: bushing, plastic wear and spring f
 
 
 def core_scores(sp: Space, cores, core_values: dict) -> dict:
-    """``{"standard", "cost"}`` of core rows ``cores`` (a pivot class other than Table 2's is non-standard)."""
-    t = sp.tables["core"]
-    std = core_values["pivot_class_standard_mm"]
-    flag = ~np.isclose(core_values["pivot_class_diameter_mm"], np.nan_to_num(std, nan=-1.0))
-    return {"standard": t["nonstandard"][cores] + catalog.constant("nonstandard_weight_pivot_class") * flag,
-            "cost": t["cost_eur"][cores].astype(float)}
+    """Every additive goal's scores (:func:`synth.optimise.objectives.additive_goals`) of core rows ``cores``
+    (``core_values``: the core group's values at those rows, at least :func:`~synth.optimise.objectives.core_reads`)."""
+    return {g.name: g.core(sp, cores, core_values) for g in additive_goals()}
 
 
 def option_scores(sp: Space, table: str, stiffness_nm_per_deg=None, options=None) -> dict:
-    """``{"standard", "cost"}`` of the options of a subsystem (the spring's cost needs the stiffness)."""
-    t = sp.tables[table]
-    idx = slice(None) if options is None else options
-    if table == "spring":
-        return {"standard": t["nonstandard"][idx].astype(float), "cost": sp.spring_cost_eur(stiffness_nm_per_deg, options)}
-    return {"standard": t["nonstandard"][idx].astype(float), "cost": t["cost_eur"][idx].astype(float)}
+    """Every additive goal's scores of the options of a subsystem (``options`` None: every row; the spring's cost
+    needs the stiffness)."""
+    return {g.name: g.option(sp, table, options, stiffness_nm_per_deg) for g in additive_goals()}
+
+
+def design_totals(core: dict, options) -> dict:
+    """A design's additive goals as results show them: its core's scores plus its options' (in
+    :data:`~synth.design.space.SUBSYSTEMS` order), each rounded as its goal says."""
+    return {name: goal(name).total(v) for name, v in additive_totals(core, options).items()}
 
 
 def _bushing(apps, sp, cg, pos, settings) -> SubTable:
@@ -253,17 +253,18 @@ def evaluate(d, settings: Settings = Settings(fidelity="full"), *, pin_inputs: b
 
 
 def design_scores(d, parts: dict, settings: Settings = DEFAULT) -> dict:
-    """``{standard, cost}`` of the design ``parts`` of input ``d`` (the optimiser's additive objectives)."""
+    """The additive goals (``{standard, cost, ...}``) of the design ``parts`` of input ``d``, priced at its annual
+    volume: the core's score, then the bushing's, the axial group's, the bolt's and the main spring's added in turn."""
     attrs = attributes(d, parts)[1]  # priced at the input's annual volume
     apps = Applications.of([d])
     cg = core(apps, np.zeros(1, dtype=np.int64), attrs["core"], settings)
-    std_class = cg.values["pivot_class_standard_mm"][0]
-    std = float(attrs["core"]["nonstandard"][0]) + catalog.constant("nonstandard_weight_pivot_class") * float(
-        not np.isclose(attrs["core"]["pivot_class_diameter_mm"][0], std_class))
-    cost = float(attrs["core"]["cost_eur"][0])
-    for s in ("bushing", "axial", "bolt"):
-        std += float(attrs[s]["nonstandard"][0])
-        cost += float(attrs[s]["cost_eur"][0])
-    std += float(attrs["spring"]["nonstandard"][0])
-    cost += float(attrs["spring"]["cost_eur_times_stiffness"][0]) / float(apps.spring_stiffness_nm_per_deg[0])
-    return {"standard": std, "cost": round(cost, 6)}
+    sp = Space(attrs, space().parts)
+    one = np.zeros(1, dtype=np.int64)
+    k = float(apps.spring_stiffness_nm_per_deg[0])
+    out = {}
+    for g in additive_goals():
+        v = float(g.core(sp, one, {n: cg.values[n] for n in g.reads})[0])
+        for s in ("bushing", "axial", "bolt", "spring"):
+            v += float(g.option(sp, s, one, k)[0])
+        out[g.name] = g.total(v)
+    return out

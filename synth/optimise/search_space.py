@@ -54,8 +54,10 @@ from typing import Callable
 
 import numpy as np
 
-from synth.design.space import SUBSYSTEMS, axial_attributes, cone_variants, mbd_grid, spring_attributes, spring_window
+from synth.design.space import (SUBSYSTEMS, Space, axial_attributes, cone_variants, mbd_grid, spring_attributes,
+                                spring_window)
 from synth.optimise.batch import wsum
+from synth.optimise.objectives import FALLBACK_WEIGHTS
 from synth.optimise.product import option_scores
 from synth.parts import arrays
 from synth.design.space import NONE
@@ -157,8 +159,7 @@ def _spring(sp, weights: dict, stiffness: float, window: tuple) -> Variables:
     t = sp.tables["spring"]
     pair = t["material_code"] * 10_000 + t["wire_code"]
     _, first = np.unique(pair, return_index=True)   # one row per stock: its cost and section do not depend on Dm
-    score = _weighted({"standard": t["nonstandard"][first].astype(float),
-                       "cost": sp.spring_cost_eur(stiffness, first)}, weights)
+    score = _weighted(option_scores(sp, "spring", stiffness, first), weights)
     # the sampler's axis: the elastic bending moment the wire carries, Rm I / (h/2) (eq. (69): the installation
     # stress is the torque over the section modulus), so neighbouring stocks load alike
     capacity = t["Rm_mpa"][first] * t["second_moment_mm4"][first] / (0.5 * t["h_mm"][first])
@@ -186,7 +187,7 @@ def _axial(sp, weights: dict) -> Variables:
     spacers = np.arange(len(p.endcap_spacer))
     one = axial_attributes(p, spacers, np.full(len(spacers), zeta[0]), np.full(len(spacers), phi[0]),
                            np.zeros(len(spacers)))
-    score = _weighted({"standard": one["nonstandard"], "cost": one["cost_eur"]}, weights)
+    score = _weighted(option_scores(Space({"axial": one}, p), "axial"), weights)
     rank = _rank(score)
     order, score = spacers[rank], score[rank]
     z, f = (a.ravel() for a in np.meshgrid(zeta, phi, indexing="ij"))
@@ -215,9 +216,9 @@ def _window(ev) -> tuple:
 def variables(ev, weights: dict) -> dict:
     """The searched variables of every subsystem for the application of ``ev`` (an evaluation of its cores,
     :func:`synth.optimise.product.evaluate` with ``subsystems=False``), catalog rows ranked by ``weights``
-    (over ``standard``/``cost``); the mean-diameter line spans the housings of the application's cores."""
+    (over the additive goals); the mean-diameter line spans the housings of the application's cores."""
     sp = ev.space
-    w = weights or {"cost": 1.0}
+    w = weights or FALLBACK_WEIGHTS
     out = {"bushing": _table_rows(sp, "bushing", w, ("supplier_code", "pivot_bushing_length_mm"),
                                   ("supplier_code", "pivot_bushing_length_mm")),
            "axial": _axial(sp, w),

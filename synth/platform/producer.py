@@ -72,6 +72,7 @@ from synth.platform.options import Catalogue, catalogue
 from synth.kernels import engines, main_spring
 from synth.kernels.main_spring import keys_of_rows
 from synth.optimise.diagnose import diagnose
+from synth.optimise.objectives import goal
 from synth.bulk.run import ENGINES, chunk_ranges, dask_pointless, dask_client
 from synth.bulk.portfolio import read_portfolio, records, validate_record, FORMATS
 from synth.platform.synthetic import synthetic_portfolio
@@ -522,7 +523,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
         d = inputs[i]
         af = AppFeasibility(
             app_id=str(ids[i]), core_parts={f: cat.core_codes[f][crow[sel]] for f in cat.core_codes},
-            core_cost_eur=cat.space.tables["core"]["cost_eur"][crow[sel]].astype(float), core_margin=core_m[sel],
+            core_cost_eur=goal("cost").core(cat.space, crow[sel], {}), core_margin=core_m[sel],
             group=group, feasible=feasible, option_margin=margin, volume=float(volumes[i]),
             option_cost_eur={"spring": cat.spring_cost_eur(float(apps.spring_stiffness_nm_per_deg[i]))},
             core_binding=_names(core_b[sel]), option_binding=binding,

@@ -18,7 +18,8 @@ its window). The application's specification stays the application's: its
 calculated torque target, and the hubload the safety factors of step 10 are
 defined on (eq. (94)-(99)). The worst-case tolerances of the nominal model
 that a sampled quantity replaces are set to 0 for the sample
-(:data:`synth.robust.tolerances.QUANTITIES`).
+(:data:`synth.robust.tolerances.DECLARED`: each quantity's declaration says
+what it perturbs, :func:`perturb` reads them).
 
 The made joint is always the VDI 2230 path's (:func:`production`): a
 production run tightens its bolts with a method and its scatter, which the
@@ -46,7 +47,7 @@ from synth.design.constraints import REGISTRY
 from synth.design.space import space
 from synth.design.verify import evaluate_design, parts_of_attributes
 from synth.model import torsion_spring
-from synth.robust.tolerances import Scatter, resolve
+from synth.robust.tolerances import DECLARED, Quantity, Scatter, resolve
 
 __all__ = ["Base", "Samples", "production", "base_of", "base_of_attributes", "bases_of_attributes", "take", "context", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
            "design_checks"]
@@ -242,11 +243,28 @@ def _col(dev: dict, name: str, n: int) -> np.ndarray:
     return dev[name] if name in dev else np.zeros(n)
 
 
+def _entered(x, q: Quantity, nominal, by=None):
+    """The perturbed value of declared quantity ``q`` at deviations ``x`` (:class:`~synth.robust.tolerances.Quantity`
+    ``how``)."""
+    if q.how == "add":
+        return nominal + x
+    if q.how == "set":
+        return x
+    if q.how == "negate":
+        return -x
+    if q.how == "relative":
+        return nominal * (1.0 + x / 100.0)
+    if q.how == "factor":
+        return 1.0 + x / 100.0
+    return nominal * (1.0 + x / by)  # scale_by
+
+
 def perturb(base: Base, dev: dict, rows=None) -> tuple:
     """``(apps, attrs)`` of the samples: ``dev`` maps quantities to ``(M,)`` deviations (in their units,
     :class:`~synth.robust.tolerances.Scatter`; 0 for a design the quantity is not in play for), ``rows`` the design
-    of each sample (a :class:`Base` of K designs: K-row apps, attrs and groups; default all design 0). See the
-    module docstring for what stays fixed."""
+    of each sample (a :class:`Base` of K designs: K-row apps, attrs and groups; default all design 0). Each quantity
+    enters as its declaration says (:data:`synth.robust.tolerances.DECLARED`); see the module docstring for what
+    stays fixed and follows."""
     n = len(next(iter(dev.values()))) if dev else 1
     rows = np.zeros(n, dtype=np.int64) if rows is None else np.asarray(rows, dtype=np.int64)
     one = len(base.apps) == 1
@@ -255,40 +273,28 @@ def perturb(base: Base, dev: dict, rows=None) -> tuple:
     def at(a):
         a = np.asarray(a)
         return np.broadcast_to(a[:1], (n,)) if one else a[rows]
+    live = [q for q in DECLARED.values() if q.name in dev]
     fields = {}
-    if "spring_torque" in dev:  # the made spring's torque (eq. (66)): its worst case of eq. (66) is the sample
-        fields["spring_torque_tolerance_pct"] = np.zeros(n)
-    if "working_arm" in dev:
-        fields["working_arm_mm"] = at(f0["working_arm_mm"]) + dev["working_arm"]
-    if "belt_offset" in dev:  # the realised offset in the tilting lever of eq. (95), instead of its worst case
-        fields["middle_plane_belt_height_increment_worst_mm"] = dev["belt_offset"]
-    if "pulley_diameter" in dev:
-        fields["pulley_diameter_mm"] = at(f0["pulley_diameter_mm"]) + dev["pulley_diameter"]
     # the design's columns (one design: read-only views; the perturbed ones are replaced, never written)
     attrs = {t: {k: at(v) for k, v in cols.items()} for t, cols in base.attrs.items()}
+    for q in live:  # the worst cases of the nominal model a sample replaces
+        for z in q.zero:
+            where, _, name = z.partition(":")
+            (fields if where == "field" else attrs[where])[name] = np.zeros(n)
+    for q in live:
+        if q.into == "field":
+            fields[q.target] = _entered(dev[q.name], q, at(f0[q.target]) if q.how == "add" else None)
+        elif q.into in attrs:
+            t = attrs[q.into]
+            by = t[q.by] if q.how == "scale_by" else None
+            for col in (q.target,) if isinstance(q.target, str) else q.target:
+                t[col] = _entered(dev[q.name], q, t.get(col), by)  # set, negate: no nominal needed
     sp = attrs["spring"]
-    b0, h0, d0 = sp["b_mm"], sp["h_mm"], sp["main_spring_mean_body_diameter_mm"]
+    b0, h0, d0 = (at(base.attrs["spring"][k]) for k in ("b_mm", "h_mm", "main_spring_mean_body_diameter_mm"))
     rnd = sp["round_wire"].astype(bool)
-    if "spring_wire_width" in dev:
-        sp["b_mm"] = b0 + dev["spring_wire_width"]
-        sp["b_tol_mm"] = np.zeros(n)
-    if "spring_wire_height" in dev:
-        sp["h_mm"] = h0 + dev["spring_wire_height"]
-        sp["h_tol_mm"] = np.zeros(n)
-        # a round wire has one diameter: its width is its height
+    if any(q.into == "spring" and q.target == "h_mm" for q in live):  # a round wire has one diameter: b = h
         sp["b_mm"] = np.where(rnd, sp["h_mm"], sp["b_mm"])
         sp["b_tol_mm"] = np.where(rnd, 0.0, sp["b_tol_mm"])
-    if "spring_coil_diameter" in dev:
-        sp["main_spring_mean_body_diameter_mm"] = d0 + dev["spring_coil_diameter"]
-        sp["mbd_tol_mm"] = np.zeros(n)
-    if "spring_tensile_strength" in dev:
-        ratio = 1.0 + dev["spring_tensile_strength"] / sp["Rm_mpa"]
-        for k in ("Rm_mpa", "sigma_y_mpa", "sigma_A0_mpa", "sigma_perm_static_mpa"):
-            sp[k] = sp[k] * ratio
-    if "spring_housing_outer_diameter" in dev:  # the limit D_h - tol of eq. (82) becomes D_h + deviation
-        sp["housing_outer_tol_mm"] = -dev["spring_housing_outer_diameter"]
-    if "spring_housing_inner_diameter" in dev:  # the limit D_s + tol of eq. (86) becomes D_s + deviation
-        sp["housing_inner_tol_mm"] = dev["spring_housing_inner_diameter"]
     # the made spring keeps its active coils: its stiffness follows from the made wire and diameter (eq. 64-65)
     k0 = at(f0["spring_stiffness_nm_per_deg"])
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -296,30 +302,30 @@ def perturb(base: Base, dev: dict, rows=None) -> tuple:
         n_made = torsion_spring.active_coils(sp["E_mpa"], torsion_spring.second_moment_mm4(sp["b_mm"], sp["h_mm"], rnd),
                                  sp["main_spring_mean_body_diameter_mm"], k0)
         fields["spring_stiffness_nm_per_deg"] = k0 * n_made / n_nom
-    if "pivot_diameter" in dev:
-        attrs["core"]["pivot_diameter_mm"] = attrs["core"]["pivot_diameter_mm"] + dev["pivot_diameter"]
     sized = at(base.groups["axial"].values["cone_spring_sized"]).astype(bool)
     if sized.any():  # the made cone spring: its thickness, the realised gap stack and its force scatter
         ax = attrs["axial"]
-        gap = (_col(dev, "stack_pivot", n) - _col(dev, "stack_endcap_spacer", n) - _col(dev, "stack_arm", n)
-               - _col(dev, "stack_damper_pad", n))
+        gap = np.zeros(n)
+        for q in DECLARED.values():  # each height adds to the gap or takes from it
+            if q.into == "gap":
+                x = _col(dev, q.name, n)
+                gap = gap + x if q.how == "add" else gap - x
         made_t = base.groups["axial"].values["cone_spring_thickness_mm"] if base.cone is None else \
             base.cone["thickness_mm"]  # the supplier's centred spring (steps 6 and 8), its thickness at the variant
         ax[evaluate.MADE_CONE_SPRING_COLUMNS["thickness_mm"]] = np.where(sized, at(made_t), np.nan)
         ax[evaluate.MADE_CONE_SPRING_COLUMNS["deflection_offset_mm"]] = -gap  # a smaller gap deflects the spring more
-        ax[evaluate.MADE_CONE_SPRING_COLUMNS["force_factor"]] = 1.0 + _col(dev, "cone_spring_force", n) / 100.0
+        for q in DECLARED.values():
+            if q.into == "cone":
+                ax[evaluate.MADE_CONE_SPRING_COLUMNS[q.target]] = _entered(_col(dev, q.name, n), q, None)
     apps = a0.with_fields(rows, **fields)
-    for q, key in (("pivot_bushing_friction", "mu_pivot_bushing"), ("plastic_friction", "mu_plastic"),
-                   ("crankcase_friction", "mu_crankcase")):
-        if q in dev:
-            apps.derived[key] = apps.derived[key] * (1.0 + dev[q] / 100.0)
-    # the made spring (its torque within its tolerance, or the design's own where no tolerance is in play): the
-    # tensioner follows from it by eq. (12)-(13), never a spring re-sized to the sample's friction
-    m_s = at(base.groups["core"].values["spring_torque_nominal_nm"]).astype(float)
-    apps.derived["spring_torque_made_nm"] = m_s * (1.0 + _col(dev, "spring_torque", n) / 100.0)
-    if "bolt_preload" in dev:  # the made joint's preload about its window's mean (the thesis path: the sized force)
-        f_mean = at(base.groups["bolt"].values["bolt_axial_force_n"]).astype(float)  # NaN without fixation data
-        apps.derived["bolt_clamp_force_n"] = f_mean * (1.0 + dev["bolt_preload"] / 100.0)
+    # derived values: the frictions, the made spring (its torque within its tolerance, or the design's own where no
+    # tolerance is in play: the tensioner follows from it by eq. (12)-(13), never a spring re-sized to the sample's
+    # friction), the made joint's preload about its window's mean (NaN without fixation data)
+    for q in DECLARED.values():
+        if q.into == "derived" and (q.name in dev or q.always):
+            group, _, key = q.by.partition(".")
+            nominal = at(base.groups[group].values[key]).astype(float) if q.by else apps.derived[q.target]
+            apps.derived[q.target] = _entered(_col(dev, q.name, n), q, nominal)
     return apps, attrs
 
 

@@ -15,10 +15,12 @@ input field of the application, a standard's table), the ``source`` and a
   distribution given: a standard's strength range, a friction range, the
   acceptance window of a force tolerance).
 
-What each quantity perturbs is fixed in code (:data:`QUANTITIES`): the
-evaluator's inputs it changes, and the worst-case tolerance of the nominal
-model it replaces (a quantity absent from the catalog keeps the nominal
-model's treatment). :func:`resolve` turns the rows into the :class:`Scatter`
+What each quantity perturbs is declared once in code (:class:`Quantity`,
+:data:`DECLARED`): the evaluator's input it changes and how, the worst-case
+tolerance of the nominal model it replaces, and what the design must have
+for it to apply (a quantity absent from the catalog keeps the nominal
+model's treatment); a new quantity is one declaration (:func:`declare`) and
+one catalog row. :func:`resolve` turns the rows into the :class:`Scatter`
 of one design of one application: the quantities in play (a zero band or a
 part the design does not have drops them) with their deviation bounds.
 
@@ -38,51 +40,124 @@ import numpy as np
 from synth import catalog
 from synth.errors import InputError, Problem
 
-__all__ = ["QUANTITIES", "QUANTITY_UNITS", "UNITS", "KINDS", "Tolerance", "Scatter", "tolerances", "resolve"]
+__all__ = ["Quantity", "DECLARED", "HOWS", "QUANTITIES", "QUANTITY_UNITS", "UNITS", "KINDS", "Tolerance", "Scatter",
+           "tolerances", "resolve", "declare", "withdraw"]
 
 KINDS = ("normal", "uniform")
 
-#: quantity -> what it perturbs in the evaluator (the one place that says how a tolerance enters the model)
-QUANTITIES = {
-    "spring_wire_width": "main spring wire width b (spring option b_mm; b_tol_mm of eq. (89)-(93) set to 0)",
-    "spring_wire_height": "main spring wire radial side h (spring option h_mm; h_tol_mm of eq. (83)-(88) set to 0)",
-    "spring_coil_diameter": "main spring mean body diameter (spring option; mbd_tol of eq. (83)-(88) set to 0)",
-    "spring_tensile_strength": "main spring wire tensile strength Rm (and sigma_y, sigma_A0, the static limit with it)",
-    "spring_torque": "the made spring's torque at the nominal position (eq. (66)'s toleranced quantity): the "
-                     "tensioner's damping, calculated torque and hubload follow by eq. (12)-(13); the one-sided "
-                     "worst case of eq. (66) set to 0",
-    "spring_housing_outer_diameter": "spring housing bore (the limit of eq. (82))",
-    "spring_housing_inner_diameter": "spring support diameter (the limit of eq. (86))",
-    "pivot_diameter": "pivot diameter (radial damping lever, bushing pressure)",
-    "working_arm": "working arm (eccentricity): the lever of eq. (7) and (12)-(13), the Table 2 check",
-    "belt_offset": "the belt plane's offset in the tilting lever of eq. (95) (the sample instead of the worst-case "
-                   "increment; the design's dimensions keep the nominal belt plane)",
-    "pulley_diameter": "pulley diameter (lock-up pin checks, eq. (22)-(25))",
-    "pivot_bushing_friction": "pivot bushing friction coefficient (radial damping, eq. (10))",
-    "plastic_friction": "plastic elements' friction coefficient (axial damping, eq. (9))",
-    "crankcase_friction": "pivot base-crankcase friction (sliding safety factor, eq. (99))",
-    "bolt_preload": "the made joint's assembly preload, within its tightening method's window [F_M,min, F_M,max] "
-                    "(VDI 2230-1: alpha_A = F_M,max/F_M,min)",
-    "stack_pivot": "cone spring gap: pivot height (Table 6)",
-    "stack_endcap_spacer": "cone spring gap: endcap spacer height (Table 6)",
-    "stack_arm": "cone spring gap: arm hub height (Table 6)",
-    "stack_damper_pad": "cone spring gap: damper pad height (Table 6)",
-    "cone_spring_force": "the made cone spring's force at its deflection (DIN EN 16983 force tolerance)",
-}
+@dataclass(frozen=True)
+class Quantity:
+    """What one tolerance quantity perturbs, declared once (its band, distribution and source are its row of
+    ``catalogs/tolerances.csv``); :func:`synth.robust.sampling.perturb` reads the declarations.
 
+    ``into`` is where the sampled deviation ``x`` enters: ``"field"`` an application input field, ``"derived"`` a
+    value derived from the inputs (``Applications.derived``), a design table (``"core"``, ``"bushing"``,
+    ``"axial"``, ``"spring"``, ``"bolt"``: a column of the design's attributes), ``"cone"`` a column of the made
+    cone spring (a design with a sized one) or ``"gap"`` the cone spring's gap stack (its deviations summed with
+    the sign of ``how``); ``target`` names the field, value or column(s). ``how``: ``"add"`` nominal + x,
+    ``"set"`` x, ``"negate"`` -x, ``"relative"`` nominal x (1 + x/100) (``by``: the nominal is the value
+    ``"group.key"`` of the design's nominal evaluation instead of the target's own), ``"factor"`` 1 + x/100,
+    ``"scale_by"`` each target column times 1 + x / (column ``by``). ``zero``: the worst-case tolerances of the
+    nominal model the sample replaces, set to 0 (``"field:NAME"`` or ``"TABLE:COLUMN"``). ``needs``: the key of the
+    design's context (:func:`synth.robust.sampling.context`) without which the quantity is dropped, ``why`` says so.
+    ``always``: applied at a zero deviation when the quantity is not in play (the made spring's torque).
+    """
+
+    name: str
+    enters: str
+    unit: str
+    into: str
+    target: str | tuple
+    how: str = "add"
+    by: str = ""
+    zero: tuple = ()
+    needs: str = ""
+    why: str = ""
+    always: bool = False
+
+    def __post_init__(self):
+        if self.how not in HOWS:
+            raise ValueError(f"tolerance quantity {self.name}: how {self.how!r}, one of {', '.join(HOWS)}")
+        if self.unit not in UNITS:
+            raise ValueError(f"tolerance quantity {self.name}: unit {self.unit!r}, one of {', '.join(UNITS)}")
+
+
+#: the ways a deviation enters (:class:`Quantity`)
+HOWS = ("add", "set", "negate", "relative", "factor", "scale_by")
 #: the unit each quantity's band is given in, and the largest band synth accepts (a larger one makes the quantity
 #: zero or negative, or its samples non-finite): unit -> (largest half-width, why)
 UNITS = {"mm": (10.0, "a larger one exceeds the tensioner's dimensions"),
          "MPa": (1000.0, "a larger one exceeds the strength of the spring wire"),
          "%": (100.0, "a larger one makes the quantity zero or negative")}
-#: each quantity's unit (its band's): a row giving another unit is refused (a band of 0.05 in mm and in % differ)
-QUANTITY_UNITS = {q: "mm" for q in QUANTITIES}
-QUANTITY_UNITS.update({"spring_tensile_strength": "MPa", "spring_torque": "%", "pivot_bushing_friction": "%",
-                       "plastic_friction": "%", "crankcase_friction": "%", "bolt_preload": "%",
-                       "cone_spring_force": "%"})
 
-#: quantities that need a part or a model path; resolve() drops them where the design has none
-_CONE = ("stack_pivot", "stack_endcap_spacer", "stack_arm", "stack_damper_pad", "cone_spring_force")
+_NO_CONE = "no cone spring in the design"
+
+#: the tolerance quantities synth knows, in order (:func:`declare`, :func:`withdraw`)
+DECLARED = {q.name: q for q in (
+    Quantity("spring_wire_width", "main spring wire width b (spring option b_mm; b_tol_mm of eq. (89)-(93) set to 0)",
+             "mm", "spring", "b_mm", zero=("spring:b_tol_mm",)),
+    Quantity("spring_wire_height", "main spring wire radial side h (spring option h_mm; h_tol_mm of eq. (83)-(88) set "
+             "to 0)", "mm", "spring", "h_mm", zero=("spring:h_tol_mm",)),
+    Quantity("spring_coil_diameter", "main spring mean body diameter (spring option; mbd_tol of eq. (83)-(88) set to "
+             "0)", "mm", "spring", "main_spring_mean_body_diameter_mm", zero=("spring:mbd_tol_mm",)),
+    Quantity("spring_tensile_strength", "main spring wire tensile strength Rm (and sigma_y, sigma_A0, the static limit "
+             "with it)", "MPa", "spring", ("Rm_mpa", "sigma_y_mpa", "sigma_A0_mpa", "sigma_perm_static_mpa"),
+             how="scale_by", by="Rm_mpa"),
+    Quantity("spring_torque", "the made spring's torque at the nominal position (eq. (66)'s toleranced quantity): the "
+             "tensioner's damping, calculated torque and hubload follow by eq. (12)-(13); the one-sided worst case of "
+             "eq. (66) set to 0", "%", "derived", "spring_torque_made_nm", how="relative",
+             by="core.spring_torque_nominal_nm", zero=("field:spring_torque_tolerance_pct",), always=True),
+    Quantity("spring_housing_outer_diameter", "spring housing bore (the limit of eq. (82))", "mm", "spring",
+             "housing_outer_tol_mm", how="negate"),  # the limit D_h - tol of eq. (82) becomes D_h + deviation
+    Quantity("spring_housing_inner_diameter", "spring support diameter (the limit of eq. (86))", "mm", "spring",
+             "housing_inner_tol_mm", how="set"),  # the limit D_s + tol of eq. (86) becomes D_s + deviation
+    Quantity("pivot_diameter", "pivot diameter (radial damping lever, bushing pressure)", "mm", "core",
+             "pivot_diameter_mm"),
+    Quantity("working_arm", "working arm (eccentricity): the lever of eq. (7) and (12)-(13), the Table 2 check", "mm",
+             "field", "working_arm_mm"),
+    Quantity("belt_offset", "the belt plane's offset in the tilting lever of eq. (95) (the sample instead of the "
+             "worst-case increment; the design's dimensions keep the nominal belt plane)", "mm", "field",
+             "middle_plane_belt_height_increment_worst_mm", how="set"),
+    Quantity("pulley_diameter", "pulley diameter (lock-up pin checks, eq. (22)-(25))", "mm", "field",
+             "pulley_diameter_mm"),
+    Quantity("pivot_bushing_friction", "pivot bushing friction coefficient (radial damping, eq. (10))", "%", "derived",
+             "mu_pivot_bushing", how="relative"),
+    Quantity("plastic_friction", "plastic elements' friction coefficient (axial damping, eq. (9))", "%", "derived",
+             "mu_plastic", how="relative", needs="cone", why="no axial damping group"),
+    Quantity("crankcase_friction", "pivot base-crankcase friction (sliding safety factor, eq. (99))", "%", "derived",
+             "mu_crankcase", how="relative"),
+    Quantity("bolt_preload", "the made joint's assembly preload, within its tightening method's window "
+             "[F_M,min, F_M,max] (VDI 2230-1: alpha_A = F_M,max/F_M,min)", "%", "derived", "bolt_clamp_force_n",
+             how="relative", by="bolt.bolt_axial_force_n", needs="bolt", why="no fixation data"),
+    Quantity("stack_pivot", "cone spring gap: pivot height (Table 6)", "mm", "gap", "", needs="cone", why=_NO_CONE),
+    Quantity("stack_endcap_spacer", "cone spring gap: endcap spacer height (Table 6)", "mm", "gap", "", how="negate",
+             needs="cone", why=_NO_CONE),
+    Quantity("stack_arm", "cone spring gap: arm hub height (Table 6)", "mm", "gap", "", how="negate", needs="cone",
+             why=_NO_CONE),
+    Quantity("stack_damper_pad", "cone spring gap: damper pad height (Table 6)", "mm", "gap", "", how="negate",
+             needs="cone", why=_NO_CONE),
+    Quantity("cone_spring_force", "the made cone spring's force at its deflection (DIN EN 16983 force tolerance)", "%",
+             "cone", "force_factor", how="factor", needs="cone", why=_NO_CONE),
+)}
+
+#: quantity -> what it perturbs in the evaluator, in words (of :data:`DECLARED`)
+QUANTITIES = {q.name: q.enters for q in DECLARED.values()}
+#: each quantity's unit (its band's): a row giving another unit is refused (a band of 0.05 in mm and in % differ)
+QUANTITY_UNITS = {q.name: q.unit for q in DECLARED.values()}
+
+
+def declare(q: Quantity) -> Quantity:
+    """Add tolerance quantity ``q`` (after the declared ones; a name declared already is an error): a row of the
+    tolerance catalog may then name it. :func:`withdraw` undoes it."""
+    if q.name in DECLARED:
+        raise ValueError(f"tolerance quantity {q.name} is declared already")
+    DECLARED[q.name], QUANTITIES[q.name], QUANTITY_UNITS[q.name] = q, q.enters, q.unit
+    return q
+
+
+def withdraw(name: str) -> None:
+    """Remove the tolerance quantity ``name`` that :func:`declare` added."""
+    del DECLARED[name], QUANTITIES[name], QUANTITY_UNITS[name]
 
 
 @dataclass(frozen=True)
@@ -257,14 +332,9 @@ def resolve(ctx: dict, table: dict | None = None) -> Scatter:
     table = tolerances() if table is None else table
     names, cols, kinds, los, his, units, rows, dropped = [], [], [], [], [], [], [], []
     for col, (q, tol) in enumerate(table.items()):
-        if q in _CONE and not ctx["cone"]:
-            dropped.append((q, "no cone spring in the design"))
-            continue
-        if q == "bolt_preload" and not ctx["bolt"]:
-            dropped.append((q, "no fixation data"))
-            continue
-        if q == "plastic_friction" and not ctx["cone"]:
-            dropped.append((q, "no axial damping group"))
+        need = DECLARED[q]
+        if need.needs and not ctx[need.needs]:
+            dropped.append((q, need.why))
             continue
         if tol.band_from:
             b = _band_from(tol.band_from, ctx, tol)

@@ -11,7 +11,7 @@ from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS
 from synth.optimise.product import evaluate
 from synth.optimise.model_data import model_data
-from synth.optimise.objectives import Objective
+from synth.optimise.objectives import FALLBACK_WEIGHTS, Objective
 from synth.optimise.answer import build_result
 from synth.optimise.diagnose import diagnose
 
@@ -63,7 +63,7 @@ def _staged(md, obj: Objective, run):
     if not obj.uses_margin():
         return run(obj.additive_weights(), 0.0, False, -1e6, 1e12), 1
     i = obj.order.index("margin")
-    pre, post = obj.order[:i], obj.order[i + 1:] or ("cost",)
+    pre, post = obj.order[:i], obj.order[i + 1:] or tuple(FALLBACK_WEIGHTS)
     stages = 0
     if pre:
         pw = Objective(order=pre).additive_weights()

@@ -61,7 +61,8 @@ from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS, Space
 from synth.optimise.batch import wsum
 from synth.optimise.product import Evaluation, SubTable, evaluate, option_scores, subsystem, design_scores
-from synth.optimise.objectives import Objective
+from synth.optimise import objectives
+from synth.optimise.objectives import FALLBACK_WEIGHTS, Objective, additive_goals, additive_totals, goal
 from synth.optimise.answer import build_result, design_margin
 from synth.optimise.search_space import refinements, snap_parts, variables
 from synth.flowchart import run
@@ -100,7 +101,7 @@ def _key(obj: Objective, vals: dict) -> list:
     """:meth:`Objective.key` of arrays: one array per tier (smaller is better)."""
     if obj.weights:
         return [np.asarray(obj.score(vals), dtype=float)]
-    return [np.asarray(-vals[k] if k == "margin" else vals[k], dtype=float) for k in obj.order]
+    return [np.asarray(goal(k).sense * vals[k], dtype=float) for k in obj.order]
 
 
 def _scalar(obj: Objective, vals: dict) -> np.ndarray:
@@ -108,12 +109,12 @@ def _scalar(obj: Objective, vals: dict) -> np.ndarray:
     or the lexicographic order scalarised with a factor 1e4 per tier (integer part counts, costs far below 1e4
     EUR, margins clipped to the models' range), the margin maximised."""
     lo, hi = catalog.constant("optimise_margin_floor"), catalog.constant("optimise_margin_ceiling")
-    v = {**vals, "margin": np.clip(vals["margin"], lo, hi)}
+    v = {**vals, **{g.name: np.clip(vals[g.name], lo, hi) for g in objectives.GOALS if not g.additive}}
     if obj.weights:
         return np.asarray(obj.score(v), dtype=float)
     out, scale = 0.0, 1.0
     for name in reversed(obj.order):
-        out = out + scale * (-v[name] if name == "margin" else v[name])
+        out = out + scale * (goal(name).sense * v[name])
         scale *= 1e4
     return np.asarray(out, dtype=float)
 
@@ -153,7 +154,7 @@ class Search:
             raise InputError(Problem("sampler", sampler, "one of " + ", ".join(SAMPLERS)))
         optuna.logging.set_verbosity(optuna.logging.WARNING)
         self.ev, self.obj, self.batch, self.seed = ev, objective, int(batch), int(seed)
-        self.weights = objective.additive_weights() or {"cost": 1.0}
+        self.weights = objective.additive_weights() or FALLBACK_WEIGHTS
         self.stiffness = float(ev.apps.spring_stiffness_nm_per_deg[0])
         self.vars = variables(ev, self.weights)
         self.ok_core = ev.core_feasible()
@@ -171,7 +172,7 @@ class Search:
         self.reach = {s: np.full(n, -np.inf) for s in SUBSYSTEMS}
         self.tried = {s: np.zeros(n, dtype=bool) for s in SUBSYSTEMS}
         # per core, over the passing options evaluated there: the smallest standard and cost, the largest margin
-        self.feas_min = {s: {"standard": np.full(n, np.inf), "cost": np.full(n, np.inf)} for s in SUBSYSTEMS}
+        self.feas_min = {s: {g.name: np.full(n, np.inf) for g in additive_goals()} for s in SUBSYSTEMS}
         self.reach_obj = {s: np.full(n, -np.inf) for s in SUBSYSTEMS}
         self.exact = {s: np.zeros(n, dtype=bool) for s in SUBSYSTEMS}   # every choice evaluated on the core
         self.trials = {s: 0 for s in SUBSYSTEMS}
@@ -190,7 +191,7 @@ class Search:
 
     # ------------------------------------------------------------------ bounds
     def _bounds(self):
-        """Per core and subsystem, the smallest ``standard``, ``cost`` and weighted score of the options it may
+        """Per core and subsystem, the smallest score of each additive goal and the weighted score of the options it may
         take (the space's tables), and the cores' totals: the bound of every design on the core."""
         ev, sp = self.ev, self.ev.space
         cv, n = ev.core.values, len(ev.cores)
@@ -204,23 +205,22 @@ class Search:
             elif s == "axial":
                 groups = [(self.pad == p, t["axial_group_present"] == p) for p in (False, True)]
             else:
-                groups = [(np.ones(n, dtype=bool), np.ones(len(sc["cost"]), dtype=bool))]
+                groups = [(np.ones(n, dtype=bool), np.ones(sp.n(s), dtype=bool))]
             lb = {name: np.full(n, np.inf) for name in sc}
             for rows, opts in groups:
                 if opts.any():
                     for name in sc:
                         lb[name][rows] = np.min(sc[name][opts])
             self.lb[s] = lb
-        self.lb_total = {name: ev.score_core[name] + sum(self.lb[s][name] for s in SUBSYSTEMS)
-                         for name in ("standard", "cost")}
+        self.lb_total = additive_totals(ev.score_core, [self.lb[s] for s in SUBSYSTEMS])
 
     def _bound_keys(self) -> list:
         """Per core, the sort key of the best design it could give (one array per tier): lower bounds of the
         scores (a subsystem whose every choice was evaluated on the core counts with its best passing option, the
         others with their cheapest), the upper bound of the margin."""
         ev = self.ev
-        vals = {name: ev.score_core[name] + sum(np.where(self.exact[s], self.feas_min[s][name], self.lb[s][name])
-                                                for s in SUBSYSTEMS) for name in ("standard", "cost")}
+        vals = additive_totals(ev.score_core, [{name: np.where(self.exact[s], lo, self.lb[s][name])
+                                                for name, lo in self.feas_min[s].items()} for s in SUBSYSTEMS])
         vals["margin"] = combine(self.u_obj, [np.where(self.exact[s], self.reach_obj[s], np.inf) for s in SUBSYSTEMS])
         return _key(self.obj, vals)
 
@@ -322,7 +322,8 @@ class Search:
         where it is available, when it completes none)."""
         sc = option_scores(Space({s: cols}, self.ev.space.parts), s, self.stiffness)
         lb = self.lb[s]
-        vals = {name: (self.lb_total[name] - lb[name])[rows][:, None] + sc[name][None, :] for name in ("standard", "cost")}
+        vals = {g.name: (self.lb_total[g.name] - lb[g.name])[rows][:, None] + sc[g.name][None, :]
+                for g in additive_goals()}
         vals["margin"] = np.minimum(self.u_obj[rows][:, None], sub.margin)
         score = _scalar(self.obj, vals)
         others = combine(self.u_all[rows], [np.where(self.tried[o][rows], self.reach[o][rows], np.inf)
@@ -398,7 +399,7 @@ class Search:
         return told
 
     def _design(self, ev: Evaluation, core: int, options: dict) -> dict:
-        """``{standard, cost, margin, min_margin}`` of a design of the archive."""
+        """``{standard, cost, ..., margin, min_margin}`` of a design of the archive."""
         margin = combine(float(ev.core_margin()[core]), [float(ev.subs[s].margin[core, options[s]]) for s in SUBSYSTEMS])
         mmin = combine(float(ev.core_min_margin()[core]),
                        [float(ev.subs[s].min_margin[core, options[s]]) for s in SUBSYSTEMS])

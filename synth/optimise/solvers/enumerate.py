@@ -29,7 +29,7 @@ from synth.design.combine import combine
 from synth.design.result import Result
 from synth.design.space import SUBSYSTEMS
 from synth.optimise.product import Evaluation, evaluate
-from synth.optimise.objectives import Objective, ties, weighted_sum
+from synth.optimise.objectives import FALLBACK_WEIGHTS, Objective, ties, weighted_sum
 from synth.optimise.answer import build_result
 from synth.optimise.batch import Batch
 from synth.optimise.diagnose import diagnose
@@ -58,7 +58,7 @@ class Tables:
 
 def weights_vec(scores: dict, weights: dict) -> np.ndarray:
     """:func:`synth.optimise.objectives.weighted_sum` of a score dict (one array per name), as an array."""
-    return np.zeros(len(scores["cost"])) + weighted_sum(scores, weights)
+    return np.zeros(len(next(iter(scores.values())))) + weighted_sum(scores, weights)
 
 
 def tables(ev: Evaluation, weights: dict) -> Tables:
@@ -135,7 +135,7 @@ def solve_space(ev: Evaluation, objective: Objective) -> tuple:
     """Optimum over the evaluated space ``ev``: ``(core position, options, stats)`` or ``(None, None, stats)``."""
     t0 = time.perf_counter()
     w = objective.additive_weights()
-    t = tables(ev, w if w else {"cost": 1.0})
+    t = tables(ev, w if w else FALLBACK_WEIGHTS)
     if objective.weights and "margin" in objective.weights:
         taus = margin_thresholds(t)
         curve = additive_curve(t, taus)
@@ -178,7 +178,7 @@ def solve(d, objective="standard", *, settings: Settings = Settings(), pin_input
     if not exhaustive and not obj.uses_margin() and settings.spring_limit_basis == "thesis":
         b = Batch([d], settings, pin_inputs=pin_inputs, spring_engine="numpy")
         w = obj.additive_weights()
-        found = b.optimum(w if w else {"cost": 1.0})[0]
+        found = b.optimum(w if w else FALLBACK_WEIGHTS)[0]
         stats = {"time_s": time.perf_counter() - t0, "candidates": b.candidates(0), "physics_evaluations": b.evaluations,
                  "method": "branch and bound"}
         stats["candidates_per_s"] = stats["candidates"] / max(stats["time_s"], 1e-9)
