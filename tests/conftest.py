@@ -75,3 +75,69 @@ def shrink_fit_row(table, state, level):
     return next(r for r in table if r["state"] == state and r["interference"] == level)
 # the corpus generator is a script, not a test module (it rewrites tests/bad_inputs/files when run)
 collect_ignore = ["bad_inputs/make_corpus.py"]
+
+
+# ---------------------------------------------------------------- numba's kernels compiled once per run, not per worker
+# Under xdist every worker met an empty kernel cache (a fresh clone, CI) at about the same time and compiled the same
+# kernels (measured: 2 workers on tests/test_kernels.py and test_axial_kernels.py, 37 s of CPU compiling of 62 s).
+# The controller starts one process that compiles the bulk path's kernels into synth's cache while the workers
+# collect; a worker waits for it before its first test, then loads them from the cache. numba's cache is keyed by
+# source and signature, so a warm cache makes this a 3-5 s load.
+
+_WARM_ENV = "SYNTH_TEST_KERNELS_WARMED"
+_WARM = """
+import sys
+try:
+    from synth.bulk.engine import screen_applications
+    from synth.data.generated_applications import generate
+    screen_applications(generate(12, seed=1, vary=True))
+    screen_applications(generate(12, seed=2, vary=True), fidelity="full")
+    import numpy as np
+    from synth.design import evaluate
+    from synth.design.applications import Applications
+    from synth.design.space import core_rows, space
+    from synth.kernels import main_spring
+    sp, inputs = space(), generate(2, seed=3)
+    per = [core_rows(sp, d) for d in inputs]
+    a = np.concatenate([np.full(len(c), i) for i, c in enumerate(per)]).astype(np.int64)
+    apps, settings = Applications.of(inputs), evaluate.Settings(fidelity="screening")
+    with np.errstate(all="ignore"):
+        cg = evaluate.core(apps, a, sp.rows("core", np.concatenate(per)), settings)
+    keys = main_spring.keys_of_rows(apps, evaluate.spring_keys(cg, np.arange(len(a))), np.arange(4))
+    opts = main_spring.options_of_space().take(np.arange(0, 11000, 500))
+    for parallel in (False, True):
+        main_spring.margins(keys, opts, parallel=parallel)
+        for scan in (main_spring.first_feasible, main_spring.max_min_margin, main_spring.any_feasible):
+            scan(keys, opts, [np.arange(len(opts))], key_group=np.zeros(len(keys), dtype=np.int64), parallel=parallel)
+finally:
+    open(sys.argv[1], "w").close()
+"""
+
+
+def pytest_configure(config):
+    import os
+    import subprocess
+    import sys
+    import tempfile
+    if hasattr(config, "workerinput") or not config.getoption("numprocesses", None) or os.environ.get(_WARM_ENV):
+        return
+    marker = os.path.join(tempfile.mkdtemp(prefix="synth-warm-"), "done")
+    os.environ[_WARM_ENV] = marker  # inherited by the workers, started after this hook
+    config._synth_warm = subprocess.Popen([sys.executable, "-c", _WARM, marker], stdout=subprocess.DEVNULL)
+
+
+def pytest_collection_finish(session):
+    import os
+    import time
+    marker = os.environ.get(_WARM_ENV)
+    if not marker or not hasattr(session.config, "workerinput"):
+        return
+    deadline = time.monotonic() + 300
+    while not os.path.exists(marker) and time.monotonic() < deadline:
+        time.sleep(0.2)
+
+
+def pytest_unconfigure(config):
+    proc = getattr(config, "_synth_warm", None)
+    if proc is not None:
+        proc.wait()

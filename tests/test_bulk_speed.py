@@ -66,15 +66,19 @@ def test_relaxations_equal_the_reference():
     # infeasible applications (generated with every input given, and varied), diagnosis on: the same probes, the
     # same bisection, the same relaxation strings
     st = Settings(fidelity="screening")
-    # 9 applications (5 + 4): each reference row is a whole sequential diagnosis (seconds each on CI); 3 get a
-    # relaxation (of the spring's stiffness, of the bolt's threads), 6 none
-    apps = [d for d in generate(40, seed=38) if not is_feasible(d, st)][:5]
-    apps += [d for d in PORTFOLIO[:40] if not is_feasible(d, st)][:4]
-    assert len(apps) == 9
+    # 6 applications (4 + 2 varied: optional inputs absent): each reference row is a whole sequential diagnosis
+    # (1-7 s of CPU each; the 9 of before took 44 s of the suite, these 12 s of CPU of 25); 3 get a relaxation (two
+    # of the spring's stiffness, one of the bolt's threads), 3 none
+    given = [d for d in generate(40, seed=38) if not is_feasible(d, st)]
+    varied = [d for d in PORTFOLIO[:40] if not is_feasible(d, st)]
+    apps = [given[i] for i in (0, 1, 2, 4)] + [varied[i] for i in (0, 2)]
+    assert len(apps) == 6
     fast = screen_applications(apps, objective="standard", diagnose=True)
     ref = screen_applications_reference(apps, objective="standard", diagnose=True)
     assert_same_rows(fast, ref)
-    assert (fast["relaxation"] != "").sum() >= 3 and (fast["relaxation"] == "").sum() >= 3
+    relaxed = [r for r in fast["relaxation"] if r]
+    assert len(relaxed) >= 3 and len(apps) - len(relaxed) >= 3
+    assert {r.split()[0] for r in relaxed} >= {"spring_stiffness_nm_per_deg", "number_of_active_threads"}
 
 
 def test_full_fidelity_and_cost_objective_equal_the_reference():

@@ -246,7 +246,27 @@ RULES = {"name": "ACME tensioner rules rev. C", "limits": {"main_spring_min_safe
          "min_margins": {"spring_yield": "3 %"}, "capability": {"ppk_min": 1.33}}
 
 
-def test_rules_section_is_applied_and_echoed_everywhere(tmp_path, capsys):
+def _synthesise_once(monkeypatch) -> list:
+    """Make the scenes' synthesis (``solve_honouring``) compute each distinct call once in this test and hand a copy
+    of the result to the later ones (the robust synthesis of a rules file costs seconds; the JSON, the text and the
+    report render the same one). Returns the list of calls computed."""
+    import copy
+
+    from synth.scenes import _options
+    real, memo, computed = _options.solve_honouring, {}, []
+
+    def once(d, objective, solver, **kw):
+        key = repr((d, objective, solver, sorted((k, v) for k, v in kw.items() if k != "robust"), "robust" in kw))
+        if key not in memo:
+            computed.append(key)
+            memo[key] = real(d, objective, solver, **kw)
+        return copy.deepcopy(memo[key])
+    monkeypatch.setattr(_options, "solve_honouring", once)
+    return computed
+
+
+def test_rules_section_is_applied_and_echoed_everywhere(tmp_path, capsys, monkeypatch):
+    computed = _synthesise_once(monkeypatch)
     path = _write(tmp_path, "ruled", _inputs(), RULES)
     # 1,024 production samples, not 8,192: the verdict (no design reaches Ppk 1.33) is far from the target
     code, r = _json(capsys, "design", path, "--samples", "1024")
@@ -264,6 +284,7 @@ def test_rules_section_is_applied_and_echoed_everywhere(tmp_path, capsys):
     code, out, _ = _run(capsys, "report", path, "--out", tmp_path / "rep", "--no-pdf", "--no-cad", "--samples", "1024")
     html = (tmp_path / "rep" / "report.html").read_text()
     assert "Design rules</th><td>design rules: ACME tensioner rules rev. C" in html
+    assert len(computed) == 1  # the design's JSON, its text and the report: one robust synthesis
     # a rules file given on the command line; a bad key is named
     bad = tmp_path / "bad_rules.yaml"
     bad.write_text("min_margins:\n  spring_yld: 0.05\n")
