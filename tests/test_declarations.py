@@ -133,3 +133,8 @@ def test_rationalise_runs_with_the_declarations(declared, tmp_path, capsys):
     assert "synth rationalise:" in out and "of 3 applications served" in out
     with open(tmp_path / "a" / "assignment.csv", newline="") as f:
         assert len(list(csv.DictReader(f))) == 3
+
+
+def test_a_declared_objective_is_offered_in_the_web_page(declared):
+    from synth.ui.session import offered_objectives
+    assert offered_objectives()[-1] == "support"

@@ -58,7 +58,7 @@ from synth.optimise.solvers.enumerate import weights_vec
 from synth.design.evaluate import Settings
 from synth.errors import InputError, Problem
 from synth.optimise.product import evaluate
-from synth.optimise.objectives import TIE, Objective
+from synth.optimise.objectives import FALLBACK_WEIGHTS, TIE, Objective
 from synth.optimise.answer import build_result, design_margin
 
 __all__ = ["ranked", "signature", "distinct_keys", "near_key", "MAX_TOP", "NEAR_POOL", "DISTINCT_KEYS", "DIMENSION_KEYS",
@@ -216,7 +216,7 @@ def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None
     codes = {s: _codes(ev.space, s, keys) for s in SUBSYSTEMS}
     # near misses tie on one binding check (every bolt of case 1 misses the under-head pressure by 35.2 %): a
     # wider pool, each verified, gives the second-level rank (near_key) designs to order
-    pool = _pool(ev, obj.additive_weights() or {"cost": 1.0}, min(NEAR_POOL * k, MAX_TOP) if near else k, keys,
+    pool = _pool(ev, obj.additive_weights() or FALLBACK_WEIGHTS, min(NEAR_POOL * k, MAX_TOP) if near else k, keys,
                  codes, near=near)
     row_of = {int(p): r for r, p in enumerate(ev.rows)}
     core_margin = ev.core_min_margin() if near else ev.core_margin()

@@ -37,7 +37,7 @@ import numpy as np
 from synth.design.constraints import REGISTRY
 from synth.design.evaluate import Settings
 from synth.design.space import SUBSYSTEMS
-from synth.optimise.objectives import Objective
+from synth.optimise.objectives import FALLBACK_WEIGHTS, Objective
 from synth.robust.capability import capability
 from synth.robust.sampling import base_of, production
 from synth.robust.settings import RobustSettings
@@ -239,7 +239,7 @@ def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs
     asked, settings = settings, production(settings)
     ev = evaluate(d, settings, pin_inputs=pin_inputs)
     rep = SearchReport()
-    w = obj.additive_weights() or {"cost": 1.0}
+    w = obj.additive_weights() or FALLBACK_WEIGHTS
     value, pos, opts, cap = search(ev, w, rs, report=rep)
     stats = {"time_s": time.perf_counter() - t0, "robust_candidates": rep.candidates,
              "robust_cores_checked": rep.cores_checked, "robust_cores_rejected": rep.cores_rejected,

@@ -26,7 +26,7 @@ from synth import schema
 from synth.errors import InputError, Problem
 from synth.io.limits import LIMITS, short
 from synth.ui import charts, form, jobs, views, worker
-from synth.ui.session import FIDELITIES, OBJECTIVES, TOP_MAX, DesignSession
+from synth.ui.session import FIDELITIES, TOP_MAX, DesignSession, offered_objectives
 from synth.ui.trace import mark
 from synth.ui.widgets import FILES_URL, count, download, header, in_page, number, png, refused, stem, upload_box
 
@@ -210,7 +210,7 @@ class DesignPage:
     # --- the result ------------------------------------------------------------------------------------------
     def _results(self) -> None:
         with ui.row().classes("items-center"):
-            ui.select(list(OBJECTIVES), value=self.s.objective, label="objective",
+            ui.select(list(offered_objectives()), value=self.s.objective, label="objective",
                       on_change=self.on_objective).props("dense").style("width:8em")
             ui.select(list(FIDELITIES), value=self.s.fidelity, label="fidelity",
                       on_change=self.on_fidelity).props("dense").style("width:8em")
@@ -314,9 +314,9 @@ class DesignPage:
             self.fill_sweep_fields()
 
     def on_objective(self, e) -> None:
-        if e.value not in OBJECTIVES:  # a value no option of the drop-down sends
+        if e.value not in offered_objectives():  # a value no option of the drop-down sends
             e.sender.value = self.s.objective
-            raise InputError(Problem("objective", short(e.value), "one of " + ", ".join(OBJECTIVES)))
+            raise InputError(Problem("objective", short(e.value), "one of " + ", ".join(offered_objectives())))
         self.s.objective = e.value
 
     async def on_fidelity(self, e) -> None:

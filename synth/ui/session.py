@@ -40,14 +40,20 @@ from synth.design.rules import NONE, Rules, read_rules
 from synth.errors import InputError, Problem
 from synth.ui import form
 
-__all__ = ["DesignSession", "default_values", "OBJECTIVES", "FIDELITIES", "TOP", "TOP_MAX", "SWEEP_POINTS"]
+__all__ = ["DesignSession", "default_values", "offered_objectives", "FIDELITIES", "TOP", "TOP_MAX", "SWEEP_POINTS"]
 
 #: the alternatives a synthesis in the page lists by default (``Result.alternatives``), and the most it offers
 TOP, TOP_MAX = 5, 20
-#: the objectives offered (``synth.synthesise``'s documented ones, :data:`synth.optimise.objectives.OBJECTIVES`; a
-#: lexicographic or weighted one stays the API's). Written out so that the page's start imports no optimiser: a
-#: test checks they are the optimiser's.
-OBJECTIVES = ("standard", "cost", "margin")
+
+
+def offered_objectives() -> tuple:
+    """The objectives the page offers: every declared goal (:data:`synth.optimise.objectives.OBJECTIVES`, read when
+    the page draws, so a goal declared with :func:`synth.optimise.objectives.declare` is offered too); a
+    lexicographic or weighted one stays the API's. The registry module imports numpy and the errors only."""
+    from synth.optimise import objectives
+    return objectives.OBJECTIVES
+
+
 #: the model fidelities (:data:`synth.design.evaluate.FIDELITIES`; ``full`` is every design scene's default)
 FIDELITIES = ("full", "screening")
 #: the points of a what-if sweep, and the most a page asks for
