@@ -67,7 +67,7 @@ from synth.report import cost as cost_words
 from synth.report.robust import robust_section
 from synth.io.outputs import write_text
 
-__all__ = ["render_html", "write_html", "digest_html", "metadata", "document_date", "settings_in_words", "platform_section",
+__all__ = ["render_html", "write_html", "digest_html", "digest_css", "metadata", "document_date", "settings_in_words", "platform_section",
            "VERDICT_COLOURS", "verdict_class", "css_string", "check_steps", "check_row", "part_label", "derivation_rows",
            "listed_skips"]
 
@@ -281,9 +281,16 @@ def _digest_template():
                                       '</div>')
 
 
-def digest_html(result) -> str:
-    """The digest alone, with its own styles (``Result._repr_html_``: a notebook shows it)."""
-    return f"<style>{_CSS}</style>" + _digest_template().render(d=digest_context(result))
+def digest_html(result, *, styles: bool = True) -> str:
+    """The digest alone, with its own styles (``Result._repr_html_``: a notebook shows it); ``styles=False``: without
+    them (:func:`digest_css`, the same for every result: a page that shows many digests holds them once)."""
+    body = _digest_template().render(d=digest_context(result))
+    return f"<style>{_CSS}</style>" + body if styles else body
+
+
+def digest_css() -> str:
+    """The style sheet :func:`digest_html` carries (the report's)."""
+    return _CSS
 
 
 def _output_rows(result) -> list:

@@ -21,7 +21,7 @@ from html import escape
 
 from synth.design.result import part_note
 from synth.report.palette import VERDICT_FILLS
-from synth.report.html import check_steps, part_label, check_row, digest_html
+from synth.report.html import check_steps, part_label, check_row, digest_css, digest_html
 from synth.report.advice import relaxation_lines, alternative_rows
 from synth.ui.portfolio import verdict_word
 
@@ -78,11 +78,7 @@ def digest(result) -> tuple[str, str]:
     >>> ".synth" in css, "<style>" in body, digest(Result("optimal", parts={}))[0] == css
     (True, False, True)
     """
-    text = digest_html(result)
-    if text.startswith("<style>"):
-        css, body = text[len("<style>"):].split("</style>", 1)
-        return css, body
-    return "", text
+    return digest_css(), digest_html(result, styles=False)
 
 
 def checks_table(result) -> str:

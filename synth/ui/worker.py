@@ -37,14 +37,12 @@ import secrets
 import subprocess
 import sys
 import threading
-from pathlib import Path
 
+from synth.ui.browser import PACKAGE_HOME  # a worker runs this same code, never another installed copy
 from synth.ui.jobs import settle
 
 __all__ = ["Lane", "lane", "warm", "stop_all", "WorkerError", "main"]
 
-#: the folder this ``synth`` package was imported from: a worker runs this same code, never another installed copy
-PACKAGE_HOME = Path(__file__).resolve().parents[2]
 
 #: the environment variable that hands a worker its key (never the command line, which ``ps`` shows)
 KEY_ENV = "SYNTH_UI_WORKER_KEY"
