@@ -226,6 +226,23 @@ def test_dask_engine_gives_the_same_data():
             assert all(np.array_equal(p, q) for p, q in zip(x.feasible[s], y.feasible[s]))
 
 
+def test_forked_chunks_give_the_same_data():
+    """The in-process engine's chunks on two forked processes (issue 36): the same data, in the same order, as
+    one process computes."""
+    table = sample_portfolio(3, seed=2)
+    a = P.from_table(table, SETTINGS, chunk_size=1, processes=1)
+    b = P.from_table(table, SETTINGS, chunk_size=1, processes=2)
+    assert P._processes(3, 2, 3) == 2 and P._processes(3, None, 3) == 1 and P._processes(1, 2, 3) == 1
+    for x, y in zip(a.apps, b.apps, strict=True):
+        assert (x.app_id, x.note, x.volume) == (y.app_id, y.note, y.volume)
+        for f in ("core_rows", "core_margin", "core_cost_eur", "core_binding"):
+            np.testing.assert_array_equal(getattr(x, f), getattr(y, f))
+        for s in SUBSYSTEMS:
+            np.testing.assert_array_equal(x.group[s], y.group[s])
+            for attr in ("feasible", "option_margin", "option_binding"):
+                assert all(np.array_equal(p, q) for p, q in zip(getattr(x, attr)[s], getattr(y, attr)[s], strict=True))
+
+
 def test_report_section_is_self_contained(platform):
     platform.tradeoff = [{"margin_floor": 0.0, "parts": platform.n_parts, "weighted_parts": platform.n_parts,
                           "cost_eur": 1.0, "worst_margin": 0.0, "served": 3, "status": "optimal"},

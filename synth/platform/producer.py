@@ -118,8 +118,11 @@ AXIAL_ENGINE = "numba"
 #: the compiled wear agrees within :data:`synth.kernels.axial.RTOL` (1e-12) relative; the feasible options, the
 #: binding constraints and the chosen parts are the same (``tests/test_platform_real.py``)
 MARGIN_TOL = 1e-9
-#: applications per chunk (one vectorised evaluation; the unit of work on Dask)
+#: applications per chunk (one vectorised evaluation; the unit of work on Dask and of the forked processes)
 CHUNK_SIZE = 250
+#: the fewest applications whose chunks go to forked processes by default (below, a pool's start and the results'
+#: pickling cost more than a second core saves: one process)
+PROCESS_MIN_APPS = 500
 
 #: binding index of "none counted" (an infinite margin); a constraint's index is its place in the registry's order
 #: (:func:`_index`; a check added with ``register`` included)
@@ -583,14 +586,15 @@ def _error_app(app_id: str, error: str, cat: Catalogue, volume: float) -> AppFea
 def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: evaluate.Settings = evaluate.DEFAULT, *,
                 errors: list | None = None, diagnose: bool = False, chunk_size: int = CHUNK_SIZE,
                 engine: str = "inprocess", workers: int | None = None, scheduler: str | None = None,
-                progress=None) -> PortfolioFeasibility:
+                progress=None, processes: int | None = None) -> PortfolioFeasibility:
     """The :class:`~synth.platform.data.PortfolioFeasibility` of validated design inputs.
 
     ``inputs[i]`` may be None when ``errors[i]`` says why (a row that failed validation: it is
     reported, never evaluated). ``volumes``: units per year (1 each by default). ``engine``:
     ``inprocess`` or ``dask`` (see the module docstring). ``progress(done, total)`` is called
     after each chunk. ``settings``: the configuration every chunk is evaluated under (shipped with it to a Dask
-    worker).
+    worker). ``processes``: with ``inprocess``, the forked processes the chunks are shared among (None: the usable
+    cores, :func:`_processes`; the data do not depend on it).
     """
     if engine not in ENGINES:
         raise InputError(Problem("--engine", engine, " or ".join(ENGINES)))
@@ -599,11 +603,11 @@ def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: e
     settings = settings.resolved()  # the user catalogs fixed: a chunk may run in another process
     with catalog.using(settings.catalogs):
         return _feasibility(inputs, ids, volumes, settings, errors, diagnose, chunk_size, engine, workers, scheduler,
-                            progress)
+                            progress, processes)
 
 
 def _feasibility(inputs, ids, volumes, settings, errors, diagnose, chunk_size, engine, workers, scheduler,
-                 progress) -> PortfolioFeasibility:
+                 progress, processes=None) -> PortfolioFeasibility:
     t0 = time.perf_counter()
     n = len(inputs)
     ids = [f"row {i + 1}" for i in range(n)] if ids is None else [str(x) for x in ids]
@@ -618,7 +622,7 @@ def _feasibility(inputs, ids, volumes, settings, errors, diagnose, chunk_size, e
     jobs = [([inputs[i] for i in valid[lo:hi]], [ids[i] for i in valid[lo:hi]], volumes[valid[lo:hi]])
             for lo, hi in ranges]
     run_notes: list = []
-    results = _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress, run_notes)
+    results = _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress, run_notes, processes)
     stats = {"engine": "inprocess" if run_notes else engine, "chunks": len(ranges)}
     for _, st in results:
         for k, v in st.items():
@@ -649,20 +653,62 @@ def _chunk_job(inputs, ids, volumes, settings, **kw) -> tuple:
     return chunk_feasibility(inputs, ids, volumes, settings, stats=stats, **kw), stats
 
 
-def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress, notes: list | None = None) -> list:
+def _processes(n_jobs: int, processes: int | None = None, total_apps: int = PROCESS_MIN_APPS) -> int:
+    """The processes the in-process engine computes ``n_jobs`` chunks of ``total_apps`` applications on:
+    ``processes`` (None: the thread budget, :func:`synth.threads.budget`: the usable cores or ``SYNTH_THREADS``,
+    from :data:`PROCESS_MIN_APPS` applications on), never more than the chunks; 1 where this process cannot fork
+    (another platform than POSIX, or a daemonic process such as a pool's worker)."""
+    import multiprocessing as mp
+    from synth import threads
+    if n_jobs < 2 or "fork" not in mp.get_all_start_methods() or mp.current_process().daemon:
+        return 1
+    if processes is None:
+        if total_apps < PROCESS_MIN_APPS:
+            return 1
+        try:
+            processes = threads.budget()
+        except InputError:   # a bad SYNTH_THREADS: the command line refuses it first
+            processes = threads.usable_cores()
+    return max(1, min(int(processes), n_jobs))
+
+
+def _forked_pool(processes: int):
+    """A pool of ``processes`` forked workers (they inherit the loaded catalogs and compiled kernels: no import,
+    no compilation), or a null context giving None for one process."""
+    from contextlib import nullcontext
+    if processes < 2:
+        return nullcontext()
+    import multiprocessing as mp
+    return mp.get_context("fork").Pool(processes)
+
+
+def _chunk_star(job) -> tuple:
+    inp, ids, vol, settings, kw = job
+    with catalog.using(settings.catalogs):
+        return _chunk_job(inp, ids, vol, settings, **kw)
+
+
+def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress, notes: list | None = None,
+                processes: int | None = None) -> list:
     """The chunks' results in order, in this process or on Dask (where Dask cannot help, in this process, and
-    ``notes`` says why: :func:`synth.bulk.run.dask_pointless`)."""
+    ``notes`` says why: :func:`synth.bulk.run.dask_pointless`). In process, the chunks go to ``processes`` forked
+    workers (:func:`_processes`: by default as many as the usable cores); each chunk is computed as in one
+    process, and the results are taken in the chunks' order, so the data are the same whatever the count."""
     total = sum(len(j[0]) for j in jobs)
     why = dask_pointless(scheduler, workers, len(jobs)) if engine == "dask" else None
     if why and notes is not None:
         notes.append(why)
     if engine == "inprocess" or why:
         out, done = [], 0
-        for inp, ids, vol in jobs:
-            out.append(_chunk_job(inp, ids, vol, settings, **kw))
-            done += len(inp)
-            if progress:
-                progress(done, total)
+        procs = _processes(len(jobs), processes, total)
+        with _forked_pool(procs) as pool:
+            results = (pool.imap(_chunk_star, [(*job, settings, kw) for job in jobs]) if pool is not None
+                       else (_chunk_job(inp, ids, vol, settings, **kw) for inp, ids, vol in jobs))
+            for (inp, _, _), res in zip(jobs, results):   # in order: the same data as one process computes
+                out.append(res)
+                done += len(inp)
+                if progress:
+                    progress(done, total)
         return out
     try:
         from dask.distributed import as_completed
