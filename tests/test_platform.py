@@ -308,20 +308,6 @@ def test_tradeoff_rounds_equal_fresh_rationalise(kind):
     assert len(shared) >= 2 and shared == fresh
 
 
-def test_tradeoff_started_in_a_forked_process_gives_the_same_rows():
-    """The command's trade-off curve computed in a forked process beside the platform (issue 36): the rows of
-    :func:`tradeoff` in this process, each round's progress passed on, a bad kind refused here."""
-    from synth.platform.rationalise import tradeoff, tradeoff_started
-    pf = synthetic_portfolio(8, seed=3)
-    rows = tradeoff_started(pf, "cost", points=2, time_limit=30)
-    ticks = []
-    assert rows(progress=lambda done, total: ticks.append((done, total))) == tradeoff(pf, "cost", points=2,
-                                                                                       time_limit=30)
-    assert ticks and ticks[-1][0] == ticks[-1][1]
-    with pytest.raises(InputError, match="trade-off"):
-        tradeoff_started(pf, "size")
-
-
 def _highs_lp(h) -> dict:
     """The model a ``highspy.Highs`` holds, as arrays (matrix, bounds, costs, integrality, sense)."""
     lp = h.getLp()

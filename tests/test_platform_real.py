@@ -227,12 +227,12 @@ def test_dask_engine_gives_the_same_data():
 
 
 def test_forked_chunks_give_the_same_data():
-    """The in-process engine's chunks on two forked processes (issue 36): the same data, in the same order, as
-    one process computes."""
+    """The in-process engine's chunks on forked processes (issue 36; two where the machine has two cores): the same
+    data, in the same order, as one process computes."""
     table = sample_portfolio(3, seed=2)
     a = P.from_table(table, SETTINGS, chunk_size=1, processes=1)
     b = P.from_table(table, SETTINGS, chunk_size=1, processes=2)
-    assert P._processes(3, 2, 3) == 2 and P._processes(3, None, 3) == 1 and P._processes(1, 2, 3) == 1
+    assert P._processes(3, None) == P.PROCESSES and P._processes(1, 2) == 1
     for x, y in zip(a.apps, b.apps, strict=True):
         assert (x.app_id, x.note, x.volume) == (y.app_id, y.note, y.volume)
         for f in ("core_rows", "core_margin", "core_cost_eur", "core_binding"):
@@ -241,6 +241,17 @@ def test_forked_chunks_give_the_same_data():
             np.testing.assert_array_equal(x.group[s], y.group[s])
             for attr in ("feasible", "option_margin", "option_binding"):
                 assert all(np.array_equal(p, q) for p, q in zip(getattr(x, attr)[s], getattr(y, attr)[s], strict=True))
+
+
+def test_spring_costs_computed_when_read_are_the_catalogs(sample):
+    """Each application's main-spring costs are held as one shared vector and its stiffness (issue 36's memory):
+    read, they are the catalogue's per-application vector, bit for bit."""
+    table, pf = sample
+    cat = catalogue()
+    for d, a in zip(pf.design_inputs, pf.apps):
+        got = np.asarray(a.option_cost_eur["spring"], float)
+        assert np.array_equal(got, cat.spring_cost_eur(float(d.spring_stiffness_nm_per_deg)))
+        assert len(a.option_cost_eur["spring"]) == np.shape(a.option_cost_eur["spring"])[0] == len(got)
 
 
 def test_report_section_is_self_contained(platform):

@@ -67,7 +67,7 @@ from synth.design.combine import combine, nearest_rank
 from synth.design.constraints import REGISTRY, version
 from synth.design.space import SUBSYSTEMS, core_rows, spring_window
 from synth.errors import InputError, Problem
-from synth.platform.data import AppFeasibility, PortfolioFeasibility, default_fixed_costs, validate
+from synth.platform.data import AppFeasibility, PortfolioFeasibility, ScaledCost, default_fixed_costs, validate
 from synth.platform.options import Catalogue, catalogue
 from synth.kernels import engines, main_spring
 from synth.kernels.main_spring import keys_of_rows
@@ -120,9 +120,11 @@ AXIAL_ENGINE = "numba"
 MARGIN_TOL = 1e-9
 #: applications per chunk (one vectorised evaluation; the unit of work on Dask and of the forked processes)
 CHUNK_SIZE = 250
-#: the fewest applications whose chunks go to forked processes by default (below, a pool's start and the results'
-#: pickling cost more than a second core saves: one process)
-PROCESS_MIN_APPS = 500
+#: the processes the in-process engine shares the chunks among by default (``feasibility(processes=...)``): one.
+#: Measured on the 2-core development machine under its usual load (load average 7), 500 applications on two
+#: forked processes took 1.3-1.9x the wall time and 1.3x the CPU seconds of one process (issue 36): where the
+#: cores are busy, a second process only competes with the first. On an idle machine ask for 2.
+PROCESSES = 1
 
 #: binding index of "none counted" (an infinite margin); a constraint's index is its place in the registry's order
 #: (:func:`_index`; a check added with ``register`` included)
@@ -509,6 +511,8 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
     app_of_group = {s: a[rep[s]] for s in SUBSYSTEMS}
     first_group = {s: np.searchsorted(app_of_group[s], np.arange(n + 1)) for s in SUBSYSTEMS}
     pos_app = a[pos]
+    # each application's spring costs, cat.spring_cost_eur(stiffness), computed when read from one vector
+    spring_numerator = cat.space.tables["spring"]["cost_eur_times_stiffness"][cat.option_row["spring"]]
     out = []
     for i in range(n):
         sel = pos[pos_app == i]                  # chunk rows of the feasible cores of application i
@@ -528,7 +532,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             app_id=str(ids[i]), core_parts={f: cat.core_codes[f][crow[sel]] for f in cat.core_codes},
             core_cost_eur=goal("cost").core(cat.space, crow[sel], {}), core_margin=core_m[sel],
             group=group, feasible=feasible, option_margin=margin, volume=float(volumes[i]),
-            option_cost_eur={"spring": cat.spring_cost_eur(float(apps.spring_stiffness_nm_per_deg[i]))},
+            option_cost_eur={"spring": ScaledCost(spring_numerator, float(apps.spring_stiffness_nm_per_deg[i]))},
             core_binding=_names(core_b[sel]), option_binding=binding,
             core_rows=crow[sel])
         if not complete.any():
@@ -593,8 +597,8 @@ def feasibility(inputs: list, ids: list | None = None, volumes=None, settings: e
     reported, never evaluated). ``volumes``: units per year (1 each by default). ``engine``:
     ``inprocess`` or ``dask`` (see the module docstring). ``progress(done, total)`` is called
     after each chunk. ``settings``: the configuration every chunk is evaluated under (shipped with it to a Dask
-    worker). ``processes``: with ``inprocess``, the forked processes the chunks are shared among (None: the usable
-    cores, :func:`_processes`; the data do not depend on it).
+    worker). ``processes``: with ``inprocess``, the forked processes the chunks are shared among (None:
+    :data:`PROCESSES`, one; at most the usable cores; the data do not depend on it).
     """
     if engine not in ENGINES:
         raise InputError(Problem("--engine", engine, " or ".join(ENGINES)))
@@ -653,23 +657,16 @@ def _chunk_job(inputs, ids, volumes, settings, **kw) -> tuple:
     return chunk_feasibility(inputs, ids, volumes, settings, stats=stats, **kw), stats
 
 
-def _processes(n_jobs: int, processes: int | None = None, total_apps: int = PROCESS_MIN_APPS) -> int:
-    """The processes the in-process engine computes ``n_jobs`` chunks of ``total_apps`` applications on:
-    ``processes`` (None: the thread budget, :func:`synth.threads.budget`: the usable cores or ``SYNTH_THREADS``,
-    from :data:`PROCESS_MIN_APPS` applications on), never more than the chunks; 1 where this process cannot fork
-    (another platform than POSIX, or a daemonic process such as a pool's worker)."""
+def _processes(n_jobs: int, processes: int | None = None) -> int:
+    """The processes the in-process engine computes ``n_jobs`` chunks on: ``processes`` (None:
+    :data:`PROCESSES`), never more than the chunks nor the usable cores (:func:`synth.threads.usable_cores`); 1
+    where this process cannot fork (another platform than POSIX, or a daemonic process such as a pool's worker)."""
     import multiprocessing as mp
     from synth import threads
     if n_jobs < 2 or "fork" not in mp.get_all_start_methods() or mp.current_process().daemon:
         return 1
-    if processes is None:
-        if total_apps < PROCESS_MIN_APPS:
-            return 1
-        try:
-            processes = threads.budget()
-        except InputError:   # a bad SYNTH_THREADS: the command line refuses it first
-            processes = threads.usable_cores()
-    return max(1, min(int(processes), n_jobs))
+    asked = PROCESSES if processes is None else int(processes)
+    return max(1, min(asked, n_jobs, threads.usable_cores()))
 
 
 def _forked_pool(processes: int):
@@ -692,15 +689,15 @@ def _run_chunks(jobs, settings, kw, engine, workers, scheduler, progress, notes:
                 processes: int | None = None) -> list:
     """The chunks' results in order, in this process or on Dask (where Dask cannot help, in this process, and
     ``notes`` says why: :func:`synth.bulk.run.dask_pointless`). In process, the chunks go to ``processes`` forked
-    workers (:func:`_processes`: by default as many as the usable cores); each chunk is computed as in one
-    process, and the results are taken in the chunks' order, so the data are the same whatever the count."""
+    workers (:func:`_processes`: one by default, :data:`PROCESSES`); each chunk is computed as in one process, and
+    the results are taken in the chunks' order, so the data are the same whatever the count."""
     total = sum(len(j[0]) for j in jobs)
     why = dask_pointless(scheduler, workers, len(jobs)) if engine == "dask" else None
     if why and notes is not None:
         notes.append(why)
     if engine == "inprocess" or why:
         out, done = [], 0
-        procs = _processes(len(jobs), processes, total)
+        procs = _processes(len(jobs), processes)
         with _forked_pool(procs) as pool:
             results = (pool.imap(_chunk_star, [(*job, settings, kw) for job in jobs]) if pool is not None
                        else (_chunk_job(inp, ids, vol, settings, **kw) for inp, ids, vol in jobs))

@@ -30,7 +30,7 @@ from synth.platform.verified import verify_records
 from synth.platform.outputs import platform_table, price_of_standardisation
 from synth.platform.volume import pool_prices, price_curves
 
-__all__ = ["PlatformResult", "rationalise", "tradeoff", "tradeoff_started", "OBJECTIVES", "STAGES"]
+__all__ = ["PlatformResult", "rationalise", "tradeoff", "OBJECTIVES", "STAGES"]
 
 OBJECTIVES = ("variants", "cost")
 #: the stages of :func:`rationalise`, in order (the names its ``stage`` callback receives; ``verify`` only with
@@ -307,57 +307,3 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
         tick(len(rows), len(budgets))
     return rows
 
-
-def tradeoff_started(pf: PortfolioFeasibility, kind: str = "margin", **kw):
-    """:func:`tradeoff` of ``pf`` started now in a forked process, beside what this process does next (the
-    platform of the command: the two share nothing but ``pf``, which the child inherits unpickled).
-
-    Returns ``rows(progress=None)``: it waits for the child's rows (``progress(done, total)`` called with the
-    rounds the child has solved) and gives the rows :func:`tradeoff` gives in this process: the child runs the same
-    code on the same data. Where this process cannot fork (not POSIX, a daemonic process) or the child fails to
-    report, the curve is computed in this process when ``rows`` is called. ``kw``: :func:`tradeoff`'s (not
-    ``progress``)."""
-    import multiprocessing as mp
-    if kind not in ("margin", "cost"):
-        raise InputError(Problem("trade-off", kind, "margin or cost"))
-
-    def here(progress=None):
-        return tradeoff(pf, kind, progress=progress, **kw)
-    if "fork" not in mp.get_all_start_methods() or mp.current_process().daemon:
-        return here
-    ctx = mp.get_context("fork")
-    recv, send = ctx.Pipe(duplex=False)
-    child = ctx.Process(target=_tradeoff_child, args=(send, pf, kind, kw), daemon=True)
-    child.start()
-    send.close()
-
-    def rows(progress=None):
-        got = None
-        try:
-            while True:
-                what, *msg = recv.recv()
-                if what == "tick":
-                    if progress:
-                        progress(*msg)
-                    continue
-                got = msg[0] if what == "rows" else None
-                if what == "error":
-                    raise msg[0]
-                break
-        except EOFError:   # the child died without a word: the curve computed here
-            got = None
-        finally:
-            recv.close()
-            child.join()
-        return got if got is not None else here(progress)
-    return rows
-
-
-def _tradeoff_child(send, pf, kind, kw):
-    try:
-        rows = tradeoff(pf, kind, progress=lambda done, total: send.send(("tick", done, total)), **kw)
-        send.send(("rows", rows))
-    except Exception as exc:   # raised again in the parent
-        send.send(("error", exc))
-    finally:
-        send.close()

@@ -90,7 +90,7 @@ def _main(args) -> int:
     from synth.platform.outputs import gap_text, write_all
     from synth.platform.volume import saving_text
     from synth.platform.producer import load_feasibility
-    from synth.platform.rationalise import rationalise, tradeoff_started
+    from synth.platform.rationalise import rationalise, tradeoff
     caps = parse_max_variants(args.max_variants)
     check_count("rationalise --points", args.points)
     from synth.design.evaluate import Settings
@@ -114,15 +114,13 @@ def _main(args) -> int:
     def stage(name):   # a progress line per stage of the platform (synth.platform.rationalise.STAGES)
         return phase(f"synth rationalise: platform, {label if name == 'MILP' else name} ({len(pf.apps)} applications)")
 
-    # the trade-off curve in a forked process beside the platform (issue 36: the two cores); the same rows
-    curve = (tradeoff_started(pf, args.tradeoff, points=args.points, time_limit=args.time_limit)
-             if args.tradeoff != "none" else None)
     r = rationalise(pf, args.objective, max_variants=caps, time_limit=args.time_limit, solver=args.solver,
                     stage=stage)
     rows = None
-    if curve is not None:
+    if args.tradeoff != "none":
         with Progress(total=args.points, desc=f"synth rationalise: trade-off curve ({args.tradeoff})") as bar:
-            rows = curve(progress=lambda done, total: bar.update(done - bar.n))
+            rows = tradeoff(pf, args.tradeoff, points=args.points, time_limit=args.time_limit,
+                            progress=lambda done, total: bar.update(done - bar.n))
     r.tradeoff = rows
     with output_files(args.out, "--out") as out, phase("synth rationalise: writing the outputs"):
         paths = [Path(args.out) / q.relative_to(out) for q in write_all(pf, r, out, rows, args.tradeoff)]
