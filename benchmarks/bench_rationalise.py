@@ -14,6 +14,10 @@ it draws). One warm-up run of each tree first (20 applications: its compiled ker
 Then whether the two trees wrote the same files (byte for byte, the figures' PNG included; for a text file that
 differs, the lines: the timings ``summary.md`` and ``section.html`` print differ from run to run).
 
+``--memory-stages PORTFOLIO``: instead, one process runs the command's steps on PORTFOLIO and prints each stage's
+CPU seconds, wall seconds, resident memory after it and peak within it (Linux: the peak reset through
+``/proc/self/clear_refs`` as each stage starts), where the memory goes (:func:`memory_stages`).
+
 The machine is shared: the load average is printed with each table; compare the trees by their ratios in one run.
 Targets (issue 36): 10,000 applications < 60 s and < 2 GB; 1,000 < 15 s.
 """
@@ -104,6 +108,44 @@ def add_volumes(path: Path, seed: int) -> None:
     t.to_parquet(path)
 
 
+def memory_stages(portfolio: str) -> None:
+    """Print per stage of ``synth rationalise PORTFOLIO`` (feasibility, :data:`synth.platform.rationalise.STAGES`,
+    the margin trade-off curve, the outputs) its CPU and wall seconds, the resident memory after it and the peak
+    within it [MiB], in this process (Linux only: ``/proc/self/status`` and ``clear_refs``)."""
+    import resource
+    from contextlib import contextmanager
+    from synth.design.evaluate import Settings
+    from synth.platform.outputs import write_all
+    from synth.platform.producer import load_feasibility
+    from synth.platform.rationalise import rationalise, tradeoff
+
+    def rss():
+        d = dict(line.split(":", 1) for line in Path("/proc/self/status").read_text().splitlines() if ":" in line)
+        return int(d["VmRSS"].split()[0]) / 1024, int(d["VmHWM"].split()[0]) / 1024
+
+    def cpu():
+        r = resource.getrusage(resource.RUSAGE_SELF)
+        return r.ru_utime + r.ru_stime
+
+    @contextmanager
+    def stage(name):
+        Path("/proc/self/clear_refs").write_text("5")   # the peak (VmHWM) from here
+        c, t = cpu(), time.perf_counter()
+        yield
+        now, peak = rss()
+        print(f"| {name} | {cpu() - c:.1f} | {time.perf_counter() - t:.1f} | {now:,.0f} | {peak:,.0f} |", flush=True)
+
+    print(f"Stages of `synth rationalise` in one process (load average {os.getloadavg()[0]:.1f})\n\n"
+          "| stage | CPU [s] | wall [s] | RSS after [MiB] | peak in stage [MiB] |\n|---|---|---|---|---|")
+    with stage("feasibility"):
+        pf = load_feasibility(portfolio, Settings())
+    r = rationalise(pf, "variants", stage=stage)
+    with stage("trade-off curve (margin)"):
+        r.tradeoff = tradeoff(pf, "margin", points=5)
+    with stage("outputs"), tempfile.TemporaryDirectory() as d:
+        write_all(pf, r, d, r.tradeoff, "margin")
+
+
 def main(argv: list | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", type=int, nargs="+", default=[1000, 10000])
@@ -111,8 +153,13 @@ def main(argv: list | None = None) -> int:
     ap.add_argument("--base", type=Path, help="another checkout (e.g. a worktree of main) run in the same turn")
     ap.add_argument("--repeat", type=int, default=1, help="turns of base then this tree (median ratios)")
     ap.add_argument("--volumes", action="store_true", help="an annual_volume column in the portfolio")
+    ap.add_argument("--memory-stages", metavar="PORTFOLIO",
+                    help="instead: each stage's CPU, wall and peak memory on PORTFOLIO, in this process")
     ap.add_argument("--args", nargs=argparse.REMAINDER, default=[], help="more arguments for synth rationalise")
     a = ap.parse_args(argv)
+    if a.memory_stages:
+        memory_stages(a.memory_stages)
+        return 0
     trees = ([("base", a.base.resolve())] if a.base else []) + [("this tree", ROOT)]
     with tempfile.TemporaryDirectory(prefix="bench_rationalise_") as tmp:
         rows, stages, checks = [], [], []
