@@ -59,20 +59,25 @@ def test_solvers_agree_on_every_application(evaluated, objective):
     assert n_feasible >= 5  # the agreement is not only on infeasible applications
 
 
+#: the margin agreement's applications: feasible, the margin optimum differing from the cost and the standard one,
+#: among them the most feasible cores (generated-1: 96) and the most feasible designs (generated-7: 2.1e8); the
+#: first four feasible (generated-1 to 4) took 66 s of CPU, generated-3's and -4's SCIP solves 26 s and 13 s
+MARGIN_APPS = ("generated-1", "generated-7", "generated-13", "generated-18")
+
+
 def test_solvers_agree_on_the_margin(evaluated):
     obj = Objective.parse("margin")
     done = 0
-    for name, ev in evaluated.items():
+    for name in MARGIN_APPS:
+        ev = evaluated[name]
         core, options, _ = solve_space(ev, obj)
-        if core is None:
-            continue
+        assert core is not None, name
+        assert (core, options) != solve_space(ev, Objective.parse("cost"))[:2], name  # the margin decides
         ref = _value(ev, core, options, obj)
         for solver, factory in RUNNERS.items():
             got = solve_evaluated(ev, obj, factory)
             assert _value(ev, got[0], got[1], obj) == pytest.approx(ref, abs=1e-9), (name, solver)
         done += 1
-        if done == 4:
-            break
     assert done == 4
 
 
