@@ -42,7 +42,7 @@ import numpy as np
 
 from synth import formatting as fmt
 from synth.design.derivation_record import UNITS, Derivation, Quantity, Step, unit_of
-from synth.design.trace import evaluator_lines, outputs, referenced, scalar, traced
+from synth.design.trace import evaluator_lines, referenced, scalar, traced
 
 __all__ = ["Derivation", "Quantity", "Step", "derive", "derivations", "derive_result", "check_names", "unit_of",
            "MAX_DEPTH"]
@@ -281,7 +281,7 @@ class _Explainer:
         for c in self.calls:
             if c.module in ("synth.catalog", "synth.parts") or c.end >= before:
                 continue
-            for out_name, v in outputs(c.result):
+            for out_name, v in c.outputs:
                 if not _close(v, value):
                     continue
                 is_named = _same_name(name, c.name) or (out_name is not None and _same_name(name, out_name))
@@ -296,7 +296,7 @@ class _Explainer:
         best = cands[-1][2]
         # the innermost call inside it that computed the same value (a step's own equation: von Mises in the bolt's)
         inner = [c for c in self.calls if best.start < c.start and c.end < best.end and c.module.startswith("synth.model")
-                 and any(_close(v, value) for _, v in outputs(c.result))
+                 and any(_close(v, value) for _, v in c.outputs)
                  and not any(isinstance(a, float) and _close(a, value) for a in c.args.values())]
         return max(inner, key=lambda c: (c.depth, c.end)) if inner else best
 
@@ -351,7 +351,7 @@ class _Explainer:
                 return q
         for c in self.calls:  # computed in the body of a call still running at the use (a spring's stresses)
             if c.start < before < c.end and c.module.startswith("synth.model"):
-                outs = [k for k, x in outputs(c.result) if k is not None and _close(x, v)]
+                outs = [k for k, x in c.outputs if k is not None and _close(x, v)]
                 if outs:
                     return Quantity(name, v, unit_of(name), "computed",
                                     f"computed in the body of {c.qualname} (its output {outs[0]})")
