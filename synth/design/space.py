@@ -60,24 +60,20 @@ from synth.errors import InputError, Problem
 from synth.model import packaging, pivot, torsion_spring, disc_spring
 from synth.fingerprint import cached, catalogs_sha256, source_stamp
 from synth.schema import PART_FIELDS, field_by_name
+from synth.design.subsystems import CORE_PART_KEYS, declared, names, pinned_diameter, spring_window
 
 __all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "PART_DEFAULTS", "NONE", "bolt_attributes", "washer_code", "CAPACITY", "Space", "space", "core_rows", "spring_window",
            "table_sizes", "check_capacity", "fixed_fields", "space_for", "pinned_space", "pinned_diameter",
            "design_inputs", "same_input"]
 
-SUBSYSTEMS = ("bushing", "axial", "spring", "bolt")
+#: the part families beside the core, as declared (:mod:`synth.design.subsystems`), in search and result order
+SUBSYSTEMS = names()
 TABLES = ("core",) + SUBSYSTEMS
 NONE = "none"
 
-#: the part keys of a design (one vocabulary: input file, results, JSON, Excel, report, CAD), by table
-PART_KEYS_BY_TABLE = {
-    "core": ("ball_bearing", "pivot_class_diameter_mm", "pivot_bushing_supplier", "damper_pad_class"),
-    "bushing": ("pivot_bushing_length_mm",),
-    "axial": ("endcap_spacer_class", "cone_spring_aspect_ratio", "cone_spring_deflection_ratio",
-              "cone_spring_external_diameter_mm", "cone_spring_internal_diameter_mm"),
-    "spring": ("main_spring_material", "main_spring_wire", "main_spring_mean_body_diameter_mm"),
-    "bolt": ("bolt_format", "bolt_head_type", "bolt_property_class", "bolt_washer", "bolt_tightening"),
-}
+#: the part keys of a design (one vocabulary: input file, results, JSON, Excel, report, CAD), by table: the core's,
+#: then each declared subsystem's
+PART_KEYS_BY_TABLE = {"core": CORE_PART_KEYS, **{f.name: f.part_keys for f in declared()}}
 #: part keys a design may leave out, and the value they then take (results saved before the key existed)
 PART_DEFAULTS = {"bolt_head_type": "hex", "bolt_washer": NONE, "bolt_tightening": "torque_wrench_tested"}
 PART_KEYS = tuple(k for t in TABLES for k in PART_KEYS_BY_TABLE[t])
@@ -693,13 +689,3 @@ def _field_table(name: str) -> str:
     return field_by_name(name).pins[0]
 
 
-def pinned_diameter(sp: Space) -> bool:
-    """Whether ``sp`` keeps a mean body diameter the input names: its springs are then searched whatever the
-    housing (the spring checks say where it does not fit), not only within :func:`spring_window`."""
-    return "main_spring_mean_body_diameter_mm" in sp.pinned
-
-
-def spring_window(housing_inner_mm, housing_outer_mm):
-    """``(lo, hi)`` [mm]: the mean body diameters searched for a housing (elementwise): from the inner diameter
-    rounded down to the outer rounded up, 1e-9 mm wider so that grid values on the bounds stay in."""
-    return np.floor(housing_inner_mm) - 1e-9, np.ceil(housing_outer_mm) + 1e-9

@@ -69,6 +69,7 @@ from synth.errors import InputError
 from synth.kernels import engines, main_spring
 from synth import catalog
 from synth.design.verify import evaluate_design, parts_of_design
+from synth.design.subsystems import family
 
 __all__ = ["Batch", "wsum", "SLACK", "MARGIN_EPS", "any_feasible", "designs_pass", "robust"]
 
@@ -282,29 +283,38 @@ class Batch:
     def _bushing(self, rows, weights=None):
         """Per core row: with ``weights``, ``(score, option)`` of the first feasible bushing in score order (inf,
         -1 when none); without, ``(value, option)`` of the largest smallest margin (the enumeration's argmax)."""
+        return self._paired(family("bushing"), rows, weights)
+
+    def _paired(self, fam, rows, weights=None):
+        """:meth:`_bushing` for any family judged pair by pair (its declaration's ``group``): its group evaluated
+        once per distinct (application, matched core values, what it reads of the core) over the options the
+        declaration makes available (:mod:`synth.design.subsystems`)."""
         sp, cg = self.sp, self.cg
-        t = sp.tables["bushing"]
         n_r = len(rows)
         out_v = np.full(n_r, np.inf if weights is not None else -np.inf)
         out_k = np.full(n_r, -1 if weights is not None else 0, dtype=np.int64)
         if not n_r:
             return out_v, out_k
-        sup = cg.values["supplier_code"][rows]
-        first, inv = _unique_rows(self.A[rows], sup, *(cg.values[k][rows]
-                                                       for k in evaluate.core_values("bushing", cg.values)))
+        match = [cg.values[cv][rows] for cv, _ in fam.match]
+        first, inv = _unique_rows(self.A[rows], *match, *(cg.values[k][rows] for k in fam.core_reads(cg.values)))
         rep = rows[first]
-        score = wsum(option_scores(sp, "bushing"), weights) if weights is not None else None
+        score = wsum(option_scores(sp, fam.name), weights) if weights is not None else None
         res_v = np.empty(len(rep))
         res_k = np.empty(len(rep), dtype=np.int64)
-        rep_sup = sup[first]
-        for s in np.unique(rep_sup):
-            sel = np.flatnonzero(rep_sup == s)
-            opts = np.flatnonzero(t["supplier_code"] == s)  # index order
+        if match:
+            mfirst, minv = _unique_rows(*(m[first] for m in match))
+        else:
+            mfirst, minv = np.zeros(min(len(rep), 1), dtype=np.int64), np.zeros(len(rep), dtype=np.int64)
+        for u in range(len(mfirst)):
+            sel = np.flatnonzero(minv == u)
+            opts = np.flatnonzero(fam.available(sp, cg.values, rep[sel[:1]])[0])  # index order
             rr, oo = np.repeat(rep[sel], len(opts)), np.tile(opts, len(sel))
             with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-                g = evaluate.bushing(self.apps, cg, rr, sp.rows("bushing", oo), self.settings)
+                g = fam.group(self.apps, cg, rr, sp.rows(fam.name, oo), self.settings)
             self.evaluations += len(rr)
-            if weights is not None:
+            if weights is not None and not len(opts):  # none available: no feasible option
+                res_k[sel], res_v[sel] = -1, np.inf
+            elif weights is not None:
                 order = np.argsort(score[opts], kind="stable")
                 ok = g.ok().reshape(len(sel), len(opts))[:, order]
                 j = _first_true(ok)
@@ -874,9 +884,9 @@ class Batch:
         if s == "spring":
             keys, inv = self._spring_keys(rows)
             return inv, keys
-        extra = (self.cg.values["supplier_code"][rows],) if s == "bushing" else ()
-        first, inv = _unique_rows(self.A[rows], *extra, *(self.cg.values[k][rows]
-                                                          for k in evaluate.core_values(s, self.cg.values)))
+        reads = family(s).core_reads(self.cg.values)
+        extra = tuple(self.cg.values[cv][rows] for cv, _ in family(s).match if cv not in reads)  # what it matches on
+        first, inv = _unique_rows(self.A[rows], *extra, *(self.cg.values[k][rows] for k in reads))
         return inv, rows[first]
 
     def _tie_candidates(self, s: str, weights: dict, rows, lo, hi):
@@ -902,13 +912,7 @@ class Batch:
         cnt = np.maximum(b - a, 0)
         ui = np.repeat(np.arange(nu), cnt)
         oo = order[np.repeat(a, cnt) + _segments(np.zeros(nu), cnt)]
-        t = self.sp.tables[s]
-        if s == "bushing":
-            may = t["supplier_code"][oo] == self.cg.values["supplier_code"][unit[ui]]
-        elif s == "axial":
-            may = t["axial_group_present"][oo] == self.pad[unit[ui]]
-        else:
-            may = np.ones(len(oo), dtype=bool)
+        may = family(s).allows(self.sp, self.cg.values, unit[ui], oo)
         ui, oo = ui[may], oo[may]
         return inv, unit, (ui, oo), sc[oo]
 
@@ -926,13 +930,13 @@ class Batch:
                     m = main_spring.pair_margins(kk, self._options(), ui, oo, engine=self.engine, settings=st)
                     g = evaluate.Group("spring", {"app": unit["app"][ui]}, dict(zip(main_spring.checks(), m.T)),
                                        rules=st.rules)
-                elif s == "bushing":
-                    g = evaluate.bushing(self.apps, self.cg, unit[ui], sp.rows(s, oo), st)
                 elif s == "axial":
                     pre = self._axial_passes_before_physics(unit[ui], oo)  # the others fail at any fidelity
                     ui, oo, scores, ok, marg = ui[pre], oo[pre], scores[pre], ok[pre], marg[pre]
                     g = evaluate.axial_judged(self.apps, self.cg, unit[ui], sp.rows(s, oo), st,
                                               engine=self.axial_engine)
+                elif s != "bolt":  # judged pair by pair by its declared group (the bushing)
+                    g = family(s).group(self.apps, self.cg, unit[ui], sp.rows(s, oo), st)
                 else:
                     o = sp.rows(s, oo)
                     g = evaluate.bolt(self.apps, self.cg, unit[ui], o, st,

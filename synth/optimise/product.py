@@ -28,30 +28,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from synth.design.evaluate import (DEFAULT, SPRING_OPTION_COLUMNS, Group, Settings, axial_full, axial_judged, bolt,
-                                   bushing, core, fixation_values, inputs, spring, spring_keys)
+from synth.design.evaluate import DEFAULT, Group, Settings, axial_full, core, inputs
 from synth.design.applications import Applications
-from synth.design.space import SUBSYSTEMS, Space, core_rows, pinned_diameter, space, space_for, spring_window
+from synth.design.space import SUBSYSTEMS, Space, core_rows, space, space_for
+from synth.design.subsystems import SPRING_BLOCK_PAIRS, SubTable, evaluate_axial, family
 from synth.design.verify import parts_of_design
 from synth.cost.breakdown import attributes
 from synth.optimise.objectives import additive_goals, additive_totals, goal
 
 __all__ = ["SubTable", "Evaluation", "evaluate", "subsystem", "SPRING_BLOCK_PAIRS", "design_scores",
            "core_scores", "option_scores", "design_totals"]
-
-#: (key, option) pairs of main springs evaluated per block (bounds the memory of one evaluation)
-SPRING_BLOCK_PAIRS = 200_000
-
-
-@dataclass
-class SubTable:
-    """One subsystem over ``(n_rows, n_options)``: availability, feasibility and margins of each pair."""
-
-    available: np.ndarray
-    feasible: np.ndarray
-    margin: np.ndarray          # smallest margin counted in the margin objective (+inf: none counted)
-    min_margin: np.ndarray      # smallest margin of every non-advisory constraint (the nearest design)
-
 
 @dataclass
 class Evaluation:
@@ -124,22 +110,6 @@ def design_totals(core: dict, options) -> dict:
     return {name: goal(name).total(v) for name, v in additive_totals(core, options).items()}
 
 
-def _bushing(apps, sp, cg, pos, settings) -> SubTable:
-    t = sp.tables["bushing"]
-    avail = cg.values["supplier_code"][pos][:, None] == t["supplier_code"][None, :]
-    i, k = np.nonzero(avail)
-    g = bushing(apps, cg, pos[i], sp.rows("bushing", k), settings)
-    return _scatter(avail, i, k, g)
-
-
-def _axial(apps, sp, cg, pos, settings, group=axial_judged) -> SubTable:
-    t = sp.tables["axial"]
-    avail = (cg.values["axial_group_present"][pos] > 0)[:, None] == t["axial_group_present"][None, :]
-    i, k = np.nonzero(avail)
-    g = group(apps, cg, pos[i], sp.rows("axial", k), settings)
-    return _scatter(avail, i, k, g)
-
-
 def _judge_undecided(apps, sp, cg, pos, core_ok, settings, subs: dict) -> None:
     """At fidelity ``screening`` (the axial table screened, then judged: :func:`synth.design.evaluate.axial_judged`),
     "no design" must be the full model's verdict too: when no core is complete (a feasible option in every
@@ -149,77 +119,21 @@ def _judge_undecided(apps, sp, cg, pos, core_ok, settings, subs: dict) -> None:
     if settings.judge is settings or not len(pos):
         return
     has = {s: t.feasible.any(axis=1) for s, t in subs.items()}
-    if (core_ok & has["bushing"] & has["axial"] & has["spring"] & has["bolt"]).any():
+    if np.logical_and.reduce([core_ok, *has.values()]).any():
         return
-    if (core_ok & has["bushing"] & has["spring"] & has["bolt"]).any():
-        subs["axial"] = _axial(apps, sp, cg, pos, settings, axial_full)
-
-
-def _bolt(apps, sp, cg, pos, settings) -> SubTable:
-    nk = sp.n("bolt")
-    opts = sp.rows("bolt", np.arange(nk))
-    fix = fixation_values(apps, np.zeros(nk, dtype=np.int64), opts, settings)  # per bolt row: no core dependence
-    i, k = (x.ravel() for x in np.meshgrid(np.arange(len(pos)), np.arange(nk), indexing="ij"))
-    g = bolt(apps, cg, pos[i], sp.rows("bolt", k), settings, fixation={key: v[k] for key, v in fix.items()})
-    return _scatter(np.ones((len(pos), nk), dtype=bool), i, k, g)
-
-
-def _spring(apps, sp, cg, pos, settings, counter) -> SubTable:
-    nk = sp.n("spring")
-    keys = spring_keys(cg, pos)  # the key: torque, housing height and diameters, and what else its checks read
-    cols = [k for k in keys if k != "app"]
-    stack = np.stack([np.asarray(keys[k], dtype=float) for k in cols], axis=1)
-    uniq, inv = np.unique(stack, axis=0, return_inverse=True)
-    inv = np.asarray(inv).reshape(-1)
-    if not len(uniq):
-        empty = np.zeros((0, nk), dtype=bool)
-        return SubTable(empty, empty, np.zeros((0, nk)), np.zeros((0, nk)))
-    mbd = sp.tables["spring"]["main_spring_mean_body_diameter_mm"]
-    ukeys = {"app": np.zeros(len(uniq), dtype=np.int64), **{k: uniq[:, j] for j, k in enumerate(cols)}}
-    lo, hi = spring_window(ukeys["spring_housing_inner_diameter_mm"].min(),
-                           ukeys["spring_housing_outer_diameter_mm"].max())
-    opts_idx = np.flatnonzero((mbd >= lo) & (mbd <= hi) | pinned_diameter(sp))
-    shape = (len(uniq), nk)
-    feas = np.zeros(shape, dtype=bool)
-    marg = np.full(shape, -np.inf)
-    mmin = np.full(shape, -np.inf)
-    avail = np.zeros(shape, dtype=bool)
-    avail[:, opts_idx] = True
-    block = max(1, SPRING_BLOCK_PAIRS // max(len(uniq), 1))
-    for start in range(0, len(opts_idx), block):
-        oi = opts_idx[start:start + block]
-        kk, oo = (x.ravel() for x in np.meshgrid(np.arange(len(uniq)), oi, indexing="ij"))
-        t = sp.tables["spring"]
-        g = spring(apps, ukeys, kk, {c: t[c][oo] for c in SPRING_OPTION_COLUMNS}, settings)
-        a = g.assessment()
-        feas[kk, oo], marg[kk, oo], mmin[kk, oo] = a.ok, a.objective_margin, a.margin_min
-        counter[0] += len(kk)
-    return SubTable(avail[inv], feas[inv], marg[inv], mmin[inv])
+    if np.logical_and.reduce([core_ok, *(v for s, v in has.items() if s != "axial")]).any():
+        subs["axial"] = evaluate_axial(axial_full)(apps, sp, cg, pos, settings, family("axial"))[0]
 
 
 def subsystem(apps, sp: Space, cg: Group, pos, name: str, settings: Settings) -> tuple[SubTable, int]:
     """Subsystem ``name`` of the core rows ``pos`` of core group ``cg`` against every option of ``sp``'s table
-    ``name`` (the design space's, or any table of option columns: a black-box search's proposals).
+    ``name`` (the design space's, or any table of option columns: a black-box search's proposals), by its declaration
+    (:mod:`synth.design.subsystems`).
 
     Returns the :class:`SubTable` over ``(len(pos), options)`` and the number of (row, option) pairs the
     evaluator computed (main springs: per distinct key, within the housings' mean-diameter window).
     """
-    if name == "spring":
-        counter = [0]
-        return _spring(apps, sp, cg, pos, settings, counter), counter[0]
-    sub = {"bushing": _bushing, "axial": _axial, "bolt": _bolt}[name](apps, sp, cg, pos, settings)
-    return sub, int(sub.available.sum())
-
-
-def _scatter(avail, i, k, g: Group) -> SubTable:
-    shape = avail.shape
-    feas = np.zeros(shape, dtype=bool)
-    marg = np.full(shape, -np.inf)
-    mmin = np.full(shape, -np.inf)
-    a = g.assessment()
-    feas[i, k], marg[i, k] = a.ok, a.objective_margin
-    mmin[i, k] = (a if g.rank() is g else g.rank().assessment()).margin_min  # nearest: ranked by the search model
-    return SubTable(avail, feas & avail, marg, mmin)
+    return family(name).run(apps, sp, cg, pos, settings)
 
 
 def evaluate(d, settings: Settings = Settings(fidelity="full"), *, pin_inputs: bool = False,
