@@ -145,3 +145,30 @@ def test_the_report_appendix_derives_the_smallest_margins(d):
     assert '<section id="derivations" class="page">' in html and 'href="#derivations"' in html
     assert all(f'<h3 id="derivation-{x["check"]}">' in html for x in rows)
     assert "goodman_safety_factor(sigma_max_mpa = " in html  # spring_fatigue, among them, traced
+
+
+def test_the_trace_records_only_its_own_thread_and_restores_the_functions():
+    """The recording wrappers stand in for the physics functions only while the traced call runs, and a call made by
+    another thread meanwhile is not recorded (a profiler hook was per thread; the wrappers must be too)."""
+    import threading
+
+    from synth.design import trace
+    from synth.model import bolted_joint
+
+    original = bolted_joint.fixation
+    seen = {}
+
+    def other():
+        seen["constant"] = trace.sys.modules["synth.catalog"].constant("bolt_yield_utilisation_max")
+
+    def run():
+        t = threading.Thread(target=other)
+        t.start()
+        t.join()
+        return trace.sys.modules["synth.catalog"].constant("bolt_yield_utilisation_max")
+
+    out, tracer = trace.traced(run)
+    assert out == seen["constant"]
+    assert [c.qualname for c in tracer.calls] == ["synth.catalog.constant"]
+    assert tracer.calls[0].args["name"] == "bolt_yield_utilisation_max" and tracer.calls[0].result == out
+    assert bolted_joint.fixation is original

@@ -10,6 +10,7 @@ import ast
 import functools
 import inspect
 import sys
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -83,6 +84,7 @@ class Tracer:
         self.calls: list[Call] = []
         self.depth = 0
         self.t = 0
+        self.thread = threading.get_ident()  # the traced call's thread: another thread's calls pass unrecorded
 
     def wrap(self, fn):
         code = fn.__code__
@@ -91,6 +93,8 @@ class Tracer:
 
         @functools.wraps(fn)
         def recording(*args, **kw):
+            if threading.get_ident() != self.thread:
+                return fn(*args, **kw)
             bound = signature.bind(*args, **kw)
             bound.apply_defaults()
             given = bound.arguments
