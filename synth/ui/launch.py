@@ -1,20 +1,26 @@
-"""The synthesis of the input ``synth ui`` opens, made while the browser loads the page.
+"""The synthesis of the input ``synth ui`` opens, made in a worker process while the server starts.
 
-The server's start is imports (NiceGUI, FastAPI, socket.io, then synth's evaluator and optimiser) and the synthesis
-of the input it opens. The server listens as soon as NiceGUI is imported; :meth:`Launch.start` (run when the server
-starts) then imports the rest of synth and synthesises in a thread, while the browser loads the page's scripts (about
-1 s of the browser's own processes); the first design page whose input is that one takes a copy of its result
-instead of synthesising, and every later page too (a new tab opens at once). A thread, not a second process: a
-process would import numpy and the evaluator again, which a machine busy with other work pays in full (measured:
-``docs/sections/ui.md``, "Speed").
+The server's start is imports (NiceGUI, FastAPI, socket.io; synth's evaluator with numpy and pandas) and the
+synthesis of the input it opens. :meth:`Launch.submit` (called before NiceGUI is imported) hands that synthesis to
+the design lane's worker process (:mod:`synth.ui.worker`, :func:`synth.ui.work.synthesise`): its imports and
+the synthesis run on a second core while the server imports NiceGUI and the browser loads the page. The worker is
+the one the page's graphs, report and capability use later, so no process is started for it alone; it takes its
+niceness only after this task (:data:`synth.ui.worker.PROMPT`). :meth:`Launch.start` (run when the server listens)
+imports the page's modules in a thread while the browser loads the page's scripts. The first design page whose
+input is that one takes a copy of the result instead of synthesising, and every later page too (a new tab opens at
+once); a launch that failed (the worker could not start) leaves the page to synthesise itself, and say why.
 
 >>> import asyncio
 >>> from synth.ui.session import DesignSession, default_values
 >>> launch = Launch(default_values(), "default")
->>> launch.start()
->>> r = asyncio.run(launch.result_for(DesignSession(default_values())))
+>>> launch.submit()
+>>> s = DesignSession(default_values(), opened=asyncio.run(launch.opened()))
+>>> s.input == DesignSession(default_values()).input
+True
+>>> r = asyncio.run(launch.result_for(s))
 >>> r.verdict, r is launch.future.result()[1]
 ('pass', False)
+>>> from synth.ui import worker; worker.stop_all()
 """
 
 from __future__ import annotations
@@ -32,27 +38,69 @@ class Launch:
 
     def __init__(self, values: dict, source: str, rules=None):
         self.values, self.source, self.rules = values, source, rules
+        self.catalogs: list = []
+        #: the worker's :func:`synth.ui.work.open_input` and :func:`synth.ui.work.synthesise` of the input
+        self.opening: concurrent.futures.Future = concurrent.futures.Future()
         self.future: concurrent.futures.Future = concurrent.futures.Future()
         self.warmed = False
 
-    def start(self) -> None:
-        """Synthesise in a daemon thread (the server's ``on_startup``: it listens already)."""
-        threading.Thread(target=self._run, daemon=True, name="synth-ui-launch").start()
-
-    def _run(self) -> None:
+    def submit(self) -> None:
+        """Hand the opening and the synthesis to the design lane's worker (its process starts now)."""
+        from synth import catalog
+        from synth.ui import worker
         from synth.ui.trace import mark
-        mark("launch started (the server listens)")
+        mark("launch: the input handed to the design worker")
         try:
+            self.catalogs = catalog.user_dirs()
+            design = worker.lane("design")
+            args = (self.values, self.source, self.rules, self.catalogs)
+            self.opening = design.submit_threadsafe("open_input", *args)
+            self.future = design.submit_threadsafe("synthesise", *args)
+        except Exception as exc:  # noqa: BLE001 - the page's own synthesis says what is wrong, if anything
+            for f in (self.opening, self.future):
+                if not f.done():
+                    f.set_exception(exc)
+
+    async def opened(self) -> dict | None:
+        """The state of a session opened on the launch's input (for
+        :class:`~synth.ui.session.DesignSession`'s ``opened``), its drop-downs' designations kept for the form
+        (:data:`synth.ui.form.KEYS`); None when the worker could not open it (the page then validates itself)."""
+        try:
+            got = await asyncio.wrap_future(self.opening)
+        except Exception:  # noqa: BLE001 - see above
+            return None
+        from synth.ui import form
+        dirs = tuple(self.catalogs)
+        for name, keys in got["keys"].items():
+            form.KEYS.setdefault((name, dirs), keys)
+        return got["opened"]
+
+    def start(self) -> None:
+        """Import the page's modules in a daemon thread (the server's ``on_startup``: it listens already)."""
+        threading.Thread(target=self._imports, daemon=True, name="synth-ui-launch").start()
+
+    def warm_server(self, parts: dict | None) -> None:
+        """Validate the launch's input and verify ``parts`` (the design shown) in a daemon thread of the server: the
+        catalogs, pandas and the evaluator an edit uses are loaded before the first edit (the first page took the
+        worker's validation and synthesis, and loaded none of them)."""
+        def run():
             from synth.ui.session import DesignSession
-            s = DesignSession(self.values, source=self.source, rules=self.rules)
-            call = s.synthesis_call() if s.input is not None else None
-            import synth.ui.design_page  # noqa: F401 - the page's modules, imported while the browser loads
-            mark("launch: the input validated, the page's modules imported")
-            result = s.synthesise() if call is not None else None
-            mark("launch: synthesised")
-            self.future.set_result((call, result))
-        except BaseException as exc:  # noqa: BLE001 - the page's own synthesis says what is wrong, if anything
-            self.future.set_exception(exc)
+            from synth.ui.trace import mark
+            try:
+                s = DesignSession(self.values, source=self.source, rules=self.rules)
+                if s.input is not None and parts:
+                    s.verify(dict(parts))
+            except Exception:  # noqa: BLE001 - a warm-up only: the edit that needs it says what is wrong
+                pass
+            mark("launch: the server's evaluator warm")
+        threading.Thread(target=run, daemon=True, name="synth-ui-warm").start()
+
+    @staticmethod
+    def _imports() -> None:
+        from synth.ui.trace import mark
+        mark("launch: importing the page's modules (the server listens)")
+        import synth.ui.design_page  # noqa: F401 - imported while the browser loads the page
+        mark("launch: the page's modules imported")
 
     async def result_for(self, session):
         """A copy of the launch's result when ``session`` asks for the same synthesis; None otherwise, or when the
