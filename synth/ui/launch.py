@@ -14,6 +14,7 @@ once); a launch that failed (the worker could not start) leaves the page to synt
 >>> from synth.ui.session import DesignSession, default_values
 >>> launch = Launch(default_values(), "default")
 >>> launch.submit()
+>>> launch.start() if launch.here else None
 >>> s = DesignSession(default_values(), opened=asyncio.run(launch.opened()))
 >>> s.input == DesignSession(default_values()).input
 True
@@ -30,7 +31,19 @@ import concurrent.futures
 import copy
 import threading
 
-__all__ = ["Launch"]
+__all__ = ["Launch", "core_to_spare"]
+
+
+def core_to_spare() -> bool:
+    """Whether the machine has a core to spare for the worker now: the load average (1 minute) under twice the
+    processors. Measured on 2 cores (``benchmarks/bench_ui.py --only-cold``, docs "the cold start with the launch in
+    the design worker"): the worker won at load 3.7 (3.81 s against 5.05 s) and lost from load 4.2 (its repeated
+    imports then wait for a core); without a load average (Windows) it is used."""
+    import os
+    try:
+        return os.getloadavg()[0] < 2 * (os.cpu_count() or 1)
+    except (AttributeError, OSError):
+        return True
 
 
 class Launch:
@@ -43,15 +56,21 @@ class Launch:
         self.opening: concurrent.futures.Future = concurrent.futures.Future()
         self.future: concurrent.futures.Future = concurrent.futures.Future()
         self.warmed = False
+        self.here = False  # opened and synthesised in this process (:meth:`start`), not the worker
 
     def submit(self) -> None:
-        """Hand the opening and the synthesis to the design lane's worker (its process starts now)."""
+        """Hand the opening and the synthesis to the design lane's worker (its process starts now); on a machine
+        with no core to spare (:func:`core_to_spare`) leave them to :meth:`start`, in this process."""
         from synth import catalog
         from synth.ui import worker
         from synth.ui.trace import mark
-        mark("launch: the input handed to the design worker")
         try:
             self.catalogs = catalog.user_dirs()
+            if not core_to_spare():
+                self.here = True
+                mark("launch: the input left to the server (no core to spare)")
+                return
+            mark("launch: the input handed to the design worker")
             design = worker.lane("design")
             args = (self.values, self.source, self.rules, self.catalogs)
             self.opening = design.submit_threadsafe("open_input", *args)
@@ -76,8 +95,23 @@ class Launch:
         return got["opened"]
 
     def start(self) -> None:
-        """Import the page's modules in a daemon thread (the server's ``on_startup``: it listens already)."""
-        threading.Thread(target=self._imports, daemon=True, name="synth-ui-launch").start()
+        """Import the page's modules in a daemon thread (the server's ``on_startup``: it listens already), and open
+        and synthesise the input there when :meth:`submit` left them to this process."""
+        threading.Thread(target=self._here if self.here else self._imports, daemon=True,
+                         name="synth-ui-launch").start()
+
+    def _here(self) -> None:
+        """The worker's two tasks (:func:`synth.ui.work.open_input`, :func:`synth.ui.work.synthesise`) in this
+        process, the page's modules imported between them."""
+        from synth.ui import work
+        args = (self.values, self.source, self.rules, self.catalogs)
+        for future, task in ((self.opening, work.open_input), (self.future, work.synthesise)):
+            try:
+                future.set_result(task(*args))
+            except BaseException as exc:  # noqa: BLE001 - the page's own synthesis says what is wrong, if anything
+                future.set_exception(exc)
+            if task is work.open_input:
+                self._imports()
 
     def warm_server(self, parts: dict | None) -> None:
         """Validate the launch's input and verify ``parts`` (the design shown) in a daemon thread of the server: the

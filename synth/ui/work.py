@@ -97,11 +97,11 @@ def open_input(values: dict, source: str, rules=None, catalogs=()) -> dict:
     from synth.ui import form
     from synth.ui.session import DesignSession
     from synth.ui.trace import mark
-    mark("worker: opening the input")
+    mark("launch task: opening the input")
     with catalog.using(list(catalogs)):
         s = DesignSession(values, source=source, rules=rules)
         out = {"opened": s.opened_state(), "keys": form.catalog_texts()}
-    mark("worker: the input opened")
+    mark("launch task: the input opened")
     return out
 
 
@@ -118,7 +118,7 @@ def synthesise(values: dict, source: str, rules=None, catalogs=()) -> tuple:
         if s.input is None:
             return None, None
         out = s.synthesis_call(), s.synthesise()
-    mark("worker: synthesised")
+    mark("launch task: synthesised")
     return out
 
 
