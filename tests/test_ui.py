@@ -327,3 +327,40 @@ def test_the_capability_panel_shows_every_figure_a_record_carries():
     summary = views.capability_summary(robust)
     assert "MISSES the target" in summary and "failing: main spring stress" in summary
     assert views.contributors(robust) == {"spring_yield": [("wire", 0.6)]}
+
+
+def test_the_launchs_worker_opens_the_input_as_the_page_would_and_the_first_page_reads_no_catalog(tmp_path):
+    """Issue 35 (cold start): the server's first page takes the state its design worker opened (the same gate, the
+    same problems, the drop-downs' designations and hints) instead of validating, so its process loads neither pandas
+    nor a catalog before the first checks."""
+    import pickle
+    import subprocess
+    import sys
+
+    from synth.ui import work
+    bad = {**default_values(), "pulley_diameter_mm": 500}
+    for values in (default_values(), bad):
+        got = work.open_input(values, "x.yaml", None, [])
+        mine = DesignSession(values, source="x.yaml")
+        theirs = DesignSession(values, source="x.yaml", opened=got["opened"])
+        assert theirs.opened_state() == mine.opened_state()
+        assert theirs.opened_state() is not got["opened"] and theirs.texts is not got["opened"]["texts"]
+    assert theirs.input is None and theirs.problems["pulley_diameter_mm"] == [
+        "pulley_diameter_mm: got 500; accepted: a number in [10, 200] mm"]
+    fields = [f for f in schema.FIELDS if f.catalog]
+    assert got["keys"] == {**{f.catalog: catalog.keys(f.catalog) for f in fields},
+                           **{"hint:" + f.name: f.accepted() for f in fields}}
+    state = tmp_path / "opened.pickle"
+    state.write_bytes(pickle.dumps(work.open_input(default_values(), "x.yaml", None, [])))
+    code = f"""
+import pickle, sys
+from synth.ui import form
+from synth.ui.session import DesignSession, default_values
+got = pickle.loads(open({str(state)!r}, "rb").read())
+form.KEYS.update({{(k, ()): v for k, v in got["keys"].items()}})
+s = DesignSession(default_values(), opened=got["opened"])
+texts = [(form.options(f), form.hint(f)) for _, fs in form.sections() for f in fs]
+print(s.input is not None, "pandas" in sys.modules)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.stdout.split() == ["True", "False"], out.stderr

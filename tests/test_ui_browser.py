@@ -27,6 +27,21 @@ pytestmark = pytest.mark.skipif(CHROMIUM is None, reason="no chromium binary (ap
 CHECKS = "table.checks tr[data-check]"
 REQUESTS: list[str] = []
 
+#: CPU seconds, on an idle core, of what a test waits for (server, workers and browser together; rounded up from
+#: ``benchmarks/bench_ui.py`` and ``docs/sections/ui.md``): a page's first checks (the server's start included: 3.3 s
+#: of the server's and its worker's CPU), an edit or synthesis, the graphs (matplotlib's import and 8 figures), the
+#: 3D model (CadQuery's import, the build, the STL), a report or PDF, a 200-application screening
+CPU_S = {"checks": 8, "edit": 2, "graphs": 15, "model": 30, "report": 30, "screening": 30}
+
+
+def budget_ms(what: str) -> int:
+    """Playwright's timeout for a wait on ``what``: its CPU (:data:`CPU_S`) stretched by the machine's load now (the
+    share of a core each busy process gets: the load average over the cores, at least 1), three times over for the
+    noise of a shared machine; never under Playwright's 60 s default (what an idle machine waits)."""
+    import os
+    stretch = max(1.0, os.getloadavg()[0] / (os.cpu_count() or 1))
+    return max(60_000, int(1000 * CPU_S[what] * stretch * 3))
+
 
 def _rgb(hex_colour: str) -> str:
     return "rgb({}, {}, {})".format(*(int(hex_colour[i:i + 2], 16) for i in (0, 2, 4)))
@@ -55,7 +70,7 @@ def page(browser, server):
     ctx = browser.new_context(accept_downloads=True, viewport={"width": 1400, "height": 900})
     ctx.on("request", lambda r: REQUESTS.append(r.url))
     pg = ctx.new_page()
-    pg.set_default_timeout(60000)
+    pg.set_default_timeout(budget_ms("edit"))
     yield pg, f"http://127.0.0.1:{server[0]}/"
     ctx.close()
 
@@ -83,7 +98,7 @@ def test_default_case_then_an_edit_turns_a_check_red_as_the_api_verifies_it(page
     from synth.ui.session import default_values
     pg, url = page
     goto_when_up(pg, url)
-    pg.locator(CHECKS).first.wait_for()
+    pg.locator(CHECKS).first.wait_for(timeout=budget_ms("checks"))
     d = default_values()
     best = synth.synthesise(d)
     shown = _verdicts(pg)
@@ -109,7 +124,7 @@ def test_a_bad_value_shows_the_command_lines_message_next_to_its_field(page, tmp
     from synth.ui.session import default_values
     pg, url = page
     goto_when_up(pg, url)
-    pg.locator(CHECKS).first.wait_for()
+    pg.locator(CHECKS).first.wait_for(timeout=budget_ms("checks"))
     bad = tmp_path / "bad.yaml"
     bad.write_text(yaml.safe_dump({**default_values(), "pulley_diameter_mm": 500}), encoding="utf-8")
     assert main(["flowchart", str(bad)]) == 2
@@ -129,13 +144,13 @@ def test_a_bad_value_shows_the_command_lines_message_next_to_its_field(page, tmp
 def test_synthesise_then_download_the_report(page, tmp_path):
     pg, url = page
     goto_when_up(pg, url)
-    pg.locator(CHECKS).first.wait_for()
+    pg.locator(CHECKS).first.wait_for(timeout=budget_ms("checks"))
     pg.locator("[data-field=differential_angle_deg] input").fill("70")
     seq = _seq(pg)
     pg.locator("[data-testid=synthesise]").click()
     _wait_seq_after(pg, seq)
     assert re.search(r"^optimal design \(enumerate", pg.get_by_text("design (enumerate").inner_text())
-    with pg.expect_download() as dl:
+    with pg.expect_download(timeout=budget_ms("report")) as dl:
         pg.locator("[data-testid=download-html]").click()
     report = tmp_path / "report.html"
     dl.value.save_as(report)
@@ -159,7 +174,8 @@ def test_a_200_application_portfolio_screens_to_the_apis_feasible_share(page, tm
     pg.get_by_text("200 applications from fleet.csv").wait_for()
     pg.locator("[data-testid=run]").click()
     shown = pg.locator("[data-testid=feasible-share]")
-    pg.wait_for_function("document.querySelector('[data-testid=feasible-share]').innerText.length > 0")
+    pg.wait_for_function("document.querySelector('[data-testid=feasible-share]').innerText.length > 0",
+                         timeout=budget_ms("screening"))
     api = expected.result()
     pool.shutdown()
     share = 100 * api["feasible"].astype(bool).sum() / (api["error"].fillna("") == "").sum()
@@ -177,7 +193,7 @@ def test_a_200_application_portfolio_screens_to_the_apis_feasible_share(page, tm
     pg.locator("tbody tr", has_text="APP-00007").first.click()  # opens on the design page
     pg.wait_for_url(re.compile(r"/\?open="))
     pg.get_by_text("input: fleet.csv: APP-00007").wait_for()
-    pg.locator(CHECKS).first.wait_for()
+    pg.locator(CHECKS).first.wait_for(timeout=budget_ms("checks"))
 
 
 # --- the server's doors, as a browser meets them (issue 39; raw requests: tests/test_ui_server.py) ---------------------
@@ -263,7 +279,7 @@ def test_an_input_with_rules_opened_in_the_page_is_judged_under_them(page, tmp_p
     assert synth.synthesise(path).verdict == "fail"  # as synth design judges the file
     pg, url = page
     goto_when_up(pg, url)
-    pg.locator(CHECKS).first.wait_for()
+    pg.locator(CHECKS).first.wait_for(timeout=budget_ms("checks"))
     assert pg.locator(".banner").first.inner_text().startswith("Verdict: PASS")  # the default, without rules
     pg.locator("input[type=file]").set_input_files(str(path))
     pg.get_by_text("input: ruled.yaml").wait_for()
@@ -276,7 +292,7 @@ def test_an_input_with_rules_opened_in_the_page_is_judged_under_them(page, tmp_p
 def test_a_305_character_file_name_and_a_crafted_row_click_are_messages_in_the_page(page):
     pg, url = page
     goto_when_up(pg, url)
-    pg.locator(CHECKS).first.wait_for()
+    pg.locator(CHECKS).first.wait_for(timeout=budget_ms("checks"))
     pg.locator("input[type=file]").set_input_files(
         {"name": "n" * 300 + ".yaml", "mimeType": "application/x-yaml", "buffer": b"pulley_diameter_mm: 62\n"})
     note = pg.locator(".q-notification", has_text="file name")
@@ -301,13 +317,13 @@ def test_a_305_character_file_name_and_a_crafted_row_click_are_messages_in_the_p
 def test_graphs_3d_model_step_download_and_no_request_leaves_the_machine(page, server, tmp_path):
     pg, url = page
     goto_when_up(pg, url)
-    pg.locator(CHECKS).first.wait_for()
+    pg.locator(CHECKS).first.wait_for(timeout=budget_ms("checks"))
     pg.get_by_role("tab", name="Graphs").click()
-    pg.locator("figure[data-graph]").first.wait_for()
-    with pg.expect_response(lambda r: r.url.endswith(".stl") and r.status == 200):
+    pg.locator("figure[data-graph]").first.wait_for(timeout=budget_ms("graphs"))
+    with pg.expect_response(lambda r: r.url.endswith(".stl") and r.status == 200, timeout=budget_ms("model")):
         pg.get_by_role("tab", name="3D model").click()
-    pg.get_by_text("parts (STL, millimetres)").wait_for()
-    with pg.expect_download() as dl:  # the model in view: its STEP
+    pg.get_by_text("parts (STL, millimetres)").wait_for(timeout=budget_ms("model"))
+    with pg.expect_download(timeout=budget_ms("model")) as dl:  # the model in view: its STEP
         pg.locator("[data-testid=download-step]").click()
     step = tmp_path / "t.step"
     dl.value.save_as(step)
@@ -335,7 +351,7 @@ def test_edit_synthesise_apply_capability_screen_open_back_and_download_the_assi
     from synth.ui.session import default_values
     pg, url = page
     goto_when_up(pg, url)
-    pg.locator(CHECKS).first.wait_for()
+    pg.locator(CHECKS).first.wait_for(timeout=budget_ms("checks"))
     seq = _seq(pg)
     pg.locator("[data-field=spring_stiffness_nm_per_deg] input").fill("0.022")  # the README's example
     _wait_seq_after(pg, seq)
@@ -378,7 +394,7 @@ def test_edit_synthesise_apply_capability_screen_open_back_and_download_the_assi
     cells = row.locator("td").all_inner_texts()
     row.click()
     pg.wait_for_url(re.compile(r"/\?open="))
-    pg.locator(CHECKS).first.wait_for()
+    pg.locator(CHECKS).first.wait_for(timeout=budget_ms("checks"))
     assert pg.locator(".banner").first.inner_text() == f"Verdict: {cells[2]}"  # the row's verdict, as the table said
     t = time.perf_counter()
     pg.go_back()
@@ -415,9 +431,9 @@ def test_the_3d_view_fits_the_model_keeps_it_across_edits_and_resets(page, tmp_p
     bbox = work.model(synth.synthesise(default_values()), str(tmp_path))["bbox"]  # the model, built here too
     view = views.fit_view(bbox)
     goto_when_up(pg, url)
-    pg.locator(CHECKS).first.wait_for()
+    pg.locator(CHECKS).first.wait_for(timeout=budget_ms("checks"))
     pg.get_by_role("tab", name="3D model").click()
-    pg.get_by_text("parts (STL, millimetres)").wait_for()
+    pg.get_by_text("parts (STL, millimetres)").wait_for(timeout=budget_ms("model"))
     camera_js = "(() => { const c = getElement(Number(document.querySelector('canvas').closest('[id^=c]').id.slice(1))).camera; return [c.position.x, c.position.y, c.position.z, c.fov]; })()"
     x0 = view["camera"][0]
     pg.wait_for_function(f"Math.abs({camera_js}[0] - {x0}) < 1e-6 * {abs(x0)}")
@@ -434,12 +450,11 @@ def test_the_3d_view_fits_the_model_keeps_it_across_edits_and_resets(page, tmp_p
     assert all(abs(x) <= 1 and abs(y) <= 1 for x, y in ndc)  # ...the whole model in view...
     assert max(abs(y) for _, y in ndc) > 0.6  # ...filling most of its height
     assert min(y for _, y in ndc) < -0.3 and max(y for _, y in ndc) > 0.3  # ...not at the top edge
-    pg.wait_for_function("document.querySelectorAll('img[alt=section]').length > 0")
+    pg.wait_for_function("document.querySelectorAll('img[alt=section]').length > 0", timeout=budget_ms("model"))
     parts = int(re.match(r"(\d+) parts", pg.get_by_text("parts (STL, millimetres)").inner_text()).group(1))
-    for _ in range(3000):  # every part's STL loaded (a loaded machine finishes them after the pictures)
-        if len(stl) >= parts:
-            break
-        pg.wait_for_timeout(20)
+    deadline = time.perf_counter() + budget_ms("model") / 1000
+    while len(stl) < parts and time.perf_counter() < deadline:  # every part's STL loaded (a loaded machine
+        pg.wait_for_timeout(20)                                  # finishes them after the pictures)
     n = len(stl)
     assert n == parts
     for v in ("380", "360"):  # the support's strength: new checks, the same geometry (no model rebuilt, no STL fetched)
@@ -452,7 +467,8 @@ def test_the_3d_view_fits_the_model_keeps_it_across_edits_and_resets(page, tmp_p
     pg.locator("[data-field=pulley_diameter_mm] input").fill("70")  # a new geometry: a new model
     _wait_seq_after(pg, seq)
     # every part of the new model loaded, then framed (framing measured on a part of it failed on a loaded machine)
-    pg.wait_for_function(f"performance.getEntriesByType('resource').filter(e => e.name.endsWith('.stl')).length >= {2 * n}")
+    pg.wait_for_function(f"performance.getEntriesByType('resource').filter(e => e.name.endsWith('.stl')).length >= {2 * n}",
+                         timeout=budget_ms("model"))
     pg.wait_for_timeout(1000)
     box = pg.locator("canvas").first.bounding_box()
     pg.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)

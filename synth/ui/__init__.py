@@ -39,13 +39,17 @@ def serve(values: dict, source: str, *, host: str = "127.0.0.1", port: int = 808
     (:class:`synth.ui.guard.Policy`; default: :meth:`~synth.ui.guard.Policy.of` ``host, port``, with a new token
     when ``host`` is beyond the loopback).
 
-    The synthesis of ``values`` is made while the browser loads the page (:class:`synth.ui.launch.Launch`)."""
+    The synthesis of ``values`` is made in a worker process while NiceGUI is imported and the browser loads the page
+    (:class:`synth.ui.launch.Launch`)."""
     import shutil
     import tempfile
 
     import sys
 
+    from synth.ui.launch import Launch
     from synth.ui.trace import mark
+    launch = Launch(values, source, rules)
+    launch.submit()  # synthesised in the design worker while NiceGUI is imported here
     for name in UNUSED:  # the server process is ours until it ends: nothing in it asks for them later
         sys.modules.setdefault(name, None)
     mark("serving: importing NiceGUI")
@@ -53,11 +57,9 @@ def serve(values: dict, source: str, *, host: str = "127.0.0.1", port: int = 808
 
     from synth.ui.app import setup
     from synth.ui.guard import Policy
-    from synth.ui.launch import Launch
     policy = policy or Policy.of(host, port)
     folder = Path(root) if root else Path(tempfile.mkdtemp(prefix="synth-ui-"))
     mark("NiceGUI and the server's modules imported")
-    launch = Launch(values, source, rules)
     app.on_startup(launch.start)
     setup(values, source, policy=policy, root=folder, rules=rules, launch=launch)
     if root is None:  # the uploads, 3D models and reports of every tab: gone with the server

@@ -73,6 +73,7 @@ def setup(values: dict, source: str, *, policy: Policy, root: Path, rules=None, 
     design page opens with; ``launch``: its synthesis, started in a worker (:class:`synth.ui.launch.Launch`)."""
     app.add_static_files(FILES_URL, root)
     ui.add_css(CSS, shared=True)
+    ui.add_head_html(_preloads(), shared=True)
     app.add_route(uploads.UPLOAD_URL + "/{key}", _upload_route, methods=["POST"])
     app.add_middleware(Guard, policy=policy, body_limit=lambda path: uploads.body_limit(path) or BODY_LIMIT)
     from nicegui import core
@@ -97,11 +98,13 @@ def setup(values: dict, source: str, *, policy: Policy, root: Path, rules=None, 
         mark("design page connected")
         tab = tabs.state(tab_id, root)
         handed = HANDOFF.pop(open or "", None)  # a portfolio's application: its own input, no rules, its fidelity
+        # the server's input as the launch's worker opened it (validated, its drop-downs read): none read here
+        opened = await launch.opened() if launch is not None and handed is None and tab.design is None else None
 
         def build():
             if handed is not None or tab.design is None:
                 v, src, r = (handed[0], handed[1], None) if handed else (values, source, rules)
-                s = DesignSession(v, source=src, workdir=tab.folder / "design", rules=r)
+                s = DesignSession(v, source=src, workdir=tab.folder / "design", rules=r, opened=opened)
                 if handed:
                     s.fidelity = handed[2]
                 tab.design = s
@@ -123,6 +126,22 @@ def setup(values: dict, source: str, *, policy: Policy, root: Path, rules=None, 
                 tab.portfolio = PortfolioSession(tab.folder / "portfolio")
             ui.context.client._synth_portfolio = PortfolioPage(tab.portfolio, host, port)
         _open(tab, build)
+
+
+#: the elements of the pages whose Vue component is a script of its own (NiceGUI's ``component``)
+PRELOADED = ("header", "link", "upload", "expansion", "select", "input", "html")
+
+
+def _preloads() -> str:
+    """``<link rel="modulepreload">`` of the :data:`PRELOADED` elements' scripts: the browser fetches them with the
+    page's own scripts. A page is built once its tab has connected, so NiceGUI names them only in that update, and
+    each was a request more, after the connection, before the first checks could be drawn."""
+    from html import escape
+
+    from nicegui import __version__
+    urls = [f"/_nicegui/{__version__}/components/{c.key}" for c in
+            (getattr(getattr(ui, name), "component", None) for name in PRELOADED) if c is not None]
+    return "".join(f'<link rel="modulepreload" href="{escape(u)}">' for u in urls)
 
 
 def _open(tab, build) -> None:

@@ -19,7 +19,8 @@ import time
 from pathlib import Path
 from urllib.parse import urlparse
 
-__all__ = ["CHROMIUM_FLAGS", "free_port", "start_server", "stop_server", "launch_chromium", "goto_when_up", "is_local"]
+__all__ = ["CHROMIUM_FLAGS", "free_port", "start_server", "stop_server", "launch_chromium", "goto_when_up",
+           "wait_listening", "is_local"]
 
 #: the folder this ``synth`` package was imported from (a clone's checkout, or site-packages): the server process
 #: is given it first on its path so that it runs this same code, never another installed copy
@@ -79,9 +80,25 @@ def launch_chromium(playwright, executable: str):
     return playwright.chromium.launch(executable_path=executable, args=CHROMIUM_FLAGS)
 
 
-def goto_when_up(page, url: str, timeout_s: float = 30.0) -> None:
-    """Open ``url``, retrying while the server is not listening yet."""
+def wait_listening(host: str, port: int, timeout_s: float = 30.0) -> bool:
+    """Whether a TCP connection to ``host:port`` is accepted within ``timeout_s`` (tried every 20 ms)."""
     deadline = time.perf_counter() + timeout_s
+    while True:
+        try:
+            socket.create_connection((host, port), timeout=1.0).close()
+            return True
+        except OSError:
+            if time.perf_counter() > deadline:
+                return False
+            time.sleep(0.02)
+
+
+def goto_when_up(page, url: str, timeout_s: float = 30.0) -> None:
+    """Open ``url`` once its server listens (:func:`wait_listening`: a connection tried, not a page loaded every
+    20 ms, whose error pages took the browser a core while the server started), retrying while it does not."""
+    deadline = time.perf_counter() + timeout_s
+    u = urlparse(url)
+    wait_listening(u.hostname or "127.0.0.1", u.port or 80, timeout_s)
     while True:
         try:
             page.goto(url, wait_until="commit", timeout=5000)

@@ -90,9 +90,11 @@ class DesignPage:
         if result is not None:
             self.s.adopt(result)
             mark("design page: the launch's result shown")
-            if not self.launch.warmed:  # the first page shows its checks: the workers import what comes next
-                self.launch.warmed = True
-                ui.timer(1.0, lambda: (worker.warm("cad"), worker.warm("design")), once=True)
+            if not self.launch.warmed:  # the first page shows its checks: the workers import what comes next,
+                self.launch.warmed = True  # and this process what an edit verifies with
+                parts = dict(result.parts or {})
+                ui.timer(1.0, lambda: (worker.warm("cad"), worker.warm("design"), self.launch.warm_server(parts)),
+                         once=True)
         else:
             await self._api(self.s.synthesise)
         self.show_result()

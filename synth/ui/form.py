@@ -56,7 +56,30 @@ def options(f: schema.Field) -> dict[str, str]:
             if word.lower().replace(" ", "_") != choice:
                 words.setdefault(choice, word)
         return {c: f"{c} ({words[c]})" if c in words else c for c in f.choices}
-    return {k: k for k in catalog.keys(f.catalog)} if f.catalog else {}
+    return {k: k for k in catalog_keys(f.catalog)} if f.catalog else {}
+
+
+#: what the form shows of the catalogs, per (what, user catalog folders), read once: the designations a drop-down of
+#: catalog ``name`` lists (key ``name``) and what a catalog field accepts (``hint:FIELD``). The server's launch
+#: hands over those its worker read (:class:`synth.ui.launch.Launch`): the first page reads no catalog
+KEYS: dict[tuple, list[str] | str] = {}
+
+
+def catalog_texts() -> dict[str, list[str] | str]:
+    """Every entry of :data:`KEYS` the form reads under the user catalog folders in use (what a worker hands over)."""
+    fields = [f for f in schema.FIELDS if f.catalog]
+    for f in fields:
+        catalog_keys(f.catalog), hint(f)
+    dirs = tuple(catalog.user_dirs())
+    return {k: v for (k, d), v in KEYS.items() if d == dirs}
+
+
+def catalog_keys(name: str) -> list[str]:
+    """The designations of catalog ``name`` under the user catalog folders in use (:func:`synth.catalog.keys`)."""
+    key = (name, tuple(catalog.user_dirs()))
+    if key not in KEYS:
+        KEYS[key] = catalog.keys(name)
+    return KEYS[key]
 
 
 def label(f: schema.Field) -> str:
@@ -67,6 +90,11 @@ def label(f: schema.Field) -> str:
 
 def hint(f: schema.Field) -> str:
     """What the field accepts (:meth:`synth.schema.Field.accepted`), and ``optional`` for an optional one."""
+    if f.catalog:  # the catalog's designations: read once per catalog and user folders (see KEYS)
+        key = ("hint:" + f.name, tuple(catalog.user_dirs()))
+        if key not in KEYS:
+            KEYS[key] = f.accepted()
+        return KEYS[key] + ("" if f.required else "; optional")
     return f.accepted() + ("" if f.required else "; optional")
 
 

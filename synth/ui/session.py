@@ -26,6 +26,7 @@ through a process-wide setting (two tabs of one server judge under their own rul
 
 from __future__ import annotations
 
+import copy
 import math
 import secrets
 import tempfile
@@ -54,6 +55,10 @@ def offered_objectives() -> tuple:
     return objectives.OBJECTIVES
 
 
+#: what opening an input (:meth:`DesignSession.set_values`) leaves in a session: the boxes' texts, the validated input
+#: and the problems (:meth:`DesignSession.opened_state`)
+OPENED = ("texts", "input", "problems", "other_problems")
+
 #: the model fidelities (:data:`synth.design.evaluate.FIDELITIES`; ``full`` is every design scene's default)
 FIDELITIES = ("full", "screening")
 #: the points of a what-if sweep, and the most a page asks for
@@ -71,7 +76,10 @@ class DesignSession:
     """The state of one design page (see the module docstring)."""
 
     def __init__(self, values: dict | None = None, *, source: str = "", workdir: str | Path | None = None,
-                 rules: Rules | dict | None = None):
+                 rules: Rules | dict | None = None, opened: dict | None = None):
+        """``opened``: what a session opened on the same ``values``, ``source`` and ``rules`` left
+        (:meth:`opened_state`; the server's launch hands over its worker's, :class:`synth.ui.launch.Launch`), taken
+        instead of validating again."""
         self.texts: dict[str, str] = {f.name: "" for f in schema.FIELDS}
         self.source = source
         self.rules: Rules = Rules.from_mapping(rules, source=f"{source}: rules") if rules else NONE
@@ -85,8 +93,24 @@ class DesignSession:
         self.alternatives: list[dict] = []  # the last synthesis's ranked designs (Result.alternatives)
         self.applied: int | None = None     # the rank of the alternative in view (1: the optimum), None: edited
         self.uid = secrets.token_hex(6)     # the session's part of the worker's keys (:meth:`key`)
-        self.workdir = Path(workdir) if workdir else Path(tempfile.mkdtemp(prefix="synth-ui-"))
-        self.set_values(values or {})
+        self._workdir = Path(workdir) if workdir else None
+        if opened is None:
+            self.set_values(values or {})
+        else:
+            for name in OPENED:
+                setattr(self, name, copy.deepcopy(opened[name]))
+
+    def opened_state(self) -> dict:
+        """What opening the input left (:data:`OPENED`: the boxes' texts, the validated input, the problems)."""
+        return {name: getattr(self, name) for name in OPENED}
+
+    @property
+    def workdir(self) -> Path:
+        """The session's folder (its uploads, template, reports): the one given, else a temporary one made when first
+        asked for (a session a worker opens to synthesise makes none)."""
+        if self._workdir is None:
+            self._workdir = Path(tempfile.mkdtemp(prefix="synth-ui-"))
+        return self._workdir
 
     # --- the input ----------------------------------------------------------------------------------------------
     def set_values(self, values: dict, source: str | None = None) -> bool:

@@ -32,7 +32,7 @@ import pickle
 import time
 from pathlib import Path
 
-__all__ = ["echo", "warm", "model_key", "result_key", "model", "pictures", "model_details", "step", "graphs",
+__all__ = ["echo", "warm", "open_input", "synthesise", "model_key", "result_key", "model", "pictures", "model_details", "step", "graphs",
            "report", "capability"]
 
 #: models, graph sets and geometric checks kept per process (least recently used dropped first)
@@ -85,6 +85,41 @@ def warm(lane: str) -> float:
         import synth.report.plots  # noqa: F401
         import synth.report.document  # noqa: F401
     return time.perf_counter() - t
+
+
+# --- the launch ---------------------------------------------------------------------------------------------------
+def open_input(values: dict, source: str, rules=None, catalogs=()) -> dict:
+    """What the design page ``synth ui`` opens needs before its checks (:class:`synth.ui.launch.Launch`): the state
+    of a design session opened on ``values`` under ``rules`` with the user catalog folders ``catalogs`` (the
+    server's), the same validation as the page's (:meth:`synth.ui.session.DesignSession.opened_state`), and the
+    designations its drop-downs list and its hints (:func:`synth.ui.form.catalog_texts`): ``{"opened", "keys"}``."""
+    from synth import catalog
+    from synth.ui import form
+    from synth.ui.session import DesignSession
+    from synth.ui.trace import mark
+    mark("launch task: opening the input")
+    with catalog.using(list(catalogs)):
+        s = DesignSession(values, source=source, rules=rules)
+        out = {"opened": s.opened_state(), "keys": form.catalog_texts()}
+    mark("launch task: the input opened")
+    return out
+
+
+def synthesise(values: dict, source: str, rules=None, catalogs=()) -> tuple:
+    """``(call, result)``: the synthesis of the design session :func:`open_input` opens, as the page would make it
+    (:meth:`synth.ui.session.DesignSession.synthesise`); ``call`` its
+    :meth:`~synth.ui.session.DesignSession.synthesis_call`, for the page to check it asks the same; ``(None, None)``
+    for an input that is not valid."""
+    from synth import catalog
+    from synth.ui.session import DesignSession
+    from synth.ui.trace import mark
+    with catalog.using(list(catalogs)):
+        s = DesignSession(values, source=source, rules=rules)
+        if s.input is None:
+            return None, None
+        out = s.synthesis_call(), s.synthesise()
+    mark("launch task: synthesised")
+    return out
 
 
 # --- the CAD lane --------------------------------------------------------------------------------------------------

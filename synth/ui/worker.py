@@ -267,6 +267,9 @@ def _picklable(v) -> bool:
 #: the niceness a worker adds to its own (POSIX): the server's answers to the page (an edit's checks) and the
 #: browser's drawing take a busy machine's cores before a model build, a graph or a print
 NICE = 5
+#: tasks that run at the server's priority when they come first: the launch's synthesis, which the first page waits
+#: for (:class:`synth.ui.launch.Launch`); the worker takes :data:`NICE` before its first other task
+PROMPT = ("open_input", "synthesise")
 
 
 def _yield_cpu() -> None:
@@ -283,15 +286,18 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the whole process group: the server stops us
     _die_with_parent()
-    _yield_cpu()
     key = bytes.fromhex(os.environ.pop(KEY_ENV))
     conn = Client((argv[1], int(argv[2])), authkey=key)
     from synth.ui import work
+    niced = False
     while True:
         try:
             name, args, kw = conn.recv()
         except (EOFError, OSError):
             return 0
+        if not niced and name not in PROMPT:
+            _yield_cpu()
+            niced = True
         try:
             out = (True, getattr(work, name)(*args, **kw))
         except BaseException as exc:  # noqa: BLE001 - every error goes back to the page that asked
