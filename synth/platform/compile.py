@@ -149,6 +149,9 @@ def _why_unservable(a, dead_by: dict, n_cores: int, floor: bool) -> str:
     return "no core has a feasible option of every subsystem; missing: " + ", ".join(parts)
 
 
+_I32 = np.iinfo(np.int32).max   # indices below this are held as int32 (asserted where made)
+
+
 def flat_groups(pf: PortfolioFeasibility, s: str):
     """Every application's option groups of subsystem ``s`` one after the other: ``(idx, margin, cost, group,
     gptr)``, the options' indices, margins and unit costs (each application's own), the group of each (numbered over
@@ -156,13 +159,15 @@ def flat_groups(pf: PortfolioFeasibility, s: str):
     feas = [x for a in pf.apps for x in a.feasible[s]]
     gptr = np.r_[0, np.cumsum([len(a.feasible[s]) for a in pf.apps])].astype(np.int64)
     if not feas:
-        z = np.zeros(0, np.int64)
+        z = np.zeros(0, np.int32)
         return z, np.zeros(0), np.zeros(0), z, gptr
     lens = [len(x) for x in feas]
-    # no copy beyond the concatenations (at 10,000 applications a copy of one of these is 350 MB)
-    idx = np.concatenate([np.asarray(x, np.int64).reshape(-1) for x in feas]).astype(np.int64, copy=False)
+    # no copy beyond the concatenations (at 10,000 applications a copy of one of these is 350 MB); option indices
+    # and group numbers as int32 (half the memory; every use indexes with them or widens them to int64 first)
+    assert len(pf.options[s][SUBSYSTEM_FAMILIES[s][0]]) < _I32 and len(feas) < _I32, "flat_groups: int32 overflow"
+    idx = np.concatenate([np.asarray(x).reshape(-1) for x in feas]).astype(np.int32)
     mar = np.concatenate([np.asarray(x, float).reshape(-1) for x in (m for a in pf.apps for m in a.option_margin[s])])
-    grp = np.repeat(np.arange(len(feas)), lens)
+    grp = np.repeat(np.arange(len(feas), dtype=np.int32), lens)
     optr = np.r_[0, np.cumsum(lens)][gptr]
     cost = np.concatenate([app_option_cost(pf, a, s)[idx[optr[i]:optr[i + 1]]] for i, a in enumerate(pf.apps)])
     return idx, mar.astype(float, copy=False), cost.astype(float, copy=False), grp, gptr
@@ -230,8 +235,13 @@ def precompile(pf: PortfolioFeasibility) -> Precompiled:
         n = int(first_group[s][-1])
         group_app = np.repeat(np.arange(len(apps)), np.diff(first_group[s])).astype(np.int64)
         cst = cost * vol[group_app][grp]
-        p = option_pattern[s][idx].astype(np.int64, copy=False)
-        order = _by_key_then_cost(grp * (int(p.max(initial=0)) + 1) + p, cst)   # per group and pattern the cheapest first
+        p = option_pattern[s][idx]
+        n_p = int(p.max(initial=0)) + 1
+        assert n_p < _I32, "precompile: pattern ids beyond int32"
+        p = p.astype(np.int32)
+        # the key in int64: groups x patterns may exceed int32 (asserted below int64's range)
+        assert (n + 1) * n_p < np.iinfo(np.int64).max, "precompile: group x pattern key beyond int64"
+        order = _by_key_then_cost(grp.astype(np.int64) * n_p + p, cst)   # per group and pattern the cheapest first
         if len(order) and not (order[1:] > order[:-1]).all():   # else already in order (the main springs): no copies
             p, cst, mar = p[order], cst[order], mar[order]
         del order

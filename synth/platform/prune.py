@@ -74,6 +74,7 @@ from synth.platform.data import SUBSYSTEMS, SUBSYSTEM_FAMILIES, FAMILIES
 __all__ = ["prune", "dominated_options", "dominated_variants", "dominated_cores", "implied_rows", "merge_rows"]
 
 _AX = SUBSYSTEMS.index("axial")
+_I32 = np.iinfo(np.int32).max
 
 
 def _live_rows(w: Work, si: int | None = None) -> list:
@@ -264,14 +265,16 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
         return 0
     pats = np.concatenate([w.row_pats[i] for i in rows])
     cost = np.concatenate([w.row_cost[i] for i in rows])
-    r_of = np.repeat(np.arange(len(rows)), [len(w.row_pats[i]) for i in rows])
+    assert len(rows) < _I32 and len(w.patterns) < _I32, "_substitute: row or pattern ids beyond int32"
+    r_of = np.repeat(np.arange(len(rows), dtype=np.int32), [len(w.row_pats[i]) for i in rows])   # int32: half the memory
     pooled = _pooled(w) if cost_obj else None
     cost_lo = cost if pooled is None else cost - np.array([w.pf_volume(w.row_app[i]) for i in rows])[r_of] * \
         pooled[0][pats]                          # an option's cheapest at its parts' best breaks
     # per option: its part of family fi (-1: none) and the pattern of its other parts ("rest")
     upat, inv = _unique_ints(pats, len(w.patterns))
     part_u, rest_u = _split_patterns(w, upat, fi)
-    part, rest = part_u[inv], rest_u[inv]
+    part, rest = part_u[inv].astype(np.int32), rest_u[inv].astype(np.int32)   # < number of parts, of patterns
+    del inv
     has = part >= 0
     if not has.any():
         return 0
