@@ -347,3 +347,19 @@ def test_array_build_hands_highs_the_pyomo_model(objective, kw):
     assert a.status == b.status == "optimal" and (a.objective, a.bound, a.size) == (b.objective, b.bound, b.size)
     assert np.array_equal(a.y, b.y) and a.y.any()
     assert a.unserved is None and b.unserved is None
+
+
+def test_compiled_option_indices_are_int32_and_the_instance_the_same():
+    """Issue 36's memory: the per-option arrays the compilation keeps (option indices, group numbers, pattern ids)
+    are int32; the packed instance, before and after pruning, holds the same numbers as int64."""
+    from synth.platform.compile import flat_groups, precompile
+    pf = synthetic_portfolio(8, seed=3)
+    pre = precompile(pf)
+    for s in SUBSYSTEMS:
+        idx, mar, cost, grp, gptr = flat_groups(pf, s)
+        assert idx.dtype == grp.dtype == np.int32 and gptr.dtype == np.int64
+        assert idx.tolist() == [int(k) for a in pf.apps for x in a.feasible[s] for k in x]
+        assert pre.options[s][0].dtype == np.int32
+    w = prune(compile_portfolio(pf, "cost"))
+    inst = w.instance()
+    assert inst.row_opt_pattern.dtype == inst.row_core.dtype == np.int64
