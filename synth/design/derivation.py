@@ -6,7 +6,7 @@ Built from what synth already declares, never from a second copy of an equation:
   reference and unit, and the margin rule (:func:`~synth.design.constraints.normalised_margin`), shown with the
   numbers substituted;
 * the **physics functions** of :mod:`synth.model`, recorded while the one evaluator evaluates the design
-  (:func:`synth.design.verify.evaluate_design` under a profiler hook): each call's named inputs with their values
+  (:func:`synth.design.verify.evaluate_design` with them wrapped: :func:`synth.design.trace.traced`): each call's named inputs with their values
   and its outputs; a value is explained by the innermost call that produced it, its equation by that function's
   docstring (its summary and ``.. math::`` lines, with the equation numbers of the thesis or standard);
 * the **evaluator's own lines** (:mod:`synth.design.evaluate`), read from its source for a value a group computes
