@@ -64,7 +64,7 @@ from synth.design.subsystems import CORE_PART_KEYS, declared, names, pinned_diam
 
 __all__ = ["SUBSYSTEMS", "TABLES", "PART_KEYS", "PART_DEFAULTS", "NONE", "bolt_attributes", "washer_code", "CAPACITY", "Space", "space", "core_rows", "spring_window",
            "table_sizes", "check_capacity", "fixed_fields", "space_for", "pinned_space", "pinned_diameter",
-           "design_inputs", "same_input"]
+           "design_inputs", "same_input", "spring_cost_from"]
 
 #: the part families beside the core, as declared (:mod:`synth.design.subsystems`), in search and result order
 SUBSYSTEMS = names()
@@ -100,6 +100,16 @@ class RowsRead(Mapping):
         return len(self._table)
 
 
+def spring_cost_from(cost_eur_times_stiffness, stiffness_nm_per_deg) -> np.ndarray:
+    """Main-spring unit cost [EUR] from the catalog's ``cost x stiffness`` column and a stiffness [Nm/deg]
+    (:meth:`Space.spring_cost_eur`'s formula: the wire length, so the cost, goes as ``1 / k``).
+
+    >>> float(spring_cost_from(np.array([0.04]), 0.02)[0])
+    2.0
+    """
+    return cost_eur_times_stiffness / np.maximum(np.asarray(stiffness_nm_per_deg, float), 1e-12)
+
+
 @dataclass
 class Space:
     """The option tables (dicts of equal-length arrays) of one catalog setting; see the module docstring.
@@ -129,8 +139,7 @@ class Space:
         and the cost order of the springs is the same for every application.
         """
         c = self.tables["spring"]["cost_eur_times_stiffness"]
-        c = c if options is None else c[options]
-        return c / np.maximum(np.asarray(stiffness_nm_per_deg, float), 1e-12)
+        return spring_cost_from(c if options is None else c[options], stiffness_nm_per_deg)
 
     def rows(self, table: str, idx) -> dict:
         """The columns of ``table`` at rows ``idx`` (gathered arrays)."""

@@ -102,10 +102,9 @@ class AppFeasibility:
 
 
 class ScaledCost:
-    """``numerator / max(stiffness, 1e-12)``, computed when read: an array's stand-in for one application's
-    main-spring unit costs (:meth:`synth.design.space.DesignSpace.spring_cost_eur`, the same expression, bit for
-    bit). The catalog's ``cost x stiffness`` vector is held once for every application of a chunk instead of a
-    vector of floats each (issue 36: about 86 MB per 1,000 applications)."""
+    """One application's main-spring unit costs, computed when read (:func:`synth.design.space.spring_cost_from`,
+    the formula :meth:`synth.design.space.Space.spring_cost_eur` uses): an array's stand-in. The catalog's
+    ``cost x stiffness`` vector is held once for every application of a chunk instead of a vector of floats each (issue 36: about 86 MB per 1,000 applications)."""
 
     __slots__ = ("numerator", "stiffness")
 
@@ -113,7 +112,8 @@ class ScaledCost:
         self.numerator, self.stiffness = numerator, float(stiffness)
 
     def __array__(self, dtype=None, copy=None):
-        a = self.numerator / np.maximum(np.asarray(self.stiffness, float), 1e-12)
+        from synth.design.space import spring_cost_from
+        a = spring_cost_from(self.numerator, self.stiffness)
         return a if dtype is None else a.astype(dtype, copy=False)
 
     def __len__(self) -> int:

@@ -306,4 +306,3 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
         rows.append(row(r, budget=float(b)))
         tick(len(rows), len(budgets))
     return rows
-
