@@ -935,7 +935,7 @@ class Batch:
                     ui, oo, scores, ok, marg = ui[pre], oo[pre], scores[pre], ok[pre], marg[pre]
                     g = evaluate.axial_judged(self.apps, self.cg, unit[ui], sp.rows(s, oo), st,
                                               engine=self.axial_engine)
-                elif s != "bolt":  # judged pair by pair by its declared group (the bushing)
+                elif family(s).group is not None:  # judged pair by pair by its declared group (the bushing)
                     g = family(s).group(self.apps, self.cg, unit[ui], sp.rows(s, oo), st)
                 else:
                     o = sp.rows(s, oo)
