@@ -186,6 +186,12 @@ def test_a_200_application_portfolio_screens_to_the_apis_feasible_share(page, tm
     pg.get_by_role("columnheader", name="its margin [%]").click()
     heads = pg.locator("thead th").all_inner_texts()
     col = next(i for i, h in enumerate(heads) if "its margin [%]" in h)
+    cells = f"[...document.querySelectorAll('tbody tr')].map(r => r.cells[{col}].innerText)"
+    # the page re-renders the rows after the click; wait for a render in which the column reads in order (or time out)
+    pg.wait_for_function(f"(() => {{ const v = {cells}.filter(t => t.trim() && t.trim() !== '-')"
+                         ".map(t => parseFloat(t.replace('%', '').replace('+', '')));"
+                         " return v.length >= 5 && v.every((x, i) => i === 0 || v[i - 1] <= x); })()",
+                         timeout=budget_ms("checks"))
     texts = pg.locator("tbody tr").evaluate_all(f"rows => rows.map(r => r.cells[{col}].innerText)")
     shown = [float(t.replace("%", "").replace("+", "").strip()) for t in texts if t.strip() not in ("", "-")]
     assert len(shown) >= 5 and shown == sorted(shown)
