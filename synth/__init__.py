@@ -72,8 +72,10 @@ _display.HTML_VIEWS["Result"] = _result_digest
 def settings(**kw) -> "Settings":
     """The configuration (:class:`~synth.design.settings.Settings`) of keywords: the model settings, ``rules``,
     ``spring_limit_basis``, ``catalogs``, ``engine``; an unknown one names the accepted ones."""
+    from synth import plugins
     from synth.design.settings import Settings
     from synth.errors import InputError, Problem
+    plugins.load()  # the installed plug-ins' declarations (every API call resolves its configuration here)
     known = [*Settings.__dataclass_fields__, "spring_limit_basis"]
     bad = [Problem(f"setting {k}", v, "one of " + ", ".join(known)) for k, v in kw.items() if k not in known]
     if bad:

@@ -277,6 +277,8 @@ def _main(argv: list[str] | None) -> int:
     pools = contextlib.ExitStack()
     try:
         pools.enter_context(threads.scene(top_args.threads))  # the scene's thread pools, before its imports load BLAS
+        from synth import plugins
+        plugins.load()  # the installed plug-ins' declarations, before the options that list them (--objective)
         parser = scene_parser(name)
         args = parser.parse_args(rest)
         _refuse_empty_values(parser, args)

@@ -114,9 +114,17 @@ def version_text(catalog_dirs=()) -> str:
     """``synth 0.1.0 (catalogs sha256 1a2b3c4d5e6f)``: the package version and a hash of the catalog CSVs in use.
 
     The hash covers the built-in ``catalogs/*.csv`` and the CSVs of every user folder
-    (``--catalogs``, ``SYNTH_CATALOGS``), file names and bytes: two runs with the same hash read the same data.
+    (``--catalogs``, ``SYNTH_CATALOGS``), file names and bytes: two runs with the same hash read the same data. The
+    plug-ins in effect (:mod:`synth.plugins`: their checks and objectives judge too) are named after it.
     """
     user = [Path(d) for d in catalog_dirs] + [Path(p) for p in os.environ.get("SYNTH_CATALOGS", "").split(os.pathsep) if p]
     digest = catalogs_sha256(user)
     extra = f"; user catalogs: {', '.join(str(d) for d in user)}" if user else ""
+    from synth import plugins
+    from synth.errors import InputError
+    try:
+        named = plugins.load()
+    except InputError as exc:  # the version is still printed, with what keeps a plug-in from loading
+        named = (f"not loaded: {exc}",)
+    extra += f"; plug-ins: {', '.join(named)}" if named else ""
     return f"synth {__version__} (catalogs sha256 {digest[:12]}{extra})"

@@ -25,8 +25,8 @@ PRESENTATION = ("synth.report", "synth.excel", "synth.io.documents", "synth.scen
 #: the layers, lowest first (issue 33): a module is in the layer of the longest prefix naming it; an import of a
 #: higher layer runs back up. Within a layer, imports go either way (the circle tests keep them a tree).
 LAYERS = (
-    # foundations: no physics and no catalog: errors, version, threads, text, files and numbers read and written
-    ("formulations", "synth.version", "synth.errors", "synth.fingerprint", "synth.threads", "synth.progress",
+    # foundations: no physics and no catalog: errors, version, plug-ins, threads, text, files and numbers read and written
+    ("formulations", "synth.version", "synth.errors", "synth.plugins", "synth.fingerprint", "synth.threads", "synth.progress",
      "synth.display", "synth.formatting", "synth.output_table", "synth.io", "synth.excel.cells"),
     # the data: catalogs, the input schema, the generated applications
     ("synth.catalog", "synth.schema", "synth.data"),

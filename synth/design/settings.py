@@ -144,6 +144,13 @@ class Settings:
                             ("capability", capability)):
             object.__setattr__(self, name, value)
 
+    def __setstate__(self, state: dict) -> None:
+        """Unpickled in a worker (a Dask task, a process pool): the installed plug-ins' declarations first
+        (:func:`synth.plugins.load`), so the worker judges by the checks and objectives the sender did."""
+        from synth import plugins
+        plugins.load()
+        self.__dict__.update(state)
+
     @property
     def spring_limit_basis(self) -> str:
         """The main spring's installation check's basis: the rules' (:attr:`Rules.spring_limit_basis`)."""

@@ -288,6 +288,7 @@ def main(argv: list[str] | None = None) -> int:
     _die_with_parent()
     key = bytes.fromhex(os.environ.pop(KEY_ENV))
     conn = Client((argv[1], int(argv[2])), authkey=key)
+    from synth import plugins
     from synth.ui import work
     niced = False
     while True:
@@ -299,6 +300,7 @@ def main(argv: list[str] | None = None) -> int:
             _yield_cpu()
             niced = True
         try:
+            plugins.load()  # the installed plug-ins' declarations (read once; a broken one is each answer's error)
             out = (True, getattr(work, name)(*args, **kw))
         except BaseException as exc:  # noqa: BLE001 - every error goes back to the page that asked
             out = (False, _payload_of(exc))
