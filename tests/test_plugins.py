@@ -4,7 +4,8 @@ that receives the configuration, and a broken plug-in is an error that names it.
 The fixture installs a toy distribution on a folder put on ``PYTHONPATH`` (its ``*.dist-info`` with an entry point
 of group ``synth.plugins`` and the module it names). The module registers one bolt check, ``acme_bolt``: ``value =
 |tilting safety factor| + 1`` against ``limit = 2 (|tilting safety factor| + 1)``, a margin of exactly 0.5 (``(limit -
-value) / |limit|``) wherever the bolt group runs. Each test runs a fresh interpreter: the plug-in must arrive by
+value) / |limit|``) wherever the bolt group runs; and one objective, ``acme_support``, that prefers the longest pivot
+bushing (no built-in objective does). Each test runs a fresh interpreter: the plug-in must arrive by
 its entry point, not by this process's imports.
 """
 
@@ -19,7 +20,9 @@ import textwrap
 
 import pytest
 
-from synth.data import case_path
+from synth.data import CASES_DIR, case_path
+
+DEFAULT = CASES_DIR.parent / "default_case.yaml"
 
 CHECK = '''
 import numpy as np
@@ -33,6 +36,24 @@ def physics(*, tilting_safety_factor):
 
 register(Constraint(id="acme_bolt", label="ACME's own bolt check", step=0, equation="ACME spec 7.1", unit="-",
                     group="bolt", value="acme_value", limit="acme_limit", sense="<=", physics=physics))
+
+
+def _zero(sp, cores, core_values):
+    return np.zeros(len(np.atleast_1d(cores)))
+
+
+def _support(sp, table, options, stiffness_nm_per_deg):
+    idx = slice(None) if options is None else options
+    if table == "bushing":
+        return -np.asarray(sp.tables[table]["pivot_bushing_length_mm"], float)[idx]
+    return np.zeros(sp.n(table))[idx]
+
+
+from synth.optimise import objectives  # noqa: E402
+
+objectives.declare(objectives.Goal(name="acme_support", words="bushing support", unit="-mm", sense=+1, additive=True,
+                                   tiebreak=("acme_support", "cost"), scores="minus the pivot bushing's length",
+                                   core=_zero, option=_support))
 '''
 
 
@@ -59,10 +80,15 @@ def installed(tmp_path):
 
 
 def test_an_installed_plugins_check_judges_synth_design_and_version_names_it(installed):
-    r = _synth(installed, "design", str(case_path("case3")), "--json")
+    r = _synth(installed, "design", str(DEFAULT), "--json")
     assert r.returncode in (0, 1), r.stderr
     margins = {c["id"]: c["margin"] for c in json.loads(r.stdout)["checks"]}
     assert margins["acme_bolt"] == 0.5
+    longest = _synth(installed, "design", str(DEFAULT), "--objective", "acme_support", "--json")
+    assert longest.returncode in (0, 1), longest.stderr  # the plug-in's objective is a choice of --objective
+    length = {k: json.loads(out.stdout)["parts"]["pivot_bushing_length_mm"] for k, out in (("standard", r),
+                                                                                          ("support", longest))}
+    assert length["support"] > length["standard"], length
     v = _synth(installed, "--version")
     assert v.returncode == 0 and "; plug-ins: acme = acme_checks (acme-checks 1.0)" in v.stdout
 
