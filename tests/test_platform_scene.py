@@ -71,3 +71,44 @@ def test_a_progress_line_per_stage(tmp_path, capsys, monkeypatch):
     assert got == want
     assert any(x.startswith("synth rationalise: trade-off curve (margin):") and "2/2" in x for x in lines)
     assert done[-1].startswith("synth rationalise: writing the outputs:")
+
+
+@pytest.fixture(scope="module")
+def fleet(tmp_path_factory):
+    from synth.bulk.portfolio import write_table
+    from synth.bulk.sample import sample_portfolio
+    return str(write_table(sample_portfolio(8, seed=3), tmp_path_factory.mktemp("fleet") / "fleet.csv"))
+
+
+def _served(out) -> int:
+    return int((pd.read_csv(out / "assignment.csv")["feasible"].astype(str) == "True").sum())
+
+
+def test_rules_judge_every_option_and_are_echoed(fleet, tmp_path, capsys):
+    """``--rules`` reaches the feasibility of every option (a margin no design keeps serves no application where
+    the same portfolio without it is served) and the outputs say what judged them; ``--spring-limit`` sets the
+    rules' basis."""
+    base = tmp_path / "base"
+    assert _run(["rationalise", fleet, "--out", str(base), "--tradeoff", "none"]) == 0
+    assert _served(base) > 0
+    rules = tmp_path / "rules.yaml"
+    rules.write_text("name: unreachable\nmin_margins:\n  spring_yield: 0.99\n", encoding="utf-8")
+    strict = tmp_path / "strict"
+    capsys.readouterr()
+    _run(["rationalise", fleet, "--out", str(strict), "--tradeoff", "none", "--rules", str(rules),
+          "--spring-limit", "en13906"])
+    assert _served(strict) == 0
+    said = capsys.readouterr().out
+    assert "design rules: unreachable" in said and "  minimum margin spring_yield: 99 %" in said
+    summary = (strict / "summary.md").read_text(encoding="utf-8")
+    assert "## Design rules" in summary and "- spring limit basis: en13906" in summary
+
+
+def test_rules_the_platform_cannot_honour_are_refused(fleet, tmp_path):
+    rules = tmp_path / "capable.yaml"
+    rules.write_text("capability:\n  ppk_min: 1.33\n", encoding="utf-8")
+    with pytest.raises(InputError, match=r"--rules .*capable.yaml: capability: got \{'ppk_min': 1.33\}; accepted: "
+                                         r"no capability targets"):
+        _run(["rationalise", fleet, "--out", str(tmp_path / "a"), "--rules", str(rules)])
+    with pytest.raises(InputError, match="--spring-limit en13906: got 'synthetic:5'; accepted: a portfolio table"):
+        _run(["rationalise", "synthetic:5", "--out", str(tmp_path / "b"), "--spring-limit", "en13906"])

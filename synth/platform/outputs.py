@@ -133,6 +133,9 @@ def summary_markdown(pf, result) -> str:
              f"{p['fixed_cost_union_of_optima_eur']:,.0f} | |", "",
              "| family | platform | union of optima |", "|---|---|---|"]
     lines += [f"| {f} | {a} | {b} |" for f, (a, b) in p["parts_by_family"].items()]
+    rules = getattr(getattr(pf, "settings", None), "rules", None)
+    if rules is not None and not rules.empty():  # what every option was judged by, as the command line echoed it
+        lines += ["", "## Design rules", "", *[f"- {ln.strip()}" for ln in rules.lines()]]
     lines += ["", "## Volume", "", volume_markdown(p.get("volume"))]
     s = result.size
     st = getattr(pf, "stats", {}) or {}
@@ -223,8 +226,8 @@ def plot_families(result, path=None, price: dict | None = None):
         ax.text(xi + 0.2, max(p, 0.9), str(p), ha="center", va="bottom", fontsize=8)
     ax.set_xticks(x, [f.replace("_diameter_mm", "").replace("_class", "") for f in fams], rotation=30, ha="right")
     ax.set_ylabel("distinct parts (log scale)")
+    ax.set_ylim(0.8, 3.0 * max(union + plat + [1]))  # before the log scale: no bar of a served part may be 0
     ax.set_yscale("log")
-    ax.set_ylim(0.8, 3.0 * max(union + plat + [1]))
     ax.legend(frameon=False, loc="upper left")
     ax.grid(True, axis="y", alpha=0.3)
     fig.tight_layout()

@@ -21,7 +21,7 @@ from synth.optimise.honour import solve_honouring
 from synth.progress import phase
 from synth.io.saved_results import load_result
 
-__all__ = ["add_model_options", "settings_from_args", "rules_of", "add_design_options", "add_robust_options",
+__all__ = ["add_rules_options", "add_model_options", "settings_from_args", "rules_of", "add_design_options", "add_robust_options",
            "robust_settings_from_args", "synthesise", "load_saved_result",
            "DEFAULT_SOLVER", "DEFAULT_OBJECTIVE", "default_args"]
 
@@ -29,10 +29,21 @@ DEFAULT_SOLVER = "enumerate"
 DEFAULT_OBJECTIVE = "standard"
 
 
-def add_model_options(p) -> None:
+def add_rules_options(p, judged: str = "the input file's own rules: section when not given") -> None:
+    """``--rules FILE`` and ``--spring-limit``: the design rules a run is judged by (``judged``: what else gives
+    them, or who is judged)."""
     p.add_argument("--rules", metavar="FILE", default=None,
                    help="design rules (required safety factors and limits, minimum margins, spring limit basis, "
-                        "capability targets): a rules file, or the input's own rules: section when not given")
+                        f"capability targets): a rules file (synth.design.rules); {judged}")
+    p.add_argument("--spring-limit", choices=("thesis", "en13906"), default=None,
+                   help="design rule of the main spring's installation stress: the thesis's yield check "
+                        "(sigma_y_bend_fraction Rm on the curvature-corrected stress, default) or EN 13906-3's "
+                        "static rule (0.75 Rm on the stress without curvature factor); default: the design rules' "
+                        "spring_limit_basis (rules: section or --rules), else thesis")
+
+
+def add_model_options(p) -> None:
+    add_rules_options(p)
     from synth.design.evaluate import FIDELITIES
     p.add_argument("--fidelity", choices=FIDELITIES, default="full",
                    help="full: Almen-Laszlo cone spring and its exact wear (default); screening: searched with the "
@@ -42,11 +53,6 @@ def add_model_options(p) -> None:
     p.add_argument("--bolt-method", choices=("thesis", "vdi2230"), default="thesis",
                    help="fixation bolt: the thesis's elastic check of the nominal preload (default) or VDI 2230-1 "
                         "(permissible assembly preload, tightening factor, embedding)")
-    p.add_argument("--spring-limit", choices=("thesis", "en13906"), default=None,
-                   help="design rule of the main spring's installation stress: the thesis's yield check "
-                        "(sigma_y_bend_fraction Rm on the curvature-corrected stress, default) or EN 13906-3's "
-                        "static rule (0.75 Rm on the stress without curvature factor); default: the design rules' "
-                        "spring_limit_basis (rules: section or --rules), else thesis")
 
 
 def rules_of(args):

@@ -26,7 +26,7 @@ from synth.errors import InputError, Terminated
 from synth.io.outputs import output_files
 from synth.io.limits import check_count
 from synth.robust.settings import BULK_SAMPLES
-from synth.scenes._options import add_robust_options, robust_settings_from_args, rules_of
+from synth.scenes._options import add_robust_options, add_rules_options, robust_settings_from_args, rules_of
 from synth.bulk.summary import summarise, text, write_summary
 from synth.design.evaluate import Settings
 
@@ -69,9 +69,7 @@ def register(sub) -> None:
                    help="local Dask cluster: worker processes, 1-64 (default 2)")
     p.add_argument("--summary", metavar="DIR", help="write the portfolio summary (markdown, CSV, PNG plots) into DIR")
     p.add_argument("--no-diagnose", action="store_true", help="skip the relaxation search of infeasible applications")
-    p.add_argument("--rules", metavar="FILE", default=None,
-                   help="design rules every application is judged by (required safety factors and limits, minimum "
-                        "margins, spring limit basis, capability targets): a rules file (synth.design.rules)")
+    add_rules_options(p, "every application is judged by them")
     add_robust_options(p)
     for a in p._actions:  # the bulk's own sample count (per application)
         if a.dest == "samples":
@@ -88,7 +86,8 @@ def _main(args) -> int:
         check_count("--workers", args.workers, hi=max(1, usable_cores()))
     targeted = rs.capability is not None or rs.ppm is not None
     # the run's one configuration: each row re-selected for the capability target when one is set
-    settings = Settings(fidelity=args.fidelity, rules=rules_of(args), capability=rs if targeted else None)
+    settings = Settings(fidelity=args.fidelity, rules=rules_of(args), spring_limit_basis=args.spring_limit,
+                        capability=rs if targeted else None)
     try:
         rep = run_portfolio(args.portfolio, args.out, objective=args.objective, fidelity=args.fidelity,
                             chunk_size=args.chunk_size, resume=args.resume, engine=args.engine,

@@ -22,6 +22,7 @@ from synth.io.limits import check_count
 from synth.io.outputs import output_files
 from synth.platform.data import FAMILIES
 from synth.progress import Progress, phase
+from synth.scenes._options import add_rules_options, rules_of
 
 __all__ = ["register", "parse_max_variants"]
 
@@ -80,10 +81,30 @@ def register(sub) -> None:
                         "each, at most the usable cores (default 2)")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="with --engine dask: the address of a running Dask scheduler (default: a local cluster)")
+    add_rules_options(p, "every application's options are judged by them (no capability targets: the platform "
+                         "does not select for production capability; synth bulk --capability does, per application)")
     p.add_argument("--diagnose", action="store_true",
                    help="applications with no feasible design: the nearest design of synth.optimise.diagnose "
                         "(about 1 s each) instead of the nearest evaluated one")
     p.set_defaults(func=_main)
+
+
+def _settings(args, Settings):
+    """The run's configuration: ``--fidelity``, the design rules of ``--rules`` and ``--spring-limit``. A rule the
+    platform cannot honour is refused, not dropped: capability targets (the platform's options are judged
+    nominally) and any rule on ``synthetic:`` data (illustrative, not judged by the evaluator)."""
+    settings = Settings(fidelity=args.fidelity, rules=rules_of(args), spring_limit_basis=args.spring_limit)
+    rules = settings.rules
+    if rules.capability:
+        raise InputError(Problem(f"--rules {args.rules}: capability", dict(rules.capability),
+                                 "no capability targets: synth rationalise judges each application's options at "
+                                 "their nominal values; select for production capability per application with "
+                                 "synth bulk --capability, or leave the targets out of the rules file"))
+    if not rules.empty() and str(args.portfolio).startswith("synthetic:"):
+        given = f"--rules {args.rules}" if args.rules else f"--spring-limit {args.spring_limit}"
+        raise InputError(Problem(given, args.portfolio, "a portfolio table: synthetic:N data are illustrative "
+                                                        "feasibility, not judged by the evaluator or its rules"))
+    return settings
 
 
 def _main(args) -> int:
@@ -100,9 +121,12 @@ def _main(args) -> int:
     if not 0 < args.time_limit <= 86_400:
         raise InputError(Problem("--time-limit", args.time_limit, "seconds in (0, 86400] per MILP solve"))
     engine = "dask" if args.scheduler else args.engine
+    settings = _settings(args, Settings)
+    for line in settings.rules.lines():  # the rules every option was judged by (also in summary.md)
+        print(line)
     with Progress(total=None, desc="synth rationalise: feasibility") as bar:
         bar.update(0, "running")
-        pf = load_feasibility(args.portfolio, Settings(fidelity=args.fidelity), engine=engine, workers=args.workers,
+        pf = load_feasibility(args.portfolio, settings, engine=engine, workers=args.workers,
                               scheduler=args.scheduler, diagnose=args.diagnose,
                               progress=lambda done, total: bar.update(done - bar.n))
     import sys
