@@ -107,7 +107,7 @@ def _input(d) -> "DesignInput":
     return load(d)
 
 
-def _configure(d, rules, settings_kw: dict) -> "Settings":
+def _configure(d, rules, settings_kw: dict, samples: int | None = None) -> "Settings":
     """The configuration of an API call, resolved once: its settings keywords and design rules (``rules``: a
     mapping, a :class:`~synth.design.rules.Rules` or a rules file; else the input file ``d``'s ``rules:`` section;
     else none). ``spring_limit_basis`` given as a keyword sets the rules' basis."""
@@ -120,7 +120,20 @@ def _configure(d, rules, settings_kw: dict) -> "Settings":
         found = read_rules(d, "input file", section_only=True)
     else:
         found = NONE
-    return settings(rules=found, **settings_kw)
+    return _with_targets(settings(rules=found, **settings_kw), samples)
+
+
+def _with_targets(s: "Settings", samples: int | None) -> "Settings":
+    """Configuration ``s`` with the design rules' capability targets (``ppk_min``, ``ppm_max``) as its capability
+    target (:attr:`~synth.design.settings.Settings.capability`) when none is given, as the command line reads them
+    (``--capability``/``--ppm`` first, else the rules'): a target the user set is never dropped. ``samples``: the
+    Monte Carlo samples per design of such a target (None: the estimator's default)."""
+    targets = s.rules.capability
+    if s.capability is not None or not targets:
+        return s
+    from synth.robust.settings import RobustSettings
+    kw = {} if samples is None else {"samples": samples}
+    return s.replace(capability=RobustSettings(capability=targets.get("ppk_min"), ppm=targets.get("ppm_max"), **kw))
 
 
 def run_flowchart(d: "DesignInput | str | Path | dict", parts: dict | None = None, *, rules=None,
@@ -166,6 +179,9 @@ def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard"
     s = _configure(d, rules, settings_kw)
     kw: dict = {"settings": s, "pin_inputs": pin_inputs, "fix": fix, "free": free, "top": top,
                 "distinct": distinct}
+    if s.capability is not None:  # a capability target (capability=, or the rules'): the robust synthesis
+        from synth.robust.synthesis import robust_for
+        kw["robust"] = robust_for(s.capability)
     if solver == "blackbox":
         kw["n_trials"] = n_trials
     if time_limit_s is not None:
@@ -261,7 +277,8 @@ def screen(applications, *, objective: str = "standard", fidelity: str = "screen
     from synth.bulk.run import compute_chunk, default_chunk_size, result_columns
     from synth.errors import InputError, Problem
     from synth.progress import Progress
-    s = _configure(None, rules, {**settings_kw, "fidelity": fidelity})
+    from synth.robust.settings import BULK_SAMPLES
+    s = _configure(None, rules, {**settings_kw, "fidelity": fidelity}, samples=BULK_SAMPLES)  # synth bulk's
     size = default_chunk_size() if chunk_size is None else chunk_size
     if not isinstance(size, int) or isinstance(size, bool) or size < 1:
         raise InputError(Problem("chunk_size", chunk_size, "an integer >= 1"))
