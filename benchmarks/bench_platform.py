@@ -72,7 +72,7 @@ def main(argv=None) -> None:
     args = ap.parse_args(argv)
     from synth.bulk.sample import sample_portfolio
     from synth.design.evaluate import Settings
-    from synth.platform.producer import from_table
+    from synth.platform.portfolio_feasibility import from_table
     from synth.platform.rationalise import rationalise
     from synth.platform.synthetic import synthetic_portfolio
     what = "synthetic feasibility data" if args.synthetic else (
@@ -186,7 +186,7 @@ def _axial(n, args) -> tuple:
     import numpy as np
     from synth.bulk.sample import sample_portfolio
     from synth.design.evaluate import Settings
-    from synth.platform import producer
+    from synth.platform import portfolio_feasibility, producer
     table = sample_portfolio(n, seed=args.seed)
     data, ax, pfs = {"numpy": [], "numba": []}, {"numpy": [], "numba": []}, {}
     try:
@@ -194,8 +194,8 @@ def _axial(n, args) -> tuple:
             for eng in ("numpy", "numba"):
                 producer.AXIAL_ENGINE = eng
                 t0 = time.perf_counter()
-                pfs[eng] = producer.from_table(table, Settings(fidelity=args.fidelity), engine=args.engine,
-                                               workers=args.workers)
+                pfs[eng] = portfolio_feasibility.from_table(table, Settings(fidelity=args.fidelity), engine=args.engine,
+                                                            workers=args.workers)
                 data[eng].append(time.perf_counter() - t0)
                 ax[eng].append(pfs[eng].stats.get("axial_s", np.nan))
     finally:

@@ -116,7 +116,7 @@ def memory_stages(portfolio: str) -> None:
     from contextlib import contextmanager
     from synth.design.evaluate import Settings
     from synth.platform.outputs import write_all
-    from synth.platform.producer import load_feasibility
+    from synth.platform.portfolio_feasibility import load_feasibility
     from synth.platform.rationalise import rationalise, tradeoff
 
     def rss():

@@ -29,7 +29,7 @@ from synth.data.generated_applications import generate
 from synth.design.constraints import Constraint, registered
 from synth.design.evaluate import Settings
 from synth.design.space import PART_KEYS, SUBSYSTEMS
-from synth.platform.producer import feasibility
+from synth.platform.portfolio_feasibility import feasibility
 
 COIL_GAP = {"name": "coil gap rule", "min_margins": {"spring_coil_gap": 0.6}}
 EN13906 = {"name": "static rule", "spring_limit_basis": "en13906"}

@@ -168,7 +168,8 @@ def _platform(apps, kw):
     of its group cap it)."""
     from synth.optimise.product import evaluate
     from synth.platform.options import catalogue
-    from synth.platform.producer import MARGIN_TOL, feasibility
+    from synth.platform.producer import MARGIN_TOL
+    from synth.platform.portfolio_feasibility import feasibility
     s = synth.settings(**kw)
     pf = feasibility(apps, settings=s)
     cat = catalogue()

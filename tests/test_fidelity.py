@@ -103,7 +103,7 @@ def test_single_application_paths_report_designs_valid_at_full_fidelity(unverifi
 
 
 def test_platform_feasibility_at_screening_is_judged():
-    from synth.platform.producer import feasibility
+    from synth.platform.portfolio_feasibility import feasibility
     apps = APPS[:16]
     pf = feasibility(apps, None, None, evaluate.Settings(fidelity="screening"))
     full = feasibility(apps, None, None, FULL)

@@ -66,7 +66,7 @@ def test_a_new_check_reaches_flowchart_design_bulk_and_report(inputs, tmp_path):
 
 
 def test_a_new_check_that_fails_is_diagnosed_and_binds_in_the_platform(inputs):
-    from synth.platform.producer import feasibility
+    from synth.platform.portfolio_feasibility import feasibility
     d1, d3 = inputs
     with registered(probe("bolt", value_factor=2.0, limit_factor=1.0)):          # margin -1 everywhere
         r = synth.synthesise(d3)
@@ -84,7 +84,7 @@ def test_a_spring_check_runs_the_kernels_on_their_numpy_twin_and_binds_in_the_pl
     numpy twin (its column after theirs), the platform's spring search binds on it; unregistered, the kernels run."""
     from synth.design.constraints import by_group
     from synth.kernels import main_spring
-    from synth.platform.producer import feasibility
+    from synth.platform.portfolio_feasibility import feasibility
     from synth.scenes.demo import default_input
     d = default_input()  # cases 1 and 3 have no feasible spring option to bind
     from synth.design.settings import DEFAULT

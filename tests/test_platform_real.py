@@ -20,6 +20,7 @@ from synth.design.constraints import REGISTRY
 from synth.design.space import SUBSYSTEMS, core_rows
 from synth.design.verify import verify
 from synth.errors import InputError
+from synth.platform import portfolio_feasibility as F
 from synth.platform import producer as P
 from synth.platform.data import FAMILIES
 from synth.platform.options import NO_PART_KEY, catalogue, family_keys
@@ -34,7 +35,7 @@ SETTINGS = evaluate.Settings()
 @pytest.fixture(scope="module")
 def sample():
     table = sample_portfolio(12, seed=5)
-    return table, P.from_table(table, SETTINGS)
+    return table, F.from_table(table, SETTINGS)
 
 
 @pytest.fixture(scope="module")
@@ -185,7 +186,7 @@ def test_applications_with_no_design_say_why_and_are_infeasible(sample):
 def test_diagnose_option_names_the_nearest_design():
     table = sample_portfolio(12, seed=5)
     d, _ = validate_record(records(table)[0])
-    pf = P.feasibility([d], ["x"], settings=SETTINGS, diagnose=True)
+    pf = F.feasibility([d], ["x"], settings=SETTINGS, diagnose=True)
     note = pf.apps[0].note
     if note:  # an application with no design: the diagnosis of the whole catalog product
         assert note.startswith("no feasible design (synth.optimise.diagnose)")
@@ -193,7 +194,7 @@ def test_diagnose_option_names_the_nearest_design():
 
 def test_broken_rows_are_reported_not_evaluated(tmp_path):
     table = sample_portfolio(4, seed=1, broken=2)
-    pf = P.from_table(table, SETTINGS)
+    pf = F.from_table(table, SETTINGS)
     notes = [a.note for a in pf.apps]
     assert sum(n.startswith("input error: ") for n in notes) == 2
     r = rationalise(pf, time_limit=30)
@@ -205,19 +206,19 @@ def test_broken_rows_are_reported_not_evaluated(tmp_path):
 def test_volume_column_weighs_the_cost_and_a_bad_volume_is_named():
     table = sample_portfolio(3, seed=1)
     table["annual_volume"] = [1000, 50000, 200]
-    pf = P.from_table(table, SETTINGS)
+    pf = F.from_table(table, SETTINGS)
     assert [a.volume for a in pf.apps] == [1000.0, 50000.0, 200.0]
     table["annual_volume"] = [1000, "lots", -3]
     with pytest.raises(InputError) as e:
-        P.from_table(table, SETTINGS)
+        F.from_table(table, SETTINGS)
     text = str(e.value)
     assert "annual_volume (row 2): got 'lots'" in text and "annual_volume (row 3): got -3" in text
 
 
 def test_dask_engine_gives_the_same_data():
     table = sample_portfolio(2, seed=2)
-    a = P.from_table(table, SETTINGS, chunk_size=1)
-    b = P.from_table(table, SETTINGS, chunk_size=1, engine="dask", workers=1)
+    a = F.from_table(table, SETTINGS, chunk_size=1)
+    b = F.from_table(table, SETTINGS, chunk_size=1, engine="dask", workers=1)
     for x, y in zip(a.apps, b.apps):
         assert x.note == y.note
         np.testing.assert_array_equal(x.core_rows, y.core_rows)
@@ -230,9 +231,9 @@ def test_forked_chunks_give_the_same_data():
     """The in-process engine's chunks on forked processes (issue 36; two where the machine has two cores): the same
     data, in the same order, as one process computes."""
     table = sample_portfolio(3, seed=2)
-    a = P.from_table(table, SETTINGS, chunk_size=1, processes=1)
-    b = P.from_table(table, SETTINGS, chunk_size=1, processes=2)
-    assert P._processes(3, None) == P.PROCESSES and P._processes(1, 2) == 1
+    a = F.from_table(table, SETTINGS, chunk_size=1, processes=1)
+    b = F.from_table(table, SETTINGS, chunk_size=1, processes=2)
+    assert F.processes_for(3, None) == F.PROCESSES and F.processes_for(1, 2) == 1
     for x, y in zip(a.apps, b.apps, strict=True):
         assert (x.app_id, x.note, x.volume) == (y.app_id, y.note, y.volume)
         for f in ("core_rows", "core_margin", "core_cost_eur", "core_binding"):
@@ -297,7 +298,7 @@ def test_scene_on_a_real_portfolio(tmp_path, capsys):
 @pytest.fixture(scope="module")
 def big():
     table = sample_portfolio(200, seed=0)
-    pf = P.from_table(table, SETTINGS)
+    pf = F.from_table(table, SETTINGS)
     return pf, rationalise(pf, "variants", time_limit=120)
 
 
@@ -346,7 +347,7 @@ def test_200_platform_no_larger_than_the_union_of_per_application_optima(big):
 def test_array_build_and_pyomo_build_choose_the_same_platform():
     """A 60-application ``portfolio-sample``: the MILP built from arrays for highspy (the default) and built through
     Pyomo (the reference) give the same objective, platform and assignment, design by design."""
-    pf = P.from_table(sample_portfolio(60, seed=1), SETTINGS)
+    pf = F.from_table(sample_portfolio(60, seed=1), SETTINGS)
     fast = rationalise(pf, "variants", time_limit=60, details=False)
     ref = rationalise(pf, "variants", time_limit=60, details=False, build="pyomo")
     assert fast.status == ref.status == "optimal" and fast.n_parts >= 5

@@ -18,7 +18,7 @@ hold it equal to ``verify`` design by design (verdicts, margins, binding constra
 it is 20x faster (one bolt step-10 evaluation per bolt, not per design).
 
 >>> from synth.data.generated_applications import generate
->>> from synth.platform.producer import feasibility
+>>> from synth.platform.portfolio_feasibility import feasibility
 >>> from synth.platform.assign import assign, full_platform
 >>> pf = feasibility(generate(2, seed=0), ["a", "b"])
 >>> recs = verify_records(pf, assign(pf, full_platform(pf)))

@@ -9,7 +9,7 @@ See :mod:`synth.platform.rationalise`.
 
 ``PORTFOLIO`` is a portfolio table (the one ``synth bulk`` reads; an optional
 ``annual_volume`` column weighs the cost objective): its feasibility comes from the
-evaluator (:mod:`synth.platform.producer`, ``--fidelity``, ``--engine dask`` for the
+evaluator (:mod:`synth.platform.portfolio_feasibility`, ``--fidelity``, ``--engine dask`` for the
 chunks); ``synthetic:N[:SEED]`` gives illustrative data of the same shape.
 """
 
@@ -110,7 +110,7 @@ def _settings(args, Settings):
 def _main(args) -> int:
     from synth.platform.outputs import gap_text, write_all
     from synth.platform.volume import saving_text
-    from synth.platform.producer import load_feasibility
+    from synth.platform.portfolio_feasibility import load_feasibility
     from synth.platform.rationalise import rationalise, tradeoff
     caps = parse_max_variants(args.max_variants)
     check_count("rationalise --points", args.points)

@@ -234,7 +234,7 @@ class PortfolioSession:
         report section (HTML), which names ``assignment.csv``."""
         from synth.design.evaluate import Settings
         from synth.platform.outputs import report_section
-        from synth.platform.producer import load_feasibility
+        from synth.platform.portfolio_feasibility import load_feasibility
         from synth.platform.rationalise import rationalise
         from synth.platform.outputs import write_all
         self.running, self.progress = "platform", (0, 1)
