@@ -107,8 +107,8 @@ def test_rules_judge_every_option_and_are_echoed(fleet, tmp_path, capsys):
 def test_rules_the_platform_cannot_honour_are_refused(fleet, tmp_path):
     rules = tmp_path / "capable.yaml"
     rules.write_text("capability:\n  ppk_min: 1.33\n", encoding="utf-8")
-    with pytest.raises(InputError, match=r"--rules .*capable.yaml: capability: got \{'ppk_min': 1.33\}; accepted: "
-                                         r"no capability targets"):
+    with pytest.raises(InputError, match=r"design rules \(capable.yaml\): capability: got \{'ppk_min': 1.33\}; "
+                                         r"accepted: no capability targets"):
         _run(["rationalise", fleet, "--out", str(tmp_path / "a"), "--rules", str(rules)])
-    with pytest.raises(InputError, match="--spring-limit en13906: got 'synthetic:5'; accepted: a portfolio table"):
+    with pytest.raises(InputError, match="design rules: got 'synthetic:5'; accepted: a portfolio table"):
         _run(["rationalise", "synthetic:5", "--out", str(tmp_path / "b"), "--spring-limit", "en13906"])

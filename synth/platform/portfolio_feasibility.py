@@ -243,7 +243,23 @@ def from_table(portfolio, settings: evaluate.Settings = evaluate.DEFAULT, **kw) 
 
 
 def load_feasibility(portfolio: str, settings: evaluate.Settings | None = None, **kw) -> PortfolioFeasibility:
-    """The feasibility data of ``portfolio`` (see the module docstring), validated."""
+    """The feasibility data of ``portfolio`` (see the module docstring), validated. A design rule the platform
+    cannot honour is refused, never dropped: capability targets (each application's options are judged at their
+    nominal values; ``synth bulk --capability`` selects per application) and any rule on ``synthetic:`` data
+    (illustrative feasibility, not judged by the evaluator)."""
+    rules = getattr(settings, "rules", None)
+    named = f"design rules ({rules.source or rules.name})" if rules is not None and (rules.source or rules.name) \
+        else "design rules"
+    if rules is not None and rules.capability:
+        raise InputError(Problem(f"{named}: capability",
+                                 dict(rules.capability),
+                                 "no capability targets: synth rationalise judges each application's options at "
+                                 "their nominal values; select for production capability per application with "
+                                 "synth bulk --capability, or leave the targets out of the rules"))
+    if rules is not None and not rules.empty() and str(portfolio).startswith("synthetic:"):
+        raise InputError(Problem(named, str(portfolio),
+                                 "a portfolio table: synthetic:N data are illustrative feasibility, not judged by "
+                                 "the evaluator or its rules"))
     if str(portfolio).startswith("synthetic:"):
         parts = str(portfolio).split(":")[1:]
         try:

@@ -89,24 +89,6 @@ def register(sub) -> None:
     p.set_defaults(func=_main)
 
 
-def _settings(args, Settings):
-    """The run's configuration: ``--fidelity``, the design rules of ``--rules`` and ``--spring-limit``. A rule the
-    platform cannot honour is refused, not dropped: capability targets (the platform's options are judged
-    nominally) and any rule on ``synthetic:`` data (illustrative, not judged by the evaluator)."""
-    settings = Settings(fidelity=args.fidelity, rules=rules_of(args), spring_limit_basis=args.spring_limit)
-    rules = settings.rules
-    if rules.capability:
-        raise InputError(Problem(f"--rules {args.rules}: capability", dict(rules.capability),
-                                 "no capability targets: synth rationalise judges each application's options at "
-                                 "their nominal values; select for production capability per application with "
-                                 "synth bulk --capability, or leave the targets out of the rules file"))
-    if not rules.empty() and str(args.portfolio).startswith("synthetic:"):
-        given = f"--rules {args.rules}" if args.rules else f"--spring-limit {args.spring_limit}"
-        raise InputError(Problem(given, args.portfolio, "a portfolio table: synthetic:N data are illustrative "
-                                                        "feasibility, not judged by the evaluator or its rules"))
-    return settings
-
-
 def _main(args) -> int:
     from synth.platform.outputs import gap_text, write_all
     from synth.platform.volume import saving_text
@@ -121,7 +103,8 @@ def _main(args) -> int:
     if not 0 < args.time_limit <= 86_400:
         raise InputError(Problem("--time-limit", args.time_limit, "seconds in (0, 86400] per MILP solve"))
     engine = "dask" if args.scheduler else args.engine
-    settings = _settings(args, Settings)
+    # the design rules; load_feasibility refuses those the platform cannot honour
+    settings = Settings(fidelity=args.fidelity, rules=rules_of(args), spring_limit_basis=args.spring_limit)
     for line in settings.rules.lines():  # the rules every option was judged by (also in summary.md)
         print(line)
     with Progress(total=None, desc="synth rationalise: feasibility") as bar:

@@ -97,13 +97,13 @@ def setup(values: dict, source: str, *, policy: Policy, root: Path, rules=None, 
             return
         mark("design page connected")
         tab = tabs.state(tab_id, root)
-        handed = HANDOFF.pop(open or "", None)  # a portfolio's application: its own input, no rules, its fidelity
+        handed = HANDOFF.pop(open or "", None)  # a portfolio's application: its input, fidelity and rules
         # the server's input as the launch's worker opened it (validated, its drop-downs read): none read here
         opened = await launch.opened() if launch is not None and handed is None and tab.design is None else None
 
         def build():
             if handed is not None or tab.design is None:
-                v, src, r = (handed[0], handed[1], None) if handed else (values, source, rules)
+                v, src, r = (handed[0], handed[1], handed[3]) if handed else (values, source, rules)
                 s = DesignSession(v, source=src, workdir=tab.folder / "design", rules=r, opened=opened)
                 if handed:
                     s.fidelity = handed[2]

@@ -14,7 +14,9 @@ platform's files (``platform.csv``, ``assignment.csv``, ``summary.md``, ``sectio
 
 The table shows each row's verdict in the design page's words (PASS, INCOMPLETE, FAIL: ``synth bulk``'s
 ``verdict`` column, the one judgement of :mod:`synth.design.assessment`), what binds in words, margins in percent.
-A row opens on the design page at the fidelity it was screened at, so the page's verdict is the row's.
+A row opens on the design page at the fidelity it was screened at and under the portfolio's design rules
+(:meth:`PortfolioSession.set_rules`: every row, the platform and the opened application are judged by them), so the
+page's verdict is the row's.
 
 >>> p = PortfolioSession()
 >>> p.sample(4, seed=0)
@@ -84,6 +86,8 @@ class PortfolioSession:
 
     def __init__(self, workdir: str | Path | None = None):
         self.workdir = Path(workdir) if workdir else Path(tempfile.mkdtemp(prefix="synth-ui-portfolio-"))
+        from synth.design.rules import NONE
+        self.rules = NONE      # the design rules every application is judged by (synth bulk --rules)
         self.table = None      # the portfolio as read
         self.path: Path | None = None
         self.source = ""
@@ -108,6 +112,18 @@ class PortfolioSession:
         self._files = {}
         self.version += 1
         return len(self.table)
+
+    def set_rules(self, path: str | Path | None) -> str:
+        """Judge every application by the design rules of file ``path`` (``synth bulk --rules``, ``synth rationalise
+        --rules``; None: no rules); a screening or platform made under other rules is dropped. Returns the rules in
+        words."""
+        from synth.design.rules import NONE, read_rules
+        self.rules = NONE if path is None else read_rules(Path(path), "design rules")
+        self.results = self.summary = self.platform = None
+        self.platform_html = ""
+        self._files = {}
+        self.version += 1
+        return "\n".join(self.rules.lines())
 
     def sample(self, n: int, seed: int = 0) -> int:
         """A synthetic portfolio of ``n`` applications (``synth portfolio-sample``), kept as a CSV for the platform."""
@@ -134,7 +150,8 @@ class PortfolioSession:
             for a in range(0, n, size):
                 if check is not None:
                     check()
-                parts.append(synth.screen(self.table.iloc[a:a + size], fidelity=fidelity, progress=False))
+                parts.append(synth.screen(self.table.iloc[a:a + size], fidelity=fidelity, progress=False,
+                                          rules=self.rules))
                 self.progress = (min(n, a + size), n)
                 if progress is not None:
                     progress(min(n, a + size), n)
@@ -244,7 +261,7 @@ class PortfolioSession:
             if progress is not None:
                 progress(done, total)
         try:
-            pf = load_feasibility(str(self.path), Settings(fidelity=fidelity), progress=step)
+            pf = load_feasibility(str(self.path), Settings(fidelity=fidelity, rules=self.rules), progress=step)
             self.platform = rationalise(pf, "variants", time_limit=time_limit)
             self._files = {k: v for k, v in self._files.items() if not k.startswith("platform/")}
             for p in write_all(pf, self.platform, self.workdir / "files" / "platform"):

@@ -29,8 +29,9 @@ __all__ = ["PortfolioPage", "PORTFOLIO_UPLOAD_LIMIT", "HANDOFF"]
 #: the largest portfolio a page opens (a CSV; an .xlsx or .ods one is bounded by its unpacked size)
 PORTFOLIO_UPLOAD_LIMIT = LIMITS.portfolio_bytes
 
-#: token -> (input mapping, source, fidelity): an application of the portfolio page opened on the design page
-HANDOFF: dict[str, tuple[dict, str, str]] = {}
+#: token -> (input mapping, source, fidelity, design rules): an application of the portfolio page opened on the
+#: design page, judged as its row was
+HANDOFF: dict[str, tuple] = {}
 
 
 class PortfolioPage:
@@ -53,6 +54,13 @@ class PortfolioPage:
                     .style("width:9em").props("data-testid=sample-n")
                 ui.button("Synthetic sample", on_click=self.on_sample).props("outline data-testid=sample")
             self.loaded = ui.label().props("data-testid=loaded")
+            with ui.row().classes("items-center"):
+                upload_box("Design rules (YAML, TOML, JSON): every application is judged by them",
+                           ".yaml,.yml,.toml,.json", LIMITS.text_input_bytes, self.p.workdir, "design rules",
+                           self.on_rules)
+                ui.button("No rules", on_click=self.on_no_rules).props("flat dense data-testid=no-rules")
+                self.rules = ui.label().classes("text-caption").style("white-space: pre-line") \
+                    .props("data-testid=rules")
             with ui.row().classes("items-center"):
                 self.fidelity = ui.select(list(FIDELITIES), value=self.p.fidelity, label="fidelity").style("width:9em")
                 self.run_button = ui.button("Screen the portfolio", icon="play_arrow", on_click=self.on_run) \
@@ -92,6 +100,7 @@ class PortfolioPage:
     def show(self) -> None:
         p = self.p
         self.loaded.text = f"{len(p.table)} applications from {p.source}" if p.table is not None else ""
+        self.rules.text = "\n".join(p.rules.lines()) or "design rules: none"
         self.fidelity.value = p.fidelity if p.results is not None else self.fidelity.value
         self.plots.clear()
         self.platform_note.text = (f"platform rationalised at {p.platform_fidelity} fidelity (the fidelity chosen "
@@ -193,6 +202,25 @@ class PortfolioPage:
         if old is not None and old.parent.name.startswith("upload-") and old.parent != path.parent:
             shutil.rmtree(old.parent, ignore_errors=True)
 
+    async def on_rules(self, path: Path, name: str) -> None:
+        """A design rules file received: every application is judged by it from now on (a screening or platform
+        made under other rules is dropped)."""
+        if self._running():
+            return
+        try:
+            await jobs.run(self.p.set_rules, path)
+        except InputError as exc:
+            refused(exc, "synth: invalid design rules")
+
+    async def on_no_rules(self) -> None:
+        if not self._running():
+            await jobs.run(self.p.set_rules, None)
+
+    def _running(self) -> bool:
+        if self.p.running:
+            ui.notify(f"the {self.p.running} is still running: the rules change after it", type="warning")
+        return bool(self.p.running)
+
     async def on_sample(self) -> None:
         n = count(self.n.value, "applications", self.SAMPLE_MAX)
         await jobs.run(self.p.sample, n)
@@ -241,7 +269,8 @@ class PortfolioPage:
         i = self.p.row(row.get("#"))
         token = secrets.token_urlsafe(8)
         label = self._rows[i].get("application_id") if i < len(self._rows) else None
-        HANDOFF[token] = (self.p.application(i), f"{self.p.source}: {label or f'row {i + 1}'}", self.p.fidelity)
+        HANDOFF[token] = (self.p.application(i), f"{self.p.source}: {label or f'row {i + 1}'}", self.p.fidelity,
+                          self.p.rules)
         ui.navigate.to(f"/?open={token}")
 
 
