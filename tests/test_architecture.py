@@ -66,7 +66,6 @@ LONG_MODULES = {
     # several ideas, split in the change that rewrites them (issue 33's decomposed-space engine, the PDF report)
     "synth/optimise/batch.py": "the Batch scans: being rewritten as a client of the decomposed-space engine",
     "synth/platform/producer.py": "the platform's feasible pairs: to become a client of the decomposed-space engine",
-    "synth/ui/design_page.py": "the web UI's design page: being edited by the web UI's change",
 }
 
 
