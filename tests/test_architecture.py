@@ -65,8 +65,6 @@ LONG_MODULES = {
     "formulations/platform.py": "one mathematical program: the platform MILP and its data (no synth import)",
     # several ideas, split in the change that rewrites them (issue 33's decomposed-space engine, the PDF report)
     "synth/optimise/batch.py": "the Batch scans: being rewritten as a client of the decomposed-space engine",
-    "synth/report/plots.py": "the report's graphs: being edited by the PDF report's change",
-    "synth/ui/design_page.py": "the web UI's design page: being edited by the web UI's change",
 }
 
 

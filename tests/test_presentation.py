@@ -100,13 +100,14 @@ def test_sensitivity_figures_have_every_line_in_the_legend_and_the_design_point(
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from synth.report import plots
-    monkeypatch.setattr(plots, "_N", 7)  # a coarse sweep: the legend, not the curve, is under test
-    dt = plots._Data(result, None)
+    from synth.report import plots, thesis_graphs
+    from synth.report.graph_data import Data, new_figure
+    monkeypatch.setattr(thesis_graphs, "SWEEP_POINTS", 7)  # a coarse sweep: the legend, not the curve, is under test
+    dt = Data(result, None)
     for gid, value in (("sensitivity_differential_angle", dt.need("differential_angle_deg")),
                        ("sensitivity_mu_pivot_bushing", dt.need("mu_pivot_bushing"))):
-        fig, ax = plots._fig(gid)
-        plots._FUNCS[gid](dt, ax, "pass")
+        fig, ax = new_figure(gid)
+        plots.FUNCS[gid](dt, ax, "pass")
         labels = ax.get_legend_handles_labels()[1]
         assert "asymmetry ratio (right axis)" in labels and f"design point ({fmt.number(value)})" in labels, labels
         assert any(line.get_xdata()[0] == value for line in ax.lines if line.get_label() == labels[-1]
