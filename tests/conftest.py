@@ -114,11 +114,28 @@ finally:
 """
 
 
+# ---------------------------------------------------------------------------- one BLAS thread, as every scene runs
+# The command line runs every scene on one BLAS thread (synth.threads.scene); the API leaves the library's default
+# (a thread per processor). Under xdist each worker's BLAS threads spun against the other worker's: measured on 2
+# loaded cores, tests/test_capability_independent.py took 65 s of CPU and 147 s wall with two, 36 s and 83 s with
+# one. The tests run the API under the command line's setting (a variable set by the user or CI is kept).
+
+def _one_blas_thread():
+    import os
+    from threadpoolctl import threadpool_limits
+    from synth.threads import THREAD_ENV
+    for name in THREAD_ENV:  # the libraries not loaded yet, and child processes
+        os.environ.setdefault(name, "1")
+    if os.environ["OPENBLAS_NUM_THREADS"] == "1":  # and those a plugin loaded already, for the session
+        threadpool_limits(1, user_api="blas")
+
+
 def pytest_configure(config):
     import os
     import subprocess
     import sys
     import tempfile
+    _one_blas_thread()
     if hasattr(config, "workerinput") or not config.getoption("numprocesses", None) or os.environ.get(_WARM_ENV):
         return
     marker = os.path.join(tempfile.mkdtemp(prefix="synth-warm-"), "done")

@@ -23,7 +23,7 @@ it with the exhaustive check of every design of a small space.
 
 >>> from synth.scenes.demo import default_input
 >>> from synth.robust.settings import RobustSettings
->>> r = robust_solve(default_input(), "cost", rs=RobustSettings(capability=0.2, samples=512))
+>>> r = robust_solve(default_input(), "cost", rs=RobustSettings(capability=0.2, samples=512), explain=False)
 >>> r.robust["meets"], r.stats["robust_candidates"]  # the made joint's VDI 2230 window: no design reaches 0.2
 (False, 0)
 """
