@@ -170,7 +170,7 @@ def test_a_200_application_portfolio_screens_to_the_apis_feasible_share(page, tm
     pool = concurrent.futures.ThreadPoolExecutor(1)  # the API's screening, while the page's runs on the other core
     expected = pool.submit(synth.screen, table, progress=False)
     goto_when_up(pg, url + "portfolio")
-    pg.locator("input[type=file]").set_input_files(str(path))
+    pg.locator("input[type=file][accept*='.parquet']").set_input_files(str(path))  # the portfolio's box, not the rules'
     pg.get_by_text("200 applications from fleet.csv").wait_for()
     pg.locator("[data-testid=run]").click()
     shown = pg.locator("[data-testid=feasible-share]")
