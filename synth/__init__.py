@@ -60,6 +60,19 @@ def __getattr__(name: str) -> Any:
     raise AttributeError(f"module 'synth' has no attribute {name!r}")
 
 
+def _threads(fn):
+    """An API function run under the command line's thread settings (:func:`synth.threads.call`: BLAS at one
+    thread; a multi-threaded BLAS beside other work made small dense algebra many times slower, issue 36)."""
+    import functools
+
+    @functools.wraps(fn)
+    def run(*args, **kw):
+        from synth import threads
+        with threads.call():
+            return fn(*args, **kw)
+    return run
+
+
 def _result_digest(result) -> str:
     """A result's view in a notebook: the report's digest (:mod:`synth.display`)."""
     from synth.report.html import digest_html
@@ -136,6 +149,7 @@ def _with_targets(s: "Settings", samples: int | None) -> "Settings":
     return s.replace(capability=RobustSettings(capability=targets.get("ppk_min"), ppm=targets.get("ppm_max"), **kw))
 
 
+@_threads
 def run_flowchart(d: "DesignInput | str | Path | dict", parts: dict | None = None, *, rules=None,
                   **settings_kw) -> "Result":
     """The thesis procedure (steps 0-10, its selection loops) on input ``d``; with ``parts``, that design checked.
@@ -150,6 +164,7 @@ def run_flowchart(d: "DesignInput | str | Path | dict", parts: dict | None = Non
         return flowchart.run(_input(d), s, parts=parts, time_points=60)
 
 
+@_threads
 def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard", solver: str = "enumerate", *,
                pin_inputs: bool = False, fix=(), free=(), top: int = 1, distinct=None,
                time_limit_s: float | None = None,
@@ -190,6 +205,7 @@ def synthesise(d: "DesignInput | str | Path | dict", objective: str = "standard"
         return solve_honouring(_input(d), objective, solver, **kw)
 
 
+@_threads
 def capability(source: "Result | DesignInput | str | Path | dict", *, target: float | None = 1.33,
                ppm: float | None = None, samples: int | None = None, seed: int | None = None,
                assumptions: bool = True, rules=None, **settings_kw) -> "Result":
@@ -214,6 +230,7 @@ def capability(source: "Result | DesignInput | str | Path | dict", *, target: fl
     return r
 
 
+@_threads
 def verify(d: "DesignInput | str | Path | dict", parts: dict, *, rules=None, **settings_kw) -> "Result":
     """Design ``parts`` (every part key: ``synth.design.space.PART_KEYS``, as any result's ``.parts``) checked
     for input ``d`` through every step, with the wear histories for the graphs (60 points)."""
@@ -230,6 +247,7 @@ def verify(d: "DesignInput | str | Path | dict", parts: dict, *, rules=None, **s
         return _verify(_input(d), dict(parts), s, time_points=60)
 
 
+@_threads
 def derive(source: "Result | DesignInput | str | Path | dict", check: "str | list | None" = None, *,
            parts: dict | None = None, rules=None, **settings_kw):
     """The derivation of ``check`` (a registry id; a list of ids: a list; None: every evaluated check, a list) of a
@@ -258,6 +276,7 @@ def derive(source: "Result | DesignInput | str | Path | dict", check: "str | lis
     return out[0] if isinstance(check, str) else out
 
 
+@_threads
 def screen(applications, *, objective: str = "standard", fidelity: str = "screening", diagnose: bool = True,
            chunk_size: int | None = None, progress: bool = True, rules=None, **settings_kw) -> "pd.DataFrame":
     """Every application of a portfolio, one row each (``synth bulk`` in memory, nothing written).
@@ -308,6 +327,7 @@ def screen(applications, *, objective: str = "standard", fidelity: str = "screen
     return pd.concat([table[keep].reset_index(drop=True), res], axis=1)
 
 
+@_threads
 def write_report(source: "Result | DesignInput | str | Path", out_dir: "str | Path", *, pdf: bool = True,
                  cad_pictures: bool = True, author: str = "", revision: str = "", page: str = "landscape",
                  platform=None, scenes: dict | None = None) -> dict:

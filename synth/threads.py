@@ -23,6 +23,7 @@ task          what                                                            th
   libraries not loaded yet and for child processes (``OPENBLAS_NUM_THREADS=1`` and its kin, ``SYNTH_THREADS``),
   limits the libraries already loaded (threadpoolctl), and restores all of it after.
 * :func:`numba_threads`: the size of numba's pool, set by :mod:`synth.kernels.numba_setup` before numba loads.
+* :func:`call`: what every Python API call runs under (the command line's settings, the environment untouched).
 * :func:`limits`: one task's thread counts for the span of a block, a context manager and a decorator
   (``@limits("small")``), for code called through the API as well as the command line.
 * :func:`worker_environ`: the environment a worker process starts with (the local Dask cluster's).
@@ -45,7 +46,7 @@ from pathlib import Path
 
 from synth.errors import InputError, Problem
 
-__all__ = ["ENV", "TASKS", "THREAD_ENV", "usable_cores", "affinity_cores", "cgroup_cpu_limit", "parse_threads",
+__all__ = ["ENV", "TASKS", "THREAD_ENV", "call", "usable_cores", "affinity_cores", "cgroup_cpu_limit", "parse_threads",
            "budget", "threads_for", "limits", "scene", "worker_environ", "numba_threads"]
 
 #: the environment variable of the setting (``--threads`` wins over it)
@@ -255,6 +256,23 @@ def limits(task: str = "small", *, threads=None):
     """
     n = threads_for(task, threads)
     with _limited(n, n):
+        yield n
+
+
+@contextlib.contextmanager
+def call(threads=None):
+    """The thread settings of one Python API call (:mod:`synth`'s functions), as :func:`scene` sets a command's:
+    the BLAS and OpenMP libraries at one thread (numpy loaded first, so that its BLAS is limited, not started at a
+    thread per processor), numba's pool in this thread at :func:`budget`; the environment is left as it is and the
+    previous counts are restored after.
+
+    >>> with call() as n:
+    ...     n >= 1
+    True
+    """
+    import numpy  # noqa: F401 - its BLAS loaded, so that the limit applies to it
+    n = budget(threads)
+    with _limited(1, n):
         yield n
 
 

@@ -199,3 +199,27 @@ def test_a_numba_cache_folder_the_user_set_is_kept(tmp_path):
     r = _kernel_process({"SYNTH_CACHE_DIR": str(tmp_path / "synth"), "NUMBA_CACHE_DIR": str(tmp_path / "mine")})
     assert r.returncode == 0, r.stderr
     assert r.stdout.split()[0] == str(tmp_path / "mine") and list((tmp_path / "mine").rglob("*.nbi"))
+
+
+def test_an_api_call_runs_blas_on_one_thread_as_a_scene_does(monkeypatch):
+    """Issue 36: the command line ran every scene on one BLAS thread, the Python API on the library's pool (a
+    thread per processor, spinning against other work). Every API call now runs under :func:`synth.threads.call`."""
+    import numpy  # noqa: F401 - its BLAS loaded
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    import synth
+    from synth.data import CASES_DIR
+    from synth.optimise import honour
+
+    seen = []
+
+    def record(*args, **kw):
+        seen.append({lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"})
+        raise RuntimeError("recorded")
+    monkeypatch.setattr(honour, "solve_honouring", record)
+    with threadpool_limits(2, user_api="blas"):
+        outside = {lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"}
+        with pytest.raises(RuntimeError, match="recorded"):
+            synth.synthesise(CASES_DIR.parent / "default_case.yaml")
+        after = {lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"}
+    assert outside == after == {2} and seen == [{1}]
