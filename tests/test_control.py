@@ -134,7 +134,8 @@ def test_a_manual_spring_is_kept_unless_no_design_with_it_passes(tmp_path, capsy
 
 
 # ----------------------------------------------------------------------------------------------- relaxations
-def test_belt_in_oil_says_no_designer_change_and_what_to_ask_for_with_units(tmp_path, capsys):
+def test_belt_in_oil_says_no_designer_change_and_what_to_ask_for_with_units(tmp_path, capsys, monkeypatch):
+    _synthesise_once(monkeypatch, _SHARED)  # the JSON and the text render one synthesis
     from synth.report.advice import NO_DESIGNER
     path = _write(tmp_path, "belt_in_oil", {**_inputs(), "application_type": "belt_in_oil"})
     code, r = _json(capsys, "design", path)
@@ -150,7 +151,8 @@ def test_belt_in_oil_says_no_designer_change_and_what_to_ask_for_with_units(tmp_
     assert "a smaller mean diameter" not in out and "every catalog main spring material" in out
 
 
-def test_case1_gets_a_combined_relaxation_of_two_inputs_designer_first(capsys):
+def test_case1_gets_a_combined_relaxation_of_two_inputs_designer_first(capsys, monkeypatch):
+    _synthesise_once(monkeypatch, _SHARED)  # the JSON and the text render one synthesis
     from synth.report.advice import NO_DESIGNER
     code, r = _json(capsys, "design", CASES_DIR / "case1.yaml")
     rel = r["diagnosis"]["relaxations"]
@@ -163,7 +165,8 @@ def test_case1_gets_a_combined_relaxation_of_two_inputs_designer_first(capsys):
     assert "change bolt_head_contact_external_diameter_mm 11 -> " in out and " mm (+" in out
 
 
-def test_case1_advice_never_contradicts_itself(capsys):
+def test_case1_advice_never_contradicts_itself(capsys, monkeypatch):
+    _synthesise_once(monkeypatch, _SHARED)  # case 1's synthesis, shared with the test above
     # issue 35: case 1 printed "no change the tensioner designer controls ... makes a design feasible; ask ... for
     # one of:" followed by "change bolt_head_contact_external_diameter_mm ... and ask for spring_stiffness ...", and
     # a "suggested correction" that reported the search ("every catalog bolt format ... was tried ...")
@@ -246,14 +249,19 @@ RULES = {"name": "ACME tensioner rules rev. C", "limits": {"main_spring_min_safe
          "min_margins": {"spring_yield": "3 %"}, "capability": {"ppk_min": 1.33}}
 
 
-def _synthesise_once(monkeypatch) -> list:
-    """Make the scenes' synthesis (``solve_honouring``) compute each distinct call once in this test and hand a copy
-    of the result to the later ones (the robust synthesis of a rules file costs seconds; the JSON, the text and the
-    report render the same one). Returns the list of calls computed."""
+#: the syntheses the diagnosis tests share (case 1 and the belt in oil: each 3-5 s of CPU, rendered as JSON and text)
+_SHARED: dict = {}
+
+
+def _synthesise_once(monkeypatch, memo: dict | None = None) -> list:
+    """Make the scenes' synthesis (``solve_honouring``) compute each distinct call once in this test (or once in
+    the tests given the same ``memo``) and hand a copy of the result to the later ones (the robust synthesis of a
+    rules file costs seconds; the JSON, the text and the report render the same one). Returns the list of calls
+    computed."""
     import copy
 
     from synth.scenes import _options
-    real, memo, computed = _options.solve_honouring, {}, []
+    real, memo, computed = _options.solve_honouring, ({} if memo is None else memo), []
 
     def once(d, objective, solver, **kw):
         key = repr((d, objective, solver, sorted((k, v) for k, v in kw.items() if k != "robust"), "robust" in kw))
@@ -268,9 +276,8 @@ def _synthesise_once(monkeypatch) -> list:
 def test_rules_section_is_applied_and_echoed_everywhere(tmp_path, capsys, monkeypatch):
     computed = _synthesise_once(monkeypatch)
     path = _write(tmp_path, "ruled", _inputs(), RULES)
-    # 256 production samples, not 8,192: the verdict (no design reaches Ppk 1.33) is far from the target (1,024 took
-    # 46 s of CPU, 256 take 28 s: the capability of every searched design and of the report scale with them)
-    code, r = _json(capsys, "design", path, "--samples", "256")
+    # 1,024 production samples, not 8,192: the verdict (no design reaches Ppk 1.33) is far from the target
+    code, r = _json(capsys, "design", path, "--samples", "1024")
     assert r["rules"]["name"] == "ACME tensioner rules rev. C"
     # the rules' capability target (Ppk >= 1.33) makes the synthesis the robust one; no catalog design meets it
     assert "1.33" in r["robust"]["targets"] and r["robust"]["meets"] is False and code == 1
@@ -279,10 +286,10 @@ def test_rules_section_is_applied_and_echoed_everywhere(tmp_path, capsys, monkey
     physical = (yld["limit"] - yld["value"]) / yld["limit"]
     assert yld["required_margin"] == 0.03 and yld["margin"] == pytest.approx(physical - 0.03, abs=2e-6)
     assert yld["margin"] >= 0
-    code, out, _ = _run(capsys, "design", path, "--samples", "256")
+    code, out, _ = _run(capsys, "design", path, "--samples", "1024")
     assert "design rules: ACME tensioner rules rev. C" in out and "minimum margin spring_yield: 3 %" in out
     assert "beyond the required 3 %" in out
-    code, out, _ = _run(capsys, "report", path, "--out", tmp_path / "rep", "--no-pdf", "--no-cad", "--samples", "256")
+    code, out, _ = _run(capsys, "report", path, "--out", tmp_path / "rep", "--no-pdf", "--no-cad", "--samples", "1024")
     html = (tmp_path / "rep" / "report.html").read_text()
     assert "Design rules</th><td>design rules: ACME tensioner rules rev. C" in html
     assert len(computed) == 1  # the design's JSON, its text and the report: one robust synthesis
