@@ -49,6 +49,18 @@ def assert_same_rows(fast: pd.DataFrame, ref: pd.DataFrame):
             assert not bad, (c, bad[:5], [a[i] for i in bad[:2]], [b[i] for i in bad[:2]])
 
 
+def _infeasible(apps, settings, n: int) -> list:
+    """The first ``n`` applications of ``apps`` that no design satisfies (checked one by one, stopping at the
+    ``n``-th: a feasibility check costs 0.1-0.6 s of CPU, and checking all 40 took 14 s of the suite)."""
+    found = []
+    for d in apps:
+        if len(found) == n:
+            break
+        if not is_feasible(d, settings):
+            found.append(d)
+    return found
+
+
 @pytest.mark.parametrize("part", range(10))
 def test_fast_path_equals_the_reference_on_100_generated_applications(part):
     # 10 slices of 10 (each reference row is a whole per-application search, about 0.6 s: 500 took 320 s of the
@@ -69,8 +81,8 @@ def test_relaxations_equal_the_reference():
     # 6 applications (4 + 2 varied: optional inputs absent): each reference row is a whole sequential diagnosis
     # (1-7 s of CPU each; the 9 of before took 44 s of the suite, these 12 s of CPU of 25); 3 get a relaxation (two
     # of the spring's stiffness, one of the bolt's threads), 3 none
-    given = [d for d in generate(40, seed=38) if not is_feasible(d, st)]
-    varied = [d for d in PORTFOLIO[:40] if not is_feasible(d, st)]
+    given = _infeasible(generate(40, seed=38), st, 5)
+    varied = _infeasible(PORTFOLIO[:40], st, 3)
     apps = [given[i] for i in (0, 1, 2, 4)] + [varied[i] for i in (0, 2)]
     assert len(apps) == 6
     fast = screen_applications(apps, objective="standard", diagnose=True)
@@ -82,8 +94,12 @@ def test_relaxations_equal_the_reference():
 
 
 def test_full_fidelity_and_cost_objective_equal_the_reference():
-    apps = generate(20, seed=32, vary=True)  # 20, not 30: the reference took 41 s of the suite
-    for fid, obj in (("full", "standard"), ("screening", "cost")):
+    # 20 generated applications, 10 for each setting (20 for each took 25 s of CPU): each slice has chosen designs
+    # and nearest ones
+    portfolio = generate(20, seed=32, vary=True)
+    for part, (fid, obj) in enumerate((("full", "standard"), ("screening", "cost"))):
+        apps = portfolio[10 * part:10 * (part + 1)]
+        assert len(apps) == 10
         fast = screen_applications(apps, objective=obj, fidelity=fid, diagnose=False)
         assert_same_rows(fast, screen_applications_reference(apps, objective=obj, fidelity=fid, diagnose=False))
         assert 0 < fast["feasible"].sum() < len(apps)  # chosen designs and nearest ones compared
@@ -95,10 +111,12 @@ def _without_stats(r) -> str:
     return json.dumps(d, sort_keys=True, default=str)
 
 
-@pytest.mark.parametrize("fidelity", ["screening", "full"])
-def test_branch_and_bound_solve_is_the_exhaustive_result(fidelity):
+@pytest.mark.parametrize("part, fidelity", [(0, "screening"), (1, "full")])
+def test_branch_and_bound_solve_is_the_exhaustive_result(part, fidelity):
+    # 24 generated applications, 12 at each fidelity (24 at each took 16 s of CPU per fidelity, mostly the exhaustive
+    # diagnosis of the infeasible ones); each half has optimal and infeasible ones
     st = Settings(fidelity=fidelity)
-    apps = generate(24, seed=33, vary=True)
+    apps = generate(24, seed=33, vary=True)[12 * part:12 * (part + 1)]
     statuses = set()
     for d in apps:
         fast = solve(d, "standard", "enumerate", settings=st)
@@ -110,7 +128,7 @@ def test_branch_and_bound_solve_is_the_exhaustive_result(fidelity):
 
 def test_batched_relaxations_equal_the_sequential_ones():
     st = Settings(fidelity="screening")
-    apps = [d for d in generate(40, seed=34, vary=True) if not is_feasible(d, st)][:6]
+    apps = _infeasible(generate(40, seed=34, vary=True), st, 6)
     violated = []
     for d in apps:
         r = solve(d, "standard", "enumerate", settings=st, relax=False, exhaustive=True)
@@ -146,7 +164,9 @@ def test_batch_nearest_design_is_the_exhaustive_one():
     from synth.optimise.diagnose import nearest_design
     from synth.optimise.product import evaluate
     st = Settings(fidelity="screening")
-    apps = generate(25, seed=37, vary=True)
+    # 12 generated applications in one batch (25 took 14 s of CPU: each exhaustive reference evaluates the whole
+    # unpruned product, 0.5 s)
+    apps = generate(12, seed=37, vary=True)
     b = Batch(apps, st, spring_engine="numpy")
     near = b.nearest()
     for i, d in enumerate(apps):

@@ -134,7 +134,8 @@ def test_a_manual_spring_is_kept_unless_no_design_with_it_passes(tmp_path, capsy
 
 
 # ----------------------------------------------------------------------------------------------- relaxations
-def test_belt_in_oil_says_no_designer_change_and_what_to_ask_for_with_units(tmp_path, capsys):
+def test_belt_in_oil_says_no_designer_change_and_what_to_ask_for_with_units(tmp_path, capsys, monkeypatch):
+    _synthesise_once(monkeypatch, _SHARED)  # the JSON and the text render one synthesis
     from synth.report.advice import NO_DESIGNER
     path = _write(tmp_path, "belt_in_oil", {**_inputs(), "application_type": "belt_in_oil"})
     code, r = _json(capsys, "design", path)
@@ -150,7 +151,8 @@ def test_belt_in_oil_says_no_designer_change_and_what_to_ask_for_with_units(tmp_
     assert "a smaller mean diameter" not in out and "every catalog main spring material" in out
 
 
-def test_case1_gets_a_combined_relaxation_of_two_inputs_designer_first(capsys):
+def test_case1_gets_a_combined_relaxation_of_two_inputs_designer_first(capsys, monkeypatch):
+    _synthesise_once(monkeypatch, _SHARED)  # the JSON and the text render one synthesis
     from synth.report.advice import NO_DESIGNER
     code, r = _json(capsys, "design", CASES_DIR / "case1.yaml")
     rel = r["diagnosis"]["relaxations"]
@@ -163,7 +165,8 @@ def test_case1_gets_a_combined_relaxation_of_two_inputs_designer_first(capsys):
     assert "change bolt_head_contact_external_diameter_mm 11 -> " in out and " mm (+" in out
 
 
-def test_case1_advice_never_contradicts_itself(capsys):
+def test_case1_advice_never_contradicts_itself(capsys, monkeypatch):
+    _synthesise_once(monkeypatch, _SHARED)  # case 1's synthesis, shared with the test above
     # issue 35: case 1 printed "no change the tensioner designer controls ... makes a design feasible; ask ... for
     # one of:" followed by "change bolt_head_contact_external_diameter_mm ... and ask for spring_stiffness ...", and
     # a "suggested correction" that reported the search ("every catalog bolt format ... was tried ...")
@@ -246,14 +249,19 @@ RULES = {"name": "ACME tensioner rules rev. C", "limits": {"main_spring_min_safe
          "min_margins": {"spring_yield": "3 %"}, "capability": {"ppk_min": 1.33}}
 
 
-def _synthesise_once(monkeypatch) -> list:
-    """Make the scenes' synthesis (``solve_honouring``) compute each distinct call once in this test and hand a copy
-    of the result to the later ones (the robust synthesis of a rules file costs seconds; the JSON, the text and the
-    report render the same one). Returns the list of calls computed."""
+#: the syntheses the diagnosis tests share (case 1 and the belt in oil: each 3-5 s of CPU, rendered as JSON and text)
+_SHARED: dict = {}
+
+
+def _synthesise_once(monkeypatch, memo: dict | None = None) -> list:
+    """Make the scenes' synthesis (``solve_honouring``) compute each distinct call once in this test (or once in
+    the tests given the same ``memo``) and hand a copy of the result to the later ones (the robust synthesis of a
+    rules file costs seconds; the JSON, the text and the report render the same one). Returns the list of calls
+    computed."""
     import copy
 
     from synth.scenes import _options
-    real, memo, computed = _options.solve_honouring, {}, []
+    real, memo, computed = _options.solve_honouring, ({} if memo is None else memo), []
 
     def once(d, objective, solver, **kw):
         key = repr((d, objective, solver, sorted((k, v) for k, v in kw.items() if k != "robust"), "robust" in kw))
