@@ -64,15 +64,3 @@ def test_bench_blackbox_runs_and_is_reproducible(capsys):
     assert "| thesis case 3 | nearest -0.0641 |" in out and "| default case | 1 / 1.744 |" in out
     assert out.count("| yes |") == 4
 
-
-def test_bench_bulk_capability_engines_runs_and_the_engines_agree(capsys):
-    """The samples' axial engine A/B (numpy reference, compiled twin) on two generated applications: no result
-    cell differs, and the functions it counts through are left as they were."""
-    from synth.robust import capability, sampling
-    before = (capability._assemble, capability.evaluate_deviations, sampling.evaluate_deviations,
-              sampling.AXIAL_ENGINE)
-    assert _module("bench_bulk_capability").main(["--engines", "--apps", "2", "--samples", "64"]) == 0
-    out = capsys.readouterr().out
-    assert "| result cells that differ (of 202, timings aside) | 0 |" in out
-    assert (capability._assemble, capability.evaluate_deviations, sampling.evaluate_deviations,
-            sampling.AXIAL_ENGINE) == before
