@@ -63,4 +63,3 @@ def test_bench_blackbox_runs_and_is_reproducible(capsys):
     # M6 hex 12.9 on its ISO 7089 washer (1 non-standard part, 1.744 EUR: see test_control)
     assert "| thesis case 3 | nearest -0.0641 |" in out and "| default case | 1 / 1.744 |" in out
     assert out.count("| yes |") == 4
-
