@@ -9,6 +9,13 @@ shortcut (no design under the made joint), how many meet the target, and the row
 capability verdict).
 
     PYTHONPATH=. python benchmarks/bench_bulk_capability.py --apps 2000 --sample 50 --capability 1.33
+
+``--engines``: instead, the same applications twice in one run, the production samples' axial group on the numpy
+reference and then on the compiled twin (:data:`synth.robust.sampling.AXIAL_ENGINE`), each with applications/s,
+CPU, the candidate designs sampled (capabilities assembled) and the production samples evaluated, and the cells
+of the two result tables that differ (timings aside; the claim: none).
+
+    PYTHONPATH=. python benchmarks/bench_bulk_capability.py --engines --apps 8
 """
 
 from __future__ import annotations
@@ -27,7 +34,10 @@ def main(argv=None) -> int:
     p.add_argument("--samples", type=int, default=1024)
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--fidelity", default="full")
+    p.add_argument("--engines", action="store_true", help="the samples' axial engine, numpy against numba")
     a = p.parse_args(argv)
+    if a.engines:
+        return engines_ab(a)
     warnings.simplefilter("ignore")
     from synth.bulk.engine import screen_applications
     from synth.data.generated_applications import generate
@@ -77,6 +87,69 @@ def main(argv=None) -> int:
     print(f"| rows differing | {len(differ)} (of which at an objective tie: {tie}) |")
     for i, keys, why in differ:
         print(f"|   row {i} | {', '.join(keys)} {why} |")
+    return 0
+
+
+def _runs(apps, settings, count) -> tuple:
+    """``(timings, frames)``: the applications with the samples' axial group on numpy, then on numba."""
+    from synth.bulk.engine import screen_applications
+    from synth.robust import sampling
+    sampling.AXIAL_ENGINE = "numba"  # warm: the design space, the kernels (the axial twins on a robust row's samples)
+    screen_applications(apps[:2], objective="standard", settings=settings, diagnose=False)
+    out, frames = [], []
+    for engine in ("numpy", "numba"):
+        sampling.AXIAL_ENGINE = engine
+        count.update(candidates=0, samples=0)
+        t0, c0 = time.perf_counter(), time.process_time()
+        frames.append(screen_applications(apps, objective="standard", settings=settings, diagnose=False))
+        out.append((engine, time.perf_counter() - t0, time.process_time() - c0, dict(count)))
+    return out, frames
+
+
+def engines_ab(a) -> int:
+    """The samples' axial engine A (numpy reference) against B (compiled twin) on the same applications."""
+    warnings.simplefilter("ignore")
+    import numpy as np
+
+    from synth.data.generated_applications import generate
+    from synth.design.settings import Settings
+    from synth.robust import capability, sampling
+    from synth.robust.settings import RobustSettings
+    settings = Settings(fidelity=a.fidelity, capability=RobustSettings(capability=a.capability, samples=a.samples))
+    apps = generate(a.apps, seed=a.seed)
+    count = {"candidates": 0, "samples": 0}
+    assemble, deviations, engine = capability._assemble, sampling.evaluate_deviations, sampling.AXIAL_ENGINE
+
+    def counted_assemble(*args, **kw):
+        count["candidates"] += 1
+        return assemble(*args, **kw)
+
+    def counted_deviations(base, dev, *args, **kw):
+        count["samples"] += len(next(iter(dev.values()))) if dev else 1
+        return deviations(base, dev, *args, **kw)
+    capability._assemble = counted_assemble
+    capability.evaluate_deviations = sampling.evaluate_deviations = counted_deviations
+    try:
+        out, frames = _runs(apps, settings, count)
+    finally:  # the functions the counts wrap, and the module's engine, as they were
+        capability._assemble, capability.evaluate_deviations = assemble, deviations
+        sampling.evaluate_deviations, sampling.AXIAL_ENGINE = deviations, engine
+    keep = [c for c in frames[0].columns if "time" not in c]
+    x, y = (f[keep] for f in frames)
+    same = ((x == y) | (x.isna() & y.isna())).to_numpy()  # NaN (an empty cell) equals NaN
+    x, y = x.to_numpy(), y.to_numpy()
+    cells = int(np.sum(~same))
+    print(f"| {a.apps} applications, Ppk >= {a.capability:g}, {a.samples} samples, fidelity {a.fidelity}: "
+          f"the samples' axial engine | wall [s] | CPU [s] | applications/s | candidates sampled | "
+          f"production samples |")
+    print("|---|---|---|---|---|---|")
+    for name, wall, cpu, c in out:
+        print(f"| {name} | {wall:.1f} | {cpu:.1f} | {a.apps / wall:.3g} | {c['candidates']} | {c['samples']:,} |")
+    print(f"| CPU ratio numpy / numba | | {out[0][2] / out[1][2]:.2f}x | | | |")
+    print(f"| result cells that differ (of {x.size}, timings aside) | {cells} | | | | |")
+    for j in np.flatnonzero((~same).any(axis=0)):
+        i = int(np.flatnonzero(~same[:, j])[0])
+        print(f"|   {keep[j]} (row {i}) | {str(x[i, j])[:60]} | {str(y[i, j])[:60]} | | | |")
     return 0
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from synth.bulk.run import compute_chunk
@@ -84,3 +85,32 @@ def test_a_resume_under_another_target_is_refused(tmp_path):
     with pytest.raises(InputError, match="--capability"):
         _check_manifest(old, manifest(None), tmp_path)
     _check_manifest({k: v for k, v in manifest(None).items() if k != "capability"}, manifest(None), tmp_path)
+
+
+def test_bulk_rows_equal_synth_design_capability_on_generated_applications():
+    """``synth bulk --capability`` rows (the run's chunk path) equal ``synth design --capability`` for the same
+    applications (:func:`synth.optimise.honour.solve_honouring` with ``robust=``, ``explain=False`` as the bulk
+    row leaves out the search of the value that would allow a design): generated applications 1 and 2 (seed 0), one
+    through the robust search (1: a design meeting the target), one by the chunk-wide shortcut (2: no design under
+    the made joint), at 64 samples. The 50-row sample of 2,000: ``benchmarks/bench_bulk_capability.py``."""
+    from synth.optimise.honour import solve_honouring
+    from synth.robust.synthesis import robust_for
+    rs = RobustSettings(capability=1.33, samples=64)
+    apps = generate(3, seed=0)[1:]
+    settings = Settings(fidelity="full", capability=rs)
+    rows = compute_chunk([d.as_dict() for d in apps], settings=settings, diagnose=False)
+    searched = 0
+    for d, (_, row) in zip(apps, rows.iterrows()):
+        with np.errstate(all="ignore"):  # as the bulk row calls it
+            r = solve_honouring(d, "standard", "enumerate", settings=settings.replace(capability=None),
+                                explain=False, robust=robust_for(rs))
+        assert {k: row[f"part_{k}"] for k in PART_KEYS} == r.parts
+        assert row["verdict"] == r.verdict
+        found = bool(r.stats.get("robust_found"))
+        assert row["capability_verdict"] == ("PASS" if found else "FAIL")
+        if found:  # the row's figures are the design's capability
+            searched += 1
+            assert r.robust["meets"] and row["capability_min_ppk"] == r.robust["min_ppk"] >= 1.33
+        else:
+            assert row["capability_why"] == r.stats["robust_why"]
+    assert searched == 1

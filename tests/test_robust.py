@@ -367,3 +367,47 @@ def test_designs_evaluated_together_have_each_its_own_capability():
         alone = [capability(base_of_attributes(d, a, settings), rs, rare=False, details=False) for a in attrs]
     assert [c.to_dict() for c in together] == [c.to_dict() for c in alone]
     assert len({json.dumps(c.to_dict()["checks"], sort_keys=True) for c in alone}) > 1  # not one design thrice
+
+
+def test_the_samples_axial_group_runs_on_the_compiled_twin_with_the_reference_s_capability(monkeypatch):
+    """The production samples evaluate the axial group on the engine :func:`synth.kernels.engines.axial` chooses
+    for :data:`synth.robust.sampling.AXIAL_ENGINE` (the compiled wear; the made cone spring is the reference's
+    own), passed to :func:`synth.design.verify.evaluate_design` as an argument; ``Settings(engine="numpy")`` takes
+    the reference. On generated application 0 (seed 0: a damper pad, an end-cap spacer and a durability test, so
+    the samples' wear is computed) the capability is the same: every check's verdict, bound and contributors, its
+    figures within 1e-9 (the twin's wear agrees within :data:`synth.kernels.axial.RTOL`)."""
+    from synth.data.generated_applications import generate
+    from synth.kernels import axial as kernels
+    from synth.robust import sampling
+    assert sampling.AXIAL_ENGINE == "numba"
+    d = generate(1, seed=0)[0]
+    assert d.durability_duration_h > 0
+    parts = {"ball_bearing": "6007", "pivot_class_diameter_mm": 24.0, "pivot_bushing_supplier": "A",  # its optimum
+             "damper_pad_class": "DP2", "pivot_bushing_length_mm": 12.0, "endcap_spacer_class": "ES2",
+             "cone_spring_aspect_ratio": 0.94, "cone_spring_deflection_ratio": 0.6,
+             "cone_spring_external_diameter_mm": 30.0, "cone_spring_internal_diameter_mm": 24.4,
+             "main_spring_material": "OTEVA91SC", "main_spring_wire": "F2.30x2.30",
+             "main_spring_mean_body_diameter_mm": 54.0, "bolt_format": "M8x1.25", "bolt_head_type": "hex",
+             "bolt_property_class": "10.9", "bolt_washer": "none", "bolt_tightening": "torque_wrench_tested"}
+    seen = []
+    wear = kernels.plastic_wear
+
+    def spy(*args, engine="numpy", **kw):
+        seen.append(engine)
+        return wear(*args, engine=engine, **kw)
+    monkeypatch.setattr(kernels, "plastic_wear", spy)
+    rs = RobustSettings(samples=256)
+    full = Settings(fidelity="full")
+    twin = capability(base_of(d, parts, full), rs, details=False, rare=False)
+    assert seen and seen[-1] == "numba"  # the nominal base is the reference's, the samples the twin's
+    seen.clear()
+    ref = capability(base_of(d, parts, full.replace(engine="numpy")), rs, details=False, rare=False)
+    assert seen and set(seen) == {"numpy"}
+    assert [c.id for c in twin.checks] == [c.id for c in ref.checks] and twin.meets == ref.meets
+    assert any(c.id in ("damping_eol", "damper_pad_wear", "endcap_spacer_wear") for c in twin.checks)
+    for a, b in zip(twin.checks, ref.checks):
+        assert (a.method, a.bounded, a.failures, [q for q, _ in a.contributors]) == (b.method, b.bounded, b.failures,
+                                                                                     [q for q, _ in b.contributors]), a.id
+        for key in ("ppk", "p", "mean", "sd", "worst_case", "rss", "ppk_percentile", "ppk_moment"):
+            x, y = getattr(a, key), getattr(b, key)
+            assert x == pytest.approx(y, rel=1e-9, abs=1e-12) or (np.isnan(x) and np.isnan(y)), (a.id, key)

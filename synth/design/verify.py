@@ -37,14 +37,18 @@ __all__ = ["evaluate_design", "verify", "values_of", "inputs_of", "wire_size_mm"
 
 
 def evaluate_design(apps: Applications, attrs: dict, settings: evaluate.Settings = DEFAULT, *, detail: bool = True,
-                    time_points: int = 0, of=None) -> dict:
+                    time_points: int = 0, of=None, engine: str | None = None) -> dict:
     """Every group of N designs (``attrs``: N-row attribute dicts per table), design ``i`` for application ``i``
     of ``apps`` (one design: application 0), or for application ``of[i]`` when ``of`` is given. The one sequence
     of the evaluator's groups for given designs: the flowchart, :func:`verify`, the optimiser's winner, the
     platform's assignments and the bulk engine's verification call it.
 
     A given design is judged, never screened: at fidelity ``screening`` every group is evaluated at full fidelity
-    (:attr:`~synth.design.evaluate.Settings.judge`); only ``screening-only`` evaluates the screening model."""
+    (:attr:`~synth.design.evaluate.Settings.judge`); only ``screening-only`` evaluates the screening model.
+
+    ``engine``: the axial group's physics engine (:func:`synth.design.evaluate.axial`; None: the numpy reference),
+    chosen by a caller that evaluates many rows with :func:`synth.kernels.engines.axial` (the production samples of
+    :mod:`synth.robust.sampling`)."""
     settings = settings.judge
     n = len(next(iter(attrs["core"].values())))
     a = np.arange(n, dtype=np.int64) if of is None else np.asarray(of, dtype=np.int64)
@@ -53,7 +57,8 @@ def evaluate_design(apps: Applications, attrs: dict, settings: evaluate.Settings
     cg = evaluate.core(apps, a, attrs["core"], settings, detail=detail)
     groups["core"] = cg
     groups["bushing"] = evaluate.bushing(apps, cg, one, attrs["bushing"], settings)
-    groups["axial"] = evaluate.axial(apps, cg, one, attrs["axial"], settings, time_points=time_points)
+    groups["axial"] = evaluate.axial(apps, cg, one, attrs["axial"], settings, time_points=time_points,
+                                     engine=engine)
     groups["spring"] = evaluate.spring(apps, evaluate.spring_keys(cg, one), one, attrs["spring"], settings)
     groups["bolt"] = evaluate.bolt(apps, cg, one, attrs["bolt"], settings)
     return groups

@@ -13,7 +13,8 @@ fidelity; the twins 0.2-0.4 ms and 1 us (``benchmarks/bench_axial.py``).
 (:mod:`synth.kernels._axial_jit`: the reference's lines row by row, the wear root by scipy's compiled ``brentq``).
 The evaluator's axial group (:func:`synth.design.evaluate.axial`) passes the engine its caller names, an argument:
 the reference unless a caller that evaluates many rows chose the twin (:func:`synth.kernels.engines.axial`: the
-bulk engine's :class:`~synth.optimise.batch.Batch`, and the platform producer of ``synth rationalise``,
+bulk engine's :class:`~synth.optimise.batch.Batch`, the production samples of :mod:`synth.robust`,
+:data:`synth.robust.sampling.AXIAL_ENGINE`, and the platform producer of ``synth rationalise``,
 :data:`synth.platform.producer.AXIAL_ENGINE`: its option margins stand within
 :data:`synth.platform.producer.MARGIN_TOL` of the optimiser's, with the same feasible options,
 ``tests/test_platform_real.py``); the one-application path keeps the reference (it never imports numba). The twin hands the call back to the reference

@@ -203,13 +203,14 @@ def washer_dimensions(series, d_mm) -> dict:
         raise InputError(Problem("bolt_washer", series, "one of " + ", ".join(washer_series())))
     by_d = {float(r["d_mm"]): r for _, r in rows.iterrows()}
     out = {k: np.empty(d.shape) for k in ("d1_mm", "d2_mm", "h_mm")}
-    for i, di in enumerate(d):
+    for di in np.unique(d):  # per distinct diameter (a production sample's rows share a few)
         r = by_d.get(float(di))
         if r is None:
             raise InputError(Problem("bolt_washer", series, f"a series with a washer for M{di:g} "
                                      f"(catalogs/washers.csv has {', '.join(f'M{x:g}' for x in sorted(by_d))})"))
+        at = d == di
         for k in out:
-            out[k][i] = float(r[k])
+            out[k][at] = float(r[k])
     return out
 
 

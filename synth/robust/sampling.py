@@ -46,12 +46,18 @@ from synth.design.applications import Applications
 from synth.design.constraints import REGISTRY
 from synth.design.space import space
 from synth.design.verify import evaluate_design, parts_of_attributes
+from synth.kernels import engines
 from synth.model import torsion_spring
 from synth.robust.tolerances import DECLARED, Quantity, Scatter, resolve
 
-__all__ = ["Base", "Samples", "production", "base_of", "base_of_attributes", "bases_of_attributes", "take", "context", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
+__all__ = ["AXIAL_ENGINE", "Base", "Samples", "production", "base_of", "base_of_attributes", "bases_of_attributes", "take", "context", "perturb", "evaluate_deviations", "evaluate_u", "sobol_u", "HISTOGRAM_VALUES",
            "design_checks"]
 
+#: the axial group's engine of the samples (:func:`synth.kernels.engines.axial`; ``Settings(engine="numpy")``
+#: overrides it): N rows a call, so the compiled wear (:mod:`synth.kernels.axial`: within its ``RTOL`` of the
+#: reference; a made cone spring is the reference's own); every capability figure synth reports is the same with
+#: ``"numpy"`` (``benchmarks/bench_bulk_capability.py --engines``)
+AXIAL_ENGINE = "numba"
 #: the values a sample keeps besides the margins (the report's histograms): value key -> group
 HISTOGRAM_VALUES = {"damping_nm": "core", "hubload_nominal_n": "core", "spring_torque_nominal_nm": "core",
                     "damping_eol_nm": "axial", "cone_spring_fax_nominal_n": "axial",
@@ -339,7 +345,8 @@ def evaluate_deviations(base: Base, dev: dict, checks=None, rows=None) -> Sample
             idx = np.arange(len(apps), dtype=np.int64)
             groups = {"input": evaluate.inputs(apps, idx), "core": evaluate.core(apps, idx, attrs["core"], base.settings)}
         else:
-            groups = evaluate_design(apps, attrs, base.settings, detail=False)
+            groups = evaluate_design(apps, attrs, base.settings, detail=False,
+                                     engine=engines.axial(base.settings, AXIAL_ENGINE))
     margins = {}
     for cid in (base.checks if checks is None else checks):
         margins[cid] = np.asarray(groups[REGISTRY[cid].group].margins[cid], dtype=float)
