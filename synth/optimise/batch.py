@@ -64,6 +64,7 @@ from synth.design.constraints import by_group, physics_inputs
 from synth.design.space import (SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, priced_for, space, space_for,
                                 spring_window)
 from synth.optimise.objectives import FALLBACK_WEIGHTS, TIE, additive_goals, core_reads, weighted_sum, weighted_sum_around
+from synth.optimise import product
 from synth.optimise.product import DURABILITY_NOTE, core_scores, design_totals, option_scores
 from synth.errors import InputError
 from synth.kernels import engines, main_spring
@@ -248,6 +249,7 @@ class Batch:
         self.axial_engine = engines.axial(settings, spring_engine)
         self.score_engine = engines.preferred(settings, spring_engine)  # the spring lists' scores (no limits)
         self.sp = sp = _space_of(self.inputs, pin_inputs)
+        self.pin_inputs = pin_inputs
         self.apps = apps if apps is not None else Applications.of(self.inputs)
         n = len(self.inputs)
         per = [core_rows(sp, d) for d in self.inputs]
@@ -1099,24 +1101,19 @@ class Batch:
                 i = a_of[j]
                 if best[i] < 0 or val[j] > best_v[i] or (val[j] == best_v[i] and R[j] < R[best[i]]):
                     best_v[i], best[i] = val[j], j
-        # the winners' options exactly: the enumeration's argmax per subsystem
-        win = np.flatnonzero(best >= 0)
-        if not len(win):
-            return out
-        jw = best[win]
-        rows_w = R[jw]
-        # a key whose scan ended below its cap was scanned whole: its option is the argmax already
-        kw = kinv[jw]
-        ps = k_pk[kw]
-        redo = np.flatnonzero(~(k_val[kw] < k_cap[kw]))
-        if len(redo):
-            _, ps[redo] = self._spring_max({k: v[kw[redo]] for k, v in keys.items()})
-        _, pa = self._axial_max(rows_w)
-        pt = self._bolt_pick(rows_w)
-        for t, i in enumerate(win):
-            j = jw[t]
-            out[i] = (int(R[j]), {"bushing": int(pb[j]), "axial": int(pa[t]), "spring": int(ps[t]),
-                                  "bolt": int(pt[t])}, float(best_v[i]))
+        # the winners under the whole key (synth.design.combine.near_key): the cores whose bound reaches the largest
+        # smallest margin (within round-off of the compiled kernels) may tie there; their subsystems are evaluated
+        # by the enumeration's evaluator and the best design chosen from the options' near figures, exactly as
+        # the enumeration's nearest_design
+        for i in np.flatnonzero(best >= 0):
+            sel = a_of == i
+            tol = SLACK * max(1.0, abs(best_v[i]))
+            rows_i = np.sort(R[sel & (v1 >= best_v[i] - tol)]) - self.ptr[i]
+            ev = product.evaluate(self.inputs[i], self.settings, pin_inputs=self.pin_inputs, prune=False,
+                                  only=rows_i)
+            self.evaluations += ev.evaluations
+            pos, options, value = ev.nearest()
+            out[i] = (int(self.ptr[i] + pos), options, value)
         return out
 
     # ------------------------------------------------------------------------------------------- designs
