@@ -92,10 +92,11 @@ def near_figures(margins, failed=None):
     m = np.asarray(margins, dtype=float)
     one = m.ndim == 1
     m = np.atleast_2d(m)
-    a, b = np.full(len(m), np.inf), np.full(len(m), np.inf)
-    for col in m.T:
-        b = np.minimum(b, np.maximum(a, col))
-        a = np.minimum(a, col)
+    if m.shape[1] >= 2:
+        two = np.partition(m, 1, axis=1)
+        a, b = two[:, 0].copy(), two[:, 1].copy()
+    else:
+        a, b = (m[:, 0].copy() if m.shape[1] else np.full(len(m), np.inf)), np.full(len(m), np.inf)
     f = (~(m >= -FEAS_TOL)).sum(axis=1) if failed is None else np.asarray(failed)
     return (float(a[0]), float(b[0]), int(np.asarray(f).reshape(-1)[0])) if one else (a, b, f)
 

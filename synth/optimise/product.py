@@ -163,12 +163,13 @@ def subsystem(apps, sp: Space, cg: Group, pos, name: str, settings: Settings, sp
 
 
 def evaluate(d, settings: Settings = Settings(fidelity="full"), *, pin_inputs: bool = False,
-             prune: bool = True, subsystems: bool = True, only=None) -> Evaluation:
+             prune: bool = True, subsystems: bool = True, only=None, tables: dict | None = None) -> Evaluation:
     """Evaluate the design space of input ``d`` (see the module docstring).
 
     ``only``: the positions (in the application's cores) whose subsystems are evaluated (the bulk's nearest design:
     the cores that may tie on the smallest margin), each against the options it would meet without ``only`` (the
-    main springs searched span the housings of the cores ``prune`` keeps).
+    main springs searched span the housings of the cores ``prune`` keeps). ``tables``: subsystem -> its
+    :class:`SubTable` over ``pos`` computed elsewhere (the bulk's from its own kept values and compiled kernels).
 
     ``subsystems=False`` evaluates the inputs and the cores only (a black-box search evaluates its own
     proposals with :func:`subsystem`).
@@ -186,7 +187,10 @@ def evaluate(d, settings: Settings = Settings(fidelity="full"), *, pin_inputs: b
         subs = {}
         if subsystems:
             for s in SUBSYSTEMS:
-                subs[s], n = subsystem(apps, sp, cg, pos, s, settings, span=None if only is None else all_pos)
+                if tables and s in tables:
+                    subs[s], n = tables[s], 0
+                else:
+                    subs[s], n = subsystem(apps, sp, cg, pos, s, settings, span=None if only is None else all_pos)
                 counter[0] += n
             _judge_undecided(apps, sp, cg, pos, ok[pos], settings, subs)
     score_core = core_scores(sp, cores, cg.values)
