@@ -1114,18 +1114,20 @@ class Batch:
             tol = SLACK * max(1.0, abs(best_v[i]))
             rows_i = np.sort(R[sel & (val >= best_v[i] - tol)]) - self.ptr[i]
             ev = product.evaluate(self.inputs[i], self.settings, pin_inputs=self.pin_inputs, prune=False,
-                                  only=rows_i, tables=self._near_tables(i, self.ptr[i] + rows_i))
+                                  only=rows_i, tables=self._near_tables(i, self.ptr[i] + rows_i, best_v[i] - tol))
             self.evaluations += ev.evaluations
             pos, options, value = ev.nearest()
             out[i] = (int(self.ptr[i] + pos), options, value)
         return out
 
-    def _near_tables(self, i: int, rows) -> dict:
+    def _near_tables(self, i: int, rows, floor: float = -np.inf) -> dict:
         """The bolt's and the main spring's :class:`~synth.design.subsystems.SubTable` (with the near figures; the
         margin objective's column not computed) of core rows ``rows`` of application ``i``, from what the batch
         keeps (the bolt's step-10 checks per application, the pivot wall per core and diameter) and the compiled
         spring margins (:func:`synth.kernels.main_spring.margins`) of the rows' keys over the application's
-        springs: the figures the enumeration's evaluation gives, at a fraction of its cost."""
+        springs: the figures the enumeration's evaluation gives, at a fraction of its cost. A spring whose smallest
+        margin is below ``floor`` (the application's largest smallest margin) keeps only that margin (no design
+        under the key takes it)."""
         sp, nr = self.sp, len(rows)
         nb = sp.n("bolt")
         self._bolt_app([i], np.arange(nb))
@@ -1171,9 +1173,16 @@ class Batch:
                                     main_spring.options_of_space(sp.tables["spring"], lst), engine=self.engine,
                                     settings=self.settings)
             self.evaluations += m.shape[0] * m.shape[1]
-            k_fig = near_figures(m.reshape(-1, m.shape[2]))
+            m = m.reshape(-1, m.shape[2])
+            low = m.min(axis=1)
+            # a spring whose smallest margin is below the application's nearest design's cannot be in it
+            # (synth.design.combine.nearest_choice: not admissible): its other figures are not needed
+            reach = np.flatnonzero(low >= floor)
+            k_fig = [low, np.full(len(low), -np.inf), np.full(len(low), np.inf)]
+            for t, x in enumerate(near_figures(m[reach])):
+                k_fig[t][reach] = x
             for t, x in enumerate(k_fig):
-                fig[t][:, lst] = x.reshape(m.shape[:2])[inv]
+                fig[t][:, lst] = x.reshape(len(keys["app"]), len(lst))[inv]
         avail = np.zeros((len(inv), ns), dtype=bool)
         avail[:, lst] = True
         out["spring"] = SubTable(avail, avail & (fig[2] == 0), np.full((len(inv), ns), -np.inf), *fig)
