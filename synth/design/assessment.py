@@ -39,6 +39,7 @@ from functools import cached_property
 
 import numpy as np
 
+from synth.design.combine import near_figures
 from synth.design.constraints import FEAS_TOL, GROUPS, REGISTRY, version
 from synth.design.applications import DEFAULTS
 
@@ -248,6 +249,13 @@ class Assessment:
     def margin_min(self) -> np.ndarray:
         """``(n,)`` the smallest margin of the counted (non-advisory) checks."""
         return self._least(self._m[j] for j in self.columns.decisive)
+
+    @cached_property
+    def near(self) -> tuple:
+        """``((n,) smallest, (n,) second smallest, (n,) number failing)`` of the counted checks: the near figures
+        that rank nearest designs (:func:`synth.design.combine.near_figures`)."""
+        cols = [self._m[j] for j in self.columns.decisive]
+        return near_figures(np.stack(cols, axis=1) if cols else np.full((self.n, 0), np.inf))
 
     @cached_property
     def objective_margin(self) -> np.ndarray:

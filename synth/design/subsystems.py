@@ -53,6 +53,14 @@ class SubTable:
     feasible: np.ndarray
     margin: np.ndarray          # smallest margin counted in the margin objective (+inf: none counted)
     min_margin: np.ndarray      # smallest margin of every non-advisory constraint (the nearest design)
+    #: the second smallest margin and the number of failing checks of every non-advisory constraint (with
+    #: ``min_margin`` the option's near figures: :func:`synth.design.combine.near_figures`)
+    second: np.ndarray | None = None
+    fails: np.ndarray | None = None
+
+    def near(self) -> tuple:
+        """``(smallest, second, failing, available)``: what :func:`synth.design.combine.nearest_choice` reads."""
+        return self.min_margin, self.second, self.fails, self.available
 
 
 @dataclass(frozen=True)
@@ -63,8 +71,9 @@ class Subsystem:
     part_keys: tuple
     #: ``(core value, option column)`` pairs an available option matches; () : every option is available
     match: tuple
-    #: ``(apps, sp, cg, pos, settings, subsystem) -> (SubTable, evaluations)``: its group over the core rows ``pos``
-    #: of core group ``cg`` and every option of ``sp``'s table ``name``
+    #: ``(apps, sp, cg, pos, settings, subsystem, span=None) -> (SubTable, evaluations)``: its group over the core
+    #: rows ``pos`` of core group ``cg`` and every option of ``sp``'s table ``name`` (``span``: the core rows whose
+    #: housings bound the main springs searched, default ``pos``: a part of the cores keeps the whole's options)
     evaluate: Callable
     #: ``(apps, cg, core_rows, option_columns, settings) -> Group``: its group over (core row, option) pairs, for a
     #: family whose pairs are judged one by one (the bushing, the axial group): the scans of
@@ -89,9 +98,9 @@ class Subsystem:
         """``(len(pos), options)``: which options of ``sp``'s table core rows ``pos`` may take."""
         return self.allows(sp, core_values, np.asarray(pos)[:, None], np.arange(sp.n(self.name))[None, :])
 
-    def run(self, apps, sp, cg: Group, pos, settings) -> tuple[SubTable, int]:
+    def run(self, apps, sp, cg: Group, pos, settings, span=None) -> tuple[SubTable, int]:
         """Its :class:`SubTable` over ``(len(pos), options)`` and the number of pairs the evaluator computed."""
-        return self.evaluate(apps, sp, cg, pos, settings, self)
+        return self.evaluate(apps, sp, cg, pos, settings, self, span=span)
 
 
 def scatter(avail, i, k, g: Group) -> SubTable:
@@ -99,14 +108,15 @@ def scatter(avail, i, k, g: Group) -> SubTable:
     shape = avail.shape
     feas = np.zeros(shape, dtype=bool)
     marg = np.full(shape, -np.inf)
-    mmin = np.full(shape, -np.inf)
+    mmin, second, fails = np.full(shape, -np.inf), np.full(shape, -np.inf), np.zeros(shape)
     a = g.assessment()
     feas[i, k], marg[i, k] = a.ok, a.objective_margin
-    mmin[i, k] = (a if g.rank() is g else g.rank().assessment()).margin_min  # nearest: ranked by the search model
-    return SubTable(avail, feas & avail, marg, mmin)
+    # nearest: ranked by the search model
+    mmin[i, k], second[i, k], fails[i, k] = (a if g.rank() is g else g.rank().assessment()).near
+    return SubTable(avail, feas & avail, marg, mmin, second, fails)
 
 
-def pairs(apps, sp, cg, pos, settings, sub, group_fn=None) -> tuple[SubTable, int]:
+def pairs(apps, sp, cg, pos, settings, sub, group_fn=None, span=None) -> tuple[SubTable, int]:
     """The evaluation of a family judged pair by pair: its group (``group_fn``, else the declared one) over the
     available (core row, option) pairs, in one call."""
     avail = sub.available(sp, cg.values, pos)
@@ -118,12 +128,12 @@ def pairs(apps, sp, cg, pos, settings, sub, group_fn=None) -> tuple[SubTable, in
 def evaluate_axial(group_fn):
     """The axial group's evaluation with group function ``group_fn`` (the screened-then-judged search model, or the
     full model: :func:`synth.design.evaluate.axial_full`)."""
-    def run(apps, sp, cg, pos, settings, sub):
+    def run(apps, sp, cg, pos, settings, sub, span=None):
         return pairs(apps, sp, cg, pos, settings, sub, group_fn)
     return run
 
 
-def _bolt(apps, sp, cg, pos, settings, sub):
+def _bolt(apps, sp, cg, pos, settings, sub, span=None):
     nk = sp.n(sub.name)
     opts = sp.rows(sub.name, np.arange(nk))
     fix = fixation_values(apps, np.zeros(nk, dtype=np.int64), opts, settings)  # per bolt row: no core dependence
@@ -145,7 +155,7 @@ def spring_window(housing_inner_mm, housing_outer_mm):
     return np.floor(housing_inner_mm) - 1e-9, np.ceil(housing_outer_mm) + 1e-9
 
 
-def _spring(apps, sp, cg, pos, settings, sub):
+def _spring(apps, sp, cg, pos, settings, sub, span=None):
     nk = sp.n(sub.name)
     keys = spring_keys(cg, pos)  # the key: torque, housing height and diameters, and what else its checks read
     cols = [k for k in keys if k != "app"]
@@ -154,17 +164,18 @@ def _spring(apps, sp, cg, pos, settings, sub):
     inv = np.asarray(inv).reshape(-1)
     if not len(uniq):
         empty = np.zeros((0, nk), dtype=bool)
-        return SubTable(empty, empty, np.zeros((0, nk)), np.zeros((0, nk))), 0
+        return SubTable(empty, empty, *(np.zeros((0, nk)) for _ in range(4))), 0
     t = sp.tables[sub.name]
     mbd = t["main_spring_mean_body_diameter_mm"]
     ukeys = {"app": np.zeros(len(uniq), dtype=np.int64), **{k: uniq[:, j] for j, k in enumerate(cols)}}
-    lo, hi = spring_window(ukeys["spring_housing_inner_diameter_mm"].min(),
-                           ukeys["spring_housing_outer_diameter_mm"].max())
+    around = pos if span is None else span  # the cores whose housings bound the springs searched
+    lo, hi = spring_window(np.min(cg.values["spring_housing_inner_diameter_mm"][around]),
+                           np.max(cg.values["spring_housing_outer_diameter_mm"][around]))
     opts_idx = np.flatnonzero((mbd >= lo) & (mbd <= hi) | pinned_diameter(sp))
     shape = (len(uniq), nk)
     feas = np.zeros(shape, dtype=bool)
     marg = np.full(shape, -np.inf)
-    mmin = np.full(shape, -np.inf)
+    mmin, second, fails = np.full(shape, -np.inf), np.full(shape, -np.inf), np.zeros(shape)
     avail = np.zeros(shape, dtype=bool)
     avail[:, opts_idx] = True
     block = max(1, SPRING_BLOCK_PAIRS // max(len(uniq), 1))
@@ -174,9 +185,10 @@ def _spring(apps, sp, cg, pos, settings, sub):
         kk, oo = (x.ravel() for x in np.meshgrid(np.arange(len(uniq)), oi, indexing="ij"))
         g = spring(apps, ukeys, kk, {c: t[c][oo] for c in SPRING_OPTION_COLUMNS}, settings)
         a = g.assessment()
-        feas[kk, oo], marg[kk, oo], mmin[kk, oo] = a.ok, a.objective_margin, a.margin_min
+        feas[kk, oo], marg[kk, oo] = a.ok, a.objective_margin
+        mmin[kk, oo], second[kk, oo], fails[kk, oo] = a.near
         count += len(kk)
-    return SubTable(avail[inv], feas[inv], marg[inv], mmin[inv]), count
+    return SubTable(avail[inv], feas[inv], marg[inv], mmin[inv], second[inv], fails[inv]), count
 
 
 _DECLARED: dict = {}

@@ -20,15 +20,16 @@ by the objective's own key (:meth:`synth.optimise.objectives.Objective.key`), ti
 additive objectives and the margin alone the ranking is exact; a lexicographic or weighted mix of both is ranked
 within that pool.
 
-**Near misses.** An infeasible application has no alternative; its K nearest designs are ranked first the way the
-diagnosis finds its nearest design (:func:`synth.optimise.diagnose.nearest_design`): by the smallest margin of
-every counted check (:attr:`synth.design.assessment.Assessment.margin_min`, combined by the minimum over the core
-and subsystems), over every core, distinct as above. Many designs tie there (one check binds them all by the same
-amount: case 1's every bolt misses the under-head pressure by 35.2 %), so ties are ranked by the second smallest
-margin, then by the number of failing checks (:func:`near_key`), then as the pool found them (the diagnosis's
-nearest design first). The pool is :data:`NEAR_POOL` times K designs by the smallest margin (ties by the objective),
-each verified; the second-level rank is exact within that pool. The nearest design the diagnosis shows is ranked
-with the others and need not come first. Each comes with what binds and by how much, and every check it fails.
+**Near misses.** An infeasible application has no alternative; its K nearest designs are ranked by the one key of
+near designs (:func:`synth.design.combine.near_key`): the largest smallest margin of every counted check
+(:attr:`synth.design.assessment.Assessment.margin_min`), then the largest second smallest, then the fewest failing
+checks, then the catalog order, each design's figures joined from its core's and options'
+(:meth:`synth.optimise.product.Evaluation.near`), distinct as above. Many designs tie on the first (one check binds
+them all by the same amount: case 1's every bolt misses the under-head pressure by 35.2 %, 246 million designs tie
+there). The best under the whole key is the diagnosis's nearest design (:meth:`synth.optimise.product.Evaluation.nearest`,
+exact over the whole product), so it comes first for every K; the others are the best by the key of a pool of
+:data:`NEAR_POOL` times K designs by the smallest margin (ties by the objective): the key is exact within that pool.
+Each comes with what binds and by how much, and every check it fails.
 
 Every design listed is verified alone (:func:`synth.design.verify.verify`: the same checks and the same
 assessment as the optimum; its margin is the verified one), and the first is the design the solver returned.
@@ -45,7 +46,6 @@ assessment as the optimum; its margin is the verified one), and the first is the
 
 from __future__ import annotations
 
-import functools
 import heapq
 import itertools
 import math
@@ -53,21 +53,21 @@ import math
 import numpy as np
 
 from synth.design.space import PART_KEYS, PART_KEYS_BY_TABLE, SUBSYSTEMS
-from synth.design.combine import combine
+from synth.design.combine import combine, near_key
 from synth.optimise.solvers.enumerate import weights_vec
 from synth.design.evaluate import Settings
 from synth.errors import InputError, Problem
 from synth.optimise.product import evaluate
-from synth.optimise.objectives import FALLBACK_WEIGHTS, TIE, Objective
+from synth.optimise.objectives import FALLBACK_WEIGHTS, Objective
 from synth.optimise.answer import build_result, design_margin
 
-__all__ = ["ranked", "signature", "distinct_keys", "near_key", "MAX_TOP", "NEAR_POOL", "DISTINCT_KEYS", "DIMENSION_KEYS",
+__all__ = ["ranked", "signature", "distinct_keys", "MAX_TOP", "NEAR_POOL", "DISTINCT_KEYS", "DIMENSION_KEYS",
            "best_combinations"]
 
 #: the largest --top K (each alternative is verified alone)
 MAX_TOP = 50
 #: near misses: the pool of candidates verified is this many times K (at most :data:`MAX_TOP`), so that designs
-#: tying on the binding check can be ordered by the next one (:func:`near_key`)
+#: tying on the binding check can be ordered by the next one (:func:`synth.design.combine.near_key`)
 NEAR_POOL = 4
 #: part keys that are a dimension of a part, not another part: designs differing only in them are one alternative
 #: (the main spring's mean body diameter, its coil count following; the cone spring's variant, a point of the
@@ -191,8 +191,8 @@ def _differs(first: dict, parts: dict) -> dict:
 
 def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None, distinct=None) -> list:
     """The ``k`` best distinct designs of input ``d`` in objective order, the first being ``result`` (the
-    optimum), or for an infeasible ``result`` the ``k`` nearest distinct designs by the smallest margin, the first
-    being ``result`` (the nearest design), each ``{"rank", "kind", "parts", "objectives", "margin", "binding",
+    optimum), or for an infeasible ``result`` the ``k`` nearest distinct designs by the one key of near designs, the
+    first being ``result`` (the nearest design, the best under that key), each ``{"rank", "kind", "parts", "objectives", "margin", "binding",
     "binding_id", "failed", "verdict", "differs"}`` (``kind``: ``alternative`` or ``near miss``; ``margin``: the
     smallest margin, a fraction (an alternative: of the margin objective's checks, a near miss: of every counted
     check); ``binding``: the check that sets it; ``failed``: ``[{"id", "label", "margin"}]`` of the checks it
@@ -215,32 +215,47 @@ def ranked(d, result, k: int, *, settings=None, pin_inputs=False, objective=None
     near = not ev.any_feasible()
     codes = {s: _codes(ev.space, s, keys) for s in SUBSYSTEMS}
     # near misses tie on one binding check (every bolt of case 1 misses the under-head pressure by 35.2 %): a
-    # wider pool, each verified, gives the second-level rank (near_key) designs to order
+    # wider pool gives the one key of near designs (synth.design.combine.near_key) designs to order
     pool = _pool(ev, obj.additive_weights() or FALLBACK_WEIGHTS, min(NEAR_POOL * k, MAX_TOP) if near else k, keys,
                  codes, near=near)
+    if near:
+        return _near_misses(ev, pool, result, k, keys, obj)
     row_of = {int(p): r for r, p in enumerate(ev.rows)}
-    core_margin = ev.core_min_margin() if near else ev.core_margin()
+    core_margin = ev.core_margin()
     designs = []
     for idx in pool:
         pos, options = idx[0], dict(zip(SUBSYSTEMS, idx[1:]))
-        subs = [(ev.subs[s].min_margin if near else ev.subs[s].margin)[row_of[pos], o] for s, o in options.items()]
+        subs = [ev.subs[s].margin[row_of[pos], o] for s, o in options.items()]
         margin = combine(float(core_margin[pos]), [float(m) for m in subs])
-        values = ev.objective_values(pos, options, margin)
-        designs.append(((-margin,) + obj.key(values) if near else obj.key(values) + (-margin,), pos, options))
+        designs.append((obj.key(ev.objective_values(pos, options, margin)) + (-margin,), pos, options))
     designs.sort(key=lambda x: x[0])  # ties of the objective: the larger margin first
-    status = "near miss" if near else "alternative"
-    lead = near or not result.failed()  # the result leads the list (a failing result among feasible designs: not)
-    others = (build_result(ev, pos, options, status=status, solver=result.solver, objective=obj, stats={},
+    lead = not result.failed()  # the result leads the list (a failing result among feasible designs: not)
+    others = (build_result(ev, pos, options, status="alternative", solver=result.solver, objective=obj, stats={},
                            detail=False)
               for pos, options in _distinct(ev, designs, signature(result.parts, keys) if lead else None, keys))
-    if not near:
-        head = [_entry(1, result, result.parts, False)] if lead else []
-        return head + [_entry(len(head) + i + 1, r, result.parts, False)
-                       for i, r in enumerate(itertools.islice(others, k - len(head)))]
-    # near misses: every candidate verified, ranked by near_key (the result's own design first of full ties)
-    found = sorted(((near_key(r), i, r) for i, r in enumerate([result, *others])),
-                   key=functools.cmp_to_key(_nearer))
-    return [_entry(i + 1, r, result.parts, True) for i, (_, _, r) in enumerate(found[:k])]
+    head = [_entry(1, result, result.parts, False)] if lead else []
+    return head + [_entry(len(head) + i + 1, r, result.parts, False)
+                   for i, r in enumerate(itertools.islice(others, k - len(head)))]
+
+
+def _near_misses(ev, pool: set, result, k: int, keys: tuple, obj) -> list:
+    """The ``k`` nearest distinct designs of ``ev`` (every core evaluated) by the one key of near designs
+    (:func:`synth.design.combine.near_key` of :meth:`~synth.optimise.product.Evaluation.near`, the catalog order
+    last): the pool's and the nearest design (:meth:`~synth.optimise.product.Evaluation.nearest`, the best under
+    the key: first); the design of ``result`` (the diagnosis's) is ``result`` itself."""
+    pos, options, _ = ev.nearest()
+    cands = {(pos, *(options[s] for s in SUBSYSTEMS))} | set(pool)
+    row_of = {int(p): r for r, p in enumerate(ev.rows)}
+    designs = sorted((near_key(ev.near(idx[0], dict(zip(SUBSYSTEMS, idx[1:]))), (row_of[idx[0]], *idx[1:])),
+                      idx[0], dict(zip(SUBSYSTEMS, idx[1:]))) for idx in cands)
+    own = signature(result.parts, keys)
+    out = []
+    for pos, options in itertools.islice(_distinct(ev, designs, None, keys), k):
+        same = signature(ev.parts(pos, options), keys) == own
+        r = result if same else build_result(ev, pos, options, status="near miss", solver=result.solver,
+                                             objective=obj, stats={}, detail=False)
+        out.append(_entry(len(out) + 1, r, result.parts, True))
+    return out
 
 
 def _distinct(ev, designs: list, first: tuple, keys: tuple):
@@ -252,32 +267,6 @@ def _distinct(ev, designs: list, first: tuple, keys: tuple):
         if sig not in seen:
             seen.add(sig)
             yield pos, options
-
-
-def near_key(r) -> tuple:
-    """``(smallest margin, second smallest margin, number of failing checks)`` of a verified design, over every
-    counted check: what ranks the near misses. The nearest design has the largest smallest margin (the diagnosis's
-    rank, :func:`_near_margin`); of designs that tie there (the same check binds them by the same amount) the one
-    whose next-worst check is nearer its limit, then the one failing fewer checks, is the nearer: it needs fewer
-    and smaller changes."""
-    a = r.assessment()
-    m = np.sort(a.margins[0][a.counted[0]])
-    return _near_margin(r), float(m[1]) if len(m) > 1 else math.inf, int(a.failed[0].sum())
-
-
-def _tie(x: float, y: float) -> bool:
-    """Two margins equal within :data:`synth.optimise.objectives.TIE` (round-off of one value along two paths)."""
-    return x == y or (math.isfinite(x) and math.isfinite(y) and abs(x - y) <= TIE * max(1.0, abs(x), abs(y)))
-
-
-def _nearer(a: tuple, b: tuple) -> int:
-    """Order of two ``(near_key, index, result)``: the larger smallest margin, then the larger second smallest
-    (margins within :data:`TIE` tie), then fewer failing checks, then the earlier index."""
-    (a1, a2, an), (b1, b2, bn) = a[0], b[0]
-    for x, y in ((a1, b1), (a2, b2)):
-        if not _tie(x, y):
-            return -1 if x > y else 1
-    return (an > bn) - (an < bn) or (a[1] > b[1]) - (a[1] < b[1])
 
 
 def _near_margin(r) -> float:

@@ -64,12 +64,14 @@ from synth.design.constraints import by_group, physics_inputs
 from synth.design.space import (SUBSYSTEMS, core_rows, fixed_fields, pinned_diameter, priced_for, space, space_for,
                                 spring_window)
 from synth.optimise.objectives import FALLBACK_WEIGHTS, TIE, additive_goals, core_reads, weighted_sum, weighted_sum_around
+from synth.optimise import product
 from synth.optimise.product import DURABILITY_NOTE, core_scores, design_totals, option_scores
 from synth.errors import InputError
 from synth.kernels import engines, main_spring
 from synth import catalog
 from synth.design.verify import evaluate_design, parts_of_design
-from synth.design.subsystems import family
+from synth.design.subsystems import SubTable, family, scatter
+from synth.design.combine import join, near_figures
 
 __all__ = ["Batch", "wsum", "SLACK", "MARGIN_EPS", "any_feasible", "designs_pass", "robust"]
 
@@ -248,6 +250,7 @@ class Batch:
         self.axial_engine = engines.axial(settings, spring_engine)
         self.score_engine = engines.preferred(settings, spring_engine)  # the spring lists' scores (no limits)
         self.sp = sp = _space_of(self.inputs, pin_inputs)
+        self.pin_inputs = pin_inputs
         self.apps = apps if apps is not None else Applications.of(self.inputs)
         n = len(self.inputs)
         per = [core_rows(sp, d) for d in self.inputs]
@@ -334,6 +337,7 @@ class Batch:
         nb = sp.n("bolt")
         if self._fix is None:
             self._fix = (np.zeros((n, nb), dtype=bool), np.full((n, nb), -np.inf), np.zeros((n, nb), dtype=bool))
+            self._fix_near = (np.full((n, nb), -np.inf), np.zeros((n, nb)))
         ok, mn, done = self._fix
         which = np.asarray(which, dtype=np.int64)
         which = which[np.diff(self.ptr)[which] > 0]
@@ -350,6 +354,11 @@ class Batch:
             for cid in self._bolt_ids:
                 m = np.minimum(m, g.margins[cid])
             ok[a, b], mn[a, b], done[a, b] = passes(m), m, True
+            if self._bolt_ids:  # the second smallest and the failing count, for the nearest design's key
+                _, self._fix_near[0][a, b], self._fix_near[1][a, b] = near_figures(
+                    np.stack([g.margins[cid] for cid in self._bolt_ids], axis=1))
+            else:
+                self._fix_near[0][a, b] = np.inf
         return ok, mn
 
     def _wall(self, rows):
@@ -1069,15 +1078,12 @@ class Batch:
         pos = seg.copy()
         block = 1
 
-        def could_win_value(v, j):  # a row whose value (so far) can still win or win a tie
-            i = a_of[j]
-            bj = np.maximum(best[i], 0)
-            return (best[i] < 0) | (v > best_v[i]) | ((v == best_v[i]) & (R[j] < R[bj]))
+        def could_win_value(v, j):  # a row whose value (so far) can still reach the best (within round-off): the
+            i = a_of[j]               # ties on the smallest margin go on to the whole key
+            return (best[i] < 0) | (v >= best_v[i] - SLACK * np.maximum(1.0, np.abs(best_v[i])))
 
-        def could_win(j):  # rows sorted by (-v1, row): a row can still win or win a tie
-            i = a_of[j]
-            bj = np.maximum(best[i], 0)
-            return (best[i] < 0) | (v1[j] > best_v[i]) | ((v1[j] == best_v[i]) & (R[j] < R[bj]))
+        def could_win(j):  # rows sorted by (-v1, row): a row can still reach the best
+            return could_win_value(v1[j], j)
 
         for take in _rounds(pos, seg_end, block, could_win):
             kt_all = kinv[take]
@@ -1099,24 +1105,87 @@ class Batch:
                 i = a_of[j]
                 if best[i] < 0 or val[j] > best_v[i] or (val[j] == best_v[i] and R[j] < R[best[i]]):
                     best_v[i], best[i] = val[j], j
-        # the winners' options exactly: the enumeration's argmax per subsystem
-        win = np.flatnonzero(best >= 0)
-        if not len(win):
-            return out
-        jw = best[win]
-        rows_w = R[jw]
-        # a key whose scan ended below its cap was scanned whole: its option is the argmax already
-        kw = kinv[jw]
-        ps = k_pk[kw]
-        redo = np.flatnonzero(~(k_val[kw] < k_cap[kw]))
-        if len(redo):
-            _, ps[redo] = self._spring_max({k: v[kw[redo]] for k, v in keys.items()})
-        _, pa = self._axial_max(rows_w)
-        pt = self._bolt_pick(rows_w)
-        for t, i in enumerate(win):
-            j = jw[t]
-            out[i] = (int(R[j]), {"bushing": int(pb[j]), "axial": int(pa[t]), "spring": int(ps[t]),
-                                  "bolt": int(pt[t])}, float(best_v[i]))
+        # the winners under the whole key (synth.design.combine.near_key): the cores whose smallest margin reaches
+        # the largest (within round-off of the compiled kernels) tie there; their subsystems' near figures (the
+        # bolt's and the spring's from the batch, the others by the enumeration's evaluator) choose the best
+        # design exactly as the enumeration's nearest design (synth.optimise.product.Evaluation.nearest)
+        for i in np.flatnonzero(best >= 0):
+            sel = a_of == i
+            tol = SLACK * max(1.0, abs(best_v[i]))
+            rows_i = np.sort(R[sel & (val >= best_v[i] - tol)]) - self.ptr[i]
+            ev = product.evaluate(self.inputs[i], self.settings, pin_inputs=self.pin_inputs, prune=False,
+                                  only=rows_i, tables=self._near_tables(i, self.ptr[i] + rows_i, best_v[i] - tol))
+            self.evaluations += ev.evaluations
+            pos, options, value = ev.nearest()
+            out[i] = (int(self.ptr[i] + pos), options, value)
+        return out
+
+    def _near_tables(self, i: int, rows, floor: float = -np.inf) -> dict:
+        """The bolt's and the main spring's :class:`~synth.design.subsystems.SubTable` (with the near figures; the
+        margin objective's column not computed) of core rows ``rows`` of application ``i``, from what the batch
+        keeps (the bolt's step-10 checks per application, the pivot wall per core and diameter) and the compiled
+        spring margins (:func:`synth.kernels.main_spring.margins`) of the rows' keys over the application's
+        springs: the figures the enumeration's evaluation gives, at a fraction of its cost. A spring whose smallest
+        margin is below ``floor`` (the application's largest smallest margin) keeps only that margin (no design
+        under the key takes it)."""
+        sp, nr = self.sp, len(rows)
+        nb = sp.n("bolt")
+        self._bolt_app([i], np.arange(nb))
+        app = (self._fix[1][i], self._fix_near[0][i], self._fix_near[1][i])
+        wall, code = self._wall(rows)
+        if self._bolt_core_ids:
+            with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+                g = evaluate.bolt_core(self.apps, np.broadcast_to(self.A[rows][:, None], wall.shape),
+                                       {k: self.cg.values[k][rows][:, None]
+                                        for k in evaluate.core_values("bolt", self.cg.values)},
+                                       {k: v[None, :] for k, v in self._wall_d[0].items()}, self.settings)
+            w = near_figures(np.stack([g.margins[c].reshape(-1) for c in self._bolt_core_ids], axis=1))
+            w = tuple(x.reshape(wall.shape)[:, code] for x in w)
+        else:
+            w = (np.full((nr, nb), np.inf), np.full((nr, nb), np.inf), np.zeros((nr, nb)))
+        a, b, f = join(tuple(np.broadcast_to(x[None, :], (nr, nb)) for x in app), w)
+        every = np.ones((nr, nb), dtype=bool)
+        out = {"bolt": SubTable(every, f == 0, np.full((nr, nb), -np.inf), a, b, f)}
+        for fam in (family(name) for name in SUBSYSTEMS):  # the families judged pair by pair: once per distinct
+            if fam.group is None:                           # (application, what the family reads of the core)
+                continue
+            first, inv_f = _unique_rows(self.A[rows], *(self.cg.values[k][rows] for k, _ in fam.match),
+                                        *(self.cg.values[k][rows] for k in fam.core_reads(self.cg.values)))
+            rep = rows[first]
+            avail = fam.available(sp, self.cg.values, rep)
+            ri, oi = np.nonzero(avail)
+            if fam.name == "axial":  # the search model on the batch's axial engine (its twins), as the scans
+                g = self._axial_eval(rep[ri], oi)
+            else:
+                with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+                    g = fam.group(self.apps, self.cg, rep[ri], sp.rows(fam.name, oi), self.settings)
+                self.evaluations += len(ri)
+            out[fam.name] = scatter(avail, ri, oi, g)
+            out[fam.name] = SubTable(*(getattr(out[fam.name], k)[inv_f] for k in ("available", "feasible", "margin",
+                                                                                  "min_margin", "second", "fails")))
+        keys, inv = self._spring_keys(rows)
+        rng, lists = self._ranges()
+        lst = lists[rng[i]]
+        ns = sp.n("spring")
+        fig = [np.full((len(inv), ns), -np.inf), np.full((len(inv), ns), -np.inf), np.zeros((len(inv), ns))]
+        if len(lst):
+            m = main_spring.margins(main_spring.keys_of_rows(self.apps, keys),
+                                    main_spring.options_of_space(sp.tables["spring"], lst), engine=self.engine,
+                                    settings=self.settings)
+            self.evaluations += m.shape[0] * m.shape[1]
+            m = m.reshape(-1, m.shape[2])
+            low = m.min(axis=1)
+            # a spring whose smallest margin is below the application's nearest design's cannot be in it
+            # (synth.design.combine.nearest_choice: not admissible): its other figures are not needed
+            reach = np.flatnonzero(low >= floor)
+            k_fig = [low, np.full(len(low), -np.inf), np.full(len(low), np.inf)]
+            for t, x in enumerate(near_figures(m[reach])):
+                k_fig[t][reach] = x
+            for t, x in enumerate(k_fig):
+                fig[t][:, lst] = x.reshape(len(keys["app"]), len(lst))[inv]
+        avail = np.zeros((len(inv), ns), dtype=bool)
+        avail[:, lst] = True
+        out["spring"] = SubTable(avail, avail & (fig[2] == 0), np.full((len(inv), ns), -np.inf), *fig)
         return out
 
     # ------------------------------------------------------------------------------------------- designs

@@ -29,8 +29,7 @@ import numpy as np
 
 from synth.design import constraints
 from synth.design.evaluate import DEFAULT, Settings
-from synth.design.combine import combine
-from synth.design.space import SUBSYSTEMS, space
+from synth.design.space import space
 from synth.errors import InputError, Problem
 from synth.optimise.product import evaluate
 from synth.schema import FIELDS, field_by_name, consistency
@@ -77,17 +76,9 @@ def is_feasible(d, settings: Settings = DEFAULT, *, pin_inputs: bool = False) ->
 
 
 def nearest_design(ev):
-    """``(core position, options, min_margin)`` of the design with the largest smallest margin (all constraints)."""
-    core_m = np.where(np.ones(len(ev.cores), bool), ev.core_min_margin(), -np.inf)[ev.rows]
-    best_k, best_m = {}, []
-    for s in SUBSYSTEMS:
-        sub = ev.subs[s]
-        m = np.where(sub.available, sub.min_margin, -np.inf)
-        best_k[s] = np.argmax(m, axis=1)
-        best_m.append(m[np.arange(len(m)), best_k[s]])
-    design_m = combine(core_m, best_m)
-    r = int(np.argmax(design_m))
-    return int(ev.rows[r]), {s: int(best_k[s][r]) for s in SUBSYSTEMS}, float(design_m[r])
+    """``(core position, options, min_margin)`` of the nearest design of evaluation ``ev`` (every core evaluated):
+    the best under the one key of near designs (:meth:`synth.optimise.product.Evaluation.nearest`)."""
+    return ev.nearest()
 
 
 def reference_probe(pin_inputs: bool = False):

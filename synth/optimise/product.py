@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from synth.design.combine import best_row, join, nearest_choice
 from synth.design.evaluate import DEFAULT, Group, Settings, axial_full, core, inputs
 from synth.design.applications import Applications
 from synth.design.space import SUBSYSTEMS, Space, core_rows, space, space_for
@@ -77,6 +78,31 @@ class Evaluation:
         """Smallest margin of every constraint of the core and of the inputs (the nearest design)."""
         return np.minimum(self.core.min_margin(objective_only=False), float(self.input.min_margin(False)[0]))
 
+    def core_near(self) -> tuple:
+        """``(len(cores),)`` near figures of every core with the input-only checks
+        (:func:`synth.design.combine.join` of the core's and the inputs')."""
+        return join(self.core.assessment().near, tuple(np.broadcast_to(x[0], (len(self.cores),))
+                                                       for x in self.input.assessment().near))
+
+    def near(self, pos: int, options: dict) -> tuple:
+        """The near figures of the design of core position ``pos`` and option rows ``options`` (the one key's:
+        :func:`synth.design.combine.near_key`)."""
+        r = int(np.flatnonzero(self.rows == pos)[0])
+        core = tuple(x[pos] for x in self.core_near())
+        return join(core, *((t.min_margin[r, o], t.second[r, o], t.fails[r, o])
+                            for t, o in ((self.subs[s], options[s]) for s in SUBSYSTEMS)))
+
+    def nearest(self) -> tuple:
+        """``(core position, options, smallest margin)`` of the nearest design over the evaluated cores: the best
+        under the one key of near designs (:func:`synth.design.combine.near_key`: the largest smallest margin of
+        every counted check, then the largest second smallest, then the fewest failing checks, then the catalog
+        order), exact over the product without enumerating it (:func:`synth.design.combine.nearest_choice` per
+        core, :func:`~synth.design.combine.best_row` over them)."""
+        core = tuple(x[self.rows] for x in self.core_near())
+        figures, picks = nearest_choice(core, [self.subs[s].near() for s in SUBSYSTEMS])
+        r = best_row(figures)
+        return int(self.rows[r]), {s: int(p[r]) for s, p in zip(SUBSYSTEMS, picks)}, float(figures[0][r])
+
     def parts(self, pos: int, options: dict) -> dict:
         """The part keys of core position ``pos`` (in ``cores``) and option rows ``options``."""
         return parts_of_design(self.space, self.cores[pos], options, self.core.values, pos)
@@ -125,7 +151,7 @@ def _judge_undecided(apps, sp, cg, pos, core_ok, settings, subs: dict) -> None:
         subs["axial"] = evaluate_axial(axial_full)(apps, sp, cg, pos, settings, family("axial"))[0]
 
 
-def subsystem(apps, sp: Space, cg: Group, pos, name: str, settings: Settings) -> tuple[SubTable, int]:
+def subsystem(apps, sp: Space, cg: Group, pos, name: str, settings: Settings, span=None) -> tuple[SubTable, int]:
     """Subsystem ``name`` of the core rows ``pos`` of core group ``cg`` against every option of ``sp``'s table
     ``name`` (the design space's, or any table of option columns: a black-box search's proposals), by its declaration
     (:mod:`synth.design.subsystems`).
@@ -133,12 +159,17 @@ def subsystem(apps, sp: Space, cg: Group, pos, name: str, settings: Settings) ->
     Returns the :class:`SubTable` over ``(len(pos), options)`` and the number of (row, option) pairs the
     evaluator computed (main springs: per distinct key, within the housings' mean-diameter window).
     """
-    return family(name).run(apps, sp, cg, pos, settings)
+    return family(name).run(apps, sp, cg, pos, settings, span=span)
 
 
 def evaluate(d, settings: Settings = Settings(fidelity="full"), *, pin_inputs: bool = False,
-             prune: bool = True, subsystems: bool = True) -> Evaluation:
+             prune: bool = True, subsystems: bool = True, only=None, tables: dict | None = None) -> Evaluation:
     """Evaluate the design space of input ``d`` (see the module docstring).
+
+    ``only``: the positions (in the application's cores) whose subsystems are evaluated (the bulk's nearest design:
+    the cores that may tie on the smallest margin), each against the options it would meet without ``only`` (the
+    main springs searched span the housings of the cores ``prune`` keeps). ``tables``: subsystem -> its
+    :class:`SubTable` over ``pos`` computed elsewhere (the bulk's from its own kept values and compiled kernels).
 
     ``subsystems=False`` evaluates the inputs and the cores only (a black-box search evaluates its own
     proposals with :func:`subsystem`).
@@ -150,12 +181,16 @@ def evaluate(d, settings: Settings = Settings(fidelity="full"), *, pin_inputs: b
         ig = inputs(apps, np.zeros(1, dtype=np.int64), settings)
         cg = core(apps, np.zeros(len(cores), dtype=np.int64), sp.rows("core", cores), settings)
         ok = cg.ok() & bool(ig.ok()[0])
-        pos = np.flatnonzero(ok) if prune else np.arange(len(cores))
+        all_pos = np.flatnonzero(ok) if prune else np.arange(len(cores))
+        pos = all_pos if only is None else np.asarray(only, dtype=np.int64)
         counter = [len(cores)]
         subs = {}
         if subsystems:
             for s in SUBSYSTEMS:
-                subs[s], n = subsystem(apps, sp, cg, pos, s, settings)
+                if tables and s in tables:
+                    subs[s], n = tables[s], 0
+                else:
+                    subs[s], n = subsystem(apps, sp, cg, pos, s, settings, span=None if only is None else all_pos)
                 counter[0] += n
             _judge_undecided(apps, sp, cg, pos, ok[pos], settings, subs)
     score_core = core_scores(sp, cores, cg.values)

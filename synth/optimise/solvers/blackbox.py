@@ -238,8 +238,8 @@ class Search:
                                    self.ev.settings)
         n, k = len(self.ev.cores), len(next(iter(cols.values())))
         full = SubTable(np.zeros((n, k), dtype=bool), np.zeros((n, k), dtype=bool), np.full((n, k), -np.inf),
-                        np.full((n, k), -np.inf))
-        for f in ("available", "feasible", "margin", "min_margin"):
+                        np.full((n, k), -np.inf), np.full((n, k), -np.inf), np.zeros((n, k)))
+        for f in ("available", "feasible", "margin", "min_margin", "second", "fails"):
             getattr(full, f)[rows] = getattr(sub, f)
         best = np.where(sub.available, sub.min_margin, -np.inf).max(axis=1, initial=-np.inf)
         self.reach[s][rows] = np.maximum(self.reach[s][rows], best)
@@ -264,7 +264,7 @@ class Search:
             for s in SUBSYSTEMS:
                 tables[s] = {c: np.concatenate([b[c] for b in self.cols[s]]) for c in self.cols[s][0]}
                 subs[s] = SubTable(*(np.concatenate([getattr(b, f) for b in self.subs[s]], axis=1)
-                                     for f in ("available", "feasible", "margin", "min_margin")))
+                                     for f in ("available", "feasible", "margin", "min_margin", "second", "fails")))
             sp = Space(tables, ev.space.parts, list(ev.space.notes))
             self._archive = Evaluation(ev.inputs, ev.apps, sp, ev.settings, ev.cores, ev.input, ev.core,
                                        np.arange(len(ev.cores)), subs, ev.score_core,
