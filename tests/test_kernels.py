@@ -296,6 +296,23 @@ def test_max_min_margin_with_a_cap_is_exact_below_it(scan_case, engine):
     assert (mins[np.arange(len(keys)), r.index] == r.value).all()
 
 
+@pytest.mark.parametrize("engine", ["numba", "numpy"])
+def test_margins_above_a_floor_are_the_tables_where_they_reach_it(scan_case, engine):
+    # the bulk's nearest design reads the springs that reach its smallest margin: those pairs' margins exactly as
+    # the whole table, every other pair known to be below the floor; the compiled engine skips most pairs' physics
+    keys, opts, _, _, _ = scan_case
+    table = main_spring.margins(keys, opts, engine=engine)
+    low_all = table.min(axis=2)
+    floor = float(np.quantile(low_all[np.isfinite(low_all)], 0.9))
+    low, out = main_spring.margins_above(keys, opts, floor, engine=engine)
+    reach = low_all >= floor
+    assert 0 < reach.sum() < reach.size
+    assert np.array_equal(low >= floor, reach)
+    assert np.array_equal(low[reach], low_all[reach]) and np.array_equal(out[reach], table[reach])
+    low, out = main_spring.margins_above(keys, opts, -np.inf, engine=engine)  # no floor: the whole table
+    assert np.array_equal(low, low_all) and np.array_equal(out, table)
+
+
 def test_max_min_margin_ties_at_the_section_margin_go_to_the_lowest_index(space_springs, realistic):
     # every supplied option's smallest margin is at most 0 (spring_material_section = 0): the feasible ones tie at
     # 0 and argmax (the reference's nearest design) takes the first; the kernel too

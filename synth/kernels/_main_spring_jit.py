@@ -338,6 +338,26 @@ def margins_table(keys, opts, cst, out):
         _margins_row(keys, i, opts, cst, out)
 
 
+@njit(cache=True, error_model="numpy")
+def margins_table_above(keys, opts, cst, floor, out, low):
+    """(a) where a pair may reach ``floor``: ``low[i, j]`` the smallest margin of key ``i`` x option ``j`` and
+    ``out[i, j, :]`` its eight margins (as :func:`margins_table`), unless its yield margin or its option-only
+    bound (index, section) is below ``floor``: then ``low[i, j]`` is that one (an upper bound of the smallest
+    margin, below ``floor``) and ``out[i, j, :]`` is not written."""
+    for i in range(keys.shape[0]):
+        for j in range(opts.shape[0]):
+            m = min(_reg(_yield_margin(keys, i, opts, j)), opts[j, O_UB])
+            if m < floor:
+                low[i, j] = m
+                continue
+            row = out[i, j]
+            _pair_margins(keys, i, opts, j, cst, row)
+            v = row[0]
+            for c in range(1, N_MARGINS):
+                v = min(v, row[c])
+            low[i, j] = v
+
+
 @njit(cache=True, error_model="numpy", parallel=True)
 def margins_table_parallel(keys, opts, cst, out):
     """:func:`margins_table` with the keys shared among numba's threads."""

@@ -23,7 +23,8 @@ from synth.design.space import space
 
 __all__ = ["MARGIN_NAMES", "checks", "compiled_covers", "ENGINES", "OPTION_FIELDS", "load_kernels", "numba_loaded",
            "SpringOptions", "SpringKeys", "spring_options", "options_of_space", "spring_keys", "keys_of_rows",
-           "kernel_tables", "check_engine", "same_constants", "reference_margins", "margins", "pair_margins"]
+           "kernel_tables", "check_engine", "same_constants", "reference_margins", "margins", "margins_above",
+           "pair_margins"]
 
 #: the margins the compiled kernels compute, in their layout: the registry's non-advisory spring constraints of
 #: step 9 as declared (a check added later with ``register`` is not among them: see :func:`checks`)
@@ -383,6 +384,24 @@ def margins(keys: SpringKeys, options: SpringOptions, *, engine: str = "numba", 
         raise InputError(Problem("out", f"{out.dtype} array of shape {out.shape}", f"a C-ordered float64 array {shape}"))
     (jit.margins_table_parallel if parallel else jit.margins_table)(kt, ot, c, out)
     return out
+
+
+def margins_above(keys: SpringKeys, options: SpringOptions, floor: float, *, engine: str = "numba",
+                  settings: Settings = DEFAULT) -> tuple:
+    """``(low, out)``: :func:`margins` where a pair may reach ``floor``. ``low[i, j]``: the smallest margin of key
+    ``i`` x option ``j`` where it is at least ``floor``, else a number below ``floor``; ``out[i, j, :]``: the
+    margins of the pairs whose ``low`` is at least ``floor`` (the others' rows undefined). The compiled engine
+    skips a pair whose yield margin or option-only bound is below ``floor`` (the same doubles as the table's)."""
+    engine = check_engine(engine, settings)
+    if engine == "numpy":
+        out = margins(keys, options, engine=engine, settings=settings)
+        return (out.min(axis=2) if out.shape[2] else np.full(out.shape[:2], np.inf)), out
+    same_constants(keys, options)
+    jit, kt, ot, c = kernel_tables(keys, options)
+    out = np.empty((len(keys), len(options), jit.N_MARGINS))
+    low = np.empty((len(keys), len(options)))
+    jit.margins_table_above(kt, ot, c, float(floor), out, low)
+    return low, out
 
 
 def pair_margins(keys: SpringKeys, options: SpringOptions, key_idx, option_idx, *, engine: str = "numba",

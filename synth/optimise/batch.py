@@ -1113,21 +1113,24 @@ class Batch:
             sel = a_of == i
             tol = SLACK * max(1.0, abs(best_v[i]))
             rows_i = np.sort(R[sel & (val >= best_v[i] - tol)]) - self.ptr[i]
+            tables, cols = self._near_tables(i, self.ptr[i] + rows_i, best_v[i] - tol)
             ev = product.evaluate(self.inputs[i], self.settings, pin_inputs=self.pin_inputs, prune=False,
-                                  only=rows_i, tables=self._near_tables(i, self.ptr[i] + rows_i, best_v[i] - tol))
+                                  only=rows_i, tables=tables)
             self.evaluations += ev.evaluations
             pos, options, value = ev.nearest()
+            options["spring"] = int(cols[options["spring"]])  # the spring table's columns are springs ``cols``
             out[i] = (int(self.ptr[i] + pos), options, value)
         return out
 
-    def _near_tables(self, i: int, rows, floor: float = -np.inf) -> dict:
+    def _near_tables(self, i: int, rows, floor: float = -np.inf) -> tuple:
         """The bolt's and the main spring's :class:`~synth.design.subsystems.SubTable` (with the near figures; the
         margin objective's column not computed) of core rows ``rows`` of application ``i``, from what the batch
         keeps (the bolt's step-10 checks per application, the pivot wall per core and diameter) and the compiled
         spring margins (:func:`synth.kernels.main_spring.margins`) of the rows' keys over the application's
         springs: the figures the enumeration's evaluation gives, at a fraction of its cost. A spring whose smallest
         margin is below ``floor`` (the application's largest smallest margin) keeps only that margin (no design
-        under the key takes it)."""
+        under the key takes it). Returns ``(tables, columns)``: the spring table's columns are the springs
+        ``columns`` (:meth:`_near_springs`: those a nearest design may take), the others' the whole tables'."""
         sp, nr = self.sp, len(rows)
         nb = sp.n("bolt")
         self._bolt_app([i], np.arange(nb))
@@ -1165,28 +1168,69 @@ class Batch:
                                                                                   "min_margin", "second", "fails")))
         keys, inv = self._spring_keys(rows)
         rng, lists = self._ranges()
-        lst = lists[rng[i]]
-        ns = sp.n("spring")
-        fig = [np.full((len(inv), ns), -np.inf), np.full((len(inv), ns), -np.inf), np.zeros((len(inv), ns))]
+        k_fig, cols, avail = self._near_springs(i, keys, rng[i], floor)
+        fig = [x.reshape(len(keys["app"]), len(cols))[inv] for x in k_fig]
+        avail = np.broadcast_to(avail, (len(inv), len(cols)))
+        out["spring"] = SubTable(avail, avail & (fig[2] == 0), np.full((len(inv), len(cols)), -np.inf), *fig)
+        return out, cols
+
+    def _near_springs(self, i: int, keys, group: int, floor: float):
+        """The near figures of application ``i``'s spring ``keys`` over the springs of its range ``lst`` (range
+        ``group`` of :meth:`_ranges`) that a
+        nearest design may take: ``(figures per key x column (flattened), columns (spring rows, increasing),
+        available per column)``. The enumeration's table has every spring as a column, available on ``lst``;
+        here the columns are the springs whose smallest margin reaches ``floor`` for some key (every spring of
+        ``lst`` when a key has none), and spring 0 (unavailable unless it is one of them: the option a row
+        without any design gets).
+
+        Why the springs left out change no choice of :func:`synth.design.combine.nearest_choice` (the whole key
+        and the options it picks), given that each key has a spring reaching ``floor``: a spring below ``floor``
+        (for every key) has the near figures ``(smallest, -inf, inf)`` in the table (its second and failing
+        count are not computed). It is never a key's best smallest (a reaching spring is above it); it is
+        admissible only for a core whose smallest ``m1`` is below ``floor``, and there its second (-inf) never
+        raises the best second (a reaching spring's is at least ``floor``) and its failing count (inf) never is
+        the fewest (a reaching spring's is finite), and a pick among infinite counts is discarded (option 0
+        where no count is finite: column 0). The same holds of a pair below ``floor`` within a kept column, so
+        such a pair's smallest margin need only be known to be below ``floor``
+        (:func:`synth.kernels.main_spring.margins_above`: its yield margin or its option-only bound)."""
+        nk = len(keys["app"])
+        lst = np.asarray(self._ranges()[1][group], dtype=np.int64)
+        kk = main_spring.keys_of_rows(self.apps, keys) if len(lst) else None
+        memo = ("near springs", group)  # the range's options, shared by its applications
+        if memo not in self._memo:
+            self._memo[memo] = self._options().take(lst)
+        opts = self._memo[memo]
         if len(lst):
-            m = main_spring.margins(main_spring.keys_of_rows(self.apps, keys),
-                                    main_spring.options_of_space(sp.tables["spring"], lst), engine=self.engine,
-                                    settings=self.settings)
-            self.evaluations += m.shape[0] * m.shape[1]
-            m = m.reshape(-1, m.shape[2])
-            low = m.min(axis=1)
+            low, m = main_spring.margins_above(kk, opts, floor, engine=self.engine, settings=self.settings)
+        else:
+            low, m = np.zeros((nk, 0)), np.zeros((nk, 0, 0))
+        self.evaluations += low.size
+        reach = low >= floor
+        if reach.any(axis=1).all():
+            keep = reach.any(axis=0)
+        else:  # a key without a reaching spring: every spring, each with its smallest margin (as the table)
+            keep = np.ones(len(lst), dtype=bool)
+            if len(lst):
+                m = main_spring.margins(kk, opts, engine=self.engine, settings=self.settings)
+                low = np.full(m.shape[:2], np.inf)
+                for c in range(m.shape[2]):  # a strided minimum per check: faster than a reduction over the last axis
+                    np.minimum(low, m[:, :, c], out=low)
+        kept = lst[keep]
+        cols = kept if len(kept) and kept[0] == 0 else np.r_[0, kept].astype(np.int64)
+        at = np.searchsorted(cols, kept)
+        fig = [np.full((nk, len(cols)), -np.inf), np.full((nk, len(cols)), -np.inf), np.full((nk, len(cols)), np.inf)]
+        if len(kept):
+            fig[0][:, at] = low[:, keep]
             # a spring whose smallest margin is below the application's nearest design's cannot be in it
             # (synth.design.combine.nearest_choice: not admissible): its other figures are not needed
-            reach = np.flatnonzero(low >= floor)
-            k_fig = [low, np.full(len(low), -np.inf), np.full(len(low), np.inf)]
-            for t, x in enumerate(near_figures(m[reach])):
-                k_fig[t][reach] = x
-            for t, x in enumerate(k_fig):
-                fig[t][:, lst] = x.reshape(len(keys["app"]), len(lst))[inv]
-        avail = np.zeros((len(inv), ns), dtype=bool)
-        avail[:, lst] = True
-        out["spring"] = SubTable(avail, avail & (fig[2] == 0), np.full((len(inv), ns), -np.inf), *fig)
-        return out
+            ki, ci = np.nonzero(reach[:, keep])
+            if len(ki):
+                _, b, f = near_figures(m[ki, np.flatnonzero(keep)[ci]])
+                fig[1][ki, at[ci]] = b
+                fig[2][ki, at[ci]] = f
+        avail = np.zeros(len(cols), dtype=bool)
+        avail[at] = True
+        return [x.reshape(-1) for x in fig], cols, avail
 
     # ------------------------------------------------------------------------------------------- designs
     def parts(self, i: int, core_row: int, options: dict) -> dict:
