@@ -222,4 +222,5 @@ def test_an_api_call_runs_blas_on_one_thread_as_a_scene_does(monkeypatch):
         with pytest.raises(RuntimeError, match="recorded"):
             synth.synthesise(CASES_DIR.parent / "default_case.yaml")
         after = {lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"}
-    assert outside == after == {2} and seen == [{1}]
+    # a library loaded at one thread (OPENBLAS_NUM_THREADS=1: the conftest's) stays at one; numpy's goes to two
+    assert max(outside) == 2 and after == outside and seen == [{1}]
