@@ -141,12 +141,12 @@ def _with_targets(s: "Settings", samples: int | None) -> "Settings":
     target (:attr:`~synth.design.settings.Settings.capability`) when none is given, as the command line reads them
     (``--capability``/``--ppm`` first, else the rules'): a target the user set is never dropped. ``samples``: the
     Monte Carlo samples per design of such a target (None: the estimator's default)."""
-    targets = s.rules.capability
-    if s.capability is not None or not targets:
+    if s.capability is not None or not s.rules.capability:
         return s
     from synth.robust.settings import RobustSettings
+    ppk, ppm = s.rules.targets()
     kw = {} if samples is None else {"samples": samples}
-    return s.replace(capability=RobustSettings(capability=targets.get("ppk_min"), ppm=targets.get("ppm_max"), **kw))
+    return s.replace(capability=RobustSettings(capability=ppk, ppm=ppm, **kw))
 
 
 @_threads

@@ -130,6 +130,11 @@ class Rules:
     def empty(self) -> bool:
         return not (self.limits or self.min_margins or self.capability or self.spring_limit_basis != "thesis")
 
+    def targets(self) -> tuple:
+        """The capability targets as ``(smallest Ppk, largest ppm)`` (:data:`CAPABILITY_TARGETS`; None: not set): what
+        ``--capability``/``--ppm`` would say, for every entry point that reads them from the rules."""
+        return self.capability.get("ppk_min"), self.capability.get("ppm_max")
+
     def required(self, cid: str) -> float:
         """The margin check ``cid`` must keep (0 without a rule)."""
         return self.min_margins.get(cid, 0.0)

@@ -131,8 +131,7 @@ def robust_settings_from_args(args, *, default_capability=None, samples: str = "
              "method": "--capability-method"}
     cap, ppm = getattr(args, "capability", None), getattr(args, "ppm", None)
     if cap is None and ppm is None:
-        targets = rules_of(args).capability
-        cap, ppm = targets.get("ppk_min"), targets.get("ppm_max")
+        cap, ppm = rules_of(args).targets()
         if cap is None and ppm is None:
             cap = default_capability
     kw = {"capability": cap, "ppm": ppm, "samples": getattr(args, "samples", None), "seed": getattr(args, "seed", None),

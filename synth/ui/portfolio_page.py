@@ -218,7 +218,7 @@ class PortfolioPage:
 
     def _running(self) -> bool:
         if self.p.running:
-            ui.notify(f"the {self.p.running} is still running: the rules change after it", type="warning")
+            ui.notify(f"the {self.p.running} is still running", type="warning")
         return bool(self.p.running)
 
     async def on_sample(self) -> None:
@@ -226,8 +226,7 @@ class PortfolioPage:
         await jobs.run(self.p.sample, n)
 
     def _busy(self) -> bool:
-        if self.p.running:
-            ui.notify(f"the {self.p.running} is still running", type="warning")
+        if self._running():
             return True
         if self.p.table is None:
             ui.notify("open a portfolio or make a sample first", type="warning")
