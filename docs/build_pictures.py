@@ -204,6 +204,7 @@ def build_ui(tmp: Path, draw: bool = True) -> dict:
         (field, value), = UI_EDIT.items()
         pg.locator(f"[data-field={field}] input").fill(str(value))
         pg.wait_for_function(f"Number(document.querySelector('[data-testid=seq]').dataset.seq) > {seq}")
+        pg.locator(f"[data-field={field}]").evaluate("e => e.scrollIntoView({block: 'center'})")  # the edit in view
         pg.wait_for_timeout(1500)
 
     try:
