@@ -93,8 +93,9 @@ def _hysteresis_case1(parts):
     import synth
     from synth.report.plots import graph_png
     r = synth.verify(synth.load(ROOT / CASE1), parts)
-    return {"parts": design_facts(synth.load(ROOT / CASE1), parts)["parts"],
-            "series": series_facts(graph_png("hysteresis_torque", r).series)}
+    g = graph_png("hysteresis_torque", r)
+    return {"parts": design_facts(synth.load(ROOT / CASE1), parts)["parts"], "colour_of_verdict": g.verdict,
+            "series": series_facts(g.series)}
 
 
 def _ui_design(parts):
