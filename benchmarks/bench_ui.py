@@ -9,7 +9,10 @@ this one), and the machine's load average before and after. A benchmark, not a t
   default application in Chromium (interpreter, imports, the synthesis, serving, the page's scripts, its first
   render); one warm-up start first (byte-code, numba's cache), then N. The server's CPU time by then (``/proc``) too:
   on a loaded machine the wall time includes waiting for a core, the CPU time does not; and with its worker
-  processes' (the launch's synthesis runs in the design worker, on the second core).
+  processes' (the launch's synthesis runs in the design worker, on the second core). The warm-up start also leaves
+  synth's disk cache (``synth.fingerprint.cached``: the catalogs' arrays, the launch's opening and synthesis of the
+  default application, ``synth.ui.work``) as a second start of the same version, catalogs and input finds it;
+  ``--fresh-cache`` gives every start an empty cache folder instead (a first start after an upgrade or a catalog edit).
 * **first 3D view**: from the 3D tab clicked to every part's STL loaded by the page, on the page of the last cold
   start: right after its checks appeared ("at once"), and on a second page of the same server after 10 s
   ("after a pause": what the server prepares while the engineer reads the checks).
@@ -90,8 +93,10 @@ def tree_cpu_s(pid: int) -> float:
 class Tree:
     """A checkout of synth, served by its own code (``synth.ui.browser`` of this one starts it)."""
 
-    def __init__(self, path: Path):
+    def __init__(self, path: Path, fresh_cache: bool = False):
         self.path = path
+        self.fresh_cache = fresh_cache
+        self.cache_dirs: list[str] = []  # the empty cache folders made (--fresh-cache), removed at the end
         self.figures: dict[str, list[float]] = {}
 
     def add(self, name: str, value: float) -> None:
@@ -102,6 +107,15 @@ class Tree:
         env = {**os.environ, "PYTHONUNBUFFERED": "1", "PYTHONPATH": str(self.path)}
         env.pop("PYTEST_CURRENT_TEST", None)
         env.pop("PYTHONDONTWRITEBYTECODE", None)  # the warm-up start writes the byte-code, as an installed synth has it
+        if self.fresh_cache:  # synth's disk cache empty at each start (numba's stays where it was)
+            import tempfile
+
+            from synth.kernels.numba_setup import kernel_cache_dir
+            kernels = kernel_cache_dir()  # numba's compiled kernels: those of the usual cache folder
+            env["SYNTH_CACHE_DIR"] = tempfile.mkdtemp(prefix="bench-ui-cache-")
+            self.cache_dirs.append(env["SYNTH_CACHE_DIR"])
+            if kernels is not None:
+                env.setdefault("NUMBA_CACHE_DIR", str(kernels))
         return subprocess.Popen([sys.executable, "-P", "-m", "synth", "ui", "--port", str(port)], env=env,
                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=str(self.path))
 
@@ -268,6 +282,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--only-cold", action="store_true", help="the cold starts only")
     ap.add_argument("--only-edits", action="store_true", help="the edits with the 3D view open only (one start)")
     ap.add_argument("--rounds", type=int, default=1, help="rounds over the trees (default 1)")
+    ap.add_argument("--fresh-cache", action="store_true",
+                    help="an empty synth disk cache (SYNTH_CACHE_DIR) at every start: a first start of a version")
     a = ap.parse_args(argv)
     sys.path.insert(0, str(ROOT))
     from synth.report.pdf import chromium_binary
@@ -277,7 +293,7 @@ def main(argv: list[str] | None = None) -> int:
         print("no chromium binary (apt-get install chromium): nothing measured")
         return 0
     from playwright.sync_api import sync_playwright
-    trees = [Tree(Path(t).resolve()) for t in (a.tree or [str(ROOT)])]
+    trees = [Tree(Path(t).resolve(), a.fresh_cache) for t in (a.tree or [str(ROOT)])]
     load0 = os.getloadavg()
     print("uptime before:", _uptime())
     with sync_playwright() as p:
@@ -289,6 +305,10 @@ def main(argv: list[str] | None = None) -> int:
                 else:
                     measure(tree, browser, a.starts, a.edits, a.only_cold)
         browser.close()
+    import shutil
+    for tree in trees:
+        for folder in tree.cache_dirs:
+            shutil.rmtree(folder, ignore_errors=True)
     load1 = os.getloadavg()
     print("uptime after: ", _uptime())
     print(f"synth ui on this machine ({os.cpu_count()} cores, shared); load average {load0[0]:.1f} before, "

@@ -117,3 +117,49 @@ def test_each_tab_gets_its_report_in_its_own_folder(parts, counted, tmp_path):
     again = work.report(_verified(parts), str(tmp_path / "tab-b"), pdf=True, source="default", root=str(tmp_path))
     assert {k: again[k] for k in ("html", "xlsx", "pdf")} == {k: b[k] for k in ("html", "xlsx", "pdf")}
     assert all(Path(again[k]).is_file() for k in ("html", "xlsx", "pdf"))
+
+
+def test_the_launch_synthesis_is_read_from_disk_on_the_next_start(monkeypatch, tmp_path):
+    """``synth ui``'s launch (:func:`synth.ui.work.synthesise`, the worker's first task) reads a second start's
+    synthesis from the disk cache: the same call, an equal result, no second synthesis."""
+    import synth.ui.session
+    monkeypatch.setenv("SYNTH_CACHE_DIR", str(tmp_path))
+    runs = []
+    real = synth.ui.session.DesignSession.synthesise
+
+    def counted_synthesis(self):
+        runs.append(1)
+        return real(self)
+    monkeypatch.setattr(synth.ui.session.DesignSession, "synthesise", counted_synthesis)
+    call1, r1 = work.synthesise(default_values(), "default")
+    call2, r2 = work.synthesise(default_values(), "default")
+    assert len(runs) == 1
+    assert call2 == call1 and r2 is not r1
+    assert dict(r2.parts) == dict(r1.parts) and r2.verdict == r1.verdict == "pass"
+    assert r2.checks == r1.checks and r2.values == r1.values and r2.to_frame().equals(r1.to_frame())
+
+
+def test_the_launch_cache_misses_on_anything_its_answer_depends_on(monkeypatch, tmp_path):
+    """An edited input, other design rules, a user catalog folder or an edited synth module is a new key: a stale
+    launch answer would be a wrong page."""
+    from synth import fingerprint
+    from synth.design.rules import NONE
+    monkeypatch.setenv("SYNTH_CACHE_DIR", str(tmp_path / "cache"))
+    built = []
+
+    def launch(values, rules=NONE, catalogs=()):
+        return work._launch_cached("test-launch", (values, "default", rules, list(catalogs)),
+                                   lambda: built.append(1) or len(built))
+    v = default_values()
+    assert launch(v) == launch(v) == 1
+    assert launch({**v, EDIT: 390}) == 2
+    user = tmp_path / "catalogs"
+    user.mkdir()
+    (user / "bearings.csv").write_text("designation,source\nX,test\n")
+    assert launch(v, catalogs=[user]) == 3
+    (user / "bearings.csv").write_text("designation,source\nY,test\n")
+    assert launch(v, catalogs=[user]) == 4
+    monkeypatch.setattr(fingerprint, "source_stamp", lambda: "an edited module")
+    assert launch(v) == 5
+    monkeypatch.setenv("SYNTH_CACHE_DIR", "off")
+    assert launch(v) == 6 and launch(v) == 7

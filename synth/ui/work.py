@@ -98,9 +98,12 @@ def open_input(values: dict, source: str, rules=None, catalogs=()) -> dict:
     from synth.ui.session import DesignSession
     from synth.ui.trace import mark
     mark("launch task: opening the input")
-    with catalog.using(list(catalogs)):
-        s = DesignSession(values, source=source, rules=rules)
-        out = {"opened": s.opened_state(), "keys": form.catalog_texts()}
+
+    def build():
+        with catalog.using(list(catalogs)):
+            s = DesignSession(values, source=source, rules=rules)
+            return {"opened": s.opened_state(), "keys": form.catalog_texts()}
+    out = _launch_cached("ui-launch-open", (values, source, rules, catalogs), build)
     mark("launch task: the input opened")
     return out
 
@@ -113,13 +116,41 @@ def synthesise(values: dict, source: str, rules=None, catalogs=()) -> tuple:
     from synth import catalog
     from synth.ui.session import DesignSession
     from synth.ui.trace import mark
-    with catalog.using(list(catalogs)):
-        s = DesignSession(values, source=source, rules=rules)
-        if s.input is None:
-            return None, None
-        out = s.synthesis_call(), s.synthesise()
+    def build():
+        with catalog.using(list(catalogs)):
+            s = DesignSession(values, source=source, rules=rules)
+            if s.input is None:
+                return None, None
+            return s.synthesis_call(), s.synthesise()
+    out = _launch_cached("ui-launch-synthesis", (values, source, rules, catalogs), build)
     mark("launch task: synthesised")
     return out
+
+
+def _launch_cached(name: str, args: tuple, build):
+    """``build()`` of a launch task, kept on disk (:func:`synth.fingerprint.cached`) under its arguments, synth's
+    version and source (:func:`~synth.fingerprint.source_stamp`), the catalogs' bytes (built-in and the user folders
+    given) and the interpreter's and numerical libraries' versions: a second ``synth ui`` on the same input reads the
+    first one's answer instead of validating and synthesising again (about 2 s of CPU). Built without the cache when
+    a plug-in is installed (its code is not in the key) or the arguments cannot be pickled."""
+    import sys
+    from importlib import metadata
+
+    from synth import fingerprint, plugins
+    if plugins.load():
+        return build()
+    try:
+        call = hashlib.sha256(pickle.dumps(args, protocol=pickle.HIGHEST_PROTOCOL)).hexdigest()
+    except Exception:  # noqa: BLE001 - an argument that does not pickle: no key, no cache
+        return build()
+    libs = []
+    for lib in ("numpy", "scipy", "pandas", "numba"):
+        try:
+            libs.append(f"{lib}={metadata.version(lib)}")
+        except metadata.PackageNotFoundError:
+            libs.append(f"{lib}=none")
+    key = [fingerprint.source_stamp(), fingerprint.catalogs_sha256(args[-1]), sys.version, *libs, call]
+    return fingerprint.cached(name, key, build)
 
 
 # --- the CAD lane --------------------------------------------------------------------------------------------------
