@@ -52,34 +52,67 @@ def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
     given = apps.given["bolt_head_contact_external_diameter_mm"][aa_all]
     f = apps.f
     made = apps.derived.get("bolt_clamp_force_n")  # a made joint's preload (synth.robust), NaN: the window
+    for h, w, m, g, sel in _groups(head, washer, method, given):
+        ua, ia = np.unique(aa_all[sel], return_inverse=True)
+        fs, cs = fmt[sel], cls[sel]
+        if (fs == fs[0]).all() and (cs == cs[0]).all():  # one bolt (the samples of one design): no dictionary
+            ib, pairs = np.zeros(len(sel), dtype=np.int64), [(fs[0], cs[0])]
+        else:  # the distinct (format, class) pairs in order of first appearance, and each row's
+            ib, pairs = _pair_codes(fs, cs)
+        env = apps.env[ua]
+        r = bolted_joint.fixation(
+            apps.hubload_nominal_n[ua], f["middle_plane_belt_height_mm"][ua],
+            f["middle_plane_belt_height_increment_worst_mm"][ua], f["tilting_safety_factor"][ua],
+            f["sliding_safety_factor"][ua], f["engine_support_internal_diameter_mm"][ua],
+            f["engine_support_external_diameter_mm"][ua], f["contact_angle_deg"][ua],
+            f["support_yield_strength_compression_mpa"][ua], f["support_yield_strength_traction_mpa"][ua],
+            number_of_active_threads=f["number_of_active_threads"][ua],
+            mu_crankcase=_mu(apps, "mu_crankcase", "pivot_base_crankcase", ua, env),
+            mu_thread=_mu(apps, "mu_thread", "thread", ua, env), mu_head=_mu(apps, "mu_head", "under_head", ua, env),
+            bolt_head_contact_external_diameter_mm=f["bolt_head_contact_external_diameter_mm"][ua] if g else None,
+            head_type=str(h), washer=str(w), candidates=pairs, method=settings.bolt_method,
+            tightening_method=str(m), clamp_force_n=None if made is None else made[ua])
+        ia = np.asarray(ia).reshape(-1)
+        at, flat = rows[sel], ia * len(pairs) + ib  # each row's entry of the (application, bolt) table
+        for k in _BOLT_VALUES:
+            if k in r:
+                out[k][at] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(ua), len(pairs))).reshape(-1)[flat]
+    return out
+
+
+def _groups(head, washer, method, given):
+    """``(head, washer, method, given, rows)`` for each distinct combination of the rows' bolt-head form,
+    washer series, tightening method and given seat, the rows an index array in increasing order (a row in at
+    most one group; one holding a value not equal to itself, NaN, in none, as an element-wise ``==`` selects).
+
+    >>> s = lambda *v: np.array(v, dtype=object)
+    >>> [(h, w, m, g, r.tolist()) for h, w, m, g, r in _groups(s("a", "b", "a"), s("x", "x", "x"), s("t", "t", "t"),
+    ...                                                         np.array([True, False, False]))]
+    [('a', 'x', 't', False, [2]), ('a', 'x', 't', True, [0]), ('b', 'x', 't', False, [1])]
+    """
+    import pandas as pd  # loaded already wherever many rows come (the bulk engine)
+    cols = (head, washer, method)
+    code = np.zeros(len(given), dtype=np.int64)
+    for col in cols:
+        c, u = pd.factorize(col, use_na_sentinel=False)
+        if not all(isinstance(v, str) for v in u):  # None or NaN among them: compare element-wise, as ever
+            return _groups_by_value(head, washer, method, given)
+        code = code * len(u) + c
+    code = code * 2 + np.asarray(given, dtype=np.int64)
+    order = np.argsort(code, kind="stable")  # each group's rows in increasing order
+    cut = np.flatnonzero(np.diff(code[order])) + 1
+    return [(head[sel[0]], washer[sel[0]], method[sel[0]], bool(given[sel[0]]), sel) for sel in np.split(order, cut)
+            if len(sel)]
+
+
+def _groups_by_value(head, washer, method, given):
+    """:func:`_groups` by element-wise comparison (any values)."""
+    out = []
     for h, w, m in dict.fromkeys(zip(head.tolist(), washer.tolist(), method.tolist())):
         for g in (False, True):
             sel = np.flatnonzero((head == h) & (washer == w) & (method == m) & (given == g))
-            if not len(sel):
-                continue
-            ua, ia = np.unique(aa_all[sel], return_inverse=True)
-            fs, cs = fmt[sel], cls[sel]
-            if (fs == fs[0]).all() and (cs == cs[0]).all():  # one bolt (the samples of one design): no dictionary
-                ib, pairs = np.zeros(len(sel), dtype=np.int64), [(fs[0], cs[0])]
-            else:  # the distinct (format, class) pairs in order of first appearance, and each row's
-                ib, pairs = _pair_codes(fs, cs)
-            env = apps.env[ua]
-            r = bolted_joint.fixation(
-                apps.hubload_nominal_n[ua], f["middle_plane_belt_height_mm"][ua],
-                f["middle_plane_belt_height_increment_worst_mm"][ua], f["tilting_safety_factor"][ua],
-                f["sliding_safety_factor"][ua], f["engine_support_internal_diameter_mm"][ua],
-                f["engine_support_external_diameter_mm"][ua], f["contact_angle_deg"][ua],
-                f["support_yield_strength_compression_mpa"][ua], f["support_yield_strength_traction_mpa"][ua],
-                number_of_active_threads=f["number_of_active_threads"][ua],
-                mu_crankcase=_mu(apps, "mu_crankcase", "pivot_base_crankcase", ua, env),
-                mu_thread=_mu(apps, "mu_thread", "thread", ua, env), mu_head=_mu(apps, "mu_head", "under_head", ua, env),
-                bolt_head_contact_external_diameter_mm=f["bolt_head_contact_external_diameter_mm"][ua] if g else None,
-                head_type=str(h), washer=str(w), candidates=pairs, method=settings.bolt_method,
-                tightening_method=str(m), clamp_force_n=None if made is None else made[ua])
-            ia = np.asarray(ia).reshape(-1)
-            for k in _BOLT_VALUES:
-                if k in r:
-                    out[k][rows[sel]] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(ua), len(pairs)))[ia, ib]
+            if len(sel):
+                out.append((h, w, m, g, sel))
     return out
 
 

@@ -114,6 +114,11 @@ def _argmax_value(vals: np.ndarray, cols: np.ndarray):
     return v, np.where(v > -np.inf, cols[j], 0)
 
 
+#: the bolt table's columns that :func:`synth.design.bolt_group.fixation_values` reads (and the tightening method
+#: under the VDI 2230 bolt method)
+_FIXATION_READS = ("bolt_format", "bolt_property_class", "bolt_head_type", "bolt_washer")
+
+
 def _unique_rows(*cols):
     """``(first, inverse)``: one representative position per distinct tuple of the columns (floats; NaN equal to
     NaN), and each position's representative index."""
@@ -346,8 +351,14 @@ class Batch:
         if len(ai):
             a, b = which[ai], bolts[bi]
             o = sp.rows_read("bolt", b)
+            code, rep = self._fixation_keys()
+            nk = len(rep)
+            # the fixation once per (application, distinct bolt as the fixation reads it), gathered per row
+            up, inv = np.unique(a * nk + code[b], return_inverse=True)
             with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-                fix = evaluate.fixation_values(self.apps, a, o, self.settings)
+                once = evaluate.fixation_values(self.apps, up // nk, sp.rows_read("bolt", rep[up % nk]), self.settings)
+                inv = np.asarray(inv).reshape(-1)
+                fix = {k: v[inv] for k, v in once.items()}
                 g = evaluate.bolt(self.apps, self.cg, self.ptr[a], o, self.settings, fixation=fix)
             self.evaluations += len(a)
             m = np.full(len(a), np.inf)
@@ -360,6 +371,22 @@ class Batch:
             else:
                 self._fix_near[0][a, b] = np.inf
         return ok, mn
+
+    def _fixation_keys(self):
+        """``(code per bolt, a representative bolt per code)``: bolts with equal values (type and value) of every
+        column the fixation reads (:func:`synth.design.bolt_group.fixation_values`: the format, property class,
+        head form, washer, and the tightening method under the VDI 2230 method) share a code, so the same fixation for any application."""
+        if "fixation_keys" not in self._memo:
+            t = self.sp.tables["bolt"]
+            reads = _FIXATION_READS + (("bolt_tightening",) if self.settings.bolt_method == "vdi2230" else ())
+            cols = [t[k] for k in reads if k in t]
+            seen: dict = {}
+            code = np.array([seen.setdefault(tuple((type(v), v) for v in key), len(seen))
+                             for key in zip(*(np.asarray(c, dtype=object).tolist() for c in cols))], dtype=np.int64)
+            rep = np.zeros(len(seen), dtype=np.int64)
+            rep[code[::-1]] = np.arange(len(code))[::-1]  # each code's first bolt
+            self._memo["fixation_keys"] = (code, rep)
+        return self._memo["fixation_keys"]
 
     def _wall(self, rows):
         """``(margins (len(rows), n_codes), code per bolt)``: the smallest margin of the bolt checks that read the
