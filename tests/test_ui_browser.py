@@ -348,16 +348,9 @@ def _wait_text(pg, testid: str, timeout: int = 600_000) -> str:
     return pg.locator(f"[data-testid={testid}]").inner_text()
 
 
-N_LOOP = 200  # the loop's portfolio (see its test)
-
-
 def test_edit_synthesise_apply_capability_screen_open_back_and_download_the_assignment(page, tmp_path):
-    """Issue 35's loop: edit, synthesise, apply an alternative, open the capability panel, screen a portfolio, open
-    a row, go back (the screening is still there, not run again), download the assignment.
-
-    200 applications (the page's default), not the issue's 1,000: nothing asserted depends on the count (a Back that
-    discards the screening leaves the share empty at any size), and 1,000 cost 80 s of CPU (screening 40, platform
-    39), 200 cost 20."""
+    """Issue 35's loop: edit, synthesise, apply an alternative, open the capability panel, screen 1,000
+    applications, open a row, go back (the screening is still there, not run again), download the assignment."""
     import csv
 
     import synth
@@ -397,9 +390,9 @@ def test_edit_synthesise_apply_capability_screen_open_back_and_download_the_assi
     assert pg.locator("[data-histogram]").count() > 0
 
     pg.locator("[data-testid=nav-portfolio]").click()
-    pg.locator("[data-testid=sample-n]").fill(str(N_LOOP))
+    pg.locator("[data-testid=sample-n]").fill("1000")
     pg.locator("[data-testid=sample]").click()
-    pg.get_by_text(f"{N_LOOP} applications from sample of {N_LOOP}").wait_for()
+    pg.get_by_text("1000 applications from sample of 1000").wait_for()
     pg.locator("[data-testid=run]").click()
     share = _wait_text(pg, "feasible-share", 900_000)
     verdicts = pg.locator("[data-testid=verdicts]").inner_text()
@@ -427,7 +420,7 @@ def test_edit_synthesise_apply_capability_screen_open_back_and_download_the_assi
     path = tmp_path / "assignment.csv"
     dl.value.save_as(path)
     with open(path, newline="", encoding="utf-8") as f:
-        assert len(list(csv.DictReader(f))) == N_LOOP
+        assert len(list(csv.DictReader(f))) == 1000
 
 
 def test_the_3d_view_fits_the_model_keeps_it_across_edits_and_resets(page, tmp_path):
