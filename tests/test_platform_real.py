@@ -353,3 +353,19 @@ def test_array_build_and_pyomo_build_choose_the_same_platform():
     assert fast.status == ref.status == "optimal" and fast.n_parts >= 5
     assert (fast.objective_value, fast.platform, fast.size) == (ref.objective_value, ref.platform, ref.size)
     assert fast.records == ref.records and sum(r["feasible"] for r in fast.records) >= 20
+
+
+def test_feasibility_data_are_held_compactly(sample):
+    """Issue 36's memory: each feasible option is held as an int32 index and its binding constraint as an int16 code
+    into a names table shared by the chunk (read, the names are the registry's ids, as the object arrays were)."""
+    _, pf = sample
+    ids = set(REGISTRY) | {""}
+    n = 0
+    for a in pf.apps:
+        for s in SUBSYSTEMS:
+            for f, m, b in zip(a.feasible[s], a.option_margin[s], a.option_binding[s], strict=True):
+                assert f.dtype == np.int32 and b.codes.dtype == np.int16 and len(b) == len(f) == len(m)
+                names = np.asarray(b).tolist()
+                assert set(names) <= ids and [b[i] for i in range(len(b))] == list(b) == names
+                n += len(f)
+    assert n > 0 and len({id(b.names) for a in pf.apps for g in a.option_binding.values() for b in g}) == 1

@@ -127,6 +127,40 @@ class ScaledCost:
         return self.numerator.shape
 
 
+class Names:
+    """The binding constraint names of one group's options, held as codes into a names table shared by a chunk
+    (:func:`synth.platform.producer.margins_and_binding`'s registry indices): an array of names' stand-in. Reads as
+    the object array ``names[codes]``; 2 bytes an option instead of an 8-byte pointer (issue 36: about 44 MB per
+    1,000 applications, 440 MB at 10,000).
+
+    >>> n = Names(np.array([1, 0, 1], np.int16), np.array(["a", "b"], dtype=object))
+    >>> n[0], len(n), list(n), np.asarray(n).tolist()
+    ('b', 3, ['b', 'a', 'b'], ['b', 'a', 'b'])
+    """
+
+    __slots__ = ("codes", "names")
+
+    def __init__(self, codes: np.ndarray, names: np.ndarray):
+        self.codes, self.names = codes, names
+
+    def __array__(self, dtype=None, copy=None):
+        a = self.names[self.codes]
+        return a if dtype is None else a.astype(dtype, copy=False)
+
+    def __len__(self) -> int:
+        return len(self.codes)
+
+    def __iter__(self):
+        return iter(np.asarray(self))
+
+    def __getitem__(self, i):
+        return np.asarray(self)[i] if not isinstance(i, (int, np.integer)) else self.names[self.codes[i]]
+
+    @property
+    def shape(self) -> tuple:
+        return self.codes.shape
+
+
 @dataclass
 class PortfolioFeasibility:
     """The applications of a portfolio and the global part and option tables.

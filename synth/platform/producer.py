@@ -49,7 +49,7 @@ from synth.design.combine import combine, nearest_rank
 from synth.design.constraints import REGISTRY, version
 from synth.design.space import SUBSYSTEMS, core_rows, spring_window
 from synth.errors import InputError
-from synth.platform.data import AppFeasibility, ScaledCost
+from synth.platform.data import AppFeasibility, Names, ScaledCost
 from synth.platform.options import Catalogue, catalogue
 from synth.kernels import engines, main_spring
 from synth.kernels.main_spring import keys_of_rows
@@ -477,7 +477,11 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
               diagnose, settings) -> list:
     n = len(inputs)
     grouped = {s: pairs[s].by_group(len(rep[s])) for s in SUBSYSTEMS}
-    grouped = {s: (ptr, o, m, _names(b)) for s, (ptr, o, m, b) in grouped.items()}   # binding names, at once
+    # the options as int32 and the binding names as int16 codes into one table (issue 36: the feasibility data are
+    # most of the command's memory, about 175 MB per 1,000 applications with int64 options and name pointers)
+    table = np.array(list(REGISTRY) + [""], dtype=object)
+    grouped = {s: (ptr, o.astype(np.int32), m, np.minimum(b, len(table) - 1).astype(np.int16))
+               for s, (ptr, o, m, b) in grouped.items()}
     app_of_group = {s: a[rep[s]] for s in SUBSYSTEMS}
     first_group = {s: np.searchsorted(app_of_group[s], np.arange(n + 1)) for s in SUBSYSTEMS}
     pos_app = a[pos]
@@ -495,7 +499,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             ptr, o, m, b = grouped[s]
             feasible[s] = [o[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
             margin[s] = [m[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
-            binding[s] = [b[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
+            binding[s] = [Names(b[ptr[g]:ptr[g + 1]], table) for g in range(g0, g1)]
             complete &= (np.diff(ptr)[g0:g1] > 0)[group[s]]
         d = inputs[i]
         af = AppFeasibility(
