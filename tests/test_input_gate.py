@@ -163,6 +163,18 @@ def test_fuzz_design_input_text(tmp_path, text, suffix):
         pass
 
 
+def test_a_key_yaml_reads_as_a_number_is_named_not_a_traceback(tmp_path):
+    """The fuzz's find (fresh clone, 2026-11-28): YAML reads the key ``0E0`` as the float 0.0; sorting it with the
+    text keys to list the unknown ones raised TypeError in the shrink-fit case loader."""
+    from synth.shrink_fit.inputs import load_case
+
+    p = tmp_path / "doc.yaml"
+    p.write_text("'': null\n0E0: null\n", encoding="utf-8")
+    with pytest.raises(InputError) as e:
+        load_case(p)
+    assert "0.0" in str(e.value)
+
+
 @_FUZZ
 @given(doc=st.dictionaries(st.text(max_size=12), _values, max_size=8))
 def test_fuzz_structured_documents(tmp_path, doc):

@@ -58,7 +58,7 @@ def gap_tolerance_mm(method: str = "worst_case", tolerances_mm: dict | None = No
     if tolerances_mm:
         unknown = set(tolerances_mm) - set(tol)
         if unknown:
-            raise InputError(Problem("tolerances_mm", sorted(unknown), "keys among " + ", ".join(_COMPONENTS)))
+            raise InputError(Problem("tolerances_mm", sorted(unknown, key=str), "keys among " + ", ".join(_COMPONENTS)))
         tol.update({k: float(v) for k, v in tolerances_mm.items()})
     t = np.array(list(tol.values()), dtype=float)
     if method == "worst_case":

@@ -200,7 +200,7 @@ def _roughness(raw, name, problems) -> Roughness | None:
     unknown = set(c.data) - {"ra", "rz", "sm", "rp", "rv"}
     problems.extend(c.problems)
     if unknown:
-        problems.append(Problem(name, sorted(unknown), "only the keys Ra, Rz, Sm, Rp, Rv"))
+        problems.append(Problem(name, sorted(unknown, key=str), "only the keys Ra, Rz, Sm, Rp, Rv"))
     if ra is None or rz is None:
         return None
     return Roughness(ra, rz, sm, rp, rv)
@@ -257,7 +257,7 @@ def case_from_dict(data: dict) -> ShrinkFitCase:
         raise InputError(Problem("inputs", inputs, "a mapping of the case's inputs"))
     problems: list[Problem] = []
     unknown = set(inputs) - _INPUT_KEYS - ({"name", "inputs", "model", "thesis_tool", "real_tensioner"} if inputs is data else set())
-    problems.extend(Problem(k, inputs[k], "one of the keys " + ", ".join(sorted(_INPUT_KEYS))) for k in sorted(unknown))
+    problems.extend(Problem(k, inputs[k], "one of the keys " + ", ".join(sorted(_INPUT_KEYS))) for k in sorted(unknown, key=str))
     c = _Collector(inputs)
     d = c.num("journal_outer_diameter_mm", lo=1, hi=500, why=_ISO286 + "; ISO 286-2 tabulates from 1 mm")
     dww = c.num("journal_inner_diameter_mm", default=0.0, lo=0, hi=500, why=_ISO286)
@@ -322,7 +322,7 @@ def case_from_dict(data: dict) -> ShrinkFitCase:
         surfaces[key] = _roughness(rough.get(key), f"roughness.{key}", problems)
     extra = set(rough) - {"new_hub_bore", "worn_hub_bore", "journal", "journal_initial"}
     if extra:
-        problems.append(Problem("roughness", sorted(extra), "keys new_hub_bore, worn_hub_bore, journal, journal_initial"))
+        problems.append(Problem("roughness", sorted(extra, key=str), "keys new_hub_bore, worn_hub_bore, journal, journal_initial"))
     rz0 = surfaces["journal"].rz_um if surfaces["journal"] else None
     if "journal_initial" in rough:
         ji = rough["journal_initial"]
