@@ -12,7 +12,21 @@ from synth.design.group import Fields, Group, const as _const, core_values, fini
 from synth.design.settings import DEFAULT, Settings
 from synth.model import bolted_joint
 
-__all__ = ["fixation_values", "bolt_core_checks", "bolt_core", "bolt"]
+__all__ = ["fixation_values", "fixation_reads", "bolt_core_checks", "bolt_core", "bolt"]
+
+#: the bolt table's columns :func:`fixation_values` reads (the tightening method too under the VDI 2230 method:
+#: :func:`fixation_reads`)
+FIXATION_READS = ("bolt_format", "bolt_property_class", "bolt_head_type", "bolt_washer")
+
+
+def fixation_reads(settings: Settings = DEFAULT) -> tuple:
+    """The bolt table's columns :func:`fixation_values` reads under ``settings``: bolts equal in them get the same
+    fixation for any application.
+
+    >>> fixation_reads(Settings(bolt_method="vdi2230"))[-1]
+    'bolt_tightening'
+    """
+    return FIXATION_READS + (("bolt_tightening",) if settings.bolt_method == "vdi2230" else ())
 
 
 _BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_mpa", "bolt_tau_mpa",

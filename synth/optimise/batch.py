@@ -71,6 +71,7 @@ from synth.kernels import engines, main_spring
 from synth import catalog
 from synth.design.verify import evaluate_design, parts_of_design
 from synth.design.subsystems import SubTable, family, scatter
+from synth.design.bolt_group import fixation_reads
 from synth.design.combine import join, near_figures
 
 __all__ = ["Batch", "wsum", "SLACK", "MARGIN_EPS", "any_feasible", "designs_pass", "robust"]
@@ -112,11 +113,6 @@ def _argmax_value(vals: np.ndarray, cols: np.ndarray):
     j = np.argmax(vals, axis=1)
     v = vals[np.arange(len(vals)), j]
     return v, np.where(v > -np.inf, cols[j], 0)
-
-
-#: the bolt table's columns that :func:`synth.design.bolt_group.fixation_values` reads (and the tightening method
-#: under the VDI 2230 bolt method)
-_FIXATION_READS = ("bolt_format", "bolt_property_class", "bolt_head_type", "bolt_washer")
 
 
 def _unique_rows(*cols):
@@ -378,8 +374,7 @@ class Batch:
         head form, washer, and the tightening method under the VDI 2230 method) share a code, so the same fixation for any application."""
         if "fixation_keys" not in self._memo:
             t = self.sp.tables["bolt"]
-            reads = _FIXATION_READS + (("bolt_tightening",) if self.settings.bolt_method == "vdi2230" else ())
-            cols = [t[k] for k in reads if k in t]
+            cols = [t[k] for k in fixation_reads(self.settings) if k in t]
             seen: dict = {}
             code = np.array([seen.setdefault(tuple((type(v), v) for v in key), len(seen))
                              for key in zip(*(np.asarray(c, dtype=object).tolist() for c in cols))], dtype=np.int64)
