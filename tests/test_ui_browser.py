@@ -26,6 +26,8 @@ pytestmark = pytest.mark.skipif(CHROMIUM is None, reason="no chromium binary (ap
 
 CHECKS = "table.checks tr[data-check]"
 REQUESTS: list[str] = []
+#: the module's server's output file (stdout and stderr)
+SERVER_LOG: list = []
 
 #: CPU seconds, on an idle core, of what a test waits for (server, workers and browser together; rounded up from
 #: ``benchmarks/bench_ui.py`` and ``docs/sections/ui.md``): a page's first checks (the server's start included: 3.3 s
@@ -48,9 +50,11 @@ def _rgb(hex_colour: str) -> str:
 
 
 @pytest.fixture(scope="module")
-def server():
+def server(tmp_path_factory):
     port = free_port()
-    proc, line = start_server(port)
+    log = tmp_path_factory.mktemp("server") / "server.log"  # a file, not a pipe nobody reads: a full pipe would block
+    proc, line = start_server(port, output=log)             # the server's writes (and so its loop) for good
+    SERVER_LOG.append(log)
     try:
         yield port, line
     finally:
@@ -80,7 +84,15 @@ def _seq(pg) -> int:
 
 
 def _wait_seq_after(pg, seq: int) -> None:
-    pg.wait_for_function(f"Number(document.querySelector('[data-testid=seq]').dataset.seq) > {seq}")
+    """Wait for the page's evaluation after ``seq``; on a time-out, say what the page notified and what the server
+    printed (a refused job's message and traceback go to both)."""
+    try:
+        pg.wait_for_function(f"Number(document.querySelector('[data-testid=seq]').dataset.seq) > {seq}")
+    except sync_api.TimeoutError as exc:
+        shown = pg.locator(".q-notification").all_inner_texts()
+        printed = SERVER_LOG[-1].read_text(encoding="utf-8", errors="replace")[-4000:] if SERVER_LOG else ""
+        raise AssertionError(f"no evaluation after #{seq} (the page shows #{_seq(pg)}, {pg.url}); the page notified "
+                             f"{shown!r}; the server printed:\n{printed}") from exc
 
 
 def _verdicts(pg) -> dict:
@@ -115,6 +127,27 @@ def test_default_case_then_an_edit_turns_a_check_red_as_the_api_verifies_it(page
     value = pg.locator("table.checks tr[data-check=spring_yield] td.num").first.inner_text()
     # the page's number is verify's value to 4 significant figures (plain digits: 35490, not 3.549e+04)
     assert "e" not in value and float(value) == pytest.approx(stiff.check("spring_yield").value, rel=5e-4)
+
+
+def test_a_page_keeps_its_design_through_a_10_s_stall_of_the_browser(page):
+    """A busy machine stalls the browser's script (or the server): the page keeps its state and its connection's
+    next edit is evaluated (NiceGUI's 3 s reconnect time reloaded the page, the edit and the design lost; fails with
+    ``reconnect_timeout`` at NiceGUI's default)."""
+    from synth.ui import RECONNECT_S
+    pg, url = page
+    goto_when_up(pg, url)
+    pg.locator(CHECKS).first.wait_for(timeout=budget_ms("checks"))
+    seq = _seq(pg)
+    pg.locator("[data-field=spring_stiffness_nm_per_deg] input").fill("0.022")
+    _wait_seq_after(pg, seq)
+    pg.evaluate("window.synthStall = 1; (() => { const t = Date.now(); while (Date.now() - t < 10000) {} })()")
+    time.sleep(3)  # the socket's ping and the server's reconnect wait run out here at NiceGUI's 3 s
+    seq = _seq(pg)
+    pg.locator("[data-field=spring_stiffness_nm_per_deg] input").fill("0.021")
+    _wait_seq_after(pg, seq)
+    assert pg.evaluate("window.synthStall") == 1, "the page was reloaded: its state is lost"
+    assert pg.locator("[data-field=spring_stiffness_nm_per_deg] input").input_value() == "0.021"
+    assert RECONNECT_S > 10 + 3
 
 
 def test_a_bad_value_shows_the_command_lines_message_next_to_its_field(page, tmp_path, capsys):

@@ -25,6 +25,13 @@ LOCAL_HOSTS = ("127.0.0.1", "localhost", "::1")
 #: seconds the server waits for open requests when it stops (SIGTERM, Ctrl-C) before it ends them
 STOP_GRACE_S = 1.0
 
+#: seconds a page's state outlives a lost connection to its browser (NiceGUI's ``reconnect_timeout``; its socket's
+#: ping interval and timeout are 0.8 and 0.4 of it). NiceGUI's 3 s drops the connection when the browser or the
+#: server does not answer for 2 s and deletes the page 3 s later: on a busy machine a 10 s stall of the browser's
+#: script reloaded the page, its design, alternatives and screening lost (a CI run of the browser test lost an
+#: applied alternative so). A closed tab's state is freed this long after it closed.
+RECONNECT_S = 30.0
+
 #: packages the server never uses that NiceGUI's socket.io loads when it is imported: aiohttp for engineio's *client*
 #: classes, tornado for its tornado driver (NiceGUI serves socket.io over ASGI). Both imports are optional there
 #: (``try: import ... except ImportError``); :func:`serve` marks them absent, 0.3 s of the cold start's CPU (a fifth of
@@ -66,4 +73,4 @@ def serve(values: dict, source: str, *, host: str = "127.0.0.1", port: int = 808
         app.on_shutdown(lambda: shutil.rmtree(folder, ignore_errors=True))
     ui.run(host=host, port=port, title="synth", reload=False, show=False, show_welcome_message=False,
            uvicorn_logging_level="warning", favicon="⚙", tailwind=False,  # Quasar classes only: no Tailwind runtime
-           timeout_graceful_shutdown=STOP_GRACE_S)
+           timeout_graceful_shutdown=STOP_GRACE_S, reconnect_timeout=RECONNECT_S)
