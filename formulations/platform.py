@@ -106,14 +106,14 @@ BUILDS = ("arrays", "pyomo")
 #: is not; where it binds, the status is ``node_limit`` and the platform is the best one found in those nodes, the
 #: same on every run. HiGHS has no deterministic work limit (Gurobi's ``WorkLimit``); its simplex iteration limit does
 #: not reach the MIP's subproblems. Chosen so that it binds only on the hard instances: ``portfolio-sample`` 1,000
-#: applications solve at the root (1 node), 10,000 in NODES_10K nodes (``docs/model.md``, "Platform rationalisation").
+#: applications solve at the root (1 node), and so do 10,000 (``docs/model.md``, "Platform rationalisation").
 NODE_LIMIT = 10_000
-#: Wall-clock seconds a solve may take by default: a safety net only, above what NODE_LIMIT takes even on a busy
-#: machine. Where it binds (status ``time_limit``) the platform depends on the machine and its load, and every output
+#: Wall-clock seconds a solve may take by default: a safety net only, well above what the benchmarked solves take on a
+#: busy machine (10,000 applications: 25 s CPU, 111 s of wall at load 12; the former 60 s bound there). Where it binds (status ``time_limit``) the platform depends on the machine and its load, and every output
 #: says so: "stopped at the time limit: not reproducible".
 TIME_LIMIT_S = 600.0
 #: Threads HiGHS runs on: one. HiGHS 1.16's branch and bound takes another path with more threads (the hitting-set
-#: portfolio of ``tests/test_platform_limits.py`` at 150 applications: 165 nodes on 1 thread, 176 on 2, 234 on 4, and
+#: portfolio of ``tests/test_platform_limits.py``, ``hitting_set_portfolio(150, 60, 3, 0)``: 165 nodes on 1 thread, 176 on 2, 234 on 4, and
 #: on 2 threads another platform of the same size), and HiGHS's default (``threads`` 0) is half the machine's cores:
 #: the platform would follow the machine even where the solve is optimal (ties) and more so where a limit binds.
 HIGHS_THREADS = 1

@@ -20,6 +20,7 @@ import numpy as np
 
 from formulations.platform import NODE_LIMIT, TIME_LIMIT_S, solve as solve_milp
 from synth.errors import InputError, Problem
+from synth.io.limits import COUNTS
 from synth.platform.assign import assign, full_platform, objective_value, option_groups, platform_from_y
 from synth.platform.compile import Precompiled, compile_portfolio, precompile
 from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility, \
@@ -121,9 +122,11 @@ def _check(objective, max_variants, time_limit, weights, node_limit=None):
             probs.append(Problem(f"--max-variants {f}", n, "a whole number >= 1"))
     if not (np.isfinite(time_limit) and time_limit > 0):
         probs.append(Problem("--time-limit", time_limit, "a number of seconds > 0"))
+    lim = COUNTS["rationalise --node-limit"]
     if node_limit is not None and not (isinstance(node_limit, (int, np.integer)) and not isinstance(node_limit, bool)
-                                       and 1 <= node_limit <= 2**31 - 1):
-        probs.append(Problem("--node-limit", node_limit, "a whole number of branch-and-bound nodes in [1, 2147483647]"))
+                                       and lim.lo <= node_limit <= lim.hi):
+        probs.append(Problem("--node-limit", node_limit, f"a whole number of branch-and-bound nodes in "
+                                                         f"[{lim.lo}, {lim.hi}], or None (no node limit)"))
     for f, w in (weights or {}).items():
         if f not in FAMILIES:
             probs.append(Problem("weight family", f, ", ".join(FAMILIES)))

@@ -109,8 +109,7 @@ def _main(args) -> int:
         check_count("--workers", args.workers, hi=None if args.scheduler else max(1, usable_cores()))
     if not 0 < args.time_limit <= 86_400:
         raise InputError(Problem("--time-limit", args.time_limit, "seconds in (0, 86400] per MILP solve"))
-    if not 1 <= args.node_limit <= 2**31 - 1:
-        raise InputError(Problem("--node-limit", args.node_limit, "nodes in [1, 2147483647] per MILP solve"))
+    check_count("rationalise --node-limit", args.node_limit)
     engine = "dask" if args.scheduler else args.engine
     # the design rules; load_feasibility refuses those the platform cannot honour
     settings = Settings(fidelity=args.fidelity, rules=rules_of(args), spring_limit_basis=args.spring_limit)
