@@ -94,13 +94,29 @@ if TYPE_CHECKING:   # Pyomo is imported where the reference model is built (the 
     import pyomo.environ as pyo
 
 __all__ = ["PlatformInstance", "PlatformSolution", "MilpArrays", "build_model", "build_arrays", "highs_model", "solve",
-           "designs_start", "SOLVERS", "BUILDS"]
+           "designs_start", "SOLVERS", "BUILDS", "NODE_LIMIT", "TIME_LIMIT_S", "HIGHS_THREADS"]
 
 #: solver name -> Pyomo solver (HiGHS through appsi, SCIP through PySCIPOpt)
 SOLVERS = {"highs": "appsi_highs", "scip": "scip_direct"}
 #: how the HiGHS model is built: ``arrays`` (:func:`build_arrays` handed to highspy, HiGHS's own Python API) or
 #: ``pyomo`` (:func:`build_model` through Pyomo's appsi interface: the reference, and SCIP's only path)
 BUILDS = ("arrays", "pyomo")
+#: Branch-and-bound nodes a solve may take by default (HiGHS ``mip_max_nodes``, SCIP ``limits/nodes``): the limit
+#: that makes a solve reproducible. A node count is the same on every machine and under any load, a number of seconds
+#: is not; where it binds, the status is ``node_limit`` and the platform is the best one found in those nodes, the
+#: same on every run. HiGHS has no deterministic work limit (Gurobi's ``WorkLimit``); its simplex iteration limit does
+#: not reach the MIP's subproblems. Chosen so that it binds only on the hard instances: ``portfolio-sample`` 1,000
+#: applications solve at the root (1 node), and so do 10,000 (``docs/model.md``, "Platform rationalisation").
+NODE_LIMIT = 10_000
+#: Wall-clock seconds a solve may take by default: a safety net only, well above what the benchmarked solves take on a
+#: busy machine (10,000 applications: 25 s CPU, 111 s of wall at load 12; the former 60 s bound there). Where it binds (status ``time_limit``) the platform depends on the machine and its load, and every output
+#: says so: "stopped at the time limit: not reproducible".
+TIME_LIMIT_S = 600.0
+#: Threads HiGHS runs on: one. HiGHS 1.16's branch and bound takes another path with more threads (the hitting-set
+#: portfolio of ``tests/test_platform_limits.py``, ``hitting_set_portfolio(150, 60, 3, 0)``: 165 nodes on 1 thread, 176 on 2, 234 on 4, and
+#: on 2 threads another platform of the same size), and HiGHS's default (``threads`` 0) is half the machine's cores:
+#: the platform would follow the machine even where the solve is optimal (ties) and more so where a limit binds.
+HIGHS_THREADS = 1
 
 
 @dataclass
@@ -149,7 +165,7 @@ class PlatformInstance:
 class PlatformSolution:
     """What a solve returns: the platform ``y`` (bool per part) and how the solve went."""
 
-    status: str                  # optimal | time_limit | infeasible | error
+    status: str                  # optimal | node_limit | time_limit | infeasible | error
     y: np.ndarray | None
     objective: float
     bound: float
@@ -161,6 +177,7 @@ class PlatformSolution:
     unserved: np.ndarray | None = None   # bool per application (allow_unserved only)
     x: np.ndarray | None = None          # bool per core and per option entry: the designs of the solution
     z: np.ndarray | None = None          # (with volume breaks only: the platform alone does not fix them)
+    nodes: int = -1                      # branch-and-bound nodes the solve took (-1: not known)
 
 
 def _groups(keys: np.ndarray):
@@ -622,15 +639,34 @@ def designs_start(inst: PlatformInstance, y: np.ndarray) -> tuple:
     return x, z, b * vol[br.part], b
 
 
+def _highs_options(time_limit: float, mip_gap: float, node_limit: int | None) -> dict:
+    """The HiGHS options of a solve, on both builds: the limits, the gap, one thread (:data:`HIGHS_THREADS`)."""
+    opts = {"time_limit": float(time_limit), "mip_rel_gap": float(mip_gap), "threads": HIGHS_THREADS}
+    if node_limit is not None:
+        opts["mip_max_nodes"] = int(node_limit)
+    return opts
+
+
+def _run_highs(run) -> None:
+    """``run()`` (a solve; returns its ``highspy.Highs``), again once after HiGHS's thread pool is rebuilt if HiGHS
+    refused to start: the pool is one per process, made at the first solve with that solve's ``threads``, and a later
+    solve asking for another count stops with an error before it begins (another HiGHS user in the process, e.g. a
+    design solver through Pyomo, may have made it with HiGHS's default)."""
+    import highspy
+    if run().getModelStatus() == highspy.HighsModelStatus.kNotset:
+        highspy.Highs.resetGlobalScheduler(True)
+        run()
+
+
 def _highs_arrays(arr: MilpArrays, time_limit: float, mip_gap: float, warm_start: np.ndarray | None,
-                  full: tuple | None = None):
+                  full: tuple | None = None, node_limit: int | None = None):
     """Solve ``arr`` with highspy, with appsi's options and MIP start; returns ``(status, has a solution,
-    objective, bound, column values)``, read as appsi's ``_postsolve`` reads them."""
+    objective, bound, column values, nodes)``, read as appsi's ``_postsolve`` reads them."""
     import highspy
     h = highs_model(arr)
     n = len(arr.col_cost)
-    h.setOptionValue("time_limit", float(time_limit))
-    h.setOptionValue("mip_rel_gap", float(mip_gap))
+    for k, v in _highs_options(time_limit, mip_gap, node_limit).items():
+        h.setOptionValue(k, v)
     if warm_start is not None:
         col = np.zeros(n)
         has = arr.y_col >= 0
@@ -644,11 +680,12 @@ def _highs_arrays(arr: MilpArrays, time_limit: float, mip_gap: float, warm_start
         start.dual_valid = False
         h.setSolution(start)
     h.HandleKeyboardInterrupt = True
-    h.run()
+    _run_highs(lambda: (h.run(), h)[1])
     ms = highspy.HighsModelStatus
     st = h.getModelStatus()
-    status = {ms.kOptimal: "optimal", ms.kTimeLimit: "time_limit", ms.kInfeasible: "infeasible",
-              ms.kUnboundedOrInfeasible: "infeasible"}.get(st, "error")
+    # kSolutionLimit: HiGHS's MIP limits, of which only mip_max_nodes is set
+    status = {ms.kOptimal: "optimal", ms.kTimeLimit: "time_limit", ms.kSolutionLimit: "node_limit",
+              ms.kInfeasible: "infeasible", ms.kUnboundedOrInfeasible: "infeasible"}.get(st, "error")
     sol = h.getSolution()
     limits = {ms.kObjectiveBound, ms.kObjectiveTarget, ms.kTimeLimit, ms.kIterationLimit,
               getattr(ms, "kSolutionLimit", ms.kIterationLimit)}
@@ -659,7 +696,7 @@ def _highs_arrays(arr: MilpArrays, time_limit: float, mip_gap: float, warm_start
         bound = obj
     else:
         bound = float(info.mip_dual_bound)
-    return status, has, obj, bound, np.asarray(sol.col_value) if has else None
+    return status, has, obj, bound, np.asarray(sol.col_value) if has else None, int(info.mip_node_count)
 
 
 def _result_values(res):
@@ -668,14 +705,18 @@ def _result_values(res):
     return (np.nan if feas is None else float(feas)), (np.nan if bound is None else float(bound))
 
 
-def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = "highs", time_limit: float = 60.0,
+def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = "highs",
+          time_limit: float = TIME_LIMIT_S, node_limit: int | None = NODE_LIMIT,
           mip_gap: float = 0.0, max_variants: dict | None = None, budget: float | None = None,
           allow_unserved: bool = False, warm_start: np.ndarray | None = None, model=None,
           build: str = "arrays") -> PlatformSolution:
     """Build (unless ``model`` is given) and solve; ``warm_start``: a bool platform (e.g. the greedy one).
 
-    ``status`` is ``optimal`` (gap within ``mip_gap``), ``time_limit`` (best platform found,
-    gap reported), ``infeasible`` or ``error``. ``build`` (:data:`BUILDS`): HiGHS gets the model from
+    ``status`` is ``optimal`` (gap within ``mip_gap``), ``node_limit`` (``node_limit`` branch-and-bound nodes
+    taken: the best platform found in them, gap reported; the same on every run), ``time_limit`` (``time_limit``
+    wall-clock seconds passed first: the best platform found, gap reported, which depends on the machine and its
+    load), ``infeasible`` or ``error``. ``node_limit`` None: no node limit. HiGHS runs on :data:`HIGHS_THREADS`
+    thread. ``build`` (:data:`BUILDS`): HiGHS gets the model from
     :func:`build_arrays` through highspy (``arrays``, the default) or from :func:`build_model` through Pyomo
     (``pyomo``: the reference; SCIP and a given ``model`` always take it). Both hand HiGHS the same model.
     """
@@ -692,7 +733,7 @@ def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = 
         t1 = time.perf_counter()
         full = designs_start(inst, warm_start) if warm_start is not None and objective == "cost" \
             and inst.n_breaks else None
-        status, has, obj, bound, col = _highs_arrays(arr, time_limit, mip_gap, warm_start, full)
+        status, has, obj, bound, col, nodes = _highs_arrays(arr, time_limit, mip_gap, warm_start, full, node_limit)
         y = unserved = x = z = None
         if has:
             y = np.zeros(inst.n_parts, bool)
@@ -703,7 +744,7 @@ def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = 
                 x, z = col[arr.x_col] > 0.5, col[arr.z_col] > 0.5
         return PlatformSolution(status=status, y=y, objective=obj, bound=bound, gap=_gap(has, obj, bound, status),
                                 time_s=time.perf_counter() - t1, build_s=t1 - t0, size=dict(arr.size),
-                                solver=solver, unserved=unserved, x=x, z=z)
+                                solver=solver, unserved=unserved, x=x, z=z, nodes=nodes)
     import pyomo.environ as pyo
     m = model if model is not None else build_model(inst, objective, max_variants=max_variants, budget=budget,
                                                     allow_unserved=allow_unserved)
@@ -726,23 +767,42 @@ def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = 
         opt.config.mip_gap = float(mip_gap)
         opt.config.load_solution = False
         opt.config.warmstart = warm_start is not None
-        res = opt.solve(m)
+        opt.highs_options = {k: v for k, v in _highs_options(time_limit, mip_gap, node_limit).items()
+                             if k not in ("time_limit", "mip_rel_gap")}
+        res = None
+
+        def run():
+            nonlocal res
+            res = opt.solve(m)
+            return opt._solver_model
+        _run_highs(run)
+        nodes = int(opt._solver_model.getInfo().mip_node_count)
         tc = res.termination_condition
         obj, bound = _result_values(res)
         has = res.best_feasible_objective is not None
         if has:
             res.solution_loader.load_vars()
-        status = {TC.optimal: "optimal", TC.maxTimeLimit: "time_limit", TC.infeasible: "infeasible",
-                  TC.infeasibleOrUnbounded: "infeasible"}.get(tc, "error")
+        # maxIterations: appsi's name for HiGHS's kSolutionLimit (the MIP limits, of which only mip_max_nodes is set)
+        status = {TC.optimal: "optimal", TC.maxTimeLimit: "time_limit", TC.maxIterations: "node_limit",
+                  TC.infeasible: "infeasible", TC.infeasibleOrUnbounded: "infeasible"}.get(tc, "error")
     else:
         opt = pyo.SolverFactory(SOLVERS[solver])
         opts = {"limits/time": float(time_limit), "limits/gap": float(mip_gap)}
-        res = opt.solve(m, options=opts, load_solutions=False, warmstart=warm_start is not None)
+        if node_limit is not None:
+            opts["limits/nodes"] = int(node_limit)
+        if hasattr(opt, "warm_start_capable") and "warmstart_discrete_vars" in getattr(opt, "config", {}):
+            # Pyomo >= 6.10: scip_direct is the new interface behind the legacy one, whose solve takes no warmstart
+            opt.config.warmstart_discrete_vars = warm_start is not None
+            res = opt.solve(m, options=opts, load_solutions=False)
+        else:
+            res = opt.solve(m, options=opts, load_solutions=False, warmstart=warm_start is not None)
         tc = str(res.solver.termination_condition).split(".")[-1]
+        nodes = -1
         has = len(res.solution) > 0
         if has:
             m.solutions.load_from(res)
-        status = {"optimal": "optimal", "maxTimeLimit": "time_limit", "infeasible": "infeasible"}.get(tc, "error")
+        status = {"optimal": "optimal", "maxTimeLimit": "time_limit", "maxIterations": "node_limit",
+                  "infeasible": "infeasible"}.get(tc, "error")
         obj = float(pyo.value(m.obj)) if has else np.nan
         lb = res.problem.lower_bound
         bound = float(lb) if lb is not None and np.isfinite(float(lb)) else np.nan
@@ -760,7 +820,7 @@ def solve(inst: PlatformInstance, objective: str = "variants", *, solver: str = 
         z = np.array([(pyo.value(m.z[i]) or 0.0) > 0.5 for i in range(int(inst.row_opt_ptr[-1]))], bool)
     return PlatformSolution(status=status, y=y, objective=obj, bound=bound, gap=_gap(has, obj, bound, status),
                             time_s=solve_s, build_s=build_s, size=dict(m.size), solver=solver, unserved=unserved,
-                            x=x, z=z)
+                            x=x, z=z, nodes=nodes)
 
 
 def _gap(has: bool, obj: float, bound: float, status: str) -> float:

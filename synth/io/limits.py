@@ -115,7 +115,10 @@ COUNTS: dict[str, Count] = {k: c for k, c in (
     ("--points", Count("--points", 2, 500, "margin thresholds probed: each is one catalog solve (500: about 20 s, "
                                            "0.2 GB)")),
     ("rationalise --points", Count("--points", 2, 50, "points of the trade-off curve: each is one platform MILP of "
-                                                      "up to --time-limit seconds")),
+                                                      "up to --node-limit nodes and --time-limit seconds")),
+    ("rationalise --node-limit", Count("--node-limit", 1, 2**31 - 1,
+     "branch-and-bound nodes per platform MILP: the reproducible limit (1: the root node only; the largest is "
+     "the largest number HiGHS's mip_max_nodes takes)")),
     ("N", Count("N", 1, LIMITS.portfolio_rows, "applications in the portfolio (the largest portfolio synth bulk "
                                                "reads)")),
     ("--broken", Count("--broken", 0, LIMITS.portfolio_rows, "rows broken on purpose, at most N")),

@@ -8,7 +8,7 @@
   constraint, and for an application no platform serves, the reason.
 * ``summary.md``: the price of standardisation (platform parts and cost against the
   per-application optima), the volume saving, the feasibility data (time, applications), the solve
-  (status, gap, MILP size, times), the reductions.
+  (status, gap, the limits and whether one bound, MILP size, times), the reductions.
 * :func:`report_section`: the same for the HTML report, one self-contained ``<section>``
   (tables and the plots embedded as base64 PNG).
 """
@@ -31,7 +31,7 @@ from synth.platform.volume import price_curves, saving_text, volume_saving
 from synth.io.outputs import write_figure, output_file, output_folder, write_csv, write_text
 from synth.bulk.portfolio import CSV_FLOAT
 
-__all__ = ["platform_table", "gap_text", "assignment_table", "price_of_standardisation", "summary_markdown",
+__all__ = ["platform_table", "gap_text", "solve_text", "limits_text", "assignment_table", "price_of_standardisation", "summary_markdown",
            "volume_markdown",
            "tradeoff_table", "plot_tradeoff", "plot_families", "write_all", "report_section"]
 
@@ -117,6 +117,36 @@ def gap_text(x: float, digits: int = 1) -> str:
     return "n/a (caps)" if not np.isfinite(x) else f"{x:+.{digits}%}"
 
 
+def solve_text(result, digits: int = 2) -> str:
+    """How the MILP of ``result`` ended, as every output says it: ``optimal, gap 0.00%``; ``stopped at the node limit
+    (N nodes): reproducible, gap X%``; ``stopped at the time limit (S s): not reproducible, gap X%`` (the wall-clock
+    safety net: where the search stopped depends on the machine and its load).
+
+    >>> from types import SimpleNamespace as NS
+    >>> solve_text(NS(status="time_limit", gap=0.075, limits={"time_limit_s": 600.0, "milp_status": "time_limit"}))
+    'stopped at the time limit (600 s): not reproducible, gap 7.50%'
+    >>> solve_text(NS(status="node_limit", gap=0.01, limits={"node_limit": 10000, "milp_status": "node_limit"}))
+    'stopped at the node limit (10,000 nodes): reproducible, gap 1.00%'
+    """
+    lim = result.limits
+    gap = f"gap {result.gap:.{digits}%}" if np.isfinite(result.gap) else "gap unknown (no bound)"
+    milp = lim.get("milp_status", result.status)
+    if result.status == "node_limit":
+        return f"stopped at the node limit ({lim['node_limit']:,} nodes): reproducible, {gap}"
+    if milp == "time_limit":
+        what = "" if result.status == "time_limit" else " without a platform, the greedy one reported"
+        return f"stopped at the time limit ({lim['time_limit_s']:g} s){what}: not reproducible, {gap}"
+    return f"{result.status}, {gap}"
+
+
+def limits_text(result) -> str:
+    """The MILP's limits in ``result`` and the nodes it took (``summary.md``)."""
+    lim = result.limits
+    node = "no node limit" if lim.get("node_limit") is None else f"node limit {lim['node_limit']:,} (deterministic)"
+    took = f"; {lim['nodes']:,} nodes taken" if lim.get("nodes", -1) >= 0 else ""
+    return f"{node}, time limit {lim.get('time_limit_s', float('nan')):g} s (wall-clock safety net){took}"
+
+
 def summary_markdown(pf, result) -> str:
     p = price_of_standardisation(pf, result)
     n_bad = sum(not r["feasible"] for r in result.records)
@@ -149,8 +179,8 @@ def summary_markdown(pf, result) -> str:
         if pairs:
             lines.append("- evaluated rows: " + ", ".join(f"{k} {v:,}" for k, v in pairs.items()))
     lines += ["", "## Solve", "",
-              f"- MILP: {result.status}, objective {result.objective_value:,.6g}, bound {result.bound:,.6g}, "
-              f"gap {result.gap:.3%}",
+              f"- MILP: {solve_text(result, 3)}; objective {result.objective_value:,.6g}, bound {result.bound:,.6g}",
+              f"- limits: {limits_text(result)}",
               f"- greedy baseline: {result.greedy_value:,.6g} ({gap_text(result.greedy_gap, 2)} against the MILP)",
               f"- size: {s.get('variables', 0):,} variables ({s.get('binaries', 0)} binary), "
               f"{s.get('constraints', 0):,} constraints, {s.get('nonzeros', 0):,} non-zeros",
@@ -294,8 +324,8 @@ def report_section(result, tradeoff_png: bytes | None = None) -> str:
     n_bad = len(result.records) - p["applications_served"]
     out = ['<section id="platform">', "<h2>Platform rationalisation</h2>",
            f"<p>{p['applications_served']} of {len(result.records)} applications served by "
-           f"{result.n_parts} distinct parts ({result.objective} objective, MILP {html.escape(result.status)}, "
-           f"gap {result.gap:.2%}); {n_bad} not served (see <code>assignment.csv</code>). "
+           f"{result.n_parts} distinct parts ({result.objective} objective, MILP {html.escape(solve_text(result))}"
+           f"); {n_bad} not served (see <code>assignment.csv</code>). "
            f"The union of the applications' own optimal designs uses {p['parts_union_of_optima']} parts; "
            f"standardising changes the unit cost x volume by {p['unit_cost_increase']:+.2%}; "
            f"{html.escape(saving_text(p.get('volume')))}.</p>",

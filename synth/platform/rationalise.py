@@ -18,8 +18,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from formulations.platform import solve as solve_milp
+from formulations.platform import NODE_LIMIT, TIME_LIMIT_S, solve as solve_milp
 from synth.errors import InputError, Problem
+from synth.io.limits import COUNTS
 from synth.platform.assign import assign, full_platform, objective_value, option_groups, platform_from_y
 from synth.platform.compile import Precompiled, compile_portfolio, precompile
 from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility, \
@@ -43,7 +44,7 @@ class PlatformResult:
     """A chosen platform, each application's design, and how the choice was made."""
 
     objective: str
-    status: str                   # optimal | time_limit | greedy (MILP found nothing better in time) | ...
+    status: str                   # optimal | node_limit | time_limit | greedy (the MILP found no platform) | ...
     platform: dict                # family -> set of part codes
     records: list                 # synth.platform.assign.assign records, one per application
     objective_value: float        # MILP objective of the platform (weighted part count or total cost)
@@ -63,10 +64,18 @@ class PlatformResult:
     table: list = field(default_factory=list)     # platform.csv rows: family, part, applications
     tradeoff: list | None = None                  # trade-off rows when a sweep was made (the report section)
     curves: object = None                         # synth.platform.volume.PriceCurves the parts were priced by
+    limits: dict = field(default_factory=dict)    # node_limit, time_limit_s, nodes taken, milp_status (the MILP's own)
 
     @property
     def n_parts(self) -> int:
         return sum(len(v) for v in self.platform.values())
+
+    @property
+    def reproducible(self) -> bool:
+        """Whether the platform is the same on every run of the same input: False only where the MILP stopped at the
+        wall-clock safety net (its status ``time_limit``, also under ``greedy``), where the platform depends on the
+        machine and its load; an optimum and a platform stopped at the node limit are reproducible."""
+        return self.limits.get("milp_status", self.status) != "time_limit"
 
     @property
     def n_parts_union_optima(self) -> int:
@@ -102,7 +111,7 @@ def milp_designs(work, inst, sol) -> dict:
     return out
 
 
-def _check(objective, max_variants, time_limit, weights):
+def _check(objective, max_variants, time_limit, weights, node_limit=None):
     probs = []
     if objective not in OBJECTIVES:
         probs.append(Problem("objective", objective, " or ".join(OBJECTIVES)))
@@ -113,6 +122,11 @@ def _check(objective, max_variants, time_limit, weights):
             probs.append(Problem(f"--max-variants {f}", n, "a whole number >= 1"))
     if not (np.isfinite(time_limit) and time_limit > 0):
         probs.append(Problem("--time-limit", time_limit, "a number of seconds > 0"))
+    lim = COUNTS["rationalise --node-limit"]
+    if node_limit is not None and not (isinstance(node_limit, (int, np.integer)) and not isinstance(node_limit, bool)
+                                       and lim.lo <= node_limit <= lim.hi):
+        probs.append(Problem("--node-limit", node_limit, f"a whole number of branch-and-bound nodes in "
+                                                         f"[{lim.lo}, {lim.hi}], or None (no node limit)"))
     for f, w in (weights or {}).items():
         if f not in FAMILIES:
             probs.append(Problem("weight family", f, ", ".join(FAMILIES)))
@@ -123,7 +137,8 @@ def _check(objective, max_variants, time_limit, weights):
 
 
 def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_variants: dict | None = None,
-                time_limit: float = 60.0, weights: dict | None = None, solver: str = "highs", prune: bool = True,
+                time_limit: float = TIME_LIMIT_S, node_limit: int | None = NODE_LIMIT, weights: dict | None = None,
+                solver: str = "highs", prune: bool = True,
                 min_margin: float | None = None, budget: float | None = None, verify: bool = True,
                 pre: Precompiled | None = None, details: bool = True, build: str = "arrays",
                 stage=None, curves="auto") -> PlatformResult:
@@ -131,7 +146,11 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     parts; ``cost``: unit cost x volume plus per-variant fixed cost).
 
     ``max_variants``: ``{family: N}`` caps (applications no capped platform serves are
-    reported, not an error); ``min_margin``: only cores and options with at least this
+    reported, not an error); ``node_limit``: branch-and-bound nodes the MILP may take (default
+    :data:`formulations.platform.NODE_LIMIT`; None: no limit), the limit that keeps the platform the same on every
+    machine and under any load (status ``node_limit`` where it binds); ``time_limit``: wall-clock seconds the MILP may
+    take (default :data:`formulations.platform.TIME_LIMIT_S`), a safety net: where it binds (status ``time_limit``)
+    the platform is not reproducible and the outputs say so (:attr:`PlatformResult.reproducible`); ``min_margin``: only cores and options with at least this
     margin; ``budget``: a ceiling on the weighted part count (the trade-off sweep);
     ``verify``: check every assigned design again through the evaluator
     (:func:`synth.platform.verified.verify_records`, real data only); ``pre``: ``pf``'s
@@ -145,7 +164,7 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     ``pf``, None without annual volumes; None: each part at the price the feasibility data hold): the cost objective
     prices each part at the summed volume of the applications it serves (:func:`~synth.platform.volume.pool_prices`).
     """
-    _check(objective, max_variants, time_limit, weights)
+    _check(objective, max_variants, time_limit, weights, node_limit)
     step = stage or (lambda name: nullcontext())
     w_all = {**default_weights(), **(weights or {})}
     t0 = time.perf_counter()
@@ -174,8 +193,8 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     t3 = time.perf_counter()
     warm = y_g if not capped else None   # the uncapped greedy platform may break a cap
     with step("MILP"):
-        sol = solve_milp(inst, objective, solver=solver, time_limit=time_limit, max_variants=max_variants,
-                         budget=budget, allow_unserved=capped, warm_start=warm, build=build)
+        sol = solve_milp(inst, objective, solver=solver, time_limit=time_limit, node_limit=node_limit,
+                         max_variants=max_variants, budget=budget, allow_unserved=capped, warm_start=warm, build=build)
     t4 = time.perf_counter()
     notes = list(pf.notes)
     if sol.y is not None:
@@ -221,7 +240,9 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
         times={"compile_s": t1 - t0, "prune_s": t2 - t1, "greedy_s": t3 - t2, "build_s": sol.build_s,
                "solve_s": sol.time_s, "milp_s": t4 - t3, "assign_s": t5 - t4 - t_v, "verify_s": t_v,
                "total_s": t5 - t0},
-        per_app_optima=per_app, weights=w_all, max_variants=dict(max_variants or {}), notes=notes, curves=curves)
+        per_app_optima=per_app, weights=w_all, max_variants=dict(max_variants or {}), notes=notes, curves=curves,
+        limits={"node_limit": node_limit, "time_limit_s": float(time_limit), "nodes": int(sol.nodes),
+                "milp_status": sol.status})
     if not details:
         return res
     with step("price of standardisation"):
@@ -230,8 +251,9 @@ def rationalise(pf: PortfolioFeasibility, objective: str = "variants", *, max_va
     return res
 
 
-def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6, time_limit: float = 30.0,
-             weights: dict | None = None, progress=None, share: bool = True, build: str = "arrays") -> list:
+def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6, time_limit: float = TIME_LIMIT_S,
+             node_limit: int | None = NODE_LIMIT, weights: dict | None = None, progress=None, share: bool = True,
+             build: str = "arrays") -> list:
     """Platform size against worst margin (``kind="margin"``) or against total cost (``"cost"``).
 
     ``margin``: for margin floors from 0 up to the lower quartile of the applications' best
@@ -242,7 +264,9 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
     Returns rows ``{"parts", "cost_eur", "worst_margin", "served", "status", ...}``. ``progress(done, total)`` is
     called after each platform solved. ``share``: the rounds compile the portfolio once
     (:func:`~synth.platform.compile.precompile`) and leave out the reports' details; ``False`` solves each round
-    afresh (the same rows, slower: the benchmark's and the tests' yardstick). ``build``: as in :func:`rationalise`.
+    afresh (the same rows, slower: the benchmark's and the tests' yardstick). ``build``, ``time_limit`` and
+    ``node_limit``: as in :func:`rationalise`, per round; a round stopped at the time limit says "not reproducible"
+    in its status.
     """
     if kind not in ("margin", "cost"):
         raise InputError(Problem("trade-off", kind, "margin or cost"))
@@ -258,7 +282,7 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
         return {"parts": r.n_parts, "weighted_parts": sum(r.weights[f] * len(cs) for f, cs in r.platform.items()),
                 "cost_eur": cost + fixed, "unit_cost_volume_eur": cost, "fixed_cost_eur": fixed,
                 "worst_margin": min((x["margin"] for x in ok), default=np.nan), "served": len(ok),
-                "status": r.status, **extra}
+                "status": r.status if r.reproducible else f"{r.status} (time limit: not reproducible)", **extra}
 
     if kind == "margin":
         # the largest floor every servable application can meet: the smallest per-application best margin
@@ -279,30 +303,31 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
         import dataclasses
         pf = dataclasses.replace(pf, apps=[a for b, a in best if b >= top])   # one set of applications for every floor
         pre = precompile(pf) if share else None   # compiled once: each floor keeps a subset of its options
-        base = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False, pre=pre,
-                           details=not share, build=build)
+        base = rationalise(pf, "variants", time_limit=time_limit, node_limit=node_limit, weights=weights,
+                           verify=False, pre=pre, details=not share, build=build)
         tick(1, points)
         n_served = len(pf.apps)
         for tau in np.linspace(0.0, top, points):
-            r = base if tau == 0.0 else rationalise(pf, "variants", time_limit=time_limit, weights=weights,
-                                                    min_margin=float(tau), verify=False, pre=pre, details=not share,
-                                                    build=build)
+            r = base if tau == 0.0 else rationalise(pf, "variants", time_limit=time_limit, node_limit=node_limit,
+                                                    weights=weights, min_margin=float(tau), verify=False, pre=pre,
+                                                    details=not share, build=build)
             tick(len(rows) + 1, points)
             rows.append(row(r, margin_floor=float(tau)))
             if rows[-1]["served"] < n_served:
                 rows[-1]["status"] += " (fewer served)"
         return rows
     pre = precompile(pf) if share else None
-    small = rationalise(pf, "variants", time_limit=time_limit, weights=weights, verify=False, pre=pre,
-                        details=not share, build=build)
-    cheap = rationalise(pf, "cost", time_limit=time_limit, weights=weights, verify=False, pre=pre,
-                        details=not share, build=build, curves=curves)
+    small = rationalise(pf, "variants", time_limit=time_limit, node_limit=node_limit, weights=weights, verify=False,
+                        pre=pre, details=not share, build=build)
+    cheap = rationalise(pf, "cost", time_limit=time_limit, node_limit=node_limit, weights=weights, verify=False,
+                        pre=pre, details=not share, build=build, curves=curves)
     lo, hi = sum(small.weights[f] * len(c) for f, c in small.platform.items()), \
         sum(cheap.weights[f] * len(c) for f, c in cheap.platform.items())
     budgets = np.unique(np.round(np.linspace(lo, max(hi, lo), points), 6))
     for b in budgets:
-        r = cheap if b >= hi else rationalise(pf, "cost", time_limit=time_limit, weights=weights, budget=float(b),
-                                              verify=False, pre=pre, details=not share, build=build, curves=curves)
+        r = cheap if b >= hi else rationalise(pf, "cost", time_limit=time_limit, node_limit=node_limit, weights=weights,
+                                              budget=float(b), verify=False, pre=pre, details=not share, build=build,
+                                              curves=curves)
         rows.append(row(r, budget=float(b)))
         tick(len(rows), len(budgets))
     return rows

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from formulations.platform import NODE_LIMIT, TIME_LIMIT_S
 from synth.errors import InputError, Problem
 from synth.io.limits import check_count
 from synth.io.outputs import output_files
@@ -61,8 +62,14 @@ def register(sub) -> None:
     p.add_argument("--max-variants", nargs="*", default=[], metavar="FAMILY=N",
                    help="cap the variants of families: FAMILY=N, several after one option (FAMILY one of "
                         + ", ".join(FAMILIES) + ")")
-    p.add_argument("--time-limit", type=float, default=60.0, metavar="S",
-                   help="MILP time limit per solve [s] (default 60): on expiry the best platform found")
+    p.add_argument("--node-limit", type=int, default=NODE_LIMIT, metavar="N",
+                   help=f"branch-and-bound nodes per MILP solve (default {NODE_LIMIT:,}): the limit that gives the same "
+                        "platform for the same input on any machine and load; where it binds, the best platform found "
+                        "in N nodes, and the output says so")
+    p.add_argument("--time-limit", type=float, default=TIME_LIMIT_S, metavar="S",
+                   help=f"wall-clock seconds per MILP solve (default {TIME_LIMIT_S:g}), a safety net: where it binds, "
+                        "the best platform found, which depends on the machine and its load (the output says \"stopped "
+                        "at the time limit: not reproducible\")")
     p.add_argument("--solver", default="highs", choices=["highs", "scip"],
                    help="MILP solver: highs (default, built from arrays for highspy) or scip (through the Pyomo "
                         "reference model)")
@@ -90,7 +97,7 @@ def register(sub) -> None:
 
 
 def _main(args) -> int:
-    from synth.platform.outputs import gap_text, write_all
+    from synth.platform.outputs import gap_text, solve_text, write_all
     from synth.platform.volume import saving_text
     from synth.platform.portfolio_feasibility import load_feasibility
     from synth.platform.rationalise import rationalise, tradeoff
@@ -102,6 +109,7 @@ def _main(args) -> int:
         check_count("--workers", args.workers, hi=None if args.scheduler else max(1, usable_cores()))
     if not 0 < args.time_limit <= 86_400:
         raise InputError(Problem("--time-limit", args.time_limit, "seconds in (0, 86400] per MILP solve"))
+    check_count("rationalise --node-limit", args.node_limit)
     engine = "dask" if args.scheduler else args.engine
     # the design rules; load_feasibility refuses those the platform cannot honour
     settings = Settings(fidelity=args.fidelity, rules=rules_of(args), spring_limit_basis=args.spring_limit)
@@ -121,13 +129,13 @@ def _main(args) -> int:
     def stage(name):   # a progress line per stage of the platform (synth.platform.rationalise.STAGES)
         return phase(f"synth rationalise: platform, {label if name == 'MILP' else name} ({len(pf.apps)} applications)")
 
-    r = rationalise(pf, args.objective, max_variants=caps, time_limit=args.time_limit, solver=args.solver,
-                    stage=stage)
+    r = rationalise(pf, args.objective, max_variants=caps, time_limit=args.time_limit, node_limit=args.node_limit,
+                    solver=args.solver, stage=stage)
     rows = None
     if args.tradeoff != "none":
         with Progress(total=args.points, desc=f"synth rationalise: trade-off curve ({args.tradeoff})") as bar:
             rows = tradeoff(pf, args.tradeoff, points=args.points, time_limit=args.time_limit,
-                            progress=lambda done, total: bar.update(done - bar.n))
+                            node_limit=args.node_limit, progress=lambda done, total: bar.update(done - bar.n))
     r.tradeoff = rows
     with output_files(args.out, "--out") as out, phase("synth rationalise: writing the outputs"):
         paths = [Path(args.out) / q.relative_to(out) for q in write_all(pf, r, out, rows, args.tradeoff)]
@@ -135,10 +143,10 @@ def _main(args) -> int:
     print(f"synth rationalise: {p['applications_served']} of {len(r.records)} applications served by "
           f"{r.n_parts} distinct parts (union of per-application optima: {p['parts_union_of_optima']}); "
           f"{saving_text(p['volume'])}; "
-          f"unit cost {p['unit_cost_increase']:+.2%} against the per-application optima; MILP {r.status}, "
-          f"gap {r.gap:.2%}; greedy {gap_text(r.greedy_gap)}")
+          f"unit cost {p['unit_cost_increase']:+.2%} against the per-application optima; MILP {solve_text(r)}; "
+          f"greedy {gap_text(r.greedy_gap)}")
     print("written: " + ", ".join(str(x) for x in paths))
-    ok = r.status in ("optimal", "time_limit", "greedy")
+    ok = r.status in ("optimal", "node_limit", "time_limit", "greedy")
     print(f"Run: {'COMPLETE' if ok else 'FAILED'} (MILP {r.status}; {p['applications_served']} of {len(r.records)} "
           f"applications served; each application's verified verdict is in {Path(args.out) / 'assignment.csv'})")
     return 0 if ok else 1

@@ -247,10 +247,12 @@ class PortfolioSession:
         from synth.bulk.portfolio import row_record
         return row_record(self.table.iloc[int(i)].to_dict())
 
-    def rationalise(self, progress=None, *, fidelity: str = "full", time_limit: float = 60.0) -> str:
+    def rationalise(self, progress=None, *, fidelity: str = "full", time_limit: float | None = None) -> str:
         """The platform of the portfolio (``synth rationalise``, variants objective) at model ``fidelity`` (the page
         passes the one chosen beside its buttons, and says it): its files (``platform/...``, :meth:`files`) and its
-        report section (HTML), which names ``assignment.csv``."""
+        report section (HTML), which names ``assignment.csv`` and says how the MILP ended. The MILP's limits are the
+        command's defaults (:data:`formulations.platform.NODE_LIMIT`; ``time_limit``: the wall-clock safety net,
+        default :data:`formulations.platform.TIME_LIMIT_S`)."""
         from synth.design.evaluate import Settings
         from synth.platform.outputs import report_section
         from synth.platform.portfolio_feasibility import load_feasibility
@@ -264,7 +266,7 @@ class PortfolioSession:
                 progress(done, total)
         try:
             pf = load_feasibility(str(self.path), Settings(fidelity=fidelity, rules=self.rules), progress=step)
-            self.platform = rationalise(pf, "variants", time_limit=time_limit)
+            self.platform = rationalise(pf, "variants", **({} if time_limit is None else {"time_limit": time_limit}))
             self._files = {k: v for k, v in self._files.items() if not k.startswith("platform/")}
             for p in write_all(pf, self.platform, self.workdir / "files" / "platform"):
                 self._files[f"platform/{p.name}"] = p
