@@ -107,10 +107,18 @@ def test_the_server_says_it_binds_to_this_machine_only(server):
 
 def test_default_case_then_an_edit_turns_a_check_red_as_the_api_verifies_it(page):
     import synth
+    from synth import schema
     from synth.ui.session import default_values
     pg, url = page
+    loaded: list[str] = []
+    pg.on("request", lambda r: loaded.append(r.url))
     goto_when_up(pg, url)
     pg.locator(CHECKS).first.wait_for(timeout=budget_ms("checks"))
+    # the first page loads no chart or 3D library (ECharts, three.js: NiceGUI's ES modules, with their tab's first
+    # element) and no component script of theirs
+    assert [u for u in loaded if "/esm/" in u or re.search(r"/(echart|scene)\.js", u)] == []
+    # the form's first sections come with the checks, the others once the page is drawn: every field, once
+    pg.wait_for_function(f"document.querySelectorAll('[data-field]').length == {len(schema.FIELDS)}")
     d = default_values()
     best = synth.synthesise(d)
     shown = _verdicts(pg)
@@ -127,6 +135,14 @@ def test_default_case_then_an_edit_turns_a_check_red_as_the_api_verifies_it(page
     value = pg.locator("table.checks tr[data-check=spring_yield] td.num").first.inner_text()
     # the page's number is verify's value to 4 significant figures (plain digits: 35490, not 3.549e+04)
     assert "e" not in value and float(value) == pytest.approx(stiff.check("spring_yield").value, rel=5e-4)
+
+    # a reload: the tab keeps its design (the edit), shown once
+    pg.reload()
+    pg.locator(CHECKS).first.wait_for(timeout=budget_ms("checks"))
+    pg.wait_for_function(f"document.querySelectorAll('[data-field]').length == {len(schema.FIELDS)}")
+    assert pg.locator("[data-field=spring_stiffness_nm_per_deg] input").count() == 1
+    assert pg.locator("[data-field=spring_stiffness_nm_per_deg] input").input_value() == "1.5"
+    assert _verdicts(pg)["spring_yield"] == ["fail", _rgb(VERDICT_FILLS["fail"])]
 
 
 def test_a_page_keeps_its_design_through_a_10_s_stall_of_the_browser(page):
