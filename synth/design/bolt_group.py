@@ -12,7 +12,7 @@ from synth.design.group import Fields, Group, const as _const, core_values, fini
 from synth.design.settings import DEFAULT, Settings
 from synth.model import bolted_joint
 
-__all__ = ["fixation_values", "fixation_reads", "bolt_core_checks", "bolt_core", "bolt"]
+__all__ = ["fixation_values", "fixation_reads", "fixation_codes", "TABLE_ENTRIES_PER_ROW", "bolt_core_checks", "bolt_core", "bolt"]
 
 #: the bolt table's columns :func:`fixation_values` reads (the tightening method too under the VDI 2230 method:
 #: :func:`fixation_reads`)
@@ -39,15 +39,63 @@ _BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_m
                 "bolt_embedding_loss_n")
 
 
+def fixation_codes(o: dict, settings: Settings = DEFAULT) -> tuple:
+    """``(code per row, first row of each code)`` of bolt columns ``o`` (a table or rows of one): rows equal in
+    every column the fixation reads (:func:`fixation_reads`, those ``o`` has) share a code, so the same fixation
+    for any application; codes in order of first appearance (a hash factorisation of each column: no Python tuple
+    per row; a missing value is a value of its own).
+
+    >>> o = {"bolt_format": np.array(["M8", "M10", "M8"], dtype=object), "bolt_property_class": ["8.8"] * 3,
+    ...      "bolt_head_type": np.array(["hex", "hex", "hex"], dtype=object), "cost_eur": [1.0, 2.0, 3.0]}
+    >>> [x.tolist() for x in fixation_codes(o)]
+    [[0, 1, 0], [0, 1]]
+    """
+    import pandas as pd  # loaded already wherever many rows come (the bulk engine)
+    cols = [np.asarray(o[k], dtype=object) for k in fixation_reads(settings) if k in o]
+    n = len(cols[0]) if cols else len(next(iter(o.values())))
+    code = np.zeros(n, dtype=np.int64)
+    for col in cols:
+        c, u = pd.factorize(col, use_na_sentinel=False)
+        code = pd.factorize(code * len(u) + c)[0].astype(np.int64)  # < n: no overflow however many columns
+    return _first_codes(code)
+
+
+def _first_codes(code) -> tuple:
+    """``(codes, first row of each)``: the distinct values of integer array ``code`` numbered in order of first
+    appearance.
+
+    >>> [x.tolist() for x in _first_codes(np.array([7, 3, 7, 5]))]
+    [[0, 1, 0, 2], [0, 1, 3]]
+    """
+    import pandas as pd
+    code = pd.factorize(np.asarray(code, dtype=np.int64))[0].astype(np.int64)
+    first = np.zeros(int(code.max()) + 1 if len(code) else 0, dtype=np.int64)
+    first[code[::-1]] = np.arange(len(code))[::-1]  # each code's first row
+    return code, first
+
+
+#: the fixation of many (application, bolt) rows is one call over their distinct applications x distinct bolts (as
+#: the fixation reads them, :func:`fixation_codes`) when that table has at most this many entries per row (a few
+#: entries nobody asked for cost less than a call); otherwise one call per bolt-head form, washer series and
+#: tightening method, over its applications x its (format, class) pairs (the samples of a few designs: each sample
+#: its own application, each design its own bolt)
+TABLE_ENTRIES_PER_ROW = 2.0
+
+
 def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
     """Step 10 (:func:`synth.model.bolted_joint.fixation`) for rows of applications ``a`` and bolts ``o``.
 
-    One vectorised call per bolt-head form, washer series, tightening method (the VDI 2230 path only: the
-    thesis path tightens to the required force whatever the method) and whether the application gives its
-    seat (``bolt_head_contact_external_diameter_mm``): the distinct applications of those rows x the distinct
-    bolts (format, property class) among them, every bolt evaluated as the chosen one
-    (``fixation(..., candidates=...)``), the friction coefficients of each application's environment passed per
-    application; the rows gather their (application, bolt) entry. NaN for applications without their fixation data.
+    The fixation once per distinct application and bolt as the fixation reads it (:func:`fixation_codes`, the
+    columns of :func:`fixation_reads`), every bolt evaluated as the chosen one (``fixation(..., candidates=...)``,
+    each with its own head form, washer series and tightening method), the friction coefficients of each
+    application's environment passed per application; the rows gather their (application, bolt) entry. One
+    vectorised call over the distinct applications x distinct bolts of the rows whose application gives its seat
+    (``bolt_head_contact_external_diameter_mm``), one over those whose does not, when that table is dense
+    (:data:`TABLE_ENTRIES_PER_ROW`: the catalog's bolts for a few applications, the bulk's blocks); otherwise one
+    call per bolt-head form, washer series and tightening method (the VDI 2230 path only: the thesis path tightens
+    to the required force whatever the method), over its distinct applications x (format, class) pairs. Every
+    entry is what the call naming that bolt alone gives (element-wise arithmetic). NaN for applications without
+    their fixation data.
     """
     n = len(a)
     out = {k: np.full(n, np.nan) for k in _BOLT_VALUES}
@@ -64,17 +112,12 @@ def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
     method = np.asarray(o["bolt_tightening"], dtype=object)[rows] if vdi and "bolt_tightening" in o else \
         np.full(nr, bolted_joint.DEFAULT_TIGHTENING_METHOD, object)
     given = apps.given["bolt_head_contact_external_diameter_mm"][aa_all]
-    f = apps.f
     made = apps.derived.get("bolt_clamp_force_n")  # a made joint's preload (synth.robust), NaN: the window
-    for h, w, m, g, sel in _groups(head, washer, method, given):
-        ua, ia = np.unique(aa_all[sel], return_inverse=True)
-        fs, cs = fmt[sel], cls[sel]
-        if (fs == fs[0]).all() and (cs == cs[0]).all():  # one bolt (the samples of one design): no dictionary
-            ib, pairs = np.zeros(len(sel), dtype=np.int64), [(fs[0], cs[0])]
-        else:  # the distinct (format, class) pairs in order of first appearance, and each row's
-            ib, pairs = _pair_codes(fs, cs)
+
+    def call(ua, g, pairs, h, w, m):
         env = apps.env[ua]
-        r = bolted_joint.fixation(
+        f = apps.f
+        return bolted_joint.fixation(
             apps.hubload_nominal_n[ua], f["middle_plane_belt_height_mm"][ua],
             f["middle_plane_belt_height_increment_worst_mm"][ua], f["tilting_safety_factor"][ua],
             f["sliding_safety_factor"][ua], f["engine_support_internal_diameter_mm"][ua],
@@ -84,13 +127,41 @@ def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
             mu_crankcase=_mu(apps, "mu_crankcase", "pivot_base_crankcase", ua, env),
             mu_thread=_mu(apps, "mu_thread", "thread", ua, env), mu_head=_mu(apps, "mu_head", "under_head", ua, env),
             bolt_head_contact_external_diameter_mm=f["bolt_head_contact_external_diameter_mm"][ua] if g else None,
-            head_type=str(h), washer=str(w), candidates=pairs, method=settings.bolt_method,
-            tightening_method=str(m), clamp_force_n=None if made is None else made[ua])
-        ia = np.asarray(ia).reshape(-1)
-        at, flat = rows[sel], ia * len(pairs) + ib  # each row's entry of the (application, bolt) table
+            head_type=h, washer=w, candidates=pairs, method=settings.bolt_method, tightening_method=m,
+            clamp_force_n=None if made is None else made[ua])
+
+    def gather(r, ua_len, n_pairs, at, flat):
         for k in _BOLT_VALUES:
             if k in r:
-                out[k][at] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(ua), len(pairs))).reshape(-1)[flat]
+                out[k][at] = np.broadcast_to(np.asarray(r[k], dtype=float), (ua_len, n_pairs)).reshape(-1)[flat]
+
+    named = all(isinstance(v, str) for col in (head, washer, method) for v in dict.fromkeys(col.tolist()))
+    code = fixation_codes({"bolt_format": fmt, "bolt_property_class": cls, "bolt_head_type": head,
+                           "bolt_washer": washer, "bolt_tightening": method}, settings)[0] if named else None
+    for g in (False, True):
+        sel = np.flatnonzero(np.asarray(given, dtype=bool) == g)
+        if not len(sel):
+            continue
+        ua, ia = np.unique(aa_all[sel], return_inverse=True)
+        ia = np.asarray(ia).reshape(-1)
+        if code is not None:
+            kc, first = _first_codes(code[sel])  # the bolts among these rows
+            if len(ua) * len(first) <= TABLE_ENTRIES_PER_ROW * len(sel):
+                b = sel[first]
+                r = call(ua, g, list(zip(fmt[b].tolist(), cls[b].tolist())), head[b].tolist(), washer[b].tolist(),
+                         method[b].tolist())
+                gather(r, len(ua), len(b), rows[sel], ia * len(b) + kc)
+                continue
+        for h, w, m, _, grp in _groups(head[sel], washer[sel], method[sel], given[sel]):
+            at = sel[grp]
+            ub, ib = np.unique(ia[grp], return_inverse=True)
+            fs, cs = fmt[at], cls[at]
+            if (fs == fs[0]).all() and (cs == cs[0]).all():  # one bolt (the samples of one design): no dictionary
+                kb, pairs = np.zeros(len(at), dtype=np.int64), [(fs[0], cs[0])]
+            else:  # the distinct (format, class) pairs in order of first appearance, and each row's
+                kb, pairs = _pair_codes(fs, cs)
+            r = call(ua[ub], g, pairs, str(h), str(w), str(m))
+            gather(r, len(ub), len(pairs), rows[at], np.asarray(ib).reshape(-1) * len(pairs) + kb)
     return out
 
 

@@ -252,8 +252,12 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         raise InputError(Problem("method", method, "one of " + ", ".join(METHODS)))
     if application_type not in ENVIRONMENTS:
         raise InputError(Problem("application_type", application_type, "one of " + ", ".join(ENVIRONMENTS)))
-    if head_type not in HEAD_TYPES:
-        raise InputError(Problem("head_type", head_type, "one of " + ", ".join(HEAD_TYPES)))
+    heads = _per_candidate("head_type", head_type, candidates)
+    for h in dict.fromkeys(heads):
+        if h not in HEAD_TYPES:
+            raise InputError(Problem("head_type", h, "one of " + ", ".join(HEAD_TYPES)))
+    washers = _per_candidate("washer", washer, candidates)
+    methods = _per_candidate("tightening_method", tightening_method, candidates)
     if normal_stress_area not in ("stress", "core"):
         raise InputError(Problem("normal_stress_area", normal_stress_area, "'stress' or 'core'"))
     if torsion_diameter not in ("minor", "stress"):
@@ -287,7 +291,7 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         if bolt_format is not None or bolt_property_class is not None:
             raise InputError(Problem("candidates", "given with bolt_format/bolt_property_class",
                                      "either a list of (format, class) pairs or one format and class"))
-        cands = [bolt_candidates(f, c, head_type)[0] for f, c in candidates]
+        cands = [bolt_candidates(f, c, h)[0] for (f, c), h in zip(candidates, heads)]
         if not cands:
             raise InputError(Problem("candidates", "[]", "at least one (format, class) pair"))
     else:
@@ -298,7 +302,7 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     col = {key: np.array([c[key] for c in cands], dtype=float) for key, v in cands[0].items() if isinstance(v, float)}
     names_f = np.array([c["bolt_format"] for c in cands])
     names_c = np.array([c["bolt_property_class"] for c in cands])
-    wsh = washer_dimensions(washer, col["d_mm"])
+    wsh = _washers(washers, col["d_mm"])
     seat = None if bolt_head_contact_external_diameter_mm is None else \
         _arr(bolt_head_contact_external_diameter_mm)[..., None]
     if seat is not None and np.any(seat[..., 0] <= d_int):
@@ -321,10 +325,10 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
             ex(required), made, col, mu_gk, dk, d_in, ex(mu_k), torque_model, normal_stress_area, torsion_diameter)
     else:
         f_top, f_bottom, f_bolt, sigma_s, tau_s, eqv_s, torque, vdi = _vdi2230_joint(
-            ex(required), made, col, mu_gk, dk, dw, d_in, ex(d_ext), ex(mu_k), shape, tightening_method=tightening_method,
+            ex(required), made, col, mu_gk, dk, dw, d_in, ex(d_ext), ex(mu_k), shape, tightening_method=methods,
             alpha_a=alpha_a, utilisation=utilisation, embedding=embedding, clamp_length_mm=clamp_length_mm,
             embedding_roughness=embedding_roughness, embedding_loading=embedding_loading,
-            clamped_interfaces=clamped_interfaces, joint_type=joint_type, head_type=head_type,
+            clamped_interfaces=clamped_interfaces, joint_type=joint_type, head_type=heads,
             clamped_parts_modulus_mpa=clamped_parts_modulus_mpa, free_thread_length_mm=free_thread_length_mm)
     sf_t = tilting_safety_factor(np.maximum(f_bottom, 0.0), ex(hl), ex(lever), ex(d_ext), ex(d_int),
                                  ex(contact_angle_deg), model=contact_model)
@@ -365,6 +369,35 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     return out
 
 
+def _per_candidate(name: str, value, candidates) -> list:
+    """One name per bolt of :func:`fixation`: ``value`` for each (a name), or with ``candidates`` a sequence of
+    names aligned with them (each bolt's own head form, washer series or tightening method)."""
+    n = 1 if candidates is None else len(candidates)
+    if isinstance(value, str) or value is None or np.ndim(value) == 0:
+        return [value] * n
+    names = list(value)
+    if candidates is None or len(names) != n:
+        raise InputError(Problem(name, f"{len(names)} names", f"one name, or one per candidate ({n})"
+                                 if candidates is not None else "one name (a sequence needs candidates)"))
+    return names
+
+
+def _washers(series: list, d_mm) -> dict:
+    """:func:`washer_dimensions` of each bolt's own washer ``series`` (one per entry of ``d_mm``), one catalog
+    look-up per distinct series."""
+    d = np.asarray(d_mm, dtype=float)
+    names = list(dict.fromkeys(series))
+    if len(names) == 1:
+        return washer_dimensions(names[0], d)
+    out = {k: np.empty(d.shape) for k in ("d1_mm", "d2_mm", "h_mm")}
+    which = np.array([names.index(s) for s in series])
+    for i, s in enumerate(names):
+        at = which == i
+        for k, v in washer_dimensions(s, d[at]).items():
+            out[k][at] = v
+    return out
+
+
 def _on_candidates(a):
     """A design array on the candidates' (trailing) axis."""
     return np.asarray(a, dtype=float)[..., None]
@@ -393,9 +426,11 @@ def _vdi2230_joint(required, made, col, mu_gk, dk, dw, d_in, d_ext, mu_k, shape,
     window sized to the requirement ``required`` (or the bolt's yield preload), the embedding loss, the stresses at
     the window's top. Arrays on the candidates' axis; returns ``(F top, F bottom, F bolt, sigma, tau, sigma_eqv,
     torque [N m], the VDI values)``."""
-    tm = _vdi.tightening_method(tightening_method)
-    yield_set = tm["preload_set_by"] == "yield"
-    alpha = tm["alpha_a_max"] if alpha_a is None else float(_require(
+    names = list(dict.fromkeys(tightening_method))
+    tms = [_vdi.tightening_method(m) for m in names]
+    which = np.array([names.index(m) for m in tightening_method])
+    yield_set = np.array([tm["preload_set_by"] == "yield" for tm in tms])[which]  # per candidate
+    alpha = np.array([tm["alpha_a_max"] for tm in tms])[which] if alpha_a is None else float(_require(
         "alpha_a", alpha_a, low=1.0, inclusive=True, accepted="a tightening factor >= 1"))
     f_zul = permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"], col["rp02_mpa"], mu_gk,
                                            utilisation=utilisation)
@@ -405,19 +440,23 @@ def _vdi2230_joint(required, made, col, mu_gk, dk, dw, d_in, d_ext, mu_k, shape,
         fz_um = embedding_um(embedding_roughness, embedding_loading, interfaces=clamped_interfaces,
                              joint_type=joint_type)
         lk = _on_candidates(clamp_length_mm)
-        d_s = bolt_resilience_mm_per_n(col["d_mm"], col["d3_mm"], lk, head_type=head_type, joint_type=joint_type,
-                                       free_thread_length_mm=_on_candidates(free_thread_length_mm),
-                                       internal_thread_modulus_mpa=clamped_parts_modulus_mpa)
+        d_s = 0.0
+        for h in dict.fromkeys(head_type):  # each bolt's own head form
+            d_h = bolt_resilience_mm_per_n(col["d_mm"], col["d3_mm"], lk, head_type=h, joint_type=joint_type,
+                                           free_thread_length_mm=_on_candidates(free_thread_length_mm),
+                                           internal_thread_modulus_mpa=clamped_parts_modulus_mpa)
+            d_s = np.where(np.array([x == h for x in head_type]), d_h, d_s)
         d_p = clamped_parts_resilience_mm_per_n(dw, d_in, d_ext, lk, modulus_mpa=clamped_parts_modulus_mpa,
                                                 joint_type=joint_type)
         f_z = np.broadcast_to(embedding_preload_loss_n(fz_um, d_s, d_p), shape)
-    if yield_set:  # the bolt's own yield preload (nu = 1, Rp0.2 min): the window's bottom
-        f_min = np.broadcast_to(permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"],
-                                                               col["rp02_mpa"], mu_gk, utilisation=1.0), shape)
-        limit = np.full(shape, np.inf)
-    else:
-        f_min = np.broadcast_to(required + f_z, shape)
-        limit = np.broadcast_to(f_zul, shape)
+    # a yield- or angle-controlled bolt: its own yield preload (nu = 1, Rp0.2 min) is the window's bottom, no limit;
+    # a torque-controlled one: the requirement, up to its permissible preload
+    f_min = np.broadcast_to(required + f_z, shape)
+    limit = np.broadcast_to(f_zul, shape)
+    if yield_set.any():
+        f_min = np.where(yield_set, permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"],
+                                                                   col["rp02_mpa"], mu_gk, utilisation=1.0), f_min)
+        limit = np.where(yield_set, np.inf, limit)
     f_max = alpha * f_min
     if made is None:
         f_bottom, f_top, f_bolt = f_min, f_max, (f_min + f_max) / 2.0
@@ -438,5 +477,5 @@ def _vdi2230_joint(required, made, col, mu_gk, dk, dw, d_in, d_ext, mu_k, shape,
     vdi = {"bolt_permissible_preload_n": limit, "bolt_required_preload_min_n": f_min,
            "bolt_required_preload_max_n": f_top, "bolt_embedding_um": np.full(shape, fz_um),
            "bolt_embedding_loss_n": f_z, "bolt_residual_clamp_force_n": f_bottom,
-           "tightening_factor": np.full(shape, alpha)}
+           "tightening_factor": np.broadcast_to(alpha, shape)}
     return f_top, f_bottom, f_bolt, sigma_s, tau_s, eqv_s, torque, vdi
