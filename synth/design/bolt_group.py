@@ -136,8 +136,12 @@ def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
                 out[k][at] = np.broadcast_to(np.asarray(r[k], dtype=float), (ua_len, n_pairs)).reshape(-1)[flat]
 
     named = all(isinstance(v, str) for col in (head, washer, method) for v in dict.fromkeys(col.tolist()))
-    code = fixation_codes({"bolt_format": fmt, "bolt_property_class": cls, "bolt_head_type": head,
-                           "bolt_washer": washer, "bolt_tightening": method}, settings)[0] if named else None
+    code = None
+    if named and all((c == c[0]).all() for c in (fmt, cls, head, washer, method)):  # one bolt (one design's samples)
+        code = np.zeros(nr, dtype=np.int64)
+    elif named:
+        code = fixation_codes({"bolt_format": fmt, "bolt_property_class": cls, "bolt_head_type": head,
+                               "bolt_washer": washer, "bolt_tightening": method}, settings)[0]
     for g in (False, True):
         sel = np.flatnonzero(np.asarray(given, dtype=bool) == g)
         if not len(sel):
