@@ -790,3 +790,54 @@ def test_permissible_preload_bounded_and_falling_with_friction(mu1, mu2, fmt):
     # the thesis form is always the stricter one, at any friction
     el = float(vdi2230.elastic_permissible_preload_n(b["pitch_mm"], b["d2_mm"], b["d3_mm"], b["stress_area_mm2"], 940.0, mu1))
     assert el < f[0]
+
+
+@pytest.mark.parametrize("method", ["thesis", "vdi2230"])
+def test_fixation_once_per_distinct_bolt_equals_each_row_alone(method, monkeypatch):
+    """``fixation_values`` computes the fixation once per distinct (application, bolt as the fixation reads it):
+    the catalog's bolts of a few applications as one table (one fixation call per kind of seat, each bolt with its
+    own head form, washer and tightening method), production samples as their (application, bolt) pairs (each
+    sample its own application, with a made preload, a belt offset and a crankcase friction of its own; three
+    designs' bolts). Bit-equal to each row evaluated alone (one call naming its bolt)."""
+    from synth.data.generated_applications import generate
+    from synth.design import evaluate
+    from synth.design.applications import Applications
+    from synth.design.space import space
+    from synth.scenes.demo import default_input
+    st_ = Settings(bolt_method=method)
+    sp = space()
+    nb = sp.n("bolt")
+    apps = Applications.of([default_input(), *generate(2, seed=3)])
+    real, calls = bolted_joint.fixation, []
+
+    def counted(*args, **kw):
+        calls.append("pairs" if kw.get("candidate_of") is not None else "table")
+        return real(*args, **kw)
+    monkeypatch.setattr(bolted_joint, "fixation", counted)
+    a, b = np.repeat(np.arange(len(apps)), nb), np.tile(np.arange(nb), len(apps))
+    rng = np.random.default_rng(1)
+    n = 60
+    samples = apps.with_fields(rng.integers(0, len(apps), n),
+                               middle_plane_belt_height_increment_worst_mm=rng.uniform(0.0, 3.0, n))
+    samples.derived["bolt_clamp_force_n"] = rng.uniform(8e3, 2.5e4, n)
+    samples.derived["mu_crankcase"] = rng.uniform(0.1, 0.2, n)
+    sb = np.array([5, 300, 601])[np.arange(n) % 3]
+    with np.errstate(all="ignore"):
+        table = evaluate.fixation_values(apps, a, sp.rows("bolt", b), st_)
+        seats = len(set(apps.given["bolt_head_contact_external_diameter_mm"].tolist()))
+        assert calls == ["table"] * seats
+        calls.clear()
+        pairs = evaluate.fixation_values(samples, np.arange(n), sp.rows("bolt", sb), st_)
+        assert "pairs" in calls and len(calls) <= seats
+    assert np.isfinite(table["bolt_axial_force_n"]).all() and np.isfinite(pairs["bolt_axial_force_n"]).all()
+    with np.errstate(all="ignore"):
+        for i in rng.choice(len(a), 24, replace=False):
+            alone = evaluate.fixation_values(apps, a[[i]], sp.rows("bolt", b[[i]]), st_)
+            for k, v in alone.items():
+                assert v[0].tobytes() == table[k][i].tobytes(), (k, i)
+        for i in range(0, n, 5):
+            alone = evaluate.fixation_values(samples, np.array([i]), sp.rows("bolt", sb[[i]]), st_)
+            for k, v in alone.items():
+                assert v[0].tobytes() == pairs[k][i].tobytes(), (k, i)
+    # the made preload is each sample's own: the pairs are not one design's values repeated
+    assert len(np.unique(pairs["bolt_axial_force_n"])) == n

@@ -12,7 +12,7 @@ from synth.design.group import Fields, Group, const as _const, core_values, fini
 from synth.design.settings import DEFAULT, Settings
 from synth.model import bolted_joint
 
-__all__ = ["fixation_values", "fixation_reads", "bolt_core_checks", "bolt_core", "bolt"]
+__all__ = ["fixation_values", "fixation_reads", "fixation_codes", "TABLE_ENTRIES_PER_ROW", "bolt_core_checks", "bolt_core", "bolt"]
 
 #: the bolt table's columns :func:`fixation_values` reads (the tightening method too under the VDI 2230 method:
 #: :func:`fixation_reads`)
@@ -39,15 +39,63 @@ _BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_m
                 "bolt_embedding_loss_n")
 
 
+def fixation_codes(o: dict, settings: Settings = DEFAULT) -> tuple:
+    """``(code per row, first row of each code)`` of bolt columns ``o`` (a table or rows of one): rows equal in
+    every column the fixation reads (:func:`fixation_reads`, those ``o`` has) share a code, so the same fixation
+    for any application; codes in order of first appearance (a hash factorisation of each column: no Python tuple
+    per row; a missing value is a value of its own).
+
+    >>> o = {"bolt_format": np.array(["M8", "M10", "M8"], dtype=object), "bolt_property_class": ["8.8"] * 3,
+    ...      "bolt_head_type": np.array(["hex", "hex", "hex"], dtype=object), "cost_eur": [1.0, 2.0, 3.0]}
+    >>> [x.tolist() for x in fixation_codes(o)]
+    [[0, 1, 0], [0, 1]]
+    """
+    import pandas as pd  # loaded already wherever many rows come (the bulk engine)
+    cols = [np.asarray(o[k], dtype=object) for k in fixation_reads(settings) if k in o]
+    n = len(cols[0]) if cols else len(next(iter(o.values())))
+    code = np.zeros(n, dtype=np.int64)
+    for col in cols:
+        c, u = pd.factorize(col, use_na_sentinel=False)
+        code = pd.factorize(code * len(u) + c)[0].astype(np.int64)  # < n: no overflow however many columns
+    return _first_codes(code)
+
+
+def _first_codes(code) -> tuple:
+    """``(codes, first row of each)``: the distinct values of integer array ``code`` numbered in order of first
+    appearance.
+
+    >>> [x.tolist() for x in _first_codes(np.array([7, 3, 7, 5]))]
+    [[0, 1, 0, 2], [0, 1, 3]]
+    """
+    import pandas as pd
+    code = pd.factorize(np.asarray(code, dtype=np.int64))[0].astype(np.int64)
+    first = np.zeros(int(code.max()) + 1 if len(code) else 0, dtype=np.int64)
+    first[code[::-1]] = np.arange(len(code))[::-1]  # each code's first row
+    return code, first
+
+
+#: the fixation of many (application, bolt) rows is one call over their distinct applications x distinct bolts (as
+#: the fixation reads them, :func:`fixation_codes`) when that table has at most this many entries per row (a few
+#: entries nobody asked for cost less than the application-only physics per row); otherwise one call over the
+#: distinct (application, bolt) pairs, each application with its own bolt (the production samples of a few
+#: designs: each sample its own application, each design its own bolt)
+TABLE_ENTRIES_PER_ROW = 2.0
+
+
 def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
     """Step 10 (:func:`synth.model.bolted_joint.fixation`) for rows of applications ``a`` and bolts ``o``.
 
-    One vectorised call per bolt-head form, washer series, tightening method (the VDI 2230 path only: the
-    thesis path tightens to the required force whatever the method) and whether the application gives its
-    seat (``bolt_head_contact_external_diameter_mm``): the distinct applications of those rows x the distinct
-    bolts (format, property class) among them, every bolt evaluated as the chosen one
-    (``fixation(..., candidates=...)``), the friction coefficients of each application's environment passed per
-    application; the rows gather their (application, bolt) entry. NaN for applications without their fixation data.
+    The fixation once per distinct application and bolt as the fixation reads it (:func:`fixation_codes`, the
+    columns of :func:`fixation_reads`: the tightening method under the VDI 2230 method only, the thesis path
+    tightening to the required force whatever the method), each bolt with its own head form, washer series and
+    tightening method, the friction coefficients of each application's environment passed per application; the
+    rows gather their (application, bolt) entry. One vectorised call for the rows whose application gives its seat
+    (``bolt_head_contact_external_diameter_mm``), one for those whose does not: over their distinct applications x
+    distinct bolts (``fixation(..., candidates=...)``) when that table is dense (:data:`TABLE_ENTRIES_PER_ROW`: the
+    catalog's bolts for a few applications, the bulk's blocks), else over their distinct (application, bolt) pairs
+    (``candidate_of``: a production sample with its design's bolt). Every entry is what the call naming that bolt
+    alone gives (element-wise arithmetic). NaN for applications without their fixation data, and for rows whose
+    head form, washer or tightening method is missing (NaN).
     """
     n = len(a)
     out = {k: np.full(n, np.nan) for k in _BOLT_VALUES}
@@ -55,94 +103,61 @@ def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
     if not has.any():
         return out
     rows = np.flatnonzero(has)
-    aa_all = np.asarray(a)[rows]
-    fmt, cls = np.asarray(o["bolt_format"], dtype=object)[rows], np.asarray(o["bolt_property_class"], dtype=object)[rows]
-    head = np.asarray(o["bolt_head_type"], dtype=object)[rows]
     nr = len(rows)
+    head = np.asarray(o["bolt_head_type"], dtype=object)[rows]
     washer = np.asarray(o["bolt_washer"], dtype=object)[rows] if "bolt_washer" in o else np.full(nr, bolted_joint.NO_WASHER, object)
     vdi = settings.bolt_method == "vdi2230"
     method = np.asarray(o["bolt_tightening"], dtype=object)[rows] if vdi and "bolt_tightening" in o else \
         np.full(nr, bolted_joint.DEFAULT_TIGHTENING_METHOD, object)
-    given = apps.given["bolt_head_contact_external_diameter_mm"][aa_all]
-    f = apps.f
+    named = (head == head) & (washer == washer) & (method == method)  # a missing name (NaN) has no fixation
+    if not named.all():
+        rows, head, washer, method = rows[named], head[named], washer[named], method[named]
+        nr = len(rows)
+    fmt, cls = np.asarray(o["bolt_format"], dtype=object)[rows], np.asarray(o["bolt_property_class"], dtype=object)[rows]
+    cols = {"bolt_format": fmt, "bolt_property_class": cls, "bolt_head_type": head, "bolt_washer": washer,
+            "bolt_tightening": method}
+    if nr and all((c == c[0]).all() for c in cols.values()):  # one bolt (one design's samples): no factorisation
+        code = np.zeros(nr, dtype=np.int64)
+    else:
+        code = fixation_codes(cols, settings)[0]
+    aa_all = np.asarray(a)[rows]
+    given = np.asarray(apps.given["bolt_head_contact_external_diameter_mm"][aa_all], dtype=bool)
     made = apps.derived.get("bolt_clamp_force_n")  # a made joint's preload (synth.robust), NaN: the window
-    for h, w, m, g, sel in _groups(head, washer, method, given):
+    f = apps.f
+    for g in (False, True):
+        sel = np.flatnonzero(given == g)
+        if not len(sel):
+            continue
         ua, ia = np.unique(aa_all[sel], return_inverse=True)
-        fs, cs = fmt[sel], cls[sel]
-        if (fs == fs[0]).all() and (cs == cs[0]).all():  # one bolt (the samples of one design): no dictionary
-            ib, pairs = np.zeros(len(sel), dtype=np.int64), [(fs[0], cs[0])]
-        else:  # the distinct (format, class) pairs in order of first appearance, and each row's
-            ib, pairs = _pair_codes(fs, cs)
-        env = apps.env[ua]
-        r = bolted_joint.fixation(
-            apps.hubload_nominal_n[ua], f["middle_plane_belt_height_mm"][ua],
-            f["middle_plane_belt_height_increment_worst_mm"][ua], f["tilting_safety_factor"][ua],
-            f["sliding_safety_factor"][ua], f["engine_support_internal_diameter_mm"][ua],
-            f["engine_support_external_diameter_mm"][ua], f["contact_angle_deg"][ua],
-            f["support_yield_strength_compression_mpa"][ua], f["support_yield_strength_traction_mpa"][ua],
-            number_of_active_threads=f["number_of_active_threads"][ua],
-            mu_crankcase=_mu(apps, "mu_crankcase", "pivot_base_crankcase", ua, env),
-            mu_thread=_mu(apps, "mu_thread", "thread", ua, env), mu_head=_mu(apps, "mu_head", "under_head", ua, env),
-            bolt_head_contact_external_diameter_mm=f["bolt_head_contact_external_diameter_mm"][ua] if g else None,
-            head_type=str(h), washer=str(w), candidates=pairs, method=settings.bolt_method,
-            tightening_method=str(m), clamp_force_n=None if made is None else made[ua])
         ia = np.asarray(ia).reshape(-1)
-        at, flat = rows[sel], ia * len(pairs) + ib  # each row's entry of the (application, bolt) table
+        kc, first = _first_codes(code[sel])  # the bolts among these rows, each row's
+        b = sel[first]
+        bolts = dict(candidates=list(zip(fmt[b].tolist(), cls[b].tolist())), head_type=[str(x) for x in head[b]],
+                     washer=[str(x) for x in washer[b]], tightening_method=[str(x) for x in method[b]])
+        flat = ia * len(b) + kc  # each row's entry of the (application, bolt) table
+        if len(ua) * len(b) <= TABLE_ENTRIES_PER_ROW * len(sel):  # the table, in one call
+            at, pick, shape = ua, None, (len(ua), len(b))
+        else:  # the distinct (application, bolt) pairs, each application with its own bolt
+            up, flat = np.unique(flat, return_inverse=True)
+            at, pick, shape = ua[up // len(b)], up % len(b), (len(up),)
+        env = apps.env[at]
+        r = bolted_joint.fixation(
+            apps.hubload_nominal_n[at], f["middle_plane_belt_height_mm"][at],
+            f["middle_plane_belt_height_increment_worst_mm"][at], f["tilting_safety_factor"][at],
+            f["sliding_safety_factor"][at], f["engine_support_internal_diameter_mm"][at],
+            f["engine_support_external_diameter_mm"][at], f["contact_angle_deg"][at],
+            f["support_yield_strength_compression_mpa"][at], f["support_yield_strength_traction_mpa"][at],
+            number_of_active_threads=f["number_of_active_threads"][at],
+            mu_crankcase=_mu(apps, "mu_crankcase", "pivot_base_crankcase", at, env),
+            mu_thread=_mu(apps, "mu_thread", "thread", at, env), mu_head=_mu(apps, "mu_head", "under_head", at, env),
+            bolt_head_contact_external_diameter_mm=f["bolt_head_contact_external_diameter_mm"][at] if g else None,
+            method=settings.bolt_method, clamp_force_n=None if made is None else made[at], candidate_of=pick,
+            **bolts)
+        flat = np.asarray(flat).reshape(-1)
         for k in _BOLT_VALUES:
             if k in r:
-                out[k][at] = np.broadcast_to(np.asarray(r[k], dtype=float), (len(ua), len(pairs))).reshape(-1)[flat]
+                out[k][rows[sel]] = np.broadcast_to(np.asarray(r[k], dtype=float), shape).reshape(-1)[flat]
     return out
-
-
-def _groups(head, washer, method, given):
-    """``(head, washer, method, given, rows)`` for each distinct combination of the rows' bolt-head form,
-    washer series, tightening method and given seat, the rows an index array in increasing order (a row in at
-    most one group; one holding a value not equal to itself, NaN, in none, as an element-wise ``==`` selects).
-
-    >>> s = lambda *v: np.array(v, dtype=object)
-    >>> [(h, w, m, g, r.tolist()) for h, w, m, g, r in _groups(s("a", "b", "a"), s("x", "x", "x"), s("t", "t", "t"),
-    ...                                                         np.array([True, False, False]))]
-    [('a', 'x', 't', False, [2]), ('a', 'x', 't', True, [0]), ('b', 'x', 't', False, [1])]
-    """
-    import pandas as pd  # loaded already wherever many rows come (the bulk engine)
-    cols = (head, washer, method)
-    code = np.zeros(len(given), dtype=np.int64)
-    for col in cols:
-        c, u = pd.factorize(col, use_na_sentinel=False)
-        if not all(isinstance(v, str) for v in u):  # None or NaN among them: compare element-wise, as ever
-            return _groups_by_value(head, washer, method, given)
-        code = code * len(u) + c
-    code = code * 2 + np.asarray(given, dtype=np.int64)
-    order = np.argsort(code, kind="stable")  # each group's rows in increasing order
-    cut = np.flatnonzero(np.diff(code[order])) + 1
-    return [(head[sel[0]], washer[sel[0]], method[sel[0]], bool(given[sel[0]]), sel) for sel in np.split(order, cut)
-            if len(sel)]
-
-
-def _groups_by_value(head, washer, method, given):
-    """:func:`_groups` by element-wise comparison (any values)."""
-    out = []
-    for h, w, m in dict.fromkeys(zip(head.tolist(), washer.tolist(), method.tolist())):
-        for g in (False, True):
-            sel = np.flatnonzero((head == h) & (washer == w) & (method == m) & (given == g))
-            if len(sel):
-                out.append((h, w, m, g, sel))
-    return out
-
-
-def _pair_codes(x, y) -> tuple:
-    """``(codes, pairs)``: the distinct pairs ``(x[i], y[i])`` in order of first appearance, and each row's index
-    among them (a hash factorisation of each column, then of the pairs of codes: no Python tuple per row).
-
-    >>> c, p = _pair_codes(np.array(["M8", "M10", "M8"], dtype=object), np.array(["8.8", "8.8", "8.8"], dtype=object))
-    >>> c.tolist(), p
-    ([0, 1, 0], [('M8', '8.8'), ('M10', '8.8')])
-    """
-    import pandas as pd  # loaded already wherever many rows come (the bulk engine)
-    cx, ux = pd.factorize(x, use_na_sentinel=False)  # a missing value is a value of its own, as in a dictionary
-    cy, uy = pd.factorize(y, use_na_sentinel=False)
-    codes, uniq = pd.factorize(cx.astype(np.int64) * len(uy) + cy)
-    return codes.astype(np.int64), [(ux[int(k) // len(uy)], uy[int(k) % len(uy)]) for k in uniq]
 
 
 def _mu(apps, key: str, interface: str, ua, env) -> np.ndarray:

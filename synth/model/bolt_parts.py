@@ -197,11 +197,9 @@ def washer_dimensions(series, d_mm) -> dict:
     series = str(series).strip()
     if series == NO_WASHER:
         return {"d1_mm": np.full(d.shape, np.nan), "d2_mm": np.full(d.shape, np.nan), "h_mm": np.zeros(d.shape)}
-    ws = load("washers")
-    rows = ws[ws["product_standard"].astype(str).str.strip() == series]
-    if rows.empty:
+    by_d = _catalog.parsed("washers", _washers_by_series).get(series)  # read once per loaded table (a hot path)
+    if by_d is None:
         raise InputError(Problem("bolt_washer", series, "one of " + ", ".join(washer_series())))
-    by_d = {float(r["d_mm"]): r for _, r in rows.iterrows()}
     out = {k: np.empty(d.shape) for k in ("d1_mm", "d2_mm", "h_mm")}
     for di in np.unique(d):  # per distinct diameter (a production sample's rows share a few)
         r = by_d.get(float(di))
@@ -211,6 +209,16 @@ def washer_dimensions(series, d_mm) -> dict:
         at = d == di
         for k in out:
             out[k][at] = float(r[k])
+    return out
+
+
+def _washers_by_series(ws) -> dict:
+    """``{series: {bolt diameter: {"d1_mm", "d2_mm", "h_mm"}}}`` of ``washers.csv`` (the last row of a diameter
+    wins)."""
+    out: dict = {}
+    for _, r in ws.iterrows():
+        out.setdefault(str(r["product_standard"]).strip(), {})[float(r["d_mm"])] = \
+            {k: float(r[k]) for k in ("d1_mm", "d2_mm", "h_mm")}
     return out
 
 

@@ -149,7 +149,8 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
              embedding=False, clamp_length_mm=None,
              embedding_roughness=DEFAULT_EMBEDDING_ROUGHNESS, embedding_loading=DEFAULT_EMBEDDING_LOADING,
              clamped_interfaces=None, joint_type="tapped", clamped_parts_modulus_mpa=None,
-             free_thread_length_mm=0.0, utilisation=None, candidates=None, clamp_force_n=None):
+             free_thread_length_mm=0.0, utilisation=None, candidates=None, clamp_force_n=None,
+             candidate_of=None):
     """Step 10 of the flowchart: the joint of one named bolt, or of each of ``candidates`` (eq. (94)-(111)).
 
     Vectorised over designs: every numeric argument broadcasts. The clamp
@@ -216,6 +217,13 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     ``candidates`` (a list of ``(bolt_format, bolt_property_class)`` pairs):
     every pair is evaluated and every returned array gains a trailing axis,
     one entry per pair (each entry equals the call naming that bolt).
+    ``head_type``, ``washer`` and ``tightening_method`` are then each one
+    name, or a sequence of names aligned with ``candidates`` (each bolt's own
+    head form, washer series and tightening method). ``candidate_of`` (an
+    index array broadcasting with the designs): design ``i`` is judged with
+    ``candidates[candidate_of[i]]`` alone, no trailing axis (each design its
+    own bolt: a production sample of its design's bolt; each entry again
+    equals the call naming that bolt).
 
     Returns a dict of arrays with the case keys ``bolt_tightening_torque_nm``,
     ``bolt_axial_force_n``, ``bolt_sigma_mpa``, ``bolt_tau_mpa``,
@@ -252,8 +260,12 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         raise InputError(Problem("method", method, "one of " + ", ".join(METHODS)))
     if application_type not in ENVIRONMENTS:
         raise InputError(Problem("application_type", application_type, "one of " + ", ".join(ENVIRONMENTS)))
-    if head_type not in HEAD_TYPES:
-        raise InputError(Problem("head_type", head_type, "one of " + ", ".join(HEAD_TYPES)))
+    heads = _per_candidate("head_type", head_type, candidates)
+    for h in dict.fromkeys(heads):
+        if h not in HEAD_TYPES:
+            raise InputError(Problem("head_type", h, "one of " + ", ".join(HEAD_TYPES)))
+    washers = _per_candidate("washer", washer, candidates)
+    methods = _per_candidate("tightening_method", tightening_method, candidates)
     if normal_stress_area not in ("stress", "core"):
         raise InputError(Problem("normal_stress_area", normal_stress_area, "'stress' or 'core'"))
     if torsion_diameter not in ("minor", "stress"):
@@ -287,9 +299,11 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
         if bolt_format is not None or bolt_property_class is not None:
             raise InputError(Problem("candidates", "given with bolt_format/bolt_property_class",
                                      "either a list of (format, class) pairs or one format and class"))
-        cands = [bolt_candidates(f, c, head_type)[0] for f, c in candidates]
+        cands = [bolt_candidates(f, c, h)[0] for (f, c), h in zip(candidates, heads)]
         if not cands:
             raise InputError(Problem("candidates", "[]", "at least one (format, class) pair"))
+    elif candidate_of is not None:
+        raise InputError(Problem("candidate_of", "given without candidates", "an index into a list of candidates"))
     else:
         if bolt_format is None or bolt_property_class is None:
             raise InputError(Problem("bolt_format", bolt_format, "a bolt format and a property class (or a list of "
@@ -298,34 +312,44 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     col = {key: np.array([c[key] for c in cands], dtype=float) for key, v in cands[0].items() if isinstance(v, float)}
     names_f = np.array([c["bolt_format"] for c in cands])
     names_c = np.array([c["bolt_property_class"] for c in cands])
-    wsh = washer_dimensions(washer, col["d_mm"])
-    seat = None if bolt_head_contact_external_diameter_mm is None else \
-        _arr(bolt_head_contact_external_diameter_mm)[..., None]
-    if seat is not None and np.any(seat[..., 0] <= d_int):
-        s_, d_ = np.broadcast_arrays(seat[..., 0], d_int)
+    wsh = _washers(washers, col["d_mm"])
+    seat = None if bolt_head_contact_external_diameter_mm is None else _arr(bolt_head_contact_external_diameter_mm)
+    if seat is not None and np.any(seat <= d_int):
+        s_, d_ = np.broadcast_arrays(seat, d_int)
         raise InputError(Problem("bolt_head_contact_external_diameter_mm", float(np.ravel(s_[s_ <= d_])[0]),
                                  "a seat diameter > the support internal diameter"))
+    tight = _tightening(methods, alpha_a) if method == "vdi2230" else None
+    heads_a = np.array(heads, dtype=object)
+    if candidate_of is not None:  # each design its own bolt: the bolts' values gathered onto the designs' axis
+        pick = np.asarray(candidate_of, dtype=np.int64)
+        col, wsh = {k: v[pick] for k, v in col.items()}, {k: v[pick] for k, v in wsh.items()}
+        names_f, names_c, heads_a = names_f[pick], names_c[pick], heads_a[pick]
+        tight = None if tight is None else (tight[0][pick], tight[1][pick] if np.ndim(tight[1]) else tight[1])
+        ex = _arr
+        shape = np.broadcast_shapes(np.shape(required), pick.shape)
+    else:
+        ex = _on_candidates
+        shape = np.broadcast_shapes(np.shape(required)[:], ()) + (len(cands),)
+    seat = None if seat is None else ex(seat)
     dw = head_bearing_diameter_mm(col["dw_min_mm"], wsh["d2_mm"], wsh["h_mm"], seat)   # on the support
-    d_in = np.fmax(d_int[..., None], wsh["d1_mm"])                                  # its bore (a washer's)
+    d_in = np.fmax(ex(d_int), wsh["d1_mm"])                                         # its bore (a washer's)
     dk = head_friction_diameter_mm(col["dw_min_mm"], wsh["d2_mm"], seat)               # the turning face
-    mu_gk = _arr(mu_g)[..., None]
-    each = candidates is not None
-    shape = np.broadcast_shapes(np.shape(required)[:], ()) + (len(cands),)
-
-    ex = _on_candidates
+    mu_gk = ex(mu_g)
 
     a_thr = thread_area_mm2(col["d_mm"], col["pitch_mm"], col["d2_mm"], col["d3_mm"], col["D1_mm"],
                             model=thread_area_model)
     if method == "thesis":
         f_top, f_bottom, f_bolt, sigma_s, tau_s, eqv_s, torque, vdi = _thesis_joint(
-            ex(required), made, col, mu_gk, dk, d_in, ex(mu_k), torque_model, normal_stress_area, torsion_diameter)
+            ex(required), None if made is None else ex(made), col, mu_gk, dk, d_in, ex(mu_k), torque_model,
+            normal_stress_area, torsion_diameter)
     else:
         f_top, f_bottom, f_bolt, sigma_s, tau_s, eqv_s, torque, vdi = _vdi2230_joint(
-            ex(required), made, col, mu_gk, dk, dw, d_in, ex(d_ext), ex(mu_k), shape, tightening_method=tightening_method,
-            alpha_a=alpha_a, utilisation=utilisation, embedding=embedding, clamp_length_mm=clamp_length_mm,
+            ex(required), None if made is None else ex(made), col, mu_gk, dk, dw, d_in, ex(d_ext), ex(mu_k), shape,
+            tightening=tight, utilisation=utilisation, embedding=embedding,
+            clamp_length_mm=None if clamp_length_mm is None else ex(clamp_length_mm),
             embedding_roughness=embedding_roughness, embedding_loading=embedding_loading,
-            clamped_interfaces=clamped_interfaces, joint_type=joint_type, head_type=head_type,
-            clamped_parts_modulus_mpa=clamped_parts_modulus_mpa, free_thread_length_mm=free_thread_length_mm)
+            clamped_interfaces=clamped_interfaces, joint_type=joint_type, head_type=heads_a,
+            clamped_parts_modulus_mpa=clamped_parts_modulus_mpa, free_thread_length_mm=ex(free_thread_length_mm))
     sf_t = tilting_safety_factor(np.maximum(f_bottom, 0.0), ex(hl), ex(lever), ex(d_ext), ex(d_int),
                                  ex(contact_angle_deg), model=contact_model)
     sf_s = sliding_safety_factor(np.maximum(f_bottom, 0.0), ex(hl), ex(mu_cc))
@@ -360,9 +384,51 @@ def fixation(hubload_n, middle_plane_belt_height_mm, middle_plane_belt_height_in
     }
     full = np.broadcast_shapes(*(np.shape(v) for v in out.values()), shape)
     out = {key: np.broadcast_to(v, full) for key, v in out.items()}
-    if not each:
+    if candidates is None:  # one named bolt: no trailing axis
         out = {key: v[..., 0] for key, v in out.items()}
     return out
+
+
+def _per_candidate(name: str, value, candidates) -> list:
+    """One name per bolt of :func:`fixation`: ``value`` for each (a name), or with ``candidates`` a sequence of
+    names aligned with them (each bolt's own head form, washer series or tightening method)."""
+    n = 1 if candidates is None else len(candidates)
+    if isinstance(value, str) or value is None or np.ndim(value) == 0:
+        return [value] * n
+    names = list(value)
+    if candidates is None or len(names) != n:
+        raise InputError(Problem(name, f"{len(names)} names", f"one name, or one per candidate ({n})"
+                                 if candidates is not None else "one name (a sequence needs candidates)"))
+    return names
+
+
+def _washers(series: list, d_mm) -> dict:
+    """:func:`washer_dimensions` of each bolt's own washer ``series`` (one per entry of ``d_mm``), one catalog
+    look-up per distinct series."""
+    d = np.asarray(d_mm, dtype=float)
+    names = list(dict.fromkeys(series))
+    if len(names) == 1:
+        return washer_dimensions(names[0], d)
+    out = {k: np.empty(d.shape) for k in ("d1_mm", "d2_mm", "h_mm")}
+    which = np.array([names.index(s) for s in series])
+    for i, s in enumerate(names):
+        at = which == i
+        for k, v in washer_dimensions(s, d[at]).items():
+            out[k][at] = v
+    return out
+
+
+def _tightening(methods: list, alpha_a) -> tuple:
+    """``(yield-set, alpha_A)`` of each bolt's tightening method ``methods`` (``catalogs/tightening_factors.csv``: the
+    preload set by the bolt's yield point; Table A8's upper factor, or ``alpha_a`` for every bolt), one look-up
+    per distinct method."""
+    names = list(dict.fromkeys(methods))
+    tms = [_vdi.tightening_method(m) for m in names]
+    which = np.array([names.index(m) for m in methods])
+    yield_set = np.array([tm["preload_set_by"] == "yield" for tm in tms])[which]
+    alpha = np.array([tm["alpha_a_max"] for tm in tms])[which] if alpha_a is None else float(_require(
+        "alpha_a", alpha_a, low=1.0, inclusive=True, accepted="a tightening factor >= 1"))
+    return yield_set, alpha
 
 
 def _on_candidates(a):
@@ -374,7 +440,7 @@ def _thesis_joint(required, made, col, mu_gk, dk, d_in, mu_k, torque_model, norm
     """The thesis path of :func:`fixation` (eq. (101)-(107)): the bolt tightened to exactly the required force
     ``required`` (or a made joint's ``made`` preload where finite), judged by its elastic stresses. Arrays on the
     candidates' axis; returns ``(F top, F bottom, F bolt, sigma, tau, sigma_eqv, torque [N m], {})``."""
-    force = required if made is None else np.where(np.isfinite(_on_candidates(made)), _on_candidates(made), required)
+    force = required if made is None else np.where(np.isfinite(made), made, required)
     f_top = f_bottom = f_bolt = force
     t_thread = thread_torque_nmm(force, col["pitch_mm"], col["d2_mm"], mu_gk, model=torque_model)
     a_norm = col["stress_area_mm2"] if normal_stress_area == "stress" else np.pi / 4.0 * col["d3_mm"] ** 2
@@ -386,17 +452,15 @@ def _thesis_joint(required, made, col, mu_gk, dk, d_in, mu_k, torque_model, norm
     return f_top, f_bottom, f_bolt, sigma_s, tau_s, eqv_s, torque, {}
 
 
-def _vdi2230_joint(required, made, col, mu_gk, dk, dw, d_in, d_ext, mu_k, shape, *, tightening_method, alpha_a,
-                   utilisation, embedding, clamp_length_mm, embedding_roughness, embedding_loading,
-                   clamped_interfaces, joint_type, head_type, clamped_parts_modulus_mpa, free_thread_length_mm):
+def _vdi2230_joint(required, made, col, mu_gk, dk, dw, d_in, d_ext, mu_k, shape, *, tightening, utilisation,
+                   embedding, clamp_length_mm, embedding_roughness, embedding_loading, clamped_interfaces, joint_type,
+                   head_type, clamped_parts_modulus_mpa, free_thread_length_mm):
     """The VDI 2230 path of :func:`fixation` (Part 1, R4-R13): the made joint of a tightening method, its preload
     window sized to the requirement ``required`` (or the bolt's yield preload), the embedding loss, the stresses at
     the window's top. Arrays on the candidates' axis; returns ``(F top, F bottom, F bolt, sigma, tau, sigma_eqv,
-    torque [N m], the VDI values)``."""
-    tm = _vdi.tightening_method(tightening_method)
-    yield_set = tm["preload_set_by"] == "yield"
-    alpha = tm["alpha_a_max"] if alpha_a is None else float(_require(
-        "alpha_a", alpha_a, low=1.0, inclusive=True, accepted="a tightening factor >= 1"))
+    torque [N m], the VDI values)``; ``tightening``: each bolt's :func:`_tightening`, ``head_type`` its head form
+    (arrays on the bolts' axis, as ``col``)."""
+    yield_set, alpha = tightening
     f_zul = permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"], col["rp02_mpa"], mu_gk,
                                            utilisation=utilisation)
     f_z = np.zeros(shape)
@@ -404,25 +468,29 @@ def _vdi2230_joint(required, made, col, mu_gk, dk, dw, d_in, d_ext, mu_k, shape,
     if embedding:
         fz_um = embedding_um(embedding_roughness, embedding_loading, interfaces=clamped_interfaces,
                              joint_type=joint_type)
-        lk = _on_candidates(clamp_length_mm)
-        d_s = bolt_resilience_mm_per_n(col["d_mm"], col["d3_mm"], lk, head_type=head_type, joint_type=joint_type,
-                                       free_thread_length_mm=_on_candidates(free_thread_length_mm),
-                                       internal_thread_modulus_mpa=clamped_parts_modulus_mpa)
+        lk = clamp_length_mm
+        d_s = 0.0
+        for h in dict.fromkeys(head_type.tolist()):  # each bolt's own head form
+            d_h = bolt_resilience_mm_per_n(col["d_mm"], col["d3_mm"], lk, head_type=h, joint_type=joint_type,
+                                           free_thread_length_mm=free_thread_length_mm,
+                                           internal_thread_modulus_mpa=clamped_parts_modulus_mpa)
+            d_s = np.where(head_type == h, d_h, d_s)
         d_p = clamped_parts_resilience_mm_per_n(dw, d_in, d_ext, lk, modulus_mpa=clamped_parts_modulus_mpa,
                                                 joint_type=joint_type)
         f_z = np.broadcast_to(embedding_preload_loss_n(fz_um, d_s, d_p), shape)
-    if yield_set:  # the bolt's own yield preload (nu = 1, Rp0.2 min): the window's bottom
-        f_min = np.broadcast_to(permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"],
-                                                               col["rp02_mpa"], mu_gk, utilisation=1.0), shape)
-        limit = np.full(shape, np.inf)
-    else:
-        f_min = np.broadcast_to(required + f_z, shape)
-        limit = np.broadcast_to(f_zul, shape)
+    # a yield- or angle-controlled bolt: its own yield preload (nu = 1, Rp0.2 min) is the window's bottom, no limit;
+    # a torque-controlled one: the requirement, up to its permissible preload
+    f_min = np.broadcast_to(required + f_z, shape)
+    limit = np.broadcast_to(f_zul, shape)
+    if yield_set.any():
+        f_min = np.where(yield_set, permissible_assembly_preload_n(col["pitch_mm"], col["d2_mm"], col["d3_mm"],
+                                                                   col["rp02_mpa"], mu_gk, utilisation=1.0), f_min)
+        limit = np.where(yield_set, np.inf, limit)
     f_max = alpha * f_min
     if made is None:
         f_bottom, f_top, f_bolt = f_min, f_max, (f_min + f_max) / 2.0
     else:
-        mf = _on_candidates(made)
+        mf = made
         f_bottom = np.where(np.isfinite(mf), mf, f_min)
         f_top = np.where(np.isfinite(mf), mf, f_max)
         f_bolt = np.where(np.isfinite(mf), mf, (f_min + f_max) / 2.0)
@@ -438,5 +506,5 @@ def _vdi2230_joint(required, made, col, mu_gk, dk, dw, d_in, d_ext, mu_k, shape,
     vdi = {"bolt_permissible_preload_n": limit, "bolt_required_preload_min_n": f_min,
            "bolt_required_preload_max_n": f_top, "bolt_embedding_um": np.full(shape, fz_um),
            "bolt_embedding_loss_n": f_z, "bolt_residual_clamp_force_n": f_bottom,
-           "tightening_factor": np.full(shape, alpha)}
+           "tightening_factor": np.broadcast_to(alpha, shape)}
     return f_top, f_bottom, f_bolt, sigma_s, tau_s, eqv_s, torque, vdi

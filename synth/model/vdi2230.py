@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from synth.catalog import constant, load
+from synth.catalog import constant, load, parsed
 from synth.errors import InputError, Problem
 from synth.model.input_guards import as_array as _arr, require as _require
 
@@ -183,18 +183,27 @@ def tightening_method(method: str = DEFAULT_TIGHTENING_METHOD) -> dict:
     >>> r["alpha_a_max"], r["preload_set_by"], r["design_option"]
     (1.4, 'yield', True)
     """
-    df = load("tightening_factors")
-    hit = df[df["tightening_method"].astype(str).str.strip() == str(method).strip()]
-    if hit.empty:
-        raise InputError(Problem("tightening_method", method, "one of " + ", ".join(df["tightening_method"])))
-    r = hit.iloc[0]
-    set_by = str(r["preload_set_by"]).strip()
+    rows, every = parsed("tightening_factors", _tightening_rows)  # read once per loaded table (a hot path)
+    r = rows.get(str(method).strip())
+    if r is None:
+        raise InputError(Problem("tightening_method", method, "one of " + ", ".join(every)))
+    set_by = r["preload_set_by"]
     if set_by not in PRELOAD_SET_BY:
         raise InputError(Problem(f"catalog tightening_factors.csv, row {method}, column preload_set_by", set_by,
                                  " or ".join(PRELOAD_SET_BY)))
-    return {"tightening_method": str(method).strip(), "alpha_a_min": float(r["alpha_a_min"]),
-            "alpha_a_max": float(r["alpha_a_max"]), "preload_set_by": set_by,
-            "design_option": str(r["design_option"]).strip().lower() in ("true", "1", "yes")}
+    return {"tightening_method": str(method).strip(), **r}
+
+
+def _tightening_rows(df) -> tuple:
+    """``({method: its row's values}, [every method as written])`` of ``tightening_factors.csv`` (the first row of
+    a method wins)."""
+    rows: dict = {}
+    for _, r in df.iterrows():
+        rows.setdefault(str(r["tightening_method"]).strip(), {
+            "alpha_a_min": float(r["alpha_a_min"]), "alpha_a_max": float(r["alpha_a_max"]),
+            "preload_set_by": str(r["preload_set_by"]).strip(),
+            "design_option": str(r["design_option"]).strip().lower() in ("true", "1", "yes")})
+    return rows, [str(x) for x in df["tightening_method"]]
 
 
 def tightening_factor(method: str = DEFAULT_TIGHTENING_METHOD, bound: str = "max") -> float:

@@ -71,7 +71,7 @@ from synth.kernels import engines, main_spring
 from synth import catalog
 from synth.design.verify import evaluate_design, parts_of_design
 from synth.design.subsystems import SubTable, family, scatter
-from synth.design.bolt_group import fixation_reads
+from synth.design.bolt_group import fixation_codes
 from synth.design.combine import join, near_figures
 
 __all__ = ["Batch", "wsum", "SLACK", "MARGIN_EPS", "any_feasible", "designs_pass", "robust"]
@@ -369,18 +369,11 @@ class Batch:
         return ok, mn
 
     def _fixation_keys(self):
-        """``(code per bolt, a representative bolt per code)``: bolts with equal values (type and value) of every
-        column the fixation reads (:func:`synth.design.bolt_group.fixation_values`: the format, property class,
-        head form, washer, and the tightening method under the VDI 2230 method) share a code, so the same fixation for any application."""
+        """``(code per bolt, a representative bolt per code)``: bolts equal in every column the fixation reads
+        (:func:`synth.design.bolt_group.fixation_codes`: the format, property class, head form, washer, and the
+        tightening method under the VDI 2230 method) share a code, so the same fixation for any application."""
         if "fixation_keys" not in self._memo:
-            t = self.sp.tables["bolt"]
-            cols = [t[k] for k in fixation_reads(self.settings) if k in t]
-            seen: dict = {}
-            code = np.array([seen.setdefault(tuple((type(v), v) for v in key), len(seen))
-                             for key in zip(*(np.asarray(c, dtype=object).tolist() for c in cols))], dtype=np.int64)
-            rep = np.zeros(len(seen), dtype=np.int64)
-            rep[code[::-1]] = np.arange(len(code))[::-1]  # each code's first bolt
-            self._memo["fixation_keys"] = (code, rep)
+            self._memo["fixation_keys"] = fixation_codes(self.sp.tables["bolt"], self.settings)
         return self._memo["fixation_keys"]
 
     def _wall(self, rows):
