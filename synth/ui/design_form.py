@@ -15,12 +15,27 @@ from synth.errors import InputError
 from synth.io.limits import LIMITS
 from synth.ui import form, jobs
 from synth.ui.trace import mark
-from synth.ui.widgets import refused, stem, upload_box
+from synth.ui.widgets import in_page, refused, stem, upload_box
 
-__all__ = ["InputForm", "DESIGN_UPLOAD_LIMIT"]
+__all__ = ["InputForm", "DESIGN_UPLOAD_LIMIT", "FIRST_FIELDS", "drawn"]
 
 #: the largest design input a page opens: the Excel template's limit (a YAML, TOML or JSON one is at most 8 MB)
 DESIGN_UPLOAD_LIMIT = max(LIMITS.workbook_bytes, LIMITS.text_input_bytes)
+
+#: the boxes of the page's first render: the form's sections in order until this many fields (about what a window
+#: 900 px high shows: the first four sections), the others built once the browser has drawn the page
+#: (:meth:`InputForm.build_rest`). The browser's first render is the cold start's last step, and its time goes with
+#: the number of Quasar fields: all 54 of them made it 0.35-0.4 s longer (``benchmarks/bench_ui.py``, docs/sections/ui.md)
+FIRST_FIELDS = 15
+
+
+async def drawn(timeout_s: float = 10.0) -> None:
+    """Return once the page has drawn what was sent before (its next frame, asked of the page), or after
+    ``timeout_s`` without an answer (a page that is slow, or a client that runs no script)."""
+    try:
+        await ui.run_javascript("new Promise(r => requestAnimationFrame(() => setTimeout(r)))", timeout=timeout_s)
+    except Exception:  # noqa: BLE001 - no answer in time: go on all the same
+        pass
 
 
 class InputForm:
@@ -38,11 +53,35 @@ class InputForm:
         self.source_label = ui.label().classes("text-caption")
         self.rules_label = ui.label().classes("text-caption").props("data-testid=rules")
         self.other_box = ui.label().classes("text-negative text-caption")
+        self._later: list = []  # (section's element, its fields) built after the first render
+        n = 0
         for section, fields in form.sections():
-            with ui.expansion(section, value=True).classes("full-width").props("dense header-class=text-weight-bold"):
-                for f in fields:
-                    with ui.element("div").classes("full-width").props(f"data-field={f.name}"):
-                        self.widgets[f.name] = self._widget(f)
+            with ui.expansion(section, value=True).classes("full-width") \
+                    .props("dense header-class=text-weight-bold") as box:
+                if n < FIRST_FIELDS:
+                    self._fields(fields)
+                else:
+                    self._later.append((box, fields))
+            n += len(fields)
+        if self._later:
+            in_page(self.source_label, self.build_rest)
+
+    def _fields(self, fields) -> None:
+        for f in fields:
+            with ui.element("div").classes("full-width").props(f"data-field={f.name}"):
+                self.widgets[f.name] = self._widget(f)
+
+    async def build_rest(self) -> None:
+        """The sections after the first :data:`FIRST_FIELDS` fields, once the browser has drawn the page (their boxes
+        show the session's values as they are then, and their problems)."""
+        await drawn()
+        rest, self._later = self._later, []
+        for box, fields in rest:
+            if box.is_deleted:
+                return  # a page built ahead and not shown (synth.ui.app)
+            with box:
+                self._fields(fields)
+        self.show_problems()
 
     def _widget(self, f: schema.Field):
         text = self.s.texts[f.name]
@@ -72,7 +111,9 @@ class InputForm:
         self._loading = True
         try:
             for f in schema.FIELDS:
-                el, text = self.widgets[f.name], self.s.texts[f.name]
+                el, text = self.widgets.get(f.name), self.s.texts[f.name]
+                if el is None:
+                    continue  # built after the first render (build_rest), from the session as it is then
                 if form.widget(f) == "select":
                     _select_value(el, form.options(f), text)
                 else:
