@@ -34,9 +34,11 @@ from pathlib import Path
 def _cli(argv: list) -> tuple[int, str]:
     """``synth ARGV`` in this process: (exit code, stdout)."""
     from synth.cli import main
-    out = io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(io.StringIO()):
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         code = main([str(a) for a in argv])
+    if code not in (0, 1, 3):  # not a verdict: what the command said
+        print(f"synth {' '.join(map(str, argv))}: exit {code}\n{err.getvalue()[-3000:]}", file=sys.stderr)
     return code, out.getvalue()
 
 
