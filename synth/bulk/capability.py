@@ -6,7 +6,10 @@ every application the design ``synth design --capability`` gives it: the best de
 every targeted check meets the target, or, when none does, the nominal optimum with what prevents the target.
 There is one mechanism, the design's own: :func:`synth.optimise.honour.solve_honouring` with ``robust=`` (the
 robust synthesis, :func:`synth.robust.synthesis.robust_solve`), per application, under the run's one
-:class:`~synth.design.settings.Settings` (also in a Dask worker: it travels with the chunk). The bulk leaves out
+:class:`~synth.design.settings.Settings` (also in a Dask worker: it travels with the chunk), at the model that judges a
+design (``Settings.judge``: the bulk's default fidelity ``screening`` takes the full model for these rows, as ``synth
+design`` does; before, the screening search chose another design of equal objective on 4 of 50 rows and another
+robust search's answer on 1). The bulk leaves out
 only the search of the one input or tolerance value that would allow a design (``explain=False``: the same
 design; ``synth design`` on that application names it), and keeps the row's words on what prevents the target:
 the checks that rejected the candidates, how often, their best Ppk and what drives their scatter
@@ -16,8 +19,9 @@ One shortcut, exact: an application none of whose catalog designs passes every c
 design's tightening method and its VDI 2230 preload window, :func:`synth.robust.sampling.production`; checked for
 the whole chunk at once by :func:`synth.optimise.batch.any_feasible`) has no candidate for the robust search, and
 ``synth design`` returns its nominal optimum: the bulk's nominal row (:func:`synth.bulk.engine.screen_applications`
-without the target), with the robust search's words for why (the capability of that nominal design, which
-``synth design`` prints beside it, is left out: ``synth robust`` gives it).
+without the target), with the robust search's words for why and, when that design passes nominally, its capability
+as ``synth design`` reports it beside the design (:func:`synth.robust.synthesis.nominal_capability`: the smallest
+Ppk, the failing checks, ...).
 
 Columns (:data:`COLUMNS`, in every bulk result; empty without a target): ``capability_verdict`` (``PASS``: the
 row's design meets the target; ``FAIL``: no catalog design does), its smallest Ppk and largest probability of
@@ -45,11 +49,14 @@ COLUMNS = ("capability_verdict", *NUMBERS, "capability_binding",
 
 def capability_cells(res) -> dict:
     """The :data:`COLUMNS` of a robust synthesis's result ``res`` (:func:`synth.robust.synthesis.robust_solve`)."""
-    rob = res.robust or {}
-    found = bool(res.stats.get("robust_found"))
+    return _cells(res.robust or {}, bool(res.stats.get("robust_found")), res.stats.get("robust_why", ""))
+
+
+def _cells(rob: dict, found: bool, why: str) -> dict:
+    """The :data:`COLUMNS` of a capability ``rob`` (:meth:`~synth.robust.capability.Capability.to_dict`, or empty:
+    no design to judge), ``found``: whether the design meets the target, ``why``: what prevents it."""
     checks = [c for c in rob.get("checks", []) if c.get("target")]
     worst = min(checks, key=lambda c: math.inf if c.get("ppk") is None else c["ppk"], default=None)
-    why = res.stats.get("robust_why", "")
     if found and worst is not None:
         why = f"binds: {worst['id']} Ppk {_g(worst.get('ppk'))}"
     prevented = (rob.get("prevented_by") or {}).get("text")
@@ -85,8 +92,10 @@ def screen_robust(apps: list, objective, settings, diagnose: bool, nominal, row_
     """
     from synth.optimise.batch import any_feasible
     from synth.robust.sampling import production
-    from synth.robust.synthesis import SearchReport
+    from synth.design.space import PART_KEYS
+    from synth.robust.synthesis import SearchReport, nominal_capability
     rs = settings.capability
+    settings = settings.judge  # the robust synthesis's model (robust_solve): the shortcut's rows at it too
     rows: list = [None] * len(apps)
     # the shortcut applies where the robust search's space is the whole catalog (no part the input names)
     free = [i for i, d in enumerate(apps) if not fixed_fields(d, True)]
@@ -97,9 +106,12 @@ def screen_robust(apps: list, objective, settings, diagnose: bool, nominal, row_
         df = nominal([apps[i] for i in none], settings.replace(capability=None))
         for i, row in zip(none, df.to_dict(orient="records")):
             notes = "; ".join(x for x in (row["notes"], why) if x)
+            rob = {}
+            if row["feasible"]:  # the nominal design's capability, as synth design reports it beside the design
+                with np.errstate(all="ignore"):
+                    rob = nominal_capability(apps[i], {k: row[f"part_{k}"] for k in PART_KEYS}, settings, rs)
             rows[i] = {**row, "verdict": combine(str(row["verdict"]), target_missed=True), "notes": notes,
-                       **dict.fromkeys(COLUMNS, ""), "capability_verdict": "FAIL", "capability_min_ppk": math.nan,
-                       "capability_max_ppm": math.nan, "capability_why": why}
+                       **_cells(rob, False, why)}
     for i, d in enumerate(apps):
         if rows[i] is None:
             rows[i] = _row(d, objective, settings, diagnose, row_of)

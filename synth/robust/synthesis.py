@@ -48,7 +48,7 @@ from synth.optimise.answer import build_result
 from synth.optimise.solvers.enumerate import solve as enumerate_solve
 from synth.errors import InputError, Problem
 
-__all__ = ["robust_solve", "robust_for", "robust_front", "prevented_by", "SearchReport"]
+__all__ = ["robust_solve", "robust_for", "nominal_capability", "robust_front", "prevented_by", "SearchReport"]
 
 _EPS = 1e-9
 #: the groups whose failing checks reject a core outright (no subsystem option changes them)
@@ -230,13 +230,17 @@ def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs
     optimum (or the nearest design) with its capability, a note saying which checks no design meets and what drives
     them, and (``explain``) the one input or tolerance that prevents it with the value that would allow it
     (:func:`prevented_by`, in ``result.robust["prevented_by"]``). The joint is the made one
-    (:func:`synth.robust.sampling.production`)."""
+    (:func:`synth.robust.sampling.production`); the model is the one that judges (``settings.judge``: at fidelity
+    ``screening`` the full model throughout, the search, the samples and the nominal answer alike)."""
     t0 = time.perf_counter()
     obj = objective if isinstance(objective, Objective) else Objective.parse(objective)
     if obj.weights and "margin" in obj.weights or obj.order[0] == "margin":
         raise InputError(Problem("objective", objective, "an objective led by standard or cost with --capability/"
                                                          "--ppm (the margin is its last tie-break)"))
-    asked, settings = settings, production(settings)
+    # the model that judges a design (fidelity screening: the full model, as a screened design is verified): every
+    # candidate's capability and the design reported are valid under it, whatever fidelity the search was asked at
+    asked = settings.judge
+    settings = production(asked)
     ev = evaluate(d, settings, pin_inputs=pin_inputs)
     rep = SearchReport()
     w = obj.additive_weights() or FALLBACK_WEIGHTS
@@ -260,7 +264,7 @@ def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs
             r.notes.append(found["text"])
             r.stats["robust_explain_time_s"] = found.pop("time_s")
         if r.feasible:
-            r.robust = capability(base_of(d, r.parts, settings), rs).to_dict() if details else {}
+            r.robust = nominal_capability(d, r.parts, settings, rs) if details else {}
         if found:
             r.robust = {**(r.robust or {}), "prevented_by": found}
         return r
@@ -272,6 +276,14 @@ def robust_solve(d, objective="standard", *, settings: Settings = Settings(), rs
     r.robust = final.to_dict()
     return r
 
+
+
+def nominal_capability(d, parts: dict, settings: Settings, rs: RobustSettings) -> dict:
+    """The capability (:meth:`Capability.to_dict <synth.robust.capability.Capability.to_dict>`) that
+    :func:`robust_solve` reports beside a nominal design ``parts`` of input ``d`` when no design meets ``rs``'s
+    target: the design made (:func:`synth.robust.sampling.production` of ``settings``), every detail; ``synth bulk
+    --capability``'s rows without a candidate read it too (:func:`synth.bulk.capability.screen_robust`)."""
+    return capability(base_of(d, parts, production(settings)), rs).to_dict()
 
 
 def robust_for(rs: RobustSettings):

@@ -139,5 +139,5 @@ def _capability_line(rep, rs) -> str:
     t = rep.columns(["capability_verdict"])
     got = t["capability_verdict"].value_counts() if t is not None else {}
     return (f"capability: {rs.targets()}, {rs.samples} samples per design: each application's design re-selected "
-            f"for it (synth design --capability): {int(got.get('PASS', 0))} meet it, {int(got.get('FAIL', 0))} "
+            f"for it at full fidelity unless screening-only (synth design --capability): {int(got.get('PASS', 0))} meet it, {int(got.get('FAIL', 0))} "
             "cannot (capability_why says what prevents it)")
