@@ -34,7 +34,10 @@ Kernels (loops over keys x options, no allocation per pair):
   and passes a per-group row of two boolean tables, flat (``numpy.nonzero``'s order), a block at a time (the
   platform producer's main-spring rounds, :func:`synth.platform.producer._spring`);
 * :func:`record_stage` -- a block of those rounds' verdicts written into the survivor and failed tables and the
-  groups' best margins, one pass.
+  groups' best margins, one pass;
+* :func:`stage_round` -- a whole round of those stages in one pass (the window pairs, their margins, the stage's
+  smallest margin and the record), nothing of the size of the pairs: the producer's path where the compiled
+  kernels cover the registry's spring checks (``window_pairs`` and ``record_stage`` remain the numpy twin's).
 """
 
 from __future__ import annotations
@@ -494,3 +497,55 @@ def record_stage(gg, oo, ok, m, b, finite, line, survive, failed, best, best_b):
                     best_b[g] = b[k]
                     break
         i = j
+
+
+@njit(cache=True, error_model="numpy")
+def stage_round(groups, lo, hi, mbd, excl, excl_row, need, need_row, key_of, opt_of, keys, opts, cst, cols, bind,
+                no_binding, tol, finite, line, survive, failed, best, best_b):
+    """One round of the platform producer's main-spring stages in one pass (:func:`window_pairs`, the margins,
+    the stage's smallest margin and :func:`record_stage`, without the pairs' arrays): for each group ``g`` of
+    ``groups``, the options ``o`` :func:`window_pairs` gives it, in its order; of key ``key_of[g]`` x option
+    ``opt_of[o]`` the smallest of the margins ``cols`` (``M_*`` indices, the first of ties, as the assessment's
+    ``argmin``) and its binding ``bind[c]`` (``no_binding`` where that margin is ``+inf``); recorded as
+    :func:`record_stage` records a block (a pass is a margin ``>= -tol``). Returns the pairs evaluated."""
+    n = 0
+    n_opt = len(mbd)
+    n_col = len(cols)
+    row = np.empty(N_MARGINS)
+    for t in range(len(groups)):
+        g = groups[t]
+        a = lo[g]
+        b = hi[g]
+        er = excl_row[g]
+        nr = need_row[g]
+        i = key_of[g]
+        seen = False
+        mx = 0.0
+        mb = no_binding
+        for o in range(n_opt):
+            x = mbd[o]
+            if not (x >= a and x <= b and (er < 0 or not excl[er, o]) and (nr < 0 or need[nr, o])):
+                continue
+            n += 1
+            j = opt_of[o]
+            _pair_margins(keys, i, opts, j, cst, row)
+            m = np.inf
+            c = -1
+            for q in range(n_col):
+                v = row[cols[q]]
+                if v < m:
+                    m = v
+                    c = q
+            bb = no_binding if c < 0 else bind[c]
+            if m >= -tol:
+                survive[g, o] = True
+            elif finite[g]:
+                failed[line[g], o] = True
+            if not seen or m > mx:
+                mx = m
+                mb = bb
+                seen = True
+        if seen and mx > best[g]:
+            best[g] = mx
+            best_b[g] = mb
+    return n

@@ -44,7 +44,7 @@ import numpy as np
 from synth import catalog
 from synth.design import evaluate
 from synth.design.applications import Applications
-from synth.design.assessment import assess_group, passes
+from synth.design.assessment import assess_group, columns_of, passes
 from synth.design.combine import combine, nearest_rank
 from synth.design.constraints import REGISTRY, version
 from synth.design.space import SUBSYSTEMS, core_rows, spring_window
@@ -359,6 +359,8 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
     window = (lambda lo_, hi_: (mbd[None, :] >= lo_[:, None]) & (mbd[None, :] <= hi_[:, None]))  # noqa: E731
     n_stage = n_last = 0
     stages, prev_of, prev = [], None, None
+    compiled = engines.spring(settings, "numba") == "numba"   # the compiled kernels cover the registry's checks
+    opts = main_spring.options_of_space() if compiled else None
     for cols, ids, (mcol, direction) in SPRING_STAGES:
         of, srep = _group_ids(keys, kpos, cols)        # stage group of each key; a representative key each
         ng = len(srep)
@@ -380,6 +382,13 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
         finite = np.isfinite(val)
         for rk in range(int(rank.max()) + 1 if ng else 0):
             # a round's candidates at once (a line has one group per round: what fails now is for later rounds)
+            if compiled:   # window, margins, smallest and record in one compiled pass (the same doubles)
+                cols, bind = _stage_columns(ids)
+                n_stage += main_spring.stage_round(
+                    np.flatnonzero(rank == rk), g_lo, g_hi, mbd, kk, srep, opts, rows, cols, bind,
+                    no_binding=_NO_BINDING, finite=finite, line=line, survive=survive, failed=failed, best=best,
+                    best_b=best_b, exclude=failed, exclude_row=line, need=prev, need_row=parent)
+                continue
             for gg_, oo in main_spring.window_pairs(np.flatnonzero(rank == rk), g_lo, g_hi, mbd, exclude=failed,
                                                     exclude_row=line, need=prev, need_row=parent, limit=BLOCK_PAIRS):
                 n_stage += len(gg_)
@@ -447,6 +456,17 @@ def _stage_margin(grp: evaluate.Group, ids: tuple):
     assessment over those checks (:func:`margins_and_binding`)."""
     m, b = assess_group(grp, only=ids).objective_binding(False)
     return m, np.where(b < 0, _NO_BINDING, b).astype(np.int16)
+
+
+def _stage_columns(ids: tuple) -> tuple:
+    """``(columns, bindings)`` of a stage's checks ``ids`` for :func:`synth.kernels.main_spring.stage_round`: the
+    kernel columns (:func:`synth.kernels.main_spring.checks`) of the counted ones the compiled group holds, in the
+    assessment's order (:func:`_stage_margin`), and their registry indices."""
+    names = main_spring.checks()
+    cols = columns_of(tuple(c for c in ids if c in names))
+    dec = list(cols.decisive)
+    return (np.array([names.index(cols.ids[j]) for j in dec], np.int64),
+            np.asarray(cols.index[dec] if dec else np.zeros(0), np.int64))
 
 
 def _bolt(apps, cat, cg, rep, settings, acc: _Pairs):
