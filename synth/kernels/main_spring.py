@@ -487,7 +487,21 @@ def stage_round(groups, lo, hi, mbd, keys: SpringKeys, key_of, options: SpringOp
     er = none_r if exclude is None else np.ascontiguousarray(exclude_row, dtype=np.int64)
     nd = none_t if need is None else np.ascontiguousarray(need, dtype=bool)
     nr = none_r if need is None else np.ascontiguousarray(need_row, dtype=np.int64)
-    return int(jit.stage_round(groups, lo, hi, mbd, ex, er, nd, nr, np.ascontiguousarray(key_of, dtype=np.int64),
+    return int(jit.stage_round(groups, lo, hi, mbd, sorted_runs(mbd), ex, er, nd, nr, np.ascontiguousarray(key_of, dtype=np.int64),
                                np.ascontiguousarray(opt_of, dtype=np.int64), kt, ot, c,
                                np.ascontiguousarray(cols, dtype=np.int64), np.ascontiguousarray(bind, dtype=np.int64),
                                int(no_binding), float(tol), finite, line, survive, failed, best, best_b))
+
+
+def sorted_runs(mbd) -> np.ndarray:
+    """The starts of the runs of non-decreasing values of ``mbd`` and ``len(mbd)`` (int64): within a run a window
+    ``[lo, hi]`` is a range found by bisection. A NaN anywhere (admitted by no window) makes every option a run of
+    its own: the plain test, option by option.
+
+    >>> sorted_runs(np.array([20.0, 21.0, 21.0, 20.0, 22.0])).tolist()
+    [0, 3, 5]
+    """
+    mbd = np.asarray(mbd, dtype=float)
+    if np.isnan(mbd).any():
+        return np.arange(len(mbd) + 1, dtype=np.int64)
+    return np.r_[0, np.flatnonzero(mbd[1:] < mbd[:-1]) + 1, len(mbd)].astype(np.int64)
