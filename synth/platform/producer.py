@@ -181,7 +181,8 @@ class _Pairs:
 
     def add(self, gp: np.ndarray, op: np.ndarray, grp: evaluate.Group) -> None:
         """Record the pairs ``(gp[i], op[i])`` evaluated as the rows of ``grp`` (``gp`` sorted)."""
-        ok = grp.ok()
+        a = grp.assessment()   # one judgement of the block: its verdicts and smallest margins
+        ok = a.ok
         sel = np.flatnonzero(ok)
         m, b = margins_and_binding(grp, True, sel)
         self.g.append(gp[sel])
@@ -189,7 +190,7 @@ class _Pairs:
         self.m.append(m)
         self.b.append(b)
         rank = grp.rank()  # nearest designs: ranked by the search model (fidelity screening: the screening one)
-        ma = nearest_rank(ok, grp.min_margin(objective_only=False), rank.min_margin(objective_only=False))
+        ma = nearest_rank(ok, a.margin_min, a.margin_min if rank is grp else rank.min_margin(objective_only=False))
         gg, mm, at = _segment_best(gp, ma)
         upd = mm > self.best[gg]
         if upd.any():
