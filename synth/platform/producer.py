@@ -343,10 +343,14 @@ def _judge_undecided(apps, cat, cg, a, pos, gid, rep, pairs, pad_code, settings)
     return n
 
 
-def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
+def _spring(apps, cat, cg, rep, settings, acc: _Pairs, compiled_rounds: bool = True):
     """Main springs in stages (:data:`SPRING_STAGES`), then every key against the survivors, in its window.
 
-    Returns the pairs evaluated in the stages and in the last (exact) evaluation.
+    The stages' rounds run in one compiled pass each (:func:`synth.kernels.main_spring.stage_round`) where the
+    compiled kernels cover the registry's spring checks and ``compiled_rounds``; else block by block through the
+    spring group and its assessment (the numpy twin's path; the same survivors, failures and best margins,
+    ``tests/test_rationalise_speed.py``). Returns the pairs judged in the stages and evaluated in the last (exact)
+    evaluation.
     """
     if not len(rep):
         return 0, 0
@@ -360,7 +364,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
     window = (lambda lo_, hi_: (mbd[None, :] >= lo_[:, None]) & (mbd[None, :] <= hi_[:, None]))  # noqa: E731
     n_stage = n_last = 0
     stages, prev_of, prev = [], None, None
-    compiled = engines.spring(settings, "numba") == "numba"   # the compiled kernels cover the registry's checks
+    compiled = compiled_rounds and engines.spring(settings, "numba") == "numba"   # the kernels cover the checks
     opts = main_spring.options_of_space() if compiled else None
     for cols, ids, (mcol, direction) in SPRING_STAGES:
         of, srep = _group_ids(keys, kpos, cols)        # stage group of each key; a representative key each
