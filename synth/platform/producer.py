@@ -291,7 +291,7 @@ def _bushing(apps, cat, cg, rep, settings, acc: _Pairs):
     gp, op = np.nonzero(cg.values["supplier_code"][rep][:, None] == sup[None, :])
     for blk in _blocks(len(gp)):
         g, o = gp[blk], op[blk]
-        acc.add(g, o, evaluate.bushing(apps, cg, rep[g], cat.space.rows("bushing", cat.option_row["bushing"][o]), settings))
+        acc.add(g, o, evaluate.bushing(apps, cg, rep[g], cat.space.rows_read("bushing", cat.option_row["bushing"][o]), settings))
     return len(gp)
 
 
@@ -305,7 +305,7 @@ def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs, group=evaluate.a
     engine = engines.axial(settings, AXIAL_ENGINE)
     for blk in _blocks(len(gp), BLOCK_PAIRS // 4):
         g, o = gp[blk], op[blk]
-        acc.add(g, o, group(apps, cg, rep[g], cat.space.rows("axial", cat.option_row["axial"][o]), settings,
+        acc.add(g, o, group(apps, cg, rep[g], cat.space.rows_read("axial", cat.option_row["axial"][o]), settings,
                             engine=engine))
     return len(gp)
 
@@ -482,12 +482,12 @@ def _bolt(apps, cat, cg, rep, settings, acc: _Pairs):
     ua, slot = np.unique(cg.values["app"][rep], return_inverse=True)
     slot = np.asarray(slot).reshape(-1)
     fa, fb = (x.ravel() for x in np.meshgrid(ua, np.arange(nb), indexing="ij"))
-    fix = evaluate.fixation_values(apps, fa, cat.space.rows("bolt", rows[fb]), settings)   # per application and bolt
+    fix = evaluate.fixation_values(apps, fa, cat.space.rows_read("bolt", rows[fb]), settings)   # per application and bolt
     gp, op = (x.ravel() for x in np.meshgrid(np.arange(len(rep)), np.arange(nb), indexing="ij"))
     for blk in _blocks(len(gp)):
         g, o = gp[blk], op[blk]
         idx = slot[g] * nb + o
-        acc.add(g, o, evaluate.bolt(apps, cg, rep[g], cat.space.rows("bolt", rows[o]), settings,
+        acc.add(g, o, evaluate.bolt(apps, cg, rep[g], cat.space.rows_read("bolt", rows[o]), settings,
                              fixation={k: v[idx] for k, v in fix.items()}))
     return len(gp)
 
