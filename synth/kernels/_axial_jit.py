@@ -352,3 +352,48 @@ def _wear_total(tt_s, rate, c_dp, c_es, f0):
     else:
         phi = 1.0 - 0.5 * x
     return f0 * (c_dp + c_es) * tt_s * phi
+
+
+
+_MIX = np.uint64(0x9E3779B97F4A7C15)
+_SHIFT = np.uint64(29)
+
+
+@njit(cache=True, error_model="numpy")
+def distinct_rows(cols, keep, back):
+    """The distinct rows of the columns ``cols`` (a tuple of ``uint64`` views of float columns of one length), bit
+    for bit, in one pass (open addressing on a hash of each row's bits, every match compared in full): ``keep[:k]``
+    the first row of each, in order, ``back[i]`` the position in ``keep`` of row ``i``'s equal; returns ``k``. For
+    :func:`synth.kernels.axial.distinct_rows`."""
+    n = back.shape[0]
+    size = 1
+    while size < 2 * n:
+        size *= 2
+    mask = np.uint64(size - 1)
+    table = np.full(size, -1, np.int64)
+    k = 0
+    for i in range(n):
+        h = np.uint64(0)
+        for c in range(len(cols)):
+            h = (h ^ cols[c][i]) * _MIX
+            h ^= h >> _SHIFT
+        s = h & mask
+        while True:
+            r = table[s]
+            if r < 0:
+                table[s] = k
+                keep[k] = i
+                back[i] = k
+                k += 1
+                break
+            j = keep[r]
+            same = True
+            for c in range(len(cols)):
+                if cols[c][i] != cols[c][j]:
+                    same = False
+                    break
+            if same:
+                back[i] = r
+                break
+            s = (s + np.uint64(1)) & mask
+    return k

@@ -34,7 +34,10 @@ Kernels (loops over keys x options, no allocation per pair):
   and passes a per-group row of two boolean tables, flat (``numpy.nonzero``'s order), a block at a time (the
   platform producer's main-spring rounds, :func:`synth.platform.producer._spring`);
 * :func:`record_stage` -- a block of those rounds' verdicts written into the survivor and failed tables and the
-  groups' best margins, one pass.
+  groups' best margins, one pass;
+* :func:`stage_round` -- a whole round of those stages in one pass (the window pairs, their margins, the stage's
+  smallest margin and the record), nothing of the size of the pairs: the producer's path where the compiled
+  kernels cover the registry's spring checks (``window_pairs`` and ``record_stage`` remain the numpy twin's).
 """
 
 from __future__ import annotations
@@ -494,3 +497,121 @@ def record_stage(gg, oo, ok, m, b, finite, line, survive, failed, best, best_b):
                     best_b[g] = b[k]
                     break
         i = j
+
+
+@njit(cache=True, error_model="numpy")
+def _span(mbd, s, e, a, b):
+    """``(first, end)``: the options ``s <= o < e`` of a run of non-decreasing ``mbd`` with ``a <= mbd[o] <= b``
+    (two bisections: the options :func:`window_pairs`'s test admits there)."""
+    lo, hi = s, e
+    while lo < hi:   # first mbd >= a
+        mid = (lo + hi) // 2
+        if mbd[mid] < a:
+            lo = mid + 1
+        else:
+            hi = mid
+    first = lo
+    hi = e
+    while lo < hi:   # first mbd > b
+        mid = (lo + hi) // 2
+        if mbd[mid] <= b:
+            lo = mid + 1
+        else:
+            hi = mid
+    return first, lo
+
+
+@njit(cache=True, error_model="numpy")
+def stage_round(groups, lo, hi, mbd, runs, excl, excl_row, need, need_row, key_of, opt_of, keys, opts, cst, cols,
+                bind, no_binding, tol, finite, line, survive, failed, best, best_b):
+    """One round of the platform producer's main-spring stages in one pass (:func:`window_pairs`, the margins,
+    the stage's smallest margin and :func:`record_stage`, without the pairs' arrays): for each group ``g`` of
+    ``groups``, the options ``o`` :func:`window_pairs` gives it, in its order; of key ``key_of[g]`` x option
+    ``opt_of[o]`` the smallest of the margins ``cols`` (``M_*`` indices, the first of ties, as the assessment's
+    ``argmin``) and its binding ``bind[c]`` (``no_binding`` where that margin is ``+inf``); recorded as
+    :func:`record_stage` records a block (a pass is a margin ``>= -tol``). Returns the pairs judged.
+
+    ``runs``: the starts of the runs of non-decreasing ``mbd`` (no NaN), and ``len(mbd)``: a group's window is
+    bisected in each run, in option order (the options :func:`window_pairs` tests one by one). The cheap margins of
+    ``cols`` come first (the option-only index range and material section, the yield check): a pair one of them
+    fails whose bound (their smallest) is below the group's largest smallest margin so far fails and cannot be the
+    group's best (nor the first to reach it), so its other margins (fatigue, geometry) are not computed; every
+    verdict, best margin and binding is the one of computing them all."""
+    n = 0
+    n_col = len(cols)
+    row = np.empty(N_MARGINS)
+    need_y = need_f = need_g = need_c = False
+    for q in range(n_col):
+        c = cols[q]
+        if c == M_YIELD:
+            need_y = True
+        elif c == M_FATIGUE:
+            need_f = True
+        elif c == M_OUTER or c == M_INNER or c == M_GAP:
+            need_g = True
+            need_c = need_c or c != M_GAP
+    for t in range(len(groups)):
+        g = groups[t]
+        a = lo[g]
+        b = hi[g]
+        if not (a <= b):   # an empty window, or a NaN bound: no option
+            continue
+        er = excl_row[g]
+        nr = need_row[g]
+        i = key_of[g]
+        seen = False
+        mx = 0.0
+        mb = no_binding
+        for r in range(len(runs) - 1):
+            o0, o1 = _span(mbd, runs[r], runs[r + 1], a, b)
+            for o in range(o0, o1):
+                if not ((er < 0 or not excl[er, o]) and (nr < 0 or need[nr, o])):
+                    continue
+                n += 1
+                j = opt_of[o]
+                ub = np.inf   # the option-only margins of the stage: an upper bound of its smallest margin
+                for q in range(n_col):
+                    c = cols[q]
+                    if c == M_SECTION or c == M_IDX_MIN or c == M_IDX_MAX:
+                        v = _reg(opts[j, O_SEC if c == M_SECTION else (O_IDX_MIN if c == M_IDX_MIN else O_IDX_MAX)])
+                        row[c] = v
+                        if v < ub:
+                            ub = v
+                if need_y:
+                    v = _reg(_yield_margin(keys, i, opts, j))
+                    row[M_YIELD] = v
+                    if v < ub:
+                        ub = v
+                if seen and ub < mx and not (ub >= -tol):
+                    if finite[g]:
+                        failed[line[g], o] = True
+                    continue
+                if need_f:
+                    row[M_FATIGUE] = _reg(_fatigue_margin(keys, i, opts, j, cst))
+                if need_g:   # _geometry_margins's steps, the contact ones only where the stage reads them
+                    n_a, c_inst, c_free_arm, c_nom = _coils(keys, i, opts, j)
+                    row[M_GAP] = _reg(_gap_margin(keys, i, opts, j, cst, c_inst, c_free_arm, c_nom))
+                    if need_c:
+                        m_out, m_in = _contact_margins(keys, i, opts, j, cst, n_a, c_inst)
+                        row[M_OUTER] = _reg(m_out)
+                        row[M_INNER] = _reg(m_in)
+                m = np.inf
+                c = -1
+                for q in range(n_col):
+                    v = row[cols[q]]
+                    if v < m:
+                        m = v
+                        c = q
+                bb = no_binding if c < 0 else bind[c]
+                if m >= -tol:
+                    survive[g, o] = True
+                elif finite[g]:
+                    failed[line[g], o] = True
+                if not seen or m > mx:
+                    mx = m
+                    mb = bb
+                    seen = True
+        if seen and mx > best[g]:
+            best[g] = mx
+            best_b[g] = mb
+    return n

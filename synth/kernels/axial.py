@@ -53,7 +53,8 @@ from synth.kernels.numba_setup import Compiled
 from synth.model import disc_spring as s8
 from synth.model import friction_wear as s5
 
-__all__ = ["ENGINES", "RTOL", "ATOL", "cone_spring", "plastic_wear", "load_kernels", "numba_loaded"]
+__all__ = ["ENGINES", "RTOL", "ATOL", "cone_spring", "plastic_wear", "load_kernels", "numba_loaded", "distinct_rows",
+           "DISTINCT_SHARE"]
 
 ENGINES = ("numba", "numpy")
 #: the twin's stated agreement with the reference: relative to a value's magnitude
@@ -171,14 +172,47 @@ def plastic_wear(initial_deflection_mm, outer_diameter_mm, inner_diameter_mm, th
     n = len(cols[0])
     jit = load_kernels()
     solver, callback = _addresses()
-    out = _table(n, len(jit.PLASTIC_WEAR_OUT))
-    bad = np.zeros(n, dtype=bool)
     t, de, di = cols[3], cols[1], cols[2]
-    jit.plastic_wear_rows(t ** 3, t ** 4, np.log(de / di), *cols, fidelity == "screening", _elastic_scale(),
+    inputs = [t ** 3, t ** 4, np.log(de / di), *cols]
+    keep, back = distinct_rows(inputs)   # the wear once per distinct row of the kernel's inputs
+    if keep is not None:
+        inputs = [x[keep] for x in inputs]
+    m = len(inputs[0])
+    out = _table(m, len(jit.PLASTIC_WEAR_OUT))
+    bad = np.zeros(m, dtype=bool)
+    jit.plastic_wear_rows(*inputs, fidelity == "screening", _elastic_scale(),
                           float(catalog.constant("cone_spring_relaxation_pct")),
                           float(catalog.constant("cone_spring_relaxation_time_h")),
                           float(catalog.constant("plastic_max_wear_fraction")),
                           int(catalog.constant("plastic_wear_secant_passes")), solver, callback, out, bad)
     if bad.any():
         return s5.plastic_wear(*args, **opts)
+    if keep is not None:
+        return {k: out[:m, c][back].reshape(shape) for c, k in enumerate(jit.PLASTIC_WEAR_OUT)}
     return {k: out[:n, c].reshape(shape) for c, k in enumerate(jit.PLASTIC_WEAR_OUT)}
+
+
+#: the share of distinct rows above which :func:`distinct_rows` keeps every row (the gathers would cost more)
+DISTINCT_SHARE = 0.9
+def distinct_rows(columns: list) -> tuple:
+    """``(keep, back)``: rows ``keep`` hold each distinct row of the float ``columns`` once (bit for bit: ``-0.0``
+    and ``0.0`` differ, a NaN equals the same NaN) and ``row i == row keep[back[i]]``; ``(None, None)`` where
+    more than :data:`DISTINCT_SHARE` of the rows are distinct. A row-by-row kernel (each output row a function of
+    its input row alone) run on ``keep`` and gathered by ``back`` gives the values of running it on every row.
+    One compiled pass (:func:`synth.kernels._axial_jit.distinct_rows`: a hash table of the rows' bits, every match
+    compared in full).
+
+    >>> keep, back = distinct_rows([np.array([1.0, 2.0, 1.0, 1.0]), np.array([0.0, 0.0, 0.0, -0.0])])
+    >>> keep.tolist(), back.tolist()
+    ([0, 1, 3], [0, 1, 0, 2])
+    """
+    n = len(columns[0]) if columns else 0
+    if n < 2:
+        return None, None
+    jit = load_kernels()
+    bits = tuple(np.ascontiguousarray(c, dtype=np.float64).view(np.uint64) for c in columns)
+    keep, back = np.empty(n, np.int64), np.empty(n, np.int64)
+    k = jit.distinct_rows(bits, keep, back)
+    if k > DISTINCT_SHARE * n:
+        return None, None
+    return keep[:k], back

@@ -105,7 +105,7 @@ from synth.kernels.spring_tables import (ENGINES, MARGIN_NAMES, OPTION_FIELDS, S
 __all__ = ["MARGIN_NAMES", "checks", "compiled_covers", "SpringOptions", "SpringKeys", "spring_options", "options_of_space", "spring_keys",
            "keys_of_rows", "margins", "margins_above", "pair_margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin",
            "any_feasible", "FirstFeasible", "MaxMin", "CHUNK_KEYS", "numba_loaded", "load_kernels", "FEAS_TOL",
-           "ENGINES", "OPTION_FIELDS"]
+           "ENGINES", "OPTION_FIELDS", "stage_round"]
 
 
 # --------------------------------------------------------------------------------------- candidate lists
@@ -465,3 +465,43 @@ def window_pairs(groups, lo, hi, mbd, *, exclude=None, exclude_row=None, need=No
         n, start = jit.window_pairs(groups, lo, hi, mbd, ex, er, nd, nr, start, limit, out_g, out_o)
         if n:
             yield out_g[:n].copy(), out_o[:n].copy()
+
+
+def stage_round(groups, lo, hi, mbd, keys: SpringKeys, key_of, options: SpringOptions, opt_of, cols, bind, *,
+                no_binding: int, finite, line, survive, failed, best, best_b, exclude=None, exclude_row=None,
+                need=None, need_row=None, tol: float = FEAS_TOL) -> int:
+    """One round of the platform producer's main-spring stages (:func:`synth.platform.producer._spring`) in one
+    compiled pass, nothing of the size of its pairs: the pairs :func:`window_pairs` gives (``groups`` x options
+    ``o``, the same conditions and order), each of key ``key_of[g]`` x option row ``opt_of[o]`` judged by the
+    smallest of its margins ``cols`` (column numbers of :func:`checks`, first of ties) with the binding ``bind[c]``
+    (``no_binding`` where that margin is ``+inf``), and recorded in ``survive``, ``failed``, ``best`` and
+    ``best_b`` (updated in place) as ``record_stage`` records them. The margins are the doubles of
+    :func:`pair_margins` (the compiled engine: the caller runs this only where it covers the registry's checks).
+    Returns the pairs evaluated."""
+    same_constants(keys, options)
+    jit, kt, ot, c = kernel_tables(keys, options)
+    groups = np.ascontiguousarray(groups, dtype=np.int64)
+    lo, hi, mbd = (np.ascontiguousarray(x, dtype=float) for x in (lo, hi, mbd))
+    none_t, none_r = np.zeros((1, len(mbd)), bool), np.full(len(lo), -1, np.int64)
+    ex = none_t if exclude is None else np.ascontiguousarray(exclude, dtype=bool)
+    er = none_r if exclude is None else np.ascontiguousarray(exclude_row, dtype=np.int64)
+    nd = none_t if need is None else np.ascontiguousarray(need, dtype=bool)
+    nr = none_r if need is None else np.ascontiguousarray(need_row, dtype=np.int64)
+    return int(jit.stage_round(groups, lo, hi, mbd, sorted_runs(mbd), ex, er, nd, nr, np.ascontiguousarray(key_of, dtype=np.int64),
+                               np.ascontiguousarray(opt_of, dtype=np.int64), kt, ot, c,
+                               np.ascontiguousarray(cols, dtype=np.int64), np.ascontiguousarray(bind, dtype=np.int64),
+                               int(no_binding), float(tol), finite, line, survive, failed, best, best_b))
+
+
+def sorted_runs(mbd) -> np.ndarray:
+    """The starts of the runs of non-decreasing values of ``mbd`` and ``len(mbd)`` (int64): within a run a window
+    ``[lo, hi]`` is a range found by bisection. A NaN anywhere (admitted by no window) makes every option a run of
+    its own: the plain test, option by option.
+
+    >>> sorted_runs(np.array([20.0, 21.0, 21.0, 20.0, 22.0])).tolist()
+    [0, 3, 5]
+    """
+    mbd = np.asarray(mbd, dtype=float)
+    if np.isnan(mbd).any():
+        return np.arange(len(mbd) + 1, dtype=np.int64)
+    return np.r_[0, np.flatnonzero(mbd[1:] < mbd[:-1]) + 1, len(mbd)].astype(np.int64)

@@ -217,6 +217,19 @@ def _shape_problem(where: str, got, want) -> Problem:
     return Problem(where, got, f"an array of shape {want}")
 
 
+def _groups_fine(groups: list, margins: list, n_opt: int) -> bool:
+    """Whether the feasible options of an application's groups (1-D integer arrays) are option indices
+    ``0..n_opt-1`` with one margin each (1-D arrays of their length), checked in one pass over all groups; False
+    where they are not, or are of another form (then :func:`validate` checks group by group and names the fault)."""
+    if not all(type(x) is np.ndarray and x.ndim == 1 for x in groups) \
+            or not all(type(m) is np.ndarray and m.ndim == 1 for m in margins):
+        return False
+    if [len(x) for x in groups] != [len(m) for m in margins]:
+        return False
+    idx = np.concatenate(groups) if groups else np.zeros(0, np.int64)
+    return not idx.size or (idx.dtype.kind in "iu" and idx.min() >= 0 and idx.max() < n_opt)
+
+
 def validate(pf: PortfolioFeasibility) -> PortfolioFeasibility:
     """Check the shapes and codes of a producer's output; raise :class:`InputError` naming each fault.
 
@@ -261,6 +274,8 @@ def validate(pf: PortfolioFeasibility) -> PortfolioFeasibility:
             margins = a.option_margin.get(s, [])
             if len(margins) != len(groups):
                 probs.append(Problem(f"{where}: option_margin[{s}]", len(margins), f"{len(groups)} groups as in feasible[{s}]"))
+            elif _groups_fine(groups, margins, n_opt):
+                groups = ()   # every group checked at once: nothing to name
             for gi, idx in enumerate(groups):
                 idx = np.asarray(idx)
                 if idx.size and (idx.min() < 0 or idx.max() >= n_opt):

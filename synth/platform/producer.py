@@ -44,7 +44,7 @@ import numpy as np
 from synth import catalog
 from synth.design import evaluate
 from synth.design.applications import Applications
-from synth.design.assessment import assess_group, passes
+from synth.design.assessment import assess_group, columns_of, passes
 from synth.design.combine import combine, nearest_rank
 from synth.design.constraints import REGISTRY, version
 from synth.design.space import SUBSYSTEMS, core_rows, spring_window
@@ -181,7 +181,8 @@ class _Pairs:
 
     def add(self, gp: np.ndarray, op: np.ndarray, grp: evaluate.Group) -> None:
         """Record the pairs ``(gp[i], op[i])`` evaluated as the rows of ``grp`` (``gp`` sorted)."""
-        ok = grp.ok()
+        a = grp.assessment()   # one judgement of the block: its verdicts and smallest margins
+        ok = a.ok
         sel = np.flatnonzero(ok)
         m, b = margins_and_binding(grp, True, sel)
         self.g.append(gp[sel])
@@ -189,7 +190,7 @@ class _Pairs:
         self.m.append(m)
         self.b.append(b)
         rank = grp.rank()  # nearest designs: ranked by the search model (fidelity screening: the screening one)
-        ma = nearest_rank(ok, grp.min_margin(objective_only=False), rank.min_margin(objective_only=False))
+        ma = nearest_rank(ok, a.margin_min, a.margin_min if rank is grp else rank.min_margin(objective_only=False))
         gg, mm, at = _segment_best(gp, ma)
         upd = mm > self.best[gg]
         if upd.any():
@@ -290,7 +291,7 @@ def _bushing(apps, cat, cg, rep, settings, acc: _Pairs):
     gp, op = np.nonzero(cg.values["supplier_code"][rep][:, None] == sup[None, :])
     for blk in _blocks(len(gp)):
         g, o = gp[blk], op[blk]
-        acc.add(g, o, evaluate.bushing(apps, cg, rep[g], cat.space.rows("bushing", cat.option_row["bushing"][o]), settings))
+        acc.add(g, o, evaluate.bushing(apps, cg, rep[g], cat.space.rows_read("bushing", cat.option_row["bushing"][o]), settings))
     return len(gp)
 
 
@@ -304,7 +305,7 @@ def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs, group=evaluate.a
     engine = engines.axial(settings, AXIAL_ENGINE)
     for blk in _blocks(len(gp), BLOCK_PAIRS // 4):
         g, o = gp[blk], op[blk]
-        acc.add(g, o, group(apps, cg, rep[g], cat.space.rows("axial", cat.option_row["axial"][o]), settings,
+        acc.add(g, o, group(apps, cg, rep[g], cat.space.rows_read("axial", cat.option_row["axial"][o]), settings,
                             engine=engine))
     return len(gp)
 
@@ -342,10 +343,14 @@ def _judge_undecided(apps, cat, cg, a, pos, gid, rep, pairs, pad_code, settings)
     return n
 
 
-def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
+def _spring(apps, cat, cg, rep, settings, acc: _Pairs, compiled_rounds: bool = True):
     """Main springs in stages (:data:`SPRING_STAGES`), then every key against the survivors, in its window.
 
-    Returns the pairs evaluated in the stages and in the last (exact) evaluation.
+    The stages' rounds run in one compiled pass each (:func:`synth.kernels.main_spring.stage_round`) where the
+    compiled kernels cover the registry's spring checks and ``compiled_rounds``; else block by block through the
+    spring group and its assessment (the numpy twin's path; the same survivors, failures and best margins,
+    ``tests/test_rationalise_speed.py``). Returns the pairs judged in the stages and evaluated in the last (exact)
+    evaluation.
     """
     if not len(rep):
         return 0, 0
@@ -359,6 +364,8 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
     window = (lambda lo_, hi_: (mbd[None, :] >= lo_[:, None]) & (mbd[None, :] <= hi_[:, None]))  # noqa: E731
     n_stage = n_last = 0
     stages, prev_of, prev = [], None, None
+    compiled = compiled_rounds and engines.spring(settings, "numba") == "numba"   # the kernels cover the checks
+    opts = main_spring.options_of_space() if compiled else None
     for cols, ids, (mcol, direction) in SPRING_STAGES:
         of, srep = _group_ids(keys, kpos, cols)        # stage group of each key; a representative key each
         ng = len(srep)
@@ -380,6 +387,13 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs):
         finite = np.isfinite(val)
         for rk in range(int(rank.max()) + 1 if ng else 0):
             # a round's candidates at once (a line has one group per round: what fails now is for later rounds)
+            if compiled:   # window, margins, smallest and record in one compiled pass (the same doubles)
+                cols, bind = _stage_columns(ids)
+                n_stage += main_spring.stage_round(
+                    np.flatnonzero(rank == rk), g_lo, g_hi, mbd, kk, srep, opts, rows, cols, bind,
+                    no_binding=_NO_BINDING, finite=finite, line=line, survive=survive, failed=failed, best=best,
+                    best_b=best_b, exclude=failed, exclude_row=line, need=prev, need_row=parent)
+                continue
             for gg_, oo in main_spring.window_pairs(np.flatnonzero(rank == rk), g_lo, g_hi, mbd, exclude=failed,
                                                     exclude_row=line, need=prev, need_row=parent, limit=BLOCK_PAIRS):
                 n_stage += len(gg_)
@@ -449,6 +463,17 @@ def _stage_margin(grp: evaluate.Group, ids: tuple):
     return m, np.where(b < 0, _NO_BINDING, b).astype(np.int16)
 
 
+def _stage_columns(ids: tuple) -> tuple:
+    """``(columns, bindings)`` of a stage's checks ``ids`` for :func:`synth.kernels.main_spring.stage_round`: the
+    kernel columns (:func:`synth.kernels.main_spring.checks`) of the counted ones the compiled group holds, in the
+    assessment's order (:func:`_stage_margin`), and their registry indices."""
+    names = main_spring.checks()
+    cols = columns_of(tuple(c for c in ids if c in names))
+    dec = list(cols.decisive)
+    return (np.array([names.index(cols.ids[j]) for j in dec], np.int64),
+            np.asarray(cols.index[dec] if dec else np.zeros(0), np.int64))
+
+
 def _bolt(apps, cat, cg, rep, settings, acc: _Pairs):
     if not len(rep):
         return 0
@@ -457,12 +482,12 @@ def _bolt(apps, cat, cg, rep, settings, acc: _Pairs):
     ua, slot = np.unique(cg.values["app"][rep], return_inverse=True)
     slot = np.asarray(slot).reshape(-1)
     fa, fb = (x.ravel() for x in np.meshgrid(ua, np.arange(nb), indexing="ij"))
-    fix = evaluate.fixation_values(apps, fa, cat.space.rows("bolt", rows[fb]), settings)   # per application and bolt
+    fix = evaluate.fixation_values(apps, fa, cat.space.rows_read("bolt", rows[fb]), settings)   # per application and bolt
     gp, op = (x.ravel() for x in np.meshgrid(np.arange(len(rep)), np.arange(nb), indexing="ij"))
     for blk in _blocks(len(gp)):
         g, o = gp[blk], op[blk]
         idx = slot[g] * nb + o
-        acc.add(g, o, evaluate.bolt(apps, cg, rep[g], cat.space.rows("bolt", rows[o]), settings,
+        acc.add(g, o, evaluate.bolt(apps, cg, rep[g], cat.space.rows_read("bolt", rows[o]), settings,
                              fixation={k: v[idx] for k, v in fix.items()}))
     return len(gp)
 
