@@ -438,6 +438,19 @@ def _max_min_numpy(keys, options, ptr, idx, ub, rank, kg, cap, settings):
 # --------------------------------------------------------------------------------------- window pairs
 
 
+def _window_args(groups, lo, hi, mbd, exclude, exclude_row, need, need_row) -> tuple:
+    """The arrays of :func:`window_pairs` and :func:`stage_round` as their kernels take them (a condition not given:
+    a one-row table its rows ``-1`` never read)."""
+    groups = np.ascontiguousarray(groups, dtype=np.int64)
+    lo, hi, mbd = (np.ascontiguousarray(x, dtype=float) for x in (lo, hi, mbd))
+    none_t, none_r = np.zeros((1, len(mbd)), bool), np.full(len(lo), -1, np.int64)
+    ex = none_t if exclude is None else np.ascontiguousarray(exclude, dtype=bool)
+    er = none_r if exclude is None else np.ascontiguousarray(exclude_row, dtype=np.int64)
+    nd = none_t if need is None else np.ascontiguousarray(need, dtype=bool)
+    nr = none_r if need is None else np.ascontiguousarray(need_row, dtype=np.int64)
+    return groups, lo, hi, mbd, ex, er, nd, nr
+
+
 def window_pairs(groups, lo, hi, mbd, *, exclude=None, exclude_row=None, need=None, need_row=None,
                  limit: int = 100_000):
     """Blocks ``(g, o)`` of the candidate pairs of ``groups`` (in that order) x options ``o`` ascending: the option's
@@ -451,13 +464,7 @@ def window_pairs(groups, lo, hi, mbd, *, exclude=None, exclude_row=None, need=No
     [([1, 1, 0, 0], [0, 2, 1, 2])]
     """
     jit = load_kernels()
-    groups = np.ascontiguousarray(groups, dtype=np.int64)
-    lo, hi, mbd = (np.ascontiguousarray(x, dtype=float) for x in (lo, hi, mbd))
-    none_t, none_r = np.zeros((1, len(mbd)), bool), np.full(len(lo), -1, np.int64)
-    ex = none_t if exclude is None else np.ascontiguousarray(exclude, dtype=bool)
-    er = none_r if exclude is None else np.ascontiguousarray(exclude_row, dtype=np.int64)
-    nd = none_t if need is None else np.ascontiguousarray(need, dtype=bool)
-    nr = none_r if need is None else np.ascontiguousarray(need_row, dtype=np.int64)
+    groups, lo, hi, mbd, ex, er, nd, nr = _window_args(groups, lo, hi, mbd, exclude, exclude_row, need, need_row)
     limit = max(int(limit), 1)
     out_g, out_o = np.empty(limit + len(mbd), np.int64), np.empty(limit + len(mbd), np.int64)
     start = 0
@@ -480,13 +487,7 @@ def stage_round(groups, lo, hi, mbd, keys: SpringKeys, key_of, options: SpringOp
     Returns the pairs evaluated."""
     same_constants(keys, options)
     jit, kt, ot, c = kernel_tables(keys, options)
-    groups = np.ascontiguousarray(groups, dtype=np.int64)
-    lo, hi, mbd = (np.ascontiguousarray(x, dtype=float) for x in (lo, hi, mbd))
-    none_t, none_r = np.zeros((1, len(mbd)), bool), np.full(len(lo), -1, np.int64)
-    ex = none_t if exclude is None else np.ascontiguousarray(exclude, dtype=bool)
-    er = none_r if exclude is None else np.ascontiguousarray(exclude_row, dtype=np.int64)
-    nd = none_t if need is None else np.ascontiguousarray(need, dtype=bool)
-    nr = none_r if need is None else np.ascontiguousarray(need_row, dtype=np.int64)
+    groups, lo, hi, mbd, ex, er, nd, nr = _window_args(groups, lo, hi, mbd, exclude, exclude_row, need, need_row)
     return int(jit.stage_round(groups, lo, hi, mbd, sorted_runs(mbd), ex, er, nd, nr, np.ascontiguousarray(key_of, dtype=np.int64),
                                np.ascontiguousarray(opt_of, dtype=np.int64), kt, ot, c,
                                np.ascontiguousarray(cols, dtype=np.int64), np.ascontiguousarray(bind, dtype=np.int64),
