@@ -6,7 +6,7 @@ tables).
 The commands: ``synth design`` and ``synth robust`` of the embedded default application
 (``synth/data/default_case.yaml``), and ``synth bulk`` of the README's sample (``synth portfolio-sample N --broken
 10``, ``--summary``). Each pair starts from an empty cache folder (``SYNTH_CACHE_DIR`` a new temporary folder per
-command, tree and pair; ``NUMBA_CACHE_DIR`` unset, so the kernels go to ``numba-VERSION`` inside it): the first run
+command, tree and pair; ``NUMBA_CACHE_DIR`` unset, so the kernels go to ``numba-VERSION-DIGEST`` inside it): the first run
 builds synth's cached design space, parts and constants and compiles the numba kernels it calls
 (:mod:`synth.kernels.numba_setup`); the second loads both. Whole processes, wall and CPU seconds (``os.wait4``); the
 ratio first/second is taken pair by pair. The table also says whether the first run printed the compile notice and

@@ -65,8 +65,6 @@ LONG_MODULES = {
     "formulations/platform.py": "one mathematical program: the platform MILP and its data (no synth import)",
     # several ideas, split in the change that rewrites them (issue 33's decomposed-space engine, the PDF report)
     "synth/optimise/batch.py": "the Batch scans: being rewritten as a client of the decomposed-space engine",
-    "synth/kernels/_main_spring_jit.py": "the main spring's compiled pair physics and the scans and platform rounds "
-                                         "over it: split (tables vs scans) with issue 33's kernels from the physics",
 }
 
 

@@ -501,6 +501,6 @@ def test_record_stage_is_the_numpy_bookkeeping(seed):
     upd = mm > want_b[g]
     want_b[g[upd]], want_bb[g[upd]] = mm[upd], b[at[upd]]
     got_s, got_f, got_b, got_bb = np.zeros_like(want_s), np.zeros_like(want_f), best0.copy(), bb0.copy()
-    main_spring.load_kernels().record_stage(gg, oo, ok, m, b, finite, line, got_s, got_f, got_b, got_bb)
+    main_spring.load_rounds().record_stage(gg, oo, ok, m, b, finite, line, got_s, got_f, got_b, got_bb)
     assert (got_s == want_s).all() and (got_f == want_f).all()
     assert np.array_equal(got_b, want_b, equal_nan=True) and (got_bb == want_bb).all()

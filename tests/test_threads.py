@@ -183,11 +183,12 @@ def _kernel_process(env: dict) -> subprocess.CompletedProcess:
 
 
 def test_kernels_compile_once_into_the_versioned_cache_folder_saying_so(tmp_path):
+    from synth.kernels.numba_setup import sources_digest
     from synth.version import __version__
     first = _kernel_process({"SYNTH_CACHE_DIR": str(tmp_path), "SYNTH_THREADS": "1"})
     assert first.returncode == 0, first.stderr
     folder, pool = first.stdout.split("\n")[0].split()
-    assert Path(folder) == tmp_path / f"numba-{__version__}" and pool == "1"
+    assert Path(folder) == tmp_path / f"numba-{__version__}-{sources_digest()}" and pool == "1"
     assert first.stdout.split("\n")[1].split() == ["8", "32"]
     assert first.stderr.count("synth: compiling synth's kernels (first run after install") == 1
     assert list(Path(folder).rglob("_bitsets_jit.set_bits-*.nbi"))
@@ -224,3 +225,24 @@ def test_an_api_call_runs_blas_on_one_thread_as_a_scene_does(monkeypatch):
         after = {lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"}
     # a library loaded at one thread (OPENBLAS_NUM_THREADS=1: the conftest's) stays at one; numpy's goes to two
     assert max(outside) == 2 and after == outside and seen == [{1}]
+
+
+def test_kernel_cache_folder_changes_with_any_kernel_source(tmp_path, monkeypatch):
+    """numba does not notice an edit of a file its kernel calls into (the scans call ``_main_spring_jit``'s pair
+    physics), so the folder is named by a digest of every kernel source: an edit of one starts a new folder."""
+    import shutil
+
+    import synth.kernels.numba_setup as ns
+    here = Path(ns.__file__).parent
+    copy = tmp_path / "kernels"
+    copy.mkdir()
+    for f in here.glob("_*.py"):
+        shutil.copy(f, copy / f.name)
+    shutil.copy(ns.__file__, copy / "numba_setup.py")
+    monkeypatch.setattr(ns, "__file__", str(copy / "numba_setup.py"))
+    before = ns.sources_digest()
+    assert len(before) == 12 and before == ns.sources_digest()
+    (copy / "_main_spring_jit.py").write_text((copy / "_main_spring_jit.py").read_text() + "\n# an edit\n")
+    assert ns.sources_digest() != before
+    monkeypatch.setenv("SYNTH_CACHE_DIR", str(tmp_path / "cache"))
+    assert ns.kernel_cache_dir().name.endswith("-" + ns.sources_digest())

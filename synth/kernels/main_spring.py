@@ -20,7 +20,8 @@ non-advisory constraints of step 9, thesis eq. (64)-(93), figure 71):
 (d) :func:`any_feasible` -- per key, whether some option is feasible.
 
 Each takes ``engine="numba"`` (compiled loops over keys x options, no
-allocation per pair; :mod:`synth.kernels._main_spring_jit`) or
+allocation per pair; :mod:`synth.kernels._main_spring_scans_jit` over the pair physics of
+:mod:`synth.kernels._main_spring_jit`) or
 ``engine="numpy"`` (the registry's group on blocks of keys x options, the
 same early exits block by block): the benchmark compares both in one run
 and the tests hold them equal to the registry path. Units as in
@@ -97,14 +98,14 @@ from synth.design.constraints import FEAS_TOL
 from synth.design.settings import DEFAULT, Settings
 from synth.errors import InputError, Problem
 from synth.kernels.spring_tables import (ENGINES, MARGIN_NAMES, OPTION_FIELDS, SpringKeys, SpringOptions, check_engine,
-                                         checks, compiled_covers, keys_of_rows, kernel_tables, load_kernels, margins,
+                                         checks, compiled_covers, keys_of_rows, kernel_tables, load_kernels, load_rounds, load_scans, margins,
                                          margins_above,
                                          numba_loaded, options_of_space, pair_margins, reference_margins,
                                          same_constants, spring_keys, spring_options)
 
 __all__ = ["MARGIN_NAMES", "checks", "compiled_covers", "SpringOptions", "SpringKeys", "spring_options", "options_of_space", "spring_keys",
            "keys_of_rows", "margins", "margins_above", "pair_margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin",
-           "any_feasible", "FirstFeasible", "MaxMin", "CHUNK_KEYS", "numba_loaded", "load_kernels", "FEAS_TOL",
+           "any_feasible", "FirstFeasible", "MaxMin", "CHUNK_KEYS", "numba_loaded", "load_kernels", "load_scans", "load_rounds", "FEAS_TOL",
            "ENGINES", "OPTION_FIELDS", "stage_round"]
 
 
@@ -223,10 +224,11 @@ def _first_feasible(keys, options, ptr, idx, kg, sc, lim, tol, engine, parallel,
     same_constants(keys, options)
     n = len(keys)
     if engine == "numba":
-        jit, kt, ot, c = kernel_tables(keys, options)
+        _, kt, ot, c = kernel_tables(keys, options)
         kperm, kptr, chunk_list = _chunks(kg, keys.derived["t_inst"])
         pick, visited, work = np.empty(n, np.int64), np.empty(n, np.int64), np.empty(n, np.int64)
-        scan = jit.first_feasible_scan_parallel if parallel else jit.first_feasible_scan
+        scans = load_scans()
+        scan = scans.first_feasible_scan_parallel if parallel else scans.first_feasible_scan
         scan(kt, ot, c, float(tol), yield_thresholds(options, tol), ptr, idx, chunk_list, kptr, kperm,
              np.ascontiguousarray(sc, dtype=float), lim, pick, visited, work)
         return FirstFeasible((pick, visited))
@@ -398,11 +400,12 @@ def max_min_margin(keys: SpringKeys, options: SpringOptions, candidates=None, *,
     idx_s, ub_s, rank_s = _by_upper_bound(options, ptr, idx)
     cp = _per_key(cap, n, "cap", np.inf)
     if engine == "numba":
-        jit, kt, ot, c = kernel_tables(keys, options)
+        _, kt, ot, c = kernel_tables(keys, options)
         kperm, kptr, chunk_list = _chunks(kg, keys.derived["t_inst"])
         pick, value, visited = np.empty(n, np.int64), np.empty(n), np.empty(n, np.int64)
         best_rank, work = np.empty(n, np.int64), np.empty(n, np.int64)
-        scan = jit.max_min_scan_parallel if parallel else jit.max_min_scan
+        scans = load_scans()
+        scan = scans.max_min_scan_parallel if parallel else scans.max_min_scan
         scan(kt, ot, c, ptr, idx_s, ub_s, rank_s, chunk_list, kptr, kperm, cp, pick, value, visited, best_rank, work)
         return MaxMin((pick, value, visited))
     return MaxMin(_max_min_numpy(keys, options, ptr, idx_s, ub_s, rank_s, kg, cp, settings))
@@ -463,13 +466,13 @@ def window_pairs(groups, lo, hi, mbd, *, exclude=None, exclude_row=None, need=No
     ...                                                     np.array([2.0, 3.0]), np.array([3.0, 1.5, 2.0]))]
     [([1, 1, 0, 0], [0, 2, 1, 2])]
     """
-    jit = load_kernels()
+    rounds = load_rounds()
     groups, lo, hi, mbd, ex, er, nd, nr = _window_args(groups, lo, hi, mbd, exclude, exclude_row, need, need_row)
     limit = max(int(limit), 1)
     out_g, out_o = np.empty(limit + len(mbd), np.int64), np.empty(limit + len(mbd), np.int64)
     start = 0
     while start < len(groups):
-        n, start = jit.window_pairs(groups, lo, hi, mbd, ex, er, nd, nr, start, limit, out_g, out_o)
+        n, start = rounds.window_pairs(groups, lo, hi, mbd, ex, er, nd, nr, start, limit, out_g, out_o)
         if n:
             yield out_g[:n].copy(), out_o[:n].copy()
 
@@ -486,12 +489,12 @@ def stage_round(groups, lo, hi, mbd, keys: SpringKeys, key_of, options: SpringOp
     :func:`pair_margins` (the compiled engine: the caller runs this only where it covers the registry's checks).
     Returns the pairs evaluated."""
     same_constants(keys, options)
-    jit, kt, ot, c = kernel_tables(keys, options)
+    _, kt, ot, c = kernel_tables(keys, options)
     groups, lo, hi, mbd, ex, er, nd, nr = _window_args(groups, lo, hi, mbd, exclude, exclude_row, need, need_row)
-    return int(jit.stage_round(groups, lo, hi, mbd, sorted_runs(mbd), ex, er, nd, nr, np.ascontiguousarray(key_of, dtype=np.int64),
-                               np.ascontiguousarray(opt_of, dtype=np.int64), kt, ot, c,
-                               np.ascontiguousarray(cols, dtype=np.int64), np.ascontiguousarray(bind, dtype=np.int64),
-                               int(no_binding), float(tol), finite, line, survive, failed, best, best_b))
+    return int(load_rounds().stage_round(groups, lo, hi, mbd, sorted_runs(mbd), ex, er, nd, nr, np.ascontiguousarray(key_of, dtype=np.int64),
+                                         np.ascontiguousarray(opt_of, dtype=np.int64), kt, ot, c,
+                                         np.ascontiguousarray(cols, dtype=np.int64), np.ascontiguousarray(bind, dtype=np.int64),
+                                         int(no_binding), float(tol), finite, line, survive, failed, best, best_b))
 
 
 def sorted_runs(mbd) -> np.ndarray:

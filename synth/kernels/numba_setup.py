@@ -2,12 +2,16 @@
 pool, and a line on stderr when a kernel compiles.
 
 * **Compiled once per install and version.** :func:`configure` (run by ``import synth.kernels``, before any
-  ``_*_jit`` module imports numba) sets ``NUMBA_CACHE_DIR`` to ``numba-VERSION`` in synth's cache folder
+  ``_*_jit`` module imports numba) sets ``NUMBA_CACHE_DIR`` to ``numba-VERSION-DIGEST`` in synth's cache folder
   (:func:`synth.fingerprint.cache_dir`: ``SYNTH_CACHE_DIR``, else ``$XDG_CACHE_HOME/synth``, else
   ``~/.cache/synth``), unless the user set ``NUMBA_CACHE_DIR`` (or ``SYNTH_CACHE_DIR=off``: numba's own place,
-  ``__pycache__`` beside the module). numba keys each entry by the source file's size and modification time, the
-  signature and the CPU, so an edit recompiles what it touched; a new synth version starts a new folder. The
-  environment variable is inherited by child processes (Dask workers), which therefore read the same cache.
+  ``__pycache__`` beside the module), in a folder named by synth's version and a digest of the kernels' sources
+  (:func:`sources_digest`). numba keys each entry by the source file's size and modification time, the signature
+  and the CPU, but not by the files its kernel calls into: "cache invalidation fails to recognize changes in
+  symbols defined in a different file" (numba's *Notes on Caching*, Caching Limitations), and the scans and rounds
+  call the pair physics of ``_main_spring_jit`` (and the axial and main-spring kernels ``_ieee``'s helpers). So any edit of a
+  ``_*_jit`` or helper source starts a new folder, and a new synth version too. The environment variable is
+  inherited by child processes (Dask workers), which therefore read the same cache.
 * **numba's pool** is :func:`synth.threads.numba_threads` threads (the thread budget), not numba's default of
   every processor of the machine; set while numba is not imported yet.
 * **A line when a kernel compiles**: :func:`announce_compiles` (called by each ``_*_jit`` module after importing
@@ -28,7 +32,7 @@ from synth.fingerprint import cache_dir
 from synth.threads import numba_threads
 from synth.version import __version__
 
-__all__ = ["COMPILE_S", "configure", "kernel_cache_dir", "announce_compiles", "notice", "Compiled"]
+__all__ = ["COMPILE_S", "configure", "kernel_cache_dir", "sources_digest", "announce_compiles", "notice", "Compiled"]
 
 #: seconds of CPU the first ``synth bulk`` spends compiling the kernels: its CPU time less the second run's, 10-18 s
 #: on the shared 2-core machine of ``benchmarks/bench_first_run.py`` (load 12-17), about half on a quiet one
@@ -39,11 +43,23 @@ _ANNOUNCED = False
 _LISTENING = False
 
 
+def sources_digest() -> str:
+    """The first 12 hex digits of the SHA-256 of the compiled kernels' sources: every ``_*.py`` of
+    ``synth/kernels`` (the ``_*_jit`` modules and the helpers they call), in name order, each as its name and bytes."""
+    import hashlib
+    from pathlib import Path
+    h = hashlib.sha256()
+    for path in sorted(Path(__file__).parent.glob("_*.py")):
+        if path.name != "__init__.py":
+            h.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+    return h.hexdigest()[:12]
+
+
 def kernel_cache_dir():
-    """The folder of the compiled kernels of this synth version (a :class:`~pathlib.Path`), or None when synth's
-    cache is off (``SYNTH_CACHE_DIR=off``)."""
+    """The folder of the compiled kernels of this synth version and these kernel sources (a :class:`~pathlib.Path`:
+    ``numba-VERSION-DIGEST``, :func:`sources_digest`), or None when synth's cache is off (``SYNTH_CACHE_DIR=off``)."""
     base = cache_dir()
-    return None if base is None else base / f"numba-{__version__}"
+    return None if base is None else base / f"numba-{__version__}-{sources_digest()}"
 
 
 def configure() -> None:

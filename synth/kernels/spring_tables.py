@@ -21,7 +21,7 @@ from synth.kernels.numba_setup import Compiled
 from synth.model import torsion_spring
 from synth.design.space import space
 
-__all__ = ["MARGIN_NAMES", "checks", "compiled_covers", "ENGINES", "OPTION_FIELDS", "load_kernels", "numba_loaded",
+__all__ = ["MARGIN_NAMES", "checks", "compiled_covers", "ENGINES", "OPTION_FIELDS", "load_kernels", "load_scans", "load_rounds", "numba_loaded",
            "SpringOptions", "SpringKeys", "spring_options", "options_of_space", "spring_keys", "keys_of_rows",
            "kernel_tables", "check_engine", "same_constants", "reference_margins", "margins", "margins_above",
            "pair_margins"]
@@ -61,10 +61,26 @@ def _import_kernels():
     return _main_spring_jit
 
 
-#: the compiled kernels module (imports numba on the first call; later calls are an attribute lookup)
+def _import_scans():
+    from synth.kernels import _main_spring_scans_jit
+    return _main_spring_scans_jit
+
+
+def _import_rounds():
+    from synth.kernels import _main_spring_rounds_jit
+    return _main_spring_rounds_jit
+
+
+#: the compiled kernels modules, each imported (numba with it) on its first call, later calls an attribute lookup:
+#: the pair physics and margin tables, the searches (first feasible, max-min, list order) and the platform's rounds
 load_kernels = Compiled(_import_kernels)
-#: whether this process has loaded the compiled kernels module (and so imported numba) yet
-numba_loaded = load_kernels.loaded
+load_scans = Compiled(_import_scans)
+load_rounds = Compiled(_import_rounds)
+
+
+def numba_loaded() -> bool:
+    """Whether this process has loaded a compiled kernels module of the main spring (and so imported numba) yet."""
+    return any(k.loaded() for k in (load_kernels, load_scans, load_rounds))
 
 
 # --------------------------------------------------------------------------------------- inputs

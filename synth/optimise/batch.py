@@ -530,7 +530,7 @@ class Batch:
         :func:`~synth.optimise.objectives.weighted_sum` grows along it, or ties with a growing index: every
         adjacent pair), ``first[a]`` the score of its first spring. The compiled engine computes both in one pass
         with nothing stored per pair (the score's per-option terms once,
-        :func:`~synth.kernels._main_spring_jit.list_order`), the same doubles as numpy's scores."""
+        :func:`~synth.kernels._main_spring_scans_jit.list_order`), the same doubles as numpy's scores."""
         sp = self.sp
         per_k = [g.name for g in additive_goals() if g.per_stiffness]
         if self.score_engine == "numba" and per_k[0] in weights:
@@ -541,7 +541,7 @@ class Batch:
                             dtype=float).reshape(len(after), n)
             unit = np.ascontiguousarray(sp.tables["spring"]["cost_eur_times_stiffness"][cand], dtype=float)
             first, good = np.full(len(stiffness), np.nan), np.empty(len(stiffness), dtype=bool)
-            main_spring.load_kernels().list_order(pre, unit, float(w), post,
+            main_spring.load_scans().list_order(pre, unit, float(w), post,
                                                   np.ascontiguousarray(stiffness, dtype=float),
                                                   np.ascontiguousarray(cand, dtype=np.int64), first, good)
             return first, good

@@ -356,7 +356,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs, compiled_rounds: bool = T
         return 0, 0
     keys = evaluate.spring_keys(cg, rep)
     kk = keys_of_rows(apps, keys)  # the keys' kernel table, once
-    jit = main_spring.load_kernels()
+    jit = main_spring.load_rounds()
     rows = cat.option_row["spring"]
     mbd = cat.space.tables["spring"]["main_spring_mean_body_diameter_mm"][rows]
     lo, hi = spring_window(keys["spring_housing_inner_diameter_mm"], keys["spring_housing_outer_diameter_mm"])
