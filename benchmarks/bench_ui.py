@@ -13,6 +13,12 @@ this one), and the machine's load average before and after. A benchmark, not a t
   synth's disk cache (``synth.fingerprint.cached``: the catalogs' arrays, the launch's opening and synthesis of the
   default application, ``synth.ui.work``) as a second start of the same version, catalogs and input finds it;
   ``--fresh-cache`` gives every start an empty cache folder instead (a first start after an upgrade or a catalog edit).
+  Each start's page is a new browser context: the browser's first visit, every script fetched and compiled.
+* **cold start, returning browser** (``--returning``): after each such start, a second one, the server started anew
+  on the tree's own port (the same every time) and the page opened as a new tab of one browser context kept for the
+  tree: an engineer who runs ``synth ui`` again and opens it in the browser that showed it before. NiceGUI serves
+  its scripts as immutable for a year (``Cache-Control``), so the browser takes them from its cache instead of the
+  server (the origin, host and port, must be the same: ``synth ui`` serves on 8080 unless told otherwise).
 * **first 3D view**: from the 3D tab clicked to every part's STL loaded by the page, on the page of the last cold
   start: right after its checks appeared ("at once"), and on a second page of the same server after 10 s
   ("after a pause": what the server prepares while the engineer reads the checks).
@@ -98,6 +104,8 @@ class Tree:
         self.fresh_cache = fresh_cache
         self.cache_dirs: list[str] = []  # the empty cache folders made (--fresh-cache), removed at the end
         self.figures: dict[str, list[float]] = {}
+        self.port: int | None = None  # --returning: the tree's own port, the same at every start
+        self.kept = None  # --returning: the browser context kept across starts (its cache, as a user's browser)
 
     def add(self, name: str, value: float) -> None:
         self.figures.setdefault(name, []).append(value)
@@ -128,10 +136,15 @@ def _page(browser, port: int, stl: list):
     return ctx, page
 
 
-def _checks_shown(browser, port: int, stl: list):
-    """A new page of the server on ``port``, once it shows the checks: ``(context, page)``."""
+def _checks_shown(browser, port: int, stl: list, kept=None):
+    """A new page of the server on ``port``, once it shows the checks: ``(context, page)``; ``kept``: a browser
+    context to open it in as a new tab (the context is then not the caller's to close: None is returned for it)."""
     from synth.ui.browser import goto_when_up
-    ctx, page = _page(browser, port, stl)
+    if kept is None:
+        ctx, page = _page(browser, port, stl)
+    else:
+        ctx, page = None, kept.new_page()
+        page.set_default_timeout(600_000)
     goto_when_up(page, f"http://127.0.0.1:{port}/", 300)
     page.locator("table.checks tr[data-check]").first.wait_for()
     return ctx, page
@@ -192,9 +205,32 @@ def measure_edits(tree: Tree, browser, edits: int) -> None:
         stop_server(proc)
 
 
-def measure(tree: Tree, browser, starts: int, edits: int, only_cold: bool = False) -> None:
+def _returning_start(tree: Tree, browser, first: bool) -> None:
+    """One cold start on the tree's own port, its page a new tab of the tree's kept browser context (``first``: the
+    start that fills the context's cache, not counted)."""
+    from synth.ui.browser import free_port, stop_server
+    if tree.kept is None:
+        tree.port = free_port()
+        tree.kept = browser.new_context(viewport={"width": 1400, "height": 900})
+    t0 = time.perf_counter()
+    proc = tree.start(tree.port)
+    page = None
+    try:
+        _, page = _checks_shown(browser, tree.port, [], kept=tree.kept)
+        if not first:
+            tree.add("cold_returning", time.perf_counter() - t0)
+            tree.add("cold_returning_cpu", cpu_s(proc.pid))
+    finally:
+        if page is not None:
+            page.close()
+        stop_server(proc)
+
+
+def measure(tree: Tree, browser, starts: int, edits: int, only_cold: bool = False, returning: bool = False) -> None:
     from synth.ui.browser import free_port, stop_server
     for i in range(starts + 1):
+        if returning:
+            _returning_start(tree, browser, first=i == 0 and tree.kept is None)
         port = free_port()
         t0 = time.perf_counter()
         proc = tree.start(port)
@@ -242,6 +278,9 @@ ROWS = (("edit_support", "edit to checks, 3D open, geometry kept (support streng
         ("cold", "cold start to the checks of the default application in the page [s]", "s", "< 3 (idle)"),
         ("cold_cpu", "of which the server's CPU time by then [s]", "s", ""),
         ("cold_cpu_all", "the server's and its worker processes' CPU time by then [s]", "s", ""),
+        ("cold_returning", "cold start, returning browser (its cache from an earlier start; --returning) [s]", "s",
+         "< 3 (idle)"),
+        ("cold_returning_cpu", "of which the server's CPU time by then [s]", "s", ""),
         ("view_at_once", "first 3D view, tab clicked as the checks appear [s]", "s", ""),
         ("view_after_pause", "first 3D view, tab clicked 10 s later (a second page) [s]", "s", ""),
         ("step_first", "STEP download, first build (model built for the view) [s]", "s", ""),
@@ -284,6 +323,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--rounds", type=int, default=1, help="rounds over the trees (default 1)")
     ap.add_argument("--fresh-cache", action="store_true",
                     help="an empty synth disk cache (SYNTH_CACHE_DIR) at every start: a first start of a version")
+    ap.add_argument("--returning", action="store_true",
+                    help="each cold start also as a returning browser's: the tree's own port, one kept context")
     a = ap.parse_args(argv)
     sys.path.insert(0, str(ROOT))
     from synth.report.pdf import chromium_binary
@@ -303,7 +344,10 @@ def main(argv: list[str] | None = None) -> int:
                 if a.only_edits:
                     measure_edits(tree, browser, a.edits)
                 else:
-                    measure(tree, browser, a.starts, a.edits, a.only_cold)
+                    measure(tree, browser, a.starts, a.edits, a.only_cold, a.returning)
+        for tree in trees:
+            if tree.kept is not None:
+                tree.kept.close()
         browser.close()
     import shutil
     for tree in trees:
