@@ -271,7 +271,7 @@ def _main(argv: list[str] | None) -> int:
         top.print_usage(sys.stderr)
         print(f"synth: error: {_did_you_mean(name)}", file=sys.stderr)
         return 2
-    from synth.errors import InputError, Terminated
+    from synth.errors import DeclarationError, InputError, Terminated
     from synth.io.outputs import FS_ERRNOS, os_problem
     from synth import threads
     pools = contextlib.ExitStack()
@@ -293,6 +293,10 @@ def _main(argv: list[str] | None) -> int:
         return 0
     except InputError as exc:
         _print_input_error(exc)
+        return 2
+    except DeclarationError as exc:  # a check or plug-in declared so that it cannot be honoured: not synth's bug
+        print("synth: invalid declaration", file=sys.stderr)
+        print(f"  - {exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt as exc:
         terminated = isinstance(exc, Terminated)

@@ -38,5 +38,17 @@ class CatalogError(InputError):
     """An unknown catalog, part or constant; the message lists valid choices."""
 
 
+class DeclarationError(Exception):
+    """A declaration synth was given that it cannot honour (a registered check whose physics reads a value its
+    group does not have, such as another part family's): the configuration's error, the same for every application.
+    Not an :class:`InputError`, so no per-application handler takes it for one application's refused input (a bulk
+    row, a relaxation probe); every path stops with it, the command line with exit 2. Carries its :class:`Problem`
+    as :class:`InputError` does."""
+
+    def __init__(self, problem: Problem):
+        self.problems = [problem]
+        super().__init__(str(problem))
+
+
 class Terminated(KeyboardInterrupt):
     """SIGTERM during a command (``synth.cli`` raises it from its signal handler): stop as on Ctrl-C, exit 143."""

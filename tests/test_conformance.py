@@ -2,7 +2,10 @@
 generates the common checks of every estimator: every evaluated group x what its check reads (a value of its own
 group, an application field, a value of its core) x engine (compiled, numpy) x configuration (no rules, design
 rules, the EN 13906 spring limit basis) x path (flowchart, ``synthesise``, ``screen``, bulk, platform, robust)
-gives the same margin.
+gives the same margin. A check that reads another part family's value (read kind "other") is refused alike by
+every path (:class:`synth.errors.DeclarationError` naming it): each family is chosen apart from the others given
+its core, so no path can hand it that value; before, a bolt check reading the main spring's mean diameter read
+the application's pin of it (NaN when the search chooses the spring) and failed every design with margin -inf.
 
 Each cell registers a probe check (:func:`probe`): its physics reads one key, by name, and returns ``value = a`` and
 ``limit = a / (1 - M)`` with ``a = |key| + 1``, so its margin is ``M`` on every row of every path that evaluates it,
@@ -37,7 +40,9 @@ from synth.data.generated_applications import generate
 from synth.design.constraints import EVALUATED_GROUPS, Constraint, by_group, registered
 from synth.design.evaluate import core_values
 from synth.design.settings import Settings
-from synth.design.space import PART_KEYS, SUBSYSTEMS
+from synth.design.space import PART_KEYS, PART_KEYS_BY_TABLE, SUBSYSTEMS
+from synth.errors import DeclarationError
+from synth.schema import FIELDS
 
 #: the probe's margin without rules, and the margin the design rules ask every probe to keep
 M, REQUIRED = 0.02, 0.005
@@ -63,6 +68,10 @@ def key_of(group: str, read: str) -> str | None:
         return by_group(group)[0].value
     if read == "application":
         return APPLICATION_FIELD
+    if read == "other":  # another family's part: first an input field that pins one (numeric), else its part key
+        pins = [f.name for f in FIELDS if f.pins and f.pins[0] in SUBSYSTEMS and f.pins[0] != group
+                and f.kind == "float"]
+        return (pins + [k for t in SUBSYSTEMS if t != group for k in PART_KEYS_BY_TABLE[t]])[0]
     if group in ("input", "core"):
         return None
     return next(k for k in CORE_CANDIDATES if k not in _declared(group))
@@ -251,6 +260,21 @@ def run(path: str, registration: str, engine: str, config: str, apps, tmp_path_f
                 for cid, m in mine["margins"].items():
                     assert m == pytest.approx(theirs["margins"][cid], rel=1e-9, abs=1e-12), (path, cid)
     return RUNS[key]
+
+
+@pytest.mark.parametrize("path", PATHS)
+@pytest.mark.parametrize("group", EVALUATED_GROUPS)
+def test_another_part_family_value_is_refused_by_every_path(group, path, apps, tmp_path_factory):
+    """Read kind "other": every path stops with the one :class:`DeclarationError` naming the check and the value,
+    never a margin (nor a ``KeyError``, nor a row marked infeasible)."""
+    key, cid = key_of(group, "other"), probe_id(group, "other")
+    with registered(probe(group, "other")):
+        with pytest.raises(DeclarationError, match=f"constraint {cid} .*{key}"):
+            if path == "bulk":
+                _bulk(apps[:1], {}, tmp_path_factory.mktemp("bulk"))
+            else:
+                {"flowchart": _flowchart, "synthesise": _synthesise, "screen": _screen, "platform": _platform,
+                 "robust": _robust}[path](apps[:1], {})
 
 
 @pytest.mark.parametrize("path", PATHS)

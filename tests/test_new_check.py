@@ -129,3 +129,23 @@ def test_a_bolt_check_reading_the_core_is_judged_per_core_in_the_bulk_fast_path(
     pivots = 18.0 - 18.0 * fast["margin_probe_pivot"].to_numpy()
     assert fast["feasible"].all() and (pivots <= 18.0 + 1e-9).all() and np.isclose(pivots, 18.0).any()
     assert set(np.round(pivots, 9)) <= {float(d) for d in range(14, 26)}                 # pivot diameters [mm]
+
+
+def test_a_check_reading_another_part_family_stops_the_command_line_with_exit_2(capsys):
+    """A bolt check whose physics reads the main spring's mean body diameter (another family's part, which the input
+    field of that name only pins): ``synth design`` says which check and value, as a declaration error, exit 2 (not
+    the internal error's 70, not a design failing with margin -inf as before)."""
+    from synth.cli import main
+
+    def reads_spring(main_spring_mean_body_diameter_mm):
+        a = np.abs(np.asarray(main_spring_mean_body_diameter_mm, dtype=float)) + 1.0
+        return {"coupled_value": a, "coupled_limit": 2.0 * a}
+    check = Constraint(id="bolt_reads_spring", label="a bolt check reading the main spring", step=10,
+                       equation="test", unit="mm", group="bolt", value="coupled_value", limit="coupled_limit",
+                       sense="<=", physics=reads_spring)
+    with registered(check):
+        code = main(["design", str(case_path("case3"))])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert "synth: invalid declaration" in err
+    assert "constraint bolt_reads_spring (group bolt)" in err and "'main_spring_mean_body_diameter_mm'" in err

@@ -20,7 +20,7 @@ from synth.bulk.capability import NUMBERS as CAPABILITY_NUMBERS
 from synth.bulk.engine import columns
 from synth.bulk.portfolio import validate_record, validate_table
 from synth.design.settings import Settings
-from synth.errors import InputError, Problem
+from synth.errors import DeclarationError, InputError, Problem
 from synth.threads import usable_cores, worker_environ
 
 __all__ = ["DEFAULT_CHUNK_SIZE", "default_chunk_size", "result_columns", "result_kind", "run_settings",
@@ -123,8 +123,8 @@ def _compute_chunk(recs, objective, diagnose, screen, settings) -> pd.DataFrame:
     res = None
     try:
         res = _call_engine(screen, apps, objective, settings, diagnose)
-    except InputError:
-        raise  # a bad setting (objective...): the same for every row, reported once
+    except (InputError, DeclarationError):
+        raise  # a bad setting (objective...) or declaration (a check): the same for every row, reported once
     except Exception:
         rows = []
         for a in apps:

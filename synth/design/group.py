@@ -11,14 +11,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from synth import catalog
+from synth import catalog, schema
 from synth.design.assessment import EVALUATED, NOT_APPLICABLE, NOT_VERIFIED_STATE as NOT_VERIFIED, assess_group
 from synth.design.constraints import by_group, margin, physics_inputs
 from synth.design.rules import NONE as NO_RULES, Rules
+from synth.errors import DeclarationError, Problem
 
 __all__ = ["CONSTANT_LIMITS", "Group", "finish", "add_physics", "const", "Fields", "BUSHING_CORE_VALUES",
            "AXIAL_CORE_VALUES", "SPRING_KEY_VALUES", "BOLT_CORE_VALUES", "core_values", "read_core", "EVALUATED",
-           "NOT_APPLICABLE", "NOT_VERIFIED"]
+           "NOT_APPLICABLE", "NOT_VERIFIED", "unreadable", "pinned_table"]
 
 CONSTANT_LIMITS = {"zero": 0.0, "one": 1.0}  # limits (and scales) that are plain numbers
 
@@ -135,8 +136,9 @@ def finish(name: str, values: dict, apps, a, checks: tuple | None = None, *, rul
 def add_physics(checks, values: dict, apps, a, core: dict | None = None) -> None:
     """The values and limits of the ``checks`` that declare a physics function (:attr:`Constraint.physics`), added
     to ``values`` in place: each parameter is read by its name from the group's values, else from its core's
-    (``core``: the rows' core values, :func:`core_values`), else from the applications' fields at rows ``a``; a
-    name that is none of them is an error naming the check."""
+    (``core``: the rows' core values, :func:`core_values`), else from the applications' fields at rows ``a``, but
+    for a field that pins another part family's part (:func:`pinned_table`); a name that is none of them is an error
+    naming the check (:func:`unreadable`)."""
     for c in checks:
         if c.physics is not None:
             kw = {}
@@ -145,12 +147,34 @@ def add_physics(checks, values: dict, apps, a, core: dict | None = None) -> None
                     kw[k] = values[k]
                 elif core is not None and k in core:
                     kw[k] = core[k]
-                elif apps is not None and k in apps.f:
+                elif apps is not None and k in apps.f and pinned_table(k) in ("", "core", c.group):
                     kw[k] = apps.f[k][a]
-                else:
-                    raise KeyError(f"constraint {c.id}: its physics function reads {k!r}, which is not a value of "
-                                   f"group {c.group}, of its core or a field of the application")
+                else:  # another family's part is not the application's field that can pin it (mostly unset)
+                    raise unreadable(c, k)
             values.update(c.physics(**kw))
+
+
+def pinned_table(name: str) -> str:
+    """The design-space table whose part the input field ``name`` pins (:attr:`synth.schema.Field.pins`: the spring
+    for ``main_spring_mean_body_diameter_mm``), "" for a field that pins none. A check of another group that reads it
+    would read the application's pin (NaN where the input leaves the part to the search), not the design's part."""
+    return _PINS.get(name, "")
+
+
+_PINS = {f.name: f.pins[0] for f in schema.FIELDS if f.pins}
+
+
+def unreadable(c, name: str) -> DeclarationError:
+    """The error of check ``c`` whose physics reads ``name``, which its group does not have: a configuration error
+    (the check's declaration, a plug-in's or the user's), not synth's and not one application's, so
+    :class:`~synth.errors.DeclarationError` (the command line's exit 2), never a ``KeyError``. A check reads a value of its own group, of its core or an application field: each part family is
+    chosen apart from the others given its core (:mod:`synth.design.subsystems`), so a check that reads another
+    family's part (a bolt check reading the main spring's wire) would couple two searches the decomposition keeps
+    apart, and every path refuses it alike (``tests/test_conformance.py``, read kind "other")."""
+    return DeclarationError(Problem(f"constraint {c.id} (group {c.group}): its physics function's parameter", name,
+                                    f"a value of group {c.group}, of its core or a field of the application; a "
+                                    "check cannot read another part family's value (each family is chosen apart "
+                                    "given the core): declare it on values its group has"))
 
 
 def const(name: str) -> float:
