@@ -425,8 +425,8 @@ def test_list_order_is_numpys_weighted_sums_bit_for_bit(weights):
     order = np.argsort(wsum(option_scores(fast.sp, "spring", 1.0), weights), kind="stable")  # the base order
     cand = order[np.isin(order, rng.choice(len(order), size=min(300, len(order)), replace=False))]
     stiff = np.r_[0.0, np.nan, 1e-300, 1e300, -1.0, rng.uniform(0.01, 5.0, 60)]
-    first_f, good_f = fast._list_order(weights, stiff, cand)
-    first_r, good_r = ref._list_order(weights, stiff, cand)
+    first_f, good_f = fast.springs.list_order(weights, stiff, cand)
+    first_r, good_r = ref.springs.list_order(weights, stiff, cand)
     np.testing.assert_array_equal(first_f, first_r)  # NaN where NaN, every other double the same
     np.testing.assert_array_equal(good_f, good_r)
     assert not good_f[1] and good_f[5:].any()  # a NaN stiffness keeps no order; real ones do
