@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from synth.design import evaluate
-from synth.design.combine import join, near_figures
+from synth.design.combine import combine, join, near_figures
 from synth.design.space import SUBSYSTEMS
 from synth.design.subsystems import SubTable, family, scatter
 from synth.optimise import product
@@ -33,7 +33,7 @@ def nearest(batch, which=None) -> list:
     u0 = np.minimum(batch.cg.min_margin(objective_only=False)[R], batch.in_min[batch.A[R]])
     vb, pb = batch.paired.bushing(R)
     vt, _ = batch.bolts.scan(R)
-    v1 = np.minimum(np.minimum(u0, vb), vt)
+    v1 = combine(u0, [vb, vt])  # the design margin so far: the core's with its bushing's and bolt's
     a_of = batch.A[R]
     o = np.lexsort((R, -v1, a_of))
     R, a_of, v1, pb = (x[o] for x in (R, a_of, v1, pb))
@@ -66,12 +66,12 @@ def nearest(batch, which=None) -> list:
             sub = {k: v[kt] for k, v in keys.items()}
             v, k_pk[kt] = batch.springs.best_margin(sub, need[kt])
             k_val[kt], k_cap[kt] = np.minimum(v, need[kt]), need[kt]
-        v2 = np.minimum(v1[take], k_val[kt_all])
+        v2 = combine(v1[take], [k_val[kt_all]])  # and its spring's
         go = could_win_value(v2, take)
         ta = take[go]
         if len(ta):
             va, _ = batch.axial.best_margin(R[ta], v2[go])
-            val[ta] = np.minimum(v2[go], va)
+            val[ta] = combine(v2[go], [va])  # and its axial group's: the design's margin
         for j in ta[np.lexsort((R[ta], -val[ta]))]:
             i = a_of[j]
             if best[i] < 0 or val[j] > best_v[i] or (val[j] == best_v[i] and R[j] < R[best[i]]):

@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from synth.design import evaluate
+from synth.design.combine import combine
 from synth.design.space import SUBSYSTEMS
 from synth.design.subsystems import family
 from synth.kernels import main_spring
@@ -51,7 +52,7 @@ def _tie_pick(found: list, R, a_of, cs, core_m, evaluated: dict) -> list:
     for s, (inv, ui, oo, sc, m, nu) in evaluated.items():
         best = np.full(nu, -np.inf)
         np.maximum.at(best, ui, m)
-        design_m = np.minimum(design_m, best[inv])
+        design_m = combine(design_m, [best[inv]])
         unit_app[s] = np.zeros(nu, dtype=np.int64)
         unit_app[s][inv] = a_of
     m_star = np.full(n, -np.inf)
