@@ -26,12 +26,12 @@ MARGIN_EPS = 1e-9
 
 
 def _n_units(unit) -> int:
-    """The number of evaluation units of :meth:`Batch._tie_units` (core rows, or spring keys)."""
+    """The number of evaluation units of :func:`tie_units` (core rows, or spring keys)."""
     return len(unit["app"]) if isinstance(unit, dict) else len(unit)
 
 
 def _restrict(cand, keep):
-    """The candidates of :meth:`Batch._tie_candidates` of the rows ``keep`` (a mask of its rows) only."""
+    """The candidates of :func:`tie_candidates` of the rows ``keep`` (a mask of its rows) only."""
     inv, unit, (ui, oo), sc = cand
     used = np.zeros(_n_units(unit), dtype=bool)
     used[inv[keep]] = True
@@ -42,7 +42,7 @@ def _restrict(cand, keep):
 def _tie_pick(found: list, R, a_of, cs, core_m, evaluated: dict) -> list:
     """``found`` with the design of the margin tie-break where the tied cores ``R`` (applications ``a_of``, core
     scores ``cs``, objective margins ``core_m``) and their tied options (``evaluated``: per subsystem, what
-    :meth:`Batch._tie_evaluate` returns) give one, as :func:`synth.optimise.solvers.enumerate.solve_space` takes
+    :func:`tie_evaluate` returns) give one, as :func:`synth.optimise.solvers.enumerate.solve_space` takes
     it: the threshold ``tau`` is the largest design margin of a tied design (0 when it is within 1e-9 below 0,
     none when below), per core and subsystem the first option in score order whose margin reaches ``tau - 1e-9``,
     and the core of the smallest total (summed as the solver sums it), the first row of equal totals."""
