@@ -21,6 +21,7 @@ from synth.design.evaluate import Settings
 from synth.design.space import PART_KEYS
 from synth.optimise import solve
 from synth.optimise.batch import Batch
+from synth.optimise.margin_ties import margin_ties
 from synth.optimise.objectives import Objective, with_margin_tiebreak
 
 
@@ -46,7 +47,7 @@ def tie_times(apps, settings, objective: str = "standard") -> dict:
     b = Batch(apps, settings)
     found = b.optimum(w)
     t1 = time.process_time()
-    tied = b._margin_ties(w, found)
+    tied = margin_ties(b, w, found)
     t2 = time.process_time()
     return {"search_s": t1 - t0, "tie_break_s": t2 - t1, "feasible": sum(f is not None for f in found),
             "changed": sum(a != b for a, b in zip(found, tied))}

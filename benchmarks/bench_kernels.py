@@ -127,14 +127,14 @@ def sample(n_apps: int, seed: int):
     t0 = time.perf_counter()
     b = Batch(generate(n_apps, seed=seed), Settings(fidelity="screening"))
     rows = np.flatnonzero(b.core_ok)
-    keys, _ = b._spring_keys(rows)
-    lists, list_of, _, _, _ = b._spring_app_lists({"cost": 1.0})
+    keys, _ = b.springs.keys(rows)
+    lists, list_of, _, _, _ = b.springs.app_lists({"cost": 1.0})
     app = np.asarray(keys["app"], dtype=np.int64)
     kk = main_spring.keys_of_rows(b.apps, keys)
     grp = list_of[app]
     keep = np.flatnonzero(grp >= 0)   # applications whose range holds springs
     prep = time.perf_counter() - t0
-    return kk.take(keep), b._options(), lists, grp[keep], prep, app[keep]
+    return kk.take(keep), b.springs.options(), lists, grp[keep], prep, app[keep]
 
 
 def _warm(keys, options) -> None:

@@ -63,8 +63,6 @@ LONG_MODULES = {
     "synth/design/space.py": "the catalog design space: the part tables of the product and their decomposition",
     "synth/model/disc_spring.py": "one model: the cone spring of step 8 (Almen-Laszlo, DIN EN 16984) and its sizing",
     "formulations/platform.py": "one mathematical program: the platform MILP and its data (no synth import)",
-    # several ideas, split in the change that rewrites them (issue 33's decomposed-space engine, the PDF report)
-    "synth/optimise/batch.py": "the Batch scans: being rewritten as a client of the decomposed-space engine",
 }
 
 

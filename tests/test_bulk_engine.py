@@ -288,14 +288,14 @@ def test_layout_switch_is_explained_in_bulk_as_in_design():
 @pytest.mark.parametrize("method", ["thesis", "vdi2230"])
 def test_fixation_once_per_distinct_bolt_equals_every_row(method):
     """The bulk engine evaluates the fixation once per (application, bolt as the fixation reads it) and gathers it
-    per row (``Batch._fixation_keys``): bit-equal to the fixation of every (application, bolt) row; at the thesis
+    per row (``BoltScan.fixation_keys``): bit-equal to the fixation of every (application, bolt) row; at the thesis
     method (the tightening method not read) fewer fixations than bolts."""
     from synth.design import evaluate
     from synth.optimise.batch import Batch
     b = Batch(generate(6, seed=3), Settings(fidelity="screening", bolt_method=method))
     sp, nb = b.sp, b.sp.n("bolt")
     a, bolt = np.repeat(np.arange(len(b)), nb), np.tile(np.arange(nb), len(b))
-    code, rep = b._fixation_keys()
+    code, rep = b.bolts.fixation_keys()
     assert (len(rep) < nb) == (method == "thesis")
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
         every = evaluate.fixation_values(b.apps, a, sp.rows_read("bolt", bolt), b.settings)

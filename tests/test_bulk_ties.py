@@ -25,6 +25,7 @@ from synth.data.generated_applications import generate
 from synth.design.evaluate import Settings
 from synth.optimise import solve
 from synth.optimise.batch import Batch
+from synth.optimise.margin_ties import margin_ties
 from synth.optimise.objectives import Objective
 from synth.scenes._options import default_args, synthesise
 
@@ -50,7 +51,7 @@ def test_the_tie_break_changes_those_rows():
     w = Objective.parse("standard").additive_weights()
     b = Batch(apps, Settings(fidelity="screening"), spring_engine="numpy")
     found = b.optimum(w)
-    tied = b._margin_ties(w, found)
+    tied = margin_ties(b, w, found)
     assert [f[0] == t[0] for f, t in zip(found, tied)] == [True, False, True]  # row 99: another core
     assert all(f != t for f, t in zip(found, tied))
 

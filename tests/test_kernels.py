@@ -425,27 +425,27 @@ def test_list_order_is_numpys_weighted_sums_bit_for_bit(weights):
     order = np.argsort(wsum(option_scores(fast.sp, "spring", 1.0), weights), kind="stable")  # the base order
     cand = order[np.isin(order, rng.choice(len(order), size=min(300, len(order)), replace=False))]
     stiff = np.r_[0.0, np.nan, 1e-300, 1e300, -1.0, rng.uniform(0.01, 5.0, 60)]
-    first_f, good_f = fast._list_order(weights, stiff, cand)
-    first_r, good_r = ref._list_order(weights, stiff, cand)
+    first_f, good_f = fast.springs.list_order(weights, stiff, cand)
+    first_r, good_r = ref.springs.list_order(weights, stiff, cand)
     np.testing.assert_array_equal(first_f, first_r)  # NaN where NaN, every other double the same
     np.testing.assert_array_equal(good_f, good_r)
     assert not good_f[1] and good_f[5:].any()  # a NaN stiffness keeps no order; real ones do
-    lists_f, of_f, smin_f, _, _ = fast._spring_app_lists(weights)
-    lists_r, of_r, smin_r, _, _ = ref._spring_app_lists(weights)
+    lists_f, of_f, smin_f, _, _ = fast.springs.app_lists(weights)
+    lists_r, of_r, smin_r, _, _ = ref.springs.app_lists(weights)
     np.testing.assert_array_equal(of_f, of_r)
     np.testing.assert_array_equal(smin_f, smin_r)
     assert len(lists_f) == len(lists_r) and all(np.array_equal(a, b) for a, b in zip(lists_f, lists_r))
     for i in np.flatnonzero(of_f >= 0):  # each application's scores along its list: growing, the first smin
         lst = lists_f[of_f[i]]
-        sc_f = fast._spring_scores(weights, np.full(len(lst), i), lst)
-        np.testing.assert_array_equal(sc_f, ref._spring_scores(weights, np.full(len(lst), i), lst))
+        sc_f = fast.springs.scores(weights, np.full(len(lst), i), lst)
+        np.testing.assert_array_equal(sc_f, ref.springs.scores(weights, np.full(len(lst), i), lst))
         np.testing.assert_array_equal(sc_f, wsum(option_scores(fast.sp, "spring", apps[i].spring_stiffness_nm_per_deg,
                                                                lst), weights))  # one application's whole list
         assert sc_f[0] == smin_f[i] and (np.diff(sc_f) >= 0).all()
         # the score cut's bisection is numpy's searchsorted on the whole list: below, at, between and above
         lim = np.r_[sc_f[0] - 1.0, sc_f[[0, len(sc_f) // 2, -1]], np.nextafter(sc_f[len(sc_f) // 2], np.inf),
                     sc_f[-1] + 1.0, np.inf]
-        got = fast._last_within(weights, np.full(len(lim), i), lim)
+        got = fast.springs.last_within(weights, np.full(len(lim), i), lim)
         np.testing.assert_array_equal(got[:-1], np.searchsorted(sc_f, lim[:-1], side="right") - 1.0)
         assert got[-1] == np.inf
 

@@ -86,7 +86,7 @@ class Goal:
     and :func:`~synth.optimise.product.option_scores` ask every additive goal. ``digits`` rounds a design's total
     (None: kept); ``column`` is its column in a bulk result (``objective_<name>`` unless given);
     ``per_stiffness`` marks the goal whose main-spring score is a catalog column over the application's stiffness
-    (the compiled spring ordering handles that one goal: :meth:`synth.optimise.batch.Batch._list_order`).
+    (the compiled spring ordering handles that one goal: :meth:`synth.optimise.spring_scan.SpringScan.list_order`).
     """
 
     name: str
