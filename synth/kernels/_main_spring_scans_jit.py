@@ -31,6 +31,13 @@ announce_compiles()  # a line on stderr when this process compiles a kernel (syn
 
 
 @njit(cache=True, error_model="numpy")
+def _chunk_span(c, chunk_list, kptr, ptr):
+    """Chunk ``c``'s keys ``kperm[lo:hi]`` and its candidate list's options ``idx[p0:p1]``."""
+    g = chunk_list[c]
+    return kptr[c], kptr[c + 1], ptr[g], ptr[g + 1]
+
+
+@njit(cache=True, error_model="numpy")
 def _remove_at(work, lo, a, n_act):
     """Remove entry ``a`` of the active keys ``work[lo:lo + n_act]``, keeping their order; the new count."""
     for b in range(a, n_act - 1):
@@ -50,9 +57,7 @@ def _first_feasible_chunk(c, keys, opts, cst, tol, t_max, ptr, idx, chunk_list, 
     run for them alone. A key leaves when it finds its option or passes its score limit. Same answer as
     scanning each key's list on its own.
     """
-    g = chunk_list[c]
-    lo, hi = kptr[c], kptr[c + 1]
-    p0, p1 = ptr[g], ptr[g + 1]
+    lo, hi, p0, p1 = _chunk_span(c, chunk_list, kptr, ptr)
     n_act = 0
     for a in range(lo, hi):
         i = kperm[a]
@@ -104,9 +109,7 @@ def _max_min_chunk(c, keys, opts, cst, ptr, idx, ub, rank, chunk_list, kptr, kpe
     decrease, so once one is below the smallest best of the keys still looking, no later key can win or tie
     with this option. Same answer (value and tie-break) as scanning each key's list on its own.
     """
-    g = chunk_list[c]
-    lo, hi = kptr[c], kptr[c + 1]
-    p0, p1 = ptr[g], ptr[g + 1]
+    lo, hi, p0, p1 = _chunk_span(c, chunk_list, kptr, ptr)
     n_act = 0
     for a in range(lo, hi):
         i = kperm[a]
