@@ -167,10 +167,11 @@ _PINS = {f.name: f.pins[0] for f in schema.FIELDS if f.pins}
 def unreadable(c, name: str) -> DeclarationError:
     """The error of check ``c`` whose physics reads ``name``, which its group does not have: a configuration error
     (the check's declaration, a plug-in's or the user's), not synth's and not one application's, so
-    :class:`~synth.errors.DeclarationError` (the command line's exit 2), never a ``KeyError``. A check reads a value of its own group, of its core or an application field: each part family is
-    chosen apart from the others given its core (:mod:`synth.design.subsystems`), so a check that reads another
-    family's part (a bolt check reading the main spring's wire) would couple two searches the decomposition keeps
-    apart, and every path refuses it alike (``tests/test_conformance.py``, read kind "other")."""
+    :class:`~synth.errors.DeclarationError` (the command line's exit 2), never a ``KeyError``. A check reads a value
+    of its own group, of its core or an application field: each part family is chosen apart from the others given
+    its core (:mod:`synth.design.subsystems`), so a check that reads another family's part (a bolt check reading the
+    main spring's wire) would couple two searches the decomposition keeps apart, and every path refuses it alike
+    (``tests/test_conformance.py``, read kind "other")."""
     return DeclarationError(Problem(f"constraint {c.id} (group {c.group}): its physics function's parameter", name,
                                     f"a value of group {c.group}, of its core or a field of the application; a "
                                     "check cannot read another part family's value (each family is chosen apart "

@@ -9,9 +9,9 @@ pool, and a line on stderr when a kernel compiles.
   (:func:`sources_digest`). numba keys each entry by the source file's size and modification time, the signature
   and the CPU, but not by the files its kernel calls into: "cache invalidation fails to recognize changes in
   symbols defined in a different file" (numba's *Notes on Caching*, Caching Limitations), and the scans and rounds
-  call the pair physics of ``_main_spring_jit`` (and the axial and main-spring kernels ``_ieee``'s helpers). So any edit of a
-  ``_*_jit`` or helper source starts a new folder, and a new synth version too. The environment variable is
-  inherited by child processes (Dask workers), which therefore read the same cache.
+  call the pair physics of ``_main_spring_jit`` (and the axial and main-spring kernels ``_ieee``'s helpers). So
+  any edit of a ``_*_jit`` or helper source starts a new folder, and a new synth version too. The environment
+  variable is inherited by child processes (Dask workers), which therefore read the same cache.
 * **numba's pool** is :func:`synth.threads.numba_threads` threads (the thread budget), not numba's default of
   every processor of the machine; set while numba is not imported yet.
 * **A line when a kernel compiles**: :func:`announce_compiles` (called by each ``_*_jit`` module after importing
