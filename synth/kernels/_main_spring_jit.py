@@ -170,17 +170,24 @@ def as_registry(m):
 
 
 @njit(cache=True, error_model="numpy")
+def option_margin(opts, j, c):
+    """The option-only margin ``c`` (``M_SECTION``, ``M_IDX_MIN`` or ``M_IDX_MAX``: the material section and the
+    spring index range, computed beforehand per option) of option ``j``, as the registry keeps it."""
+    return as_registry(opts[j, O_SEC if c == M_SECTION else (O_IDX_MIN if c == M_IDX_MIN else O_IDX_MAX)])
+
+
+@njit(cache=True, error_model="numpy")
 def pair_margins(keys, i, opts, j, cst, row):
     """The eight margins of key ``i`` x option ``j`` into ``row`` (order of ``MARGIN_NAMES``)."""
     row[M_YIELD] = as_registry(yield_margin(keys, i, opts, j))
-    row[M_SECTION] = as_registry(opts[j, O_SEC])
+    row[M_SECTION] = option_margin(opts, j, M_SECTION)
     row[M_FATIGUE] = as_registry(fatigue_margin(keys, i, opts, j, cst))
     m_out, m_in, m_gap = geometry_margins(keys, i, opts, j, cst)
     row[M_OUTER] = as_registry(m_out)
     row[M_INNER] = as_registry(m_in)
     row[M_GAP] = as_registry(m_gap)
-    row[M_IDX_MIN] = as_registry(opts[j, O_IDX_MIN])
-    row[M_IDX_MAX] = as_registry(opts[j, O_IDX_MAX])
+    row[M_IDX_MIN] = option_margin(opts, j, M_IDX_MIN)
+    row[M_IDX_MAX] = option_margin(opts, j, M_IDX_MAX)
 
 
 @njit(cache=True, error_model="numpy")

@@ -17,8 +17,8 @@ import numpy as np
 from numba import njit
 
 from synth.kernels._main_spring_jit import (M_FATIGUE, M_GAP, M_IDX_MAX, M_IDX_MIN, M_INNER, M_OUTER, M_SECTION,
-                                            M_YIELD, N_MARGINS, O_IDX_MAX, O_IDX_MIN, O_SEC, as_registry, coils,
-                                            contact_margins, fatigue_margin, gap_margin, yield_margin)
+                                            M_YIELD, N_MARGINS, as_registry, coils, contact_margins, fatigue_margin,
+                                            gap_margin, option_margin, yield_margin)
 from synth.kernels.numba_setup import announce_compiles
 
 announce_compiles()  # a line on stderr when this process compiles a kernel (synth.kernels.numba_setup)
@@ -154,7 +154,7 @@ def stage_round(groups, lo, hi, mbd, runs, excl, excl_row, need, need_row, key_o
                 for q in range(n_col):
                     c = cols[q]
                     if c == M_SECTION or c == M_IDX_MIN or c == M_IDX_MAX:
-                        v = as_registry(opts[j, O_SEC if c == M_SECTION else (O_IDX_MIN if c == M_IDX_MIN else O_IDX_MAX)])
+                        v = option_margin(opts, j, c)
                         row[c] = v
                         if v < ub:
                             ub = v
