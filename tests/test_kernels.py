@@ -297,20 +297,24 @@ def test_max_min_margin_with_a_cap_is_exact_below_it(scan_case, engine):
 
 
 @pytest.mark.parametrize("engine", ["numba", "numpy"])
-def test_margins_above_a_floor_are_the_tables_where_they_reach_it(scan_case, engine):
-    # the bulk's nearest design reads the springs that reach its smallest margin: those pairs' margins exactly as
-    # the whole table, every other pair known to be below the floor; the compiled engine skips most pairs' physics
+def test_near_figures_above_a_floor_are_the_tables_where_they_reach_it(scan_case, engine):
+    # the bulk's nearest design reads the near figures of the springs that reach its smallest margin: those pairs'
+    # figures exactly as near_figures of the whole table's rows, every other pair known to be below the floor; the
+    # compiled engine skips most pairs' physics
+    from synth.design.combine import near_figures
     keys, opts, _, _, _ = scan_case
     table = main_spring.margins(keys, opts, engine=engine)
-    low_all = table.min(axis=2)
-    floor = float(np.quantile(low_all[np.isfinite(low_all)], 0.9))
-    low, out = main_spring.margins_above(keys, opts, floor, engine=engine)
-    reach = low_all >= floor
+    a, b, f = (x.reshape(table.shape[:2]) for x in near_figures(table.reshape(-1, table.shape[2])))
+    assert (f > 0).any() and (f == 0).any() and (b > a).any() and (b == a).any()  # every figure is exercised
+    floor = float(np.quantile(a[np.isfinite(a)], 0.9))
+    low, second, failing = main_spring.near_above(keys, opts, floor, engine=engine)
+    reach = a >= floor
     assert 0 < reach.sum() < reach.size
     assert np.array_equal(low >= floor, reach)
-    assert np.array_equal(low[reach], low_all[reach]) and np.array_equal(out[reach], table[reach])
-    low, out = main_spring.margins_above(keys, opts, -np.inf, engine=engine)  # no floor: the whole table
-    assert np.array_equal(low, low_all) and np.array_equal(out, table)
+    assert np.array_equal(low[reach], a[reach]) and np.array_equal(second[reach], b[reach])
+    assert np.array_equal(failing[reach], f[reach])
+    low, second, failing = main_spring.near_above(keys, opts, -np.inf, engine=engine)  # no floor: the whole table
+    assert np.array_equal(low, a) and np.array_equal(second, b) and np.array_equal(failing, f)
 
 
 def test_max_min_margin_ties_at_the_section_margin_go_to_the_lowest_index(space_springs, realistic):

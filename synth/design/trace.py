@@ -151,10 +151,22 @@ def evaluator_lines() -> dict:
     return out
 
 
+def _segment(lines: list, node) -> str:
+    """The source text of ``node`` (:func:`ast.get_source_segment`, from the module's ``lines`` split once; the
+    column offsets are UTF-8 byte offsets)."""
+    first, last = node.lineno - 1, node.end_lineno - 1
+    if first == last:
+        return lines[first].encode()[node.col_offset:node.end_col_offset].decode()
+    head = lines[first].encode()[node.col_offset:].decode()
+    tail = lines[last].encode()[:node.end_col_offset].decode()
+    return head + "".join(lines[first + 1:last]) + tail
+
+
 def module_lines(module, out: dict) -> None:
     """:func:`evaluator_lines` of one module, added to ``out`` (the first assignment of a key kept)."""
     src = inspect.getsource(module)
     tree = ast.parse(src)
+    lines = src.splitlines(keepends=True)  # once: ast.get_source_segment splits the whole module on every call
     path = "synth/" + module.__name__.split(".", 1)[1].replace(".", "/") + ".py"
     for fn in (n for n in tree.body if isinstance(n, ast.FunctionDef)):
         for node in ast.walk(fn):
@@ -180,7 +192,7 @@ def module_lines(module, out: dict) -> None:
                         pairs += [(k.value, v) for k, v in zip(a.keys, a.values)
                                   if isinstance(k, ast.Constant) and isinstance(k.value, str)]
             for key, expr in pairs:
-                text = " ".join((ast.get_source_segment(src, expr) or "").split())
+                text = " ".join(_segment(lines, expr).split())
                 out.setdefault(key, (fn.name, text, path))
 
 

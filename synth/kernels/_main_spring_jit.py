@@ -21,8 +21,8 @@ The per-pair physics (:func:`yield_margin`, :func:`fatigue_margin`, :func:`coils
 (:mod:`synth.kernels._main_spring_scans_jit`) and the platform's stage rounds
 (:mod:`synth.kernels._main_spring_rounds_jit`) call it. Tables (loops over keys x options, no allocation per pair):
 
-* :func:`margins_table` -- every margin, ``out[i, j, m]`` (:func:`margins_table_above`: those of the pairs whose
-  cheap margins reach a floor; :func:`margins_table_parallel`: over numba's threads);
+* :func:`margins_table` -- every margin, ``out[i, j, m]`` (:func:`margins_table_parallel`: over numba's threads);
+* :func:`near_table_above` -- the near figures of the pairs whose cheap margins reach a floor;
 * :func:`margins_pairs` -- the margins of listed pairs.
 """
 
@@ -211,23 +211,34 @@ def margins_table(keys, opts, cst, out):
 
 
 @njit(cache=True, error_model="numpy")
-def margins_table_above(keys, opts, cst, floor, out, low):
-    """(a) where a pair may reach ``floor``: ``low[i, j]`` the smallest margin of key ``i`` x option ``j`` and
-    ``out[i, j, :]`` its eight margins (as :func:`margins_table`), unless its yield margin or its option-only
-    bound (index, section) is below ``floor``: then ``low[i, j]`` is that one (an upper bound of the smallest
-    margin, below ``floor``) and ``out[i, j, :]`` is not written."""
+def near_table_above(keys, opts, cst, floor, tol, low, second, failing):
+    """(a) the near figures (:func:`synth.design.combine.near_figures`) of the pairs that may reach ``floor``:
+    ``low[i, j]`` the smallest of key ``i`` x option ``j``'s eight margins, ``second[i, j]`` the second smallest
+    (the second of the sorted eight) and ``failing[i, j]`` how many are below ``-tol``; unless its yield margin or
+    its option-only bound (index, section) is below ``floor``: then ``low[i, j]`` is that one (an upper bound of
+    the smallest margin, below ``floor``) and ``second``, ``failing`` are not written. The margins are no NaN
+    (:func:`as_registry`), so the figures are those of the sorted row."""
+    row = np.empty(N_MARGINS)
     for i in range(keys.shape[0]):
         for j in range(opts.shape[0]):
             m = min(as_registry(yield_margin(keys, i, opts, j)), opts[j, O_UB])
             if m < floor:
                 low[i, j] = m
                 continue
-            row = out[i, j]
             pair_margins(keys, i, opts, j, cst, row)
-            v = row[0]
-            for c in range(1, N_MARGINS):
-                v = min(v, row[c])
-            low[i, j] = v
+            a, b, f = np.inf, np.inf, 0
+            for c in range(N_MARGINS):
+                v = row[c]
+                if v < a:
+                    b = a
+                    a = v
+                elif v < b:
+                    b = v
+                if v < -tol:
+                    f += 1
+            low[i, j] = a
+            second[i, j] = b
+            failing[i, j] = f
 
 
 @njit(cache=True, error_model="numpy", parallel=True)

@@ -99,12 +99,12 @@ from synth.design.settings import DEFAULT, Settings
 from synth.errors import InputError, Problem
 from synth.kernels.spring_tables import (ENGINES, MARGIN_NAMES, OPTION_FIELDS, SpringKeys, SpringOptions, check_engine,
                                          checks, compiled_covers, keys_of_rows, kernel_tables, load_kernels, load_rounds, load_scans, margins,
-                                         margins_above,
+                                         near_above,
                                          numba_loaded, options_of_space, pair_margins, reference_margins,
                                          same_constants, spring_keys, spring_options)
 
 __all__ = ["MARGIN_NAMES", "checks", "compiled_covers", "SpringOptions", "SpringKeys", "spring_options", "options_of_space", "spring_keys",
-           "keys_of_rows", "margins", "margins_above", "pair_margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin",
+           "keys_of_rows", "margins", "near_above", "pair_margins", "reference_margins", "yield_thresholds", "first_feasible", "max_min_margin",
            "any_feasible", "FirstFeasible", "MaxMin", "CHUNK_KEYS", "numba_loaded", "load_kernels", "load_scans", "load_rounds", "FEAS_TOL",
            "ENGINES", "OPTION_FIELDS", "stage_round"]
 

@@ -13,7 +13,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from synth.design import evaluate
-from synth.design.constraints import REGISTRY, by_group, margin as registry_margin
+from synth.design.combine import near_figures
+from synth.design.constraints import FEAS_TOL, REGISTRY, by_group, margin as registry_margin
 from synth.design.settings import DEFAULT, Settings
 from synth.errors import InputError, Problem
 from synth.kernels import engines
@@ -23,7 +24,7 @@ from synth.design.space import space
 
 __all__ = ["MARGIN_NAMES", "checks", "compiled_covers", "ENGINES", "OPTION_FIELDS", "load_kernels", "load_scans", "load_rounds", "numba_loaded",
            "SpringOptions", "SpringKeys", "spring_options", "options_of_space", "spring_keys", "keys_of_rows",
-           "kernel_tables", "check_engine", "same_constants", "reference_margins", "margins", "margins_above",
+           "kernel_tables", "check_engine", "same_constants", "reference_margins", "margins", "near_above",
            "pair_margins"]
 
 #: the margins the compiled kernels compute, in their layout: the registry's non-advisory spring constraints of
@@ -402,22 +403,25 @@ def margins(keys: SpringKeys, options: SpringOptions, *, engine: str = "numba", 
     return out
 
 
-def margins_above(keys: SpringKeys, options: SpringOptions, floor: float, *, engine: str = "numba",
-                  settings: Settings = DEFAULT) -> tuple:
-    """``(low, out)``: :func:`margins` where a pair may reach ``floor``. ``low[i, j]``: the smallest margin of key
-    ``i`` x option ``j`` where it is at least ``floor``, else a number below ``floor``; ``out[i, j, :]``: the
-    margins of the pairs whose ``low`` is at least ``floor`` (the others' rows undefined). The compiled engine
-    skips a pair whose yield margin or option-only bound is below ``floor`` (the same doubles as the table's)."""
+def near_above(keys: SpringKeys, options: SpringOptions, floor: float, *, engine: str = "numba",
+               settings: Settings = DEFAULT) -> tuple:
+    """``(low, second, failing)``, each ``(n_keys, n_options)``: the near figures of every pair whose smallest margin
+    reaches ``floor`` (:func:`synth.design.combine.near_figures` of its row of :func:`margins`: the smallest, the
+    second smallest, the number of failing margins); a pair below ``floor`` has ``low`` below ``floor`` (its yield
+    margin or option-only bound in the compiled engine, which skips its physics) and the others undefined. The
+    bulk's nearest design reads these, never the margins themselves."""
     engine = check_engine(engine, settings)
     if engine == "numpy":
         out = margins(keys, options, engine=engine, settings=settings)
-        return (out.min(axis=2) if out.shape[2] else np.full(out.shape[:2], np.inf)), out
+        if not out.shape[2]:
+            return np.full(out.shape[:2], np.inf), np.full(out.shape[:2], np.inf), np.zeros(out.shape[:2])
+        a, b, f = near_figures(out.reshape(-1, out.shape[2]))
+        return a.reshape(out.shape[:2]), b.reshape(out.shape[:2]), f.reshape(out.shape[:2]).astype(float)
     same_constants(keys, options)
     jit, kt, ot, c = kernel_tables(keys, options)
-    out = np.empty((len(keys), len(options), jit.N_MARGINS))
-    low = np.empty((len(keys), len(options)))
-    jit.margins_table_above(kt, ot, c, float(floor), out, low)
-    return low, out
+    low, second, failing = (np.empty((len(keys), len(options))) for _ in range(3))
+    jit.near_table_above(kt, ot, c, float(floor), FEAS_TOL, low, second, failing)
+    return low, second, failing
 
 
 def pair_margins(keys: SpringKeys, options: SpringOptions, key_idx, option_idx, *, engine: str = "numba",

@@ -8,7 +8,6 @@ from __future__ import annotations
 import numpy as np
 
 from synth.design import evaluate
-from synth.design.combine import near_figures
 from synth.design.space import pinned_diameter, spring_window
 from synth.kernels import main_spring
 from synth.optimise.objectives import additive_goals, weighted_sum as wsum, weighted_sum_around
@@ -197,7 +196,7 @@ class SpringScan:
         the fewest (a reaching spring's is finite), and a pick among infinite counts is discarded (option 0
         where no count is finite: column 0). The same holds of a pair below ``floor`` within a kept column, so
         such a pair's smallest margin need only be known to be below ``floor``
-        (:func:`synth.kernels.main_spring.margins_above`: its yield margin or its option-only bound)."""
+        (:func:`synth.kernels.main_spring.near_above`: its yield margin or its option-only bound)."""
         nk = len(keys["app"])
         lst = np.asarray(self.ranges()[1][group], dtype=np.int64)
         kk = main_spring.keys_of_rows(self.b.apps, keys) if len(lst) else None
@@ -206,9 +205,10 @@ class SpringScan:
             self.b.memo[memo] = self.options().take(lst)
         opts = self.b.memo[memo]
         if len(lst):
-            low, m = main_spring.margins_above(kk, opts, floor, engine=self.b.engine, settings=self.b.settings)
+            low, second, failing = main_spring.near_above(kk, opts, floor, engine=self.b.engine,
+                                                          settings=self.b.settings)
         else:
-            low, m = np.zeros((nk, 0)), np.zeros((nk, 0, 0))
+            low = second = failing = np.zeros((nk, 0))
         self.b.evaluations += low.size
         reach = low >= floor
         if reach.any(axis=1).all():
@@ -216,10 +216,7 @@ class SpringScan:
         else:  # a key without a reaching spring: every spring, each with its smallest margin (as the table)
             keep = np.ones(len(lst), dtype=bool)
             if len(lst):
-                m = main_spring.margins(kk, opts, engine=self.b.engine, settings=self.b.settings)
-                low = np.full(m.shape[:2], np.inf)
-                for c in range(m.shape[2]):  # a strided minimum per check: faster than a reduction over the last axis
-                    np.minimum(low, m[:, :, c], out=low)
+                low = main_spring.near_above(kk, opts, -np.inf, engine=self.b.engine, settings=self.b.settings)[0]
         kept = lst[keep]
         cols = kept if len(kept) and kept[0] == 0 else np.r_[0, kept].astype(np.int64)
         at = np.searchsorted(cols, kept)
@@ -228,11 +225,9 @@ class SpringScan:
             fig[0][:, at] = low[:, keep]
             # a spring whose smallest margin is below the application's nearest design's cannot be in it
             # (synth.design.combine.nearest_choice: not admissible): its other figures are not needed
-            ki, ci = np.nonzero(reach[:, keep])
-            if len(ki):
-                _, b, f = near_figures(m[ki, np.flatnonzero(keep)[ci]])
-                fig[1][ki, at[ci]] = b
-                fig[2][ki, at[ci]] = f
+            r = reach[:, keep]
+            fig[1][:, at] = np.where(r, second[:, keep], -np.inf)
+            fig[2][:, at] = np.where(r, failing[:, keep], np.inf)
         avail = np.zeros(len(cols), dtype=bool)
         avail[at] = True
         return [x.reshape(-1) for x in fig], cols, avail
