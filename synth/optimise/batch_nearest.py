@@ -4,6 +4,8 @@ bound over the cores on their smallest margins, then the winning cores' designs 
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from synth.design import evaluate
@@ -80,20 +82,41 @@ def nearest(batch, which=None) -> list:
     # the largest (within round-off of the compiled kernels) tie there; their subsystems' near figures (the
     # bolt's and the spring's from the batch, the others by the enumeration's evaluator) choose the best
     # design exactly as the enumeration's nearest design (synth.optimise.product.Evaluation.nearest)
-    for i in np.flatnonzero(best >= 0):
-        sel = a_of == i
-        tol = SLACK * max(1.0, abs(best_v[i]))
-        rows_i = np.sort(R[sel & (val >= best_v[i] - tol)]) - batch.ptr[i]
-        tables, cols = near_tables(batch, i, batch.ptr[i] + rows_i, best_v[i] - tol)
-        ev = product.evaluate(batch.inputs[i], batch.settings, pin_inputs=batch.pin_inputs, prune=False,
-                              only=rows_i, tables=tables)
-        batch.evaluations += ev.evaluations
-        pos, options, value = ev.nearest()
-        options["spring"] = int(cols[options["spring"]])  # the spring table's columns are springs ``cols``
-        out[i] = (int(batch.ptr[i] + pos), options, value)
+    won = np.flatnonzero(best >= 0)
+    tol = SLACK * np.maximum(1.0, np.abs(best_v))
+    rows_of = {}
+    for i, j, c in zip(*np.unique(a_of, return_index=True, return_counts=True)):  # R is sorted by application
+        if best[i] >= 0:
+            rows_of[i] = np.sort(R[j:j + c][val[j:j + c] >= best_v[i] - tol[i]])
+    for b in range(0, len(won), _PAIR_BLOCK):  # the families judged pair by pair: every winner of a block at once
+        block = won[b:b + _PAIR_BLOCK]
+        rows = np.concatenate([rows_of[i] for i in block])
+        pair = pairwise(batch, rows)
+        ends = np.cumsum([len(rows_of[i]) for i in block])
+        for i, e in zip(block, ends):
+            rows_i = rows_of[i] - batch.ptr[i]
+            own = {name: take_rows(t, slice(e - len(rows_i), e)) for name, t in pair.items()}
+            out[i] = _nearest_of(batch, i, rows_i, best_v[i] - tol[i], own)
     return out
 
-def near_tables(batch, i: int, rows, floor: float = -np.inf) -> tuple:
+
+#: applications whose winning cores' pairwise families are evaluated in one call (bounds the arrays' memory)
+_PAIR_BLOCK = 16
+
+
+def _nearest_of(batch, i: int, rows_i, floor: float, pair: dict) -> tuple:
+    """Application ``i``'s nearest design among its winning core rows ``rows_i`` (relative to its first row),
+    ``(core row, {subsystem: option row}, value)``; ``pair``: its rows of :func:`pairwise`."""
+    tables, cols = near_tables(batch, i, batch.ptr[i] + rows_i, floor, pair)
+    ev = product.evaluate(batch.inputs[i], batch.settings, pin_inputs=batch.pin_inputs, prune=False, only=rows_i,
+                          tables=tables)
+    batch.evaluations += ev.evaluations
+    pos, options, value = ev.nearest()
+    options["spring"] = int(cols[options["spring"]])  # the spring table's columns are springs ``cols``
+    return int(batch.ptr[i] + pos), options, value
+
+
+def near_tables(batch, i: int, rows, floor: float = -np.inf, pair_tables: dict | None = None) -> tuple:
     """The bolt's and the main spring's :class:`~synth.design.subsystems.SubTable` (with the near figures; the
     margin objective's column not computed) of core rows ``rows`` of application ``i``, from what the batch
     keeps (the bolt's step-10 checks per application, the pivot wall per core and diameter) and the compiled
@@ -101,7 +124,8 @@ def near_tables(batch, i: int, rows, floor: float = -np.inf) -> tuple:
     springs: the figures the enumeration's evaluation gives, at a fraction of its cost. A spring whose smallest
     margin is below ``floor`` (the application's largest smallest margin) keeps only that margin (no design
     under the key takes it). Returns ``(tables, columns)``: the spring table's columns are the springs
-    ``columns`` (:meth:`_near_springs`: those a nearest design may take), the others' the whole tables'."""
+    ``columns`` (:meth:`_near_springs`: those a nearest design may take), the others' the whole tables'.
+    ``pair_tables``: the families judged pair by pair, :func:`pairwise` of ``rows``, when already evaluated."""
     sp, nr = batch.sp, len(rows)
     nb = sp.n("bolt")
     batch.bolts.app([i], np.arange(nb))
@@ -120,8 +144,25 @@ def near_tables(batch, i: int, rows, floor: float = -np.inf) -> tuple:
     a, b, f = join(tuple(np.broadcast_to(x[None, :], (nr, nb)) for x in app), w)
     every = np.ones((nr, nb), dtype=bool)
     out = {"bolt": SubTable(every, f == 0, np.full((nr, nb), -np.inf), a, b, f)}
-    for fam in (family(name) for name in SUBSYSTEMS):  # the families judged pair by pair: once per distinct
-        if fam.group is None:                           # (application, what the family reads of the core)
+    out.update(pairwise(batch, rows) if pair_tables is None else pair_tables)
+    keys, inv = batch.springs.keys(rows)
+    rng, lists = batch.springs.ranges()
+    k_fig, cols, avail = batch.springs.near(i, keys, rng[i], floor)
+    fig = [x.reshape(len(keys["app"]), len(cols))[inv] for x in k_fig]
+    avail = np.broadcast_to(avail, (len(inv), len(cols)))
+    out["spring"] = SubTable(avail, avail & (fig[2] == 0), np.full((len(inv), len(cols)), -np.inf), *fig)
+    return out, cols
+
+
+def pairwise(batch, rows) -> dict:
+    """``{family: SubTable}`` of the families judged pair by pair (the bushing, the axial group) over core rows
+    ``rows`` (of one or several applications) and every option: each distinct (application, what the family
+    reads of the core) once, in one evaluator call per family. A row's figures depend on its own values only, so
+    the rows of many applications evaluated together give each application's own (the nearest design evaluates the
+    winners of every application at once: one call instead of one per application)."""
+    sp, out = batch.sp, {}
+    for fam in (family(name) for name in SUBSYSTEMS):  # once per distinct (application, what the family reads)
+        if fam.group is None:
             continue
         first, inv_f = unique_rows(batch.A[rows], *(batch.cg.values[k][rows] for k, _ in fam.match),
                                     *(batch.cg.values[k][rows] for k in fam.core_reads(batch.cg.values)))
@@ -134,13 +175,11 @@ def near_tables(batch, i: int, rows, floor: float = -np.inf) -> tuple:
             with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
                 g = fam.group(batch.apps, batch.cg, rep[ri], sp.rows(fam.name, oi), batch.settings)
             batch.evaluations += len(ri)
-        out[fam.name] = scatter(avail, ri, oi, g)
-        out[fam.name] = SubTable(*(getattr(out[fam.name], k)[inv_f] for k in ("available", "feasible", "margin",
-                                                                              "min_margin", "second", "fails")))
-    keys, inv = batch.springs.keys(rows)
-    rng, lists = batch.springs.ranges()
-    k_fig, cols, avail = batch.springs.near(i, keys, rng[i], floor)
-    fig = [x.reshape(len(keys["app"]), len(cols))[inv] for x in k_fig]
-    avail = np.broadcast_to(avail, (len(inv), len(cols)))
-    out["spring"] = SubTable(avail, avail & (fig[2] == 0), np.full((len(inv), len(cols)), -np.inf), *fig)
-    return out, cols
+        out[fam.name] = take_rows(scatter(avail, ri, oi, g), inv_f)
+    return out
+
+
+def take_rows(t: SubTable, idx) -> SubTable:
+    """The rows ``idx`` (an index array or a slice) of :class:`SubTable` ``t``."""
+    return SubTable(**{f.name: None if getattr(t, f.name) is None else getattr(t, f.name)[idx]
+                       for f in dataclasses.fields(t)})
