@@ -8,6 +8,7 @@ import dataclasses
 
 import numpy as np
 
+from synth import catalog
 from synth.design import evaluate
 from synth.design.combine import combine, join, near_figures
 from synth.design.space import SUBSYSTEMS
@@ -88,8 +89,9 @@ def nearest(batch, which=None) -> list:
     for i, j, c in zip(*np.unique(a_of, return_index=True, return_counts=True)):  # R is sorted by application
         if best[i] >= 0:
             rows_of[i] = np.sort(R[j:j + c][val[j:j + c] >= best_v[i] - tol[i]])
-    for b in range(0, len(won), _PAIR_BLOCK):  # the families judged pair by pair: every winner of a block at once
-        block = won[b:b + _PAIR_BLOCK]
+    step = max(int(catalog.constant("bulk_nearest_pair_block")), 1)
+    for b in range(0, len(won), step):  # the families judged pair by pair: the winners of a block of applications
+        block = won[b:b + step]
         rows = np.concatenate([rows_of[i] for i in block])
         pair = pairwise(batch, rows)
         ends = np.cumsum([len(rows_of[i]) for i in block])
@@ -98,10 +100,6 @@ def nearest(batch, which=None) -> list:
             own = {name: take_rows(t, slice(e - len(rows_i), e)) for name, t in pair.items()}
             out[i] = _nearest_of(batch, i, rows_i, best_v[i] - tol[i], own)
     return out
-
-
-#: applications whose winning cores' pairwise families are evaluated in one call (bounds the arrays' memory)
-_PAIR_BLOCK = 16
 
 
 def _nearest_of(batch, i: int, rows_i, floor: float, pair: dict) -> tuple:
