@@ -322,9 +322,9 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
     """A :class:`~synth.design.result.Result` with ``status="infeasible"`` and its ``diagnosis``.
 
     The nearest design and the relaxations come from the batched searches (:meth:`synth.optimise.batch.Batch.nearest`,
-    :func:`relaxations_batch` with the numpy spring twins) unless ``exhaustive=True`` or an evaluation ``ev`` of
-    every core is given: then from the exhaustive evaluation and one probe at a time (the reference; the same
-    answer). ``pin_inputs``: the search the solver ran kept the parts the input names, and so do the nearest
+    :func:`relaxations_batch` with the numpy spring twins) unless ``exhaustive=True`` (the reference: the
+    exhaustive evaluation and one probe at a time; the same answer) or an evaluation ``ev`` is given (the nearest
+    design from it, evaluated over every core, and the relaxations batched: the margin objectives' path). ``pin_inputs``: the search the solver ran kept the parts the input names, and so do the nearest
     design and the relaxations (every solver answers the same question).
     """
     t0 = time.perf_counter()
@@ -347,7 +347,7 @@ def diagnose(d, ev=None, *, solver: str = "enumerate", objective=None, stats: di
     ids = [c.id for c in res.failed()]
     if not relax:
         rel = []
-    elif exhaustive or ev is not None:
+    elif exhaustive:
         rel = relaxations(d, ids, settings=settings, pin_inputs=pin_inputs)
     else:
         rel = relaxations_batch([d], [ids], settings=settings,

@@ -192,7 +192,7 @@ def solve(d, objective="standard", *, settings: Settings = Settings(), pin_input
     core, options, stats = solve_space(ev, obj)
     stats.update(evaluation_time_s=t_eval, time_s=time.perf_counter() - t0)
     stats["candidates_per_s"] = stats["candidates"] / max(stats["time_s"], 1e-9)
-    if core is None:
-        return diagnose(d, solver="enumerate", objective=obj, stats=stats, relax=relax, settings=settings,
-                        exhaustive=True, pin_inputs=pin_inputs)
+    if core is None:  # the nearest design from this evaluation; the reference's probes only when asked for
+        return diagnose(d, ev, solver="enumerate", objective=obj, stats=stats, relax=relax, settings=settings,
+                        exhaustive=exhaustive, pin_inputs=pin_inputs)
     return build_result(ev, core, options, status="optimal", solver="enumerate", objective=obj, stats=stats)
