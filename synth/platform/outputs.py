@@ -57,11 +57,18 @@ def platform_table(pf, result) -> pd.DataFrame:
 
 def assignment_table(result) -> pd.DataFrame:
     rows = []
+    # with a capability target (synth.platform.capable): each design's smallest Ppk, its verdict, the failing checks
+    targeted = any("capability" in r for r in result.records)
     for r in result.records:
         row = {"application_id": r["app_id"], "feasible": r["feasible"]}
         row.update({f: r["parts"].get(f, "") for f in FAMILIES})
         row.update({"unit_cost_eur": r["unit_cost_eur"], "margin": r["margin"], "binding_constraint": r["binding"],
                     "verdict": r.get("verdict", ""), "reason": r["reason"]})
+        if targeted:
+            c = r.get("capability") or {}
+            row.update({"capability_min_ppk": c.get("min_ppk", float("nan")),
+                        "capability_verdict": ("PASS" if c["meets"] else "FAIL") if c else "",
+                        "capability_failing": " ".join(c.get("failing", []))})
         rows.append(row)
     return pd.DataFrame(rows)
 

@@ -244,22 +244,21 @@ def from_table(portfolio, settings: evaluate.Settings = evaluate.DEFAULT, **kw) 
 
 def load_feasibility(portfolio: str, settings: evaluate.Settings | None = None, **kw) -> PortfolioFeasibility:
     """The feasibility data of ``portfolio`` (see the module docstring), validated. A design rule the platform
-    cannot honour is refused, never dropped: capability targets (each application's options are judged at their
-    nominal values; ``synth bulk --capability`` selects per application) and any rule on ``synthetic:`` data
-    (illustrative feasibility, not judged by the evaluator)."""
+    cannot honour is refused, never dropped: any rule (a capability target included) on ``synthetic:`` data
+    (illustrative feasibility, not judged by the evaluator). Capability targets are honoured on the assigned designs
+    (:mod:`synth.platform.capable`), not here: the options are judged at their nominal values."""
     rules = getattr(settings, "rules", None)
     named = f"design rules ({rules.source or rules.name})" if rules is not None and (rules.source or rules.name) \
         else "design rules"
-    if rules is not None and rules.capability:
-        raise InputError(Problem(f"{named}: capability",
-                                 dict(rules.capability),
-                                 "no capability targets: synth rationalise judges each application's options at "
-                                 "their nominal values; select for production capability per application with "
-                                 "synth bulk --capability, or leave the targets out of the rules"))
     if rules is not None and not rules.empty() and str(portfolio).startswith("synthetic:"):
         raise InputError(Problem(named, str(portfolio),
                                  "a portfolio table: synthetic:N data are illustrative feasibility, not judged by "
-                                 "the evaluator or its rules"))
+                                 "the evaluator, its rules or a capability target"))
+    rs = getattr(settings, "capability", None)
+    if rs is not None and str(portfolio).startswith("synthetic:"):
+        raise InputError(Problem("--capability", rs.targets(),
+                                 "a portfolio table: synthetic:N data are illustrative feasibility, with no designs "
+                                 "whose production capability could be evaluated"))
     if str(portfolio).startswith("synthetic:"):
         parts = str(portfolio).split(":")[1:]
         try:

@@ -23,7 +23,8 @@ from synth.io.limits import check_count
 from synth.io.outputs import output_files
 from synth.platform.data import FAMILIES
 from synth.progress import Progress, phase
-from synth.scenes._options import add_rules_options, rules_of
+from synth.robust.settings import BULK_SAMPLES
+from synth.scenes._options import add_robust_options, add_rules_options, robust_settings_from_args, rules_of
 
 __all__ = ["register", "parse_max_variants"]
 
@@ -88,12 +89,20 @@ def register(sub) -> None:
                         "each, at most the usable cores (default 2)")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="with --engine dask: the address of a running Dask scheduler (default: a local cluster)")
-    add_rules_options(p, "every application's options are judged by them (no capability targets: the platform "
-                         "does not select for production capability; synth bulk --capability does, per application)")
+    add_rules_options(p, "every application's options are judged by them; their capability targets, like "
+                         "--capability, keep only assigned designs that meet them")
+    add_robust_options(p)
+    for a in p._actions:  # the bulk's sample count (per assigned design)
+        if a.dest == "samples":
+            a.help = (f"Monte Carlo samples per assigned design with --capability/--ppm (default {BULK_SAMPLES}, as "
+                      "synth bulk; synth design --capability --samples N gives the same Ppk)")
+        if a.dest == "capability":
+            a.help += ("; every design the platform assigns is checked and those that miss it are excluded and the "
+                       "platform chosen again (synth.platform.capable)")
     p.add_argument("--diagnose", action="store_true",
                    help="applications with no feasible design: the nearest design of synth.optimise.diagnose "
                         "(about 1 s each) instead of the nearest evaluated one")
-    p.set_defaults(func=_main)
+    p.set_defaults(func=_main, samples=BULK_SAMPLES)
 
 
 def _main(args) -> int:
@@ -112,7 +121,10 @@ def _main(args) -> int:
     check_count("rationalise --node-limit", args.node_limit)
     engine = "dask" if args.scheduler else args.engine
     # the design rules; load_feasibility refuses those the platform cannot honour
-    settings = Settings(fidelity=args.fidelity, rules=rules_of(args), spring_limit_basis=args.spring_limit)
+    rs = robust_settings_from_args(args, samples="bulk --samples")  # --capability/--ppm, else the rules' targets
+    targeted = rs.capability is not None or rs.ppm is not None
+    settings = Settings(fidelity=args.fidelity, rules=rules_of(args), spring_limit_basis=args.spring_limit,
+                        capability=rs if targeted else None)
     for line in settings.rules.lines():  # the rules every option was judged by (also in summary.md)
         print(line)
     with Progress(total=None, desc="synth rationalise: feasibility") as bar:
@@ -129,8 +141,20 @@ def _main(args) -> int:
     def stage(name):   # a progress line per stage of the platform (synth.platform.rationalise.STAGES)
         return phase(f"synth rationalise: platform, {label if name == 'MILP' else name} ({len(pf.apps)} applications)")
 
-    r = rationalise(pf, args.objective, max_variants=caps, time_limit=args.time_limit, node_limit=args.node_limit,
-                    solver=args.solver, stage=stage)
+    def run(data):
+        return rationalise(data, args.objective, max_variants=caps, time_limit=args.time_limit,
+                           node_limit=args.node_limit, solver=args.solver, stage=stage)
+    cap_line = None
+    if targeted:  # the assigned designs that miss the target excluded, the platform chosen again (exact: see there)
+        from synth.platform.capable import capability_words, capable_rounds
+        r, pf, st = capable_rounds(pf, run, settings)
+        ok_cap = sum(1 for x in r.records if x["feasible"])
+        cap_line = (f"capability: {capability_words(rs)} ({rs.method} method): every assigned design meets it "
+                    f"({ok_cap} applications); {st['rounds']} rounds, {st['evaluated']} designs evaluated, "
+                    f"{st['excluded']} failing (core, option) exclusions, {st['capability_s']:.1f} s")
+        r.notes.append(cap_line)
+    else:
+        r = run(pf)
     rows = None
     if args.tradeoff != "none":
         with Progress(total=args.points, desc=f"synth rationalise: trade-off curve ({args.tradeoff})") as bar:
@@ -145,6 +169,8 @@ def _main(args) -> int:
           f"{saving_text(p['volume'])}; "
           f"unit cost {p['unit_cost_increase']:+.2%} against the per-application optima; MILP {solve_text(r)}; "
           f"greedy {gap_text(r.greedy_gap)}")
+    if cap_line:
+        print(cap_line)
     print("written: " + ", ".join(str(x) for x in paths))
     ok = r.status in ("optimal", "node_limit", "time_limit", "greedy")
     print(f"Run: {'COMPLETE' if ok else 'FAILED'} (MILP {r.status}; {p['applications_served']} of {len(r.records)} "
