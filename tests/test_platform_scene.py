@@ -104,11 +104,14 @@ def test_rules_judge_every_option_and_are_echoed(fleet, tmp_path, capsys):
     assert "## Design rules" in summary and "- spring limit basis: en13906" in summary
 
 
-def test_rules_the_platform_cannot_honour_are_refused(fleet, tmp_path):
+def test_rules_the_platform_cannot_honour_are_refused(tmp_path):
+    """A capability target (rules or --capability) on synthetic data, which have no designs to evaluate."""
     rules = tmp_path / "capable.yaml"
     rules.write_text("capability:\n  ppk_min: 1.33\n", encoding="utf-8")
-    with pytest.raises(InputError, match=r"design rules \(capable.yaml\): capability: got \{'ppk_min': 1.33\}; "
-                                         r"accepted: no capability targets"):
-        _run(["rationalise", fleet, "--out", str(tmp_path / "a"), "--rules", str(rules)])
+    with pytest.raises(InputError, match="design rules \\(capable.yaml\\): got 'synthetic:5'; accepted: a portfolio"):
+        _run(["rationalise", "synthetic:5", "--out", str(tmp_path / "a"), "--rules", str(rules)])
+    with pytest.raises(InputError, match="--capability: got 'Ppk >= 1.33 .*accepted: a portfolio table"):
+        _run(["rationalise", "synthetic:5", "--out", str(tmp_path / "c"), "--capability", "1.33"])
     with pytest.raises(InputError, match="design rules: got 'synthetic:5'; accepted: a portfolio table"):
         _run(["rationalise", "synthetic:5", "--out", str(tmp_path / "b"), "--spring-limit", "en13906"])
+
