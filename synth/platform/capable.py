@@ -8,16 +8,22 @@ capability with (:func:`synth.robust.synthesis.nominal_capability`: the design m
 every assigned design that misses the target is excluded from the data before the platform is chosen again, until
 every assigned design meets it.
 
-What is excluded is exact, by the decomposition the robust synthesis rests on (:mod:`synth.robust.synthesis`): a
-check's capability is a property of the core and its own subsystem's option (common random numbers), so a failing
-check of a subsystem excludes that (core, option) pair for that application (every design with it fails too), and a
-failing check of the core or of the input excludes the core for that application. The loop is exact for the MILP:
-the data of each round hold every capable design (only designs with a failing pair are removed), so a platform
-whose assigned designs all meet the target is optimal among the capable ones (to the MILP's own gap and limits).
+What is excluded rests on the decomposition the robust synthesis rests on (:mod:`synth.robust.synthesis`): given
+the core, a subsystem check's capability depends only on that subsystem's option, also in the samples (each
+quantity gets the same random numbers in every design: common random numbers). So when an assigned design fails a
+check of subsystem ``s``, every option of ``s`` still feasible for that core is evaluated at once
+(:func:`failing_options`, the other subsystems at the assigned options, each (application, core, subsystem) once)
+and every option failing a check of ``s`` is excluded for that core in the same round: every design with such a
+(core, option) pair fails that check too. A failing core or input check excludes the core. Each round's data thus
+hold every capable design, and a platform whose assigned designs all meet the target is optimal among the capable
+ones (to the MILP's own gap and limits). One approximation: the batch samples as the robust search's
+walks do, without importance sampling under a Ppk target, which changes only a bounded check's Ppk (read from the
+Monte Carlo's probability bound instead), so an option near the target may be judged otherwise than the full
+evaluation would: an option wrongly excluded costs optimality, never capability, since an assigned design is
+always judged by the full evaluation (:func:`synth.robust.synthesis.nominal_capability`, which also gives the
+reported capability), and its own failing option is always excluded, so the loop ends.
 An application whose designs are all excluded is reported not served with the best index its assigned designs
 reached and their failing checks.
-
-Each distinct (application, design) is evaluated once (:func:`capable_rounds` keeps them across rounds).
 """
 
 from __future__ import annotations
@@ -31,20 +37,21 @@ import numpy as np
 from synth.design.constraints import REGISTRY
 from synth.platform.data import SUBSYSTEMS
 
-__all__ = ["capable_rounds", "exclude", "capability_words"]
+__all__ = ["capable_rounds", "exclude", "failing_options", "capability_words"]
+
+#: designs per batched capability call (bounds the memory of one call: each design holds its samples)
+CHUNK = 32
 
 #: the groups whose failing checks exclude the core (no subsystem option changes them): the robust search's own
 #: (:data:`synth.robust.synthesis._CORE_GROUPS`); a check of any group that is not a subsystem excludes the core too
 _SUBSYSTEM_GROUPS = frozenset(SUBSYSTEMS)
 
 
-def exclude(a, core: int, options: dict, failing: list):
-    """A copy of application ``a`` (:class:`~synth.platform.data.AppFeasibility`) without the pairs the ``failing``
-    checks of its design (``core``, ``{subsystem: option}``) reject: the core (a check outside the subsystems fails)
-    or the (core, option) of each subsystem with a failing check (the core moves to a group of its own that lacks
-    the option; the other cores keep theirs)."""
-    groups = {REGISTRY[c].group for c in failing}
-    if groups - _SUBSYSTEM_GROUPS:
+def exclude(a, core: int, drop: dict | None):
+    """A copy of application ``a`` (:class:`~synth.platform.data.AppFeasibility`) without the core ``core``
+    (``drop`` None) or without, for that core, the options ``drop[s]`` of each subsystem ``s`` (the core moves to a
+    group of its own that lacks them; the other cores keep theirs)."""
+    if drop is None:
         keep = np.arange(a.n_cores) != int(core)
         return dataclasses.replace(
             a, core_parts={f: np.asarray(v)[keep] for f, v in a.core_parts.items()},
@@ -54,10 +61,10 @@ def exclude(a, core: int, options: dict, failing: list):
             core_rows=None if a.core_rows is None else np.asarray(a.core_rows)[keep])
     group, feasible, margin = dict(a.group), dict(a.feasible), dict(a.option_margin)
     binding = None if a.option_binding is None else dict(a.option_binding)
-    for s in sorted(groups):
+    for s in sorted(drop):
         g = int(a.group[s][int(core)])
         opts = np.asarray(feasible[s][g])
-        keep = opts != int(options[s])
+        keep = ~np.isin(opts, np.asarray(sorted(drop[s]), dtype=opts.dtype))
         feasible[s] = [*feasible[s], opts[keep]]
         margin[s] = [*margin[s], np.asarray(margin[s][g])[keep]]
         if binding is not None and binding.get(s) is not None:
@@ -65,6 +72,30 @@ def exclude(a, core: int, options: dict, failing: list):
         group[s] = np.array(group[s], copy=True)
         group[s][int(core)] = len(feasible[s]) - 1
     return dataclasses.replace(a, group=group, feasible=feasible, option_margin=margin, option_binding=binding)
+
+
+def failing_options(pf, i: int, core: int, options: dict, s: str, settings, rs) -> list:
+    """The options of subsystem ``s`` still feasible for core ``core`` of application ``i`` (of ``pf``) whose design
+    (the other subsystems at ``options``) fails a check of group ``s`` under ``rs``: every option evaluated at once
+    (:func:`synth.robust.capability.capabilities`, :data:`CHUNK` designs per call), as the robust search's walks
+    evaluate candidates (importance sampling only with a ppm target)."""
+    from synth.design.space import space
+    from synth.platform.verified import design_parts
+    from synth.robust.capability import capabilities
+    from synth.robust.sampling import bases_of_attributes
+    from synth.robust.tolerances import tolerances
+    a, sp, table = pf.apps[i], space(), tolerances()
+    opts = [int(k) for k in a.feasible[s][int(a.group[s][int(core)])]]
+    bad = []
+    for lo in range(0, len(opts), CHUNK):
+        chunk = opts[lo:lo + CHUNK]
+        parts = design_parts(pf, [(i, core, {**options, s: k}) for k in chunk])
+        with np.errstate(all="ignore"):
+            bases, stacked = bases_of_attributes(pf.design_inputs[i], [sp.design_attributes(p) for p in parts],
+                                                 settings, table)
+            caps = capabilities(bases, stacked, rs, rare=rs.ppm is not None, details=False)
+        bad += [k for k, cap in zip(chunk, caps) if any(REGISTRY[c.id].group == s for c in cap.failing())]
+    return bad
 
 
 def capability_words(rs) -> str:
@@ -76,16 +107,18 @@ def capable_rounds(pf, run, settings):
     """``(result, pf, stats)``: the platform ``run(pf)`` (a :class:`~synth.platform.rationalise.PlatformResult`
     with verified records) chooses once every assigned design meets ``settings.capability`` (see the module
     docstring); ``pf`` the data of the last round (the failing pairs excluded); ``stats``: ``rounds``,
-    ``evaluated`` (distinct designs whose capability was computed), ``excluded`` (pairs), ``capability_s``.
+    ``evaluated`` (distinct assigned designs whose capability was computed), ``options_evaluated`` (designs of
+    the batches, :func:`failing_options`), ``excluded`` ((core, option) pairs and cores), ``capability_s``.
 
     Every served record carries ``capability`` (the dict of :meth:`~synth.robust.capability.Capability.to_dict`'s
     ``meets``, ``min_ppk``, ``failing``); a record not served after an exclusion carries the best of its
     application's evaluated designs, and its reason says so."""
     from synth.robust.synthesis import nominal_capability
     rs, judge = settings.capability, settings.judge
-    memo: dict = {}
+    memo: dict = {}      # (application, design) -> its capability
+    batched: dict = {}   # (application, core row, subsystem) -> the options whose own checks fail
     best: dict = {}      # application index -> the evaluated design with the highest smallest Ppk
-    stats = {"rounds": 0, "evaluated": 0, "excluded": 0, "capability_s": 0.0}
+    stats = {"rounds": 0, "evaluated": 0, "options_evaluated": 0, "excluded": 0, "capability_s": 0.0}
     while True:
         stats["rounds"] += 1
         r = run(pf)
@@ -105,10 +138,24 @@ def capable_rounds(pf, run, settings):
             cap = rec["capability"] = memo[key]
             if i not in best or cap["min_ppk"] > best[i]["min_ppk"]:
                 best[i] = {**cap, "design": rec["design"]}
-            if not cap["meets"]:
-                missed = True
-                apps[i] = exclude(apps[i], rec["core"], rec["options"], cap["failing"])
+            if cap["meets"]:
+                continue
+            missed = True
+            c, a = int(rec["core"]), pf.apps[i]
+            groups = {REGISTRY[x].group for x in cap["failing"]}
+            if groups - _SUBSYSTEM_GROUPS:   # a core or input check: no option changes it
+                apps[i] = exclude(apps[i], c, None)
                 stats["excluded"] += 1
+                continue
+            drop = {}
+            for s in sorted(groups):
+                b = (i, int(a.core_rows[c]), s)
+                if b not in batched:
+                    batched[b] = failing_options(pf, i, c, rec["options"], s, judge, rs)
+                    stats["options_evaluated"] += len(a.feasible[s][int(a.group[s][c])])
+                drop[s] = {*batched[b], int(rec["options"][s])}  # the assigned one always (the loop progresses)
+            apps[i] = exclude(apps[i], c, drop)
+            stats["excluded"] += sum(len(v) for v in drop.values())
         stats["capability_s"] += time.perf_counter() - t0
         if not missed:
             break

@@ -150,8 +150,9 @@ def _main(args) -> int:
         r, pf, st = capable_rounds(pf, run, settings)
         ok_cap = sum(1 for x in r.records if x["feasible"])
         cap_line = (f"capability: {capability_words(rs)} ({rs.method} method): every assigned design meets it "
-                    f"({ok_cap} applications); {st['rounds']} rounds, {st['evaluated']} designs evaluated, "
-                    f"{st['excluded']} failing (core, option) exclusions, {st['capability_s']:.1f} s")
+                    f"({ok_cap} applications); {st['rounds']} rounds, {st['evaluated']} assigned designs and "
+                    f"{st['options_evaluated']} options evaluated, {st['excluded']} failing (core, option) "
+                    f"exclusions, {st['capability_s']:.1f} s")
         r.notes.append(cap_line)
     else:
         r = run(pf)
