@@ -6,7 +6,12 @@ honoured lazily (constraint generation): the platform is chosen on the nominal f
 every design the solution assigns is evaluated with the function ``synth design --capability`` reports a design's
 capability with (:func:`synth.robust.synthesis.nominal_capability`: the design made, at the judging model), and
 every assigned design that misses the target is excluded from the data before the platform is chosen again, until
-every assigned design meets it.
+every assigned design meets it. A design meets it as ``synth design --capability`` judges a candidate
+(:func:`failing_made`): its targeted checks meet the target and it passes every check nominally with the joint
+made (the platform's data are judged under the thesis's tightening, the preload sized to the requirement).
+
+At an application's first miss, the robust search decides whether any catalog design meets the target at all
+(:func:`none_capable`); where none does, the application loses every core at once.
 
 What is excluded rests on the decomposition the robust synthesis rests on (:mod:`synth.robust.synthesis`): given
 the core, a subsystem check's capability depends only on that subsystem's option, also in the samples (each
@@ -47,18 +52,35 @@ CHUNK = 32
 _SUBSYSTEM_GROUPS = frozenset(SUBSYSTEMS)
 
 
+def keep_cores(a, keep):
+    """A copy of application ``a`` (:class:`~synth.platform.data.AppFeasibility`) with only the cores ``keep`` (a
+    boolean mask)."""
+    return dataclasses.replace(
+        a, core_parts={f: np.asarray(v)[keep] for f, v in a.core_parts.items()},
+        core_cost_eur=np.asarray(a.core_cost_eur)[keep], core_margin=np.asarray(a.core_margin)[keep],
+        group={s: np.asarray(g)[keep] for s, g in a.group.items()},
+        core_binding=None if a.core_binding is None else np.asarray(a.core_binding)[keep],
+        core_rows=None if a.core_rows is None else np.asarray(a.core_rows)[keep])
+
+
+def none_capable(d, settings, rs) -> bool:
+    """Whether no design of the catalogs meets ``rs``'s target for input ``d``: the robust search
+    (:func:`synth.robust.synthesis.search`, ``synth design --capability``'s, under the made joint of ``settings``)
+    over every core finds none. Its proof covers every design of the platform's data (a subset of the catalogs')."""
+    from synth.optimise.objectives import FALLBACK_WEIGHTS
+    from synth.optimise.product import evaluate
+    from synth.robust.sampling import production
+    from synth.robust.synthesis import search
+    with np.errstate(all="ignore"):
+        return search(evaluate(d, production(settings)), FALLBACK_WEIGHTS, rs)[1] is None
+
+
 def exclude(a, core: int, drop: dict | None):
     """A copy of application ``a`` (:class:`~synth.platform.data.AppFeasibility`) without the core ``core``
     (``drop`` None) or without, for that core, the options ``drop[s]`` of each subsystem ``s`` (the core moves to a
     group of its own that lacks them; the other cores keep theirs)."""
     if drop is None:
-        keep = np.arange(a.n_cores) != int(core)
-        return dataclasses.replace(
-            a, core_parts={f: np.asarray(v)[keep] for f, v in a.core_parts.items()},
-            core_cost_eur=np.asarray(a.core_cost_eur)[keep], core_margin=np.asarray(a.core_margin)[keep],
-            group={s: np.asarray(g)[keep] for s, g in a.group.items()},
-            core_binding=None if a.core_binding is None else np.asarray(a.core_binding)[keep],
-            core_rows=None if a.core_rows is None else np.asarray(a.core_rows)[keep])
+        return keep_cores(a, np.arange(a.n_cores) != int(core))
     group, feasible, margin = dict(a.group), dict(a.feasible), dict(a.option_margin)
     binding = None if a.option_binding is None else dict(a.option_binding)
     for s in sorted(drop):
@@ -94,8 +116,22 @@ def failing_options(pf, i: int, core: int, options: dict, s: str, settings, rs) 
             bases, stacked = bases_of_attributes(pf.design_inputs[i], [sp.design_attributes(p) for p in parts],
                                                  settings, table)
             caps = capabilities(bases, stacked, rs, rare=rs.ppm is not None, details=False)
-        bad += [k for k, cap in zip(chunk, caps) if any(REGISTRY[c.id].group == s for c in cap.failing())]
+        bad += [k for k, b, cap in zip(chunk, bases, caps)
+                if any(REGISTRY[c].group == s for c in failing_made(cap.failing(), b))]
     return bad
+
+
+def failing_made(missed, base) -> list:
+    """The ids a design fails as ``synth design --capability`` judges it: its targeted checks that miss the target
+    (``missed``, checks or ids), then every other check its nominal verdict under the made joint fails (``base``, a
+    :class:`~synth.robust.sampling.Base`: the one assessment of its nominal evaluation): the robust search takes
+    only designs that pass every check nominally. A design assembled from the platform's data passes them under the
+    thesis's tightening, not always under the made joint (VDI 2230's preload window: ``bolt_preload_vdi``,
+    ``thread``)."""
+    from synth.design.assessment import assess
+    out = [getattr(c, "id", c) for c in missed]
+    a = assess(base.groups, base.apps)
+    return out + [str(c) for c in a.columns.ids[a.failed[0]] if c not in out]
 
 
 def capability_words(rs) -> str:
@@ -113,12 +149,14 @@ def capable_rounds(pf, run, settings):
     Every served record carries ``capability`` (the dict of :meth:`~synth.robust.capability.Capability.to_dict`'s
     ``meets``, ``min_ppk``, ``failing``); a record not served after an exclusion carries the best of its
     application's evaluated designs, and its reason says so."""
-    from synth.robust.synthesis import nominal_capability
+    from synth.robust.capability import capability
+    from synth.robust.sampling import base_of, production
     rs, judge = settings.capability, settings.judge
     memo: dict = {}      # (application, design) -> its capability
     batched: dict = {}   # (application, core row, subsystem) -> the options whose own checks fail
     best: dict = {}      # application index -> the evaluated design with the highest smallest Ppk
-    stats = {"rounds": 0, "evaluated": 0, "options_evaluated": 0, "excluded": 0, "capability_s": 0.0}
+    proved: dict = {}    # application index -> the robust search found no capable catalog design
+    stats = {"rounds": 0, "evaluated": 0, "options_evaluated": 0, "searched": 0, "excluded": 0, "capability_s": 0.0}
     while True:
         stats["rounds"] += 1
         r = run(pf)
@@ -131,9 +169,12 @@ def capable_rounds(pf, run, settings):
             key = (i, tuple(sorted(rec["design"].items())))
             if key not in memo:
                 with np.errstate(all="ignore"):
-                    full = nominal_capability(pf.design_inputs[i], rec["design"], judge, rs)
-                memo[key] = {"meets": bool(full["meets"]), "min_ppk": math.inf if full["min_ppk"] is None else float(full["min_ppk"]),
-                             "failing": list(full["failing"])}
+                    base = base_of(pf.design_inputs[i], rec["design"], production(judge))
+                    full = capability(base, rs).to_dict()  # nominal_capability's (the design made), and its base
+                failing = failing_made(full["failing"], base)
+                memo[key] = {"meets": not failing,
+                             "min_ppk": math.inf if full["min_ppk"] is None else float(full["min_ppk"]),
+                             "failing": failing}
                 stats["evaluated"] += 1
             cap = rec["capability"] = memo[key]
             if i not in best or cap["min_ppk"] > best[i]["min_ppk"]:
@@ -141,6 +182,13 @@ def capable_rounds(pf, run, settings):
             if cap["meets"]:
                 continue
             missed = True
+            if i not in proved:  # its first miss: is any catalog design capable at all? (one robust search)
+                proved[i] = none_capable(pf.design_inputs[i], judge, rs)
+                stats["searched"] += 1
+            if proved[i]:
+                apps[i] = keep_cores(apps[i], np.zeros(apps[i].n_cores, dtype=bool))
+                stats["excluded"] += pf.apps[i].n_cores
+                continue
             c, a = int(rec["core"]), pf.apps[i]
             groups = {REGISTRY[x].group for x in cap["failing"]}
             if groups - _SUBSYSTEM_GROUPS:   # a core or input check: no option changes it
@@ -164,6 +212,8 @@ def capable_rounds(pf, run, settings):
         if not rec["feasible"] and i in best and best[i]["failing"]:
             b = best[i]
             rec["capability"] = {k: b[k] for k in ("meets", "min_ppk", "failing")}
-            rec["reason"] = (f"no design meets {rs.targets()}: the best assigned reached Ppk {b['min_ppk']:.3g} "
-                             f"(failing {' '.join(b['failing'])})" + (f"; {rec['reason']}" if rec.get("reason") else ""))
+            rec["reason"] = (f"no design meets {rs.targets()}"
+                             + (" (the robust search finds none in the catalogs)" if proved.get(i) else "")
+                             + f": the best assigned reached Ppk {b['min_ppk']:.3g} (failing {' '.join(b['failing'])})"
+                             + (f"; {rec['reason']}" if rec.get("reason") else ""))
     return r, pf, stats

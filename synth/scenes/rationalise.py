@@ -151,7 +151,8 @@ def _main(args) -> int:
         ok_cap = sum(1 for x in r.records if x["feasible"])
         cap_line = (f"capability: {capability_words(rs)} ({rs.method} method): every assigned design meets it "
                     f"({ok_cap} applications); {st['rounds']} rounds, {st['evaluated']} assigned designs and "
-                    f"{st['options_evaluated']} options evaluated, {st['excluded']} failing (core, option) "
+                    f"{st['options_evaluated']} options evaluated, {st['searched']} robust searches, "
+                    f"{st['excluded']} failing (core, option) "
                     f"exclusions, {st['capability_s']:.1f} s")
         r.notes.append(cap_line)
     else:
