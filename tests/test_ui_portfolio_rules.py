@@ -56,13 +56,25 @@ def test_a_row_opens_on_the_design_page_under_the_portfolios_rules(screened):
                                                                          abs=1e-12)
 
 
-def test_capability_targets_are_refused_by_the_platform_not_dropped(tmp_path):
+def test_capability_targets_in_the_rules_are_honoured_by_the_platform_not_dropped(tmp_path):
+    import pandas as pd
+    from synth.design.evaluate import Settings
+    from synth.platform.portfolio_feasibility import load_feasibility
     p = PortfolioSession(tmp_path / "work")
     p.sample(2, seed=3)
     rules = tmp_path / "capable.yaml"
     rules.write_text("capability:\n  ppk_min: 1.33\n", encoding="utf-8")
     p.set_rules(rules)
+    p.rationalise(fidelity="screening")
+    # the page's platform took the rules' target as synth rationalise does (synth.platform.capable.choose): no
+    # catalog design of either application meets Ppk 1.33 with the joint made, so none is served, and each says so
+    assert p.platform.capability_line.startswith("capability: Ppk >= 1.33")
+    assert not any(r["feasible"] for r in p.platform.records)
+    assert all("no design meets Ppk >= 1.33" in r["reason"] for r in p.platform.records)
+    assign = pd.read_csv(p.files()["platform/assignment.csv"])
+    assert (assign["capability_verdict"] != "PASS").all()
+    # a caller whose settings leave the rules' targets behind is refused, never served without them
     with pytest.raises(InputError, match=r"design rules \(capable.yaml\): capability"):
-        p.rationalise(fidelity="screening")
+        load_feasibility(str(p.path), Settings(fidelity="screening", rules=p.rules))
     p.set_rules(None)
     assert p.rules.empty()

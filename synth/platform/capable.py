@@ -42,7 +42,8 @@ import numpy as np
 from synth.design.constraints import REGISTRY
 from synth.platform.data import SUBSYSTEMS
 
-__all__ = ["capable_rounds", "exclude", "failing_options", "capability_words"]
+__all__ = ["choose", "rules_capability", "capable_rounds", "exclude", "failing_options", "failing_made", "none_capable",
+           "capability_words"]
 
 #: designs per batched capability call (bounds the memory of one call: each design holds its samples)
 CHUNK = 32
@@ -217,3 +218,34 @@ def capable_rounds(pf, run, settings):
                              + f": the best assigned reached Ppk {b['min_ppk']:.3g} (failing {' '.join(b['failing'])})"
                              + (f"; {rec['reason']}" if rec.get("reason") else ""))
     return r, pf, stats
+
+
+def rules_capability(rules, samples: int | None = None):
+    """The :class:`~synth.robust.settings.RobustSettings` of the design rules' capability targets (``ppk_min``,
+    ``ppm_max``: :meth:`~synth.design.rules.Rules.targets`) at ``samples`` per design (default
+    :data:`~synth.robust.settings.BULK_SAMPLES`, as ``synth rationalise``), or None without targets: what the web
+    page's platform reads (the command line also takes ``--capability``/``--ppm``)."""
+    from synth.robust.settings import BULK_SAMPLES, RobustSettings
+    cap, ppm = (None, None) if rules is None else rules.targets()
+    if cap is None and ppm is None:
+        return None
+    return RobustSettings(capability=cap, ppm=ppm, samples=BULK_SAMPLES if samples is None else samples)
+
+
+def choose(pf, run, settings):
+    """``(result, pf)``: the platform ``run(pf)`` chooses, honouring ``settings.capability`` when it is set
+    (:func:`capable_rounds`, its summary in ``result.capability_line`` and ``result.notes``; ``pf`` then the last
+    round's data), else ``run(pf)`` as it is. The one entry ``synth rationalise`` and the web page's platform
+    take, so a target never stays behind in one of them."""
+    rs = getattr(settings, "capability", None)
+    if rs is None:
+        return run(pf), pf
+    r, pf, st = capable_rounds(pf, run, settings)
+    ok = sum(1 for x in r.records if x["feasible"])
+    r.capability_line = (
+        f"capability: {capability_words(rs)} ({rs.method} method): every assigned design meets it ({ok} "
+        f"applications); {st['rounds']} rounds, {st['evaluated']} assigned designs and {st['options_evaluated']} "
+        f"options evaluated, {st['searched']} robust searches, {st['excluded']} failing (core, option) exclusions, "
+        f"{st['capability_s']:.1f} s")
+    r.notes.append(r.capability_line)
+    return r, pf

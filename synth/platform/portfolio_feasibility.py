@@ -255,6 +255,11 @@ def load_feasibility(portfolio: str, settings: evaluate.Settings | None = None, 
                                  "a portfolio table: synthetic:N data are illustrative feasibility, not judged by "
                                  "the evaluator, its rules or a capability target"))
     rs = getattr(settings, "capability", None)
+    if rules is not None and rules.capability and rs is None:  # a target would stay behind: never dropped
+        raise InputError(Problem(f"{named}: capability", dict(rules.capability),
+                                 "targets carried in the settings (Settings(capability=...): synth rationalise and "
+                                 "the web page read them from the rules, synth.platform.capable.rules_capability), "
+                                 "which every assigned design then meets (synth.platform.capable.choose)"))
     if rs is not None and str(portfolio).startswith("synthetic:"):
         raise InputError(Problem("--capability", rs.targets(),
                                  "a portfolio table: synthetic:N data are illustrative feasibility, with no designs "

@@ -65,6 +65,7 @@ class PlatformResult:
     tradeoff: list | None = None                  # trade-off rows when a sweep was made (the report section)
     curves: object = None                         # synth.platform.volume.PriceCurves the parts were priced by
     limits: dict = field(default_factory=dict)    # node_limit, time_limit_s, nodes taken, milp_status (the MILP's own)
+    capability_line: str = ""                     # the capability target's summary (synth.platform.capable.choose)
 
     @property
     def n_parts(self) -> int:

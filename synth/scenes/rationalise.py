@@ -144,19 +144,8 @@ def _main(args) -> int:
     def run(data):
         return rationalise(data, args.objective, max_variants=caps, time_limit=args.time_limit,
                            node_limit=args.node_limit, solver=args.solver, stage=stage)
-    cap_line = None
-    if targeted:  # the assigned designs that miss the target excluded, the platform chosen again (exact: see there)
-        from synth.platform.capable import capability_words, capable_rounds
-        r, pf, st = capable_rounds(pf, run, settings)
-        ok_cap = sum(1 for x in r.records if x["feasible"])
-        cap_line = (f"capability: {capability_words(rs)} ({rs.method} method): every assigned design meets it "
-                    f"({ok_cap} applications); {st['rounds']} rounds, {st['evaluated']} assigned designs and "
-                    f"{st['options_evaluated']} options evaluated, {st['searched']} robust searches, "
-                    f"{st['excluded']} failing (core, option) "
-                    f"exclusions, {st['capability_s']:.1f} s")
-        r.notes.append(cap_line)
-    else:
-        r = run(pf)
+    from synth.platform.capable import choose
+    r, pf = choose(pf, run, settings)  # with a target: the designs that miss it excluded, chosen again
     rows = None
     if args.tradeoff != "none":
         with Progress(total=args.points, desc=f"synth rationalise: trade-off curve ({args.tradeoff})") as bar:
@@ -171,8 +160,8 @@ def _main(args) -> int:
           f"{saving_text(p['volume'])}; "
           f"unit cost {p['unit_cost_increase']:+.2%} against the per-application optima; MILP {solve_text(r)}; "
           f"greedy {gap_text(r.greedy_gap)}")
-    if cap_line:
-        print(cap_line)
+    if r.capability_line:
+        print(r.capability_line)
     print("written: " + ", ".join(str(x) for x in paths))
     ok = r.status in ("optimal", "node_limit", "time_limit", "greedy")
     print(f"Run: {'COMPLETE' if ok else 'FAILED'} (MILP {r.status}; {p['applications_served']} of {len(r.records)} "

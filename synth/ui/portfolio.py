@@ -255,6 +255,7 @@ class PortfolioSession:
         default :data:`formulations.platform.TIME_LIMIT_S`)."""
         from synth.design.evaluate import Settings
         from synth.platform.outputs import report_section
+        from synth.platform.capable import choose, rules_capability
         from synth.platform.portfolio_feasibility import load_feasibility
         from synth.platform.rationalise import rationalise
         from synth.platform.outputs import write_all
@@ -265,8 +266,10 @@ class PortfolioSession:
             if progress is not None:
                 progress(done, total)
         try:
-            pf = load_feasibility(str(self.path), Settings(fidelity=fidelity, rules=self.rules), progress=step)
-            self.platform = rationalise(pf, "variants", **({} if time_limit is None else {"time_limit": time_limit}))
+            settings = Settings(fidelity=fidelity, rules=self.rules, capability=rules_capability(self.rules))
+            pf = load_feasibility(str(self.path), settings, progress=step)
+            self.platform, pf = choose(pf, lambda x: rationalise(x, "variants", **(
+                {} if time_limit is None else {"time_limit": time_limit})), settings)  # the rules' targets too
             self._files = {k: v for k, v in self._files.items() if not k.startswith("platform/")}
             for p in write_all(pf, self.platform, self.workdir / "files" / "platform"):
                 self._files[f"platform/{p.name}"] = p
