@@ -26,6 +26,8 @@ product (:func:`synth.optimise.product.subsystem`) and the part keys of a design
 
 from __future__ import annotations
 
+import dataclasses
+
 from dataclasses import dataclass
 from typing import Callable
 
@@ -61,6 +63,11 @@ class SubTable:
     def near(self) -> tuple:
         """``(smallest, second, failing, available)``: what :func:`synth.design.combine.nearest_choice` reads."""
         return self.min_margin, self.second, self.fails, self.available
+
+    def take(self, idx) -> "SubTable":
+        """The rows ``idx`` (an index array or a slice) of every column."""
+        return SubTable(**{f.name: None if getattr(self, f.name) is None else getattr(self, f.name)[idx]
+                           for f in dataclasses.fields(self)})
 
 
 @dataclass(frozen=True)

@@ -4,7 +4,6 @@ bound over the cores on their smallest margins, then the winning cores' designs 
 
 from __future__ import annotations
 
-import dataclasses
 
 import numpy as np
 
@@ -97,7 +96,7 @@ def nearest(batch, which=None) -> list:
         ends = np.cumsum([len(rows_of[i]) for i in block])
         for i, e in zip(block, ends):
             rows_i = rows_of[i] - batch.ptr[i]
-            own = {name: take_rows(t, slice(e - len(rows_i), e)) for name, t in pair.items()}
+            own = {name: t.take(slice(e - len(rows_i), e)) for name, t in pair.items()}
             out[i] = _nearest_of(batch, i, rows_i, best_v[i] - tol[i], own)
     return out
 
@@ -173,11 +172,5 @@ def pairwise(batch, rows) -> dict:
             with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
                 g = fam.group(batch.apps, batch.cg, rep[ri], sp.rows(fam.name, oi), batch.settings)
             batch.evaluations += len(ri)
-        out[fam.name] = take_rows(scatter(avail, ri, oi, g), inv_f)
+        out[fam.name] = scatter(avail, ri, oi, g).take(inv_f)
     return out
-
-
-def take_rows(t: SubTable, idx) -> SubTable:
-    """The rows ``idx`` (an index array or a slice) of :class:`SubTable` ``t``."""
-    return SubTable(**{f.name: None if getattr(t, f.name) is None else getattr(t, f.name)[idx]
-                       for f in dataclasses.fields(t)})

@@ -150,8 +150,7 @@ def capable_rounds(pf, run, settings):
     Every served record carries ``capability`` (the dict of :meth:`~synth.robust.capability.Capability.to_dict`'s
     ``meets``, ``min_ppk``, ``failing``); a record not served after an exclusion carries the best of its
     application's evaluated designs, and its reason says so."""
-    from synth.robust.capability import capability
-    from synth.robust.sampling import base_of, production
+    from synth.robust.synthesis import made_capability
     rs, judge = settings.capability, settings.judge
     memo: dict = {}      # (application, design) -> its capability
     batched: dict = {}   # (application, core row, subsystem) -> the options whose own checks fail
@@ -170,8 +169,8 @@ def capable_rounds(pf, run, settings):
             key = (i, tuple(sorted(rec["design"].items())))
             if key not in memo:
                 with np.errstate(all="ignore"):
-                    base = base_of(pf.design_inputs[i], rec["design"], production(judge))
-                    full = capability(base, rs).to_dict()  # nominal_capability's (the design made), and its base
+                    made, base = made_capability(pf.design_inputs[i], rec["design"], judge, rs)
+                full = made.to_dict()  # nominal_capability's
                 failing = failing_made(full["failing"], base)
                 memo[key] = {"meets": not failing,
                              "min_ppk": math.inf if full["min_ppk"] is None else float(full["min_ppk"]),

@@ -48,7 +48,7 @@ from synth.optimise.answer import build_result
 from synth.optimise.solvers.enumerate import solve as enumerate_solve
 from synth.errors import InputError, Problem
 
-__all__ = ["robust_solve", "robust_for", "nominal_capability", "robust_front", "prevented_by", "SearchReport"]
+__all__ = ["robust_solve", "robust_for", "nominal_capability", "made_capability", "robust_front", "prevented_by", "SearchReport"]
 
 _EPS = 1e-9
 #: the groups whose failing checks reject a core outright (no subsystem option changes them)
@@ -283,7 +283,15 @@ def nominal_capability(d, parts: dict, settings: Settings, rs: RobustSettings) -
     :func:`robust_solve` reports beside a nominal design ``parts`` of input ``d`` when no design meets ``rs``'s
     target: the design made (:func:`synth.robust.sampling.production` of ``settings``), every detail; ``synth bulk
     --capability``'s rows without a candidate read it too (:func:`synth.bulk.capability.screen_robust`)."""
-    return capability(base_of(d, parts, production(settings)), rs).to_dict()
+    return made_capability(d, parts, settings, rs)[0].to_dict()
+
+
+def made_capability(d, parts: dict, settings: Settings, rs: RobustSettings) -> tuple:
+    """``(capability, base)``: :func:`nominal_capability`'s :class:`~synth.robust.capability.Capability` of design
+    ``parts`` and the :class:`~synth.robust.sampling.Base` it rests on (the design's nominal evaluation with the
+    joint made, whose assessment the platform's capability loop also reads)."""
+    base = base_of(d, parts, production(settings))
+    return capability(base, rs), base
 
 
 def robust_for(rs: RobustSettings):
