@@ -20,8 +20,8 @@ from pathlib import Path
 
 from synth.version import __version__
 
-__all__ = ["builtin_catalog_dir", "catalogs_sha256", "file_sha256", "source_stamp", "cache_dir", "cached",
-           "version_text"]
+__all__ = ["builtin_catalog_dir", "catalogs_sha256", "file_sha256", "source_stamp", "cache_dir", "cache_path",
+           "cached", "version_text"]
 
 #: cached versions kept per name (several catalog settings in use side by side)
 _KEEP = 8
@@ -77,17 +77,24 @@ def cache_dir() -> Path | None:
     return Path(base) / "synth"
 
 
-def cached(name: str, key_parts: list, build):
-    """``build()``, or its pickle from the cache when one was stored under the same ``name`` and key.
-
-    ``key_parts``: strings or paths (a path contributes its bytes: the source files of the builder).
-    """
+def cache_path(name: str, key_parts: list) -> Path | None:
+    """The file :func:`cached` keeps ``name`` in under ``key_parts`` (None when the cache is off); it exists once
+    a value was stored there."""
     h = hashlib.sha256(__version__.encode())
     for k in key_parts:
         h.update(Path(k).read_bytes() if isinstance(k, Path) else str(k).encode())
         h.update(b"\0")
     folder = cache_dir()
-    path = folder / f"{name}-{h.hexdigest()[:20]}.pickle" if folder else None
+    return folder / f"{name}-{h.hexdigest()[:20]}.pickle" if folder else None
+
+
+def cached(name: str, key_parts: list, build):
+    """``build()``, or its pickle from the cache when one was stored under the same ``name`` and key.
+
+    ``key_parts``: strings or paths (a path contributes its bytes: the source files of the builder).
+    """
+    path = cache_path(name, key_parts)
+    folder = path.parent if path is not None else None
     if path is not None and path.is_file():
         try:
             with open(path, "rb") as f:

@@ -88,13 +88,13 @@ def setup(values: dict, source: str, *, policy: Policy, root: Path, rules=None, 
     @ui.page("/", title="synth: design")
     async def design_page(open: str | None = None) -> None:  # noqa: A002 - the query parameter's name
         mark("design page requested")
-        _page_errors()  # the page's modules: imported by the launch while the browser loaded the page
+        _page_errors()
+        tab_id = await _tab()  # the page's HTML is sent now: its modules are imported after, by then the launch's
+        if tab_id is None:     # thread has imported them while the browser loaded the page (else the HTML waited)
+            return
         from synth.ui.design_page import DesignPage
         from synth.ui.portfolio_page import HANDOFF
         from synth.ui.session import DesignSession
-        tab_id = await _tab()
-        if tab_id is None:
-            return
         mark("design page connected")
         tab = tabs.state(tab_id, root)
         handed = HANDOFF.pop(open or "", None)  # a portfolio's application: its input, fidelity and rules

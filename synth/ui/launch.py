@@ -8,7 +8,9 @@ the one the page's graphs, report and capability use later, so no process is sta
 niceness only after this task (:data:`synth.ui.worker.PROMPT`). :meth:`Launch.start` (run when the server listens)
 imports the page's modules in a thread while the browser loads the page's scripts. The first design page whose
 input is that one takes a copy of the result instead of synthesising, and every later page too (a new tab opens at
-once); a launch that failed (the worker could not start) leaves the page to synthesise itself, and say why.
+once); a launch that failed (the worker could not start) leaves the page to synthesise itself, and say why. A
+second ``synth ui`` of the same input finds both answers on disk (:func:`synth.ui.work.launch_on_disk`) and reads
+them in this process instead, with no worker beside NiceGUI's import.
 
 >>> import asyncio
 >>> from synth.ui.session import DesignSession, default_values
@@ -59,13 +61,21 @@ class Launch:
         self.here = False  # opened and synthesised in this process (:meth:`start`), not the worker
 
     def submit(self) -> None:
-        """Hand the opening and the synthesis to the design lane's worker (its process starts now); on a machine
-        with no core to spare (:func:`core_to_spare`) leave them to :meth:`start`, in this process."""
+        """Hand the opening and the synthesis to the design lane's worker (its process starts now); leave them to
+        :meth:`start`, in this process, when their answers are on disk (:func:`synth.ui.work.launch_on_disk`: a
+        second ``synth ui`` of the same input, version and catalogs) or the machine has no core to spare
+        (:func:`core_to_spare`). Reading the answers is a fraction of a second; a worker starting beside NiceGUI's
+        import slows it by a third on a 2-core machine (the two share more than the cores), which made the cold
+        start 0.35-0.45 s longer than reading them here (``benchmarks/bench_ui.py``, docs/sections/ui.md)."""
         from synth import catalog
-        from synth.ui import worker
+        from synth.ui import work, worker
         from synth.ui.trace import mark
         try:
             self.catalogs = catalog.user_dirs()
+            if work.launch_on_disk(self.values, self.source, self.rules, self.catalogs):
+                self.here = True
+                mark("launch: the input's answers on disk, read by the server")
+                return
             if not core_to_spare():
                 self.here = True
                 mark("launch: the input left to the server (no core to spare)")

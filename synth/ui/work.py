@@ -32,7 +32,7 @@ import pickle
 import time
 from pathlib import Path
 
-__all__ = ["echo", "warm", "open_input", "synthesise", "model_key", "result_key", "model", "pictures", "model_details", "step", "graphs",
+__all__ = ["echo", "warm", "open_input", "synthesise", "launch_on_disk", "model_key", "result_key", "model", "pictures", "model_details", "step", "graphs",
            "report", "capability"]
 
 #: models, graph sets and geometric checks kept per process (least recently used dropped first)
@@ -103,7 +103,7 @@ def open_input(values: dict, source: str, rules=None, catalogs=()) -> dict:
         with catalog.using(list(catalogs)):
             s = DesignSession(values, source=source, rules=rules)
             return {"opened": s.opened_state(), "keys": form.catalog_texts()}
-    out = _launch_cached("ui-launch-open", (values, source, rules, catalogs), build)
+    out = _launch_cached(LAUNCH_TASKS[0], (values, source, rules, catalogs), build)
     mark("launch task: the input opened")
     return out
 
@@ -122,9 +122,13 @@ def synthesise(values: dict, source: str, rules=None, catalogs=()) -> tuple:
             if s.input is None:
                 return None, None
             return s.synthesis_call(), s.synthesise()
-    out = _launch_cached("ui-launch-synthesis", (values, source, rules, catalogs), build)
+    out = _launch_cached(LAUNCH_TASKS[1], (values, source, rules, catalogs), build)
     mark("launch task: synthesised")
     return out
+
+
+#: the names the launch tasks keep their answers under (:func:`_launch_cached`)
+LAUNCH_TASKS = ("ui-launch-open", "ui-launch-synthesis")
 
 
 def _launch_cached(name: str, args: tuple, build):
@@ -133,24 +137,41 @@ def _launch_cached(name: str, args: tuple, build):
     given) and the interpreter's and numerical libraries' versions: a second ``synth ui`` on the same input reads the
     first one's answer instead of validating and synthesising again (about 2 s of CPU). Built without the cache when
     a plug-in is installed (its code is not in the key) or the arguments cannot be pickled."""
+    from synth import fingerprint
+    key = _launch_key(args)
+    return build() if key is None else fingerprint.cached(name, key, build)
+
+
+def launch_on_disk(values: dict, source: str, rules=None, catalogs=()) -> bool:
+    """Whether both launch tasks (:func:`open_input`, :func:`synthesise`) of these arguments have their answers on
+    disk (:func:`_launch_cached`): reading them is a fraction of a second, no worker process needed for it."""
+    from synth import fingerprint
+    key = _launch_key((values, source, rules, catalogs))
+    if key is None:
+        return False
+    paths = [fingerprint.cache_path(name, key) for name in LAUNCH_TASKS]
+    return all(p is not None and p.is_file() for p in paths)
+
+
+def _launch_key(args: tuple) -> list | None:
+    """The key parts of a launch task's answer (:func:`_launch_cached`); None when it is not to be kept."""
     import sys
     from importlib import metadata
 
     from synth import fingerprint, plugins
     if plugins.load():
-        return build()
+        return None
     try:
         call = hashlib.sha256(pickle.dumps(args, protocol=pickle.HIGHEST_PROTOCOL)).hexdigest()
     except Exception:  # noqa: BLE001 - an argument that does not pickle: no key, no cache
-        return build()
+        return None
     libs = []
     for lib in ("numpy", "scipy", "pandas", "numba"):
         try:
             libs.append(f"{lib}={metadata.version(lib)}")
         except metadata.PackageNotFoundError:
             libs.append(f"{lib}=none")
-    key = [fingerprint.source_stamp(), fingerprint.catalogs_sha256(args[-1]), sys.version, *libs, call]
-    return fingerprint.cached(name, key, build)
+    return [fingerprint.source_stamp(), fingerprint.catalogs_sha256(args[-1]), sys.version, *libs, call]
 
 
 # --- the CAD lane --------------------------------------------------------------------------------------------------
