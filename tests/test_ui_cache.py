@@ -163,3 +163,35 @@ def test_the_launch_cache_misses_on_anything_its_answer_depends_on(monkeypatch, 
     assert launch(v) == 5
     monkeypatch.setenv("SYNTH_CACHE_DIR", "off")
     assert launch(v) == 6 and launch(v) == 7
+
+
+def test_a_second_start_reads_the_launch_answers_in_the_server_without_a_worker(monkeypatch, tmp_path):
+    """Issue 35 (cold start): once both launch tasks' answers are on disk (:func:`synth.ui.work.launch_on_disk`),
+    :meth:`synth.ui.launch.Launch.submit` leaves them to the server, which reads them: no worker process starts beside
+    NiceGUI's import; before that (a first start, or another input), they go to the design worker."""
+    import asyncio
+
+    from synth.ui import worker
+    from synth.ui.launch import Launch
+    from synth.ui.session import DesignSession
+    monkeypatch.setenv("SYNTH_CACHE_DIR", str(tmp_path))
+    lanes = []
+    monkeypatch.setattr(worker, "lane", lambda name: lanes.append(name) or (_ for _ in ()).throw(OSError("no worker")))
+    from synth import catalog
+    v, args = default_values(), ("default", None, catalog.user_dirs())  # as the launch calls its tasks
+    assert not work.launch_on_disk(v, *args)
+    work.open_input(v, *args)
+    assert not work.launch_on_disk(v, *args)  # the synthesis not yet
+    work.synthesise(v, *args)
+    assert work.launch_on_disk(v, *args)
+    assert not work.launch_on_disk({**v, EDIT: 390}, *args)
+    launch = Launch(v, "default")
+    launch.submit()
+    assert launch.here and lanes == []
+    launch.start()
+    s = DesignSession(v, opened=asyncio.run(launch.opened()))
+    result = asyncio.run(launch.result_for(s))
+    assert result.verdict == "pass" and dict(result.parts) == dict(s.synthesise().parts)
+    other = Launch({**v, EDIT: 390}, "default")
+    other.submit()  # not on disk: handed to the design worker (here refused: the page synthesises itself)
+    assert not other.here and lanes == ["design"]
