@@ -72,13 +72,12 @@ class Launch:
         from synth.ui.trace import mark
         try:
             self.catalogs = catalog.user_dirs()
-            if work.launch_on_disk(self.values, self.source, self.rules, self.catalogs):
+            here = ("the input's answers on disk, read by the server"
+                    if work.launch_on_disk(self.values, self.source, self.rules, self.catalogs)
+                    else None if core_to_spare() else "the input left to the server (no core to spare)")
+            if here:
                 self.here = True
-                mark("launch: the input's answers on disk, read by the server")
-                return
-            if not core_to_spare():
-                self.here = True
-                mark("launch: the input left to the server (no core to spare)")
+                mark("launch: " + here)
                 return
             mark("launch: the input handed to the design worker")
             design = worker.lane("design")
