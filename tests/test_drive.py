@@ -62,6 +62,24 @@ def test_harmonic_balance_matches_the_time_integration(drive):
     np.testing.assert_allclose(hb["tension_min_n"], td["tension_min_n"], rtol=0.01)
 
 
+def test_near_lock_the_harmonic_balance_converges_to_the_time_integration(drive):
+    """2914 rpm at the example's 0.45 Nm, 2 % under the critical friction (0.459 Nm): the arm barely slips. The
+    solve from the previous speed once stopped there unconverged (residual 2e-2) and ``synth drive`` printed
+    theta_pp 0.076 deg, eleven times the time integration's 0.0068 deg; now it restarts from the held arm."""
+    m = linear_drive(drive)
+    speeds = drive.speeds_rpm()
+    sw = sweep(m, drive, 0.45, speeds[(speeds > 2700) & (speeds < 2950)])
+    hb = sw["rows"][-1]
+    assert hb["speed_rpm"] == pytest.approx(2914.29, abs=0.01)
+    assert hb["converged"] and hb["residual"] < 1e-8
+    assert 0.45 < hb["critical_friction_nm"] < 0.46
+    td = time_response(m, drive, hb["speed_rpm"], 0.45, eps_rad_s=hb["eps_rad_s"], periods=20, rtol=1e-7,
+                       atol=1e-10)
+    assert td["success"]
+    assert hb["theta_pp_deg"] == pytest.approx(td["theta_pp_deg"], rel=0.03)
+    np.testing.assert_allclose(hb["tension_min_n"], td["tension_min_n"], rtol=0.002)
+
+
 def test_the_arm_locks_above_the_critical_friction_and_swings_below(drive):
     m = linear_drive(drive)
     crit = speed_response(m, drive, 1500.0, 0.0, harmonics=24, eps_rel=0.01)["critical_friction_nm"]

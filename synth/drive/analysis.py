@@ -122,6 +122,11 @@ def analyse(drive, *, check: bool = True) -> dict:
                 w for w, bad in (("the belt goes slack", out["slack"]["slack"]),
                                  ("the arm locks", out.get("durability", {}).get("locked", False)),
                                  ("outside its tolerance", not out["solver"].get("within_tolerance", True))) if bad))
+    bad = out.get("sweep", {}).get("unconverged_rpm", []) + out.get("solver", {}).get("check_unconverged_rpm", [])
+    if bad:
+        problems.append("the periodic response did not converge at " + ", ".join(f"{s:.0f}" for s in bad)
+                        + " rpm (the arm near lock; a larger solver.regularisation eases it): its values there "
+                          "are approximate")
     out["problems"] = problems
     return out
 
@@ -176,13 +181,15 @@ def _response(drive, check: bool) -> dict:
                   "arm_frequency_hz": sw["arm_frequency_hz"].tolist(),
                   "tension_min_n": sw["tension_min_n"].tolist(), "tension_max_n": sw["tension_max_n"].tolist(),
                   "critical_friction_nm": sw["critical_friction_nm"].tolist(), "locked": sw["locked"].tolist(),
-                  "converged": bool(sw["converged"].all())},
+                  "converged": bool(sw["converged"].all()),
+                  "unconverged_rpm": sw["speed_rpm"][~sw["converged"]].tolist()},
         "slack": {"slack": slack, "min_tension_n": float(t_min.min()), "at_speed_rpm": float(sw["speed_rpm"][i_slack]),
                   "span": model.span_names[int(np.argmin(t_min[i_slack]))], "limit_n": drive.belt_min_tension_n},
         "solver": {"harmonics": sw["harmonics"], "regularisation": sw["regularisation"], "tolerance": drive.tolerance},
     }
     if check:
-        out["solver"].update(change=sw["change"], within_tolerance=sw["within_tolerance"])
+        out["solver"].update(change=sw["change"], within_tolerance=sw["within_tolerance"],
+                             check_unconverged_rpm=sw["check_unconverged_rpm"].tolist())
     if drive.belt_friction_coefficient is not None:
         out["slip"] = _slip_margins(drive, model, sw)
     if drive.durability_speed_rpm is not None:

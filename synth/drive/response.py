@@ -34,6 +34,7 @@ sweep's largest peak-to-peak angle and to the static tension).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from math import gcd
 
 import numpy as np
@@ -89,13 +90,33 @@ def excitation(drive, speed_rpm: float, harmonics: int) -> Excitation:
     return Excitation(base * omega, theta, torque)
 
 
+@lru_cache(maxsize=16)
 def _frames(H: int, n_time: int):
+    """The time samples of harmonics ``0..H`` (``E``) and the harmonics of samples (``P``); read-only, shared."""
     th = 2.0 * np.pi * np.arange(n_time) / n_time
     h = np.arange(H + 1)
     E = np.exp(1j * np.outer(th, h))                      # samples <- harmonics
     P = np.exp(-1j * np.outer(h, th)) * (2.0 / n_time)   # harmonics <- samples
     P[0] *= 0.5
+    E.flags.writeable = False
+    P.flags.writeable = False
     return E, P
+
+
+@lru_cache(maxsize=16)
+def _real_frames(H: int, n_time: int):
+    """The same maps on ``z = [Re X_0, Re X_1, Im X_1, ...]``: ``A`` (samples of sum_h i h X_h exp(i h theta),
+    the speed over the base frequency, ``(N, 2H+1)``), ``Pc`` and ``Ps`` (the real and imaginary part of each
+    harmonic of the samples, ``(H+1, N)``); read-only, shared."""
+    E, P = _frames(H, n_time)
+    h = np.arange(1, H + 1)
+    A = np.zeros((n_time, 2 * H + 1))
+    A[:, 1::2] = -(E[:, 1:].imag * h)   # Re(i h exp(i h theta)) = -h sin(h theta)
+    A[:, 2::2] = -(E[:, 1:].real * h)   # Re(i h i exp(i h theta)) = -h cos(h theta)
+    Pc, Ps = np.ascontiguousarray(P.real), np.ascontiguousarray(P.imag)
+    for x in (A, Pc, Ps):
+        x.flags.writeable = False
+    return A, Pc, Ps
 
 
 def _to_complex(z, H):
@@ -127,36 +148,31 @@ def harmonic_balance(lin, receptance, omega_b: float, friction_nm: float, eps_ra
     R = np.asarray(receptance, dtype=complex)
     H = len(lin) - 1
     N = n_time or max(64, 8 * H)
-    E, P = _frames(H, N)
-    hw = 1j * omega_b * np.arange(H + 1)
-    # d(speed samples)/dz for z = [Re P0, Re P1, Im P1, ...]
-    dv = np.zeros((N, 2 * H + 1))
-    dv[:, 1::2] = (E[:, 1:] * hw[1:]).real
-    dv[:, 2::2] = (E[:, 1:] * hw[1:] * 1j).real
+    A, Pc, Ps = _real_frames(H, N)
+    V = omega_b * A                                   # speed samples <- z (linear)
+    Rr, Ri = R.real[:, None], R.imag[:, None]
+    M = np.empty((2 * H + 1, N))                      # [Re, Im] of R_h T_h <- torque samples
+    M[0] = Rr[0] * Pc[0]
+    M[1::2] = Rr[1:] * Pc[1:] - Ri[1:] * Ps[1:]
+    M[2::2] = Ri[1:] * Pc[1:] + Rr[1:] * Ps[1:]
+    lin_r = _to_real(lin)
     ident = np.eye(2 * H + 1)
 
     def speed(psi):
-        return (E @ (hw * psi)).real
+        return V @ _to_real(psi)
 
     def fun(z):
-        psi = _to_complex(z, H)
-        v = speed(psi)
-        tf = P @ friction_torque_nm(v, friction_nm, eps_rad_s)
-        res = _to_real(psi - lin + R * tf)
-        dtf = P @ (friction_slope(v, friction_nm, eps_rad_s)[:, None] * dv)   # (H+1, 2H+1) complex
-        d = R[:, None] * dtf
-        jac = ident.copy()
-        jac[0] += d[0].real
-        jac[1::2] += d[1:].real
-        jac[2::2] += d[1:].imag
-        return res, jac
+        return z - lin_r + M @ friction_torque_nm(V @ z, friction_nm, eps_rad_s)
+
+    def jac(z):   # asked for only when MINPACK's hybrj re-linearises, a few times a solve
+        return ident + M @ (friction_slope(V @ z, friction_nm, eps_rad_s)[:, None] * V)
 
     if start is None:
         start = _describing_function(lin, R, omega_b, friction_nm, speed)
-    sol = root(fun, _to_real(np.asarray(start, dtype=complex)), jac=True, method="hybr", options={"xtol": xtol})
+    sol = root(fun, _to_real(np.asarray(start, dtype=complex)), jac=jac, method="hybr", options={"xtol": xtol})
     psi = _to_complex(sol.x, H)
-    v = speed(psi)
-    tf = P @ friction_torque_nm(v, friction_nm, eps_rad_s)
+    t = friction_torque_nm(V @ sol.x, friction_nm, eps_rad_s)
+    tf = Pc @ t + 1j * (Ps @ t)
     resid = np.max(np.abs(psi - lin + R * tf)) / max(np.max(np.abs(lin)), 1e-300)
     return {"psi": psi, "friction": tf, "converged": bool(sol.success) or resid < 1e-8, "residual": float(resid),
             "message": str(sol.message)}
@@ -200,7 +216,7 @@ def _samples(X, n_time):
 
 
 def speed_response(model, drive, speed_rpm: float, friction_nm: float, *, harmonics: int, eps_rel: float,
-                   start=None) -> dict:
+                   start=None, v_peak=None) -> dict:
     """The periodic response at one engine speed: arm angle, span tensions, the locked-arm limit.
 
     The arm held still is solved first (linear): when the friction is at least the critical torque
@@ -235,15 +251,29 @@ def speed_response(model, drive, speed_rpm: float, friction_nm: float, *, harmon
         sol = np.linalg.solve(Z, rhs)
         X_lin, G_a = sol[:, :, 0], sol[:, :, 1]
         v_ref = float(np.max(np.abs(_samples((hw * X_lin[:, a])[None], N))))
-        eps = max(eps_rel * v_ref, 1e-12)
-        for _ in range(3):   # eps follows the solution's own peak speed (a fixed point, a few passes)
+        eps = max(eps_rel * (v_ref if v_peak is None else v_peak), 1e-12)
+        def solve(eps, start, done):
+            """At ``eps`` from ``start``; failing that from the held arm (the answer at the critical friction);
+            failing that by continuation in the regularisation, from ``done`` (a converged ``(eps, psi)``) or from
+            the held arm at ten times ``eps``, in steps of at most 2."""
             hb = harmonic_balance(X_lin[:, a], G_a[:, a], exc.omega_b, friction_nm, eps, n_time=N, start=start)
-            if not hb["converged"]:   # continuation in the regularisation
-                guess = None
-                for factor in (10.0, 4.0, 2.0, 1.0):
-                    hb = harmonic_balance(X_lin[:, a], G_a[:, a], exc.omega_b, friction_nm, eps * factor,
-                                          n_time=N, start=guess)
-                    guess = hb["psi"]
+            if hb["converged"]:
+                return hb
+            held = np.zeros(H + 1, dtype=complex)
+            hb = harmonic_balance(X_lin[:, a], G_a[:, a], exc.omega_b, friction_nm, eps, n_time=N, start=held)
+            if hb["converged"]:
+                return hb
+            e0, guess = done if done is not None else (10.0 * eps, held)
+            for e in np.geomspace(e0, eps, max(2, int(np.ceil(abs(np.log2(e0 / eps)))) + 1))[1 if done else 0:]:
+                hb = harmonic_balance(X_lin[:, a], G_a[:, a], exc.omega_b, friction_nm, e, n_time=N, start=guess)
+                guess = hb["psi"]
+            return hb
+
+        done = None
+        for _ in range(3):   # eps follows the solution's own peak speed (a fixed point, a few passes)
+            hb = solve(eps, start, done)
+            if hb["converged"]:
+                done = (eps, hb["psi"])
             start = hb["psi"]
             v_sol = float(np.max(np.abs(_samples((hw * hb["psi"])[None], N))))
             new = max(eps_rel * v_sol, 1e-12)
@@ -263,11 +293,11 @@ def speed_response(model, drive, speed_rpm: float, friction_nm: float, *, harmon
             "tension_min_n": T.min(axis=1), "tension_max_n": T.max(axis=1), "critical_friction_nm": t_crit,
             "converged": hb["converged"], "residual": hb["residual"], "psi_harmonics": psi_h,
             "psi_rad": psi, "friction_nm_t": _samples(tf_h[None], N)[0], "tension_n_t": T,
-            "omega_b": exc.omega_b, "eps_rad_s": eps}
+            "omega_b": exc.omega_b, "eps_rad_s": eps, "v_peak": float(np.max(np.abs(_samples((hw * psi_h)[None], N))))}
 
 
 def sweep(model, drive, friction_nm: float, speeds_rpm, *, harmonics: int | None = None,
-          eps_rel: float | None = None, check: bool = False) -> dict:
+          eps_rel: float | None = None, check: bool = False, coarse=None) -> dict:
     """The periodic response over ``speeds_rpm`` (each solve starts from the previous speed's solution).
 
     With ``check``, the sweep is solved again at half the regularisation and twice the harmonics; ``change``
@@ -279,8 +309,15 @@ def sweep(model, drive, friction_nm: float, speeds_rpm, *, harmonics: int | None
     eps_rel = eps_rel or drive.regularisation
     rows = []
     start = None
-    for s in speeds_rpm:
-        r = speed_response(model, drive, float(s), friction_nm, harmonics=H, eps_rel=eps_rel, start=start)
+    for i, s in enumerate(speeds_rpm):
+        v_peak = None
+        if coarse is not None and not coarse[i]["locked"]:
+            start = np.zeros(H + 1, dtype=complex)
+            c = coarse[i]["psi_harmonics"]
+            start[:len(c)] = c[:H + 1]
+            v_peak = coarse[i]["v_peak"]
+        r = speed_response(model, drive, float(s), friction_nm, harmonics=H, eps_rel=eps_rel, start=start,
+                           v_peak=v_peak)
         start = None if r["locked"] else r["psi_harmonics"]
         rows.append(r)
     out = {"speed_rpm": np.array([r["speed_rpm"] for r in rows]),
@@ -293,12 +330,13 @@ def sweep(model, drive, friction_nm: float, speeds_rpm, *, harmonics: int | None
            "locked": np.array([r["locked"] for r in rows]),
            "harmonics": H, "regularisation": eps_rel, "rows": rows}
     if check:
-        fine = sweep(model, drive, friction_nm, speeds_rpm, harmonics=2 * H, eps_rel=eps_rel / 2.0)
+        fine = sweep(model, drive, friction_nm, speeds_rpm, harmonics=2 * H, eps_rel=eps_rel / 2.0, coarse=rows)
         scale_pp = max(float(np.max(out["theta_pp_deg"])), 1e-12)
         d_pp = float(np.max(np.abs(fine["theta_pp_deg"] - out["theta_pp_deg"]))) / scale_pp
         d_t = float(np.max(np.abs(fine["tension_min_n"].min(axis=1) - out["tension_min_n"].min(axis=1)))) / \
             max(float(model.static["tensioner_tension_n"]), 1e-12)
         out["change"] = {"theta_pp": d_pp, "tension_min": d_t}
+        out["check_unconverged_rpm"] = fine["speed_rpm"][~fine["converged"]]
         out["within_tolerance"] = bool(max(d_pp, d_t) <= drive.tolerance)
     return out
 
