@@ -302,6 +302,19 @@ def test_synth_drive_prints_a_reports_tables_and_draws_the_layout(tmp_path, caps
     assert (tmp_path / "layout.png").stat().st_size > 10_000
 
 
+@pytest.mark.parametrize("option", ["--plot", "--layout"])
+def test_a_bad_figure_file_is_refused_before_the_work_naming_its_option(tmp_path, capsys, option):
+    """Each figure option is checked before the sweep, and its error names that option (``--layout``'s once said
+    ``--plot``)."""
+    from synth.cli import main
+    from synth.drive.inputs import EXAMPLE_PATH
+    assert main(["drive", str(EXAMPLE_PATH), option, str(tmp_path / "figure.foo")]) == 2
+    err = capsys.readouterr().err
+    assert f"{option}: got " in err and ".png" in err
+    assert main(["drive", str(EXAMPLE_PATH), option, str(tmp_path / "no" / "figure.png")]) == 2
+    assert "does not exist" in capsys.readouterr().err
+
+
 def test_bench_drive_reports_quick_runs(capsys):
     """The ten-pulley benchmark's drive is valid and its six positions all lie between the stops."""
     import importlib.util

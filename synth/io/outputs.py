@@ -292,6 +292,25 @@ def write_text(path, text: str, what: str = "--out") -> Path:
     return Path(path)
 
 
+def figure_path(path: str | None, what: str = "--plot"):
+    """Option ``what``'s figure file checked before any work: a file type matplotlib writes, in an existing folder;
+    returns ``path`` (None for None)."""
+    if path is None:
+        return None
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    types = sorted(FigureCanvasBase.get_supported_filetypes())
+    p = Path(path)
+    ext = p.suffix.lower().lstrip(".")
+    if ext not in types:
+        raise InputError(Problem(what, path, "a file name ending in ." + ", .".join(types) + " (PNG, SVG, PDF...)"))
+    if not p.parent.is_dir():
+        raise InputError(Problem(what, path, f"a file in an existing folder ({p.parent} does not exist)"))
+    if p.is_dir():
+        raise InputError(Problem(what, path, "a file name, not a folder"))
+    return path
+
+
 def write_figure(fig, path, what: str = "--out", **savefig) -> Path:
     """Save matplotlib figure ``fig`` to ``path`` (format by its extension) through :func:`output_file`; the
     figure is closed, written or not."""

@@ -19,7 +19,7 @@ the periodic solution within its tolerance; 1 otherwise; 2 invalid input.
 
 from __future__ import annotations
 from synth.errors import InputError, Problem
-from synth.io.outputs import write_figure, json_text
+from synth.io.outputs import figure_path, json_text, write_figure
 
 
 __all__ = ["register"]
@@ -41,10 +41,8 @@ def register(sub) -> None:
 def _main(args) -> int:
     from synth.drive.analysis import analyse
     from synth.drive.inputs import load_drive
-    from synth.scenes.shrink_fit import plot_path
-    plot_path(args.plot)
-    if args.layout:
-        plot_path(args.layout)
+    figure_path(args.plot, "--plot")
+    figure_path(args.layout, "--layout")
     drive = load_drive(args.input)
     if args.friction is not None:
         if not 0.0 <= args.friction <= 100.0:

@@ -18,12 +18,11 @@ type matplotlib cannot write, a bad case file).
 
 from __future__ import annotations
 
-from synth.io.outputs import json_text
+from synth.io.outputs import figure_path, json_text
 from synth.shrink_fit.analysis import analyse, format_report
 from synth.shrink_fit.inputs import PAPER_MODEL, load_case
 from synth.shrink_fit.selection import margin_vs_reassemblies, plot_margins, select_fit
 from synth.io.limits import check_count
-from synth.errors import InputError, Problem
 
 __all__ = ["register"]
 
@@ -72,26 +71,6 @@ def _reassemblies(args, case) -> int:
     return min(max(1, (case.assemblies + 1) // 2), 100)
 
 
-def plot_path(path: str | None):
-    """``--plot FILE`` checked before any work: a file type matplotlib writes, in an existing folder."""
-    if path is None:
-        return None
-    from pathlib import Path
-
-    from matplotlib.backend_bases import FigureCanvasBase
-
-    types = sorted(FigureCanvasBase.get_supported_filetypes())
-    p = Path(path)
-    ext = p.suffix.lower().lstrip(".")
-    if ext not in types:
-        raise InputError(Problem("--plot", path, "a file name ending in ." + ", .".join(types) + " (PNG, SVG, PDF...)"))
-    if not p.parent.is_dir():
-        raise InputError(Problem("--plot", path, f"a file in an existing folder ({p.parent} does not exist)"))
-    if p.is_dir():
-        raise InputError(Problem("--plot", path, "a file name, not a folder"))
-    return path
-
-
 def _margin_table(curves: dict) -> str:
     labels = list(curves["margins"])
     lines = ["Slip margin at minimum interference vs re-assemblies",
@@ -102,7 +81,7 @@ def _margin_table(curves: dict) -> str:
 
 
 def _main(args) -> int:
-    plot_path(args.plot)
+    figure_path(args.plot)
     case = _case(args)
     res = analyse(case)
     n = _reassemblies(args, case)
@@ -124,7 +103,7 @@ def _main(args) -> int:
 
 
 def _select(args) -> int:
-    plot_path(args.plot)
+    figure_path(args.plot)
     case = _case(args)
     n = _reassemblies(args, case)
     sel = select_fit(case, n)
