@@ -178,6 +178,55 @@ def harmonic_balance(lin, receptance, omega_b: float, friction_nm: float, eps_ra
             "message": str(sol.message)}
 
 
+def _attempt(lin, R, omega_b, friction_nm, eps, n_time, start, restarts: int = 2) -> dict:
+    """:func:`harmonic_balance` from ``start``, restarted from where it stopped while that lowers the residual
+    (MINPACK's hybrj stops "not making good progress" on a stale Broyden model; a restart takes a fresh Jacobian)."""
+    hb = harmonic_balance(lin, R, omega_b, friction_nm, eps, n_time=n_time, start=start)
+    for _ in range(restarts):
+        if hb["converged"]:
+            break
+        again = harmonic_balance(lin, R, omega_b, friction_nm, eps, n_time=n_time, start=hb["psi"])
+        if again["residual"] >= hb["residual"]:
+            break
+        hb = again
+    return hb
+
+
+def _solve_arm(lin, R, omega_b, friction_nm, eps, n_time, start, done, steps: int = 24) -> dict:
+    """The arm's harmonics at regularisation ``eps``: from ``start``; failing that from the held arm (the answer at
+    the critical friction, which is where the hard solves are: the arm barely slipping); failing that by
+    continuation in the regularisation from ``done`` (a converged ``(eps, psi)``, else the held arm's answer at ten
+    times ``eps``) in ratios of at most 2, a step's ratio shortened (square root) where it fails and lengthened
+    again (squared) where it converges. Returns the converged answer, or
+    the attempt of smallest residual (``converged`` False: the caller says so)."""
+    held = np.zeros(len(lin), dtype=complex)
+    tries = [_attempt(lin, R, omega_b, friction_nm, eps, n_time, start)]
+    if not tries[-1]["converged"]:
+        tries.append(_attempt(lin, R, omega_b, friction_nm, eps, n_time, held))
+    if tries[-1]["converged"]:
+        return tries[-1]
+    if done is None:
+        tries.append(_attempt(lin, R, omega_b, friction_nm, 10.0 * eps, n_time, held))
+        if not tries[-1]["converged"]:
+            return min(tries, key=lambda t: t["residual"])
+        done = (10.0 * eps, tries[-1]["psi"])
+    e_ok, psi_ok = done
+    ratio = 2.0
+    for _ in range(steps):
+        e = max(eps, e_ok / ratio)
+        hb = _attempt(lin, R, omega_b, friction_nm, e, n_time, psi_ok)
+        if hb["converged"]:
+            if e <= eps:
+                return hb
+            e_ok, psi_ok = e, hb["psi"]
+            ratio = min(2.0, ratio * ratio)
+        else:
+            ratio = np.sqrt(ratio)
+            if e <= eps:
+                tries.append(hb)
+    return min(tries, key=lambda t: t["residual"])
+
+
 def _describing_function(lin, R, omega_b, friction_nm, speed):
     """Start of the solve: the friction as its equivalent viscous damper ``4 D / (pi V)`` (V: peak speed)."""
     hw = 1j * omega_b * np.arange(len(lin))
@@ -252,28 +301,12 @@ def speed_response(model, drive, speed_rpm: float, friction_nm: float, *, harmon
         X_lin, G_a = sol[:, :, 0], sol[:, :, 1]
         v_ref = float(np.max(np.abs(_samples((hw * X_lin[:, a])[None], N))))
         eps = max(eps_rel * (v_ref if v_peak is None else v_peak), 1e-12)
-        def solve(eps, start, done):
-            """At ``eps`` from ``start``; failing that from the held arm (the answer at the critical friction);
-            failing that by continuation in the regularisation, from ``done`` (a converged ``(eps, psi)``) or from
-            the held arm at ten times ``eps``, in steps of at most 2."""
-            hb = harmonic_balance(X_lin[:, a], G_a[:, a], exc.omega_b, friction_nm, eps, n_time=N, start=start)
-            if hb["converged"]:
-                return hb
-            held = np.zeros(H + 1, dtype=complex)
-            hb = harmonic_balance(X_lin[:, a], G_a[:, a], exc.omega_b, friction_nm, eps, n_time=N, start=held)
-            if hb["converged"]:
-                return hb
-            e0, guess = done if done is not None else (10.0 * eps, held)
-            for e in np.geomspace(e0, eps, max(2, int(np.ceil(abs(np.log2(e0 / eps)))) + 1))[1 if done else 0:]:
-                hb = harmonic_balance(X_lin[:, a], G_a[:, a], exc.omega_b, friction_nm, e, n_time=N, start=guess)
-                guess = hb["psi"]
-            return hb
-
         done = None
         for _ in range(3):   # eps follows the solution's own peak speed (a fixed point, a few passes)
-            hb = solve(eps, start, done)
-            if hb["converged"]:
-                done = (eps, hb["psi"])
+            hb = _solve_arm(X_lin[:, a], G_a[:, a], exc.omega_b, friction_nm, eps, N, start, done)
+            if not hb["converged"]:   # no better eps from an answer that is not one
+                break
+            done = (eps, hb["psi"])
             start = hb["psi"]
             v_sol = float(np.max(np.abs(_samples((hw * hb["psi"])[None], N))))
             new = max(eps_rel * v_sol, 1e-12)
