@@ -17,10 +17,11 @@ harmonics ``F_h`` and ``G_h = Z_h^-1``, the arm's harmonics satisfy
     Psi_h - (G_h F_h)_arm + (G_h)_arm,arm T_f,h(Psi) = 0,     h = 0..H,
 
 where ``T_f,h`` are the harmonics of the friction torque evaluated in time
-(alternating frequency/time: inverse FFT of the arm speed, the regularised
-Coulomb torque of :mod:`synth.drive.friction`, FFT back). The 2H+1 real
-equations are solved by :func:`scipy.optimize.root` (MINPACK's hybrd) with
-their exact Jacobian; the other coordinates and the span tensions follow
+(alternating frequency/time: the arm speed at 8H samples a period, the regularised
+Coulomb torque of :mod:`synth.drive.friction` there, its harmonics back; both
+maps are real matrices built once per H). The 2H+1 real equations are solved by
+:func:`scipy.optimize.root` (MINPACK's hybrj) with their exact Jacobian, made
+only when hybrj re-linearises; the other coordinates and the span tensions follow
 linearly. :func:`time_response` integrates the same equations with
 :func:`scipy.integrate.solve_ivp` (the tests compare the two).
 
@@ -270,8 +271,11 @@ def speed_response(model, drive, speed_rpm: float, friction_nm: float, *, harmon
 
     The arm held still is solved first (linear): when the friction is at least the critical torque
     (:func:`synth.drive.friction.critical_friction_torque_nm`) the held arm *is* the Coulomb solution and it is
-    returned (``locked``). Otherwise the arm slips and :func:`harmonic_balance` solves for it; a solve that
-    does not converge is continued from a ten times larger regularisation down to ``eps_rel``.
+    returned (``locked``). Otherwise the arm slips and :func:`harmonic_balance` solves for it from ``start``
+    (:func:`_solve_arm`: restarts, the held arm, continuation in the regularisation), the regularisation
+    ``eps_rel`` times the answer's own peak speed (a fixed point; the first pass from ``v_peak`` [rad/s], else from
+    the peak speed without friction). ``converged`` False: no attempt converged, the values are the attempt of
+    smallest residual.
     """
     H = harmonics
     N = max(64, 8 * H)
