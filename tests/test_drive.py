@@ -213,6 +213,9 @@ def test_bench_drive_quick_runs(capsys):
     spec.loader.exec_module(mod)
     assert mod.main(["--quick"]) == 0
     assert "| default (24 harmonics" in capsys.readouterr().out
+    assert mod.main(["--quick", "--grid"]) == 0
+    out = capsys.readouterr().out
+    assert "| default (24 harmonics, eps 1 %) | 150 | 0 |" in out, out
 
 
 def test_synth_design_takes_the_travels_and_hub_load_from_the_drive(tmp_path, capsys):
