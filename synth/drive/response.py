@@ -265,6 +265,11 @@ def _samples(X, n_time):
     return (X @ E.T).real
 
 
+def _peak_speed(hw, psi, n_time) -> float:
+    """The largest speed [rad/s] over a period of the angle of harmonics ``psi`` (``hw``: ``i h omega_b``)."""
+    return float(np.max(np.abs(_samples((hw * psi)[None], n_time))))
+
+
 def speed_response(model, drive, speed_rpm: float, friction_nm: float, *, harmonics: int, eps_rel: float,
                    start=None, v_peak=None) -> dict:
     """The periodic response at one engine speed: arm angle, span tensions, the locked-arm limit.
@@ -303,7 +308,7 @@ def speed_response(model, drive, speed_rpm: float, friction_nm: float, *, harmon
         rhs[:, a, 1] = 1.0
         sol = np.linalg.solve(Z, rhs)
         X_lin, G_a = sol[:, :, 0], sol[:, :, 1]
-        v_ref = float(np.max(np.abs(_samples((hw * X_lin[:, a])[None], N))))
+        v_ref = _peak_speed(hw, X_lin[:, a], N)
         eps = max(eps_rel * (v_ref if v_peak is None else v_peak), 1e-12)
         done = None
         for _ in range(3):   # eps follows the solution's own peak speed (a fixed point, a few passes)
@@ -312,7 +317,7 @@ def speed_response(model, drive, speed_rpm: float, friction_nm: float, *, harmon
                 break
             done = (eps, hb["psi"])
             start = hb["psi"]
-            v_sol = float(np.max(np.abs(_samples((hw * hb["psi"])[None], N))))
+            v_sol = _peak_speed(hw, hb["psi"], N)
             new = max(eps_rel * v_sol, 1e-12)
             if abs(new - eps) <= 0.25 * eps:
                 break
@@ -330,7 +335,7 @@ def speed_response(model, drive, speed_rpm: float, friction_nm: float, *, harmon
             "tension_min_n": T.min(axis=1), "tension_max_n": T.max(axis=1), "critical_friction_nm": t_crit,
             "converged": hb["converged"], "residual": hb["residual"], "psi_harmonics": psi_h,
             "psi_rad": psi, "friction_nm_t": _samples(tf_h[None], N)[0], "tension_n_t": T,
-            "omega_b": exc.omega_b, "eps_rad_s": eps, "v_peak": float(np.max(np.abs(_samples((hw * psi_h)[None], N))))}
+            "omega_b": exc.omega_b, "eps_rad_s": eps, "v_peak": _peak_speed(hw, psi_h, N)}
 
 
 def sweep(model, drive, friction_nm: float, speeds_rpm, *, harmonics: int | None = None,
