@@ -104,13 +104,17 @@ def nearest(batch, which=None) -> list:
 def _nearest_of(batch, i: int, rows_i, floor: float, pair: dict) -> tuple:
     """Application ``i``'s nearest design among its winning core rows ``rows_i`` (relative to its first row),
     ``(core row, {subsystem: option row}, value)``; ``pair``: its rows of :func:`pairwise`."""
-    tables, cols = near_tables(batch, i, batch.ptr[i] + rows_i, floor, pair)
-    ev = product.evaluate(batch.inputs[i], batch.settings, pin_inputs=batch.pin_inputs, prune=False, only=rows_i,
-                          tables=tables)
-    batch.evaluations += ev.evaluations
-    pos, options, value = ev.nearest()
+    rows = batch.ptr[i] + rows_i
+    tables, cols = near_tables(batch, i, rows, floor, pair)
+    # what product.evaluate(..., only=rows_i, tables=tables) gives, from the batch's own core and input groups (the
+    # application's cores were evaluated again there, a third of the loop's time): the full model's axial
+    # verdicts where no core is complete, then the nearest design under the one key
+    product.judge_undecided(batch.apps, batch.sp, batch.cg, rows, batch.core_ok[rows], batch.settings, tables)
+    core = join(tuple(x[rows] for x in batch.cg.assessment().near),
+                tuple(np.full(len(rows), x[i]) for x in batch.ig.assessment().near))
+    pos, options, value = product.nearest_of(core, tables, rows)
     options["spring"] = int(cols[options["spring"]])  # the spring table's columns are springs ``cols``
-    return int(batch.ptr[i] + pos), options, value
+    return pos, options, value
 
 
 def near_tables(batch, i: int, rows, floor: float = -np.inf, pair_tables: dict | None = None) -> tuple:

@@ -38,7 +38,7 @@ from synth.cost.breakdown import attributes
 from synth.optimise.objectives import additive_goals, additive_totals, goal
 
 __all__ = ["SubTable", "Evaluation", "evaluate", "subsystem", "SPRING_BLOCK_PAIRS", "design_scores",
-           "core_scores", "option_scores", "design_totals"]
+           "core_scores", "option_scores", "design_totals", "nearest_of", "judge_undecided"]
 
 @dataclass
 class Evaluation:
@@ -98,10 +98,7 @@ class Evaluation:
         every counted check, then the largest second smallest, then the fewest failing checks, then the catalog
         order), exact over the product without enumerating it (:func:`synth.design.combine.nearest_choice` per
         core, :func:`~synth.design.combine.best_row` over them)."""
-        core = tuple(x[self.rows] for x in self.core_near())
-        figures, picks = nearest_choice(core, [self.subs[s].near() for s in SUBSYSTEMS])
-        r = best_row(figures)
-        return int(self.rows[r]), {s: int(p[r]) for s, p in zip(SUBSYSTEMS, picks)}, float(figures[0][r])
+        return nearest_of(tuple(x[self.rows] for x in self.core_near()), self.subs, self.rows)
 
     def parts(self, pos: int, options: dict) -> dict:
         """The part keys of core position ``pos`` (in ``cores``) and option rows ``options``."""
@@ -112,6 +109,17 @@ class Evaluation:
         return {**design_totals({k: v[pos] for k, v in self.score_core.items()},
                                 [{k: v[options[s]] for k, v in self.score[s].items()} for s in SUBSYSTEMS]),
                 "margin": margin}
+
+
+def nearest_of(core: tuple, subs: dict, rows) -> tuple:
+    """``(row, options, smallest margin)`` of the nearest design over cores ``rows`` (any labels, one per core):
+    ``core`` their near figures with the input-only checks (:func:`synth.design.combine.join`), ``subs`` their
+    subsystems' :class:`SubTable` (one row per core): :func:`~synth.design.combine.nearest_choice` per core,
+    :func:`~synth.design.combine.best_row` over them (:meth:`Evaluation.nearest`; the bulk's from its own
+    groups, :func:`synth.optimise.batch_nearest.nearest`)."""
+    figures, picks = nearest_choice(core, [subs[s].near() for s in SUBSYSTEMS])
+    r = best_row(figures)
+    return int(rows[r]), {s: int(p[r]) for s, p in zip(SUBSYSTEMS, picks)}, float(figures[0][r])
 
 
 #: the note of an application without its durability test (the checks that need it are not verified)
@@ -136,7 +144,7 @@ def design_totals(core: dict, options) -> dict:
     return {name: goal(name).total(v) for name, v in additive_totals(core, options).items()}
 
 
-def _judge_undecided(apps, sp, cg, pos, core_ok, settings, subs: dict) -> None:
+def judge_undecided(apps, sp, cg, pos, core_ok, settings, subs: dict) -> None:
     """At fidelity ``screening`` (the axial table screened, then judged: :func:`synth.design.evaluate.axial_judged`),
     "no design" must be the full model's verdict too: when no core is complete (a feasible option in every
     subsystem) but some lack only an axial option, the axial table takes the full model's verdicts
@@ -192,7 +200,7 @@ def evaluate(d, settings: Settings = Settings(fidelity="full"), *, pin_inputs: b
                 else:
                     subs[s], n = subsystem(apps, sp, cg, pos, s, settings, span=None if only is None else all_pos)
                 counter[0] += n
-            _judge_undecided(apps, sp, cg, pos, ok[pos], settings, subs)
+            judge_undecided(apps, sp, cg, pos, ok[pos], settings, subs)
     score_core = core_scores(sp, cores, cg.values)
     score = {s: option_scores(sp, s, float(apps.spring_stiffness_nm_per_deg[0])) for s in SUBSYSTEMS}
     notes = []
