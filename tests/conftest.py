@@ -143,16 +143,6 @@ def _steal_work(config):
         config.option.dist = "worksteal"
 
 
-# ----------------------------------------------------------------------------------- the long modules first
-# The modules marked ``long`` (a test of 60-90 s, or a fixture of 60 s) are collected first, whole (a module split
-# between workers sets its module fixtures up twice): under xdist they start at once instead of last. Measured on
-# 2 cores at 3cda467 (``--durations=0``): 1,472 s of tests in a 785 s run, about 100 s of a worker idle at the end
-# while the other ran the browser's 90 s test, collected near the end of the alphabet.
-
-def pytest_collection_modifyitems(config, items):
-    items.sort(key=lambda item: item.get_closest_marker("long") is None)  # stable: the order within each kept
-
-
 def pytest_configure(config):
     import os
     import subprocess

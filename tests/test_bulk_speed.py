@@ -31,7 +31,6 @@ from synth.optimise import solve
 from synth.optimise.batch import Batch, any_feasible
 from synth.optimise.diagnose import is_feasible, relaxations, relaxations_batch
 
-pytestmark = pytest.mark.long  # minutes of the suite: run first (tests/conftest.py, pytest_collection_modifyitems)
 PORTFOLIO = generate(100, seed=31, vary=True)  # the slices below; the first 40 for the relaxations
 
 

@@ -29,7 +29,6 @@ from synth.optimise import solve
 
 APPS = generate(500, seed=19, vary=True)
 FULL = evaluate.Settings(fidelity="full")
-pytestmark = pytest.mark.long  # minutes of the suite: run first (tests/conftest.py, pytest_collection_modifyitems)
 
 
 def failing_at_full(apps: list, parts: list) -> list:

@@ -20,7 +20,6 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text(encoding="utf-8")
-pytestmark = pytest.mark.long  # minutes of the suite: run first (tests/conftest.py, pytest_collection_modifyitems)
 
 
 def _blocks() -> list[tuple[str, str]]:

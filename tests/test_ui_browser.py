@@ -22,8 +22,7 @@ from synth.ui.browser import (CHROMIUM_FLAGS, free_port, goto_when_up, is_local,
                               start_server, stop_server)
 
 CHROMIUM = chromium_binary()
-pytestmark = [pytest.mark.skipif(CHROMIUM is None, reason="no chromium binary (apt-get install chromium)"),
-              pytest.mark.long]  # minutes of the suite: run first (tests/conftest.py)
+pytestmark = pytest.mark.skipif(CHROMIUM is None, reason="no chromium binary (apt-get install chromium)")
 
 CHECKS = "table.checks tr[data-check]"
 REQUESTS: list[str] = []
