@@ -93,25 +93,26 @@ def nearest(batch, which=None) -> list:
         block = won[b:b + step]
         rows = np.concatenate([rows_of[i] for i in block])
         pair = pairwise(batch, rows)
+        # the rows' near figures with their application's input-only checks, from the batch's own groups
+        core = join(batch.cg.take(rows).assessment().near,
+                    tuple(x[batch.A[rows]] for x in batch.ig.assessment().near))
         ends = np.cumsum([len(rows_of[i]) for i in block])
         for i, e in zip(block, ends):
-            rows_i = rows_of[i] - batch.ptr[i]
-            own = {name: t.take(slice(e - len(rows_i), e)) for name, t in pair.items()}
-            out[i] = _nearest_of(batch, i, rows_i, best_v[i] - tol[i], own)
+            own = slice(e - len(rows_of[i]), e)
+            out[i] = _nearest_of(batch, i, rows_of[i], best_v[i] - tol[i], {n: t.take(own) for n, t in pair.items()},
+                                 tuple(x[own] for x in core))
     return out
 
 
-def _nearest_of(batch, i: int, rows_i, floor: float, pair: dict) -> tuple:
-    """Application ``i``'s nearest design among its winning core rows ``rows_i`` (relative to its first row),
-    ``(core row, {subsystem: option row}, value)``; ``pair``: its rows of :func:`pairwise`."""
-    rows = batch.ptr[i] + rows_i
+def _nearest_of(batch, i: int, rows, floor: float, pair: dict, core: tuple) -> tuple:
+    """Application ``i``'s nearest design among its winning core rows ``rows`` (the batch's), ``(core row,
+    {subsystem: option row}, value)``; ``pair``: their rows of :func:`pairwise`, ``core`` their near figures.
+
+    What :func:`synth.optimise.product.evaluate` (``only``, ``tables``) gives, from the batch's own core and input
+    groups (an evaluation of every core of the application again was a third of this loop's time): the full
+    model's axial verdicts where no core is complete, then the nearest design under the one key."""
     tables, cols = near_tables(batch, i, rows, floor, pair)
-    # what product.evaluate(..., only=rows_i, tables=tables) gives, from the batch's own core and input groups (the
-    # application's cores were evaluated again there, a third of the loop's time): the full model's axial
-    # verdicts where no core is complete, then the nearest design under the one key
     product.judge_undecided(batch.apps, batch.sp, batch.cg, rows, batch.core_ok[rows], batch.settings, tables)
-    core = join(tuple(x[rows] for x in batch.cg.assessment().near),
-                tuple(np.full(len(rows), x[i]) for x in batch.ig.assessment().near))
     pos, options, value = product.nearest_of(core, tables, rows)
     options["spring"] = int(cols[options["spring"]])  # the spring table's columns are springs ``cols``
     return pos, options, value
