@@ -128,21 +128,20 @@ def scene_runs(tmp_path_factory):
     import io
     tmp = tmp_path_factory.mktemp("scenes")
 
+    def run(argv) -> tuple:
+        buf = io.StringIO()
+        with contextlib.redirect_stdout(buf), contextlib.redirect_stderr(io.StringIO()):
+            code = main(argv)
+        return code, buf.getvalue()
+
     class Runs(dict):
         def __missing__(self, name):
             if name == "bulk":
-                with contextlib.redirect_stdout(io.StringIO()):
-                    main(["portfolio-sample", "5", "--out", str(tmp / "portfolio.csv"), "--seed", "3"])
+                run(["portfolio-sample", "5", "--out", str(tmp / "portfolio.csv"), "--seed", "3"])
             if name == "cad":
                 pytest.importorskip("cadquery")
-                buf = io.StringIO()
-                with contextlib.redirect_stdout(buf):
-                    main(["design", DEFAULT, "--json"])
-                (tmp / "design.json").write_text(buf.getvalue())
-            buf = io.StringIO()
-            with contextlib.redirect_stdout(buf), contextlib.redirect_stderr(io.StringIO()):
-                code = main(_argv(name, tmp))
-            self[name] = (code, buf.getvalue())
+                (tmp / "design.json").write_text(run(["design", DEFAULT, "--json"])[1])
+            self[name] = run(_argv(name, tmp))
             return self[name]
     return Runs()
 

@@ -94,8 +94,7 @@ def nearest(batch, which=None) -> list:
         rows = np.concatenate([rows_of[i] for i in block])
         pair = pairwise(batch, rows)
         # the rows' near figures with their application's input-only checks, from the batch's own groups
-        core = join(batch.cg.take(rows).assessment().near,
-                    tuple(x[batch.A[rows]] for x in batch.ig.assessment().near))
+        core = product.core_near(batch.cg.take(rows), batch.ig, batch.A[rows])
         ends = np.cumsum([len(rows_of[i]) for i in block])
         for i, e in zip(block, ends):
             own = slice(e - len(rows_of[i]), e)

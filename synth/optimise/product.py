@@ -38,7 +38,7 @@ from synth.cost.breakdown import attributes
 from synth.optimise.objectives import additive_goals, additive_totals, goal
 
 __all__ = ["SubTable", "Evaluation", "evaluate", "subsystem", "SPRING_BLOCK_PAIRS", "design_scores",
-           "core_scores", "option_scores", "design_totals", "nearest_of", "judge_undecided"]
+           "core_scores", "option_scores", "design_totals", "core_near", "nearest_of", "judge_undecided"]
 
 @dataclass
 class Evaluation:
@@ -81,8 +81,7 @@ class Evaluation:
     def core_near(self) -> tuple:
         """``(len(cores),)`` near figures of every core with the input-only checks
         (:func:`synth.design.combine.join` of the core's and the inputs')."""
-        return join(self.core.assessment().near, tuple(np.broadcast_to(x[0], (len(self.cores),))
-                                                       for x in self.input.assessment().near))
+        return core_near(self.core, self.input, np.zeros(len(self.cores), dtype=np.int64))
 
     def near(self, pos: int, options: dict) -> tuple:
         """The near figures of the design of core position ``pos`` and option rows ``options`` (the one key's:
@@ -109,6 +108,13 @@ class Evaluation:
         return {**design_totals({k: v[pos] for k, v in self.score_core.items()},
                                 [{k: v[options[s]] for k, v in self.score[s].items()} for s in SUBSYSTEMS]),
                 "margin": margin}
+
+
+def core_near(cg: Group, ig: Group, a) -> tuple:
+    """The near figures of core group ``cg``'s rows with their applications' input-only checks (``ig``: the input
+    group, one row per application; ``a``: each core row's application in it): :func:`~synth.design.combine.join`
+    of the two groups' assessments."""
+    return join(cg.assessment().near, tuple(x[a] for x in ig.assessment().near))
 
 
 def nearest_of(core: tuple, subs: dict, rows) -> tuple:
