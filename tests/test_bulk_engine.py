@@ -286,22 +286,39 @@ def test_layout_switch_is_explained_in_bulk_as_in_design():
 
 
 @pytest.mark.parametrize("method", ["thesis", "vdi2230"])
-def test_fixation_once_per_distinct_bolt_equals_every_row(method):
-    """The bulk engine evaluates the fixation once per (application, bolt as the fixation reads it) and gathers it
-    per row (``BoltScan.fixation_keys``): bit-equal to the fixation of every (application, bolt) row; at the thesis
-    method (the tightening method not read) fewer fixations than bolts."""
+def test_bolt_group_once_per_distinct_bolt_equals_every_row(method):
+    """The bulk engine evaluates the bolt group once per (application, bolt as the group reads it) and gathers its
+    figures per row (``BoltScan.bolt_keys``): the values and margins of every (application, bolt) row are bit-equal
+    to those of its key's bolt; at the thesis method (the tightening method not read) fewer keys than bolts, and the
+    batch's per-pair smallest margins are those of every row."""
     from synth.design import evaluate
     from synth.optimise.batch import Batch
     b = Batch(generate(6, seed=3), Settings(fidelity="screening", bolt_method=method))
     sp, nb = b.sp, b.sp.n("bolt")
     a, bolt = np.repeat(np.arange(len(b)), nb), np.tile(np.arange(nb), len(b))
-    code, rep = b.bolts.fixation_keys()
+    code, rep = b.bolts.bolt_keys()
     assert (len(rep) < nb) == (method == "thesis")
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        every = evaluate.fixation_values(b.apps, a, sp.rows_read("bolt", bolt), b.settings)
-        once = evaluate.fixation_values(b.apps, np.repeat(np.arange(len(b)), len(rep)),
-                                        sp.rows_read("bolt", np.tile(rep, len(b))), b.settings)
-    row = np.repeat(np.arange(len(b)), nb) * len(rep) + code[bolt]
-    for k, v in every.items():
-        np.testing.assert_array_equal(once[k][row], v, err_msg=k)
-    assert np.isfinite(every["bolt_sigma_eqv_mpa"]).any()
+        every = evaluate.bolt(b.apps, b.cg, b.ptr[a], sp.rows_read("bolt", bolt), b.settings)
+        once = evaluate.bolt(b.apps, b.cg, b.ptr[np.repeat(np.arange(len(b)), len(rep))],
+                             sp.rows_read("bolt", np.tile(rep, len(b))), b.settings)
+    row = a * len(rep) + code[bolt]
+    for k, v in every.values.items():
+        np.testing.assert_array_equal(np.asarray(once.values[k])[row], v, err_msg=k)
+    for k, v in every.margins.items():
+        np.testing.assert_array_equal(once.margins[k][row], v, err_msg=k)
+    assert np.isfinite(every.values["bolt_sigma_eqv_mpa"]).any()
+    ok, mn = b.bolts.app(np.arange(len(b)), np.arange(nb))
+    m = np.min([every.margins[c] for c in b.bolts.ids], axis=0)
+    np.testing.assert_array_equal(mn[a, bolt], m)
+    assert ok.any() and not ok.all()
+
+
+def test_the_bolt_group_refuses_a_column_it_does_not_declare():
+    """Group ``bolt`` reads the bolt table only through ``bolt_reads`` (searches evaluate bolts equal in those
+    columns once): a column it does not declare is a KeyError naming it."""
+    from synth.design.bolt_group import BOLT_READS, _Declared
+    o = _Declared({"bolt_d_mm": [8.0], "cost_eur": [1.0]}, BOLT_READS)
+    assert o["bolt_d_mm"] == [8.0] and "bolt_d_mm" in o and "cost_eur" not in o
+    with pytest.raises(KeyError, match="cost_eur"):
+        o["cost_eur"]

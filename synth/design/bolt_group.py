@@ -12,7 +12,8 @@ from synth.design.group import Fields, Group, const as _const, core_values, fini
 from synth.design.settings import DEFAULT, Settings
 from synth.model import bolted_joint
 
-__all__ = ["fixation_values", "fixation_reads", "fixation_codes", "TABLE_ENTRIES_PER_ROW", "bolt_core_checks", "bolt_core", "bolt"]
+__all__ = ["fixation_values", "fixation_reads", "fixation_codes", "bolt_reads", "bolt_codes", "TABLE_ENTRIES_PER_ROW",
+           "bolt_core_checks", "bolt_core", "bolt"]
 
 #: the bolt table's columns :func:`fixation_values` reads (the tightening method too under the VDI 2230 method:
 #: :func:`fixation_reads`)
@@ -27,6 +28,52 @@ def fixation_reads(settings: Settings = DEFAULT) -> tuple:
     'bolt_tightening'
     """
     return FIXATION_READS + (("bolt_tightening",) if settings.bolt_method == "vdi2230" else ())
+
+
+#: the bolt table's columns :func:`bolt` reads besides the fixation's (:func:`fixation_reads`)
+BOLT_READS = ("bolt_d_mm", "rp02_mpa", "pivot_bore_min_mm")
+
+
+def bolt_reads(settings: Settings = DEFAULT) -> tuple:
+    """The bolt table's columns group ``bolt`` (:func:`bolt`) reads under ``settings``, the fixation's and its own:
+    bolts equal in them have the same values and margins for any application and core (:func:`bolt` reads no
+    other column: it refuses one, :class:`_Declared`).
+
+    >>> bolt_reads()
+    ('bolt_format', 'bolt_property_class', 'bolt_head_type', 'bolt_washer', 'bolt_d_mm', 'rp02_mpa', 'pivot_bore_min_mm')
+    """
+    return fixation_reads(settings) + BOLT_READS
+
+
+class _Declared:
+    """The bolt columns ``o`` as :func:`bolt` may read them: those of :func:`bolt_reads`, any other a
+    :class:`KeyError` naming it (a search evaluates bolts equal in the declared columns once: :func:`bolt_codes`)."""
+
+    def __init__(self, o, keys: tuple):
+        self._o, self._keys = o, keys
+
+    def __getitem__(self, k):
+        if k not in self._keys:
+            raise KeyError(f"group bolt reads the bolt column {k!r}, which bolt_reads() does not declare: add it to "
+                           "synth.design.bolt_group.BOLT_READS (searches evaluate bolts equal in the declared columns "
+                           "once)")
+        return self._o[k]
+
+    def __contains__(self, k) -> bool:
+        return k in self._keys and k in self._o
+
+
+def bolt_codes(o: dict, settings: Settings = DEFAULT) -> tuple:
+    """``(code per row, first row of each code)`` of bolt columns ``o``: rows equal in every column group ``bolt``
+    reads (:func:`bolt_reads`) share a code, so the same margins for any application and core (as
+    :func:`fixation_codes` for the fixation's columns).
+
+    >>> from synth.design.space import space
+    >>> code, first = bolt_codes(space().tables["bolt"])
+    >>> len(first) < len(code)   # the thesis method reads no tightening method: those bolts are one
+    True
+    """
+    return _codes(o, bolt_reads(settings))
 
 
 _BOLT_VALUES = ("bolt_tightening_torque_nm", "bolt_axial_force_n", "bolt_sigma_mpa", "bolt_tau_mpa",
@@ -50,8 +97,13 @@ def fixation_codes(o: dict, settings: Settings = DEFAULT) -> tuple:
     >>> [x.tolist() for x in fixation_codes(o)]
     [[0, 1, 0], [0, 1]]
     """
+    return _codes(o, fixation_reads(settings))
+
+
+def _codes(o: dict, columns: tuple) -> tuple:
+    """:func:`fixation_codes` over ``columns`` (those ``o`` has)."""
     import pandas as pd  # loaded already wherever many rows come (the bulk engine)
-    cols = [np.asarray(o[k], dtype=object) for k in fixation_reads(settings) if k in o]
+    cols = [np.asarray(o[k], dtype=object) for k in columns if k in o]
     n = len(cols[0]) if cols else len(next(iter(o.values())))
     code = np.zeros(n, dtype=np.int64)
     for col in cols:
@@ -82,7 +134,7 @@ def _first_codes(code) -> tuple:
 TABLE_ENTRIES_PER_ROW = 2.0
 
 
-def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
+def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT, codes=None) -> dict:
     """Step 10 (:func:`synth.model.bolted_joint.fixation`) for rows of applications ``a`` and bolts ``o``.
 
     The fixation once per distinct application and bolt as the fixation reads it (:func:`fixation_codes`, the
@@ -95,7 +147,9 @@ def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
     catalog's bolts for a few applications, the bulk's blocks), else over their distinct (application, bolt) pairs
     (``candidate_of``: a production sample with its design's bolt). Every entry is what the call naming that bolt
     alone gives (element-wise arithmetic). NaN for applications without their fixation data, and for rows whose
-    head form, washer or tightening method is missing (NaN).
+    head form, washer or tightening method is missing (NaN). ``codes``: the rows' :func:`fixation_codes` when the
+    caller has them (those of the bolt table at the rows' bolts; any labels with the same partition), not
+    factorised again.
     """
     n = len(a)
     out = {k: np.full(n, np.nan) for k in _BOLT_VALUES}
@@ -113,10 +167,13 @@ def fixation_values(apps, a, o: dict, settings: Settings = DEFAULT) -> dict:
     if not named.all():
         rows, head, washer, method = rows[named], head[named], washer[named], method[named]
         nr = len(rows)
+    known = None if codes is None else np.asarray(codes)[rows]
     fmt, cls = np.asarray(o["bolt_format"], dtype=object)[rows], np.asarray(o["bolt_property_class"], dtype=object)[rows]
     cols = {"bolt_format": fmt, "bolt_property_class": cls, "bolt_head_type": head, "bolt_washer": washer,
             "bolt_tightening": method}
-    if nr and all((c == c[0]).all() for c in cols.values()):  # one bolt (one design's samples): no factorisation
+    if known is not None:
+        code = known
+    elif nr and all((c == c[0]).all() for c in cols.values()):  # one bolt (one design's samples): no factorisation
         code = np.zeros(nr, dtype=np.int64)
     else:
         code = fixation_codes(cols, settings)[0]
@@ -185,16 +242,19 @@ def bolt_core(apps, a, core: dict, o: dict, settings: Settings = DEFAULT) -> Gro
     return finish("bolt", v, apps, a, checks=bolt_core_checks(core), rules=settings.rules, core=core)
 
 
-def bolt(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT, fixation: dict | None = None) -> Group:
+def bolt(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT, fixation: dict | None = None,
+         codes=None) -> Group:
     """Group ``bolt`` (step 10 and the pivot wall of step 2) for core rows ``r`` and bolt options ``o``.
 
     ``fixation`` (optional): the :func:`fixation_values` of the rows, when the caller computed them once per
-    application and bolt (they do not depend on the core).
+    application and bolt (they do not depend on the core); ``codes``: the rows' fixation codes, as
+    :func:`fixation_values` takes them.
     """
     a = cg.values["app"][r]
     f = Fields(apps, a)
     n = len(a)
-    fix = fixation if fixation is not None else fixation_values(apps, a, o, settings)
+    o = _Declared(o, bolt_reads(settings))
+    fix = fixation if fixation is not None else fixation_values(apps, a, o, settings, codes)
     v = {"app": a, "bolt_d_mm": np.asarray(o["bolt_d_mm"], dtype=float), **fix}
     v["bolt_method_thesis"] = np.full(n, settings.bolt_method == "thesis")
     v["bolt_method_vdi"] = ~v["bolt_method_thesis"]

@@ -9,7 +9,7 @@ import numpy as np
 
 from synth.design import evaluate
 from synth.design.assessment import passes
-from synth.design.bolt_group import fixation_codes
+from synth.design.bolt_group import bolt_codes, fixation_codes
 from synth.design.combine import near_figures
 from synth.design.constraints import by_group, physics_inputs
 from synth.optimise.objectives import weighted_sum as wsum
@@ -34,7 +34,8 @@ def bolt_ids(core_values: dict) -> tuple[tuple, tuple]:
 
 class BoltScan:
     """The bolt scans of a :class:`~synth.optimise.batch.Batch` ``b``; what it evaluates is kept for the batch:
-    ``fix`` (per application x bolt: the step-10 checks pass, their smallest margin, done), ``fix_near`` (their
+    ``fix`` (per application x bolt: the step-10 checks pass, their smallest margin, done; evaluated once per
+    application and bolt as the group reads it, :meth:`bolt_keys`), ``fix_near`` (their
     second smallest margin and failing count), ``wall_d`` (the distinct bolt columns the core checks read)."""
 
     def __init__(self, b):
@@ -47,7 +48,7 @@ class BoltScan:
     def app(self, which, bolts):
         """Per application x bolt: every step-10 check passes (``ok``), and their smallest margin (``min``),
         the pivot wall apart; evaluated on demand for the applications ``which`` x ``bolts`` not done yet (one
-        fixation call per bolt over its applications) and kept for the batch."""
+        group call, each application with each distinct bolt as the group reads it) and kept for the batch."""
         sp, n = self.b.sp, len(self.b)
         nb = sp.n("bolt")
         if self.fix is None:
@@ -60,35 +61,43 @@ class BoltScan:
         ai, bi = np.nonzero(~done[np.ix_(which, bolts)])
         if len(ai):
             a, b = which[ai], bolts[bi]
-            o = sp.rows_read("bolt", b)
-            code, rep = self.fixation_keys()
+            code, rep = self.bolt_keys()
+            fcode = self.fixation_codes()
             nk = len(rep)
-            # the fixation once per (application, distinct bolt as the fixation reads it), gathered per row
+            # the group once per (application, distinct bolt as the group reads it), its figures gathered per pair
             up, inv = np.unique(a * nk + code[b], return_inverse=True)
+            inv = np.asarray(inv).reshape(-1)
             with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-                once = evaluate.fixation_values(self.b.apps, up // nk, sp.rows_read("bolt", rep[up % nk]), self.b.settings)
-                inv = np.asarray(inv).reshape(-1)
-                fix = {k: v[inv] for k, v in once.items()}
-                g = evaluate.bolt(self.b.apps, self.b.cg, self.b.ptr[a], o, self.b.settings, fixation=fix)
-            self.b.evaluations += len(a)
-            m = np.full(len(a), np.inf)
+                bolt = rep[up % nk]
+                g = evaluate.bolt(self.b.apps, self.b.cg, self.b.ptr[up // nk], sp.rows_read("bolt", bolt),
+                                  self.b.settings, codes=fcode[bolt])
+            self.b.evaluations += len(up)
+            m = np.full(len(up), np.inf)
             for cid in self.ids:
                 m = np.minimum(m, g.margins[cid])
-            ok[a, b], mn[a, b], done[a, b] = passes(m), m, True
+            ok[a, b], mn[a, b], done[a, b] = passes(m)[inv], m[inv], True
             if self.ids:  # the second smallest and the failing count, for the nearest design's key
-                _, self.fix_near[0][a, b], self.fix_near[1][a, b] = near_figures(
-                    np.stack([g.margins[cid] for cid in self.ids], axis=1))
+                _, second, failing = near_figures(np.stack([g.margins[cid] for cid in self.ids], axis=1))
+                self.fix_near[0][a, b], self.fix_near[1][a, b] = second[inv], failing[inv]
             else:
                 self.fix_near[0][a, b] = np.inf
         return ok, mn
 
-    def fixation_keys(self):
-        """``(code per bolt, a representative bolt per code)``: bolts equal in every column the fixation reads
-        (:func:`synth.design.bolt_group.fixation_codes`: the format, property class, head form, washer, and the
-        tightening method under the VDI 2230 method) share a code, so the same fixation for any application."""
-        if "fixation_keys" not in self.b.memo:
-            self.b.memo["fixation_keys"] = fixation_codes(self.b.sp.tables["bolt"], self.b.settings)
-        return self.b.memo["fixation_keys"]
+    def bolt_keys(self):
+        """``(code per bolt, a representative bolt per code)``: bolts equal in every column group ``bolt`` reads
+        (:func:`synth.design.bolt_group.bolt_codes`: the fixation's -- format, property class, head form, washer,
+        and the tightening method under the VDI 2230 method -- and the diameter, proof stress and bore the checks
+        read) share a code, so the same figures for any application and core."""
+        if "bolt_keys" not in self.b.memo:
+            self.b.memo["bolt_keys"] = bolt_codes(self.b.sp.tables["bolt"], self.b.settings)
+        return self.b.memo["bolt_keys"]
+
+    def fixation_codes(self):
+        """Each bolt's :func:`synth.design.bolt_group.fixation_codes` (once per batch: the fixation's columns
+        factorised over the table, not over every block of rows)."""
+        if "fixation_codes" not in self.b.memo:
+            self.b.memo["fixation_codes"] = fixation_codes(self.b.sp.tables["bolt"], self.b.settings)[0]
+        return self.b.memo["fixation_codes"]
 
     def wall(self, rows):
         """``(margins (len(rows), n_codes), code per bolt)``: the smallest margin of the bolt checks that read the
