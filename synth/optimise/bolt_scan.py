@@ -1,5 +1,5 @@
 """The bolt's scans of a batch (:class:`synth.optimise.batch.Batch`): the step-10 checks once per application and
-bolt (one fixation call per distinct bolt as the fixation reads it), the checks that read the core (the pivot wall
+bolt as the group reads it (:func:`synth.design.bolt_group.bolt_codes`), the checks that read the core (the pivot wall
 of step 2) per core and distinct bolt diameter; per core row the first feasible bolt in score order, or the largest
 smallest margin and its bolt."""
 
