@@ -45,6 +45,7 @@ from synth import catalog
 from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.assessment import assess_group, columns_of, passes
+from synth.design.bolt_group import bolt_codes, bolt_reads
 from synth.design.combine import combine, nearest_rank
 from synth.design.constraints import REGISTRY, version
 from synth.design.space import SUBSYSTEMS, core_rows, spring_window
@@ -179,23 +180,26 @@ class _Pairs:
         self.best_b = np.full(n_groups, _NO_BINDING, np.int16)  # and its most violated constraint
         self.evaluated = np.zeros(n_groups, bool)
 
-    def add(self, gp: np.ndarray, op: np.ndarray, grp: evaluate.Group) -> None:
-        """Record the pairs ``(gp[i], op[i])`` evaluated as the rows of ``grp`` (``gp`` sorted)."""
+    def add(self, gp: np.ndarray, op: np.ndarray, grp: evaluate.Group, row=None) -> None:
+        """Record the pairs ``(gp[i], op[i])`` evaluated as the rows of ``grp`` (``gp`` sorted); ``row``: the row of
+        ``grp`` of each pair, where pairs the group reads alike share one (default: row ``i``)."""
         a = grp.assessment()   # one judgement of the block: its verdicts and smallest margins
-        ok = a.ok
+        at = (lambda x: x) if row is None else (lambda x: x[row])  # noqa: E731
+        ok = at(a.ok)
         sel = np.flatnonzero(ok)
-        m, b = margins_and_binding(grp, True, sel)
+        m, b = margins_and_binding(grp, True, sel if row is None else row[sel])
         self.g.append(gp[sel])
         self.o.append(op[sel])
         self.m.append(m)
         self.b.append(b)
         rank = grp.rank()  # nearest designs: ranked by the search model (fidelity screening: the screening one)
-        ma = nearest_rank(ok, a.margin_min, a.margin_min if rank is grp else rank.min_margin(objective_only=False))
-        gg, mm, at = _segment_best(gp, ma)
+        ma = nearest_rank(ok, at(a.margin_min),
+                          at(a.margin_min if rank is grp else rank.min_margin(objective_only=False)))
+        gg, mm, first = _segment_best(gp, ma)
         upd = mm > self.best[gg]
         if upd.any():
             self.best[gg[upd]] = mm[upd]
-            self.best_b[gg[upd]] = margins_and_binding(rank, False, at[upd])[1]
+            self.best_b[gg[upd]] = margins_and_binding(rank, False, (first if row is None else row[first])[upd])[1]
         self.evaluated[gp] = True
 
     def by_group(self, n_groups: int):
@@ -475,21 +479,30 @@ def _stage_columns(ids: tuple) -> tuple:
 
 
 def _bolt(apps, cat, cg, rep, settings, acc: _Pairs):
+    """Every bolt option against the groups ``rep``: the group once per group and bolt as it reads it
+    (:func:`synth.design.bolt_group.bolt_codes`: bolts equal in every column it reads have the same values and
+    margins), each pair recorded with its key's row, in option order. Returns the pairs judged."""
     if not len(rep):
         return 0
     nb = cat.n_options("bolt")
     rows = cat.option_row["bolt"]
+    t = cat.space.tables["bolt"]
+    code, first = bolt_codes({k: np.asarray(t[k])[rows] for k in bolt_reads(settings) if k in t}, settings)
+    nk = len(first)
     ua, slot = np.unique(cg.values["app"][rep], return_inverse=True)
     slot = np.asarray(slot).reshape(-1)
-    fa, fb = (x.ravel() for x in np.meshgrid(ua, np.arange(nb), indexing="ij"))
-    fix = evaluate.fixation_values(apps, fa, cat.space.rows_read("bolt", rows[fb]), settings)   # per application and bolt
-    gp, op = (x.ravel() for x in np.meshgrid(np.arange(len(rep)), np.arange(nb), indexing="ij"))
-    for blk in _blocks(len(gp)):
-        g, o = gp[blk], op[blk]
-        idx = slot[g] * nb + o
-        acc.add(g, o, evaluate.bolt(apps, cg, rep[g], cat.space.rows_read("bolt", rows[o]), settings,
-                             fixation={k: v[idx] for k, v in fix.items()}))
-    return len(gp)
+    fa, fb = (x.ravel() for x in np.meshgrid(ua, first, indexing="ij"))
+    fix = evaluate.fixation_values(apps, fa, cat.space.rows_read("bolt", rows[fb]), settings)   # per application and key
+    per = max(BLOCK_PAIRS // nb, 1)  # groups per block (all their bolts)
+    for lo in range(0, len(rep), per):
+        gs = np.arange(lo, min(lo + per, len(rep)))
+        g, k = (x.ravel() for x in np.meshgrid(gs, np.arange(nk), indexing="ij"))
+        idx = slot[g] * nk + k
+        grp = evaluate.bolt(apps, cg, rep[g], cat.space.rows_read("bolt", rows[first[k]]), settings,
+                            fixation={key: v[idx] for key, v in fix.items()})
+        gp, op = (x.ravel() for x in np.meshgrid(gs, np.arange(nb), indexing="ij"))
+        acc.add(gp, op, grp, row=(gp - lo) * nk + code[op])
+    return len(rep) * nb
 
 
 def _core_text(cat: Catalogue, row: int) -> str:
