@@ -35,6 +35,7 @@ import numpy as np
 
 from synth.design.evaluate import (SPRING_OPTION_COLUMNS, Group, axial_judged, bolt, bushing, fixation_values, spring,
                                    spring_keys)
+from synth.design.bolt_group import bolt_codes
 from synth.design.group import core_values
 
 __all__ = ["SubTable", "Subsystem", "declared", "CORE_PART_KEYS", "family", "names", "declare", "withdraw",
@@ -110,16 +111,18 @@ class Subsystem:
         return self.evaluate(apps, sp, cg, pos, settings, self, span=span)
 
 
-def scatter(avail, i, k, g: Group) -> SubTable:
-    """The :class:`SubTable` of group ``g`` evaluated at the available pairs ``(i, k)`` of ``avail``."""
+def scatter(avail, i, k, g: Group, row=None) -> SubTable:
+    """The :class:`SubTable` of group ``g`` evaluated at the available pairs ``(i, k)`` of ``avail`` (``row``: the
+    row of ``g`` of each pair, where pairs the group reads alike share one; default row ``j`` for pair ``j``)."""
     shape = avail.shape
     feas = np.zeros(shape, dtype=bool)
     marg = np.full(shape, -np.inf)
     mmin, second, fails = np.full(shape, -np.inf), np.full(shape, -np.inf), np.zeros(shape)
+    at = (lambda x: x) if row is None else (lambda x: x[row])  # noqa: E731
     a = g.assessment()
-    feas[i, k], marg[i, k] = a.ok, a.objective_margin
+    feas[i, k], marg[i, k] = at(a.ok), at(a.objective_margin)
     # nearest: ranked by the search model
-    mmin[i, k], second[i, k], fails[i, k] = (a if g.rank() is g else g.rank().assessment()).near
+    mmin[i, k], second[i, k], fails[i, k] = (at(x) for x in (a if g.rank() is g else g.rank().assessment()).near)
     return SubTable(avail, feas & avail, marg, mmin, second, fails)
 
 
@@ -141,12 +144,18 @@ def evaluate_axial(group_fn):
 
 
 def _bolt(apps, sp, cg, pos, settings, sub, span=None):
+    """Every bolt against core rows ``pos``: the group once per core row and bolt as it reads it
+    (:func:`~synth.design.bolt_group.bolt_codes`: bolts equal in every column it reads have the same values and
+    margins), each pair given its key's figures."""
     nk = sp.n(sub.name)
-    opts = sp.rows(sub.name, np.arange(nk))
-    fix = fixation_values(apps, np.zeros(nk, dtype=np.int64), opts, settings)  # per bolt row: no core dependence
+    code, first = bolt_codes(sp.tables[sub.name], settings)
+    nc = len(first)
+    opts = sp.rows(sub.name, first)
+    fix = fixation_values(apps, np.zeros(nc, dtype=np.int64), opts, settings)  # per bolt key: no core dependence
+    i, c = (x.ravel() for x in np.meshgrid(np.arange(len(pos)), np.arange(nc), indexing="ij"))
+    g = bolt(apps, cg, pos[i], sp.rows(sub.name, first[c]), settings, fixation={key: v[c] for key, v in fix.items()})
     i, k = (x.ravel() for x in np.meshgrid(np.arange(len(pos)), np.arange(nk), indexing="ij"))
-    g = bolt(apps, cg, pos[i], sp.rows(sub.name, k), settings, fixation={key: v[k] for key, v in fix.items()})
-    out = scatter(sub.available(sp, cg.values, pos), i, k, g)
+    out = scatter(sub.available(sp, cg.values, pos), i, k, g, row=i * nc + code[k])
     return out, int(out.available.sum())
 
 
