@@ -101,6 +101,26 @@ def test_checks_before_the_physics_are_the_groups_own(axial_rows):
 
 
 @pytest.mark.parametrize("fidelity", ["screening", "full"])
+def test_checks_before_the_wear_are_the_groups_own(axial_rows, fidelity):
+    """The axial checks the platform's feasibility evaluates before the plastic wear (evaluate.axial_before_wear:
+    the cone spring sized, no wear) carry the whole group's margins and states bit for bit, hold every check but
+    those that read the wear, and reject rows the whole group rejects (here most: the wear is solved for few)."""
+    apps, cg, rr, o, st = axial_rows[fidelity]
+    with np.errstate(all="ignore"):
+        full = E.axial(apps, cg, rr, o, st, engine="numba")
+        pre = E.axial_before_wear(apps, cg, rr, o, st, engine="numba")
+    wear = {c for c in full.margins if set(REGISTRY[c].reads()) & set(E.PLASTIC_WEAR_VALUES)}
+    assert wear >= {"damping_eol", "damper_pad_wear", "endcap_spacer_wear"}
+    assert set(pre.margins) == set(full.margins) - wear
+    for k, m in pre.margins.items():
+        assert np.array_equal(m, full.margins[k]), k
+        assert np.array_equal(pre.state[k], full.state[k]), k
+    ok = pre.ok()
+    assert ok.any() and not ok.all() and not (full.ok() & ~ok).any()
+    assert (pre.min_margin(objective_only=False) >= full.min_margin(objective_only=False)).all()
+
+
+@pytest.mark.parametrize("fidelity", ["screening", "full"])
 def test_axial_group_on_the_twins_equals_the_reference(axial_rows, fidelity):
     apps, cg, rr, o, st = axial_rows[fidelity]
     with np.errstate(all="ignore"):

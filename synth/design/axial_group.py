@@ -16,7 +16,8 @@ from synth.kernels import axial as axial_engine  # the cone spring and the wear 
 from synth.model import packaging, stackup
 
 __all__ = ["MADE_CONE_SPRING_COLUMNS", "CONE_SPRING_VALUES", "PLASTIC_WEAR_VALUES", "FIDELITY_VALUES",
-           "fidelity_free", "axial", "axial_before_physics", "axial_judged", "axial_full", "fidelity_free_ok"]
+           "fidelity_free", "axial", "axial_before_physics", "axial_before_wear", "axial_judged", "axial_full",
+           "fidelity_free_ok"]
 
 
 #: optional axial option columns of a made cone spring -> the argument of synth.model.disc_spring.cone_spring
@@ -53,13 +54,14 @@ def fidelity_free() -> tuple:
 
 
 def axial(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT, time_points: int = 0,
-          engine: str | None = None) -> Group:
+          engine: str | None = None, wear: bool = True) -> Group:
     """Group ``axial`` (Table 4, belt plane, cone spring, plastic wear) for core rows ``r`` and axial options ``o``.
 
     ``o``: the axial table's columns (spacer, cone-spring variant). Rows pair a core with a damper pad with
     a real option, or a core without one with the ``none`` option. ``time_points`` keeps the wear history.
     ``engine``: the cone spring's and the wear's (:mod:`synth.kernels.axial`; None: the numpy reference), chosen
-    by a search of many rows with :func:`synth.kernels.engines.axial`.
+    by a search of many rows with :func:`synth.kernels.engines.axial`. ``wear=False``: without the plastic wear,
+    only the checks that read none of its values (:func:`axial_before_wear`).
     """
     p = parts.arrays()
     v, a, f, cv, real, es_h, de, di = _axial_base(apps, cg, r, o)
@@ -99,6 +101,8 @@ def axial(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT, time_points
         lo, hi = p.cone_ranges[rng]
         v[f"cone_spring_{key}_min"], v[f"cone_spring_{key}_max"] = np.full(n, lo), np.full(n, hi)
     v["damping_eol_limit_nm"] = f["damping_eol_limit_nm"]
+    if not wear:
+        return finish("axial", v, apps, a, checks=_known_checks(v), rules=settings.rules, core=cv)
     w = i[apps.durability_given[a][i]]
     worn, at = _rows_of(w, n)  # every row worn: whole columns, as above
     for k in PLASTIC_WEAR_VALUES:
@@ -165,10 +169,24 @@ def axial_before_physics(apps, cg: Group, r, o: dict, settings: Settings = DEFAU
     a value of the physics is left out (the registry as it is now)."""
     v, a, _, cv, real, _, de, di = _axial_base(apps, cg, r, o)
     v.update(_cone_diameters(cv, real, de, di))
-    checks = tuple(c for c in by_group("axial") if c.physics is None
-                   and all(k in v or k in CONSTANT_LIMITS for k in (c.value, c.limit, c.scale, c.applies,
-                                                                     c.objective_unless) if k))
-    return finish("axial", v, apps, a, checks=checks, rules=settings.rules, core=cv)
+    return finish("axial", v, apps, a, checks=_known_checks(v), rules=settings.rules, core=cv)
+
+
+def _known_checks(v: dict) -> tuple:
+    """The checks of group ``axial`` whose margin reads only values ``v`` has (or constants), without a physics
+    function: those an evaluation that stops early (:func:`axial_before_physics`, :func:`axial_before_wear`) can
+    judge, with the margins the whole group gives them (the registry as it is now)."""
+    return tuple(c for c in by_group("axial") if c.physics is None
+                 and all(k in v or k in CONSTANT_LIMITS for k in (c.value, c.limit, c.scale, c.applies,
+                                                                   c.objective_unless) if k))
+
+
+def axial_before_wear(apps, cg: Group, r, o: dict, settings: Settings = DEFAULT, engine: str | None = None) -> Group:
+    """The checks of group ``axial`` that read nothing of the plastic wear (Table 4, the belt plane, the cone
+    spring), with the margins :func:`axial` gives them, at the cost of the cone spring: a row that fails one fails
+    the group at ``settings``'s fidelity, and the group's smallest margin is at most theirs (a search need not
+    solve its wear; the wear is most of the group's cost). ``engine``: as :func:`axial`'s."""
+    return axial(apps, cg, r, o, settings, engine=engine, wear=False)
 
 
 def _rows_of(idx: np.ndarray, n: int):

@@ -41,7 +41,8 @@ from synth.design.group import (AXIAL_CORE_VALUES, BOLT_CORE_VALUES, BUSHING_COR
                                 NOT_APPLICABLE, NOT_VERIFIED, SPRING_KEY_VALUES, Fields, Group, add_physics,
                                 const as _const, core_values, finish, read_core)
 from synth.design.axial_group import (CONE_SPRING_VALUES, FIDELITY_VALUES, MADE_CONE_SPRING_COLUMNS,
-                                      PLASTIC_WEAR_VALUES, axial, axial_before_physics, axial_full, axial_judged,
+                                      PLASTIC_WEAR_VALUES, axial, axial_before_physics, axial_before_wear, axial_full,
+                                      axial_judged,
                                       fidelity_free, fidelity_free_ok)
 from synth.design.spring_group import (SPRING_INPUTS, SPRING_OPTION_COLUMNS, SPRING_TOLERANCE_COLUMNS, spring,
                                        spring_inputs, spring_keys, spring_values)
@@ -54,7 +55,7 @@ __all__ = ["Settings", "DEFAULT", "core_values", "SPRING_KEY_VALUES", "SPRING_LI
            "spring_values", "SPRING_OPTION_COLUMNS", "drive_values", "fixation_values", "bolt_core", "bolt_core_checks", "BUSHING_CORE_VALUES", "AXIAL_CORE_VALUES",
            "BOLT_CORE_VALUES", "axial_judged", "axial_full", "FIDELITY_TEXT", "UNVERIFIED_NOTE", "FIDELITY_VALUES",
            "fidelity_free_ok",
-           "CONSTANT_LIMITS", "add_physics", "CONE_SPRING_VALUES", "PLASTIC_WEAR_VALUES", "axial_before_physics",
+           "CONSTANT_LIMITS", "add_physics", "CONE_SPRING_VALUES", "PLASTIC_WEAR_VALUES", "axial_before_physics", "axial_before_wear",
            "fidelity_free"]  # FIDELITY_FREE: read at call time (__getattr__)
 
 

@@ -307,11 +307,42 @@ def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs, group=evaluate.a
     j = np.arange(len(gp)) - np.repeat(np.cumsum(cnt) - cnt, cnt)
     op = np.where(pad[gp] < 0, cat.axial_none, cat.axial_option(np.maximum(pad[gp], 0), j))
     engine = engines.axial(settings, AXIAL_ENGINE)
+    cut = group is evaluate.axial_judged   # the search: the wear solved only where the checks before it pass
+    skipped = []
     for blk in _blocks(len(gp), BLOCK_PAIRS // 4):
         g, o = gp[blk], op[blk]
+        if cut:
+            pre = evaluate.axial_before_wear(apps, cg, rep[g], cat.space.rows_read("axial", cat.option_row["axial"][o]),
+                                             settings, engine=engine).ok()
+            if not pre.all():
+                skipped.append(g[~pre])
+                g, o = g[pre], o[pre]
+        if len(g):
+            acc.add(g, o, group(apps, cg, rep[g], cat.space.rows_read("axial", cat.option_row["axial"][o]),
+                                settings, engine=engine))
+    if skipped:
+        _without_a_pass(apps, cat, cg, rep, gp, op, np.unique(np.concatenate(skipped)), settings, acc, group, engine)
+    return len(gp)
+
+
+def _without_a_pass(apps, cat, cg, rep, gp, op, groups, settings, acc: _Pairs, group, engine) -> None:
+    """The groups ``groups`` (some of whose pairs failed a check before the wear and were not solved) that have no
+    feasible pair: every pair of theirs again with the whole group, so that their nearest option (the largest
+    smallest margin, :func:`~synth.design.combine.nearest_rank`) is the one every pair evaluated gives. Where a
+    group has a feasible pair, an unsolved pair (infeasible: it fails a check the whole group holds with the same
+    margin) ranks below it and changes nothing."""
+    has = np.zeros(len(rep), bool)
+    for x in acc.g:
+        has[x] = True
+    again = groups[~has[groups]]
+    if not len(again):
+        return
+    acc.best[again], acc.best_b[again] = -np.inf, _NO_BINDING
+    sel = np.flatnonzero(np.isin(gp, again))
+    for blk in _blocks(len(sel), BLOCK_PAIRS // 4):
+        g, o = gp[sel[blk]], op[sel[blk]]
         acc.add(g, o, group(apps, cg, rep[g], cat.space.rows_read("axial", cat.option_row["axial"][o]), settings,
                             engine=engine))
-    return len(gp)
 
 
 def _judge_undecided(apps, cat, cg, a, pos, gid, rep, pairs, pad_code, settings) -> int:
