@@ -341,10 +341,20 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     gone = cand[dom]
     bad_pat = np.zeros(len(w.patterns), bool)
     bad_pat[upat[np.isin(part_u, gone)]] = True
-    for n in np.unique(r_of[bad_pat[pats]]):                                  # the rows that lose an option
-        i = rows[n]
-        keep = ~bad_pat[w.row_pats[i]]
-        w.row_pats[i], w.row_cost[i] = w.row_pats[i][keep], w.row_cost[i][keep]
+    # the rows that lose an option take their kept options from one filtering of the concatenation (``pats`` and
+    # ``cost`` are the rows' arrays end to end, unchanged since: the same values and order as filtering each row,
+    # in each row's own types; the new arrays share one buffer holding those rows' options only)
+    kept = ~bad_pat[pats]
+    lose = np.zeros(len(rows), bool)
+    lose[r_of[~kept]] = True
+    if lose.any():
+        sel = kept & lose[r_of]
+        end = np.cumsum(np.bincount(r_of[sel], minlength=len(rows)))
+        new_p, new_c = pats[sel], cost[sel]
+        for n in np.flatnonzero(lose).tolist():
+            i, lo, hi = rows[n], int(end[n - 1]) if n else 0, int(end[n])
+            w.row_pats[i] = new_p[lo:hi].astype(w.row_pats[i].dtype, copy=False)
+            w.row_cost[i] = new_c[lo:hi].astype(w.row_cost[i].dtype, copy=False)
     return int(dom.sum())
 
 
