@@ -297,10 +297,10 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     if len(cand) < 2:
         return 0
     nt, nc = len(tok_ids), len(cand)
-    by_part = sp.csc_matrix((cost[has] + 1.0, (tok, pcol)), shape=(nt, nc))   # +1: a zero cost is stored
-    by_tok = by_part.tocsr()
-    cnt = np.diff(by_part.indptr)
-    tok_len = np.diff(by_tok.indptr)
+    # each (token, part) pair once (a row holds a pattern once, and rest + part is the pattern): per part its
+    # tokens, per token its parts, by counting
+    cnt = np.bincount(pcol, minlength=nc)
+    tok_len = np.bincount(tok, minlength=nt)
     bits = _token_bits(pcol, tok, nc, nt)                                      # the token set of each part
     weight, fixed = w.part_weight[cand], w.part_fixed_cost[cand]
     if cost_obj:
@@ -318,13 +318,17 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     # per part j: its smallest token (the first in its column on ties: a dominator is in it), and the parts of that
     # token as candidate dominators k, kept when no worse on count, weight and fixed cost and when j's tokens are
     # all k's (bit sets, a compiled test per pair stopping at the first word refuting it); no Python loop over j
-    col = np.repeat(np.arange(nc), cnt)
-    tl = tok_len[by_part.indices]
-    low = np.flatnonzero(tl == np.minimum.reduceat(tl, by_part.indptr[:-1])[col])
-    t0 = by_part.indices[low[np.unique(col[low], return_index=True)[1]]]
+    t0 = np.full(nc, np.iinfo(np.int64).max)                 # the smallest (token size, token) of each part
+    np.minimum.at(t0, pcol, tok_len[tok].astype(np.int64) * nt + tok)
+    t0 %= nt
     n_k = tok_len[t0]
     pj = np.repeat(np.arange(nc), n_k)
-    pk = by_tok.indices[np.repeat(by_tok.indptr[t0], n_k) + np.arange(len(pj)) - np.repeat(np.cumsum(n_k) - n_k, n_k)]
+    sel = np.zeros(nt, bool)
+    sel[t0] = True
+    at = np.flatnonzero(sel[tok])                             # the pairs of those tokens, by token then part
+    at = at[np.lexsort((pcol[at], tok[at]))]
+    first = np.searchsorted(tok[at], t0)
+    pk = pcol[at][np.repeat(first, n_k) + np.arange(len(pj)) - np.repeat(np.cumsum(n_k) - n_k, n_k)]
     keep = (pk != pj) & (cnt[pk] >= cnt[pj]) & (weight[pk] <= weight[pj]) & (fixed[pk] <= fixed[pj])
     pj, pk = pj[keep], pk[keep]
     same = (cnt[pk] == cnt[pj]) & (weight[pk] == weight[pj]) & (fixed[pk] == fixed[pj])
