@@ -371,13 +371,17 @@ def test_feasibility_data_are_held_compactly(sample):
     assert n > 0 and len({id(b.names) for a in pf.apps for g in a.option_binding.values() for b in g}) == 1
 
 
-def test_dominated_cores_removes_what_the_pairwise_definition_does(sample):
+@pytest.mark.parametrize("batch", [None, 64])
+def test_dominated_cores_removes_what_the_pairwise_definition_does(sample, batch, monkeypatch):
     """R3 (:func:`synth.platform.prune.dominated_cores`: every pair of an application's cores at once, subset tests
     on bit sets) removes exactly the cores its definition does, checked pair by pair on Python sets, on real data in
     a second round of the reductions (where it removes some: synthetic data never exercise it; the cost objective
-    removes none on this sample, its cores' costs differ)."""
+    removes none on this sample, its cores' costs differ); also with the applications judged in batches of at most
+    64 pairs of cores (:data:`synth.platform.prune.CORE_PAIRS`, which bounds its memory)."""
     from synth.platform import prune as R
     from synth.platform.compile import compile_portfolio
+    if batch is not None:
+        monkeypatch.setattr(R, "CORE_PAIRS", batch)
     w = compile_portfolio(sample[1], "variants")
     R.prune(w, max_rounds=1)
     R.dominated_options(w)

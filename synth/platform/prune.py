@@ -414,35 +414,16 @@ def _within_pairs(bounds: np.ndarray, take: np.ndarray) -> tuple[np.ndarray, np.
     return a[keep].astype(np.int64), b[keep].astype(np.int64)
 
 
-def dominated_cores(w: Work) -> int:
-    """R3. Returns the number of cores removed.
+#: the pairs of cores :func:`dominated_cores` judges at once (about 50 B each in its transient arrays: 2 million,
+#: about 100 MB, bounds its memory at any number of applications)
+CORE_PAIRS = 1 << 21
 
-    Every pair of cores of one application at once (no loop over applications): ``a`` dominates-or-ties ``b``
-    (``better``) when ``parts(a) <= parts(b)``, for every subsystem ``a``'s row holds ``b``'s options (a dropped
-    row holds everything, a live row not a dropped one's "everything") and, for the cost objective, ``a`` costs no
-    more; ``b`` goes when some ``a`` does so strictly or ties with it at a lower index. Subset tests on bit sets
-    (:func:`_subsets`), every comparison that of the per-application matrices it replaces."""
-    cr = _core_rows(w)
-    cost_obj = w.objective == "cost"
-    pooled = _pooled(w) if cost_obj else None
-    alive = np.flatnonzero(w.core_alive)
-    if not len(alive):
-        return 0
-    bounds = np.flatnonzero(np.r_[True, np.diff(w.core_app[alive]) != 0, True])
-    # an application whose cores have distinct patterns of one size has no core whose parts are among another's
-    # (a subset of equal size is equal): nothing to test there
-    seg = np.repeat(np.arange(len(bounds) - 1), np.diff(bounds))
-    pat = w.core_pattern[alive].astype(np.int64)
-    n_pat = np.bincount(np.unique(seg * (int(pat.max()) + 1) + pat) // (int(pat.max()) + 1), minlength=len(bounds) - 1)
-    up, at = np.unique(pat, return_inverse=True)
-    at = np.asarray(at).reshape(-1)
-    size = np.fromiter((len(w.patterns[k]) for k in up), np.int64, len(up))[at]
-    plain = (n_pat == np.diff(bounds)) & (np.minimum.reduceat(size, bounds[:-1]) == np.maximum.reduceat(size, bounds[:-1]))
-    a, b = _within_pairs(bounds, ~plain & (np.diff(bounds) >= 2))     # positions in ``alive``
-    if not len(a):
-        return 0
-    # parts(a) <= parts(b): the core patterns as bit sets of their parts
-    sub = _subset_mask(_set_bits_of([w.patterns[k] for k in up]), at[a], at[b])
+
+def _dominated_in(w: Work, cr, alive, bounds, take, pat_bits, at, cost_obj, pooled) -> np.ndarray:
+    """The cores R3 removes among the applications ``take`` (segments ``bounds`` of ``alive``; positions in
+    ``alive``, ascending): see :func:`dominated_cores`."""
+    a, b = _within_pairs(bounds, take)                                 # positions in ``alive``
+    sub = _subset_mask(pat_bits, at[a], at[b])
     a, b = a[sub], b[sub]
     for si in range(len(SUBSYSTEMS)):
         ra, rb = cr[alive[a], si], cr[alive[b], si]
@@ -468,9 +449,54 @@ def dominated_cores(w: Work) -> int:
     # b goes when some a is better and not the reverse, or both and a comes first
     n = len(alive)
     key, rev = a * n + b, b * n + a                                  # ``key`` ascending (pairs in loop order)
-    at_rev = np.minimum(np.searchsorted(key, rev), max(len(key) - 1, 0))
-    mutual = key[at_rev] == rev if len(key) else np.zeros(0, bool)
-    gone = np.unique(b[~mutual | (a < b)])
+    if not len(key):
+        return np.zeros(0, np.int64)
+    mutual = key[np.minimum(np.searchsorted(key, rev), len(key) - 1)] == rev
+    return np.unique(b[~mutual | (a < b)]).astype(np.int64)
+
+
+def dominated_cores(w: Work) -> int:
+    """R3. Returns the number of cores removed.
+
+    Every pair of cores of one application at once (no loop over applications): ``a`` dominates-or-ties ``b``
+    (``better``) when ``parts(a) <= parts(b)``, for every subsystem ``a``'s row holds ``b``'s options (a dropped
+    row holds everything, a live row not a dropped one's "everything") and, for the cost objective, ``a`` costs no
+    more; ``b`` goes when some ``a`` does so strictly or ties with it at a lower index. Subset tests on bit sets
+    (:func:`_subsets`), every comparison that of the per-application matrices it replaces."""
+    cr = _core_rows(w)
+    cost_obj = w.objective == "cost"
+    pooled = _pooled(w) if cost_obj else None
+    alive = np.flatnonzero(w.core_alive)
+    if not len(alive):
+        return 0
+    bounds = np.flatnonzero(np.r_[True, np.diff(w.core_app[alive]) != 0, True])
+    # an application whose cores have distinct patterns of one size has no core whose parts are among another's
+    # (a subset of equal size is equal): nothing to test there
+    seg = np.repeat(np.arange(len(bounds) - 1), np.diff(bounds))
+    pat = w.core_pattern[alive].astype(np.int64)
+    n_pat = np.bincount(np.unique(seg * (int(pat.max()) + 1) + pat) // (int(pat.max()) + 1), minlength=len(bounds) - 1)
+    up, at = np.unique(pat, return_inverse=True)
+    at = np.asarray(at).reshape(-1)
+    size = np.fromiter((len(w.patterns[k]) for k in up), np.int64, len(up))[at]
+    plain = (n_pat == np.diff(bounds)) & (np.minimum.reduceat(size, bounds[:-1]) == np.maximum.reduceat(size, bounds[:-1]))
+    take = ~plain & (np.diff(bounds) >= 2)
+    if not take.any():
+        return 0
+    pat_bits = _set_bits_of([w.patterns[k] for k in up])      # parts(a) <= parts(b): patterns as bit sets of parts
+    # the applications in batches of at most CORE_PAIRS pairs (one application may hold more): each application's
+    # cores are judged among themselves, so a batch is judged alone
+    size2 = np.where(take, np.diff(bounds) ** 2, 0)
+    cut = [0]
+    acc = 0
+    for k, x in enumerate(size2.tolist()):
+        if acc and acc + x > CORE_PAIRS:
+            cut.append(k)
+            acc = 0
+        acc += x
+    cut.append(len(size2))
+    seg_no = np.arange(len(size2))
+    gone = np.concatenate([_dominated_in(w, cr, alive, bounds, take & (seg_no >= lo) & (seg_no < hi), pat_bits, at,
+                                         cost_obj, pooled) for lo, hi in zip(cut[:-1], cut[1:])])
     if len(gone):
         w.core_alive[alive[gone]] = False
         for i in _live_rows(w):
