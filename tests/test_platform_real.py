@@ -369,3 +369,42 @@ def test_feasibility_data_are_held_compactly(sample):
                 assert set(names) <= ids and [b[i] for i in range(len(b))] == list(b) == names
                 n += len(f)
     assert n > 0 and len({id(b.names) for a in pf.apps for g in a.option_binding.values() for b in g}) == 1
+
+
+@pytest.mark.parametrize("batch", [None, 64])
+def test_dominated_cores_removes_what_the_pairwise_definition_does(sample, batch, monkeypatch):
+    """R3 (:func:`synth.platform.prune.dominated_cores`: every pair of an application's cores at once, subset tests
+    on bit sets) removes exactly the cores its definition does, checked pair by pair on Python sets, on real data in
+    a second round of the reductions (where it removes some: synthetic data never exercise it; the cost objective
+    removes none on this sample, its cores' costs differ); also with the applications judged in batches of at most
+    64 pairs of cores (:data:`synth.platform.prune.CORE_PAIRS`, which bounds its memory)."""
+    from synth.platform import prune as R
+    from synth.platform.compile import compile_portfolio
+    if batch is not None:
+        monkeypatch.setattr(R, "CORE_PAIRS", batch)
+    w = compile_portfolio(sample[1], "variants")
+    R.prune(w, max_rounds=1)
+    R.dominated_options(w)
+    R.dominated_variants(w)
+    row = {}                                   # (core, subsystem) -> its live row
+    for i, live in enumerate(w.row_alive):
+        for c in (w.row_cores[i] if live else ()):
+            row[int(c), w.row_sub[i]] = i
+
+    def better(a, b):   # a's parts among b's, a's rows hold b's options (a dropped row holds all)
+        if not set(w.patterns[w.core_pattern[a]]) <= set(w.patterns[w.core_pattern[b]]):
+            return False
+        for si in range(len(SUBSYSTEMS)):
+            ra, rb = row.get((a, si), -1), row.get((b, si), -1)
+            if ra >= 0 and (rb < 0 or not set(w.row_pats[rb].tolist()) <= set(w.row_pats[ra].tolist())):
+                return False
+        return True
+
+    alive = np.flatnonzero(w.core_alive)
+    expect = set()
+    for app in np.unique(w.core_app[alive]):
+        cs = alive[w.core_app[alive] == app].tolist()
+        expect |= {b for b in cs if any(better(a, b) and (not better(b, a) or a < b) for a in cs if a != b)}
+    n = R.dominated_cores(w)
+    assert n == len(expect) > 0
+    assert set(alive[~w.core_alive[alive]].tolist()) == expect

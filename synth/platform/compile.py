@@ -152,6 +152,19 @@ def _why_unservable(a, dead_by: dict, n_cores: int, floor: bool) -> str:
 _I32 = np.iinfo(np.int32).max   # indices below this are held as int32 (asserted where made)
 
 
+def _flat(xs: list, dtype, n: int) -> np.ndarray:
+    """The 1-d arrays (or lists) ``xs`` end to end (``n`` entries; ``dtype``: as ``np.asarray`` takes it, then the
+    result's): one concatenation, or each flattened first where one is not a flat sequence (the same values).
+
+    >>> _flat([np.array([1, 2]), [3]], float, 3).tolist(), _flat([np.array([[1], [2]])], None, 2).tolist()
+    ([1.0, 2.0, 3.0], [1, 2])
+    """
+    out = np.concatenate(xs)
+    if out.ndim != 1 or len(out) != n:
+        out = np.concatenate([np.asarray(x, dtype).reshape(-1) for x in xs])
+    return out if dtype is None else out.astype(dtype, copy=False)
+
+
 def flat_groups(pf: PortfolioFeasibility, s: str):
     """Every application's option groups of subsystem ``s`` one after the other: ``(idx, margin, cost, group,
     gptr)``, the options' indices, margins and unit costs (each application's own), the group of each (numbered over
@@ -165,8 +178,8 @@ def flat_groups(pf: PortfolioFeasibility, s: str):
     # no copy beyond the concatenations (at 10,000 applications a copy of one of these is 350 MB); option indices
     # and group numbers as int32 (half the memory; every use indexes with them or widens them to int64 first)
     assert len(pf.options[s][SUBSYSTEM_FAMILIES[s][0]]) < _I32 and len(feas) < _I32, "flat_groups: int32 overflow"
-    idx = np.concatenate([np.asarray(x).reshape(-1) for x in feas]).astype(np.int32)
-    mar = np.concatenate([np.asarray(x, float).reshape(-1) for x in (m for a in pf.apps for m in a.option_margin[s])])
+    idx = _flat(feas, None, sum(lens)).astype(np.int32)
+    mar = _flat([m for a in pf.apps for m in a.option_margin[s]], float, sum(lens))
     grp = np.repeat(np.arange(len(feas), dtype=np.int32), lens)
     optr = np.r_[0, np.cumsum(lens)][gptr]
     cost = np.concatenate([app_option_cost(pf, a, s)[idx[optr[i]:optr[i + 1]]] for i, a in enumerate(pf.apps)])

@@ -206,9 +206,11 @@ class _Pairs:
         """``(ptr, options, margins, bindings)``: the feasible options of each group (CSR, options ascending)."""
         cat = (lambda xs, dt: np.concatenate(xs).astype(dt) if xs else np.zeros(0, dt))  # noqa: E731
         g, o, m, b = cat(self.g, np.int64), cat(self.o, np.int64), cat(self.m, float), cat(self.b, np.int16)
-        order = np.lexsort((o, g))
-        ptr = np.searchsorted(g[order], np.arange(n_groups + 1))
-        return ptr, o[order], m[order], b[order]
+        if len(g) > 1 and not ((g[1:] > g[:-1]) | ((g[1:] == g[:-1]) & (o[1:] >= o[:-1]))).all():
+            order = np.lexsort((o, g))   # else already in order (the blocks' pairs come group by group): no gathers
+            g, o, m, b = g[order], o[order], m[order], b[order]
+        ptr = np.searchsorted(g, np.arange(n_groups + 1))
+        return ptr, o, m, b
 
 
 def _blocks(n: int, size: int = BLOCK_PAIRS):
@@ -551,6 +553,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
     table = np.array(list(REGISTRY) + [""], dtype=object)
     grouped = {s: (ptr, o.astype(np.int32), m, np.minimum(b, len(table) - 1).astype(np.int16))
                for s, (ptr, o, m, b) in grouped.items()}
+    has_option = {s: np.diff(g[0]) > 0 for s, g in grouped.items()}   # per group: a feasible option
     app_of_group = {s: a[rep[s]] for s in SUBSYSTEMS}
     first_group = {s: np.searchsorted(app_of_group[s], np.arange(n + 1)) for s in SUBSYSTEMS}
     pos_app = a[pos]
@@ -569,7 +572,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             feasible[s] = [o[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
             margin[s] = [m[ptr[g]:ptr[g + 1]] for g in range(g0, g1)]
             binding[s] = [Names(b[ptr[g]:ptr[g + 1]], table) for g in range(g0, g1)]
-            complete &= (np.diff(ptr)[g0:g1] > 0)[group[s]]
+            complete &= has_option[s][g0:g1][group[s]]
         d = inputs[i]
         af = AppFeasibility(
             app_id=str(ids[i]), core_parts={f: cat.core_codes[f][crow[sel]] for f in cat.core_codes},

@@ -213,18 +213,30 @@ def _token_bits(part: np.ndarray, tok: np.ndarray, n_parts: int, n_tok: int) -> 
     return bits
 
 
-def _subsets(bits: np.ndarray, pj: np.ndarray, pk: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The pairs ``(pj, pk)`` whose bit set ``bits[pj]`` lies inside ``bits[pk]``, in their order (compiled, each pair
-    stopping at the first word that refutes it: :func:`synth.kernels.bitsets.subset_pairs`).
+def _subset_mask(bits: np.ndarray, pj: np.ndarray, pk: np.ndarray) -> np.ndarray:
+    """Per pair ``(pj[p], pk[p])``: whether the bit set ``bits[pj[p]]`` lies inside ``bits[pk[p]]`` (compiled, each
+    pair stopping at the first word that refutes it: :func:`synth.kernels.bitsets.subset_pairs`).
 
     >>> b = np.array([[1, 2], [3, 2], [1, 0]], np.uint64)
-    >>> [x.tolist() for x in _subsets(b, np.array([0, 0, 2, 1]), np.array([1, 2, 0, 0]))]
-    [[0, 2], [1, 0]]
+    >>> _subset_mask(b, np.array([0, 0, 2, 1]), np.array([1, 2, 0, 0])).tolist()
+    [True, False, True, False]
     """
     from synth.kernels import bitsets
     ok = np.empty(len(pj), bool)
     bitsets.subset_pairs(np.ascontiguousarray(bits), np.ascontiguousarray(pj, np.int64),
                          np.ascontiguousarray(pk, np.int64), ok)
+    return ok
+
+
+def _subsets(bits: np.ndarray, pj: np.ndarray, pk: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs ``(pj, pk)`` whose bit set ``bits[pj]`` lies inside ``bits[pk]``, in their order
+    (:func:`_subset_mask`).
+
+    >>> b = np.array([[1, 2], [3, 2], [1, 0]], np.uint64)
+    >>> [x.tolist() for x in _subsets(b, np.array([0, 0, 2, 1]), np.array([1, 2, 0, 0]))]
+    [[0, 2], [1, 0]]
+    """
+    ok = _subset_mask(bits, pj, pk)
     return pj[ok], pk[ok]
 
 
@@ -285,10 +297,10 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     if len(cand) < 2:
         return 0
     nt, nc = len(tok_ids), len(cand)
-    by_part = sp.csc_matrix((cost[has] + 1.0, (tok, pcol)), shape=(nt, nc))   # +1: a zero cost is stored
-    by_tok = by_part.tocsr()
-    cnt = np.diff(by_part.indptr)
-    tok_len = np.diff(by_tok.indptr)
+    # each (token, part) pair once (a row holds a pattern once, and rest + part is the pattern): per part its
+    # tokens, per token its parts, by counting
+    cnt = np.bincount(pcol, minlength=nc)
+    tok_len = np.bincount(tok, minlength=nt)
     bits = _token_bits(pcol, tok, nc, nt)                                      # the token set of each part
     weight, fixed = w.part_weight[cand], w.part_fixed_cost[cand]
     if cost_obj:
@@ -306,13 +318,17 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     # per part j: its smallest token (the first in its column on ties: a dominator is in it), and the parts of that
     # token as candidate dominators k, kept when no worse on count, weight and fixed cost and when j's tokens are
     # all k's (bit sets, a compiled test per pair stopping at the first word refuting it); no Python loop over j
-    col = np.repeat(np.arange(nc), cnt)
-    tl = tok_len[by_part.indices]
-    low = np.flatnonzero(tl == np.minimum.reduceat(tl, by_part.indptr[:-1])[col])
-    t0 = by_part.indices[low[np.unique(col[low], return_index=True)[1]]]
+    t0 = np.full(nc, np.iinfo(np.int64).max)                 # the smallest (token size, token) of each part
+    np.minimum.at(t0, pcol, tok_len[tok].astype(np.int64) * nt + tok)
+    t0 %= nt
     n_k = tok_len[t0]
     pj = np.repeat(np.arange(nc), n_k)
-    pk = by_tok.indices[np.repeat(by_tok.indptr[t0], n_k) + np.arange(len(pj)) - np.repeat(np.cumsum(n_k) - n_k, n_k)]
+    sel = np.zeros(nt, bool)
+    sel[t0] = True
+    at = np.flatnonzero(sel[tok])                             # the pairs of those tokens, by token then part
+    at = at[np.lexsort((pcol[at], tok[at]))]
+    first = np.searchsorted(tok[at], t0)
+    pk = pcol[at][np.repeat(first, n_k) + np.arange(len(pj)) - np.repeat(np.cumsum(n_k) - n_k, n_k)]
     keep = (pk != pj) & (cnt[pk] >= cnt[pj]) & (weight[pk] <= weight[pj]) & (fixed[pk] <= fixed[pj])
     pj, pk = pj[keep], pk[keep]
     same = (cnt[pk] == cnt[pj]) & (weight[pk] == weight[pj]) & (fixed[pk] == fixed[pj])
@@ -341,10 +357,20 @@ def _substitute(w: Work, si: int, fi: int, cost_obj: bool) -> int:
     gone = cand[dom]
     bad_pat = np.zeros(len(w.patterns), bool)
     bad_pat[upat[np.isin(part_u, gone)]] = True
-    for n in np.unique(r_of[bad_pat[pats]]):                                  # the rows that lose an option
-        i = rows[n]
-        keep = ~bad_pat[w.row_pats[i]]
-        w.row_pats[i], w.row_cost[i] = w.row_pats[i][keep], w.row_cost[i][keep]
+    # the rows that lose an option take their kept options from one filtering of the concatenation (``pats`` and
+    # ``cost`` are the rows' arrays end to end, unchanged since: the same values and order as filtering each row,
+    # in each row's own types; the new arrays share one buffer holding those rows' options only)
+    kept = ~bad_pat[pats]
+    lose = np.zeros(len(rows), bool)
+    lose[r_of[~kept]] = True
+    if lose.any():
+        sel = kept & lose[r_of]
+        end = np.cumsum(np.bincount(r_of[sel], minlength=len(rows)))
+        new_p, new_c = pats[sel], cost[sel]
+        for n in np.flatnonzero(lose).tolist():
+            i, lo, hi = rows[n], int(end[n - 1]) if n else 0, int(end[n])
+            w.row_pats[i] = new_p[lo:hi].astype(w.row_pats[i].dtype, copy=False)
+            w.row_cost[i] = new_c[lo:hi].astype(w.row_cost[i].dtype, copy=False)
     return int(dom.sum())
 
 
@@ -356,8 +382,87 @@ def _core_rows(w: Work) -> np.ndarray:
     return out
 
 
+def _set_bits_of(sets: list) -> np.ndarray:
+    """The bit sets of integer arrays ``sets`` (one row each; bit ``n``: the ``n``-th smallest value present in any
+    of them), for :func:`_subset_mask`.
+
+    >>> _subset_mask(_set_bits_of([np.array([7, 3]), np.array([3, 5, 7]), np.array([5])]), np.array([0, 1, 2]),
+    ...              np.array([1, 0, 1])).tolist()
+    [True, False, True]
+    """
+    lens = np.fromiter((len(x) for x in sets), np.int64, len(sets))
+    flat = np.concatenate(sets).astype(np.int64) if lens.sum() else np.zeros(0, np.int64)
+    vals, tok = np.unique(flat, return_inverse=True)
+    return _token_bits(np.repeat(np.arange(len(sets)), lens), np.asarray(tok).reshape(-1), len(sets), len(vals))
+
+
+def _within_pairs(bounds: np.ndarray, take: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every ordered pair ``(a, b)``, ``a != b``, of positions in one segment ``bounds[s]:bounds[s + 1]`` with
+    ``take[s]``, in the order of the nested loops (``a``, then ``b``, ascending).
+
+    >>> [x.tolist() for x in _within_pairs(np.array([0, 2, 3, 6]), np.array([True, True, False]))]
+    [[0, 1], [1, 0]]
+    """
+    start, size = bounds[:-1][take], np.diff(bounds)[take]
+    a = np.concatenate([np.arange(s0, s0 + n) for s0, n in zip(start.tolist(), size.tolist())]) if len(start) \
+        else np.zeros(0, np.int64)
+    per = np.repeat(size, size)                                  # the segment size of each a
+    first = np.repeat(np.repeat(start, size), per)               # its segment's start, per pair
+    b = first + np.arange(int(per.sum())) - np.repeat(np.cumsum(per) - per, per)
+    a = np.repeat(a, per)
+    keep = a != b
+    return a[keep].astype(np.int64), b[keep].astype(np.int64)
+
+
+#: the pairs of cores :func:`dominated_cores` judges at once (about 50 B each in its transient arrays: 2 million,
+#: about 100 MB, bounds its memory at any number of applications)
+CORE_PAIRS = 1 << 21
+
+
+def _dominated_in(w: Work, cr, alive, bounds, take, pat_bits, at, cost_obj, pooled) -> np.ndarray:
+    """The cores R3 removes among the applications ``take`` (segments ``bounds`` of ``alive``; positions in
+    ``alive``, ascending): see :func:`dominated_cores`."""
+    a, b = _within_pairs(bounds, take)                                 # positions in ``alive``
+    sub = _subset_mask(pat_bits, at[a], at[b])
+    a, b = a[sub], b[sub]
+    for si in range(len(SUBSYSTEMS)):
+        ra, rb = cr[alive[a], si], cr[alive[b], si]
+        test = (ra != rb) & (ra >= 0) & (rb >= 0)                  # two live rows: b's options among a's
+        ok = (ra == rb) | (ra < 0)                                 # one row, or a's row dropped (always covered)
+        if test.any():
+            ur, rinv = np.unique(np.r_[ra[test], rb[test]], return_inverse=True)
+            rinv = np.asarray(rinv).reshape(-1)
+            n_t = int(test.sum())
+            ok[np.flatnonzero(test)] = _subset_mask(_set_bits_of([w.row_pats[i] for i in ur.tolist()]), rinv[n_t:],
+                                                    rinv[:n_t])
+        a, b = a[ok], b[ok]
+    if cost_obj:
+        ca, cb = alive[a], alive[b]
+        cc = w.core_cost
+        if pooled is not None:     # a's dearest against b's cheapest, b's extra parts priceless
+            kp = w.core_pattern
+            lo = cc[cb] - w.pf_volume(w.core_app[cb]) * pooled[0][kp[cb]]
+            keep = (cc[ca] <= lo + 1e-9) & (pooled[1][kp[ca]] == pooled[1][kp[cb]])
+        else:
+            keep = cc[ca] <= cc[cb] + 1e-9
+        a, b = a[keep], b[keep]
+    # b goes when some a is better and not the reverse, or both and a comes first
+    n = len(alive)
+    key, rev = a * n + b, b * n + a                                  # ``key`` ascending (pairs in loop order)
+    if not len(key):
+        return np.zeros(0, np.int64)
+    mutual = key[np.minimum(np.searchsorted(key, rev), len(key) - 1)] == rev
+    return np.unique(b[~mutual | (a < b)]).astype(np.int64)
+
+
 def dominated_cores(w: Work) -> int:
-    """R3. Returns the number of cores removed."""
+    """R3. Returns the number of cores removed.
+
+    Every pair of cores of one application at once (no loop over applications): ``a`` dominates-or-ties ``b``
+    (``better``) when ``parts(a) <= parts(b)``, for every subsystem ``a``'s row holds ``b``'s options (a dropped
+    row holds everything, a live row not a dropped one's "everything") and, for the cost objective, ``a`` costs no
+    more; ``b`` goes when some ``a`` does so strictly or ties with it at a lower index. Subset tests on bit sets
+    (:func:`_subsets`), every comparison that of the per-application matrices it replaces."""
     cr = _core_rows(w)
     cost_obj = w.objective == "cost"
     pooled = _pooled(w) if cost_obj else None
@@ -371,50 +476,33 @@ def dominated_cores(w: Work) -> int:
     pat = w.core_pattern[alive].astype(np.int64)
     n_pat = np.bincount(np.unique(seg * (int(pat.max()) + 1) + pat) // (int(pat.max()) + 1), minlength=len(bounds) - 1)
     up, at = np.unique(pat, return_inverse=True)
-    size = np.fromiter((len(w.patterns[k]) for k in up), np.int64, len(up))[np.asarray(at).reshape(-1)]
+    at = np.asarray(at).reshape(-1)
+    size = np.fromiter((len(w.patterns[k]) for k in up), np.int64, len(up))[at]
     plain = (n_pat == np.diff(bounds)) & (np.minimum.reduceat(size, bounds[:-1]) == np.maximum.reduceat(size, bounds[:-1]))
-    removed = 0
-    for b0, b1, skip in zip(bounds[:-1], bounds[1:], plain):
-        cs = alive[b0:b1]
-        if len(cs) < 2 or skip:
-            continue
-        upat, inv = np.unique(w.core_pattern[cs], return_inverse=True)
-        better = _subset_matrix(w, upat)[np.ix_(inv, inv)]      # better[a, b]: parts(a) <= parts(b)
-        for si in range(len(SUBSYSTEMS)):
-            if np.count_nonzero(better) == len(cs):
-                break                                          # only the diagonal left: no core dominates another
-            r = cr[cs, si]
-            ur, rinv = np.unique(r, return_inverse=True)
-            if len(ur) == 1:
-                continue                                       # one row for every core: holds its own options
-            live = ur[ur >= 0]
-            sup = np.ones((len(ur), len(ur)), bool)            # sup[a, b]: row a holds row b's options
-            if len(live):
-                inter, lens = _overlaps([w.row_pats[i] for i in live])
-                off = len(ur) - len(live)                      # -1 sorts first
-                sup[off:, off:] = inter >= lens[None, :] - 0.5
-                if off:
-                    sup[off:, 0] = False                       # a real row does not hold "everything"
-            better &= sup[np.ix_(rinv.ravel(), rinv.ravel())]
-        if cost_obj and pooled is not None:   # a's dearest against b's cheapest, b's extra parts priceless
-            cc, kp = w.core_cost[cs], w.core_pattern[cs]
-            lo = cc - w.pf_volume(w.core_app[cs]) * pooled[0][kp]
-            better &= (cc[:, None] <= lo[None, :] + 1e-9) & (pooled[1][kp][:, None] == pooled[1][kp][None, :])
-        elif cost_obj:
-            cc = w.core_cost[cs]
-            better &= cc[:, None] <= cc[None, :] + 1e-9
-        np.fill_diagonal(better, False)
-        mutual = better & better.T
-        idx = np.arange(len(cs))
-        dom = (better & ~mutual).any(axis=0) | (mutual & (idx[:, None] < idx[None, :])).any(axis=0)
-        if dom.any():
-            w.core_alive[cs[dom]] = False
-            removed += int(dom.sum())
-    if removed:
+    take = ~plain & (np.diff(bounds) >= 2)
+    if not take.any():
+        return 0
+    pat_bits = _set_bits_of([w.patterns[k] for k in up])      # parts(a) <= parts(b): patterns as bit sets of parts
+    # the applications in batches of at most CORE_PAIRS pairs (one application may hold more): each application's
+    # cores are judged among themselves, so a batch is judged alone
+    size2 = np.where(take, np.diff(bounds) ** 2, 0)
+    cut = [0]
+    acc = 0
+    for k, x in enumerate(size2.tolist()):
+        if acc and acc + x > CORE_PAIRS:
+            cut.append(k)
+            acc = 0
+        acc += x
+    cut.append(len(size2))
+    seg_no = np.arange(len(size2))
+    gone = np.concatenate([_dominated_in(w, cr, alive, bounds, take & (seg_no >= lo) & (seg_no < hi), pat_bits, at,
+                                         cost_obj, pooled) for lo, hi in zip(cut[:-1], cut[1:])])
+    if len(gone):
+        w.core_alive[alive[gone]] = False
         for i in _live_rows(w):
             if not w.core_alive[w.row_cores[i]].any():
                 w.row_alive[i] = False
-    return removed
+    return int(len(gone))
 
 
 def merge_rows(w: Work) -> int:

@@ -22,7 +22,7 @@ from formulations.platform import NODE_LIMIT, TIME_LIMIT_S, solve as solve_milp
 from synth.errors import InputError, Problem
 from synth.io.limits import COUNTS
 from synth.platform.assign import assign, full_platform, objective_value, option_groups, platform_from_y
-from synth.platform.compile import Precompiled, compile_portfolio, precompile
+from synth.platform.compile import Precompiled, _flat, compile_portfolio, precompile
 from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility, \
     default_weights
 from synth.platform.greedy import greedy
@@ -110,6 +110,27 @@ def milp_designs(work, inst, sol) -> dict:
         if d is not None:
             put(d, SUBSYSTEM_FAMILIES[SUBSYSTEMS[int(inst.row_sub[entry_row[i]])]], inst.row_opt_pattern[i])
     return out
+
+
+def _group_maxima(pf: PortfolioFeasibility, s: str) -> tuple[np.ndarray, np.ndarray]:
+    """``(largest margin of each option group of subsystem s, where each application's groups start)``: every
+    application's groups one after the other (``-inf`` for a group without an option), by one reduction.
+
+    >>> from synth.platform.synthetic import synthetic_portfolio
+    >>> pf = synthetic_portfolio(4, seed=2)
+    >>> gm, gptr = _group_maxima(pf, "bolt")
+    >>> a = pf.apps[3]
+    >>> gm[gptr[3]:gptr[4]].tolist() == [float(np.max(x)) if len(x) else -np.inf for x in a.option_margin["bolt"]]
+    True
+    """
+    ms = [m for a in pf.apps for m in a.option_margin.get(s, [])]
+    gptr = np.r_[0, np.cumsum([len(a.option_margin.get(s, [])) for a in pf.apps])].astype(np.int64)
+    lens = np.fromiter((len(m) for m in ms), np.int64, len(ms))
+    gm = np.full(len(ms), -np.inf)
+    if lens.sum():
+        flat = _flat(ms, float, int(lens.sum()))
+        gm[lens > 0] = np.maximum.reduceat(flat, (np.cumsum(lens) - lens)[lens > 0])
+    return gm, gptr
 
 
 def _check(objective, max_variants, time_limit, weights, node_limit=None):
@@ -288,12 +309,13 @@ def tradeoff(pf: PortfolioFeasibility, kind: str = "margin", *, points: int = 6,
     if kind == "margin":
         # the largest floor every servable application can meet: the smallest per-application best margin
         best = []
-        for a in pf.apps:
+        gmax = {s: _group_maxima(pf, s) for s in {s for a in pf.apps for s in a.feasible}}
+        for i, a in enumerate(pf.apps):
             if a.n_cores:
                 m = np.full(a.n_cores, np.inf)
                 for s in a.feasible:
-                    gm = np.array([np.max(x) if len(x) else -np.inf for x in a.option_margin[s]])
-                    m = np.minimum(m, gm[np.asarray(a.group[s])])
+                    gm, gptr = gmax[s]
+                    m = np.minimum(m, gm[gptr[i]:gptr[i + 1]][np.asarray(a.group[s])])
                 m = np.minimum(m, a.core_margin)
                 if m.size and m.max() >= 0:
                     best.append((float(m.max()), a))
