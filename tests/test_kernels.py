@@ -486,7 +486,7 @@ def test_record_stage_is_the_numpy_bookkeeping(seed):
     """The compiled stage bookkeeping of the platform producer equals its numpy statement: survivors, failures along
     the line of a finite group value, and per group the largest margin (NaN-propagating, ``np.maximum.reduceat``)
     with the binding of the first pair reaching it, kept when strictly larger."""
-    from synth.platform.producer import _segment_best
+    from synth.platform.pairs import segment_best
     rng = np.random.default_rng(seed)
     n_g, n_o, n = int(rng.integers(1, 6)), int(rng.integers(1, 8)), int(rng.integers(0, 30))
     gg = np.sort(rng.integers(0, n_g, n))
@@ -501,7 +501,7 @@ def test_record_stage_is_the_numpy_bookkeeping(seed):
     bad = ~ok & finite[gg]
     want_f[line[gg[bad]], oo[bad]] = True
     want_b, want_bb = best0.copy(), bb0.copy()
-    g, mm, at = _segment_best(gg, m)
+    g, mm, at = segment_best(gg, m)
     upd = mm > want_b[g]
     want_b[g[upd]], want_bb[g[upd]] = mm[upd], b[at[upd]]
     got_s, got_f, got_b, got_bb = np.zeros_like(want_s), np.zeros_like(want_f), best0.copy(), bb0.copy()

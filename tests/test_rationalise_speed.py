@@ -73,7 +73,7 @@ def test_compiled_spring_rounds_equal_the_block_path():
     apps, cg, rep, _ = _chunk(24, seed=7)
     got = {}
     for compiled in (True, False):
-        acc = P._Pairs(len(rep["spring"]))
+        acc = P.Pairs(len(rep["spring"]))
         n = P._spring(apps, catalogue(), cg, rep["spring"], evaluate.DEFAULT, acc, compiled_rounds=compiled)
         got[compiled] = (n, acc.by_group(len(rep["spring"])), acc.best, acc.best_b, acc.evaluated)
     (n1, g1, b1, bb1, e1), (n0, g0, b0, bb0, e0) = got[True], got[False]

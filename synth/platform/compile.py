@@ -32,7 +32,7 @@ from formulations.platform import PlatformInstance
 from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility, \
     default_weights
 
-__all__ = ["Work", "Precompiled", "precompile", "compile_portfolio", "app_option_cost", "flat_groups"]
+__all__ = ["Work", "Precompiled", "precompile", "compile_portfolio", "app_option_cost", "flat_groups", "end_to_end"]
 
 
 def app_option_cost(pf: PortfolioFeasibility, app, s: str) -> np.ndarray:
@@ -152,11 +152,11 @@ def _why_unservable(a, dead_by: dict, n_cores: int, floor: bool) -> str:
 _I32 = np.iinfo(np.int32).max   # indices below this are held as int32 (asserted where made)
 
 
-def _flat(xs: list, dtype, n: int) -> np.ndarray:
+def end_to_end(xs: list, dtype, n: int) -> np.ndarray:
     """The 1-d arrays (or lists) ``xs`` end to end (``n`` entries; ``dtype``: as ``np.asarray`` takes it, then the
     result's): one concatenation, or each flattened first where one is not a flat sequence (the same values).
 
-    >>> _flat([np.array([1, 2]), [3]], float, 3).tolist(), _flat([np.array([[1], [2]])], None, 2).tolist()
+    >>> end_to_end([np.array([1, 2]), [3]], float, 3).tolist(), end_to_end([np.array([[1], [2]])], None, 2).tolist()
     ([1.0, 2.0, 3.0], [1, 2])
     """
     out = np.concatenate(xs)
@@ -178,8 +178,8 @@ def flat_groups(pf: PortfolioFeasibility, s: str):
     # no copy beyond the concatenations (at 10,000 applications a copy of one of these is 350 MB); option indices
     # and group numbers as int32 (half the memory; every use indexes with them or widens them to int64 first)
     assert len(pf.options[s][SUBSYSTEM_FAMILIES[s][0]]) < _I32 and len(feas) < _I32, "flat_groups: int32 overflow"
-    idx = _flat(feas, None, sum(lens)).astype(np.int32)
-    mar = _flat([m for a in pf.apps for m in a.option_margin[s]], float, sum(lens))
+    idx = end_to_end(feas, None, sum(lens)).astype(np.int32)
+    mar = end_to_end([m for a in pf.apps for m in a.option_margin[s]], float, sum(lens))
     grp = np.repeat(np.arange(len(feas), dtype=np.int32), lens)
     optr = np.r_[0, np.cumsum(lens)][gptr]
     cost = np.concatenate([app_option_cost(pf, a, s)[idx[optr[i]:optr[i + 1]]] for i, a in enumerate(pf.apps)])

@@ -46,12 +46,14 @@ from synth.design import evaluate
 from synth.design.applications import Applications
 from synth.design.assessment import assess_group, columns_of, passes
 from synth.design.bolt_group import bolt_codes, bolt_reads
-from synth.design.combine import combine, nearest_rank
-from synth.design.constraints import REGISTRY, version
+from synth.design.combine import combine
+from synth.design.constraints import REGISTRY
 from synth.design.space import SUBSYSTEMS, core_rows, spring_window
 from synth.errors import InputError
 from synth.platform.data import AppFeasibility, Names, ScaledCost
 from synth.platform.options import Catalogue, catalogue
+from synth.platform.pairs import (BLOCK_PAIRS, NO_BINDING, Pairs, binding_name, binding_names, blocks,
+                                  margins_and_binding)
 from synth.kernels import engines, main_spring
 from synth.kernels.main_spring import keys_of_rows
 from synth.optimise.diagnose import diagnose
@@ -86,8 +88,6 @@ SPRING_TORQUE_ONLY = ("spring_yield", "spring_static_permissible", "spring_fatig
 SPRING_STAGES = ((("spring_torque_nominal_nm",), SPRING_TORQUE_ONLY, ("spring_torque_nominal_nm", +1)),
                  (("spring_torque_nominal_nm", "spring_housing_height_mm"), ("spring_coil_gap",),
                   ("spring_housing_height_mm", -1)))
-#: (group, option) pairs per group-function call (bounds the memory of a chunk)
-BLOCK_PAIRS = 100_000
 #: the axial group's engine this path takes (:func:`synth.kernels.engines.axial`; ``Settings(engine="numpy")``
 #: overrides it): the compiled wear, about 3x the numpy reference's speed on the feasibility data
 #: (``benchmarks/bench_platform.py``); ``"numpy"`` gives the design path's margins bit for bit
@@ -96,43 +96,6 @@ AXIAL_ENGINE = "numba"
 #: the compiled wear agrees within :data:`synth.kernels.axial.RTOL` (1e-12) relative; the feasible options, the
 #: binding constraints and the chosen parts are the same (``tests/test_platform_real.py``)
 MARGIN_TOL = 1e-9
-
-#: binding index of "none counted" (an infinite margin); a constraint's index is its place in the registry's order
-#: (:func:`_index`; a check added with ``register`` included)
-_NO_BINDING = np.iinfo(np.int16).max
-_INDEX: dict = {}
-
-
-def _index(cid: str) -> int:
-    """The binding index of constraint ``cid``: its place in the registry's current order."""
-    got = _INDEX.get(version())
-    if got is None:
-        got = {c: i for i, c in enumerate(REGISTRY)}
-        _INDEX.clear()
-        _INDEX[version()] = got
-    return got[cid]
-
-
-def margins_and_binding(g: evaluate.Group, objective_only: bool = True, rows=None) -> tuple[np.ndarray, np.ndarray]:
-    """``(smallest margin, binding constraint index into the registry order)`` per row of ``g`` (or of ``rows``).
-
-    The group's assessment (:meth:`synth.design.assessment.Assessment.objective_binding`): the smallest margin of
-    the checks counted in the margin objective (with ``objective_only``) or of every counted check, and where it
-    is reached (``_NO_BINDING`` when none counts; ties: the first in the group's order).
-    """
-    m, b = assess_group(g, rows).objective_binding(objective_only)
-    return m, np.where(b < 0, _NO_BINDING, b).astype(np.int16)
-
-
-def _names(b) -> np.ndarray:
-    """The constraint ids of binding indices ``b`` ("" for none counted), a whole array at once."""
-    names = np.array(list(REGISTRY) + [""], dtype=object)
-    return names[np.minimum(b, len(names) - 1)]
-
-
-def _name(b: int) -> str:
-    return str(_names(int(b)))
-
 
 def spring_group(apps, keys: dict, k, options, settings: evaluate.Settings, spring_keys=None) -> evaluate.Group:
     """The main-spring group's registry margins for rows pairing key ``k[i]`` with option ``options[i]``: the
@@ -159,64 +122,6 @@ def spring_group(apps, keys: dict, k, options, settings: evaluate.Settings, spri
 
 
 # --------------------------------------------------------------------------------------------------------- chunk
-
-def _segment_best(gp: np.ndarray, val: np.ndarray):
-    """Per run of equal ``gp`` (``gp`` sorted): the group, the largest ``val`` and the position reaching it first."""
-    if not len(gp):
-        return np.zeros(0, np.int64), np.zeros(0), np.zeros(0, np.int64)
-    start = np.flatnonzero(np.r_[True, gp[1:] != gp[:-1]])
-    best = np.maximum.reduceat(val, start)
-    seg = np.repeat(np.arange(len(start)), np.diff(np.r_[start, len(gp)]))
-    hit = np.where(val == best[seg], np.arange(len(gp)), len(gp))
-    return gp[start], best, np.minimum.reduceat(hit, start)
-
-
-class _Pairs:
-    """Evaluated (group, option) pairs of one subsystem: the feasible ones, and per group the nearest option."""
-
-    def __init__(self, n_groups: int):
-        self.g, self.o, self.m, self.b = [], [], [], []
-        self.best = np.full(n_groups, -np.inf)                  # per group: largest smallest margin (all constraints)
-        self.best_b = np.full(n_groups, _NO_BINDING, np.int16)  # and its most violated constraint
-        self.evaluated = np.zeros(n_groups, bool)
-
-    def add(self, gp: np.ndarray, op: np.ndarray, grp: evaluate.Group, row=None) -> None:
-        """Record the pairs ``(gp[i], op[i])`` evaluated as the rows of ``grp`` (``gp`` sorted); ``row``: the row of
-        ``grp`` of each pair, where pairs the group reads alike share one (default: row ``i``)."""
-        a = grp.assessment()   # one judgement of the block: its verdicts and smallest margins
-        at = (lambda x: x) if row is None else (lambda x: x[row])  # noqa: E731
-        ok = at(a.ok)
-        sel = np.flatnonzero(ok)
-        m, b = margins_and_binding(grp, True, sel if row is None else row[sel])
-        self.g.append(gp[sel])
-        self.o.append(op[sel])
-        self.m.append(m)
-        self.b.append(b)
-        rank = grp.rank()  # nearest designs: ranked by the search model (fidelity screening: the screening one)
-        ma = nearest_rank(ok, at(a.margin_min),
-                          at(a.margin_min if rank is grp else rank.min_margin(objective_only=False)))
-        gg, mm, first = _segment_best(gp, ma)
-        upd = mm > self.best[gg]
-        if upd.any():
-            self.best[gg[upd]] = mm[upd]
-            self.best_b[gg[upd]] = margins_and_binding(rank, False, (first if row is None else row[first])[upd])[1]
-        self.evaluated[gp] = True
-
-    def by_group(self, n_groups: int):
-        """``(ptr, options, margins, bindings)``: the feasible options of each group (CSR, options ascending)."""
-        cat = (lambda xs, dt: np.concatenate(xs).astype(dt) if xs else np.zeros(0, dt))  # noqa: E731
-        g, o, m, b = cat(self.g, np.int64), cat(self.o, np.int64), cat(self.m, float), cat(self.b, np.int16)
-        if len(g) > 1 and not ((g[1:] > g[:-1]) | ((g[1:] == g[:-1]) & (o[1:] >= o[:-1]))).all():
-            order = np.lexsort((o, g))   # else already in order (the blocks' pairs come group by group): no gathers
-            g, o, m, b = g[order], o[order], m[order], b[order]
-        ptr = np.searchsorted(g, np.arange(n_groups + 1))
-        return ptr, o, m, b
-
-
-def _blocks(n: int, size: int = BLOCK_PAIRS):
-    for lo in range(0, n, size):
-        yield np.arange(lo, min(lo + size, n))
-
 
 def _group_ids(values: dict, pos: np.ndarray, cols: tuple, extra: dict | None = None):
     """Group id (global in the chunk, contiguous per application) of rows ``pos``; a representative row each."""
@@ -276,7 +181,7 @@ def _chunk_feasibility(inputs, ids, volumes, settings, diagnose, stats) -> list:
         keys = group_keys(cg.values)
         for s in SUBSYSTEMS:
             gid[s], rep[s] = _group_ids(cg.values, pos, keys[s], extra)
-            pairs[s] = _Pairs(len(rep[s]))
+            pairs[s] = Pairs(len(rep[s]))
         lap("core", len(a))
         lap("bushing", _bushing(apps, cat, cg, rep["bushing"], settings, pairs["bushing"]))
         lap("axial", _axial(apps, cat, cg, rep["axial"], extra["pad_code"], settings, pairs["axial"]))
@@ -292,16 +197,16 @@ def _chunk_feasibility(inputs, ids, volumes, settings, diagnose, stats) -> list:
     return out
 
 
-def _bushing(apps, cat, cg, rep, settings, acc: _Pairs):
+def _bushing(apps, cat, cg, rep, settings, acc: Pairs):
     sup = cat.space.tables["bushing"]["supplier_code"]
     gp, op = np.nonzero(cg.values["supplier_code"][rep][:, None] == sup[None, :])
-    for blk in _blocks(len(gp)):
+    for blk in blocks(len(gp)):
         g, o = gp[blk], op[blk]
         acc.add(g, o, evaluate.bushing(apps, cg, rep[g], cat.space.rows_read("bushing", cat.option_row["bushing"][o]), settings))
     return len(gp)
 
 
-def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs, group=evaluate.axial_judged):
+def _axial(apps, cat, cg, rep, pad_code, settings, acc: Pairs, group=evaluate.axial_judged):
     pad = pad_code[rep]
     nr = cat.n_axial_real
     cnt = np.where(pad < 0, 1, nr)
@@ -311,7 +216,7 @@ def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs, group=evaluate.a
     engine = engines.axial(settings, AXIAL_ENGINE)
     cut = group is evaluate.axial_judged   # the search: the wear solved only where the checks before it pass
     skipped = []
-    for blk in _blocks(len(gp), BLOCK_PAIRS // 4):
+    for blk in blocks(len(gp), BLOCK_PAIRS // 4):
         g, o = gp[blk], op[blk]
         if cut:
             pre = evaluate.axial_before_wear(apps, cg, rep[g], cat.space.rows_read("axial", cat.option_row["axial"][o]),
@@ -327,7 +232,7 @@ def _axial(apps, cat, cg, rep, pad_code, settings, acc: _Pairs, group=evaluate.a
     return len(gp)
 
 
-def _without_a_pass(apps, cat, cg, rep, gp, op, groups, settings, acc: _Pairs, group, engine) -> None:
+def _without_a_pass(apps, cat, cg, rep, gp, op, groups, settings, acc: Pairs, group, engine) -> None:
     """The groups ``groups`` (some of whose pairs failed a check before the wear and were not solved) that have no
     feasible pair: every pair of theirs again with the whole group, so that their nearest option (the largest
     smallest margin, :func:`~synth.design.combine.nearest_rank`) is the one every pair evaluated gives. Where a
@@ -339,9 +244,9 @@ def _without_a_pass(apps, cat, cg, rep, gp, op, groups, settings, acc: _Pairs, g
     again = groups[~has[groups]]
     if not len(again):
         return
-    acc.best[again], acc.best_b[again] = -np.inf, _NO_BINDING
+    acc.best[again], acc.best_b[again] = -np.inf, NO_BINDING
     sel = np.flatnonzero(np.isin(gp, again))
-    for blk in _blocks(len(sel), BLOCK_PAIRS // 4):
+    for blk in blocks(len(sel), BLOCK_PAIRS // 4):
         g, o = gp[sel[blk]], op[sel[blk]]
         acc.add(g, o, group(apps, cg, rep[g], cat.space.rows_read("axial", cat.option_row["axial"][o]), settings,
                             engine=engine))
@@ -369,8 +274,8 @@ def _judge_undecided(apps, cat, cg, a, pos, gid, rep, pairs, pad_code, settings)
     acc = pairs["axial"]
     keep = [~np.isin(g, groups) for g in acc.g]
     acc.g, acc.o, acc.m, acc.b = ([x[k] for x, k in zip(xs, keep)] for xs in (acc.g, acc.o, acc.m, acc.b))
-    acc.best[groups], acc.best_b[groups] = -np.inf, _NO_BINDING
-    full = _Pairs(len(groups))
+    acc.best[groups], acc.best_b[groups] = -np.inf, NO_BINDING
+    full = Pairs(len(groups))
     n = _axial(apps, cat, cg, rep["axial"][groups], pad_code, settings, full, evaluate.axial_full)
     acc.g.extend(groups[g] for g in full.g)
     acc.o.extend(full.o)
@@ -380,7 +285,7 @@ def _judge_undecided(apps, cat, cg, a, pos, gid, rep, pairs, pad_code, settings)
     return n
 
 
-def _spring(apps, cat, cg, rep, settings, acc: _Pairs, compiled_rounds: bool = True):
+def _spring(apps, cat, cg, rep, settings, acc: Pairs, compiled_rounds: bool = True):
     """Main springs in stages (:data:`SPRING_STAGES`), then every key against the survivors, in its window.
 
     The stages' rounds run in one compiled pass each (:func:`synth.kernels.main_spring.stage_round`) where the
@@ -411,7 +316,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs, compiled_rounds: bool = T
         np.maximum.at(g_hi, of, hi)
         parent = None if prev_of is None else prev_of[srep]
         survive = np.zeros((ng, len(rows)), bool)
-        best, best_b = np.full(ng, -np.inf), np.full(ng, _NO_BINDING, np.int16)
+        best, best_b = np.full(ng, -np.inf), np.full(ng, NO_BINDING, np.int16)
         # rounds along the monotone column within the groups equal on the other columns ("lines"): a spring that
         # failed in a line is not tried again further along it
         line, _ = _group_ids(keys, srep, tuple(c for c in cols if c != mcol))
@@ -428,7 +333,7 @@ def _spring(apps, cat, cg, rep, settings, acc: _Pairs, compiled_rounds: bool = T
                 cols, bind = _stage_columns(ids)
                 n_stage += main_spring.stage_round(
                     np.flatnonzero(rank == rk), g_lo, g_hi, mbd, kk, srep, opts, rows, cols, bind,
-                    no_binding=_NO_BINDING, finite=finite, line=line, survive=survive, failed=failed, best=best,
+                    no_binding=NO_BINDING, finite=finite, line=line, survive=survive, failed=failed, best=best,
                     best_b=best_b, exclude=failed, exclude_row=line, need=prev, need_row=parent)
                 continue
             for gg_, oo in main_spring.window_pairs(np.flatnonzero(rank == rk), g_lo, g_hi, mbd, exclude=failed,
@@ -484,8 +389,8 @@ def _nearest_springs(apps, cat, cg, a, pos, all_m, gid, rep, pairs, settings, ro
         kk = keys_of_rows(apps, keys)
         lo, hi = spring_window(keys["spring_housing_inner_diameter_mm"], keys["spring_housing_outer_diameter_mm"])
         g, o = np.nonzero((mbd[None, :] >= lo[:, None]) & (mbd[None, :] <= hi[:, None]))
-        best = _Pairs(len(groups))
-        for blk in _blocks(len(g)):
+        best = Pairs(len(groups))
+        for blk in blocks(len(g)):
             best.add(g[blk], o[blk], spring_group(apps, keys, g[blk], rows[o[blk]], settings, kk))
         acc.best[groups], acc.best_b[groups], acc.evaluated[groups] = best.best, best.best_b, best.evaluated
         refined[groups] = True
@@ -497,7 +402,7 @@ def _stage_margin(grp: evaluate.Group, ids: tuple):
     """Smallest margin of the (non-advisory) constraints ``ids`` per row, and where it is reached: the group's
     assessment over those checks (:func:`margins_and_binding`)."""
     m, b = assess_group(grp, only=ids).objective_binding(False)
-    return m, np.where(b < 0, _NO_BINDING, b).astype(np.int16)
+    return m, np.where(b < 0, NO_BINDING, b).astype(np.int16)
 
 
 def _stage_columns(ids: tuple) -> tuple:
@@ -511,7 +416,7 @@ def _stage_columns(ids: tuple) -> tuple:
             np.asarray(cols.index[dec] if dec else np.zeros(0), np.int64))
 
 
-def _bolt(apps, cat, cg, rep, settings, acc: _Pairs):
+def _bolt(apps, cat, cg, rep, settings, acc: Pairs):
     """Every bolt option against the groups ``rep``: the group once per group and bolt as it reads it
     (:func:`synth.design.bolt_group.bolt_codes`: bolts equal in every column it reads have the same values and
     margins), each pair recorded with its key's row, in option order. Returns the pairs judged."""
@@ -579,7 +484,7 @@ def _assemble(inputs, ids, volumes, apps, cat, a, crow, pos, core_m, core_b, all
             core_cost_eur=goal("cost").core(cat.space, crow[sel], {}), core_margin=core_m[sel],
             group=group, feasible=feasible, option_margin=margin, volume=float(volumes[i]),
             option_cost_eur={"spring": ScaledCost(spring_numerator, float(apps.spring_stiffness_nm_per_deg[i]))},
-            core_binding=_names(core_b[sel]), option_binding=binding,
+            core_binding=binding_names(core_b[sel]), option_binding=binding,
             core_rows=crow[sel])
         if not complete.any():
             af.note = _why(cat, i, a, crow, all_m, all_b, sel, k, gid, first_group, pairs)
@@ -596,7 +501,7 @@ def _why(cat, i, a, crow, all_m, all_b, sel, k, gid, first_group, pairs) -> str:
         if not len(rows):
             return "no design: no core of the catalogs is allowed for this application"
         j = rows[int(np.argmax(all_m[rows]))]
-        return (f"no feasible core: the nearest ({_core_text(cat, int(crow[j]))}) misses {_name(all_b[j])} "
+        return (f"no feasible core: the nearest ({_core_text(cat, int(crow[j]))}) misses {binding_name(all_b[j])} "
                 f"(margin {all_m[j]:+.3f})")
     val = combine(all_m[sel], [pairs[s].best[gid[s][k]] for s in SUBSYSTEMS])
     c = int(np.argmax(val))
@@ -604,7 +509,7 @@ def _why(cat, i, a, crow, all_m, all_b, sel, k, gid, first_group, pairs) -> str:
     for s in SUBSYSTEMS:
         g = gid[s][k][c]
         if pairs[s].best[g] < 0:
-            what = (f"{_name(pairs[s].best_b[g])} ({pairs[s].best[g]:+.3f})" if pairs[s].evaluated[g]
+            what = (f"{binding_name(pairs[s].best_b[g])} ({pairs[s].best[g]:+.3f})" if pairs[s].evaluated[g]
                     else "no candidate option")
             miss.append(f"{s}: {what}")
     return (f"no complete design: the nearest evaluated design ({_core_text(cat, int(crow[sel[c]]))}) misses "

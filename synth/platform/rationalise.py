@@ -22,7 +22,7 @@ from formulations.platform import NODE_LIMIT, TIME_LIMIT_S, solve as solve_milp
 from synth.errors import InputError, Problem
 from synth.io.limits import COUNTS
 from synth.platform.assign import assign, full_platform, objective_value, option_groups, platform_from_y
-from synth.platform.compile import Precompiled, _flat, compile_portfolio, precompile
+from synth.platform.compile import Precompiled, compile_portfolio, end_to_end, precompile
 from synth.platform.data import CORE_FAMILIES, FAMILIES, SUBSYSTEM_FAMILIES, SUBSYSTEMS, PortfolioFeasibility, \
     default_weights
 from synth.platform.greedy import greedy
@@ -128,7 +128,7 @@ def _group_maxima(pf: PortfolioFeasibility, s: str) -> tuple[np.ndarray, np.ndar
     lens = np.fromiter((len(m) for m in ms), np.int64, len(ms))
     gm = np.full(len(ms), -np.inf)
     if lens.sum():
-        flat = _flat(ms, float, int(lens.sum()))
+        flat = end_to_end(ms, float, int(lens.sum()))
         gm[lens > 0] = np.maximum.reduceat(flat, (np.cumsum(lens) - lens)[lens > 0])
     return gm, gptr
 
